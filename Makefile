@@ -1,0 +1,86 @@
+# pgsim — one non-recursive Makefile.
+#   make          build build/pgsim (no package installs)
+#   make run      install missing Debian packages, build, run the quickstart
+#   make test     install missing packages, build, run every cmocka suite
+#   make check    the tests under ASan + UBSan (-fno-sanitize-recover=all)
+#   make bench    benchmarks that print figures (never part of make test)
+#   make install PREFIX=/usr/local ; make format ; make clean
+
+PREFIX  ?= /usr/local
+BUILD   ?= build
+CC      ?= cc
+PKGS    := glib-2.0 yaml-0.1 libpng
+HAVE_MPI := $(shell pkg-config --exists ompi-c 2>/dev/null && echo 1)
+ifeq ($(HAVE_MPI),1)
+PKGS    += ompi-c
+MPIDEF  := -DPGSIM_HAVE_MPI=1
+endif
+PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+OPT     ?= -O2 -g
+CFLAGS  += -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) \
+           -Wall -Wextra -MMD -MP -I. \
+           $(PKG_CFLAGS) $(MPIDEF) $(EXTRA_CFLAGS)
+LDLIBS  += $(PKG_LIBS) -lm $(EXTRA_LDFLAGS)
+
+MAIN    := sim/app/main.c
+LIBSRC  := $(filter-out $(MAIN),$(shell find sim -name '*.c' | LC_ALL=C sort))
+LIBOBJ  := $(LIBSRC:%.c=$(BUILD)/obj/%.o)
+TESTSRC := $(shell find tests -name 'test_*.c' | LC_ALL=C sort)
+TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
+TESTLIB := $(shell find tests -name '*.c' ! -name 'test_*.c' | LC_ALL=C sort)
+TESTLOBJ := $(TESTLIB:%.c=$(BUILD)/obj/%.o)
+
+.PHONY: all deps run test check bench install format clean
+all: $(BUILD)/pgsim
+
+deps:
+	@sh scripts/deps.sh
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/libpgsim.a: $(LIBOBJ)
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+$(BUILD)/pgsim: $(BUILD)/obj/$(MAIN:.c=.o) $(BUILD)/libpgsim.a
+	$(CC) $(CFLAGS) $^ -o $@ $(LDFLAGS) $(LDLIBS)
+
+$(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TESTLOBJ) $(BUILD)/libpgsim.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $^ -o $@ $(LDFLAGS) $(LDLIBS) -lcmocka
+
+run: deps
+	@$(MAKE) -s all
+	./$(BUILD)/pgsim run configs/quickstart.yaml
+
+test: deps
+	@$(MAKE) -s all $(TESTBIN)
+	@sh scripts/run-tests.sh $(BUILD) $(TESTBIN)
+
+check: deps
+	@$(MAKE) -s BUILD=build-san OPT="-O1 -g -fno-omit-frame-pointer" \
+	  EXTRA_CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all" \
+	  EXTRA_LDFLAGS="-fsanitize=address,undefined" \
+	  build-san/pgsim $(TESTBIN:$(BUILD)/%=build-san/%)
+	@PGSIM_SANITIZE=1 sh scripts/run-tests.sh build-san \
+	  $(TESTBIN:$(BUILD)/%=build-san/%)
+
+bench: deps
+	@$(MAKE) -s all
+	@sh scripts/bench.sh $(BUILD)
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/share/pgsim
+	install -m 755 $(BUILD)/pgsim $(DESTDIR)$(PREFIX)/bin/pgsim
+	cp -r models configs $(DESTDIR)$(PREFIX)/share/pgsim/
+
+format:
+	clang-format -i $$(find sim tests -name '*.[ch]')
+
+clean:
+	rm -rf build build-san
+
+-include $(shell find $(BUILD) build-san -name '*.d' 2>/dev/null)

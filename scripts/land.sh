@@ -1,0 +1,18 @@
+#!/bin/sh
+# Developer helper for parallel work in git worktrees: run from a worktree
+# whose branch is fully committed.  Rebases the branch onto main, checks
+# that it builds warnings-clean, and fast-forwards main (in the main
+# checkout) to it.  Serialised by a lock so concurrent landings queue.
+set -eu
+main_dir=${PGSIM_MAIN:-/work/main}
+br=$(git rev-parse --abbrev-ref HEAD)
+[ -z "$(git status --porcelain --untracked-files=no)" ] ||
+    { echo "land: commit your changes first" >&2; exit 1; }
+exec 9>/tmp/pgsim-land.lock
+flock 9
+git rebase main || { echo "land: resolve the conflict, git rebase --continue, rerun" >&2; exit 1; }
+out=$(make -s -j2 all 2>&1) || { echo "$out" | tail -20; echo "land: build fails" >&2; exit 1; }
+if echo "$out" | grep -q 'warning:'; then echo "$out" | grep warning: | head; echo "land: warnings" >&2; exit 1; fi
+cd "$main_dir"
+git merge --ff-only -q "$br"
+echo "land: main is now $(git rev-parse --short HEAD)"

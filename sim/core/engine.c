@@ -1,0 +1,231 @@
+/* engine.c — the event loop.
+ *
+ * Pool: events live in a growable array of records recycled through a
+ * free list of slot numbers; the heap holds only (time, seq, slot) keys.
+ * Hot path: the event being run is not popped before its handler runs.
+ * Its heap root is left as a "hole"; the first event the handler schedules
+ * fills the hole with one sift-down (replace-top) instead of a pop plus a
+ * push.  If the handler schedules nothing, the root is popped afterwards.
+ * Order is unchanged: the hole holds the least key, and a new key is never
+ * less than the key being run.
+ */
+#include "sim/core/engine.h"
+#include "sim/core/evq.h"
+
+typedef struct {
+    SimHandler fn;
+    void *ctx;
+    void *arg;
+} SimEvent;
+
+typedef struct {
+    char *name;
+    SimRng *rng;
+} SimEntity;
+
+struct SimEngine {
+    SimEvq *q;
+    SimEvent *pool;
+    uint32_t pool_cap;
+    uint32_t *free_slots;
+    uint32_t n_free;
+    SimTime now;
+    uint64_t seq;
+    uint64_t events;
+    uint64_t seed;
+    gboolean hole;    /* heap root is the event being run */
+    gboolean stopped;
+    GError *error;
+    GArray *entities; /* SimEntity */
+    GPtrArray *phases;
+    GHashTable *phase_ids; /* name -> id + 1 */
+    uint64_t progress_every;
+    SimProgressFn progress_fn;
+    void *progress_ctx;
+    SimTrace *trace;
+};
+
+SimEngine *sim_engine_new(uint64_t seed)
+{
+    SimEngine *e = g_new0(SimEngine, 1);
+    e->q = sim_evq_new();
+    e->seed = seed;
+    e->entities = g_array_new(FALSE, TRUE, sizeof(SimEntity));
+    e->phases = g_ptr_array_new_with_free_func(g_free);
+    e->phase_ids = g_hash_table_new(g_str_hash, g_str_equal);
+    sim_engine_phase(e, "compute"); /* phase 0: the default */
+    return e;
+}
+
+void sim_engine_free(SimEngine *e)
+{
+    if (!e)
+        return;
+    sim_evq_free(e->q);
+    g_free(e->pool);
+    g_free(e->free_slots);
+    for (guint i = 0; i < e->entities->len; i++) {
+        SimEntity *en = &g_array_index(e->entities, SimEntity, i);
+        g_free(en->name);
+        g_free(en->rng);
+    }
+    g_array_free(e->entities, TRUE);
+    g_hash_table_destroy(e->phase_ids);
+    g_ptr_array_free(e->phases, TRUE);
+    if (e->error)
+        g_error_free(e->error);
+    g_free(e);
+}
+
+SimTime sim_now(const SimEngine *e) { return e->now; }
+uint64_t sim_engine_seed(const SimEngine *e) { return e->seed; }
+uint64_t sim_engine_events(const SimEngine *e) { return e->events; }
+
+size_t sim_engine_pending(const SimEngine *e)
+{
+    return sim_evq_len(e->q) - (e->hole ? 1 : 0);
+}
+
+static void grow_pool(SimEngine *e)
+{
+    uint32_t old = e->pool_cap, cap = old ? old * 2 : 1024;
+    g_assert(cap > old); /* 2^32 pending events: out of slot numbers */
+    e->pool = g_renew(SimEvent, e->pool, cap);
+    e->free_slots = g_renew(uint32_t, e->free_slots, cap);
+    for (uint32_t s = cap; s > old; s--)
+        e->free_slots[e->n_free++] = s - 1;
+    e->pool_cap = cap;
+}
+
+gboolean sim_schedule_at(SimEngine *e, SimTime t, SimHandler fn, void *ctx,
+                         void *arg)
+{
+    g_assert(t >= e->now);
+    if (G_UNLIKELY(e->n_free == 0))
+        grow_pool(e);
+    uint32_t slot = e->free_slots[--e->n_free];
+    e->pool[slot] = (SimEvent){fn, ctx, arg};
+    SimEvKey k = {t, e->seq++, slot};
+    if (e->hole) {
+        e->hole = FALSE;
+        sim_evq_replace_top(e->q, k);
+    } else {
+        sim_evq_push(e->q, k);
+    }
+    return TRUE;
+}
+
+gboolean sim_schedule_in(SimEngine *e, SimTime delay, SimHandler fn,
+                         void *ctx, void *arg)
+{
+    SimTime t;
+    if (G_UNLIKELY(!sim_time_add(e->now, delay, &t))) {
+        sim_engine_fail(e, g_error_new(SIM_ERROR, SIM_ERROR_OVERFLOW,
+                                       "simulated time overflow: %" G_GUINT64_FORMAT
+                                       " ps + %" G_GUINT64_FORMAT
+                                       " ps exceeds the 64-bit clock",
+                                       e->now, delay));
+        return FALSE;
+    }
+    return sim_schedule_at(e, t, fn, ctx, arg);
+}
+
+void sim_engine_stop(SimEngine *e) { e->stopped = TRUE; }
+
+void sim_engine_fail(SimEngine *e, GError *err)
+{
+    if (e->error)
+        g_error_free(err); /* keep the first error */
+    else
+        e->error = err;
+    e->stopped = TRUE;
+}
+
+gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
+{
+    uint64_t next_progress = e->progress_every
+                                 ? e->events + e->progress_every
+                                 : UINT64_MAX;
+    e->stopped = FALSE;
+    while (!e->stopped && sim_evq_len(e->q) > 0) {
+        SimEvKey k = sim_evq_top(e->q);
+        if (k.time > until)
+            break;
+        SimEvent ev = e->pool[k.slot];
+        e->free_slots[e->n_free++] = k.slot;
+        e->now = k.time;
+        e->hole = TRUE;
+        ev.fn(e, ev.ctx, ev.arg);
+        if (e->hole) {
+            e->hole = FALSE;
+            sim_evq_pop(e->q);
+        }
+        if (G_UNLIKELY(++e->events >= next_progress)) {
+            e->progress_fn(e, e->progress_ctx);
+            next_progress = e->events + e->progress_every;
+        }
+    }
+    if (until != SIM_TIME_MAX && !e->stopped && until > e->now &&
+        (sim_evq_len(e->q) == 0 || sim_evq_top(e->q).time > until))
+        e->now = until;
+    if (e->error) {
+        g_propagate_error(err, e->error);
+        e->error = NULL;
+        return FALSE;
+    }
+    return TRUE;
+}
+
+uint32_t sim_entity_add(SimEngine *e, const char *name)
+{
+    SimEntity en = {g_strdup(name), NULL};
+    g_array_append_val(e->entities, en);
+    return e->entities->len - 1;
+}
+
+const char *sim_entity_name(const SimEngine *e, uint32_t id)
+{
+    g_assert(id < e->entities->len);
+    return g_array_index(e->entities, SimEntity, id).name;
+}
+
+SimRng *sim_entity_rng(SimEngine *e, uint32_t id)
+{
+    g_assert(id < e->entities->len);
+    SimEntity *en = &g_array_index(e->entities, SimEntity, id);
+    if (!en->rng) {
+        en->rng = g_new(SimRng, 1);
+        sim_rng_init(en->rng, e->seed, id);
+    }
+    return en->rng;
+}
+
+unsigned sim_engine_phase(SimEngine *e, const char *name)
+{
+    gpointer v = g_hash_table_lookup(e->phase_ids, name);
+    if (v)
+        return GPOINTER_TO_UINT(v) - 1;
+    char *copy = g_strdup(name);
+    g_ptr_array_add(e->phases, copy);
+    g_hash_table_insert(e->phase_ids, copy, GUINT_TO_POINTER(e->phases->len));
+    return e->phases->len - 1;
+}
+
+const char *sim_engine_phase_name(const SimEngine *e, unsigned id)
+{
+    g_assert(id < e->phases->len);
+    return g_ptr_array_index(e->phases, id);
+}
+
+unsigned sim_engine_phase_count(const SimEngine *e) { return e->phases->len; }
+
+void sim_engine_set_progress(SimEngine *e, uint64_t every, SimProgressFn fn,
+                             void *ctx)
+{
+    e->progress_every = fn ? every : 0;
+    e->progress_fn = fn;
+    e->progress_ctx = ctx;
+}
+
+void sim_engine_set_trace(SimEngine *e, SimTrace *tr) { e->trace = tr; }
+SimTrace *sim_engine_trace(const SimEngine *e) { return e->trace; }

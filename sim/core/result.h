@@ -1,0 +1,65 @@
+/* result.h — the one result structure every workload fills.
+ *
+ * Frame times, per-node utilisation (overall and per phase), communication
+ * volume, named workload metrics in insertion order, and simulator figures.
+ * Writers (text, JSON, CSV) are in sim/app/report.c; docs/output.md is the
+ * schema.  Wall-clock figures are kept apart (wall_s) because they are the
+ * only non-deterministic numbers a run produces.
+ */
+#ifndef PGSIM_CORE_RESULT_H
+#define PGSIM_CORE_RESULT_H
+
+#include "sim/core/engine.h"
+#include "sim/core/stats.h"
+
+typedef struct {
+    char *name;  /* "gp3", "node12" */
+    char *kind;  /* "gp", "renderer", "node" ... */
+    SimBusy busy;/* per_phase indexed like SimResult.phases */
+} SimNodeResult;
+
+typedef struct {
+    char *name;
+    char *unit; /* "" when dimensionless */
+    double value;
+} SimMetric;
+
+typedef struct {
+    char *workload;
+    char *machine;
+    char *fidelity;
+    uint64_t seed;
+    GArray *frame_times; /* SimTime per frame */
+    SimTime elapsed;     /* simulated time at the end of the run */
+    GPtrArray *phases;   /* char *, phase names by id */
+    GPtrArray *nodes;    /* SimNodeResult * */
+    uint64_t comm_bytes;
+    uint64_t comm_messages;
+    char *busiest_link;  /* NULL when no message was sent */
+    uint64_t busiest_link_bytes;
+    GPtrArray *metrics;  /* SimMetric *, insertion order */
+    uint64_t events;     /* engine events run */
+    double wall_s;       /* wall-clock seconds of the run (not deterministic) */
+} SimResult;
+
+/* Returns a new empty result; free with sim_result_free(). */
+SimResult *sim_result_new(const char *workload, const char *machine);
+void sim_result_free(SimResult *r);
+
+void sim_result_add_frame(SimResult *r, SimTime t);
+/* Appends a node; returns it (borrowed) for filling busy times. */
+SimNodeResult *sim_result_add_node(SimResult *r, const char *name,
+                                   const char *kind);
+/* Sets (or replaces) a named metric, keeping first-insertion order. */
+void sim_result_set_metric(SimResult *r, const char *name, double value,
+                           const char *unit);
+/* Looks a metric up; returns FALSE if absent. */
+gboolean sim_result_get_metric(const SimResult *r, const char *name,
+                               double *value);
+/* Copies phase names from the engine so node busy ids resolve. */
+void sim_result_set_phases(SimResult *r, const SimEngine *eng);
+double sim_result_mean_frame_s(const SimResult *r);
+/* busy / elapsed for a node, 0 when elapsed is 0. */
+double sim_result_node_util(const SimResult *r, const SimNodeResult *n);
+
+#endif

@@ -1,0 +1,53 @@
+/* trace.h — trace hooks.
+ *
+ * A SimTrace is a small table of callbacks plus its state; writers
+ * (Chrome Trace Event JSON, Paje) live in sim/app/.  The model layers call
+ * the sim_trace_* helpers, which are no-ops when no trace is attached, so
+ * tracing costs one NULL test when off.
+ */
+#ifndef PGSIM_CORE_TRACE_H
+#define PGSIM_CORE_TRACE_H
+
+#include "sim/core/time.h"
+
+typedef struct SimTrace SimTrace;
+
+typedef struct {
+    /* A processor was busy in a phase over [start, end). */
+    void (*span)(SimTrace *tr, uint32_t node, const char *node_name,
+                 const char *phase, SimTime start, SimTime end);
+    /* A message went from src to dst over [sent, arrived). */
+    void (*flow)(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t bytes,
+                 SimTime sent, SimTime arrived);
+    /* A named instant (frame boundary ...). */
+    void (*mark)(SimTrace *tr, const char *name, SimTime t);
+} SimTraceOps;
+
+struct SimTrace {
+    const SimTraceOps *ops;
+    void *state;
+};
+
+static inline void sim_trace_span(SimTrace *tr, uint32_t node,
+                                  const char *node_name, const char *phase,
+                                  SimTime start, SimTime end)
+{
+    if (tr && tr->ops->span)
+        tr->ops->span(tr, node, node_name, phase, start, end);
+}
+
+static inline void sim_trace_flow(SimTrace *tr, uint32_t src, uint32_t dst,
+                                  uint64_t bytes, SimTime sent,
+                                  SimTime arrived)
+{
+    if (tr && tr->ops->flow)
+        tr->ops->flow(tr, src, dst, bytes, sent, arrived);
+}
+
+static inline void sim_trace_mark(SimTrace *tr, const char *name, SimTime t)
+{
+    if (tr && tr->ops->mark)
+        tr->ops->mark(tr, name, t);
+}
+
+#endif
