@@ -1,0 +1,15 @@
+/* registry.c — the table of workloads (one row per workload). */
+#include "sim/workload/workload.h"
+#include <string.h>
+
+const WlOps *const wl_all[] = {
+    NULL,
+};
+
+const WlOps *wl_find(const char *name)
+{
+    for (int i = 0; wl_all[i]; i++)
+        if (strcmp(wl_all[i]->name, name) == 0)
+            return wl_all[i];
+    return NULL;
+}

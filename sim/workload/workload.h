@@ -1,0 +1,43 @@
+/* workload.h — the workload plug-in contract.
+ *
+ * A workload is a small ops table.  `pgsim run` loads the config, finds
+ * the workload named by `workload.type`, lets it parse its own section
+ * (unknown keys are then rejected by cfg_check_unused on the whole tree),
+ * and calls run(), which builds the machine it needs from the `machine`
+ * section, runs the engine and fills the SimResult.
+ */
+#ifndef PGSIM_WORKLOAD_WORKLOAD_H
+#define PGSIM_WORKLOAD_WORKLOAD_H
+
+#include "sim/core/cfg.h"
+#include "sim/core/engine.h"
+#include "sim/core/result.h"
+
+typedef struct {
+    SimEngine *eng;          /* fresh engine seeded with `seed`; borrowed */
+    const CfgNode *root;     /* whole config (machine, scene ...); borrowed */
+    uint64_t seed;
+    const char *fidelity;    /* "analytic", "flow" or "packet" */
+    int frames;              /* frames to simulate (>= 1) */
+    const char *out_dir;     /* where images etc. may go; NULL: none */
+    gboolean quiet;          /* no progress output */
+} WlContext;
+
+typedef struct {
+    const char *name;
+    const char *summary;
+    /* Parses the `workload` section (type already read); returns params or
+     * NULL with *err set. */
+    void *(*parse)(const CfgNode *section, GError **err);
+    void (*free_params)(void *params);
+    /* Runs the workload and fills `out`; FALSE with *err on failure. */
+    gboolean (*run)(const WlContext *ctx, void *params, SimResult *out,
+                    GError **err);
+} WlOps;
+
+/* Looks a workload up by name; NULL if unknown. */
+const WlOps *wl_find(const char *name);
+/* NULL-terminated list of every workload, for help and errors. */
+extern const WlOps *const wl_all[];
+
+#endif
