@@ -1,0 +1,123 @@
+/* scene.c — a renderable scene: mesh instances, a camera, a background.
+ *
+ * Implements scene.h.  Instances reference meshes by index, so a mesh is
+ * stored once however often it is drawn; scene_flatten() expands them
+ * for consumers that want one world-space list.  O(instances) bookkeeping
+ * plus O(vertices) for bounds and flattening.
+ */
+#include "sim/scene/scene.h"
+
+Scene *scene_new(const char *name)
+{
+    Scene *s = g_new0(Scene, 1);
+    s->name = g_strdup(name ? name : "scene");
+    s->meshes = g_ptr_array_new_with_free_func((GDestroyNotify)scene_mesh_free);
+    s->instances = g_array_new(FALSE, FALSE, sizeof(SceneInstance));
+    s->camera = scene_camera_default();
+    s->background = scene_color(0, 0, 0);
+    return s;
+}
+
+void scene_free(Scene *s)
+{
+    if (!s)
+        return;
+    g_free(s->name);
+    g_ptr_array_free(s->meshes, TRUE);
+    g_array_free(s->instances, TRUE);
+    scene_path_free(s->path);
+    g_free(s);
+}
+
+guint scene_add_mesh(Scene *s, SceneMesh *m)
+{
+    g_assert(m);
+    g_ptr_array_add(s->meshes, m);
+    return s->meshes->len - 1;
+}
+
+guint scene_add_instance(Scene *s, guint mesh, Mat4 xform, SceneColor color,
+                         uint32_t tag)
+{
+    g_assert(mesh < s->meshes->len);
+    SceneInstance in = {mesh, xform, color, tag};
+    g_array_append_val(s->instances, in);
+    return s->instances->len - 1;
+}
+
+void scene_set_path(Scene *s, SceneCameraPath *path)
+{
+    if (path != s->path)
+        scene_path_free(s->path);
+    s->path = path;
+}
+
+SceneCamera scene_camera_at(const Scene *s, double frame)
+{
+    return s->path ? scene_path_camera(s->path, frame) : s->camera;
+}
+
+uint64_t scene_n_polys(const Scene *s)
+{
+    uint64_t n = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++)
+        n += scene_mesh_n_polys(scene_instance_mesh(s, i));
+    return n;
+}
+
+uint64_t scene_n_triangles(const Scene *s)
+{
+    uint64_t n = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++)
+        n += scene_mesh_n_triangles(scene_instance_mesh(s, i));
+    return n;
+}
+
+uint64_t scene_n_vertices(const Scene *s)
+{
+    uint64_t n = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++)
+        n += scene_mesh_n_vertices(scene_instance_mesh(s, i));
+    return n;
+}
+
+SceneBox scene_bbox(const Scene *s)
+{
+    SceneBox b = scene_box_empty();
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        SceneBox mb = scene_mesh_bbox(scene_instance_mesh(s, i));
+        b = scene_box_union(b,
+                            scene_box_transform(mb, scene_instance(s, i)->xform));
+    }
+    return b;
+}
+
+SceneBox scene_instance_bbox(const Scene *s, guint i)
+{
+    const SceneMesh *m = scene_instance_mesh(s, i);
+    Mat4 xf = scene_instance(s, i)->xform;
+    SceneBox b = scene_box_empty();
+    for (guint v = 0; v < scene_mesh_n_vertices(m); v++) {
+        Vec4 h = mat4_apply_point(xf, scene_mesh_vertex(m, v));
+        double w = h.w != 0 ? 1.0 / h.w : 1.0;
+        b = scene_box_add_point(b, vec3(h.x * w, h.y * w, h.z * w));
+    }
+    return b;
+}
+
+SceneMesh *scene_flatten(const Scene *s)
+{
+    SceneMesh *out = scene_mesh_new();
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        const SceneInstance *in = scene_instance(s, i);
+        guint p0 = scene_mesh_n_polys(out);
+        scene_mesh_append(out, scene_instance_mesh(s, i), in->xform);
+        for (guint p = p0; p < scene_mesh_n_polys(out); p++) {
+            SceneColor *c = &g_array_index(out->poly_color, SceneColor, p);
+            c->r *= in->color.r;
+            c->g *= in->color.g;
+            c->b *= in->color.b;
+        }
+    }
+    return out;
+}

@@ -1,0 +1,241 @@
+/* test_geometry.c — meshes, bounding boxes, cameras, camera paths, scenes.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/scene/scene.h"
+
+#define NEAR(a, b) assert_true(fabs((a) - (b)) < 1e-9)
+
+static Vec3 project(Mat4 m, Vec3 p)
+{
+    Vec4 h = mat4_apply_point(m, p);
+    return vec3(h.x / h.w, h.y / h.w, h.z / h.w);
+}
+
+static void test_box(void **st)
+{
+    (void)st;
+    SceneBox b = scene_box_empty();
+    assert_true(scene_box_is_empty(b));
+    b = scene_box_add_point(b, vec3(1, 2, 3));
+    assert_false(scene_box_is_empty(b));
+    b = scene_box_add_point(b, vec3(-1, 0, 5));
+    NEAR(b.min.x, -1);
+    NEAR(b.max.z, 5);
+    NEAR(scene_box_radius(b), 0.5 * sqrt(4 + 4 + 4));
+    assert_true(scene_box_contains(b, vec3(0, 1, 4)));
+    assert_false(scene_box_contains(b, vec3(0, 1, 6)));
+    SceneBox t = scene_box_transform(b, mat4_translate(10, 0, 0));
+    NEAR(t.min.x, 9);
+    NEAR(t.max.x, 11);
+    assert_false(scene_box_overlaps(b, t));
+    SceneBox r = scene_box_transform(b, mat4_rotate(vec3(0, 0, 1), G_PI / 2));
+    NEAR(r.min.x, -2);
+    NEAR(r.max.y, 1);
+    SceneBox u = scene_box_union(scene_box_empty(), b);
+    NEAR(u.max.y, 2);
+    assert_true(scene_box_is_empty(
+        scene_box_transform(scene_box_empty(), mat4_identity())));
+}
+
+static SceneMesh *unit_quad_mesh(void)
+{
+    SceneMesh *m = scene_mesh_new();
+    scene_mesh_add_vertex(m, vec3(0, 0, 0));
+    scene_mesh_add_vertex(m, vec3(1, 0, 0));
+    scene_mesh_add_vertex(m, vec3(1, 1, 0));
+    scene_mesh_add_vertex(m, vec3(0, 1, 0));
+    scene_mesh_add_quad(m, 0, 1, 2, 3, scene_color(1, 0, 0), 7);
+    scene_mesh_add_tri(m, 0, 2, 3, scene_color(0, 1, 0), 8);
+    return m;
+}
+
+static void test_mesh(void **st)
+{
+    (void)st;
+    SceneMesh *m = unit_quad_mesh();
+    assert_int_equal(scene_mesh_n_polys(m), 2);
+    assert_int_equal(scene_mesh_n_triangles(m), 3);
+    assert_int_equal(scene_mesh_count_ngons(m, 4), 1);
+    assert_int_equal(scene_mesh_poly_len(m, 1), 3);
+    assert_int_equal(scene_mesh_poly(m, 1)[1], 2);
+    Vec3 n = scene_mesh_poly_normal(m, 0);
+    NEAR(n.z, 1);
+    scene_mesh_compute_normals(m);
+    NEAR(g_array_index(m->normals, Vec3, 1).z, 1);
+    assert_true(scene_mesh_validate(m, "q", NULL));
+    SceneMesh *c = scene_mesh_copy(m);
+    scene_mesh_append(c, m, mat4_rotate(vec3(1, 0, 0), G_PI));
+    assert_int_equal(scene_mesh_n_polys(c), 4);
+    assert_int_equal(scene_mesh_poly(c, 3)[0], 4);
+    NEAR(g_array_index(c->normals, Vec3, 5).z, -1);
+    NEAR(scene_mesh_poly_normal(c, 2).z, -1);
+    assert_int_equal(g_array_index(c->poly_tag, uint32_t, 3), 8);
+    g_array_index(c->idx, uint32_t, 0) = 99;
+    GError *err = NULL;
+    assert_false(scene_mesh_validate(c, "bad", &err));
+    assert_non_null(strstr(err->message, "bad: polygon 0"));
+    g_error_free(err);
+    scene_mesh_free(c);
+    scene_mesh_free(m);
+    scene_mesh_free(NULL);
+}
+
+static void test_view_matrix(void **st)
+{
+    (void)st;
+    SceneCamera c = scene_camera_default();
+    c.eye = vec3(3, 4, 5);
+    c.target = vec3(1, 1, 1);
+    Mat4 v = scene_camera_view(&c);
+    Vec3 e = project(v, c.eye);
+    NEAR(vec3_len(e), 0);
+    Vec3 t = project(v, c.target);
+    NEAR(t.x, 0);
+    NEAR(t.y, 0);
+    NEAR(t.z, -vec3_len(vec3(2, 3, 4)));
+    /* A point above the target along world up projects to +y. */
+    Vec3 up = project(v, vec3(1, 2, 1));
+    assert_true(up.y > 0);
+}
+
+static void test_perspective(void **st)
+{
+    (void)st;
+    SceneCamera c = scene_camera_default();
+    c.eye = vec3(0, 0, 0);
+    c.target = vec3(0, 0, -1);
+    c.fov_deg = 90;
+    c.near = 1;
+    c.far = 10;
+    c.aspect = 2;
+    Mat4 vp = scene_camera_view_proj(&c);
+    NEAR(project(vp, vec3(0, 0, -1)).z, -1);
+    NEAR(project(vp, vec3(0, 0, -10)).z, 1);
+    /* 90° vertical: y = -z is the top edge; x = -2z the right edge. */
+    NEAR(project(vp, vec3(0, 3, -3)).y, 1);
+    NEAR(project(vp, vec3(6, 0, -3)).x, 1);
+    c.proj = SCENE_ORTHOGRAPHIC;
+    c.height = 4;
+    vp = scene_camera_view_proj(&c);
+    NEAR(project(vp, vec3(4, 2, -5.5)).x, 1);
+    NEAR(project(vp, vec3(4, 2, -5.5)).y, 1);
+    NEAR(project(vp, vec3(4, 2, -5.5)).z, 0);
+    NEAR(project(vp, vec3(0, 0, -10)).z, 1);
+}
+
+static void test_fit(void **st)
+{
+    (void)st;
+    SceneBox b = {{-1, -1, -1}, {3, 1, 1}};
+    SceneCamera c = scene_camera_default();
+    c.aspect = 0.5;
+    scene_camera_fit(&c, b, 1.0);
+    Mat4 vp = scene_camera_view_proj(&c);
+    double maxx = 0;
+    for (int i = 0; i < 8; i++) {
+        Vec3 p = vec3(i & 1 ? 3 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+        Vec3 q = project(vp, p);
+        assert_true(fabs(q.x) <= 1 && fabs(q.y) <= 1);
+        assert_true(q.z >= -1 && q.z <= 1);
+        maxx = fmax(maxx, fabs(q.x));
+    }
+    assert_true(maxx > 0.5); /* fills the narrow direction */
+    c.proj = SCENE_ORTHOGRAPHIC;
+    c.aspect = 1;
+    scene_camera_fit(&c, b, 0.5);
+    NEAR(c.height, 4 * scene_box_radius(b));
+}
+
+static void test_orbit(void **st)
+{
+    (void)st;
+    SceneCamera c = scene_camera_default();
+    c.eye = vec3(10, 2, 0);
+    c.target = vec3(0, 2, 0);
+    SceneCameraPath *p = scene_path_new_orbit(&c, vec3(0, 0, 0),
+                                              vec3(0, 1, 0), 0, 90, 4);
+    assert_int_equal(scene_path_n_frames(p), 4);
+    SceneCamera f1 = scene_path_camera(p, 1);
+    NEAR(f1.eye.x, 0);
+    NEAR(f1.eye.z, -10);
+    NEAR(f1.eye.y, 2);
+    NEAR(f1.target.y, 2);
+    NEAR(f1.up.y, 1);
+    SceneCamera f4 = scene_path_camera(p, 4);
+    NEAR(f4.eye.x, 10);
+    NEAR(vec3_len(scene_path_camera(p, 0.5).eye), vec3_len(c.eye));
+    scene_path_free(p);
+}
+
+static void test_keyframes(void **st)
+{
+    (void)st;
+    SceneCamera a = scene_camera_default(), b = a, d = a;
+    b.eye = vec3(10, 0, 5);
+    b.fov_deg = 65;
+    d.eye = vec3(10, 10, 5);
+    SceneCameraPath *p = scene_path_new_keyframes(SCENE_INTERP_LINEAR);
+    scene_path_add_key(p, 0, &a);
+    scene_path_add_key(p, 10, &b);
+    scene_path_add_key(p, 20, &d);
+    assert_int_equal(scene_path_n_frames(p), 21);
+    assert_int_equal(scene_path_n_keys(p), 3);
+    SceneCamera m = scene_path_camera(p, 5);
+    NEAR(m.eye.x, 5);
+    NEAR(m.fov_deg, 55);
+    NEAR(scene_path_camera(p, 15).eye.y, 5);
+    NEAR(scene_path_camera(p, -3).eye.x, 0);
+    NEAR(scene_path_camera(p, 99).eye.y, 10);
+    scene_path_free(p);
+    p = scene_path_new_keyframes(SCENE_INTERP_CATMULL_ROM);
+    scene_path_add_key(p, 0, &a);
+    scene_path_add_key(p, 10, &b);
+    scene_path_add_key(p, 20, &d);
+    NEAR(scene_path_camera(p, 10).eye.x, 10); /* interpolates keys */
+    NEAR(scene_path_camera(p, 0).eye.x, 0);
+    /* Curved: not the straight line between keys 0 and 1. */
+    assert_true(scene_path_camera(p, 5).eye.y < -1e-3);
+    scene_path_free(p);
+}
+
+static void test_scene(void **st)
+{
+    (void)st;
+    Scene *s = scene_new("t");
+    guint m = scene_add_mesh(s, unit_quad_mesh());
+    scene_add_instance(s, m, mat4_identity(), scene_color(1, 1, 1), 0);
+    scene_add_instance(s, m, mat4_translate(5, 0, 0), scene_color(.5, 1, 1),
+                       1);
+    assert_int_equal(scene_n_polys(s), 4);
+    assert_int_equal(scene_n_triangles(s), 6);
+    SceneBox b = scene_bbox(s);
+    NEAR(b.max.x, 6);
+    NEAR(scene_instance_bbox(s, 1).min.x, 5);
+    SceneMesh *f = scene_flatten(s);
+    assert_int_equal(scene_mesh_n_polys(f), 4);
+    assert_true(fabs(g_array_index(f->poly_color, SceneColor, 2).r - .5) <
+                1e-6);
+    scene_mesh_free(f);
+    SceneCamera c = scene_camera_at(s, 3);
+    NEAR(c.eye.z, 5);
+    scene_set_path(s, scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0),
+                                           0, 180, 2));
+    NEAR(scene_camera_at(s, 1).eye.z, -5);
+    scene_free(s);
+    scene_free(NULL);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_box),         cmocka_unit_test(test_mesh),
+        cmocka_unit_test(test_view_matrix), cmocka_unit_test(test_perspective),
+        cmocka_unit_test(test_fit),         cmocka_unit_test(test_orbit),
+        cmocka_unit_test(test_keyframes),   cmocka_unit_test(test_scene),
+    };
+    return cmocka_run_group_tests_name("geometry", tests, NULL, NULL);
+}
