@@ -1,0 +1,309 @@
+/* net.c — the network: lazy link table, message life cycle, statistics,
+ * and the analytic transport.
+ *
+ * Links live in a hash table keyed by link id and are created the first
+ * time a message's route crosses them, so memory grows with the traffic,
+ * not with the machine (a 65,536-node hypercube carrying one message holds
+ * a handful of links).  Every message is routed once at send time; its
+ * path holds borrowed NetLink pointers.  The transport (chosen from the
+ * fidelity and NetParams.switching) takes it from there and calls
+ * net_msg_deliver() at arrival.
+ *
+ * Analytic time: startup + hops * per_hop + bytes / min channel bandwidth
+ * on the path (the classical linear model, e.g. Hockney, Parallel
+ * Computing 20, 1994).  Cost: O(hops) per send, O(1) per delivery;
+ * memory O(links touched + messages in flight).
+ */
+#include "sim/net/net_internal.h"
+#include "sim/core/trace.h"
+#include <string.h>
+
+struct NetNet {
+    SimEngine *eng;
+    const NetTopo *topo;
+    NetParams par;
+    NetFidelity fid;
+    const NetTransportOps *tp;
+    void *tp_state;
+    GHashTable *links;   /* NetLinkId * -> NetLink * (owned) */
+    NetLinkId *route;    /* scratch, max_hops entries */
+    uint64_t seq;
+    uint64_t bytes, messages, delivered;
+    gssize mem;          /* bytes held by links and messages in flight */
+};
+
+/* TODO(net): flow and packet transports land next; until then they run
+ * the analytic model (documented in docs/net.md as in progress). */
+static const NetTransportOps *pick_transport(const NetParams *p,
+                                             NetFidelity fid)
+{
+    (void)p;
+    (void)fid;
+    return &net_analytic_transport;
+}
+
+static void link_free(gpointer p)
+{
+    NetLink *l = p;
+    g_free(l->flows);
+    g_free(l->holder);
+    g_queue_clear(&l->wait);
+    g_free(l);
+}
+
+NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
+                NetFidelity fid)
+{
+    g_assert(eng && topo && params);
+    g_assert(params->bandwidth > 0.0);
+    NetNet *n = g_new0(NetNet, 1);
+    n->eng = eng;
+    n->topo = topo;
+    n->par = *params;
+    if (n->par.channels == 0)
+        n->par.channels = 1;
+    if (n->par.packet_bytes == 0)
+        n->par.packet_bytes = 1024;
+    n->fid = fid;
+    n->tp = pick_transport(&n->par, fid);
+    n->links = g_hash_table_new_full(g_int64_hash, g_int64_equal, NULL,
+                                     link_free);
+    n->route = g_new(NetLinkId, topo->ops->max_hops(topo->state));
+    return n;
+}
+
+void net_free(NetNet *n)
+{
+    if (!n)
+        return;
+    if (n->tp->free)
+        n->tp->free(n);
+    g_hash_table_destroy(n->links);
+    g_free(n->route);
+    g_free(n);
+}
+
+SimEngine *net_engine(const NetNet *n) { return n->eng; }
+SimEngine *net_eng(NetNet *n) { return n->eng; }
+const NetTopo *net_topo(const NetNet *n) { return n->topo; }
+const NetParams *net_params(const NetNet *n) { return &n->par; }
+const NetParams *net_par(NetNet *n) { return &n->par; }
+NetFidelity net_fidelity(const NetNet *n) { return n->fid; }
+void **net_tp_slot(NetNet *n) { return &n->tp_state; }
+void net_account(NetNet *n, gssize b) { n->mem += b; }
+
+uint32_t net_nodes(const NetNet *n)
+{
+    return net_topo_nodes(n->topo);
+}
+
+static NetLink *link_get(NetNet *n, NetLinkId id)
+{
+    NetLink *l = g_hash_table_lookup(n->links, &id);
+    if (l)
+        return l;
+    l = g_new0(NetLink, 1);
+    l->id = id;
+    l->bw = n->topo->ops->link_bw(n->topo->state, id, &n->par);
+    l->channels = n->par.channels;
+    g_assert(l->bw > 0.0);
+    g_queue_init(&l->wait);
+    g_hash_table_insert(n->links, &l->id, l);
+    n->mem += sizeof *l + 3 * sizeof(void *); /* plus the table slot */
+    return l;
+}
+
+static guint route(const NetNet *n, uint32_t src, uint32_t dst)
+{
+    if (src == dst)
+        return 0;
+    return n->topo->ops->route(n->topo->state, src, dst, n->route);
+}
+
+static SimTime latency(const NetParams *p, guint hops)
+{
+    return p->startup + (SimTime)hops * p->per_hop;
+}
+
+SimTime net_msg_latency(const NetNet *n, const NetMsg *m)
+{
+    return latency(&n->par, m->hops);
+}
+
+SimTime net_ideal_time(const NetNet *n, uint32_t src, uint32_t dst,
+                       uint64_t bytes)
+{
+    guint h = route(n, src, dst);
+    double bw = n->par.bandwidth;
+    for (guint i = 0; i < h; i++) {
+        double b = n->topo->ops->link_bw(n->topo->state, n->route[i],
+                                         &n->par);
+        bw = i == 0 || b < bw ? b : bw;
+    }
+    SimTime t = latency(&n->par, h);
+    if (h > 0 && bytes > 0)
+        t += sim_time_for_bytes((double)bytes, bw);
+    return t;
+}
+
+static void account_path(NetNet *n, NetMsg *m)
+{
+    for (guint i = 0; i < m->hops; i++) {
+        NetLink *l = link_get(n, n->route[i]);
+        m->path[i] = l;
+        m->bw = i == 0 || l->bw < m->bw ? l->bw : m->bw;
+        l->st.bytes += m->bytes;
+        l->st.messages++;
+        l->st.busy += sim_time_for_bytes((double)m->bytes, l->bw);
+    }
+}
+
+void net_send(NetNet *n, uint32_t src, uint32_t dst, uint64_t bytes,
+              void *payload, NetArriveFn cb, void *ctx)
+{
+    uint32_t nn = net_nodes(n);
+    g_assert(src < nn && dst < nn);
+    NetMsg *m = g_new0(NetMsg, 1);
+    *m = (NetMsg){.net = n, .seq = n->seq++, .src = src, .dst = dst,
+                  .bytes = bytes, .payload = payload, .cb = cb, .ctx = ctx,
+                  .sent = sim_now(n->eng)};
+    m->hops = route(n, src, dst);
+    m->path = g_new(NetLink *, m->hops ? m->hops : 1);
+    m->bw = n->par.bandwidth;
+    account_path(n, m);
+    n->mem += sizeof *m + m->hops * sizeof(NetLink *);
+    n->bytes += bytes;
+    n->messages++;
+    if (m->hops == 0) {
+        net_analytic_transport.start(n, m);
+        return;
+    }
+    n->tp->start(n, m);
+}
+
+void net_msg_deliver(NetNet *n, NetMsg *m)
+{
+    SimTime now = sim_now(n->eng);
+    NetDelivery d = {m->src, m->dst, m->bytes, m->payload, m->sent, now,
+                     m->hops};
+    n->delivered++;
+    n->mem -= sizeof *m + m->hops * sizeof(NetLink *);
+    sim_trace_flow(sim_engine_trace(n->eng), m->src, m->dst, m->bytes,
+                   m->sent, now);
+    NetArriveFn cb = m->cb;
+    void *ctx = m->ctx;
+    g_free(m->path);
+    g_free(m->chan);
+    g_free(m);
+    if (cb)
+        cb(n, &d, ctx);
+}
+
+/* ---- analytic transport ---- */
+
+static void analytic_arrive(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    net_msg_deliver(ctx, arg);
+}
+
+static void analytic_start(NetNet *n, NetMsg *m)
+{
+    SimTime t = latency(&n->par, m->hops);
+    if (m->hops > 0 && m->bytes > 0)
+        t += sim_time_for_bytes((double)m->bytes, m->bw);
+    sim_schedule_in(n->eng, t, analytic_arrive, n, m);
+}
+
+const NetTransportOps net_analytic_transport = {
+    .name = "analytic",
+    .start = analytic_start,
+    .free = NULL,
+};
+
+/* ---- names and statistics ---- */
+
+static const char *const fid_names[] = {"analytic", "flow", "packet"};
+
+const char *net_fidelity_name(NetFidelity f)
+{
+    g_assert((unsigned)f < G_N_ELEMENTS(fid_names));
+    return fid_names[f];
+}
+
+gboolean net_fidelity_parse(const char *s, NetFidelity *out)
+{
+    for (unsigned i = 0; i < G_N_ELEMENTS(fid_names); i++) {
+        if (strcmp(s, fid_names[i]) == 0) {
+            *out = (NetFidelity)i;
+            return TRUE;
+        }
+    }
+    return FALSE;
+}
+
+const SimLinkStats *net_link_stats(const NetNet *n, NetLinkId id)
+{
+    NetLink *l = g_hash_table_lookup(n->links, &id);
+    return l ? &l->st : NULL;
+}
+
+guint net_links_touched(const NetNet *n)
+{
+    return g_hash_table_size(n->links);
+}
+
+uint64_t net_total_bytes(const NetNet *n) { return n->bytes; }
+uint64_t net_total_messages(const NetNet *n) { return n->messages; }
+uint64_t net_delivered(const NetNet *n) { return n->delivered; }
+
+gboolean net_busiest_link(const NetNet *n, NetLinkId *out)
+{
+    GHashTableIter it;
+    gpointer k, v;
+    gboolean found = FALSE;
+    uint64_t best = 0;
+    g_hash_table_iter_init(&it, n->links);
+    while (g_hash_table_iter_next(&it, &k, &v)) {
+        NetLink *l = v;
+        if (l->st.bytes == 0 && l->st.messages == 0)
+            continue;
+        if (!found || l->st.bytes > best ||
+            (l->st.bytes == best && l->id < *out)) {
+            best = l->st.bytes;
+            *out = l->id;
+            found = TRUE;
+        }
+    }
+    return found;
+}
+
+void net_link_name(const NetNet *n, NetLinkId l, char *buf, size_t len)
+{
+    n->topo->ops->link_name(n->topo->state, l, buf, len);
+}
+
+void net_fill_result(const NetNet *n, SimResult *r)
+{
+    NetLinkId l;
+    r->comm_bytes = n->bytes;
+    r->comm_messages = n->messages;
+    g_free(r->busiest_link);
+    r->busiest_link = NULL;
+    r->busiest_link_bytes = 0;
+    if (net_busiest_link(n, &l)) {
+        char buf[64];
+        net_link_name(n, l, buf, sizeof buf);
+        r->busiest_link = g_strdup(buf);
+        r->busiest_link_bytes = net_link_stats(n, l)->bytes;
+    }
+    g_free(r->fidelity);
+    r->fidelity = g_strdup(net_fidelity_name(n->fid));
+}
+
+size_t net_tracked_bytes(const NetNet *n)
+{
+    size_t fixed = sizeof *n + n->topo->state_bytes +
+                   n->topo->ops->max_hops(n->topo->state) * sizeof(NetLinkId);
+    return fixed + (size_t)n->mem;
+}
