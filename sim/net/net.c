@@ -32,14 +32,21 @@ struct NetNet {
     gssize mem;          /* bytes held by links and messages in flight */
 };
 
-/* TODO(net): flow and packet transports land next; until then they run
- * the analytic model (documented in docs/net.md as in progress). */
 static const NetTransportOps *pick_transport(const NetParams *p,
                                              NetFidelity fid)
 {
-    (void)p;
-    (void)fid;
-    return &net_analytic_transport;
+    if (fid == NET_ANALYTIC)
+        return &net_analytic_transport;
+    if (fid == NET_FLOW)
+        return &net_flow_transport;
+    switch (p->switching) {
+    case NET_SW_CIRCUIT:
+        return &net_circuit_transport;
+    case NET_SW_RING_SLOTS:
+        return &net_ringslot_transport;
+    default:
+        return &net_packet_transport;
+    }
 }
 
 static void link_free(gpointer p)

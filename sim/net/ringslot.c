@@ -1,0 +1,121 @@
+/* ringslot.c — ring slots: the Pixel-Planes 5 ring network.
+ *
+ * The ring has `channels` parallel channels, each a unidirectional ring of
+ * station-to-station segments (Fuchs et al., "Pixel-Planes 5: a
+ * heterogeneous multiprocessor graphics system using processor-enhanced
+ * memories", SIGGRAPH 1989: several simultaneous messages on a 640 MB/s
+ * ring).  A message travels on one channel: after the start-up it claims,
+ * atomically, the same channel on every segment from source to
+ * destination (the lowest-numbered channel whose segments are all free),
+ * then its words stream one station per slot time (per_hop) at the channel
+ * bandwidth, so it holds the segments for hops * per_hop + bytes / bw.
+ * A message that finds no channel free waits in one FIFO per ring; every
+ * release rescans that FIFO in order and starts each waiter that now fits
+ * (first fit: a later message whose segments are free may pass a blocked
+ * earlier one, but never one with the same path, so each source-
+ * destination pair delivers in send order).  Atomic claims cannot
+ * deadlock, unlike hop-by-hop holding on a cycle.
+ *
+ * Invariants: a lone message takes the analytic time.  Cost per release:
+ * O(waiters * hops * channels).
+ */
+#include "sim/net/net_internal.h"
+
+typedef struct {
+    GQueue wait; /* NetMsg *, FIFO by request */
+} RingNet;
+
+static RingNet *ring_net(NetNet *n)
+{
+    void **slot = net_tp_slot(n);
+    if (!*slot) {
+        RingNet *r = g_new0(RingNet, 1);
+        g_queue_init(&r->wait);
+        *slot = r;
+    }
+    return *slot;
+}
+
+static void ring_free_net(NetNet *n)
+{
+    RingNet *r = *net_tp_slot(n);
+    if (!r)
+        return;
+    g_queue_clear(&r->wait);
+    g_free(r);
+}
+
+static gboolean channel_free(NetMsg *m, uint32_t c)
+{
+    for (guint i = 0; i < m->hops; i++) {
+        NetLink *l = m->path[i];
+        if (!l->holder)
+            l->holder = g_new0(NetMsg *, l->channels);
+        if (c >= l->channels || l->holder[c])
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static void ring_done(SimEngine *eng, void *ctx, void *arg);
+
+static gboolean try_claim(NetNet *n, NetMsg *m)
+{
+    uint32_t channels = m->path[0]->channels;
+    for (uint32_t c = 0; c < channels; c++) {
+        if (!channel_free(m, c))
+            continue;
+        for (guint i = 0; i < m->hops; i++)
+            m->path[i]->holder[c] = m;
+        m->step = c;
+        SimTime t = (SimTime)m->hops * net_par(n)->per_hop;
+        if (m->bytes)
+            t += sim_time_for_bytes((double)m->bytes, m->bw);
+        sim_schedule_in(net_eng(n), t, ring_done, n, m);
+        return TRUE;
+    }
+    return FALSE;
+}
+
+static void rescan(NetNet *n, RingNet *r)
+{
+    GList *it = r->wait.head;
+    while (it) {
+        GList *next = it->next;
+        if (try_claim(n, it->data))
+            g_queue_delete_link(&r->wait, it);
+        it = next;
+    }
+}
+
+static void ring_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    NetNet *n = ctx;
+    NetMsg *m = arg;
+    for (guint i = 0; i < m->hops; i++)
+        m->path[i]->holder[m->step] = NULL;
+    net_msg_deliver(n, m);
+    rescan(n, ring_net(n));
+}
+
+static void ring_request(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    NetNet *n = ctx;
+    /* Nothing was released since the waiters were last scanned, so only
+     * the newcomer can fit now. */
+    if (!try_claim(n, arg))
+        g_queue_push_tail(&ring_net(n)->wait, arg);
+}
+
+static void ring_start(NetNet *n, NetMsg *m)
+{
+    sim_schedule_in(net_eng(n), net_par(n)->startup, ring_request, n, m);
+}
+
+const NetTransportOps net_ringslot_transport = {
+    .name = "ring-slots",
+    .start = ring_start,
+    .free = ring_free_net,
+};

@@ -1,0 +1,226 @@
+/* test_transport.c — the three transports against each other and against
+ * hand-computed times. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include <cmocka.h>
+
+#include "sim/net/net.h"
+
+typedef struct {
+    SimTime at[64];
+    uint32_t order[64];
+    guint n;
+} Log;
+
+static void log_arrival(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    Log *lg = ctx;
+    g_assert(lg->n < 64);
+    lg->at[lg->n] = d->arrived;
+    lg->order[lg->n] = GPOINTER_TO_UINT(d->payload);
+    lg->n++;
+}
+
+static NetParams params(SimTime startup, SimTime per_hop)
+{
+    NetParams p = {0};
+    p.bandwidth = 1e6; /* 1 us per byte */
+    p.channels = 1;
+    p.startup = startup;
+    p.per_hop = per_hop;
+    p.packet_bytes = 100;
+    p.switching = NET_SW_CIRCUIT;
+    return p;
+}
+
+static void test_lone_message_all_fidelities(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(5);
+    NetParams p = params(50 * SIM_US, 7 * SIM_US);
+    for (int sw = NET_SW_CIRCUIT; sw <= NET_SW_RING_SLOTS; sw++) {
+        if (sw == NET_SW_STORE_FORWARD)
+            continue;
+        p.switching = (NetSwitching)sw;
+        for (int f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+            SimEngine *eng = sim_engine_new(1);
+            NetNet *net = net_new(eng, t, &p, (NetFidelity)f);
+            Log lg = {0};
+            net_send(net, 3, 28, 1200, NULL, log_arrival, &lg);
+            assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+            assert_int_equal(lg.n, 1);
+            /* 3 ^ 28 = 31: five hops */
+            assert_int_equal(lg.at[0], 50 * SIM_US + 5 * 7 * SIM_US +
+                                           1200 * SIM_US);
+            net_free(net);
+            sim_engine_free(eng);
+        }
+    }
+    net_topo_free(t);
+}
+
+/* Store-and-forward pays the packet time on every hop but the last is
+ * pipelined: startup + hops * (per_hop) + (hops - 1 + packets) * tau. */
+static void test_store_and_forward(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(3);
+    NetParams p = params(0, 5 * SIM_US);
+    p.switching = NET_SW_STORE_FORWARD;
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_PACKET);
+    Log lg = {0};
+    net_send(net, 0, 7, 300, NULL, log_arrival, &lg);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(lg.at[0], 3 * 5 * SIM_US + (2 + 3) * 100 * SIM_US);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
+static void test_two_flows_share_link(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(2);
+    NetParams p = params(0, 0);
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_FLOW);
+    Log lg = {0};
+    /* 0->1 and 0->3 both cross n0->n1. */
+    net_send(net, 0, 1, 1000, GUINT_TO_POINTER(1), log_arrival, &lg);
+    net_send(net, 0, 3, 1000, GUINT_TO_POINTER(2), log_arrival, &lg);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(lg.n, 2);
+    assert_int_equal(lg.at[0], 2000 * SIM_US);
+    assert_int_equal(lg.at[1], 2000 * SIM_US);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
+static void send_later(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    net_send(ctx, 0, 3, 1000, GUINT_TO_POINTER(2), log_arrival, arg);
+}
+
+/* A alone for 500 us, then shared: A ends at 1500 us, B at 2000 us. */
+static void test_flow_incremental(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(2);
+    NetParams p = params(0, 0);
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_FLOW);
+    Log lg = {0};
+    net_send(net, 0, 1, 1000, GUINT_TO_POINTER(1), log_arrival, &lg);
+    sim_schedule_at(eng, 500 * SIM_US, send_later, net, &lg);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(lg.n, 2);
+    assert_int_equal(lg.order[0], 1);
+    assert_true(lg.at[0] >= 1500 * SIM_US && lg.at[0] <= 1500 * SIM_US + 2);
+    assert_true(lg.at[1] >= 2000 * SIM_US && lg.at[1] <= 2000 * SIM_US + 2);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
+/* Every XOR permutation is link-disjoint: all fidelities give the
+ * analytic time for each message. */
+static void test_xor_permutation_contention_free(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(4);
+    NetParams p = params(20 * SIM_US, 3 * SIM_US);
+    for (uint32_t k = 1; k < 16; k++) {
+        for (int f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+            SimEngine *eng = sim_engine_new(1);
+            NetNet *net = net_new(eng, t, &p, (NetFidelity)f);
+            Log lg = {0};
+            for (uint32_t i = 0; i < 16; i++)
+                net_send(net, i, i ^ k, 500, NULL, log_arrival, &lg);
+            assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+            assert_int_equal(lg.n, 16);
+            SimTime ideal = net_ideal_time(net, 0, k, 500);
+            for (guint i = 0; i < 16; i++)
+                assert_int_equal(lg.at[i], ideal);
+            net_free(net);
+            sim_engine_free(eng);
+        }
+    }
+    net_topo_free(t);
+}
+
+/* Circuit switching: 0->3 holds n0->n1 then waits for n1->n3, held by
+ * 1->3; 0->1 queues behind 0->3 on n0->n1.  Order and times are fixed. */
+static void test_circuit_blocking_order(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(2);
+    NetParams p = params(10 * SIM_US, 0);
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_PACKET);
+    Log lg = {0};
+    net_send(net, 1, 3, 100, GUINT_TO_POINTER(1), log_arrival, &lg);
+    net_send(net, 0, 3, 100, GUINT_TO_POINTER(2), log_arrival, &lg);
+    net_send(net, 0, 1, 100, GUINT_TO_POINTER(3), log_arrival, &lg);
+    net_send(net, 0, 1, 100, GUINT_TO_POINTER(4), log_arrival, &lg);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(lg.n, 4);
+    uint32_t want[4] = {1, 2, 3, 4};
+    SimTime at[4] = {110, 210, 310, 410};
+    for (guint i = 0; i < 4; i++) {
+        assert_int_equal(lg.order[i], want[i]);
+        assert_int_equal(lg.at[i], at[i] * SIM_US);
+    }
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
+/* Nothing leaks: tracked memory returns to its idle level. */
+static void test_memory_returns(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(4);
+    NetParams p = params(1 * SIM_US, 1 * SIM_US);
+    for (int sw = NET_SW_CIRCUIT; sw <= NET_SW_RING_SLOTS; sw++) {
+        p.switching = (NetSwitching)sw;
+        for (int f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+            SimEngine *eng = sim_engine_new(1);
+            NetNet *net = net_new(eng, t, &p, (NetFidelity)f);
+            size_t idle[2], busy[2];
+            for (int round = 0; round < 2; round++) {
+                Log lg = {0};
+                for (uint32_t i = 0; i < 16; i++)
+                    net_send(net, i, 15 - i, 250, NULL, log_arrival, &lg);
+                busy[round] = net_tracked_bytes(net);
+                assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+                idle[round] = net_tracked_bytes(net);
+            }
+            assert_true(idle[0] < busy[1]);
+            assert_int_equal(idle[0], idle[1]);
+            assert_int_equal(net_delivered(net), 32);
+            net_free(net);
+            sim_engine_free(eng);
+        }
+    }
+    net_topo_free(t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lone_message_all_fidelities),
+        cmocka_unit_test(test_store_and_forward),
+        cmocka_unit_test(test_two_flows_share_link),
+        cmocka_unit_test(test_flow_incremental),
+        cmocka_unit_test(test_xor_permutation_contention_free),
+        cmocka_unit_test(test_circuit_blocking_order),
+        cmocka_unit_test(test_memory_returns),
+    };
+    return cmocka_run_group_tests_name("net_transport", tests, NULL, NULL);
+}
