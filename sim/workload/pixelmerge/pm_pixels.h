@@ -26,7 +26,7 @@
 
 typedef struct {
     uint16_t x, y;
-    float z;        /* depth: smaller is nearer */
+    double z;       /* depth: smaller is nearer */
     uint32_t poly;  /* global polygon id (tie-break); WL_PM_EMPTY: none */
     uint32_t color; /* packed 0xRRGGBB */
 } WlPmPixel;
