@@ -62,6 +62,9 @@ typedef struct {
     uint64_t per_hop;      /* ps, per router / station traversed */
     uint32_t packet_bytes; /* packet payload for packet transports */
     NetSwitching switching;
+    /* Control network (CM-5): 0 = none; see collective.h. */
+    uint64_t ctrl_latency; /* ps per combine / broadcast / barrier */
+    double ctrl_bandwidth; /* B/s for the payload; 0 = latency only */
 } NetParams;
 
 typedef struct {
