@@ -3,5 +3,6 @@
 #include <stddef.h>
 
 const CliCommand cli_commands[] = {
+    {"bench", cmd_bench, "run a benchmark and print its figures"},
     {NULL, NULL, NULL},
 };

@@ -15,6 +15,8 @@ typedef struct {
     const char *summary; /* one line for `pgsim help` */
 } CliCommand;
 
+int cmd_bench(int argc, char **argv);
+
 /* NULL-terminated table, in the order `pgsim help` lists them. */
 extern const CliCommand cli_commands[];
 

@@ -1,22 +1,45 @@
-/* evq.c — implicit 4-ary min-heap of event keys.
+/* evq.c — implicit 4-ary min-heap of event entries.
  *
  * Invariant: for every i > 0, !less(h[i], h[(i-1)/4]).  A 4-ary heap is
- * shallower than a binary one (log4 n levels) and its four children share
- * one or two cache lines, which measured faster for PHOLD here (see
- * docs/engine.md).  Sift-down moves the hole instead of swapping.
+ * shallower than a binary one (log4 n levels), and with 16-byte entries
+ * stored from element 3 of a 64-byte aligned block, the children 4i+1 ..
+ * 4i+4 of node i lie in one cache line.  Sift-down moves a hole instead
+ * of swapping.  Ties on time are broken by seq, read from the side array
+ * only then.  Measured against alternatives in docs/engine.md.
  */
 #include "sim/core/evq.h"
+#include <stdlib.h>
+#include <string.h>
 
-struct SimEvq {
-    SimEvKey *h;
-    size_t n, cap;
-};
+#define EVQ_PAD 3 /* entries before h[0], so that h[1] is line-aligned */
+
+static inline gboolean entry_less(const SimEvq *q, SimEvEntry a,
+                                  SimEvEntry b)
+{
+    return a.time < b.time ||
+           (a.time == b.time && q->seqs[a.slot] < q->seqs[b.slot]);
+}
+
+static void grow_heap(SimEvq *q, size_t cap)
+{
+    size_t bytes = (cap + EVQ_PAD + 1) * sizeof(SimEvEntry);
+    bytes = (bytes + 63) & ~(size_t)63;
+    void *mem = aligned_alloc(64, bytes);
+    if (!mem)
+        g_error("evq: out of memory for %zu pending events", cap);
+    SimEvEntry *h = (SimEvEntry *)mem + EVQ_PAD;
+    if (q->n)
+        memcpy(h, q->h, q->n * sizeof(SimEvEntry));
+    free(q->mem);
+    q->mem = mem;
+    q->h = h;
+    q->cap = cap;
+}
 
 SimEvq *sim_evq_new(void)
 {
     SimEvq *q = g_new0(SimEvq, 1);
-    q->cap = 64;
-    q->h = g_new(SimEvKey, q->cap);
+    grow_heap(q, 64);
     return q;
 }
 
@@ -24,42 +47,44 @@ void sim_evq_free(SimEvq *q)
 {
     if (!q)
         return;
-    g_free(q->h);
+    free(q->mem);
+    g_free(q->seqs);
     g_free(q);
 }
 
-size_t sim_evq_len(const SimEvq *q)
+static void note_seq(SimEvq *q, SimEvKey k)
 {
-    return q->n;
+    if (k.slot >= q->seq_cap) {
+        size_t cap = q->seq_cap ? q->seq_cap : 64;
+        while (cap <= k.slot)
+            cap *= 2;
+        q->seqs = g_renew(uint64_t, q->seqs, cap);
+        q->seq_cap = cap;
+    }
+    q->seqs[k.slot] = k.seq;
 }
 
 void sim_evq_push(SimEvq *q, SimEvKey k)
 {
-    if (q->n == q->cap) {
-        q->cap *= 2;
-        q->h = g_renew(SimEvKey, q->h, q->cap);
-    }
+    if (q->n == q->cap)
+        grow_heap(q, q->cap * 2);
+    note_seq(q, k);
+    SimEvEntry e = {k.time, k.slot};
     size_t i = q->n++;
     while (i > 0) {
         size_t p = (i - 1) >> 2;
-        if (!sim_evkey_less(k, q->h[p]))
+        if (!entry_less(q, e, q->h[p]))
             break;
         q->h[i] = q->h[p];
         i = p;
     }
-    q->h[i] = k;
+    q->h[i] = e;
 }
 
-SimEvKey sim_evq_top(const SimEvq *q)
+/* Places e at the hole i and sifts it down to its place. */
+static void sift_down(SimEvq *q, size_t i, SimEvEntry e)
 {
-    g_assert(q->n > 0);
-    return q->h[0];
-}
-
-/* Places k at the hole i and sifts it down to its place. */
-static void sift_down(SimEvq *q, size_t i, SimEvKey k)
-{
-    SimEvKey *h = q->h;
+    SimEvEntry *h = q->h;
     size_t n = q->n;
     for (;;) {
         size_t c = 4 * i + 1;
@@ -67,28 +92,58 @@ static void sift_down(SimEvq *q, size_t i, SimEvKey k)
             break;
         size_t end = c + 4 < n ? c + 4 : n, m = c;
         for (size_t j = c + 1; j < end; j++)
-            if (sim_evkey_less(h[j], h[m]))
+            if (entry_less(q, h[j], h[m]))
                 m = j;
-        if (!sim_evkey_less(h[m], k))
+        if (!entry_less(q, h[m], e))
             break;
         h[i] = h[m];
         i = m;
     }
-    h[i] = k;
+    h[i] = e;
 }
 
 SimEvKey sim_evq_pop(SimEvq *q)
 {
-    g_assert(q->n > 0);
-    SimEvKey top = q->h[0];
-    SimEvKey last = q->h[--q->n];
+    SimEvKey top = sim_evq_top(q);
+    SimEvEntry last = q->h[--q->n];
     if (q->n > 0)
         sift_down(q, 0, last);
     return top;
 }
 
+/* Bottom-up replace (Wegener's bottom-up heapsort idea): walk the hole
+ * down the path of least children to a leaf without comparing against e,
+ * then sift e up from there.  A new event is usually later than most
+ * pending ones, so it settles near the leaves and the walk up is short:
+ * 3 comparisons a level instead of 4. */
+static void sift_bottom_up(SimEvq *q, SimEvEntry e)
+{
+    SimEvEntry *h = q->h;
+    size_t n = q->n, i = 0;
+    for (;;) {
+        size_t c = 4 * i + 1;
+        if (c >= n)
+            break;
+        size_t end = c + 4 < n ? c + 4 : n, m = c;
+        for (size_t j = c + 1; j < end; j++)
+            if (entry_less(q, h[j], h[m]))
+                m = j;
+        h[i] = h[m];
+        i = m;
+    }
+    while (i > 0) {
+        size_t p = (i - 1) >> 2;
+        if (!entry_less(q, e, h[p]))
+            break;
+        h[i] = h[p];
+        i = p;
+    }
+    h[i] = e;
+}
+
 void sim_evq_replace_top(SimEvq *q, SimEvKey k)
 {
     g_assert(q->n > 0);
-    sift_down(q, 0, k);
+    note_seq(q, k);
+    sift_bottom_up(q, (SimEvEntry){k.time, k.slot});
 }

@@ -1,0 +1,111 @@
+/* test_rng.c — streams and distributions (fixed seeds: deterministic). */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include "sim/core/rng.h"
+#include "sim/core/stats.h"
+#include <stdlib.h>
+
+static void test_known_first_values_are_stable(void **state)
+{
+    (void)state;
+    SimRng a, b;
+    sim_rng_init(&a, 12345, 7);
+    sim_rng_init(&b, 12345, 7);
+    for (int i = 0; i < 100; i++)
+        assert_true(sim_rng_u64(&a) == sim_rng_u64(&b));
+    sim_rng_init(&b, 12345, 8);
+    assert_true(sim_rng_u64(&a) != sim_rng_u64(&b));
+    sim_rng_init(&b, 12346, 7);
+    sim_rng_init(&a, 12345, 7);
+    assert_true(sim_rng_u64(&a) != sim_rng_u64(&b));
+}
+
+static void test_below_is_in_range_and_unbiased(void **state)
+{
+    (void)state;
+    SimRng r;
+    sim_rng_init(&r, 1, 1);
+    int hist[6] = {0};
+    for (int i = 0; i < 600000; i++) {
+        uint64_t v = sim_rng_below(&r, 6);
+        assert_true(v < 6);
+        hist[v]++;
+    }
+    for (int i = 0; i < 6; i++) /* 5 sigma of a binomial(600000, 1/6) */
+        assert_true(abs(hist[i] - 100000) < 5 * 289);
+    assert_int_equal(sim_rng_below(&r, 1), 0);
+}
+
+static void test_distribution_moments(void **state)
+{
+    (void)state;
+    SimRng r;
+    sim_rng_init(&r, 2, 3);
+    SimMoments u = {0}, ex = {0}, nm = {0};
+    int n = 400000, hits = 0;
+    for (int i = 0; i < n; i++) {
+        double x = sim_rng_uniform(&r);
+        assert_true(x >= 0.0 && x < 1.0);
+        sim_moments_add(&u, x);
+        double y = sim_rng_exp(&r, 2.0);
+        assert_true(y >= 0.0 && isfinite(y));
+        sim_moments_add(&ex, y);
+        sim_moments_add(&nm, sim_rng_normal(&r, 10.0, 3.0));
+        hits += sim_rng_bernoulli(&r, 0.25);
+    }
+    assert_true(fabs(u.mean - 0.5) < 0.003);
+    assert_true(fabs(sim_moments_var(&u) - 1.0 / 12) < 0.002);
+    assert_true(fabs(ex.mean - 2.0) < 0.02);
+    assert_true(fabs(nm.mean - 10.0) < 0.03);
+    assert_true(fabs(sqrt(sim_moments_var(&nm)) - 3.0) < 0.03);
+    assert_true(fabs(hits / (double)n - 0.25) < 0.004);
+}
+
+static void test_compensated_sum(void **state)
+{
+    (void)state;
+    SimSum s = {0};
+    double naive = 0.0;
+    sim_sum_add(&s, 1e16);
+    naive += 1e16;
+    for (int i = 0; i < 10000; i++) {
+        sim_sum_add(&s, 1.0);
+        naive += 1.0;
+    }
+    sim_sum_add(&s, -1e16);
+    naive += -1e16;
+    assert_true(sim_sum_value(&s) == 10000.0);
+    assert_true(naive != 10000.0); /* the case really is hard */
+}
+
+static void test_busy_per_phase(void **state)
+{
+    (void)state;
+    SimBusy b;
+    sim_busy_init(&b);
+    assert_true(sim_busy_add(&b, 3, 100));
+    assert_true(sim_busy_add(&b, 0, 50));
+    assert_true(sim_busy_add(&b, 3, 1));
+    assert_int_equal(sim_busy_phase(&b, 3), 101);
+    assert_int_equal(sim_busy_phase(&b, 0), 50);
+    assert_int_equal(sim_busy_phase(&b, 9), 0);
+    assert_int_equal(b.total, 151);
+    assert_false(sim_busy_add(&b, 1, SIM_TIME_MAX));
+    assert_int_equal(b.total, 151);
+    sim_busy_clear(&b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_known_first_values_are_stable),
+        cmocka_unit_test(test_below_is_in_range_and_unbiased),
+        cmocka_unit_test(test_distribution_moments),
+        cmocka_unit_test(test_compensated_sum),
+        cmocka_unit_test(test_busy_per_phase),
+    };
+    return cmocka_run_group_tests_name("rng_stats", tests, NULL, NULL);
+}
