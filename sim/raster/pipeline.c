@@ -1,0 +1,224 @@
+/* pipeline.c — transform, shade, clip, cull and scan (see pipeline.h).
+ *
+ * Each polygon is handled in a small stack buffer; nothing is cached
+ * between polygons, so work (and the counters) depend only on the
+ * polygons drawn, never on the rest of the mesh.  Culling and the
+ * zero-area test use the exact fixed-point area of the whole clipped
+ * polygon, so they agree with what the scan converter would cover.
+ * Fan triangles whose snapped area has the opposite sign to the polygon
+ * (a tiny concavity created by snapping clipped vertices) are skipped.
+ * O(n) per n-gon, plus the scan conversion.
+ */
+#include "sim/raster/pipeline.h"
+
+RastView rast_view_make(Mat4 view_proj, int width, int height)
+{
+    g_assert(width > 0 && height > 0);
+    g_assert(width <= RAST_MAX_SIDE && height <= RAST_MAX_SIDE);
+    RastView v = {0};
+    v.view_proj = view_proj;
+    v.width = width;
+    v.height = height;
+    v.cull_back = TRUE;
+    v.lighting = TRUE;
+    v.shading = RAST_SHADE_GOURAUD;
+    v.light_dir = vec3(0, 0, 1);
+    v.ambient = 0.25f;
+    v.diffuse = 0.75f;
+    return v;
+}
+
+RastView rast_view_for_camera(const SceneCamera *cam, int width, int height)
+{
+    SceneCamera c = *cam;
+    c.aspect = (double)width / height;
+    RastView v = rast_view_make(scene_camera_view_proj(&c), width, height);
+    Vec3 back = vec3_norm(vec3_sub(c.eye, c.target));
+    Vec3 right = vec3_norm(vec3_cross(c.up, back));
+    Vec3 up = vec3_cross(back, right);
+    v.light_dir = vec3_norm(
+        vec3_add(back, vec3_add(vec3_scale(right, 0.5), vec3_scale(up, 0.6))));
+    return v;
+}
+
+static RastColor shade(const RastView *v, SceneColor base, Vec3 n)
+{
+    if (!v->lighting)
+        return (RastColor){base.r, base.g, base.b};
+    double d = fabs(vec3_dot(vec3_norm(n), v->light_dir));
+    float k = (float)(v->ambient + v->diffuse * d);
+    return (RastColor){base.r * k, base.g * k, base.b * k};
+}
+
+static Vec3 xform_dir(Mat4 m, Vec3 d)
+{
+    Vec4 r = mat4_apply(m, (Vec4){d.x, d.y, d.z, 0.0});
+    return vec3(r.x, r.y, r.z);
+}
+
+static SceneColor mul(SceneColor a, SceneColor b)
+{
+    return scene_color(a.r * b.r, a.g * b.g, a.b * b.b);
+}
+
+static int64_t poly_area2(const RastScreenVert *s, int n)
+{
+    int64_t a = 0;
+    for (int i = 1; i + 1 < n; i++)
+        a += rast_area2(&s[0], &s[i], &s[i + 1]);
+    return a;
+}
+
+static gboolean finite4(Vec4 p)
+{
+    return isfinite(p.x) && isfinite(p.y) && isfinite(p.z) && isfinite(p.w);
+}
+
+/* Trivial accept/reject; returns the number of vertices to scan (0 when
+ * nothing is left) and where they are. */
+static int clip_stage(const RastVert *in, int n, double guard,
+                      RastVert *buf, const RastVert **out, RastCounters *c)
+{
+    unsigned all = ~0u, any = 0;
+    for (int i = 0; i < n; i++) {
+        if (!finite4(in[i].pos)) {
+            c->rejected++;
+            return 0;
+        }
+        unsigned code = rast_clip_outcode(in[i].pos, guard);
+        all &= code;
+        any |= code;
+    }
+    *out = in;
+    if (all) {
+        c->rejected++;
+        return 0;
+    }
+    if (!any)
+        return n;
+    int m = rast_clip_polygon(in, n, guard, buf);
+    *out = buf;
+    if (m == 0)
+        c->rejected++;
+    else
+        c->clipped++;
+    return m;
+}
+
+void rast_draw_clip_polygon(const RastView *v, const RastVert *in, int n,
+                            uint32_t prim, RastSpanSink sink,
+                            RastCounters *c)
+{
+    g_assert(n >= 3 && n <= RAST_POLY_MAX);
+    c->prims++;
+    double guard = rast_guard_band(v->width, v->height);
+    RastVert buf[RAST_CLIP_MAX];
+    const RastVert *p;
+    int m = clip_stage(in, n, guard, buf, &p, c);
+    if (m == 0)
+        return;
+    RastScreenVert s[RAST_CLIP_MAX];
+    for (int i = 0; i < m; i++)
+        s[i] = rast_viewport(&p[i], v->width, v->height);
+    int64_t area = poly_area2(s, m);
+    if (area == 0) {
+        c->degenerate++;
+        return;
+    }
+    if (v->cull_back && area < 0) {
+        c->culled++;
+        return;
+    }
+    for (int i = 1; i + 1 < m; i++) {
+        RastScreenVert t[3] = {s[0], s[i], s[i + 1]};
+        int64_t a = rast_area2(&t[0], &t[1], &t[2]);
+        if (a != 0 && (a > 0) == (area > 0))
+            rast_scan_triangle(t, prim, v->width, v->height, sink, c);
+    }
+}
+
+typedef struct {
+    const RastView *v;
+    const SceneMesh *m;
+    Mat4 mvp, model;
+    SceneColor tint;
+    gboolean vnormals, vcolors;
+} MeshCtx;
+
+static SceneColor vertex_base(const MeshCtx *k, guint poly, uint32_t vi)
+{
+    SceneColor b = k->vcolors && k->v->shading == RAST_SHADE_GOURAUD
+                       ? g_array_index(k->m->colors, SceneColor, vi)
+                       : g_array_index(k->m->poly_color, SceneColor, poly);
+    return mul(b, k->tint);
+}
+
+/* Transforms and shades the vertices idx[0..n) of polygon `poly`. */
+static void load_verts(const MeshCtx *k, guint poly, const uint32_t *idx,
+                       int n, Vec3 face_n, RastVert *out, RastCounters *c)
+{
+    SceneColor flat = mul(g_array_index(k->m->poly_color, SceneColor, poly),
+                          k->tint);
+    RastColor fc = shade(k->v, flat, face_n);
+    for (int i = 0; i < n; i++) {
+        out[i].pos = mat4_apply_point(k->mvp, scene_mesh_vertex(k->m, idx[i]));
+        c->verts++;
+        if (k->v->shading == RAST_SHADE_FLAT) {
+            out[i].col = fc;
+            continue;
+        }
+        Vec3 nn = k->vnormals
+                      ? xform_dir(k->model,
+                                  g_array_index(k->m->normals, Vec3, idx[i]))
+                      : face_n;
+        out[i].col = shade(k->v, vertex_base(k, poly, idx[i]), nn);
+    }
+}
+
+static void draw_poly(const MeshCtx *k, guint poly, uint32_t prim,
+                      RastSpanSink sink, RastCounters *c)
+{
+    const uint32_t *idx = scene_mesh_poly(k->m, poly);
+    int n = (int)scene_mesh_poly_len(k->m, poly);
+    Vec3 fn = xform_dir(k->model, scene_mesh_poly_normal(k->m, poly));
+    RastVert vs[RAST_POLY_MAX];
+    if (n <= RAST_POLY_MAX) {
+        load_verts(k, poly, idx, n, fn, vs, c);
+        rast_draw_clip_polygon(k->v, vs, n, prim, sink, c);
+        return;
+    }
+    for (int i = 1; i + 1 < n; i++) {
+        uint32_t tri[3] = {idx[0], idx[i], idx[i + 1]};
+        load_verts(k, poly, tri, 3, fn, vs, c);
+        rast_draw_clip_polygon(k->v, vs, 3, prim, sink, c);
+    }
+}
+
+void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
+                    SceneColor tint, uint32_t id_base,
+                    const uint32_t *subset, guint n_subset,
+                    RastSpanSink sink, RastCounters *c)
+{
+    MeshCtx k = {v, m, mat4_mul(v->view_proj, model), model, tint,
+                 m->normals->len == m->pos->len && m->pos->len > 0,
+                 m->colors->len == m->pos->len && m->pos->len > 0};
+    guint np = scene_mesh_n_polys(m);
+    guint count = subset ? n_subset : np;
+    for (guint i = 0; i < count; i++) {
+        guint poly = subset ? subset[i] : i;
+        g_assert(poly < np);
+        draw_poly(&k, poly, id_base + poly, sink, c);
+    }
+}
+
+void rast_draw_scene(const RastView *v, const Scene *s, RastSpanSink sink,
+                     RastCounters *c)
+{
+    uint32_t base = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        const SceneInstance *in = scene_instance(s, i);
+        const SceneMesh *m = scene_instance_mesh(s, i);
+        rast_draw_mesh(v, m, in->xform, in->color, base, NULL, 0, sink, c);
+        base += scene_mesh_n_polys(m);
+    }
+}
