@@ -1,0 +1,72 @@
+/* pphigs_db.h — generators of the four PPHIGS test databases of seed 001
+ * (Ellsworth, Good, Tebbs 1990, §6 and its table): space station,
+ * building lobby, flock of boids about the Old Well, two articulated
+ * human figures.
+ *
+ * The originals are not available; each generator builds a structure
+ * network with the published shape (structures, hierarchy depth,
+ * polygons per structure, polygon/attribute ratio, the lobby's off-screen
+ * share) from parameters that live in YAML (configs/pphigs/databases.yaml;
+ * the published statistics are in configs/papers/ellsworth90.yaml and a
+ * test compares the two).  Geometry is synthetic but spatially coherent
+ * in list order, as the paper assumes (§2.2).  Deterministic for a seed.
+ */
+#ifndef PGSIM_SCENE_PPHIGS_DB_H
+#define PGSIM_SCENE_PPHIGS_DB_H
+
+#include "sim/scene/camera.h"
+#include "sim/scene/structdb.h"
+
+typedef enum {
+    SCENE_PPHIGS_STATION,
+    SCENE_PPHIGS_LOBBY,
+    SCENE_PPHIGS_FLOCK,
+    SCENE_PPHIGS_HUMANS,
+    SCENE_PPHIGS_NKINDS
+} ScenePphigsKind;
+
+/* Generator parameters; which fields a kind reads is said per field. */
+typedef struct {
+    ScenePphigsKind kind;
+    uint64_t seed;
+    guint polygons;      /* station, lobby: polygons; humans: total */
+    guint attributes;    /* station, lobby: attribute elements */
+    guint verts;         /* vertices per polygon (all kinds) */
+    double size;         /* extent of the model (world units) */
+    double fov_deg;      /* lobby: the standard view's vertical fov */
+    guint boids;         /* flock: boid instances */
+    guint boid_polygons; /* flock: polygons in the boid structure */
+    guint boid_colors;   /* flock: colours in the boid structure */
+    guint well_structs;  /* flock: structures of the Old Well */
+    guint well_polygons; /* flock: polygons of the Old Well, in total */
+    guint well_attributes; /* flock: colours of the Old Well, in total */
+    guint figures;       /* humans: figures */
+    guint structures;    /* humans: structures over all figures */
+    guint levels;        /* humans: hierarchy depth (levels) */
+} ScenePphigsSpec;
+
+typedef struct {
+    SceneDb *db;         /* owned */
+    SceneCamera camera;  /* the database's standard view */
+} ScenePphigsDb;
+
+/* "space_station", "building_lobby", "flock_old_well",
+ * "two_human_figures"; the row names of seed 001's table. */
+const char *scene_pphigs_kind_name(ScenePphigsKind k);
+gboolean scene_pphigs_kind_parse(const char *s, ScenePphigsKind *out);
+
+/* Builds the database; FALSE with *err (SIM_ERROR_INPUT) when the spec
+ * cannot be met (e.g. more attributes than polygons allow). */
+gboolean scene_pphigs_generate(const ScenePphigsSpec *spec,
+                               ScenePphigsDb *out, GError **err);
+void scene_pphigs_db_clear(ScenePphigsDb *d);
+
+/* TRUE when the primitive lies wholly outside one clip plane of `mvp`
+ * (-w <= x, y, z <= w): trivially rejected, off-screen. */
+gboolean scene_pphigs_prim_offscreen(Mat4 mvp, const SceneElem *e);
+
+/* Share of the max-set polygons that lie wholly outside the view
+ * frustum of `vp` (projection * view). */
+double scene_pphigs_offscreen_share(const SceneDb *db, Mat4 vp);
+
+#endif
