@@ -26,6 +26,7 @@ void scene_free(Scene *s)
     g_ptr_array_free(s->meshes, TRUE);
     g_array_free(s->instances, TRUE);
     scene_path_free(s->path);
+    scene_db_free(s->db);
     g_free(s);
 }
 
@@ -43,6 +44,34 @@ guint scene_add_instance(Scene *s, guint mesh, Mat4 xform, SceneColor color,
     SceneInstance in = {mesh, xform, color, tag};
     g_array_append_val(s->instances, in);
     return s->instances->len - 1;
+}
+
+void scene_set_db(Scene *s, SceneDb *db)
+{
+    if (db != s->db)
+        scene_db_free(s->db);
+    s->db = db;
+}
+
+SceneView scene_view_default(void)
+{
+    SceneView v = {SCENE_PERSPECTIVE, 0, 0, 45, 1, 1};
+    return v;
+}
+
+void scene_apply_view(Scene *s, const SceneView *v)
+{
+    double az = v->azimuth_deg * G_PI / 180, el = v->elevation_deg * G_PI / 180;
+    Vec3 dir = vec3(cos(el) * sin(az), sin(el), cos(el) * cos(az));
+    SceneCamera c = scene_camera_default();
+    c.proj = v->proj;
+    c.fov_deg = v->fov_deg;
+    c.aspect = v->aspect;
+    c.target = vec3(0, 0, 0);
+    c.eye = dir;
+    c.up = fabs(dir.y) > 0.999 ? vec3(0, 0, -1) : vec3(0, 1, 0);
+    scene_camera_fit(&c, scene_bbox(s), v->fill);
+    s->camera = c;
 }
 
 void scene_set_path(Scene *s, SceneCameraPath *path)

@@ -13,6 +13,7 @@
 #define PGSIM_SCENE_SCENE_H
 
 #include "sim/scene/camera.h"
+#include "sim/scene/structdb.h"
 
 typedef struct {
     guint mesh;       /* index into Scene.meshes */
@@ -29,7 +30,25 @@ typedef struct {
     SceneCameraPath *path; /* owned, may be NULL (fixed camera) */
     SceneColor background;
     guint width, height; /* suggested viewport in pixels (0 = unset) */
+    SceneDb *db;         /* optional hierarchical form (owned), or NULL */
 } Scene;
+
+/* The view rule shared by the generators: the eye looks at the scene's
+ * bounding-box centre from direction (azimuth about +y from +z, elevation
+ * above the x-z plane, degrees) and is fitted with scene_camera_fit() so
+ * the bounding sphere fills `fill` of the smaller viewport extent. */
+typedef struct {
+    SceneProjection proj;
+    double azimuth_deg, elevation_deg;
+    double fov_deg;  /* perspective */
+    double fill;     /* (0, 1] */
+    double aspect;   /* width / height */
+} SceneView;
+
+/* azimuth 0, elevation 0, perspective 45°, fill 1, aspect 1. */
+SceneView scene_view_default(void);
+/* Sets s->camera by the view rule (keeps any path). */
+void scene_apply_view(Scene *s, const SceneView *v);
 
 /* Returns a new empty scene (default camera, black background); free with
  * scene_free().  `name` is copied. */
@@ -41,6 +60,8 @@ guint scene_add_mesh(Scene *s, SceneMesh *m);
 /* Returns the instance index. */
 guint scene_add_instance(Scene *s, guint mesh, Mat4 xform, SceneColor color,
                          uint32_t tag);
+/* Takes ownership of db (frees any previous one). */
+void scene_set_db(Scene *s, SceneDb *db);
 /* Takes ownership of path (frees any previous one). */
 void scene_set_path(Scene *s, SceneCameraPath *path);
 

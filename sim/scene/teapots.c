@@ -1,0 +1,74 @@
+/* teapots.c — the teapot scenes of the active-pixel-merging paper.
+ *
+ * Implements teapots.h: one shared teapot mesh (teapot.h), instanced
+ * `count` times by a layout rule or explicit placements.  O(T + count).
+ */
+#include "sim/scene/teapots.h"
+
+#include "sim/scene/teapot.h"
+
+/* Hues for vary_color: distinct, fully saturated-ish, no paper data. */
+static const SceneColor palette[8] = {
+    {0.90f, 0.30f, 0.25f}, {0.30f, 0.70f, 0.90f}, {0.95f, 0.80f, 0.30f},
+    {0.45f, 0.85f, 0.40f}, {0.80f, 0.45f, 0.85f}, {0.95f, 0.60f, 0.30f},
+    {0.40f, 0.50f, 0.95f}, {0.85f, 0.85f, 0.85f},
+};
+
+SceneTeapotsParams scene_teapots_defaults(void)
+{
+    SceneTeapotsParams p = {3200, 1, SCENE_TEAPOTS_SPREAD, 1.1, 0.5, 0,
+                            NULL, 0, {1, 1, 1}, TRUE};
+    return p;
+}
+
+static SceneTeapotPlacement layout_at(const SceneTeapotsParams *p, guint i,
+                                      Vec3 size)
+{
+    SceneTeapotPlacement pl = {{0, 0, 0}, i * p->yaw_step, 1.0};
+    if (p->layout == SCENE_TEAPOTS_SPREAD) {
+        guint cols = (guint)ceil(sqrt((double)p->count));
+        guint rows = (p->count + cols - 1) / cols;
+        guint r = i / cols, c = i % cols;
+        /* the last row may be short: centre it */
+        guint in_row = r + 1 < rows ? cols : p->count - r * cols;
+        pl.at.x = (c - (in_row - 1) / 2.0) * p->spacing * size.x;
+        pl.at.y = ((rows - 1) / 2.0 - r) * p->spacing * size.y;
+    } else {
+        double mid = (p->count - 1) / 2.0;
+        pl.at.x = (i - mid) * p->shift * size.x;
+        pl.at.z = -(i - mid) * p->spacing * size.z;
+    }
+    return pl;
+}
+
+static Mat4 place(const SceneTeapotPlacement *pl, Vec3 centre)
+{
+    Mat4 m = mat4_translate(-centre.x, -centre.y, -centre.z);
+    m = mat4_mul(mat4_scale(pl->scale, pl->scale, pl->scale), m);
+    m = mat4_mul(mat4_rotate(vec3(0, 1, 0), pl->yaw_deg * G_PI / 180), m);
+    return mat4_mul(mat4_translate(pl->at.x, pl->at.y, pl->at.z), m);
+}
+
+Scene *scene_teapots_new(const SceneTeapotsParams *p, const char *what,
+                         GError **err)
+{
+    SceneTeapotTess t;
+    g_assert(p->count >= 1);
+    g_assert(!p->placements || p->n_placements == p->count);
+    if (!scene_teapot_tess_for(p->polygons_per_teapot, what, &t, err))
+        return NULL;
+    Scene *s = scene_new("teapots");
+    SceneMesh *m = scene_teapot_mesh(t, scene_color(1, 1, 1));
+    SceneBox box = scene_mesh_bbox(m);
+    Vec3 size = scene_box_size(box), centre = scene_box_center(box);
+    guint id = scene_add_mesh(s, m);
+    for (guint i = 0; i < p->count; i++) {
+        SceneTeapotPlacement pl =
+            p->placements ? p->placements[i] : layout_at(p, i, size);
+        SceneColor c = p->vary_color ? palette[i % 8] : p->color;
+        scene_add_instance(s, id, place(&pl, centre), c, i);
+    }
+    SceneView v = scene_view_default();
+    scene_apply_view(s, &v);
+    return s;
+}
