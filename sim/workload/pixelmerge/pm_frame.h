@@ -1,0 +1,71 @@
+/* pm_frame.h — one frame of object-space parallel rendering with active
+ * pixel merging (seed 003): local span lists and modified scanline
+ * z-buffer on every processor (pm_render.h), the merge with a scheme and
+ * a load balancing (pm_merge.h, pm_balance.h), timed on a hypercube
+ * (pm_replay.h).  The engine-free parts are real: pixels, counts, the
+ * merged image; time comes from counts x costs and from the network.
+ *
+ * Phases are separated by a barrier, as the per-phase times of Table 2
+ * imply: span_ms and zbuf_ms are the largest processor's busy time in the
+ * phase, merge_ms runs from the end of the slowest local z-buffer to the
+ * end of the last merge.  ZBUF-EXC builds unsorted span lists (no
+ * insertion steps) and z-buffers into a full N x N buffer (initialised:
+ * N^2 x zbuf_init); active-pixel schemes use sorted span lists and the
+ * modified scanline z-buffer (range checks, no initialisation) (§2, §5).
+ * Cost: O(polygons + pixels x log P + N P) plus O(P N^2) for ZBUF-EXC.
+ */
+#ifndef PGSIM_WORKLOAD_PIXELMERGE_PM_FRAME_H
+#define PGSIM_WORKLOAD_PIXELMERGE_PM_FRAME_H
+
+#include "sim/scene/scene.h"
+#include "sim/workload/pixelmerge/pm_render.h"
+#include "sim/workload/pixelmerge/pm_replay.h"
+
+typedef struct {
+    WlPmScheme scheme;
+    WlPmBalance balance;
+    guint procs;      /* P, a power of two */
+    guint resolution; /* N: the screen is N x N */
+    WlPmSplit split;
+    WlPmFormat fmt;
+    gboolean check_image; /* compare with the serial render */
+} WlPmSetup;
+
+/* Node costs of the local phases, per counted operation. */
+typedef struct {
+    SimTime polygon;     /* transform, light, clip, set up one polygon */
+    SimTime span;        /* generate one span */
+    SimTime insert_step; /* one step of sorted insertion into a list */
+    SimTime pixel;       /* interpolate and shade one generated pixel */
+    SimTime zcompare;    /* one depth comparison */
+    SimTime range_check; /* one MSA range test */
+    SimTime scanline;    /* per-scanline loop of the z-buffer */
+    SimTime zbuf_init;   /* clear one entry of a full z-buffer */
+    WlPmMergeCosts merge;
+} WlPmCosts;
+
+typedef struct {
+    double span_ms, zbuf_ms, merge_ms, frame_ms;
+    uint64_t polygons, tpg, tpf; /* Table 1 counts of the whole scene */
+    uint64_t concurrent_volume;  /* bytes, Fig. 1 */
+    uint64_t merge_bytes;        /* pixel bytes sent in the merge */
+    double load_imbalance;       /* merge operations, Fig. 2 */
+    double partition_imbalance;  /* pixels z-buffered per owner (AAPC) */
+    gboolean image_checked, image_ok;
+    SimBusy *busy; /* per processor: phases "span", "zbuf", "merge" */
+} WlPmFrameOut;
+
+/* Renders and merges one frame of `scene` (its frame-0 camera) on `net`
+ * (P <= its nodes; the engine is net's); fills *out (free its busy with
+ * wl_pm_frame_out_clear()).  FALSE with *err on engine failure. */
+gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
+                         const WlPmSetup *s, const WlPmCosts *c,
+                         WlPmFrameOut *out, GError **err);
+void wl_pm_frame_out_clear(WlPmFrameOut *out, guint procs);
+
+/* Time of the local phases of the whole scene on one processor (the
+ * sequential renderer of the speed-up), in ms. */
+double wl_pm_serial_ms(const Scene *scene, guint resolution,
+                       const WlPmCosts *c);
+
+#endif
