@@ -34,8 +34,7 @@ static SimTime zbuf_time(const WlPmCounts *k, const WlPmCosts *c, guint n,
     if (full)
         return add(t, add(mul(c->zbuf_init, (uint64_t)n * n),
                           mul(c->zcompare, k->rc.pixels)));
-    return add(t, add(mul(c->zcompare, k->rc.zcompares),
-                      mul(c->range_check, k->rc.range_checks)));
+    return add(t, mul(c->zcompare, k->rc.zcompares));
 }
 
 double wl_pm_serial_ms(const Scene *scene, guint resolution,

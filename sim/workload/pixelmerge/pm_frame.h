@@ -10,8 +10,9 @@
  * phase, merge_ms runs from the end of the slowest local z-buffer to the
  * end of the last merge.  ZBUF-EXC builds unsorted span lists (no
  * insertion steps) and z-buffers into a full N x N buffer (initialised:
- * N^2 x zbuf_init); active-pixel schemes use sorted span lists and the
- * modified scanline z-buffer (range checks, no initialisation) (§2, §5).
+ * N^2 x zbuf_init, every pixel compared); active-pixel schemes use sorted
+ * span lists and the modified scanline z-buffer (comparisons only where
+ * spans of the row overlap, no initialisation) (§2, §5).
  * Cost: O(polygons + pixels x log P + N P) plus O(P N^2) for ZBUF-EXC.
  */
 #ifndef PGSIM_WORKLOAD_PIXELMERGE_PM_FRAME_H
@@ -38,7 +39,6 @@ typedef struct {
     SimTime insert_step; /* one step of sorted insertion into a list */
     SimTime pixel;       /* interpolate and shade one generated pixel */
     SimTime zcompare;    /* one depth comparison */
-    SimTime range_check; /* one MSA range test */
     SimTime scanline;    /* per-scanline loop of the z-buffer */
     SimTime zbuf_init;   /* clear one entry of a full z-buffer */
     WlPmMergeCosts merge;

@@ -1,0 +1,115 @@
+/* test_pm_frame.c — whole frames on real teapots at a small resolution:
+ * the merged image equals the serial render for every scheme, balancing
+ * and P; phase times follow the cost model. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/scene/teapot.h"
+#include "sim/workload/pixelmerge/pm_frame.h"
+
+enum { N = 48 };
+
+static Scene *two_teapots(void)
+{
+    SceneTeapotTess t;
+    assert_true(scene_teapot_tess_for(300, "test", &t, NULL));
+    Scene *s = scene_new("2pot-small");
+    guint m = scene_add_mesh(s, scene_teapot_mesh(t, scene_color(1, 1, 1)));
+    scene_add_instance(s, m, mat4_identity(), scene_color(1, 0.5f, 0.5f), 0);
+    scene_add_instance(s, m, mat4_translate(2.0, 0.8, -1.5),
+                       scene_color(0.5f, 0.5f, 1), 1);
+    s->camera = scene_camera_default();
+    s->camera.eye = vec3(1.0, 4.0, 9.0);
+    scene_camera_fit(&s->camera, scene_bbox(s), 0.9);
+    return s;
+}
+
+static const WlPmCosts costs = {
+    .polygon = 1000 * SIM_US, .span = 20 * SIM_US, .insert_step = SIM_US,
+    .pixel = 100 * SIM_US, .zcompare = 2 * SIM_US, .scanline = 5 * SIM_US,
+    .zbuf_init = SIM_US,
+    .merge = {.pack = SIM_US, .scatter = 2 * SIM_US, .compare = 10 * SIM_US,
+              .gather = 2 * SIM_US, .sum_elem = SIM_US,
+              .sort_elem = SIM_US, .count_bytes = 4}};
+
+typedef struct {
+    SimEngine *eng;
+    NetTopo *topo;
+    NetNet *net;
+} Rig;
+
+static void run(const Scene *sc, const WlPmSetup *s, WlPmFrameOut *out)
+{
+    NetParams np = {.bandwidth = 2.8e6, .channels = 1,
+                    .startup = 350 * SIM_US, .per_hop = 10 * SIM_US,
+                    .switching = NET_SW_CIRCUIT};
+    SimEngine *eng = sim_engine_new(1);
+    NetTopo *topo = net_hypercube_new(3);
+    NetNet *net = net_new(eng, topo, &np, NET_FLOW);
+    GError *err = NULL;
+    assert_true(wl_pm_frame_run(net, sc, s, &costs, out, &err));
+    net_free(net);
+    net_topo_free(topo);
+    sim_engine_free(eng);
+}
+
+static void test_images_match_serial(void **state)
+{
+    (void)state;
+    Scene *sc = two_teapots();
+    uint64_t tpf = 0;
+    for (guint n = 1; n <= 8; n *= 2)
+        for (int sch = 0; sch < 3; sch++)
+            for (int bal = 0; bal < 3; bal++) {
+                WlPmSetup s = {sch, bal, n, N, (n & 2) ? WL_PM_SPLIT_BLOCK
+                                                       : WL_PM_SPLIT_CYCLIC,
+                               {8, 4, 2}, TRUE};
+                WlPmFrameOut out;
+                run(sc, &s, &out);
+                assert_true(out.image_checked);
+                assert_true(out.image_ok);
+                assert_true(out.tpf > 100);
+                if (!tpf)
+                    tpf = out.tpf;
+                assert_int_equal(out.tpf, tpf);
+                assert_int_equal(out.polygons, 600);
+                assert_true(out.frame_ms >= out.merge_ms);
+                wl_pm_frame_out_clear(&out, n);
+            }
+    scene_free(sc);
+}
+
+/* Full z-buffer merging pays N^2 initialisation and moves every location;
+ * active pixel merging moves less on the same frame. */
+static void test_zbuf_exc_costs_more(void **state)
+{
+    (void)state;
+    Scene *sc = two_teapots();
+    WlPmSetup s = {WL_PM_PAIR, WL_PM_BAL_RS, 8, N, WL_PM_SPLIT_CYCLIC,
+                   {8, 4, 2}, FALSE};
+    WlPmFrameOut pair, full;
+    run(sc, &s, &pair);
+    s.scheme = WL_PM_ZBUF_EXC;
+    run(sc, &s, &full);
+    assert_false(pair.image_checked);
+    assert_true(full.zbuf_ms > pair.zbuf_ms);
+    assert_true(full.span_ms < pair.span_ms); /* no sorted insertion */
+    assert_true(full.concurrent_volume > pair.concurrent_volume);
+    assert_true(full.merge_ms > pair.merge_ms);
+    /* ZBUF-EXC: (N/2 + N/4 + N/8) rows x N x 4 B. */
+    assert_int_equal(full.concurrent_volume, (24 + 12 + 6) * N * 4);
+    wl_pm_frame_out_clear(&pair, 8);
+    wl_pm_frame_out_clear(&full, 8);
+    scene_free(sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_images_match_serial),
+        cmocka_unit_test(test_zbuf_exc_costs_more),
+    };
+    return cmocka_run_group_tests_name("pm_frame", tests, NULL, NULL);
+}
