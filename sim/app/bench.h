@@ -10,6 +10,7 @@
 #include <glib.h>
 
 int bench_phold_main(int argc, char **argv);
+int bench_net_main(int argc, char **argv); /* bench_net.c */
 
 /* Parses GOption entries for a sub-benchmark (--help included). */
 gboolean bench_parse_options(const char *name, const char *summary,

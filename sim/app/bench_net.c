@@ -17,7 +17,7 @@
  * with their sources.  Random draws use sim/core/rng.h (--seed).
  * Output is deterministic except for the wall-clock columns.
  */
-#include "sim/app/bench_net.h"
+#include "sim/app/bench.h"
 #include "sim/core/error.h"
 #include "sim/net/collective.h"
 #include <stdio.h>
@@ -71,16 +71,8 @@ static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
          "per-hop set-up, us", "US"},
         {NULL, 0, 0, 0, NULL, NULL, NULL},
     };
-    GOptionContext *ctx = g_option_context_new("- network speed vs error");
-    g_option_context_add_main_entries(ctx, entries, NULL);
-    GError *e = NULL;
-    gboolean ok = g_option_context_parse(ctx, argc, argv, &e);
-    g_option_context_free(ctx);
-    if (!ok) {
-        ok = input_error(err, e->message, "valid options");
-        g_error_free(e);
-    }
-    return ok;
+    return bench_parse_options("net", "- network speed against error",
+                               entries, argc, argv, err);
 }
 
 static gboolean check_opts(const BenchNetOpts *o, GError **err)
@@ -244,12 +236,7 @@ int bench_net_main(int argc, char **argv)
         o.fidelity = o.fidelity ? o.fidelity : g_strdup("all");
         ok = check_opts(&o, &err);
     }
-    int status = ok ? run_all(&o) : 0;
-    if (!ok) {
-        fprintf(stderr, "pgsim: %s\n", err->message);
-        status = sim_error_exit_status(err);
-        g_error_free(err);
-    }
+    int status = ok ? run_all(&o) : bench_fail(err);
     g_free(o.machine);
     g_free(o.pattern);
     g_free(o.fidelity);

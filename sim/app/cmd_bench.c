@@ -13,6 +13,7 @@ typedef struct {
 
 static const BenchEntry benches[] = {
     {"phold", bench_phold_main, "PHOLD: events/s of the event engine"},
+    {"net", bench_net_main, "network fidelities: speed against error"},
     {NULL, NULL, NULL},
 };
 
