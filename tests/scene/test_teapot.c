@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "sim/scene/teapot.h"
+#include "tests/scene/mesh_check.h"
 
 /* The embedded table equals data/teapot.txt (tests run from the root). */
 static void test_data_matches_file(void **st)
@@ -71,50 +72,6 @@ static void test_rule(void **st)
     g_error_free(err);
 }
 
-/* Directed-edge checks: no edge used twice in one direction (consistent
- * winding, no duplicates); returns the number of edges with no twin. */
-static guint open_edges(const SceneMesh *m)
-{
-    GHashTable *h = g_hash_table_new(g_int64_hash, g_int64_equal);
-    GArray *keys = g_array_sized_new(FALSE, FALSE, sizeof(gint64),
-                                     m->idx->len);
-    g_array_set_size(keys, m->idx->len);
-    guint e = 0;
-    for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
-        guint n = scene_mesh_poly_len(m, i);
-        const uint32_t *v = scene_mesh_poly(m, i);
-        for (guint k = 0; k < n; k++, e++) {
-            gint64 *key = &g_array_index(keys, gint64, e);
-            *key = ((gint64)v[k] << 32) | v[(k + 1) % n];
-            assert_false(g_hash_table_contains(h, key));
-            g_hash_table_add(h, key);
-        }
-    }
-    guint open = 0;
-    for (guint i = 0; i < e; i++) {
-        gint64 k = g_array_index(keys, gint64, i);
-        gint64 rev = ((k & 0xffffffff) << 32) | (k >> 32);
-        open += !g_hash_table_contains(h, &rev);
-    }
-    g_hash_table_destroy(h);
-    g_array_free(keys, TRUE);
-    return open;
-}
-
-static double signed_volume(const SceneMesh *m)
-{
-    double vol = 0;
-    for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
-        const uint32_t *v = scene_mesh_poly(m, i);
-        Vec3 a = scene_mesh_vertex(m, v[0]);
-        for (guint k = 1; k + 1 < scene_mesh_poly_len(m, i); k++)
-            vol += vec3_dot(a, vec3_cross(scene_mesh_vertex(m, v[k]),
-                                          scene_mesh_vertex(m, v[k + 1]))) /
-                   6;
-    }
-    return vol;
-}
-
 static void test_3751(void **st)
 {
     (void)st;
@@ -128,8 +85,8 @@ static void test_3751(void **st)
     assert_int_equal(m->normals->len, scene_mesh_n_vertices(m));
     /* Open only at the pot's mouth, the lid's rim, the two ends of the
      * handle and of the spout: 4 boundaries of 4 patch edges each. */
-    assert_int_equal(open_edges(m), 16 * t.n);
-    assert_true(signed_volume(m) > 20); /* outward winding */
+    assert_int_equal(mesh_check_open_edges(m), 16 * t.n);
+    assert_true(mesh_check_volume(m) > 20); /* outward winding */
     SceneBox b = scene_mesh_bbox(m);
     assert_true(fabs(b.min.x + 3.0) < 1e-6 && fabs(b.max.y - 3.15) < 1e-6);
     assert_true(fabs(b.min.y) < 1e-6 && b.max.x > 3.4 && b.max.x < 3.525);
@@ -147,7 +104,7 @@ static void test_counts_exact(void **st)
         assert_int_equal(scene_mesh_n_polys(m), counts[i]);
         assert_int_equal(scene_mesh_count_ngons(m, 3) - 8 * t.n,
                          2 * t.split);
-        assert_int_equal(open_edges(m), 16 * t.n);
+        assert_int_equal(mesh_check_open_edges(m), 16 * t.n);
         scene_mesh_free(m);
     }
 }

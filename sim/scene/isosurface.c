@@ -1,0 +1,250 @@
+/* isosurface.c — isosurfaces of procedural fields, and large polygons.
+ *
+ * Implements isosurface.h.  Marching tetrahedra over the lattice: each
+ * cube (corners numbered by bits x = 1, y = 2, z = 4) is split into the
+ * six tetrahedra 0-a-b-7 along the paths 0 -> a -> b -> 7 of the cube's
+ * edges (Doi & Koide 1991, as a table-free variant of Lorensen & Cline's
+ * marching cubes).  A tetrahedron with one or three corners inside gives
+ * one triangle, with two a quad split in two.  Edge vertices are welded
+ * through a hash keyed by the pair of lattice-point ids.  O(grid^3).
+ */
+#include "sim/scene/isosurface.h"
+
+#include "sim/core/rng.h"
+
+static const int tets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
+                               {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
+
+SceneIsoParams scene_iso_defaults(void)
+{
+    SceneIsoParams p = {SCENE_FIELD_GYROID, 32, 0.0, 2.0, 12, 1,
+                        {0.55f, 0.75f, 0.95f}};
+    return p;
+}
+
+double scene_iso_field(const SceneIsoParams *p, const Vec3 *centres, Vec3 x)
+{
+    if (p->field == SCENE_FIELD_GYROID) {
+        double k = G_PI * p->periods;
+        return sin(k * x.x) * cos(k * x.y) + sin(k * x.y) * cos(k * x.z) +
+               sin(k * x.z) * cos(k * x.x);
+    }
+    double f = 0;
+    for (guint i = 0; i < p->balls; i++) {
+        Vec3 d = vec3_sub(x, centres[i]);
+        f += 0.0625 / (vec3_dot(d, d) + 1e-12);
+    }
+    return f;
+}
+
+typedef struct {
+    const SceneIsoParams *p;
+    guint n;             /* lattice points per axis = grid + 1 */
+    double *val;         /* field at lattice points */
+    SceneMesh *m;
+    GHashTable *edges;   /* (lo id, hi id) -> vertex index + 1 */
+} Iso;
+
+static Vec3 lattice_point(const Iso *s, guint64 id)
+{
+    guint n = s->n;
+    double h = 2.0 / (n - 1);
+    return vec3(-1 + h * (id % n), -1 + h * ((id / n) % n),
+                -1 + h * (id / ((guint64)n * n)));
+}
+
+static uint32_t edge_vertex(Iso *s, guint64 a, guint64 b)
+{
+    if (a > b) {
+        guint64 t = a;
+        a = b;
+        b = t;
+    }
+    guint64 key = a * (guint64)s->n * s->n * s->n + b;
+    gpointer hit = g_hash_table_lookup(s->edges, &key);
+    if (hit)
+        return GPOINTER_TO_UINT(hit) - 1;
+    double fa = s->val[a], fb = s->val[b];
+    double t = (s->p->iso - fa) / (fb - fa);
+    Vec3 pa = lattice_point(s, a), pb = lattice_point(s, b);
+    uint32_t v = scene_mesh_add_vertex(
+        s->m, vec3_add(pa, vec3_scale(vec3_sub(pb, pa), t)));
+    g_hash_table_insert(s->edges, g_memdup2(&key, sizeof key),
+                        GUINT_TO_POINTER(v + 1));
+    return v;
+}
+
+/* Emits triangle (a, b, c) wound so its normal points from `inside`
+ * (f >= iso) towards the outside (f < iso). */
+static void emit(Iso *s, uint32_t a, uint32_t b, uint32_t c, Vec3 inside)
+{
+    Vec3 pa = scene_mesh_vertex(s->m, a), pb = scene_mesh_vertex(s->m, b);
+    Vec3 pc = scene_mesh_vertex(s->m, c);
+    Vec3 n = vec3_cross(vec3_sub(pb, pa), vec3_sub(pc, pa));
+    if (vec3_dot(n, vec3_sub(pa, inside)) < 0) {
+        uint32_t t = b;
+        b = c;
+        c = t;
+    }
+    scene_mesh_add_tri(s->m, a, b, c, s->p->color, 0);
+}
+
+static void do_tet(Iso *s, const guint64 id[4])
+{
+    guint64 in[4], out[4];
+    guint ni = 0, no = 0;
+    for (int k = 0; k < 4; k++) {
+        if (s->val[id[k]] >= s->p->iso)
+            in[ni++] = id[k];
+        else
+            out[no++] = id[k];
+    }
+    if (ni == 0 || no == 0)
+        return;
+    Vec3 ref = lattice_point(s, in[0]);
+    if (ni == 1 || no == 1) {
+        guint64 apex = ni == 1 ? in[0] : out[0];
+        guint64 *rest = ni == 1 ? out : in;
+        uint32_t v[3];
+        for (int k = 0; k < 3; k++)
+            v[k] = edge_vertex(s, apex, rest[k]);
+        emit(s, v[0], v[1], v[2], ref);
+        return;
+    }
+    uint32_t a = edge_vertex(s, in[0], out[0]);
+    uint32_t b = edge_vertex(s, in[0], out[1]);
+    uint32_t c = edge_vertex(s, in[1], out[1]);
+    uint32_t d = edge_vertex(s, in[1], out[0]);
+    emit(s, a, b, c, ref);
+    emit(s, a, c, d, ref);
+}
+
+static void sample(Iso *s)
+{
+    const SceneIsoParams *p = s->p;
+    Vec3 *centres = g_new(Vec3, p->balls ? p->balls : 1);
+    SimRng r;
+    sim_rng_init(&r, p->seed, 0);
+    for (guint i = 0; i < p->balls; i++) {
+        double x = sim_rng_uniform(&r), y = sim_rng_uniform(&r);
+        double z = sim_rng_uniform(&r);
+        centres[i] = vec3(1.2 * x - 0.6, 1.2 * y - 0.6, 1.2 * z - 0.6);
+    }
+    guint64 total = (guint64)s->n * s->n * s->n;
+    s->val = g_new(double, total);
+    for (guint64 id = 0; id < total; id++)
+        s->val[id] = scene_iso_field(p, centres, lattice_point(s, id));
+    g_free(centres);
+}
+
+SceneMesh *scene_iso_mesh(const SceneIsoParams *p)
+{
+    g_assert(p->grid >= 2 && p->grid <= 2048);
+    Iso s = {p, p->grid + 1, NULL, scene_mesh_new(), NULL};
+    s.edges = g_hash_table_new_full(g_int64_hash, g_int64_equal, g_free,
+                                    NULL);
+    sample(&s);
+    guint n = s.n;
+    for (guint z = 0; z < p->grid; z++)
+        for (guint y = 0; y < p->grid; y++)
+            for (guint x = 0; x < p->grid; x++) {
+                guint64 base = x + (guint64)n * (y + (guint64)n * z);
+                guint64 c[8];
+                for (int k = 0; k < 8; k++)
+                    c[k] = base + (k & 1) + (k & 2 ? n : 0) +
+                           (k & 4 ? (guint64)n * n : 0);
+                for (int t = 0; t < 6; t++) {
+                    guint64 id[4] = {c[tets[t][0]], c[tets[t][1]],
+                                     c[tets[t][2]], c[tets[t][3]]};
+                    do_tet(&s, id);
+                }
+            }
+    g_hash_table_destroy(s.edges);
+    g_free(s.val);
+    return s.m;
+}
+
+Scene *scene_iso_new(const SceneIsoParams *p)
+{
+    Scene *s = scene_new("isosurface");
+    guint id = scene_add_mesh(s, scene_iso_mesh(p));
+    scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
+    SceneView v = scene_view_default();
+    v.azimuth_deg = 30;
+    v.elevation_deg = 20;
+    scene_apply_view(s, &v);
+    return s;
+}
+
+SceneBigPolyParams scene_bigpoly_defaults(void)
+{
+    SceneBigPolyParams p = {1000, 6, 0.05, 0.1, 0.5, 1};
+    return p;
+}
+
+/* A square of half-side h in [0.87, 1] (it covers at least 0.87^2 =
+ * 75.7 % of the screen), shifted by at most 1 - h so it stays inside. */
+static guint huge_polygon(SimRng *r, Vec3 *pts)
+{
+    double h = 0.87 + 0.13 * sim_rng_uniform(r);
+    double cx = (1 - h) * (2 * sim_rng_uniform(r) - 1);
+    double cy = (1 - h) * (2 * sim_rng_uniform(r) - 1);
+    double z = -1 + 2 * sim_rng_uniform(r);
+    const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+    for (int k = 0; k < 4; k++)
+        pts[k] = vec3(cx + h * sx[k], cy + h * sy[k], z);
+    return 4;
+}
+
+/* A regular polygon of 3..max_sides corners, radius in [min, max]. */
+static guint small_polygon(SimRng *r, const SceneBigPolyParams *p, Vec3 *pts)
+{
+    double rad = p->min_size + (p->max_size - p->min_size) *
+                                   sim_rng_uniform(r);
+    guint sides = 3 + (guint)sim_rng_below(r, p->max_sides - 2);
+    double cx = 2 * sim_rng_uniform(r) - 1, cy = 2 * sim_rng_uniform(r) - 1;
+    double z = -1 + 2 * sim_rng_uniform(r);
+    double rot = 2 * G_PI * sim_rng_uniform(r);
+    for (guint k = 0; k < sides; k++) {
+        double a = rot + 2 * G_PI * k / sides;
+        pts[k] = vec3(cx + rad * cos(a), cy + rad * sin(a), z);
+    }
+    return sides;
+}
+
+static void big_polygon(SceneMesh *m, SimRng *r, const SceneBigPolyParams *p,
+                        guint i)
+{
+    Vec3 pts[16];
+    uint32_t v[16];
+    guint n = sim_rng_uniform(r) < p->huge_fraction
+                  ? huge_polygon(r, pts)
+                  : small_polygon(r, p, pts);
+    for (guint k = 0; k < n; k++)
+        v[k] = scene_mesh_add_vertex(m, pts[k]);
+    SceneColor c = {(float)sim_rng_uniform(r), (float)sim_rng_uniform(r),
+                    (float)sim_rng_uniform(r)};
+    scene_mesh_add_poly(m, v, n, c, i);
+}
+
+Scene *scene_bigpoly_new(const SceneBigPolyParams *p)
+{
+    g_assert(p->max_sides >= 3 && p->max_sides <= 16);
+    SimRng r;
+    sim_rng_init(&r, p->seed, 0);
+    SceneMesh *m = scene_mesh_new();
+    for (guint i = 0; i < p->count; i++)
+        big_polygon(m, &r, p, i);
+    Scene *s = scene_new("large_polygons");
+    guint id = scene_add_mesh(s, m);
+    scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
+    SceneCamera c = scene_camera_default();
+    c.proj = SCENE_ORTHOGRAPHIC;
+    c.eye = vec3(0, 0, 2);
+    c.target = vec3(0, 0, 0);
+    c.height = 2;
+    c.near = 0.5;
+    c.far = 3.5;
+    s->camera = c;
+    return s;
+}
