@@ -191,7 +191,7 @@ static void print_row(NetFidelity f, const BenchNetRun *r,
     double err = ref ? ((double)r->end - (double)ref->end) / (double)ref->end
                      : 0.0;
     double wall = r->wall > 1e-6 ? r->wall : 1e-6;
-    printf("%-9s %14.6f %+10.4f %10.4f %9.1f %10" G_GUINT64_FORMAT "\n",
+    printf("%-9s %14.6f %+10.4f %10.4f %9.2f %10" G_GUINT64_FORMAT "\n",
            net_fidelity_name(f), sim_time_to_s(r->end), ref ? err : 0.0,
            r->wall, ref ? ref->wall / wall : 1.0, r->events);
 }
