@@ -24,3 +24,14 @@ for n in 16 64 256; do
             --fidelity all
     done
 done
+
+section "raster: 8 teapots (seed 003, 30,008 polygons), 640x640, modified scanline z-buffer"
+$bin bench raster --scene teapots --count 8 --size 640 --frames 20
+section "raster: 8 teapots, 640x640, full z-buffer"
+$bin bench raster --scene teapots --count 8 --size 640 --frames 20 \
+    --zbuffer full
+section "raster: gyroid isosurface (grid 80, ~360K triangles), 1024x1024, scanline"
+$bin bench raster --scene isosurface --grid 80 --size 1024 --frames 5
+section "raster: gyroid isosurface, 1024x1024, full z-buffer"
+$bin bench raster --scene isosurface --grid 80 --size 1024 --frames 5 \
+    --zbuffer full

@@ -14,6 +14,7 @@ typedef struct {
 static const BenchEntry benches[] = {
     {"phold", bench_phold_main, "PHOLD: events/s of the event engine"},
     {"net", bench_net_main, "network fidelities: speed against error"},
+    {"raster", bench_raster_main, "rendering: triangles/s, pixels/s"},
     {NULL, NULL, NULL},
 };
 

@@ -4,5 +4,6 @@
 
 const CliCommand cli_commands[] = {
     {"bench", cmd_bench, "run a benchmark and print its figures"},
+    {"render", cmd_render, "render one frame of a scene to a PNG"},
     {NULL, NULL, NULL},
 };

@@ -16,6 +16,7 @@ typedef struct {
 } CliCommand;
 
 int cmd_bench(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 
 /* NULL-terminated table, in the order `pgsim help` lists them. */
 extern const CliCommand cli_commands[];

@@ -1,0 +1,278 @@
+/* cmd_render.c — `pgsim render SCENE -o frame.png`: a quick look.
+ *
+ * Renders one frame of a scene through sim/raster (transform, clip, cull,
+ * scan conversion, the full or the modified scanline z-buffer) and writes
+ * a PNG (or PPM when the name ends in .ppm), atomically.  Prints the
+ * operation counters (TPG, TPF ...) on stdout.
+ *
+ * Scene sources: a Wavefront OBJ file (v and f records; an interim
+ * reader until the scene library's loaders land), or a built-in teapot
+ * scene of seed 003 (--teapots N, 3,751 polygons per teapot).  The
+ * camera of an OBJ file is fitted to its bounding box.  YAML scene files
+ * need the scene library's scene_from_cfg(), not yet on main.
+ * Cost: O(polygons + pixels).
+ */
+#include "sim/app/commands.h"
+#include "sim/core/error.h"
+#include "sim/raster/image.h"
+#include "sim/raster/pipeline.h"
+#include "sim/scene/teapots.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    char *out;
+    int width, height;
+    char *zbuffer, *shading;
+    gboolean no_cull;
+    int teapots;
+    char *layout;
+    double frame;
+} RenderOpts;
+
+static gboolean obj_fail(GError **err, const char *path, int line, int col,
+                         const char *found, const char *expected)
+{
+    sim_error_located(err, path, line, col, found, expected);
+    return FALSE;
+}
+
+/* One face record "f a[/..] b[/..] c[/..] ...". */
+static gboolean obj_face(SceneMesh *m, char **tok, const char *path,
+                         int line, GError **err)
+{
+    GArray *idx = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    gboolean ok = TRUE;
+    guint nv = scene_mesh_n_vertices(m);
+    for (int i = 1; tok[i] && ok; i++) {
+        if (!*tok[i])
+            continue;
+        char *end;
+        long k = strtol(tok[i], &end, 10);
+        if (k < 0)
+            k += (long)nv + 1;
+        if (end == tok[i] || (*end && *end != '/') || k < 1 || k > (long)nv)
+            ok = obj_fail(err, path, line, 1, "a bad vertex index",
+                          "an index of a vertex defined above");
+        uint32_t u = (uint32_t)(k - 1);
+        g_array_append_val(idx, u);
+    }
+    if (ok && idx->len < 3)
+        ok = obj_fail(err, path, line, 1, "a face of fewer than 3 vertices",
+                      "at least 3");
+    if (ok)
+        scene_mesh_add_poly(m, (uint32_t *)idx->data, idx->len,
+                            scene_color(0.8f, 0.8f, 0.8f), 0);
+    g_array_free(idx, TRUE);
+    return ok;
+}
+
+static gboolean obj_line(SceneMesh *m, const char *text, const char *path,
+                         int line, GError **err)
+{
+    char **tok = g_strsplit_set(text, " \t\r", -1);
+    gboolean ok = TRUE;
+    if (g_strcmp0(tok[0], "v") == 0) {
+        double c[3];
+        int n = 0;
+        for (int i = 1; tok[i] && n < 3; i++) {
+            char *end;
+            if (!*tok[i])
+                continue;
+            c[n++] = g_ascii_strtod(tok[i], &end);
+            if (*end || !isfinite(c[n - 1]))
+                n = -9;
+        }
+        if (n != 3)
+            ok = obj_fail(err, path, line, 1, "a malformed vertex",
+                          "v x y z with finite numbers");
+        else
+            scene_mesh_add_vertex(m, vec3(c[0], c[1], c[2]));
+    } else if (g_strcmp0(tok[0], "f") == 0) {
+        ok = obj_face(m, tok, path, line, err);
+    }
+    g_strfreev(tok);
+    return ok;
+}
+
+static SceneMesh *load_obj(const char *path, GError **err)
+{
+    char *data;
+    GError *e = NULL;
+    if (!g_file_get_contents(path, &data, NULL, &e)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
+        g_error_free(e);
+        return NULL;
+    }
+    char **lines = g_strsplit(data, "\n", -1);
+    g_free(data);
+    SceneMesh *m = scene_mesh_new();
+    gboolean ok = TRUE;
+    for (int i = 0; lines[i] && ok; i++)
+        ok = obj_line(m, lines[i], path, i + 1, err);
+    g_strfreev(lines);
+    if (ok && scene_mesh_n_polys(m) == 0)
+        ok = obj_fail(err, path, 1, 1, "no faces", "at least one f record");
+    if (!ok) {
+        scene_mesh_free(m);
+        return NULL;
+    }
+    return m;
+}
+
+static Scene *scene_for_obj(const char *path, GError **err)
+{
+    SceneMesh *m = load_obj(path, err);
+    if (!m)
+        return NULL;
+    scene_mesh_compute_normals(m);
+    Scene *s = scene_new(path);
+    SceneBox box = scene_mesh_bbox(m);
+    scene_add_instance(s, scene_add_mesh(s, m), mat4_identity(),
+                       scene_color(1, 1, 1), 0);
+    s->camera.eye = vec3(0.6, 0.5, 1.0);
+    s->camera.target = vec3(0, 0, 0);
+    scene_camera_fit(&s->camera, box, 0.9);
+    s->background = scene_color(0.1f, 0.1f, 0.15f);
+    return s;
+}
+
+static Scene *scene_for_teapots(const RenderOpts *o, GError **err)
+{
+    SceneTeapotsParams p = scene_teapots_defaults();
+    p.polygons_per_teapot = 3751;
+    p.count = (guint)o->teapots;
+    if (g_strcmp0(o->layout, "depth") == 0)
+        p.layout = SCENE_TEAPOTS_DEPTH;
+    else if (o->layout && g_strcmp0(o->layout, "spread") != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "--layout: found '%s', expected spread or depth",
+                    o->layout);
+        return NULL;
+    }
+    Scene *s = scene_teapots_new(&p, "--teapots", err);
+    if (s)
+        s->background = scene_color(0.1f, 0.1f, 0.15f);
+    return s;
+}
+
+static gboolean check_opts(const RenderOpts *o, int argc, GError **err)
+{
+    const char *bad = NULL, *exp = NULL;
+    if (!o->out)
+        bad = "no -o", exp = "-o FILE.png";
+    else if (o->width < 1 || o->width > RAST_MAX_SIDE || o->height < 1 ||
+             o->height > RAST_MAX_SIDE)
+        bad = "a bad --width/--height", exp = "1 .. 16384 pixels";
+    else if (g_strcmp0(o->zbuffer, "full") && g_strcmp0(o->zbuffer, "scanline"))
+        bad = "a bad --zbuffer", exp = "full or scanline";
+    else if (g_strcmp0(o->shading, "flat") && g_strcmp0(o->shading, "gouraud"))
+        bad = "a bad --shading", exp = "flat or gouraud";
+    else if ((argc == 2) == (o->teapots > 0))
+        bad = "no scene or two", exp = "one SCENE.obj or --teapots N";
+    if (bad)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "render: found %s, expected %s", bad, exp);
+    return bad == NULL;
+}
+
+/* Renders through the chosen z-buffer into img; counts in *c. */
+static void render(const RastView *v, const Scene *s, gboolean full,
+                   RastImage *img, RastCounters *c)
+{
+    RastColor bg = {s->background.r, s->background.g, s->background.b};
+    if (full) {
+        RastZBuffer *zb = rast_zbuffer_new(v->width, v->height);
+        rast_draw_scene(v, s, rast_zbuffer_sink(zb), c);
+        c->winners += rast_zbuffer_covered(zb);
+        rast_image_from_zbuffer(img, zb, bg);
+        rast_zbuffer_free(zb);
+        return;
+    }
+    RastSpanList *sl = rast_spanlist_new(v->width, v->height);
+    rast_draw_scene(v, s, rast_spanlist_sink(sl), c);
+    rast_spanlist_sort(sl);
+    RastActive *a = rast_active_new(v->width, v->height);
+    rast_scanline_zbuffer(a, sl, c);
+    rast_image_from_active(img, a, bg);
+    rast_active_free(a);
+    rast_spanlist_free(sl);
+}
+
+static gboolean run(RenderOpts *o, int argc, char **argv, GError **err)
+{
+    if (!check_opts(o, argc, err))
+        return FALSE;
+    Scene *s = o->teapots > 0 ? scene_for_teapots(o, err)
+                              : scene_for_obj(argv[1], err);
+    if (!s)
+        return FALSE;
+    SceneCamera cam = scene_camera_at(s, o->frame);
+    RastView v = rast_view_for_camera(&cam, o->width, o->height);
+    v.cull_back = !o->no_cull;
+    v.shading = g_strcmp0(o->shading, "flat") == 0 ? RAST_SHADE_FLAT
+                                                   : RAST_SHADE_GOURAUD;
+    RastImage *img = rast_image_new(o->width, o->height);
+    RastCounters c = {0};
+    render(&v, s, g_strcmp0(o->zbuffer, "full") == 0, img, &c);
+    gboolean ok = rast_image_write(img, o->out, err);
+    if (ok) {
+        char *line = rast_counters_format(&c);
+        printf("%s: %dx%d %s z-buffer: %s\n", o->out, o->width, o->height,
+               o->zbuffer, line);
+        g_free(line);
+    }
+    rast_image_free(img);
+    scene_free(s);
+    return ok;
+}
+
+int cmd_render(int argc, char **argv)
+{
+    RenderOpts o = {NULL, 640, 640, NULL, NULL, FALSE, 0, NULL, 0};
+    GOptionEntry entries[] = {
+        {"output", 'o', 0, G_OPTION_ARG_FILENAME, &o.out,
+         "image to write (.png, or .ppm)", "FILE"},
+        {"width", 0, 0, G_OPTION_ARG_INT, &o.width, "pixels (640)", "W"},
+        {"height", 0, 0, G_OPTION_ARG_INT, &o.height, "pixels (640)", "H"},
+        {"zbuffer", 0, 0, G_OPTION_ARG_STRING, &o.zbuffer,
+         "full or scanline (scanline)", "KIND"},
+        {"shading", 0, 0, G_OPTION_ARG_STRING, &o.shading,
+         "flat or gouraud (gouraud)", "KIND"},
+        {"no-cull", 0, 0, G_OPTION_ARG_NONE, &o.no_cull,
+         "draw back faces too", NULL},
+        {"teapots", 0, 0, G_OPTION_ARG_INT, &o.teapots,
+         "built-in scene of N teapots (seed 003)", "N"},
+        {"layout", 0, 0, G_OPTION_ARG_STRING, &o.layout,
+         "teapot layout: spread or depth", "L"},
+        {"frame", 0, 0, G_OPTION_ARG_DOUBLE, &o.frame,
+         "frame of the camera path (0)", "F"},
+        {NULL, 0, 0, 0, NULL, NULL, NULL}};
+    GOptionContext *ctx = g_option_context_new("SCENE.obj -o FRAME.png");
+    g_option_context_add_main_entries(ctx, entries, NULL);
+    GError *err = NULL;
+    gboolean ok = g_option_context_parse(ctx, &argc, &argv, &err);
+    if (!ok) {
+        err->domain = SIM_ERROR;
+        err->code = SIM_ERROR_INPUT;
+    }
+    g_option_context_free(ctx);
+    if (!o.zbuffer)
+        o.zbuffer = g_strdup("scanline");
+    if (!o.shading)
+        o.shading = g_strdup("gouraud");
+    if (ok)
+        ok = run(&o, argc, argv, &err);
+    int status = 0;
+    if (!ok) {
+        fprintf(stderr, "pgsim: %s\n", err->message);
+        status = sim_error_exit_status(err);
+        g_error_free(err);
+    }
+    g_free(o.out);
+    g_free(o.zbuffer);
+    g_free(o.shading);
+    g_free(o.layout);
+    return status;
+}
