@@ -37,12 +37,14 @@ static SimTime zbuf_time(const WlPmCounts *k, const WlPmCosts *c, guint n,
     return add(t, mul(c->zcompare, k->rc.zcompares));
 }
 
-double wl_pm_serial_ms(const Scene *scene, guint resolution,
+double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
                        const WlPmCosts *c)
 {
+    guint resolution = s->resolution;
     SceneMesh *flat = scene_flatten(scene);
     SceneCamera cam = scene_camera_at(scene, 0);
     RastView v = rast_view_for_camera(&cam, resolution, resolution);
+    v.cull_back = s->cull_back;
     WlPmCounts k;
     WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
     SimTime t = add(span_time(&k, c, TRUE),
@@ -66,6 +68,7 @@ static void render_all(Local *l, const Scene *scene, const WlPmSetup *s)
     l->flat = scene_flatten(scene);
     SceneCamera cam = scene_camera_at(scene, 0);
     l->view = rast_view_for_camera(&cam, N, N);
+    l->view.cull_back = s->cull_back;
     l->local = g_new0(WlPmWpa *, n);
     l->counts = g_new0(WlPmCounts, n);
     l->rows = g_new0(uint64_t, N);
@@ -160,7 +163,8 @@ gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
         out->image_checked = TRUE;
         out->image_ok = image_matches(&l, m->image);
     }
-    SimTime barrier = local_phases(&l, s, c, eng, out);
+    SimTime base = sim_now(eng);
+    SimTime barrier = add(base, local_phases(&l, s, c, eng, out));
     SimTime *ready = g_new(SimTime, n);
     for (guint p = 0; p < n; p++)
         ready[p] = barrier;
@@ -172,7 +176,7 @@ gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
                                sim_engine_phase(eng, "merge"), &ro, err);
     if (ok) {
         out->merge_ms = sim_time_to_ms(ro.end - barrier);
-        out->frame_ms = sim_time_to_ms(ro.end);
+        out->frame_ms = sim_time_to_ms(ro.end - base);
     }
     wl_pm_replay_out_clear(&ro);
     g_free(ready);

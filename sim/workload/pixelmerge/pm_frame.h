@@ -30,6 +30,7 @@ typedef struct {
     WlPmSplit split;
     WlPmFormat fmt;
     gboolean check_image; /* compare with the serial render */
+    gboolean cull_back;   /* drop back-facing polygons before scanning */
 } WlPmSetup;
 
 /* Node costs of the local phases, per counted operation. */
@@ -56,7 +57,8 @@ typedef struct {
 } WlPmFrameOut;
 
 /* Renders and merges one frame of `scene` (its frame-0 camera) on `net`
- * (P <= its nodes; the engine is net's); fills *out (free its busy with
+ * (P <= its nodes; the engine is net's), starting at the engine's current
+ * time, which it advances to the frame's end; fills *out (free its busy with
  * wl_pm_frame_out_clear()).  FALSE with *err on engine failure. */
 gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
                          const WlPmSetup *s, const WlPmCosts *c,
@@ -65,7 +67,7 @@ void wl_pm_frame_out_clear(WlPmFrameOut *out, guint procs);
 
 /* Time of the local phases of the whole scene on one processor (the
  * sequential renderer of the speed-up), in ms. */
-double wl_pm_serial_ms(const Scene *scene, guint resolution,
+double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
                        const WlPmCosts *c);
 
 #endif

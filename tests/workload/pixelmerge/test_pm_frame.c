@@ -65,7 +65,7 @@ static void test_images_match_serial(void **state)
             for (int bal = 0; bal < 3; bal++) {
                 WlPmSetup s = {sch, bal, n, N, (n & 2) ? WL_PM_SPLIT_BLOCK
                                                        : WL_PM_SPLIT_CYCLIC,
-                               {8, 4, 2}, TRUE};
+                               {8, 4, 2}, TRUE, n == 4};
                 WlPmFrameOut out;
                 run(sc, &s, &out);
                 assert_true(out.image_checked);
@@ -88,7 +88,7 @@ static void test_zbuf_exc_costs_more(void **state)
     (void)state;
     Scene *sc = two_teapots();
     WlPmSetup s = {WL_PM_PAIR, WL_PM_BAL_RS, 8, N, WL_PM_SPLIT_CYCLIC,
-                   {8, 4, 2}, FALSE};
+                   {8, 4, 2}, FALSE, TRUE};
     WlPmFrameOut pair, full;
     run(sc, &s, &pair);
     s.scheme = WL_PM_ZBUF_EXC;
