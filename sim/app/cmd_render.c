@@ -76,15 +76,17 @@ static gboolean obj_line(SceneMesh *m, const char *text, const char *path,
     if (g_strcmp0(tok[0], "v") == 0) {
         double c[3];
         int n = 0;
-        for (int i = 1; tok[i] && n < 3; i++) {
+        for (int i = 1; tok[i] && ok; i++) {
             char *end;
             if (!*tok[i])
                 continue;
-            c[n++] = g_ascii_strtod(tok[i], &end);
-            if (*end || !isfinite(c[n - 1]))
-                n = -9;
+            double x = g_ascii_strtod(tok[i], &end);
+            ok = !*end && isfinite(x);
+            if (ok && n < 3)
+                c[n] = x;
+            n++;
         }
-        if (n != 3)
+        if (!ok || n < 3)
             ok = obj_fail(err, path, line, 1, "a malformed vertex",
                           "v x y z with finite numbers");
         else
