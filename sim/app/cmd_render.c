@@ -7,7 +7,8 @@
  *
  * Scene sources: a Wavefront OBJ file (v and f records; an interim
  * reader until the scene library's loaders land), or a built-in teapot
- * scene of seed 003 (--teapots N, 3,751 polygons per teapot).  The
+ * scene of seed 003 (--teapots N, 3,751 polygons per teapot), or the
+ * gyroid isosurface of sim/scene/isosurface.h (--isosurface GRID).  The
  * camera of an OBJ file is fitted to its bounding box.  YAML scene files
  * need the scene library's scene_from_cfg(), not yet on main.
  * Cost: O(polygons + pixels).
@@ -16,6 +17,7 @@
 #include "sim/core/error.h"
 #include "sim/raster/image.h"
 #include "sim/raster/pipeline.h"
+#include "sim/scene/isosurface.h"
 #include "sim/scene/teapots.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,7 +28,7 @@ typedef struct {
     int width, height;
     char *zbuffer, *shading;
     gboolean no_cull;
-    int teapots;
+    int teapots, iso_grid;
     char *layout;
     double frame;
 } RenderOpts;
@@ -171,8 +173,11 @@ static gboolean check_opts(const RenderOpts *o, int argc, GError **err)
         bad = "a bad --zbuffer", exp = "full or scanline";
     else if (g_strcmp0(o->shading, "flat") && g_strcmp0(o->shading, "gouraud"))
         bad = "a bad --shading", exp = "flat or gouraud";
-    else if ((argc == 2) == (o->teapots > 0))
-        bad = "no scene or two", exp = "one SCENE.obj or --teapots N";
+    else if ((argc == 2) + (o->teapots > 0) + (o->iso_grid > 0) != 1)
+        bad = "no scene or two",
+        exp = "one of SCENE.obj, --teapots N, --isosurface GRID";
+    else if (o->iso_grid == 1 || o->iso_grid > 400)
+        bad = "a bad --isosurface grid", exp = "2 .. 400 cells";
     if (bad)
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "render: found %s, expected %s", bad, exp);
@@ -206,8 +211,15 @@ static gboolean run(RenderOpts *o, int argc, char **argv, GError **err)
 {
     if (!check_opts(o, argc, err))
         return FALSE;
-    Scene *s = o->teapots > 0 ? scene_for_teapots(o, err)
-                              : scene_for_obj(argv[1], err);
+    Scene *s;
+    if (o->iso_grid > 0) {
+        SceneIsoParams p = scene_iso_defaults();
+        p.grid = (guint)o->iso_grid;
+        s = scene_iso_new(&p);
+    } else {
+        s = o->teapots > 0 ? scene_for_teapots(o, err)
+                           : scene_for_obj(argv[1], err);
+    }
     if (!s)
         return FALSE;
     SceneCamera cam = scene_camera_at(s, o->frame);
@@ -232,7 +244,7 @@ static gboolean run(RenderOpts *o, int argc, char **argv, GError **err)
 
 int cmd_render(int argc, char **argv)
 {
-    RenderOpts o = {NULL, 640, 640, NULL, NULL, FALSE, 0, NULL, 0};
+    RenderOpts o = {NULL, 640, 640, NULL, NULL, FALSE, 0, 0, NULL, 0};
     GOptionEntry entries[] = {
         {"output", 'o', 0, G_OPTION_ARG_FILENAME, &o.out,
          "image to write (.png, or .ppm)", "FILE"},
@@ -246,6 +258,8 @@ int cmd_render(int argc, char **argv)
          "draw back faces too", NULL},
         {"teapots", 0, 0, G_OPTION_ARG_INT, &o.teapots,
          "built-in scene of N teapots (seed 003)", "N"},
+        {"isosurface", 0, 0, G_OPTION_ARG_INT, &o.iso_grid,
+         "built-in gyroid isosurface on a GRID^3 lattice", "GRID"},
         {"layout", 0, 0, G_OPTION_ARG_STRING, &o.layout,
          "teapot layout: spread or depth", "L"},
         {"frame", 0, 0, G_OPTION_ARG_DOUBLE, &o.frame,
