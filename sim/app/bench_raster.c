@@ -10,7 +10,8 @@
  * 355,948).  Prints polygons, triangles (after fan splitting), TPG and
  * TPF per frame, then triangles/s and pixels/s (TPG per second); the
  * last line is "pixels_per_s: <number>".
- * Wall-clock figures are the only non-deterministic output.
+ * Rates use the median frame time.  Wall-clock figures are the only
+ * non-deterministic output.
  */
 #include "sim/app/bench.h"
 #include "sim/core/error.h"
@@ -19,6 +20,7 @@
 #include "sim/scene/isosurface.h"
 #include "sim/scene/teapots.h"
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct {
@@ -29,6 +31,19 @@ typedef struct {
 static double now_s(void)
 {
     return g_get_monotonic_time() * 1e-6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median of n frame times (robust to a loaded machine); sorts t. */
+static double median(double *t, int n)
+{
+    qsort(t, (size_t)n, sizeof *t, cmp_double);
+    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
 }
 
 static Scene *make_scene(const BenchRasterOpts *o, GError **err)
@@ -77,17 +92,21 @@ static void run(const BenchRasterOpts *o, const Scene *s)
     RastSpanList *sl = full ? NULL : rast_spanlist_new(o->size, o->size);
     RastActive *a = full ? NULL : rast_active_new(o->size, o->size);
     RastCounters c = frame(&v, s, full, zb, sl, a); /* warm-up */
-    double t0 = now_s();
-    for (int i = 0; i < o->frames; i++)
+    double *t = g_new(double, o->frames);
+    for (int i = 0; i < o->frames; i++) {
+        double t0 = now_s();
         frame(&v, s, full, zb, sl, a);
-    double dt = (now_s() - t0) / o->frames;
+        t[i] = now_s() - t0;
+    }
+    double dt = median(t, o->frames);
+    g_free(t);
     uint64_t tris = scene_n_triangles(s);
     char *line = rast_counters_format(&c);
     printf("scene %s, %dx%d, %s z-buffer, %d frames\n", o->scene, o->size,
            o->size, o->zbuffer, o->frames);
     printf("per frame: polygons %" G_GUINT64_FORMAT ", triangles %"
            G_GUINT64_FORMAT ", %s\n", scene_n_polys(s), tris, line);
-    printf("frame_ms: %.3f\n", dt * 1e3);
+    printf("median frame_ms: %.3f\n", dt * 1e3);
     printf("triangles_per_s: %.4g\n", tris / dt);
     printf("pixels_per_s: %.4g\n", c.pixels / dt);
     g_free(line);

@@ -7,9 +7,13 @@
  * polygon, so they agree with what the scan converter would cover.
  * Fan triangles whose snapped area has the opposite sign to the polygon
  * (a tiny concavity created by snapping clipped vertices) are skipped.
+ * Polygons that need no clipping are culled before they are shaded, so
+ * back faces cost no lighting; clipped ones are shaded first because
+ * clipping interpolates colours.
  * O(n) per n-gon, plus the scan conversion.
  */
 #include "sim/raster/pipeline.h"
+#include <string.h>
 
 RastView rast_view_make(Mat4 view_proj, int width, int height)
 {
@@ -74,35 +78,106 @@ static gboolean finite4(Vec4 p)
     return isfinite(p.x) && isfinite(p.y) && isfinite(p.z) && isfinite(p.w);
 }
 
-/* Trivial accept/reject; returns the number of vertices to scan (0 when
- * nothing is left) and where they are. */
-static int clip_stage(const RastVert *in, int n, double guard,
-                      RastVert *buf, const RastVert **out, RastCounters *c)
+/* Trivial reject: FALSE (counted) when the polygon is non-finite or
+ * outside one plane; *any gets the planes some vertex is outside of. */
+static gboolean trivial(const RastVert *in, int n, double guard,
+                        unsigned *any, RastCounters *c)
 {
-    unsigned all = ~0u, any = 0;
+    unsigned all = ~0u;
+    *any = 0;
     for (int i = 0; i < n; i++) {
         if (!finite4(in[i].pos)) {
             c->rejected++;
-            return 0;
+            return FALSE;
         }
         unsigned code = rast_clip_outcode(in[i].pos, guard);
         all &= code;
-        any |= code;
+        *any |= code;
     }
-    *out = in;
     if (all) {
         c->rejected++;
-        return 0;
+        return FALSE;
     }
-    if (!any)
-        return n;
+    return TRUE;
+}
+
+/* Fills the colours of in[0..n) (the polygon's unclipped vertices). */
+typedef void (*ShadeFn)(void *ctx, RastVert *in, int n);
+
+static void scan_polygon(const RastView *v, RastScreenVert *s, int m,
+                         int64_t area, uint32_t prim, RastSpanSink sink,
+                         RastCounters *c)
+{
+    for (int i = 1; i + 1 < m; i++) {
+        RastScreenVert t[3] = {s[0], s[i], s[i + 1]};
+        int64_t a = rast_area2(&t[0], &t[1], &t[2]);
+        if (a != 0 && (a > 0) == (area > 0))
+            rast_scan_triangle(t, prim, v->width, v->height, sink, c);
+    }
+}
+
+/* Zero-area and back-facing polygons stop here (counted). */
+static gboolean visible(const RastView *v, int64_t area, RastCounters *c)
+{
+    if (area == 0) {
+        c->degenerate++;
+        return FALSE;
+    }
+    if (v->cull_back && area < 0) {
+        c->culled++;
+        return FALSE;
+    }
+    return TRUE;
+}
+
+/* The common case: inside every plane, so cull before shading. */
+static void draw_unclipped(const RastView *v, RastVert *in, int n,
+                           uint32_t prim, ShadeFn shade_fn, void *ctx,
+                           RastSpanSink sink, RastCounters *c)
+{
+    RastScreenVert s[RAST_POLY_MAX];
+    for (int i = 0; i < n; i++)
+        s[i] = rast_viewport(&in[i], v->width, v->height);
+    int64_t area = poly_area2(s, n);
+    if (!visible(v, area, c))
+        return;
+    if (shade_fn) {
+        shade_fn(ctx, in, n);
+        for (int i = 0; i < n; i++)
+            s[i].col = in[i].col;
+    }
+    scan_polygon(v, s, n, area, prim, sink, c);
+}
+
+static void draw_polygon(const RastView *v, RastVert *in, int n,
+                         uint32_t prim, ShadeFn shade_fn, void *ctx,
+                         RastSpanSink sink, RastCounters *c)
+{
+    g_assert(n >= 3 && n <= RAST_POLY_MAX);
+    c->prims++;
+    double guard = rast_guard_band(v->width, v->height);
+    unsigned any = 0;
+    if (!trivial(in, n, guard, &any, c))
+        return;
+    if (!any) {
+        draw_unclipped(v, in, n, prim, shade_fn, ctx, sink, c);
+        return;
+    }
+    if (shade_fn)
+        shade_fn(ctx, in, n); /* clipping interpolates colours */
+    RastVert buf[RAST_CLIP_MAX];
     int m = rast_clip_polygon(in, n, guard, buf);
-    *out = buf;
-    if (m == 0)
+    if (m == 0) {
         c->rejected++;
-    else
-        c->clipped++;
-    return m;
+        return;
+    }
+    c->clipped++;
+    RastScreenVert s[RAST_CLIP_MAX];
+    for (int i = 0; i < m; i++)
+        s[i] = rast_viewport(&buf[i], v->width, v->height);
+    int64_t area = poly_area2(s, m);
+    if (visible(v, area, c))
+        scan_polygon(v, s, m, area, prim, sink, c);
 }
 
 void rast_draw_clip_polygon(const RastView *v, const RastVert *in, int n,
@@ -110,31 +185,9 @@ void rast_draw_clip_polygon(const RastView *v, const RastVert *in, int n,
                             RastCounters *c)
 {
     g_assert(n >= 3 && n <= RAST_POLY_MAX);
-    c->prims++;
-    double guard = rast_guard_band(v->width, v->height);
-    RastVert buf[RAST_CLIP_MAX];
-    const RastVert *p;
-    int m = clip_stage(in, n, guard, buf, &p, c);
-    if (m == 0)
-        return;
-    RastScreenVert s[RAST_CLIP_MAX];
-    for (int i = 0; i < m; i++)
-        s[i] = rast_viewport(&p[i], v->width, v->height);
-    int64_t area = poly_area2(s, m);
-    if (area == 0) {
-        c->degenerate++;
-        return;
-    }
-    if (v->cull_back && area < 0) {
-        c->culled++;
-        return;
-    }
-    for (int i = 1; i + 1 < m; i++) {
-        RastScreenVert t[3] = {s[0], s[i], s[i + 1]};
-        int64_t a = rast_area2(&t[0], &t[1], &t[2]);
-        if (a != 0 && (a > 0) == (area > 0))
-            rast_scan_triangle(t, prim, v->width, v->height, sink, c);
-    }
+    RastVert vs[RAST_POLY_MAX];
+    memcpy(vs, in, sizeof(RastVert) * (size_t)n);
+    draw_polygon(v, vs, n, prim, NULL, NULL, sink, c);
 }
 
 typedef struct {
@@ -145,6 +198,13 @@ typedef struct {
     gboolean vnormals, vcolors;
 } MeshCtx;
 
+/* What a polygon's shading callback needs. */
+typedef struct {
+    const MeshCtx *k;
+    guint poly;
+    const uint32_t *idx;
+} PolyCtx;
+
 static SceneColor vertex_base(const MeshCtx *k, guint poly, uint32_t vi)
 {
     SceneColor b = k->vcolors && k->v->shading == RAST_SHADE_GOURAUD
@@ -153,25 +213,39 @@ static SceneColor vertex_base(const MeshCtx *k, guint poly, uint32_t vi)
     return mul(b, k->tint);
 }
 
-/* Transforms and shades the vertices idx[0..n) of polygon `poly`. */
-static void load_verts(const MeshCtx *k, guint poly, const uint32_t *idx,
-                       int n, Vec3 face_n, RastVert *out, RastCounters *c)
+static void shade_poly(void *ctx, RastVert *out, int n)
 {
-    SceneColor flat = mul(g_array_index(k->m->poly_color, SceneColor, poly),
-                          k->tint);
-    RastColor fc = shade(k->v, flat, face_n);
+    const PolyCtx *pc = ctx;
+    const MeshCtx *k = pc->k;
+    const RastView *v = k->v;
+    Vec3 fn = vec3(0, 0, 1);
+    if (v->lighting && (v->shading == RAST_SHADE_FLAT || !k->vnormals))
+        fn = xform_dir(k->model, scene_mesh_poly_normal(k->m, pc->poly));
+    if (v->shading == RAST_SHADE_FLAT) {
+        SceneColor flat = mul(
+            g_array_index(k->m->poly_color, SceneColor, pc->poly), k->tint);
+        RastColor fc = shade(v, flat, fn);
+        for (int i = 0; i < n; i++)
+            out[i].col = fc;
+        return;
+    }
+    for (int i = 0; i < n; i++) {
+        uint32_t vi = pc->idx[i];
+        Vec3 nn = k->vnormals && v->lighting
+                      ? xform_dir(k->model,
+                                  g_array_index(k->m->normals, Vec3, vi))
+                      : fn;
+        out[i].col = shade(v, vertex_base(k, pc->poly, vi), nn);
+    }
+}
+
+/* Transforms the vertices idx[0..n) of a polygon (colours come later). */
+static void load_verts(const MeshCtx *k, const uint32_t *idx, int n,
+                       RastVert *out, RastCounters *c)
+{
     for (int i = 0; i < n; i++) {
         out[i].pos = mat4_apply_point(k->mvp, scene_mesh_vertex(k->m, idx[i]));
         c->verts++;
-        if (k->v->shading == RAST_SHADE_FLAT) {
-            out[i].col = fc;
-            continue;
-        }
-        Vec3 nn = k->vnormals
-                      ? xform_dir(k->model,
-                                  g_array_index(k->m->normals, Vec3, idx[i]))
-                      : face_n;
-        out[i].col = shade(k->v, vertex_base(k, poly, idx[i]), nn);
     }
 }
 
@@ -180,17 +254,18 @@ static void draw_poly(const MeshCtx *k, guint poly, uint32_t prim,
 {
     const uint32_t *idx = scene_mesh_poly(k->m, poly);
     int n = (int)scene_mesh_poly_len(k->m, poly);
-    Vec3 fn = xform_dir(k->model, scene_mesh_poly_normal(k->m, poly));
     RastVert vs[RAST_POLY_MAX];
     if (n <= RAST_POLY_MAX) {
-        load_verts(k, poly, idx, n, fn, vs, c);
-        rast_draw_clip_polygon(k->v, vs, n, prim, sink, c);
+        PolyCtx pc = {k, poly, idx};
+        load_verts(k, idx, n, vs, c);
+        draw_polygon(k->v, vs, n, prim, shade_poly, &pc, sink, c);
         return;
     }
     for (int i = 1; i + 1 < n; i++) {
         uint32_t tri[3] = {idx[0], idx[i], idx[i + 1]};
-        load_verts(k, poly, tri, 3, fn, vs, c);
-        rast_draw_clip_polygon(k->v, vs, 3, prim, sink, c);
+        PolyCtx pc = {k, poly, tri};
+        load_verts(k, tri, 3, vs, c);
+        draw_polygon(k->v, vs, 3, prim, shade_poly, &pc, sink, c);
     }
 }
 

@@ -91,6 +91,22 @@ static int cmp_span(const void *pa, const void *pb)
     return 0;
 }
 
+/* Rows are mostly short: insertion sort below 16 spans, qsort above. */
+static void sort_row(RastSpan *r, size_t k)
+{
+    if (k > 16) {
+        qsort(r, k, sizeof(RastSpan), cmp_span);
+        return;
+    }
+    for (size_t i = 1; i < k; i++) {
+        RastSpan t = r[i];
+        size_t j = i;
+        for (; j > 0 && cmp_span(&r[j - 1], &t) > 0; j--)
+            r[j] = r[j - 1];
+        r[j] = t;
+    }
+}
+
 void rast_spanlist_sort(RastSpanList *sl)
 {
     if (sl->sorted)
@@ -111,7 +127,7 @@ void rast_spanlist_sort(RastSpanList *sl)
     for (size_t y = 0; y < h; y++) {
         size_t k = sl->start[y + 1] - sl->start[y];
         if (k > 1)
-            qsort(rows + sl->start[y], k, sizeof(RastSpan), cmp_span);
+            sort_row(rows + sl->start[y], k);
     }
     sl->sorted = TRUE;
 }
