@@ -5,11 +5,11 @@
  * a PNG (or PPM when the name ends in .ppm), atomically.  Prints the
  * operation counters (TPG, TPF ...) on stdout.
  *
- * Scene sources: a Wavefront OBJ file (v and f records; an interim
- * reader until the scene library's loaders land), or a built-in teapot
+ * Scene sources: a Wavefront OBJ or PLY file (the scene library's
+ * loaders, sim/scene/obj.h and ply.h), or a built-in teapot
  * scene of seed 003 (--teapots N, 3,751 polygons per teapot), or the
  * gyroid isosurface of sim/scene/isosurface.h (--isosurface GRID).  The
- * camera of an OBJ file is fitted to its bounding box.  YAML scene files
+ * camera of a model file is fitted to its bounding box.  YAML scene files
  * need the scene library's scene_from_cfg(), not yet on main.
  * Cost: O(polygons + pixels).
  */
@@ -18,6 +18,8 @@
 #include "sim/raster/image.h"
 #include "sim/raster/pipeline.h"
 #include "sim/scene/isosurface.h"
+#include "sim/scene/obj.h"
+#include "sim/scene/ply.h"
 #include "sim/scene/teapots.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,104 +35,21 @@ typedef struct {
     double frame;
 } RenderOpts;
 
-static gboolean obj_fail(GError **err, const char *path, int line, int col,
-                         const char *found, const char *expected)
+/* A model file: PLY when the name ends in .ply, OBJ otherwise. */
+static SceneMesh *load_model(const char *path, GError **err)
 {
-    sim_error_located(err, path, line, col, found, expected);
-    return FALSE;
-}
-
-/* One face record "f a[/..] b[/..] c[/..] ...". */
-static gboolean obj_face(SceneMesh *m, char **tok, const char *path,
-                         int line, GError **err)
-{
-    GArray *idx = g_array_new(FALSE, FALSE, sizeof(uint32_t));
-    gboolean ok = TRUE;
-    guint nv = scene_mesh_n_vertices(m);
-    for (int i = 1; tok[i] && ok; i++) {
-        if (!*tok[i])
-            continue;
-        char *end;
-        long k = strtol(tok[i], &end, 10);
-        if (k < 0)
-            k += (long)nv + 1;
-        if (end == tok[i] || (*end && *end != '/') || k < 1 || k > (long)nv)
-            ok = obj_fail(err, path, line, 1, "a bad vertex index",
-                          "an index of a vertex defined above");
-        uint32_t u = (uint32_t)(k - 1);
-        g_array_append_val(idx, u);
-    }
-    if (ok && idx->len < 3)
-        ok = obj_fail(err, path, line, 1, "a face of fewer than 3 vertices",
-                      "at least 3");
-    if (ok)
-        scene_mesh_add_poly(m, (uint32_t *)idx->data, idx->len,
-                            scene_color(0.8f, 0.8f, 0.8f), 0);
-    g_array_free(idx, TRUE);
-    return ok;
-}
-
-static gboolean obj_line(SceneMesh *m, const char *text, const char *path,
-                         int line, GError **err)
-{
-    char **tok = g_strsplit_set(text, " \t\r", -1);
-    gboolean ok = TRUE;
-    if (g_strcmp0(tok[0], "v") == 0) {
-        double c[3];
-        int n = 0;
-        for (int i = 1; tok[i] && ok; i++) {
-            char *end;
-            if (!*tok[i])
-                continue;
-            double x = g_ascii_strtod(tok[i], &end);
-            ok = !*end && isfinite(x);
-            if (ok && n < 3)
-                c[n] = x;
-            n++;
-        }
-        if (!ok || n < 3)
-            ok = obj_fail(err, path, line, 1, "a malformed vertex",
-                          "v x y z with finite numbers");
-        else
-            scene_mesh_add_vertex(m, vec3(c[0], c[1], c[2]));
-    } else if (g_strcmp0(tok[0], "f") == 0) {
-        ok = obj_face(m, tok, path, line, err);
-    }
-    g_strfreev(tok);
-    return ok;
-}
-
-static SceneMesh *load_obj(const char *path, GError **err)
-{
-    char *data;
-    GError *e = NULL;
-    if (!g_file_get_contents(path, &data, NULL, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
-        g_error_free(e);
-        return NULL;
-    }
-    char **lines = g_strsplit(data, "\n", -1);
-    g_free(data);
-    SceneMesh *m = scene_mesh_new();
-    gboolean ok = TRUE;
-    for (int i = 0; lines[i] && ok; i++)
-        ok = obj_line(m, lines[i], path, i + 1, err);
-    g_strfreev(lines);
-    if (ok && scene_mesh_n_polys(m) == 0)
-        ok = obj_fail(err, path, 1, 1, "no faces", "at least one f record");
-    if (!ok) {
-        scene_mesh_free(m);
-        return NULL;
-    }
-    return m;
+    if (g_str_has_suffix(path, ".ply"))
+        return scene_ply_load(path, err);
+    return scene_obj_load(path, err);
 }
 
 static Scene *scene_for_obj(const char *path, GError **err)
 {
-    SceneMesh *m = load_obj(path, err);
+    SceneMesh *m = load_model(path, err);
     if (!m)
         return NULL;
-    scene_mesh_compute_normals(m);
+    if (m->normals->len != m->pos->len)
+        scene_mesh_compute_normals(m);
     Scene *s = scene_new(path);
     SceneBox box = scene_mesh_bbox(m);
     scene_add_instance(s, scene_add_mesh(s, m), mat4_identity(),
@@ -175,7 +94,7 @@ static gboolean check_opts(const RenderOpts *o, int argc, GError **err)
         bad = "a bad --shading", exp = "flat or gouraud";
     else if ((argc == 2) + (o->teapots > 0) + (o->iso_grid > 0) != 1)
         bad = "no scene or two",
-        exp = "one of SCENE.obj, --teapots N, --isosurface GRID";
+        exp = "one of SCENE.obj/.ply, --teapots N, --isosurface GRID";
     else if (o->iso_grid == 1 || o->iso_grid > 400)
         bad = "a bad --isosurface grid", exp = "2 .. 400 cells";
     if (bad)
@@ -265,7 +184,7 @@ int cmd_render(int argc, char **argv)
         {"frame", 0, 0, G_OPTION_ARG_DOUBLE, &o.frame,
          "frame of the camera path (0)", "F"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
-    GOptionContext *ctx = g_option_context_new("SCENE.obj -o FRAME.png");
+    GOptionContext *ctx = g_option_context_new("SCENE.obj|SCENE.ply -o FRAME.png");
     g_option_context_add_main_entries(ctx, entries, NULL);
     GError *err = NULL;
     gboolean ok = g_option_context_parse(ctx, &argc, &argv, &err);

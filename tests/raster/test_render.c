@@ -1,5 +1,7 @@
 /* test_render.c — `pgsim render`: OBJ input, PNG output, errors. */
 #include "sim/app/commands.h"
+#include "sim/scene/obj.h"
+#include "sim/scene/ply.h"
 #include "tests/raster/rast_testutil.h"
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,7 +14,7 @@ static const char *cube_obj =
     "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
     "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
     "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 3 4 8 7\nf 2 3 7 6\n"
-    "f 1/1 5/2 8/3 4/4\n";
+    "f -8 -4 -1 -5\n";
 
 static int run_render(char *a0, char *a1, char *a2, char *a3)
 {
@@ -39,6 +41,20 @@ static void test_render_obj(void **state)
         for (int x = 0; x < img->width; x++)
             covered += rast_image_get(img, x, y) != bg;
     assert_true(covered > 640 * 640 / 8 && covered < 640 * 640 * 3 / 4);
+    /* The same cube as binary PLY renders the same picture. */
+    char *ply = g_build_filename(d, "cube.ply", NULL);
+    char *png2 = g_build_filename(d, "cube2.png", NULL);
+    SceneMesh *m = scene_obj_load(obj, NULL);
+    assert_true(scene_ply_save(m, ply, SCENE_PLY_BINARY_LE, NULL));
+    assert_int_equal(run_render("render", ply, "-o", png2), 0);
+    RastImage *img2 = rast_image_read_png(png2, NULL);
+    assert_true(rast_image_equal(img, img2));
+    rast_image_free(img2);
+    scene_mesh_free(m);
+    g_unlink(ply);
+    g_unlink(png2);
+    g_free(ply);
+    g_free(png2);
     rast_image_free(img);
     g_unlink(png);
     g_unlink(obj);
