@@ -19,6 +19,8 @@ static void test_paper_counts(void **st)
     scene_db_post(db, root);
     SceneDbStats s;
     scene_db_stats(db, &s);
+    print_message("vehicle: structures %u triangles %" G_GUINT64_FORMAT
+                  " depth %u\n", s.structures, s.min_primitives, s.depth);
     assert_int_equal(s.structures, 466);
     assert_int_equal(s.min_primitives, 74647);
     assert_int_equal(s.primitives, 74647);
