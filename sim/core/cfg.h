@@ -96,6 +96,13 @@ void cfg_error(GError **err, const CfgNode *at, const char *found,
 /* Rejects the first key in `map` (recursively through maps and sequences)
  * that no getter read: "found unknown key 'k', expected one of: a, b". */
 gboolean cfg_check_unused(const CfgNode *map, GError **err);
+/* The same, but the values of the listed top-level keys of `map` (a
+ * NULL-terminated list) are not descended into when those keys were read:
+ * for sections whose consumer runs later. */
+gboolean cfg_check_unused_except(const CfgNode *map, const char *const *skip,
+                                 GError **err);
+/* Marks every key below n as read (a section taken as a whole). */
+void cfg_mark_read(const CfgNode *n);
 
 /* Applies "a.b.c=value" (value parsed as YAML) to the tree, creating maps
  * as needed; errors name the override as "--set a.b.c=value". */
@@ -104,5 +111,9 @@ gboolean cfg_set_override(CfgNode *root, const char *assignment,
 /* Deep-merges `over` into `base` (maps merge, anything else replaces);
  * used for machine models included by name and then overridden. */
 void cfg_merge(CfgNode *base, const CfgNode *over);
+
+/* Describes a node for "found ...": "'text'", "a map", "a sequence",
+ * "an empty value".  Returns a new string (g_free). */
+char *cfg_describe(const CfgNode *n);
 
 #endif

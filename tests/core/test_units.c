@@ -1,0 +1,160 @@
+/* test_units.c — numbers with units: good values, exact scaling, and every
+ * class of bad input (negative, missing number, unknown unit, overflow). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/core/cfg.h"
+#include "sim/core/units.h"
+
+static uint64_t u64_ok(const char *s, CfgUnitKind k)
+{
+    uint64_t v = 12345;
+    const char *exp = NULL;
+    if (!cfg_units_u64(s, k, &v, &exp))
+        fail_msg("'%s' rejected: expected %s", s, exp);
+    return v;
+}
+
+static double dbl_ok(const char *s, CfgUnitKind k)
+{
+    double v = -1;
+    const char *exp = NULL;
+    if (!cfg_units_double(s, k, &v, &exp))
+        fail_msg("'%s' rejected: expected %s", s, exp);
+    return v;
+}
+
+static const char *u64_bad(const char *s, CfgUnitKind k)
+{
+    uint64_t v = 7;
+    const char *exp = NULL;
+    assert_false(cfg_units_u64(s, k, &v, &exp));
+    assert_non_null(exp);
+    return exp;
+}
+
+static const char *dbl_bad(const char *s, CfgUnitKind k)
+{
+    double v = 7;
+    const char *exp = NULL;
+    assert_false(cfg_units_double(s, k, &v, &exp));
+    assert_non_null(exp);
+    return exp;
+}
+
+static void test_times(void **state)
+{
+    (void)state;
+    assert_int_equal(u64_ok("350us", CFG_UNIT_TIME), 350 * SIM_US);
+    assert_int_equal(u64_ok("350 us", CFG_UNIT_TIME), 350 * SIM_US);
+    assert_int_equal(u64_ok("350 \xc2\xb5s", CFG_UNIT_TIME), 350 * SIM_US);
+    assert_int_equal(u64_ok("1.5 ns", CFG_UNIT_TIME), 1500);
+    assert_int_equal(u64_ok("2 s", CFG_UNIT_TIME), 2 * SIM_S);
+    assert_int_equal(u64_ok("0.25ms", CFG_UNIT_TIME), 250 * SIM_US);
+    assert_int_equal(u64_ok("1e3 ps", CFG_UNIT_TIME), 1000);
+    assert_int_equal(u64_ok("0", CFG_UNIT_TIME), 0);
+    /* rounds to the nearest picosecond, half up */
+    assert_int_equal(u64_ok("1.4 ps", CFG_UNIT_TIME), 1);
+    assert_int_equal(u64_ok("1.5 ps", CFG_UNIT_TIME), 2);
+    assert_int_equal(u64_ok("0.0000001 ps", CFG_UNIT_TIME), 0);
+    /* exact: 0.1 s is not 0.1 in binary, but it is 1e11 ps here */
+    assert_int_equal(u64_ok("0.1 s", CFG_UNIT_TIME), 100000000000ULL);
+}
+
+static void test_sizes_counts(void **state)
+{
+    (void)state;
+    assert_int_equal(u64_ok("64KiB", CFG_UNIT_SIZE), 65536);
+    assert_int_equal(u64_ok("64 KB", CFG_UNIT_SIZE), 64000);
+    assert_int_equal(u64_ok("2.8 KB", CFG_UNIT_SIZE), 2800);
+    assert_int_equal(u64_ok("1.5 MiB", CFG_UNIT_SIZE), 1572864);
+    assert_int_equal(u64_ok("16K", CFG_UNIT_COUNT), 16000);
+    assert_int_equal(u64_ok("16", CFG_UNIT_COUNT), 16);
+    assert_int_equal(u64_ok("2M", CFG_UNIT_COUNT), 2000000);
+    assert_int_equal(u64_ok("18446744073709551615", CFG_UNIT_COUNT),
+                     UINT64_MAX);
+    assert_string_equal(u64_bad("1.5 B", CFG_UNIT_SIZE),
+                        "a whole number of bytes");
+    assert_string_equal(u64_bad("1.0001K", CFG_UNIT_COUNT), "a whole number");
+    assert_non_null(strstr(u64_bad("16k", CFG_UNIT_COUNT), "K (1e3)"));
+}
+
+static void test_bandwidth_freq(void **state)
+{
+    (void)state;
+    assert_true(dbl_ok("640 MB/s", CFG_UNIT_BANDWIDTH) == 640e6);
+    assert_true(dbl_ok("2.8MB/s", CFG_UNIT_BANDWIDTH) == 2.8e6);
+    assert_true(dbl_ok("1 Gbit/s", CFG_UNIT_BANDWIDTH) == 125e6);
+    assert_true(dbl_ok("1 KiB/s", CFG_UNIT_BANDWIDTH) == 1024.0);
+    assert_true(dbl_ok("1.5 GHz", CFG_UNIT_FREQ) == 1.5e9);
+    assert_true(dbl_ok("40MHz", CFG_UNIT_FREQ) == 40e6);
+    assert_true(dbl_ok("0", CFG_UNIT_FREQ) == 0.0);
+}
+
+static void test_bad(void **state)
+{
+    (void)state;
+    const char *t = cfg_units_expected(CFG_UNIT_TIME);
+    assert_string_equal(u64_bad("-5 us", CFG_UNIT_TIME), t);   /* negative */
+    assert_string_equal(u64_bad("us", CFG_UNIT_TIME), t);      /* no number */
+    assert_string_equal(u64_bad("", CFG_UNIT_TIME), t);
+    assert_string_equal(u64_bad(".", CFG_UNIT_TIME), t);
+    assert_string_equal(u64_bad("5 furlongs", CFG_UNIT_TIME), t);
+    assert_string_equal(u64_bad("5", CFG_UNIT_TIME), t);       /* no unit */
+    assert_string_equal(u64_bad("5 US", CFG_UNIT_TIME), t);    /* case */
+    assert_string_equal(u64_bad("5 us x", CFG_UNIT_TIME), t);  /* junk */
+    assert_string_equal(u64_bad("1e30 s", CFG_UNIT_TIME),
+                        "a time below 2^64 ps (about 213 days)");
+    assert_string_equal(u64_bad("18446744073709551616", CFG_UNIT_COUNT),
+                        "a count below 2^64");
+    assert_string_equal(u64_bad("20000000000 GiB", CFG_UNIT_SIZE),
+                        "a size below 2^64 bytes");
+    assert_string_equal(u64_bad("12345678901234567891 s", CFG_UNIT_TIME),
+                        "a time below 2^64 ps (about 213 days)");
+    assert_string_equal(u64_bad("1.234567890123456789012 s", CFG_UNIT_TIME),
+                        "a number with at most 20 significant digits");
+    assert_non_null(strstr(dbl_bad("640 MB", CFG_UNIT_BANDWIDTH), "MB/s"));
+    assert_non_null(strstr(dbl_bad("-1 GHz", CFG_UNIT_FREQ), "GHz"));
+    assert_string_equal(dbl_bad("1e999 B/s", CFG_UNIT_BANDWIDTH),
+                        "a finite bandwidth");
+    assert_non_null(dbl_bad("inf Hz", CFG_UNIT_FREQ));
+    assert_non_null(dbl_bad("0x10 Hz", CFG_UNIT_FREQ));
+}
+
+static void test_flag_parsers(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    SimTime t = 0;
+    assert_true(cfg_parse_time("1us", "--lookahead", &t, &e));
+    assert_int_equal(t, SIM_US);
+    assert_false(cfg_parse_time("1", "--lookahead", &t, &e));
+    assert_int_equal(sim_error_exit_status(e), 2);
+    assert_non_null(strstr(e->message, "--lookahead: found '1', expected a "
+                                       "non-negative time"));
+    g_clear_error(&e);
+    uint64_t n = 0;
+    assert_false(cfg_parse_count("x", "--lps", &n, &e));
+    assert_non_null(strstr(e->message, "--lps: found 'x', expected"));
+    g_clear_error(&e);
+    assert_true(cfg_parse_size("1 MiB", "--bytes", &n, &e));
+    assert_int_equal(n, 1048576);
+    double bw = 0;
+    assert_true(cfg_parse_bandwidth("40 MB/s", "--bw", &bw, &e));
+    assert_true(bw == 40e6);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_times),
+        cmocka_unit_test(test_sizes_counts),
+        cmocka_unit_test(test_bandwidth_freq),
+        cmocka_unit_test(test_bad),
+        cmocka_unit_test(test_flag_parsers),
+    };
+    return cmocka_run_group_tests_name("units", tests, NULL, NULL);
+}
