@@ -1,0 +1,476 @@
+/* machine.c — machine assembly from a checked model tree.
+ *
+ * mach_new_from_cfg(): resolve `model:` (load + deep-merge the section
+ * over it, model.h), check the merged tree, then build node kinds (in
+ * model order) with their cost tables and one MachProc per processor.
+ *
+ * Invariants: kinds[k].first + kinds[k].count == kinds[k+1].first; procs
+ * has exactly sum(count) entries; every cost table value is a SimTime
+ * read from a checked parameter; net is NULL exactly when net_err is set.
+ * Cost: O(model size + processors); the network holds no per-link state
+ * until messages flow.
+ */
+#include "sim/machine/machine.h"
+#include "sim/machine/mnet.h"
+#include "sim/machine/model.h"
+#include <string.h>
+
+typedef struct {
+    MachKindInfo info;
+    char *name;
+    GHashTable *costs;      /* op (borrowed from tree) -> SimTime * */
+    const CfgNode *costs_at; /* for located errors; may be NULL */
+    const CfgNode *at;
+} MachKind;
+
+struct MachMachine {
+    SimEngine *eng;
+    CfgNode *tree;          /* owned: merged, checked model */
+    char *name;
+    char *fidelity;
+    GArray *kinds;          /* MachKind */
+    MachProc *procs;
+    guint n_procs;
+    const CfgNode *network;
+    NetTopo *topo;          /* NULL when the topology is not built yet */
+    NetNet *net;
+    GError *net_err;        /* why net is NULL */
+};
+
+/* Upper bound on processors: one MachProc each, so keep it sane. */
+#define MACH_MAX_PROCS (1u << 24)
+
+/* ---- building ------------------------------------------------------------ */
+
+static gboolean read_costs(MachKind *k, const CfgNode *kind, GError **err)
+{
+    k->costs = g_hash_table_new_full(g_str_hash, g_str_equal, NULL, g_free);
+    k->costs_at = cfg_get(kind, "costs");
+    const CfgNode *costs = k->costs_at;
+    for (guint i = 0; costs && i < cfg_map_len(costs); i++) {
+        const char *op = cfg_map_key(costs, i);
+        SimTime *t = g_new(SimTime, 1);
+        if (!mach_param_time(costs, op, TRUE, t, err)) {
+            g_free(t);
+            return FALSE;
+        }
+        g_hash_table_insert(k->costs, (gpointer)op, t);
+    }
+    return TRUE;
+}
+
+static gboolean read_kind(MachKind *k, const char *name, const CfgNode *kind,
+                          GError **err)
+{
+    uint64_t count = 0, lanes = 1;
+    k->name = g_strdup(name);
+    k->at = kind;
+    k->info.name = k->name;
+    if (!mach_param_count(kind, "count", TRUE, &count, err) ||
+        !mach_param_freq(kind, "clock", FALSE, &k->info.clock_hz, err) ||
+        !mach_param_size(kind, "memory", FALSE, &k->info.memory, err) ||
+        !mach_param_count(kind, "lanes", FALSE, &lanes, err) ||
+        !mach_param_size(kind, "lane_memory", FALSE, &k->info.lane_memory,
+                         err))
+        return FALSE;
+    if (count > MACH_MAX_PROCS || lanes == 0) {
+        cfg_error(err, mach_param_node(kind, count > MACH_MAX_PROCS
+                                                 ? "count" : "lanes"),
+                  count > MACH_MAX_PROCS ? "more than 16M processors"
+                                         : "zero lanes",
+                  "a count in 0 .. 16M (lanes >= 1)");
+        return FALSE;
+    }
+    k->info.count = (guint)count;
+    k->info.lanes = lanes;
+    return read_costs(k, kind, err);
+}
+
+static gboolean build_kinds(MachMachine *m, GError **err)
+{
+    const CfgNode *nodes = cfg_get(m->tree, "nodes");
+    guint first = 0;
+    for (guint i = 0; i < cfg_map_len(nodes); i++) {
+        MachKind k = {0};
+        gboolean ok = read_kind(&k, cfg_map_key(nodes, i),
+                                cfg_map_value(nodes, i), err);
+        k.info.first = first;
+        g_array_append_val(m->kinds, k);
+        if (!ok)
+            return FALSE;
+        first += k.info.count;
+        if (first > MACH_MAX_PROCS) {
+            cfg_error(err, k.at, "more than 16M processors in all",
+                      "fewer processors");
+            return FALSE;
+        }
+    }
+    g_assert(m->kinds->len <= G_MAXUINT16);
+    m->n_procs = first;
+    return TRUE;
+}
+
+static void build_procs(MachMachine *m)
+{
+    m->procs = g_new(MachProc, m->n_procs ? m->n_procs : 1);
+    for (guint k = 0; k < m->kinds->len; k++) {
+        const MachKindInfo *ki = mach_kind_at(m, k);
+        for (guint i = 0; i < ki->count; i++)
+            mach_proc_init(&m->procs[ki->first + i], m, ki->first + i,
+                           (guint16)k);
+    }
+}
+
+static gboolean build_net(MachMachine *m, GError **err)
+{
+    NetParams par;
+    NetFidelity fid;
+    if (!net_fidelity_parse(m->fidelity, &fid)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "found fidelity '%s', expected analytic, flow or packet",
+                    m->fidelity);
+        return FALSE;
+    }
+    if (!mach_net_params(m->network, &par, err))
+        return FALSE;
+    const char *topo = mach_param_word(m->network, "topology");
+    if (!mach_topo_supported(topo)) {
+        const CfgNode *at = mach_param_node(m->network, "topology");
+        char *found = g_strdup_printf("topology '%s' (not yet built by the "
+                                      "machine layer)", topo);
+        cfg_error(&m->net_err, at, found, "hypercube");
+        g_free(found);
+        return TRUE;
+    }
+    const MachKind *last = &g_array_index(m->kinds, MachKind,
+                                          m->kinds->len - 1);
+    m->topo = mach_topo_new(m->network, m->n_procs,
+                            mach_param_node(last->at, "count"), err);
+    if (!m->topo)
+        return FALSE;
+    m->net = net_new(m->eng, m->topo, &par, fid);
+    return TRUE;
+}
+
+static void mark_read(const CfgNode *n)
+{
+    if (cfg_kind(n) == CFG_MAP) {
+        for (guint i = 0; i < cfg_map_len(n); i++) {
+            (void)cfg_map_key(n, i);
+            mark_read(cfg_map_value(n, i));
+        }
+    } else if (cfg_kind(n) == CFG_SEQ) {
+        for (guint i = 0; i < cfg_seq_len(n); i++)
+            mark_read(cfg_seq_at(n, i));
+    }
+}
+
+/* The model tree for a section: a loaded model with the section merged
+ * over it, or a copy of the section itself.  *model_file: whose values
+ * need provenance. */
+static CfgNode *resolve_tree(const CfgNode *section, char **model_file,
+                             GError **err)
+{
+    const char *model = NULL;
+    if (cfg_kind(section) != CFG_MAP) {
+        cfg_error(err, section, "a non-map machine section",
+                  "a map with model: <name> and overrides");
+        return NULL;
+    }
+    if (!cfg_get_str(section, "model", FALSE, &model, err))
+        return NULL;
+    if (!model) {
+        *model_file = g_strdup(cfg_file(section));
+        return cfg_copy(section);
+    }
+    CfgNode *tree = mach_load_model(model, err);
+    if (!tree) {
+        g_prefix_error(err, "%s:%d:%d: ", cfg_file(section),
+                       cfg_line(section), cfg_col(section));
+        return NULL;
+    }
+    *model_file = g_strdup(cfg_file(tree));
+    cfg_merge(tree, section);
+    return tree;
+}
+
+static MachMachine *machine_alloc(SimEngine *eng, const char *fidelity)
+{
+    MachMachine *m = g_new0(MachMachine, 1);
+    m->eng = eng;
+    m->fidelity = g_strdup(fidelity ? fidelity : "analytic");
+    m->kinds = g_array_new(FALSE, TRUE, sizeof(MachKind));
+    return m;
+}
+
+static MachMachine *build(SimEngine *eng, CfgNode *tree,
+                          const char *model_file, const char *fidelity,
+                          GError **err)
+{
+    MachMachine *m = machine_alloc(eng, fidelity);
+    m->tree = tree;
+    const char *name = NULL;
+    if (!mach_model_check(tree, model_file, err) ||
+        !cfg_get_str(tree, "name", TRUE, &name, err) ||
+        !build_kinds(m, err)) {
+        mach_free(m);
+        return NULL;
+    }
+    m->name = g_strdup(name);
+    m->network = cfg_get(tree, "network");
+    build_procs(m);
+    if (!build_net(m, err)) {
+        mach_free(m);
+        return NULL;
+    }
+    return m;
+}
+
+MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
+                               const char *fidelity, GError **err)
+{
+    g_assert(eng && section);
+    char *model_file = NULL;
+    CfgNode *tree = resolve_tree(section, &model_file, err);
+    MachMachine *m = tree ? build(eng, tree, model_file, fidelity, err)
+                          : NULL;
+    g_free(model_file);
+    if (m)
+        mark_read(section);
+    return m;
+}
+
+gboolean mach_check_section(const CfgNode *section, GError **err)
+{
+    char *model_file = NULL;
+    CfgNode *tree = resolve_tree(section, &model_file, err);
+    gboolean ok = tree && mach_model_check(tree, model_file, err);
+    cfg_free(tree);
+    g_free(model_file);
+    if (ok)
+        mark_read(section);
+    return ok;
+}
+
+MachMachine *mach_new_from_model(SimEngine *eng, const char *name,
+                                 const char *fidelity, GError **err)
+{
+    g_assert(eng);
+    CfgNode *tree = mach_load_model(name, err);
+    if (!tree)
+        return NULL;
+    char *file = g_strdup(cfg_file(tree));
+    MachMachine *m = build(eng, tree, file, fidelity, err);
+    g_free(file);
+    return m;
+}
+
+void mach_free(MachMachine *m)
+{
+    if (!m)
+        return;
+    net_free(m->net);
+    if (m->topo)
+        net_topo_free(m->topo);
+    if (m->net_err)
+        g_error_free(m->net_err);
+    for (guint i = 0; i < m->n_procs && m->procs; i++)
+        mach_proc_clear(&m->procs[i]);
+    g_free(m->procs);
+    for (guint k = 0; k < m->kinds->len; k++) {
+        MachKind *kk = &g_array_index(m->kinds, MachKind, k);
+        g_free(kk->name);
+        if (kk->costs)
+            g_hash_table_destroy(kk->costs);
+    }
+    g_array_free(m->kinds, TRUE);
+    cfg_free(m->tree);
+    g_free(m->name);
+    g_free(m->fidelity);
+    g_free(m);
+}
+
+/* ---- queries ------------------------------------------------------------- */
+
+const char *mach_name(const MachMachine *m) { return m->name; }
+const char *mach_fidelity(const MachMachine *m) { return m->fidelity; }
+SimEngine *mach_engine(const MachMachine *m) { return m->eng; }
+const CfgNode *mach_model_cfg(const MachMachine *m) { return m->tree; }
+guint mach_kind_count(const MachMachine *m) { return m->kinds->len; }
+guint mach_proc_total(const MachMachine *m) { return m->n_procs; }
+
+const MachKindInfo *mach_kind_at(const MachMachine *m, guint i)
+{
+    g_assert(i < m->kinds->len);
+    return &g_array_index(m->kinds, MachKind, i).info;
+}
+
+static const MachKind *find_kind(const MachMachine *m, const char *kind)
+{
+    for (guint k = 0; k < m->kinds->len; k++) {
+        const MachKind *kk = &g_array_index(m->kinds, MachKind, k);
+        if (strcmp(kk->name, kind) == 0)
+            return kk;
+    }
+    return NULL;
+}
+
+const MachKindInfo *mach_kind(const MachMachine *m, const char *kind)
+{
+    const MachKind *k = find_kind(m, kind);
+    return k ? &k->info : NULL;
+}
+
+MachProc *mach_proc_at(MachMachine *m, guint id)
+{
+    g_assert(id < m->n_procs);
+    return &m->procs[id];
+}
+
+MachProc *mach_proc(MachMachine *m, const char *kind, guint i)
+{
+    const MachKind *k = find_kind(m, kind);
+    g_assert(k && i < k->info.count);
+    return &m->procs[k->info.first + i];
+}
+
+/* ---- costs ---------------------------------------------------------------- */
+
+gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
+                          const char *op, SimTime *out, GError **err)
+{
+    const MachKind *k = find_kind(m, kind);
+    const SimTime *t = k ? g_hash_table_lookup(k->costs, op) : NULL;
+    if (t) {
+        *out = *t;
+        return TRUE;
+    }
+    const CfgNode *at = k ? (k->costs_at ? k->costs_at : k->at)
+                          : cfg_get(m->tree, "nodes");
+    char *found = k ? g_strdup_printf("no cost for '%s' on '%s'", op, kind)
+                    : g_strdup_printf("no node kind '%s'", kind);
+    char *exp = g_strdup_printf("costs: {%s: {value: <time>, source: ...}} "
+                                "under nodes.%s in model %s",
+                                op, kind, m->name);
+    cfg_error(err, at, found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+SimTime mach_cost(const MachMachine *m, const char *kind, const char *op)
+{
+    SimTime t = 0;
+    GError *err = NULL;
+    if (!mach_cost_lookup(m, kind, op, &t, &err))
+        g_error("mach_cost: %s", err->message);
+    return t;
+}
+
+gboolean mach_require_costs(const MachMachine *m, const char *kind,
+                            const char *const *ops, GError **err)
+{
+    SimTime t;
+    for (; *ops; ops++)
+        if (!mach_cost_lookup(m, kind, *ops, &t, err))
+            return FALSE;
+    return TRUE;
+}
+
+gboolean mach_cost_n(SimTime cost, uint64_t n, SimTime *out)
+{
+    if (n != 0 && cost > SIM_TIME_MAX / n) {
+        *out = SIM_TIME_MAX;
+        return FALSE;
+    }
+    *out = cost * n;
+    return TRUE;
+}
+
+/* ---- network parameters ------------------------------------------------ */
+
+const CfgNode *mach_network_cfg(const MachMachine *m) { return m->network; }
+NetNet *mach_net(const MachMachine *m) { return m->net; }
+
+gboolean mach_require_net(const MachMachine *m, GError **err)
+{
+    if (m->net)
+        return TRUE;
+    g_propagate_error(err, g_error_copy(m->net_err));
+    return FALSE;
+}
+
+const char *mach_net_word(const MachMachine *m, const char *key)
+{
+    return mach_param_word(m->network, key);
+}
+
+/* The tree was checked, so a present key always parses. */
+#define NET_GET(fn, key, out)                                         \
+    do {                                                              \
+        if (!mach_param_node(m->network, key))                        \
+            return FALSE;                                             \
+        gboolean ok_ = fn(m->network, key, TRUE, out, NULL);          \
+        g_assert(ok_);                                                \
+        return TRUE;                                                  \
+    } while (0)
+
+gboolean mach_net_time(const MachMachine *m, const char *key, SimTime *out)
+{
+    NET_GET(mach_param_time, key, out);
+}
+
+gboolean mach_net_bandwidth(const MachMachine *m, const char *key,
+                            double *out)
+{
+    NET_GET(mach_param_bandwidth, key, out);
+}
+
+gboolean mach_net_size(const MachMachine *m, const char *key, uint64_t *out)
+{
+    NET_GET(mach_param_size, key, out);
+}
+
+gboolean mach_net_count(const MachMachine *m, const char *key, uint64_t *out)
+{
+    NET_GET(mach_param_count, key, out);
+}
+
+GArray *mach_net_bw_list(const MachMachine *m, const char *key)
+{
+    GArray *a = NULL;
+    if (mach_param_node(m->network, key) &&
+        !mach_param_bw_list(m->network, key, TRUE, &a, NULL))
+        g_assert_not_reached();
+    return a;
+}
+
+/* ---- results ------------------------------------------------------------- */
+
+static void copy_busy(SimBusy *dst, const SimBusy *src)
+{
+    for (guint ph = 0; src->per_phase && ph < src->per_phase->len; ph++) {
+        SimTime t = g_array_index(src->per_phase, SimTime, ph);
+        if (t)
+            sim_busy_add(dst, ph, t);
+    }
+}
+
+void mach_fill_result(const MachMachine *m, SimResult *r)
+{
+    g_free(r->machine);
+    r->machine = g_strdup(m->name);
+    g_free(r->fidelity);
+    r->fidelity = g_strdup(m->fidelity);
+    sim_result_set_phases(r, m->eng);
+    for (guint i = 0; i < m->n_procs; i++) {
+        const MachProc *p = &m->procs[i];
+        char *name = g_strdup_printf("%s%u", mach_proc_kind(p),
+                                     mach_proc_index(p));
+        SimNodeResult *n = sim_result_add_node(r, name, mach_proc_kind(p));
+        copy_busy(&n->busy, &p->busy);
+        g_free(name);
+    }
+    if (m->net)
+        net_fill_result(m->net, r);
+}

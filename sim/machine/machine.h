@@ -1,0 +1,108 @@
+/* machine.h — a machine assembled from a model: node kinds, processors,
+ * cost tables and the network parameters.
+ *
+ * Built from the `machine` section of a run config: `model: <name>` loads
+ * models/<name>.yaml (model.h) and the rest of the section is deep-merged
+ * over it as overrides; without `model:` the section itself is the model.
+ * Processors are numbered in node-kind order (host 0, gp 1..16, ...);
+ * those are also the network endpoint numbers.
+ *
+ * Costs are SimTime per named operation of a node kind; workloads should
+ * check the operations they need once (mach_require_costs) and cache the
+ * SimTime values for their inner loops.
+ *
+ * The network: the machine builds a NetNet (sim/net/net.h) from the
+ * model's `network` section at the requested fidelity (mnet.h); links get
+ * state only when a message uses them.  Topologies the machine layer
+ * cannot build yet leave mach_net() NULL and mach_require_net() explains.
+ * The checked section and typed getters stay available for workloads.
+ *
+ * Memory: one small MachProc per processor, one hash table of costs per
+ * node kind; nothing per link.
+ */
+#ifndef PGSIM_MACHINE_MACHINE_H
+#define PGSIM_MACHINE_MACHINE_H
+
+#include "sim/core/cfg.h"
+#include "sim/core/result.h"
+#include "sim/machine/proc.h"
+#include "sim/net/net.h"
+
+/* What a node kind is: borrowed from the machine. */
+typedef struct {
+    const char *name;      /* "gp", "renderer", "node" ... */
+    guint first;           /* global id of its first processor */
+    guint count;
+    double clock_hz;       /* 0 when the model gives none */
+    uint64_t memory;       /* bytes per node, 0 when not given */
+    uint64_t lanes;        /* SIMD lanes per processor, 1 if not SIMD */
+    uint64_t lane_memory;  /* bytes per lane, 0 when not given */
+} MachKindInfo;
+
+/* Builds a machine from a config's `machine` section (borrowed; copied).
+ * `fidelity` is "analytic", "flow" or "packet".  Returns a new machine
+ * (mach_free) or NULL with *err set (unknown model, bad override ...). */
+MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
+                               const char *fidelity, GError **err);
+/* Checks a config's `machine` section early (load, merge, check) and
+ * marks all of its keys read, so that cfg_check_unused() on the whole
+ * config accepts them.  The app calls it before cfg_check_unused(). */
+gboolean mach_check_section(const CfgNode *section, GError **err);
+/* The same from a model name alone (no overrides). */
+MachMachine *mach_new_from_model(SimEngine *eng, const char *name,
+                                 const char *fidelity, GError **err);
+void mach_free(MachMachine *m);
+
+const char *mach_name(const MachMachine *m);
+const char *mach_fidelity(const MachMachine *m);
+SimEngine *mach_engine(const MachMachine *m);
+/* The merged, checked model tree (borrowed). */
+const CfgNode *mach_model_cfg(const MachMachine *m);
+
+/* Node kinds, in model order. */
+guint mach_kind_count(const MachMachine *m);
+const MachKindInfo *mach_kind_at(const MachMachine *m, guint i);
+/* NULL when the machine has no such kind. */
+const MachKindInfo *mach_kind(const MachMachine *m, const char *kind);
+
+/* Processors. */
+guint mach_proc_total(const MachMachine *m);
+MachProc *mach_proc_at(MachMachine *m, guint id);
+/* The i-th processor of a kind (asserts the kind exists, i < count). */
+MachProc *mach_proc(MachMachine *m, const char *kind, guint i);
+
+/* Cost of one `op` on `kind`.  mach_cost() asserts that it exists;
+ * mach_cost_lookup() reports a missing one as a located input error. */
+SimTime mach_cost(const MachMachine *m, const char *kind, const char *op);
+gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
+                          const char *op, SimTime *out, GError **err);
+/* Checks that `kind` exists and has every op of the NULL-terminated list. */
+gboolean mach_require_costs(const MachMachine *m, const char *kind,
+                            const char *const *ops, GError **err);
+/* n x cost into *out; FALSE on overflow (then *out is SIM_TIME_MAX). */
+gboolean mach_cost_n(SimTime cost, uint64_t n, SimTime *out);
+
+/* The machine's network (borrowed), or NULL if its topology is not yet
+ * built by the machine layer; mach_require_net() then says so in *err. */
+NetNet *mach_net(const MachMachine *m);
+gboolean mach_require_net(const MachMachine *m, GError **err);
+
+/* The checked network section (borrowed) and its typed parameters.
+ * Getters return FALSE when the key is absent (no error) and leave *out. */
+const CfgNode *mach_network_cfg(const MachMachine *m);
+const char *mach_net_word(const MachMachine *m, const char *key);
+gboolean mach_net_time(const MachMachine *m, const char *key, SimTime *out);
+gboolean mach_net_bandwidth(const MachMachine *m, const char *key,
+                            double *out);
+gboolean mach_net_size(const MachMachine *m, const char *key, uint64_t *out);
+gboolean mach_net_count(const MachMachine *m, const char *key,
+                        uint64_t *out);
+/* Per-level bandwidths (bytes/s) in a new GArray of double, or NULL. */
+GArray *mach_net_bw_list(const MachMachine *m, const char *key);
+
+/* Copies machine name, fidelity, phase names, every processor's busy
+ * time (overall and per phase, in processor-id order) and the network's
+ * communication statistics into r. */
+void mach_fill_result(const MachMachine *m, SimResult *r);
+
+#endif

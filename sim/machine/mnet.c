@@ -1,0 +1,157 @@
+/* mnet.c — NetParams and NetTopo from a model's network section.
+ *
+ * Channel bandwidth, in order of preference: `bandwidth`; else
+ * `total_bandwidth` / `channels`; else the first `level_bandwidth`.
+ * Switching: the `switching` word, else the topology's natural one (ring
+ * slots for a ring, circuit for a DCM hypercube is never guessed: a
+ * hypercube without `switching` uses cut-through packets).
+ * Every number comes from the model; the only defaults are "absent means
+ * zero" for start-up and per-hop, and sim/net's own default packet size.
+ * Cost: O(1).
+ */
+#include "sim/machine/mnet.h"
+#include "sim/machine/model.h"
+#include <string.h>
+
+static const char *const switching_words[] = {
+    "circuit", "cut-through", "store-and-forward", "ring-slots", NULL};
+static const NetSwitching switching_vals[] = {
+    NET_SW_CIRCUIT, NET_SW_CUT_THROUGH, NET_SW_STORE_FORWARD,
+    NET_SW_RING_SLOTS};
+
+static gboolean read_switching(const CfgNode *net, NetSwitching *out,
+                               GError **err)
+{
+    const char *topo = mach_param_word(net, "topology");
+    const CfgNode *v = mach_param_node(net, "switching");
+    *out = topo && strcmp(topo, "ring") == 0 ? NET_SW_RING_SLOTS
+                                             : NET_SW_CUT_THROUGH;
+    if (!v)
+        return TRUE;
+    for (guint i = 0; switching_words[i]; i++) {
+        if (g_strcmp0(cfg_scalar(v), switching_words[i]) == 0) {
+            *out = switching_vals[i];
+            return TRUE;
+        }
+    }
+    char *found = g_strdup_printf("switching '%s'", cfg_scalar(v));
+    cfg_error(err, v, found,
+              "circuit, cut-through, store-and-forward or ring-slots");
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean read_levels(const CfgNode *net, NetParams *out, GError **err)
+{
+    GArray *lv = NULL;
+    if (!mach_param_bw_list(net, "level_bandwidth", FALSE, &lv, err))
+        return FALSE;
+    if (!lv)
+        return TRUE;
+    if (lv->len > NET_MAX_LEVELS) {
+        cfg_error(err, mach_param_node(net, "level_bandwidth"),
+                  "more levels than sim/net supports", "at most 8 levels");
+        g_array_unref(lv);
+        return FALSE;
+    }
+    for (guint i = 0; i < lv->len; i++)
+        out->level_bw[i] = g_array_index(lv, double, i);
+    g_array_unref(lv);
+    return TRUE;
+}
+
+/* CM-200: level_bw[0] router cube links, level_bw[1] NEWS links. */
+static gboolean read_cm_levels(const CfgNode *net, NetParams *out,
+                               GError **err)
+{
+    return mach_param_bandwidth(net, "router_link_bandwidth", FALSE,
+                                &out->level_bw[0], err) &&
+           mach_param_bandwidth(net, "news_bandwidth", FALSE,
+                                &out->level_bw[1], err);
+}
+
+static gboolean read_bandwidth(const CfgNode *net, NetParams *out,
+                               GError **err)
+{
+    double total = 0.0;
+    if (!mach_param_bandwidth(net, "bandwidth", FALSE, &out->bandwidth, err)
+        || !mach_param_bandwidth(net, "total_bandwidth", FALSE, &total, err))
+        return FALSE;
+    if (out->bandwidth <= 0.0 && total > 0.0)
+        out->bandwidth = total / out->channels;
+    if (out->bandwidth <= 0.0)
+        out->bandwidth = out->level_bw[0];
+    if (out->bandwidth > 0.0)
+        return TRUE;
+    cfg_error(err, net, "a network without a usable bandwidth",
+              "bandwidth:, total_bandwidth: or level_bandwidth: (> 0)");
+    return FALSE;
+}
+
+gboolean mach_net_params(const CfgNode *net, NetParams *out, GError **err)
+{
+    uint64_t channels = 1, packet = 0;
+    *out = (NetParams){0};
+    if (!mach_param_count(net, "channels", FALSE, &channels, err) ||
+        !mach_param_time(net, "startup", FALSE, &out->startup, err) ||
+        !mach_param_time(net, "per_hop", FALSE, &out->per_hop, err) ||
+        !mach_param_size(net, "packet_size", FALSE, &packet, err) ||
+        !read_switching(net, &out->switching, err) ||
+        !read_levels(net, out, err) || !read_cm_levels(net, out, err))
+        return FALSE;
+    if (channels == 0 || channels > UINT32_MAX || packet > UINT32_MAX) {
+        cfg_error(err, net, channels == 0 ? "zero channels"
+                                          : "an oversized channel/packet",
+                  "channels >= 1 and a packet size under 4 GB");
+        return FALSE;
+    }
+    out->channels = (uint32_t)channels;
+    out->packet_bytes = (uint32_t)packet;
+    return read_bandwidth(net, out, err);
+}
+
+static gboolean log2_exact(uint64_t n, unsigned *out)
+{
+    unsigned d = 0;
+    while (((uint64_t)1 << d) < n && d < 63)
+        d++;
+    *out = d;
+    return n > 0 && ((uint64_t)1 << d) == n;
+}
+
+static NetTopo *hypercube_new(const CfgNode *net, guint endpoints,
+                              const CfgNode *count_at, GError **err)
+{
+    unsigned d;
+    uint64_t dim = 0;
+    if (!mach_param_count(net, "dimension", FALSE, &dim, err))
+        return NULL;
+    if (!log2_exact(endpoints, &d) || d > 24 || (dim && dim != d)) {
+        char *found = g_strdup_printf("%u processors on a hypercube",
+                                      endpoints);
+        cfg_error(err, count_at ? count_at : mach_param_node(net, "topology"),
+                  found, "a power of two up to 2^24 processors "
+                         "(= 2^dimension)");
+        g_free(found);
+        return NULL;
+    }
+    return net_hypercube_new(d);
+}
+
+gboolean mach_topo_supported(const char *topology)
+{
+    return g_strcmp0(topology, "hypercube") == 0;
+}
+
+NetTopo *mach_topo_new(const CfgNode *net, guint endpoints,
+                       const CfgNode *count_at, GError **err)
+{
+    const char *topo = mach_param_word(net, "topology");
+    if (g_strcmp0(topo, "hypercube") == 0)
+        return hypercube_new(net, endpoints, count_at, err);
+    char *found = g_strdup_printf("topology '%s' (not yet built by the "
+                                  "machine layer)", topo ? topo : "");
+    cfg_error(err, mach_param_node(net, "topology"), found, "hypercube");
+    g_free(found);
+    return NULL;
+}

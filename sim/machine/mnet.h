@@ -1,0 +1,34 @@
+/* mnet.h — building a machine's network (sim/net) from its model.
+ *
+ * The `network` section of a checked model (model.h) becomes a NetTopo
+ * and NetParams for net_new().  Endpoints are the machine's processors in
+ * id order, except for the CM-200 router topology, whose endpoints are
+ * router_nodes x procs_per_router SIMD processors.
+ *
+ * Topology words: hypercube (iPSC/2; 2^d endpoints, e-cube routing in
+ * sim/net).  Other words (ring, fat-tree, cm-router, mesh, crossbar, bus)
+ * are accepted by the model checker and mapped here once their sim/net
+ * constructors exist; until then mach_topo_new() reports them as not yet
+ * available.  Cost: O(1).
+ */
+#ifndef PGSIM_MACHINE_MNET_H
+#define PGSIM_MACHINE_MNET_H
+
+#include "sim/core/cfg.h"
+#include "sim/net/net.h"
+
+/* Fills *out from the network section; FALSE with a located *err if a
+ * value is unusable (no bandwidth, unknown switching word ...). */
+gboolean mach_net_params(const CfgNode *network, NetParams *out,
+                         GError **err);
+
+/* Whether mach_topo_new() can build this topology word yet. */
+gboolean mach_topo_supported(const char *topology);
+
+/* A new topology (net_topo_free) for `endpoints` processors, or NULL with
+ * a located *err; an unusable endpoint count is reported at `count_at`
+ * (the processor count that set it; NULL: at the topology). */
+NetTopo *mach_topo_new(const CfgNode *network, guint endpoints,
+                       const CfgNode *count_at, GError **err);
+
+#endif

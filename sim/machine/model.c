@@ -1,0 +1,548 @@
+/* model.c — finding, loading and checking machine model files.
+ *
+ * The checker walks the tree once: top-level keys, each node kind, each
+ * cost, each network key.  Every parameter is looked up in a small type
+ * table; its value must parse as that type, carry a unit when the type
+ * has one, and come with a non-empty `source`, `calibrated` or
+ * `assumption` unless it is an override from another file (model.h).
+ * Errors are located: "file:line:col: found <what>, expected <what>".
+ *
+ * Invariant: a tree that passed mach_model_check() has every accepted key
+ * marked read, and the typed getters below cannot fail on it except for a
+ * missing required key.  Cost: O(size of the tree).
+ */
+#include "sim/machine/model.h"
+#include "sim/core/error.h"
+#include <string.h>
+
+typedef struct {
+    const char *key;
+    MachType type;
+} MachKeyType;
+
+/* Keys a node kind may have, besides `costs` (a map of times). */
+static const MachKeyType kind_keys[] = {
+    {"count", MACH_T_COUNT},       {"processor", MACH_T_WORD},
+    {"clock", MACH_T_FREQ},        {"memory", MACH_T_SIZE},
+    {"lanes", MACH_T_COUNT},       {"lane_memory", MACH_T_SIZE},
+    {"fpa_lanes", MACH_T_COUNT},   {"cores", MACH_T_COUNT},
+    {"peak_flops", MACH_T_COUNT},  {NULL, 0},
+};
+
+/* Keys the network section may have. */
+static const MachKeyType net_keys[] = {
+    {"topology", MACH_T_WORD},
+    {"routing", MACH_T_WORD},
+    {"switching", MACH_T_WORD},
+    {"duplex", MACH_T_WORD},
+    {"bandwidth", MACH_T_BANDWIDTH},
+    {"total_bandwidth", MACH_T_BANDWIDTH},
+    {"aggregate_bandwidth", MACH_T_BANDWIDTH},
+    {"level_bandwidth", MACH_T_BW_LIST},
+    {"startup", MACH_T_TIME},
+    {"startup_long", MACH_T_TIME},
+    {"long_threshold", MACH_T_SIZE},
+    {"per_hop", MACH_T_TIME},
+    {"word_time", MACH_T_TIME},
+    {"router_cycle", MACH_T_TIME},
+    {"control_latency", MACH_T_TIME},
+    {"packet_size", MACH_T_SIZE},
+    {"channels", MACH_T_COUNT},
+    {"arity", MACH_T_COUNT},
+    {"dimension", MACH_T_COUNT},
+    {"procs_per_router", MACH_T_COUNT},
+    {"router_nodes", MACH_T_COUNT},
+    {"router_link_bandwidth", MACH_T_BANDWIDTH},
+    {"news_bandwidth", MACH_T_BANDWIDTH},
+    {NULL, 0},
+};
+
+static const char *const provenance_keys[] = {"source", "calibrated",
+                                              "assumption", NULL};
+
+static gboolean lookup(const MachKeyType *t, const char *key, MachType *out)
+{
+    for (; t->key; t++) {
+        if (strcmp(t->key, key) == 0) {
+            *out = t->type;
+            return TRUE;
+        }
+    }
+    return FALSE;
+}
+
+gboolean mach_kind_key_type(const char *key, MachType *out)
+{
+    return lookup(kind_keys, key, out);
+}
+
+gboolean mach_net_key_type(const char *key, MachType *out)
+{
+    return lookup(net_keys, key, out);
+}
+
+static char *key_list(const MachKeyType *t, const char *extra)
+{
+    GString *s = g_string_new("one of: ");
+    for (const MachKeyType *k = t; k->key; k++)
+        g_string_append_printf(s, "%s%s", k == t ? "" : ", ", k->key);
+    if (extra)
+        g_string_append_printf(s, ", %s", extra);
+    return g_string_free(s, FALSE);
+}
+
+/* ---- finding and loading ---------------------------------------------- */
+
+static gboolean name_ok(const char *name)
+{
+    if (!name || !*name || name[0] == '.')
+        return FALSE;
+    for (const char *c = name; *c; c++)
+        if (!g_ascii_isalnum(*c) && *c != '-' && *c != '_' && *c != '.')
+            return FALSE;
+    return TRUE;
+}
+
+static char *try_dir(const char *dir, const char *name)
+{
+    char *file = g_strconcat(name, ".yaml", NULL);
+    char *path = g_build_filename(dir, file, NULL);
+    g_free(file);
+    if (g_file_test(path, G_FILE_TEST_IS_REGULAR))
+        return path;
+    g_free(path);
+    return NULL;
+}
+
+char *mach_model_path(const char *name, GError **err)
+{
+    if (!name_ok(name)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "found model name '%s', expected a plain name such as "
+                    "'ipsc2' (letters, digits, '-', '_')",
+                    name ? name : "");
+        return NULL;
+    }
+    char *path = try_dir("models", name);
+    const char *env = g_getenv("PGSIM_MODELS");
+    if (!path && env && *env) {
+        char **dirs = g_strsplit(env, ":", -1);
+        for (char **d = dirs; *d && !path; d++)
+            if (**d)
+                path = try_dir(*d, name);
+        g_strfreev(dirs);
+    }
+    if (!path)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "found no model '%s', expected models/%s.yaml under "
+                    "the current directory or $PGSIM_MODELS (%s)",
+                    name, name, env && *env ? env : "unset");
+    return path;
+}
+
+CfgNode *mach_load_model(const char *name, GError **err)
+{
+    char *path = mach_model_path(name, err);
+    if (!path)
+        return NULL;
+    CfgNode *root = cfg_load_file(path, err);
+    if (root && !mach_model_check(root, cfg_file(root), err)) {
+        cfg_free(root);
+        root = NULL;
+    }
+    g_free(path);
+    return root;
+}
+
+/* ---- checking ----------------------------------------------------------- */
+
+static gboolean has_unit(const char *s)
+{
+    size_t n = strlen(s);
+    while (n > 0 && g_ascii_isspace(s[n - 1]))
+        n--;
+    return n > 0 && !g_ascii_isdigit(s[n - 1]) && s[n - 1] != '.';
+}
+
+static const char *type_example(MachType t)
+{
+    switch (t) {
+    case MACH_T_TIME: return "a time with its unit, e.g. '350 us'";
+    case MACH_T_BANDWIDTH: return "a bandwidth with its unit, e.g. '2.8 MB/s'";
+    case MACH_T_FREQ: return "a frequency with its unit, e.g. '16 MHz'";
+    case MACH_T_SIZE: return "a size with its unit, e.g. '4 MB'";
+    case MACH_T_BW_LIST: return "a list of bandwidths, e.g. [20 MB/s, 10 MB/s]";
+    case MACH_T_COUNT: return "a count, e.g. 16 or 64K";
+    default: return "a word, e.g. hypercube";
+    }
+}
+
+static gboolean check_unit(const CfgNode *v, MachType t, GError **err)
+{
+    if (t == MACH_T_WORD || t == MACH_T_COUNT)
+        return TRUE;
+    const char *s = cfg_scalar(v);
+    if (s && has_unit(s))
+        return TRUE;
+    char *found = s ? g_strdup_printf("'%s' without a unit", s)
+                    : g_strdup("a non-scalar value");
+    cfg_error(err, v, found, type_example(t));
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean check_bw_list(const CfgNode *v, GError **err)
+{
+    if (cfg_kind(v) != CFG_SEQ || cfg_seq_len(v) == 0) {
+        cfg_error(err, v, "a non-list value", type_example(MACH_T_BW_LIST));
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_seq_len(v); i++)
+        if (!check_unit(cfg_seq_at(v, i), MACH_T_BANDWIDTH, err))
+            return FALSE;
+    return TRUE;
+}
+
+/* Parses the value in (map, key) as type t, discarding the result. */
+static gboolean check_typed(const CfgNode *map, const char *key, MachType t,
+                            GError **err)
+{
+    SimTime tm;
+    uint64_t u;
+    double d;
+    const char *w;
+    GArray *list = NULL;
+    gboolean ok;
+    switch (t) {
+    case MACH_T_TIME: return cfg_get_time(map, key, TRUE, &tm, err);
+    case MACH_T_BANDWIDTH:
+        return cfg_get_bandwidth(map, key, TRUE, &d, err);
+    case MACH_T_FREQ: return cfg_get_freq(map, key, TRUE, &d, err);
+    case MACH_T_SIZE: return cfg_get_size(map, key, TRUE, &u, err);
+    case MACH_T_COUNT:
+        return cfg_get_count(map, key, TRUE, 0, UINT64_MAX, &u, err);
+    case MACH_T_BW_LIST:
+        ok = mach_param_bw_list(map, key, TRUE, &list, err);
+        if (list)
+            g_array_unref(list);
+        return ok;
+    default: return cfg_get_str(map, key, TRUE, &w, err);
+    }
+}
+
+static gboolean check_provenance(const CfgNode *p, const char *name,
+                                 GError **err)
+{
+    gboolean found_any = FALSE;
+    for (const char *const *k = provenance_keys; *k; k++) {
+        const CfgNode *v = cfg_get(p, *k); /* marks every one read */
+        const char *s = v ? cfg_scalar(v) : NULL;
+        if (v && (!s || !*s)) {
+            cfg_error(err, v, "an empty provenance",
+                      "a citation or an explanation in words");
+            return FALSE;
+        }
+        found_any = found_any || s;
+    }
+    if (found_any)
+        return TRUE;
+    char *found = g_strdup_printf("parameter '%s' without a provenance",
+                                  name);
+    cfg_error(err, p, found, "one of source:, calibrated: or assumption:");
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean check_param_map(const CfgNode *p, const char *name,
+                                MachType t, GError **err)
+{
+    const CfgNode *v = cfg_get(p, "value");
+    if (!v) {
+        char *found = g_strdup_printf("parameter '%s' without a value", name);
+        cfg_error(err, p, found, "value: <number with unit>");
+        g_free(found);
+        return FALSE;
+    }
+    if (!check_provenance(p, name, err))
+        return FALSE;
+    (void)cfg_get(p, "note"); /* optional free text */
+    if (t == MACH_T_BW_LIST ? !check_bw_list(v, err) : !check_unit(v, t, err))
+        return FALSE;
+    return check_typed(p, "value", t, err);
+}
+
+/* One parameter `key` of `map`: a provenance map, or a bare override. */
+static gboolean check_param(const CfgNode *map, const char *key, MachType t,
+                            const char *model_file, GError **err)
+{
+    const CfgNode *p = cfg_get(map, key);
+    if (cfg_kind(p) == CFG_MAP)
+        return check_param_map(p, key, t, err);
+    gboolean override = model_file && g_strcmp0(cfg_file(p), model_file);
+    if (!override) {
+        char *found = g_strdup_printf("bare value for '%s'", key);
+        cfg_error(err, p, found,
+                  "{value: ..., source|calibrated|assumption: ...}");
+        g_free(found);
+        return FALSE;
+    }
+    if (t == MACH_T_BW_LIST ? !check_bw_list(p, err) : !check_unit(p, t, err))
+        return FALSE;
+    return check_typed(map, key, t, err);
+}
+
+static gboolean check_costs(const CfgNode *costs, const char *model_file,
+                            GError **err)
+{
+    if (cfg_kind(costs) != CFG_MAP) {
+        cfg_error(err, costs, "a non-map costs section",
+                  "a map of operation: {value: <time>, source: ...}");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_map_len(costs); i++) {
+        const char *op = cfg_map_key(costs, i);
+        if (!check_param(costs, op, MACH_T_TIME, model_file, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static gboolean unknown_key(const CfgNode *at, const char *key,
+                            const MachKeyType *table, const char *extra,
+                            GError **err)
+{
+    char *found = g_strdup_printf("unknown key '%s'", key);
+    char *exp = key_list(table, extra);
+    cfg_error(err, at, found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+static gboolean check_kind(const CfgNode *kind, const char *model_file,
+                           GError **err)
+{
+    if (cfg_kind(kind) != CFG_MAP) {
+        cfg_error(err, kind, "a non-map node kind",
+                  "a map with count:, costs: ...");
+        return FALSE;
+    }
+    if (!cfg_get(kind, "count")) {
+        cfg_error(err, kind, "a node kind without count", "count: {value: N, "
+                  "source: ...}");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_map_len(kind); i++) {
+        const char *key = cfg_map_key(kind, i);
+        MachType t;
+        if (strcmp(key, "costs") == 0) {
+            if (!check_costs(cfg_map_value(kind, i), model_file, err))
+                return FALSE;
+        } else if (!mach_kind_key_type(key, &t)) {
+            return unknown_key(cfg_map_value(kind, i), key, kind_keys,
+                               "costs", err);
+        } else if (!check_param(kind, key, t, model_file, err)) {
+            return FALSE;
+        }
+    }
+    return TRUE;
+}
+
+static gboolean check_nodes(const CfgNode *nodes, const char *model_file,
+                            GError **err)
+{
+    if (cfg_kind(nodes) != CFG_MAP || cfg_map_len(nodes) == 0) {
+        cfg_error(err, nodes, "an empty or non-map nodes section",
+                  "a map of node kinds (gp:, renderer: ...)");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_map_len(nodes); i++) {
+        (void)cfg_map_key(nodes, i);
+        if (!check_kind(cfg_map_value(nodes, i), model_file, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static gboolean check_network(const CfgNode *net, const char *model_file,
+                              GError **err)
+{
+    if (cfg_kind(net) != CFG_MAP || !cfg_get(net, "topology")) {
+        cfg_error(err, net, "a network section without topology",
+                  "topology: {value: ring|hypercube|fat-tree|..., source: ...}");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_map_len(net); i++) {
+        const char *key = cfg_map_key(net, i);
+        MachType t;
+        if (!mach_net_key_type(key, &t))
+            return unknown_key(cfg_map_value(net, i), key, net_keys, NULL,
+                               err);
+        if (!check_param(net, key, t, model_file, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static gboolean check_references(const CfgNode *refs, GError **err)
+{
+    if (cfg_kind(refs) != CFG_MAP) {
+        cfg_error(err, refs, "a non-map references section",
+                  "a map of key: \"citation\"");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_map_len(refs); i++) {
+        const char *key = cfg_map_key(refs, i);
+        const char *s;
+        if (!cfg_get_str(refs, key, TRUE, &s, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static gboolean check_header(const CfgNode *root, GError **err)
+{
+    int64_t version = 0;
+    const char *s;
+    if (cfg_kind(root) != CFG_MAP) {
+        cfg_error(err, root, "a non-map document", "a machine model map");
+        return FALSE;
+    }
+    if (!cfg_get_int(root, "schema_version", TRUE, 1, 1, &version, err) ||
+        !cfg_get_str(root, "name", TRUE, &s, err) ||
+        !cfg_get_str(root, "description", FALSE, &s, err) ||
+        !cfg_get_str(root, "model", FALSE, &s, err))
+        return FALSE;
+    const CfgNode *refs = cfg_get(root, "references");
+    return !refs || check_references(refs, err);
+}
+
+gboolean mach_model_check(const CfgNode *root, const char *model_file,
+                          GError **err)
+{
+    if (!check_header(root, err))
+        return FALSE;
+    const CfgNode *nodes = cfg_get(root, "nodes");
+    const CfgNode *net = cfg_get(root, "network");
+    if (!nodes || !net) {
+        cfg_error(err, root, nodes ? "no network section" : "no nodes section",
+                  "both nodes: and network:");
+        return FALSE;
+    }
+    if (!check_nodes(nodes, model_file, err) ||
+        !check_network(net, model_file, err))
+        return FALSE;
+    return cfg_check_unused(root, err);
+}
+
+/* ---- typed access ------------------------------------------------------- */
+
+/* Resolves (map, key) to the (container, key) that holds the value. */
+static const CfgNode *holder(const CfgNode *map, const char **key)
+{
+    const CfgNode *p = cfg_get(map, *key);
+    if (p && cfg_kind(p) == CFG_MAP) {
+        *key = "value";
+        return p;
+    }
+    return p ? map : NULL;
+}
+
+const CfgNode *mach_param_node(const CfgNode *map, const char *key)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get(h, key) : NULL;
+}
+
+static gboolean absent(const CfgNode *map, const char *key,
+                       gboolean required, GError **err)
+{
+    if (required) {
+        char *found = g_strdup_printf("no parameter '%s'", key);
+        cfg_error(err, map, found, "it in the machine model");
+        g_free(found);
+        return FALSE;
+    }
+    return TRUE;
+}
+
+gboolean mach_param_time(const CfgNode *map, const char *key,
+                         gboolean required, SimTime *out, GError **err)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get_time(h, key, TRUE, out, err)
+             : absent(map, key, required, err);
+}
+
+gboolean mach_param_count(const CfgNode *map, const char *key,
+                          gboolean required, uint64_t *out, GError **err)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get_count(h, key, TRUE, 0, UINT64_MAX, out, err)
+             : absent(map, key, required, err);
+}
+
+gboolean mach_param_bandwidth(const CfgNode *map, const char *key,
+                              gboolean required, double *out, GError **err)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get_bandwidth(h, key, TRUE, out, err)
+             : absent(map, key, required, err);
+}
+
+gboolean mach_param_freq(const CfgNode *map, const char *key,
+                         gboolean required, double *out, GError **err)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get_freq(h, key, TRUE, out, err)
+             : absent(map, key, required, err);
+}
+
+gboolean mach_param_size(const CfgNode *map, const char *key,
+                         gboolean required, uint64_t *out, GError **err)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get_size(h, key, TRUE, out, err)
+             : absent(map, key, required, err);
+}
+
+static gboolean parse_bw_at(const CfgNode *v, double *out, GError **err)
+{
+    char *what = g_strdup_printf("%s:%d:%d", cfg_file(v), cfg_line(v),
+                                 cfg_col(v));
+    const char *s = cfg_scalar(v);
+    gboolean ok = s && cfg_parse_bandwidth(s, what, out, err);
+    if (!s)
+        cfg_error(err, v, "a non-scalar list item", "a bandwidth");
+    g_free(what);
+    return ok;
+}
+
+gboolean mach_param_bw_list(const CfgNode *map, const char *key,
+                            gboolean required, GArray **out, GError **err)
+{
+    const CfgNode *v = mach_param_node(map, key);
+    if (!v)
+        return absent(map, key, required, err);
+    if (cfg_kind(v) != CFG_SEQ) {
+        cfg_error(err, v, "a non-list value", type_example(MACH_T_BW_LIST));
+        return FALSE;
+    }
+    GArray *a = g_array_new(FALSE, FALSE, sizeof(double));
+    for (guint i = 0; i < cfg_seq_len(v); i++) {
+        double d;
+        if (!parse_bw_at(cfg_seq_at(v, i), &d, err)) {
+            g_array_unref(a);
+            return FALSE;
+        }
+        g_array_append_val(a, d);
+    }
+    *out = a;
+    return TRUE;
+}
+
+const char *mach_param_word(const CfgNode *map, const char *key)
+{
+    const CfgNode *v = mach_param_node(map, key);
+    return v ? cfg_scalar(v) : NULL;
+}

@@ -1,0 +1,135 @@
+/* proc.c — processors with FIFO work and busy-time accounting.
+ *
+ * Invariant: free_at is the completion time of the last submitted work
+ * (0 before any).  A request submitted at `now` starts at max(now,
+ * free_at) and ends at start + cost; ends are non-decreasing in
+ * submission order and the engine orders equal times by schedule order,
+ * so done handlers run in FIFO order.  Busy time is the sum of submitted
+ * costs, charged on submission.  Cost: O(1) + one event per request.
+ */
+#include "sim/machine/proc.h"
+#include "sim/core/trace.h"
+#include "sim/machine/machine.h"
+
+void mach_proc_init(MachProc *p, MachMachine *m, guint id, guint16 kind)
+{
+    *p = (MachProc){.m = m, .id = id, .kind = kind, .entity = UINT32_MAX};
+}
+
+void mach_proc_clear(MachProc *p)
+{
+    if (p->busy.per_phase)
+        sim_busy_clear(&p->busy);
+    g_free(p->name);
+    p->name = NULL;
+}
+
+static void charge(MachProc *p, unsigned phase, SimTime cost,
+                   gboolean *overflow)
+{
+    if (!p->busy.per_phase)
+        sim_busy_init(&p->busy);
+    *overflow = !sim_busy_add(&p->busy, phase, cost);
+}
+
+static void trace_span(MachProc *p, unsigned phase, SimTime start,
+                       SimTime end)
+{
+    SimEngine *eng = mach_engine(p->m);
+    SimTrace *tr = sim_engine_trace(eng);
+    if (!tr)
+        return;
+    sim_trace_span(tr, mach_proc_entity(p), mach_proc_name(p),
+                   sim_engine_phase_name(eng, phase), start, end);
+}
+
+static void fail_overflow(SimEngine *eng, MachProc *p, const char *what)
+{
+    sim_engine_fail(eng, g_error_new(SIM_ERROR, SIM_ERROR_OVERFLOW,
+                                     "%s of processor %s overflows the "
+                                     "64-bit picosecond clock",
+                                     what, mach_proc_name(p)));
+}
+
+gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
+                           SimHandler done, void *ctx, void *arg)
+{
+    SimEngine *eng = mach_engine(p->m);
+    g_assert(phase < sim_engine_phase_count(eng));
+    SimTime now = sim_now(eng);
+    SimTime start = p->free_at > now ? p->free_at : now, end;
+    gboolean overflow;
+    if (!sim_time_add(start, cost, &end)) {
+        fail_overflow(eng, p, "completion time");
+        return FALSE;
+    }
+    charge(p, phase, cost, &overflow);
+    if (overflow) {
+        fail_overflow(eng, p, "busy time");
+        return FALSE;
+    }
+    p->free_at = end;
+    p->requests++;
+    trace_span(p, phase, start, end);
+    return done ? sim_schedule_at(eng, end, done, ctx, arg) : TRUE;
+}
+
+SimTime mach_proc_free_at(const MachProc *p)
+{
+    return p->free_at;
+}
+
+gboolean mach_proc_idle(const MachProc *p)
+{
+    return p->free_at <= sim_now(mach_engine(p->m));
+}
+
+SimTime mach_proc_busy(const MachProc *p)
+{
+    return p->busy.total;
+}
+
+SimTime mach_proc_busy_phase(const MachProc *p, unsigned phase)
+{
+    return sim_busy_phase(&p->busy, phase);
+}
+
+uint64_t mach_proc_requests(const MachProc *p)
+{
+    return p->requests;
+}
+
+guint mach_proc_id(const MachProc *p)
+{
+    return p->id;
+}
+
+guint mach_proc_index(const MachProc *p)
+{
+    return p->id - mach_kind_at(p->m, p->kind)->first;
+}
+
+const char *mach_proc_kind(const MachProc *p)
+{
+    return mach_kind_at(p->m, p->kind)->name;
+}
+
+const char *mach_proc_name(MachProc *p)
+{
+    if (!p->name)
+        p->name = g_strdup_printf("%s%u", mach_proc_kind(p),
+                                  mach_proc_index(p));
+    return p->name;
+}
+
+uint32_t mach_proc_entity(MachProc *p)
+{
+    if (p->entity == UINT32_MAX)
+        p->entity = sim_entity_add(mach_engine(p->m), mach_proc_name(p));
+    return p->entity;
+}
+
+MachMachine *mach_proc_machine(const MachProc *p)
+{
+    return p->m;
+}

@@ -1,0 +1,69 @@
+/* proc.h — processors: serialised work with busy-time accounting.
+ *
+ * A MachProc runs one piece of work at a time.  mach_proc_compute() on a
+ * busy processor queues the work behind everything already submitted
+ * (FIFO): it starts when the processor frees and its `done` handler runs
+ * at start + cost.  Busy time is charged to the given phase (phase ids
+ * from sim_engine_phase()) when the work is submitted, and a trace span
+ * [start, end) is emitted if a trace is attached.
+ *
+ * Model only what is touched: a processor is a few words in its
+ * machine's array; its engine entity, name and per-phase array are made
+ * the first time it computes.  The FIFO needs no queue: it is the
+ * processor's `free_at` time, because completions are scheduled in
+ * submission order at non-decreasing times and the engine breaks ties by
+ * schedule order.  Cost: O(1) plus one engine event per request.
+ */
+#ifndef PGSIM_MACHINE_PROC_H
+#define PGSIM_MACHINE_PROC_H
+
+#include "sim/core/engine.h"
+#include "sim/core/stats.h"
+
+typedef struct MachMachine MachMachine;
+typedef struct MachProc MachProc;
+
+/* Submits `cost` of work in `phase`; done(eng, ctx, arg) runs when it
+ * completes (done may be NULL: the work only occupies the processor).
+ * Returns FALSE if the completion time overflows SimTime (the engine is
+ * then stopped with SIM_ERROR_OVERFLOW). */
+gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
+                           SimHandler done, void *ctx, void *arg);
+
+/* The time at which all work submitted so far completes (<= now: idle). */
+SimTime mach_proc_free_at(const MachProc *p);
+gboolean mach_proc_idle(const MachProc *p);
+
+/* Busy time over all phases / in one phase, of work submitted so far. */
+SimTime mach_proc_busy(const MachProc *p);
+SimTime mach_proc_busy_phase(const MachProc *p, unsigned phase);
+/* Requests submitted so far. */
+uint64_t mach_proc_requests(const MachProc *p);
+
+/* Global id (0 .. mach_proc_total()-1, in node-kind order), the index
+ * within its kind, the kind name (borrowed) and the name ("gp3"). */
+guint mach_proc_id(const MachProc *p);
+guint mach_proc_index(const MachProc *p);
+const char *mach_proc_kind(const MachProc *p);
+const char *mach_proc_name(MachProc *p);
+/* The engine entity of this processor (registered on first use). */
+uint32_t mach_proc_entity(MachProc *p);
+MachMachine *mach_proc_machine(const MachProc *p);
+
+/* ---- for machine.c only ------------------------------------------------ */
+
+struct MachProc {
+    MachMachine *m;
+    SimTime free_at;
+    SimBusy busy;      /* per_phase NULL until first used */
+    uint64_t requests;
+    char *name;        /* NULL until first asked for */
+    uint32_t entity;   /* UINT32_MAX until first asked for */
+    guint id;
+    guint16 kind;
+};
+
+void mach_proc_init(MachProc *p, MachMachine *m, guint id, guint16 kind);
+void mach_proc_clear(MachProc *p);
+
+#endif

@@ -1,0 +1,200 @@
+/* test_model.c — model files: the shipped models load and are cited,
+ * malformed models are rejected with located errors, overrides apply. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/machine/machine.h"
+#include "sim/machine/model.h"
+
+static const char *const shipped[] = {"ipsc2", "pixel-planes-5", "cm200",
+                                      "cm5", "cluster-ib", NULL};
+
+static void test_shipped_models_check(void **state)
+{
+    (void)state;
+    for (const char *const *n = shipped; *n; n++) {
+        GError *err = NULL;
+        CfgNode *root = mach_load_model(*n, &err);
+        if (!root)
+            fail_msg("%s: %s", *n, err->message);
+        const char *name = NULL;
+        assert_true(cfg_get_str(root, "name", TRUE, &name, NULL));
+        assert_string_equal(name, *n);
+        cfg_free(root);
+    }
+}
+
+static void test_unknown_model_name(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    assert_null(mach_load_model("no-such-machine", &err));
+    assert_non_null(err);
+    assert_non_null(strstr(err->message, "no-such-machine"));
+    g_clear_error(&err);
+    assert_null(mach_load_model("../models/ipsc2", &err));
+    assert_non_null(strstr(err->message, "plain name"));
+    g_error_free(err);
+}
+
+/* Loads tests/data/bad/models/<file> and expects a rejection located at
+ * `line` whose message contains `needle`. */
+static void expect_bad(const char *file, int line, const char *needle)
+{
+    char *path = g_strconcat("tests/data/bad/models/", file, NULL);
+    GError *err = NULL;
+    CfgNode *root = cfg_load_file(path, &err);
+    if (!root)
+        fail_msg("%s did not parse as YAML: %s", path, err->message);
+    assert_false(mach_model_check(root, cfg_file(root), &err));
+    assert_non_null(err);
+    char *loc = g_strdup_printf("%s:%d:", path, line);
+    if (!g_str_has_prefix(err->message, loc) ||
+        !strstr(err->message, needle))
+        fail_msg("%s: got '%s', want prefix '%s' and '%s'", file,
+                 err->message, loc, needle);
+    g_free(loc);
+    g_error_free(err);
+    cfg_free(root);
+    g_free(path);
+}
+
+static void test_bad_models_rejected(void **state)
+{
+    (void)state;
+    expect_bad("missing-unit.yaml", 7, "without a unit");
+    expect_bad("cost-missing-unit.yaml", 9, "without a unit");
+    expect_bad("missing-source.yaml", 11, "without a provenance");
+    expect_bad("empty-source.yaml", 6, "empty provenance");
+    expect_bad("bare-value.yaml", 8, "bare value");
+    expect_bad("unknown-key.yaml", 10, "unknown key 'bandwith'");
+    expect_bad("misspelt-provenance.yaml", 6, "without a provenance");
+    expect_bad("bad-version.yaml", 2, "found");
+}
+
+static void test_models_path_from_env(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    g_setenv("PGSIM_MODELS", "/nonexistent:tests/data/models", TRUE);
+    char *path = mach_model_path("tiny", &err);
+    assert_non_null(path);
+    assert_string_equal(path, "tests/data/models/tiny.yaml");
+    g_free(path);
+    /* ./models wins over $PGSIM_MODELS */
+    path = mach_model_path("ipsc2", &err);
+    assert_string_equal(path, "models/ipsc2.yaml");
+    g_free(path);
+    g_unsetenv("PGSIM_MODELS");
+    assert_null(mach_model_path("tiny", &err));
+    g_error_free(err);
+}
+
+static MachMachine *from_text(SimEngine *eng, const char *text,
+                              CfgNode **root, GError **err)
+{
+    *root = cfg_load_string(text, "run.yaml", err);
+    assert_non_null(*root);
+    return mach_new_from_cfg(eng, cfg_get(*root, "machine"), "analytic",
+                             err);
+}
+
+static void test_overrides_apply(void **state)
+{
+    (void)state;
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    MachMachine *m = from_text(eng,
+                               "machine:\n"
+                               "  model: ipsc2\n"
+                               "  nodes:\n"
+                               "    node:\n"
+                               "      count: 8\n"
+                               "      costs:\n"
+                               "        span_create: 33 us\n"
+                               "  network:\n"
+                               "    startup: {value: 390 us,\n"
+                               "              calibrated: \"a test\"}\n",
+                               &root, &err);
+    if (!m)
+        fail_msg("%s", err->message);
+    assert_int_equal(mach_kind(m, "node")->count, 8);
+    assert_int_equal(mach_proc_total(m), 8);
+    assert_int_equal(mach_cost(m, "node", "span_create"), 33 * SIM_US);
+    /* untouched costs keep the model's value */
+    assert_int_equal(mach_cost(m, "node", "pixel_merge"), 4 * SIM_US);
+    SimTime t = 0;
+    assert_true(mach_net_time(m, "startup", &t));
+    assert_int_equal(t, 390 * SIM_US);
+    /* the network follows the override: 8 nodes, a 3-cube */
+    assert_non_null(mach_net(m));
+    assert_int_equal(net_nodes(mach_net(m)), 8);
+    /* the config's keys are marked read for cfg_check_unused() */
+    assert_true(cfg_check_unused(root, &err));
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+static void expect_bad_override(const char *text, const char *needle)
+{
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    MachMachine *m = from_text(eng, text, &root, &err);
+    assert_null(m);
+    assert_non_null(err);
+    if (!g_str_has_prefix(err->message, "run.yaml:") ||
+        !strstr(err->message, needle))
+        fail_msg("got '%s', want run.yaml:... and '%s'", err->message,
+                 needle);
+    g_error_free(err);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+static void test_bad_overrides_rejected(void **state)
+{
+    (void)state;
+    expect_bad_override("machine:\n  model: ipsc2\n  network:\n"
+                        "    startup: 300\n",
+                        "without a unit");
+    expect_bad_override("machine:\n  model: ipsc2\n  nodes:\n"
+                        "    node:\n      colour: 3\n",
+                        "unknown key 'colour'");
+    expect_bad_override("machine:\n  model: ipsc2\n  nodes:\n"
+                        "    node:\n      count: 12\n",
+                        "power of two");
+    expect_bad_override("machine:\n  model: not-a-model\n", "not-a-model");
+}
+
+static void test_check_section_marks_read(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string("machine:\n  model: cm5\n"
+                                    "  nodes: {node: {count: 64}}\n",
+                                    "run.yaml", &err);
+    assert_non_null(root);
+    assert_true(mach_check_section(cfg_get(root, "machine"), &err));
+    assert_true(cfg_check_unused(root, &err));
+    cfg_free(root);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_shipped_models_check),
+        cmocka_unit_test(test_unknown_model_name),
+        cmocka_unit_test(test_bad_models_rejected),
+        cmocka_unit_test(test_models_path_from_env),
+        cmocka_unit_test(test_overrides_apply),
+        cmocka_unit_test(test_bad_overrides_rejected),
+        cmocka_unit_test(test_check_section_marks_read),
+    };
+    return cmocka_run_group_tests_name("machine_model", tests, NULL, NULL);
+}
