@@ -121,6 +121,28 @@ static void build_procs(MachMachine *m)
     }
 }
 
+/* Network endpoints: the processors in id order; for the CM-200 router,
+ * the lanes of the widest SIMD kind.  *count_at: the count behind it. */
+static guint endpoint_count(const MachMachine *m, const char *topo,
+                            const CfgNode **count_at)
+{
+    const MachKind *last = &g_array_index(m->kinds, MachKind,
+                                          m->kinds->len - 1);
+    *count_at = mach_param_node(last->at, "count");
+    if (g_strcmp0(topo, "cm-router") != 0)
+        return m->n_procs;
+    const MachKind *wide = last;
+    for (guint k = 0; k < m->kinds->len; k++) {
+        const MachKind *kk = &g_array_index(m->kinds, MachKind, k);
+        if (kk->info.lanes > wide->info.lanes)
+            wide = kk;
+    }
+    *count_at = mach_param_node(wide->at, "lanes");
+    if (!*count_at)
+        *count_at = mach_param_node(wide->at, "count");
+    return wide->info.lanes > G_MAXUINT ? G_MAXUINT : (guint)wide->info.lanes;
+}
+
 static gboolean build_net(MachMachine *m, GError **err)
 {
     NetParams par;
@@ -138,14 +160,14 @@ static gboolean build_net(MachMachine *m, GError **err)
         const CfgNode *at = mach_param_node(m->network, "topology");
         char *found = g_strdup_printf("topology '%s' (not yet built by the "
                                       "machine layer)", topo);
-        cfg_error(&m->net_err, at, found, "hypercube");
+        cfg_error(&m->net_err, at, found,
+                  "hypercube, ring, fat-tree, cm-router, crossbar or bus");
         g_free(found);
         return TRUE;
     }
-    const MachKind *last = &g_array_index(m->kinds, MachKind,
-                                          m->kinds->len - 1);
-    m->topo = mach_topo_new(m->network, m->n_procs,
-                            mach_param_node(last->at, "count"), err);
+    const CfgNode *count_at;
+    guint endpoints = endpoint_count(m, topo, &count_at);
+    m->topo = mach_topo_new(m->network, endpoints, count_at, err);
     if (!m->topo)
         return FALSE;
     m->net = net_new(m->eng, m->topo, &par, fid);

@@ -2,9 +2,9 @@
  *
  * Channel bandwidth, in order of preference: `bandwidth`; else
  * `total_bandwidth` / `channels`; else the first `level_bandwidth`.
- * Switching: the `switching` word, else the topology's natural one (ring
- * slots for a ring, circuit for a DCM hypercube is never guessed: a
- * hypercube without `switching` uses cut-through packets).
+ * Switching: the `switching` word, else ring slots for a ring and
+ * cut-through packets otherwise (circuit switching is never guessed).
+ * Topologies: one small builder per word in topo_table.
  * Every number comes from the model; the only defaults are "absent means
  * zero" for start-up and per-hop, and sim/net's own default packet size.
  * Cost: O(1).
@@ -138,20 +138,113 @@ static NetTopo *hypercube_new(const CfgNode *net, guint endpoints,
     return net_hypercube_new(d);
 }
 
+static NetTopo *ring_new(const CfgNode *net, guint endpoints,
+                         const CfgNode *count_at, GError **err)
+{
+    (void)net;
+    if (endpoints < 2) {
+        cfg_error(err, count_at, "fewer than 2 stations on a ring",
+                  "at least 2 processors");
+        return NULL;
+    }
+    return net_ring_new(endpoints);
+}
+
+static NetTopo *fattree_new(const CfgNode *net, guint endpoints,
+                            const CfgNode *count_at, GError **err)
+{
+    uint64_t arity = 0;
+    if (!mach_param_count(net, "arity", TRUE, &arity, err))
+        return NULL;
+    if (arity < 2 || arity > 64 || endpoints < 2) {
+        cfg_error(err, arity < 2 || arity > 64
+                           ? mach_param_node(net, "arity") : count_at,
+                  arity < 2 || arity > 64 ? "an unusable fat-tree arity"
+                                          : "fewer than 2 leaves",
+                  "arity 2..64 and at least 2 processors");
+        return NULL;
+    }
+    return net_fattree_new(endpoints, (unsigned)arity);
+}
+
+/* CM-200: endpoints are SIMD lanes, 2^d routers x procs_per_router, on a
+ * NEWS grid as square as a power of two allows. */
+static NetTopo *cm_new(const CfgNode *net, guint endpoints,
+                       const CfgNode *count_at, GError **err)
+{
+    uint64_t group = 0, routers = 0;
+    unsigned d, half;
+    if (!mach_param_count(net, "procs_per_router", TRUE, &group, err) ||
+        !mach_param_count(net, "router_nodes", FALSE, &routers, err))
+        return NULL;
+    if (group == 0 || endpoints % group || !log2_exact(endpoints, &half) ||
+        !log2_exact(endpoints / group, &d) || d > 20 ||
+        (routers && routers != endpoints / group)) {
+        char *found = g_strdup_printf("%u lanes for router_nodes x "
+                                      "procs_per_router", endpoints);
+        cfg_error(err, count_at, found, "lanes = 2^d x procs_per_router "
+                  "(d <= 20) = router_nodes x procs_per_router");
+        g_free(found);
+        return NULL;
+    }
+    uint32_t nx = (uint32_t)1 << ((half + 1) / 2);
+    return net_cm200_new(d, (uint32_t)group, nx, endpoints / nx);
+}
+
+static NetTopo *crossbar_new(const CfgNode *net, guint endpoints,
+                             const CfgNode *count_at, GError **err)
+{
+    (void)net;
+    (void)count_at;
+    (void)err;
+    return net_crossbar_new(endpoints);
+}
+
+static NetTopo *bus_new(const CfgNode *net, guint endpoints,
+                        const CfgNode *count_at, GError **err)
+{
+    (void)net;
+    (void)count_at;
+    (void)err;
+    return net_bus_new(endpoints);
+}
+
+typedef NetTopo *(*MachTopoFn)(const CfgNode *net, guint endpoints,
+                               const CfgNode *count_at, GError **err);
+
+static const struct {
+    const char *word;
+    MachTopoFn fn;
+} topo_table[] = {
+    {"hypercube", hypercube_new}, {"ring", ring_new},
+    {"fat-tree", fattree_new},    {"cm-router", cm_new},
+    {"crossbar", crossbar_new},   {"bus", bus_new},
+};
+
+static MachTopoFn topo_fn(const char *word)
+{
+    for (guint i = 0; i < G_N_ELEMENTS(topo_table); i++)
+        if (g_strcmp0(word, topo_table[i].word) == 0)
+            return topo_table[i].fn;
+    return NULL;
+}
+
 gboolean mach_topo_supported(const char *topology)
 {
-    return g_strcmp0(topology, "hypercube") == 0;
+    return topo_fn(topology) != NULL;
 }
 
 NetTopo *mach_topo_new(const CfgNode *net, guint endpoints,
                        const CfgNode *count_at, GError **err)
 {
     const char *topo = mach_param_word(net, "topology");
-    if (g_strcmp0(topo, "hypercube") == 0)
-        return hypercube_new(net, endpoints, count_at, err);
-    char *found = g_strdup_printf("topology '%s' (not yet built by the "
-                                  "machine layer)", topo ? topo : "");
-    cfg_error(err, mach_param_node(net, "topology"), found, "hypercube");
+    MachTopoFn fn = topo_fn(topo);
+    if (fn)
+        return fn(net, endpoints, count_at ? count_at : net, err);
+    char *found = g_strdup_printf("topology '%s' (not built by the machine "
+                                  "layer)", topo ? topo : "");
+    cfg_error(err, mach_param_node(net, "topology"), found,
+              "hypercube, ring, fat-tree, cm-router, crossbar or bus");
     g_free(found);
     return NULL;
 }

@@ -5,11 +5,12 @@
  * id order, except for the CM-200 router topology, whose endpoints are
  * router_nodes x procs_per_router SIMD processors.
  *
- * Topology words: hypercube (iPSC/2; 2^d endpoints, e-cube routing in
- * sim/net).  Other words (ring, fat-tree, cm-router, mesh, crossbar, bus)
- * are accepted by the model checker and mapped here once their sim/net
- * constructors exist; until then mach_topo_new() reports them as not yet
- * available.  Cost: O(1).
+ * Topology words: hypercube (2^d endpoints, optional `dimension` check),
+ * ring (stations = processors; `channels` parallel channels), fat-tree
+ * (`arity`, per-level `level_bandwidth`), cm-router (lanes = router_nodes
+ * x procs_per_router, NEWS grid as square as possible), crossbar, bus.
+ * A mesh/torus needs extents the model schema does not carry yet, so
+ * mach_topo_supported("mesh") is FALSE.  Cost: O(1).
  */
 #ifndef PGSIM_MACHINE_MNET_H
 #define PGSIM_MACHINE_MNET_H

@@ -345,13 +345,61 @@ static void test_network_from_model(void **state)
                    sim_time_for_bytes(1000, 2.8e6);
     assert_true(at + 1 >= want && at <= want + 1);
     mach_free(m);
-    /* A topology the machine layer cannot build yet says so. */
-    m = mach_new_from_model(eng, "pixel-planes-5", "analytic", NULL);
-    assert_null(mach_net(m));
+    /* A topology the machine layer cannot build says so. */
     GError *err = NULL;
+    CfgNode *root = cfg_load_string("machine:\n  model: ipsc2\n"
+                                    "  network: {topology: mesh}\n",
+                                    "run.yaml", &err);
+    m = mach_new_from_cfg(eng, cfg_get(root, "machine"), "flow", &err);
+    assert_non_null(m);
+    assert_null(mach_net(m));
     assert_false(mach_require_net(m, &err));
-    assert_non_null(strstr(err->message, "ring"));
+    assert_true(g_str_has_prefix(err->message, "run.yaml:3:"));
+    assert_non_null(strstr(err->message, "mesh"));
     g_error_free(err);
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+/* Each shipped model's network has the endpoints and parameters its
+ * model file describes. */
+static NetNet *net_of(SimEngine *eng, const char *name, MachMachine **m)
+{
+    GError *err = NULL;
+    *m = mach_new_from_model(eng, name, "flow", &err);
+    if (!*m)
+        fail_msg("%s: %s", name, err->message);
+    if (!mach_require_net(*m, &err))
+        fail_msg("%s: %s", name, err->message);
+    return mach_net(*m);
+}
+
+static void test_shipped_networks(void **state)
+{
+    (void)state;
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m;
+    NetNet *n = net_of(eng, "pixel-planes-5", &m);
+    assert_int_equal(net_nodes(n), 34);
+    assert_int_equal(net_params(n)->channels, 8);
+    assert_true(net_params(n)->bandwidth == 80e6);
+    assert_int_equal(net_params(n)->switching, NET_SW_RING_SLOTS);
+    assert_string_equal(net_topo(n)->ops->name, "ring");
+    mach_free(m);
+    n = net_of(eng, "cm5", &m);
+    assert_true(net_nodes(n) >= 256);
+    assert_true(net_params(n)->level_bw[1] == 10e6);
+    assert_true(net_params(n)->bandwidth == 20e6);
+    assert_int_equal(net_params(n)->packet_bytes, 20);
+    mach_free(m);
+    n = net_of(eng, "cm200", &m);
+    assert_int_equal(net_nodes(n), 65536);
+    assert_int_equal(net_params(n)->switching, NET_SW_STORE_FORWARD);
+    mach_free(m);
+    n = net_of(eng, "cluster-ib", &m);
+    assert_true(net_nodes(n) >= 64);
+    assert_int_equal(net_params(n)->per_hop, 90 * SIM_NS);
     mach_free(m);
     sim_engine_free(eng);
 }
@@ -387,6 +435,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_fill_result, setup_tiny,
                                         teardown),
         cmocka_unit_test(test_network_from_model),
+        cmocka_unit_test(test_shipped_networks),
         cmocka_unit_test(test_bad_fidelity),
     };
     return cmocka_run_group_tests_name("machine", tests, NULL, NULL);
