@@ -115,7 +115,7 @@ static void test_overrides_apply(void **state)
                                "    node:\n"
                                "      count: 8\n"
                                "      costs:\n"
-                               "        span_create: 33 us\n"
+                               "        span: 33 us\n"
                                "  network:\n"
                                "    startup: {value: 390 us,\n"
                                "              calibrated: \"a test\"}\n",
@@ -124,9 +124,9 @@ static void test_overrides_apply(void **state)
         fail_msg("%s", err->message);
     assert_int_equal(mach_kind(m, "node")->count, 8);
     assert_int_equal(mach_proc_total(m), 8);
-    assert_int_equal(mach_cost(m, "node", "span_create"), 33 * SIM_US);
+    assert_int_equal(mach_cost(m, "node", "span"), 33 * SIM_US);
     /* untouched costs keep the model's value */
-    assert_int_equal(mach_cost(m, "node", "pixel_merge"), 4 * SIM_US);
+    assert_int_equal(mach_cost(m, "node", "compare"), 4 * SIM_US);
     SimTime t = 0;
     assert_true(mach_net_time(m, "startup", &t));
     assert_int_equal(t, 390 * SIM_US);
