@@ -174,19 +174,6 @@ static gboolean build_net(MachMachine *m, GError **err)
     return TRUE;
 }
 
-static void mark_read(const CfgNode *n)
-{
-    if (cfg_kind(n) == CFG_MAP) {
-        for (guint i = 0; i < cfg_map_len(n); i++) {
-            (void)cfg_map_key(n, i);
-            mark_read(cfg_map_value(n, i));
-        }
-    } else if (cfg_kind(n) == CFG_SEQ) {
-        for (guint i = 0; i < cfg_seq_len(n); i++)
-            mark_read(cfg_seq_at(n, i));
-    }
-}
-
 /* The model tree for a section: a loaded model with the section merged
  * over it, or a copy of the section itself.  *model_file: whose values
  * need provenance. */
@@ -258,7 +245,7 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
                           : NULL;
     g_free(model_file);
     if (m)
-        mark_read(section);
+        mach_mark_read(section);
     return m;
 }
 
@@ -270,7 +257,7 @@ gboolean mach_check_section(const CfgNode *section, GError **err)
     cfg_free(tree);
     g_free(model_file);
     if (ok)
-        mark_read(section);
+        mach_mark_read(section);
     return ok;
 }
 

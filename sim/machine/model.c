@@ -60,6 +60,19 @@ static const MachKeyType net_keys[] = {
 static const char *const provenance_keys[] = {"source", "calibrated",
                                               "assumption", NULL};
 
+void mach_mark_read(const CfgNode *n)
+{
+    if (cfg_kind(n) == CFG_MAP) {
+        for (guint i = 0; i < cfg_map_len(n); i++) {
+            (void)cfg_map_key(n, i);
+            mach_mark_read(cfg_map_value(n, i));
+        }
+    } else if (cfg_kind(n) == CFG_SEQ) {
+        for (guint i = 0; i < cfg_seq_len(n); i++)
+            mach_mark_read(cfg_seq_at(n, i));
+    }
+}
+
 static gboolean lookup(const MachKeyType *t, const char *key, MachType *out)
 {
     for (; t->key; t++) {
@@ -400,6 +413,90 @@ static gboolean check_references(const CfgNode *refs, GError **err)
     return TRUE;
 }
 
+/* A provenance value: a non-empty string or a non-empty list of cells. */
+static gboolean provenance_ok(const CfgNode *v)
+{
+    if (cfg_kind(v) == CFG_SEQ)
+        return cfg_seq_len(v) > 0;
+    const char *s = cfg_scalar(v);
+    return s && *s;
+}
+
+/* A workload's own section (e.g. `pphigs:`): entries {value, unit?,
+ * provenance, note?}; the workload parses the values. */
+static gboolean check_workload_entry(const CfgNode *e, const char *name,
+                                     GError **err)
+{
+    if (cfg_kind(e) != CFG_MAP || !cfg_get(e, "value")) {
+        char *found = g_strdup_printf("workload parameter '%s' without a "
+                                      "value", name);
+        cfg_error(err, e, found, "{value: ..., unit: ..., source|"
+                  "calibrated|assumption: ...}");
+        g_free(found);
+        return FALSE;
+    }
+    mach_mark_read(cfg_get(e, "value"));
+    (void)cfg_get(e, "unit");
+    (void)cfg_get(e, "note");
+    gboolean found_any = FALSE;
+    for (const char *const *k = provenance_keys; *k; k++) {
+        const CfgNode *v = cfg_get(e, *k);
+        if (v && !provenance_ok(v)) {
+            cfg_error(err, v, "an empty provenance",
+                      "a citation, an explanation or a list of cells");
+            return FALSE;
+        }
+        if (v)
+            mach_mark_read(v);
+        found_any = found_any || v;
+    }
+    if (found_any)
+        return TRUE;
+    char *found = g_strdup_printf("parameter '%s' without a provenance",
+                                  name);
+    cfg_error(err, e, found, "one of source:, calibrated: or assumption:");
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean check_workload_section(const CfgNode *sec, GError **err)
+{
+    if (cfg_kind(sec) != CFG_MAP) {
+        cfg_error(err, sec, "a non-map top-level section",
+                  "nodes:, network:, references: or a workload's map of "
+                  "parameters");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_map_len(sec); i++)
+        if (!check_workload_entry(cfg_map_value(sec, i),
+                                  cfg_map_key(sec, i), err))
+            return FALSE;
+    return TRUE;
+}
+
+static const char *const top_keys[] = {"schema_version", "name",
+                                       "description", "references",
+                                       "nodes", "network", "model", NULL};
+
+static gboolean is_top_key(const char *k)
+{
+    for (const char *const *t = top_keys; *t; t++)
+        if (strcmp(*t, k) == 0)
+            return TRUE;
+    return FALSE;
+}
+
+static gboolean check_workload_sections(const CfgNode *root, GError **err)
+{
+    for (guint i = 0; i < cfg_map_len(root); i++) {
+        const CfgNode *v = cfg_map_value(root, i);
+        if (!is_top_key(cfg_map_key(root, i)) &&
+            !check_workload_section(v, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
 static gboolean check_header(const CfgNode *root, GError **err)
 {
     int64_t version = 0;
@@ -430,7 +527,8 @@ gboolean mach_model_check(const CfgNode *root, const char *model_file,
         return FALSE;
     }
     if (!check_nodes(nodes, model_file, err) ||
-        !check_network(net, model_file, err))
+        !check_network(net, model_file, err) ||
+        !check_workload_sections(root, err))
         return FALSE;
     return cfg_check_unused(root, err);
 }

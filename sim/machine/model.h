@@ -13,6 +13,10 @@
  * its unit ("2.8 MB/s"), a count may not.  The checker rejects a missing
  * unit, a missing provenance or an unknown key with a located error.
  *
+ * Other top-level sections belong to workloads (`pphigs:` in
+ * pixel-planes-5.yaml): each entry needs a value and a provenance (a
+ * string or a list of calibration cells); the workload parses it.
+ *
  * Overrides: a run config may say `machine: {model: ipsc2, nodes: {node:
  * {count: 8}}}`.  The model is loaded, the section is deep-merged over it,
  * and a bare scalar that comes from a file other than the model file is
@@ -51,6 +55,9 @@ CfgNode *mach_load_model(const char *name, GError **err);
  * read, so cfg_check_unused() afterwards finds nothing. */
 gboolean mach_model_check(const CfgNode *root, const char *model_file,
                           GError **err);
+
+/* Marks every key below n as read (for cfg_check_unused()). */
+void mach_mark_read(const CfgNode *n);
 
 /* The expected type of a node-kind or network key; FALSE if unknown. */
 gboolean mach_kind_key_type(const char *key, MachType *out);

@@ -27,6 +27,21 @@ static void test_shipped_models_check(void **state)
     }
 }
 
+/* pixel-planes-5.yaml carries the PPHIGS workload's own section. */
+static void test_workload_section_kept(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = mach_load_model("pixel-planes-5", &err);
+    assert_non_null(root);
+    const CfgNode *poly = cfg_path(root, "pphigs.poly.value");
+    assert_non_null(poly);
+    assert_string_equal(cfg_scalar(poly), "0.6");
+    const CfgNode *cal = cfg_path(root, "pphigs.color.calibrated");
+    assert_int_equal(cfg_kind(cal), CFG_SEQ);
+    cfg_free(root);
+}
+
 static void test_unknown_model_name(void **state)
 {
     (void)state;
@@ -73,6 +88,7 @@ static void test_bad_models_rejected(void **state)
     expect_bad("unknown-key.yaml", 10, "unknown key 'bandwith'");
     expect_bad("misspelt-provenance.yaml", 6, "without a provenance");
     expect_bad("bad-version.yaml", 2, "found");
+    expect_bad("workload-no-provenance.yaml", 11, "without a provenance");
 }
 
 static void test_models_path_from_env(void **state)
@@ -189,6 +205,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shipped_models_check),
+        cmocka_unit_test(test_workload_section_kept),
         cmocka_unit_test(test_unknown_model_name),
         cmocka_unit_test(test_bad_models_rejected),
         cmocka_unit_test(test_models_path_from_env),
