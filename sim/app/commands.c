@@ -5,5 +5,7 @@
 const CliCommand cli_commands[] = {
     {"bench", cmd_bench, "run a benchmark and print its figures"},
     {"render", cmd_render, "render one frame of a scene to a PNG"},
+    {"reproduce", cmd_reproduce,
+     "rerun a paper's tables and compare with the published values"},
     {NULL, NULL, NULL},
 };

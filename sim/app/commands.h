@@ -21,4 +21,6 @@ int cmd_render(int argc, char **argv);
 /* NULL-terminated table, in the order `pgsim help` lists them. */
 extern const CliCommand cli_commands[];
 
+int cmd_reproduce(int argc, char **argv);
+
 #endif

@@ -1,0 +1,252 @@
+/* test_reproduce.c — the reproduction driver: paper files, the join,
+ * relative errors, the summary, CSV/JSON output and located errors.
+ * Uses a fake reproduction that is not registered in rp_all. */
+#include "sim/app/json.h"
+#include <glib/gstdio.h>
+#include "sim/app/rp_driver.h"
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include <cmocka.h>
+
+static const char paper_yaml[] =
+    "paper: {name: fake, citation: \"A. Author, Fake results, 1990\"}\n"
+    "cells:\n"
+    "  - {table: \"1\", row: a, column: t_ms, value: 10, unit: ms}\n"
+    "  - {table: \"1\", row: b, column: t_ms, value: 12, unit: ms}\n"
+    "  - {table: \"1\", row: c, column: t_ms, withheld: true,\n"
+    "     note: prediction}\n"
+    "  - {table: \"2\", row: y, column: speedup, value: 4}\n";
+
+/* sim values scale with fidelity so the passes differ. */
+static gboolean fake_run(const RpContext *ctx, GPtrArray *rows, GError **err)
+{
+    (void)err;
+    double k = strcmp(ctx->fidelity, "packet") == 0 ? 1.0
+               : strcmp(ctx->fidelity, "flow") == 0 ? 1.1
+                                                    : 1.5;
+    g_ptr_array_add(rows, rp_row_new("1", "a", "t_ms", 11.0 * k, NULL));
+    g_ptr_array_add(rows, rp_row_new("1", "b", "t_ms", 9.0 * k, NULL));
+    g_ptr_array_add(rows, rp_row_new("1", "c", "t_ms", 5.0 * k, NULL));
+    g_ptr_array_add(rows, rp_row_new("2", "x", "speedup", 3.0, "extra"));
+    return TRUE;
+}
+
+static gboolean failing_run(const RpContext *ctx, GPtrArray *rows,
+                            GError **err)
+{
+    (void)ctx;
+    (void)rows;
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL, "model exploded");
+    return FALSE;
+}
+
+static const RpReproduction fake = {"fake", "test only", fake_run};
+static const RpReproduction failing = {"fake", "test only", failing_run};
+
+static char *tmpdir_with(const char *name, const char *text)
+{
+    char *dir = g_dir_make_tmp("pgsim-rp-XXXXXX", NULL);
+    g_assert_nonnull(dir);
+    char *path = rp_paper_path(dir, name);
+    g_assert_true(g_file_set_contents(path, text, -1, NULL));
+    g_free(path);
+    return dir;
+}
+
+static void rm_dir(char *dir, const char *name)
+{
+    char *path = rp_paper_path(dir, name);
+    g_remove(path);
+    g_free(path);
+    g_rmdir(dir);
+    g_free(dir);
+}
+
+static RpTable *drive(const char *fidelity, char **dir_out)
+{
+    char *dir = tmpdir_with("fake", paper_yaml);
+    RpContext ctx = {fidelity, NULL, TRUE};
+    GError *err = NULL;
+    RpTable *t = rp_drive(&fake, dir, &ctx, &err);
+    g_assert_no_error(err);
+    *dir_out = dir;
+    return t;
+}
+
+static void test_join_errors(void **state)
+{
+    (void)state;
+    char *dir;
+    RpTable *t = drive("packet", &dir);
+    assert_int_equal(t->cells->len, 5);
+    const RpJoined *a = rp_table_find(t, "1", "a", "t_ms");
+    const RpJoined *b = rp_table_find(t, "1", "b", "t_ms");
+    const RpJoined *c = rp_table_find(t, "1", "c", "t_ms");
+    const RpJoined *x = rp_table_find(t, "2", "x", "speedup");
+    const RpJoined *y = rp_table_find(t, "2", "y", "speedup");
+    assert_true(fabs(a->rel_error - 0.1) < 1e-12);
+    assert_true(fabs(b->rel_error + 0.25) < 1e-12);
+    assert_int_equal(c->status, RP_WITHHELD);
+    assert_true(isnan(c->published) && isnan(c->rel_error));
+    assert_int_equal(x->status, RP_UNLISTED);
+    assert_int_equal(y->status, RP_MISSING);
+    assert_true(isnan(y->sim));
+    assert_string_equal(a->unit, "ms");
+    assert_string_equal(c->note, "prediction");
+    /* the rows' order, then the cell the reproduction did not make */
+    assert_ptr_equal(g_ptr_array_index(t->cells, 4), y);
+    rp_table_free(t);
+    rm_dir(dir, "fake");
+}
+
+static void test_summary(void **state)
+{
+    (void)state;
+    char *dir;
+    RpTable *t = drive("packet", &dir);
+    assert_int_equal(t->compared, 2);
+    assert_true(fabs(t->mean_abs - 0.175) < 1e-12);
+    assert_true(fabs(t->worst_abs - 0.25) < 1e-12);
+    GString *s = g_string_new(NULL);
+    rp_table_summary(t, s);
+    assert_string_equal(s->str, "mean |rel_error| 17.5% over 2 cells, "
+                                "worst 25.0% (table 1, b, t_ms)");
+    g_string_truncate(s, 0);
+    rp_table_text(t, s);
+    assert_non_null(strstr(s->str, "withheld"));
+    assert_non_null(strstr(s->str, "+10.0%"));
+    assert_non_null(strstr(s->str, "not simulated"));
+    g_string_free(s, TRUE);
+    rp_table_free(t);
+    rm_dir(dir, "fake");
+}
+
+static void test_csv(void **state)
+{
+    (void)state;
+    char *dir;
+    RpTable *t = drive("packet", &dir);
+    GString *s = g_string_new(NULL);
+    rp_table_csv(t, TRUE, s);
+    assert_string_equal(s->str,
+                        "paper,table,row,column,sim,published,rel_error\n"
+                        "fake,1,a,t_ms,11,10,0.1\n"
+                        "fake,1,b,t_ms,9,12,-0.25\n"
+                        "fake,1,c,t_ms,5,,\n"
+                        "fake,2,x,speedup,3,,\n"
+                        "fake,2,y,speedup,,4,\n");
+    g_string_free(s, TRUE);
+    rp_table_free(t);
+    rm_dir(dir, "fake");
+}
+
+static void test_json(void **state)
+{
+    (void)state;
+    char *dir;
+    RpTable *t = drive("flow", &dir);
+    GString *s = g_string_new(NULL);
+    rp_table_json(t, s);
+    GError *err = NULL;
+    JsonVal *v = json_parse(s->str, (gssize)s->len, "rp.json", &err);
+    g_assert_no_error(err);
+    assert_string_equal(json_get(v, "paper")->str, "fake");
+    assert_string_equal(json_get(v, "fidelity")->str, "flow");
+    const JsonVal *cells = json_get(v, "cells");
+    assert_int_equal(json_len(cells), 5);
+    const JsonVal *a = json_at(cells, 0);
+    assert_true(fabs(json_get(a, "sim")->num - 12.1) < 1e-12);
+    assert_int_equal(json_get(json_at(cells, 2), "published")->kind,
+                     JSON_NULL);
+    const JsonVal *sum = json_get(v, "summary");
+    assert_int_equal((int)json_get(sum, "compared")->num, 2);
+    json_free(v);
+    g_string_free(s, TRUE);
+    rp_table_free(t);
+    rm_dir(dir, "fake");
+}
+
+static void test_fidelities(void **state)
+{
+    (void)state;
+    char *dir = tmpdir_with("fake", paper_yaml);
+    RpContext ctx = {NULL, NULL, TRUE};
+    GError *err = NULL;
+    GPtrArray *passes = rp_drive_fidelities(&fake, dir, &ctx, &err);
+    g_assert_no_error(err);
+    assert_int_equal(passes->len, 3);
+    const RpTable *an = g_ptr_array_index(passes, 0);
+    assert_string_equal(an->fidelity, "analytic");
+    assert_true(fabs(rp_table_find(an, "1", "a", "t_ms")->sim - 16.5) <
+                1e-12);
+    g_ptr_array_free(passes, TRUE);
+    rm_dir(dir, "fake");
+}
+
+static void expect_bad(const char *yaml, const char *where,
+                       const char *what)
+{
+    char *dir = tmpdir_with("fake", yaml);
+    RpContext ctx = {"flow", NULL, TRUE};
+    GError *err = NULL;
+    RpTable *t = rp_drive(&fake, dir, &ctx, &err);
+    assert_null(t);
+    assert_non_null(err);
+    if (!strstr(err->message, where) || !strstr(err->message, what))
+        fail_msg("unexpected error: %s", err->message);
+    g_error_free(err);
+    rm_dir(dir, "fake");
+}
+
+static void test_bad_papers(void **state)
+{
+    (void)state;
+    expect_bad("paper: {name: fake}\n"
+               "cells:\n"
+               "  - {table: \"1\", row: a, column: t, value: 1}\n"
+               "  - {table: \"1\", row: a, column: t, value: 2}\n",
+               "fake.yaml:4:", "a second cell (1, a, t)");
+    expect_bad("paper: {name: fake}\n"
+               "cells:\n"
+               "  - {table: \"1\", row: a, column: t}\n",
+               "fake.yaml:3:", "'value: <number>' or 'withheld: true'");
+    expect_bad("paper: {name: fake}\n"
+               "cells:\n"
+               "  - {table: \"1\", row: a, column: t, value: 1,\n"
+               "     withheld: true}\n",
+               "fake.yaml:3:", "either 'value' or 'withheld: true'");
+    expect_bad("paper: {name: fake}\n"
+               "cells:\n"
+               "  - {table: \"1\", row: a, column: t, valu: 1}\n",
+               "fake.yaml:3:", "valu");
+    expect_bad("paper: {name: other}\ncells: []\n", "fake.yaml",
+               "expected 'fake'");
+}
+
+static void test_run_failure(void **state)
+{
+    (void)state;
+    char *dir = tmpdir_with("fake", paper_yaml);
+    RpContext ctx = {"packet", NULL, TRUE};
+    GError *err = NULL;
+    assert_null(rp_drive(&failing, dir, &ctx, &err));
+    assert_non_null(err);
+    assert_string_equal(err->message,
+                        "fake (fidelity packet): model exploded");
+    g_error_free(err);
+    rm_dir(dir, "fake");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_join_errors), cmocka_unit_test(test_summary),
+        cmocka_unit_test(test_csv),         cmocka_unit_test(test_json),
+        cmocka_unit_test(test_fidelities),  cmocka_unit_test(test_bad_papers),
+        cmocka_unit_test(test_run_failure),
+    };
+    return cmocka_run_group_tests_name("reproduce", tests, NULL, NULL);
+}
