@@ -1,8 +1,15 @@
 /* papers.c — published values of a paper, read from YAML.
  *
- * Shape (docs/reproduction-format.md):
- *     paper: {name: kurc96, citation: "..."}
- *     cells:
+ * Two shapes (docs/reproduction-format.md), which may be mixed:
+ *     paper: kurc96                  # or {name: kurc96, citation: "..."}
+ *     citation: "..."
+ *     tables:                        # compact: ~ marks a withheld cell
+ *       "2":
+ *         caption: "Table 2. ..."
+ *         rows:
+ *           P16/2POT: {merge_ms: 341, span_ms: ~,
+ *                      zbuf_ms: {value: 471, unit: ms, note: "..."}}
+ *     cells:                         # one cell per list item
  *       - {table: "2", row: 2POT, column: tpg_400, value: 1.25, unit: s}
  *       - {table: "2", row: BS, column: tpg_400, withheld: true, note: ...}
  * Invariants: every cell has a value xor withheld: true; (table, row,
@@ -38,6 +45,7 @@ void rp_paper_free(RpPaper *p)
     g_free(p->citation);
     g_ptr_array_free(p->cells, TRUE);
     g_hash_table_destroy(p->index);
+    g_hash_table_destroy(p->captions);
     g_free(p);
 }
 
@@ -131,17 +139,121 @@ static gboolean read_header(RpPaper *p, const CfgNode *root, GError **err)
 {
     const CfgNode *hdr = cfg_get(root, "paper");
     const char *name = NULL, *cit = "";
-    if (!hdr || cfg_kind(hdr) != CFG_MAP) {
-        cfg_error(err, hdr ? hdr : root, hdr ? "a non-map 'paper'"
-                                             : "no 'paper' section",
-                  "paper: {name, citation}");
+    if (hdr && cfg_kind(hdr) == CFG_SCALAR) {
+        name = cfg_scalar(hdr);
+    } else if (!hdr || cfg_kind(hdr) != CFG_MAP) {
+        cfg_error(err, hdr ? hdr : root, hdr ? "a list 'paper'"
+                                             : "no 'paper' key",
+                  "paper: NAME or paper: {name, citation}");
+        return FALSE;
+    } else if (!cfg_get_str(hdr, "name", TRUE, &name, err) ||
+               !cfg_get_str(hdr, "citation", FALSE, &cit, err)) {
         return FALSE;
     }
-    if (!cfg_get_str(hdr, "name", TRUE, &name, err) ||
-        !cfg_get_str(hdr, "citation", FALSE, &cit, err))
+    if (!cfg_get_str(root, "citation", FALSE, &cit, err))
         return FALSE;
     p->name = g_strdup(name);
     p->citation = g_strdup(cit);
+    return TRUE;
+}
+
+static gboolean scalar_number(const CfgNode *v, double *out, GError **err)
+{
+    const char *text = cfg_scalar(v);
+    char *end = NULL;
+    *out = g_ascii_strtod(text, &end);
+    if (end == text || *end || !isfinite(*out)) {
+        char *found = g_strdup_printf("'%s'", text);
+        cfg_error(err, v, found, "a number or ~ (withheld)");
+        g_free(found);
+        return FALSE;
+    }
+    return TRUE;
+}
+
+/* A compact cell: a number, ~ (withheld) or {value|withheld, unit, note}. */
+static RpCell *compact_cell(const char *t, const char *r, const char *c,
+                            const CfgNode *v, GError **err)
+{
+    RpCell *cell = g_new0(RpCell, 1);
+    cell->table = g_strdup(t);
+    cell->row = g_strdup(r);
+    cell->column = g_strdup(c);
+    cell->value = NAN;
+    const char *unit = "", *note = NULL;
+    gboolean ok = TRUE;
+    if (cfg_kind(v) == CFG_NULL)
+        cell->withheld = TRUE;
+    else if (cfg_kind(v) == CFG_MAP)
+        ok = cfg_get_str(v, "unit", FALSE, &unit, err) &&
+             cfg_get_str(v, "note", FALSE, &note, err) &&
+             read_value(v, cell, err);
+    else if (cfg_kind(v) == CFG_SCALAR)
+        ok = scalar_number(v, &cell->value, err);
+    else {
+        cfg_error(err, v, "a list", "a number, ~ or {value, unit, note}");
+        ok = FALSE;
+    }
+    cell->unit = g_strdup(unit);
+    cell->note = g_strdup(note);
+    if (!ok) {
+        cell_free(cell);
+        return NULL;
+    }
+    return cell;
+}
+
+static gboolean need_map(const CfgNode *n, const char *what, GError **err)
+{
+    if (n && cfg_kind(n) == CFG_MAP)
+        return TRUE;
+    char *exp = g_strdup_printf("a map (%s)", what);
+    cfg_error(err, n, n ? "something else" : "nothing", exp);
+    g_free(exp);
+    return FALSE;
+}
+
+static gboolean read_row(RpPaper *p, const char *t, const char *r,
+                         const CfgNode *cols, GError **err)
+{
+    if (!need_map(cols, "column: value", err))
+        return FALSE;
+    for (guint i = 0; i < cfg_map_len(cols); i++) {
+        const CfgNode *v = cfg_map_value(cols, i);
+        RpCell *c = compact_cell(t, r, cfg_map_key(cols, i), v, err);
+        if (!c || !add_cell(p, v, c, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static gboolean read_table(RpPaper *p, const char *t, const CfgNode *tab,
+                           GError **err)
+{
+    const char *caption = NULL;
+    if (!need_map(tab, "caption, rows", err) ||
+        !cfg_get_str(tab, "caption", FALSE, &caption, err))
+        return FALSE;
+    const CfgNode *rows = cfg_get(tab, "rows");
+    if (rows && !need_map(rows, "rows: {ROW: {COLUMN: value}}", err))
+        return FALSE;
+    if (caption)
+        g_hash_table_insert(p->captions, g_strdup(t), g_strdup(caption));
+    for (guint i = 0; rows && i < cfg_map_len(rows); i++)
+        if (!read_row(p, t, cfg_map_key(rows, i), cfg_map_value(rows, i),
+                      err))
+            return FALSE;
+    return TRUE;
+}
+
+static gboolean read_tables(RpPaper *p, const CfgNode *tabs, GError **err)
+{
+    if (!need_map(tabs, "TABLE: {caption, rows}", err))
+        return FALSE;
+    for (guint i = 0; i < cfg_map_len(tabs); i++)
+        if (!read_table(p, cfg_map_key(tabs, i), cfg_map_value(tabs, i),
+                        err))
+            return FALSE;
     return TRUE;
 }
 
@@ -149,17 +261,21 @@ static gboolean read_paper(RpPaper *p, const CfgNode *root, GError **err)
 {
     if (cfg_kind(root) != CFG_MAP) {
         cfg_error(err, root, "a document that is not a map",
-                  "a map with 'paper' and 'cells'");
+                  "a map with 'paper' and 'tables' or 'cells'");
         return FALSE;
     }
     if (!read_header(p, root, err))
         return FALSE;
+    const CfgNode *tabs = cfg_get(root, "tables");
     const CfgNode *cells = cfg_get(root, "cells");
-    if (!cells) {
-        cfg_error(err, root, "no 'cells' list", "cells: [...]");
+    if (!tabs && !cells) {
+        cfg_error(err, root, "neither 'tables' nor 'cells'",
+                  "the published values");
         return FALSE;
     }
-    return read_cells(p, cells, err) && cfg_check_unused(root, err);
+    return (!tabs || read_tables(p, tabs, err)) &&
+           (!cells || read_cells(p, cells, err)) &&
+           cfg_check_unused(root, err);
 }
 
 RpPaper *rp_paper_load(const char *path, GError **err)
@@ -170,6 +286,8 @@ RpPaper *rp_paper_load(const char *path, GError **err)
     RpPaper *p = g_new0(RpPaper, 1);
     p->cells = g_ptr_array_new_with_free_func(cell_free);
     p->index = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, NULL);
+    p->captions =
+        g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
     gboolean ok = read_paper(p, root, err);
     cfg_free(root);
     if (!ok) {

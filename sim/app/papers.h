@@ -25,6 +25,7 @@ typedef struct {
     char *citation;    /* paper.citation */
     GPtrArray *cells;  /* RpCell *, in file order */
     GHashTable *index; /* "table\x1frow\x1fcolumn" -> RpCell * (borrowed) */
+    GHashTable *captions; /* table -> caption, from the compact shape */
 } RpPaper;
 
 /* Reads a paper file; returns a new RpPaper (free with rp_paper_free())

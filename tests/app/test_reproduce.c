@@ -226,6 +226,46 @@ static void test_bad_papers(void **state)
                "expected 'fake'");
 }
 
+static const char compact_yaml[] =
+    "paper: fake\n"
+    "citation: A. Author\n"
+    "tables:\n"
+    "  \"1\":\n"
+    "    caption: Table 1.\n"
+    "    rows:\n"
+    "      a: {t_ms: 10}\n"
+    "      b: {t_ms: {value: 12, unit: ms, note: read off}}\n"
+    "      c: {t_ms: ~}\n"
+    "  fig9: {caption: only a picture, rows: {}}\n"
+    "cells:\n"
+    "  - {table: \"2\", row: y, column: speedup, value: 4}\n";
+
+static void test_compact_shape(void **state)
+{
+    (void)state;
+    char *dir = tmpdir_with("fake", compact_yaml);
+    RpContext ctx = {"packet", NULL, TRUE};
+    GError *err = NULL;
+    RpTable *t = rp_drive(&fake, dir, &ctx, &err);
+    g_assert_no_error(err);
+    assert_string_equal(t->citation, "A. Author");
+    assert_true(fabs(rp_table_find(t, "1", "a", "t_ms")->rel_error - 0.1) <
+                1e-12);
+    const RpJoined *b = rp_table_find(t, "1", "b", "t_ms");
+    assert_string_equal(b->unit, "ms");
+    assert_string_equal(b->note, "read off");
+    assert_int_equal(rp_table_find(t, "1", "c", "t_ms")->status,
+                     RP_WITHHELD);
+    assert_int_equal(rp_table_find(t, "2", "y", "speedup")->status,
+                     RP_MISSING);
+    assert_int_equal(t->compared, 2);
+    rp_table_free(t);
+    rm_dir(dir, "fake");
+    expect_bad("paper: fake\ntables:\n  \"1\":\n    rows:\n"
+               "      a: {t_ms: 1O}\n",
+               "fake.yaml:5:", "found '1O', expected a number or ~");
+}
+
 static void test_run_failure(void **state)
 {
     (void)state;
@@ -247,6 +287,7 @@ int main(void)
         cmocka_unit_test(test_csv),         cmocka_unit_test(test_json),
         cmocka_unit_test(test_fidelities),  cmocka_unit_test(test_bad_papers),
         cmocka_unit_test(test_run_failure),
+        cmocka_unit_test(test_compact_shape),
     };
     return cmocka_run_group_tests_name("reproduce", tests, NULL, NULL);
 }
