@@ -7,6 +7,7 @@
  */
 #include "sim/app/rp_table.h"
 #include "sim/app/json.h"
+#include "sim/app/table.h"
 #include <math.h>
 #include <string.h>
 
@@ -249,21 +250,6 @@ void rp_table_text(const RpTable *t, GString *out)
 
 /* ---- CSV and JSON ---------------------------------------------------- */
 
-static void csv_field(GString *out, const char *s)
-{
-    if (!strpbrk(s, ",\"\n\r")) {
-        g_string_append(out, s);
-        return;
-    }
-    g_string_append_c(out, '"');
-    for (const char *p = s; *p; p++) {
-        if (*p == '"')
-            g_string_append_c(out, '"');
-        g_string_append_c(out, *p);
-    }
-    g_string_append_c(out, '"');
-}
-
 void rp_table_csv(const RpTable *t, gboolean header, GString *out)
 {
     char buf[32];
@@ -274,7 +260,7 @@ void rp_table_csv(const RpTable *t, gboolean header, GString *out)
         const RpJoined *j = g_ptr_array_index(t->cells, i);
         const char *f[] = {t->paper, j->table, j->row, j->column};
         for (int k = 0; k < 4; k++) {
-            csv_field(out, f[k]);
+            dt_csv_field(out, f[k]);
             g_string_append_c(out, ',');
         }
         g_string_append_printf(out, "%s,", json_fmt_num(buf, j->sim));

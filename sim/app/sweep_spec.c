@@ -57,8 +57,6 @@ static void param_free(gpointer p)
     g_free(sp);
 }
 
-void sweep_plot_free(gpointer p);
-
 void sweep_spec_free(SweepSpec *s)
 {
     if (!s)
@@ -325,9 +323,6 @@ static gboolean read_name(SweepSpec *s, const CfgNode *root, GError **err)
     return TRUE;
 }
 
-gboolean sweep_plots_read(GPtrArray *plots, const CfgNode *seq,
-                          GError **err);
-
 static gboolean read_spec(SweepSpec *s, const CfgNode *root, const char *text,
                           GError **err)
 {
@@ -342,7 +337,7 @@ static gboolean read_spec(SweepSpec *s, const CfgNode *root, const char *text,
            read_base(s, root, text, err) && read_seed(s, root, err) &&
            read_combine(s, root, err) && read_params(s, pmap, err) &&
            count_combos(s, pmap, err) &&
-           (!plots || sweep_plots_read(s->plots, plots, err));
+           (!plots || plot_specs_read(s->plots, plots, err));
 }
 
 SweepSpec *sweep_spec_parse(const char *text, const char *name, GError **err)
@@ -353,7 +348,7 @@ SweepSpec *sweep_spec_parse(const char *text, const char *name, GError **err)
     SweepSpec *s = g_new0(SweepSpec, 1);
     s->path = g_strdup(name);
     s->params = g_ptr_array_new_with_free_func(param_free);
-    s->plots = g_ptr_array_new_with_free_func(sweep_plot_free);
+    s->plots = g_ptr_array_new_with_free_func(plot_spec_free);
     gboolean ok = read_spec(s, root, text, err);
     cfg_free(root);
     if (!ok) {

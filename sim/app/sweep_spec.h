@@ -13,20 +13,13 @@
 #ifndef PGSIM_APP_SWEEP_SPEC_H
 #define PGSIM_APP_SWEEP_SPEC_H
 
+#include "sim/app/plot.h"
 #include "sim/core/cfg.h"
 
 typedef struct {
     char *key;         /* "machine.nodes" */
     GPtrArray *values; /* char *, YAML scalar text */
 } SweepParam;
-
-typedef struct {
-    char *name;        /* file stem for the outputs */
-    char *x, *y;       /* column names */
-    char *series;      /* column name or NULL */
-    gboolean logx, logy;
-    char *title, *xlabel, *ylabel; /* NULL: defaults */
-} SweepPlot;
 
 typedef struct {
     char *path;          /* the sweep file */
@@ -38,7 +31,7 @@ typedef struct {
     uint64_t seed;       /* seed of repetition 0 */
     char *seed_key;      /* config key the seed is written to ("seed") */
     guint combos;        /* number of parameter combinations */
-    GPtrArray *plots;    /* SweepPlot * */
+    GPtrArray *plots;    /* PlotSpec * */
     char *base_text;     /* what the fingerprint covers of the base */
 } SweepSpec;
 
