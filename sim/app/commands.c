@@ -7,5 +7,8 @@ const CliCommand cli_commands[] = {
     {"render", cmd_render, "render one frame of a scene to a PNG"},
     {"reproduce", cmd_reproduce,
      "rerun a paper's tables and compare with the published values"},
+    {"sweep", cmd_sweep,
+     "run a parameter sweep (locally or under mpirun) with charts"},
+    {"plot", cmd_plot, "chart two columns of a results CSV with gnuplot"},
     {NULL, NULL, NULL},
 };

@@ -22,5 +22,7 @@ int cmd_render(int argc, char **argv);
 extern const CliCommand cli_commands[];
 
 int cmd_reproduce(int argc, char **argv);
+int cmd_sweep(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
 
 #endif

@@ -1,13 +1,13 @@
 /* test_sweep.c — sweep files (expansion, seeds, located errors), the local
  * worker pool, failing and crashing points, and resume after a kill. */
 #include "sim/app/sweep_run.h"
+#include "tests/app/sweep_fake.h"
 #include "sim/core/rng.h"
 #include <glib/gstdio.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
-#include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
 
@@ -111,31 +111,6 @@ static void test_bad_files(void **state)
 
 /* ---- running --------------------------------------------------------- */
 
-static double num_at(const CfgNode *cfg, const char *key)
-{
-    const CfgNode *n = cfg_path(cfg, key);
-    return n ? g_ascii_strtod(cfg_scalar(n), NULL) : 0.0;
-}
-
-/* a*10 + b, plus the seed's low bits; a == 4 fails, a == 5 crashes. */
-static gboolean fake_run(const CfgNode *cfg, uint64_t seed, SimResult **out,
-                         GError **err)
-{
-    double a = num_at(cfg, "a"), b = num_at(cfg, "b");
-    if (a == 4) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "a is 4");
-        return FALSE;
-    }
-    if (a == 5)
-        abort();
-    SimResult *r = sim_result_new("fake", "none");
-    sim_result_add_frame(r, (SimTime)(a * 1000 + b));
-    sim_result_set_metric(r, "score", a * 10 + b, "");
-    sim_result_set_metric(r, "seedbits", (double)(seed & 0xff), "");
-    *out = r;
-    return TRUE;
-}
-
 static const char run_yaml[] = "base: {seed: 11, a: 0, b: 0}\n"
                                "parameters:\n"
                                "  a: [1, 2, 3]\n"
@@ -150,7 +125,7 @@ static char *run_sweep(const char *yaml, int jobs, gboolean resume,
     SweepLog *log = sweep_log_open(dir, s, resume, &err);
     g_assert_no_error(err);
     SweepJob j;
-    sweep_job_init(&j, s, log, fake_run, FALSE);
+    sweep_job_init(&j, s, log, sweep_fake_run, FALSE);
     assert_true(sweep_run_local(&j, jobs, &err));
     g_assert_no_error(err);
     sweep_job_clear(&j);

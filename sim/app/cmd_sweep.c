@@ -1,0 +1,216 @@
+/* cmd_sweep.c — `pgsim sweep SWEEP.yaml [-j N] [--out DIR] [--resume]
+ * [--quiet]`.
+ *
+ * Expands the sweep (sweep_spec.c), runs the points not yet done locally
+ * in up to N worker processes (default: the number of cores) or, under
+ * mpirun, over the MPI ranks (sweep_mpi.c), then writes the ordered
+ * results.csv / results.jsonl and the charts of the `plots:` section into
+ * DIR (default out/<sweep name>).  Exit status: 0 when every point
+ * succeeded, 1 when some point failed (its row holds the error), 2 on bad
+ * input.
+ */
+#include "sim/app/commands.h"
+#include "sim/app/sweep_mpi.h"
+#include "sim/workload/workload.h"
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+typedef struct {
+    int jobs;
+    char *out_dir;
+    gboolean resume;
+    gboolean quiet;
+} SweepOpts;
+
+/* Runs one point's config.  TEMPORARY: a minimal reading of the run config
+ * (workload.type, fidelity, frames) until sim/app/config.c's run entry
+ * point lands; then this becomes a call to it. */
+static gboolean run_config(const CfgNode *cfg, uint64_t seed, SimResult **out,
+                           GError **err)
+{
+    const CfgNode *sec = cfg_get(cfg, "workload");
+    const char *type = NULL, *fidelity = "flow";
+    int64_t frames = 1;
+    if (!sec || !cfg_get_str(sec, "type", TRUE, &type, err) ||
+        !cfg_get_str(cfg, "fidelity", FALSE, &fidelity, err) ||
+        !cfg_get_int(cfg, "frames", FALSE, 1, 1000000, &frames, err)) {
+        if (!sec)
+            cfg_error(err, cfg, "no 'workload' section", "workload: {type}");
+        return FALSE;
+    }
+    const WlOps *ops = wl_find(type);
+    if (!ops) {
+        cfg_error(err, cfg_get(sec, "type"), type, "a known workload");
+        return FALSE;
+    }
+    void *params = ops->parse(sec, err);
+    if (!params)
+        return FALSE;
+    SimEngine *eng = sim_engine_new(seed);
+    WlContext ctx = {eng, cfg, seed, fidelity, (int)frames, NULL, TRUE};
+    *out = sim_result_new(type, "");
+    gboolean ok = ops->run(&ctx, params, *out, err);
+    ops->free_params(params);
+    sim_engine_free(eng);
+    return ok;
+}
+
+static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv,
+                           GError **err)
+{
+    GOptionEntry entries[] = {
+        {"jobs", 'j', 0, G_OPTION_ARG_INT, &o->jobs,
+         "worker processes (default: the number of cores)", "N"},
+        {"out", 0, 0, G_OPTION_ARG_FILENAME, &o->out_dir,
+         "output directory (default out/<sweep name>)", "DIR"},
+        {"resume", 0, 0, G_OPTION_ARG_NONE, &o->resume,
+         "continue an interrupted sweep in DIR", NULL},
+        {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress bar",
+         NULL},
+        {NULL, 0, 0, 0, NULL, NULL, NULL}};
+    GOptionContext *ctx = g_option_context_new("SWEEP.yaml");
+    g_option_context_add_main_entries(ctx, entries, NULL);
+    gboolean ok = g_option_context_parse(ctx, argc, argv, err);
+    g_option_context_free(ctx);
+    if (ok && *argc != 2)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "sweep: found %d sweep files, expected one", *argc - 1);
+    else if (ok && o->jobs < 0)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "-j: found %d, expected a positive count", o->jobs);
+    else if (!ok) {
+        (*err)->domain = SIM_ERROR;
+        (*err)->code = SIM_ERROR_INPUT;
+    }
+    if (o->jobs == 0)
+        o->jobs = (int)g_get_num_processors();
+    return err == NULL || *err == NULL;
+}
+
+static char *out_dir_for(const SweepOpts *o, const SweepSpec *s)
+{
+    return o->out_dir ? g_strdup(o->out_dir)
+                      : g_build_filename("out", s->name, NULL);
+}
+
+/* Writes the ordered outputs and the charts; counts failed rows. */
+static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
+                       GError **err)
+{
+    DataTable *t = NULL;
+    if (!sweep_log_finish(dir, s, &t, err))
+        return FALSE;
+    int sc = dt_col(t, "status");
+    *failed = 0;
+    for (guint r = 0; r < t->rows->len; r++)
+        *failed += strcmp(dt_cell(t, r, sc), "ok") != 0;
+    gboolean ok = TRUE;
+    for (guint p = 0; ok && p < s->plots->len; p++)
+        ok = plot_render(g_ptr_array_index(s->plots, p), t, dir, err);
+    dt_free(t);
+    return ok;
+}
+
+static int report(const SweepSpec *s, const char *dir, guint ran,
+                  GError *err)
+{
+    guint failed = 0;
+    if (!err)
+        finish(s, dir, &failed, &err);
+    if (err) {
+        fprintf(stderr, "pgsim sweep: %s\n", err->message);
+        int st = sim_error_exit_status(err);
+        g_error_free(err);
+        return st;
+    }
+    printf("sweep %s: %u points (%u run now), %u failed; %s/results.csv\n",
+           s->name, sweep_spec_points(s), ran, failed, dir);
+    return failed ? 1 : 0;
+}
+
+static int run_local(const SweepSpec *s, const SweepOpts *o)
+{
+    GError *err = NULL;
+    char *dir = out_dir_for(o, s);
+    SweepLog *log = sweep_log_open(dir, s, o->resume, &err);
+    guint ran = 0;
+    if (log) {
+        SweepJob j;
+        sweep_job_init(&j, s, log, run_config,
+                       !o->quiet && isatty(STDERR_FILENO));
+        sweep_run_local(&j, o->jobs, &err);
+        ran = j.finished;
+        sweep_job_clear(&j);
+        sweep_log_close(log);
+    }
+    int st = report(s, dir, ran, err);
+    g_free(dir);
+    return st;
+}
+
+static int run_mpi(const SweepSpec *s, const SweepOpts *o, int rank,
+                   int size)
+{
+    if (rank > 0) {
+        sweep_mpi_worker(s, run_config);
+        return 0;
+    }
+    GError *err = NULL;
+    char *dir = out_dir_for(o, s);
+    SweepLog *log = sweep_log_open(dir, s, o->resume, &err);
+    guint ran = 0;
+    if (!log) {
+        sweep_mpi_master(NULL, size, NULL);
+    } else {
+        SweepJob j;
+        sweep_job_init(&j, s, log, run_config,
+                       !o->quiet && isatty(STDERR_FILENO));
+        sweep_mpi_master(&j, size, &err);
+        ran = j.finished;
+        sweep_job_clear(&j);
+        sweep_log_close(log);
+    }
+    int st = report(s, dir, ran, err);
+    g_free(dir);
+    return st;
+}
+
+static int with_spec(const char *path, const SweepOpts *o, int rank,
+                     int size)
+{
+    GError *err = NULL;
+    SweepSpec *s = sweep_spec_load(path, &err);
+    if (!s) {
+        if (rank == 0)
+            fprintf(stderr, "pgsim sweep: %s\n", err->message);
+        int st = sim_error_exit_status(err);
+        g_error_free(err);
+        return st;
+    }
+    int st = size > 1 ? run_mpi(s, o, rank, size) : run_local(s, o);
+    sweep_spec_free(s);
+    return st;
+}
+
+int cmd_sweep(int argc, char **argv)
+{
+    SweepOpts o = {0};
+    GError *err = NULL;
+    int rank = 0, size = 1, st;
+    gboolean mpi = sweep_mpi_launched();
+    if (mpi)
+        sweep_mpi_init(&argc, &argv, &rank, &size);
+    if (!parse_opts(&o, &argc, &argv, &err)) {
+        if (rank == 0)
+            fprintf(stderr, "pgsim sweep: %s\n", err->message);
+        st = sim_error_exit_status(err);
+        g_error_free(err);
+    } else {
+        st = with_spec(argv[1], &o, rank, size);
+    }
+    if (mpi)
+        sweep_mpi_finalize();
+    g_free(o.out_dir);
+    return st;
+}

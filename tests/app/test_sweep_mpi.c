@@ -1,0 +1,130 @@
+/* test_sweep_mpi.c — a sweep spread over 2 Open MPI ranks gives the same
+ * rows as the local pool.  The binary is its own MPI program: started by
+ * mpirun it runs the sweep into argv[1]; started plainly it is the cmocka
+ * suite, which runs the local sweep and then itself under
+ * `mpirun -np 2`.  Skipped when MPI support or mpirun is missing. */
+#include "sim/app/sweep_mpi.h"
+#include "tests/app/sweep_fake.h"
+#include <glib/gstdio.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include <cmocka.h>
+
+static const char yaml[] = "base: {seed: 5, a: 0, b: 0}\n"
+                           "parameters:\n"
+                           "  a: [1, 2, 3, 4, 6]\n"
+                           "  b: {from: 0, to: 2, step: 1}\n"
+                           "repetitions: 2\n";
+static const char *self;
+
+static SweepSpec *spec(void)
+{
+    SweepSpec *s = sweep_spec_parse(yaml, "/tmp/mpi.yaml", NULL);
+    g_assert(s);
+    return s;
+}
+
+static char *results(const char *dir)
+{
+    char *path = g_build_filename(dir, "results.csv", NULL), *csv = NULL;
+    g_file_get_contents(path, &csv, NULL, NULL);
+    g_free(path);
+    return csv;
+}
+
+static void local_sweep(const char *dir)
+{
+    SweepSpec *s = spec();
+    SweepLog *log = sweep_log_open(dir, s, FALSE, NULL);
+    SweepJob j;
+    sweep_job_init(&j, s, log, sweep_fake_run, FALSE);
+    assert_true(sweep_run_local(&j, 2, NULL));
+    sweep_job_clear(&j);
+    sweep_log_close(log);
+    assert_true(sweep_log_finish(dir, s, NULL, NULL));
+    sweep_spec_free(s);
+}
+
+static int mpi_main(int argc, char **argv)
+{
+    int rank, size;
+    sweep_mpi_init(&argc, &argv, &rank, &size);
+    SweepSpec *s = spec();
+    if (rank > 0) {
+        sweep_mpi_worker(s, sweep_fake_run);
+    } else {
+        SweepLog *log = sweep_log_open(argv[1], s, FALSE, NULL);
+        SweepJob j;
+        sweep_job_init(&j, s, log, sweep_fake_run, FALSE);
+        sweep_mpi_master(&j, size, NULL);
+        sweep_job_clear(&j);
+        sweep_log_close(log);
+    }
+    sweep_mpi_finalize();
+    if (rank == 0)
+        sweep_log_finish(argv[1], s, NULL, NULL);
+    sweep_spec_free(s);
+    return 0;
+}
+
+static void rm_out(char *dir)
+{
+    const char *files[] = {"results.csv", "results.jsonl",
+                           "sweep.fingerprint"};
+    for (int i = 0; i < 3; i++) {
+        char *p = g_build_filename(dir, files[i], NULL);
+        g_remove(p);
+        g_free(p);
+    }
+    g_rmdir(dir);
+    g_free(dir);
+}
+
+static void test_mpi_equals_local(void **state)
+{
+    (void)state;
+    char *mpirun = g_find_program_in_path("mpirun");
+#ifndef PGSIM_HAVE_MPI
+    g_free(mpirun);
+    mpirun = NULL;
+#endif
+    if (!mpirun)
+        skip();
+    char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
+    char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
+    local_sweep(dl);
+    char *argv[] = {"timeout", "120", mpirun, "--allow-run-as-root",
+                    "--oversubscribe", "-np", "2", (char *)self, dm, NULL};
+    int status = -1;
+    char *out = NULL, *errs = NULL;
+    GError *err = NULL;
+    assert_true(g_spawn_sync(NULL, argv, NULL, G_SPAWN_SEARCH_PATH, NULL,
+                             NULL, &out, &errs, &status, &err));
+    if (!g_spawn_check_wait_status(status, NULL))
+        fail_msg("mpirun failed: %s%s", out, errs);
+    char *a = results(dl), *b = results(dm);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_string_equal(a, b);
+    assert_non_null(strstr(a, ",error,a is 4,"));
+    g_free(a);
+    g_free(b);
+    g_free(out);
+    g_free(errs);
+    g_free(mpirun);
+    rm_out(dl);
+    rm_out(dm);
+}
+
+int main(int argc, char **argv)
+{
+    if (sweep_mpi_launched())
+        return mpi_main(argc, argv);
+    self = argv[0];
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mpi_equals_local),
+    };
+    return cmocka_run_group_tests_name("sweep_mpi", tests, NULL, NULL);
+}
