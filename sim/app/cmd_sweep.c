@@ -129,44 +129,24 @@ static int report(const SweepSpec *s, const char *dir, guint ran,
     return failed ? 1 : 0;
 }
 
-static int run_local(const SweepSpec *s, const SweepOpts *o)
+/* Rank 0 (or the only process): runs the points not yet done, locally or
+ * on the MPI workers, then writes the outputs. */
+static int run_master(const SweepSpec *s, const SweepOpts *o, int size)
 {
     GError *err = NULL;
     char *dir = out_dir_for(o, s);
     SweepLog *log = sweep_log_open(dir, s, o->resume, &err);
     guint ran = 0;
+    if (!log && size > 1)
+        sweep_mpi_master(NULL, size, NULL); /* stop the workers */
     if (log) {
         SweepJob j;
         sweep_job_init(&j, s, log, run_config,
                        !o->quiet && isatty(STDERR_FILENO));
-        sweep_run_local(&j, o->jobs, &err);
-        ran = j.finished;
-        sweep_job_clear(&j);
-        sweep_log_close(log);
-    }
-    int st = report(s, dir, ran, err);
-    g_free(dir);
-    return st;
-}
-
-static int run_mpi(const SweepSpec *s, const SweepOpts *o, int rank,
-                   int size)
-{
-    if (rank > 0) {
-        sweep_mpi_worker(s, run_config);
-        return 0;
-    }
-    GError *err = NULL;
-    char *dir = out_dir_for(o, s);
-    SweepLog *log = sweep_log_open(dir, s, o->resume, &err);
-    guint ran = 0;
-    if (!log) {
-        sweep_mpi_master(NULL, size, NULL);
-    } else {
-        SweepJob j;
-        sweep_job_init(&j, s, log, run_config,
-                       !o->quiet && isatty(STDERR_FILENO));
-        sweep_mpi_master(&j, size, &err);
+        if (size > 1)
+            sweep_mpi_master(&j, size, &err);
+        else
+            sweep_run_local(&j, o->jobs, &err);
         ran = j.finished;
         sweep_job_clear(&j);
         sweep_log_close(log);
@@ -188,7 +168,11 @@ static int with_spec(const char *path, const SweepOpts *o, int rank,
         g_error_free(err);
         return st;
     }
-    int st = size > 1 ? run_mpi(s, o, rank, size) : run_local(s, o);
+    int st = 0;
+    if (rank > 0)
+        sweep_mpi_worker(s, run_config);
+    else
+        st = run_master(s, o, size);
     sweep_spec_free(s);
     return st;
 }

@@ -1,5 +1,6 @@
 /* sweep_fake.c — the fake point runner shared by the sweep tests. */
 #include "tests/app/sweep_fake.h"
+#include <glib/gstdio.h>
 #include <stdlib.h>
 
 static double num_at(const CfgNode *cfg, const char *key)
@@ -25,3 +26,17 @@ gboolean sweep_fake_run(const CfgNode *cfg, uint64_t seed, SimResult **out,
     *out = r;
     return TRUE;
 }
+
+void sweep_test_rm_out(char *dir)
+{
+    const char *files[] = {"results.csv", "results.jsonl",
+                           "sweep.fingerprint"};
+    for (int i = 0; i < 3; i++) {
+        char *p = g_build_filename(dir, files[i], NULL);
+        g_remove(p);
+        g_free(p);
+    }
+    g_rmdir(dir);
+    g_free(dir);
+}
+

@@ -8,4 +8,7 @@
 gboolean sweep_fake_run(const CfgNode *cfg, uint64_t seed, SimResult **out,
                         GError **err);
 
+/* Removes a sweep output directory and frees the path. */
+void sweep_test_rm_out(char *dir);
+
 #endif

@@ -138,19 +138,6 @@ static char *run_sweep(const char *yaml, int jobs, gboolean resume,
     return csv;
 }
 
-static void rm_out(char *dir)
-{
-    const char *files[] = {"results.csv", "results.jsonl",
-                           "sweep.fingerprint"};
-    for (int i = 0; i < 3; i++) {
-        char *p = g_build_filename(dir, files[i], NULL);
-        g_remove(p);
-        g_free(p);
-    }
-    g_rmdir(dir);
-    g_free(dir);
-}
-
 static guint count_lines(const char *s)
 {
     guint n = 0;
@@ -174,8 +161,8 @@ static void test_jobs_same_rows(void **state)
     assert_non_null(strstr(c1, ",score,seedbits\n0,0,11,1,0,ok,,1,"));
     g_free(c1);
     g_free(c4);
-    rm_out(d1);
-    rm_out(d4);
+    sweep_test_rm_out(d1);
+    sweep_test_rm_out(d4);
 }
 
 static void test_failures_recorded(void **state)
@@ -190,7 +177,7 @@ static void test_failures_recorded(void **state)
                                 "signal 6"));
     assert_non_null(strstr(csv, "\n3,0,1,6,ok,,"));
     g_free(csv);
-    rm_out(d);
+    sweep_test_rm_out(d);
 }
 
 /* Keeps the first `keep` lines of the log and half of the next one, as a
@@ -239,7 +226,7 @@ static void test_resume(void **state)
     sweep_spec_free(s);
     g_free(full);
     g_free(resumed);
-    rm_out(d);
+    sweep_test_rm_out(d);
 }
 
 int main(void)

@@ -69,19 +69,6 @@ static int mpi_main(int argc, char **argv)
     return 0;
 }
 
-static void rm_out(char *dir)
-{
-    const char *files[] = {"results.csv", "results.jsonl",
-                           "sweep.fingerprint"};
-    for (int i = 0; i < 3; i++) {
-        char *p = g_build_filename(dir, files[i], NULL);
-        g_remove(p);
-        g_free(p);
-    }
-    g_rmdir(dir);
-    g_free(dir);
-}
-
 static void test_mpi_equals_local(void **state)
 {
     (void)state;
@@ -114,8 +101,8 @@ static void test_mpi_equals_local(void **state)
     g_free(out);
     g_free(errs);
     g_free(mpirun);
-    rm_out(dl);
-    rm_out(dm);
+    sweep_test_rm_out(dl);
+    sweep_test_rm_out(dm);
 }
 
 int main(int argc, char **argv)
