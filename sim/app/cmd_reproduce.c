@@ -9,6 +9,7 @@
  */
 #include "sim/app/commands.h"
 #include "sim/app/rp_driver.h"
+#include "sim/app/rp_speed.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -74,17 +75,29 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, GError **err)
     return parse_format(o, err);
 }
 
-static void format_table(const RpTable *t, RpFormat f, gboolean first,
-                         GString *out)
+/* passes: one RpTable, or one per fidelity for --fidelity all. */
+static void format_passes(const GPtrArray *passes, RpFormat f,
+                          gboolean first, GString *out)
 {
+    gboolean speed = passes->len > 1;
+    const RpTable *t = g_ptr_array_index(passes, 0);
     if (f == FMT_TEXT) {
         if (!first)
             g_string_append_c(out, '\n');
-        rp_table_text(t, out);
+        if (speed)
+            rp_speed_text(passes, out);
+        else
+            rp_table_text(t, out);
     } else if (f == FMT_CSV) {
-        rp_table_csv(t, first, out);
+        if (speed)
+            rp_speed_csv(passes, first, out);
+        else
+            rp_table_csv(t, first, out);
     } else {
-        rp_table_json(t, out);
+        if (speed)
+            rp_speed_json(passes, out);
+        else
+            rp_table_json(t, out);
         g_string_append_c(out, '\n');
     }
 }
@@ -104,52 +117,62 @@ static gboolean write_file(const char *dir, const char *name,
     return ok;
 }
 
-static gboolean write_outputs(const RpTable *t, const char *dir,
+static gboolean write_outputs(const GPtrArray *passes, const char *dir,
                               GError **err)
 {
     static const char *const ext[] = {"txt", "csv", "json"};
+    const RpTable *t = g_ptr_array_index(passes, 0);
     if (g_mkdir_with_parents(dir, 0755) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
         return FALSE;
     }
     for (int f = 0; f < 3; f++) {
         GString *s = g_string_new(NULL);
-        format_table(t, (RpFormat)f, TRUE, s);
+        format_passes(passes, (RpFormat)f, TRUE, s);
         gboolean ok = write_file(dir, t->paper, ext[f], s, err);
         g_string_free(s, TRUE);
         if (!ok)
             return FALSE;
     }
-    return TRUE;
+    return passes->len < 2 || rp_speed_chart(passes, dir, err);
+}
+
+static GPtrArray *run_passes(const RpReproduction *rp, const RpOpts *o,
+                             GError **err)
+{
+    RpContext ctx = {o->fidelity, o->out_dir, o->quiet};
+    if (strcmp(o->fidelity, "all") == 0)
+        return rp_drive_fidelities(rp, o->papers, &ctx, err);
+    RpTable *t = rp_drive(rp, o->papers, &ctx, err);
+    if (!t)
+        return NULL;
+    GPtrArray *passes =
+        g_ptr_array_new_with_free_func((GDestroyNotify)rp_table_free);
+    g_ptr_array_add(passes, t);
+    return passes;
 }
 
 static gboolean run_one(const RpReproduction *rp, const RpOpts *o,
                         gboolean first, GError **err)
 {
-    RpContext ctx = {o->fidelity, o->out_dir, o->quiet};
     if (!o->quiet)
         fprintf(stderr, "reproduce: %s (fidelity %s)\n", rp->name,
                 o->fidelity);
-    RpTable *t = rp_drive(rp, o->papers, &ctx, err);
-    if (!t)
+    GPtrArray *passes = run_passes(rp, o, err);
+    if (!passes)
         return FALSE;
     GString *s = g_string_new(NULL);
-    format_table(t, o->fmt, first, s);
+    format_passes(passes, o->fmt, first, s);
     fputs(s->str, stdout);
     fflush(stdout);
     g_string_free(s, TRUE);
-    gboolean ok = !o->out_dir || write_outputs(t, o->out_dir, err);
-    rp_table_free(t);
+    gboolean ok = !o->out_dir || write_outputs(passes, o->out_dir, err);
+    g_ptr_array_free(passes, TRUE);
     return ok;
 }
 
 static gboolean run_named(const char *name, const RpOpts *o, GError **err)
 {
-    if (strcmp(o->fidelity, "all") == 0) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                    "--fidelity all: not implemented yet");
-        return FALSE;
-    }
     if (strcmp(name, "all") == 0) {
         for (int i = 0; rp_all[i]; i++)
             if (!run_one(rp_all[i], o, i == 0, err))

@@ -4,6 +4,7 @@
 #include "sim/app/json.h"
 #include <glib/gstdio.h>
 #include "sim/app/rp_driver.h"
+#include "sim/app/rp_speed.h"
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -182,6 +183,41 @@ static void test_fidelities(void **state)
     assert_string_equal(an->fidelity, "analytic");
     assert_true(fabs(rp_table_find(an, "1", "a", "t_ms")->sim - 16.5) <
                 1e-12);
+    const RpTable *fl = g_ptr_array_index(passes, 1);
+    const RpTable *pk = g_ptr_array_index(passes, 2);
+    assert_true(fabs(rp_speed_mean_vs_ref(an, pk) - 0.375) < 1e-12);
+    assert_true(fabs(rp_speed_mean_vs_ref(fl, pk) - 0.075) < 1e-12);
+    assert_true(rp_speed_mean_vs_ref(pk, pk) == 0.0);
+    GString *s = g_string_new(NULL);
+    rp_speed_csv(passes, TRUE, s);
+    assert_true(g_str_has_prefix(s->str, "paper,table,row,column,sim,"
+                                         "published,rel_error,fidelity,"
+                                         "wall_s,rel_error_vs_packet\n"
+                                         "fake,1,a,t_ms,16.5,10,0.65,"
+                                         "analytic,"));
+    assert_non_null(strstr(s->str, "fake,2,y,speedup,,4,,packet,"));
+    g_string_truncate(s, 0);
+    rp_speed_text(passes, s);
+    assert_non_null(strstr(s->str, "speed against error"));
+    g_string_free(s, TRUE);
+    GError *e = NULL;
+    char *cdir = g_dir_make_tmp("pgsim-rpc-XXXXXX", NULL);
+    assert_true(rp_speed_chart(passes, cdir, &e));
+    g_assert_no_error(e);
+    char *png = g_build_filename(cdir, "fake-speed.png", NULL), *data;
+    gsize len;
+    assert_true(g_file_get_contents(png, &data, &len, NULL));
+    assert_true(len > 8 && memcmp(data, "\x89PNG", 4) == 0);
+    g_free(data);
+    const char *ext[] = {".png", ".svg", ".gp", ".dat"};
+    for (int i = 0; i < 4; i++) {
+        char *f = g_strconcat(cdir, "/fake-speed", ext[i], NULL);
+        assert_int_equal(g_remove(f), 0);
+        g_free(f);
+    }
+    g_rmdir(cdir);
+    g_free(cdir);
+    g_free(png);
     g_ptr_array_free(passes, TRUE);
     rm_dir(dir, "fake");
 }
