@@ -5,9 +5,13 @@
  * Runs paper reproductions (sim/app/reproduce.h), joins them to the
  * published values in configs/papers/<name>.yaml and prints the tables in
  * the chosen format on stdout.  With --out DIR each reproduction's table
- * is also written, atomically, as DIR/<name>.{txt,csv,json}.
+ * is also written, atomically, as DIR/<name>.{txt,csv,json} (and, with
+ * --fidelity all, the chart DIR/<name>-speed.png).  `all` also writes the
+ * Markdown report --doc FILE (default docs/reproduction.md) with charts
+ * in <its directory>/reproduction/.
  */
 #include "sim/app/commands.h"
+#include "sim/app/rp_doc.h"
 #include "sim/app/rp_driver.h"
 #include "sim/app/rp_speed.h"
 #include <stdio.h>
@@ -20,6 +24,7 @@ typedef struct {
     char *out_dir;
     char *fidelity;
     char *papers;
+    char *doc;
     gboolean quiet;
     RpFormat fmt;
 } RpOpts;
@@ -49,6 +54,9 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, GError **err)
          "analytic, flow (default), packet or all", "F"},
         {"papers", 0, 0, G_OPTION_ARG_FILENAME, &o->papers,
          "published values (default configs/papers)", "DIR"},
+        {"doc", 0, 0, G_OPTION_ARG_FILENAME, &o->doc,
+         "with 'all': the Markdown report (default docs/reproduction.md)",
+         "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
     GOptionContext *ctx = g_option_context_new("NAME|all");
@@ -152,33 +160,95 @@ static GPtrArray *run_passes(const RpReproduction *rp, const RpOpts *o,
     return passes;
 }
 
-static gboolean run_one(const RpReproduction *rp, const RpOpts *o,
-                        gboolean first, GError **err)
+/* Runs one reproduction, prints it and writes --out files; returns its
+ * passes (the caller frees them) or NULL with *err. */
+static GPtrArray *run_one(const RpReproduction *rp, const RpOpts *o,
+                          gboolean first, GError **err)
 {
     if (!o->quiet)
         fprintf(stderr, "reproduce: %s (fidelity %s)\n", rp->name,
                 o->fidelity);
     GPtrArray *passes = run_passes(rp, o, err);
     if (!passes)
-        return FALSE;
+        return NULL;
     GString *s = g_string_new(NULL);
     format_passes(passes, o->fmt, first, s);
     fputs(s->str, stdout);
     fflush(stdout);
     g_string_free(s, TRUE);
-    gboolean ok = !o->out_dir || write_outputs(passes, o->out_dir, err);
-    g_ptr_array_free(passes, TRUE);
+    if (o->out_dir && !write_outputs(passes, o->out_dir, err)) {
+        g_ptr_array_free(passes, TRUE);
+        return NULL;
+    }
+    return passes;
+}
+
+static GHashTable *captions_of(const RpReproduction *rp, const RpOpts *o)
+{
+    char *path = rp_paper_path(o->papers ? o->papers : RP_PAPERS_DIR,
+                               rp->name);
+    RpPaper *p = rp_paper_load(path, NULL);
+    g_free(path);
+    if (!p)
+        return NULL;
+    GHashTable *c = g_hash_table_ref(p->captions);
+    rp_paper_free(p);
+    return c;
+}
+
+/* Adds one paper's section (and its charts) to the report. */
+static gboolean doc_paper(GString *md, const RpReproduction *rp,
+                          const GPtrArray *passes, const RpOpts *o,
+                          const char *chart_dir, GError **err)
+{
+    const RpTable *fin = g_ptr_array_index(passes, passes->len - 1);
+    if (g_mkdir_with_parents(chart_dir, 0755) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create",
+                    chart_dir);
+        return FALSE;
+    }
+    if (!rp_doc_chart(fin, chart_dir, err) ||
+        (passes->len > 1 && !rp_speed_chart(passes, chart_dir, err)))
+        return FALSE;
+    GHashTable *caps = captions_of(rp, o);
+    rp_doc_paper(md, passes, caps, chart_dir, "reproduction");
+    if (caps)
+        g_hash_table_unref(caps);
+    return TRUE;
+}
+
+static gboolean run_all(const RpOpts *o, GError **err)
+{
+    const char *doc = o->doc ? o->doc : "docs/reproduction.md";
+    char *dir = g_path_get_dirname(doc);
+    char *charts = g_build_filename(dir, "reproduction", NULL);
+    GString *md = g_string_new(NULL);
+    rp_doc_head(md, o->fidelity);
+    gboolean ok = TRUE;
+    for (int i = 0; ok && rp_all[i]; i++) {
+        GPtrArray *passes = run_one(rp_all[i], o, i == 0, err);
+        ok = passes && doc_paper(md, rp_all[i], passes, o, charts, err);
+        if (passes)
+            g_ptr_array_free(passes, TRUE);
+    }
+    if (!rp_all[0])
+        g_string_append(md, "No reproduction is registered yet.\n");
+    if (ok && !g_file_set_contents(doc, md->str, (gssize)md->len, NULL)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot write", doc);
+        ok = FALSE;
+    }
+    if (ok && !o->quiet)
+        fprintf(stderr, "reproduce: wrote %s\n", doc);
+    g_string_free(md, TRUE);
+    g_free(charts);
+    g_free(dir);
     return ok;
 }
 
 static gboolean run_named(const char *name, const RpOpts *o, GError **err)
 {
-    if (strcmp(name, "all") == 0) {
-        for (int i = 0; rp_all[i]; i++)
-            if (!run_one(rp_all[i], o, i == 0, err))
-                return FALSE;
-        return TRUE;
-    }
+    if (strcmp(name, "all") == 0)
+        return run_all(o, err);
     const RpReproduction *rp = rp_find(name);
     if (!rp) {
         GString *known = g_string_new("all");
@@ -190,7 +260,10 @@ static gboolean run_named(const char *name, const RpOpts *o, GError **err)
         g_string_free(known, TRUE);
         return FALSE;
     }
-    return run_one(rp, o, TRUE, err);
+    GPtrArray *passes = run_one(rp, o, TRUE, err);
+    if (passes)
+        g_ptr_array_free(passes, TRUE);
+    return passes != NULL;
 }
 
 int cmd_reproduce(int argc, char **argv)
@@ -216,5 +289,6 @@ int cmd_reproduce(int argc, char **argv)
     g_free(o.out_dir);
     g_free(o.fidelity);
     g_free(o.papers);
+    g_free(o.doc);
     return status;
 }

@@ -318,6 +318,9 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
         put_quoted(o, t);
         g_free(t);
     }
+    if (p->diagonal)
+        g_string_append(o, ", \\\n    x with lines dashtype 2 lc rgb "
+                           "\"gray\" title \"y = x\"");
     g_string_append_c(o, '\n');
 }
 

@@ -20,6 +20,7 @@ typedef struct {
     gboolean logx, logy;
     char *title, *xlabel, *ylabel; /* NULL: defaults (column names) */
     char *style;         /* "linespoints" (default), "points", "lines" */
+    gboolean diagonal;   /* also draw y = x (simulated against published) */
 } PlotSpec;
 
 /* Returns a new spec with x and y set; free with plot_spec_free(). */

@@ -45,13 +45,9 @@ static void pct(GString *o, double x)
         g_string_append_printf(o, "%10s", "-");
 }
 
-void rp_speed_text(const GPtrArray *passes, GString *out)
+void rp_speed_summary(const GPtrArray *passes, GString *out)
 {
     const RpTable *ref = ref_of(passes);
-    for (guint p = 0; p < passes->len; p++) {
-        rp_table_text(g_ptr_array_index(passes, p), out);
-        g_string_append_c(out, '\n');
-    }
     g_string_append_printf(out, "%s: speed against error (reference: %s)\n"
                                 "fidelity      wall_s  compared  "
                                 "vs paper     worst  vs %s\n",
@@ -65,6 +61,15 @@ void rp_speed_text(const GPtrArray *passes, GString *out)
         pct(out, rp_speed_mean_vs_ref(t, ref));
         g_string_append_c(out, '\n');
     }
+}
+
+void rp_speed_text(const GPtrArray *passes, GString *out)
+{
+    for (guint p = 0; p < passes->len; p++) {
+        rp_table_text(g_ptr_array_index(passes, p), out);
+        g_string_append_c(out, '\n');
+    }
+    rp_speed_summary(passes, out);
 }
 
 void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out)

@@ -20,6 +20,9 @@ double rp_speed_vs_ref(const RpJoined *j, const RpTable *ref);
 /* Mean |rp_speed_vs_ref| over the pass's cells; NAN when none. */
 double rp_speed_mean_vs_ref(const RpTable *t, const RpTable *ref);
 
+/* The per-fidelity summary table only. */
+void rp_speed_summary(const GPtrArray *passes, GString *out);
+/* Every pass's table, then the summary. */
 void rp_speed_text(const GPtrArray *passes, GString *out);
 void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out);
 void rp_speed_json(const GPtrArray *passes, GString *out);

@@ -3,6 +3,7 @@
  * Uses a fake reproduction that is not registered in rp_all. */
 #include "sim/app/json.h"
 #include <glib/gstdio.h>
+#include "sim/app/rp_doc.h"
 #include "sim/app/rp_driver.h"
 #include "sim/app/rp_speed.h"
 #include <math.h>
@@ -302,6 +303,42 @@ static void test_compact_shape(void **state)
                "fake.yaml:5:", "found '1O', expected a number or ~");
 }
 
+static void test_doc(void **state)
+{
+    (void)state;
+    char *dir;
+    RpTable *t = drive("packet", &dir);
+    char *cdir = g_dir_make_tmp("pgsim-doc-XXXXXX", NULL);
+    GError *err = NULL;
+    assert_true(rp_doc_chart(t, cdir, &err));
+    g_assert_no_error(err);
+    GPtrArray *passes = g_ptr_array_new();
+    g_ptr_array_add(passes, t);
+    GHashTable *caps = g_hash_table_new(g_str_hash, g_str_equal);
+    g_hash_table_insert(caps, "1", "Table 1. Times.");
+    GString *md = g_string_new(NULL);
+    rp_doc_paper(md, passes, caps, cdir, "reproduction");
+    assert_non_null(strstr(md->str, "## fake\n"));
+    assert_non_null(strstr(md->str, "### Table 1\n\nTable 1. Times.\n"));
+    assert_non_null(strstr(md->str, "| a | t_ms [ms] | 10 | 11 | +10.0% |"));
+    assert_non_null(strstr(md->str, "| c | t_ms | *withheld* | 5 | |"));
+    assert_non_null(strstr(md->str, "![simulated against published]"
+                                    "(reproduction/fake-vs-published.png)"));
+    const char *ext[] = {".png", ".svg", ".gp", ".dat"};
+    for (int i = 0; i < 4; i++) {
+        char *f = g_strconcat(cdir, "/fake-vs-published", ext[i], NULL);
+        assert_int_equal(g_remove(f), 0);
+        g_free(f);
+    }
+    g_rmdir(cdir);
+    g_free(cdir);
+    g_string_free(md, TRUE);
+    g_hash_table_destroy(caps);
+    g_ptr_array_free(passes, TRUE);
+    rp_table_free(t);
+    rm_dir(dir, "fake");
+}
+
 static void test_run_failure(void **state)
 {
     (void)state;
@@ -324,6 +361,7 @@ int main(void)
         cmocka_unit_test(test_fidelities),  cmocka_unit_test(test_bad_papers),
         cmocka_unit_test(test_run_failure),
         cmocka_unit_test(test_compact_shape),
+        cmocka_unit_test(test_doc),
     };
     return cmocka_run_group_tests_name("reproduce", tests, NULL, NULL);
 }
