@@ -87,8 +87,12 @@ static void test_mpi_equals_local(void **state)
     int status = -1;
     char *out = NULL, *errs = NULL;
     GError *err = NULL;
-    assert_true(g_spawn_sync(NULL, argv, NULL, G_SPAWN_SEARCH_PATH, NULL,
+    /* Open MPI's own allocations are not ours to report under ASan */
+    char **env = g_environ_setenv(g_get_environ(), "ASAN_OPTIONS",
+                                  "detect_leaks=0", TRUE);
+    assert_true(g_spawn_sync(NULL, argv, env, G_SPAWN_SEARCH_PATH, NULL,
                              NULL, &out, &errs, &status, &err));
+    g_strfreev(env);
     if (!g_spawn_check_wait_status(status, NULL))
         fail_msg("mpirun failed: %s%s", out, errs);
     char *a = results(dl), *b = results(dm);
