@@ -128,7 +128,8 @@ static DataTable *speed_table(const GPtrArray *passes)
     for (guint p = 0; p < passes->len; p++) {
         const RpTable *t = g_ptr_array_index(passes, p);
         char w[32], e1[32], e2[32];
-        json_fmt_num(w, t->wall_s);
+        /* the clock ticks in microseconds: keep x > 0 on the log axis */
+        json_fmt_num(w, MAX(t->wall_s, 1e-6));
         char *r1[] = {t->fidelity, w, (char *)json_fmt_num(e1, t->mean_abs),
                       "paper"};
         char *r2[] = {t->fidelity, w,
