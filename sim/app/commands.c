@@ -3,6 +3,7 @@
 #include <stddef.h>
 
 const CliCommand cli_commands[] = {
+    {"help", cmd_help, "list the commands, or show one's options"},
     {"bench", cmd_bench, "run a benchmark and print its figures"},
     {"render", cmd_render, "render one frame of a scene to a PNG"},
     {"reproduce", cmd_reproduce,

@@ -16,10 +16,13 @@ typedef struct {
 } CliCommand;
 
 int cmd_bench(int argc, char **argv);
+int cmd_help(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 
 /* NULL-terminated table, in the order `pgsim help` lists them. */
 extern const CliCommand cli_commands[];
+/* The row for a command name, or NULL (sim/app/cli.c). */
+const CliCommand *cli_find_command(const char *name);
 
 int cmd_reproduce(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
