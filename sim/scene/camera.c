@@ -109,6 +109,100 @@ void scene_camera_fit(SceneCamera *c, SceneBox box, double fill)
     }
 }
 
+typedef struct {
+    Vec3 dir, right, up; /* towards the eye; screen right and up */
+    double tx, ty;       /* tan of the half-angles, times fill */
+} FitFrame;
+
+/* Eye distance from ctr so every point projects inside the frame;
+ * *mx, *my receive the centre of the points' projected extent (in units
+ * of the half-screen) and *r the largest distance from ctr. */
+static double fit_distance(const FitFrame *f, const Vec3 *pts, guint n,
+                           Vec3 ctr, double *mx, double *my, double *r)
+{
+    double d = 1e-9, lo[2] = {G_MAXDOUBLE, G_MAXDOUBLE};
+    double hi[2] = {-G_MAXDOUBLE, -G_MAXDOUBLE};
+    *r = 1e-9;
+    for (guint i = 0; i < n; i++) {
+        Vec3 q = vec3_sub(pts[i], ctr);
+        double x = vec3_dot(q, f->right), y = vec3_dot(q, f->up);
+        double z = vec3_dot(q, f->dir);
+        /* depth from the eye is d - z; need |x| <= tx (d - z) */
+        d = fmax(d, fmax(fabs(x) / f->tx, fabs(y) / f->ty) + z);
+        *r = fmax(*r, vec3_len(q));
+    }
+    for (guint i = 0; i < n; i++) {
+        Vec3 q = vec3_sub(pts[i], ctr);
+        double w = d - vec3_dot(q, f->dir);
+        double x = vec3_dot(q, f->right) / (f->tx * w);
+        double y = vec3_dot(q, f->up) / (f->ty * w);
+        lo[0] = fmin(lo[0], x), hi[0] = fmax(hi[0], x);
+        lo[1] = fmin(lo[1], y), hi[1] = fmax(hi[1], y);
+    }
+    *mx = (lo[0] + hi[0]) / 2;
+    *my = (lo[1] + hi[1]) / 2;
+    return d;
+}
+
+static void fit_ortho(SceneCamera *c, const FitFrame *f, const Vec3 *pts,
+                      guint n, Vec3 ctr, double fill)
+{
+    double h = 1e-9, r = 1e-9;
+    for (guint i = 0; i < n; i++) {
+        Vec3 q = vec3_sub(pts[i], ctr);
+        h = fmax(h, fmax(fabs(vec3_dot(q, f->up)),
+                         fabs(vec3_dot(q, f->right)) / c->aspect));
+        r = fmax(r, vec3_len(q));
+    }
+    c->height = 2 * h / fill;
+    c->target = ctr;
+    c->eye = vec3_add(ctr, vec3_scale(f->dir, 2 * r));
+    fit_near_far(c, 2 * r, r);
+}
+
+void scene_camera_fit_points(SceneCamera *c, const Vec3 *pts, guint n,
+                             double fill)
+{
+    g_assert(fill > 0 && fill <= 1 && n > 0);
+    SceneBox b = scene_box_empty();
+    for (guint i = 0; i < n; i++)
+        b = scene_box_add_point(b, pts[i]);
+    FitFrame f;
+    f.dir = vec3_norm(vec3_sub(c->eye, c->target));
+    if (vec3_len(f.dir) == 0)
+        f.dir = vec3(0, 0, 1);
+    f.right = vec3_norm(vec3_cross(vec3_scale(f.dir, -1), c->up));
+    f.up = vec3_cross(f.right, vec3_scale(f.dir, -1));
+    f.ty = tan(c->fov_deg * G_PI / 360.0) * fill;
+    f.tx = f.ty * c->aspect;
+    Vec3 ctr = scene_box_center(b);
+    if (c->proj == SCENE_ORTHOGRAPHIC) {
+        fit_ortho(c, &f, pts, n, ctr, fill);
+        return;
+    }
+    /* Re-centre the projected extent a few times: each step moves the
+     * target sideways by the offset of the extent's centre. */
+    double d = 0, mx, my, r;
+    for (int it = 0; it < 8; it++) {
+        d = fit_distance(&f, pts, n, ctr, &mx, &my, &r);
+        ctr = vec3_add(ctr, vec3_add(vec3_scale(f.right, mx * f.tx * d),
+                                     vec3_scale(f.up, my * f.ty * d)));
+    }
+    d = fit_distance(&f, pts, n, ctr, &mx, &my, &r);
+    c->target = ctr;
+    c->eye = vec3_add(ctr, vec3_scale(f.dir, d));
+    fit_near_far(c, d, r);
+}
+
+void scene_camera_fit_box(SceneCamera *c, SceneBox b, double fill)
+{
+    Vec3 k[8];
+    for (int i = 0; i < 8; i++)
+        k[i] = vec3(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
+                    i & 4 ? b.max.z : b.min.z);
+    scene_camera_fit_points(c, k, 8, fill);
+}
+
 static SceneCameraPath *path_new(ScenePathKind kind, guint frames)
 {
     SceneCameraPath *p = g_new0(SceneCameraPath, 1);

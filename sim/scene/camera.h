@@ -45,6 +45,14 @@ Mat4 scene_camera_view_proj(const SceneCamera *c);
  * touches the viewport edges); near/far bracket the sphere.  Orthographic
  * cameras get height = 2 r / fill (divided by aspect when aspect < 1). */
 void scene_camera_fit(SceneCamera *c, SceneBox box, double fill);
+/* Tighter: same direction and target (the box centre), but the eye is
+ * placed so that the box's 8 corners project inside [-fill, fill] in both
+ * x and y (exact for a fixed direction: the closest such eye).
+ * Orthographic: the smallest height that holds the corners. */
+void scene_camera_fit_box(SceneCamera *c, SceneBox box, double fill);
+/* The same for any n >= 1 points (target: the centre of their box). */
+void scene_camera_fit_points(SceneCamera *c, const Vec3 *pts, guint n,
+                             double fill);
 
 typedef enum {
     SCENE_PATH_FIXED,

@@ -55,8 +55,27 @@ void scene_set_db(Scene *s, SceneDb *db)
 
 SceneView scene_view_default(void)
 {
-    SceneView v = {SCENE_PERSPECTIVE, 0, 0, 45, 1, 1};
+    SceneView v = {SCENE_PERSPECTIVE, 0, 0, 45, 1, 1, FALSE};
     return v;
+}
+
+/* Fits the corners of every instance's box (tighter than the scene box
+ * when instances lie along a diagonal). */
+static void fit_instance_boxes(const Scene *s, SceneCamera *c, double fill)
+{
+    guint n = scene_n_instances(s);
+    Vec3 *pts = g_new(Vec3, 8 * n);
+    for (guint i = 0; i < n; i++) {
+        SceneBox b = scene_box_transform(
+            scene_mesh_bbox(scene_instance_mesh(s, i)),
+            scene_instance(s, i)->xform);
+        for (int k = 0; k < 8; k++)
+            pts[8 * i + k] =
+                vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
+                     k & 4 ? b.max.z : b.min.z);
+    }
+    scene_camera_fit_points(c, pts, 8 * n, fill);
+    g_free(pts);
 }
 
 void scene_apply_view(Scene *s, const SceneView *v)
@@ -70,7 +89,10 @@ void scene_apply_view(Scene *s, const SceneView *v)
     c.target = vec3(0, 0, 0);
     c.eye = dir;
     c.up = fabs(dir.y) > 0.999 ? vec3(0, 0, -1) : vec3(0, 1, 0);
-    scene_camera_fit(&c, scene_bbox(s), v->fill);
+    if (v->fit_box && scene_n_instances(s) > 0)
+        fit_instance_boxes(s, &c, v->fill);
+    else
+        scene_camera_fit(&c, scene_bbox(s), v->fill);
     s->camera = c;
 }
 

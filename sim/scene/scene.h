@@ -36,16 +36,20 @@ typedef struct {
 /* The view rule shared by the generators: the eye looks at the scene's
  * bounding-box centre from direction (azimuth about +y from +z, elevation
  * above the x-z plane, degrees) and is fitted with scene_camera_fit() so
- * the bounding sphere fills `fill` of the smaller viewport extent. */
+ * the bounding sphere fills `fill` of the smaller viewport extent (or,
+ * with fit_box, the corners of every instance's box project inside
+ * [-fill, fill]). */
 typedef struct {
     SceneProjection proj;
     double azimuth_deg, elevation_deg;
     double fov_deg;  /* perspective */
     double fill;     /* (0, 1] */
     double aspect;   /* width / height */
+    gboolean fit_box; /* fit the instances' box corners instead of
+                         the bounding sphere */
 } SceneView;
 
-/* azimuth 0, elevation 0, perspective 45°, fill 1, aspect 1. */
+/* azimuth 0, elevation 0, perspective 45°, fill 1, aspect 1, sphere. */
 SceneView scene_view_default(void);
 /* Sets s->camera by the view rule (keeps any path). */
 void scene_apply_view(Scene *s, const SceneView *v);

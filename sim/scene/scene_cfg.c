@@ -266,10 +266,12 @@ static Scene *load_file(const CfgNode *sec, GError **err)
 static const char *const projections[] = {"perspective", "orthographic",
                                           NULL};
 
+static const char *const fits[] = {"sphere", "box", NULL};
+
 static gboolean apply_view(Scene *s, const CfgNode *n, GError **err)
 {
     SceneView v = scene_view_default();
-    int proj = v.proj;
+    int proj = v.proj, fit = 0;
     if (!want_map(n, "a map {azimuth, elevation, fov, fill ...}", err) ||
         !cfg_get_double(n, "azimuth", FALSE, -360, 360, &v.azimuth_deg,
                         err) ||
@@ -278,9 +280,11 @@ static gboolean apply_view(Scene *s, const CfgNode *n, GError **err)
         !cfg_get_double(n, "fov", FALSE, 1, 170, &v.fov_deg, err) ||
         !cfg_get_double(n, "fill", FALSE, 0.01, 1, &v.fill, err) ||
         !cfg_get_double(n, "aspect", FALSE, 1e-3, 1e3, &v.aspect, err) ||
-        !cfg_get_enum(n, "projection", FALSE, projections, &proj, err))
+        !cfg_get_enum(n, "projection", FALSE, projections, &proj, err) ||
+        !cfg_get_enum(n, "fit", FALSE, fits, &fit, err))
         return FALSE;
     v.proj = (SceneProjection)proj;
+    v.fit_box = fit == 1;
     scene_apply_view(s, &v);
     return TRUE;
 }

@@ -150,6 +150,35 @@ static void test_fit(void **st)
     NEAR(c.height, 4 * scene_box_radius(b));
 }
 
+/* Box / point fits: every point inside [-fill, fill], one touching. */
+static void test_fit_points(void **st)
+{
+    (void)st;
+    Vec3 pts[6] = {{0, 0, 0}, {10, 0, -30}, {2, 3, 1},
+                   {-1, -2, -4}, {12, 1, -31}, {5, 5, -10}};
+    for (int proj = 0; proj < 2; proj++) {
+        SceneCamera c = scene_camera_default();
+        c.proj = proj ? SCENE_ORTHOGRAPHIC : SCENE_PERSPECTIVE;
+        c.aspect = 1.5;
+        c.eye = vec3(0, 3, 10);
+        scene_camera_fit_points(&c, pts, 6, 0.8);
+        Mat4 vp = scene_camera_view_proj(&c);
+        double m = 0;
+        for (int i = 0; i < 6; i++) {
+            Vec3 q = project(vp, pts[i]);
+            assert_true(fabs(q.x) <= 0.8 + 1e-9 && fabs(q.y) <= 0.8 + 1e-9);
+            assert_true(q.z > -1 && q.z < 1);
+            m = fmax(m, fmax(fabs(q.x), fabs(q.y)));
+        }
+        assert_true(m > 0.8 - 1e-6);
+    }
+    SceneBox b = {{-1, -1, -1}, {1, 2, 3}};
+    SceneCamera c = scene_camera_default();
+    scene_camera_fit_box(&c, b, 1.0);
+    Vec3 q = project(scene_camera_view_proj(&c), b.max);
+    assert_true(fabs(q.x) <= 1 + 1e-9 && fabs(q.y) <= 1 + 1e-9);
+}
+
 static void test_orbit(void **st)
 {
     (void)st;
@@ -234,7 +263,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_box),         cmocka_unit_test(test_mesh),
         cmocka_unit_test(test_view_matrix), cmocka_unit_test(test_perspective),
-        cmocka_unit_test(test_fit),         cmocka_unit_test(test_orbit),
+        cmocka_unit_test(test_fit),         cmocka_unit_test(test_fit_points),
+        cmocka_unit_test(test_orbit),
         cmocka_unit_test(test_keyframes),   cmocka_unit_test(test_scene),
     };
     return cmocka_run_group_tests_name("geometry", tests, NULL, NULL);
