@@ -245,7 +245,7 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
                           : NULL;
     g_free(model_file);
     if (m)
-        mach_mark_read(section);
+        cfg_mark_read(section);
     return m;
 }
 
@@ -257,7 +257,7 @@ gboolean mach_check_section(const CfgNode *section, GError **err)
     cfg_free(tree);
     g_free(model_file);
     if (ok)
-        mach_mark_read(section);
+        cfg_mark_read(section);
     return ok;
 }
 

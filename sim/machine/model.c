@@ -60,19 +60,6 @@ static const MachKeyType net_keys[] = {
 static const char *const provenance_keys[] = {"source", "calibrated",
                                               "assumption", NULL};
 
-void mach_mark_read(const CfgNode *n)
-{
-    if (cfg_kind(n) == CFG_MAP) {
-        for (guint i = 0; i < cfg_map_len(n); i++) {
-            (void)cfg_map_key(n, i);
-            mach_mark_read(cfg_map_value(n, i));
-        }
-    } else if (cfg_kind(n) == CFG_SEQ) {
-        for (guint i = 0; i < cfg_seq_len(n); i++)
-            mach_mark_read(cfg_seq_at(n, i));
-    }
-}
-
 static gboolean lookup(const MachKeyType *t, const char *key, MachType *out)
 {
     for (; t->key; t++) {
@@ -435,7 +422,7 @@ static gboolean check_workload_entry(const CfgNode *e, const char *name,
         g_free(found);
         return FALSE;
     }
-    mach_mark_read(cfg_get(e, "value"));
+    cfg_mark_read(cfg_get(e, "value"));
     (void)cfg_get(e, "unit");
     (void)cfg_get(e, "note");
     gboolean found_any = FALSE;
@@ -447,7 +434,7 @@ static gboolean check_workload_entry(const CfgNode *e, const char *name,
             return FALSE;
         }
         if (v)
-            mach_mark_read(v);
+            cfg_mark_read(v);
         found_any = found_any || v;
     }
     if (found_any)

@@ -56,9 +56,6 @@ CfgNode *mach_load_model(const char *name, GError **err);
 gboolean mach_model_check(const CfgNode *root, const char *model_file,
                           GError **err);
 
-/* Marks every key below n as read (for cfg_check_unused()). */
-void mach_mark_read(const CfgNode *n);
-
 /* The expected type of a node-kind or network key; FALSE if unknown. */
 gboolean mach_kind_key_type(const char *key, MachType *out);
 gboolean mach_net_key_type(const char *key, MachType *out);
