@@ -320,8 +320,9 @@ gboolean scene_db_modify(SceneDb *db, guint sid, guint pos,
     }
     if (!check_execute(db, sid, e, err))
         return FALSE;
+    SceneElem c = elem_dup(e); /* first: e may alias *old */
     g_free(old->verts);
-    *old = elem_dup(e);
+    *old = c;
     db->gen++;
     return TRUE;
 }

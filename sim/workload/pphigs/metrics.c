@@ -11,7 +11,7 @@ typedef struct {
     double us;
 } Walk;
 
-static double elem_cost(const WlPphigsCosts *c, const SceneElem *e)
+double wl_pphigs_elem_us(const WlPphigsCosts *c, const SceneElem *e)
 {
     switch (e->kind) {
     case SCENE_EL_COLOR:
@@ -28,7 +28,7 @@ static double elem_cost(const WlPphigsCosts *c, const SceneElem *e)
 static void prim_fn(const ScenePrimInst *pi, void *ud)
 {
     Walk *w = ud;
-    double t = elem_cost(w->c, pi->el);
+    double t = wl_pphigs_elem_us(w->c, pi->el);
     if (scene_pphigs_prim_offscreen(mat4_mul(w->vp, pi->matrix), pi->el))
         t *= w->c->offscreen;
     w->us += t;
@@ -45,7 +45,7 @@ double wl_pphigs_traversal_us(const SceneDb *db, Mat4 vp,
         for (guint i = 0; i < scene_db_len(db, sid); i++) {
             const SceneElem *e = scene_db_elem(db, sid, i);
             if (!scene_elem_is_prim(e->kind))
-                w.us += elem_cost(c, e);
+                w.us += wl_pphigs_elem_us(c, e);
         }
     }
     g_array_unref(mx);

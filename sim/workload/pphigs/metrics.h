@@ -31,6 +31,9 @@ typedef struct {
     double efficiency, utilisation, speedup; /* fractions, factor */
 } WlPphigsMetrics;
 
+/* On-screen cost of one element (us): poly + vertex * nverts for a
+ * primitive, else the attribute's or execute's cost. */
+double wl_pphigs_elem_us(const WlPphigsCosts *c, const SceneElem *e);
 /* Time of one traversal of `db`'s posted structures under view `vp`. */
 double wl_pphigs_traversal_us(const SceneDb *db, Mat4 vp,
                               const WlPphigsCosts *c);
