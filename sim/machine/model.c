@@ -626,6 +626,37 @@ gboolean mach_param_bw_list(const CfgNode *map, const char *key,
     return TRUE;
 }
 
+MachProvenance mach_param_provenance(const CfgNode *map, const char *key,
+                                     const char **text)
+{
+    const CfgNode *p = cfg_get(map, key);
+    if (text)
+        *text = NULL;
+    if (!p)
+        return MACH_PROV_NONE;
+    if (cfg_kind(p) != CFG_MAP)
+        return MACH_PROV_OVERRIDE;
+    /* the provenance given in the same file as the value */
+    const CfgNode *v = cfg_get(p, "value");
+    for (guint i = 0; provenance_keys[i]; i++) {
+        const CfgNode *t = cfg_get(p, provenance_keys[i]);
+        if (!t || (v && g_strcmp0(cfg_file(v), cfg_file(t)) != 0))
+            continue;
+        if (text)
+            *text = cfg_scalar(t);
+        return (MachProvenance)(MACH_PROV_SOURCE + i);
+    }
+    return MACH_PROV_OVERRIDE;
+}
+
+const char *mach_provenance_name(MachProvenance p)
+{
+    static const char *const names[] = {"none", "source", "calibrated",
+                                        "assumption", "override"};
+    g_assert((unsigned)p < G_N_ELEMENTS(names));
+    return names[p];
+}
+
 const char *mach_param_word(const CfgNode *map, const char *key)
 {
     const CfgNode *v = mach_param_node(map, key);

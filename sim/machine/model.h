@@ -56,6 +56,23 @@ CfgNode *mach_load_model(const char *name, GError **err);
 gboolean mach_model_check(const CfgNode *root, const char *model_file,
                           GError **err);
 
+/* Where a parameter's value comes from. */
+typedef enum {
+    MACH_PROV_NONE,       /* no such parameter */
+    MACH_PROV_SOURCE,     /* a published figure */
+    MACH_PROV_CALIBRATED, /* fitted to named published cells */
+    MACH_PROV_ASSUMPTION, /* an estimate, with its reasoning */
+    MACH_PROV_OVERRIDE    /* set by a run config over the model's value */
+} MachProvenance;
+
+/* The provenance of (map, key) and its text (borrowed; NULL for an
+ * override or when absent): the provenance given in the same file as the
+ * value, so an override of `value` alone (the model's source merged in
+ * from another file) is an override. */
+MachProvenance mach_param_provenance(const CfgNode *map, const char *key,
+                                     const char **text);
+const char *mach_provenance_name(MachProvenance p);
+
 /* The expected type of a node-kind or network key; FALSE if unknown. */
 gboolean mach_kind_key_type(const char *key, MachType *out);
 gboolean mach_net_key_type(const char *key, MachType *out);

@@ -149,6 +149,26 @@ static void test_overrides_apply(void **state)
     /* the network follows the override: 8 nodes, a 3-cube */
     assert_non_null(mach_net(m));
     assert_int_equal(net_nodes(mach_net(m)), 8);
+    /* provenance: overrides are reported as such, the rest keeps its own */
+    const CfgNode *tree = mach_model_cfg(m);
+    const CfgNode *kind = cfg_path(tree, "nodes.node");
+    const CfgNode *net = cfg_path(tree, "network");
+    const char *text = NULL;
+    assert_int_equal(mach_param_provenance(kind, "count", &text),
+                     MACH_PROV_OVERRIDE);
+    assert_null(text);
+    assert_int_equal(mach_param_provenance(kind, "clock", &text),
+                     MACH_PROV_SOURCE);
+    assert_non_null(strstr(text, "bomans89"));
+    assert_int_equal(mach_param_provenance(kind, "memory", NULL),
+                     MACH_PROV_ASSUMPTION);
+    assert_int_equal(mach_param_provenance(net, "startup", &text),
+                     MACH_PROV_CALIBRATED);
+    assert_string_equal(text, "a test");
+    assert_int_equal(mach_param_provenance(net, "nothing", NULL),
+                     MACH_PROV_NONE);
+    assert_string_equal(mach_provenance_name(MACH_PROV_CALIBRATED),
+                        "calibrated");
     /* the config's keys are marked read for cfg_check_unused() */
     assert_true(cfg_check_unused(root, &err));
     mach_free(m);
