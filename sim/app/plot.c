@@ -310,8 +310,10 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
             g_string_append(o, ":3:4");
         if (cat)
             g_string_append(o, ":xtic(5)");
-        g_string_append_printf(o, " with %s", bars ? "yerrorlines"
-                                                   : p->style);
+        const char *with = !bars ? p->style
+                           : strcmp(p->style, "points") == 0 ? "yerrorbars"
+                                                             : "yerrorlines";
+        g_string_append_printf(o, " with %s", with);
         g_string_append(o, " title ");
         char *t = p->series ? g_strdup_printf("%s=%s", p->series, s->name)
                             : g_strdup(p->y);
