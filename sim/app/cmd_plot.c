@@ -5,6 +5,7 @@
  * Writes FILE.png, FILE.svg, FILE.gp and FILE.dat (default: <y>-vs-<x>
  * next to the CSV) through plot_render().
  */
+#include "sim/app/cli.h"
 #include "sim/app/commands.h"
 #include "sim/app/plot.h"
 #include <stdio.h>
@@ -15,8 +16,9 @@ typedef struct {
     gboolean logx, logy;
 } PlotOpts;
 
+/* FALSE when the caller should return *status (help, or a bad option). */
 static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv,
-                           GError **err)
+                           int *status)
 {
     GOptionEntry entries[] = {
         {"x", 0, 0, G_OPTION_ARG_STRING, &o->x, "x column", "K"},
@@ -29,19 +31,17 @@ static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv,
         {"output", 'o', 0, G_OPTION_ARG_FILENAME, &o->out,
          "PNG to write (an SVG, .gp and .dat go beside it)", "FILE.png"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
-    GOptionContext *ctx = g_option_context_new("RESULTS.csv");
-    g_option_context_add_main_entries(ctx, entries, NULL);
-    gboolean ok = g_option_context_parse(ctx, argc, argv, err);
-    g_option_context_free(ctx);
-    if (!ok) {
-        (*err)->domain = SIM_ERROR;
-        (*err)->code = SIM_ERROR_INPUT;
+    if (!cli_parse("plot", "RESULTS.csv",
+                   "Charts two columns of a CSV file with gnuplot "
+                   "(docs/sweeps.md).",
+                   entries, argc, argv, status))
         return FALSE;
-    }
-    if (*argc != 2 || !o->x || !o->y) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "plot: found %s, expected RESULTS.csv --x K --y K",
-                    *argc != 2 ? "no single CSV file" : "no --x or --y");
+    *status = 2;
+    if (!cli_want_args("plot", "RESULTS.csv", *argc, *argv, 1))
+        return FALSE;
+    if (!o->x || !o->y) {
+        fprintf(stderr, "pgsim plot: found no --%s, expected --x K --y K\n",
+                o->x ? "y" : "x");
         return FALSE;
     }
     return TRUE;
@@ -90,10 +90,10 @@ int cmd_plot(int argc, char **argv)
     PlotOpts o = {0};
     GError *err = NULL;
     int st = 0;
-    if (!parse_opts(&o, &argc, &argv, &err) || !plot_csv(&o, argv[1], &err)) {
-        fprintf(stderr, "pgsim plot: %s\n", err->message);
-        st = sim_error_exit_status(err);
-        g_error_free(err);
+    if (parse_opts(&o, &argc, &argv, &st)) {
+        st = 0;
+        if (!plot_csv(&o, argv[1], &err))
+            st = cli_fail(err);
     }
     g_free(o.x);
     g_free(o.y);

@@ -10,6 +10,7 @@
  * Markdown report --doc FILE (default docs/reproduction.md) with charts
  * in <its directory>/reproduction/.
  */
+#include "sim/app/cli.h"
 #include "sim/app/commands.h"
 #include "sim/app/rp_doc.h"
 #include "sim/app/rp_driver.h"
@@ -43,7 +44,8 @@ static gboolean parse_format(RpOpts *o, GError **err)
     return FALSE;
 }
 
-static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, GError **err)
+/* FALSE when the caller should return *status (help, or a bad option). */
+static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
 {
     GOptionEntry entries[] = {
         {"format", 0, 0, G_OPTION_ARG_STRING, &o->format,
@@ -59,17 +61,17 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, GError **err)
          "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
-    GOptionContext *ctx = g_option_context_new("NAME|all");
-    g_option_context_set_summary(ctx, "Reruns a paper's tables and compares "
-                                      "them with the published values.");
-    g_option_context_add_main_entries(ctx, entries, NULL);
-    gboolean ok = g_option_context_parse(ctx, argc, argv, err);
-    g_option_context_free(ctx);
-    if (!ok) {
-        (*err)->domain = SIM_ERROR;
-        (*err)->code = SIM_ERROR_INPUT;
+    if (!cli_parse("reproduce", "NAME|all",
+                   "Reruns a paper's tables and compares them with the "
+                   "published values (docs/reproduction-format.md).",
+                   entries, argc, argv, status))
         return FALSE;
-    }
+    *status = 2;
+    return cli_want_args("reproduce", "NAME|all", *argc, *argv, 1);
+}
+
+static gboolean check_opts(RpOpts *o, GError **err)
+{
     if (!o->format)
         o->format = g_strdup("text");
     if (!o->fidelity)
@@ -233,7 +235,8 @@ static gboolean run_all(const RpOpts *o, GError **err)
     }
     if (!rp_all[0])
         g_string_append(md, "No reproduction is registered yet.\n");
-    if (ok && !g_file_set_contents(doc, md->str, (gssize)md->len, NULL)) {
+    if (ok && (g_mkdir_with_parents(dir, 0755) != 0 ||
+               !g_file_set_contents(doc, md->str, (gssize)md->len, NULL))) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot write", doc);
         ok = FALSE;
     }
@@ -270,20 +273,11 @@ int cmd_reproduce(int argc, char **argv)
 {
     RpOpts o = {0};
     GError *err = NULL;
-    gboolean ok = parse_opts(&o, &argc, &argv, &err);
-    if (ok && argc != 2) {
-        g_set_error(&err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "reproduce: found %d names, expected one (NAME or all)",
-                    argc - 1);
-        ok = FALSE;
-    }
-    if (ok)
-        ok = run_named(argv[1], &o, &err);
     int status = 0;
-    if (!ok) {
-        fprintf(stderr, "pgsim reproduce: %s\n", err->message);
-        status = sim_error_exit_status(err);
-        g_error_free(err);
+    if (parse_opts(&o, &argc, &argv, &status)) {
+        status = 0;
+        if (!check_opts(&o, &err) || !run_named(argv[1], &o, &err))
+            status = cli_fail(err);
     }
     g_free(o.format);
     g_free(o.out_dir);

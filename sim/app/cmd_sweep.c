@@ -9,6 +9,7 @@
  * succeeded, 1 when some point failed (its row holds the error), 2 on bad
  * input.
  */
+#include "sim/app/cli.h"
 #include "sim/app/commands.h"
 #include "sim/app/sweep_mpi.h"
 #include "sim/workload/workload.h"
@@ -56,8 +57,9 @@ static gboolean run_config(const CfgNode *cfg, uint64_t seed, SimResult **out,
     return ok;
 }
 
+/* FALSE when the caller should return *status (help, or a bad option). */
 static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv,
-                           GError **err)
+                           int *status)
 {
     GOptionEntry entries[] = {
         {"jobs", 'j', 0, G_OPTION_ARG_INT, &o->jobs,
@@ -69,23 +71,22 @@ static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv,
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress bar",
          NULL},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
-    GOptionContext *ctx = g_option_context_new("SWEEP.yaml");
-    g_option_context_add_main_entries(ctx, entries, NULL);
-    gboolean ok = g_option_context_parse(ctx, argc, argv, err);
-    g_option_context_free(ctx);
-    if (ok && *argc != 2)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "sweep: found %d sweep files, expected one", *argc - 1);
-    else if (ok && o->jobs < 0)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "-j: found %d, expected a positive count", o->jobs);
-    else if (!ok) {
-        (*err)->domain = SIM_ERROR;
-        (*err)->code = SIM_ERROR_INPUT;
+    if (!cli_parse("sweep", "SWEEP.yaml",
+                   "Runs a parameter sweep (docs/sweeps.md): locally with "
+                   "-j worker processes, or over the ranks of mpirun.",
+                   entries, argc, argv, status))
+        return FALSE;
+    *status = 2;
+    if (!cli_want_args("sweep", "SWEEP.yaml", *argc, *argv, 1))
+        return FALSE;
+    if (o->jobs < 0) {
+        fprintf(stderr, "pgsim sweep: -j: found %d, expected a positive "
+                        "count\n", o->jobs);
+        return FALSE;
     }
     if (o->jobs == 0)
         o->jobs = (int)g_get_num_processors();
-    return err == NULL || *err == NULL;
+    return TRUE;
 }
 
 static char *out_dir_for(const SweepOpts *o, const SweepSpec *s)
@@ -118,12 +119,8 @@ static int report(const SweepSpec *s, const char *dir, guint ran,
     guint failed = 0;
     if (!err)
         finish(s, dir, &failed, &err);
-    if (err) {
-        fprintf(stderr, "pgsim sweep: %s\n", err->message);
-        int st = sim_error_exit_status(err);
-        g_error_free(err);
-        return st;
-    }
+    if (err)
+        return cli_fail(err);
     printf("sweep %s: %u points (%u run now), %u failed; %s/results.csv\n",
            s->name, sweep_spec_points(s), ran, failed, dir);
     return failed ? 1 : 0;
@@ -161,13 +158,13 @@ static int with_spec(const char *path, const SweepOpts *o, int rank,
 {
     GError *err = NULL;
     SweepSpec *s = sweep_spec_load(path, &err);
-    if (!s) {
-        if (rank == 0)
-            fprintf(stderr, "pgsim sweep: %s\n", err->message);
+    if (!s && rank > 0) {
         int st = sim_error_exit_status(err);
         g_error_free(err);
         return st;
     }
+    if (!s)
+        return cli_fail(err);
     int st = 0;
     if (rank > 0)
         sweep_mpi_worker(s, run_config);
@@ -180,19 +177,14 @@ static int with_spec(const char *path, const SweepOpts *o, int rank,
 int cmd_sweep(int argc, char **argv)
 {
     SweepOpts o = {0};
-    GError *err = NULL;
-    int rank = 0, size = 1, st;
+    int rank = 0, size = 1, st = 0;
     gboolean mpi = sweep_mpi_launched();
     if (mpi)
         sweep_mpi_init(&argc, &argv, &rank, &size);
-    if (!parse_opts(&o, &argc, &argv, &err)) {
-        if (rank == 0)
-            fprintf(stderr, "pgsim sweep: %s\n", err->message);
-        st = sim_error_exit_status(err);
-        g_error_free(err);
-    } else {
+    if (rank > 0)
+        o.quiet = TRUE;
+    if (parse_opts(&o, &argc, &argv, &st))
         st = with_spec(argv[1], &o, rank, size);
-    }
     if (mpi)
         sweep_mpi_finalize();
     g_free(o.out_dir);
