@@ -66,6 +66,16 @@ static gboolean get_guint(const CfgNode *map, const char *key, guint64 min,
     return TRUE;
 }
 
+/* "file:line:col" of map[key] (or of the map); free with g_free(). */
+static char *where(const CfgNode *map, const char *key)
+{
+    const CfgNode *at = cfg_get(map, key);
+    if (!at)
+        at = map;
+    return g_strdup_printf("%s:%d:%d", cfg_file(at), cfg_line(at),
+                           cfg_col(at));
+}
+
 static gboolean want_map(const CfgNode *n, const char *what, GError **err)
 {
     if (cfg_kind(n) == CFG_MAP)
@@ -138,10 +148,7 @@ static Scene *gen_teapots(const CfgNode *sec, GError **err)
         cfg_get_bool(sec, "vary_color", FALSE, &p.vary_color, err) &&
         get_placements(sec, &p, pl, err)) {
         p.polygons_per_teapot = polys;
-        const CfgNode *at = cfg_get(sec, "polygons_per_teapot");
-        char *what = g_strdup_printf("%s:%d:%d", cfg_file(at ? at : sec),
-                                     cfg_line(at ? at : sec),
-                                     cfg_col(at ? at : sec));
+        char *what = where(sec, "polygons_per_teapot");
         s = scene_teapots_new(&p, what, err);
         g_free(what);
     }
@@ -168,7 +175,10 @@ static Scene *gen_vehicle(const CfgNode *sec, GError **err)
         !get_guint(sec, "frames", 1, 1u << 24, &p.frames, err))
         return NULL;
     p.triangles = tris;
-    return scene_vehicle_new(&p, cfg_file(sec), err);
+    char *what = where(sec, "triangles");
+    Scene *s = scene_vehicle_new(&p, what, err);
+    g_free(what);
+    return s;
 }
 
 static const char *const fields[] = {"gyroid", "metaballs", NULL};
@@ -253,8 +263,9 @@ static Scene *load_file(const CfgNode *sec, GError **err)
     if (!cfg_get_str(sec, "file", TRUE, &file, err))
         return NULL;
     char *dir = g_path_get_dirname(cfg_file(sec));
-    char *path = g_path_is_absolute(file) ? g_strdup(file)
-                                          : g_build_filename(dir, file, NULL);
+    char *path = g_path_is_absolute(file) || !strcmp(dir, ".")
+                     ? g_strdup(file)
+                     : g_build_filename(dir, file, NULL);
     Scene *s = scene_from_file(path, err);
     g_free(path);
     g_free(dir);
