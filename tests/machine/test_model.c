@@ -159,8 +159,8 @@ static void test_overrides_apply(void **state)
     assert_null(text);
     assert_int_equal(mach_param_provenance(kind, "clock", &text),
                      MACH_PROV_SOURCE);
-    assert_non_null(strstr(text, "bomans89"));
-    assert_int_equal(mach_param_provenance(kind, "memory", NULL),
+    assert_non_null(strstr(text, "dunigan91"));
+    assert_int_equal(mach_param_provenance(net, "per_hop", NULL),
                      MACH_PROV_ASSUMPTION);
     assert_int_equal(mach_param_provenance(net, "startup", &text),
                      MACH_PROV_CALIBRATED);
