@@ -9,7 +9,7 @@
  *       fidelity: {values: [analytic, packet]}
  *     combine: product              # or zip
  *     repetitions: 3
- *     seed: 42                      # optional: overrides the base's seed
+ *     seed: 42                      # optional: overrides run.seed
  *     plots: [...]                  # sweep_plot.c
  *
  * Invariants: every parameter has >= 1 value; under zip all have the same
@@ -291,7 +291,7 @@ static gboolean read_base(SweepSpec *s, const CfgNode *root, const char *text,
 
 static gboolean read_seed(SweepSpec *s, const CfgNode *root, GError **err)
 {
-    const char *key = "seed";
+    const char *key = "run.seed";
     if (!cfg_get_str(root, "seed_key", FALSE, &key, err))
         return FALSE;
     s->seed_key = g_strdup(key);

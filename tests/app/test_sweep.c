@@ -30,7 +30,7 @@ static void assert_values(const SweepSpec *s, guint i, const char *a,
 static void test_product(void **state)
 {
     (void)state;
-    SweepSpec *s = parse_ok("base: {seed: 7, a: 0, b: 0}\n"
+    SweepSpec *s = parse_ok("base: {run: {seed: 7}, a: 0, b: 0}\n"
                             "parameters:\n"
                             "  a: [1, 2, 3]\n"
                             "  b: {from: 0.5, to: 1.5, step: 0.5}\n"
@@ -53,7 +53,7 @@ static void test_product(void **state)
     assert_string_equal(cfg_scalar(cfg_path(cfg, "b")), "0.5");
     char seed[32];
     g_snprintf(seed, sizeof seed, "%" G_GUINT64_FORMAT, p1.seed);
-    assert_string_equal(cfg_scalar(cfg_path(cfg, "seed")), seed);
+    assert_string_equal(cfg_scalar(cfg_path(cfg, "run.seed")), seed);
     cfg_free(cfg);
     sweep_spec_free(s);
 }
@@ -111,7 +111,7 @@ static void test_bad_files(void **state)
 
 /* ---- running --------------------------------------------------------- */
 
-static const char run_yaml[] = "base: {seed: 11, a: 0, b: 0}\n"
+static const char run_yaml[] = "base: {run: {seed: 11}, a: 0, b: 0}\n"
                                "parameters:\n"
                                "  a: [1, 2, 3]\n"
                                "  b: {from: 0, to: 4, step: 1}\n"

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-static const char yaml[] = "base: {seed: 5, a: 0, b: 0}\n"
+static const char yaml[] = "base: {run: {seed: 5}, a: 0, b: 0}\n"
                            "parameters:\n"
                            "  a: [1, 2, 3, 4, 6]\n"
                            "  b: {from: 0, to: 2, step: 1}\n"
