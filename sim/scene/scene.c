@@ -137,8 +137,8 @@ SceneBox scene_bbox(const Scene *s)
     SceneBox b = scene_box_empty();
     for (guint i = 0; i < scene_n_instances(s); i++) {
         SceneBox mb = scene_mesh_bbox(scene_instance_mesh(s, i));
-        b = scene_box_union(b,
-                            scene_box_transform(mb, scene_instance(s, i)->xform));
+        Mat4 xf = scene_instance(s, i)->xform;
+        b = scene_box_union(b, scene_box_transform(mb, xf));
     }
     return b;
 }

@@ -325,7 +325,8 @@ int main(void)
         cmocka_unit_test(test_ply_binary_types),
         cmocka_unit_test(test_obj_roundtrip),
         cmocka_unit_test(test_ply_roundtrip), cmocka_unit_test(test_bad_files),
-        cmocka_unit_test(test_truncations),   cmocka_unit_test(test_corruptions),
+        cmocka_unit_test(test_truncations),
+        cmocka_unit_test(test_corruptions),
     };
     return cmocka_run_group_tests_name("loaders", tests, NULL, NULL);
 }

@@ -125,7 +125,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_data_matches_file), cmocka_unit_test(test_rule),
-        cmocka_unit_test(test_3751),              cmocka_unit_test(test_counts_exact),
+        cmocka_unit_test(test_3751),
+        cmocka_unit_test(test_counts_exact),
         cmocka_unit_test(test_eval),
     };
     return cmocka_run_group_tests_name("teapot", tests, NULL, NULL);
