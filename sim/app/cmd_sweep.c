@@ -6,8 +6,8 @@
  * mpirun, over the MPI ranks (sweep_mpi.c), then writes the ordered
  * results.csv / results.jsonl and the charts of the `plots:` section into
  * DIR (default out/<sweep name>).  Exit status: 0 when every point
- * succeeded, 1 when some point failed (its row holds the error), 2 on bad
- * input.
+ * succeeded, 1 when some point failed (its row holds the error) or a chart
+ * could not be drawn, 2 on bad input.
  */
 #include "sim/app/cli.h"
 #include "sim/app/commands.h"
@@ -97,7 +97,7 @@ static char *out_dir_for(const SweepOpts *o, const SweepSpec *s)
 
 /* Writes the ordered outputs and the charts; counts failed rows. */
 static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
-                       GError **err)
+                       guint *charts_failed, GError **err)
 {
     DataTable *t = NULL;
     if (!sweep_log_finish(dir, s, &t, err))
@@ -106,24 +106,33 @@ static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
     *failed = 0;
     for (guint r = 0; r < t->rows->len; r++)
         *failed += strcmp(dt_cell(t, r, sc), "ok") != 0;
-    gboolean ok = TRUE;
-    for (guint p = 0; ok && p < s->plots->len; p++)
-        ok = plot_render(g_ptr_array_index(s->plots, p), t, dir, err);
+    /* a chart that cannot be drawn (every point failed ...) is reported
+     * but does not hide the results */
+    for (guint p = 0; p < s->plots->len; p++) {
+        const PlotSpec *ps = g_ptr_array_index(s->plots, p);
+        GError *e = NULL;
+        if (!plot_render(ps, t, dir, &e)) {
+            fprintf(stderr, "pgsim sweep: chart %s not drawn: %s\n",
+                    ps->name, e->message);
+            g_error_free(e);
+            *charts_failed += 1;
+        }
+    }
     dt_free(t);
-    return ok;
+    return TRUE;
 }
 
 static int report(const SweepSpec *s, const char *dir, guint ran,
                   GError *err)
 {
-    guint failed = 0;
+    guint failed = 0, charts_failed = 0;
     if (!err)
-        finish(s, dir, &failed, &err);
+        finish(s, dir, &failed, &charts_failed, &err);
     if (err)
         return cli_fail(err);
     printf("sweep %s: %u points (%u run now), %u failed; %s/results.csv\n",
            s->name, sweep_spec_points(s), ran, failed, dir);
-    return failed ? 1 : 0;
+    return failed || charts_failed ? 1 : 0;
 }
 
 /* Rank 0 (or the only process): runs the points not yet done, locally or
