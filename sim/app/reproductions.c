@@ -1,9 +1,11 @@
 /* reproductions.c — the table of paper reproductions (one row each). */
 #include "sim/app/reproduce.h"
+#include "sim/workload/pphigs/ellsworth90.h"
 #include <math.h>
 #include <string.h>
 
 const RpReproduction *const rp_all[] = {
+    &wl_pphigs_ellsworth90,
     NULL,
 };
 

@@ -31,11 +31,11 @@ static void test_one_gp_is_serial(void **st)
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     WlPphigsMetrics a, b;
-    wl_pphigs_run_db(&db, 1, &C, 8, &a, &b);
+    wl_pphigs_run_db(&db, 1, &C, 8, NULL, &a, &b);
     assert_true(fabs(a.efficiency - 1) < 1e-12);
     assert_true(fabs(b.efficiency - 1) < 1e-12);
     assert_true(fabs(b.utilisation - 1) < 1e-12);
-    wl_pphigs_run_db(&db, 4, &C, 8, &a, &b);
+    wl_pphigs_run_db(&db, 4, &C, 8, NULL, &a, &b);
     assert_true(fabs(b.speedup - b.t1 / b.max) < 1e-9);
     assert_true(a.efficiency < 0.9); /* attributes copied to every GP */
     assert_true(b.efficiency > a.efficiency + 0.1);
@@ -70,7 +70,7 @@ static void test_table_rows(void **st)
     s[1].figures = 2, s[1].structures = 20, s[1].polygons = 200;
     s[1].levels = 5;
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
-    assert_true(wl_pphigs_table1(s, 2, &C, 64, rows, NULL));
+    assert_true(wl_pphigs_table1(s, 2, &C, 64, NULL, rows, NULL));
     assert_int_equal(rows->len, 2 * (8 + 5));
     guint table1 = 0;
     for (guint i = 0; i < rows->len; i++) {
@@ -85,7 +85,7 @@ static void test_table_rows(void **st)
     s[1].levels = 50; /* cannot be met */
     GError *err = NULL;
     rows = g_ptr_array_new_with_free_func(rp_row_free);
-    assert_false(wl_pphigs_table1(s, 2, &C, 64, rows, &err));
+    assert_false(wl_pphigs_table1(s, 2, &C, 64, NULL, rows, &err));
     assert_non_null(err);
     g_clear_error(&err);
     g_ptr_array_unref(rows);

@@ -12,21 +12,34 @@
 #ifndef PGSIM_WORKLOAD_PPHIGS_ELLSWORTH90_H
 #define PGSIM_WORKLOAD_PPHIGS_ELLSWORTH90_H
 
+#include "sim/app/reproduce.h"
 #include "sim/scene/pphigs_db.h"
 #include "sim/workload/pphigs/metrics.h"
+#include "sim/workload/pphigs/pphigs_cfg.h"
 
 double wl_pphigs_cluster_factor(double cluster_scale, guint ngp);
 
-/* Runs one database at one GP count with both algorithms. */
+/* Runs one database at one GP count with both algorithms.  With hw the
+ * processor times are the GPs' traverse busy times of one event-driven
+ * frame each (frame.h; T1 from a one-GP frame); with hw NULL the
+ * analytic traversal cost (metrics.h).  Both give the same numbers up to
+ * picosecond rounding (tested). */
 void wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
                       const WlPphigsCosts *c, double cluster_scale,
-                      WlPphigsMetrics *simple, WlPphigsMetrics *complex);
+                      const WlPphigsHw *hw, WlPphigsMetrics *simple,
+                      WlPphigsMetrics *complex);
 
 /* Appends RpRow * (sim/app/reproduce.h) for the given databases (specs
  * in seed 001's row order; n of them).  FALSE with *err if a spec is
  * bad. */
 gboolean wl_pphigs_table1(const ScenePphigsSpec *specs, guint n,
                           const WlPphigsCosts *c, double cluster_scale,
-                          GPtrArray *rows, GError **err);
+                          const WlPphigsHw *hw, GPtrArray *rows,
+                          GError **err);
+
+/* The reproduction (sim/app/reproductions.c): reads
+ * configs/pphigs/databases.yaml, models/pixel-planes-5.yaml and
+ * configs/pphigs/frame.yaml from the working directory. */
+extern const RpReproduction wl_pphigs_ellsworth90;
 
 #endif
