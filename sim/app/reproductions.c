@@ -1,10 +1,12 @@
 /* reproductions.c — the table of paper reproductions (one row each). */
 #include "sim/app/reproduce.h"
+#include "sim/workload/dpscan/ortega93.h"
 #include "sim/workload/pphigs/ellsworth90.h"
 #include <math.h>
 #include <string.h>
 
 const RpReproduction *const rp_all[] = {
+    &wl_dp_ortega93,
     &wl_pphigs_ellsworth90,
     NULL,
 };
