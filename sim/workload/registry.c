@@ -2,7 +2,10 @@
 #include "sim/workload/workload.h"
 #include <string.h>
 
+extern const WlOps wl_pphigs_ops;
+
 const WlOps *const wl_all[] = {
+    &wl_pphigs_ops,
     NULL,
 };
 
