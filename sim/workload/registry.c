@@ -1,11 +1,13 @@
 /* registry.c — the table of workloads (one row per workload). */
 #include "sim/workload/workload.h"
+#include "sim/workload/dpscan/dp_wl.h"
 #include <string.h>
 
 extern const WlOps wl_pphigs_ops;
 
 const WlOps *const wl_all[] = {
     &wl_pphigs_ops,
+    &wl_dpscan_ops,
     NULL,
 };
 

@@ -9,6 +9,7 @@
 #include "sim/scene/isosurface.h"
 #include "sim/workload/dpscan/dp_frame.h"
 #include "sim/workload/dpscan/dp_model.h"
+#include "sim/workload/workload.h"
 
 static void test_vp_ratio(void **state)
 {
@@ -172,6 +173,30 @@ static void test_model_errors(void **state)
     cfg_free(root);
 }
 
+static void test_workload_run(void **state)
+{
+    (void)state;
+    const char *yml = "workload: {type: dpscan, model: cm200, "
+                      "processors: 1024, width: 64, height: 48}\n"
+                      "scene: {generator: isosurface, grid: 8}\n";
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(yml, "run.yaml", &err);
+    const WlOps *ops = wl_find("dpscan");
+    assert_non_null(ops);
+    void *p = ops->parse(cfg_get(root, "workload"), &err);
+    assert_non_null(p);
+    WlContext ctx = {.root = root, .frames = 2};
+    SimResult *r = sim_result_new("dpscan", "cm200");
+    assert_true(ops->run(&ctx, p, r, &err));
+    assert_int_equal(r->frame_times->len, 2);
+    double pps = 0;
+    assert_true(sim_result_get_metric(r, "polygons_per_s", &pps));
+    assert_true(pps > 0);
+    sim_result_free(r);
+    ops->free_params(p);
+    cfg_free(root);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -182,6 +207,7 @@ int main(void)
         cmocka_unit_test(test_pixels_match_raster),
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_model_errors),
+        cmocka_unit_test(test_workload_run),
     };
     return cmocka_run_group_tests_name("dpscan", tests, NULL, NULL);
 }
