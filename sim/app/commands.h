@@ -17,6 +17,8 @@ typedef struct {
 
 int cmd_bench(int argc, char **argv);
 int cmd_help(int argc, char **argv);
+int cmd_run(int argc, char **argv);
+int cmd_validate(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 
 /* NULL-terminated table, in the order `pgsim help` lists them. */

@@ -1,6 +1,7 @@
 /* registry.c — the table of workloads (one row per workload). */
 #include "sim/workload/workload.h"
 #include "sim/workload/dpscan/dp_wl.h"
+#include "sim/workload/tokenring/tokenring.h"
 #include <string.h>
 
 extern const WlOps wl_pphigs_ops;
@@ -8,6 +9,7 @@ extern const WlOps wl_pphigs_ops;
 const WlOps *const wl_all[] = {
     &wl_pphigs_ops,
     &wl_dpscan_ops,
+    &wl_tokenring_ops,
     NULL,
 };
 
@@ -17,4 +19,13 @@ const WlOps *wl_find(const char *name)
         if (strcmp(wl_all[i]->name, name) == 0)
             return wl_all[i];
     return NULL;
+}
+
+SimTime wl_until(const WlContext *ctx)
+{
+    SimTime t = SIM_TIME_MAX;
+    const CfgNode *run = cfg_get(ctx->root, "run");
+    if (!cfg_get_time(run, "until", FALSE, &t, NULL))
+        t = SIM_TIME_MAX; /* cannot happen on a loaded config */
+    return t;
 }

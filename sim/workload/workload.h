@@ -35,6 +35,10 @@ typedef struct {
                     GError **err);
 } WlOps;
 
+/* The run's `run.until` bound (already validated by the config loader):
+ * the time to pass to sim_engine_run(); SIM_TIME_MAX when absent. */
+SimTime wl_until(const WlContext *ctx);
+
 /* Looks a workload up by name; NULL if unknown. */
 const WlOps *wl_find(const char *name);
 /* NULL-terminated list of every workload, for help and errors. */
