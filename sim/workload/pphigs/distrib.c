@@ -576,6 +576,7 @@ gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
                                  : 0;
     if (!scene_db_modify(d->host, sid, pos, &c, err))
         return FALSE;
+    c = *hel(d, sid, pos); /* e's vertices may have been the old host's */
     uint64_t m = *mask_at(d, sid, pos);
     for (guint g = 0; g < d->ngp; g++)
         if ((m >> g) & 1) {
