@@ -10,6 +10,7 @@
  * Markdown report --doc FILE (default docs/reproduction.md) with charts
  * in <its directory>/reproduction/.
  */
+#include "sim/app/atomic.h"
 #include "sim/app/cli.h"
 #include "sim/app/commands.h"
 #include "sim/app/rp_doc.h"
@@ -117,11 +118,7 @@ static gboolean write_file(const char *dir, const char *name,
 {
     char *file = g_strconcat(name, ".", ext, NULL);
     char *path = g_build_filename(dir, file, NULL);
-    gboolean ok = g_file_set_contents(path, s->str, (gssize)s->len, err);
-    if (!ok) {
-        (*err)->domain = SIM_ERROR;
-        (*err)->code = SIM_ERROR_IO;
-    }
+    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
     g_free(path);
     g_free(file);
     return ok;
@@ -235,11 +232,11 @@ static gboolean run_all(const RpOpts *o, GError **err)
     }
     if (!rp_all[0])
         g_string_append(md, "No reproduction is registered yet.\n");
-    if (ok && (g_mkdir_with_parents(dir, 0755) != 0 ||
-               !g_file_set_contents(doc, md->str, (gssize)md->len, NULL))) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot write", doc);
+    if (ok && g_mkdir_with_parents(dir, 0755) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
         ok = FALSE;
     }
+    ok = ok && rpt_write_atomic(doc, md->str, md->len, err);
     if (ok && !o->quiet)
         fprintf(stderr, "reproduce: wrote %s\n", doc);
     g_string_free(md, TRUE);

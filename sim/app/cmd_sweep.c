@@ -12,7 +12,7 @@
 #include "sim/app/cli.h"
 #include "sim/app/commands.h"
 #include "sim/app/sweep_mpi.h"
-#include "sim/workload/workload.h"
+#include "sim/app/config.h"
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -24,37 +24,19 @@ typedef struct {
     gboolean quiet;
 } SweepOpts;
 
-/* Runs one point's config.  TEMPORARY: a minimal reading of the run config
- * (workload.type, fidelity, frames) until sim/app/config.c's run entry
- * point lands; then this becomes a call to it. */
+/* Runs one point's config through the run-config loader (the same
+ * checks as `pgsim run`, so a bad value is that point's located error). */
 static gboolean run_config(const CfgNode *cfg, uint64_t seed, SimResult **out,
                            GError **err)
 {
-    const CfgNode *sec = cfg_get(cfg, "workload");
-    const char *type = NULL, *fidelity = "flow";
-    int64_t frames = 1;
-    if (!sec || !cfg_get_str(sec, "type", TRUE, &type, err) ||
-        !cfg_get_str(cfg, "fidelity", FALSE, &fidelity, err) ||
-        !cfg_get_int(cfg, "frames", FALSE, 1, 1000000, &frames, err)) {
-        if (!sec)
-            cfg_error(err, cfg, "no 'workload' section", "workload: {type}");
+    CfgRun *run = cfg_run_from_tree(cfg_copy(cfg), NULL, err);
+    if (!run)
         return FALSE;
-    }
-    const WlOps *ops = wl_find(type);
-    if (!ops) {
-        cfg_error(err, cfg_get(sec, "type"), type, "a known workload");
-        return FALSE;
-    }
-    void *params = ops->parse(sec, err);
-    if (!params)
-        return FALSE;
-    SimEngine *eng = sim_engine_new(seed);
-    WlContext ctx = {eng, cfg, seed, fidelity, (int)frames, NULL, TRUE};
-    *out = sim_result_new(type, "");
-    gboolean ok = ops->run(&ctx, params, *out, err);
-    ops->free_params(params);
-    sim_engine_free(eng);
-    return ok;
+    g_assert(run->seed == seed);
+    CfgRunOpts opts = {.out_dir = NULL, .quiet = TRUE, .progress = FALSE};
+    *out = cfg_run_exec(run, &opts, err);
+    cfg_run_free(run);
+    return *out != NULL;
 }
 
 /* FALSE when the caller should return *status (help, or a bad option). */

@@ -6,6 +6,7 @@
  * min..max error bars around the mean.  O(rows * groups per series).
  */
 #include "sim/app/plot.h"
+#include "sim/app/atomic.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -288,7 +289,7 @@ static void script_head(GString *o, const PlotSpec *p, gboolean cat)
     put_quoted(o, p->xlabel ? p->xlabel : p->x);
     g_string_append(o, "\nset ylabel ");
     put_quoted(o, p->ylabel ? p->ylabel : p->y);
-    g_string_append(o, "\nset grid\nset key outside right top\n"
+    g_string_append(o, "\nset grid\nset key top left\n"
                        "set datafile separator \"\\t\"\n");
     if (p->logx && !cat)
         g_string_append(o, "set logscale x\n");
@@ -350,12 +351,7 @@ static gboolean save(const char *dir, const char *name, const char *ext,
 {
     char *file = g_strconcat(name, ext, NULL);
     char *path = g_build_filename(dir, file, NULL);
-    GError *e = NULL;
-    gboolean ok = g_file_set_contents(path, s->str, (gssize)s->len, &e);
-    if (!ok) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
-        g_error_free(e);
-    }
+    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
     g_free(path);
     g_free(file);
     return ok;

@@ -8,6 +8,7 @@
  * log is O(bytes); finishing is O(points * columns).
  */
 #include "sim/app/sweep_log.h"
+#include "sim/app/atomic.h"
 #include "sim/app/json.h"
 #include <errno.h>
 #include <fcntl.h>
@@ -78,8 +79,7 @@ static gboolean check_fingerprint(const char *dir, const SweepSpec *spec,
         ok = FALSE;
     }
     char *text = g_strconcat(fp, "\n", NULL);
-    if (ok && !g_file_set_contents(path, text, -1, NULL))
-        ok = io_error(err, path, "write");
+    ok = ok && rpt_write_atomic(path, text, strlen(text), err);
     g_free(text);
     g_free(old);
     g_free(fp);
@@ -250,8 +250,7 @@ static gboolean write_atomic(const char *dir, const char *name,
                              const GString *s, GError **err)
 {
     char *path = in_dir(dir, name);
-    gboolean ok = g_file_set_contents(path, s->str, (gssize)s->len, NULL) ||
-                  io_error(err, path, "write");
+    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
     g_free(path);
     return ok;
 }

@@ -10,13 +10,14 @@
  *     combine: product              # or zip
  *     repetitions: 3
  *     seed: 42                      # optional: overrides run.seed
- *     plots: [...]                  # sweep_plot.c
+ *     plots: [...]                  # plot.c
  *
  * Invariants: every parameter has >= 1 value; under zip all have the same
  * count; combos * repetitions fits in a guint.  Seeds: repetition 0 uses
- * the base seed (so a one-point sweep equals `pgsim run`), repetition r > 0
- * uses sim_rng_mix(seed + r); the seed depends on the repetition only, so
- * every combination sees the same random streams (common random numbers).
+ * the base seed (so a one-point sweep equals `pgsim run`); repetition
+ * r > 0 uses sim_rng_mix(seed + r) >> 1 (63 bits: run.seed is signed).
+ * The seed depends on the repetition only, so every combination sees the
+ * same random streams (common random numbers).
  */
 #include "sim/app/sweep_spec.h"
 #include "sim/core/rng.h"
@@ -384,8 +385,8 @@ SweepPoint sweep_spec_point(const SweepSpec *s, guint index)
     g_assert(index < sweep_spec_points(s));
     SweepPoint pt = {index, index / s->repetitions, index % s->repetitions,
                      s->seed};
-    if (pt.rep > 0)
-        pt.seed = sim_rng_mix(s->seed + pt.rep);
+    if (pt.rep > 0) /* 63 bits: run.seed is read as a signed integer */
+        pt.seed = sim_rng_mix(s->seed + pt.rep) >> 1;
     return pt;
 }
 

@@ -69,21 +69,19 @@ static int mpi_main(int argc, char **argv)
     return 0;
 }
 
-static void test_mpi_equals_local(void **state)
+static char *mpirun_path(void)
 {
-    (void)state;
-    char *mpirun = g_find_program_in_path("mpirun");
-#ifndef PGSIM_HAVE_MPI
-    g_free(mpirun);
-    mpirun = NULL;
+#ifdef PGSIM_HAVE_MPI
+    return g_find_program_in_path("mpirun");
+#else
+    return NULL;
 #endif
-    if (!mpirun)
-        skip();
-    char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
-    char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
-    local_sweep(dl);
-    char *argv[] = {"timeout", "120", mpirun, "--allow-run-as-root",
-                    "--oversubscribe", "-np", "2", (char *)self, dm, NULL};
+}
+
+/* Runs argv (NULL-terminated) under `timeout 120`; fails the test on a
+ * non-zero exit. */
+static void run_ok(char **argv)
+{
     int status = -1;
     char *out = NULL, *errs = NULL;
     GError *err = NULL;
@@ -94,7 +92,23 @@ static void test_mpi_equals_local(void **state)
                              NULL, &out, &errs, &status, &err));
     g_strfreev(env);
     if (!g_spawn_check_wait_status(status, NULL))
-        fail_msg("mpirun failed: %s%s", out, errs);
+        fail_msg("%s failed: %s%s", argv[2], out, errs);
+    g_free(out);
+    g_free(errs);
+}
+
+static void test_mpi_equals_local(void **state)
+{
+    (void)state;
+    char *mpirun = mpirun_path();
+    if (!mpirun)
+        skip();
+    char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
+    char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
+    local_sweep(dl);
+    char *argv[] = {"timeout", "120", mpirun, "--allow-run-as-root",
+                    "--oversubscribe", "-np", "2", (char *)self, dm, NULL};
+    run_ok(argv);
     char *a = results(dl), *b = results(dm);
     assert_non_null(a);
     assert_non_null(b);
@@ -102,11 +116,64 @@ static void test_mpi_equals_local(void **state)
     assert_non_null(strstr(a, ",error,a is 4,"));
     g_free(a);
     g_free(b);
-    g_free(out);
-    g_free(errs);
     g_free(mpirun);
     sweep_test_rm_out(dl);
     sweep_test_rm_out(dm);
+}
+
+/* The pgsim binary next to this test (BUILD/tests/app/ -> BUILD/pgsim). */
+static char *pgsim_path(void)
+{
+    char *d1 = g_path_get_dirname(self), *d2 = g_path_get_dirname(d1);
+    char *d3 = g_path_get_dirname(d2);
+    char *p = g_build_filename(d3, "pgsim", NULL);
+    g_free(d1);
+    g_free(d2);
+    g_free(d3);
+    return p;
+}
+
+static void rm_charts(const char *dir)
+{
+    const char *stems[] = {"frame-vs-nodes", "events-vs-nodes"};
+    const char *ext[] = {".png", ".svg", ".gp", ".dat"};
+    for (int s = 0; s < 2; s++)
+        for (int e = 0; e < 4; e++) {
+            char *f = g_strconcat(dir, "/", stems[s], ext[e], NULL);
+            g_remove(f);
+            g_free(f);
+        }
+}
+
+/* `pgsim sweep` of the example sweep: under mpirun -np 2 = with -j 2. */
+static void test_cli_mpi_equals_local(void **state)
+{
+    (void)state;
+    char *mpirun = mpirun_path(), *pgsim = pgsim_path();
+    if (!mpirun || !g_file_test(pgsim, G_FILE_TEST_IS_EXECUTABLE))
+        skip();
+    char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
+    char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
+    char *local[] = {"timeout", "120", pgsim, "sweep", "-q", "-j", "2",
+                     "configs/sweep-tokenring.yaml", "--out", dl, NULL};
+    char *mpi[] = {"timeout", "120", mpirun, "--allow-run-as-root",
+                   "--oversubscribe", "-np", "2", pgsim, "sweep", "-q",
+                   "configs/sweep-tokenring.yaml", "--out", dm, NULL};
+    run_ok(local);
+    run_ok(mpi);
+    char *a = results(dl), *b = results(dm);
+    assert_non_null(a);
+    assert_string_equal(a, b);
+    assert_true(g_str_has_prefix(a, "point,repetition,seed,workload.nodes,"
+                                    "workload.link.bandwidth,status,"));
+    g_free(a);
+    g_free(b);
+    rm_charts(dl);
+    rm_charts(dm);
+    sweep_test_rm_out(dl);
+    sweep_test_rm_out(dm);
+    g_free(mpirun);
+    g_free(pgsim);
 }
 
 int main(int argc, char **argv)
@@ -116,6 +183,7 @@ int main(int argc, char **argv)
     self = argv[0];
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mpi_equals_local),
+        cmocka_unit_test(test_cli_mpi_equals_local),
     };
     return cmocka_run_group_tests_name("sweep_mpi", tests, NULL, NULL);
 }
