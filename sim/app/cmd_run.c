@@ -1,5 +1,5 @@
 /* cmd_run.c — `pgsim run CONFIG [--set k=v]... [--seed N] [--out DIR]
- * [--format text|json|csv] [--timing] [--quiet]`.
+ * [--format text|json|csv] [--timing] [--trace FILE] [--quiet]`.
  *
  * Loads and checks the config (config.h), runs it, prints the report on
  * stdout in the chosen format and, with --out, writes summary.txt,
@@ -11,12 +11,14 @@
 #include "sim/app/commands.h"
 #include "sim/app/config.h"
 #include "sim/app/report.h"
+#include "sim/app/trace_file.h"
 #include "sim/core/error.h"
 #include <string.h>
 
 typedef struct {
     char **sets;
-    char *seed, *out, *format;
+    char *seed, *out, *format, *trace;
+    int trace_cap;
     gboolean quiet, timing;
 } RunOpts;
 
@@ -70,11 +72,25 @@ static int run(const char *path, const RunOpts *o)
         return cli_fail(e);
     if (o->seed)
         r->seed = seed;
-    CfgRunOpts ro = {.out_dir = o->out, .quiet = o->quiet, .progress = TRUE};
+    SimTrace *tr = o->trace ? trc_open(o->trace, (uint64_t)MAX(o->trace_cap,
+                                                               0), &e)
+                            : NULL;
+    if (o->trace && !tr) {
+        cfg_run_free(r);
+        return cli_fail(e);
+    }
+    CfgRunOpts ro = {.out_dir = o->out, .quiet = o->quiet, .progress = TRUE,
+                     .trace = tr};
     SimResult *res = cfg_run_exec(r, &ro, &e);
     cfg_run_free(r);
-    if (!res)
+    if (!res) {
+        trc_close(tr, NULL);
         return cli_fail(e);
+    }
+    if (!trc_close(tr, &e)) {
+        sim_result_free(res);
+        return cli_fail(e);
+    }
     int status = report(res, o, fmt);
     sim_result_free(res);
     return status;
@@ -94,6 +110,10 @@ int cmd_run(int argc, char **argv)
          "report on stdout: text (default), json or csv", "FMT"},
         {"timing", 0, 0, G_OPTION_ARG_NONE, &o.timing,
          "include wall-clock figures in JSON/CSV", NULL},
+        {"trace", 0, 0, G_OPTION_ARG_FILENAME, &o.trace,
+         "write a trace: FILE.json (Perfetto) or FILE.paje (ViTE)", "FILE"},
+        {"trace-cap", 0, 0, G_OPTION_ARG_INT, &o.trace_cap,
+         "stop tracing after N events (default 1000000)", "N"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o.quiet,
          "no progress display or notes on stderr", NULL},
         G_OPTION_ENTRY_NULL,
@@ -107,5 +127,6 @@ int cmd_run(int argc, char **argv)
     g_free(o.seed);
     g_free(o.out);
     g_free(o.format);
+    g_free(o.trace);
     return status;
 }

@@ -50,6 +50,7 @@ typedef struct {
     const char *out_dir;  /* passed to the workload; NULL: none */
     gboolean quiet;       /* no progress display */
     gboolean progress;    /* show progress (when stderr is a terminal) */
+    SimTrace *trace;      /* attached to the engine; NULL: none (borrowed) */
 } CfgRunOpts;
 
 /* Runs the config's workload on a fresh engine seeded with run->seed and

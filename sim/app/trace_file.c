@@ -42,6 +42,7 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
     w->path = g_strdup(path);
     w->cap = max_events ? max_events : TRC_DEFAULT_CAP;
     w->nodes = g_hash_table_new_full(NULL, NULL, NULL, g_free);
+    w->default_named = g_hash_table_new(NULL, NULL);
     w->trace.ops = fmt->ops;
     w->trace.state = w;
     fmt->begin(w);
@@ -68,11 +69,18 @@ gboolean trc_admit(TrcWriter *w, SimTime t)
 gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name)
 {
     gpointer key = GUINT_TO_POINTER(node + 1);
-    if (g_hash_table_contains(w->nodes, key))
+    const char *old = g_hash_table_lookup(w->nodes, key);
+    /* a flow knows only the id; a later span may bring the real name */
+    if (old && (!name || strcmp(old, name) == 0 ||
+                !g_hash_table_contains(w->default_named, key)))
         return FALSE;
     g_hash_table_insert(w->nodes, key,
                         name ? g_strdup(name)
                              : g_strdup_printf("node%u", node));
+    if (name)
+        g_hash_table_remove(w->default_named, key);
+    else
+        g_hash_table_add(w->default_named, key);
     return TRUE;
 }
 
@@ -102,6 +110,7 @@ gboolean trc_close(SimTrace *tr, GError **err)
         remove(w->tmp);
     }
     g_hash_table_destroy(w->nodes);
+    g_hash_table_destroy(w->default_named);
     if (w->buffer)
         g_ptr_array_free(w->buffer, TRUE);
     g_free(w->path);

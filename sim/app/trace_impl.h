@@ -23,14 +23,16 @@ struct TrcWriter {
     char *path, *tmp;
     uint64_t cap, events, next_flow;
     gboolean truncated;
-    GHashTable *nodes;   /* node id -> name (seen nodes) */
+    GHashTable *nodes;   /* node id + 1 -> name (seen nodes) */
+    GHashTable *default_named; /* node id + 1 of nodes named "node<id>" */
     GPtrArray *buffer;   /* Paje: lines waiting to be sorted by time */
 };
 
 /* Counts one event; FALSE once the cap is reached (then the note is
  * written once).  Every hook calls it first. */
 gboolean trc_admit(TrcWriter *w, SimTime t);
-/* TRUE the first time a node id is seen (its name is then remembered). */
+/* TRUE the first time a node id is seen, and when a node first seen
+ * without a name (NULL: "node<id>") gets one; the name is remembered. */
 gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name);
 
 extern const TrcFormat trc_chrome;

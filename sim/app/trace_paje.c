@@ -72,14 +72,10 @@ static void add(TrcWriter *w, int code, SimTime t, char *rest)
     g_ptr_array_add(w->buffer, l);
 }
 
+/* Containers are created in end(), with the last name learnt. */
 static void see_node(TrcWriter *w, uint32_t node, const char *name)
 {
-    if (!trc_new_node(w, node, name))
-        return;
-    char *q = quoted(g_hash_table_lookup(w->nodes,
-                                         GUINT_TO_POINTER(node + 1)));
-    add(w, 4, 0, g_strdup_printf("n%u CT_Node machine \"%s\"", node, q));
-    g_free(q);
+    trc_new_node(w, node, name);
 }
 
 static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
@@ -156,8 +152,31 @@ static gint by_id(gconstpointer a, gconstpointer b)
     return x < y ? -1 : x > y;
 }
 
+static GArray *node_ids(TrcWriter *w)
+{
+    GHashTableIter it;
+    gpointer key;
+    GArray *ids = g_array_new(FALSE, FALSE, sizeof(guint));
+    g_hash_table_iter_init(&it, w->nodes);
+    while (g_hash_table_iter_next(&it, &key, NULL)) {
+        guint id = GPOINTER_TO_UINT(key) - 1;
+        g_array_append_val(ids, id);
+    }
+    g_array_sort(ids, by_id);
+    return ids;
+}
+
 static void end(TrcWriter *w)
 {
+    GArray *ids = node_ids(w);
+    for (guint i = 0; i < ids->len; i++) {
+        guint id = g_array_index(ids, guint, i);
+        char *q = quoted(g_hash_table_lookup(w->nodes,
+                                             GUINT_TO_POINTER(id + 1)));
+        fprintf(w->f, "4 0.000000000000 n%u CT_Node machine \"%s\"\n", id,
+                q);
+        g_free(q);
+    }
     g_ptr_array_sort(w->buffer, by_time);
     SimTime last = 0;
     for (guint i = 0; i < w->buffer->len; i++) {
@@ -167,15 +186,6 @@ static void end(TrcWriter *w)
                 l->code, l->t / SIM_S, l->t % SIM_S, l->line);
         last = l->t;
     }
-    GHashTableIter it;
-    gpointer key;
-    g_hash_table_iter_init(&it, w->nodes);
-    GArray *ids = g_array_new(FALSE, FALSE, sizeof(guint));
-    while (g_hash_table_iter_next(&it, &key, NULL)) {
-        guint id = GPOINTER_TO_UINT(key) - 1;
-        g_array_append_val(ids, id);
-    }
-    g_array_sort(ids, by_id);
     for (guint i = 0; i < ids->len; i++)
         fprintf(w->f, "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
                       " CT_Node n%u\n",
