@@ -90,10 +90,10 @@ static GOptionContext *make_context(const char *cmd, const char *params,
         {"help", 'h', 0, G_OPTION_ARG_NONE, help, "Show this help", NULL},
         G_OPTION_ENTRY_NULL,
     };
-    char *title = g_strdup_printf("%s%s%s", cmd, params ? " " : "",
-                                  params ? params : "");
-    GOptionContext *ctx = g_option_context_new(title);
-    g_free(title);
+    char *prg = g_strdup_printf("pgsim %s", cmd); /* "Usage: pgsim run" */
+    g_set_prgname(prg);
+    g_free(prg);
+    GOptionContext *ctx = g_option_context_new(params);
     g_option_context_set_help_enabled(ctx, FALSE);
     g_option_context_set_summary(ctx, summary);
     g_option_context_add_main_entries(ctx, entries, NULL);
@@ -125,6 +125,7 @@ gboolean cli_parse(const char *cmd, const char *params, const char *summary,
     }
     g_free(argv0);
     g_option_context_free(ctx);
+    g_set_prgname("pgsim");
     return ok;
 }
 
