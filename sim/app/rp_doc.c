@@ -40,9 +40,8 @@ static DataTable *scatter_table(const RpTable *t)
         char a[32], b[32];
         char *row[] = {(char *)json_fmt_num(a, j->published),
                        (char *)json_fmt_num(b, j->sim),
-                       g_strdup_printf("table %s", j->table)};
+                       j->table};
         dt_add_row(d, row);
-        g_free(row[2]);
     }
     return d;
 }
