@@ -2,8 +2,9 @@
  *
  * Every node keeps its file name (interned), 1-based line and column from
  * libyaml's start mark.  Plain scalars "", "~", "null" become CFG_NULL.
- * Aliases are resolved by deep copy of the anchored node; merge keys and
- * multiple documents are rejected.  Duplicate keys in a map are an error
+ * Aliases are resolved by deep copy of the anchored node (at most a
+ * million copied nodes per file, against "billion laughs" inputs); merge
+ * keys and multiple documents are rejected.  Duplicate keys in a map are an error
  * located at the second occurrence.  Nesting deeper than CFG_MAX_DEPTH is
  * rejected so hostile input cannot exhaust the stack.
  *
@@ -20,6 +21,7 @@
 #include <yaml.h>
 
 #define CFG_MAX_DEPTH 200
+#define CFG_MAX_ALIAS_NODES 1000000 /* nodes copied by aliases, per file */
 
 typedef struct {
     yaml_parser_t parser;
@@ -27,6 +29,7 @@ typedef struct {
     GHashTable *anchors; /* name -> CfgNode * (owned copies) */
     int depth;
     gboolean ended; /* the stream end was seen */
+    guint64 alias_nodes; /* nodes created by alias copies so far */
 } Loader;
 
 static void entry_free(gpointer p)
@@ -172,6 +175,17 @@ static CfgNode *load_scalar(Loader *L, const yaml_event_t *ev)
     return n;
 }
 
+static guint64 count_nodes(const CfgNode *n)
+{
+    guint64 c = 1;
+    for (guint i = 0; n->items && i < n->items->len; i++) {
+        const void *it = g_ptr_array_index(n->items, i);
+        c += count_nodes(n->kind == CFG_SEQ ? it
+                                            : ((const CfgEntry *)it)->value);
+    }
+    return c;
+}
+
 static CfgNode *load_alias(Loader *L, const yaml_event_t *ev, GError **err)
 {
     const char *name = (const char *)ev->data.alias.anchor;
@@ -180,6 +194,12 @@ static CfgNode *load_alias(Loader *L, const yaml_event_t *ev, GError **err)
         char *found = g_strdup_printf("alias '*%s'", name);
         ev_error(L, ev, found, "an anchor defined earlier", err);
         g_free(found);
+        return NULL;
+    }
+    L->alias_nodes += count_nodes(target);
+    if (L->alias_nodes > CFG_MAX_ALIAS_NODES) {
+        ev_error(L, ev, "aliases expanding to over a million nodes",
+                 "a smaller document", err);
         return NULL;
     }
     CfgNode *n = cfg_copy(target);

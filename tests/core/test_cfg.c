@@ -219,6 +219,14 @@ static void test_load_errors(void **state)
         g_string_append_c(deep, '[');
     load_fails(deep->str, "t.yaml:1:");
     g_string_free(deep, TRUE);
+    GString *bomb = g_string_new("a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n");
+    for (int i = 1; i < 8; i++)
+        g_string_append_printf(bomb, "a%d: &a%d [*a%d, *a%d, *a%d, *a%d, "
+                               "*a%d, *a%d, *a%d, *a%d, *a%d, *a%d]\n", i,
+                               i, i - 1, i - 1, i - 1, i - 1, i - 1, i - 1,
+                               i - 1, i - 1, i - 1, i - 1);
+    load_fails(bomb->str, "t.yaml:");
+    g_string_free(bomb, TRUE);
     GError *e = NULL;
     assert_null(cfg_load_file("/nonexistent/x.yaml", &e));
     assert_int_equal(sim_error_exit_status(e), 2);
