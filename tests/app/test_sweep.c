@@ -118,7 +118,7 @@ static void test_bad_data_files(void **state)
         {"zip-lengths.yaml", ":5:6: found 3 values for 'b', expected 2"},
         {"bad-step.yaml", ":3:30: found a step that never reaches 'to'"},
         {"plot-key.yaml", ":3:18: found unknown key 'logz'"},
-        {"missing-base.yaml", "missing-base.yaml"},
+        {"missing-base.yaml", "no-such-base.yaml"},
     };
     for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
         char *path = g_build_filename("tests/data/bad/sweep", cases[i][0],
