@@ -1,6 +1,7 @@
 /* registry.c — the table of workloads (one row per workload). */
 #include "sim/workload/workload.h"
 #include "sim/workload/dpscan/dp_wl.h"
+#include "sim/workload/pixelmerge/pm_workload.h"
 #include "sim/workload/tokenring/tokenring.h"
 #include <string.h>
 
@@ -9,6 +10,7 @@ extern const WlOps wl_pphigs_ops;
 const WlOps *const wl_all[] = {
     &wl_pphigs_ops,
     &wl_dpscan_ops,
+    &wl_pixelmerge_ops,
     &wl_tokenring_ops,
     NULL,
 };

@@ -62,11 +62,12 @@ typedef struct {
     RastView view;
 } Local;
 
-static void render_all(Local *l, const Scene *scene, const WlPmSetup *s)
+static void render_all(Local *l, const Scene *scene, guint frame,
+                       const WlPmSetup *s)
 {
     guint n = s->procs, N = s->resolution;
     l->flat = scene_flatten(scene);
-    SceneCamera cam = scene_camera_at(scene, 0);
+    SceneCamera cam = scene_camera_at(scene, frame);
     l->view = rast_view_for_camera(&cam, N, N);
     l->view.cull_back = s->cull_back;
     l->local = g_new0(WlPmWpa *, n);
@@ -105,7 +106,7 @@ static gboolean image_matches(const Local *l, const WlPmFrame *img)
 /* Local phases into busy[]; returns the barrier time (slowest node). */
 static SimTime local_phases(const Local *l, const WlPmSetup *s,
                             const WlPmCosts *c, SimEngine *eng,
-                            WlPmFrameOut *out)
+                            MachProc *const *procs, WlPmFrameOut *out)
 {
     gboolean full = s->scheme == WL_PM_ZBUF_EXC;
     unsigned ph_span = sim_engine_phase(eng, "span");
@@ -116,6 +117,10 @@ static SimTime local_phases(const Local *l, const WlPmSetup *s,
         SimTime tz = zbuf_time(&l->counts[p], c, s->resolution, full);
         sim_busy_add(&out->busy[p], ph_span, ts);
         sim_busy_add(&out->busy[p], ph_zbuf, tz);
+        if (procs) {
+            mach_proc_compute(procs[p], ts, ph_span, NULL, NULL, NULL);
+            mach_proc_compute(procs[p], tz, ph_zbuf, NULL, NULL, NULL);
+        }
         span_max = MAX(span_max, ts);
         zbuf_max = MAX(zbuf_max, tz);
         barrier = MAX(barrier, add(ts, tz));
@@ -131,8 +136,12 @@ static void merge_metrics(const Local *l, const WlPmSetup *s,
 {
     guint n = s->procs;
     out->polygons = scene_mesh_n_polys(l->flat);
-    for (guint p = 0; p < n; p++)
+    out->counts = g_memdup2(l->counts, n * sizeof *l->counts);
+    out->active = g_new(uint64_t, n);
+    for (guint p = 0; p < n; p++) {
         out->tpg += l->counts[p].rc.pixels;
+        out->active[p] = wl_pm_wpa_len(l->local[p]);
+    }
     out->tpf = wl_pm_frame_count(m->image);
     out->concurrent_volume = m->concurrent_volume;
     out->merge_bytes = m->total_bytes;
@@ -147,6 +156,14 @@ gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
                          const WlPmSetup *s, const WlPmCosts *c,
                          WlPmFrameOut *out, GError **err)
 {
+    return wl_pm_frame_run_procs(net, NULL, 0, scene, s, c, out, err);
+}
+
+gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs,
+                               guint frame, const Scene *scene,
+                               const WlPmSetup *s, const WlPmCosts *c,
+                               WlPmFrameOut *out, GError **err)
+{
     guint n = s->procs;
     SimEngine *eng = net_engine(net);
     memset(out, 0, sizeof *out);
@@ -154,7 +171,7 @@ gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
     for (guint p = 0; p < n; p++)
         sim_busy_init(&out->busy[p]);
     Local l;
-    render_all(&l, scene, s);
+    render_all(&l, scene, frame, s);
     WlPmPartition *part = wl_pm_partition_new(s->balance, n, l.rows,
                                               s->resolution);
     WlPmMerge *m = wl_pm_merge_run(s->scheme, l.local, n, part, &s->fmt);
@@ -164,16 +181,17 @@ gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
         out->image_ok = image_matches(&l, m->image);
     }
     SimTime base = sim_now(eng);
-    SimTime barrier = add(base, local_phases(&l, s, c, eng, out));
+    SimTime barrier = add(base, local_phases(&l, s, c, eng, procs, out));
     SimTime *ready = g_new(SimTime, n);
     for (guint p = 0; p < n; p++)
         ready[p] = barrier;
     WlPmReplayOut ro = {0};
     WlPmBalance bal = s->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS
                                                   : s->balance;
-    gboolean ok = wl_pm_replay(net, m, bal, s->resolution,
-                               &c->merge, ready, out->busy,
-                               sim_engine_phase(eng, "merge"), &ro, err);
+    gboolean ok = wl_pm_replay_procs(net, procs, m, bal, s->resolution,
+                                     &c->merge, ready, out->busy,
+                                     sim_engine_phase(eng, "merge"), &ro,
+                                     err);
     if (ok) {
         out->merge_ms = sim_time_to_ms(ro.end - barrier);
         out->frame_ms = sim_time_to_ms(ro.end - base);
@@ -192,4 +210,8 @@ void wl_pm_frame_out_clear(WlPmFrameOut *out, guint procs)
         sim_busy_clear(&out->busy[p]);
     g_free(out->busy);
     out->busy = NULL;
+    g_free(out->counts);
+    out->counts = NULL;
+    g_free(out->active);
+    out->active = NULL;
 }

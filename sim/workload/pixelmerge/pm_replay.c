@@ -20,6 +20,7 @@ typedef struct {
 
 typedef struct {
     NetNet *net;
+    MachProc *const *procs; /* NULL: schedule on the engine directly */
     SimEngine *eng;
     guint n, n_steps;
     RStep *steps;
@@ -114,7 +115,12 @@ static void compute_then(Replay *r, guint p, SimTime cost, SimHandler next)
 {
     if (!sim_busy_add(&r->busy[p], r->phase, cost))
         r->overflow = TRUE;
-    sim_schedule_in(r->eng, cost, next, r, GUINT_TO_POINTER(p));
+    if (r->procs) {
+        if (!mach_proc_compute(r->procs[p], cost, r->phase, next, r,
+                               GUINT_TO_POINTER(p)))
+            r->overflow = TRUE;
+    } else
+        sim_schedule_in(r->eng, cost, next, r, GUINT_TO_POINTER(p));
 }
 
 static void proc_post_done(SimEngine *eng, void *ctx, void *arg)
@@ -197,10 +203,21 @@ gboolean wl_pm_replay(NetNet *net, const WlPmMerge *m, WlPmBalance bal,
                       const SimTime *ready, SimBusy *busy, unsigned phase,
                       WlPmReplayOut *out, GError **err)
 {
+    return wl_pm_replay_procs(net, NULL, m, bal, height, costs, ready, busy,
+                              phase, out, err);
+}
+
+gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
+                            const WlPmMerge *m, WlPmBalance bal,
+                            guint height, const WlPmMergeCosts *costs,
+                            const SimTime *ready, SimBusy *busy,
+                            unsigned phase, WlPmReplayOut *out,
+                            GError **err)
+{
     guint n = m->n_procs;
     g_assert(net_nodes(net) >= n);
-    Replay r = {.net = net, .eng = net_engine(net), .n = n, .busy = busy,
-                .phase = phase};
+    Replay r = {.net = net, .procs = procs, .eng = net_engine(net), .n = n,
+                .busy = busy, .phase = phase};
     build_steps(&r, m, bal, height, costs);
     r.cur = g_new0(guint, n);
     r.waiting = g_new0(gboolean, n);

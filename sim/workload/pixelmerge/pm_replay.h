@@ -20,6 +20,7 @@
 #define PGSIM_WORKLOAD_PIXELMERGE_PM_REPLAY_H
 
 #include "sim/core/stats.h"
+#include "sim/machine/proc.h"
 #include "sim/net/net.h"
 #include "sim/workload/pixelmerge/pm_merge.h"
 
@@ -50,6 +51,16 @@ gboolean wl_pm_replay(NetNet *net, const WlPmMerge *m, WlPmBalance bal,
                       guint height, const WlPmMergeCosts *costs,
                       const SimTime *ready, SimBusy *busy, unsigned phase,
                       WlPmReplayOut *out, GError **err);
+/* The same, computing on machine processors: procs[p] (borrowed; NULL:
+ * plain engine events) is charged every compute in `phase` through
+ * mach_proc_compute(), so its busy time and trace spans are the
+ * machine's as well as busy[p]'s. */
+gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
+                            const WlPmMerge *m, WlPmBalance bal,
+                            guint height, const WlPmMergeCosts *costs,
+                            const SimTime *ready, SimBusy *busy,
+                            unsigned phase, WlPmReplayOut *out,
+                            GError **err);
 void wl_pm_replay_out_clear(WlPmReplayOut *out);
 
 #endif

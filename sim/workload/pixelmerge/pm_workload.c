@@ -1,0 +1,326 @@
+/* pm_workload.c — the `pixelmerge` workload: object-space parallel
+ * polygon rendering with active pixel merging on a hypercube (Kurç,
+ * Aykanat, Özgüç, seed 003), behind the WlOps contract.
+ *
+ *   workload:
+ *     type: pixelmerge
+ *     scheme: pair            # zbuf_exc (or zbuf-exc) | pair | aapc
+ *     balance: rs             # strips | rs | hbp               (§4)
+ *     processors: 16          # P, a power of two <= machine nodes
+ *                             # (default: all of the machine's nodes)
+ *     resolution: 400         # N: an N x N screen
+ *     polygon_split: cyclic   # cyclic | block
+ *     bytes_per_pixel: 8      # active pixel record in a message
+ *     bytes_per_location: 4   # ZBUF-EXC record
+ *     bytes_per_scanline: 2   # scanline count header
+ *     bytes_per_count: 4      # global-sum element (RS, HBP)
+ *     check_image: true       # compare with the serial render
+ *     cull_back: false        # back-face culling before scan conversion
+ *     memory: {base: 1 MB, polygon: 200 B, span: 32 B, location: 8 B}
+ *
+ * The machine is the config's `machine` section (mach_new_from_cfg, so
+ * `run.fidelity` picks the network model); node costs are the node kind
+ * "node"'s cost table (wl_pm_cost_ops).  The scene is the config's
+ * `scene` section (scene_from_cfg: generator, layout, view rule).
+ * Processor p of the workload is machine processor node<p>: P < nodes
+ * runs on the subcube of nodes 0 .. P-1 (the rest stay idle).
+ * Cost per frame: pm_frame.h.
+ */
+#include "sim/workload/pixelmerge/pm_workload.h"
+#include "sim/scene/scene_cfg.h"
+#include <string.h>
+
+const char *const wl_pm_cost_ops[] = {
+    "polygon", "span",    "insert_step", "pixel",   "zcompare",
+    "scanline", "zbuf_init", "pack",     "scatter", "compare",
+    "gather",  "sum_elem", "sort_elem",  NULL};
+
+/* Scheme words: the library's names plus "zbuf_exc" (underscore). */
+static const char *const scheme_words[] = {"zbuf-exc", "pair", "aapc",
+                                           "zbuf_exc", NULL};
+
+gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
+                                  WlPmCosts *c, GError **err)
+{
+    if (!mach_require_costs(m, "node", wl_pm_cost_ops, err))
+        return FALSE;
+    SimTime *dst[] = {&c->polygon,       &c->span,
+                      &c->insert_step,   &c->pixel,
+                      &c->zcompare,      &c->scanline,
+                      &c->zbuf_init,     &c->merge.pack,
+                      &c->merge.scatter, &c->merge.compare,
+                      &c->merge.gather,  &c->merge.sum_elem,
+                      &c->merge.sort_elem};
+    for (guint i = 0; wl_pm_cost_ops[i]; i++)
+        *dst[i] = mach_cost(m, "node", wl_pm_cost_ops[i]);
+    c->merge.count_bytes = count_bytes;
+    return TRUE;
+}
+
+uint64_t wl_pm_memory_bytes(const WlPmMemory *mem, const WlPmSetup *s,
+                            uint64_t polygons, uint64_t spans,
+                            uint64_t active)
+{
+    uint64_t n2 = (uint64_t)s->resolution * s->resolution;
+    uint64_t b = mem->base + polygons * mem->polygon + spans * mem->span;
+    if (s->scheme == WL_PM_ZBUF_EXC)
+        return b + n2 * mem->location + n2 / 2 * s->fmt.bytes_per_location;
+    return b + 2 * active * s->fmt.bytes_per_pixel;
+}
+
+static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
+{
+    uint64_t bpp = 8, bpl = 4, bps = 2, bpc = 4;
+    if (!cfg_get_count(sec, "bytes_per_pixel", FALSE, 1, 256, &bpp, err) ||
+        !cfg_get_count(sec, "bytes_per_location", FALSE, 1, 256, &bpl,
+                       err) ||
+        !cfg_get_count(sec, "bytes_per_scanline", FALSE, 0, 256, &bps,
+                       err) ||
+        !cfg_get_count(sec, "bytes_per_count", FALSE, 1, 16, &bpc, err))
+        return FALSE;
+    p->setup.fmt = (WlPmFormat){(guint)bpp, (guint)bpl, (guint)bps};
+    p->count_bytes = (uint32_t)bpc;
+    return TRUE;
+}
+
+static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m,
+                             GError **err)
+{
+    *m = (WlPmMemory){1000000, 200, 32, 8};
+    const CfgNode *n = cfg_get(sec, "memory");
+    if (!n)
+        return TRUE;
+    if (cfg_kind(n) != CFG_MAP) {
+        char *found = cfg_describe(n);
+        cfg_error(err, n, found, "a map {base, polygon, span, location} "
+                  "of sizes");
+        g_free(found);
+        return FALSE;
+    }
+    return cfg_get_size(n, "base", FALSE, &m->base, err) &&
+           cfg_get_size(n, "polygon", FALSE, &m->polygon, err) &&
+           cfg_get_size(n, "span", FALSE, &m->span, err) &&
+           cfg_get_size(n, "location", FALSE, &m->location, err);
+}
+
+static gboolean check_procs(const CfgNode *sec, uint64_t procs,
+                            GError **err)
+{
+    if ((procs & (procs - 1)) == 0)
+        return TRUE;
+    char *found = g_strdup_printf("'%" G_GUINT64_FORMAT "'", procs);
+    cfg_error(err, cfg_get(sec, "processors"), found,
+              "a power of two (a hypercube of 2^d nodes)");
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean parse_words(const CfgNode *sec, WlPmSetup *s, GError **err)
+{
+    int scheme = WL_PM_PAIR, bal = WL_PM_BAL_RS, split = WL_PM_SPLIT_CYCLIC;
+    if (!cfg_get_enum(sec, "scheme", FALSE, scheme_words, &scheme, err) ||
+        !cfg_get_enum(sec, "balance", FALSE, wl_pm_balance_names, &bal,
+                      err) ||
+        !cfg_get_enum(sec, "polygon_split", FALSE, wl_pm_split_names,
+                      &split, err))
+        return FALSE;
+    s->scheme = scheme == 3 ? WL_PM_ZBUF_EXC : (WlPmScheme)scheme;
+    s->balance = bal;
+    s->split = split;
+    return TRUE;
+}
+
+static void *pm_parse(const CfgNode *sec, GError **err)
+{
+    WlPmParams *p = g_new0(WlPmParams, 1);
+    uint64_t procs = 0, res = 400;
+    gboolean check = TRUE, cull = FALSE;
+    gboolean ok =
+        parse_words(sec, &p->setup, err) &&
+        cfg_get_count(sec, "processors", FALSE, 1, 1024, &procs, err) &&
+        check_procs(sec, procs, err) &&
+        cfg_get_count(sec, "resolution", FALSE, 2, 4096, &res, err) &&
+        cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
+        cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
+        parse_sizes(sec, p, err) && parse_memory(sec, &p->mem, err);
+    if (!ok) {
+        g_free(p);
+        return NULL;
+    }
+    p->setup.procs = (guint)procs;
+    p->setup.resolution = (guint)res;
+    p->setup.check_image = check;
+    p->setup.cull_back = cull;
+    return p;
+}
+
+static void pm_free_params(void *p)
+{
+    g_free(p);
+}
+
+static uint64_t peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
+                            const WlPmSetup *s)
+{
+    uint64_t peak = 0;
+    for (guint q = 0; q < s->procs; q++)
+        peak = MAX(peak, wl_pm_memory_bytes(&p->mem, s,
+                                            fo->counts[q].polygons,
+                                            fo->counts[q].rc.spans,
+                                            fo->active[q]));
+    return peak;
+}
+
+static void set(SimResult *out, const char *name, double v,
+                const char *unit)
+{
+    sim_result_set_metric(out, name, v, unit);
+}
+
+static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
+                         double serial_ms, const WlPmSetup *s,
+                         uint64_t memory)
+{
+    SimTime busy = 0;
+    for (guint p = 0; p < s->procs; p++)
+        busy += fo->busy[p].total;
+    set(out, "processors", s->procs, "");
+    set(out, "resolution", s->resolution, "");
+    set(out, "span_ms", fo->span_ms, "ms");
+    set(out, "zbuf_ms", fo->zbuf_ms, "ms");
+    set(out, "merge_ms", fo->merge_ms, "ms");
+    set(out, "frame_ms", fo->frame_ms, "ms");
+    set(out, "serial_ms", serial_ms, "ms");
+    set(out, "speedup", serial_ms / fo->frame_ms, "");
+    set(out, "utilisation",
+        sim_time_to_ms(busy) / (s->procs * fo->frame_ms), "");
+    set(out, "concurrent_volume", (double)fo->concurrent_volume, "B");
+    set(out, "merge_bytes", (double)fo->merge_bytes, "B");
+    set(out, "load_imbalance", fo->load_imbalance, "");
+    set(out, "partition_imbalance", fo->partition_imbalance, "");
+    set(out, "polygons", (double)fo->polygons, "");
+    set(out, "tpg", (double)fo->tpg, "");
+    set(out, "tpf", (double)fo->tpf, "");
+    set(out, "peak_memory", (double)memory, "B");
+    if (fo->image_checked)
+        set(out, "image_matches_serial", fo->image_ok, "");
+}
+
+/* `at`: the processors key, for a located error (may be NULL). */
+static gboolean check_machine(MachMachine *m, const WlPmSetup *s,
+                              const CfgNode *at, GError **err)
+{
+    const MachKindInfo *k = mach_kind(m, "node");
+    if (!mach_require_net(m, err))
+        return FALSE;
+    if (k && k->first == 0 && k->count >= s->procs &&
+        net_nodes(mach_net(m)) >= s->procs)
+        return TRUE;
+    char *found = g_strdup_printf("'%u' processors", s->procs);
+    char *exp = g_strdup_printf("at most the %u nodes of kind 'node' of "
+                                "machine '%s'", k ? k->count : 0,
+                                mach_name(m));
+    if (at) {
+        cfg_error(err, at, found, exp);
+    } else {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "pixelmerge: found %s, expected %s", found, exp);
+    }
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
+                          const Scene *sc, const WlPmSetup *s,
+                          const WlPmCosts *c, WlPmFrameOut *fo,
+                          SimResult *out, GError **err)
+{
+    wl_pm_frame_out_clear(fo, s->procs);
+    if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo,
+                               err))
+        return FALSE;
+    SimTime t;
+    if (!sim_time_from_s(fo->frame_ms * 1e-3, &t))
+        t = SIM_TIME_MAX;
+    sim_result_add_frame(out, t);
+    if (fo->image_checked && !fo->image_ok) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                    "pixelmerge: the merged image of frame %d differs "
+                    "from the serial render", f);
+        return FALSE;
+    }
+    return TRUE;
+}
+
+gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc,
+                          const WlPmParams *p, const WlPmCosts *c,
+                          int frames, SimResult *out, GError **err)
+{
+    return wl_pm_run_frames_at(m, sc, p, c, frames, NULL, out, err);
+}
+
+gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
+                             const WlPmParams *p, const WlPmCosts *c,
+                             int frames, const CfgNode *procs_at,
+                             SimResult *out, GError **err)
+{
+    WlPmSetup s = p->setup;
+    if (s.procs == 0) {
+        const MachKindInfo *k = mach_kind(m, "node");
+        s.procs = k ? k->count : 0;
+    }
+    if (!check_machine(m, &s, procs_at, err))
+        return FALSE;
+    MachProc **procs = g_new(MachProc *, s.procs);
+    for (guint q = 0; q < s.procs; q++)
+        procs[q] = mach_proc(m, "node", q);
+    WlPmFrameOut fo = {0};
+    gboolean ok = TRUE;
+    for (int f = 0; ok && f < frames; f++)
+        ok = run_frame(m, procs, f, sc, &s, c, &fo, out, err);
+    if (ok) {
+        mach_fill_result(m, out);
+        fill_metrics(out, &fo, wl_pm_serial_ms(sc, &s, c), &s,
+                     peak_memory(&fo, p, &s));
+        out->elapsed = sim_now(mach_engine(m));
+    }
+    wl_pm_frame_out_clear(&fo, s.procs);
+    g_free(procs);
+    return ok;
+}
+
+static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
+                       GError **err)
+{
+    Scene *sc = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
+    if (!sc)
+        return FALSE;
+    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root,
+                                                         "machine"),
+                                       ctx->fidelity, err);
+    WlPmCosts c;
+    WlPmParams *p = params;
+    gboolean ok = m &&
+                  wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
+                  wl_pm_run_frames_at(m, sc, p, &c, ctx->frames,
+                                      cfg_path(ctx->root,
+                                               "workload.processors"),
+                                      out, err);
+    if (ok) {
+        out->seed = ctx->seed;
+        out->events = sim_engine_events(ctx->eng);
+    }
+    mach_free(m);
+    scene_free(sc);
+    return ok;
+}
+
+const WlOps wl_pixelmerge_ops = {
+    .name = "pixelmerge",
+    .summary = "seed 003: object-space parallel rendering with active "
+               "pixel merging on a hypercube (iPSC/2)",
+    .parse = pm_parse,
+    .free_params = pm_free_params,
+    .run = pm_run,
+};
