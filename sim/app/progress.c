@@ -15,6 +15,7 @@ struct RptProgress {
     FILE *out;
     gint64 (*clock_us)(void);
     char *label;
+    char *note;         /* NULL: none */
     uint64_t total, done;
     gint64 start, last; /* wall clock, us; last < 0: never drawn */
     SimEngine *eng;     /* borrowed; shows simulated time when set */
@@ -54,7 +55,14 @@ static void draw(RptProgress *p, gint64 now)
     if (p->eng)
         fprintf(p->out, " events, simulated %.6f s",
                 sim_time_to_s(sim_now(p->eng)));
-    fprintf(p->out, ", %.1f s\033[K", secs);
+    if (p->note)
+        fprintf(p->out, ", %s", p->note);
+    fprintf(p->out, ", %.1f s", secs);
+    if (p->total && p->done && p->done < p->total) {
+        int eta = (int)(secs / (double)p->done * (double)(p->total - p->done));
+        fprintf(p->out, ", ETA %d:%02d", eta / 60, eta % 60);
+    }
+    fputs("\033[K", p->out);
     fflush(p->out);
     p->last = now;
 }
@@ -67,6 +75,14 @@ void rpt_progress_update(RptProgress *p, uint64_t done)
     gint64 now = p->clock_us();
     if (p->last < 0 || now - p->last >= RPT_PROGRESS_PERIOD_US)
         draw(p, now);
+}
+
+void rpt_progress_note(RptProgress *p, const char *note)
+{
+    if (!p)
+        return;
+    g_free(p->note);
+    p->note = g_strdup(note);
 }
 
 void rpt_progress_finish(RptProgress *p)
@@ -83,6 +99,7 @@ void rpt_progress_finish(RptProgress *p)
     if (p->eng)
         sim_engine_set_progress(p->eng, 0, NULL, NULL);
     g_free(p->label);
+    g_free(p->note);
     g_free(p);
 }
 

@@ -23,6 +23,9 @@ RptProgress *rpt_progress_new_full(uint64_t total, const char *label,
                                    FILE *out, gint64 (*clock_us)(void));
 /* Records `done` steps; redraws if 100 ms have passed since the last. */
 void rpt_progress_update(RptProgress *p, uint64_t done);
+/* Sets a short text shown after the count ("2 failed"); NULL clears it.
+ * With a known total, an ETA (elapsed / done * remaining) follows. */
+void rpt_progress_note(RptProgress *p, const char *note);
 /* Draws the final state, ends the line and frees p. */
 void rpt_progress_finish(RptProgress *p);
 /* Drives p from an engine: done = events run, with the simulated time

@@ -201,12 +201,17 @@ char *sweep_point_isolated(const SweepSpec *s, guint i, SweepRunFn fn)
 void sweep_job_init(SweepJob *j, const SweepSpec *s, SweepLog *log,
                     SweepRunFn fn, gboolean progress)
 {
-    *j = (SweepJob){.spec = s, .log = log, .fn = fn, .progress = progress};
+    *j = (SweepJob){.spec = s, .log = log, .fn = fn};
     j->todo = g_array_new(FALSE, FALSE, sizeof(guint));
     for (guint i = 0; i < sweep_spec_points(s); i++)
         if (!log || !sweep_log_done(log, i))
             g_array_append_val(j->todo, i);
-    j->t0 = g_get_monotonic_time();
+    if (progress && j->todo->len) {
+        char *label = g_strdup_printf("sweep %s: points", s->name);
+        j->bar = rpt_progress_new(j->todo->len, label);
+        g_free(label);
+        rpt_progress_note(j->bar, "0 failed");
+    }
 }
 
 void sweep_job_clear(SweepJob *j)
@@ -223,35 +228,23 @@ gboolean sweep_job_next(SweepJob *j, guint *i)
     return TRUE;
 }
 
-static void draw_progress(const SweepJob *j)
-{
-    guint total = j->todo->len, done = j->finished;
-    int width = 30, fill = total ? (int)((guint64)width * done / total) : 0;
-    char bar[32];
-    memset(bar, '=', (size_t)fill);
-    memset(bar + fill, ' ', (size_t)(width - fill));
-    bar[width] = '\0';
-    double el = (double)(g_get_monotonic_time() - j->t0) * 1e-6;
-    double eta = done ? el / done * (total - done) : 0.0;
-    fprintf(stderr, "\r[%s] %u/%u points  %u failed  ETA %d:%02d ", bar,
-            done, total, j->failed, (int)eta / 60, (int)eta % 60);
-    fflush(stderr);
-}
-
 gboolean sweep_job_finish(SweepJob *j, const char *line, GError **err)
 {
     j->finished++;
-    if (strstr(line, ",\"status\":\"error\","))
+    if (strstr(line, ",\"status\":\"error\",")) {
         j->failed++;
-    if (j->progress)
-        draw_progress(j);
+        char note[32];
+        g_snprintf(note, sizeof note, "%u failed", j->failed);
+        rpt_progress_note(j->bar, note);
+    }
+    rpt_progress_update(j->bar, j->finished);
     return !j->log || sweep_log_append(j->log, line, err);
 }
 
 void sweep_job_done(SweepJob *j)
 {
-    if (j->progress && j->todo->len)
-        fputc('\n', stderr);
+    rpt_progress_finish(j->bar);
+    j->bar = NULL;
 }
 
 /* ---- the local pool -------------------------------------------------- */

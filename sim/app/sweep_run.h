@@ -16,6 +16,7 @@
 #ifndef PGSIM_APP_SWEEP_RUN_H
 #define PGSIM_APP_SWEEP_RUN_H
 
+#include "sim/app/progress.h"
 #include "sim/app/sweep_log.h"
 #include "sim/core/result.h"
 
@@ -40,8 +41,7 @@ typedef struct {
     guint next;         /* next entry of todo to hand out */
     guint finished;     /* points finished in this run */
     guint failed;       /* of which failed */
-    gboolean progress;  /* draw a progress bar on stderr */
-    gint64 t0;          /* monotonic start, for the ETA */
+    RptProgress *bar;   /* progress on a terminal; NULL: none */
 } SweepJob;
 
 void sweep_job_init(SweepJob *j, const SweepSpec *s, SweepLog *log,
@@ -52,7 +52,7 @@ gboolean sweep_job_next(SweepJob *j, guint *i);
 /* Records a finished point's line (appends it to the log, updates the
  * progress bar). */
 gboolean sweep_job_finish(SweepJob *j, const char *line, GError **err);
-/* Ends the progress bar line. */
+/* Ends the progress line. */
 void sweep_job_done(SweepJob *j);
 
 /* Runs every point not yet done with up to `jobs` worker processes. */

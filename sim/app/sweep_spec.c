@@ -286,6 +286,9 @@ static gboolean read_base(SweepSpec *s, const CfgNode *root, const char *text,
     s->base = cfg_load_file(path, err);
     if (s->base)
         g_file_get_contents(path, &s->base_text, NULL, NULL);
+    else /* say which sweep file named it */
+        g_prefix_error(err, "%s:%d:%d: base: ", cfg_file(b), cfg_line(b),
+                       cfg_col(b));
     g_free(path);
     return s->base != NULL;
 }

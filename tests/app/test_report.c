@@ -198,6 +198,24 @@ static void test_progress(void **state)
     free(buf);
 }
 
+static void test_progress_note_eta(void **state)
+{
+    (void)state;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    fake_now = 0;
+    RptProgress *p = rpt_progress_new_full(4, "sweep", f, fake_clock);
+    rpt_progress_note(p, "1 failed");
+    fake_now = 2000000;
+    rpt_progress_update(p, 1); /* 2 s for 1 of 4: 6 s to go */
+    rpt_progress_finish(p);
+    fclose(f);
+    assert_non_null(strstr(buf, "sweep:  25% (1/4), 1 failed, 2.0 s, "
+                                "ETA 0:06"));
+    free(buf);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -205,6 +223,7 @@ int main(void)
         cmocka_unit_test(test_csv_and_text),
         cmocka_unit_test(test_atomic),
         cmocka_unit_test(test_progress),
+        cmocka_unit_test(test_progress_note_eta),
     };
     return cmocka_run_group_tests_name("report", tests, NULL, NULL);
 }

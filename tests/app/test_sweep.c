@@ -109,6 +109,31 @@ static void test_bad_files(void **state)
     expect_bad("base: {a: 1}\ncombine: cross\n", "bad.yaml:2:");
 }
 
+/* Every file under tests/data/bad/sweep/ fails with a located error. */
+static void test_bad_data_files(void **state)
+{
+    (void)state;
+    const char *cases[][2] = {
+        {"unknown-key.yaml", ":4:10: found unknown key 'repeats'"},
+        {"zip-lengths.yaml", ":5:6: found 3 values for 'b', expected 2"},
+        {"bad-step.yaml", ":3:30: found a step that never reaches 'to'"},
+        {"plot-key.yaml", ":3:18: found unknown key 'logz'"},
+        {"missing-base.yaml", "no-such-base.yaml"},
+    };
+    for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
+        char *path = g_build_filename("tests/data/bad/sweep", cases[i][0],
+                                      NULL);
+        GError *err = NULL;
+        assert_null(sweep_spec_load(path, &err));
+        assert_non_null(err);
+        if (!g_str_has_prefix(err->message, path) ||
+            !strstr(err->message, cases[i][1]))
+            fail_msg("%s: got '%s'", path, err->message);
+        g_error_free(err);
+        g_free(path);
+    }
+}
+
 /* ---- running --------------------------------------------------------- */
 
 static const char run_yaml[] = "base: {run: {seed: 11}, a: 0, b: 0}\n"
@@ -235,6 +260,7 @@ int main(void)
         cmocka_unit_test(test_product),
         cmocka_unit_test(test_zip_and_ranges),
         cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_bad_data_files),
         cmocka_unit_test(test_jobs_same_rows),
         cmocka_unit_test(test_failures_recorded),
         cmocka_unit_test(test_resume),
