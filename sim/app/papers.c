@@ -17,6 +17,7 @@
  * Loading is O(cells).
  */
 #include "sim/app/papers.h"
+#include "sim/core/datapath.h"
 #include "sim/core/cfg.h"
 #include <float.h>
 #include <math.h>
@@ -309,7 +310,9 @@ const RpCell *rp_paper_cell(const RpPaper *p, const char *table,
 char *rp_paper_path(const char *dir, const char *name)
 {
     char *file = g_strconcat(name, ".yaml", NULL);
-    char *path = g_build_filename(dir, file, NULL);
+    char *rel = g_build_filename(dir, file, NULL);
+    char *path = sim_data_path(rel);
+    g_free(rel);
     g_free(file);
     return path;
 }

@@ -17,6 +17,7 @@
  * Typed getters, overrides and merging are in cfg_get.c.
  */
 #include "sim/core/cfg_impl.h"
+#include "sim/core/datapath.h"
 #include <string.h>
 #include <yaml.h>
 
@@ -377,20 +378,22 @@ CfgNode *cfg_load_string(const char *text, const char *name, GError **err)
     return load((const unsigned char *)text, strlen(text), name, err);
 }
 
-CfgNode *cfg_load_file(const char *path, GError **err)
+CfgNode *cfg_load_file(const char *name, GError **err)
 {
-    char *text = NULL;
+    char *text = NULL, *path = sim_data_path(name);
     gsize len = 0;
     GError *e = NULL;
+    CfgNode *root = NULL;
     if (!g_file_get_contents(path, &text, &len, &e)) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
                     "%s:0:0: found an unreadable file (%s), expected a "
                     "readable YAML file", path, e->message);
         g_error_free(e);
-        return NULL;
+    } else {
+        root = load((const unsigned char *)text, len, path, err);
     }
-    CfgNode *root = load((const unsigned char *)text, len, path, err);
     g_free(text);
+    g_free(path);
     return root;
 }
 

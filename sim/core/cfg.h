@@ -25,7 +25,10 @@ typedef enum { CFG_MAP, CFG_SEQ, CFG_SCALAR, CFG_NULL } CfgKind;
 typedef struct CfgNode CfgNode;
 
 /* Parses a YAML file; returns a new tree (free with cfg_free()) or NULL
- * with *err set (unreadable file, YAML syntax error, duplicate key). */
+ * with *err set (unreadable file, YAML syntax error, duplicate key).  A
+ * relative path that does not exist from the current directory is looked
+ * up among the data roots (sim/core/datapath.h), so the project's own
+ * configs and models load wherever pgsim runs. */
 CfgNode *cfg_load_file(const char *path, GError **err);
 /* Parses YAML text; `name` is used as the file name in errors. */
 CfgNode *cfg_load_string(const char *text, const char *name, GError **err);

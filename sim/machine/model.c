@@ -12,6 +12,7 @@
  * missing required key.  Cost: O(size of the tree).
  */
 #include "sim/machine/model.h"
+#include "sim/core/datapath.h"
 #include "sim/core/error.h"
 #include <string.h>
 
@@ -123,7 +124,9 @@ char *mach_model_path(const char *name, GError **err)
                     name ? name : "");
         return NULL;
     }
-    char *path = try_dir("models", name);
+    char *models = sim_data_path("models");
+    char *path = try_dir(models, name);
+    g_free(models);
     const char *env = g_getenv("PGSIM_MODELS");
     if (!path && env && *env) {
         char **dirs = g_strsplit(env, ":", -1);
