@@ -12,6 +12,7 @@
  * only one event is ever pending.
  */
 #include "sim/workload/tokenring/tokenring.h"
+#include "sim/core/trace.h"
 #include <string.h>
 
 typedef struct {
@@ -94,6 +95,12 @@ static void send(SimEngine *eng, void *ctx, void *arg)
     if (!sim_time_add(ser, s->p->latency, &d))
         d = SIM_TIME_MAX;
     uint64_t next = (i + 1) % s->p->nodes;
+    SimTime now = sim_now(eng);
+    SimTrace *tr = sim_engine_trace(eng);
+    sim_trace_span(tr, (uint32_t)i, node_at(s, i)->name, "send", now,
+                   sim_time_add_sat(now, ser));
+    sim_trace_flow(tr, (uint32_t)i, (uint32_t)next, s->p->token, now,
+                   sim_time_add_sat(now, d));
     sim_schedule_in(eng, d, arrive, s, (void *)(uintptr_t)next);
 }
 
@@ -113,8 +120,10 @@ static void arrive(SimEngine *eng, void *ctx, void *arg)
     if (i == 0 && s->started && round_done(eng, s))
         return;
     s->started = TRUE;
-    SimTime c = compute_time(eng, s->p, i);
+    SimTime c = compute_time(eng, s->p, i), now = sim_now(eng);
     sim_busy_add(&node_at(s, i)->busy, 0, c);
+    sim_trace_span(sim_engine_trace(eng), (uint32_t)i, node_at(s, i)->name,
+                   "compute", now, sim_time_add_sat(now, c));
     sim_schedule_in(eng, c, send, s, arg);
 }
 
