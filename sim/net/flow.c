@@ -11,41 +11,51 @@
  * Gallager, Data Networks, 1992, sec. 6.5.2): repeatedly saturate the
  * link (or flow bound) with the least fair share.
  *
+ * Bottleneck order with a lazy heap: each link of the component is in a
+ * min-heap once, keyed by its fair share rem / unfixed when pushed.  Fixing
+ * a flow at a rate no larger than the current minimum share can only raise
+ * the shares of the links it crosses, so a key is a lower bound of its
+ * link's share; the top is re-keyed only when popped (SimGrid's lazy
+ * bottleneck search follows the same idea).  Fixing a flow is O(hops), not
+ * O(hops log L).
+ *
  * Incremental: a start or an end marks the links it touches dirty and asks
  * for one recomputation at the current instant (so all starts and ends at
  * the same time are batched).  The recomputation visits only the connected
  * component of links and flows reachable from dirty links; flows elsewhere
- * keep their rates and their completion events.  The engine cannot cancel
- * events: each flow has a generation, bumped whenever its rate changes, and
- * a completion event whose generation is stale does nothing.  A flow is
- * freed when it is done and no event refers to it any more.
+ * keep their rates and predicted ends.  Predicted ends live in a private
+ * min-heap of flows (by end time, then send sequence) and one engine timer
+ * is armed for the earliest: a rate change moves a flow in that heap
+ * instead of scheduling an engine event (the engine cannot cancel events;
+ * a superseded timer is recognised by its generation and ignored).
  *
  * Invariants: a lone flow finishes at exactly the analytic time; every
- * link's flows' rates sum to at most its capacity (up to rounding).
- * Cost per recomputation: O(E log E) for E = sum of path lengths of the
- * component's flows.
+ * link's flows' rates sum to at most its capacity (up to rounding); flows
+ * with equal end times complete in send order.
+ * Cost per recomputation: O(E + L log L + C log F) for E = sum of path
+ * lengths of the component's flows, L its links, C the flows whose rate
+ * changed and F the flows in flight (plus a sort when the component's
+ * flows have different bounds).
  */
 #include "sim/net/net_internal.h"
 
 struct NetFlow {
     NetNet *net;
-    NetMsg *m;        /* NULL once delivered */
+    NetMsg *m;
     double remaining; /* bytes still to move */
     double rate;      /* B/s; 0 until first computed */
+    double prev;      /* rate before the current recomputation */
     SimTime last;     /* when remaining was last brought up to date */
-    uint32_t gen;     /* current completion event's generation */
-    uint32_t events;  /* scheduled events that refer to this flow */
-    gboolean done;
+    SimTime end;      /* predicted completion at the current rate */
+    guint hidx;       /* index in the end heap; G_MAXUINT if not in it */
     gboolean fixed;   /* max-min scratch */
     uint64_t mark;    /* component-search epoch */
-    guint hops;       /* path length (m is gone once done) */
     guint *pos;       /* index of this flow in each path link's array */
 };
 
 typedef struct {
     double share;
     NetLink *l;
-    guint ver;
 } HeapEnt;
 
 typedef struct {
@@ -54,7 +64,13 @@ typedef struct {
     GPtrArray *dirty;  /* NetLink *, may repeat */
     GPtrArray *clinks; /* component scratch */
     GPtrArray *cflows;
-    GArray *heap;      /* HeapEnt, binary min-heap on share */
+    HeapEnt *lh;       /* link min-heap on share */
+    guint lh_n, lh_cap;
+    NetFlow **eh;      /* end heap: flows in flight by (end, seq) */
+    guint eh_n, eh_cap;
+    uint32_t timer_gen; /* generation of the armed timer */
+    gboolean armed;
+    SimTime timer_at;
 } FlowNet;
 
 static FlowNet *flow_net(NetNet *n)
@@ -65,7 +81,6 @@ static FlowNet *flow_net(NetNet *n)
         fn->dirty = g_ptr_array_new();
         fn->clinks = g_ptr_array_new();
         fn->cflows = g_ptr_array_new();
-        fn->heap = g_array_new(FALSE, FALSE, sizeof(HeapEnt));
         *slot = fn;
     }
     return *slot;
@@ -76,10 +91,15 @@ static void flow_free_net(NetNet *n)
     FlowNet *fn = *net_tp_slot(n);
     if (!fn)
         return;
+    for (guint i = 0; i < fn->eh_n; i++) { /* flows still in flight */
+        g_free(fn->eh[i]->pos);
+        g_free(fn->eh[i]);
+    }
     g_ptr_array_free(fn->dirty, TRUE);
     g_ptr_array_free(fn->clinks, TRUE);
     g_ptr_array_free(fn->cflows, TRUE);
-    g_array_free(fn->heap, TRUE);
+    g_free(fn->lh);
+    g_free(fn->eh);
     g_free(fn);
 }
 
@@ -108,53 +128,68 @@ static void link_remove_flow(NetLink *l, NetFlow *f, guint hop)
     }
 }
 
-/* ---- max-min by progressive filling ---- */
+/* ---- link heap (min on share) ---- */
 
-static void heap_push(GArray *h, HeapEnt e)
+static void lh_push(FlowNet *fn, double share, NetLink *l)
 {
-    g_array_append_val(h, e);
-    HeapEnt *a = (HeapEnt *)h->data;
-    guint i = h->len - 1;
-    while (i > 0 && a[(i - 1) / 2].share > a[i].share) {
-        HeapEnt t = a[i];
+    if (fn->lh_n == fn->lh_cap) {
+        fn->lh_cap = fn->lh_cap ? 2 * fn->lh_cap : 64;
+        fn->lh = g_renew(HeapEnt, fn->lh, fn->lh_cap);
+    }
+    HeapEnt *a = fn->lh, e = {share, l};
+    guint i = fn->lh_n++;
+    while (i > 0 && a[(i - 1) / 2].share > share) {
         a[i] = a[(i - 1) / 2];
-        a[(i - 1) / 2] = t;
         i = (i - 1) / 2;
     }
+    a[i] = e;
 }
 
-static HeapEnt heap_pop(GArray *h)
+static void lh_pop(FlowNet *fn)
 {
-    HeapEnt *a = (HeapEnt *)h->data, top = a[0];
-    a[0] = a[h->len - 1];
-    g_array_set_size(h, h->len - 1);
-    guint i = 0, n = h->len;
+    HeapEnt *a = fn->lh, last = a[--fn->lh_n];
+    guint i = 0, n = fn->lh_n;
     for (;;) {
-        guint c = 2 * i + 1, m = i;
-        if (c < n && a[c].share < a[m].share)
-            m = c;
-        if (c + 1 < n && a[c + 1].share < a[m].share)
-            m = c + 1;
-        if (m == i)
+        guint c = 2 * i + 1;
+        if (c >= n)
             break;
-        HeapEnt t = a[i];
-        a[i] = a[m];
-        a[m] = t;
-        i = m;
+        if (c + 1 < n && a[c + 1].share < a[c].share)
+            c++;
+        if (a[c].share >= last.share)
+            break;
+        a[i] = a[c];
+        i = c;
     }
-    return top;
+    if (n > 0)
+        a[i] = last;
 }
 
-static void push_link(GArray *h, NetLink *l)
+/* The link with the least current share, or NULL when every link is
+ * saturated; *share gets that share.  Re-keys stale tops lazily. */
+static NetLink *lh_min(FlowNet *fn, double *share)
 {
-    if (l->unfixed == 0)
-        return;
-    l->hpos++;
-    HeapEnt e = {l->rem / l->unfixed, l, l->hpos};
-    heap_push(h, e);
+    while (fn->lh_n > 0) {
+        HeapEnt top = fn->lh[0];
+        NetLink *l = top.l;
+        if (l->unfixed == 0) {
+            lh_pop(fn);
+            continue;
+        }
+        double cur = l->rem / l->unfixed;
+        if (cur > top.share) {
+            lh_pop(fn);
+            lh_push(fn, cur, l);
+            continue;
+        }
+        *share = cur;
+        return l;
+    }
+    return NULL;
 }
 
-static void fix_flow(GArray *h, NetFlow *f, double rate)
+/* ---- max-min by progressive filling ---- */
+
+static void fix_flow(NetFlow *f, double rate)
 {
     f->fixed = TRUE;
     f->rate = rate;
@@ -162,7 +197,6 @@ static void fix_flow(GArray *h, NetFlow *f, double rate)
         NetLink *l = f->m->path[i];
         l->rem = l->rem > rate ? l->rem - rate : 0.0;
         l->unfixed--;
-        push_link(h, l);
     }
 }
 
@@ -174,42 +208,49 @@ static gint by_bound(gconstpointer a, gconstpointer b)
     return x->m->seq < y->m->seq ? -1 : (x->m->seq > y->m->seq);
 }
 
+/* Flows in order of their bound (a flow's path channel bandwidth); with
+ * one common bound (the usual case) any order gives the same rates. */
+static void order_by_bound(GPtrArray *flows)
+{
+    for (guint i = 1; i < flows->len; i++) {
+        const NetFlow *a = g_ptr_array_index(flows, 0);
+        const NetFlow *b = g_ptr_array_index(flows, i);
+        if (a->m->bw != b->m->bw) {
+            g_ptr_array_sort(flows, by_bound);
+            return;
+        }
+    }
+}
+
 static void maxmin(FlowNet *fn)
 {
-    GArray *h = fn->heap;
-    g_array_set_size(h, 0);
+    fn->lh_n = 0;
     for (guint i = 0; i < fn->clinks->len; i++) {
         NetLink *l = g_ptr_array_index(fn->clinks, i);
         l->rem = l->bw * l->channels;
         l->unfixed = l->n_flows;
-        push_link(h, l);
+        lh_push(fn, l->rem / l->unfixed, l);
     }
-    g_ptr_array_sort(fn->cflows, by_bound);
-    guint next = 0, nf = fn->cflows->len;
+    order_by_bound(fn->cflows);
+    guint nf = fn->cflows->len;
     for (guint i = 0; i < nf; i++)
         ((NetFlow *)g_ptr_array_index(fn->cflows, i))->fixed = FALSE;
-    while (next < nf) {
+    for (guint next = 0; next < nf;) {
         NetFlow *bf = g_ptr_array_index(fn->cflows, next);
         if (bf->fixed) {
             next++;
             continue;
         }
-        while (h->len > 0) {
-            HeapEnt top = g_array_index(h, HeapEnt, 0);
-            if (top.ver == top.l->hpos && top.l->unfixed > 0)
-                break;
-            heap_pop(h);
-        }
-        if (h->len == 0 || bf->m->bw <= g_array_index(h, HeapEnt, 0).share) {
-            fix_flow(h, bf, bf->m->bw);
+        double share = 0.0;
+        NetLink *l = lh_min(fn, &share);
+        if (!l || bf->m->bw <= share) {
+            fix_flow(bf, bf->m->bw);
             continue;
         }
-        HeapEnt top = heap_pop(h);
-        for (guint i = 0; i < top.l->n_flows; i++) {
-            NetFlow *f = top.l->flows[i].f;
-            if (!f->fixed)
-                fix_flow(h, f, top.share);
-        }
+        lh_pop(fn);
+        for (guint i = 0; i < l->n_flows; i++)
+            if (!l->flows[i].f->fixed)
+                fix_flow(l->flows[i].f, share);
     }
 }
 
@@ -245,51 +286,131 @@ static void collect_component(FlowNet *fn)
     }
 }
 
-/* ---- events ---- */
+/* ---- end heap: flows by (end, send sequence) ---- */
 
-static void flow_release(NetNet *n, NetFlow *f)
+static gboolean ends_before(const NetFlow *a, const NetFlow *b)
 {
-    if (!f->done || f->events > 0)
-        return;
-    net_account(n, -(gssize)(sizeof *f + f->hops * sizeof(guint)));
-    g_free(f->pos);
-    g_free(f);
+    return a->end < b->end || (a->end == b->end && a->m->seq < b->m->seq);
 }
 
-static void request_recompute(NetNet *n, FlowNet *fn);
-
-static void flow_complete(SimEngine *eng, void *ctx, void *arg)
+static void eh_set(FlowNet *fn, guint i, NetFlow *f)
 {
-    (void)eng;
-    NetFlow *f = ctx;
-    NetNet *n = f->net;
-    f->events--;
-    if (GPOINTER_TO_UINT(arg) != f->gen || f->done) {
-        flow_release(n, f);
-        return;
+    fn->eh[i] = f;
+    f->hidx = i;
+}
+
+static void eh_up(FlowNet *fn, guint i)
+{
+    NetFlow *f = fn->eh[i];
+    while (i > 0 && ends_before(f, fn->eh[(i - 1) / 2])) {
+        eh_set(fn, i, fn->eh[(i - 1) / 2]);
+        i = (i - 1) / 2;
     }
+    eh_set(fn, i, f);
+}
+
+static void eh_down(FlowNet *fn, guint i)
+{
+    NetFlow *f = fn->eh[i];
+    for (;;) {
+        guint c = 2 * i + 1;
+        if (c >= fn->eh_n)
+            break;
+        if (c + 1 < fn->eh_n && ends_before(fn->eh[c + 1], fn->eh[c]))
+            c++;
+        if (!ends_before(fn->eh[c], f))
+            break;
+        eh_set(fn, i, fn->eh[c]);
+        i = c;
+    }
+    eh_set(fn, i, f);
+}
+
+/* Inserts f, or moves it after its end changed. */
+static void eh_update(FlowNet *fn, NetFlow *f)
+{
+    if (f->hidx == G_MAXUINT) {
+        if (fn->eh_n == fn->eh_cap) {
+            fn->eh_cap = fn->eh_cap ? 2 * fn->eh_cap : 64;
+            fn->eh = g_renew(NetFlow *, fn->eh, fn->eh_cap);
+        }
+        f->hidx = fn->eh_n++;
+        fn->eh[f->hidx] = f;
+    }
+    eh_up(fn, f->hidx);
+    eh_down(fn, f->hidx);
+}
+
+static NetFlow *eh_pop(FlowNet *fn)
+{
+    NetFlow *top = fn->eh[0];
+    top->hidx = G_MAXUINT;
+    if (--fn->eh_n > 0) {
+        eh_set(fn, 0, fn->eh[fn->eh_n]);
+        eh_down(fn, 0);
+    }
+    return top;
+}
+
+/* ---- events ---- */
+
+static void request_recompute(NetNet *n, FlowNet *fn);
+static void on_timer(SimEngine *eng, void *ctx, void *arg);
+
+/* Arms the engine timer for the earliest predicted end, unless one at or
+ * before it is armed already (an early timer simply re-arms). */
+static void arm_timer(NetNet *n, FlowNet *fn)
+{
+    if (fn->eh_n == 0)
+        return;
+    SimTime t = fn->eh[0]->end;
+    if (fn->armed && fn->timer_at <= t)
+        return;
+    fn->armed = TRUE;
+    fn->timer_at = t;
+    fn->timer_gen++;
+    sim_schedule_at(net_eng(n), t, on_timer, n,
+                    GUINT_TO_POINTER(fn->timer_gen));
+}
+
+static void flow_finish(NetNet *n, FlowNet *fn, NetFlow *f)
+{
     NetMsg *m = f->m;
-    FlowNet *fn = flow_net(n);
     for (guint i = 0; i < m->hops; i++) {
         link_remove_flow(m->path[i], f, i);
         g_ptr_array_add(fn->dirty, m->path[i]);
     }
     request_recompute(n, fn);
-    f->done = TRUE;
-    f->m = NULL;
+    net_account(n, -(gssize)(sizeof *f + m->hops * sizeof(guint)));
+    g_free(f->pos);
+    g_free(f);
     net_msg_deliver(n, m);
-    flow_release(n, f);
 }
 
-static void schedule_completion(NetNet *n, NetFlow *f)
+static void on_timer(SimEngine *eng, void *ctx, void *arg)
 {
-    SimTime dt = f->remaining > 0.0
-                     ? sim_time_for_bytes(f->remaining, f->rate)
-                     : 0;
-    f->gen++;
-    f->events++;
-    sim_schedule_in(net_eng(n), dt, flow_complete, f,
-                    GUINT_TO_POINTER(f->gen));
+    NetNet *n = ctx;
+    FlowNet *fn = flow_net(n);
+    if (GPOINTER_TO_UINT(arg) != fn->timer_gen)
+        return; /* superseded by an earlier timer */
+    fn->armed = FALSE;
+    SimTime now = sim_now(eng);
+    while (fn->eh_n > 0 && fn->eh[0]->end <= now)
+        flow_finish(n, fn, eh_pop(fn));
+    arm_timer(n, fn);
+}
+
+/* Brings the component's flows up to now and remembers their rates. */
+static void advance_flows(FlowNet *fn, SimTime now)
+{
+    for (guint i = 0; i < fn->cflows->len; i++) {
+        NetFlow *f = g_ptr_array_index(fn->cflows, i);
+        f->remaining -= f->rate * (double)(now - f->last) * 1e-12;
+        if (f->remaining < 0.0)
+            f->remaining = 0.0;
+        f->last = now;
+        f->prev = f->rate;
+    }
 }
 
 static void recompute(SimEngine *eng, void *ctx, void *arg)
@@ -300,27 +421,19 @@ static void recompute(SimEngine *eng, void *ctx, void *arg)
     fn->pending = FALSE;
     SimTime now = sim_now(eng);
     collect_component(fn);
-    for (guint i = 0; i < fn->cflows->len; i++) {
-        NetFlow *f = g_ptr_array_index(fn->cflows, i);
-        f->remaining -= f->rate * (double)(now - f->last) * 1e-12;
-        if (f->remaining < 0.0)
-            f->remaining = 0.0;
-        f->last = now;
-    }
-    GArray *old = g_array_sized_new(FALSE, FALSE, sizeof(double),
-                                    fn->cflows->len);
-    for (guint i = 0; i < fn->cflows->len; i++) {
-        NetFlow *f = g_ptr_array_index(fn->cflows, i);
-        g_array_append_val(old, f->rate);
-    }
+    advance_flows(fn, now);
     maxmin(fn);
     for (guint i = 0; i < fn->cflows->len; i++) {
         NetFlow *f = g_ptr_array_index(fn->cflows, i);
         g_assert(f->rate > 0.0);
-        if (f->rate != g_array_index(old, double, i))
-            schedule_completion(n, f);
+        if (f->rate == f->prev)
+            continue;
+        f->end = now + (f->remaining > 0.0
+                            ? sim_time_for_bytes(f->remaining, f->rate)
+                            : 0);
+        eh_update(fn, f);
     }
-    g_array_free(old, TRUE);
+    arm_timer(n, fn);
 }
 
 static void request_recompute(NetNet *n, FlowNet *fn)
@@ -343,9 +456,9 @@ static void flow_begin(SimEngine *eng, void *ctx, void *arg)
     NetFlow *f = g_new0(NetFlow, 1);
     f->net = n;
     f->m = m;
-    f->hops = m->hops;
     f->remaining = (double)m->bytes;
     f->last = sim_now(eng);
+    f->hidx = G_MAXUINT;
     f->pos = g_new(guint, m->hops);
     net_account(n, (gssize)(sizeof *f + m->hops * sizeof(guint)));
     for (guint i = 0; i < m->hops; i++) {

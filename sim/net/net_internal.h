@@ -31,7 +31,6 @@ typedef struct {
     uint64_t mark;     /* component-search epoch */
     double rem;        /* max-min scratch: capacity left */
     guint unfixed;     /* max-min scratch: flows not yet fixed */
-    guint hpos;        /* max-min scratch: version for the heap */
     /* circuit / ring-slot / packet transports */
     NetMsg **holder;   /* per channel, NULL when free (lazily allocated) */
     GQueue wait;       /* NetMsg * waiting for a channel, FIFO */
