@@ -374,6 +374,19 @@ static SceneCamera key_camera(const SceneCameraPath *p, double frame)
     return c;
 }
 
+void scene_path_set_base(SceneCameraPath *p, const SceneCamera *c)
+{
+    g_assert(p->kind != SCENE_PATH_KEYFRAMES);
+    p->base = *c;
+    if (p->kind != SCENE_PATH_ORBIT)
+        return;
+    Mat4 back = mat4_rotate(p->axis, -p->deg0 * G_PI / 180.0);
+    p->base.eye = rotate_about(c->eye, p->center, back);
+    p->base.target = rotate_about(c->target, p->center, back);
+    Vec4 u = mat4_apply(back, (Vec4){c->up.x, c->up.y, c->up.z, 0});
+    p->base.up = vec3(u.x, u.y, u.z);
+}
+
 SceneCamera scene_path_camera(const SceneCameraPath *p, double frame)
 {
     switch (p->kind) {

@@ -82,6 +82,10 @@ void scene_path_free(SceneCameraPath *p);
 ScenePathKind scene_path_kind(const SceneCameraPath *p);
 guint scene_path_n_frames(const SceneCameraPath *p);
 void scene_path_set_n_frames(SceneCameraPath *p, guint frames);
+/* Makes `c` the camera of frame 0 of a fixed or orbit path (an orbit
+ * keeps its centre, axis and angles: its base becomes c rotated back by
+ * the start angle).  Keyframed paths cannot be re-based (asserted). */
+void scene_path_set_base(SceneCameraPath *p, const SceneCamera *c);
 guint scene_path_n_keys(const SceneCameraPath *p);
 SceneCamera scene_path_camera(const SceneCameraPath *p, double frame);
 

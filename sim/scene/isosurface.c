@@ -74,19 +74,29 @@ static uint32_t edge_vertex(Iso *s, guint64 a, guint64 b)
     return v;
 }
 
-/* Emits triangle (a, b, c) wound so its normal points from `inside`
- * (f >= iso) towards the outside (f < iso). */
-static void emit(Iso *s, uint32_t a, uint32_t b, uint32_t c, Vec3 inside)
+/* Midpoint of the lattice edge a-b. */
+static Vec3 mid(const Iso *s, guint64 a, guint64 b)
 {
-    Vec3 pa = scene_mesh_vertex(s->m, a), pb = scene_mesh_vertex(s->m, b);
-    Vec3 pc = scene_mesh_vertex(s->m, c);
-    Vec3 n = vec3_cross(vec3_sub(pb, pa), vec3_sub(pc, pa));
-    if (vec3_dot(n, vec3_sub(pa, inside)) < 0) {
-        uint32_t t = b;
-        b = c;
-        c = t;
-    }
-    scene_mesh_add_tri(s->m, a, b, c, s->p->color, 0);
+    return vec3_scale(vec3_add(lattice_point(s, a), lattice_point(s, b)),
+                      0.5);
+}
+
+/* Emits triangle (a, b, c) wound so its normal points from the inside
+ * (f >= iso) towards the outside (f < iso).  The winding is decided on
+ * the midpoints ma, mb, mc of the triangle's lattice edges, never on the
+ * interpolated vertices: those coincide when a lattice value equals iso
+ * (the gyroid is 0 at many lattice points) and the orientation of a
+ * zero-area triangle would be arbitrary.  The midpoint triangle lies in
+ * a plane that strictly separates the tetrahedron's inside corners from
+ * its outside ones, and moving the vertices along their edges never
+ * flips a triangle, so the two windings agree whenever the real
+ * triangle has an area; neighbours share edges in opposite directions. */
+static void emit(Iso *s, const uint32_t v[3], const Vec3 m[3], Vec3 inside)
+{
+    Vec3 n = vec3_cross(vec3_sub(m[1], m[0]), vec3_sub(m[2], m[0]));
+    gboolean flip = vec3_dot(n, vec3_sub(m[0], inside)) < 0;
+    scene_mesh_add_tri(s->m, v[0], flip ? v[2] : v[1], flip ? v[1] : v[2],
+                       s->p->color, 0);
 }
 
 static void do_tet(Iso *s, const guint64 id[4])
@@ -106,17 +116,27 @@ static void do_tet(Iso *s, const guint64 id[4])
         guint64 apex = ni == 1 ? in[0] : out[0];
         guint64 *rest = ni == 1 ? out : in;
         uint32_t v[3];
-        for (int k = 0; k < 3; k++)
+        Vec3 m[3];
+        for (int k = 0; k < 3; k++) {
             v[k] = edge_vertex(s, apex, rest[k]);
-        emit(s, v[0], v[1], v[2], ref);
+            m[k] = mid(s, apex, rest[k]);
+        }
+        emit(s, v, m, ref);
         return;
     }
-    uint32_t a = edge_vertex(s, in[0], out[0]);
-    uint32_t b = edge_vertex(s, in[0], out[1]);
-    uint32_t c = edge_vertex(s, in[1], out[1]);
-    uint32_t d = edge_vertex(s, in[1], out[0]);
-    emit(s, a, b, c, ref);
-    emit(s, a, c, d, ref);
+    /* a quad: edges in0-out0, in0-out1, in1-out1, in1-out0 */
+    guint64 e[4][2] = {{in[0], out[0]}, {in[0], out[1]}, {in[1], out[1]},
+                       {in[1], out[0]}};
+    uint32_t q[4];
+    Vec3 mq[4];
+    for (int k = 0; k < 4; k++) {
+        q[k] = edge_vertex(s, e[k][0], e[k][1]);
+        mq[k] = mid(s, e[k][0], e[k][1]);
+    }
+    uint32_t t1[3] = {q[0], q[1], q[2]}, t2[3] = {q[0], q[2], q[3]};
+    Vec3 m1[3] = {mq[0], mq[1], mq[2]}, m2[3] = {mq[0], mq[2], mq[3]};
+    emit(s, t1, m1, ref);
+    emit(s, t2, m2, ref);
 }
 
 static void sample(Iso *s)
@@ -164,10 +184,25 @@ SceneMesh *scene_iso_mesh(const SceneIsoParams *p)
     return s.m;
 }
 
+/* TRUE when the surface reaches the lattice's boundary, where it is cut
+ * open (vertices there have a coordinate of -1 or 1, up to rounding). */
+static gboolean reaches_boundary(const SceneMesh *m)
+{
+    const double b = 1 - 1e-9;
+    for (guint i = 0; i < scene_mesh_n_vertices(m); i++) {
+        Vec3 v = scene_mesh_vertex(m, i);
+        if (fabs(v.x) >= b || fabs(v.y) >= b || fabs(v.z) >= b)
+            return TRUE;
+    }
+    return FALSE;
+}
+
 Scene *scene_iso_new(const SceneIsoParams *p)
 {
     Scene *s = scene_new("isosurface");
-    guint id = scene_add_mesh(s, scene_iso_mesh(p));
+    SceneMesh *m = scene_iso_mesh(p);
+    s->two_sided = reaches_boundary(m);
+    guint id = scene_add_mesh(s, m);
     scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
     SceneView v = scene_view_default();
     v.azimuth_deg = 30;

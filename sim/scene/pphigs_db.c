@@ -294,6 +294,20 @@ void scene_pphigs_db_clear(ScenePphigsDb *d)
     d->db = NULL;
 }
 
+Scene *scene_pphigs_scene_new(const ScenePphigsSpec *spec, GError **err)
+{
+    ScenePphigsDb d;
+    if (!scene_pphigs_generate(spec, &d, err))
+        return NULL;
+    Scene *s = scene_new(scene_pphigs_kind_name(spec->kind));
+    guint id = scene_add_mesh(s, scene_db_flatten(d.db));
+    scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
+    s->camera = d.camera;
+    s->two_sided = TRUE;
+    scene_set_db(s, d.db);
+    return s;
+}
+
 typedef struct {
     Mat4 vp;
     uint64_t off, all;

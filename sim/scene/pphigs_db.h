@@ -14,8 +14,7 @@
 #ifndef PGSIM_SCENE_PPHIGS_DB_H
 #define PGSIM_SCENE_PPHIGS_DB_H
 
-#include "sim/scene/camera.h"
-#include "sim/scene/structdb.h"
+#include "sim/scene/scene.h"
 
 typedef enum {
     SCENE_PPHIGS_STATION,
@@ -60,6 +59,12 @@ gboolean scene_pphigs_kind_parse(const char *s, ScenePphigsKind *out);
 gboolean scene_pphigs_generate(const ScenePphigsSpec *spec,
                                ScenePphigsDb *out, GError **err);
 void scene_pphigs_db_clear(ScenePphigsDb *d);
+
+/* The database as a renderable scene named after its kind: the posted
+ * network flattened into one mesh (scene_db_flatten()), the standard
+ * view as camera, two-sided (the generators' polygons face every way),
+ * and s->db holding the database.  NULL with *err as above. */
+Scene *scene_pphigs_scene_new(const ScenePphigsSpec *spec, GError **err);
 
 /* TRUE when the primitive lies wholly outside one clip plane of `mvp`
  * (-w <= x, y, z <= w): trivially rejected, off-screen. */

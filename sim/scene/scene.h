@@ -30,6 +30,8 @@ typedef struct {
     SceneCameraPath *path; /* owned, may be NULL (fixed camera) */
     SceneColor background;
     guint width, height; /* suggested viewport in pixels (0 = unset) */
+    gboolean two_sided;  /* open surfaces whose back faces show: a quick
+                            look should not cull them (default FALSE) */
     SceneDb *db;         /* optional hierarchical form (owned), or NULL */
 } Scene;
 

@@ -10,6 +10,7 @@
 #include "sim/scene/isosurface.h"
 #include "sim/scene/obj.h"
 #include "sim/scene/ply.h"
+#include "sim/scene/pphigs_db.h"
 #include "sim/scene/teapots.h"
 #include "sim/scene/vehicle.h"
 
@@ -222,10 +223,85 @@ static Scene *gen_large_polygons(const CfgNode *sec, GError **err)
     return scene_bigpoly_new(&p);
 }
 
-static const char *const gen_names[] = {"teapots", "vehicle", "isosurface",
-                                        "large_polygons", NULL};
+/* The PPHIGS databases (seed 001): the keys each kind reads, all
+ * required (numbers from configs/scenes/, matching configs/pphigs/
+ * databases.yaml), then `seed` (default 1) and `verts` (default 4). */
+static const char *const pphigs_keys[SCENE_PPHIGS_NKINDS][8] = {
+    {"polygons", "attributes", NULL},
+    {"polygons", "attributes", NULL},
+    {"boids", "boid_polygons", "boid_colors", "well_structs",
+     "well_polygons", "well_attributes", NULL},
+    {"figures", "structures", "polygons", "levels", NULL},
+};
+
+static guint *pphigs_field(ScenePphigsSpec *p, const char *key)
+{
+#define F(k) {#k, G_STRUCT_OFFSET(ScenePphigsSpec, k)}
+    static const struct {
+        const char *key;
+        gsize off;
+    } fields[] = {F(polygons), F(attributes), F(boids), F(boid_polygons),
+                  F(boid_colors), F(well_structs), F(well_polygons),
+                  F(well_attributes), F(figures), F(structures), F(levels)};
+#undef F
+    for (guint i = 0; i < G_N_ELEMENTS(fields); i++)
+        if (!strcmp(fields[i].key, key))
+            return &G_STRUCT_MEMBER(guint, p, fields[i].off);
+    g_assert_not_reached();
+}
+
+static Scene *gen_pphigs(const CfgNode *sec, ScenePphigsKind kind,
+                         GError **err)
+{
+    ScenePphigsSpec p = {.kind = kind, .seed = 1, .verts = 4, .fov_deg = 45};
+    if (!cfg_get_count(sec, "seed", FALSE, 0, UINT64_MAX, &p.seed, err) ||
+        !get_guint(sec, "verts", 3, 64, &p.verts, err) ||
+        !cfg_get_double(sec, "size", TRUE, 1e-6, 1e9, &p.size, err) ||
+        (kind == SCENE_PPHIGS_LOBBY &&
+         !cfg_get_double(sec, "fov_deg", TRUE, 1, 170, &p.fov_deg, err)))
+        return NULL;
+    for (guint i = 0; pphigs_keys[kind][i]; i++) {
+        const char *k = pphigs_keys[kind][i];
+        uint64_t v = 0;
+        if (!cfg_get_count(sec, k, TRUE, 0, 1u << 24, &v, err))
+            return NULL;
+        *pphigs_field(&p, k) = (guint)v;
+    }
+    GError *e = NULL;
+    Scene *s = scene_pphigs_scene_new(&p, &e);
+    if (!s) {
+        char *at = where(sec, "generator");
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "%s: %s", at,
+                    e->message);
+        g_free(at);
+        g_error_free(e);
+    }
+    return s;
+}
+
+static Scene *gen_station(const CfgNode *sec, GError **err)
+{
+    return gen_pphigs(sec, SCENE_PPHIGS_STATION, err);
+}
+static Scene *gen_lobby(const CfgNode *sec, GError **err)
+{
+    return gen_pphigs(sec, SCENE_PPHIGS_LOBBY, err);
+}
+static Scene *gen_flock(const CfgNode *sec, GError **err)
+{
+    return gen_pphigs(sec, SCENE_PPHIGS_FLOCK, err);
+}
+static Scene *gen_humans(const CfgNode *sec, GError **err)
+{
+    return gen_pphigs(sec, SCENE_PPHIGS_HUMANS, err);
+}
+
+static const char *const gen_names[] = {
+    "teapots", "vehicle", "isosurface", "large_polygons", "space_station",
+    "building_lobby", "flock_old_well", "two_human_figures", NULL};
 static const GenFn gen_fns[] = {gen_teapots, gen_vehicle, gen_isosurface,
-                                gen_large_polygons};
+                                gen_large_polygons, gen_station, gen_lobby,
+                                gen_flock, gen_humans};
 
 const char *const *scene_generator_names(void)
 {
@@ -244,7 +320,8 @@ Scene *scene_from_file(const char *path, GError **err)
         m = scene_ply_load(path, err);
     else
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "%s: found an unknown extension, expected .obj or .ply",
+                    "%s: found an unknown extension, expected .obj or .ply"
+                    " (or a .yaml scene file)",
                     path);
     g_free(lower);
     if (!m)
@@ -416,16 +493,35 @@ static gboolean apply_path(Scene *s, const CfgNode *n, GError **err)
     return TRUE;
 }
 
+/* A generator's own path (the vehicle's orbit) follows a camera set by
+ * `view` or `camera`: frame 0 shows what the section asked for. */
+static gboolean rebase_path(Scene *s, const CfgNode *at, GError **err)
+{
+    if (!s->path)
+        return TRUE;
+    if (scene_path_kind(s->path) == SCENE_PATH_KEYFRAMES) {
+        cfg_error(err, at, "a camera for a keyframed scene",
+                  "a path: section with the keys");
+        return FALSE;
+    }
+    scene_path_set_base(s->path, &s->camera);
+    return TRUE;
+}
+
 static gboolean apply_common(Scene *s, const CfgNode *sec, GError **err)
 {
-    const CfgNode *n;
+    const CfgNode *n, *cam = NULL;
     if ((n = cfg_get(sec, "view")) && !apply_view(s, n, err))
         return FALSE;
-    if ((n = cfg_get(sec, "camera")) && !read_camera(n, &s->camera, err))
+    if ((cam = cfg_get(sec, "camera")) && !read_camera(cam, &s->camera, err))
         return FALSE;
     if ((n = cfg_get(sec, "path")) && !apply_path(s, n, err))
         return FALSE;
-    return get_color(sec, "background", &s->background, err);
+    if (!n && (cam || (cam = cfg_get(sec, "view"))) &&
+        !rebase_path(s, cam, err))
+        return FALSE;
+    return get_color(sec, "background", &s->background, err) &&
+           cfg_get_bool(sec, "two_sided", FALSE, &s->two_sided, err);
 }
 
 Scene *scene_from_cfg(const CfgNode *sec, GError **err)
@@ -445,4 +541,47 @@ Scene *scene_from_cfg(const CfgNode *sec, GError **err)
         s = NULL;
     }
     return s;
+}
+
+/* ---- scene files ------------------------------------------------------- */
+
+/* Top-level sections of a run config (sim/app/config.c) that a scene
+ * file reader skips; a plain scene file has only `scene:`. */
+static const char *const run_sections[] = {
+    "schema_version", "machine", "workload", "run", "sweep", NULL};
+
+static Scene *scene_from_yaml(const char *path, GError **err)
+{
+    CfgNode *root = cfg_load_file(path, err);
+    if (!root)
+        return NULL;
+    Scene *s = NULL;
+    const CfgNode *sec = NULL;
+    if (cfg_kind(root) != CFG_MAP)
+        cfg_error(err, root, "a non-map", "a map with a scene: section");
+    else if (!(sec = cfg_get(root, "scene")))
+        cfg_error(err, root, "no key 'scene'",
+                  "a scene: section (docs/scenes.md)");
+    if (sec && cfg_get(root, "schema_version"))
+        for (guint i = 0; run_sections[i]; i++)
+            if (cfg_get(root, run_sections[i]))
+                cfg_mark_read(cfg_get(root, run_sections[i]));
+    if (sec && (s = scene_from_cfg(sec, err)) &&
+        !cfg_check_unused(root, err)) {
+        scene_free(s);
+        s = NULL;
+    }
+    cfg_free(root);
+    return s;
+}
+
+Scene *scene_load(const char *path, GError **err)
+{
+    char *lower = g_ascii_strdown(path, -1);
+    gboolean yaml = g_str_has_suffix(lower, ".yaml") ||
+                    g_str_has_suffix(lower, ".yml");
+    g_free(lower);
+    if (yaml)
+        return scene_from_yaml(path, err);
+    return scene_from_file(path, err);
 }

@@ -1,7 +1,9 @@
 /* scene_cfg.h — scenes from a YAML `scene:` section.
  *
  *   scene:
- *     generator: teapots | vehicle | isosurface | large_polygons
+ *     generator: teapots | vehicle | isosurface | large_polygons |
+ *                space_station | building_lobby | flock_old_well |
+ *                two_human_figures
  *     file: model.obj | model.ply      # instead of a generator
  *     ...generator parameters (docs/scenes.md)...
  *     view:   {azimuth: 30, elevation: 20, fov: 45, fill: 0.9,
@@ -15,6 +17,7 @@
  *              keys: [{frame: 0, eye: [...], target: [...], up: [...],
  *                      fov: 45}, ...]}
  *     background: [r, g, b]
+ *     two_sided: false                 # true: renderers should not cull
  *
  * Order: the generator (or file) builds the scene with its own camera;
  * `view` then re-fits the camera by the view rule (scene.h), `camera`
@@ -35,6 +38,12 @@ Scene *scene_from_cfg(const CfgNode *scene_section, GError **err);
 /* A new scene of one mesh loaded from an OBJ or PLY file (by extension,
  * case-insensitive), camera by the default view rule. */
 Scene *scene_from_file(const char *path, GError **err);
+/* A scene from any file a user names: .yaml / .yml is a scene file
+ * (configs/scenes/: a map with only a `scene:` section) or a run config
+ * (it has `schema_version:`; its other sections are ignored), whose
+ * scene section goes through scene_from_cfg(); .obj / .ply go through
+ * scene_from_file().  Located errors as above; NULL on error. */
+Scene *scene_load(const char *path, GError **err);
 /* The generator names scene_from_cfg() accepts, NULL-terminated. */
 const char *const *scene_generator_names(void);
 

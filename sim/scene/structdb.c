@@ -435,6 +435,43 @@ void scene_db_traverse(const SceneDb *db, ScenePrimFn fn, void *ud)
              vec3(1, 1, 1), 1);
 }
 
+static void flatten_prim(const ScenePrimInst *pi, void *ud)
+{
+    SceneMesh *m = ud;
+    const SceneElem *e = pi->el;
+    uint32_t base = scene_mesh_n_vertices(m);
+    if (e->nverts < 3)
+        return; /* no area: nothing to draw */
+    for (guint k = 0; k < e->nverts; k++) {
+        Vec4 h = mat4_apply_point(pi->matrix, e->verts[k]);
+        scene_mesh_add_vertex(m, vec3(h.x, h.y, h.z));
+    }
+    SceneColor c = {(float)pi->color.x, (float)pi->color.y,
+                    (float)pi->color.z};
+    if (e->kind != SCENE_EL_TRISTRIP) {
+        uint32_t *idx = g_new(uint32_t, e->nverts);
+        for (guint k = 0; k < e->nverts; k++)
+            idx[k] = base + k;
+        scene_mesh_add_poly(m, idx, e->nverts, c, pi->sid);
+        g_free(idx);
+        return;
+    }
+    for (guint k = 0; k + 2 < e->nverts; k++) {
+        uint32_t a = base + k, b = base + k + 1, d = base + k + 2;
+        if (k % 2)
+            scene_mesh_add_tri(m, b, a, d, c, pi->sid);
+        else
+            scene_mesh_add_tri(m, a, b, d, c, pi->sid);
+    }
+}
+
+SceneMesh *scene_db_flatten(const SceneDb *db)
+{
+    SceneMesh *m = scene_mesh_new();
+    scene_db_traverse(db, flatten_prim, m);
+    return m;
+}
+
 /* ---- max-set and min-set views ---------------------------------------- */
 
 static void maxset_walk(const SceneDb *db, GArray *out, guint sid, gint parent,

@@ -140,6 +140,13 @@ void scene_db_traverse(const SceneDb *db, ScenePrimFn fn, void *ud);
 void scene_db_traverse_from(const SceneDb *db, guint sid, Mat4 g, Vec3 color,
                             int64_t *priority, ScenePrimFn fn, void *ud);
 
+/* The posted network as one world-space mesh, in traversal order: each
+ * triangle, polygon and ODP becomes a polygon, each strip of n vertices
+ * n - 2 triangles (alternate ones reversed, so the strip keeps one
+ * winding); colour = inherited colour, tag = structure id.  A new mesh,
+ * free with scene_mesh_free().  O(max-set). */
+SceneMesh *scene_db_flatten(const SceneDb *db);
+
 /* Max-set view (seed 000 §3.4): the instance tree, one node per structure
  * instance reached from the posted roots, in traversal (pre-)order. */
 typedef struct {

@@ -1,6 +1,8 @@
 /* test_scene_cfg.c — scenes from YAML: the configs/scenes/ files give the
- * published counts (seed 003 Table 1, seed 000, seed 004), and every
- * malformed section fails with a located error.
+ * published counts (seed 003 Table 1, seed 000, seed 004, and seed 001's
+ * four PPHIGS databases against configs/papers/ellsworth90.yaml), a
+ * camera or view re-bases a generator's camera path, and every malformed
+ * section fails with a located error.  Run from the repository root.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -8,6 +10,7 @@
 #include <cmocka.h>
 #include <string.h>
 
+#include "sim/scene/pphigs_db.h"
 #include "sim/scene/scene_cfg.h"
 
 static Scene *from_file(const char *path)
@@ -64,6 +67,91 @@ static void test_other_configs(void **st)
     s = from_file("configs/scenes/large_polygons.yaml");
     assert_int_equal(scene_n_polys(s), 217976);
     scene_free(s);
+}
+
+static const char *const pphigs_names[] = {
+    "space_station", "building_lobby", "flock_old_well", "two_human_figures"};
+
+/* A published cell of seed 001's "db" table; FALSE when absent. */
+static gboolean paper_cell(const CfgNode *paper, const char *row,
+                           const char *col, double *v)
+{
+    char *path = g_strdup_printf("tables.db.rows.%s.%s", row, col);
+    const CfgNode *n = cfg_path(paper, path);
+    g_free(path);
+    if (!n)
+        return FALSE;
+    *v = g_ascii_strtod(cfg_scalar(n), NULL);
+    return TRUE;
+}
+
+/* Within the table's printed precision (3 significant digits). */
+static void assert_near(double sim, double pub, double rel)
+{
+    if (fabs(sim - pub) > rel * fabs(pub))
+        print_error("simulated %g, published %g\n", sim, pub);
+    assert_true(fabs(sim - pub) <= rel * fabs(pub));
+}
+
+/* The four PPHIGS scene files have the published statistics, and their
+ * generator parameters are those of configs/pphigs/databases.yaml (the
+ * pphigs workload's copy). */
+static void test_pphigs_configs(void **st)
+{
+    (void)st;
+    CfgNode *paper = cfg_load_file("configs/papers/ellsworth90.yaml", NULL);
+    CfgNode *dbs = cfg_load_file("configs/pphigs/databases.yaml", NULL);
+    assert_non_null(paper);
+    assert_non_null(dbs);
+    for (guint i = 0; i < G_N_ELEMENTS(pphigs_names); i++) {
+        const char *name = pphigs_names[i];
+        char *path = g_strdup_printf("configs/scenes/%s.yaml", name);
+        Scene *s = from_file(path);
+        assert_string_equal(s->name, name);
+        assert_true(s->two_sided);
+        SceneDbStats x;
+        scene_db_stats(s->db, &x);
+        double v;
+        assert_true(paper_cell(paper, name, "depth", &v));
+        assert_int_equal(x.depth, (guint)v);
+        assert_true(paper_cell(paper, name, "structures", &v));
+        assert_int_equal(x.structures, (guint)v);
+        assert_true(paper_cell(paper, name, "polys_per_structure", &v));
+        assert_near((double)x.primitives / x.structures, v, 0.005);
+        assert_true(paper_cell(paper, name, "poly_attr_ratio", &v));
+        assert_near((double)x.primitives / x.attributes, v, 0.005);
+        /* the flattened mesh holds every primitive instance */
+        assert_int_equal(scene_n_polys(s), x.primitives);
+        /* same parameters as the workload's file */
+        CfgNode *root = cfg_load_file(path, NULL);
+        const CfgNode *sec = cfg_get(root, "scene");
+        const CfgNode *ref = cfg_get(dbs, name);
+        assert_non_null(ref);
+        for (guint k = 0; k < cfg_map_len(ref); k++) {
+            const char *key = cfg_map_key(ref, k);
+            if (!strcmp(key, "kind"))
+                continue;
+            const CfgNode *mine = cfg_get(sec, key);
+            if (!mine)
+                print_error("%s: no key %s\n", path, key);
+            assert_non_null(mine);
+            assert_string_equal(cfg_scalar(mine),
+                                cfg_scalar(cfg_map_value(ref, k)));
+        }
+        cfg_free(root);
+        g_free(path);
+        scene_free(s);
+    }
+    /* the lobby keeps its standard view: 55 % off-screen */
+    Scene *s = from_file("configs/scenes/building_lobby.yaml");
+    double off = scene_pphigs_offscreen_share(
+        s->db, scene_camera_view_proj(&s->camera));
+    double v;
+    assert_true(paper_cell(paper, "building_lobby", "offscreen_pct", &v));
+    assert_true(fabs(100 * off - v) < 2.0);
+    scene_free(s);
+    cfg_free(dbs);
+    cfg_free(paper);
 }
 
 static Scene *from_text(const char *yaml, GError **err)
@@ -123,6 +211,39 @@ static void test_camera_and_path(void **st)
     scene_free(s);
 }
 
+/* `camera:` or `view:` on a generator with its own path (the vehicle's
+ * orbit) moves the path: frame 0 is the camera asked for, and later
+ * frames orbit from there. */
+static void test_camera_rebases_path(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    Scene *s = from_text("scene:\n"
+                         "  generator: vehicle\n"
+                         "  structures: 10\n"
+                         "  triangles: 100\n"
+                         "  degrees_per_frame: 90\n"
+                         "  camera: {eye: [0, 3, 20], target: [0, 1, 0]}\n",
+                         &err);
+    assert_non_null(s);
+    SceneCamera c0 = scene_camera_at(s, 0), c1 = scene_camera_at(s, 1);
+    assert_true(fabs(c0.eye.z - 20) < 1e-12 && fabs(c0.eye.y - 3) < 1e-12);
+    assert_true(fabs(c0.target.y - 1) < 1e-12);
+    /* a quarter turn about +y: (0, 3, 20) -> (20, 3, 0) */
+    assert_true(fabs(c1.eye.x - 20) < 1e-9 && fabs(c1.eye.z) < 1e-9);
+    scene_free(s);
+    s = from_text("scene: {generator: vehicle, structures: 10, "
+                  "triangles: 100, view: {azimuth: 90, elevation: 10}}\n",
+                  &err);
+    assert_non_null(s);
+    c0 = scene_camera_at(s, 0);
+    /* seen from +x: the eye is due east of the target */
+    assert_true(c0.eye.x > c0.target.x);
+    assert_true(fabs(c0.eye.z - c0.target.z) < 1e-9);
+    assert_true(fabs(c0.eye.x - s->camera.eye.x) < 1e-12);
+    scene_free(s);
+}
+
 typedef struct {
     const char *yaml, *message;
 } Bad;
@@ -155,6 +276,19 @@ static const Bad bad[] = {
     {"scene: {file: model.stl}\n",
      "model.stl: found an unknown extension, expected .obj or .ply"},
     {"scene: [1, 2]\n", "t.yaml:1:8: found a non-map, expected a scene map"},
+    {"scene: {generator: flock_old_well, size: 10, boids: 3}\n",
+     "t.yaml:1:8: found no key 'boid_polygons'"},
+    {"scene: {generator: two_human_figures, size: 10, figures: 2, "
+     "structures: 3, polygons: 30, levels: 9}\n",
+     "t.yaml:1:20: found too few structures for the figures' depth"},
+    {"scene: {generator: building_lobby, size: 10, polygons: 30, "
+     "attributes: 3}\n",
+     "t.yaml:1:8: found no key 'fov_deg'"},
+    {"scene: {generator: space_station, size: 10, polygons: 30, "
+     "attributes: 3, boids: 4}\n",
+     "t.yaml:1:74: found unknown key 'boids'"},
+    {"scene: {generator: teapots, two_sided: maybe}\n",
+     "t.yaml:1:40: found 'maybe'"},
 };
 
 static void test_bad_sections(void **st)
@@ -179,6 +313,8 @@ int main(void)
         cmocka_unit_test(test_table1_configs),
         cmocka_unit_test(test_other_configs),
         cmocka_unit_test(test_camera_and_path),
+        cmocka_unit_test(test_pphigs_configs),
+        cmocka_unit_test(test_camera_rebases_path),
         cmocka_unit_test(test_bad_sections),
     };
     return cmocka_run_group_tests_name("scene_cfg", tests, NULL, NULL);

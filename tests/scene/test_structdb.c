@@ -331,6 +331,37 @@ static void test_priorities(void **st)
     scene_db_free(db);
 }
 
+/* scene_db_flatten: one polygon per primitive instance, world positions,
+ * inherited colours, structure ids as tags, strips as n - 2 triangles
+ * of one winding. */
+static void test_flatten(void **st)
+{
+    (void)st;
+    guint root, child;
+    SceneDb *db = sample(&root, &child);
+    Vec3 strip[5] = {vec3(0, 0, 0), vec3(0, 1, 0), vec3(1, 0, 0),
+                     vec3(1, 1, 0), vec3(2, 0, 0)};
+    add(db, child, scene_elem_prim(SCENE_EL_TRISTRIP, strip, 5));
+    SceneMesh *m = scene_db_flatten(db);
+    /* tri#1, (child: tri#2, tri#3, strip = 3 triangles), tri#4 */
+    assert_int_equal(scene_mesh_n_polys(m), 7);
+    Vec3 p0 = scene_mesh_vertex(m, scene_mesh_poly(m, 0)[1]);
+    NEAR(p0.x, 11); /* T(10) applied to (1, 0, 0) */
+    Vec3 p1 = scene_mesh_vertex(m, scene_mesh_poly(m, 1)[1]);
+    NEAR(p1.x, 12); /* T(10) S(2) */
+    assert_int_equal(g_array_index(m->poly_tag, uint32_t, 1), child);
+    SceneColor c2 = g_array_index(m->poly_color, SceneColor, 2);
+    assert_true(c2.b == 1.0f && c2.r == 0.0f);
+    SceneColor c6 = g_array_index(m->poly_color, SceneColor, 6);
+    assert_true(c6.r == 1.0f && c6.b == 0.0f); /* red again after */
+    /* the strip's triangles all face one way (-z: (0,0) (0,1) (1,0) is
+     * clockwise seen from +z) */
+    for (guint i = 3; i < 6; i++)
+        assert_true(scene_mesh_poly_normal(m, i).z < -0.99);
+    scene_mesh_free(m);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -342,6 +373,7 @@ int main(void)
         cmocka_unit_test(test_views),
         cmocka_unit_test(test_bboxes),
         cmocka_unit_test(test_priorities),
+        cmocka_unit_test(test_flatten),
     };
     return cmocka_run_group_tests_name("structdb", tests, NULL, NULL);
 }
