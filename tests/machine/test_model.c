@@ -27,18 +27,36 @@ static void test_shipped_models_check(void **state)
     }
 }
 
-/* pixel-planes-5.yaml carries the PPHIGS workload's own section. */
+/* A model may carry a workload's own top-level section: it is checked
+ * for a value and a provenance and kept for the workload to parse. */
 static void test_workload_section_kept(void **state)
 {
     (void)state;
     GError *err = NULL;
-    CfgNode *root = mach_load_model("pixel-planes-5", &err);
+    CfgNode *root = cfg_load_string(
+        "schema_version: 1\nname: t\n"
+        "nodes: {node: {count: {value: 2, source: s}}}\n"
+        "network: {topology: {value: ring, source: s},\n"
+        "          bandwidth: {value: 1 MB/s, source: s}}\n"
+        "wl: {weight: {value: 0.6, unit: us, calibrated: [a.b, c.d]}}\n",
+        "t.yaml", NULL);
     assert_non_null(root);
-    const CfgNode *poly = cfg_path(root, "pphigs.poly.value");
-    assert_non_null(poly);
-    assert_string_equal(cfg_scalar(poly), "0.6");
-    const CfgNode *cal = cfg_path(root, "pphigs.color.calibrated");
-    assert_int_equal(cfg_kind(cal), CFG_SEQ);
+    assert_true(mach_model_check(root, "t.yaml", &err));
+    const CfgNode *w = cfg_path(root, "wl.weight.value");
+    assert_non_null(w);
+    assert_string_equal(cfg_scalar(w), "0.6");
+    assert_int_equal(cfg_kind(cfg_path(root, "wl.weight.calibrated")),
+                     CFG_SEQ);
+    cfg_free(root);
+    /* pixel-planes-5 has one GP cost table, with calibrated entries */
+    root = mach_load_model("pixel-planes-5", &err);
+    assert_non_null(root);
+    assert_null(cfg_get(root, "pphigs"));
+    const char *text = NULL;
+    assert_int_equal(mach_param_provenance(cfg_path(root, "nodes.gp.costs"),
+                                           "color", &text),
+                     MACH_PROV_CALIBRATED);
+    assert_non_null(strstr(text, "4-GP"));
     cfg_free(root);
 }
 

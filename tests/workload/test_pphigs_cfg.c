@@ -2,15 +2,16 @@
  * databases' statistics match the published "db" rows of
  * configs/papers/ellsworth90.yaml (both files read through cfg); bad
  * inputs fail with a located error; the reproduction's event-driven
- * frames give the analytic traversal's metrics; the `pphigs` workload
- * runs configs/pphigs-flock.yaml deterministically and honours
- * overrides.  Run from the repository root (make test does).
+ * frames give the analytic traversal's metrics exactly; the `pphigs`
+ * workload runs configs/pphigs-flock.yaml deterministically and honours
+ * overrides of the workload and of the machine section.  Run from the repository root (make test does).
  */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "sim/app/config.h"
 #include "sim/workload/pphigs/ellsworth90.h"
 #include "sim/workload/workload.h"
 #include <string.h>
@@ -47,7 +48,7 @@ static void test_db_stats_match_paper(void **st)
         ScenePphigsSpec s;
         ScenePphigsDb db;
         assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
-                                        names[i], &s, NULL));
+                                        names[i], NULL, &s, NULL));
         assert_true(scene_pphigs_generate(&s, &db, NULL));
         SceneDbStats x;
         scene_db_stats(db.db, &x);
@@ -94,44 +95,82 @@ static void test_bad_specs(void **st)
     GError *err = NULL;
     ScenePphigsSpec s;
     assert_false(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
-                                     "teapots", &s, &err));
+                                     "teapots", NULL, &s, &err));
     assert_non_null(strstr(err->message, "teapots"));
+    assert_non_null(strstr(err->message, "flock_old_well"));
     g_clear_error(&err);
+    /* frame.yaml: a missing provenance and an unknown key */
+    WlPphigsSetup su;
+    CfgNode *n = cfg_load_string("{width: 1, height: 1, region: 1, "
+                                 "cmd_bytes: 1, end_bytes: 1, batch: 1, "
+                                 "pixel_bytes: 1, cluster_scale: {value: 8}}",
+                                 "fr.yaml", NULL);
+    assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
+    assert_non_null(strstr(err->message, "fr.yaml:1:"));
+    assert_non_null(strstr(err->message, "provenance"));
+    g_clear_error(&err);
+    cfg_free(n);
+    n = cfg_load_string("{width: 1, height: 1, region: 1, cmd_bytes: 1, "
+                        "end_bytes: 1, batch: 1, pixel_bytes: 1, "
+                        "cluster_scale: {value: 8, assumption: x}, "
+                        "widht: 3}", "fr.yaml", NULL);
+    assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
+    assert_non_null(strstr(err->message, "widht"));
+    g_clear_error(&err);
+    cfg_free(n);
 }
 
 static void test_frames_equal_analytic(void **st)
 {
     (void)st;
-    CfgNode *fr = cfg_load_file("configs/pphigs/frame.yaml", NULL);
-    assert_non_null(fr);
-    WlPphigsHw hw;
-    assert_true(wl_pphigs_hw_load("models/pixel-planes-5.yaml", fr, &hw,
-                                  NULL));
-    hw.fidelity = NET_PACKET;
+    WlPphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0}};
+    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
+                                     NULL));
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m = wl_pphigs_machine_new(eng, "pixel-planes-5", 4,
+                                           "packet", NULL);
+    assert_non_null(m);
+    WlPphigsCosts c;
+    SimTime send;
+    assert_true(wl_pphigs_costs_from_machine(m, &c, &send, NULL));
+    assert_true(c.poly > 0 && c.vertex > 0 && send > 0);
+    mach_free(m);
+    sim_engine_free(eng);
     ScenePphigsSpec s;
     assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
-                                    "flock_old_well", &s, NULL));
+                                    "flock_old_well", NULL, &s, NULL));
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     WlPphigsMetrics a[2], b[2];
-    wl_pphigs_run_db(&db, 4, &hw.costs, hw.cluster_scale, &hw, &a[0],
-                     &a[1]);
-    wl_pphigs_run_db(&db, 4, &hw.costs, hw.cluster_scale, NULL, &b[0],
-                     &b[1]);
+    assert_true(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], NULL));
+    wl_pphigs_run_db_analytic(&db, 4, &c, rig.setup.cluster_scale, &b[0],
+                              &b[1]);
     for (int k = 0; k < 2; k++) {
-        near(a[k].t1, b[k].t1, 1e-9);
-        near(a[k].efficiency, b[k].efficiency, 1e-9);
-        near(a[k].utilisation, b[k].utilisation, 1e-9);
+        assert_true(a[k].t1 == b[k].t1); /* integer picoseconds */
+        assert_true(a[k].sum == b[k].sum && a[k].max == b[k].max);
+        near(a[k].efficiency, b[k].efficiency, 1e-12);
+        near(a[k].utilisation, b[k].utilisation, 1e-12);
     }
     assert_true(a[1].efficiency > a[0].efficiency); /* complex wins */
+    /* a bad model or fidelity is an error, not a crash */
+    GError *err = NULL;
+    rig.model = "no-such-machine";
+    assert_false(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], &err));
+    assert_non_null(strstr(err->message, "no-such-machine"));
+    g_clear_error(&err);
+    rig.model = "pixel-planes-5";
+    rig.fidelity = "exact";
+    assert_false(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], &err));
+    assert_non_null(strstr(err->message, "exact"));
+    g_clear_error(&err);
     scene_pphigs_db_clear(&db);
-    cfg_free(fr);
 }
 
 typedef struct {
     GArray *frames;
     double m[9];
     uint64_t bytes;
+    guint gps;
 } Out;
 
 static void run_flock(const char *const *sets, Out *o)
@@ -139,6 +178,7 @@ static void run_flock(const char *const *sets, Out *o)
     CfgNode *root = cfg_load_file("configs/pphigs-flock.yaml", NULL);
     assert_non_null(root);
     assert_true(cfg_set_override(root, "workload.gps=4", NULL));
+    o->gps = 4;
     for (; sets && *sets; sets++)
         assert_true(cfg_set_override(root, *sets, NULL));
     const WlOps *ops = wl_find("pphigs");
@@ -159,7 +199,7 @@ static void run_flock(const char *const *sets, Out *o)
     for (guint i = 0; i < 9; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
     o->bytes = r->comm_bytes;
-    assert_int_equal(r->nodes->len, 4 + 16 + 1);
+    assert_int_equal(r->nodes->len, 1 + o->gps + 16 + 1);
     sim_result_free(r);
     sim_engine_free(eng);
     ops->free_params(p);
@@ -189,6 +229,68 @@ static void test_workload_runs(void **st)
     g_array_unref(c.frames);
 }
 
+/* Runs configs/pphigs-flock.yaml through the app with overrides; returns
+ * the result (NULL with *err). */
+static SimResult *app_run(const char *const *sets, GError **err)
+{
+    CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, err);
+    if (!r)
+        return NULL;
+    SimResult *res = cfg_run_exec(r, NULL, err);
+    cfg_run_free(r);
+    return res;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    assert_true(sim_result_get_metric(r, name, &v));
+    return v;
+}
+
+/* The machine section reaches the frame: GP count, ring parameters. */
+static void test_machine_overrides(void **st)
+{
+    (void)st;
+    const char *base[] = {"run.frames=1", "workload.edits_per_frame=0",
+                          NULL};
+    SimResult *a = app_run(base, NULL);
+    assert_non_null(a);
+    assert_true(metric(a, "gps") == 16); /* the model's count */
+    const char *four[] = {"run.frames=1", "workload.edits_per_frame=0",
+                          "machine.nodes.gp.count=4", NULL};
+    SimResult *b = app_run(four, NULL);
+    assert_non_null(b);
+    assert_true(metric(b, "gps") == 4);
+    const char *slow[] = {"run.frames=1", "workload.edits_per_frame=0",
+                          "machine.network.startup=1 ms", NULL};
+    SimResult *c = app_run(slow, NULL);
+    assert_non_null(c);
+    assert_true(metric(c, "frame_ms") > metric(a, "frame_ms") + 1);
+    const char *gpcost[] = {"run.frames=1", "workload.edits_per_frame=0",
+                            "machine.nodes.gp.costs.vertex=20 us", NULL};
+    SimResult *d = app_run(gpcost, NULL);
+    assert_non_null(d);
+    assert_true(metric(d, "gp_util_pct") > metric(a, "gp_util_pct"));
+    sim_result_free(a);
+    sim_result_free(b);
+    sim_result_free(c);
+    sim_result_free(d);
+    /* both counts given and different: a located error at workload.gps */
+    const char *clash[] = {"workload.gps=8", "machine.nodes.gp.count=4",
+                           NULL};
+    GError *err = NULL;
+    assert_null(app_run(clash, &err));
+    assert_non_null(strstr(err->message, "--set workload.gps=8:1:1: "
+                                         "found gps 8 while"));
+    g_clear_error(&err);
+    const char *nodb[] = {"workload.database=teapot", NULL};
+    assert_null(app_run(nodb, &err));
+    assert_non_null(strstr(err->message, "--set workload.database=teapot"
+                                         ":1:1: found database 'teapot'"));
+    g_clear_error(&err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -196,6 +298,7 @@ int main(void)
         cmocka_unit_test(test_bad_specs),
         cmocka_unit_test(test_frames_equal_analytic),
         cmocka_unit_test(test_workload_runs),
+        cmocka_unit_test(test_machine_overrides),
     };
     return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);
 }

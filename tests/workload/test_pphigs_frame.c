@@ -1,9 +1,11 @@
 /* test_pphigs_frame.c — the event-driven PPHIGS frame on a Pixel-Planes 5
- * ring: GP traverse time equals the analytic traversal cost of each
- * portion; every region reaches the frame buffer; the same inputs give
- * the same results twice; ring-slot packets are never faster than the
- * contention-free analytic transport; off-screen work sends nothing.
- * Parameters here are test values, not the model's.
+ * machine built by the machine layer (test costs over the model): GP
+ * processor time (traverse + transform busy) equals the analytic
+ * traversal cost of each portion to the picosecond; every processor kind
+ * is busy in its phases; every region reaches the frame buffer; the same
+ * inputs give the same results twice; ring-slot packets are never faster than the
+ * contention-free analytic transport; off-screen work sends nothing; a
+ * machine the frame cannot use is a located error.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,32 +14,45 @@
 
 #include "sim/scene/pphigs_db.h"
 #include "sim/workload/pphigs/frame.h"
+#include <string.h>
 
-static const WlPphigsCosts C = {.poly = 0.6, .vertex = 0.1,
-                                .offscreen = 0.3, .color = 0.1,
-                                .matrix = 0.3, .concat = 1, .execute = 0.5};
+/* Test costs (not the model's): a 4-vertex polygon 1 us on-screen,
+ * 0.3 us rejected. */
+static const char *const MACHINE =
+    "model: pixel-planes-5\n"
+    "nodes:\n"
+    "  gp: {count: %u, costs: {polygon: 600 ns, vertex: 100 ns,\n"
+    "       reject_vertex: 75 ns, color: 100 ns, matrix_replace: 300 ns,\n"
+    "       matrix_concat: 1 us, execute: 500 ns, send_primitive: 1 us}}\n"
+    "  renderer: {count: 4, costs: {primitive: 8 us, region_begin: 50 us,\n"
+    "             region_shade: 200 us}}\n"
+    "  frame_buffer: {costs: {store_region: 10 us}}\n";
+
+static const WlPphigsCosts C = {
+    .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
+    .color = 100 * SIM_NS, .matrix = 300 * SIM_NS, .concat = SIM_US,
+    .execute = 500 * SIM_NS};
+
+#define RENDERERS 4
 
 static WlPphigsFrameSpec spec(void)
 {
-    WlPphigsFrameSpec s = {
-        .gp = C, .gp_send = SIM_US, .rend_prim = 8 * SIM_US,
-        .rend_begin = 50 * SIM_US, .rend_shade = 200 * SIM_US,
-        .fb_store = 10 * SIM_US, .cmd_bytes = 100, .end_bytes = 16,
-        .batch = 16, .pixel_bytes = 4, .width = 640, .height = 512,
-        .region = 128, .renderers = 4};
+    WlPphigsFrameSpec s = {.cmd_bytes = 100, .end_bytes = 16, .batch = 16,
+                           .pixel_bytes = 4, .width = 640, .height = 512,
+                           .region = 128};
     return s;
 }
 
-static NetParams ring_params(void)
+static MachMachine *machine(SimEngine *eng, guint ngp, const char *fid,
+                            GError **err)
 {
-    NetParams p = {0};
-    p.bandwidth = 80e6;
-    p.channels = 8;
-    p.startup = 5 * SIM_US;
-    p.per_hop = 50 * SIM_NS;
-    p.packet_bytes = 1024;
-    p.switching = NET_SW_RING_SLOTS;
-    return p;
+    char *text = g_strdup_printf(MACHINE, ngp);
+    CfgNode *sec = cfg_load_string(text, "test-machine.yaml", NULL);
+    assert_non_null(sec);
+    MachMachine *m = mach_new_from_cfg(eng, sec, fid, err);
+    cfg_free(sec);
+    g_free(text);
+    return m;
 }
 
 typedef struct {
@@ -47,17 +62,43 @@ typedef struct {
     double gp_util, rend_util;
 } Run;
 
-static void run(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
-                NetFidelity fid, const WlPphigsFrameSpec *s, Run *out)
+/* Per-phase busy of every processor kind, from mach_fill_result. */
+static void check_result(MachMachine *m, guint ngp)
 {
+    SimResult *r = sim_result_new("pphigs", "test");
+    mach_fill_result(m, r);
+    assert_int_equal(r->nodes->len, 1 + ngp + RENDERERS + 1);
+    static const char *const want[][3] = {
+        {"gp", "transform", "send"}, {"renderer", "rasterise", "shade"},
+        {"frame_buffer", "store", "store"}};
+    for (guint i = 0; i < r->nodes->len; i++) {
+        SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        for (guint k = 0; k < G_N_ELEMENTS(want); k++) {
+            if (strcmp(n->kind, want[k][0]) != 0)
+                continue;
+            for (guint ph = 0; ph < r->phases->len; ph++) {
+                const char *name = g_ptr_array_index(r->phases, ph);
+                if (!strcmp(name, want[k][1]) || !strcmp(name, want[k][2]))
+                    assert_true(sim_busy_phase(&n->busy, ph) > 0);
+            }
+        }
+    }
+    sim_result_free(r);
+}
+
+static void run(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
+                const char *fid, const WlPphigsFrameSpec *s, Run *out)
+{
+    SimEngine *eng = sim_engine_new(7);
+    MachMachine *m = machine(eng, ngp, fid, NULL);
+    assert_non_null(m);
+    WlPphigsFrame *f = wl_pphigs_frame_new(m, s, NULL);
+    assert_non_null(f);
+    assert_int_equal(wl_pphigs_frame_gps(f), ngp);
+    assert_memory_equal(wl_pphigs_frame_costs(f), &C, sizeof C);
     WlPphigsWeights w;
     wl_pphigs_weights_from_costs(&C, 8, &w);
     WlPphigsDist *d = wl_pphigs_dist_new(db->db, ngp, a, &w);
-    SimEngine *eng = sim_engine_new(7);
-    NetTopo *t = net_ring_new(wl_pphigs_frame_stations(ngp, s->renderers));
-    NetParams p = ring_params();
-    NetNet *net = net_new(eng, t, &p, fid);
-    WlPphigsFrame *f = wl_pphigs_frame_new(eng, net, ngp, s);
     Mat4 vp = scene_camera_view_proj(&db->camera);
     for (int k = 0; k < 2; k++) {
         WlPphigsFrameStats st;
@@ -66,18 +107,16 @@ static void run(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
         out->commands = st.commands;
         out->offscreen = st.offscreen;
         for (guint g = 0; g < ngp; g++)
-            out->trav[g] = st.gp_traverse_us[g];
+            out->trav[g] = st.gp_time_us[g];
     }
+    NetNet *net = mach_net(m);
     out->bytes = net_total_bytes(net);
     out->messages = net_total_messages(net);
     wl_pphigs_frame_util(f, sim_now(eng), &out->gp_util, &out->rend_util);
-    SimResult *r = sim_result_new("pphigs", "test");
-    wl_pphigs_frame_fill_result(f, r);
-    assert_int_equal(r->nodes->len, ngp + s->renderers + 1);
-    sim_result_free(r);
+    if (out->commands) /* else no GP sends, no renderer rasterises */
+        check_result(m, ngp);
     wl_pphigs_frame_free(f);
-    net_free(net);
-    net_topo_free(t);
+    mach_free(m);
     sim_engine_free(eng);
     wl_pphigs_dist_free(d);
 }
@@ -101,15 +140,16 @@ static void test_traverse_equals_analytic(void **st)
         ScenePphigsDb db = make_db((ScenePphigsKind)k);
         WlPphigsFrameSpec s = spec();
         Run r;
-        run(&db, 4, WL_PPHIGS_COMPLEX, NET_PACKET, &s, &r);
+        run(&db, 4, WL_PPHIGS_COMPLEX, "packet", &s, &r);
         WlPphigsWeights w;
         wl_pphigs_weights_from_costs(&C, 8, &w);
         WlPphigsDist *d = wl_pphigs_dist_new(db.db, 4, WL_PPHIGS_COMPLEX, &w);
         Mat4 vp = scene_camera_view_proj(&db.camera);
         for (guint g = 0; g < 4; g++) {
-            double a = wl_pphigs_traversal_us(wl_pphigs_dist_gp(d, g), vp, &C);
+            double a = sim_time_to_us(
+                wl_pphigs_traversal_cost(wl_pphigs_dist_gp(d, g), vp, &C));
             assert_true(a > 0);
-            assert_true(fabs(r.trav[g] - a) < 1e-9 * a);
+            assert_true(r.trav[g] == a); /* exact: integer picoseconds */
         }
         assert_true(r.commands > 0);
         /* the frame is at least the slowest GP's traversal */
@@ -130,8 +170,8 @@ static void test_deterministic(void **st)
     ScenePphigsDb db = make_db(SCENE_PPHIGS_FLOCK);
     WlPphigsFrameSpec s = spec();
     Run a = {0}, b = {0};
-    run(&db, 4, WL_PPHIGS_SIMPLE, NET_PACKET, &s, &a);
-    run(&db, 4, WL_PPHIGS_SIMPLE, NET_PACKET, &s, &b);
+    run(&db, 4, WL_PPHIGS_SIMPLE, "packet", &s, &a);
+    run(&db, 4, WL_PPHIGS_SIMPLE, "packet", &s, &b);
     assert_memory_equal(&a, &b, sizeof a);
     /* the same portions twice: the second frame is as long as the first */
     assert_true(a.frame[0] == a.frame[1]);
@@ -144,21 +184,21 @@ static void test_traffic_and_fidelity(void **st)
     ScenePphigsDb db = make_db(SCENE_PPHIGS_STATION);
     WlPphigsFrameSpec s = spec();
     Run pk = {0}, an = {0};
-    run(&db, 4, WL_PPHIGS_COMPLEX, NET_PACKET, &s, &pk);
-    run(&db, 4, WL_PPHIGS_COMPLEX, NET_ANALYTIC, &s, &an);
+    run(&db, 4, WL_PPHIGS_COMPLEX, "packet", &s, &pk);
+    run(&db, 4, WL_PPHIGS_COMPLEX, "analytic", &s, &an);
     assert_true(pk.frame[0] >= an.frame[0]);
     assert_int_equal(pk.bytes, an.bytes);
     /* 2 frames: commands, 20 regions of 128x128x4 bytes, end markers */
     guint regions = 5 * 4;
     uint64_t want = 2 * (pk.commands * s.cmd_bytes +
                          (uint64_t)regions * 128 * 128 * 4 +
-                         4 * s.renderers * s.end_bytes);
+                         4 * RENDERERS * s.end_bytes);
     assert_int_equal(pk.bytes, want);
     /* fewer, larger batches: fewer messages, same bytes */
     WlPphigsFrameSpec big = s;
     big.batch = 1000;
     Run bb = {0};
-    run(&db, 4, WL_PPHIGS_COMPLEX, NET_PACKET, &big, &bb);
+    run(&db, 4, WL_PPHIGS_COMPLEX, "packet", &big, &bb);
     assert_int_equal(bb.bytes, pk.bytes);
     assert_true(bb.messages < pk.messages);
     scene_pphigs_db_clear(&db);
@@ -170,17 +210,48 @@ static void test_offscreen_sends_nothing(void **st)
     ScenePphigsDb db = make_db(SCENE_PPHIGS_LOBBY);
     WlPphigsFrameSpec s = spec();
     Run r = {0};
-    run(&db, 4, WL_PPHIGS_COMPLEX, NET_ANALYTIC, &s, &r);
+    run(&db, 4, WL_PPHIGS_COMPLEX, "analytic", &s, &r);
     assert_true(r.offscreen > 0);
     /* look away: every primitive is off-screen, no command is sent */
     db.camera.target = vec3_scale(vec3_sub(db.camera.eye, db.camera.target),
                                   1.0);
     db.camera.target = vec3_add(db.camera.eye, db.camera.target);
     Run away = {0};
-    run(&db, 4, WL_PPHIGS_COMPLEX, NET_ANALYTIC, &s, &away);
+    run(&db, 4, WL_PPHIGS_COMPLEX, "analytic", &s, &away);
     assert_int_equal(away.commands, 0);
     assert_true(away.offscreen > r.offscreen);
     scene_pphigs_db_clear(&db);
+}
+
+/* A machine the frame cannot use is a located error, not a crash. */
+static void expect_bad_machine(const char *over, const char *needle)
+{
+    SimEngine *eng = sim_engine_new(1);
+    char *text = g_strdup_printf(MACHINE, 4u);
+    CfgNode *sec = cfg_load_string(text, "test-machine.yaml", NULL);
+    assert_true(cfg_set_override(sec, over, NULL));
+    MachMachine *m = mach_new_from_cfg(eng, sec, "analytic", NULL);
+    assert_non_null(m);
+    GError *err = NULL;
+    WlPphigsFrameSpec s = spec();
+    assert_null(wl_pphigs_frame_new(m, &s, &err));
+    assert_non_null(err);
+    assert_non_null(strstr(err->message, needle));
+    assert_non_null(strstr(err->message, ":"));
+    g_error_free(err);
+    mach_free(m);
+    cfg_free(sec);
+    g_free(text);
+    sim_engine_free(eng);
+}
+
+static void test_bad_machine(void **st)
+{
+    (void)st;
+    expect_bad_machine("nodes.gp.count=65", "65 gp processors");
+    expect_bad_machine("nodes.frame_buffer.count=2",
+                       "2 frame_buffer processors");
+    expect_bad_machine("nodes.renderer.count=0", "0 renderer processors");
 }
 
 int main(void)
@@ -190,6 +261,7 @@ int main(void)
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_traffic_and_fidelity),
         cmocka_unit_test(test_offscreen_sends_nothing),
+        cmocka_unit_test(test_bad_machine),
     };
     return cmocka_run_group_tests_name("pphigs_frame", tests, NULL, NULL);
 }

@@ -11,9 +11,11 @@
 #include "sim/app/reproduce.h"
 #include "sim/workload/pphigs/ellsworth90.h"
 
-static const WlPphigsCosts C = {.poly = 0.6, .vertex = 0.1,
-                                .offscreen = 0.3, .color = 0.1,
-                                .matrix = 0.3, .concat = 1, .execute = 0.5};
+/* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
+static const WlPphigsCosts C = {
+    .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
+    .color = 100 * SIM_NS, .matrix = 300 * SIM_NS, .concat = SIM_US,
+    .execute = 500 * SIM_NS};
 
 static ScenePphigsSpec flock(void)
 {
@@ -31,11 +33,11 @@ static void test_one_gp_is_serial(void **st)
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     WlPphigsMetrics a, b;
-    wl_pphigs_run_db(&db, 1, &C, 8, NULL, &a, &b);
+    wl_pphigs_run_db_analytic(&db, 1, &C, 8, &a, &b);
     assert_true(fabs(a.efficiency - 1) < 1e-12);
     assert_true(fabs(b.efficiency - 1) < 1e-12);
     assert_true(fabs(b.utilisation - 1) < 1e-12);
-    wl_pphigs_run_db(&db, 4, &C, 8, NULL, &a, &b);
+    wl_pphigs_run_db_analytic(&db, 4, &C, 8, &a, &b);
     assert_true(fabs(b.speedup - b.t1 / b.max) < 1e-9);
     assert_true(a.efficiency < 0.9); /* attributes copied to every GP */
     assert_true(b.efficiency > a.efficiency + 0.1);
@@ -51,14 +53,15 @@ static void test_offscreen_is_cheaper(void **st)
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     Mat4 vp = scene_camera_view_proj(&db.camera);
-    WlPphigsCosts full = C;
-    full.offscreen = 1;
-    double t = wl_pphigs_traversal_us(db.db, vp, &C);
-    double tf = wl_pphigs_traversal_us(db.db, vp, &full);
+    WlPphigsCosts full = C; /* rejected costs as much as on-screen */
+    full.reject_vertex = (C.poly + 4 * C.vertex) / 4;
+    SimTime t = wl_pphigs_traversal_cost(db.db, vp, &C);
+    SimTime tf = wl_pphigs_traversal_cost(db.db, vp, &full);
     double off = scene_pphigs_offscreen_share(db.db, vp);
     assert_true(off > 0.3 && off < 0.8);
-    double poly = 400 * (C.poly + 4 * C.vertex);
-    assert_true(fabs((tf - t) - poly * off * (1 - C.offscreen)) < 1e-6);
+    uint64_t n_off = (uint64_t)llround(400 * off);
+    assert_int_equal(tf - t, n_off * (C.poly + 4 * C.vertex -
+                                      4 * C.reject_vertex));
     scene_pphigs_db_clear(&db);
 }
 
@@ -69,8 +72,10 @@ static void test_table_rows(void **st)
     s[1].kind = SCENE_PPHIGS_HUMANS;
     s[1].figures = 2, s[1].structures = 20, s[1].polygons = 200;
     s[1].levels = 5;
+    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 64}};
+    rig.setup.frame = (WlPphigsFrameSpec){100, 16, 16, 4, 640, 512, 128};
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
-    assert_true(wl_pphigs_table1(s, 2, &C, 64, NULL, rows, NULL));
+    assert_true(wl_pphigs_table1(s, 2, &rig, rows, NULL));
     assert_int_equal(rows->len, 2 * (8 + 5));
     guint table1 = 0;
     for (guint i = 0; i < rows->len; i++) {
@@ -85,7 +90,7 @@ static void test_table_rows(void **st)
     s[1].levels = 50; /* cannot be met */
     GError *err = NULL;
     rows = g_ptr_array_new_with_free_func(rp_row_free);
-    assert_false(wl_pphigs_table1(s, 2, &C, 64, NULL, rows, &err));
+    assert_false(wl_pphigs_table1(s, 2, &rig, rows, &err));
     assert_non_null(err);
     g_clear_error(&err);
     g_ptr_array_unref(rows);

@@ -13,9 +13,11 @@
 #include "sim/scene/pphigs_db.h"
 #include "sim/workload/pphigs/rebalance.h"
 
-static const WlPphigsCosts C = {.poly = 0.6, .vertex = 0.1,
-                                .offscreen = 0.3, .color = 0.1,
-                                .matrix = 0.3, .concat = 1, .execute = 0.5};
+/* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
+static const WlPphigsCosts C = {
+    .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
+    .color = 100 * SIM_NS, .matrix = 300 * SIM_NS, .concat = SIM_US,
+    .execute = 500 * SIM_NS};
 static const WlPphigsRebalParams P = {.threshold = 0.10, .frames = 3,
                                       .fraction = 0.5, .max_moves = 16,
                                       .seed = 11};

@@ -1,8 +1,10 @@
 /* ellsworth90.c — seed 001's table from the simulator (see
  * ellsworth90.h).  Each cell is a fresh distribution of a generated
- * database followed by one traversal per GP under the database's
- * standard view; nothing is read from the published table here.
- * Cost: 4 distributions per database, O(n * P) each.
+ * database followed by one event-driven frame on a fresh Pixel-Planes 5
+ * machine; the metrics are the GPs' busy times.  Nothing is read from
+ * the published table here.
+ * Cost: per database and GP count, 2 distributions and 2 frames, O(n P)
+ * each, plus one frame on one GP.
  */
 #include "sim/workload/pphigs/ellsworth90.h"
 #include "sim/app/reproduce.h"
@@ -10,29 +12,17 @@
 
 static const guint gp_counts[] = {4, 16};
 
-double wl_pphigs_cluster_factor(double cluster_scale, guint ngp)
+MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model,
+                                   guint ngp, const char *fidelity,
+                                   GError **err)
 {
-    return MAX(1.0, cluster_scale / ngp);
-}
-
-/* Per-GP traverse times of one event-driven frame (frame.h). */
-static void frame_gp_us(const WlPphigsDist *d, Mat4 vp,
-                        const WlPphigsHw *hw, double *us)
-{
-    guint n = wl_pphigs_dist_ngp(d);
-    SimEngine *eng = sim_engine_new(1);
-    NetTopo *t = net_ring_new(wl_pphigs_frame_stations(n,
-                                                       hw->frame.renderers));
-    NetNet *net = net_new(eng, t, &hw->net, hw->fidelity);
-    WlPphigsFrame *f = wl_pphigs_frame_new(eng, net, n, &hw->frame);
-    WlPphigsFrameStats st;
-    gboolean ok = wl_pphigs_frame_run(f, d, vp, &st, NULL);
-    g_assert(ok); /* no overflow possible at these sizes */
-    memcpy(us, st.gp_traverse_us, n * sizeof *us);
-    wl_pphigs_frame_free(f);
-    net_free(net);
-    net_topo_free(t);
-    sim_engine_free(eng);
+    char *text = g_strdup_printf("model: %s\nnodes: {gp: {count: %u}}\n",
+                                 model, ngp);
+    CfgNode *sec = cfg_load_string(text, "<pphigs machine>", err);
+    MachMachine *m = sec ? mach_new_from_cfg(eng, sec, fidelity, err) : NULL;
+    cfg_free(sec);
+    g_free(text);
+    return m;
 }
 
 static WlPphigsDist *distribute(const ScenePphigsDb *db, guint ngp,
@@ -45,52 +35,76 @@ static WlPphigsDist *distribute(const ScenePphigsDb *db, guint ngp,
     return wl_pphigs_dist_new(db->db, ngp, a, &w);
 }
 
-/* The metrics of §6 from event-driven frames: T1 is a one-GP frame. */
-static void frame_metrics(const ScenePphigsDb *db, const WlPphigsDist *d,
-                          const WlPphigsHw *hw, double cs,
-                          WlPphigsMetrics *m)
+/* Per-GP processor times (us) of one frame of `a` on ngp GPs. */
+static gboolean frame_times(const ScenePphigsDb *db, guint ngp,
+                            WlPphigsAlgo a, const WlPphigsRig *rig,
+                            double *us, GError **err)
 {
-    Mat4 vp = scene_camera_view_proj(&db->camera);
-    guint n = wl_pphigs_dist_ngp(d);
-    WlPphigsDist *one = distribute(db, 1, WL_PPHIGS_SIMPLE, &hw->costs, cs);
-    frame_gp_us(one, vp, hw, &m->t1);
-    wl_pphigs_dist_free(one);
-    double *us = g_new(double, n);
-    frame_gp_us(d, vp, hw, us);
-    m->sum = m->max = 0;
-    for (guint g = 0; g < n; g++) {
-        m->sum += us[g];
-        m->max = MAX(m->max, us[g]);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m = wl_pphigs_machine_new(eng, rig->model, ngp,
+                                           rig->fidelity, err);
+    WlPphigsFrame *f = m ? wl_pphigs_frame_new(m, &rig->setup.frame, err)
+                         : NULL;
+    gboolean ok = f != NULL;
+    if (ok) {
+        WlPphigsDist *d = distribute(db, ngp, a, wl_pphigs_frame_costs(f),
+                                     rig->setup.cluster_scale);
+        WlPphigsFrameStats st;
+        ok = wl_pphigs_frame_run(f, d, scene_camera_view_proj(&db->camera),
+                                 &st, err);
+        if (ok)
+            memcpy(us, st.gp_time_us, ngp * sizeof *us);
+        wl_pphigs_dist_free(d);
     }
-    g_free(us);
-    m->efficiency = m->sum > 0 ? m->t1 / m->sum : 0;
-    m->utilisation = m->max > 0 ? m->sum / (n * m->max) : 0;
-    m->speedup = n * m->efficiency * m->utilisation;
+    wl_pphigs_frame_free(f);
+    mach_free(m);
+    sim_engine_free(eng);
+    return ok;
 }
 
-static void run_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
-                     const WlPphigsCosts *c, double cluster_scale,
-                     const WlPphigsHw *hw, WlPphigsMetrics *m)
+static gboolean run_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
+                         const WlPphigsRig *rig, double t1,
+                         WlPphigsMetrics *out, GError **err)
 {
-    WlPphigsDist *d = distribute(db, ngp, a, c, cluster_scale);
-    if (hw) {
-        frame_metrics(db, d, hw, cluster_scale, m);
-    } else {
-        double *us = g_new(double, ngp);
-        wl_pphigs_metrics(d, scene_camera_view_proj(&db->camera), c, us, m);
-        g_free(us);
-    }
+    double *us = g_new(double, ngp);
+    gboolean ok = frame_times(db, ngp, a, rig, us, err);
+    if (ok)
+        wl_pphigs_metrics_from(t1, us, ngp, out);
+    g_free(us);
+    return ok;
+}
+
+gboolean wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
+                          const WlPphigsRig *rig, WlPphigsMetrics *simple,
+                          WlPphigsMetrics *complex, GError **err)
+{
+    double t1 = 0;
+    return frame_times(db, 1, WL_PPHIGS_SIMPLE, rig, &t1, err) &&
+           run_algo(db, ngp, WL_PPHIGS_SIMPLE, rig, t1, simple, err) &&
+           run_algo(db, ngp, WL_PPHIGS_COMPLEX, rig, t1, complex, err);
+}
+
+static void analytic_algo(const ScenePphigsDb *db, guint ngp,
+                          WlPphigsAlgo a, const WlPphigsCosts *c, double cs,
+                          WlPphigsMetrics *m)
+{
+    WlPphigsDist *d = distribute(db, ngp, a, c, cs);
+    double *us = g_new(double, ngp);
+    wl_pphigs_metrics(d, scene_camera_view_proj(&db->camera), c, us, m);
+    g_free(us);
     wl_pphigs_dist_free(d);
 }
 
-void wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
-                      const WlPphigsCosts *c, double cluster_scale,
-                      const WlPphigsHw *hw, WlPphigsMetrics *simple,
-                      WlPphigsMetrics *complex)
+void wl_pphigs_run_db_analytic(const ScenePphigsDb *db, guint ngp,
+                               const WlPphigsCosts *c, double cluster_scale,
+                               WlPphigsMetrics *simple,
+                               WlPphigsMetrics *complex)
 {
-    run_algo(db, ngp, WL_PPHIGS_SIMPLE, c, cluster_scale, hw, simple);
-    run_algo(db, ngp, WL_PPHIGS_COMPLEX, c, cluster_scale, hw, complex);
+    analytic_algo(db, ngp, WL_PPHIGS_SIMPLE, c, cluster_scale, simple);
+    analytic_algo(db, ngp, WL_PPHIGS_COMPLEX, c, cluster_scale, complex);
 }
+
+/* ---- rows ------------------------------------------------------------- */
 
 static void add(GPtrArray *rows, const char *table, const char *row,
                 const char *col, double v)
@@ -114,14 +128,15 @@ static void db_rows(const ScenePphigsDb *db, const char *row,
                   db->db, scene_camera_view_proj(&db->camera)));
 }
 
-static void cell_rows(const ScenePphigsDb *db, const char *row,
-                      const WlPphigsCosts *c, double cs,
-                      const WlPphigsHw *hw, GPtrArray *rows)
+static gboolean cell_rows(const ScenePphigsDb *db, const char *row,
+                          const WlPphigsRig *rig, GPtrArray *rows,
+                          GError **err)
 {
     for (guint k = 0; k < G_N_ELEMENTS(gp_counts); k++) {
         WlPphigsMetrics s, x;
         guint p = gp_counts[k];
-        wl_pphigs_run_db(db, p, c, cs, hw, &s, &x);
+        if (!wl_pphigs_run_db(db, p, rig, &s, &x, err))
+            return FALSE;
         char col[32];
         g_snprintf(col, sizeof col, "simple_eff_%u", p);
         add(rows, "1", row, col, 100 * s.efficiency);
@@ -132,11 +147,11 @@ static void cell_rows(const ScenePphigsDb *db, const char *row,
         g_snprintf(col, sizeof col, "speedup_%u", p);
         add(rows, "1", row, col, x.speedup);
     }
+    return TRUE;
 }
 
 gboolean wl_pphigs_table1(const ScenePphigsSpec *specs, guint n,
-                          const WlPphigsCosts *c, double cluster_scale,
-                          const WlPphigsHw *hw, GPtrArray *rows,
+                          const WlPphigsRig *rig, GPtrArray *rows,
                           GError **err)
 {
     for (guint i = 0; i < n; i++) {
@@ -144,9 +159,12 @@ gboolean wl_pphigs_table1(const ScenePphigsSpec *specs, guint n,
         if (!scene_pphigs_generate(&specs[i], &db, err))
             return FALSE;
         const char *row = scene_pphigs_kind_name(specs[i].kind);
-        cell_rows(&db, row, c, cluster_scale, hw, rows);
-        db_rows(&db, row, rows);
+        gboolean ok = cell_rows(&db, row, rig, rows, err);
+        if (ok)
+            db_rows(&db, row, rows);
         scene_pphigs_db_clear(&db);
+        if (!ok)
+            return FALSE;
     }
     return TRUE;
 }

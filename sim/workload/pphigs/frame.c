@@ -1,10 +1,12 @@
-/* frame.c — one PPHIGS frame on the Pixel-Planes 5 model (see frame.h).
+/* frame.c — one PPHIGS frame on the Pixel-Planes 5 machine (frame.h).
  *
- * Each GP's frame is first planned (a list of steps: traverse cost, send
- * cost, then one ring message) by walking its portion; the steps then run
- * as events on a FIFO processor.  Renderers and the frame buffer react to
- * arrivals.  Invariant: every region is stored exactly once per frame, so
- * the frame ends when the frame buffer has stored them all.
+ * Each GP's frame is first planned (a list of steps: traverse, transform
+ * and send costs, then one ring message) by walking its portion; the
+ * steps then run on the GP's MachProc (FIFO, busy time per phase).
+ * Renderers and the frame buffer react to ring arrivals.  Invariant:
+ * every region is stored exactly once per frame, so the frame ends when
+ * the frame buffer has stored them all.  Hardware costs, processor
+ * counts and the ring come from the machine, never from this file.
  * Seed 001 §1.1 (the pipeline), §5.2 (off-screen primitives are cheaper),
  * §6 (processor time).  Cost: see frame.h.
  */
@@ -13,16 +15,12 @@
 #include <string.h>
 
 #define NONE G_MAXUINT
+#define MAX_GPS 64 /* one bit per GP in the distribution's masks */
 
 typedef struct {
-    SimTime free_at;
-    SimBusy busy;
-} Proc;
-
-typedef struct {
-    SimTime trav, send; /* work before the message */
-    guint region;       /* NONE: no batch */
-    guint count;        /* commands in the batch */
+    SimTime trav, xform, send; /* work before the message */
+    guint region;              /* NONE: no batch */
+    guint count;               /* commands in the batch */
 } Step;
 
 typedef struct {
@@ -36,7 +34,7 @@ typedef struct WlPphigsFrame WlPphigsFrame;
 typedef struct {
     WlPphigsFrame *f;
     guint id;
-    Proc p;
+    MachProc *p;
     GArray *steps; /* Step */
     guint next;
     guint *buf;    /* per region: commands buffered */
@@ -46,7 +44,7 @@ typedef struct {
 typedef struct {
     WlPphigsFrame *f;
     guint id;
-    Proc p;
+    MachProc *p;
     guint nreg;      /* its regions: id, id + R, id + 2R ... */
     guint cur;       /* local index of the region being rasterised */
     guint *pending;  /* per local region: commands not yet rasterised */
@@ -56,60 +54,75 @@ typedef struct {
 } Rend;
 
 struct WlPphigsFrame {
+    MachMachine *m;
     SimEngine *eng;
     NetNet *net;
     WlPphigsFrameSpec s;
-    guint ngp, nx, ny, nregions;
+    WlPphigsCosts c;
+    SimTime gp_send, rend_prim, rend_begin, rend_shade, fb_store;
+    guint ngp, nrend, nx, ny, nregions;
     Gp *gp;
     Rend *rend;
-    Proc fb;
+    MachProc *fb;
     guint stored;
     SimTime start, end;
-    unsigned ph_trav, ph_send, ph_rast, ph_shade, ph_store;
-    double *trav_us;
+    unsigned ph_trav, ph_xform, ph_send, ph_rast, ph_shade, ph_store;
+    double *gp_us;  /* processor time of the frame just run */
+    SimTime *busy0; /* traverse + transform busy at the frame's start */
     uint64_t commands, offscreen, prims;
     Mat4 vp;
 };
 
-/* ---- processors ------------------------------------------------------- */
+/* ---- costs from the machine ------------------------------------------- */
 
-static void proc_compute(WlPphigsFrame *f, Proc *p, SimTime cost,
-                         unsigned phase, SimHandler done, void *ctx,
-                         void *arg)
+gboolean wl_pphigs_costs_from_machine(const MachMachine *m,
+                                      WlPphigsCosts *c, SimTime *send,
+                                      GError **err)
 {
-    SimTime start = MAX(sim_now(f->eng), p->free_at);
-    p->free_at = start + cost;
-    sim_busy_add(&p->busy, phase, cost);
-    if (done)
-        sim_schedule_at(f->eng, p->free_at, done, ctx, arg);
+    return mach_cost_lookup(m, "gp", "polygon", &c->poly, err) &&
+           mach_cost_lookup(m, "gp", "vertex", &c->vertex, err) &&
+           mach_cost_lookup(m, "gp", "reject_vertex", &c->reject_vertex,
+                            err) &&
+           mach_cost_lookup(m, "gp", "color", &c->color, err) &&
+           mach_cost_lookup(m, "gp", "matrix_replace", &c->matrix, err) &&
+           mach_cost_lookup(m, "gp", "matrix_concat", &c->concat, err) &&
+           mach_cost_lookup(m, "gp", "execute", &c->execute, err) &&
+           mach_cost_lookup(m, "gp", "send_primitive", send, err);
 }
 
-static SimTime us_to_ps(double us)
+static gboolean hw_costs(WlPphigsFrame *f, GError **err)
 {
-    SimTime t = 0;
-    sim_time_from_s(us * 1e-6, &t);
-    return t;
+    const MachMachine *m = f->m;
+    return wl_pphigs_costs_from_machine(m, &f->c, &f->gp_send, err) &&
+           mach_cost_lookup(m, "renderer", "primitive", &f->rend_prim,
+                            err) &&
+           mach_cost_lookup(m, "renderer", "region_begin", &f->rend_begin,
+                            err) &&
+           mach_cost_lookup(m, "renderer", "region_shade", &f->rend_shade,
+                            err) &&
+           mach_cost_lookup(m, "frame_buffer", "store_region", &f->fb_store,
+                            err);
 }
 
-static guint station_gp(const WlPphigsFrame *f, guint g)
+/* The kind's processor count, checked against [lo, hi]. */
+static gboolean kind_count(const MachMachine *m, const char *kind, guint lo,
+                           guint hi, guint *out, GError **err)
 {
-    (void)f;
-    return 1 + g;
-}
-
-static guint station_rend(const WlPphigsFrame *f, guint r)
-{
-    return 1 + f->ngp + r;
-}
-
-static guint station_fb(const WlPphigsFrame *f)
-{
-    return 1 + f->ngp + f->s.renderers;
-}
-
-guint wl_pphigs_frame_stations(guint ngp, guint renderers)
-{
-    return ngp + renderers + 2;
+    const MachKindInfo *k = mach_kind(m, kind);
+    *out = k ? k->count : 0;
+    if (k && k->count >= lo && k->count <= hi)
+        return TRUE;
+    char *path = g_strdup_printf("nodes.%s.count", kind);
+    const CfgNode *at = cfg_path(mach_model_cfg(m), path);
+    char *found = k ? g_strdup_printf("%u %s processors", k->count, kind)
+                    : g_strdup_printf("no '%s' processors", kind);
+    char *exp = g_strdup_printf("%u .. %u %s processors for a PPHIGS frame",
+                                lo, hi, kind);
+    cfg_error(err, at ? at : mach_model_cfg(m), found, exp);
+    g_free(path);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
 }
 
 /* ---- planning a GP's frame -------------------------------------------- */
@@ -117,16 +130,16 @@ guint wl_pphigs_frame_stations(guint ngp, guint renderers)
 typedef struct {
     WlPphigsFrame *f;
     Gp *g;
-    SimTime trav, send; /* accumulated since the last step */
+    SimTime trav, xform, send; /* accumulated since the last step */
 } Plan;
 
 static void plan_step(Plan *pl, guint region, guint count)
 {
-    Step st = {pl->trav, pl->send, region, count};
+    Step st = {pl->trav, pl->xform, pl->send, region, count};
     g_array_append_val(pl->g->steps, st);
-    pl->trav = pl->send = 0;
+    pl->trav = pl->xform = pl->send = 0;
     if (region != NONE)
-        pl->g->sent[region % pl->f->s.renderers]++;
+        pl->g->sent[region % pl->f->nrend]++;
 }
 
 static guint clampi(double v, guint hi)
@@ -162,7 +175,7 @@ static void prim_regions(const WlPphigsFrame *f, Mat4 m, const SceneElem *e,
 static void plan_command(Plan *pl, guint region)
 {
     WlPphigsFrame *f = pl->f;
-    pl->send += f->s.gp_send;
+    pl->send += f->gp_send;
     f->commands++;
     if (++pl->g->buf[region] >= f->s.batch) {
         plan_step(pl, region, pl->g->buf[region]);
@@ -174,18 +187,14 @@ static void plan_prim(const ScenePrimInst *pi, void *ud)
 {
     Plan *pl = ud;
     WlPphigsFrame *f = pl->f;
-    const WlPphigsCosts *c = &f->s.gp;
     Mat4 m = mat4_mul(f->vp, pi->matrix);
-    double us = wl_pphigs_elem_us(c, pi->el);
+    gboolean off = scene_pphigs_prim_offscreen(m, pi->el);
     f->prims++;
-    if (scene_pphigs_prim_offscreen(m, pi->el)) {
-        pl->trav += us_to_ps(us * c->offscreen);
-        f->trav_us[pl->g->id] += us * c->offscreen;
+    pl->xform += wl_pphigs_prim_cost(&f->c, pi->el, off);
+    if (off) {
         f->offscreen++;
         return;
     }
-    pl->trav += us_to_ps(us);
-    f->trav_us[pl->g->id] += us;
     guint r[4];
     prim_regions(f, m, pi->el, r);
     for (guint y = r[2]; y <= r[3]; y++)
@@ -193,32 +202,12 @@ static void plan_prim(const ScenePrimInst *pi, void *ud)
             plan_command(pl, y * f->nx + x);
 }
 
-/* Attributes and executes of every structure instance (max-set). */
-static double nonprim_us(const SceneDb *db, const WlPphigsCosts *c)
-{
-    double us = 0;
-    GArray *mx = scene_db_maxset(db);
-    for (guint k = 0; k < mx->len; k++) {
-        guint sid = g_array_index(mx, SceneMaxNode, k).sid;
-        for (guint i = 0; i < scene_db_len(db, sid); i++) {
-            const SceneElem *e = scene_db_elem(db, sid, i);
-            if (!scene_elem_is_prim(e->kind))
-                us += wl_pphigs_elem_us(c, e);
-        }
-    }
-    g_array_unref(mx);
-    return us;
-}
-
 static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
 {
     g_array_set_size(g->steps, 0);
     g->next = 0;
-    memset(g->sent, 0, f->s.renderers * sizeof *g->sent);
-    Plan pl = {f, g, 0, 0};
-    double attr = nonprim_us(db, &f->s.gp);
-    f->trav_us[g->id] = attr;
-    pl.trav = us_to_ps(attr);
+    memset(g->sent, 0, f->nrend * sizeof *g->sent);
+    Plan pl = {f, g, wl_pphigs_nonprim_cost(db, &f->c), 0, 0};
     plan_step(&pl, NONE, 0);
     scene_db_traverse(db, plan_prim, &pl);
     for (guint k = 0; k < f->nregions; k++)
@@ -226,7 +215,7 @@ static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
             plan_step(&pl, k, g->buf[k]);
             g->buf[k] = 0;
         }
-    if (pl.trav || pl.send)
+    if (pl.trav || pl.xform || pl.send)
         plan_step(&pl, NONE, 0);
 }
 
@@ -245,7 +234,7 @@ static void fb_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     (void)net;
     (void)d;
     WlPphigsFrame *f = ctx;
-    proc_compute(f, &f->fb, f->s.fb_store, f->ph_store, fb_done, f, NULL);
+    mach_proc_compute(f->fb, f->fb_store, f->ph_store, fb_done, f, NULL);
 }
 
 /* ---- renderers -------------------------------------------------------- */
@@ -262,8 +251,8 @@ static void rend_region_done(SimEngine *eng, void *ctx, void *arg)
     (void)eng;
     Rend *r = ctx;
     WlPphigsFrame *f = r->f;
-    guint k = GPOINTER_TO_UINT(arg) * f->s.renderers + r->id;
-    net_send(f->net, station_rend(f, r->id), station_fb(f),
+    guint k = GPOINTER_TO_UINT(arg) * f->nrend + r->id;
+    net_send(f->net, mach_proc_id(r->p), mach_proc_id(f->fb),
              region_bytes(f, k), NULL, fb_arrive, f);
 }
 
@@ -272,12 +261,11 @@ static void rend_raster(Rend *r, guint j)
     WlPphigsFrame *f = r->f;
     if (!r->begun[j]) {
         r->begun[j] = TRUE;
-        proc_compute(f, &r->p, f->s.rend_begin, f->ph_rast, NULL, NULL,
-                     NULL);
+        mach_proc_compute(r->p, f->rend_begin, f->ph_rast, NULL, NULL, NULL);
     }
     if (r->pending[j])
-        proc_compute(f, &r->p, r->pending[j] * f->s.rend_prim, f->ph_rast,
-                     NULL, NULL, NULL);
+        mach_proc_compute(r->p, r->pending[j] * f->rend_prim, f->ph_rast,
+                          NULL, NULL, NULL);
     r->pending[j] = 0;
 }
 
@@ -287,8 +275,8 @@ static void rend_finish(Rend *r)
     WlPphigsFrame *f = r->f;
     for (; r->cur < r->nreg; r->cur++) {
         rend_raster(r, r->cur);
-        proc_compute(f, &r->p, f->s.rend_shade, f->ph_shade,
-                     rend_region_done, r, GUINT_TO_POINTER(r->cur));
+        mach_proc_compute(r->p, f->rend_shade, f->ph_shade,
+                          rend_region_done, r, GUINT_TO_POINTER(r->cur));
     }
 }
 
@@ -303,11 +291,11 @@ static void rend_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     (void)net;
     WlPphigsFrame *f = ctx;
     Msg *m = d->payload;
-    Rend *r = &f->rend[d->dst - station_rend(f, 0)];
+    Rend *r = &f->rend[d->dst - mach_proc_id(f->rend[0].p)];
     if (m->end) {
         r->expect[m->gp] = m->msgs;
     } else {
-        guint j = m->region / f->s.renderers;
+        guint j = m->region / f->nrend;
         r->pending[j] += m->count;
         r->got[m->gp]++;
         if (j == r->cur)
@@ -321,12 +309,12 @@ static void rend_arrive(NetNet *net, const NetDelivery *d, void *ctx)
 
 static void gp_send_ends(WlPphigsFrame *f, Gp *g)
 {
-    for (guint r = 0; r < f->s.renderers; r++) {
+    for (guint r = 0; r < f->nrend; r++) {
         Msg *m = g_new0(Msg, 1);
         m->gp = g->id;
         m->end = TRUE;
         m->msgs = g->sent[r];
-        net_send(f->net, station_gp(f, g->id), station_rend(f, r),
+        net_send(f->net, mach_proc_id(g->p), mach_proc_id(f->rend[r].p),
                  f->s.end_bytes, m, rend_arrive, f);
     }
 }
@@ -345,8 +333,8 @@ static void gp_step_done(SimEngine *eng, void *ctx, void *arg)
         m->gp = g->id;
         m->region = st->region;
         m->count = st->count;
-        net_send(f->net, station_gp(f, g->id),
-                 station_rend(f, st->region % f->s.renderers),
+        net_send(f->net, mach_proc_id(g->p),
+                 mach_proc_id(f->rend[st->region % f->nrend].p),
                  (uint64_t)st->count * f->s.cmd_bytes, m, rend_arrive, f);
     }
     g->next++;
@@ -361,8 +349,11 @@ static void gp_next(Gp *g)
         return;
     }
     const Step *st = &g_array_index(g->steps, Step, g->next);
-    proc_compute(f, &g->p, st->trav, f->ph_trav, NULL, NULL, NULL);
-    proc_compute(f, &g->p, st->send, f->ph_send, gp_step_done, g, NULL);
+    if (st->trav)
+        mach_proc_compute(g->p, st->trav, f->ph_trav, NULL, NULL, NULL);
+    if (st->xform)
+        mach_proc_compute(g->p, st->xform, f->ph_xform, NULL, NULL, NULL);
+    mach_proc_compute(g->p, st->send, f->ph_send, gp_step_done, g, NULL);
 }
 
 static void gp_start(SimEngine *eng, void *ctx, void *arg)
@@ -378,49 +369,71 @@ static void rend_init(WlPphigsFrame *f, Rend *r, guint id)
 {
     r->f = f;
     r->id = id;
-    sim_busy_init(&r->p.busy);
-    r->nreg = f->nregions > id
-                  ? (f->nregions - id + f->s.renderers - 1) / f->s.renderers
-                  : 0;
+    r->p = mach_proc(f->m, "renderer", id);
+    r->nreg = f->nregions > id ? (f->nregions - id + f->nrend - 1) / f->nrend
+                               : 0;
     r->pending = g_new0(guint, MAX(r->nreg, 1));
     r->begun = g_new0(gboolean, MAX(r->nreg, 1));
     r->got = g_new0(guint, f->ngp);
     r->expect = g_new0(guint, f->ngp);
 }
 
-WlPphigsFrame *wl_pphigs_frame_new(SimEngine *eng, NetNet *net, guint ngp,
-                                   const WlPphigsFrameSpec *spec)
+static void gp_init(WlPphigsFrame *f, Gp *g, guint id)
 {
-    g_assert(ngp >= 1 && spec->renderers >= 1 && spec->region >= 1);
-    g_assert(spec->batch >= 1 && spec->width >= 1 && spec->height >= 1);
-    g_assert(net_nodes(net) >= wl_pphigs_frame_stations(ngp,
-                                                        spec->renderers));
+    g->f = f;
+    g->id = id;
+    g->p = mach_proc(f->m, "gp", id);
+    g->steps = g_array_new(FALSE, FALSE, sizeof(Step));
+    g->buf = g_new0(guint, f->nregions);
+    g->sent = g_new0(guint, f->nrend);
+}
+
+static void intern_phases(WlPphigsFrame *f)
+{
+    f->ph_trav = sim_engine_phase(f->eng, "traverse");
+    f->ph_xform = sim_engine_phase(f->eng, "transform");
+    f->ph_send = sim_engine_phase(f->eng, "send");
+    f->ph_rast = sim_engine_phase(f->eng, "rasterise");
+    f->ph_shade = sim_engine_phase(f->eng, "shade");
+    f->ph_store = sim_engine_phase(f->eng, "store");
+}
+
+static gboolean check_machine(WlPphigsFrame *f, GError **err)
+{
+    guint nfb;
+    return kind_count(f->m, "gp", 1, MAX_GPS, &f->ngp, err) &&
+           kind_count(f->m, "renderer", 1, G_MAXUINT16, &f->nrend, err) &&
+           kind_count(f->m, "frame_buffer", 1, 1, &nfb, err) &&
+           hw_costs(f, err) && mach_require_net(f->m, err);
+}
+
+WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
+                                   const WlPphigsFrameSpec *spec,
+                                   GError **err)
+{
+    g_assert(spec->region >= 1 && spec->batch >= 1);
+    g_assert(spec->width >= 1 && spec->height >= 1);
     WlPphigsFrame *f = g_new0(WlPphigsFrame, 1);
-    f->eng = eng;
-    f->net = net;
+    f->m = m;
+    f->eng = mach_engine(m);
     f->s = *spec;
-    f->ngp = ngp;
+    if (!check_machine(f, err)) {
+        g_free(f);
+        return NULL;
+    }
+    f->net = mach_net(m);
     f->nx = (spec->width + spec->region - 1) / spec->region;
     f->ny = (spec->height + spec->region - 1) / spec->region;
     f->nregions = f->nx * f->ny;
-    f->ph_trav = sim_engine_phase(eng, "traverse");
-    f->ph_send = sim_engine_phase(eng, "send");
-    f->ph_rast = sim_engine_phase(eng, "rasterise");
-    f->ph_shade = sim_engine_phase(eng, "shade");
-    f->ph_store = sim_engine_phase(eng, "store");
-    f->trav_us = g_new0(double, ngp);
-    sim_busy_init(&f->fb.busy);
-    f->gp = g_new0(Gp, ngp);
-    for (guint g = 0; g < ngp; g++) {
-        f->gp[g].f = f;
-        f->gp[g].id = g;
-        sim_busy_init(&f->gp[g].p.busy);
-        f->gp[g].steps = g_array_new(FALSE, FALSE, sizeof(Step));
-        f->gp[g].buf = g_new0(guint, f->nregions);
-        f->gp[g].sent = g_new0(guint, spec->renderers);
-    }
-    f->rend = g_new0(Rend, spec->renderers);
-    for (guint r = 0; r < spec->renderers; r++)
+    intern_phases(f);
+    f->fb = mach_proc(m, "frame_buffer", 0);
+    f->gp_us = g_new0(double, f->ngp);
+    f->busy0 = g_new0(SimTime, f->ngp);
+    f->gp = g_new0(Gp, f->ngp);
+    for (guint g = 0; g < f->ngp; g++)
+        gp_init(f, &f->gp[g], g);
+    f->rend = g_new0(Rend, f->nrend);
+    for (guint r = 0; r < f->nrend; r++)
         rend_init(f, &f->rend[r], r);
     return f;
 }
@@ -430,29 +443,46 @@ void wl_pphigs_frame_free(WlPphigsFrame *f)
     if (!f)
         return;
     for (guint g = 0; g < f->ngp; g++) {
-        sim_busy_clear(&f->gp[g].p.busy);
         g_array_unref(f->gp[g].steps);
         g_free(f->gp[g].buf);
         g_free(f->gp[g].sent);
     }
-    for (guint r = 0; r < f->s.renderers; r++) {
+    for (guint r = 0; r < f->nrend; r++) {
         Rend *x = &f->rend[r];
-        sim_busy_clear(&x->p.busy);
         g_free(x->pending);
         g_free(x->begun);
         g_free(x->got);
         g_free(x->expect);
     }
-    sim_busy_clear(&f->fb.busy);
     g_free(f->gp);
     g_free(f->rend);
-    g_free(f->trav_us);
+    g_free(f->gp_us);
+    g_free(f->busy0);
     g_free(f);
+}
+
+guint wl_pphigs_frame_gps(const WlPphigsFrame *f)
+{
+    return f->ngp;
+}
+
+const WlPphigsCosts *wl_pphigs_frame_costs(const WlPphigsFrame *f)
+{
+    return &f->c;
+}
+
+/* ---- running ---------------------------------------------------------- */
+
+static SimTime gp_busy(const WlPphigsFrame *f, guint g)
+{
+    const MachProc *p = f->gp[g].p;
+    return mach_proc_busy_phase(p, f->ph_trav) +
+           mach_proc_busy_phase(p, f->ph_xform);
 }
 
 static void frame_reset(WlPphigsFrame *f)
 {
-    for (guint r = 0; r < f->s.renderers; r++) {
+    for (guint r = 0; r < f->nrend; r++) {
         Rend *x = &f->rend[r];
         x->cur = 0;
         x->gps_done = 0;
@@ -462,6 +492,8 @@ static void frame_reset(WlPphigsFrame *f)
         for (guint g = 0; g < f->ngp; g++)
             x->expect[g] = NONE;
     }
+    for (guint g = 0; g < f->ngp; g++)
+        f->busy0[g] = gp_busy(f, g);
     f->stored = 0;
     f->commands = f->offscreen = f->prims = 0;
     f->start = f->end = sim_now(f->eng);
@@ -480,37 +512,14 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d,
     if (!sim_engine_run(f->eng, SIM_TIME_MAX, err))
         return FALSE;
     g_assert(f->stored == f->nregions);
+    for (guint g = 0; g < f->ngp; g++)
+        f->gp_us[g] = sim_time_to_us(gp_busy(f, g) - f->busy0[g]);
     out->time = f->end - f->start;
-    out->gp_traverse_us = f->trav_us;
+    out->gp_time_us = f->gp_us;
     out->commands = f->commands;
     out->offscreen = f->offscreen;
     out->primitives = f->prims;
     return TRUE;
-}
-
-/* ---- results ---------------------------------------------------------- */
-
-static void add_node(SimResult *r, const char *name, const char *kind,
-                     const Proc *p)
-{
-    SimNodeResult *n = sim_result_add_node(r, name, kind);
-    for (guint i = 0; p->busy.per_phase && i < p->busy.per_phase->len; i++)
-        sim_busy_add(&n->busy, i, sim_busy_phase(&p->busy, i));
-}
-
-void wl_pphigs_frame_fill_result(const WlPphigsFrame *f, SimResult *r)
-{
-    sim_result_set_phases(r, f->eng);
-    char name[32];
-    for (guint g = 0; g < f->ngp; g++) {
-        g_snprintf(name, sizeof name, "gp%u", g);
-        add_node(r, name, "gp", &f->gp[g].p);
-    }
-    for (guint i = 0; i < f->s.renderers; i++) {
-        g_snprintf(name, sizeof name, "renderer%u", i);
-        add_node(r, name, "renderer", &f->rend[i].p);
-    }
-    add_node(r, "fb", "frame_buffer", &f->fb);
 }
 
 void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,
@@ -518,9 +527,9 @@ void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,
 {
     double e = (double)MAX(elapsed, 1), gs = 0, rs = 0;
     for (guint g = 0; g < f->ngp; g++)
-        gs += (double)f->gp[g].p.busy.total / e;
-    for (guint i = 0; i < f->s.renderers; i++)
-        rs += (double)f->rend[i].p.busy.total / e;
+        gs += (double)mach_proc_busy(f->gp[g].p) / e;
+    for (guint i = 0; i < f->nrend; i++)
+        rs += (double)mach_proc_busy(f->rend[i].p) / e;
     *gp_util = gs / f->ngp;
-    *rend_util = rs / f->s.renderers;
+    *rend_util = rs / f->nrend;
 }

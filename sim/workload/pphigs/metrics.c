@@ -1,5 +1,6 @@
 /* metrics.c — traversal cost of display lists and seed 001's metrics
  * (see metrics.h).  One walk per structure instance: O(max-set size).
+ * Sums are exact SimTime picoseconds.
  * Seed 001 §2.3.4 (nominal weights), §5.2 (invalidated weights), §6.
  */
 #include "sim/workload/pphigs/metrics.h"
@@ -8,10 +9,10 @@
 typedef struct {
     const WlPphigsCosts *c;
     Mat4 vp;
-    double us;
+    SimTime t;
 } Walk;
 
-double wl_pphigs_elem_us(const WlPphigsCosts *c, const SceneElem *e)
+SimTime wl_pphigs_elem_cost(const WlPphigsCosts *c, const SceneElem *e)
 {
     switch (e->kind) {
     case SCENE_EL_COLOR:
@@ -25,31 +26,57 @@ double wl_pphigs_elem_us(const WlPphigsCosts *c, const SceneElem *e)
     }
 }
 
+SimTime wl_pphigs_prim_cost(const WlPphigsCosts *c, const SceneElem *e,
+                            gboolean offscreen)
+{
+    return offscreen ? c->reject_vertex * e->nverts
+                     : wl_pphigs_elem_cost(c, e);
+}
+
 static void prim_fn(const ScenePrimInst *pi, void *ud)
 {
     Walk *w = ud;
-    double t = wl_pphigs_elem_us(w->c, pi->el);
-    if (scene_pphigs_prim_offscreen(mat4_mul(w->vp, pi->matrix), pi->el))
-        t *= w->c->offscreen;
-    w->us += t;
+    gboolean off = scene_pphigs_prim_offscreen(mat4_mul(w->vp, pi->matrix),
+                                               pi->el);
+    w->t += wl_pphigs_prim_cost(w->c, pi->el, off);
 }
 
-double wl_pphigs_traversal_us(const SceneDb *db, Mat4 vp,
-                              const WlPphigsCosts *c)
+SimTime wl_pphigs_nonprim_cost(const SceneDb *db, const WlPphigsCosts *c)
 {
-    Walk w = {c, vp, 0};
-    scene_db_traverse(db, prim_fn, &w); /* primitives, with visibility */
-    GArray *mx = scene_db_maxset(db);   /* attributes and executes */
+    SimTime t = 0;
+    GArray *mx = scene_db_maxset(db);
     for (guint k = 0; k < mx->len; k++) {
         guint sid = g_array_index(mx, SceneMaxNode, k).sid;
         for (guint i = 0; i < scene_db_len(db, sid); i++) {
             const SceneElem *e = scene_db_elem(db, sid, i);
             if (!scene_elem_is_prim(e->kind))
-                w.us += wl_pphigs_elem_us(c, e);
+                t += wl_pphigs_elem_cost(c, e);
         }
     }
     g_array_unref(mx);
-    return w.us;
+    return t;
+}
+
+SimTime wl_pphigs_traversal_cost(const SceneDb *db, Mat4 vp,
+                                 const WlPphigsCosts *c)
+{
+    Walk w = {c, vp, 0};
+    scene_db_traverse(db, prim_fn, &w); /* primitives, with visibility */
+    return w.t + wl_pphigs_nonprim_cost(db, c);
+}
+
+void wl_pphigs_metrics_from(double t1, const double *gp_us, guint ngp,
+                            WlPphigsMetrics *m)
+{
+    m->t1 = t1;
+    m->sum = m->max = 0;
+    for (guint g = 0; g < ngp; g++) {
+        m->sum += gp_us[g];
+        m->max = MAX(m->max, gp_us[g]);
+    }
+    m->efficiency = m->sum > 0 ? m->t1 / m->sum : 0;
+    m->utilisation = m->max > 0 ? m->sum / (ngp * m->max) : 0;
+    m->speedup = ngp * m->efficiency * m->utilisation;
 }
 
 void wl_pphigs_metrics(const WlPphigsDist *d, Mat4 vp,
@@ -57,26 +84,22 @@ void wl_pphigs_metrics(const WlPphigsDist *d, Mat4 vp,
                        WlPphigsMetrics *m)
 {
     guint n = wl_pphigs_dist_ngp(d);
-    m->t1 = wl_pphigs_traversal_us(wl_pphigs_dist_host(d), vp, c);
-    m->sum = m->max = 0;
-    for (guint g = 0; g < n; g++) {
-        gp_us[g] = wl_pphigs_traversal_us(wl_pphigs_dist_gp(d, g), vp, c);
-        m->sum += gp_us[g];
-        m->max = MAX(m->max, gp_us[g]);
-    }
-    m->efficiency = m->sum > 0 ? m->t1 / m->sum : 0;
-    m->utilisation = m->max > 0 ? m->sum / (n * m->max) : 0;
-    m->speedup = n * m->efficiency * m->utilisation;
+    SimTime t1 = wl_pphigs_traversal_cost(wl_pphigs_dist_host(d), vp, c);
+    for (guint g = 0; g < n; g++)
+        gp_us[g] = sim_time_to_us(
+            wl_pphigs_traversal_cost(wl_pphigs_dist_gp(d, g), vp, c));
+    wl_pphigs_metrics_from(sim_time_to_us(t1), gp_us, n, m);
 }
 
 void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,
                                   WlPphigsWeights *w)
 {
     for (int k = 0; k < SCENE_EL_NKINDS; k++)
-        w->w[k] = scene_elem_is_prim((SceneElemKind)k) ? c->poly : 0;
-    w->w[SCENE_EL_COLOR] = c->color;
-    w->w[SCENE_EL_MATRIX] = c->matrix;
-    w->w[SCENE_EL_EXECUTE] = c->execute;
-    w->w_vertex = c->vertex;
+        w->w[k] = scene_elem_is_prim((SceneElemKind)k)
+                      ? sim_time_to_us(c->poly) : 0;
+    w->w[SCENE_EL_COLOR] = sim_time_to_us(c->color);
+    w->w[SCENE_EL_MATRIX] = sim_time_to_us(c->matrix);
+    w->w[SCENE_EL_EXECUTE] = sim_time_to_us(c->execute);
+    w->w_vertex = sim_time_to_us(c->vertex);
     w->cluster = cluster;
 }

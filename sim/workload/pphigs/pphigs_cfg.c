@@ -1,6 +1,5 @@
 /* pphigs_cfg.c — the pphigs workload's YAML readers (see pphigs_cfg.h).
- * Model entries are maps {value, unit?, source|assumption|calibrated};
- * only `value` is read here (the machine layer checks provenance).
+ * Every reader marks what it reads and rejects unknown keys.
  */
 #include "sim/workload/pphigs/pphigs_cfg.h"
 #include <string.h>
@@ -17,6 +16,9 @@ static const Field count_fields[] = {
     F(figures), F(structures), F(levels)};
 #undef F
 
+static const char *const db_names =
+    "space_station, building_lobby, flock_old_well or two_human_figures";
+
 static gboolean spec_kind(const CfgNode *map, ScenePphigsSpec *out,
                           GError **err)
 {
@@ -25,9 +27,9 @@ static gboolean spec_kind(const CfgNode *map, ScenePphigsSpec *out,
         return FALSE;
     if (scene_pphigs_kind_parse(kind, &out->kind))
         return TRUE;
-    cfg_error(err, cfg_get(map, "kind"), kind,
-              "space_station, building_lobby, flock_old_well or "
-              "two_human_figures");
+    char *found = g_strdup_printf("kind '%s'", kind);
+    cfg_error(err, cfg_get(map, "kind"), found, db_names);
+    g_free(found);
     return FALSE;
 }
 
@@ -54,95 +56,39 @@ gboolean wl_pphigs_spec_from_cfg(const CfgNode *map, ScenePphigsSpec *out,
     return cfg_check_unused(map, err);
 }
 
+/* "no database 'x'" at name_at (or the file), listing the file's keys. */
+static void no_such_db(const CfgNode *root, const char *name,
+                       const CfgNode *name_at, GError **err)
+{
+    GString *exp = g_string_new("one of the databases of ");
+    g_string_append(exp, cfg_file(root));
+    for (guint i = 0; cfg_kind(root) == CFG_MAP && i < cfg_map_len(root);
+         i++)
+        g_string_append_printf(exp, "%s %s", i ? "," : ":",
+                               cfg_map_key(root, i));
+    char *found = g_strdup_printf("database '%s'", name);
+    cfg_error(err, name_at ? name_at : root, found, exp->str);
+    g_free(found);
+    g_string_free(exp, TRUE);
+}
+
 gboolean wl_pphigs_spec_load(const char *path, const char *name,
-                             ScenePphigsSpec *out, GError **err)
+                             const CfgNode *name_at, ScenePphigsSpec *out,
+                             GError **err)
 {
     CfgNode *root = cfg_load_file(path, err);
     if (!root)
         return FALSE;
-    const CfgNode *m = cfg_get(root, name);
-    gboolean ok = m != NULL;
-    if (!m) {
-        char *f = g_strdup_printf("no database '%s'", name);
-        cfg_error(err, root, f, "space_station, building_lobby, "
-                                "flock_old_well or two_human_figures");
-        g_free(f);
-    } else {
-        ok = wl_pphigs_spec_from_cfg(m, out, err);
-    }
+    const CfgNode *m = cfg_kind(root) == CFG_MAP ? cfg_get(root, name)
+                                                  : NULL;
+    gboolean ok = m && wl_pphigs_spec_from_cfg(m, out, err);
+    if (!m)
+        no_such_db(root, name, name_at, err);
     cfg_free(root);
     return ok;
 }
 
-/* ---- model values ----------------------------------------------------- */
-
-static const CfgNode *entry(const CfgNode *root, const char *path,
-                            GError **err)
-{
-    const CfgNode *n = cfg_path(root, path);
-    if (!n || cfg_kind(n) != CFG_MAP) {
-        char *f = g_strdup_printf("no entry '%s'", path);
-        cfg_error(err, root, f, "{value: ..., source|assumption: ...}");
-        g_free(f);
-        return NULL;
-    }
-    return n;
-}
-
-static gboolean num(const CfgNode *root, const char *path, double *out,
-                    GError **err)
-{
-    const CfgNode *n = entry(root, path, err);
-    return n && cfg_get_double(n, "value", TRUE, 0, 1e12, out, err);
-}
-
-static gboolean tm(const CfgNode *root, const char *path, SimTime *out,
-                   GError **err)
-{
-    const CfgNode *n = entry(root, path, err);
-    return n && cfg_get_time(n, "value", TRUE, out, err);
-}
-
-static gboolean cnt(const CfgNode *root, const char *path, guint *out,
-                    GError **err)
-{
-    const CfgNode *n = entry(root, path, err);
-    uint64_t v = 0;
-    if (!n || !cfg_get_count(n, "value", TRUE, 1, 1u << 20, &v, err))
-        return FALSE;
-    *out = (guint)v;
-    return TRUE;
-}
-
-gboolean wl_pphigs_costs_from_cfg(const CfgNode *model, WlPphigsCosts *c,
-                                  double *cluster_scale, GError **err)
-{
-    return num(model, "pphigs.poly", &c->poly, err) &&
-           num(model, "pphigs.vertex", &c->vertex, err) &&
-           num(model, "pphigs.offscreen", &c->offscreen, err) &&
-           num(model, "pphigs.color", &c->color, err) &&
-           num(model, "pphigs.matrix", &c->matrix, err) &&
-           num(model, "pphigs.concat", &c->concat, err) &&
-           num(model, "pphigs.execute", &c->execute, err) &&
-           num(model, "pphigs.cluster_scale", cluster_scale, err);
-}
-
-static gboolean net_from_cfg(const CfgNode *model, NetParams *np,
-                             GError **err)
-{
-    memset(np, 0, sizeof *np);
-    np->switching = NET_SW_RING_SLOTS;
-    const CfgNode *bw = entry(model, "network.bandwidth", err);
-    const CfgNode *pk = bw ? entry(model, "network.packet_size", err) : NULL;
-    uint64_t psz = 0;
-    return bw && pk &&
-           cfg_get_bandwidth(bw, "value", TRUE, &np->bandwidth, err) &&
-           cfg_get_size(pk, "value", TRUE, &psz, err) &&
-           (np->packet_bytes = (uint32_t)psz, TRUE) &&
-           cnt(model, "network.channels", &np->channels, err) &&
-           tm(model, "network.per_hop", &np->per_hop, err) &&
-           tm(model, "network.startup", &np->startup, err);
-}
+/* ---- frame.yaml ------------------------------------------------------- */
 
 static gboolean frame_sizes(const CfgNode *fr, WlPphigsFrameSpec *s,
                             GError **err)
@@ -161,36 +107,53 @@ static gboolean frame_sizes(const CfgNode *fr, WlPphigsFrameSpec *s,
     return TRUE;
 }
 
-gboolean wl_pphigs_hw_from_cfg(const CfgNode *model, const CfgNode *frame,
-                               WlPphigsFrameSpec *s, NetParams *np,
-                               guint *max_gps, GError **err)
+/* cluster_scale: {value: N, calibrated|assumption|source: "..."} */
+static gboolean cluster_scale(const CfgNode *fr, double *out, GError **err)
 {
-    return tm(model, "nodes.gp.costs.send_primitive", &s->gp_send, err) &&
-           tm(model, "nodes.renderer.costs.primitive", &s->rend_prim,
-              err) &&
-           tm(model, "nodes.renderer.costs.region_begin", &s->rend_begin,
-              err) &&
-           tm(model, "nodes.renderer.costs.region_shade", &s->rend_shade,
-              err) &&
-           tm(model, "nodes.frame_buffer.costs.store_region", &s->fb_store,
-              err) &&
-           cnt(model, "nodes.renderer.count", &s->renderers, err) &&
-           cnt(model, "nodes.gp.count", max_gps, err) &&
-           net_from_cfg(model, np, err) && frame_sizes(frame, s, err);
+    static const char *const prov[] = {"calibrated", "assumption", "source"};
+    const CfgNode *p = cfg_get(fr, "cluster_scale");
+    if (!p || cfg_kind(p) != CFG_MAP) {
+        cfg_error(err, p ? p : fr, p ? "a bare cluster_scale"
+                                     : "no key 'cluster_scale' in this map",
+                  "cluster_scale: {value: <number>, calibrated: <cells>}");
+        return FALSE;
+    }
+    gboolean have = FALSE;
+    for (guint i = 0; i < G_N_ELEMENTS(prov); i++)
+        have = cfg_get(p, prov[i]) != NULL || have;
+    if (!have) {
+        cfg_error(err, p, "cluster_scale without a provenance",
+                  "one of calibrated:, assumption: or source:");
+        return FALSE;
+    }
+    return cfg_get_double(p, "value", TRUE, 1e-6, 1e6, out, err);
 }
 
-gboolean wl_pphigs_hw_load(const char *model_path, const CfgNode *frame,
-                           WlPphigsHw *hw, GError **err)
+gboolean wl_pphigs_setup_from_cfg(const CfgNode *map, WlPphigsSetup *out,
+                                  GError **err)
 {
-    CfgNode *m = cfg_load_file(model_path, err);
-    if (!m)
+    memset(out, 0, sizeof *out);
+    if (cfg_kind(map) != CFG_MAP) {
+        cfg_error(err, map, "a non-map", "a map of frame sizes");
         return FALSE;
-    memset(hw, 0, sizeof *hw);
-    gboolean ok =
-        wl_pphigs_costs_from_cfg(m, &hw->costs, &hw->cluster_scale, err) &&
-        wl_pphigs_hw_from_cfg(m, frame, &hw->frame, &hw->net, &hw->max_gps,
-                              err);
-    hw->frame.gp = hw->costs;
-    cfg_free(m);
+    }
+    return frame_sizes(map, &out->frame, err) &&
+           cluster_scale(map, &out->cluster_scale, err) &&
+           cfg_check_unused(map, err);
+}
+
+gboolean wl_pphigs_setup_load(const char *path, WlPphigsSetup *out,
+                              GError **err)
+{
+    CfgNode *root = cfg_load_file(path, err);
+    if (!root)
+        return FALSE;
+    gboolean ok = wl_pphigs_setup_from_cfg(root, out, err);
+    cfg_free(root);
     return ok;
+}
+
+double wl_pphigs_cluster_factor(double cluster_scale, guint ngp)
+{
+    return MAX(1.0, cluster_scale / ngp);
 }

@@ -86,10 +86,10 @@ typedef struct {
 static void measure_prim(const ScenePrimInst *pi, void *ud)
 {
     Measure *m = ud;
-    double us = wl_pphigs_elem_us(m->c, pi->el);
-    if (scene_pphigs_prim_offscreen(mat4_mul(m->vp, pi->matrix), pi->el))
-        us *= m->c->offscreen;
-    m->pl->actual[m->pl->off[pi->sid] + pi->pos] += us;
+    gboolean off = scene_pphigs_prim_offscreen(mat4_mul(m->vp, pi->matrix),
+                                               pi->el);
+    m->pl->actual[m->pl->off[pi->sid] + pi->pos] +=
+        sim_time_to_us(wl_pphigs_prim_cost(m->c, pi->el, off));
 }
 
 static void pool_index(Pool *pl, const SceneDb *h)

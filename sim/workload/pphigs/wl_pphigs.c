@@ -6,25 +6,32 @@
  * workload section:
  *   type: pphigs
  *   algorithm: simple | complex        (default complex)
- *   gps: 1..64                          (default: the model's GP count)
- *   database: space_station | building_lobby | flock_old_well |
- *             two_human_figures
- *   databases: path of the generator parameters
- *   frame: path of the frame sizes (configs/pphigs/frame.yaml)
+ *   gps: 1..64                          (default: the machine's GP count;
+ *                                        given, it sets nodes.gp.count)
+ *   database: a name in `databases` (the four of seed 001)
+ *   databases: generator parameters (configs/pphigs/databases.yaml)
+ *   frame: frame sizes and clustering (configs/pphigs/frame.yaml)
  *   edits_per_frame: matrix modifies per frame (default 0)
  *   edit_angle_deg: rotation each edit applies (default 0)
  *   rebalance: {enabled, threshold, frames, fraction, max_moves}
- * The model file is models/<machine.model>.yaml.
+ * Relative paths are tried from the working directory, then from the
+ * config file's directory and its ancestors.  The machine is the run
+ * config's `machine` section (default: model pixel-planes-5), built by
+ * the machine layer at the run's fidelity; `run.until` ends the run
+ * after the frame that crosses it.
  * Cost per frame: the frame's (frame.h) plus O(host size) per edit.
  */
-#include "sim/workload/pphigs/pphigs_cfg.h"
+#include "sim/workload/pphigs/ellsworth90.h"
 #include "sim/workload/pphigs/rebalance.h"
+#include "sim/machine/model.h"
 #include "sim/workload/workload.h"
+#include <string.h>
 
 typedef struct {
     int algo;
-    int64_t gps; /* 0: the model's count */
-    char *database, *databases, *frame;
+    int64_t gps; /* 0: the machine's count */
+    ScenePphigsSpec spec;
+    WlPphigsSetup setup;
     int64_t edits;
     double edit_angle;
     gboolean rebalance;
@@ -33,13 +40,7 @@ typedef struct {
 
 static void params_free(void *p)
 {
-    Params *x = p;
-    if (!x)
-        return;
-    g_free(x->database);
-    g_free(x->databases);
-    g_free(x->frame);
-    g_free(x);
+    g_free(p);
 }
 
 static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
@@ -61,6 +62,48 @@ static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
     return ok;
 }
 
+/* `file` as given if it exists (or is absolute), else from the config
+ * file's directory and its ancestors; the given path when none exists
+ * (the loader then reports it).  Returns a new string. */
+static char *resolve(const CfgNode *at, const char *file)
+{
+    if (g_path_is_absolute(file) || g_file_test(file, G_FILE_TEST_EXISTS))
+        return g_strdup(file);
+    char *dir = g_path_get_dirname(cfg_file(at));
+    while (TRUE) {
+        char *p = g_build_filename(dir, file, NULL);
+        char *up = g_path_get_dirname(dir);
+        gboolean top = strcmp(up, dir) == 0;
+        g_free(dir);
+        dir = up;
+        if (g_file_test(p, G_FILE_TEST_EXISTS) || top) {
+            g_free(dir);
+            if (g_file_test(p, G_FILE_TEST_EXISTS))
+                return p;
+            g_free(p);
+            return g_strdup(file);
+        }
+        g_free(p);
+    }
+}
+
+/* Loads the database spec and the frame setup the section names. */
+static gboolean parse_files(const CfgNode *sec, Params *p, GError **err)
+{
+    const char *db = NULL, *dbs = NULL, *fr = NULL;
+    if (!cfg_get_str(sec, "database", TRUE, &db, err) ||
+        !cfg_get_str(sec, "databases", TRUE, &dbs, err) ||
+        !cfg_get_str(sec, "frame", TRUE, &fr, err))
+        return FALSE;
+    char *dbs_path = resolve(sec, dbs), *fr_path = resolve(sec, fr);
+    gboolean ok = wl_pphigs_spec_load(dbs_path, db, cfg_get(sec, "database"),
+                                      &p->spec, err) &&
+                  wl_pphigs_setup_load(fr_path, &p->setup, err);
+    g_free(dbs_path);
+    g_free(fr_path);
+    return ok;
+}
+
 static void *parse(const CfgNode *sec, GError **err)
 {
     static const char *const algos[] = {"simple", "complex", NULL};
@@ -68,21 +111,14 @@ static void *parse(const CfgNode *sec, GError **err)
     p->algo = WL_PPHIGS_COMPLEX;
     p->rebalance = TRUE;
     p->rb = (WlPphigsRebalParams){0.10, 3, 0.5, 16, 1};
-    const char *db = NULL, *dbs = NULL, *fr = NULL;
     gboolean ok =
         cfg_get_enum(sec, "algorithm", FALSE, algos, &p->algo, err) &&
         cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
-        cfg_get_str(sec, "database", TRUE, &db, err) &&
-        cfg_get_str(sec, "databases", TRUE, &dbs, err) &&
-        cfg_get_str(sec, "frame", TRUE, &fr, err) &&
         cfg_get_int(sec, "edits_per_frame", FALSE, 0, 1000000, &p->edits,
                     err) &&
         cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                        &p->edit_angle, err) &&
-        parse_rebalance(sec, p, err);
-    p->database = g_strdup(db);
-    p->databases = g_strdup(dbs);
-    p->frame = g_strdup(fr);
+        parse_rebalance(sec, p, err) && parse_files(sec, p, err);
     if (!ok) {
         params_free(p);
         return NULL;
@@ -90,15 +126,57 @@ static void *parse(const CfgNode *sec, GError **err)
     return p;
 }
 
+/* ---- the machine ------------------------------------------------------ */
+
+/* workload.gps and machine.nodes.gp.count must not disagree. */
+static gboolean check_gps(const WlContext *ctx, const CfgNode *mach,
+                          int64_t gps, GError **err)
+{
+    const CfgNode *gp = cfg_path(mach, "nodes.gp");
+    uint64_t n = 0;
+    if (!gps || !gp || !mach_param_node(gp, "count") ||
+        !mach_param_count(gp, "count", TRUE, &n, NULL) || n == (uint64_t)gps)
+        return TRUE;
+    char *found = g_strdup_printf("gps %" G_GINT64_FORMAT " while "
+                                  "machine.nodes.gp.count is %" G_GUINT64_FORMAT,
+                                  gps, n);
+    cfg_error(err, cfg_path(ctx->root, "workload.gps"), found,
+              "one GP count (set workload.gps or machine.nodes.gp.count, "
+              "or both to the same value)");
+    g_free(found);
+    return FALSE;
+}
+
+static MachMachine *build_machine(const WlContext *ctx, const Params *p,
+                                  GError **err)
+{
+    const CfgNode *mach = cfg_get(ctx->root, "machine");
+    if (!check_gps(ctx, mach, p->gps, err))
+        return NULL;
+    CfgNode *sec = mach ? cfg_copy(mach)
+                        : cfg_load_string("model: pixel-planes-5\n",
+                                          "<pphigs default machine>", err);
+    if (sec && p->gps) {
+        char *ov = g_strdup_printf("nodes.gp.count=%" G_GINT64_FORMAT,
+                                   p->gps);
+        gboolean ok = cfg_set_override(sec, ov, err);
+        g_assert(ok);
+        g_free(ov);
+    }
+    MachMachine *m = sec ? mach_new_from_cfg(ctx->eng, sec, ctx->fidelity,
+                                             err)
+                         : NULL;
+    cfg_free(sec);
+    return m;
+}
+
 /* ---- one run ---------------------------------------------------------- */
 
 typedef struct {
     const Params *p;
-    WlPphigsHw hw;
+    MachMachine *m;
     ScenePphigsDb db;
     WlPphigsDist *d;
-    NetTopo *topo;
-    NetNet *net;
     WlPphigsFrame *frame;
     WlPphigsRebal *rb;
     SimRng *rng;
@@ -107,56 +185,32 @@ typedef struct {
     double imbalance;
 } Run;
 
-static gboolean load(Run *r, const WlContext *ctx, GError **err)
+static gboolean build(Run *r, const WlContext *ctx, GError **err)
 {
-    const char *model = "pixel-planes-5";
-    const CfgNode *m = cfg_get(ctx->root, "machine");
-    if (m && !cfg_get_str(m, "model", FALSE, &model, err))
+    r->m = build_machine(ctx, r->p, err);
+    r->frame = r->m ? wl_pphigs_frame_new(r->m, &r->p->setup.frame, err)
+                    : NULL;
+    if (!r->frame || !scene_pphigs_generate(&r->p->spec, &r->db, err))
         return FALSE;
-    char *path = g_strdup_printf("models/%s.yaml", model);
-    CfgNode *fr = cfg_load_file(r->p->frame, err);
-    gboolean ok = fr && wl_pphigs_hw_load(path, fr, &r->hw, err) &&
-                  cfg_check_unused(fr, err);
-    cfg_free(fr);
-    g_free(path);
-    if (ok && !net_fidelity_parse(ctx->fidelity, &r->hw.fidelity)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "found fidelity '%s', expected analytic, flow or packet",
-                    ctx->fidelity);
-        ok = FALSE;
-    }
-    ScenePphigsSpec spec;
-    return ok &&
-           wl_pphigs_spec_load(r->p->databases, r->p->database, &spec,
-                               err) &&
-           scene_pphigs_generate(&spec, &r->db, err);
-}
-
-static void build(Run *r, const WlContext *ctx)
-{
-    r->ngp = r->p->gps ? (guint)r->p->gps : MIN(r->hw.max_gps, 64);
+    r->ngp = wl_pphigs_frame_gps(r->frame);
     WlPphigsWeights w;
     wl_pphigs_weights_from_costs(
-        &r->hw.costs,
-        MAX(1.0, r->hw.cluster_scale / r->ngp), &w);
+        wl_pphigs_frame_costs(r->frame),
+        wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo,
                               &w);
-    r->topo = net_ring_new(
-        wl_pphigs_frame_stations(r->ngp, r->hw.frame.renderers));
-    r->net = net_new(ctx->eng, r->topo, &r->hw.net, r->hw.fidelity);
-    r->frame = wl_pphigs_frame_new(ctx->eng, r->net, r->ngp, &r->hw.frame);
     WlPphigsRebalParams rb = r->p->rb;
     rb.seed = ctx->seed;
     r->rb = r->p->rebalance ? wl_pphigs_rebal_new(&rb) : NULL;
     r->rng = sim_entity_rng(ctx->eng, sim_entity_add(ctx->eng, "host"));
+    return TRUE;
 }
 
 static void run_clear(Run *r)
 {
     wl_pphigs_rebal_free(r->rb);
     wl_pphigs_frame_free(r->frame);
-    net_free(r->net);
-    net_topo_free(r->topo);
+    mach_free(r->m);
     wl_pphigs_dist_free(r->d);
     if (r->db.db)
         scene_pphigs_db_clear(&r->db);
@@ -196,11 +250,12 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
         return FALSE;
     sim_result_add_frame(out, st.time);
     r->commands += st.commands;
-    r->imbalance = wl_pphigs_imbalance(st.gp_traverse_us, r->ngp);
+    r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);
     if (r->rb) {
         WlPphigsRebalStep rs;
-        wl_pphigs_rebal_frame(r->rb, r->d, vp, &r->hw.costs,
-                              st.gp_traverse_us, &rs);
+        wl_pphigs_rebal_frame(r->rb, r->d, vp,
+                              wl_pphigs_frame_costs(r->frame),
+                              st.gp_time_us, &rs);
         r->moves = rs.total_moves;
     }
     return TRUE;
@@ -209,13 +264,11 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
 static void fill(Run *r, const WlContext *ctx, SimResult *out)
 {
     SimTime now = sim_now(ctx->eng);
+    NetNet *net = mach_net(r->m);
     out->elapsed = now;
     out->seed = ctx->seed;
     out->events = sim_engine_events(ctx->eng);
-    g_free(out->fidelity);
-    out->fidelity = g_strdup(net_fidelity_name(r->hw.fidelity));
-    wl_pphigs_frame_fill_result(r->frame, out);
-    net_fill_result(r->net, out);
+    mach_fill_result(r->m, out);
     double gu, ru;
     wl_pphigs_frame_util(r->frame, now, &gu, &ru);
     double n = MAX(out->frame_times->len, 1);
@@ -224,7 +277,7 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "gp_util_pct", 100 * gu, "%");
     sim_result_set_metric(out, "renderer_util_pct", 100 * ru, "%");
     sim_result_set_metric(out, "ring_bytes_per_frame",
-                          (double)net_total_bytes(r->net) / n, "B");
+                          (double)net_total_bytes(net) / n, "B");
     sim_result_set_metric(out, "commands_per_frame", r->commands / n, "");
     sim_result_set_metric(out, "gps", r->ngp, "");
     sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance,
@@ -237,14 +290,12 @@ static gboolean run(const WlContext *ctx, void *params, SimResult *out,
                     GError **err)
 {
     Run r = {.p = params};
-    gboolean ok = load(&r, ctx, err);
-    if (ok) {
-        build(&r, ctx);
-        for (int f = 0; ok && f < ctx->frames; f++)
-            ok = one_frame(&r, out, err);
-        if (ok)
-            fill(&r, ctx, out);
-    }
+    gboolean ok = build(&r, ctx, err);
+    SimTime until = wl_until(ctx);
+    for (int f = 0; ok && f < ctx->frames && sim_now(ctx->eng) < until; f++)
+        ok = one_frame(&r, out, err);
+    if (ok)
+        fill(&r, ctx, out);
     run_clear(&r);
     return ok;
 }
