@@ -14,8 +14,8 @@
  *   edits_per_frame: matrix modifies per frame (default 0)
  *   edit_angle_deg: rotation each edit applies (default 0)
  *   rebalance: {enabled, threshold, frames, fraction, max_moves}
- * Relative paths are tried from the working directory, then from the
- * config file's directory and its ancestors.  The machine is the run
+ * Relative paths are found as project data files (sim/core/datapath.h)
+ * and read when the config is loaded.  The machine is the run
  * config's `machine` section (default: model pixel-planes-5), built by
  * the machine layer at the run's fidelity; `run.until` ends the run
  * after the frame that crosses it.
@@ -25,7 +25,6 @@
 #include "sim/workload/pphigs/rebalance.h"
 #include "sim/machine/model.h"
 #include "sim/workload/workload.h"
-#include <string.h>
 
 typedef struct {
     int algo;
@@ -62,31 +61,6 @@ static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
     return ok;
 }
 
-/* `file` as given if it exists (or is absolute), else from the config
- * file's directory and its ancestors; the given path when none exists
- * (the loader then reports it).  Returns a new string. */
-static char *resolve(const CfgNode *at, const char *file)
-{
-    if (g_path_is_absolute(file) || g_file_test(file, G_FILE_TEST_EXISTS))
-        return g_strdup(file);
-    char *dir = g_path_get_dirname(cfg_file(at));
-    while (TRUE) {
-        char *p = g_build_filename(dir, file, NULL);
-        char *up = g_path_get_dirname(dir);
-        gboolean top = strcmp(up, dir) == 0;
-        g_free(dir);
-        dir = up;
-        if (g_file_test(p, G_FILE_TEST_EXISTS) || top) {
-            g_free(dir);
-            if (g_file_test(p, G_FILE_TEST_EXISTS))
-                return p;
-            g_free(p);
-            return g_strdup(file);
-        }
-        g_free(p);
-    }
-}
-
 /* Loads the database spec and the frame setup the section names. */
 static gboolean parse_files(const CfgNode *sec, Params *p, GError **err)
 {
@@ -95,13 +69,9 @@ static gboolean parse_files(const CfgNode *sec, Params *p, GError **err)
         !cfg_get_str(sec, "databases", TRUE, &dbs, err) ||
         !cfg_get_str(sec, "frame", TRUE, &fr, err))
         return FALSE;
-    char *dbs_path = resolve(sec, dbs), *fr_path = resolve(sec, fr);
-    gboolean ok = wl_pphigs_spec_load(dbs_path, db, cfg_get(sec, "database"),
-                                      &p->spec, err) &&
-                  wl_pphigs_setup_load(fr_path, &p->setup, err);
-    g_free(dbs_path);
-    g_free(fr_path);
-    return ok;
+    return wl_pphigs_spec_load(dbs, db, cfg_get(sec, "database"), &p->spec,
+                               err) &&
+           wl_pphigs_setup_load(fr, &p->setup, err);
 }
 
 static void *parse(const CfgNode *sec, GError **err)
