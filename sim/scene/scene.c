@@ -55,7 +55,7 @@ void scene_set_db(Scene *s, SceneDb *db)
 
 SceneView scene_view_default(void)
 {
-    SceneView v = {SCENE_PERSPECTIVE, 0, 0, 45, 1, 1, FALSE};
+    SceneView v = {SCENE_PERSPECTIVE, 0, 0, 45, 1, 1, FALSE, FALSE};
     return v;
 }
 
@@ -78,6 +78,26 @@ static void fit_instance_boxes(const Scene *s, SceneCamera *c, double fill)
     g_free(pts);
 }
 
+/* Fits every vertex of every instance (the silhouette).  O(vertices x
+ * instances). */
+static void fit_instance_vertices(const Scene *s, SceneCamera *c,
+                                  double fill)
+{
+    GArray *pts = g_array_new(FALSE, FALSE, sizeof(Vec3));
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        const SceneMesh *m = scene_instance_mesh(s, i);
+        Mat4 x = scene_instance(s, i)->xform;
+        for (guint k = 0; k < scene_mesh_n_vertices(m); k++) {
+            Vec4 p = mat4_apply_point(x, scene_mesh_vertex(m, k));
+            Vec3 q = vec3(p.x / p.w, p.y / p.w, p.z / p.w);
+            g_array_append_val(pts, q);
+        }
+    }
+    if (pts->len > 0)
+        scene_camera_fit_points(c, (Vec3 *)pts->data, pts->len, fill);
+    g_array_free(pts, TRUE);
+}
+
 void scene_apply_view(Scene *s, const SceneView *v)
 {
     double az = v->azimuth_deg * G_PI / 180, el = v->elevation_deg * G_PI / 180;
@@ -89,7 +109,9 @@ void scene_apply_view(Scene *s, const SceneView *v)
     c.target = vec3(0, 0, 0);
     c.eye = dir;
     c.up = fabs(dir.y) > 0.999 ? vec3(0, 0, -1) : vec3(0, 1, 0);
-    if (v->fit_box && scene_n_instances(s) > 0)
+    if (v->fit_vertices && scene_n_instances(s) > 0)
+        fit_instance_vertices(s, &c, v->fill);
+    else if (v->fit_box && scene_n_instances(s) > 0)
         fit_instance_boxes(s, &c, v->fill);
     else
         scene_camera_fit(&c, scene_bbox(s), v->fill);

@@ -40,7 +40,8 @@ typedef struct {
  * above the x-z plane, degrees) and is fitted with scene_camera_fit() so
  * the bounding sphere fills `fill` of the smaller viewport extent (or,
  * with fit_box, the corners of every instance's box project inside
- * [-fill, fill]). */
+ * [-fill, fill]; with fit_vertices, every vertex of every instance does:
+ * the silhouette touches the scaled viewport). */
 typedef struct {
     SceneProjection proj;
     double azimuth_deg, elevation_deg;
@@ -49,6 +50,7 @@ typedef struct {
     double aspect;   /* width / height */
     gboolean fit_box; /* fit the instances' box corners instead of
                          the bounding sphere */
+    gboolean fit_vertices; /* fit every instance vertex (tightest) */
 } SceneView;
 
 /* azimuth 0, elevation 0, perspective 45°, fill 1, aspect 1, sphere. */

@@ -354,7 +354,7 @@ static Scene *load_file(const CfgNode *sec, GError **err)
 static const char *const projections[] = {"perspective", "orthographic",
                                           NULL};
 
-static const char *const fits[] = {"sphere", "box", NULL};
+static const char *const fits[] = {"sphere", "box", "vertices", NULL};
 
 static gboolean apply_view(Scene *s, const CfgNode *n, GError **err)
 {
@@ -373,6 +373,7 @@ static gboolean apply_view(Scene *s, const CfgNode *n, GError **err)
         return FALSE;
     v.proj = (SceneProjection)proj;
     v.fit_box = fit == 1;
+    v.fit_vertices = fit == 2;
     scene_apply_view(s, &v);
     return TRUE;
 }

@@ -7,7 +7,8 @@
  *     file: model.obj | model.ply      # instead of a generator
  *     ...generator parameters (docs/scenes.md)...
  *     view:   {azimuth: 30, elevation: 20, fov: 45, fill: 0.9,
- *              projection: perspective, aspect: 1, fit: sphere|box}
+ *              projection: perspective, aspect: 1,
+ *              fit: sphere|box|vertices}
  *     camera: {eye: [x, y, z], target: [...], up: [...], fov: 45,
  *              height: 2, near: 0.1, far: 100, aspect: 1,
  *              projection: orthographic}

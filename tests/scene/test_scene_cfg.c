@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 #include <string.h>
 
 #include "sim/scene/pphigs_db.h"
@@ -45,6 +46,34 @@ static void test_table1_configs(void **st)
         scene_free(s);
         g_free(path);
     }
+}
+
+/* fit: vertices puts the silhouette exactly at +-fill of the viewport. */
+static void test_fit_vertices(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "scene: {generator: teapots, count: 3, polygons_per_teapot: 300,\n"
+        "        layout: depth, view: {azimuth: 0, elevation: 20,\n"
+        "        fill: 0.8, fit: vertices}}\n", "v.yaml", &err);
+    assert_non_null(root);
+    Scene *s = scene_from_cfg(cfg_get(root, "scene"), &err);
+    assert_non_null(s);
+    Mat4 vp = scene_camera_view_proj(&s->camera);
+    double ext = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        const SceneMesh *m = scene_instance_mesh(s, i);
+        Mat4 x = mat4_mul(vp, scene_instance(s, i)->xform);
+        for (guint k = 0; k < scene_mesh_n_vertices(m); k++) {
+            Vec4 p = mat4_apply_point(x, scene_mesh_vertex(m, k));
+            ext = MAX(ext, MAX(fabs(p.x / p.w), fabs(p.y / p.w)));
+        }
+    }
+    assert_true(ext <= 0.8 + 1e-6);
+    assert_true(ext >= 0.8 - 1e-3); /* it touches: no slack */
+    scene_free(s);
+    cfg_free(root);
 }
 
 static void test_other_configs(void **st)
@@ -311,6 +340,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table1_configs),
+        cmocka_unit_test(test_fit_vertices),
         cmocka_unit_test(test_other_configs),
         cmocka_unit_test(test_camera_and_path),
         cmocka_unit_test(test_pphigs_configs),
