@@ -9,7 +9,9 @@
  * (a tiny concavity created by snapping clipped vertices) are skipped.
  * Polygons that need no clipping are culled before they are shaded, so
  * back faces cost no lighting; clipped ones are shaded first because
- * clipping interpolates colours.
+ * clipping interpolates colours.  Normals go to world space by the
+ * model's normal matrix (cofactors of its 3x3: the inverse transpose up
+ * to scale, vec.h), so lighting stays right under non-uniform scaling.
  * O(n) per n-gon, plus the scan conversion.
  */
 #include "sim/raster/pipeline.h"
@@ -193,7 +195,7 @@ void rast_draw_clip_polygon(const RastView *v, const RastVert *in, int n,
 typedef struct {
     const RastView *v;
     const SceneMesh *m;
-    Mat4 mvp, model;
+    Mat4 mvp, normal; /* normal: mat4_normal_matrix(model) */
     SceneColor tint;
     gboolean vnormals, vcolors;
 } MeshCtx;
@@ -220,7 +222,7 @@ static void shade_poly(void *ctx, RastVert *out, int n)
     const RastView *v = k->v;
     Vec3 fn = vec3(0, 0, 1);
     if (v->lighting && (v->shading == RAST_SHADE_FLAT || !k->vnormals))
-        fn = xform_dir(k->model, scene_mesh_poly_normal(k->m, pc->poly));
+        fn = xform_dir(k->normal, scene_mesh_poly_normal(k->m, pc->poly));
     if (v->shading == RAST_SHADE_FLAT) {
         SceneColor flat = mul(
             g_array_index(k->m->poly_color, SceneColor, pc->poly), k->tint);
@@ -232,7 +234,7 @@ static void shade_poly(void *ctx, RastVert *out, int n)
     for (int i = 0; i < n; i++) {
         uint32_t vi = pc->idx[i];
         Vec3 nn = k->vnormals && v->lighting
-                      ? xform_dir(k->model,
+                      ? xform_dir(k->normal,
                                   g_array_index(k->m->normals, Vec3, vi))
                       : fn;
         out[i].col = shade(v, vertex_base(k, pc->poly, vi), nn);
@@ -274,7 +276,8 @@ void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
                     const uint32_t *subset, guint n_subset,
                     RastSpanSink sink, RastCounters *c)
 {
-    MeshCtx k = {v, m, mat4_mul(v->view_proj, model), model, tint,
+    MeshCtx k = {v, m, mat4_mul(v->view_proj, model),
+                 mat4_normal_matrix(model), tint,
                  m->normals->len == m->pos->len && m->pos->len > 0,
                  m->colors->len == m->pos->len && m->pos->len > 0};
     guint np = scene_mesh_n_polys(m);

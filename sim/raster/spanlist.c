@@ -1,9 +1,19 @@
 /* spanlist.c — scanline span lists sorted by x_min (seed 003, §2).
  *
- * Spans accumulate unsorted in `raw`; sorting moves them, grouped by row,
- * into `rows` with a counting sort (offsets in `start`, H + 1 entries)
- * and then sorts each row.  Invariant: `sorted` is TRUE exactly when
- * `rows`/`start` describe every span in `raw`.  Memory O(S + H).
+ * Spans accumulate unsorted in `raw`.  Sorting is a two-pass LSD radix
+ * sort of compact 64-bit records (y, x_min, span index), never moving
+ * the 72-byte spans until the end: one sequential pass builds the
+ * records, a stable counting sort on x_min (W buckets) and one on y (H
+ * buckets) order them by (y, x_min) and by insertion order within ties;
+ * an insertion pass orders each run of equal (y, x_min) by the rest of
+ * the key (prim, x_max, z0) — runs are short, usually one span; and the
+ * spans are gathered into `rows` once.  The order is exactly that of
+ * sorting by (y, x_min, prim, x_max, z0) (fully equal keys keep insertion
+ * order).  On the gyroid isosurface at 1024x1024 (290K spans) this is
+ * several times faster than the counting sort by y plus a qsort per row
+ * it replaced (docs/raster.md).  Invariant: `sorted` is TRUE exactly when
+ * `rows`/`start` describe every span in `raw`.  Cost O(S + W + H) plus
+ * the tie runs; memory O(S + W + H).
  */
 #include "sim/raster/spanlist.h"
 #include <stdlib.h>
@@ -14,6 +24,8 @@ struct RastSpanList {
     GArray *raw;  /* RastSpan, insertion order */
     GArray *rows; /* RastSpan, grouped by row, each row sorted */
     size_t *start;
+    GArray *perm, *tmp; /* uint64_t sort records (scratch) */
+    size_t *xcount;     /* max(width, height) + 1 (scratch) */
     gboolean sorted;
 };
 
@@ -26,6 +38,9 @@ RastSpanList *rast_spanlist_new(int width, int height)
     sl->raw = g_array_new(FALSE, FALSE, sizeof(RastSpan));
     sl->rows = g_array_new(FALSE, FALSE, sizeof(RastSpan));
     sl->start = g_new0(size_t, (size_t)height + 1);
+    sl->perm = g_array_new(FALSE, FALSE, sizeof(uint64_t));
+    sl->tmp = g_array_new(FALSE, FALSE, sizeof(uint64_t));
+    sl->xcount = g_new0(size_t, (size_t)MAX(width, height) + 1);
     sl->sorted = TRUE;
     return sl;
 }
@@ -37,6 +52,9 @@ void rast_spanlist_free(RastSpanList *sl)
     g_array_free(sl->raw, TRUE);
     g_array_free(sl->rows, TRUE);
     g_free(sl->start);
+    g_array_free(sl->perm, TRUE);
+    g_array_free(sl->tmp, TRUE);
+    g_free(sl->xcount);
     g_free(sl);
 }
 
@@ -62,6 +80,7 @@ void rast_spanlist_add(RastSpanList *sl, const RastSpan *s)
 {
     g_assert(s->y >= 0 && s->y < sl->height);
     g_assert(s->x0 >= 0 && s->x0 < s->x1 && s->x1 <= sl->width);
+    g_assert(sl->raw->len < UINT32_MAX);
     g_array_append_val(sl->raw, *s);
     sl->sorted = FALSE;
 }
@@ -91,20 +110,54 @@ static int cmp_span(const void *pa, const void *pb)
     return 0;
 }
 
-/* Rows are mostly short: insertion sort below 16 spans, qsort above. */
-static void sort_row(RastSpan *r, size_t k)
+/* Sort records: (y << 14 | x_min) << 32 | span index.  W, H <= 2^14
+ * (RAST_MAX_SIDE), so the key fits 28 bits. */
+#define KEY_BITS 14
+#define REC_KEY(r) ((uint32_t)((r) >> 32))
+#define REC_IDX(r) ((uint32_t)(r))
+G_STATIC_ASSERT(RAST_MAX_SIDE <= 1 << KEY_BITS);
+
+/* Stable counting sort of in[0..n) into out by the digit
+ * (key >> shift) & mask, of `buckets` values. */
+static void counting_pass(const uint64_t *in, uint64_t *out, size_t n,
+                          size_t *count, size_t buckets, int shift)
 {
-    if (k > 16) {
-        qsort(r, k, sizeof(RastSpan), cmp_span);
-        return;
-    }
-    for (size_t i = 1; i < k; i++) {
-        RastSpan t = r[i];
+    uint32_t mask = (1u << KEY_BITS) - 1;
+    memset(count, 0, sizeof(size_t) * (buckets + 1));
+    for (size_t i = 0; i < n; i++)
+        count[((REC_KEY(in[i]) >> shift) & mask) + 1]++;
+    for (size_t b = 0; b < buckets; b++)
+        count[b + 1] += count[b];
+    for (size_t i = 0; i < n; i++)
+        out[count[(REC_KEY(in[i]) >> shift) & mask]++] = in[i];
+}
+
+/* Orders each run of equal (y, x_min) by cmp_span (insertion sort: the
+ * runs are short, usually a single span). */
+static void sort_ties(const RastSpan *raw, uint64_t *rec, size_t n)
+{
+    for (size_t i = 1; i < n; i++) {
+        if (REC_KEY(rec[i - 1]) != REC_KEY(rec[i]))
+            continue;
+        uint64_t t = rec[i];
         size_t j = i;
-        for (; j > 0 && cmp_span(&r[j - 1], &t) > 0; j--)
-            r[j] = r[j - 1];
-        r[j] = t;
+        for (; j > 0 && REC_KEY(rec[j - 1]) == REC_KEY(t) &&
+               cmp_span(&raw[REC_IDX(rec[j - 1])], &raw[REC_IDX(t)]) > 0;
+             j--)
+            rec[j] = rec[j - 1];
+        rec[j] = t;
     }
+}
+
+/* Row offsets of the sorted records. */
+static void row_starts(const uint64_t *rec, size_t n, size_t *start,
+                       size_t h)
+{
+    memset(start, 0, sizeof(size_t) * (h + 1));
+    for (size_t i = 0; i < n; i++)
+        start[(REC_KEY(rec[i]) >> KEY_BITS) + 1]++;
+    for (size_t y = 0; y < h; y++)
+        start[y + 1] += start[y];
 }
 
 void rast_spanlist_sort(RastSpanList *sl)
@@ -113,22 +166,21 @@ void rast_spanlist_sort(RastSpanList *sl)
         return;
     size_t n = sl->raw->len, h = (size_t)sl->height;
     const RastSpan *raw = (const RastSpan *)sl->raw->data;
-    memset(sl->start, 0, sizeof(size_t) * (h + 1));
+    g_array_set_size(sl->perm, n);
+    g_array_set_size(sl->tmp, n);
+    uint64_t *rec = (uint64_t *)sl->perm->data;
+    uint64_t *tmp = (uint64_t *)sl->tmp->data;
     for (size_t i = 0; i < n; i++)
-        sl->start[raw[i].y + 1]++;
-    for (size_t y = 0; y < h; y++)
-        sl->start[y + 1] += sl->start[y];
+        rec[i] = (uint64_t)((uint32_t)raw[i].y << KEY_BITS |
+                            (uint32_t)raw[i].x0) << 32 | i;
+    counting_pass(rec, tmp, n, sl->xcount, (size_t)sl->width, 0);
+    counting_pass(tmp, rec, n, sl->xcount, h, KEY_BITS);
+    sort_ties(raw, rec, n);
+    row_starts(rec, n, sl->start, h);
     g_array_set_size(sl->rows, n);
     RastSpan *rows = (RastSpan *)sl->rows->data;
-    size_t *next = g_memdup2(sl->start, sizeof(size_t) * h);
     for (size_t i = 0; i < n; i++)
-        rows[next[raw[i].y]++] = raw[i];
-    g_free(next);
-    for (size_t y = 0; y < h; y++) {
-        size_t k = sl->start[y + 1] - sl->start[y];
-        if (k > 1)
-            sort_row(rows + sl->start[y], k);
-    }
+        rows[i] = raw[REC_IDX(rec[i])];
     sl->sorted = TRUE;
 }
 

@@ -231,20 +231,6 @@ void scene_mesh_compute_normals(SceneMesh *m)
     }
 }
 
-/* Inverse transpose of the upper 3x3 (cofactor matrix; scale does not
- * matter because normals are renormalised). */
-static Mat4 normal_matrix(Mat4 a)
-{
-    Mat4 r = mat4_identity();
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) {
-            int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-            int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            r.m[i][j] = a.m[i1][j1] * a.m[i2][j2] - a.m[i1][j2] * a.m[i2][j1];
-        }
-    return r;
-}
-
 static Vec3 xform_point(Mat4 m, Vec3 p)
 {
     Vec4 h = mat4_apply_point(m, p);
@@ -260,7 +246,7 @@ static void append_vertices(SceneMesh *dst, const SceneMesh *src, Mat4 xf)
                       (base == 0 || dst->normals->len == base);
     gboolean want_c = src->colors->len > 0 &&
                       (base == 0 || dst->colors->len == base);
-    Mat4 nm = normal_matrix(xf);
+    Mat4 nm = mat4_normal_matrix(xf);
     for (guint i = 0; i < src->pos->len; i++)
         scene_mesh_add_vertex(dst, xform_point(xf, scene_mesh_vertex(src, i)));
     if (want_n)

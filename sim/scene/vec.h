@@ -114,4 +114,23 @@ static inline Mat4 mat4_rotate(Vec3 axis, double rad)
     return r;
 }
 
+/* The normal matrix of `a`: the cofactor matrix of its upper 3x3, i.e.
+ * det(A) times the inverse transpose, in a 4x4 with no translation.
+ * Normals must be transformed by it (and renormalised), not by A: under
+ * a non-uniform scale A moves a normal off its surface.  Using the
+ * cofactors rather than the inverse keeps singular matrices defined and
+ * gives exactly the normal of the transformed winding: (A u) x (A v) =
+ * cof(A) (u x v), so a mirror flips normals along with windings. */
+static inline Mat4 mat4_normal_matrix(Mat4 a)
+{
+    Mat4 r = mat4_identity();
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+            int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            r.m[i][j] = a.m[i1][j1] * a.m[i2][j2] - a.m[i1][j2] * a.m[i2][j1];
+        }
+    return r;
+}
+
 #endif

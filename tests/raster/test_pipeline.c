@@ -265,6 +265,59 @@ static void test_nested_transforms(void **state)
     scene_mesh_free(m);
 }
 
+/* Pixels where some channel differs by more than `tol`. */
+static uint64_t diff_beyond(const RastImage *a, const RastImage *b, int tol)
+{
+    uint64_t n = 0;
+    for (int y = 0; y < a->height; y++)
+        for (int x = 0; x < a->width; x++) {
+            uint32_t p = rast_image_get(a, x, y), q = rast_image_get(b, x, y);
+            for (int k = 0; k < 24; k += 8) {
+                int d = (int)((p >> k) & 0xff) - (int)((q >> k) & 0xff);
+                if (d > tol || d < -tol) {
+                    n++;
+                    break;
+                }
+            }
+        }
+    return n;
+}
+
+/* Normals under non-uniform scaling go by the inverse transpose: an
+ * ellipsoid drawn as a sphere with model = rotation x scale(1, 3, 0.4)
+ * is lit exactly like the same ellipsoid pre-transformed into world
+ * space (positions by the matrix, normals by its cofactors, re-derived
+ * independently for flat shading from the world polygons).  Transforming
+ * the normals by the model matrix itself tilts them (for a normal
+ * (1, 1, 0)/sqrt 2 under scale(1, 3, 1): towards (1, 3, 0) instead of
+ * (1, 1/3, 0)) and changes most pixels. */
+static void test_nonuniform_scale_normals(void **state)
+{
+    (void)state;
+    SceneMesh *m = tu_sphere(1.0, 36, 18, FALSE);
+    scene_mesh_compute_normals(m);
+    Mat4 model = mat4_mul(mat4_rotate(vec3(1, 0.5, 0.2), 0.7),
+                          mat4_scale(1, 3, 0.4));
+    SceneMesh *w = scene_mesh_new();
+    scene_mesh_append(w, m, model);
+    SceneCamera cam = camera(vec3(1, 2, 9), vec3(0, 0, 0), 40, 0.1);
+    RastView v = rast_view_for_camera(&cam, 120, 120);
+    for (int shading = 0; shading < 2; shading++) {
+        v.shading = shading ? RAST_SHADE_FLAT : RAST_SHADE_GOURAUD;
+        RastImage *a = render(&v, m, model);
+        RastImage *b = render(&v, w, mat4_identity());
+        uint64_t bad = diff_beyond(a, b, 1);
+        print_message("%s: %" G_GUINT64_FORMAT " pixels differ by > 1\n",
+                      shading ? "flat" : "gouraud", bad);
+        /* edge pixels may flip (positions round differently) */
+        assert_true(bad <= 12);
+        rast_image_free(a);
+        rast_image_free(b);
+    }
+    scene_mesh_free(w);
+    scene_mesh_free(m);
+}
+
 /* Exactly coplanar duplicates (depth ties) and random overlaps: the
  * picture does not depend on the order in which polygons are drawn. */
 static void test_order_independent(void **state)
@@ -357,6 +410,7 @@ int main(void)
         cmocka_unit_test(test_huge_screen_coordinates),
         cmocka_unit_test(test_world_at_1e7),
         cmocka_unit_test(test_nested_transforms),
+        cmocka_unit_test(test_nonuniform_scale_normals),
         cmocka_unit_test(test_order_independent),
         cmocka_unit_test(test_counters),
     };

@@ -204,6 +204,63 @@ static void test_zbuffer_merge(void **state)
     scene_mesh_free(m);
 }
 
+/* The reference order: (y, x_min, prim, x_max, z0), then insertion
+ * order (c0[1] holds the insertion number). */
+static int ref_cmp(const void *pa, const void *pb)
+{
+    const RastSpan *a = pa, *b = pb;
+    int64_t ka[6] = {a->y, a->x0, a->prim, a->x1, 0, 0};
+    int64_t kb[6] = {b->y, b->x0, b->prim, b->x1, 0, 0};
+    for (int i = 0; i < 4; i++)
+        if (ka[i] != kb[i])
+            return ka[i] < kb[i] ? -1 : 1;
+    if (a->z0 != b->z0)
+        return a->z0 < b->z0 ? -1 : 1;
+    return (a->c0[1] > b->c0[1]) - (a->c0[1] < b->c0[1]);
+}
+
+/* The radix sort of the span list against qsort on the full key, with
+ * many ties on x_min (and fully equal keys, which keep insertion order),
+ * on a wide image (x_min up to 3000) and across clear/re-sort. */
+static void test_spanlist_sort_reference(void **state)
+{
+    (void)state;
+    const int W = 3001, H = 37, N = 20000;
+    SimRng r;
+    sim_rng_init(&r, 42, 0);
+    RastSpan *ref = g_new(RastSpan, N);
+    RastSpanList *sl = rast_spanlist_new(W, H);
+    for (int round = 0; round < 2; round++) {
+        rast_spanlist_clear(sl);
+        for (int i = 0; i < N; i++) {
+            int x0 = round ? (int)sim_rng_below(&r, 8) * 375
+                           : (int)sim_rng_below(&r, (uint64_t)W - 3);
+            RastSpan s = flat_span((int)sim_rng_below(&r, H), x0,
+                                   x0 + 1 + (int)sim_rng_below(&r, 3),
+                                   0.25 * (double)sim_rng_below(&r, 3),
+                                   (uint32_t)sim_rng_below(&r, 4), 0.0f);
+            s.c0[1] = (float)i;
+            ref[i] = s;
+            rast_spanlist_add(sl, &s);
+        }
+        qsort(ref, N, sizeof *ref, ref_cmp);
+        rast_spanlist_sort(sl);
+        assert_true(rast_spanlist_sorted(sl));
+        size_t k = 0;
+        for (int y = 0; y < H; y++) {
+            size_t n;
+            const RastSpan *row = rast_spanlist_row(sl, y, &n);
+            for (size_t i = 0; i < n; i++, k++) {
+                assert_int_equal(row[i].y, y);
+                assert_true(row[i].c0[1] == ref[k].c0[1]);
+            }
+        }
+        assert_int_equal(k, N);
+    }
+    rast_spanlist_free(sl);
+    g_free(ref);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -212,6 +269,7 @@ int main(void)
         cmocka_unit_test(test_full_equals_scanline),
         cmocka_unit_test(test_subsets_merge),
         cmocka_unit_test(test_zbuffer_merge),
+        cmocka_unit_test(test_spanlist_sort_reference),
     };
     return cmocka_run_group_tests_name("zbuffer", tests, NULL, NULL);
 }

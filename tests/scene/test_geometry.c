@@ -84,6 +84,48 @@ static void test_mesh(void **st)
     scene_mesh_free(NULL);
 }
 
+/* Normals under non-uniform scaling and mirrors: the normal matrix maps
+ * u x v to (A u) x (A v); scene_mesh_append keeps vertex normals
+ * perpendicular to the transformed surface. */
+static void test_normal_matrix(void **st)
+{
+    (void)st;
+    Mat4 a = mat4_mul(mat4_rotate(vec3(0.3, 1, -0.2), 0.9),
+                      mat4_mul(mat4_scale(2, -0.5, 7), mat4_translate(3, 1, 2)));
+    Vec3 u = vec3(0.2, -1.1, 0.7), v = vec3(1.3, 0.4, -0.6);
+    Vec4 au = mat4_apply(a, (Vec4){u.x, u.y, u.z, 0});
+    Vec4 av = mat4_apply(a, (Vec4){v.x, v.y, v.z, 0});
+    Vec3 want = vec3_cross(vec3(au.x, au.y, au.z), vec3(av.x, av.y, av.z));
+    Vec3 n = vec3_cross(u, v);
+    Vec4 got = mat4_apply(mat4_normal_matrix(a), (Vec4){n.x, n.y, n.z, 0});
+    NEAR(got.x, want.x);
+    NEAR(got.y, want.y);
+    NEAR(got.z, want.z);
+    /* the plane x + y = 0 (this winding: normal along -(1, 1, 0)) scaled
+     * by (1, 3, 1): x + y / 3 = 0, normal along -(3, 1, 0) */
+    SceneMesh *m = scene_mesh_new();
+    scene_mesh_add_vertex(m, vec3(0, 0, 0));
+    scene_mesh_add_vertex(m, vec3(1, -1, 0));
+    scene_mesh_add_vertex(m, vec3(0, 0, 1));
+    scene_mesh_add_tri(m, 0, 1, 2, scene_color(1, 1, 1), 0);
+    scene_mesh_compute_normals(m);
+    SceneMesh *w = scene_mesh_new();
+    scene_mesh_append(w, m, mat4_scale(1, 3, 1));
+    Vec3 wn = g_array_index(w->normals, Vec3, 0);
+    Vec3 pn = scene_mesh_poly_normal(w, 0);
+    NEAR(wn.x, -3 / sqrt(10.0));
+    NEAR(wn.y, -1 / sqrt(10.0));
+    NEAR(vec3_dot(wn, pn), 1); /* agrees with the world polygon */
+    scene_mesh_free(w);
+    /* a mirror flips the normal with the winding */
+    w = scene_mesh_new();
+    scene_mesh_append(w, m, mat4_scale(-1, 1, 1));
+    NEAR(vec3_dot(g_array_index(w->normals, Vec3, 0),
+                  scene_mesh_poly_normal(w, 0)), 1);
+    scene_mesh_free(w);
+    scene_mesh_free(m);
+}
+
 static void test_view_matrix(void **st)
 {
     (void)st;
@@ -266,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_fit),         cmocka_unit_test(test_fit_points),
         cmocka_unit_test(test_orbit),
         cmocka_unit_test(test_keyframes),   cmocka_unit_test(test_scene),
+        cmocka_unit_test(test_normal_matrix),
     };
     return cmocka_run_group_tests_name("geometry", tests, NULL, NULL);
 }
