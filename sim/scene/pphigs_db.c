@@ -6,9 +6,10 @@
  *   lobby    the same layout of objects (a colour, then ~7.8 polygons) in
  *            a room; the standard view stands in the middle of the room,
  *            so that most objects behind and beside it are off-screen.
- *   flock    root "flock" executes the Old Well's part structures, then
- *            for each boid a REPLACE matrix and an execute of "boid", a
- *            primitive structure (§2.3.3) of colours and polygons.
+ *   flock    root "flock" executes the Old Well's structures (objects of
+ *            a colour and polygons), then for each boid a REPLACE matrix
+ *            and an execute of "boid", a primitive structure (§2.3.3) of
+ *            colours and polygons.
  *   humans   per figure a tree of structures `levels` deep; each holds a
  *            matrix (REPLACE at a figure's root, CONCATENATE at joints),
  *            a colour, its polygons, then executes of its children.
@@ -140,28 +141,40 @@ static void gen_lobby(Gen *g, const ScenePphigsSpec *s)
     scene_db_post(g->db, sid);
 }
 
+/* The Old Well: `well_structs` structures executed by the flock root,
+ * together holding well_polygons polygons in well_attributes objects
+ * (a colour, then its polygons) on a ring of columns under a dome. */
+static void gen_well(Gen *g, const ScenePphigsSpec *s, guint root)
+{
+    double h = s->size / 2, r = h / 8;
+    guint obj = 0;
+    for (guint k = 0; k < s->well_structs; k++) {
+        char *name = g_strdup_printf("well_%u", k);
+        guint w = scene_db_add_struct(g->db, name);
+        g_free(name);
+        guint ncol = share(k, s->well_attributes, s->well_structs);
+        guint npoly = share(k, s->well_polygons, s->well_structs);
+        for (guint j = 0; j < MAX(ncol, 1); j++, obj++) {
+            if (ncol)
+                add_color(g, w);
+            double t = 2 * G_PI * obj / MAX(s->well_attributes, 1);
+            Vec3 c = vec3(r * cos(t), h / 4 * uni(g, 0, 1), r * sin(t));
+            for (guint i = 0; i < share(j, npoly, MAX(ncol, 1)); i++)
+                add_poly(g, w, vec3_add(c, rnd_in(g, vec3(-1, -1, -1),
+                                                  vec3(1, 1, 1))),
+                         h / 40);
+        }
+        add_el(g, root, scene_elem_execute(w));
+    }
+}
+
 static void gen_flock(Gen *g, const ScenePphigsSpec *s)
 {
     guint root = scene_db_add_struct(g->db, "flock");
     guint boid = scene_db_add_struct(g->db, "boid");
     scene_db_set_primitive(g->db, boid, TRUE);
     double h = s->size / 2;
-    for (guint k = 0; k < s->well_structs; k++) {
-        char *name = g_strdup_printf("well_%u", k);
-        guint w = scene_db_add_struct(g->db, name);
-        g_free(name);
-        if (share(k, s->well_attributes, s->well_structs))
-            add_color(g, w);
-        double t = 2 * G_PI * k / s->well_structs;
-        Vec3 c = vec3(h / 8 * cos(t), h / 4 * k / s->well_structs,
-                      h / 8 * sin(t));
-        for (guint i = 0; i < share(k, s->well_polygons, s->well_structs);
-             i++)
-            add_poly(g, w, vec3_add(c, rnd_in(g, vec3(-1, -1, -1),
-                                              vec3(1, 1, 1))),
-                     h / 40);
-        add_el(g, root, scene_elem_execute(w));
-    }
+    gen_well(g, s, root);
     guint total = s->boid_polygons + s->boid_colors;
     for (guint i = 0; i < total; i++) {
         /* exactly boid_colors colours, spread, the first element one */
@@ -238,11 +251,9 @@ static gboolean check_spec(const ScenePphigsSpec *s, GError **err)
                     "an attribute count the polygons cannot carry",
                     "2 <= attributes <= polygons + 1", err);
     case SCENE_PPHIGS_FLOCK:
-        return need(s->boid_colors >= 1 && s->well_structs >= 1 &&
-                        s->well_attributes <= s->well_structs,
+        return need(s->boid_colors >= 1 && s->well_structs >= 1,
                     "an impossible flock",
-                    "boid_colors >= 1, well_structs >= 1, "
-                    "well_attributes <= well_structs", err);
+                    "boid_colors >= 1, well_structs >= 1", err);
     case SCENE_PPHIGS_HUMANS:
         return need(s->figures >= 1 && s->levels >= 2 &&
                         s->structures >= s->figures * s->levels,

@@ -144,9 +144,9 @@ static void test_pphigs_configs(void **st)
         assert_true(paper_cell(paper, name, "depth", &v));
         assert_int_equal(x.depth, (guint)v);
         assert_true(paper_cell(paper, name, "structures", &v));
-        assert_int_equal(x.structures, (guint)v);
+        assert_int_equal(x.instances, (guint)v); /* per instance */
         assert_true(paper_cell(paper, name, "polys_per_structure", &v));
-        assert_near((double)x.primitives / x.structures, v, 0.005);
+        assert_near((double)x.primitives / x.instances, v, 0.005);
         assert_true(paper_cell(paper, name, "poly_attr_ratio", &v));
         assert_near((double)x.primitives / x.attributes, v, 0.005);
         /* the flattened mesh holds every primitive instance */

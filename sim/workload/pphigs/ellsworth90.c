@@ -118,9 +118,9 @@ static void db_rows(const ScenePphigsDb *db, const char *row,
     SceneDbStats st;
     scene_db_stats(db->db, &st);
     add(rows, "db", row, "depth", st.depth);
-    add(rows, "db", row, "structures", st.structures);
+    add(rows, "db", row, "structures", st.instances);
     add(rows, "db", row, "polys_per_structure",
-        (double)st.primitives / st.structures);
+        (double)st.primitives / st.instances);
     add(rows, "db", row, "poly_attr_ratio",
         (double)st.primitives / (double)MAX(st.attributes, 1));
     add(rows, "db", row, "offscreen_pct",
