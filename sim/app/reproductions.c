@@ -1,5 +1,6 @@
 /* reproductions.c — the table of paper reproductions (one row each). */
 #include "sim/app/reproduce.h"
+#include "sim/app/rp_kurc96.h"
 #include "sim/workload/dpscan/ortega93.h"
 #include "sim/workload/pphigs/ellsworth90.h"
 #include <math.h>
@@ -8,6 +9,7 @@
 const RpReproduction *const rp_all[] = {
     &wl_dp_ortega93,
     &wl_pphigs_ellsworth90,
+    &rp_kurc96,
     NULL,
 };
 
