@@ -168,7 +168,7 @@ static void test_frames_equal_analytic(void **st)
 
 typedef struct {
     GArray *frames;
-    double m[9];
+    double m[12];
     uint64_t bytes;
     guint gps;
 } Out;
@@ -195,8 +195,8 @@ static void run_flock(const char *const *sets, Out *o)
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data,
                         r->frame_times->len);
-    assert_int_equal(r->metrics->len, 9);
-    for (guint i = 0; i < 9; i++)
+    assert_int_equal(r->metrics->len, 12);
+    for (guint i = 0; i < 12; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
     o->bytes = r->comm_bytes;
     assert_int_equal(r->nodes->len, 1 + o->gps + 16 + 1);
@@ -291,6 +291,34 @@ static void test_machine_overrides(void **st)
     g_clear_error(&err);
 }
 
+/* `pgsim run` of one fresh frame reports the reproduction's cells. */
+static void test_run_matches_table(void **st)
+{
+    (void)st;
+    const char *sets[] = {"run.frames=1", "run.fidelity=analytic",
+                          "workload.edits_per_frame=0", "workload.gps=4",
+                          "workload.rebalance.enabled=false", NULL};
+    SimResult *r = app_run(sets, NULL);
+    assert_non_null(r);
+    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0}};
+    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
+                                     NULL));
+    ScenePphigsSpec s;
+    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
+                                    "flock_old_well", NULL, &s, NULL));
+    ScenePphigsDb db;
+    assert_true(scene_pphigs_generate(&s, &db, NULL));
+    WlPphigsMetrics simple, complex;
+    assert_true(wl_pphigs_run_db(&db, 4, &rig, &simple, &complex, NULL));
+    near(metric(r, "distribution_efficiency_pct"), 100 * complex.efficiency,
+         1e-12);
+    near(metric(r, "processor_utilisation_pct"), 100 * complex.utilisation,
+         1e-12);
+    near(metric(r, "speedup"), complex.speedup, 1e-12);
+    scene_pphigs_db_clear(&db);
+    sim_result_free(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -299,6 +327,7 @@ int main(void)
         cmocka_unit_test(test_frames_equal_analytic),
         cmocka_unit_test(test_workload_runs),
         cmocka_unit_test(test_machine_overrides),
+        cmocka_unit_test(test_run_matches_table),
     };
     return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);
 }

@@ -19,6 +19,12 @@
  * config's `machine` section (default: model pixel-planes-5), built by
  * the machine layer at the run's fidelity; `run.until` ends the run
  * after the frame that crosses it.
+ * Metrics: frame time, GP and renderer utilisation (busy / elapsed),
+ * ring bytes and commands per frame, edits, rebalancing moves, and seed
+ * 001 §6's distribution efficiency, processor utilisation and speed-up
+ * of the last frame (GP processor times are its traverse + transform
+ * busy times; T1 is the host list's traversal cost, metrics.h, which is
+ * what a one-GP frame's busy time is, to the picosecond).
  * Cost per frame: the frame's (frame.h) plus O(host size) per edit.
  */
 #include "sim/workload/pphigs/ellsworth90.h"
@@ -153,6 +159,7 @@ typedef struct {
     guint ngp;
     uint64_t edits, moves, commands;
     double imbalance;
+    WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
 } Run;
 
 static gboolean build(Run *r, const WlContext *ctx, GError **err)
@@ -221,6 +228,10 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     sim_result_add_frame(out, st.time);
     r->commands += st.commands;
     r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);
+    const WlPphigsCosts *c = wl_pphigs_frame_costs(r->frame);
+    double t1 = sim_time_to_us(
+        wl_pphigs_traversal_cost(wl_pphigs_dist_host(r->d), vp, c));
+    wl_pphigs_metrics_from(t1, st.gp_time_us, r->ngp, &r->paper);
     if (r->rb) {
         WlPphigsRebalStep rs;
         wl_pphigs_rebal_frame(r->rb, r->d, vp,
@@ -254,6 +265,11 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
                           "%");
     sim_result_set_metric(out, "edits", (double)r->edits, "");
     sim_result_set_metric(out, "rebalance_moves", (double)r->moves, "");
+    sim_result_set_metric(out, "distribution_efficiency_pct",
+                          100 * r->paper.efficiency, "%");
+    sim_result_set_metric(out, "processor_utilisation_pct",
+                          100 * r->paper.utilisation, "%");
+    sim_result_set_metric(out, "speedup", r->paper.speedup, "");
 }
 
 static gboolean run(const WlContext *ctx, void *params, SimResult *out,
