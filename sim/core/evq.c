@@ -64,21 +64,37 @@ static void note_seq(SimEvq *q, SimEvKey k)
     q->seqs[k.slot] = k.seq;
 }
 
+/* Places e at the hole i and moves it up past greater parents. */
+static inline void sift_up(SimEvq *q, size_t i, SimEvEntry e)
+{
+    SimEvEntry *h = q->h;
+    while (i > 0) {
+        size_t p = (i - 1) >> 2;
+        if (!entry_less(q, e, h[p]))
+            break;
+        h[i] = h[p];
+        i = p;
+    }
+    h[i] = e;
+}
+
+/* The least of the children c .. c+3 of heap h (those below n). */
+static inline size_t least_child(const SimEvq *q, const SimEvEntry *h,
+                                 size_t n, size_t c)
+{
+    size_t end = c + 4 < n ? c + 4 : n, m = c;
+    for (size_t j = c + 1; j < end; j++)
+        if (entry_less(q, h[j], h[m]))
+            m = j;
+    return m;
+}
+
 void sim_evq_push(SimEvq *q, SimEvKey k)
 {
     if (q->n == q->cap)
         grow_heap(q, q->cap * 2);
     note_seq(q, k);
-    SimEvEntry e = {k.time, k.slot};
-    size_t i = q->n++;
-    while (i > 0) {
-        size_t p = (i - 1) >> 2;
-        if (!entry_less(q, e, q->h[p]))
-            break;
-        q->h[i] = q->h[p];
-        i = p;
-    }
-    q->h[i] = e;
+    sift_up(q, q->n++, (SimEvEntry){k.time, k.slot});
 }
 
 /* Places e at the hole i and sifts it down to its place. */
@@ -90,10 +106,7 @@ static void sift_down(SimEvq *q, size_t i, SimEvEntry e)
         size_t c = 4 * i + 1;
         if (c >= n)
             break;
-        size_t end = c + 4 < n ? c + 4 : n, m = c;
-        for (size_t j = c + 1; j < end; j++)
-            if (entry_less(q, h[j], h[m]))
-                m = j;
+        size_t m = least_child(q, h, n, c);
         if (!entry_less(q, h[m], e))
             break;
         h[i] = h[m];
@@ -124,21 +137,11 @@ static void sift_bottom_up(SimEvq *q, SimEvEntry e)
         size_t c = 4 * i + 1;
         if (c >= n)
             break;
-        size_t end = c + 4 < n ? c + 4 : n, m = c;
-        for (size_t j = c + 1; j < end; j++)
-            if (entry_less(q, h[j], h[m]))
-                m = j;
+        size_t m = least_child(q, h, n, c);
         h[i] = h[m];
         i = m;
     }
-    while (i > 0) {
-        size_t p = (i - 1) >> 2;
-        if (!entry_less(q, e, h[p]))
-            break;
-        h[i] = h[p];
-        i = p;
-    }
-    h[i] = e;
+    sift_up(q, i, e);
 }
 
 void sim_evq_replace_top(SimEvq *q, SimEvKey k)
