@@ -1,9 +1,9 @@
-/* dp_cost.c — cost of data-parallel steps and router sends (seed 004).
+/* dp_cost.c — cost of data-parallel steps, scans and sends (dp_cost.h).
  *
  * See dp_cost.h for the formulas and their sources.  Invariant: every
  * cost is a sum of machine constants times integer counts, so the same
  * inputs give the same picoseconds on every platform.  O(1) per call
- * (O(levels) for the fat tree).
+ * (O(levels) for the fat tree), O(pixels) for a z-buffer send's load.
  */
 #include "sim/workload/dpscan/dp_cost.h"
 
@@ -21,21 +21,40 @@ static SimTime add_time(SimTime a, SimTime b)
     return s;
 }
 
-uint64_t wl_dp_vp_ratio(uint64_t n, uint64_t procs)
+static uint64_t pow2_ceil(uint64_t v)
 {
-    g_assert(procs > 0);
-    return n / procs + (n % procs != 0);
+    uint64_t r = 1;
+    while (r < v)
+        r <<= 1;
+    return r;
+}
+
+uint64_t wl_dp_vp_ratio(const WlDpMachine *m, uint64_t n)
+{
+    g_assert(m->procs > 0);
+    uint64_t v = n / m->procs + (n % m->procs != 0);
+    return m->vp_pow2 && v > 0 ? pow2_ceil(v) : v;
 }
 
 SimTime wl_dp_step_cost(const WlDpMachine *m, uint64_t n, uint32_t ops,
                         WlDpCoef *k)
 {
-    uint64_t v = wl_dp_vp_ratio(n, m->procs);
+    uint64_t v = wl_dp_vp_ratio(m, n);
     if (k) {
         k->steps += 1.0;
         k->op_slices += (double)v * (double)ops;
     }
     return add_time(m->step, mul_time(m->op, v * (uint64_t)ops));
+}
+
+SimTime wl_dp_scan_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k)
+{
+    uint64_t v = wl_dp_vp_ratio(m, n);
+    if (k) {
+        k->steps += 1.0;
+        k->scan_slices += (double)v;
+    }
+    return add_time(m->step, mul_time(m->scan_slice, v));
 }
 
 double wl_dp_fattree_escape(unsigned arity, uint64_t p, unsigned level)
@@ -47,35 +66,133 @@ double wl_dp_fattree_escape(unsigned arity, uint64_t p, unsigned level)
     return sub >= (double)p ? 0.0 : 1.0 - sub / (double)p;
 }
 
-/* Wire time of one node's k messages through the fat tree. */
-static SimTime fattree_wire(const WlDpMachine *m, uint64_t k)
+/* Wire time of one node's `load` messages through the fat tree. */
+static SimTime fattree_wire(const WlDpMachine *m, uint64_t load)
 {
-    double bytes = (double)k * (double)m->msg_bytes, worst = 0.0;
-    for (unsigned l = 0; l < m->levels; l++) {
-        g_assert(m->level_bw[l] > 0.0);
+    double bytes = (double)load * (double)m->msg_bytes, worst = 0.0;
+    g_assert(m->levels > 0);
+    for (unsigned l = 0; l < NET_MAX_LEVELS; l++) {
+        double bw = m->level_bw[MIN(l, m->levels - 1)];
+        g_assert(bw > 0.0);
         double f = wl_dp_fattree_escape(m->arity, m->procs, l);
-        worst = MAX(worst, f * bytes / m->level_bw[l]);
-    }
-    /* Levels above the listed ones run at the last listed bandwidth. */
-    for (unsigned l = m->levels; l < NET_MAX_LEVELS && m->levels > 0; l++) {
-        double f = wl_dp_fattree_escape(m->arity, m->procs, l);
-        worst = MAX(worst, f * bytes / m->level_bw[m->levels - 1]);
+        worst = MAX(worst, f * bytes / bw);
     }
     return sim_time_for_bytes(worst, 1.0);
 }
 
-SimTime wl_dp_send_cost(const WlDpMachine *m, uint64_t active, WlDpCoef *k)
+SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
+                        uint64_t active, uint64_t load, WlDpCoef *k)
 {
-    if (active == 0)
+    if (load == 0 || words == 0 || active == 0)
         return 0;
-    uint64_t slices = wl_dp_vp_ratio(active, m->procs);
+    /* Slices holding a message: the messages are spread over the array. */
+    uint64_t vps = MIN(wl_dp_vp_ratio(m, n), active);
     if (k) {
-        k->sends += 1.0;
-        k->slices += (double)slices;
+        k->steps += words;
+        k->sends += words;
+        k->slices += (double)words * (double)load;
+        k->vp_slices += (double)words * (double)vps;
     }
-    if (m->arch == WL_DP_SIMD)
-        return add_time(m->send_setup, mul_time(m->send_slice, slices));
-    SimTime soft = mul_time(m->msg_overhead, slices);
-    SimTime wire = fattree_wire(m, slices);
-    return add_time(m->net_latency, MAX(soft, wire));
+    SimTime one;
+    if (m->arch == WL_DP_SIMD) {
+        one = add_time(add_time(m->step, m->send_setup),
+                       add_time(mul_time(m->send_vp, vps),
+                                mul_time(m->send_slice, load)));
+    } else {
+        SimTime soft = mul_time(m->msg_overhead, load);
+        one = add_time(add_time(m->step, m->net_latency),
+                       MAX(soft, fattree_wire(m, load)));
+    }
+    return mul_time(one, words);
+}
+
+static unsigned log2u(uint64_t v)
+{
+    unsigned r = 0;
+    while ((1ull << (r + 1)) <= v)
+        r++;
+    return r;
+}
+
+WlDpLayout *wl_dp_layout_new(uint64_t procs, uint32_t width,
+                             uint32_t height)
+{
+    g_assert(procs > 0 && width > 0 && height > 0);
+    WlDpLayout *l = g_new0(WlDpLayout, 1);
+    l->procs = procs;
+    l->px = (uint32_t)MIN(procs, G_MAXUINT32);
+    l->py = 1;
+    if ((procs & (procs - 1)) == 0) {
+        unsigned d = log2u(procs);
+        l->px = 1u << ((d + 1) / 2);
+        l->py = 1u << (d / 2);
+    }
+    l->bw = MAX((width + l->px - 1) / l->px, 1);
+    l->bh = MAX((height + l->py - 1) / l->py, 1);
+    l->width = width;
+    l->height = height;
+    l->col = g_new(uint32_t, width);
+    l->row = g_new(uint32_t, height);
+    for (uint32_t x = 0; x < width; x++)
+        l->col[x] = x / l->bw;
+    for (uint32_t y = 0; y < height; y++)
+        l->row[y] = (y / l->bh) * l->px;
+    l->count = g_new0(uint32_t, procs);
+    return l;
+}
+
+void wl_dp_layout_free(WlDpLayout *l)
+{
+    if (!l)
+        return;
+    g_free(l->col);
+    g_free(l->row);
+    g_free(l->count);
+    g_free(l);
+}
+
+/* Most pixels of this send landing on one processor's block. */
+static uint64_t zbuf_load(WlDpLayout *l, const WlDpSched *s,
+                          uint64_t active)
+{
+    uint32_t j, worst = 0, *count = l->count;
+    const WlDpSeg *seg = wl_dp_sched_live(s, &j);
+    for (uint64_t k = 0; k < active; k++) {
+        uint32_t x = seg[k].x0 + j, y = seg[k].y;
+        if (x >= l->width || y >= l->height)
+            continue; /* clipped against the viewport (seed 004 §4) */
+        uint32_t c = ++count[l->row[y] + l->col[x]];
+        worst = MAX(worst, c);
+    }
+    for (uint64_t k = 0; k < active; k++) {
+        uint32_t x = seg[k].x0 + j, y = seg[k].y;
+        if (x < l->width && y < l->height)
+            count[l->row[y] + l->col[x]] = 0;
+    }
+    return worst;
+}
+
+uint64_t wl_dp_send_load(const WlDpMachine *m, WlDpLayout *l,
+                         const WlDpSched *s, const WlDpStep *st)
+{
+    g_assert(st->kind == WL_DP_SEND);
+    uint64_t src = st->active / m->procs + (st->active % m->procs != 0);
+    if (!st->zbuf || st->active == 0)
+        return src;
+    return MAX(src, zbuf_load(l, s, st->active));
+}
+
+SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l,
+                        const WlDpSched *s, const WlDpStep *st,
+                        WlDpCoef *k)
+{
+    switch (st->kind) {
+    case WL_DP_COMPUTE:
+        return wl_dp_step_cost(m, st->n, st->ops, k);
+    case WL_DP_SCAN:
+        return wl_dp_scan_cost(m, st->n, k);
+    default:
+        return wl_dp_send_cost(m, st->words, st->n, st->active,
+                               wl_dp_send_load(m, l, s, st), k);
+    }
 }

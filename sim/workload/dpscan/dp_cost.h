@@ -1,91 +1,137 @@
-/* dp_cost.h — cost of data-parallel steps and router sends (seed 004).
+/* dp_cost.h — cost of data-parallel steps, scans and router sends
+ * (seed 004).
  *
  * A data-parallel machine is modelled as steps over arrays, never as
- * 64K entities (design.md).  A step over an array of n elements on p
- * physical processors runs at virtual-processor ratio v = ceil(n / p)
- * (Hillis, The Connection Machine, 1985, §virtual processors; seed 004
- * §3) and costs
+ * 64K entities (design.md).  An array of n elements on p physical
+ * processors runs at virtual-processor ratio v = ceil(n / p) (Hillis,
+ * The Connection Machine, 1985; seed 004 §3: "each physical processor is
+ * given a number of data elements ... each of these data elements is
+ * considered a virtual processor"); with `vp_pow2` the ratio is rounded
+ * up to a power of two, as Paris VP sets are.  Masked virtual processors
+ * still take their turn, which is what makes the paper's large polygons
+ * slow.  Costs:
  *
- *     step + v * ops * op
+ *   step   step + v * ops * op          (op: one 32-bit operation of one
+ *                                        virtual processor; on the CM-200
+ *                                        32 bit-serial lanes share an FPA)
+ *   scan   step + v * scan_slice        (enumerate, global max: parallel
+ *                                        prefix over the array)
+ *   send   words * (step + send_setup + slices * send_vp
+ *                   + load * send_slice)                    SIMD router
+ *          words * (step + net_latency + max(load * msg_overhead,
+ *                                     fat-tree wire time of load * msg_bytes))
+ *                                                          SPMD (CM-5)
  *
- * where `ops` is the step's operation count per element, `op` one
- * element operation on one processor (a CM-200 lane, a CM-5 node with its
- * vector units) and `step` the front end's / node's issue overhead.  On
- * the SIMD machine every virtual processor of the array takes its turn
- * whether it is active or not (context masking); this is what makes the
- * paper's large polygons slow.
+ * A send moves `words` arrays, one after the other (seed 004 §4: the
+ * send-with-max utility "can only work with one sending array at a
+ * time").  `load` is the larger of the messages one processor injects and
+ * the messages one processor receives (its part of the destination
+ * array): many pixels landing in one processor's part of the z-buffer
+ * (collisions, dense regions) slow the router down the way a high VP
+ * ratio does.  On the fat tree, bw_l is the per-node bandwidth of level l
+ * and a fraction 1 - a^l / p of uniformly spread destinations leaves a
+ * level-l subtree (arity a); software and wire overlap, the slower one
+ * bounds the send (Leiserson et al., SPAA 1992; von Eicken et al., ISCA
+ * 1992 for the per-message software cost).
  *
- * A send of `active` messages (send-with-max into the z-buffer, seed 004
- * §4) costs, on a SIMD router machine (CM-200),
- *
- *     send_setup + ceil(active / p) * send_slice
- *
- * (one router delivery cycle per virtual-processor slice that holds a
- * message).  On an SPMD fat-tree machine (CM-5, Leiserson et al., SPAA
- * 1992) each node sends k = ceil(active / p) messages of msg_bytes to
- * uniformly spread owners, and the send costs
- *
- *     net_latency + max(k * msg_overhead, max_l f_l * k * msg_bytes / bw_l)
- *
- * where bw_l is the per-node bandwidth of fat-tree level l and f_l the
- * fraction of destinations outside the node's level-l subtree (1 - a^l /
- * p for arity a): software overhead and wire time overlap, the slower
- * one bounds the send.
- *
- * Every function is O(1) (O(levels) for the fat tree).  Costs are exact
- * integer picoseconds; overflow is asserted (a frame is far below the
- * 213 days SimTime holds).
+ * Every function is O(1) (O(levels) for the fat tree) except the load of
+ * a z-buffer send, O(pixels of that send).  Costs are exact integer
+ * picoseconds; overflow is asserted.
  */
 #ifndef PGSIM_WORKLOAD_DPSCAN_DP_COST_H
 #define PGSIM_WORKLOAD_DPSCAN_DP_COST_H
 
 #include "sim/core/time.h"
 #include "sim/net/topology.h"
+#include "sim/workload/dpscan/dp_sched.h"
 
 typedef enum { WL_DP_SIMD, WL_DP_SPMD } WlDpArch;
 
 typedef struct {
     WlDpArch arch;
     uint64_t procs;      /* physical processors (SIMD lanes or nodes) */
-    SimTime op;          /* one element operation on one processor */
+    gboolean vp_pow2;    /* VP ratios are powers of two */
+    SimTime op;          /* one element operation at VP ratio 1 */
     SimTime step;        /* issue overhead of one data-parallel step */
+    SimTime scan_slice;  /* parallel prefix, per VP slice */
     /* SIMD router */
-    SimTime send_setup;  /* per send */
-    SimTime send_slice;  /* per virtual-processor slice with a message */
+    SimTime send_setup;  /* per array sent */
+    SimTime send_slice;  /* per message per processor (load) */
+    SimTime send_vp;     /* per VP slice that holds a message */
     /* SPMD data network */
-    SimTime net_latency; /* per send phase */
+    SimTime net_latency; /* per array sent (send phase) */
     SimTime msg_overhead;/* software cost of one message, both ends */
-    uint32_t msg_bytes;  /* bytes of one pixel message on the wire */
+    uint32_t msg_bytes;  /* bytes of one message on the wire */
     unsigned arity;      /* fat-tree arity */
     unsigned levels;     /* entries of level_bw in use */
     double level_bw[NET_MAX_LEVELS]; /* B/s per node, level 0 = leaves */
 } WlDpMachine;
 
-/* Linear coefficients of a SIMD frame time: time = op * op_slices +
- * step * steps + send_setup * sends + send_slice * slices.  Kept so that
- * calibration is a linear least-squares fit and tests can check sums. */
+/* Linear coefficients of a SIMD frame time:
+ * time = op * op_slices + step * steps + scan_slice * scan_slices
+ *      + send_setup * sends + send_slice * slices + send_vp * vp_slices.
+ * Kept so that calibration is a linear least-squares fit and tests can
+ * check sums. */
 typedef struct {
-    double op_slices;  /* sum over steps of v * ops */
-    double steps;
-    double sends;
-    double slices;     /* sum over sends of ceil(active / p) */
+    double op_slices;   /* sum over steps of v * ops */
+    double steps;       /* steps and scans issued */
+    double scan_slices; /* sum over scans of v */
+    double sends;       /* arrays sent */
+    double slices;      /* sum over arrays sent of the load */
+    double vp_slices;   /* sum over arrays sent of the VP slices used */
 } WlDpCoef;
 
-/* ceil(n / procs); 0 for an empty array. */
-uint64_t wl_dp_vp_ratio(uint64_t n, uint64_t procs);
+/* Where a screen pixel lives: the z-buffer (width x height) in blocks
+ * over a px x py processor grid (CM Fortran's default block layout). */
+typedef struct {
+    uint64_t procs;
+    uint32_t px, py;   /* processor grid, px * py == procs */
+    uint32_t bw, bh;   /* block (subgrid) size */
+    uint32_t width, height;
+    uint32_t *col;     /* x -> x / bw, width entries */
+    uint32_t *row;     /* y -> (y / bh) * px, height entries */
+    uint32_t *count;   /* procs counters (zero between sends) */
+} WlDpLayout;
 
-/* Cost of one step over n elements with `ops` operations each; adds its
- * coefficients to *k (may be NULL). */
+/* ceil(n / procs) (a power of two if m->vp_pow2); 0 for an empty array. */
+uint64_t wl_dp_vp_ratio(const WlDpMachine *m, uint64_t n);
+
 SimTime wl_dp_step_cost(const WlDpMachine *m, uint64_t n, uint32_t ops,
                         WlDpCoef *k);
-
-/* Cost of one send of `active` messages; 0 when active is 0. */
-SimTime wl_dp_send_cost(const WlDpMachine *m, uint64_t active,
-                        WlDpCoef *k);
+SimTime wl_dp_scan_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k);
+/* `words` arrays of `active` messages from an array of n elements, with
+ * `load` messages on the busiest processor; 0 when nothing is sent. */
+SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
+                        uint64_t active, uint64_t load, WlDpCoef *k);
 
 /* The fraction of uniformly spread destinations that leave a level-l
  * subtree of an arity-ary fat tree over p nodes (0 when the subtree
  * holds them all). */
 double wl_dp_fattree_escape(unsigned arity, uint64_t p, unsigned level);
+
+/* Block layout of a width x height array over procs processors (the
+ * grid as square as the power-of-two factors allow, wider than tall).
+ * Returns a new layout; free with wl_dp_layout_free(). */
+WlDpLayout *wl_dp_layout_new(uint64_t procs, uint32_t width,
+                             uint32_t height);
+void wl_dp_layout_free(WlDpLayout *l);
+static inline uint64_t wl_dp_layout_owner(const WlDpLayout *l, uint32_t x,
+                                          uint32_t y)
+{
+    g_assert(x < l->width && y < l->height);
+    return (uint64_t)l->row[y] + l->col[x];
+}
+
+/* Load of one step's send: messages injected by the busiest processor
+ * (sources spread evenly: ceil(active / procs)) or received by the
+ * busiest one (z-buffer sends: counted from the real pixels of the
+ * current step of s). */
+uint64_t wl_dp_send_load(const WlDpMachine *m, WlDpLayout *l,
+                         const WlDpSched *s, const WlDpStep *st);
+
+/* Closed-form cost of one step (any kind) on m. */
+SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l,
+                        const WlDpSched *s, const WlDpStep *st,
+                        WlDpCoef *k);
 
 #endif

@@ -7,7 +7,9 @@
  * pixel inside a polygon, possible for slivers, become segments of
  * length 0: the paper's loop still visits them).  Every span also goes
  * into a per-row difference array of coverage counts, resolved once at
- * the end into covered pixels and the deepest stack.
+ * the end into covered pixels and the deepest stack.  With `inclusive`
+ * (the renderer's own convention, see dp_geom.h) each segment gains its
+ * right end pixel and each polygon its bottom scan line.
  *
  * Complexity: O(spans log spans-per-polygon + width * height).
  */
@@ -33,9 +35,13 @@ static int span_cmp(const void *a, const void *b)
     return (s->x0 > t->x0) - (s->x0 < t->x0);
 }
 
-static void push_row(WlDpGeom *g, uint32_t len)
+static void push_row(WlDpGeom *g, uint32_t len, int32_t x0)
 {
+    uint32_t x = (uint32_t)MAX(x0, 0);
+    len += g->inclusive;
+    g->seg_pixels += len;
     g_array_append_val(g->seg_len, len);
+    g_array_append_val(g->seg_x0, x);
     if (len > g->max_len)
         g->max_len = len;
 }
@@ -56,12 +62,16 @@ static void flush_poly(DpCollect *c)
             hi = MAX(hi, s[i].x1);
             continue;
         }
-        push_row(g, (uint32_t)(hi - lo));
+        push_row(g, (uint32_t)(hi - lo), lo);
         for (int32_t gap = y + 1; gap < s[i].y; gap++)
-            push_row(g, 0);
+            push_row(g, 0, lo);
         y = s[i].y, lo = s[i].x0, hi = s[i].x1;
     }
-    push_row(g, (uint32_t)(hi - lo));
+    push_row(g, (uint32_t)(hi - lo), lo);
+    if (g->inclusive)
+        push_row(g, (uint32_t)(hi - lo), lo);
+    uint32_t top = (uint32_t)MAX(s[0].y, 0);
+    g_array_append_val(g->poly_y0, top);
     uint32_t end = g->seg_len->len;
     g_array_append_val(g->seg_start, end);
     uint32_t rows = end - g_array_index(g->seg_start, uint32_t,
@@ -108,24 +118,27 @@ static void resolve_coverage(WlDpGeom *g, const int32_t *cov)
     }
 }
 
-static WlDpGeom *geom_alloc(int width, int height)
+static WlDpGeom *geom_alloc(int width, int height, gboolean inclusive)
 {
     WlDpGeom *g = g_new0(WlDpGeom, 1);
+    g->inclusive = inclusive ? 1 : 0;
     g->width = width;
     g->height = height;
     g->seg_start = g_array_new(FALSE, FALSE, sizeof(uint32_t));
     g->seg_len = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    g->seg_x0 = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    g->poly_y0 = g_array_new(FALSE, FALSE, sizeof(uint32_t));
     uint32_t zero = 0;
     g_array_append_val(g->seg_start, zero);
     return g;
 }
 
 WlDpGeom *wl_dp_geom_new(const Scene *scene, double frame, int width,
-                         int height)
+                         int height, gboolean inclusive)
 {
     g_assert(width > 0 && height > 0);
     g_assert(width <= RAST_MAX_SIDE && height <= RAST_MAX_SIDE);
-    WlDpGeom *g = geom_alloc(width, height);
+    WlDpGeom *g = geom_alloc(width, height, inclusive);
     DpCollect c = {.g = g, .cur = RAST_NO_PRIM};
     c.spans = g_array_new(FALSE, FALSE, sizeof(DpSpan));
     c.cov = g_new0(int32_t, (size_t)(width + 1) * (size_t)height);
@@ -149,5 +162,9 @@ void wl_dp_geom_free(WlDpGeom *g)
         return;
     g_array_free(g->seg_start, TRUE);
     g_array_free(g->seg_len, TRUE);
+    if (g->seg_x0)
+        g_array_free(g->seg_x0, TRUE);
+    if (g->poly_y0)
+        g_array_free(g->poly_y0, TRUE);
     g_free(g);
 }

@@ -53,6 +53,21 @@ static gboolean get_time(const CfgNode *sec, const char *key,
     return cfg_get_time(p, "value", TRUE, out, err);
 }
 
+/* Optional boolean parameter; FALSE (the default) when absent. */
+static gboolean get_flag(const CfgNode *sec, const char *key, gboolean *out,
+                         GError **err)
+{
+    GError *e = NULL;
+    const CfgNode *p = param(sec, key, FALSE, &e);
+    *out = FALSE;
+    if (!p) {
+        if (e)
+            g_propagate_error(err, e);
+        return e == NULL;
+    }
+    return cfg_get_bool(p, "value", TRUE, out, err);
+}
+
 static gboolean get_levels(const CfgNode *sec, WlDpMachine *m, GError **err)
 {
     GError *e = NULL;
@@ -137,12 +152,15 @@ gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
     }
     if (!cfg_get_enum(a, "value", TRUE, arch, &kind, err) ||
         !get_time(sec, "op", TRUE, &m->op, err) ||
-        !get_time(sec, "step", TRUE, &m->step, err))
+        !get_time(sec, "step", TRUE, &m->step, err) ||
+        !get_time(sec, "scan_slice", TRUE, &m->scan_slice, err) ||
+        !get_flag(sec, "vp_pow2", &m->vp_pow2, err))
         return FALSE;
     m->arch = kind == 0 ? WL_DP_SIMD : WL_DP_SPMD;
     if (m->arch == WL_DP_SIMD)
         return get_time(sec, "send_setup", TRUE, &m->send_setup, err) &&
-               get_time(sec, "send_slice", TRUE, &m->send_slice, err);
+               get_time(sec, "send_slice", TRUE, &m->send_slice, err) &&
+               get_time(sec, "send_vp", FALSE, &m->send_vp, err);
     return spmd_params(sec, m, err);
 }
 

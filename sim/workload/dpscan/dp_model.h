@@ -9,6 +9,8 @@
  *     arch:          {value: simd | spmd, source: ...}
  *     op:            {value: 2.3 us, ...}    # one element op, one proc
  *     step:          {value: 10 us, ...}     # issue of one step
+ *     scan_slice:    {value: 50 us, ...}     # parallel prefix per VP slice
+ *     vp_pow2:       {value: true, ...}      # optional, default false
  *     send_setup:    {value: 100 us, ...}    # simd
  *     send_slice:    {value: 500 us, ...}    # simd
  *     net_latency:   {value: 5 us, ...}      # spmd

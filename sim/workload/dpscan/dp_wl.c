@@ -55,13 +55,15 @@ static void add_metrics(SimResult *out, const WlDpFrame *f,
                           (double)g->n_polys / sim_time_to_s(f->total),
                           "1/s");
     sim_result_set_metric(out, "utilisation", f->util, "");
-    sim_result_set_metric(out, "scan_iters", (double)f->scan_iters, "");
-    sim_result_set_metric(out, "pixel_iters", (double)f->pixel_iters, "");
-    sim_result_set_metric(out, "flushes", (double)f->flushes, "");
+    sim_result_set_metric(out, "scan_iters", (double)f->counts.scan_iters,
+                          "");
+    sim_result_set_metric(out, "pixel_iters", (double)f->counts.pixel_iters,
+                          "");
+    sim_result_set_metric(out, "flushes", (double)f->counts.flushes, "");
     sim_result_set_metric(out, "pixels", (double)g->pixels, "");
     sim_result_set_metric(out, "collisions",
                           (double)wl_dp_geom_collisions(g), "");
-    sim_result_set_metric(out, "messages", (double)f->messages, "");
+    sim_result_set_metric(out, "messages", (double)f->counts.messages, "");
 }
 
 static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
@@ -78,13 +80,14 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     WlDpAlgo a = wl_dp_algo_defaults();
     a.buffer_factor = p->buffer_factor;
     for (int fr = 0; fr < ctx->frames; fr++) {
-        WlDpGeom *g = wl_dp_geom_new(s, fr, (int)p->width, (int)p->height);
+        WlDpGeom *g = wl_dp_geom_new(s, fr, (int)p->width, (int)p->height,
+                                     TRUE);
         WlDpFrame f;
         wl_dp_frame_run(g, &m, &a, &f);
         sim_result_add_frame(out, f.total);
         out->elapsed += f.total;
-        out->comm_bytes += f.bytes;
-        out->comm_messages += f.messages;
+        out->comm_bytes += f.counts.words * 4;
+        out->comm_messages += f.counts.messages;
         add_metrics(out, &f, g);
         wl_dp_geom_free(g);
     }

@@ -61,8 +61,9 @@ static void cell(OrRun *r, const char *table, const WlDpGeom *g,
     g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
                                         (double)g->n_polys / t, NULL));
     if (r->coef && m->arch == WL_DP_SIMD)
-        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f\n", table, row,
-                f.coef.op_slices, f.coef.steps, f.coef.sends, f.coef.slices);
+        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table,
+                row, f.coef.op_slices, f.coef.steps, f.coef.scan_slices,
+                f.coef.sends, f.coef.slices, f.coef.vp_slices);
 }
 
 /* Costs geometry g on every partition of `table`. */
@@ -126,7 +127,7 @@ static gboolean scene_cells(OrRun *r, const char *key, GError **err)
         int w, h;
         if (!(ok = read_res(cfg_seq_at(res, i), &w, &h, err)))
             break;
-        WlDpGeom *g = wl_dp_geom_new(s, 0.0, w, h);
+        WlDpGeom *g = wl_dp_geom_new(s, 0.0, w, h, TRUE);
         for (guint t = 0; ok && t < cfg_map_len(tabs); t++) {
             const CfgNode *tab = cfg_map_value(tabs, t);
             const char *sk = NULL;
