@@ -103,7 +103,8 @@ static void test_bad_specs(void **st)
     WlPphigsSetup su;
     CfgNode *n = cfg_load_string("{width: 1, height: 1, region: 1, "
                                  "cmd_bytes: 1, end_bytes: 1, batch: 1, "
-                                 "pixel_bytes: 1, cluster_scale: {value: 8}}",
+                                 "pixel_bytes: 1, element_bytes: 1, "
+                                 "cluster_scale: {value: 8}}",
                                  "fr.yaml", NULL);
     assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
     assert_non_null(strstr(err->message, "fr.yaml:1:"));
@@ -111,7 +112,7 @@ static void test_bad_specs(void **st)
     g_clear_error(&err);
     cfg_free(n);
     n = cfg_load_string("{width: 1, height: 1, region: 1, cmd_bytes: 1, "
-                        "end_bytes: 1, batch: 1, pixel_bytes: 1, "
+                        "end_bytes: 1, batch: 1, pixel_bytes: 1, element_bytes: 1, "
                         "cluster_scale: {value: 8, assumption: x}, "
                         "widht: 3}", "fr.yaml", NULL);
     assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
@@ -168,7 +169,7 @@ static void test_frames_equal_analytic(void **st)
 
 typedef struct {
     GArray *frames;
-    double m[12];
+    double m[13];
     uint64_t bytes;
     guint gps;
 } Out;
@@ -195,8 +196,8 @@ static void run_flock(const char *const *sets, Out *o)
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data,
                         r->frame_times->len);
-    assert_int_equal(r->metrics->len, 12);
-    for (guint i = 0; i < 12; i++)
+    assert_int_equal(r->metrics->len, 13);
+    for (guint i = 0; i < 13; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
     o->bytes = r->comm_bytes;
     assert_int_equal(r->nodes->len, 1 + o->gps + 16 + 1);
@@ -218,11 +219,13 @@ static void test_workload_runs(void **st)
     assert_memory_equal(a.m, b.m, sizeof a.m);
     assert_int_equal(a.bytes, b.bytes);
     assert_true(a.m[7] == 12); /* 4 edits x 3 frames */
+    assert_true(a.m[8] >= 4);  /* each edit sends >= 1 element per frame */
     const char *sets[] = {"workload.database=building_lobby",
                           "workload.algorithm=simple",
                           "workload.edits_per_frame=0", NULL};
     run_flock(sets, &c);
     assert_true(c.m[7] == 0);
+    assert_true(c.m[8] == 0); /* no edits, and no moves on a fresh list */
     assert_true(c.m[4] != a.m[4]); /* other database: other commands */
     g_array_unref(a.frames);
     g_array_unref(b.frames);

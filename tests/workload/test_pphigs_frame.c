@@ -4,8 +4,9 @@
  * traversal cost of each portion to the picosecond; every processor kind
  * is busy in its phases; every region reaches the frame buffer; the same
  * inputs give the same results twice; ring-slot packets are never faster than the
- * contention-free analytic transport; off-screen work sends nothing; a
- * machine the frame cannot use is a located error.
+ * contention-free analytic transport; off-screen work sends nothing; the
+ * host's edit traffic delays the GP it goes to; a machine the frame
+ * cannot use is a located error.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -26,7 +27,8 @@ static const char *const MACHINE =
     "       matrix_concat: 1 us, execute: 500 ns, send_primitive: 1 us}}\n"
     "  renderer: {count: 4, costs: {primitive: 8 us, region_begin: 50 us,\n"
     "             region_shade: 200 us}}\n"
-    "  frame_buffer: {costs: {store_region: 10 us}}\n";
+    "  frame_buffer: {costs: {store_region: 10 us}}\n"
+    "  host: {costs: {send_element: 20 us}}\n";
 
 static const WlPphigsCosts C = {
     .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
@@ -39,7 +41,7 @@ static WlPphigsFrameSpec spec(void)
 {
     WlPphigsFrameSpec s = {.cmd_bytes = 100, .end_bytes = 16, .batch = 16,
                            .pixel_bytes = 4, .width = 640, .height = 512,
-                           .region = 128};
+                           .region = 128, .element_bytes = 80};
     return s;
 }
 
@@ -102,7 +104,7 @@ static void run(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
     Mat4 vp = scene_camera_view_proj(&db->camera);
     for (int k = 0; k < 2; k++) {
         WlPphigsFrameStats st;
-        assert_true(wl_pphigs_frame_run(f, d, vp, &st, NULL));
+        assert_true(wl_pphigs_frame_run(f, d, vp, NULL, &st, NULL));
         out->frame[k] = st.time;
         out->commands = st.commands;
         out->offscreen = st.offscreen;
@@ -223,6 +225,44 @@ static void test_offscreen_sends_nothing(void **st)
     scene_pphigs_db_clear(&db);
 }
 
+/* Elements the host sends before a frame: packed on the host (phase
+ * "edit"), carried by the ring, and the GP that gets them starts late. */
+static void test_host_edits(void **st)
+{
+    (void)st;
+    ScenePphigsDb db = make_db(SCENE_PPHIGS_STATION);
+    WlPphigsFrameSpec s = spec();
+    SimTime t[2];
+    uint64_t bytes[2];
+    for (int k = 0; k < 2; k++) {
+        SimEngine *eng = sim_engine_new(7);
+        MachMachine *m = machine(eng, 4, "analytic", NULL);
+        WlPphigsFrame *f = wl_pphigs_frame_new(m, &s, NULL);
+        WlPphigsWeights w;
+        wl_pphigs_weights_from_costs(&C, 8, &w);
+        WlPphigsDist *d = wl_pphigs_dist_new(db.db, 4, WL_PPHIGS_COMPLEX, &w);
+        uint64_t elems[4] = {0, 500, 0, 0};
+        WlPphigsFrameStats fs;
+        assert_true(wl_pphigs_frame_run(f, d,
+                                        scene_camera_view_proj(&db.camera),
+                                        k ? elems : NULL, &fs, NULL));
+        t[k] = fs.time;
+        bytes[k] = net_total_bytes(mach_net(m));
+        assert_int_equal(fs.host_elements, k ? 500 : 0);
+        MachProc *host = mach_proc(m, "host", 0);
+        unsigned edit = sim_engine_phase(eng, "edit");
+        assert_int_equal(mach_proc_busy_phase(host, edit),
+                         k ? 500 * 20 * SIM_US : 0);
+        wl_pphigs_dist_free(d);
+        wl_pphigs_frame_free(f);
+        mach_free(m);
+        sim_engine_free(eng);
+    }
+    assert_int_equal(bytes[1] - bytes[0], 500 * s.element_bytes);
+    assert_true(t[1] >= t[0] + 500 * 20 * SIM_US); /* gp1 waited */
+    scene_pphigs_db_clear(&db);
+}
+
 /* A machine the frame cannot use is a located error, not a crash. */
 static void expect_bad_machine(const char *over, const char *needle)
 {
@@ -261,6 +301,7 @@ int main(void)
         cmocka_unit_test(test_deterministic),
         cmocka_unit_test(test_traffic_and_fidelity),
         cmocka_unit_test(test_offscreen_sends_nothing),
+        cmocka_unit_test(test_host_edits),
         cmocka_unit_test(test_bad_machine),
     };
     return cmocka_run_group_tests_name("pphigs_frame", tests, NULL, NULL);

@@ -106,6 +106,7 @@ static void gp_put(WlPphigsDist *d, guint sid, guint pos, guint g)
     g_assert(ok);
     *m |= (uint64_t)1 << g;
     d->traffic.elements_sent++;
+    d->traffic.sent_to[g]++;
 }
 
 static void gp_put_all(WlPphigsDist *d, guint sid, guint pos)
@@ -583,6 +584,8 @@ gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
             gboolean ok = scene_db_modify(d->gp[g], sid,
                                           gp_pos(d, sid, pos, g), &c, NULL);
             g_assert(ok);
+            d->traffic.elements_sent++; /* §3.1: new data to each holder */
+            d->traffic.sent_to[g]++;
         }
     if (dw != 0 && m && !is_prim_struct(d, sid))
         add_load(d, sid, (guint)__builtin_ctzll(m), dw);

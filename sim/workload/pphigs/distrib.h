@@ -47,7 +47,9 @@ typedef struct {
 
 /* Host-to-GP traffic of the distribution and edits so far. */
 typedef struct {
-    uint64_t elements_sent;   /* element copies inserted on GPs */
+    uint64_t elements_sent;   /* element copies sent to GPs (inserted or,
+                                 by modify, replaced) */
+    uint64_t sent_to[64];     /* the same per GP */
     uint64_t elements_removed;
     uint64_t last_scan;       /* elements examined by the last backward scan */
     uint64_t max_scan;        /* the largest such scan */

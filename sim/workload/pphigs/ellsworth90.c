@@ -51,7 +51,7 @@ static gboolean frame_times(const ScenePphigsDb *db, guint ngp,
                                      rig->setup.cluster_scale);
         WlPphigsFrameStats st;
         ok = wl_pphigs_frame_run(f, d, scene_camera_view_proj(&db->camera),
-                                 &st, err);
+                                 NULL, &st, err);
         if (ok)
             memcpy(us, st.gp_time_us, ngp * sizeof *us);
         wl_pphigs_dist_free(d);

@@ -39,6 +39,7 @@ typedef struct {
     guint next;
     guint *buf;    /* per region: commands buffered */
     guint *sent;   /* per renderer: batches sent */
+    uint64_t edits; /* elements the host sends before this frame */
 } Gp;
 
 typedef struct {
@@ -59,17 +60,17 @@ struct WlPphigsFrame {
     NetNet *net;
     WlPphigsFrameSpec s;
     WlPphigsCosts c;
-    SimTime gp_send, rend_prim, rend_begin, rend_shade, fb_store;
+    SimTime gp_send, rend_prim, rend_begin, rend_shade, fb_store, host_send;
     guint ngp, nrend, nx, ny, nregions;
     Gp *gp;
     Rend *rend;
-    MachProc *fb;
+    MachProc *fb, *host;
     guint stored;
     SimTime start, end;
-    unsigned ph_trav, ph_xform, ph_send, ph_rast, ph_shade, ph_store;
+    unsigned ph_trav, ph_xform, ph_send, ph_rast, ph_shade, ph_store, ph_edit;
     double *gp_us;  /* processor time of the frame just run */
     SimTime *busy0; /* traverse + transform busy at the frame's start */
-    uint64_t commands, offscreen, prims;
+    uint64_t commands, offscreen, prims, host_elems;
     Mat4 vp;
 };
 
@@ -101,7 +102,8 @@ static gboolean hw_costs(WlPphigsFrame *f, GError **err)
            mach_cost_lookup(m, "renderer", "region_shade", &f->rend_shade,
                             err) &&
            mach_cost_lookup(m, "frame_buffer", "store_region", &f->fb_store,
-                            err);
+                            err) &&
+           mach_cost_lookup(m, "host", "send_element", &f->host_send, err);
 }
 
 /* The kind's processor count, checked against [lo, hi]. */
@@ -363,6 +365,39 @@ static void gp_start(SimEngine *eng, void *ctx, void *arg)
     gp_next(ctx);
 }
 
+/* ---- the host: edits and moves since the last frame ------------------- */
+
+static void gp_edits_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    (void)d;
+    gp_next(ctx);
+}
+
+static void host_packed(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    Gp *g = ctx;
+    WlPphigsFrame *f = g->f;
+    net_send(f->net, mach_proc_id(f->host), mach_proc_id(g->p),
+             g->edits * f->s.element_bytes, NULL, gp_edits_arrive, g);
+}
+
+/* A GP with edits starts when they arrive; the others at once. */
+static void gp_launch(WlPphigsFrame *f, Gp *g)
+{
+    if (!g->edits) {
+        sim_schedule_in(f->eng, 0, gp_start, g, NULL);
+        return;
+    }
+    SimTime cost;
+    if (!mach_cost_n(f->host_send, g->edits, &cost))
+        cost = SIM_TIME_MAX; /* mach_proc_compute reports the overflow */
+    mach_proc_compute(f->host, cost, f->ph_edit, host_packed, g, NULL);
+    f->host_elems += g->edits;
+}
+
 /* ---- lifetime --------------------------------------------------------- */
 
 static void rend_init(WlPphigsFrame *f, Rend *r, guint id)
@@ -396,12 +431,14 @@ static void intern_phases(WlPphigsFrame *f)
     f->ph_rast = sim_engine_phase(f->eng, "rasterise");
     f->ph_shade = sim_engine_phase(f->eng, "shade");
     f->ph_store = sim_engine_phase(f->eng, "store");
+    f->ph_edit = sim_engine_phase(f->eng, "edit");
 }
 
 static gboolean check_machine(WlPphigsFrame *f, GError **err)
 {
-    guint nfb;
-    return kind_count(f->m, "gp", 1, MAX_GPS, &f->ngp, err) &&
+    guint nfb, nhost;
+    return kind_count(f->m, "host", 1, G_MAXUINT, &nhost, err) &&
+           kind_count(f->m, "gp", 1, MAX_GPS, &f->ngp, err) &&
            kind_count(f->m, "renderer", 1, G_MAXUINT16, &f->nrend, err) &&
            kind_count(f->m, "frame_buffer", 1, 1, &nfb, err) &&
            hw_costs(f, err) && mach_require_net(f->m, err);
@@ -427,6 +464,7 @@ WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
     f->nregions = f->nx * f->ny;
     intern_phases(f);
     f->fb = mach_proc(m, "frame_buffer", 0);
+    f->host = mach_proc(m, "host", 0);
     f->gp_us = g_new0(double, f->ngp);
     f->busy0 = g_new0(SimTime, f->ngp);
     f->gp = g_new0(Gp, f->ngp);
@@ -495,19 +533,21 @@ static void frame_reset(WlPphigsFrame *f)
     for (guint g = 0; g < f->ngp; g++)
         f->busy0[g] = gp_busy(f, g);
     f->stored = 0;
-    f->commands = f->offscreen = f->prims = 0;
+    f->commands = f->offscreen = f->prims = f->host_elems = 0;
     f->start = f->end = sim_now(f->eng);
 }
 
 gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d,
-                             Mat4 vp, WlPphigsFrameStats *out, GError **err)
+                             Mat4 vp, const uint64_t *host_elems,
+                             WlPphigsFrameStats *out, GError **err)
 {
     g_assert(wl_pphigs_dist_ngp(d) == f->ngp);
     frame_reset(f);
     f->vp = vp;
     for (guint g = 0; g < f->ngp; g++) {
         plan_gp(f, &f->gp[g], wl_pphigs_dist_gp(d, g));
-        sim_schedule_in(f->eng, 0, gp_start, &f->gp[g], NULL);
+        f->gp[g].edits = host_elems ? host_elems[g] : 0;
+        gp_launch(f, &f->gp[g]);
     }
     if (!sim_engine_run(f->eng, SIM_TIME_MAX, err))
         return FALSE;
@@ -519,6 +559,7 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d,
     out->commands = f->commands;
     out->offscreen = f->offscreen;
     out->primitives = f->prims;
+    out->host_elements = f->host_elems;
     return TRUE;
 }
 

@@ -27,6 +27,10 @@
  *             "shade"), send the pixels to the frame buffer.
  *   frame buf `store_region` per region (phase "store"); the frame ends
  *             with the last region.
+ *   host      before the frame, the elements edits and rebalancing sent
+ *             to each GP: `send_element` each (phase "edit"), one ring
+ *             message of element_bytes each per GP; a GP with such a
+ *             message starts when it arrives.
  *
  * A GP's processor time of a frame (seed 001 §6) is its "traverse" plus
  * "transform" busy time during the frame; it equals
@@ -50,6 +54,7 @@ typedef struct {
     guint pixel_bytes;    /* per pixel sent to the frame buffer */
     guint width, height;  /* screen, pixels */
     guint region;         /* region side, pixels (128 on Pixel-Planes 5) */
+    guint element_bytes;  /* one display-list element, host to GP */
 } WlPphigsFrameSpec;
 
 typedef struct WlPphigsFrame WlPphigsFrame;
@@ -61,6 +66,7 @@ typedef struct {
     uint64_t commands;      /* renderer commands sent */
     uint64_t offscreen;     /* primitive instances trivially rejected */
     uint64_t primitives;    /* primitive instances traversed */
+    uint64_t host_elements; /* elements the host sent before the frame */
 } WlPphigsFrameStats;
 
 /* The GP cost table and the per-command send cost of machine m (its
@@ -80,11 +86,15 @@ guint wl_pphigs_frame_gps(const WlPphigsFrame *f);
 const WlPphigsCosts *wl_pphigs_frame_costs(const WlPphigsFrame *f);
 
 /* Runs one frame of `d` (as many GPs as the machine) under view `vp`
- * from the engine's current time to its end.  FALSE with *err if the
- * engine failed. */
+ * from the engine's current time to its end.  `host_elems` (NULL: none)
+ * gives per GP the display-list elements the host sent it since the last
+ * frame (edits, rebalancing moves: WlPphigsTraffic.sent_to deltas): the
+ * host packs each (`send_element`, phase "edit") and sends them in one
+ * message per GP, which starts its frame when they arrive.  FALSE with
+ * *err if the engine failed. */
 gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d,
-                             Mat4 vp, WlPphigsFrameStats *out,
-                             GError **err);
+                             Mat4 vp, const uint64_t *host_elems,
+                             WlPphigsFrameStats *out, GError **err);
 
 /* Utilisation over `elapsed`: mean of busy / elapsed over GPs and over
  * renderers. */

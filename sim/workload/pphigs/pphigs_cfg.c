@@ -95,9 +95,10 @@ static gboolean frame_sizes(const CfgNode *fr, WlPphigsFrameSpec *s,
 {
     static const char *const keys[] = {"width", "height", "region",
                                        "cmd_bytes", "end_bytes", "batch",
-                                       "pixel_bytes"};
+                                       "pixel_bytes", "element_bytes"};
     guint *dst[] = {&s->width, &s->height, &s->region, &s->cmd_bytes,
-                    &s->end_bytes, &s->batch, &s->pixel_bytes};
+                    &s->end_bytes, &s->batch, &s->pixel_bytes,
+                    &s->element_bytes};
     for (guint i = 0; i < G_N_ELEMENTS(keys); i++) {
         uint64_t v = 0;
         if (!cfg_get_count(fr, keys[i], TRUE, 1, 1u << 24, &v, err))

@@ -20,7 +20,9 @@
  * the machine layer at the run's fidelity; `run.until` ends the run
  * after the frame that crosses it.
  * Metrics: frame time, GP and renderer utilisation (busy / elapsed),
- * ring bytes and commands per frame, edits, rebalancing moves, and seed
+ * ring bytes and commands per frame, edits, elements the host sent per
+ * frame (edits and moves go over the ring before the frame that needs
+ * them, frame.h), rebalancing moves, and seed
  * 001 §6's distribution efficiency, processor utilisation and speed-up
  * of the last frame (GP processor times are its traverse + transform
  * busy times; T1 is the host list's traversal cost, metrics.h, which is
@@ -31,6 +33,7 @@
 #include "sim/workload/pphigs/rebalance.h"
 #include "sim/machine/model.h"
 #include "sim/workload/workload.h"
+#include <string.h>
 
 typedef struct {
     int algo;
@@ -157,7 +160,8 @@ typedef struct {
     WlPphigsRebal *rb;
     SimRng *rng;
     guint ngp;
-    uint64_t edits, moves, commands;
+    uint64_t edits, moves, commands, host_elems;
+    uint64_t sent[64];     /* WlPphigsTraffic.sent_to at the last frame */
     double imbalance;
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
 } Run;
@@ -176,6 +180,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
         wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo,
                               &w);
+    memcpy(r->sent, wl_pphigs_dist_traffic(r->d)->sent_to, sizeof r->sent);
     WlPphigsRebalParams rb = r->p->rb;
     rb.seed = ctx->seed;
     r->rb = r->p->rebalance ? wl_pphigs_rebal_new(&rb) : NULL;
@@ -217,14 +222,27 @@ static void edit_one(Run *r)
     g_array_unref(at);
 }
 
+/* Elements sent to each GP since the last frame (edits, moves). */
+static void host_elems(Run *r, uint64_t *out)
+{
+    const uint64_t *now = wl_pphigs_dist_traffic(r->d)->sent_to;
+    for (guint g = 0; g < r->ngp; g++) {
+        out[g] = now[g] - r->sent[g];
+        r->sent[g] = now[g];
+    }
+}
+
 static gboolean one_frame(Run *r, SimResult *out, GError **err)
 {
     for (int64_t k = 0; k < r->p->edits; k++)
         edit_one(r);
+    uint64_t elems[64];
+    host_elems(r, elems);
     WlPphigsFrameStats st;
     Mat4 vp = scene_camera_view_proj(&r->db.camera);
-    if (!wl_pphigs_frame_run(r->frame, r->d, vp, &st, err))
+    if (!wl_pphigs_frame_run(r->frame, r->d, vp, elems, &st, err))
         return FALSE;
+    r->host_elems += st.host_elements;
     sim_result_add_frame(out, st.time);
     r->commands += st.commands;
     r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);
@@ -264,6 +282,8 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance,
                           "%");
     sim_result_set_metric(out, "edits", (double)r->edits, "");
+    sim_result_set_metric(out, "host_elements_per_frame",
+                          (double)r->host_elems / n, "");
     sim_result_set_metric(out, "rebalance_moves", (double)r->moves, "");
     sim_result_set_metric(out, "distribution_efficiency_pct",
                           100 * r->paper.efficiency, "%");
