@@ -92,6 +92,10 @@ static RastVert intersect(const RastVert *a, const RastVert *b, PlaneFn d,
     v.pos.y = a->pos.y + (b->pos.y - a->pos.y) * t;
     v.pos.z = a->pos.z + (b->pos.z - a->pos.z) * t;
     v.pos.w = a->pos.w + (b->pos.w - a->pos.w) * t;
+    /* Rounding may leave a point cut by the w plane a hair below it;
+     * the viewport divides by w, so put it on the plane. */
+    if (d == d_w && v.pos.w < RAST_CLIP_WMIN)
+        v.pos.w = RAST_CLIP_WMIN;
     v.col.r = lerpf(a->col.r, b->col.r, t);
     v.col.g = lerpf(a->col.g, b->col.g, t);
     v.col.b = lerpf(a->col.b, b->col.b, t);

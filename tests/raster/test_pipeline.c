@@ -79,6 +79,22 @@ static void test_behind_eye(void **state)
         for (int x = 0; x < 32; x++)
             assert_int_equal(cv->count[y * 32 + x], 0);
     tu_coverage_free(cv);
+    /* The clip-space origin (w = 0) lies on the near (z >= -w), far
+     * (z <= w) and every guard-band plane (|x|, |y| <= g w): only the w
+     * plane keeps it from the viewport's division by w, and the cut
+     * points must not round below w = RAST_CLIP_WMIN (this aborted).
+     * Every point (s x, s y, 0, s) of the edges to it projects onto
+     * their other end, so what is left has no area. */
+    RastCounters c2 = {0};
+    cv = tu_coverage_new(32, 32);
+    RastVert at_eye[3] = {tu_cv(-0.5, -0.5, 0.0, 1.0),
+                          tu_cv(0.5, -0.5, 0.0, 1.0), tu_cv(0, 0, 0, 0)};
+    rast_draw_clip_polygon(&v, at_eye, 3, 2, tu_coverage_sink(cv), &c2);
+    assert_int_equal(c2.prims, 1);
+    assert_int_equal(c2.clipped, 1);
+    assert_int_equal(c2.degenerate, 1);
+    assert_int_equal(c2.pixels, 0);
+    tu_coverage_free(cv);
 }
 
 /* The eye inside a closed sphere of inward-facing polygons, looking in
@@ -392,6 +408,21 @@ static void test_counters(void **state)
     }
     assert_int_equal(c.culled, back);
     assert_int_equal(c.spans, cv->spans);
+    /* TPG is the pixels the spans cover; a convex closed mesh from
+     * outside, culled, covers each once, so TPF (the winners) = TPG. */
+    uint64_t sum = 0;
+    for (int i = 0; i < 64 * 64; i++)
+        sum += cv->count[i];
+    assert_int_equal(c.pixels, sum);
+    assert_int_equal(tu_coverage_max(cv), 1);
+    assert_int_equal(c.clipped + c.rejected, 0);
+    RastZBuffer *zb = rast_zbuffer_new(64, 64);
+    RastCounters cz = {0};
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+                   rast_zbuffer_sink(zb), &cz);
+    assert_int_equal(rast_zbuffer_covered(zb), c.pixels);
+    assert_int_equal(cz.zcompares, c.pixels);
+    rast_zbuffer_free(zb);
     char *s = rast_counters_format(&c);
     assert_non_null(strstr(s, "TPG="));
     g_free(s);
