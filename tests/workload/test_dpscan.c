@@ -7,7 +7,7 @@
 #include <cmocka.h>
 
 #include "sim/scene/isosurface.h"
-#include "sim/workload/dpscan/dp_frame.h"
+#include "sim/workload/dpscan/dp_exec.h"
 #include "sim/workload/dpscan/dp_model.h"
 #include "sim/workload/workload.h"
 
@@ -203,6 +203,72 @@ static void test_deterministic(void **state)
     assert_memory_equal(&f[0], &f[1], sizeof(WlDpFrame));
 }
 
+/* The event-driven frame on the machine layer equals the closed form
+ * on the SIMD machine, step by step (one event per step). */
+static void test_exec_simd_equals_closed_form(void **state)
+{
+    (void)state;
+    Scene *s = small_iso();
+    WlDpGeom *g = wl_dp_geom_new(s, 0.0, 96, 64, TRUE);
+    WlDpMachine m = {0};
+    GError *err = NULL;
+    assert_true(wl_dp_machine_load("models", "cm200", &m, &err));
+    m.procs = 1024;
+    WlDpAlgo a = wl_dp_algo_defaults();
+    WlDpFrame cf, ev;
+    wl_dp_frame_run(g, &m, &a, &cf);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *mach = wl_dp_exec_machine(eng, "cm200", &m, "analytic",
+                                           &err);
+    assert_non_null(mach);
+    assert_true(wl_dp_exec_frame(mach, &m, g, &a, &ev, &err));
+    assert_true(cf.total > 0);
+    assert_int_equal(ev.total, cf.total);
+    for (int ph = 0; ph < WL_DP_N_PHASES; ph++)
+        assert_int_equal(ev.phase[ph], cf.phase[ph]);
+    assert_int_equal(ev.steps, cf.steps);
+    assert_int_equal(sim_engine_events(eng), cf.steps + 1);
+    assert_memory_equal(&ev.counts, &cf.counts, sizeof ev.counts);
+    mach_free(mach);
+    sim_engine_free(eng);
+    wl_dp_geom_free(g);
+    scene_free(s);
+}
+
+/* CM-5: the tiny frame on 2 nodes, every send one message per node pair:
+ * no contention, so flow and packet give the analytic time; and the run
+ * is deterministic.  Times worked by hand for the first send. */
+static void test_exec_spmd_fidelities(void **state)
+{
+    (void)state;
+    WlDpGeom *g = tiny_geom();
+    WlDpMachine m = {0};
+    GError *err = NULL;
+    assert_true(wl_dp_machine_load("models", "cm5", &m, &err));
+    m.procs = 2;
+    WlDpAlgo a = unit_algo();
+    const char *fid[] = {"analytic", "flow", "packet", "analytic"};
+    SimTime t[4];
+    for (int i = 0; i < 4; i++) {
+        SimEngine *eng = sim_engine_new(1);
+        MachMachine *mach = wl_dp_exec_machine(eng, "cm5", &m, fid[i], &err);
+        assert_non_null(mach);
+        WlDpFrame f;
+        assert_true(wl_dp_exec_frame(mach, &m, g, &a, &f, &err));
+        t[i] = f.total;
+        assert_int_equal(f.counts.pixel_iters, 3);
+        assert_true(f.phase[WL_DP_PH_ROUTER] > 0);
+        mach_free(mach);
+        sim_engine_free(eng);
+    }
+    assert_true(t[0] > 0);
+    assert_int_equal(t[1], t[0]);
+    assert_int_equal(t[3], t[0]);
+    /* Packets of 20 B: a 1-word message is one packet, same time. */
+    assert_int_equal(t[2], t[0]);
+    wl_dp_geom_free(g);
+}
+
 static void test_model_errors(void **state)
 {
     (void)state;
@@ -242,14 +308,18 @@ static void test_workload_run(void **state)
     assert_non_null(ops);
     void *p = ops->parse(cfg_get(root, "workload"), &err);
     assert_non_null(p);
-    WlContext ctx = {.root = root, .frames = 2};
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {.eng = eng, .root = root, .frames = 2,
+                     .fidelity = "analytic"};
     SimResult *r = sim_result_new("dpscan", "cm200");
     assert_true(ops->run(&ctx, p, r, &err));
+    assert_true(sim_engine_events(eng) > 10);
     assert_int_equal(r->frame_times->len, 2);
     double pps = 0;
     assert_true(sim_result_get_metric(r, "polygons_per_s", &pps));
     assert_true(pps > 0);
     sim_result_free(r);
+    sim_engine_free(eng);
     ops->free_params(p);
     cfg_free(root);
 }
@@ -264,6 +334,8 @@ int main(void)
         cmocka_unit_test(test_frame_schedule),
         cmocka_unit_test(test_pixels_match_raster),
         cmocka_unit_test(test_deterministic),
+        cmocka_unit_test(test_exec_simd_equals_closed_form),
+        cmocka_unit_test(test_exec_spmd_fidelities),
         cmocka_unit_test(test_model_errors),
         cmocka_unit_test(test_workload_run),
     };

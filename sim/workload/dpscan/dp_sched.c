@@ -36,6 +36,7 @@ struct WlDpSched {
     uint64_t fl_n, fl_live;
     uint32_t longest, fl_longest;
     uint64_t capacity;
+    uint64_t sent_first;  /* first slot of the last segment send */
     DpState st;
     gboolean final_flush;
     uint32_t i, j, k;
@@ -115,6 +116,11 @@ const WlDpGeom *wl_dp_sched_geom(const WlDpSched *s)
     return s->g;
 }
 
+const WlDpSeg *wl_dp_sched_sent(const WlDpSched *s)
+{
+    return (const WlDpSeg *)s->buf->data + s->sent_first;
+}
+
 const WlDpSeg *wl_dp_sched_live(const WlDpSched *s, uint32_t *j)
 {
     g_assert(s->st == ST_PIX_SEND);
@@ -163,12 +169,13 @@ static void start_flush(WlDpSched *s)
 static void add_segments(WlDpSched *s)
 {
     const WlDpGeom *g = s->g;
+    s->sent_first = s->buf->len;
     for (uint64_t q = 0; q < s->live_polys; q++) {
         uint32_t p = s->ord[q];
         DpSeg d = {.x0 = wl_dp_geom_x0(g, p, s->i),
                    .y = wl_dp_geom_y0(g, p) + s->i,
                    .len = wl_dp_geom_len(g, p, s->i),
-                   .slot = (uint32_t)s->buf->len};
+                   .slot = (uint32_t)s->buf->len, .poly = p};
         g_array_append_val(s->buf, d);
         s->longest = MAX(s->longest, d.len);
     }

@@ -98,11 +98,15 @@ const WlDpGeom *wl_dp_sched_geom(const WlDpSched *s);
 typedef struct {
     uint32_t x0, y, len;
     uint32_t slot;
+    uint32_t poly;  /* visible polygon it came from */
 } WlDpSeg;
 
 /* During a z-buffer SEND: the live segments (step.active of them; live
  * pixel k lands at (segs[k].x0 + *j, segs[k].y) and comes from buffer
  * slot segs[k].slot).  Borrowed until the next step. */
 const WlDpSeg *wl_dp_sched_live(const WlDpSched *s, uint32_t *j);
+/* After a segment SEND (zbuf FALSE): the segments it sent (step.active
+ * of them), in buffer-slot order.  Borrowed until the next step. */
+const WlDpSeg *wl_dp_sched_sent(const WlDpSched *s);
 
 #endif

@@ -6,7 +6,7 @@
  */
 #include "sim/workload/dpscan/dp_wl.h"
 #include "sim/scene/scene_cfg.h"
-#include "sim/workload/dpscan/dp_frame.h"
+#include "sim/workload/dpscan/dp_exec.h"
 #include "sim/workload/dpscan/dp_model.h"
 
 typedef struct {
@@ -66,6 +66,28 @@ static void add_metrics(SimResult *out, const WlDpFrame *f,
     sim_result_set_metric(out, "messages", (double)f->counts.messages, "");
 }
 
+static gboolean run_frames(const WlContext *ctx, DpParams *p,
+                           const WlDpMachine *m, MachMachine *mach,
+                           const Scene *s, SimResult *out, GError **err)
+{
+    WlDpAlgo a = wl_dp_algo_defaults();
+    a.buffer_factor = p->buffer_factor;
+    for (int fr = 0; fr < ctx->frames; fr++) {
+        WlDpGeom *g = wl_dp_geom_new(s, fr, (int)p->width, (int)p->height,
+                                     TRUE);
+        WlDpFrame f;
+        gboolean ok = wl_dp_exec_frame(mach, m, g, &a, &f, err);
+        if (ok) {
+            sim_result_add_frame(out, f.total);
+            add_metrics(out, &f, g);
+        }
+        wl_dp_geom_free(g);
+        if (!ok)
+            return FALSE;
+    }
+    return TRUE;
+}
+
 static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
@@ -77,22 +99,20 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     Scene *s = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
     if (!s)
         return FALSE;
-    WlDpAlgo a = wl_dp_algo_defaults();
-    a.buffer_factor = p->buffer_factor;
-    for (int fr = 0; fr < ctx->frames; fr++) {
-        WlDpGeom *g = wl_dp_geom_new(s, fr, (int)p->width, (int)p->height,
-                                     TRUE);
-        WlDpFrame f;
-        wl_dp_frame_run(g, &m, &a, &f);
-        sim_result_add_frame(out, f.total);
-        out->elapsed += f.total;
-        out->comm_bytes += f.counts.words * 4;
-        out->comm_messages += f.counts.messages;
-        add_metrics(out, &f, g);
-        wl_dp_geom_free(g);
+    MachMachine *mach = wl_dp_exec_machine(ctx->eng, p->model, &m,
+                                           ctx->fidelity, err);
+    gboolean ok = mach && run_frames(ctx, p, &m, mach, s, out, err);
+    if (ok) {
+        mach_fill_result(mach, out);
+        out->elapsed = sim_now(ctx->eng);
+        if (m.arch == WL_DP_SIMD) {
+            out->comm_bytes = 0;
+            out->comm_messages = 0;
+        }
     }
+    mach_free(mach);
     scene_free(s);
-    return TRUE;
+    return ok;
 }
 
 const WlOps wl_dpscan_ops = {

@@ -8,7 +8,7 @@
  */
 #include "sim/workload/dpscan/ortega93.h"
 #include "sim/scene/scene_cfg.h"
-#include "sim/workload/dpscan/dp_frame.h"
+#include "sim/workload/dpscan/dp_exec.h"
 #include "sim/workload/dpscan/dp_model.h"
 #include <stdio.h>
 
@@ -16,6 +16,7 @@
 #define MODELS_DIR "models"
 
 typedef struct {
+    const RpContext *ctx;
     const CfgNode *root;
     char *dir;        /* directory of the sweep file */
     GPtrArray *rows;  /* RpRow * */
@@ -46,13 +47,29 @@ static void partition_name(uint64_t p, char *buf, size_t n)
         g_snprintf(buf, n, "%" G_GUINT64_FORMAT, p);
 }
 
-static void cell(OrRun *r, const char *table, const WlDpGeom *g,
-                 WlDpMachine *m, uint64_t procs)
+/* One frame on a fresh engine and machine at the pass's fidelity. */
+static gboolean run_cell(OrRun *r, const char *model, const WlDpGeom *g,
+                         const WlDpMachine *m, WlDpFrame *f, GError **err)
 {
     WlDpAlgo a = wl_dp_algo_defaults();
+    SimEngine *eng = sim_engine_new(1);
+    const char *fid = r->ctx && r->ctx->fidelity ? r->ctx->fidelity
+                                                 : "analytic";
+    MachMachine *mach = wl_dp_exec_machine(eng, model, m, fid, err);
+    gboolean ok = mach && wl_dp_exec_frame(mach, m, g, &a, f, err);
+    mach_free(mach);
+    sim_engine_free(eng);
+    return ok;
+}
+
+static gboolean cell(OrRun *r, const char *table, const char *model,
+                     const WlDpGeom *g, WlDpMachine *m, uint64_t procs,
+                     GError **err)
+{
     WlDpFrame f;
     m->procs = procs;
-    wl_dp_frame_run(g, m, &a, &f);
+    if (!run_cell(r, model, g, m, &f, err))
+        return FALSE;
     char part[32], row[64];
     partition_name(procs, part, sizeof part);
     g_snprintf(row, sizeof row, "%s/%dx%d", part, g->width, g->height);
@@ -64,6 +81,7 @@ static void cell(OrRun *r, const char *table, const WlDpGeom *g,
         fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table,
                 row, f.coef.op_slices, f.coef.steps, f.coef.scan_slices,
                 f.coef.sends, f.coef.slices, f.coef.vp_slices);
+    return TRUE;
 }
 
 /* Costs geometry g on every partition of `table`. */
@@ -91,7 +109,8 @@ static gboolean table_cells(OrRun *r, const char *table, const CfgNode *t,
                       "a processor count > 0");
             return FALSE;
         }
-        cell(r, table, g, &m, p);
+        if (!cell(r, table, mname, g, &m, p, err))
+            return FALSE;
     }
     return TRUE;
 }
@@ -144,11 +163,10 @@ static gboolean scene_cells(OrRun *r, const char *key, GError **err)
 static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
                              GError **err)
 {
-    (void)ctx;
     CfgNode *root = cfg_load_file(ORTEGA93_CONFIG, err);
     if (!root)
         return FALSE;
-    OrRun r = {.root = root, .dir = g_path_get_dirname(ORTEGA93_CONFIG),
+    OrRun r = {.ctx = ctx, .root = root, .dir = g_path_get_dirname(ORTEGA93_CONFIG),
                .rows = rows};
     const char *coef = g_getenv("PGSIM_DP_COEF");
     if (coef)
