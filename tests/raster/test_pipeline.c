@@ -281,6 +281,44 @@ static void test_nested_transforms(void **state)
     scene_mesh_free(m);
 }
 
+/* Flat shading: one colour per polygon, ambient + diffuse |n.l| from its
+ * face normal; Gouraud: per-vertex colours from the vertex normals,
+ * interpolated across the polygon. */
+static void test_shading(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    scene_mesh_add_vertex(m, vec3(-0.9, -0.9, 0));
+    scene_mesh_add_vertex(m, vec3(0.9, -0.9, 0));
+    scene_mesh_add_vertex(m, vec3(-0.9, 0.9, 0));
+    scene_mesh_add_tri(m, 0, 1, 2, scene_color(1, 1, 1), 0);
+    /* vertex 0 faces the light, vertex 1 is tilted 60 degrees off it,
+     * vertex 2 90 degrees */
+    Vec3 n[3] = {vec3(0, 0, 1), vec3(sin(G_PI / 3), 0, cos(G_PI / 3)),
+                 vec3(0, 1, 0)};
+    g_array_append_vals(m->normals, n, 3);
+    RastView v = rast_view_make(mat4_identity(), 40, 40); /* light +z */
+    v.shading = RAST_SHADE_FLAT;
+    RastImage *flat = render(&v, m, mat4_identity());
+    v.shading = RAST_SHADE_GOURAUD;
+    RastImage *gour = render(&v, m, mat4_identity());
+    /* screen y points down: vertex 0 is bottom-left, 1 bottom-right,
+     * 2 top-left */
+    uint32_t f0 = rast_image_get(flat, 2, 37), f1 = rast_image_get(flat, 35, 37);
+    assert_int_equal(f0 & 0xff, 255); /* 0.25 + 0.75 |(0,0,1).l| */
+    assert_int_equal(f1, f0);
+    uint32_t g0 = rast_image_get(gour, 2, 37) & 0xff;
+    uint32_t g1 = rast_image_get(gour, 35, 37) & 0xff;
+    uint32_t g2 = rast_image_get(gour, 2, 3) & 0xff;
+    /* near the vertices: 1, 0.25 + 0.75 cos 60 = 0.625, 0.25 */
+    assert_true(g0 > 240);
+    assert_true(g1 > 150 && g1 < 175);
+    assert_true(g2 > 62 && g2 < 90);
+    rast_image_free(flat);
+    rast_image_free(gour);
+    scene_mesh_free(m);
+}
+
 /* Pixels where some channel differs by more than `tol`. */
 static uint64_t diff_beyond(const RastImage *a, const RastImage *b, int tol)
 {
@@ -442,6 +480,7 @@ int main(void)
         cmocka_unit_test(test_world_at_1e7),
         cmocka_unit_test(test_nested_transforms),
         cmocka_unit_test(test_nonuniform_scale_normals),
+        cmocka_unit_test(test_shading),
         cmocka_unit_test(test_order_independent),
         cmocka_unit_test(test_counters),
     };
