@@ -18,7 +18,7 @@ typedef struct {
     WlDpCoef coef;      /* linear coefficients (SIMD calibration) */
     WlDpCounts counts;  /* iterations, flushes, segments, messages */
     uint64_t steps;     /* data-parallel operations issued */
-    double util;        /* useful element ops / element-op slots */
+    double util;        /* element ops / element-op slots (padding) */
 } WlDpFrame;
 
 /* Costs one frame of geometry g on machine m; fills *out. */

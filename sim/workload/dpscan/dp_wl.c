@@ -54,7 +54,7 @@ static void add_metrics(SimResult *out, const WlDpFrame *f,
     sim_result_set_metric(out, "polygons_per_s",
                           (double)g->n_polys / sim_time_to_s(f->total),
                           "1/s");
-    sim_result_set_metric(out, "utilisation", f->util, "");
+    sim_result_set_metric(out, "steps", (double)f->steps, "");
     sim_result_set_metric(out, "scan_iters", (double)f->counts.scan_iters,
                           "");
     sim_result_set_metric(out, "pixel_iters", (double)f->counts.pixel_iters,

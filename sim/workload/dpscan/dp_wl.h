@@ -10,7 +10,7 @@
  *   scene: {...}              # sim/scene/scene_cfg.h
  *
  * Metrics per run (mean over frames): time per phase (transform_s,
- * scan_s, pixel_s, router_s, display_s), polygons_per_s, utilisation,
+ * scan_s, pixel_s, router_s, display_s), polygons_per_s, steps,
  * scan_iters, pixel_iters, flushes, pixels, collisions, messages and
  * comm bytes.  O(spans + segments) per frame.
  */
