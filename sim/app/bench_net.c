@@ -1,45 +1,237 @@
 /* bench_net.c — `pgsim bench net`: the transports' speed against error.
  *
- * Runs one traffic pattern on one machine's network at each fidelity
- * (packet first: it is the reference) and prints, per fidelity, the
- * simulated completion time, the relative error against packet level,
- * the wall seconds and the speed-up over packet level.  Patterns (all
- * through sim/net/collective.h, so they are what workloads run):
- *   all-to-all  naive personalized all-to-all (every node sends to
- *               0, 1, 2 ... in that order), B bytes per pair;
- *   shift       all-to-all, node i sends to i+1, i+2 ... (mod n);
- *   xor         the contention-free XOR all-to-all schedule;
- *   pairwise    recursive-halving exchange, n*B / 2^(s+1) bytes at step s;
- *   random      n-1 messages of B bytes per node to uniform destinations;
- *   hotspot     the same, but a quarter of them go to node 0.
- * Network parameters come from flags (--bandwidth MB/s, --startup us,
- * --per-hop us); scripts/bench.sh passes the values of models/ipsc2.yaml
- * with their sources.  Random draws use sim/core/rng.h (--seed).
+ * Runs one traffic pattern (sim/net/traffic.h) on one machine model's
+ * network at each fidelity (packet first: it is the reference) and prints,
+ * per fidelity, the simulated completion time, the relative error against
+ * packet level, the wall seconds and the speed-up over packet level.
+ *
+ * The machine is models/<--machine>.yaml built by the machine layer, at
+ * the partition size --nodes (sim/machine/partition.h); --set
+ * machine.KEY=VALUE overrides any model value as in `pgsim run`, and
+ * --bandwidth MB/s, --startup us, --per-hop us are shorthands for
+ * machine.network.bandwidth / startup / per_hop.  A run whose messages
+ * are not all delivered is an error, not a figure.
  * Output is deterministic except for the wall-clock columns.
  */
+#include "sim/app/bench_net.h"
 #include "sim/app/bench.h"
 #include "sim/core/error.h"
-#include "sim/net/collective.h"
+#include "sim/machine/machine.h"
+#include "sim/machine/model.h"
+#include "sim/machine/partition.h"
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+struct BenchNet {
+    BenchNetSpec spec;
+    CfgNode *root;  /* run-config tree: machine section with overrides */
+    guint nodes;
+    char *desc;
+};
+
+/* ---- building ---------------------------------------------------------- */
+
+static gboolean apply_sets(CfgNode *root, const char *const *sets,
+                           GError **err)
+{
+    for (; sets && *sets; sets++) {
+        if (!g_str_has_prefix(*sets, "machine.")) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "bench net: found --set %s, expected --set "
+                        "machine.KEY=VALUE", *sets);
+            return FALSE;
+        }
+        if (!cfg_set_override(root, *sets, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static CfgNode *make_root(const BenchNetSpec *s, char **part, GError **err)
+{
+    CfgNode *root = cfg_load_string("machine: {}\n", "bench net", err);
+    char *model = g_strdup_printf("machine.model=%s", s->machine);
+    char *path = root ? mach_model_path(s->machine, err) : NULL;
+    gboolean ok = path && cfg_set_override(root, model, err) &&
+         apply_sets(root, s->sets, err);
+    if (ok && s->nodes)
+        ok = mach_partition(root, s->nodes, part, err);
+    g_free(model);
+    g_free(path);
+    if (!ok) {
+        cfg_free(root);
+        return NULL;
+    }
+    return root;
+}
+
+static MachMachine *build(const BenchNet *b, SimEngine *eng, NetFidelity f,
+                          GError **err)
+{
+    MachMachine *m = mach_new_from_cfg(eng, cfg_get(b->root, "machine"),
+                                       net_fidelity_name(f), err);
+    if (m && !mach_require_net(m, err)) {
+        mach_free(m);
+        return NULL;
+    }
+    return m;
+}
+
+static const char *switching_name(NetSwitching s)
+{
+    static const char *const w[] = {"circuit", "cut-through",
+                                    "store-and-forward", "ring-slot"};
+    return w[s];
+}
+
+static char *describe(const BenchNet *b, NetNet *net, const char *part)
+{
+    const NetParams *p = net_params(net);
+    GString *s = g_string_new("");
+    char *path = mach_model_path(b->spec.machine, NULL);
+    g_string_append_printf(s, "machine %s (%s): %s of %u nodes (%s)\n",
+                           b->spec.machine, path, net_topo(net)->ops->name,
+                           net_nodes(net), part ? part : "model size");
+    g_string_append_printf(s, "network: %s switching, %.4g MB/s per channel "
+                           "x %u, start-up %.4g us", switching_name(
+                               p->switching), p->bandwidth / 1e6,
+                           p->channels, sim_time_to_s(p->startup) * 1e6);
+    if (p->startup_long)
+        g_string_append_printf(s, " (%.4g us above %" G_GUINT64_FORMAT
+                               " B)", sim_time_to_s(p->startup_long) * 1e6,
+                               p->long_threshold);
+    g_string_append_printf(s, ", %.4g us per hop",
+                           sim_time_to_s(p->per_hop) * 1e6);
+    g_free(path);
+    return g_string_free(s, FALSE);
+}
+
+/* Builds the machine once: checks the model, the partition and the
+ * pattern's fit, and writes the description. */
+static gboolean probe(BenchNet *b, const char *part, GError **err)
+{
+    SimEngine *eng = sim_engine_new(b->spec.seed);
+    MachMachine *m = build(b, eng, NET_ANALYTIC, err);
+    gboolean ok = m != NULL;
+    if (ok) {
+        b->nodes = net_nodes(mach_net(m));
+        b->desc = describe(b, mach_net(m), part);
+        ok = net_traffic_check(b->spec.pattern, b->nodes, err);
+    }
+    mach_free(m);
+    sim_engine_free(eng);
+    return ok;
+}
+
+BenchNet *bench_net_new(const BenchNetSpec *spec, GError **err)
+{
+    BenchNet *b = g_new0(BenchNet, 1);
+    char *part = NULL;
+    b->spec = *spec;
+    b->root = make_root(spec, &part, err);
+    gboolean ok = b->root && probe(b, part, err);
+    g_free(part);
+    if (!ok) {
+        char *n = spec->nodes ? g_strdup_printf(" --nodes %u", spec->nodes)
+                              : g_strdup("");
+        g_prefix_error(err, "bench net --machine %s%s: ", spec->machine, n);
+        g_free(n);
+        bench_net_free(b);
+        return NULL;
+    }
+    return b;
+}
+
+void bench_net_free(BenchNet *b)
+{
+    if (!b)
+        return;
+    cfg_free(b->root);
+    g_free(b->desc);
+    g_free(b);
+}
+
+guint bench_net_nodes(const BenchNet *b) { return b->nodes; }
+const char *bench_net_describe(const BenchNet *b) { return b->desc; }
+
+/* ---- running ----------------------------------------------------------- */
+
+static void on_done(NetNet *net, void *ctx)
+{
+    (void)net;
+    *(gboolean *)ctx = TRUE;
+}
+
+gboolean bench_net_run(const BenchNet *b, NetFidelity fid, BenchNetRun *out,
+                       GError **err)
+{
+    SimEngine *eng = sim_engine_new(b->spec.seed);
+    MachMachine *m = build(b, eng, fid, err);
+    gboolean done = FALSE, ok = m != NULL;
+    if (ok) {
+        NetNet *net = mach_net(m);
+        gint64 t0 = g_get_monotonic_time();
+        net_traffic_start(net, b->spec.pattern, b->spec.bytes, b->spec.seed,
+                          on_done, &done);
+        ok = sim_engine_run(eng, SIM_TIME_MAX, err);
+        out->wall = (double)(g_get_monotonic_time() - t0) * 1e-6;
+        out->end = sim_now(eng);
+        out->events = sim_engine_events(eng);
+        out->messages = net_total_messages(net);
+        out->delivered = net_delivered(net);
+    }
+    if (ok && (!done || out->delivered != out->messages)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                    "bench net: found %" G_GUINT64_FORMAT " of %"
+                    G_GUINT64_FORMAT " messages delivered at %s level, "
+                    "expected all", out->delivered, out->messages,
+                    net_fidelity_name(fid));
+        ok = FALSE;
+    }
+    mach_free(m);
+    sim_engine_free(eng);
+    return ok;
+}
+
+/* ---- command line ------------------------------------------------------ */
+
 typedef struct {
     char *machine, *pattern, *fidelity;
+    char **sets;
     int nodes;
-    gint64 bytes;
-    gint64 seed;
+    gint64 bytes, seed;
     double bw_mbs, startup_us, per_hop_us;
 } BenchNetOpts;
 
-typedef struct {
-    SimTime end;
-    double wall;
-    uint64_t events, messages;
-} BenchNetRun;
-
-static const char *const patterns[] = {"all-to-all", "shift", "xor",
-                                       "pairwise", "random", "hotspot",
-                                       NULL};
+static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
+                           GError **err)
+{
+    GOptionEntry entries[] = {
+        {"machine", 0, 0, G_OPTION_ARG_STRING, &o->machine,
+         "model name: models/NAME.yaml (default ipsc2)", "NAME"},
+        {"nodes", 0, 0, G_OPTION_ARG_INT, &o->nodes,
+         "partition size (default: the model's)", "N"},
+        {"pattern", 0, 0, G_OPTION_ARG_STRING, &o->pattern,
+         "all-to-all|shift|xor|pairwise|random|hotspot", "P"},
+        {"bytes", 0, 0, G_OPTION_ARG_INT64, &o->bytes, "bytes per message",
+         "B"},
+        {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o->fidelity,
+         "all|analytic|flow|packet", "F"},
+        {"seed", 0, 0, G_OPTION_ARG_INT64, &o->seed, "random seed", "S"},
+        {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o->sets,
+         "override a model value (repeatable)", "machine.KEY=VALUE"},
+        {"bandwidth", 0, 0, G_OPTION_ARG_DOUBLE, &o->bw_mbs,
+         "override network.bandwidth, MB/s", "MBS"},
+        {"startup", 0, 0, G_OPTION_ARG_DOUBLE, &o->startup_us,
+         "override network.startup, us", "US"},
+        {"per-hop", 0, 0, G_OPTION_ARG_DOUBLE, &o->per_hop_us,
+         "override network.per_hop, us", "US"},
+        {NULL, 0, 0, 0, NULL, NULL, NULL},
+    };
+    return bench_parse_options("net", "- network speed against error",
+                               entries, argc, argv, err);
+}
 
 static gboolean input_error(GError **err, const char *found,
                             const char *expected)
@@ -49,140 +241,40 @@ static gboolean input_error(GError **err, const char *found,
     return FALSE;
 }
 
-static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
+/* The shorthand flags become --set overrides after the user's own. */
+static GPtrArray *all_sets(const BenchNetOpts *o)
+{
+    GPtrArray *a = g_ptr_array_new_with_free_func(g_free);
+    for (char **s = o->sets; s && *s; s++)
+        g_ptr_array_add(a, g_strdup(*s));
+    if (o->bw_mbs > 0.0)
+        g_ptr_array_add(a, g_strdup_printf("machine.network.bandwidth="
+                                           "%.17g MB/s", o->bw_mbs));
+    if (o->startup_us >= 0.0)
+        g_ptr_array_add(a, g_strdup_printf("machine.network.startup="
+                                           "%.17g us", o->startup_us));
+    if (o->per_hop_us >= 0.0)
+        g_ptr_array_add(a, g_strdup_printf("machine.network.per_hop="
+                                           "%.17g us", o->per_hop_us));
+    g_ptr_array_add(a, NULL);
+    return a;
+}
+
+static gboolean check_opts(const BenchNetOpts *o, BenchNetSpec *s,
                            GError **err)
 {
-    GOptionEntry entries[] = {
-        {"machine", 0, 0, G_OPTION_ARG_STRING, &o->machine,
-         "network (ipsc2)", "NAME"},
-        {"nodes", 0, 0, G_OPTION_ARG_INT, &o->nodes, "node count, 2^d", "N"},
-        {"pattern", 0, 0, G_OPTION_ARG_STRING, &o->pattern,
-         "all-to-all|shift|xor|pairwise|random|hotspot", "P"},
-        {"bytes", 0, 0, G_OPTION_ARG_INT64, &o->bytes, "bytes per message",
-         "B"},
-        {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o->fidelity,
-         "all|analytic|flow|packet", "F"},
-        {"seed", 0, 0, G_OPTION_ARG_INT64, &o->seed, "random seed", "S"},
-        {"bandwidth", 0, 0, G_OPTION_ARG_DOUBLE, &o->bw_mbs,
-         "link bandwidth, MB/s", "MBS"},
-        {"startup", 0, 0, G_OPTION_ARG_DOUBLE, &o->startup_us,
-         "message start-up, us", "US"},
-        {"per-hop", 0, 0, G_OPTION_ARG_DOUBLE, &o->per_hop_us,
-         "per-hop set-up, us", "US"},
-        {NULL, 0, 0, 0, NULL, NULL, NULL},
-    };
-    return bench_parse_options("net", "- network speed against error",
-                               entries, argc, argv, err);
-}
-
-static gboolean check_opts(const BenchNetOpts *o, GError **err)
-{
-    if (strcmp(o->machine, "ipsc2") != 0)
-        return input_error(err, o->machine, "--machine ipsc2");
-    if (o->nodes < 2 || (o->nodes & (o->nodes - 1)) || o->nodes > 65536)
-        return input_error(err, "--nodes not a power of two in [2, 65536]",
-                           "--nodes 2^d");
-    if (!g_strv_contains(patterns, o->pattern))
-        return input_error(err, o->pattern, "a --pattern of all-to-all, "
-                                            "shift, xor, pairwise, random, "
-                                            "hotspot");
-    if (o->bytes < 0)
-        return input_error(err, "negative --bytes", "--bytes >= 0");
-    if (!(o->bw_mbs > 0.0) || o->startup_us < 0.0 || o->per_hop_us < 0.0)
-        return input_error(err, "missing or negative network parameters",
-                           "--bandwidth MB/s > 0, --startup us and "
-                           "--per-hop us (models/ipsc2.yaml gives them)");
+    if (!net_traffic_parse(o->pattern, &s->pattern))
+        return input_error(err, o->pattern, net_traffic_words());
+    if (o->nodes < 0 || o->bytes < 0 || o->seed < 0)
+        return input_error(err, "a negative --nodes, --bytes or --seed",
+                           "values >= 0");
+    if (o->bw_mbs < 0.0 || isnan(o->bw_mbs))
+        return input_error(err, "a negative --bandwidth", "MB/s > 0");
+    s->machine = o->machine;
+    s->nodes = (guint)o->nodes;
+    s->bytes = (uint64_t)o->bytes;
+    s->seed = (uint64_t)o->seed;
     return TRUE;
-}
-
-static NetParams ipsc2_params(const BenchNetOpts *o)
-{
-    NetParams p = {0};
-    p.bandwidth = o->bw_mbs * 1e6;
-    p.channels = 1;
-    sim_time_from_s(o->startup_us * 1e-6, &p.startup);
-    sim_time_from_s(o->per_hop_us * 1e-6, &p.per_hop);
-    p.packet_bytes = 1024;
-    p.switching = NET_SW_CIRCUIT;
-    return p;
-}
-
-static void on_done(NetNet *net, void *ctx)
-{
-    *(SimTime *)ctx = sim_now(net_engine(net));
-}
-
-static void launch_lists(NetNet *net, const BenchNetOpts *o, SimRng *rng,
-                         gboolean hot)
-{
-    uint32_t n = (uint32_t)o->nodes, per = n - 1;
-    uint32_t *count = g_new(uint32_t, n), *dst = g_new(uint32_t, n * per);
-    uint64_t *size = g_new(uint64_t, n * per);
-    for (uint32_t i = 0; i < n; i++) {
-        count[i] = per;
-        for (uint32_t k = 0; k < per; k++) {
-            uint32_t d = (uint32_t)sim_rng_below(rng, n - 1);
-            d = d >= i ? d + 1 : d; /* never self */
-            if (hot && i != 0 && sim_rng_below(rng, 4) == 0)
-                d = 0;
-            dst[i * per + k] = d;
-            size[i * per + k] = (uint64_t)o->bytes;
-        }
-    }
-    net_send_lists(net, count, dst, size, NULL, NULL);
-    g_free(count);
-    g_free(dst);
-    g_free(size);
-}
-
-static void launch(NetNet *net, const BenchNetOpts *o, SimTime *end)
-{
-    uint32_t n = (uint32_t)o->nodes;
-    const char *p = o->pattern;
-    if (strcmp(p, "all-to-all") == 0 || strcmp(p, "xor") == 0 ||
-        strcmp(p, "shift") == 0) {
-        uint64_t *b = g_new(uint64_t, (gsize)n * n);
-        for (gsize i = 0; i < (gsize)n * n; i++)
-            b[i] = i / n == i % n ? 0 : (uint64_t)o->bytes;
-        NetA2ASchedule s = p[0] == 'x'   ? NET_A2A_XOR
-                           : p[0] == 's' ? NET_A2A_SHIFT
-                                         : NET_A2A_NAIVE;
-        net_alltoall(net, b, s, on_done, end);
-        g_free(b);
-    } else if (strcmp(p, "pairwise") == 0) {
-        unsigned d = (unsigned)g_bit_storage(n) - 1;
-        uint64_t *b = g_new(uint64_t, (gsize)n * d);
-        for (uint32_t i = 0; i < n; i++)
-            for (unsigned s = 0; s < d; s++)
-                b[i * d + s] = (uint64_t)o->bytes * (n >> (s + 1));
-        net_pairwise_exchange(net, b, on_done, end);
-        g_free(b);
-    } else {
-        SimRng rng;
-        sim_rng_init(&rng, (uint64_t)o->seed, 0);
-        launch_lists(net, o, &rng, p[0] == 'h');
-    }
-}
-
-static BenchNetRun run_one(const BenchNetOpts *o, NetFidelity fid)
-{
-    BenchNetRun r = {0};
-    unsigned d = (unsigned)g_bit_storage((gulong)o->nodes) - 1;
-    NetTopo *t = net_hypercube_new(d);
-    NetParams par = ipsc2_params(o);
-    SimEngine *eng = sim_engine_new((uint64_t)o->seed);
-    NetNet *net = net_new(eng, t, &par, fid);
-    gint64 t0 = g_get_monotonic_time();
-    launch(net, o, &r.end);
-    sim_engine_run(eng, SIM_TIME_MAX, NULL);
-    r.wall = (double)(g_get_monotonic_time() - t0) * 1e-6;
-    r.end = sim_now(eng); /* last delivery, also for send lists */
-    r.events = sim_engine_events(eng);
-    r.messages = net_total_messages(net);
-    net_free(net);
-    sim_engine_free(eng);
-    net_topo_free(t);
-    return r;
 }
 
 static void print_row(NetFidelity f, const BenchNetRun *r,
@@ -196,49 +288,63 @@ static void print_row(NetFidelity f, const BenchNetRun *r,
            r->wall, ref ? ref->wall / wall : 1.0, r->events);
 }
 
-static int run_all(const BenchNetOpts *o)
+static int run_all(const BenchNet *b, const BenchNetOpts *o)
 {
     NetFidelity order[3] = {NET_PACKET, NET_FLOW, NET_ANALYTIC}, only;
     gboolean all = strcmp(o->fidelity, "all") == 0;
+    GError *err = NULL;
     if (!all && !net_fidelity_parse(o->fidelity, &only)) {
-        fprintf(stderr, "pgsim: bench net: found --fidelity %s, expected "
-                        "all, analytic, flow or packet\n", o->fidelity);
-        return 2;
+        input_error(&err, o->fidelity, "--fidelity all, analytic, flow or "
+                                       "packet");
+        return bench_fail(err);
     }
-    BenchNetRun ref = {0}, r;
-    printf("bench net: machine %s, %d nodes, pattern %s, %" G_GINT64_FORMAT
-           " B\n", o->machine, o->nodes, o->pattern, o->bytes);
+    printf("bench net: %s\n", bench_net_describe(b));
+    printf("pattern %s, %" G_GINT64_FORMAT " B, %" G_GUINT64_FORMAT
+           " messages\n", o->pattern, o->bytes,
+           net_traffic_messages(b->spec.pattern, bench_net_nodes(b)));
     printf("%-9s %14s %10s %10s %9s %10s\n", "fidelity", "sim_time_s",
            "rel_err", "wall_s", "speedup", "events");
+    BenchNetRun ref = {0}, r = {0};
     for (int i = 0; i < 3; i++) {
         if (!all && order[i] != only)
             continue;
-        r = run_one(o, order[i]);
+        if (!bench_net_run(b, order[i], &r, &err))
+            return bench_fail(err);
         gboolean is_ref = all && order[i] == NET_PACKET;
         print_row(order[i], &r, all && !is_ref ? &ref : NULL);
         if (is_ref)
             ref = r;
-        if (order[i] == NET_FLOW || !all)
-            printf("# messages %" G_GUINT64_FORMAT "\n", r.messages);
     }
     return 0;
 }
 
 int bench_net_main(int argc, char **argv)
 {
-    BenchNetOpts o = {.nodes = 16, .bytes = 1024, .seed = 1, .bw_mbs = 0,
-                      .startup_us = -1, .per_hop_us = -1};
+    BenchNetOpts o = {.bytes = 1024, .seed = 1, .startup_us = -1,
+                      .per_hop_us = -1};
+    BenchNetSpec s = {0};
     GError *err = NULL;
+    BenchNet *b = NULL;
+    GPtrArray *sets = NULL;
     gboolean ok = parse_opts(&o, &argc, &argv, &err);
     if (ok) {
         o.machine = o.machine ? o.machine : g_strdup("ipsc2");
         o.pattern = o.pattern ? o.pattern : g_strdup("all-to-all");
         o.fidelity = o.fidelity ? o.fidelity : g_strdup("all");
-        ok = check_opts(&o, &err);
+        ok = check_opts(&o, &s, &err);
     }
-    int status = ok ? run_all(&o) : bench_fail(err);
+    if (ok) {
+        sets = all_sets(&o);
+        s.sets = (const char *const *)sets->pdata;
+        b = bench_net_new(&s, &err);
+    }
+    int status = b ? run_all(b, &o) : bench_fail(err);
+    bench_net_free(b);
+    if (sets)
+        g_ptr_array_free(sets, TRUE);
     g_free(o.machine);
     g_free(o.pattern);
     g_free(o.fidelity);
+    g_strfreev(o.sets);
     return status;
 }

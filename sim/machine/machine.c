@@ -2,13 +2,15 @@
  *
  * mach_new_from_cfg(): resolve `model:` (load + deep-merge the section
  * over it, model.h), check the merged tree, then build node kinds (in
- * model order) with their cost tables and one MachProc per processor.
+ * model order) with their cost tables and a page table of processors.
  *
- * Invariants: kinds[k].first + kinds[k].count == kinds[k+1].first; procs
- * has exactly sum(count) entries; every cost table value is a SimTime
- * read from a checked parameter; net is NULL exactly when net_err is set.
- * Cost: O(model size + processors); the network holds no per-link state
- * until messages flow.
+ * Invariants: kinds[k].first + kinds[k].count == kinds[k+1].first; the
+ * processor pages cover sum(count) ids, each page made on first use;
+ * every cost table value is a SimTime read from a checked parameter; net
+ * is NULL exactly when net_err is set.
+ * Cost: O(model size + processors / 64) to build; O(processors) only for
+ * mach_fill_result(); the network holds no per-link state until messages
+ * flow.
  */
 #include "sim/machine/machine.h"
 #include "sim/machine/mnet.h"
@@ -29,7 +31,7 @@ struct MachMachine {
     char *name;
     char *fidelity;
     GArray *kinds;          /* MachKind */
-    MachProc *procs;
+    MachProc **pages;       /* PROC_PAGE processors each, NULL until used */
     guint n_procs;
     const CfgNode *network;
     NetTopo *topo;          /* NULL when the topology is not built yet */
@@ -37,8 +39,12 @@ struct MachMachine {
     GError *net_err;        /* why net is NULL */
 };
 
-/* Upper bound on processors: one MachProc each, so keep it sane. */
+/* Upper bound on processors: one page pointer per PROC_PAGE of them. */
 #define MACH_MAX_PROCS (1u << 24)
+/* Processors are allocated a page at a time, when one is first asked for
+ * (model only what is touched: a 64K-node machine whose processors never
+ * compute holds 1,024 NULL page pointers, not 64K MachProcs). */
+#define PROC_PAGE 64u
 
 /* ---- building ------------------------------------------------------------ */
 
@@ -110,15 +116,38 @@ static gboolean build_kinds(MachMachine *m, GError **err)
     return TRUE;
 }
 
+static guint n_pages(const MachMachine *m)
+{
+    return (m->n_procs + PROC_PAGE - 1) / PROC_PAGE;
+}
+
 static void build_procs(MachMachine *m)
 {
-    m->procs = g_new(MachProc, m->n_procs ? m->n_procs : 1);
-    for (guint k = 0; k < m->kinds->len; k++) {
-        const MachKindInfo *ki = mach_kind_at(m, k);
-        for (guint i = 0; i < ki->count; i++)
-            mach_proc_init(&m->procs[ki->first + i], m, ki->first + i,
-                           (guint16)k);
+    m->pages = g_new0(MachProc *, n_pages(m) ? n_pages(m) : 1);
+}
+
+/* The kind index of processor id. */
+static guint16 kind_of(const MachMachine *m, guint id)
+{
+    guint k = 0;
+    while (id >= mach_kind_at(m, k)->first + mach_kind_at(m, k)->count)
+        k++;
+    return (guint16)k;
+}
+
+/* Processor id, its page made on first use. */
+static MachProc *proc_get(const MachMachine *mc, guint id)
+{
+    MachMachine *m = (MachMachine *)mc;
+    g_assert(id < m->n_procs);
+    MachProc **pg = &m->pages[id / PROC_PAGE];
+    if (!*pg) {
+        guint base = id - id % PROC_PAGE;
+        *pg = g_new0(MachProc, PROC_PAGE);
+        for (guint i = 0; i < PROC_PAGE && base + i < m->n_procs; i++)
+            mach_proc_init(&(*pg)[i], m, base + i, kind_of(m, base + i));
     }
+    return &(*pg)[id % PROC_PAGE];
 }
 
 /* Network endpoints: the processors in id order; for the CM-200 router,
@@ -161,7 +190,8 @@ static gboolean build_net(MachMachine *m, GError **err)
         char *found = g_strdup_printf("topology '%s' (not yet built by the "
                                       "machine layer)", topo);
         cfg_error(&m->net_err, at, found,
-                  "hypercube, ring, fat-tree, cm-router, crossbar or bus");
+                  "hypercube, ring, fat-tree, cm-router, mesh, torus, "
+                  "crossbar or bus");
         g_free(found);
         return TRUE;
     }
@@ -174,11 +204,8 @@ static gboolean build_net(MachMachine *m, GError **err)
     return TRUE;
 }
 
-/* The model tree for a section: a loaded model with the section merged
- * over it, or a copy of the section itself.  *model_file: whose values
- * need provenance. */
-static CfgNode *resolve_tree(const CfgNode *section, char **model_file,
-                             GError **err)
+CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
+                           GError **err)
 {
     const char *model = NULL;
     if (cfg_kind(section) != CFG_MAP) {
@@ -240,7 +267,7 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
 {
     g_assert(eng && section);
     char *model_file = NULL;
-    CfgNode *tree = resolve_tree(section, &model_file, err);
+    CfgNode *tree = mach_section_tree(section, &model_file, err);
     MachMachine *m = tree ? build(eng, tree, model_file, fidelity, err)
                           : NULL;
     g_free(model_file);
@@ -252,7 +279,7 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
 gboolean mach_check_section(const CfgNode *section, GError **err)
 {
     char *model_file = NULL;
-    CfgNode *tree = resolve_tree(section, &model_file, err);
+    CfgNode *tree = mach_section_tree(section, &model_file, err);
     gboolean ok = tree && mach_model_check(tree, model_file, err);
     cfg_free(tree);
     g_free(model_file);
@@ -283,9 +310,13 @@ void mach_free(MachMachine *m)
         net_topo_free(m->topo);
     if (m->net_err)
         g_error_free(m->net_err);
-    for (guint i = 0; i < m->n_procs && m->procs; i++)
-        mach_proc_clear(&m->procs[i]);
-    g_free(m->procs);
+    for (guint pg = 0; m->pages && pg < n_pages(m); pg++) {
+        for (guint i = 0; m->pages[pg] && i < PROC_PAGE &&
+                          pg * PROC_PAGE + i < m->n_procs; i++)
+            mach_proc_clear(&m->pages[pg][i]);
+        g_free(m->pages[pg]);
+    }
+    g_free(m->pages);
     for (guint k = 0; k < m->kinds->len; k++) {
         MachKind *kk = &g_array_index(m->kinds, MachKind, k);
         g_free(kk->name);
@@ -332,15 +363,14 @@ const MachKindInfo *mach_kind(const MachMachine *m, const char *kind)
 
 MachProc *mach_proc_at(MachMachine *m, guint id)
 {
-    g_assert(id < m->n_procs);
-    return &m->procs[id];
+    return proc_get(m, id);
 }
 
 MachProc *mach_proc(MachMachine *m, const char *kind, guint i)
 {
     const MachKind *k = find_kind(m, kind);
     g_assert(k && i < k->info.count);
-    return &m->procs[k->info.first + i];
+    return proc_get(m, k->info.first + i);
 }
 
 /* ---- costs ---------------------------------------------------------------- */
@@ -473,11 +503,12 @@ void mach_fill_result(const MachMachine *m, SimResult *r)
     r->fidelity = g_strdup(m->fidelity);
     sim_result_set_phases(r, m->eng);
     for (guint i = 0; i < m->n_procs; i++) {
-        const MachProc *p = &m->procs[i];
-        char *name = g_strdup_printf("%s%u", mach_proc_kind(p),
-                                     mach_proc_index(p));
-        SimNodeResult *n = sim_result_add_node(r, name, mach_proc_kind(p));
-        copy_busy(&n->busy, &p->busy);
+        const MachProc *pg = m->pages[i / PROC_PAGE];
+        const MachKindInfo *k = mach_kind_at(m, kind_of(m, i));
+        char *name = g_strdup_printf("%s%u", k->name, i - k->first);
+        SimNodeResult *n = sim_result_add_node(r, name, k->name);
+        if (pg) /* never-touched processors were never busy */
+            copy_busy(&n->busy, &pg[i % PROC_PAGE].busy);
         g_free(name);
     }
     if (m->net)

@@ -17,8 +17,10 @@
  * cannot build yet leave mach_net() NULL and mach_require_net() explains.
  * The checked section and typed getters stay available for workloads.
  *
- * Memory: one small MachProc per processor, one hash table of costs per
- * node kind; nothing per link.
+ * Memory: one hash table of costs per node kind; MachProcs are made 64
+ * at a time when one of them is first asked for, so a machine whose
+ * processors are never touched holds one pointer per 64 processors;
+ * nothing per link until messages flow.
  */
 #ifndef PGSIM_MACHINE_MACHINE_H
 #define PGSIM_MACHINE_MACHINE_H
@@ -48,7 +50,13 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
  * marks all of its keys read, so that cfg_check_unused() on the whole
  * config accepts them.  The app calls it before cfg_check_unused(). */
 gboolean mach_check_section(const CfgNode *section, GError **err);
-/* The same from a model name alone (no overrides). */
+/* The model tree of a section, unchecked: the model named by `model:`
+ * with the section deep-merged over it, or a copy of the section itself.
+ * Returns a new tree (cfg_free) and in *model_file (g_free) the file
+ * whose values need provenance; NULL with *err if the model is missing. */
+CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
+                           GError **err);
+/* mach_new_from_cfg() from a model name alone (no overrides). */
 MachMachine *mach_new_from_model(SimEngine *eng, const char *name,
                                  const char *fidelity, GError **err);
 void mach_free(MachMachine *m);

@@ -2,6 +2,8 @@
  *
  * Channel bandwidth, in order of preference: `bandwidth`; else
  * `total_bandwidth` / `channels`; else the first `level_bandwidth`.
+ * Start-up: `startup`, and `startup_long` above `long_threshold` (both or
+ * neither; the iPSC/2's NX protocol).
  * Switching: the `switching` word, else ring slots for a ring and
  * cut-through packets otherwise (circuit switching is never guessed).
  * Topologies: one small builder per word in topo_table.
@@ -88,12 +90,31 @@ static gboolean read_bandwidth(const CfgNode *net, NetParams *out,
     return FALSE;
 }
 
+/* The long-message protocol: both keys or neither. */
+static gboolean read_long(const CfgNode *net, NetParams *out, GError **err)
+{
+    const CfgNode *sl = mach_param_node(net, "startup_long");
+    const CfgNode *th = mach_param_node(net, "long_threshold");
+    if (!mach_param_time(net, "startup_long", FALSE, &out->startup_long,
+                         err) ||
+        !mach_param_size(net, "long_threshold", FALSE, &out->long_threshold,
+                         err))
+        return FALSE;
+    if (!sl == !th)
+        return TRUE;
+    cfg_error(err, sl ? sl : th, sl ? "startup_long without long_threshold"
+                                    : "long_threshold without startup_long",
+              "both (messages above long_threshold pay startup_long)");
+    return FALSE;
+}
+
 gboolean mach_net_params(const CfgNode *net, NetParams *out, GError **err)
 {
     uint64_t channels = 1, packet = 0;
     *out = (NetParams){0};
     if (!mach_param_count(net, "channels", FALSE, &channels, err) ||
         !mach_param_time(net, "startup", FALSE, &out->startup, err) ||
+        !read_long(net, out, err) ||
         !mach_param_time(net, "per_hop", FALSE, &out->per_hop, err) ||
         !mach_param_size(net, "packet_size", FALSE, &packet, err) ||
         !read_switching(net, &out->switching, err) ||
@@ -191,6 +212,53 @@ static NetTopo *cm_new(const CfgNode *net, guint endpoints,
     return net_cm200_new(d, (uint32_t)group, nx, endpoints / nx);
 }
 
+/* Mesh / torus: `extents` (1 to 3 dimensions) whose product is the
+ * processor count. */
+static NetTopo *grid_new(const CfgNode *net, guint endpoints,
+                         const CfgNode *count_at, gboolean wrap, GError **err)
+{
+    GArray *ext = NULL;
+    uint32_t e[3];
+    uint64_t prod = 1;
+    if (!mach_param_count_list(net, "extents", TRUE, &ext, err))
+        return NULL;
+    gboolean ok = ext->len >= 1 && ext->len <= 3;
+    for (guint i = 0; ok && i < ext->len; i++) {
+        uint64_t x = g_array_index(ext, uint64_t, i);
+        ok = x >= 1 && x <= (1u << 24);
+        e[i] = (uint32_t)x;
+        prod *= x;
+    }
+    guint nd = ext->len;
+    g_array_unref(ext);
+    if (!ok) {
+        cfg_error(err, mach_param_node(net, "extents"),
+                  "unusable mesh extents", "1 to 3 extents of 1 .. 2^24");
+        return NULL;
+    }
+    if (prod != endpoints) {
+        char *found = g_strdup_printf("%u processors on a mesh of %"
+                                      G_GUINT64_FORMAT " nodes", endpoints,
+                                      prod);
+        cfg_error(err, count_at, found, "the product of network.extents");
+        g_free(found);
+        return NULL;
+    }
+    return net_mesh_new(nd, e, wrap);
+}
+
+static NetTopo *mesh_new(const CfgNode *net, guint endpoints,
+                         const CfgNode *count_at, GError **err)
+{
+    return grid_new(net, endpoints, count_at, FALSE, err);
+}
+
+static NetTopo *torus_new(const CfgNode *net, guint endpoints,
+                          const CfgNode *count_at, GError **err)
+{
+    return grid_new(net, endpoints, count_at, TRUE, err);
+}
+
 static NetTopo *crossbar_new(const CfgNode *net, guint endpoints,
                              const CfgNode *count_at, GError **err)
 {
@@ -219,6 +287,7 @@ static const struct {
     {"hypercube", hypercube_new}, {"ring", ring_new},
     {"fat-tree", fattree_new},    {"cm-router", cm_new},
     {"crossbar", crossbar_new},   {"bus", bus_new},
+    {"mesh", mesh_new},           {"torus", torus_new},
 };
 
 static MachTopoFn topo_fn(const char *word)
@@ -244,7 +313,8 @@ NetTopo *mach_topo_new(const CfgNode *net, guint endpoints,
     char *found = g_strdup_printf("topology '%s' (not built by the machine "
                                   "layer)", topo ? topo : "");
     cfg_error(err, mach_param_node(net, "topology"), found,
-              "hypercube, ring, fat-tree, cm-router, crossbar or bus");
+              "hypercube, ring, fat-tree, cm-router, mesh, torus, "
+              "crossbar or bus");
     g_free(found);
     return NULL;
 }

@@ -8,9 +8,9 @@
  * Topology words: hypercube (2^d endpoints, optional `dimension` check),
  * ring (stations = processors; `channels` parallel channels), fat-tree
  * (`arity`, per-level `level_bandwidth`), cm-router (lanes = router_nodes
- * x procs_per_router, NEWS grid as square as possible), crossbar, bus.
- * A mesh/torus needs extents the model schema does not carry yet, so
- * mach_topo_supported("mesh") is FALSE.  Cost: O(1).
+ * x procs_per_router, NEWS grid as square as possible), mesh and torus
+ * (`extents`: 1 to 3 counts whose product is the processor count;
+ * dimension-order routing), crossbar, bus.  Cost: O(1).
  */
 #ifndef PGSIM_MACHINE_MNET_H
 #define PGSIM_MACHINE_MNET_H

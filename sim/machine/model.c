@@ -51,6 +51,7 @@ static const MachKeyType net_keys[] = {
     {"channels", MACH_T_COUNT},
     {"arity", MACH_T_COUNT},
     {"dimension", MACH_T_COUNT},
+    {"extents", MACH_T_COUNT_LIST},
     {"procs_per_router", MACH_T_COUNT},
     {"router_nodes", MACH_T_COUNT},
     {"router_link_bandwidth", MACH_T_BANDWIDTH},
@@ -175,6 +176,7 @@ static const char *type_example(MachType t)
     case MACH_T_FREQ: return "a frequency with its unit, e.g. '16 MHz'";
     case MACH_T_SIZE: return "a size with its unit, e.g. '4 MB'";
     case MACH_T_BW_LIST: return "a list of bandwidths, e.g. [20 MB/s, 10 MB/s]";
+    case MACH_T_COUNT_LIST: return "a list of counts, e.g. [8, 8]";
     case MACH_T_COUNT: return "a count, e.g. 16 or 64K";
     default: return "a word, e.g. hypercube";
     }
@@ -194,16 +196,23 @@ static gboolean check_unit(const CfgNode *v, MachType t, GError **err)
     return FALSE;
 }
 
-static gboolean check_bw_list(const CfgNode *v, GError **err)
+/* A list value: a non-empty sequence whose items pass check_unit. */
+static gboolean check_list(const CfgNode *v, MachType t, GError **err)
 {
     if (cfg_kind(v) != CFG_SEQ || cfg_seq_len(v) == 0) {
-        cfg_error(err, v, "a non-list value", type_example(MACH_T_BW_LIST));
+        cfg_error(err, v, "a non-list value", type_example(t));
         return FALSE;
     }
+    MachType item = t == MACH_T_BW_LIST ? MACH_T_BANDWIDTH : MACH_T_COUNT;
     for (guint i = 0; i < cfg_seq_len(v); i++)
-        if (!check_unit(cfg_seq_at(v, i), MACH_T_BANDWIDTH, err))
+        if (!check_unit(cfg_seq_at(v, i), item, err))
             return FALSE;
     return TRUE;
+}
+
+static gboolean is_list(MachType t)
+{
+    return t == MACH_T_BW_LIST || t == MACH_T_COUNT_LIST;
 }
 
 /* Parses the value in (map, key) as type t, discarding the result. */
@@ -225,7 +234,10 @@ static gboolean check_typed(const CfgNode *map, const char *key, MachType t,
     case MACH_T_COUNT:
         return cfg_get_count(map, key, TRUE, 0, UINT64_MAX, &u, err);
     case MACH_T_BW_LIST:
-        ok = mach_param_bw_list(map, key, TRUE, &list, err);
+    case MACH_T_COUNT_LIST:
+        ok = t == MACH_T_BW_LIST
+                 ? mach_param_bw_list(map, key, TRUE, &list, err)
+                 : mach_param_count_list(map, key, TRUE, &list, err);
         if (list)
             g_array_unref(list);
         return ok;
@@ -269,7 +281,7 @@ static gboolean check_param_map(const CfgNode *p, const char *name,
     if (!check_provenance(p, name, err))
         return FALSE;
     (void)cfg_get(p, "note"); /* optional free text */
-    if (t == MACH_T_BW_LIST ? !check_bw_list(v, err) : !check_unit(v, t, err))
+    if (is_list(t) ? !check_list(v, t, err) : !check_unit(v, t, err))
         return FALSE;
     return check_typed(p, "value", t, err);
 }
@@ -289,7 +301,7 @@ static gboolean check_param(const CfgNode *map, const char *key, MachType t,
         g_free(found);
         return FALSE;
     }
-    if (t == MACH_T_BW_LIST ? !check_bw_list(p, err) : !check_unit(p, t, err))
+    if (is_list(t) ? !check_list(p, t, err) : !check_unit(p, t, err))
         return FALSE;
     return check_typed(map, key, t, err);
 }
@@ -594,39 +606,61 @@ gboolean mach_param_size(const CfgNode *map, const char *key,
              : absent(map, key, required, err);
 }
 
-static gboolean parse_bw_at(const CfgNode *v, double *out, GError **err)
+/* One list item of type t (MACH_T_BANDWIDTH: double, MACH_T_COUNT:
+ * uint64_t), parsed where it stands. */
+static gboolean parse_item(const CfgNode *v, MachType t, void *out,
+                           GError **err)
 {
     char *what = g_strdup_printf("%s:%d:%d", cfg_file(v), cfg_line(v),
                                  cfg_col(v));
     const char *s = cfg_scalar(v);
-    gboolean ok = s && cfg_parse_bandwidth(s, what, out, err);
+    gboolean ok = s && (t == MACH_T_BANDWIDTH
+                            ? cfg_parse_bandwidth(s, what, out, err)
+                            : cfg_parse_count(s, what, out, err));
     if (!s)
-        cfg_error(err, v, "a non-scalar list item", "a bandwidth");
+        cfg_error(err, v, "a non-scalar list item",
+                  t == MACH_T_BANDWIDTH ? "a bandwidth" : "a count");
     g_free(what);
     return ok;
 }
 
-gboolean mach_param_bw_list(const CfgNode *map, const char *key,
-                            gboolean required, GArray **out, GError **err)
+/* A list parameter of type t into a new GArray (doubles or uint64_t). */
+static gboolean param_list(const CfgNode *map, const char *key,
+                           gboolean required, MachType t, GArray **out,
+                           GError **err)
 {
     const CfgNode *v = mach_param_node(map, key);
     if (!v)
         return absent(map, key, required, err);
     if (cfg_kind(v) != CFG_SEQ) {
-        cfg_error(err, v, "a non-list value", type_example(MACH_T_BW_LIST));
+        cfg_error(err, v, "a non-list value", type_example(t));
         return FALSE;
     }
-    GArray *a = g_array_new(FALSE, FALSE, sizeof(double));
+    MachType item = t == MACH_T_BW_LIST ? MACH_T_BANDWIDTH : MACH_T_COUNT;
+    GArray *a = g_array_new(FALSE, FALSE, 8);
     for (guint i = 0; i < cfg_seq_len(v); i++) {
-        double d;
-        if (!parse_bw_at(cfg_seq_at(v, i), &d, err)) {
+        union { double d; uint64_t u; } x;
+        if (!parse_item(cfg_seq_at(v, i), item, &x, err)) {
             g_array_unref(a);
             return FALSE;
         }
-        g_array_append_val(a, d);
+        g_array_append_val(a, x);
     }
     *out = a;
     return TRUE;
+}
+
+gboolean mach_param_bw_list(const CfgNode *map, const char *key,
+                            gboolean required, GArray **out, GError **err)
+{
+    return param_list(map, key, required, MACH_T_BW_LIST, out, err);
+}
+
+gboolean mach_param_count_list(const CfgNode *map, const char *key,
+                               gboolean required, GArray **out,
+                               GError **err)
+{
+    return param_list(map, key, required, MACH_T_COUNT_LIST, out, err);
 }
 
 MachProvenance mach_param_provenance(const CfgNode *map, const char *key,

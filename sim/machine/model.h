@@ -37,7 +37,8 @@ typedef enum {
     MACH_T_BANDWIDTH, /* bytes per second */
     MACH_T_FREQ,      /* Hz */
     MACH_T_SIZE,      /* bytes */
-    MACH_T_BW_LIST    /* sequence of bandwidths (per fat-tree level) */
+    MACH_T_BW_LIST,   /* sequence of bandwidths (per fat-tree level) */
+    MACH_T_COUNT_LIST /* sequence of counts (mesh extents) */
 } MachType;
 
 /* Finds models/<name>.yaml: first under ./models, then under each
@@ -97,6 +98,11 @@ gboolean mach_param_size(const CfgNode *map, const char *key,
  * (g_array_unref) or untouched when the optional key is absent. */
 gboolean mach_param_bw_list(const CfgNode *map, const char *key,
                             gboolean required, GArray **out, GError **err);
+/* A list of counts; *out is a new GArray of uint64_t (g_array_unref) or
+ * untouched when the optional key is absent. */
+gboolean mach_param_count_list(const CfgNode *map, const char *key,
+                               gboolean required, GArray **out,
+                               GError **err);
 /* A word value (borrowed), or NULL when absent. */
 const char *mach_param_word(const CfgNode *map, const char *key);
 

@@ -92,7 +92,8 @@ static void circuit_start(NetNet *n, NetMsg *m)
     m->chan = g_new(uint32_t, m->hops);
     m->step = 0;
     net_account(n, (gssize)(m->hops * sizeof(uint32_t)));
-    sim_schedule_in(net_eng(n), p->startup + p->per_hop, circuit_try, n, m);
+    sim_schedule_in(net_eng(n), net_startup(p, m->bytes) + p->per_hop,
+                    circuit_try, n, m);
 }
 
 const NetTransportOps net_circuit_transport = {

@@ -10,6 +10,7 @@
  * net_msg_deliver() at arrival.
  *
  * Analytic time: startup + hops * per_hop + bytes / min channel bandwidth
+ * (startup: NetParams.startup_long for messages above long_threshold)
  * on the path (the classical linear model, e.g. Hockney, Parallel
  * Computing 20, 1994).  Cost: O(hops) per send, O(1) per delivery;
  * memory O(links touched + messages in flight).
@@ -127,14 +128,14 @@ static guint route(const NetNet *n, uint32_t src, uint32_t dst)
     return n->topo->ops->route(n->topo->state, src, dst, n->route);
 }
 
-static SimTime latency(const NetParams *p, guint hops)
+static SimTime latency(const NetParams *p, guint hops, uint64_t bytes)
 {
-    return p->startup + (SimTime)hops * p->per_hop;
+    return net_startup(p, bytes) + (SimTime)hops * p->per_hop;
 }
 
 SimTime net_msg_latency(const NetNet *n, const NetMsg *m)
 {
-    return latency(&n->par, m->hops);
+    return latency(&n->par, m->hops, m->bytes);
 }
 
 SimTime net_ideal_time(const NetNet *n, uint32_t src, uint32_t dst,
@@ -147,7 +148,7 @@ SimTime net_ideal_time(const NetNet *n, uint32_t src, uint32_t dst,
                                          &n->par);
         bw = i == 0 || b < bw ? b : bw;
     }
-    SimTime t = latency(&n->par, h);
+    SimTime t = latency(&n->par, h, bytes);
     if (h > 0 && bytes > 0)
         t += sim_time_for_bytes((double)bytes, bw);
     return t;
@@ -216,7 +217,7 @@ static void analytic_arrive(SimEngine *eng, void *ctx, void *arg)
 
 static void analytic_start(NetNet *n, NetMsg *m)
 {
-    SimTime t = latency(&n->par, m->hops);
+    SimTime t = latency(&n->par, m->hops, m->bytes);
     if (m->hops > 0 && m->bytes > 0)
         t += sim_time_for_bytes((double)m->bytes, m->bw);
     sim_schedule_in(n->eng, t, analytic_arrive, n, m);

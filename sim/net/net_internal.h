@@ -74,7 +74,7 @@ const NetParams *net_par(NetNet *net);
 void **net_tp_slot(NetNet *net);
 /* Delivers m now: callback, trace, frees m. */
 void net_msg_deliver(NetNet *net, NetMsg *m);
-/* Latency part of the ideal time: startup + hops * per_hop. */
+/* Latency part of the ideal time: startup (net_startup) + hops * per_hop. */
 SimTime net_msg_latency(const NetNet *net, const NetMsg *m);
 /* Adds n bytes to the net's memory accounting (negative to release). */
 void net_account(NetNet *net, gssize n);

@@ -68,7 +68,7 @@ static void packet_start(NetNet *n, NetMsg *m)
     const NetParams *par = net_par(n);
     uint64_t pb = par->packet_bytes;
     uint64_t np = m->bytes ? (m->bytes + pb - 1) / pb : 1;
-    SimTime at = par->startup + par->per_hop;
+    SimTime at = net_startup(par, m->bytes) + par->per_hop;
     m->step = (guint)np;
     for (uint64_t i = 0; i < np; i++) {
         NetPkt *p = g_new0(NetPkt, 1);

@@ -59,6 +59,11 @@ typedef struct {
      * CM-200: level_bw[0] router cube links, level_bw[1] NEWS links. */
     double level_bw[NET_MAX_LEVELS];
     uint64_t startup;      /* ps, per-message software start-up */
+    /* Long-message protocol (iPSC/2 NX: request/acknowledge above a size,
+     * Bomans & Roose 1989): a message of more than long_threshold bytes
+     * pays startup_long instead of startup; startup_long 0 = none. */
+    uint64_t startup_long;   /* ps */
+    uint64_t long_threshold; /* bytes */
     uint64_t per_hop;      /* ps, per router / station traversed */
     uint32_t packet_bytes; /* packet payload for packet transports */
     NetSwitching switching;
@@ -115,6 +120,13 @@ NetTopo *net_mesh_new(unsigned ndims, const uint32_t *extent, gboolean wrap);
 NetTopo *net_crossbar_new(uint32_t nodes);
 NetTopo *net_bus_new(uint32_t nodes);
 void net_topo_free(NetTopo *t);
+
+/* The start-up a message of `bytes` pays under p. */
+static inline uint64_t net_startup(const NetParams *p, uint64_t bytes)
+{
+    return p->startup_long && bytes > p->long_threshold ? p->startup_long
+                                                        : p->startup;
+}
 
 /* Convenience wrappers over the ops. */
 static inline uint32_t net_topo_nodes(const NetTopo *t)

@@ -338,24 +338,36 @@ static void test_network_from_model(void **state)
     assert_int_equal(p->startup, 350 * SIM_US);
     assert_int_equal(p->per_hop, 10 * SIM_US);
     assert_int_equal(p->switching, NET_SW_CIRCUIT);
-    SimTime at = 0;
+    /* The NX long-message protocol comes from the model: a message above
+     * long_threshold pays startup_long, one of exactly long_threshold
+     * bytes the short start-up (disjoint paths: 0->1->3, 5->4->6). */
+    SimTime slong = 0;
+    uint64_t th = 0;
+    assert_true(mach_net_time(m, "startup_long", &slong));
+    assert_true(mach_net_size(m, "long_threshold", &th));
+    assert_int_equal(p->startup_long, slong);
+    assert_int_equal(p->long_threshold, th);
+    assert_true(slong > p->startup && th < 1000);
+    SimTime at = 0, at_short = 0;
     net_send(net, 0, 3, 1000, NULL, arrived, &at);
+    net_send(net, 5, 6, th, NULL, arrived, &at_short);
     assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
-    SimTime want = 350 * SIM_US + 2 * 10 * SIM_US +
-                   sim_time_for_bytes(1000, 2.8e6);
+    SimTime want = slong + 2 * 10 * SIM_US + sim_time_for_bytes(1000, 2.8e6);
     assert_true(at + 1 >= want && at <= want + 1);
+    want = 350 * SIM_US + 2 * 10 * SIM_US + sim_time_for_bytes(th, 2.8e6);
+    assert_true(at_short + 1 >= want && at_short <= want + 1);
     mach_free(m);
     /* A topology the machine layer cannot build says so. */
     GError *err = NULL;
     CfgNode *root = cfg_load_string("machine:\n  model: ipsc2\n"
-                                    "  network: {topology: mesh}\n",
+                                    "  network: {topology: dragonfly}\n",
                                     "run.yaml", &err);
     m = mach_new_from_cfg(eng, cfg_get(root, "machine"), "flow", &err);
     assert_non_null(m);
     assert_null(mach_net(m));
     assert_false(mach_require_net(m, &err));
     assert_true(g_str_has_prefix(err->message, "run.yaml:3:"));
-    assert_non_null(strstr(err->message, "mesh"));
+    assert_non_null(strstr(err->message, "dragonfly"));
     g_error_free(err);
     mach_free(m);
     cfg_free(root);

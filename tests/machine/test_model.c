@@ -107,6 +107,7 @@ static void test_bad_models_rejected(void **state)
     expect_bad("misspelt-provenance.yaml", 6, "without a provenance");
     expect_bad("bad-version.yaml", 2, "found");
     expect_bad("workload-no-provenance.yaml", 11, "without a provenance");
+    expect_bad("extents-unit.yaml", 9, "4 MB");
 }
 
 static void test_models_path_from_env(void **state)

@@ -62,6 +62,41 @@ static void test_lone_message_all_fidelities(void **state)
     net_topo_free(t);
 }
 
+/* The long-message protocol: above long_threshold bytes a message pays
+ * startup_long instead of startup, at every fidelity and switching. */
+static void test_long_message_startup(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(3);
+    NetParams p = params(50 * SIM_US, 7 * SIM_US);
+    p.startup_long = 120 * SIM_US;
+    p.long_threshold = 200;
+    static const uint64_t sizes[] = {0, 100, 200, 201, 1200};
+    for (int sw = NET_SW_CIRCUIT; sw <= NET_SW_RING_SLOTS; sw++) {
+        if (sw == NET_SW_STORE_FORWARD)
+            continue;
+        p.switching = (NetSwitching)sw;
+        for (int f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+            for (guint i = 0; i < G_N_ELEMENTS(sizes); i++) {
+                SimEngine *eng = sim_engine_new(1);
+                NetNet *net = net_new(eng, t, &p, (NetFidelity)f);
+                Log lg = {0};
+                net_send(net, 1, 6, sizes[i], NULL, log_arrival, &lg);
+                assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+                SimTime s = sizes[i] > 200 ? 120 * SIM_US : 50 * SIM_US;
+                /* 1 ^ 6 = 7: three hops */
+                assert_int_equal(lg.at[0], s + 3 * 7 * SIM_US +
+                                               sizes[i] * SIM_US);
+                assert_int_equal(net_ideal_time(net, 1, 6, sizes[i]),
+                                 lg.at[0]);
+                net_free(net);
+                sim_engine_free(eng);
+            }
+        }
+    }
+    net_topo_free(t);
+}
+
 /* Store-and-forward pays the packet time on every hop but the last is
  * pipelined: startup + hops * (per_hop) + (hops - 1 + packets) * tau. */
 static void test_store_and_forward(void **state)
@@ -215,6 +250,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lone_message_all_fidelities),
+        cmocka_unit_test(test_long_message_startup),
         cmocka_unit_test(test_store_and_forward),
         cmocka_unit_test(test_two_flows_share_link),
         cmocka_unit_test(test_flow_incremental),

@@ -1,0 +1,157 @@
+/* test_traffic.c — the traffic patterns are the same traffic at every
+ * fidelity: the same messages, each node sending in the same order, and a
+ * node's next message sent only once its previous one was delivered (at
+ * packet level on the iPSC/2: once its circuit was released).  Only the
+ * times differ.  Messages are observed through the trace hook.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+
+#include <cmocka.h>
+
+#include "sim/core/trace.h"
+#include "sim/net/traffic.h"
+
+#define N 16
+
+typedef struct {
+    uint32_t dst;
+    uint64_t bytes;
+    SimTime sent, arrived;
+} Sent;
+
+typedef struct {
+    GArray *by_src[N]; /* Sent, in delivery order */
+} Log;
+
+static void on_flow(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t b,
+                    SimTime sent, SimTime arrived)
+{
+    Log *lg = tr->state;
+    Sent s = {dst, b, sent, arrived};
+    g_array_append_val(lg->by_src[src], s);
+}
+
+static const SimTraceOps log_ops = {.flow = on_flow};
+
+static NetParams params(void)
+{
+    NetParams p = {0};
+    p.bandwidth = 2.8e6;
+    p.channels = 1;
+    p.startup = 350 * SIM_US;
+    p.per_hop = 10 * SIM_US;
+    p.switching = NET_SW_CIRCUIT;
+    return p;
+}
+
+static void run(Log *lg, NetTraffic t, NetFidelity f)
+{
+    NetTopo *topo = net_hypercube_new(4);
+    NetParams p = params();
+    SimEngine *eng = sim_engine_new(1);
+    SimTrace tr = {&log_ops, lg};
+    sim_engine_set_trace(eng, &tr);
+    for (int i = 0; i < N; i++)
+        lg->by_src[i] = g_array_new(FALSE, FALSE, sizeof(Sent));
+    NetNet *net = net_new(eng, topo, &p, f);
+    net_traffic_start(net, t, 10240, 5, NULL, NULL);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(net_delivered(net), net_traffic_messages(t, N));
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(topo);
+}
+
+static void log_free(Log *lg)
+{
+    for (int i = 0; i < N; i++)
+        g_array_free(lg->by_src[i], TRUE);
+}
+
+/* Node i's k-th message: equal at every fidelity; sent after the
+ * previous one arrived (one message in flight per node). */
+static void check_same_traffic(NetTraffic t)
+{
+    Log lg[3];
+    for (int f = NET_ANALYTIC; f <= NET_PACKET; f++)
+        run(&lg[f], t, (NetFidelity)f);
+    for (int i = 0; i < N; i++) {
+        GArray *ref = lg[NET_PACKET].by_src[i];
+        for (int f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+            GArray *a = lg[f].by_src[i];
+            assert_int_equal(a->len, ref->len);
+            for (guint k = 0; k < a->len; k++) {
+                Sent *s = &g_array_index(a, Sent, k);
+                assert_int_equal(s->dst, g_array_index(ref, Sent, k).dst);
+                assert_int_equal(s->bytes,
+                                 g_array_index(ref, Sent, k).bytes);
+                if (k > 0)
+                    assert_true(s->sent >=
+                                g_array_index(a, Sent, k - 1).arrived);
+            }
+        }
+    }
+    for (int f = NET_ANALYTIC; f <= NET_PACKET; f++)
+        log_free(&lg[f]);
+}
+
+static void test_same_traffic_every_pattern(void **state)
+{
+    (void)state;
+    for (int t = NET_TRAFFIC_ALLTOALL; t <= NET_TRAFFIC_HOTSPOT; t++)
+        check_same_traffic((NetTraffic)t);
+}
+
+/* The naive all-to-all: node i sends to 0, 1, 2 ... skipping itself, all
+ * starting at time 0 on node 0; shift starts at i+1. */
+static void test_pattern_orders(void **state)
+{
+    (void)state;
+    Log lg;
+    run(&lg, NET_TRAFFIC_ALLTOALL, NET_PACKET);
+    for (uint32_t i = 0; i < N; i++) {
+        GArray *a = lg.by_src[i];
+        assert_int_equal(a->len, N - 1);
+        for (guint k = 0; k < a->len; k++)
+            assert_int_equal(g_array_index(a, Sent, k).dst,
+                             k < i ? k : k + 1);
+        assert_int_equal(g_array_index(a, Sent, 0).sent, 0);
+    }
+    log_free(&lg);
+    run(&lg, NET_TRAFFIC_SHIFT, NET_FLOW);
+    for (uint32_t i = 0; i < N; i++)
+        for (guint k = 0; k < N - 1; k++)
+            assert_int_equal(g_array_index(lg.by_src[i], Sent, k).dst,
+                             (i + k + 1) % N);
+    log_free(&lg);
+}
+
+static void test_names_and_checks(void **state)
+{
+    (void)state;
+    NetTraffic t;
+    assert_true(net_traffic_parse("hotspot", &t));
+    assert_int_equal(t, NET_TRAFFIC_HOTSPOT);
+    assert_string_equal(net_traffic_name(NET_TRAFFIC_ALLTOALL), "all-to-all");
+    assert_false(net_traffic_parse("all2all", &t));
+    assert_true(net_traffic_check(NET_TRAFFIC_RANDOM, 34, NULL));
+    GError *err = NULL;
+    assert_false(net_traffic_check(NET_TRAFFIC_PAIRWISE, 34, &err));
+    assert_non_null(err);
+    g_error_free(err);
+    assert_false(net_traffic_check(NET_TRAFFIC_SHIFT, 1, NULL));
+    assert_int_equal(net_traffic_messages(NET_TRAFFIC_PAIRWISE, 16), 64);
+    assert_int_equal(net_traffic_messages(NET_TRAFFIC_HOTSPOT, 16), 240);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_same_traffic_every_pattern),
+        cmocka_unit_test(test_pattern_orders),
+        cmocka_unit_test(test_names_and_checks),
+    };
+    return cmocka_run_group_tests_name("net_traffic", tests, NULL, NULL);
+}
