@@ -4,6 +4,7 @@
 #   make test     install missing packages, build, run every cmocka suite
 #   make check    the tests under ASan + UBSan (-fno-sanitize-recover=all)
 #   make bench    benchmarks that print figures (never part of make test)
+#   make golden   rewrite the scenario tests' golden results (review the diff)
 #   make install PREFIX=/usr/local ; make format ; make clean
 
 PREFIX  ?= /usr/local
@@ -31,7 +32,7 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 TESTLIB := $(shell find tests -name '*.c' ! -name 'test_*.c' | LC_ALL=C sort)
 TESTLOBJ := $(TESTLIB:%.c=$(BUILD)/obj/%.o)
 
-.PHONY: all deps run test check bench install format clean
+.PHONY: all deps run test check bench install format clean golden
 all: $(BUILD)/pgsim
 
 deps:
@@ -68,6 +69,10 @@ check: deps
 	@PGSIM_SANITIZE=1 sh scripts/run-tests.sh build-san \
 	  $(TESTBIN:$(BUILD)/%=build-san/%)
 
+# Rewrites tests/data/golden/*.json after a deliberate model change.
+golden: all $(BUILD)/tests/app/test_scenarios
+	PGSIM_UPDATE_GOLDEN=1 ./$(BUILD)/tests/app/test_scenarios
+
 bench: deps
 	@$(MAKE) -s all
 	@sh scripts/bench.sh $(BUILD)
@@ -84,3 +89,4 @@ clean:
 	rm -rf build build-san
 
 -include $(shell find $(BUILD) build-san -name '*.d' 2>/dev/null)
+.SECONDARY:
