@@ -2,6 +2,7 @@
 #include "sim/workload/workload.h"
 #include "sim/workload/dpscan/dp_wl.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
+#include "sim/workload/sortfirst/wl_sortfirst.h"
 #include "sim/workload/tokenring/tokenring.h"
 #include <string.h>
 
@@ -11,6 +12,7 @@ const WlOps *const wl_all[] = {
     &wl_pphigs_ops,
     &wl_dpscan_ops,
     &wl_pixelmerge_ops,
+    &wl_sortfirst_ops,
     &wl_tokenring_ops,
     NULL,
 };

@@ -1,0 +1,306 @@
+/* sf_book.c — min-set and max-set bookkeeping (sf_book.h; seed 000
+ * §3.3.2.1 push communication with fixed masters, §3.3.2.3 arriving
+ * primitives, §3.4.2-§3.4.4 max-set operations, traversal, migration).
+ */
+#include "sim/workload/sortfirst/sf_book.h"
+#include <string.h>
+
+const char *const wl_sf_bookkeeping_names[] = {"minset", "maxset", NULL};
+
+void wl_sf_batch_init(WlSfBatch *bt)
+{
+    memset(bt, 0, sizeof *bt);
+    bt->chunks = g_array_new(FALSE, FALSE, sizeof(guint));
+    bt->insts = g_array_new(FALSE, FALSE, sizeof(guint));
+}
+
+void wl_sf_batch_clear(WlSfBatch *bt)
+{
+    if (bt->chunks)
+        g_array_unref(bt->chunks);
+    if (bt->insts)
+        g_array_unref(bt->insts);
+    memset(bt, 0, sizeof *bt);
+}
+
+static void batch_reset(WlSfBatch *bt, guint src, guint dst,
+                        const WlSfSizes *s)
+{
+    g_array_set_size(bt->chunks, 0);
+    g_array_set_size(bt->insts, 0);
+    bt->src = src;
+    bt->dst = dst;
+    bt->polys = 0;
+    bt->bytes = s->message;
+}
+
+WlSfBook *wl_sf_book_new(const WlSfDb *db, const WlSfRegions *regions,
+                         WlSfBookkeeping bk, const WlSfSizes *sizes)
+{
+    WlSfBook *b = g_new0(WlSfBook, 1);
+    guint nc = wl_sf_n_chunks(db), ni = wl_sf_n_insts(db);
+    b->db = db;
+    b->regions = *regions;
+    b->bk = bk;
+    b->sizes = *sizes;
+    b->need = g_new0(uint64_t, ni + 1);
+    b->held_inst = g_new0(uint64_t, ni + 1);
+    b->master_inst = g_new0(uint64_t, ni + 1);
+    b->held_data = g_new0(uint64_t, nc + 1);
+    b->master_data = g_new0(uint64_t, nc + 1);
+    for (guint c = 0; c < nc; c++) {
+        const WlSfChunk *ch = wl_sf_chunk(db, c);
+        uint64_t m = wl_sf_bit(ch->master);
+        b->held_data[c] = b->master_data[c] = m;
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+            b->held_inst[i] = b->master_inst[i] = m;
+    }
+    return b;
+}
+
+void wl_sf_book_free(WlSfBook *b)
+{
+    if (!b)
+        return;
+    g_free(b->need);
+    g_free(b->held_inst);
+    g_free(b->master_inst);
+    g_free(b->held_data);
+    g_free(b->master_data);
+    g_free(b);
+}
+
+void wl_sf_book_need(WlSfBook *b, Mat4 view_proj)
+{
+    for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
+        const WlSfInst *in = wl_sf_inst(b->db, i);
+        const WlSfChunk *ch = wl_sf_chunk(b->db, in->chunk);
+        b->need[i] = wl_sf_box_regions(&b->regions, ch->box,
+                                       mat4_mul(view_proj, in->matrix));
+    }
+}
+
+/* ---- sending ------------------------------------------------------------ */
+
+static void send_chunk(WlSfBook *b, WlSfBatch *bt, guint c, guint hint,
+                       WlSfBookWork *w)
+{
+    const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+    g_array_append_val(bt->chunks, c);
+    if (b->bk == WL_SF_MINSET)
+        g_array_append_val(bt->insts, hint); /* carried in the header */
+    bt->polys += ch->polys;
+    bt->bytes += b->sizes.chunk + ch->polys * b->sizes.triangle;
+    w->sent_chunks++;
+    w->sent_polys += ch->polys;
+}
+
+static void send_pointer(WlSfBook *b, WlSfBatch *bt, guint i,
+                         WlSfBookWork *w)
+{
+    g_array_append_val(bt->insts, i);
+    bt->bytes += b->sizes.instance;
+    w->sent_insts++;
+}
+
+/* First instance of chunk ch overlapping region q (§3.3.2.3). */
+static guint first_in(const WlSfBook *b, const WlSfChunk *ch, guint q)
+{
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+        if (b->need[i] & wl_sf_bit(q))
+            return i;
+    g_assert_not_reached();
+    return 0;
+}
+
+static void master_minset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
+                          WlSfBookWork *w)
+{
+    const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+    uint64_t uni = 0;
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+        uni |= b->need[i];
+    w->master_boxes += ch->n_inst;
+    uint64_t fresh = uni & ~b->master_data[c] & ~wl_sf_bit(p);
+    for (guint q = 0; fresh; q++, fresh >>= 1)
+        if (fresh & 1)
+            send_chunk(b, &out[q], c, first_in(b, ch, q), w);
+    b->master_data[c] = uni | wl_sf_bit(p);
+}
+
+static void master_maxset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
+                          WlSfBookWork *w)
+{
+    const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+    uint64_t uni = 0, me = wl_sf_bit(p);
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
+        uint64_t fresh = b->need[i] & ~b->master_inst[i] & ~me;
+        uni |= b->need[i];
+        for (guint q = 0; fresh; q++, fresh >>= 1) {
+            if (!(fresh & 1))
+                continue;
+            if (!(b->master_data[c] & wl_sf_bit(q))) {
+                send_chunk(b, &out[q], c, i, w);
+                b->master_data[c] |= wl_sf_bit(q);
+            }
+            send_pointer(b, &out[q], i, w);
+        }
+        b->master_inst[i] = b->need[i] | me;
+    }
+    w->master_boxes += ch->n_inst;
+    b->master_data[c] = uni | me;
+}
+
+static void slave_minset(WlSfBook *b, guint p, guint c, WlSfBookWork *w)
+{
+    const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+    uint64_t any = 0;
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+        any |= b->need[i] & wl_sf_bit(p);
+    w->slave_boxes += ch->n_inst;
+    if (!any) {
+        b->held_data[c] &= ~wl_sf_bit(p);
+        w->deleted_chunks++;
+    }
+}
+
+/* Drops the pointers that left p's region; the copy goes at render. */
+static void slave_maxset(WlSfBook *b, guint p, guint c, WlSfBookWork *w)
+{
+    const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+    uint64_t me = wl_sf_bit(p);
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
+        if (!(b->held_inst[i] & me))
+            continue;
+        w->slave_boxes++;
+        if (!(b->need[i] & me))
+            b->held_inst[i] &= ~me;
+    }
+}
+
+void wl_sf_book_sort(WlSfBook *b, guint p, WlSfBatch *out, WlSfBookWork *w)
+{
+    for (guint q = 0; q < b->regions.procs; q++)
+        batch_reset(&out[q], p, q, &b->sizes);
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        gboolean minset = b->bk == WL_SF_MINSET;
+        if (ch->master == p && minset)
+            master_minset(b, p, c, out, w);
+        else if (ch->master == p)
+            master_maxset(b, p, c, out, w);
+        else if (minset && (b->held_data[c] & wl_sf_bit(p)))
+            slave_minset(b, p, c, w);
+        else if (!minset && (b->held_data[c] & wl_sf_bit(p)))
+            slave_maxset(b, p, c, w);
+    }
+    for (guint q = 0; q < b->regions.procs; q++)
+        if (q != p)
+            w->sent_bytes += out[q].bytes;
+}
+
+/* ---- receiving and rendering --------------------------------------------- */
+
+void wl_sf_book_receive(WlSfBook *b, const WlSfBatch *in, WlSfBookWork *w)
+{
+    uint64_t me = wl_sf_bit(in->dst);
+    for (guint k = 0; k < in->chunks->len; k++) {
+        guint c = g_array_index(in->chunks, guint, k);
+        g_assert(!(b->held_data[c] & me));
+        b->held_data[c] |= me;
+        w->recv_chunks++;
+        w->recv_polys += wl_sf_chunk(b->db, c)->polys;
+    }
+    if (b->bk == WL_SF_MINSET)
+        return;
+    for (guint k = 0; k < in->insts->len; k++) {
+        guint i = g_array_index(in->insts, guint, k);
+        g_assert(b->held_data[wl_sf_inst(b->db, i)->chunk] & me);
+        b->held_inst[i] |= me;
+        w->recv_insts++;
+        w->new_boxes++;
+    }
+}
+
+static gboolean any_pointer(const WlSfBook *b, const WlSfChunk *ch,
+                            uint64_t me)
+{
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+        if (b->held_inst[i] & me)
+            return TRUE;
+    return FALSE;
+}
+
+static void count_held(const WlSfBook *b, guint p, WlSfBookWork *w)
+{
+    uint64_t me = wl_sf_bit(p);
+    w->held_chunks = w->held_polys = w->held_insts = 0;
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        if (!(b->held_data[c] & me))
+            continue;
+        w->held_chunks++;
+        w->held_polys += ch->polys;
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+            w->held_insts += (b->held_inst[i] & me) != 0;
+    }
+}
+
+void wl_sf_book_render_set(WlSfBook *b, guint p, const GArray *fresh,
+                           GArray *render, WlSfBookWork *w)
+{
+    uint64_t me = wl_sf_bit(p);
+    gboolean maxset = b->bk == WL_SF_MAXSET;
+    for (guint k = 0; !maxset && fresh && k < fresh->len; k++)
+        w->new_boxes += wl_sf_chunk(b->db, g_array_index(fresh, guint,
+                                                         k))->n_inst;
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        if (!(b->held_data[c] & me))
+            continue;
+        if (maxset && ch->master != p && !any_pointer(b, ch, me)) {
+            b->held_data[c] &= ~me; /* reference count 0 (§3.4.3) */
+            w->deleted_chunks++;
+            continue;
+        }
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+            if ((b->need[i] & me) && (!maxset || (b->held_inst[i] & me)))
+                g_array_append_val(render, i);
+    }
+    count_held(b, p, w);
+}
+
+uint64_t wl_sf_book_memory(const WlSfBook *b, guint p)
+{
+    uint64_t me = wl_sf_bit(p), bytes = 0;
+    uint64_t vec = (b->regions.procs + 7) / 8;
+    gboolean maxset = b->bk == WL_SF_MAXSET;
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        if (ch->master == p)
+            bytes += vec * (1 + (maxset ? ch->n_inst : 0));
+        if (!(b->held_data[c] & me))
+            continue;
+        bytes += b->sizes.chunk + ch->polys * b->sizes.triangle;
+        for (guint i = ch->inst_first; maxset &&
+                                       i < ch->inst_first + ch->n_inst; i++)
+            bytes += (b->held_inst[i] & me) ? b->sizes.instance : 0;
+    }
+    return bytes;
+}
+
+gboolean wl_sf_book_check(const WlSfBook *b, guint *inst, guint *proc)
+{
+    for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
+        guint c = wl_sf_inst(b->db, i)->chunk;
+        uint64_t miss = b->need[i] & ~b->held_data[c];
+        if (b->bk == WL_SF_MAXSET)
+            miss |= b->need[i] & ~b->held_inst[i];
+        if (miss) {
+            *inst = i;
+            *proc = (guint)__builtin_ctzll(miss);
+            return FALSE;
+        }
+    }
+    return TRUE;
+}

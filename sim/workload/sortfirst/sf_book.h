@@ -1,0 +1,114 @@
+/* sf_book.h — min-set and max-set bookkeeping of migrating chunks
+ * (seed 000 §3.3, §3.4).
+ *
+ * Every processor keeps the whole hierarchy; primitives migrate as
+ * chunks (sf_db.h).  Push communication with fixed masters (§3.3.2.1):
+ *
+ * min-set (§3.3)  a processor stores chunk data (the min-set).  For each
+ *   of its master chunks it transforms the box of every instance and
+ *   bucket-sorts it into regions; the union is the chunk's set of
+ *   regions, compared with the master's bit vector of processors holding
+ *   a copy; the chunk goes to each new slave, with the first instance in
+ *   the slave's region (§3.3.2.3).  For each slave chunk it cull-tests
+ *   every instance against its own region and deletes the chunk when no
+ *   instance falls in it.  A newly received chunk is cull-tested the same
+ *   way when it is rendered.
+ * max-set (§3.4)  the min-set copy plus instance pointers (the max-set
+ *   skeleton): for each master chunk the master holds every instance
+ *   pointer, bucket-sorts each instance and sends an instance pointer
+ *   to each processor newly overlapped by that instance, plus the chunk
+ *   data when that processor holds no copy (§3.4.4).  A slave tests only
+ *   the instances it holds and drops pointers that left its region; its
+ *   copy of the chunk is deleted when no pointer refers to it any more
+ *   (reference count, §3.4.3), after the frame's arrivals.
+ *
+ * State is one bit per processor per chunk and per instance (P <= 64):
+ * `held_*` are the processors' own copies (changed only by the owner:
+ * at its sort, on arrival, at its render), `master_*` the masters' bit
+ * vectors.  Both methods render the same chunk instances: those whose
+ * box overlaps the region (need).  Invariant after the arrivals of a
+ * frame: need[i] bit q => q holds chunk(i) (and, max-set, pointer i).
+ *
+ * Work is counted, not timed: box transforms of master, slave and newly
+ * received chunks (the counts of seed 000 Charts 4 and 5), items sent,
+ * received and deleted.  Cost per frame O(P x chunk instances).
+ */
+#ifndef PGSIM_WORKLOAD_SORTFIRST_SF_BOOK_H
+#define PGSIM_WORKLOAD_SORTFIRST_SF_BOOK_H
+
+#include "sim/workload/sortfirst/sf_db.h"
+#include "sim/workload/sortfirst/sf_regions.h"
+
+typedef enum { WL_SF_MINSET, WL_SF_MAXSET } WlSfBookkeeping;
+
+extern const char *const wl_sf_bookkeeping_names[]; /* minset, maxset */
+
+/* Message sizes in bytes (workload YAML). */
+typedef struct {
+    uint64_t message;   /* per message (header, end-of-sort marker) */
+    uint64_t chunk;     /* per chunk: id, structure, box, first instance */
+    uint64_t triangle;  /* per polygon of a chunk's data */
+    uint64_t instance;  /* per instance pointer (max-set) */
+} WlSfSizes;
+
+/* What one processor sends one other processor in a frame. */
+typedef struct {
+    guint src, dst;
+    GArray *chunks; /* guint: chunk data */
+    GArray *insts;  /* guint: max-set instance pointers; min-set: the
+                       first instance of each chunk in dst's region */
+    uint64_t polys; /* polygons of the chunks' data */
+    uint64_t bytes;
+} WlSfBatch;
+
+/* Work of one processor in one frame. */
+typedef struct {
+    uint64_t master_boxes, slave_boxes, new_boxes; /* box transforms */
+    uint64_t sent_chunks, sent_polys, sent_insts, sent_bytes;
+    uint64_t recv_chunks, recv_polys, recv_insts;
+    uint64_t deleted_chunks;
+    uint64_t held_chunks, held_polys, held_insts; /* after the frame */
+} WlSfBookWork;
+
+typedef struct {
+    const WlSfDb *db; /* borrowed */
+    WlSfRegions regions;
+    WlSfBookkeeping bk;
+    WlSfSizes sizes;
+    uint64_t *need;        /* per instance: regions overlapped (frame) */
+    uint64_t *held_data;   /* per chunk */
+    uint64_t *held_inst;   /* per instance (max-set) */
+    uint64_t *master_data; /* per chunk: master's copy vector */
+    uint64_t *master_inst; /* per instance: master's pointer vector */
+} WlSfBook;
+
+/* Initial distribution: each master holds its chunks (and, max-set, all
+ * their instance pointers); nobody else holds anything. */
+WlSfBook *wl_sf_book_new(const WlSfDb *db, const WlSfRegions *regions,
+                         WlSfBookkeeping bk, const WlSfSizes *sizes);
+void wl_sf_book_free(WlSfBook *b);
+
+/* need[] for a frame's view-projection (what the bucket sorts compute). */
+void wl_sf_book_need(WlSfBook *b, Mat4 view_proj);
+/* Processor p's sort pass: master bucket sort, slave cull tests,
+ * deletions; fills out[q] (an array of P batches, each cleared first)
+ * with what p sends q; work into *w. */
+void wl_sf_book_sort(WlSfBook *b, guint p, WlSfBatch *out, WlSfBookWork *w);
+/* A batch arrives at its destination. */
+void wl_sf_book_receive(WlSfBook *b, const WlSfBatch *in, WlSfBookWork *w);
+/* Processor p after its arrivals: max-set drops unreferenced copies;
+ * appends the instances p renders to `render` (guint) and counts the
+ * cull tests of newly received min-set chunks (`fresh`: chunks received
+ * this frame, may be NULL). */
+void wl_sf_book_render_set(WlSfBook *b, guint p, const GArray *fresh,
+                           GArray *render, WlSfBookWork *w);
+/* Bytes processor p stores: chunk data, pointers, master bit vectors. */
+uint64_t wl_sf_book_memory(const WlSfBook *b, guint p);
+/* TRUE when every instance overlapping a region is held by its
+ * processor (the migration invariant); else names the first miss. */
+gboolean wl_sf_book_check(const WlSfBook *b, guint *inst, guint *proc);
+
+void wl_sf_batch_init(WlSfBatch *bt);
+void wl_sf_batch_clear(WlSfBatch *bt);
+
+#endif

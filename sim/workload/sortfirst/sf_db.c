@@ -1,0 +1,266 @@
+/* sf_db.c — chunks, chunk instances and the flattened network (sf_db.h).
+ *
+ * Seed 000 §3.2 (chunks of a maximum size), §3.3.1 (a bounding volume
+ * per chunk), §3.3.2.1 (fixed mastership), §4.1 (the unsorted and the
+ * sorted chunking strategies).
+ */
+#include "sim/workload/sortfirst/sf_db.h"
+#include <string.h>
+
+const char *const wl_sf_chunking_names[] = {"sorted", "unsorted", NULL};
+
+/* Polygons scene_db_flatten() makes of one primitive element. */
+static uint32_t elem_polys(const SceneElem *e)
+{
+    if (e->nverts < 3)
+        return 0;
+    return e->kind == SCENE_EL_TRISTRIP ? e->nverts - 2 : 1;
+}
+
+/* Per max-set node: where its primitives' polygons start in `flat`. */
+typedef struct {
+    const SceneDb *db;
+    GArray *nodes;       /* SceneMaxNode */
+    guint *node_off;     /* node -> offset into first_poly */
+    uint32_t *first_poly; /* (node, pos) -> first polygon */
+    Mat4 *node_matrix;
+    gboolean *node_seen;
+    uint32_t next_poly;
+    gboolean mixed;      /* a node's primitives had different matrices */
+    guint mixed_sid;
+} Walk;
+
+static void walk_prim(const ScenePrimInst *pi, void *ud)
+{
+    Walk *w = ud;
+    uint32_t n = elem_polys(pi->el);
+    w->first_poly[w->node_off[pi->instance] + pi->pos] = w->next_poly;
+    w->next_poly += n;
+    if (!w->node_seen[pi->instance]) {
+        w->node_seen[pi->instance] = TRUE;
+        w->node_matrix[pi->instance] = pi->matrix;
+    } else if (memcmp(&w->node_matrix[pi->instance], &pi->matrix,
+                      sizeof(Mat4)) != 0 && !w->mixed) {
+        w->mixed = TRUE;
+        w->mixed_sid = pi->sid;
+    }
+}
+
+static void walk_init(Walk *w, const SceneDb *db)
+{
+    memset(w, 0, sizeof *w);
+    w->db = db;
+    w->nodes = scene_db_maxset(db);
+    guint n = w->nodes->len, total = 0;
+    w->node_off = g_new(guint, n + 1);
+    for (guint i = 0; i < n; i++) {
+        w->node_off[i] = total;
+        total += scene_db_len(db, g_array_index(w->nodes, SceneMaxNode,
+                                                 i).sid);
+    }
+    w->node_off[n] = total;
+    w->first_poly = g_new0(uint32_t, total ? total : 1);
+    w->node_matrix = g_new(Mat4, n ? n : 1);
+    w->node_seen = g_new0(gboolean, n ? n : 1);
+    scene_db_traverse(db, walk_prim, w);
+}
+
+static void walk_clear(Walk *w)
+{
+    g_array_unref(w->nodes);
+    g_free(w->node_off);
+    g_free(w->first_poly);
+    g_free(w->node_matrix);
+    g_free(w->node_seen);
+}
+
+/* ---- chunking ---------------------------------------------------------- */
+
+typedef struct {
+    guint pos;
+    Vec3 centroid;
+} Prim;
+
+static Vec3 centroid(const SceneElem *e)
+{
+    Vec3 s = vec3(0, 0, 0);
+    for (guint k = 0; k < e->nverts; k++)
+        s = vec3_add(s, e->verts[k]);
+    return vec3_scale(s, 1.0 / e->nverts);
+}
+
+static double axis_of(Vec3 v, int axis)
+{
+    return axis == 0 ? v.x : (axis == 1 ? v.y : v.z);
+}
+
+static gint cmp_prim(gconstpointer a, gconstpointer b, gpointer ud)
+{
+    int axis = *(const int *)ud;
+    const Prim *p = a, *q = b;
+    double u = axis_of(p->centroid, axis), v = axis_of(q->centroid, axis);
+    if (u != v)
+        return u < v ? -1 : 1;
+    return p->pos < q->pos ? -1 : (p->pos > q->pos);
+}
+
+static int longest_axis(const Prim *p, guint n)
+{
+    SceneBox b = scene_box_empty();
+    for (guint i = 0; i < n; i++)
+        b = scene_box_add_point(b, p[i].centroid);
+    Vec3 s = scene_box_size(b);
+    return s.x >= s.y && s.x >= s.z ? 0 : (s.y >= s.z ? 1 : 2);
+}
+
+typedef struct {
+    WlSfDb *d;
+    const SceneDb *db;
+    guint sid;
+} Builder;
+
+static void emit_chunk(Builder *b, const Prim *p, guint n)
+{
+    WlSfChunk c = {.sid = b->sid, .prim_first = b->d->prims->len,
+                   .n_prims = n, .box = scene_box_empty()};
+    for (guint i = 0; i < n; i++) {
+        const SceneElem *e = scene_db_elem(b->db, b->sid, p[i].pos);
+        g_array_append_val(b->d->prims, p[i].pos);
+        c.polys += elem_polys(e);
+        for (guint k = 0; k < e->nverts; k++)
+            c.box = scene_box_add_point(c.box, e->verts[k]);
+    }
+    c.master = b->d->chunks->len % b->d->procs;
+    g_array_append_val(b->d->chunks, c);
+}
+
+/* §4.1 "sorted": median splits along the longest axis of the centroids. */
+static void split_sorted(Builder *b, Prim *p, guint n)
+{
+    guint g = b->d->granularity;
+    if (n <= g) {
+        emit_chunk(b, p, n);
+        return;
+    }
+    int axis = longest_axis(p, n);
+    g_qsort_with_data(p, (gint)n, sizeof *p, cmp_prim, &axis);
+    guint parts = (n + g - 1) / g, left = (parts + 1) / 2 * g;
+    split_sorted(b, p, left);
+    split_sorted(b, p + left, n - left);
+}
+
+static void chunk_struct(Builder *b)
+{
+    GArray *ps = g_array_new(FALSE, FALSE, sizeof(Prim));
+    for (guint pos = 0; pos < scene_db_len(b->db, b->sid); pos++) {
+        const SceneElem *e = scene_db_elem(b->db, b->sid, pos);
+        if (!scene_elem_is_prim(e->kind) || elem_polys(e) == 0)
+            continue;
+        Prim p = {pos, centroid(e)};
+        g_array_append_val(ps, p);
+    }
+    Prim *p = (Prim *)(void *)ps->data;
+    if (b->d->chunking == WL_SF_CHUNK_SORTED) {
+        if (ps->len)
+            split_sorted(b, p, ps->len);
+    } else {
+        for (guint i = 0; i < ps->len; i += b->d->granularity)
+            emit_chunk(b, p + i, MIN(b->d->granularity, ps->len - i));
+    }
+    b->d->min_prims += ps->len;
+    g_array_unref(ps);
+}
+
+/* ---- instances ---------------------------------------------------------- */
+
+static void add_instances(WlSfDb *d, const Walk *w, guint c, GArray *nodes)
+{
+    WlSfChunk *ch = &g_array_index(d->chunks, WlSfChunk, c);
+    ch->inst_first = d->insts->len;
+    ch->n_inst = nodes->len;
+    for (guint k = 0; k < nodes->len; k++) {
+        guint node = g_array_index(nodes, guint, k);
+        WlSfInst in = {c, node, d->inst_polys->len, w->node_matrix[node]};
+        for (guint i = 0; i < ch->n_prims; i++) {
+            guint pos = g_array_index(d->prims, guint, ch->prim_first + i);
+            const SceneElem *e = scene_db_elem(w->db, ch->sid, pos);
+            uint32_t first = w->first_poly[w->node_off[node] + pos];
+            for (uint32_t q = 0; q < elem_polys(e); q++) {
+                uint32_t poly = first + q;
+                g_array_append_val(d->inst_polys, poly);
+            }
+        }
+        g_array_append_val(d->insts, in);
+    }
+}
+
+/* Max-set nodes of each structure, in node order. */
+static GPtrArray *nodes_by_struct(const SceneDb *db, const GArray *nodes)
+{
+    GPtrArray *by = g_ptr_array_new_with_free_func(
+        (GDestroyNotify)g_array_unref);
+    for (guint s = 0; s < scene_db_struct_count(db); s++)
+        g_ptr_array_add(by, g_array_new(FALSE, FALSE, sizeof(guint)));
+    for (guint i = 0; i < nodes->len; i++)
+        g_array_append_val(g_ptr_array_index(by, g_array_index(
+                               nodes, SceneMaxNode, i).sid), i);
+    return by;
+}
+
+static void build(WlSfDb *d, const SceneDb *db, const Walk *w)
+{
+    GPtrArray *by = nodes_by_struct(db, w->nodes);
+    for (guint s = 0; s < scene_db_struct_count(db); s++) {
+        GArray *nodes = g_ptr_array_index(by, s);
+        if (nodes->len == 0)
+            continue; /* not reachable from a posted structure */
+        guint first = d->chunks->len;
+        Builder b = {d, db, s};
+        chunk_struct(&b);
+        for (guint c = first; c < d->chunks->len; c++)
+            add_instances(d, w, c, nodes);
+    }
+    g_ptr_array_unref(by);
+}
+
+WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
+                     WlSfChunking chunking, GError **err)
+{
+    g_assert(procs >= 1 && granularity >= 1);
+    Walk w;
+    walk_init(&w, db);
+    if (w.mixed) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "sortfirst: found a matrix element between the "
+                    "primitives of structure '%s', expected one matrix "
+                    "per structure's primitives (one box per chunk)",
+                    scene_db_struct_name(db, w.mixed_sid));
+        walk_clear(&w);
+        return NULL;
+    }
+    WlSfDb *d = g_new0(WlSfDb, 1);
+    d->procs = procs;
+    d->granularity = granularity;
+    d->chunking = chunking;
+    d->chunks = g_array_new(FALSE, FALSE, sizeof(WlSfChunk));
+    d->insts = g_array_new(FALSE, FALSE, sizeof(WlSfInst));
+    d->prims = g_array_new(FALSE, FALSE, sizeof(guint));
+    d->inst_polys = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    d->flat = scene_db_flatten(db);
+    g_assert(scene_mesh_n_polys(d->flat) == w.next_poly);
+    build(d, db, &w);
+    walk_clear(&w);
+    return d;
+}
+
+void wl_sf_db_free(WlSfDb *d)
+{
+    if (!d)
+        return;
+    g_array_unref(d->chunks);
+    g_array_unref(d->insts);
+    g_array_unref(d->prims);
+    g_array_unref(d->inst_polys);
+    scene_mesh_free(d->flat);
+    g_free(d);
+}

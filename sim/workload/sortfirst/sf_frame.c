@@ -1,0 +1,409 @@
+/* sf_frame.c — sort-first frames on the machine (sf_frame.h; seed 000
+ * §3.3.2 push communication, §4.1 the two passes: a sorting pass over
+ * the chunks' bounding boxes, then the rendering pass).
+ */
+#include "sim/workload/sortfirst/sf_frame.h"
+#include <math.h>
+#include <string.h>
+
+const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
+                                      "pixel_zbuffer", "chunk_pack", NULL};
+
+typedef struct {
+    WlSfRun *run;
+    guint p;
+    MachProc *proc;
+    WlSfBatch *out;   /* P batches: what p sends each processor */
+    WlSfBookWork w;
+    GArray *fresh;    /* chunks received this frame */
+    guint received;
+    gboolean sorted;
+    RastCounters rc;  /* raster work (vertices, primitives ...) */
+    uint64_t spans, pixels, polys;
+    SimTime busy0;    /* busy time at the frame's start */
+} Proc;
+
+struct WlSfRun {
+    MachMachine *m;
+    NetNet *net;
+    SimEngine *eng;
+    const Scene *scene;
+    const WlSfDb *db;
+    WlSfSetup s;
+    WlSfCosts c;
+    WlSfRegions regions;
+    WlSfBook *book;
+    Proc *procs;
+    RastView view;
+    RastZBuffer *zb, *serial;
+    GArray *stats;     /* WlSfFrameStats */
+    GArray *render;    /* scratch: instances */
+    GArray *subset;    /* scratch: polygons */
+    int frame, frames;
+    guint done;
+    SimTime start;
+    unsigned ph_sort, ph_pack, ph_unpack, ph_render;
+};
+
+/* n x unit, saturating (a saturated time overflows the engine's clock). */
+static SimTime mul(SimTime unit, uint64_t n)
+{
+    SimTime t;
+    mach_cost_n(unit, n, &t);
+    return t;
+}
+
+#define add sim_time_add_sat
+
+gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
+                                  GError **err)
+{
+    if (!mach_require_costs(m, "node", wl_sf_cost_ops, err))
+        return FALSE;
+    c->transform_vertex = mach_cost(m, "node", "transform_vertex");
+    c->span_create = mach_cost(m, "node", "span_create");
+    c->pixel_zbuffer = mach_cost(m, "node", "pixel_zbuffer");
+    c->chunk_pack = mach_cost(m, "node", "chunk_pack");
+    return TRUE;
+}
+
+/* ---- region rendering ---------------------------------------------------- */
+
+typedef struct {
+    RastZBuffer *zb;
+    WlSfRect r;
+    uint64_t spans, pixels;
+} RegionSink;
+
+/* Z-buffers the part of a span inside the region, pixel by pixel with the
+ * formulas of rast_zbuffer_span(), so the pixels equal the serial ones. */
+static void region_span(void *ctx, const RastSpan *s, RastCounters *c)
+{
+    RegionSink *k = ctx;
+    if (s->y < k->r.y0 || s->y >= k->r.y1)
+        return;
+    int x0 = MAX(s->x0, k->r.x0), x1 = MIN(s->x1, k->r.x1);
+    if (x0 >= x1)
+        return;
+    RastZBuffer *zb = k->zb;
+    size_t row = (size_t)s->y * (size_t)zb->width;
+    k->spans++;
+    k->pixels += (uint64_t)(x1 - x0);
+    for (int x = x0; x < x1; x++) {
+        size_t i = row + (size_t)x;
+        double z = rast_span_z(s, x);
+        c->zcompares++;
+        if (rast_depth_wins(z, s->prim, zb->depth[i], zb->prim[i])) {
+            zb->depth[i] = z;
+            zb->prim[i] = s->prim;
+            zb->rgba[i] = rast_span_rgba(s, x);
+            c->zwrites++;
+        }
+    }
+}
+
+static RastView frame_view(const Scene *scene, const WlSfSetup *s,
+                           guint frame)
+{
+    SceneCamera cam = scene_camera_at(scene, frame);
+    RastView v = rast_view_for_camera(&cam, s->resolution, s->resolution);
+    v.cull_back = s->cull_back;
+    return v;
+}
+
+void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
+                         const WlSfSetup *s, guint frame, RastZBuffer *zb)
+{
+    RastView v = frame_view(scene, s, frame);
+    RastCounters c = {0};
+    rast_zbuffer_clear(zb);
+    rast_draw_mesh(&v, db->flat, mat4_identity(),
+                   (SceneColor){1, 1, 1}, 0, NULL, 0,
+                   rast_zbuffer_sink(zb), &c);
+}
+
+static void render_region(WlSfRun *r, Proc *pr)
+{
+    g_array_set_size(r->subset, 0);
+    for (guint k = 0; k < r->render->len; k++) {
+        guint i = g_array_index(r->render, guint, k);
+        const uint32_t *polys = wl_sf_inst_polys(r->db, i);
+        guint n = wl_sf_chunk(r->db, wl_sf_inst(r->db, i)->chunk)->polys;
+        g_array_append_vals(r->subset, polys, n);
+    }
+    RegionSink k = {r->zb, wl_sf_region_rect(&r->regions, pr->p), 0, 0};
+    RastSpanSink sink = {region_span, &k};
+    pr->polys = r->subset->len;
+    if (r->subset->len)
+        rast_draw_mesh(&r->view, r->db->flat, mat4_identity(),
+                       (SceneColor){1, 1, 1}, 0,
+                       (const uint32_t *)(void *)r->subset->data,
+                       r->subset->len, sink, &pr->rc);
+    pr->spans = k.spans;
+    pr->pixels = k.pixels;
+}
+
+/* ---- the frame's events --------------------------------------------------- */
+
+static void start_frame(SimEngine *eng, void *ctx, void *arg);
+
+static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
+{
+    return mul(mul(r->c.transform_vertex, 8), boxes);
+}
+
+static void render_done(SimEngine *eng, void *ctx, void *arg);
+
+static void render(WlSfRun *r, Proc *pr)
+{
+    g_array_set_size(r->render, 0);
+    wl_sf_book_render_set(r->book, pr->p, pr->fresh, r->render, &pr->w);
+    render_region(r, pr);
+    SimTime unpack = add(mul(r->c.chunk_pack, pr->w.recv_polys),
+                         box_cost(r, pr->w.new_boxes));
+    SimTime draw = add(mul(r->c.transform_vertex, pr->rc.verts),
+                       add(mul(r->c.span_create, pr->spans),
+                           mul(r->c.pixel_zbuffer, pr->pixels)));
+    mach_proc_compute(pr->proc, unpack, r->ph_unpack, NULL, NULL, NULL);
+    mach_proc_compute(pr->proc, draw, r->ph_render, render_done, r,
+                      GUINT_TO_POINTER(pr->p));
+}
+
+static void maybe_render(WlSfRun *r, Proc *pr)
+{
+    if (pr->sorted && pr->received + 1 == r->s.procs)
+        render(r, pr);
+}
+
+static void arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    WlSfRun *r = ctx;
+    const WlSfBatch *bt = d->payload;
+    Proc *pr = &r->procs[bt->dst];
+    wl_sf_book_receive(r->book, bt, &pr->w);
+    g_array_append_vals(pr->fresh, bt->chunks->data, bt->chunks->len);
+    pr->received++;
+    maybe_render(r, pr);
+}
+
+static void sort_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    WlSfRun *r = ctx;
+    Proc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
+    for (guint q = 0; q < r->s.procs; q++) {
+        if (q == pr->p)
+            continue;
+        WlSfBatch *bt = &pr->out[q];
+        net_send(r->net, mach_proc_id(pr->proc),
+                 mach_proc_id(r->procs[q].proc), bt->bytes, bt, arrive, r);
+    }
+    pr->sorted = TRUE;
+    maybe_render(r, pr);
+}
+
+static void sort(WlSfRun *r, Proc *pr)
+{
+    memset(&pr->w, 0, sizeof pr->w);
+    memset(&pr->rc, 0, sizeof pr->rc);
+    g_array_set_size(pr->fresh, 0);
+    pr->received = 0;
+    pr->sorted = FALSE;
+    pr->busy0 = mach_proc_busy(pr->proc);
+    wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
+    SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes);
+    mach_proc_compute(pr->proc, t, r->ph_sort, NULL, NULL, NULL);
+    mach_proc_compute(pr->proc, mul(r->c.chunk_pack, pr->w.sent_polys),
+                      r->ph_pack, sort_done, r, GUINT_TO_POINTER(pr->p));
+}
+
+static void start_frame(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)arg;
+    WlSfRun *r = ctx;
+    r->start = sim_now(eng);
+    r->done = 0;
+    r->view = frame_view(r->scene, &r->s, (guint)r->frame);
+    rast_zbuffer_clear(r->zb);
+    wl_sf_book_need(r->book, r->view.view_proj);
+    for (guint p = 0; p < r->s.procs; p++)
+        sort(r, &r->procs[p]);
+}
+
+/* ---- the frame's figures -------------------------------------------------- */
+
+static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
+{
+    uint64_t total = 0;
+    st->load_min = UINT64_MAX;
+    for (guint p = 0; p < r->s.procs; p++) {
+        const Proc *pr = &r->procs[p];
+        st->migrated_chunks += pr->w.sent_chunks;
+        st->migrated_polys += pr->w.sent_polys;
+        st->migrated_insts += pr->w.sent_insts;
+        st->migrated_bytes += pr->w.sent_bytes;
+        st->master_boxes += pr->w.master_boxes;
+        st->slave_boxes += pr->w.slave_boxes;
+        st->new_boxes += pr->w.new_boxes;
+        st->deleted_chunks += pr->w.deleted_chunks;
+        st->pixels += pr->pixels;
+        st->load_max = MAX(st->load_max, pr->polys);
+        st->load_min = MIN(st->load_min, pr->polys);
+        st->peak_memory = MAX(st->peak_memory,
+                              wl_sf_book_memory(r->book, p));
+        total += pr->polys;
+    }
+    st->messages = (uint64_t)r->s.procs * (r->s.procs - 1);
+    st->polys_rendered = total;
+    double mean = (double)total / r->s.procs;
+    st->imbalance = mean > 0 ? (st->load_max - mean) / mean : 0;
+}
+
+static void overlap(const WlSfRun *r, WlSfFrameStats *st)
+{
+    for (guint i = 0; i < wl_sf_n_insts(r->db); i++) {
+        uint64_t m = r->book->need[i];
+        if (m) {
+            st->onscreen_insts++;
+            st->region_insts += (uint64_t)__builtin_popcountll(m);
+        }
+    }
+}
+
+static double utilisation(const WlSfRun *r, SimTime frame)
+{
+    SimTime busy = 0;
+    for (guint p = 0; p < r->s.procs; p++)
+        busy += mach_proc_busy(r->procs[p].proc) - r->procs[p].busy0;
+    return frame ? (double)busy / ((double)frame * r->s.procs) : 0;
+}
+
+static gboolean check_frame(WlSfRun *r, WlSfFrameStats *st, GError **err)
+{
+    guint inst, proc;
+    if (!wl_sf_book_check(r->book, &inst, &proc)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                    "sortfirst: frame %d: found chunk instance %u over "
+                    "region %u not held by processor %u, expected every "
+                    "overlapping instance held", r->frame, inst, proc, proc);
+        return FALSE;
+    }
+    if (!r->s.check_image)
+        return TRUE;
+    wl_sf_render_serial(r->scene, r->db, &r->s, (guint)r->frame,
+                        r->serial);
+    size_t n = (size_t)r->s.resolution * (size_t)r->s.resolution;
+    st->image_checked = TRUE;
+    st->image_ok = memcmp(r->zb->rgba, r->serial->rgba, n * 4) == 0 &&
+                   memcmp(r->zb->prim, r->serial->prim, n * 4) == 0;
+    if (!st->image_ok)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                    "sortfirst: frame %d: found an image that differs from "
+                    "the serial render, expected the same pixels",
+                    r->frame);
+    return st->image_ok;
+}
+
+static void render_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)arg;
+    WlSfRun *r = ctx;
+    if (++r->done < r->s.procs)
+        return;
+    WlSfFrameStats st = {.start = r->start, .end = sim_now(eng)};
+    sum_work(r, &st);
+    overlap(r, &st);
+    st.utilisation = utilisation(r, st.end - st.start);
+    GError *e = NULL;
+    gboolean ok = check_frame(r, &st, &e);
+    g_array_append_val(r->stats, st);
+    if (!ok) {
+        sim_engine_fail(eng, e);
+        return;
+    }
+    if (++r->frame < r->frames)
+        sim_schedule_in(eng, 0, start_frame, r, NULL);
+}
+
+/* ---- lifetime ------------------------------------------------------------- */
+
+WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
+                       const WlSfSetup *s, const WlSfCosts *c)
+{
+    WlSfRun *r = g_new0(WlSfRun, 1);
+    r->m = m;
+    r->net = mach_net(m);
+    r->eng = mach_engine(m);
+    r->scene = scene;
+    r->db = db;
+    r->s = *s;
+    r->c = *c;
+    wl_sf_regions_init(&r->regions, s->procs, s->resolution, s->resolution);
+    r->book = wl_sf_book_new(db, &r->regions, s->bk, &s->sizes);
+    r->procs = g_new0(Proc, s->procs);
+    for (guint p = 0; p < s->procs; p++) {
+        Proc *pr = &r->procs[p];
+        pr->run = r;
+        pr->p = p;
+        pr->proc = mach_proc(m, "node", p);
+        pr->out = g_new0(WlSfBatch, s->procs);
+        for (guint q = 0; q < s->procs; q++)
+            wl_sf_batch_init(&pr->out[q]);
+        pr->fresh = g_array_new(FALSE, FALSE, sizeof(guint));
+    }
+    r->zb = rast_zbuffer_new(s->resolution, s->resolution);
+    r->serial = rast_zbuffer_new(s->resolution, s->resolution);
+    r->stats = g_array_new(FALSE, TRUE, sizeof(WlSfFrameStats));
+    r->render = g_array_new(FALSE, FALSE, sizeof(guint));
+    r->subset = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    r->ph_sort = sim_engine_phase(r->eng, "sort");
+    r->ph_pack = sim_engine_phase(r->eng, "pack");
+    r->ph_unpack = sim_engine_phase(r->eng, "unpack");
+    r->ph_render = sim_engine_phase(r->eng, "render");
+    return r;
+}
+
+void wl_sf_run_free(WlSfRun *r)
+{
+    if (!r)
+        return;
+    for (guint p = 0; p < r->s.procs; p++) {
+        for (guint q = 0; q < r->s.procs; q++)
+            wl_sf_batch_clear(&r->procs[p].out[q]);
+        g_free(r->procs[p].out);
+        g_array_unref(r->procs[p].fresh);
+    }
+    g_free(r->procs);
+    wl_sf_book_free(r->book);
+    rast_zbuffer_free(r->zb);
+    rast_zbuffer_free(r->serial);
+    g_array_unref(r->stats);
+    g_array_unref(r->render);
+    g_array_unref(r->subset);
+    g_free(r);
+}
+
+gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until,
+                          GError **err)
+{
+    g_assert(frames >= 1);
+    r->frames = r->frame + frames;
+    sim_schedule_in(r->eng, 0, start_frame, r, NULL); /* failure: in run */
+    return sim_engine_run(r->eng, until, err);
+}
+
+const GArray *wl_sf_run_stats(const WlSfRun *r)
+{
+    return r->stats;
+}
+
+const WlSfBook *wl_sf_run_book(const WlSfRun *r)
+{
+    return r->book;
+}
+
+const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r)
+{
+    return r->stats->len ? r->zb : NULL;
+}

@@ -1,0 +1,97 @@
+/* sf_frame.h — sort-first frames on a simulated machine (seed 000 §1.2,
+ * §3.3.2, §3.4.3-§3.4.4, §4.1).
+ *
+ * A frame, on each of the P processors (machine processors of the kind
+ * `node`, 0 .. P-1, which are also network endpoints):
+ *
+ *   sort     the bucket sort and cull tests of sf_book.h: each box is
+ *            8 corner transforms (8 x transform_vertex);
+ *   pack     chunk data copied into the outgoing buffers (chunk_pack per
+ *            polygon); then one message to every other processor with
+ *            what it needs (real sizes, sf_book.h WlSfSizes); an empty
+ *            message is the end-of-sort marker, so a processor knows
+ *            when all of the frame's chunks have arrived;
+ *   unpack   after its sort and all P - 1 messages: received chunks
+ *            stored (chunk_pack per polygon), new chunks cull-tested;
+ *   render   the chunk instances overlapping its region, through
+ *            sim/raster with the frame's camera, spans clipped to the
+ *            region: transform_vertex per vertex, span_create per span,
+ *            pixel_zbuffer per pixel inside the region.
+ *
+ * The frame ends when every processor has rendered (the frame-buffer
+ * read-out is not modelled); the next frame then starts.  The regions'
+ * pixels land in one frame z-buffer: with `check_image` it is compared
+ * with the serial render of every polygon (same primitive ids), and the
+ * migration invariant (sf_book.h) is checked; a failure stops the run.
+ *
+ * Ownership: machine, scene and database are borrowed and must outlive
+ * the run.  Cost per frame O(P x chunk instances + polygons rendered +
+ * pixels), plus the serial render when checking.
+ */
+#ifndef PGSIM_WORKLOAD_SORTFIRST_SF_FRAME_H
+#define PGSIM_WORKLOAD_SORTFIRST_SF_FRAME_H
+
+#include "sim/machine/machine.h"
+#include "sim/raster/image.h"
+#include "sim/raster/pipeline.h"
+#include "sim/scene/scene.h"
+#include "sim/workload/sortfirst/sf_book.h"
+
+/* Cost operations of the `node` kind (NULL-terminated). */
+extern const char *const wl_sf_cost_ops[];
+
+typedef struct {
+    SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;
+} WlSfCosts;
+
+typedef struct {
+    guint procs;
+    int resolution;           /* N x N screen */
+    WlSfBookkeeping bk;
+    WlSfSizes sizes;
+    gboolean cull_back, check_image;
+} WlSfSetup;
+
+/* One frame's figures (sums over processors unless said). */
+typedef struct {
+    SimTime start, end;
+    uint64_t migrated_chunks, migrated_polys, migrated_insts;
+    uint64_t migrated_bytes, messages;
+    uint64_t master_boxes, slave_boxes, new_boxes, deleted_chunks;
+    uint64_t polys_rendered;      /* polygons transformed for rendering */
+    uint64_t load_max, load_min;  /* polygons rendered per processor */
+    double imbalance;             /* (max - mean) / mean polygons */
+    uint64_t onscreen_insts;      /* chunk instances in some region */
+    uint64_t region_insts;        /* Σ regions over them */
+    uint64_t pixels;              /* pixels z-buffered in the regions */
+    uint64_t peak_memory;         /* largest processor's store, bytes */
+    double utilisation;           /* busy / (P x frame time) */
+    gboolean image_checked, image_ok;
+} WlSfFrameStats;
+
+typedef struct WlSfRun WlSfRun;
+
+/* Checks the `node` kind has the cost operations and fills *c. */
+gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
+                                  GError **err);
+/* A new run (wl_sf_run_free) over processors node0 .. node<P-1>. */
+WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
+                       const WlSfSetup *s, const WlSfCosts *c);
+void wl_sf_run_free(WlSfRun *r);
+/* Runs `frames` frames from the engine's present time (the engine stops
+ * at `until`); FALSE with *err on an engine error, an image differing
+ * from the serial render or a broken migration invariant. */
+gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until,
+                          GError **err);
+/* Per-frame figures (borrowed GArray of WlSfFrameStats). */
+const GArray *wl_sf_run_stats(const WlSfRun *r);
+/* The bookkeeping state (borrowed), for tests. */
+const WlSfBook *wl_sf_run_book(const WlSfRun *r);
+/* The last frame's image (borrowed; NULL before a frame). */
+const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r);
+
+/* Renders the whole network serially for frame f into zb (cleared). */
+void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
+                         const WlSfSetup *s, guint frame, RastZBuffer *zb);
+
+#endif

@@ -1,0 +1,53 @@
+/* sf_regions.h — screen regions and the bucket sort of bounding boxes
+ * (seed 000 §1.2, §3.3.2.1, §4.1).
+ *
+ * Sort-first gives each processor one region of the screen.  The regions
+ * here are a static grid of rows x cols = P rectangles (cols the divisor
+ * of P nearest sqrt(P) from above, so 4 = 2x2, 8 = 2x4, 12 = 3x4,
+ * 20 = 4x5), processor p owning region p in row-major order; pixel
+ * columns are split as x0 = col W / cols (integers), rows likewise.
+ * Adaptive partitioning (seed 000 §1.2, [12]) is not modelled.
+ *
+ * The bucket sort (§4.1): "these bounding boxes are transformed into
+ * screen space, and their bounding rectangles are computed.  These data
+ * are used to perform both view-frustum culling and bucket-sorting of
+ * the primitive chunks."  A box is transformed by its 8 corners into
+ * clip space; it is culled when all corners lie outside one clip plane;
+ * when a corner lies at or behind the eye (w <= 0) its rectangle is the
+ * whole screen; otherwise the rectangle of the projected corners, grown
+ * by one pixel (fixed-point snapping and rounding), is tested against
+ * each region's pixel centres.  The result is a bit mask of regions
+ * (P <= 64), conservative: every region holding a pixel that a primitive
+ * in the box covers is in it.  Cost O(P) per box.
+ */
+#ifndef PGSIM_WORKLOAD_SORTFIRST_SF_REGIONS_H
+#define PGSIM_WORKLOAD_SORTFIRST_SF_REGIONS_H
+
+#include "sim/scene/mesh.h"
+#include <stdint.h>
+
+#define WL_SF_MAX_PROCS 64
+
+typedef struct {
+    guint procs, rows, cols;
+    int width, height;
+} WlSfRegions;
+
+typedef struct {
+    int x0, y0, x1, y1; /* pixels x0 <= x < x1, y0 <= y < y1 */
+} WlSfRect;
+
+/* procs in 1 .. WL_SF_MAX_PROCS; width, height >= procs' grid. */
+void wl_sf_regions_init(WlSfRegions *r, guint procs, int width, int height);
+WlSfRect wl_sf_region_rect(const WlSfRegions *r, guint p);
+/* The regions the box (object coordinates) overlaps under clip_from_obj
+ * (view-projection x model), as a mask of bits 1 << p; 0 when culled. */
+uint64_t wl_sf_box_regions(const WlSfRegions *r, SceneBox box,
+                           Mat4 clip_from_obj);
+
+static inline uint64_t wl_sf_bit(guint p)
+{
+    return (uint64_t)1 << p;
+}
+
+#endif
