@@ -10,7 +10,9 @@
  * machine.KEY=VALUE overrides any model value as in `pgsim run`, and
  * --bandwidth MB/s, --startup us, --per-hop us are shorthands for
  * machine.network.bandwidth / startup / per_hop.  A run whose messages
- * are not all delivered is an error, not a figure.
+ * are not all delivered is an error, not a figure.  --repeat K runs each
+ * fidelity K times and shows the least wall time (simulated results are
+ * identical run to run).
  * Output is deterministic except for the wall-clock columns.
  */
 #include "sim/app/bench_net.h"
@@ -199,7 +201,7 @@ gboolean bench_net_run(const BenchNet *b, NetFidelity fid, BenchNetRun *out,
 typedef struct {
     char *machine, *pattern, *fidelity;
     char **sets;
-    int nodes;
+    int nodes, repeat;
     gint64 bytes, seed;
     double bw_mbs, startup_us, per_hop_us;
 } BenchNetOpts;
@@ -219,6 +221,8 @@ static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
         {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o->fidelity,
          "all|analytic|flow|packet", "F"},
         {"seed", 0, 0, G_OPTION_ARG_INT64, &o->seed, "random seed", "S"},
+        {"repeat", 0, 0, G_OPTION_ARG_INT, &o->repeat,
+         "runs per fidelity; the least wall time is shown (default 1)", "K"},
         {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o->sets,
          "override a model value (repeatable)", "machine.KEY=VALUE"},
         {"bandwidth", 0, 0, G_OPTION_ARG_DOUBLE, &o->bw_mbs,
@@ -265,9 +269,10 @@ static gboolean check_opts(const BenchNetOpts *o, BenchNetSpec *s,
 {
     if (!net_traffic_parse(o->pattern, &s->pattern))
         return input_error(err, o->pattern, net_traffic_words());
-    if (o->nodes < 0 || o->bytes < 0 || o->seed < 0)
-        return input_error(err, "a negative --nodes, --bytes or --seed",
-                           "values >= 0");
+    if (o->nodes < 0 || o->bytes < 0 || o->seed < 0 || o->repeat < 1)
+        return input_error(err, "a negative --nodes, --bytes or --seed, "
+                                "or --repeat < 1",
+                           "values >= 0 and --repeat >= 1");
     if (o->bw_mbs < 0.0 || isnan(o->bw_mbs))
         return input_error(err, "a negative --bandwidth", "MB/s > 0");
     s->machine = o->machine;
@@ -286,6 +291,21 @@ static void print_row(NetFidelity f, const BenchNetRun *r,
     printf("%-9s %14.6f %+10.4f %10.4f %9.2f %10" G_GUINT64_FORMAT "\n",
            net_fidelity_name(f), sim_time_to_s(r->end), ref ? err : 0.0,
            r->wall, ref ? ref->wall / wall : 1.0, r->events);
+}
+
+/* K runs: the same simulated run each time (checked); the least wall. */
+static gboolean run_best(const BenchNet *b, NetFidelity f, int k,
+                         BenchNetRun *best, GError **err)
+{
+    BenchNetRun r;
+    for (int i = 0; i < k; i++) {
+        if (!bench_net_run(b, f, &r, err))
+            return FALSE;
+        g_assert(i == 0 || (r.end == best->end && r.events == best->events));
+        if (i == 0 || r.wall < best->wall)
+            *best = r;
+    }
+    return TRUE;
 }
 
 static int run_all(const BenchNet *b, const BenchNetOpts *o)
@@ -308,7 +328,7 @@ static int run_all(const BenchNet *b, const BenchNetOpts *o)
     for (int i = 0; i < 3; i++) {
         if (!all && order[i] != only)
             continue;
-        if (!bench_net_run(b, order[i], &r, &err))
+        if (!run_best(b, order[i], o->repeat, &r, &err))
             return bench_fail(err);
         gboolean is_ref = all && order[i] == NET_PACKET;
         print_row(order[i], &r, all && !is_ref ? &ref : NULL);
@@ -320,8 +340,8 @@ static int run_all(const BenchNet *b, const BenchNetOpts *o)
 
 int bench_net_main(int argc, char **argv)
 {
-    BenchNetOpts o = {.bytes = 1024, .seed = 1, .startup_us = -1,
-                      .per_hop_us = -1};
+    BenchNetOpts o = {.bytes = 1024, .seed = 1, .repeat = 1,
+                      .startup_us = -1, .per_hop_us = -1};
     BenchNetSpec s = {0};
     GError *err = NULL;
     BenchNet *b = NULL;

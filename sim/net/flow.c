@@ -38,6 +38,7 @@
  * flows have different bounds).
  */
 #include "sim/net/net_internal.h"
+#include <stdlib.h>
 
 struct NetFlow {
     NetNet *net;
@@ -58,12 +59,27 @@ typedef struct {
     NetLink *l;
 } HeapEnt;
 
+/* A growable array of pointers (scratch; the inner loops push inline). */
+typedef struct {
+    void **a;
+    guint n, cap;
+} PtrVec;
+
+static inline void vec_push(PtrVec *v, void *p)
+{
+    if (v->n == v->cap) {
+        v->cap = v->cap ? 2 * v->cap : 64;
+        v->a = g_renew(void *, v->a, v->cap);
+    }
+    v->a[v->n++] = p;
+}
+
 typedef struct {
     uint64_t epoch;
     gboolean pending;  /* a recomputation is scheduled at now */
-    GPtrArray *dirty;  /* NetLink *, may repeat */
-    GPtrArray *clinks; /* component scratch */
-    GPtrArray *cflows;
+    PtrVec dirty;      /* NetLink *, may repeat */
+    PtrVec clinks;     /* component scratch */
+    PtrVec cflows;     /* NetFlow * */
     HeapEnt *lh;       /* link min-heap on share */
     guint lh_n, lh_cap;
     NetFlow **eh;      /* end heap: flows in flight by (end, seq) */
@@ -77,11 +93,7 @@ static FlowNet *flow_net(NetNet *n)
 {
     void **slot = net_tp_slot(n);
     if (!*slot) {
-        FlowNet *fn = g_new0(FlowNet, 1);
-        fn->dirty = g_ptr_array_new();
-        fn->clinks = g_ptr_array_new();
-        fn->cflows = g_ptr_array_new();
-        *slot = fn;
+        *slot = g_new0(FlowNet, 1);
     }
     return *slot;
 }
@@ -95,9 +107,9 @@ static void flow_free_net(NetNet *n)
         g_free(fn->eh[i]->pos);
         g_free(fn->eh[i]);
     }
-    g_ptr_array_free(fn->dirty, TRUE);
-    g_ptr_array_free(fn->clinks, TRUE);
-    g_ptr_array_free(fn->cflows, TRUE);
+    g_free(fn->dirty.a);
+    g_free(fn->clinks.a);
+    g_free(fn->cflows.a);
     g_free(fn->lh);
     g_free(fn->eh);
     g_free(fn);
@@ -200,7 +212,7 @@ static void fix_flow(NetFlow *f, double rate)
     }
 }
 
-static gint by_bound(gconstpointer a, gconstpointer b)
+static int by_bound(const void *a, const void *b)
 {
     const NetFlow *x = *(NetFlow *const *)a, *y = *(NetFlow *const *)b;
     if (x->m->bw != y->m->bw)
@@ -210,13 +222,12 @@ static gint by_bound(gconstpointer a, gconstpointer b)
 
 /* Flows in order of their bound (a flow's path channel bandwidth); with
  * one common bound (the usual case) any order gives the same rates. */
-static void order_by_bound(GPtrArray *flows)
+static void order_by_bound(PtrVec *flows)
 {
-    for (guint i = 1; i < flows->len; i++) {
-        const NetFlow *a = g_ptr_array_index(flows, 0);
-        const NetFlow *b = g_ptr_array_index(flows, i);
-        if (a->m->bw != b->m->bw) {
-            g_ptr_array_sort(flows, by_bound);
+    NetFlow **f = (NetFlow **)flows->a;
+    for (guint i = 1; i < flows->n; i++) {
+        if (f[0]->m->bw != f[i]->m->bw) {
+            qsort(f, flows->n, sizeof *f, by_bound);
             return;
         }
     }
@@ -225,18 +236,19 @@ static void order_by_bound(GPtrArray *flows)
 static void maxmin(FlowNet *fn)
 {
     fn->lh_n = 0;
-    for (guint i = 0; i < fn->clinks->len; i++) {
-        NetLink *l = g_ptr_array_index(fn->clinks, i);
+    for (guint i = 0; i < fn->clinks.n; i++) {
+        NetLink *l = fn->clinks.a[i];
         l->rem = l->bw * l->channels;
         l->unfixed = l->n_flows;
         lh_push(fn, l->rem / l->unfixed, l);
     }
-    order_by_bound(fn->cflows);
-    guint nf = fn->cflows->len;
+    order_by_bound(&fn->cflows);
+    NetFlow **flows = (NetFlow **)fn->cflows.a;
+    guint nf = fn->cflows.n;
     for (guint i = 0; i < nf; i++)
-        ((NetFlow *)g_ptr_array_index(fn->cflows, i))->fixed = FALSE;
+        flows[i]->fixed = FALSE;
     for (guint next = 0; next < nf;) {
-        NetFlow *bf = g_ptr_array_index(fn->cflows, next);
+        NetFlow *bf = flows[next];
         if (bf->fixed) {
             next++;
             continue;
@@ -261,25 +273,25 @@ static void visit_link(FlowNet *fn, NetLink *l)
     if (l->mark == fn->epoch || l->n_flows == 0)
         return;
     l->mark = fn->epoch;
-    g_ptr_array_add(fn->clinks, l);
+    vec_push(&fn->clinks, l);
 }
 
 static void collect_component(FlowNet *fn)
 {
     fn->epoch++;
-    g_ptr_array_set_size(fn->clinks, 0);
-    g_ptr_array_set_size(fn->cflows, 0);
-    for (guint i = 0; i < fn->dirty->len; i++)
-        visit_link(fn, g_ptr_array_index(fn->dirty, i));
-    g_ptr_array_set_size(fn->dirty, 0);
-    for (guint i = 0; i < fn->clinks->len; i++) {
-        NetLink *l = g_ptr_array_index(fn->clinks, i);
+    fn->clinks.n = 0;
+    fn->cflows.n = 0;
+    for (guint i = 0; i < fn->dirty.n; i++)
+        visit_link(fn, fn->dirty.a[i]);
+    fn->dirty.n = 0;
+    for (guint i = 0; i < fn->clinks.n; i++) {
+        NetLink *l = fn->clinks.a[i];
         for (guint j = 0; j < l->n_flows; j++) {
             NetFlow *f = l->flows[j].f;
             if (f->mark == fn->epoch)
                 continue;
             f->mark = fn->epoch;
-            g_ptr_array_add(fn->cflows, f);
+            vec_push(&fn->cflows, f);
             for (guint k = 0; k < f->m->hops; k++)
                 visit_link(fn, f->m->path[k]);
         }
@@ -378,7 +390,7 @@ static void flow_finish(NetNet *n, FlowNet *fn, NetFlow *f)
     NetMsg *m = f->m;
     for (guint i = 0; i < m->hops; i++) {
         link_remove_flow(m->path[i], f, i);
-        g_ptr_array_add(fn->dirty, m->path[i]);
+        vec_push(&fn->dirty, m->path[i]);
     }
     request_recompute(n, fn);
     net_account(n, -(gssize)(sizeof *f + m->hops * sizeof(guint)));
@@ -403,8 +415,8 @@ static void on_timer(SimEngine *eng, void *ctx, void *arg)
 /* Brings the component's flows up to now and remembers their rates. */
 static void advance_flows(FlowNet *fn, SimTime now)
 {
-    for (guint i = 0; i < fn->cflows->len; i++) {
-        NetFlow *f = g_ptr_array_index(fn->cflows, i);
+    for (guint i = 0; i < fn->cflows.n; i++) {
+        NetFlow *f = fn->cflows.a[i];
         f->remaining -= f->rate * (double)(now - f->last) * 1e-12;
         if (f->remaining < 0.0)
             f->remaining = 0.0;
@@ -423,8 +435,8 @@ static void recompute(SimEngine *eng, void *ctx, void *arg)
     collect_component(fn);
     advance_flows(fn, now);
     maxmin(fn);
-    for (guint i = 0; i < fn->cflows->len; i++) {
-        NetFlow *f = g_ptr_array_index(fn->cflows, i);
+    for (guint i = 0; i < fn->cflows.n; i++) {
+        NetFlow *f = fn->cflows.a[i];
         g_assert(f->rate > 0.0);
         if (f->rate == f->prev)
             continue;
@@ -463,7 +475,7 @@ static void flow_begin(SimEngine *eng, void *ctx, void *arg)
     net_account(n, (gssize)(sizeof *f + m->hops * sizeof(guint)));
     for (guint i = 0; i < m->hops; i++) {
         link_add_flow(n, m->path[i], f, i);
-        g_ptr_array_add(fn->dirty, m->path[i]);
+        vec_push(&fn->dirty, m->path[i]);
     }
     request_recompute(n, fn);
 }
