@@ -25,6 +25,7 @@ static const Scenario scenarios[] = {
     {"quickstart", "configs/quickstart.yaml"},
     {"pixelmerge-2pot", "configs/pixelmerge-2pot.yaml"},
     {"pphigs-flock", "configs/pphigs-flock.yaml"},
+    {"sortfirst-vehicle", "configs/sortfirst-vehicle.yaml"},
     {NULL, NULL},
 };
 

@@ -14,6 +14,8 @@
 #include <math.h>
 #include <string.h>
 
+#include <glib/gstdio.h>
+
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/sortfirst/wl_sortfirst.h"
 
@@ -309,6 +311,38 @@ static void test_workload_metrics(void **state)
     sim_result_free(r);
 }
 
+static void test_frame_log(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("sf-XXXXXX", NULL);
+    assert_non_null(dir);
+    char *path = g_build_filename(dir, "frames.csv", NULL);
+    char *ov = g_strdup_printf("workload.frame_log=%s", path);
+    GError *e = NULL;
+    SimResult *r = run_cfg(small, ov, 3, &e);
+    assert_non_null(r);
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    char **lines = g_strsplit(text, "\n", -1);
+    assert_int_equal(g_strv_length(lines), 5); /* header, 3 rows, "" */
+    assert_true(g_str_has_prefix(lines[0], "frame,frame_ms,"));
+    assert_true(g_str_has_prefix(lines[3], "2,"));
+    /* the first frame distributes from the masters: most bytes */
+    char **f0 = g_strsplit(lines[1], ",", -1), **f2 = g_strsplit(lines[3],
+                                                                  ",", -1);
+    assert_true(g_ascii_strtod(f0[5], NULL) > g_ascii_strtod(f2[5], NULL));
+    g_strfreev(f0);
+    g_strfreev(f2);
+    g_strfreev(lines);
+    g_free(text);
+    sim_result_free(r);
+    g_unlink(path);
+    g_rmdir(dir);
+    g_free(ov);
+    g_free(path);
+    g_free(dir);
+}
+
 static void expect_error(const char *override, const char *what)
 {
     GError *e = NULL;
@@ -340,6 +374,7 @@ int main(void)
         cmocka_unit_test(test_check_can_fail),
         cmocka_unit_test(test_minset_equals_maxset),
         cmocka_unit_test(test_workload_metrics),
+        cmocka_unit_test(test_frame_log),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
