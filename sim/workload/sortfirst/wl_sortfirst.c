@@ -12,7 +12,8 @@
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
  *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B}
- *     frame_log: frames.csv  # optional per-frame figures
+ *     frame_log: frames.csv  # optional per-frame figures (default under
+ *                            # `pgsim run --out DIR`: DIR/sortfirst_frames.csv)
  *
  * The scene is the config's `scene:` section and must carry a structure
  * database (the `vehicle` generator: configs/scenes/bronco.yaml); the
@@ -24,6 +25,7 @@
  */
 #include "sim/workload/sortfirst/wl_sortfirst.h"
 #include "sim/scene/scene_cfg.h"
+#include <glib/gstdio.h>
 #include <stdio.h>
 
 static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
@@ -209,6 +211,16 @@ static gboolean write_log(const char *path, const GArray *stats,
     return ok;
 }
 
+/* frame_log, else <out_dir>/sortfirst_frames.csv under --out, else NULL. */
+static char *log_path(const WlContext *ctx, const WlSfParams *p)
+{
+    if (p->frame_log)
+        return g_strdup(p->frame_log);
+    if (!ctx->out_dir || g_mkdir_with_parents(ctx->out_dir, 0755) != 0)
+        return NULL;
+    return g_build_filename(ctx->out_dir, "sortfirst_frames.csv", NULL);
+}
+
 /* ---- running -------------------------------------------------------------- */
 
 static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
@@ -271,8 +283,10 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
         wl_sf_fill_metrics(out, st, db, &p->setup);
         out->elapsed = sim_now(mach_engine(m));
     }
-    if (ok && p->frame_log)
-        ok = write_log(p->frame_log, st, err);
+    char *log = log_path(ctx, p);
+    if (ok && log)
+        ok = write_log(log, st, err);
+    g_free(log);
     wl_sf_run_free(r);
     wl_sf_db_free(db);
     return ok;
