@@ -1,7 +1,7 @@
 #!/bin/sh
 # Developer helper for parallel work in git worktrees: run from a worktree
 # whose branch is fully committed.  Rebases the branch onto main, checks
-# that it builds warnings-clean, and fast-forwards main (in the main
+# that it builds warnings-clean and passes make test, and fast-forwards main (in the main
 # checkout) to it.  Serialised by a lock so concurrent landings queue.
 set -eu
 main_dir=${PGSIM_MAIN:-/work/main}
@@ -13,6 +13,10 @@ flock 9
 git rebase main || { echo "land: resolve the conflict, git rebase --continue, rerun" >&2; exit 1; }
 out=$(make -s -j2 all 2>&1) || { echo "$out" | tail -20; echo "land: build fails" >&2; exit 1; }
 if echo "$out" | grep -q 'warning:'; then echo "$out" | grep warning: | head; echo "land: warnings" >&2; exit 1; fi
+# The rebased tree must pass the suite: another landing may have changed
+# what this branch's tests (or goldens) expect.
+make test > /tmp/pgsim-land-test.log 2>&1 ||
+    { tail -20 /tmp/pgsim-land-test.log; echo "land: make test fails after the rebase" >&2; exit 1; }
 cd "$main_dir"
 git merge --ff-only -q "$br"
 echo "land: main is now $(git rev-parse --short HEAD)"
