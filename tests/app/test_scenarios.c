@@ -26,6 +26,7 @@ static const Scenario scenarios[] = {
     {"pixelmerge-2pot", "configs/pixelmerge-2pot.yaml"},
     {"pphigs-flock", "configs/pphigs-flock.yaml"},
     {"sortfirst-vehicle", "configs/sortfirst-vehicle.yaml"},
+    {"dpscan-cm200", "configs/dpscan-cm200.yaml"},
     {NULL, NULL},
 };
 
