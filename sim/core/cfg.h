@@ -65,6 +65,11 @@ gboolean cfg_get_int(const CfgNode *map, const char *key, gboolean required,
 gboolean cfg_get_double(const CfgNode *map, const char *key,
                         gboolean required, double min, double max,
                         double *out, GError **err);
+/* A key whose value must be a map: *out is it, or NULL when the key is
+ * absent and optional.  `what` describes the map in errors, e.g.
+ * "a map {base, polygon} of sizes". */
+gboolean cfg_get_map(const CfgNode *map, const char *key, gboolean required,
+                     const char *what, const CfgNode **out, GError **err);
 /* One of a NULL-terminated list of words; *out is the index. */
 gboolean cfg_get_enum(const CfgNode *map, const char *key, gboolean required,
                       const char *const *words, int *out, GError **err);

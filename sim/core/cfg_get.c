@@ -87,6 +87,28 @@ static gboolean lookup(const CfgNode *map, const char *key,
     return TRUE;
 }
 
+gboolean cfg_get_map(const CfgNode *map, const char *key, gboolean required,
+                     const char *what, const CfgNode **out, GError **err)
+{
+    *out = NULL;
+    if (map && map->kind != CFG_MAP) {
+        error_at(err, map, "a map");
+        return FALSE;
+    }
+    const CfgNode *v = cfg_get(map, key);
+    if (!v) {
+        if (required)
+            missing(err, map, key, what);
+        return !required;
+    }
+    if (v->kind != CFG_MAP) {
+        error_at(err, v, what);
+        return FALSE;
+    }
+    *out = v;
+    return TRUE;
+}
+
 gboolean cfg_get_str(const CfgNode *map, const char *key, gboolean required,
                      const char **out, GError **err)
 {

@@ -323,6 +323,25 @@ static void test_merge(void **state)
     cfg_free(base);
 }
 
+static void test_get_map(void **state)
+{
+    (void)state;
+    CfgNode *n = load("m: {a: 1}\ns: 3\n");
+    const CfgNode *out = NULL;
+    GError *e = NULL;
+    assert_true(cfg_get_map(n, "m", TRUE, "a map {a}", &out, &e));
+    assert_non_null(out);
+    assert_string_equal(cfg_scalar(cfg_get(out, "a")), "1");
+    assert_true(cfg_get_map(n, "absent", FALSE, "a map {a}", &out, &e));
+    assert_null(out);
+    assert_false(cfg_get_map(n, "absent", TRUE, "a map {a}", &out, &e));
+    assert_err(&e, "t.yaml:1:1: found no key 'absent' in this map, "
+                   "expected 'absent': a map {a}");
+    assert_false(cfg_get_map(n, "s", FALSE, "a map {a}", &out, &e));
+    assert_err(&e, "t.yaml:2:4: found '3', expected a map {a}");
+    cfg_free(n);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -333,6 +352,7 @@ int main(void)
         cmocka_unit_test(test_load_errors),
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_merge),
+        cmocka_unit_test(test_get_map),
     };
     return cmocka_run_group_tests_name("cfg", tests, NULL, NULL);
 }

@@ -87,16 +87,13 @@ static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m,
                              GError **err)
 {
     *m = (WlPmMemory){1000000, 200, 32, 8};
-    const CfgNode *n = cfg_get(sec, "memory");
+    const CfgNode *n;
+    if (!cfg_get_map(sec, "memory", FALSE,
+                     "a map {base, polygon, span, location} of sizes", &n,
+                     err))
+        return FALSE;
     if (!n)
         return TRUE;
-    if (cfg_kind(n) != CFG_MAP) {
-        char *found = cfg_describe(n);
-        cfg_error(err, n, found, "a map {base, polygon, span, location} "
-                  "of sizes");
-        g_free(found);
-        return FALSE;
-    }
     return cfg_get_size(n, "base", FALSE, &m->base, err) &&
            cfg_get_size(n, "polygon", FALSE, &m->polygon, err) &&
            cfg_get_size(n, "span", FALSE, &m->span, err) &&

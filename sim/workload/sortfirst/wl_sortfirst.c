@@ -31,16 +31,13 @@
 static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 {
     *z = (WlSfSizes){64, 40, 36, 8};
-    const CfgNode *n = cfg_get(sec, "bytes");
+    const CfgNode *n;
+    if (!cfg_get_map(sec, "bytes", FALSE,
+                     "a map {message, chunk, triangle, instance} of sizes",
+                     &n, err))
+        return FALSE;
     if (!n)
         return TRUE;
-    if (cfg_kind(n) != CFG_MAP) {
-        char *found = cfg_describe(n);
-        cfg_error(err, n, found, "a map {message, chunk, triangle, "
-                  "instance} of sizes");
-        g_free(found);
-        return FALSE;
-    }
     return cfg_get_size(n, "message", FALSE, &z->message, err) &&
            cfg_get_size(n, "chunk", FALSE, &z->chunk, err) &&
            cfg_get_size(n, "triangle", FALSE, &z->triangle, err) &&
