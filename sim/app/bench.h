@@ -10,7 +10,7 @@
 #include <glib.h>
 
 int bench_phold_main(int argc, char **argv);
-int bench_net_main(int argc, char **argv); /* bench_net.c */
+int bench_net_main(int argc, char **argv);    /* bench_net.c */
 int bench_raster_main(int argc, char **argv); /* bench_raster.c */
 
 /* Parses GOption entries for a sub-benchmark (--help included). */

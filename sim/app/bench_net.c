@@ -27,21 +27,21 @@
 
 struct BenchNet {
     BenchNetSpec spec;
-    CfgNode *root;  /* run-config tree: machine section with overrides */
+    CfgNode *root; /* run-config tree: machine section with overrides */
     guint nodes;
     char *desc;
 };
 
 /* ---- building ---------------------------------------------------------- */
 
-static gboolean apply_sets(CfgNode *root, const char *const *sets,
-                           GError **err)
+static gboolean apply_sets(CfgNode *root, const char *const *sets, GError **err)
 {
     for (; sets && *sets; sets++) {
         if (!g_str_has_prefix(*sets, "machine.")) {
             g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                         "bench net: found --set %s, expected --set "
-                        "machine.KEY=VALUE", *sets);
+                        "machine.KEY=VALUE",
+                        *sets);
             return FALSE;
         }
         if (!cfg_set_override(root, *sets, err))
@@ -56,7 +56,7 @@ static CfgNode *make_root(const BenchNetSpec *s, char **part, GError **err)
     char *model = g_strdup_printf("machine.model=%s", s->machine);
     char *path = root ? mach_model_path(s->machine, err) : NULL;
     gboolean ok = path && cfg_set_override(root, model, err) &&
-         apply_sets(root, s->sets, err);
+                  apply_sets(root, s->sets, err);
     if (ok && s->nodes)
         ok = mach_partition(root, s->nodes, part, err);
     g_free(model);
@@ -95,13 +95,14 @@ static char *describe(const BenchNet *b, NetNet *net, const char *part)
     g_string_append_printf(s, "machine %s (%s): %s of %u nodes (%s)\n",
                            b->spec.machine, path, net_topo(net)->ops->name,
                            net_nodes(net), part ? part : "model size");
-    g_string_append_printf(s, "network: %s switching, %.4g MB/s per channel "
-                           "x %u, start-up %.4g us", switching_name(
-                               p->switching), p->bandwidth / 1e6,
+    g_string_append_printf(s,
+                           "network: %s switching, %.4g MB/s per channel "
+                           "x %u, start-up %.4g us",
+                           switching_name(p->switching), p->bandwidth / 1e6,
                            p->channels, sim_time_to_s(p->startup) * 1e6);
     if (p->startup_long)
-        g_string_append_printf(s, " (%.4g us above %" G_GUINT64_FORMAT
-                               " B)", sim_time_to_s(p->startup_long) * 1e6,
+        g_string_append_printf(s, " (%.4g us above %" G_GUINT64_FORMAT " B)",
+                               sim_time_to_s(p->startup_long) * 1e6,
                                p->long_threshold);
     g_string_append_printf(s, ", %.4g us per hop",
                            sim_time_to_s(p->per_hop) * 1e6);
@@ -154,8 +155,14 @@ void bench_net_free(BenchNet *b)
     g_free(b);
 }
 
-guint bench_net_nodes(const BenchNet *b) { return b->nodes; }
-const char *bench_net_describe(const BenchNet *b) { return b->desc; }
+guint bench_net_nodes(const BenchNet *b)
+{
+    return b->nodes;
+}
+const char *bench_net_describe(const BenchNet *b)
+{
+    return b->desc;
+}
 
 /* ---- running ----------------------------------------------------------- */
 
@@ -185,10 +192,10 @@ gboolean bench_net_run(const BenchNet *b, NetFidelity fid, BenchNetRun *out,
     }
     if (ok && (!done || out->delivered != out->messages)) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                    "bench net: found %" G_GUINT64_FORMAT " of %"
-                    G_GUINT64_FORMAT " messages delivered at %s level, "
-                    "expected all", out->delivered, out->messages,
-                    net_fidelity_name(fid));
+                    "bench net: found %" G_GUINT64_FORMAT
+                    " of %" G_GUINT64_FORMAT " messages delivered at %s level, "
+                    "expected all",
+                    out->delivered, out->messages, net_fidelity_name(fid));
         ok = FALSE;
     }
     mach_free(m);
@@ -233,8 +240,8 @@ static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
          "override network.per_hop, us", "US"},
         {NULL, 0, 0, 0, NULL, NULL, NULL},
     };
-    return bench_parse_options("net", "- network speed against error",
-                               entries, argc, argv, err);
+    return bench_parse_options("net", "- network speed against error", entries,
+                               argc, argv, err);
 }
 
 static gboolean input_error(GError **err, const char *found,
@@ -253,25 +260,28 @@ static GPtrArray *all_sets(const BenchNetOpts *o)
         g_ptr_array_add(a, g_strdup(*s));
     if (o->bw_mbs > 0.0)
         g_ptr_array_add(a, g_strdup_printf("machine.network.bandwidth="
-                                           "%.17g MB/s", o->bw_mbs));
+                                           "%.17g MB/s",
+                                           o->bw_mbs));
     if (o->startup_us >= 0.0)
         g_ptr_array_add(a, g_strdup_printf("machine.network.startup="
-                                           "%.17g us", o->startup_us));
+                                           "%.17g us",
+                                           o->startup_us));
     if (o->per_hop_us >= 0.0)
         g_ptr_array_add(a, g_strdup_printf("machine.network.per_hop="
-                                           "%.17g us", o->per_hop_us));
+                                           "%.17g us",
+                                           o->per_hop_us));
     g_ptr_array_add(a, NULL);
     return a;
 }
 
-static gboolean check_opts(const BenchNetOpts *o, BenchNetSpec *s,
-                           GError **err)
+static gboolean check_opts(const BenchNetOpts *o, BenchNetSpec *s, GError **err)
 {
     if (!net_traffic_parse(o->pattern, &s->pattern))
         return input_error(err, o->pattern, net_traffic_words());
     if (o->nodes < 0 || o->bytes < 0 || o->seed < 0 || o->repeat < 1)
-        return input_error(err, "a negative --nodes, --bytes or --seed, "
-                                "or --repeat < 1",
+        return input_error(err,
+                           "a negative --nodes, --bytes or --seed, "
+                           "or --repeat < 1",
                            "values >= 0 and --repeat >= 1");
     if (o->bw_mbs < 0.0 || isnan(o->bw_mbs))
         return input_error(err, "a negative --bandwidth", "MB/s > 0");
@@ -285,8 +295,8 @@ static gboolean check_opts(const BenchNetOpts *o, BenchNetSpec *s,
 static void print_row(NetFidelity f, const BenchNetRun *r,
                       const BenchNetRun *ref)
 {
-    double err = ref ? ((double)r->end - (double)ref->end) / (double)ref->end
-                     : 0.0;
+    double err =
+        ref ? ((double)r->end - (double)ref->end) / (double)ref->end : 0.0;
     double wall = r->wall > 1e-6 ? r->wall : 1e-6;
     printf("%-9s %14.6f %+10.4f %10.4f %9.2f %10" G_GUINT64_FORMAT "\n",
            net_fidelity_name(f), sim_time_to_s(r->end), ref ? err : 0.0,
@@ -314,13 +324,15 @@ static int run_all(const BenchNet *b, const BenchNetOpts *o)
     gboolean all = strcmp(o->fidelity, "all") == 0;
     GError *err = NULL;
     if (!all && !net_fidelity_parse(o->fidelity, &only)) {
-        input_error(&err, o->fidelity, "--fidelity all, analytic, flow or "
-                                       "packet");
+        input_error(&err, o->fidelity,
+                    "--fidelity all, analytic, flow or "
+                    "packet");
         return bench_fail(err);
     }
     printf("bench net: %s\n", bench_net_describe(b));
     printf("pattern %s, %" G_GINT64_FORMAT " B, %" G_GUINT64_FORMAT
-           " messages\n", o->pattern, o->bytes,
+           " messages\n",
+           o->pattern, o->bytes,
            net_traffic_messages(b->spec.pattern, bench_net_nodes(b)));
     printf("%-9s %14s %10s %10s %9s %10s\n", "fidelity", "sim_time_s",
            "rel_err", "wall_s", "speedup", "events");
@@ -340,8 +352,11 @@ static int run_all(const BenchNet *b, const BenchNetOpts *o)
 
 int bench_net_main(int argc, char **argv)
 {
-    BenchNetOpts o = {.bytes = 1024, .seed = 1, .repeat = 1,
-                      .startup_us = -1, .per_hop_us = -1};
+    BenchNetOpts o = {.bytes = 1024,
+                      .seed = 1,
+                      .repeat = 1,
+                      .startup_us = -1,
+                      .per_hop_us = -1};
     BenchNetSpec s = {0};
     GError *err = NULL;
     BenchNet *b = NULL;

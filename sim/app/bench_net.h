@@ -17,20 +17,20 @@
 #include "sim/net/traffic.h"
 
 typedef struct {
-    const char *machine;      /* model name */
-    guint nodes;              /* 0: the model's own size */
+    const char *machine; /* model name */
+    guint nodes;         /* 0: the model's own size */
     NetTraffic pattern;
-    uint64_t bytes;           /* per message (pairwise: see traffic.h) */
+    uint64_t bytes; /* per message (pairwise: see traffic.h) */
     uint64_t seed;
-    const char *const *sets;  /* "machine.KEY=VALUE" overrides, NULL-ended;
-                                 may be NULL */
+    const char *const *sets; /* "machine.KEY=VALUE" overrides, NULL-ended;
+                                may be NULL */
 } BenchNetSpec;
 
 typedef struct {
-    SimTime end;         /* simulated completion time */
-    double wall;         /* seconds of wall time (traffic only) */
-    uint64_t events;     /* engine events */
-    uint64_t messages;   /* sent */
+    SimTime end;       /* simulated completion time */
+    double wall;       /* seconds of wall time (traffic only) */
+    uint64_t events;   /* engine events */
+    uint64_t messages; /* sent */
     uint64_t delivered;
 } BenchNetRun;
 

@@ -62,12 +62,14 @@ typedef struct {
     gint64 seed;
 } PholdArgs;
 
-static gboolean phold_parse(int *argc, char ***argv, PholdArgs *a,
-                            Phold *ph, uint64_t *per_lp, GError **err)
+static gboolean phold_parse(int *argc, char ***argv, PholdArgs *a, Phold *ph,
+                            uint64_t *per_lp, GError **err)
 {
     GOptionEntry entries[] = {
-        {"lps", 0, 0, G_OPTION_ARG_STRING, &a->lps, "logical processes "
-         "(default 1024; K and M suffixes)", "N"},
+        {"lps", 0, 0, G_OPTION_ARG_STRING, &a->lps,
+         "logical processes "
+         "(default 1024; K and M suffixes)",
+         "N"},
         {"pending-per-lp", 0, 0, G_OPTION_ARG_STRING, &a->pending,
          "initial events per LP (default 1)", "M"},
         {"remote", 0, 0, G_OPTION_ARG_DOUBLE, &a->remote,
@@ -80,8 +82,8 @@ static gboolean phold_parse(int *argc, char ***argv, PholdArgs *a,
          "events to run (default 10M)", "E"},
         {"seed", 0, 0, G_OPTION_ARG_INT64, &a->seed, "run seed", "S"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
-    if (!bench_parse_options("phold", "- PHOLD engine benchmark", entries,
-                             argc, argv, err))
+    if (!bench_parse_options("phold", "- PHOLD engine benchmark", entries, argc,
+                             argv, err))
         return FALSE;
     uint64_t n = 1024, m = 1, ev = 10000000;
     SimTime la = SIM_US, mean = SIM_US;
@@ -101,8 +103,11 @@ static gboolean phold_parse(int *argc, char ***argv, PholdArgs *a,
                     "--events >= 1");
         return FALSE;
     }
-    *ph = (Phold){.n_lps = n, .remote = a->remote, .lookahead = la,
-                  .mean_ps = (double)mean, .target = ev};
+    *ph = (Phold){.n_lps = n,
+                  .remote = a->remote,
+                  .lookahead = la,
+                  .mean_ps = (double)mean,
+                  .target = ev};
     *per_lp = m;
     return TRUE;
 }

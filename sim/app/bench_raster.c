@@ -71,7 +71,8 @@ static Scene *make_scene(const BenchRasterOpts *o, GError **err)
     }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "bench raster: found --scene '%s', expected teapots or "
-                "isosurface", o->scene);
+                "isosurface",
+                o->scene);
     return NULL;
 }
 
@@ -116,12 +117,13 @@ static void run(const BenchRasterOpts *o, const Scene *s)
     char *line = rast_counters_format(&c);
     printf("scene %s, %dx%d, %s z-buffer, %d frames\n", o->scene, o->size,
            o->size, o->zbuffer, o->frames);
-    printf("per frame: polygons %" G_GUINT64_FORMAT ", triangles %"
-           G_GUINT64_FORMAT ", %s\n", scene_n_polys(s), tris, line);
+    printf("per frame: polygons %" G_GUINT64_FORMAT
+           ", triangles %" G_GUINT64_FORMAT ", %s\n",
+           scene_n_polys(s), tris, line);
     printf("median cpu_frame_ms: %.3f\n", dc * 1e3);
     if (dc > 0)
-        printf("triangles_per_s_cpu: %.4g\npixels_per_s_cpu: %.4g\n",
-               tris / dc, c.pixels / dc);
+        printf("triangles_per_s_cpu: %.4g\npixels_per_s_cpu: %.4g\n", tris / dc,
+               c.pixels / dc);
     printf("median frame_ms: %.3f\n", dt * 1e3);
     printf("triangles_per_s: %.4g\n", tris / dt);
     printf("pixels_per_s: %.4g\n", c.pixels / dt);
@@ -141,8 +143,7 @@ int bench_raster_main(int argc, char **argv)
         {"grid", 0, 0, G_OPTION_ARG_INT, &o.grid,
          "isosurface lattice cells per axis (80)", "G"},
         {"size", 0, 0, G_OPTION_ARG_INT, &o.size, "image side (640)", "N"},
-        {"frames", 0, 0, G_OPTION_ARG_INT, &o.frames, "timed frames (20)",
-         "K"},
+        {"frames", 0, 0, G_OPTION_ARG_INT, &o.frames, "timed frames (20)", "K"},
         {"zbuffer", 0, 0, G_OPTION_ARG_STRING, &o.zbuffer,
          "full or scanline (scanline)", "KIND"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
@@ -155,8 +156,8 @@ int bench_raster_main(int argc, char **argv)
     if (!o.zbuffer)
         o.zbuffer = g_strdup("scanline");
     Scene *s = NULL;
-    if (o.size < 1 || o.size > RAST_MAX_SIDE || o.frames < 1 ||
-        o.count < 1 || o.grid < 2 ||
+    if (o.size < 1 || o.size > RAST_MAX_SIDE || o.frames < 1 || o.count < 1 ||
+        o.grid < 2 ||
         (g_strcmp0(o.zbuffer, "full") && g_strcmp0(o.zbuffer, "scanline")))
         g_set_error(&err, SIM_ERROR, SIM_ERROR_INPUT,
                     "bench raster: found a bad option value, expected "

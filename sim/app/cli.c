@@ -65,8 +65,8 @@ static char *option_list(const GOptionEntry *entries)
     return g_string_free(s, FALSE);
 }
 
-static void parse_error(const char *cmd, const GOptionEntry *entries,
-                        int argc, char **argv, const GError *e)
+static void parse_error(const char *cmd, const GOptionEntry *entries, int argc,
+                        char **argv, const GError *e)
 {
     const char *bad = unknown_option(entries, argc, argv);
     if (e->code == G_OPTION_ERROR_UNKNOWN_OPTION && bad) {
@@ -75,16 +75,16 @@ static void parse_error(const char *cmd, const GOptionEntry *entries,
                 cmd, bad, list);
         g_free(list);
     } else {
-        fprintf(stderr, "pgsim %s: found a bad option (%s), expected the "
-                        "options of `pgsim help %s`\n", cmd, e->message,
-                cmd);
+        fprintf(stderr,
+                "pgsim %s: found a bad option (%s), expected the "
+                "options of `pgsim help %s`\n",
+                cmd, e->message, cmd);
     }
 }
 
 static GOptionContext *make_context(const char *cmd, const char *params,
                                     const char *summary,
-                                    const GOptionEntry *entries,
-                                    gboolean *help)
+                                    const GOptionEntry *entries, gboolean *help)
 {
     const GOptionEntry help_entry[] = {
         {"help", 'h', 0, G_OPTION_ARG_NONE, help, "Show this help", NULL},
@@ -138,8 +138,10 @@ gboolean cli_want_args(const char *cmd, const char *params, int argc,
         fprintf(stderr, "pgsim %s: found no %s, expected pgsim %s %s\n", cmd,
                 params, cmd, params);
     else
-        fprintf(stderr, "pgsim %s: found extra argument '%s', expected pgsim "
-                        "%s %s\n", cmd, argv[n + 1], cmd, params);
+        fprintf(stderr,
+                "pgsim %s: found extra argument '%s', expected pgsim "
+                "%s %s\n",
+                cmd, argv[n + 1], cmd, params);
     return FALSE;
 }
 
@@ -168,8 +170,10 @@ int cli_main(int argc, char **argv)
     }
     const CliCommand *c = cli_find_command(argv[1]);
     if (!c) {
-        fprintf(stderr, "pgsim: found unknown command '%s', expected one of "
-                        "the commands below\n", argv[1]);
+        fprintf(stderr,
+                "pgsim: found unknown command '%s', expected one of "
+                "the commands below\n",
+                argv[1]);
         cli_usage(stderr);
         return 2;
     }

@@ -38,7 +38,8 @@ gboolean bench_parse_options(const char *name, const char *summary,
     if (ok && *argc > 1) {
         g_set_error(&e, SIM_ERROR, SIM_ERROR_INPUT,
                     "bench %s: found unexpected argument '%s', expected "
-                    "options only", name, (*argv)[1]);
+                    "options only",
+                    name, (*argv)[1]);
         ok = FALSE;
     } else if (!ok) {
         e->domain = SIM_ERROR;
@@ -69,8 +70,10 @@ int cmd_bench(int argc, char **argv)
     for (int i = 0; benches[i].name; i++)
         if (strcmp(argv[1], benches[i].name) == 0)
             return benches[i].fn(argc - 1, argv + 1);
-    fprintf(stderr, "pgsim bench: found '%s', expected one of the "
-                    "benchmarks below\n", argv[1]);
+    fprintf(stderr,
+            "pgsim bench: found '%s', expected one of the "
+            "benchmarks below\n",
+            argv[1]);
     bench_usage(stderr);
     return 2;
 }

@@ -17,8 +17,7 @@ typedef struct {
 } PlotOpts;
 
 /* FALSE when the caller should return *status (help, or a bad option). */
-static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv,
-                           int *status)
+static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
 {
     GOptionEntry entries[] = {
         {"x", 0, 0, G_OPTION_ARG_STRING, &o->x, "x column", "K"},

@@ -89,13 +89,12 @@ static gboolean check_kinds(const RenderOpts *o, GError **err)
     char *q = NULL;
     gboolean ok = TRUE;
     if (g_strcmp0(o->zbuffer, "full") && g_strcmp0(o->zbuffer, "scanline"))
-        ok = flag_error(err, "--zbuffer", q = g_strdup_printf("'%s'",
-                                                             o->zbuffer),
+        ok = flag_error(err, "--zbuffer",
+                        q = g_strdup_printf("'%s'", o->zbuffer),
                         "full or scanline");
-    else if (g_strcmp0(o->shading, "flat") &&
-             g_strcmp0(o->shading, "gouraud"))
-        ok = flag_error(err, "--shading", q = g_strdup_printf("'%s'",
-                                                             o->shading),
+    else if (g_strcmp0(o->shading, "flat") && g_strcmp0(o->shading, "gouraud"))
+        ok = flag_error(err, "--shading",
+                        q = g_strdup_printf("'%s'", o->shading),
                         "flat or gouraud");
     g_free(q);
     return ok;
@@ -139,8 +138,7 @@ static gboolean check_frame(const Scene *s, double frame, GError **err)
     g_snprintf(found, sizeof found, "%g", frame);
     if (s->path)
         g_snprintf(expected, sizeof expected,
-                   "0 .. %u (the scene's camera path has %u frames)", n - 1,
-                   n);
+                   "0 .. %u (the scene's camera path has %u frames)", n - 1, n);
     else
         g_snprintf(expected, sizeof expected,
                    "0 (the scene has no camera path)");
@@ -205,8 +203,9 @@ static gboolean run(RenderOpts *o, int argc, char **argv, GError **err)
     if (ok) {
         char *line = rast_counters_format(&c);
         printf("%s: %s, %" G_GUINT64_FORMAT " polygons, frame %g, %dx%d %s "
-               "z-buffer: %s\n", o->out, s->name, scene_n_polys(s), o->frame,
-               o->width, o->height, o->zbuffer, line);
+               "z-buffer: %s\n",
+               o->out, s->name, scene_n_polys(s), o->frame, o->width, o->height,
+               o->zbuffer, line);
         g_free(line);
     }
     rast_image_free(img);
@@ -226,8 +225,8 @@ int cmd_render(int argc, char **argv)
          "full or scanline (scanline)", "KIND"},
         {"shading", 0, 0, G_OPTION_ARG_STRING, &o.shading,
          "flat or gouraud (gouraud)", "KIND"},
-        {"no-cull", 0, 0, G_OPTION_ARG_NONE, &o.no_cull,
-         "draw back faces too", NULL},
+        {"no-cull", 0, 0, G_OPTION_ARG_NONE, &o.no_cull, "draw back faces too",
+         NULL},
         {"frame", 0, 0, G_OPTION_ARG_DOUBLE, &o.frame,
          "frame of the scene's camera path (0)", "N"},
         {"teapots", 0, 0, G_OPTION_ARG_INT, &o.teapots,

@@ -40,8 +40,7 @@ static gboolean parse_format(RpOpts *o, GError **err)
             return TRUE;
         }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "--format: found '%s', expected text, csv or json",
-                o->format);
+                "--format: found '%s', expected text, csv or json", o->format);
     return FALSE;
 }
 
@@ -80,15 +79,16 @@ static gboolean check_opts(RpOpts *o, GError **err)
     if (!rp_fidelity_valid(o->fidelity) && strcmp(o->fidelity, "all")) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "--fidelity: found '%s', expected analytic, flow, "
-                    "packet or all", o->fidelity);
+                    "packet or all",
+                    o->fidelity);
         return FALSE;
     }
     return parse_format(o, err);
 }
 
 /* passes: one RpTable, or one per fidelity for --fidelity all. */
-static void format_passes(const GPtrArray *passes, RpFormat f,
-                          gboolean first, GString *out)
+static void format_passes(const GPtrArray *passes, RpFormat f, gboolean first,
+                          GString *out)
 {
     gboolean speed = passes->len > 1;
     const RpTable *t = g_ptr_array_index(passes, 0);
@@ -113,8 +113,8 @@ static void format_passes(const GPtrArray *passes, RpFormat f,
     }
 }
 
-static gboolean write_file(const char *dir, const char *name,
-                           const char *ext, const GString *s, GError **err)
+static gboolean write_file(const char *dir, const char *name, const char *ext,
+                           const GString *s, GError **err)
 {
     char *file = g_strconcat(name, ".", ext, NULL);
     char *path = g_build_filename(dir, file, NULL);
@@ -165,8 +165,7 @@ static GPtrArray *run_one(const RpReproduction *rp, const RpOpts *o,
                           gboolean first, GError **err)
 {
     if (!o->quiet)
-        fprintf(stderr, "reproduce: %s (fidelity %s)\n", rp->name,
-                o->fidelity);
+        fprintf(stderr, "reproduce: %s (fidelity %s)\n", rp->name, o->fidelity);
     GPtrArray *passes = run_passes(rp, o, err);
     if (!passes)
         return NULL;
@@ -184,8 +183,7 @@ static GPtrArray *run_one(const RpReproduction *rp, const RpOpts *o,
 
 static GHashTable *captions_of(const RpReproduction *rp, const RpOpts *o)
 {
-    char *path = rp_paper_path(o->papers ? o->papers : RP_PAPERS_DIR,
-                               rp->name);
+    char *path = rp_paper_path(o->papers ? o->papers : RP_PAPERS_DIR, rp->name);
     RpPaper *p = rp_paper_load(path, NULL);
     g_free(path);
     if (!p)

@@ -30,15 +30,19 @@ static const char summary[] =
 static gboolean check_flags(const RunOpts *o, guint64 *seed, RptFormat *fmt)
 {
     GError *e = NULL;
-    if (o->seed && !g_ascii_string_to_unsigned(o->seed, 10, 0, G_MAXINT64,
-                                               seed, NULL)) {
-        fprintf(stderr, "pgsim run: --seed: found '%s', expected a "
-                        "non-negative integer\n", o->seed);
+    if (o->seed &&
+        !g_ascii_string_to_unsigned(o->seed, 10, 0, G_MAXINT64, seed, NULL)) {
+        fprintf(stderr,
+                "pgsim run: --seed: found '%s', expected a "
+                "non-negative integer\n",
+                o->seed);
         return FALSE;
     }
     if (o->format && !rpt_format_parse(o->format, fmt)) {
-        fprintf(stderr, "pgsim run: --format: found '%s', expected one of: "
-                        "text, json, csv\n", o->format);
+        fprintf(stderr,
+                "pgsim run: --format: found '%s', expected one of: "
+                "text, json, csv\n",
+                o->format);
         return FALSE;
     }
     g_clear_error(&e);
@@ -55,8 +59,10 @@ static int report(const SimResult *res, const RunOpts *o, RptFormat fmt)
     if (o->out && !rpt_write_dir(res, o->out, o->timing, &e))
         return cli_fail(e);
     if (o->out && !o->quiet)
-        fprintf(stderr, "pgsim run: wrote %s/{summary.txt,result.json,"
-                        "result.csv}\n", o->out);
+        fprintf(stderr,
+                "pgsim run: wrote %s/{summary.txt,result.json,"
+                "result.csv}\n",
+                o->out);
     return 0;
 }
 
@@ -72,15 +78,15 @@ static int run(const char *path, const RunOpts *o)
         return cli_fail(e);
     if (o->seed)
         r->seed = seed;
-    SimTrace *tr = o->trace ? trc_open(o->trace, (uint64_t)MAX(o->trace_cap,
-                                                               0), &e)
-                            : NULL;
+    SimTrace *tr = o->trace
+                       ? trc_open(o->trace, (uint64_t)MAX(o->trace_cap, 0), &e)
+                       : NULL;
     if (o->trace && !tr) {
         cfg_run_free(r);
         return cli_fail(e);
     }
-    CfgRunOpts ro = {.out_dir = o->out, .quiet = o->quiet, .progress = TRUE,
-                     .trace = tr};
+    CfgRunOpts ro = {
+        .out_dir = o->out, .quiet = o->quiet, .progress = TRUE, .trace = tr};
     SimResult *res = cfg_run_exec(r, &ro, &e);
     cfg_run_free(r);
     if (!res) {

@@ -40,8 +40,7 @@ static gboolean run_config(const CfgNode *cfg, uint64_t seed, SimResult **out,
 }
 
 /* FALSE when the caller should return *status (help, or a bad option). */
-static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv,
-                           int *status)
+static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv, int *status)
 {
     GOptionEntry entries[] = {
         {"jobs", 'j', 0, G_OPTION_ARG_INT, &o->jobs,
@@ -62,8 +61,10 @@ static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv,
     if (!cli_want_args("sweep", "SWEEP.yaml", *argc, *argv, 1))
         return FALSE;
     if (o->jobs < 0) {
-        fprintf(stderr, "pgsim sweep: -j: found %d, expected a positive "
-                        "count\n", o->jobs);
+        fprintf(stderr,
+                "pgsim sweep: -j: found %d, expected a positive "
+                "count\n",
+                o->jobs);
         return FALSE;
     }
     if (o->jobs == 0)
@@ -94,8 +95,8 @@ static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
         const PlotSpec *ps = g_ptr_array_index(s->plots, p);
         GError *e = NULL;
         if (!plot_render(ps, t, dir, &e)) {
-            fprintf(stderr, "pgsim sweep: chart %s not drawn: %s\n",
-                    ps->name, e->message);
+            fprintf(stderr, "pgsim sweep: chart %s not drawn: %s\n", ps->name,
+                    e->message);
             g_error_free(e);
             *charts_failed += 1;
         }
@@ -104,8 +105,7 @@ static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
     return TRUE;
 }
 
-static int report(const SweepSpec *s, const char *dir, guint ran,
-                  GError *err)
+static int report(const SweepSpec *s, const char *dir, guint ran, GError *err)
 {
     guint failed = 0, charts_failed = 0;
     if (!err)
@@ -144,8 +144,7 @@ static int run_master(const SweepSpec *s, const SweepOpts *o, int size)
     return st;
 }
 
-static int with_spec(const char *path, const SweepOpts *o, int rank,
-                     int size)
+static int with_spec(const char *path, const SweepOpts *o, int rank, int size)
 {
     GError *err = NULL;
     SweepSpec *s = sweep_spec_load(path, &err);

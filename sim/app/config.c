@@ -66,8 +66,8 @@ static void extend_model_path(const char *config_path)
     char *exe = g_file_read_link("/proc/self/exe", NULL);
     if (exe) {
         char *bindir = g_path_get_dirname(exe);
-        char *share = g_build_filename(bindir, "..", "share", "pgsim",
-                                       "models", NULL);
+        char *share =
+            g_build_filename(bindir, "..", "share", "pgsim", "models", NULL);
         add_dir(s, share);
         g_free(share);
         g_free(bindir);
@@ -187,10 +187,9 @@ CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
 {
     CfgRun *r = g_new0(CfgRun, 1);
     r->root = root;
-    gboolean ok = check_root(root, err) &&
-                  apply_overrides(root, overrides, err) &&
-                  check_schema(root, err) &&
-                  read_run(r, err) && read_workload(r, err);
+    gboolean ok =
+        check_root(root, err) && apply_overrides(root, overrides, err) &&
+        check_schema(root, err) && read_run(r, err) && read_workload(r, err);
     r->machine = ok ? cfg_get(root, "machine") : NULL;
     ok = ok && (!r->machine || mach_check_section(r->machine, err)) &&
          read_scene(r, err) && cfg_check_unused(root, err);
@@ -227,8 +226,7 @@ static char *machine_name(const CfgRun *r)
     return g_strdup(model ? model : r->machine ? "inline" : "none");
 }
 
-SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts,
-                        GError **err)
+SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
 {
     SimEngine *eng = sim_engine_new(r->seed);
     sim_engine_set_trace(eng, opts ? opts->trace : NULL);
@@ -238,7 +236,11 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts,
     g_free(res->fidelity);
     res->fidelity = g_strdup(r->fidelity);
     res->seed = r->seed;
-    WlContext ctx = {eng, r->root, r->seed, r->fidelity, r->frames,
+    WlContext ctx = {eng,
+                     r->root,
+                     r->seed,
+                     r->fidelity,
+                     r->frames,
                      opts ? opts->out_dir : NULL,
                      opts ? opts->quiet : TRUE};
     RptProgress *p = opts && opts->progress && !opts->quiet

@@ -22,16 +22,16 @@
 #include "sim/workload/workload.h"
 
 typedef struct {
-    CfgNode *root;            /* owned: the tree after overrides */
-    const CfgNode *machine;   /* borrowed from root; NULL when absent */
-    const CfgNode *scene;     /* borrowed from root; NULL when absent */
-    const CfgNode *workload;  /* borrowed: the workload section */
+    CfgNode *root;           /* owned: the tree after overrides */
+    const CfgNode *machine;  /* borrowed from root; NULL when absent */
+    const CfgNode *scene;    /* borrowed from root; NULL when absent */
+    const CfgNode *workload; /* borrowed: the workload section */
     const WlOps *wl;
-    void *wl_params;          /* owned (wl->free_params) */
-    uint64_t seed;            /* run.seed, default 1 */
-    int frames;               /* run.frames, default 1 */
-    const char *fidelity;     /* run.fidelity, default "analytic" (static) */
-    SimTime until;            /* run.until; SIM_TIME_MAX when absent */
+    void *wl_params;      /* owned (wl->free_params) */
+    uint64_t seed;        /* run.seed, default 1 */
+    int frames;           /* run.frames, default 1 */
+    const char *fidelity; /* run.fidelity, default "analytic" (static) */
+    SimTime until;        /* run.until; SIM_TIME_MAX when absent */
 } CfgRun;
 
 /* Loads and checks a run config; `overrides` is a NULL-terminated list of
@@ -47,10 +47,10 @@ void cfg_run_free(CfgRun *run);
 
 /* Options for one execution of a loaded config. */
 typedef struct {
-    const char *out_dir;  /* passed to the workload; NULL: none */
-    gboolean quiet;       /* no progress display */
-    gboolean progress;    /* show progress (when stderr is a terminal) */
-    SimTrace *trace;      /* attached to the engine; NULL: none (borrowed) */
+    const char *out_dir; /* passed to the workload; NULL: none */
+    gboolean quiet;      /* no progress display */
+    gboolean progress;   /* show progress (when stderr is a terminal) */
+    SimTrace *trace;     /* attached to the engine; NULL: none (borrowed) */
 } CfgRunOpts;
 
 /* Runs the config's workload on a fresh engine seeded with run->seed and

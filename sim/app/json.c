@@ -22,11 +22,21 @@ void json_put_str(GString *out, const char *s)
     g_string_append_c(out, '"');
     for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
         switch (*p) {
-        case '"': g_string_append(out, "\\\""); break;
-        case '\\': g_string_append(out, "\\\\"); break;
-        case '\n': g_string_append(out, "\\n"); break;
-        case '\r': g_string_append(out, "\\r"); break;
-        case '\t': g_string_append(out, "\\t"); break;
+        case '"':
+            g_string_append(out, "\\\"");
+            break;
+        case '\\':
+            g_string_append(out, "\\\\");
+            break;
+        case '\n':
+            g_string_append(out, "\\n");
+            break;
+        case '\r':
+            g_string_append(out, "\\r");
+            break;
+        case '\t':
+            g_string_append(out, "\\t");
+            break;
         default:
             if (*p < 0x20)
                 g_string_append_printf(out, "\\u%04x", *p);
@@ -91,8 +101,7 @@ static gboolean fail(JsonParser *p, const char *expected)
 
 static void skip_ws(JsonParser *p)
 {
-    while (p->pos < p->len && strchr(" \t\r\n", p->s[p->pos]) &&
-           p->s[p->pos])
+    while (p->pos < p->len && strchr(" \t\r\n", p->s[p->pos]) && p->s[p->pos])
         p->pos++;
 }
 
@@ -332,8 +341,9 @@ static JsonVal *parse_value(JsonParser *p)
 JsonVal *json_parse(const char *text, gssize len, const char *name,
                     GError **err)
 {
-    JsonParser p = {text, len < 0 ? strlen(text) : (size_t)len, 0,
-                    name ? name : "<json>", err, 0};
+    JsonParser p = {text, len < 0 ? strlen(text) : (size_t)len,
+                    0,    name ? name : "<json>",
+                    err,  0};
     JsonVal *v = parse_value(&p);
     skip_ws(&p);
     if (v && p.pos < p.len) {

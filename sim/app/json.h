@@ -25,10 +25,10 @@ struct JsonVal {
     JsonKind kind;
     gboolean b;
     double num;
-    char *str;       /* JSON_STRING: the decoded text */
-    char *raw;       /* JSON_NUMBER: the text as written */
-    GPtrArray *keys; /* JSON_OBJECT: char *, in order */
-    GPtrArray *items;/* JSON_ARRAY items / JSON_OBJECT values: JsonVal * */
+    char *str;        /* JSON_STRING: the decoded text */
+    char *raw;        /* JSON_NUMBER: the text as written */
+    GPtrArray *keys;  /* JSON_OBJECT: char *, in order */
+    GPtrArray *items; /* JSON_ARRAY items / JSON_OBJECT values: JsonVal * */
 };
 
 /* Appends s as a quoted JSON string (NULL appends null). */

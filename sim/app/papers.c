@@ -84,8 +84,7 @@ static gboolean read_value(const CfgNode *n, RpCell *c, GError **err)
         return FALSE;
     }
     return c->withheld ||
-           cfg_get_double(n, "value", TRUE, -DBL_MAX, DBL_MAX, &c->value,
-                          err);
+           cfg_get_double(n, "value", TRUE, -DBL_MAX, DBL_MAX, &c->value, err);
 }
 
 static RpCell *read_cell(const CfgNode *n, GError **err)
@@ -103,8 +102,7 @@ static RpCell *read_cell(const CfgNode *n, GError **err)
     return c;
 }
 
-static gboolean add_cell(RpPaper *p, const CfgNode *n, RpCell *c,
-                         GError **err)
+static gboolean add_cell(RpPaper *p, const CfgNode *n, RpCell *c, GError **err)
 {
     char *key = cell_key(c->table, c->row, c->column);
     if (g_hash_table_contains(p->index, key)) {
@@ -143,8 +141,8 @@ static gboolean read_header(RpPaper *p, const CfgNode *root, GError **err)
     if (hdr && cfg_kind(hdr) == CFG_SCALAR) {
         name = cfg_scalar(hdr);
     } else if (!hdr || cfg_kind(hdr) != CFG_MAP) {
-        cfg_error(err, hdr ? hdr : root, hdr ? "a list 'paper'"
-                                             : "no 'paper' key",
+        cfg_error(err, hdr ? hdr : root,
+                  hdr ? "a list 'paper'" : "no 'paper' key",
                   "paper: NAME or paper: {name, citation}");
         return FALSE;
     } else if (!cfg_get_str(hdr, "name", TRUE, &name, err) ||
@@ -241,8 +239,7 @@ static gboolean read_table(RpPaper *p, const char *t, const CfgNode *tab,
     if (caption)
         g_hash_table_insert(p->captions, g_strdup(t), g_strdup(caption));
     for (guint i = 0; rows && i < cfg_map_len(rows); i++)
-        if (!read_row(p, t, cfg_map_key(rows, i), cfg_map_value(rows, i),
-                      err))
+        if (!read_row(p, t, cfg_map_key(rows, i), cfg_map_value(rows, i), err))
             return FALSE;
     return TRUE;
 }
@@ -252,8 +249,7 @@ static gboolean read_tables(RpPaper *p, const CfgNode *tabs, GError **err)
     if (!need_map(tabs, "TABLE: {caption, rows}", err))
         return FALSE;
     for (guint i = 0; i < cfg_map_len(tabs); i++)
-        if (!read_table(p, cfg_map_key(tabs, i), cfg_map_value(tabs, i),
-                        err))
+        if (!read_table(p, cfg_map_key(tabs, i), cfg_map_value(tabs, i), err))
             return FALSE;
     return TRUE;
 }
@@ -275,8 +271,7 @@ static gboolean read_paper(RpPaper *p, const CfgNode *root, GError **err)
         return FALSE;
     }
     return (!tabs || read_tables(p, tabs, err)) &&
-           (!cells || read_cells(p, cells, err)) &&
-           cfg_check_unused(root, err);
+           (!cells || read_cells(p, cells, err)) && cfg_check_unused(root, err);
 }
 
 RpPaper *rp_paper_load(const char *path, GError **err)

@@ -14,17 +14,17 @@ typedef struct {
     char *table;
     char *row;
     char *column;
-    double value;      /* NAN when withheld */
+    double value; /* NAN when withheld */
     gboolean withheld;
-    char *unit;        /* "" when dimensionless or not given */
-    char *note;        /* NULL when none */
+    char *unit; /* "" when dimensionless or not given */
+    char *note; /* NULL when none */
 } RpCell;
 
 typedef struct {
-    char *name;        /* paper.name */
-    char *citation;    /* paper.citation */
-    GPtrArray *cells;  /* RpCell *, in file order */
-    GHashTable *index; /* "table\x1frow\x1fcolumn" -> RpCell * (borrowed) */
+    char *name;           /* paper.name */
+    char *citation;       /* paper.citation */
+    GPtrArray *cells;     /* RpCell *, in file order */
+    GHashTable *index;    /* "table\x1frow\x1fcolumn" -> RpCell * (borrowed) */
     GHashTable *captions; /* table -> caption, from the compact shape */
 } RpPaper;
 

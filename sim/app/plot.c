@@ -113,21 +113,20 @@ gboolean plot_specs_read(GPtrArray *specs, const CfgNode *seq, GError **err)
     return TRUE;
 }
 
-static gboolean need_col(const char *what, const char *name,
-                         const DataTable *t, GError **err)
+static gboolean need_col(const char *what, const char *name, const DataTable *t,
+                         GError **err)
 {
     if (!name || dt_col(t, name) >= 0)
         return TRUE;
     char *cols = g_strjoinv(", ", (char **)t->cols->pdata);
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "plot %s: found column '%s', expected one of: %s", what,
-                name, cols);
+                "plot %s: found column '%s', expected one of: %s", what, name,
+                cols);
     g_free(cols);
     return FALSE;
 }
 
-gboolean plot_check_columns(const PlotSpec *p, const DataTable *t,
-                            GError **err)
+gboolean plot_check_columns(const PlotSpec *p, const DataTable *t, GError **err)
 {
     return need_col("x", p->x, t, err) && need_col("y", p->y, t, err) &&
            need_col("series", p->series, t, err);
@@ -225,12 +224,10 @@ static GPtrArray *group_rows(const PlotSpec *p, const DataTable *t,
         if (!number(dt_cell(t, r, yc), &y) || !*xs)
             continue;
         x = *categorical ? category(cats, xs) : g_ascii_strtod(xs, NULL);
-        add_point(series_for(all, sc >= 0 ? dt_cell(t, r, sc) : ""), x,
-                  xs, y);
+        add_point(series_for(all, sc >= 0 ? dt_cell(t, r, sc) : ""), x, xs, y);
     }
     for (guint i = 0; i < all->len; i++)
-        g_array_sort(((PlotSeries *)g_ptr_array_index(all, i))->groups,
-                     by_x);
+        g_array_sort(((PlotSeries *)g_ptr_array_index(all, i))->groups, by_x);
     g_ptr_array_free(cats, TRUE);
     return all;
 }
@@ -262,8 +259,9 @@ static gboolean has_spread(const GPtrArray *all)
 static GString *data_text(const PlotSpec *p, const GPtrArray *all)
 {
     GString *o = g_string_new(NULL);
-    g_string_append_printf(o, "# %s: x=%s y=%s (mean, min, max over rows "
-                              "with the same x) label\n",
+    g_string_append_printf(o,
+                           "# %s: x=%s y=%s (mean, min, max over rows "
+                           "with the same x) label\n",
                            p->name, p->x, p->y);
     for (guint i = 0; i < all->len; i++) {
         const PlotSeries *s = g_ptr_array_index(all, i);
@@ -311,7 +309,7 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
             g_string_append(o, ":3:4");
         if (cat)
             g_string_append(o, ":xtic(5)");
-        const char *with = !bars ? p->style
+        const char *with = !bars                             ? p->style
                            : strcmp(p->style, "points") == 0 ? "yerrorbars"
                                                              : "yerrorlines";
         g_string_append_printf(o, " with %s", with);
@@ -334,13 +332,15 @@ static GString *script_text(const PlotSpec *p, const GPtrArray *all,
     GString *plot = g_string_new(NULL);
     script_head(o, p, cat);
     script_plot(plot, p, all, cat, has_spread(all));
-    g_string_append_printf(o, "set terminal pngcairo size 900,560 "
-                              "noenhanced font \"sans,10\"\n"
-                              "set output \"%s.png\"\n%s",
+    g_string_append_printf(o,
+                           "set terminal pngcairo size 900,560 "
+                           "noenhanced font \"sans,10\"\n"
+                           "set output \"%s.png\"\n%s",
                            p->name, plot->str);
-    g_string_append_printf(o, "set terminal svg size 900,560 noenhanced "
-                              "font \"sans,10\"\nset output \"%s.svg\"\n%s"
-                              "set output\n",
+    g_string_append_printf(o,
+                           "set terminal svg size 900,560 noenhanced "
+                           "font \"sans,10\"\nset output \"%s.svg\"\n%s"
+                           "set output\n",
                            p->name, plot->str);
     g_string_free(plot, TRUE);
     return o;
@@ -364,12 +364,12 @@ static gboolean run_gnuplot(const char *dir, const char *name, GError **err)
     char *errs = NULL;
     int status = 0;
     GError *e = NULL;
-    gboolean ok = g_spawn_sync(dir, argv, NULL, G_SPAWN_SEARCH_PATH, NULL,
-                               NULL, NULL, &errs, &status, &e) &&
+    gboolean ok = g_spawn_sync(dir, argv, NULL, G_SPAWN_SEARCH_PATH, NULL, NULL,
+                               NULL, &errs, &status, &e) &&
                   g_spawn_check_wait_status(status, &e);
     if (!ok) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "gnuplot %s/%s: %s%s%s",
-                    dir, script, e->message, errs && *errs ? ": " : "",
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "gnuplot %s/%s: %s%s%s", dir,
+                    script, e->message, errs && *errs ? ": " : "",
                     errs ? g_strstrip(errs) : "");
         g_error_free(e);
     }

@@ -14,13 +14,13 @@
 #include "sim/core/cfg.h"
 
 typedef struct {
-    char *name;          /* output file stem */
-    char *x, *y;         /* column names */
-    char *series;        /* column name; NULL: one series */
+    char *name;   /* output file stem */
+    char *x, *y;  /* column names */
+    char *series; /* column name; NULL: one series */
     gboolean logx, logy;
     char *title, *xlabel, *ylabel; /* NULL: defaults (column names) */
-    char *style;         /* "linespoints" (default), "points", "lines" */
-    gboolean diagonal;   /* also draw y = x (simulated against published) */
+    char *style;       /* "linespoints" (default), "points", "lines" */
+    gboolean diagonal; /* also draw y = x (simulated against published) */
 } PlotSpec;
 
 /* Returns a new spec with x and y set; free with plot_spec_free(). */

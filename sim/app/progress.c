@@ -15,14 +15,14 @@ struct RptProgress {
     FILE *out;
     gint64 (*clock_us)(void);
     char *label;
-    char *note;         /* NULL: none */
+    char *note; /* NULL: none */
     uint64_t total, done;
     gint64 start, last; /* wall clock, us; last < 0: never drawn */
     SimEngine *eng;     /* borrowed; shows simulated time when set */
 };
 
-RptProgress *rpt_progress_new_full(uint64_t total, const char *label,
-                                   FILE *out, gint64 (*clock_us)(void))
+RptProgress *rpt_progress_new_full(uint64_t total, const char *label, FILE *out,
+                                   gint64 (*clock_us)(void))
 {
     if (!out)
         return NULL;
@@ -47,9 +47,8 @@ static void draw(RptProgress *p, gint64 now)
     double secs = (double)(now - p->start) * 1e-6;
     fprintf(p->out, "\r%s: ", p->label);
     if (p->total)
-        fprintf(p->out, "%3.0f%% (%" G_GUINT64_FORMAT "/%" G_GUINT64_FORMAT
-                ")", 100.0 * (double)p->done / (double)p->total, p->done,
-                p->total);
+        fprintf(p->out, "%3.0f%% (%" G_GUINT64_FORMAT "/%" G_GUINT64_FORMAT ")",
+                100.0 * (double)p->done / (double)p->total, p->done, p->total);
     else
         fprintf(p->out, "%" G_GUINT64_FORMAT, p->done);
     if (p->eng)

@@ -19,8 +19,8 @@ typedef struct RptProgress RptProgress;
 RptProgress *rpt_progress_new(uint64_t total, const char *label);
 /* The same on any stream (NULL: disabled) and wall clock in microseconds
  * (NULL: g_get_monotonic_time); for tests. */
-RptProgress *rpt_progress_new_full(uint64_t total, const char *label,
-                                   FILE *out, gint64 (*clock_us)(void));
+RptProgress *rpt_progress_new_full(uint64_t total, const char *label, FILE *out,
+                                   gint64 (*clock_us)(void));
 /* Records `done` steps; redraws if 100 ms have passed since the last. */
 void rpt_progress_update(RptProgress *p, uint64_t done);
 /* Sets a short text shown after the count ("2 failed"); NULL clears it.

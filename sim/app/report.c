@@ -102,8 +102,8 @@ static void json_run(GString *s, const SimResult *r)
     json_put_str(s, r->workload);
     kv_str(s, "machine", r->machine);
     kv_str(s, "fidelity", r->fidelity);
-    g_string_append_printf(s, ",\n  \"seed\": %" G_GUINT64_FORMAT
-                              ",\n  \"elapsed_s\": ", r->seed);
+    g_string_append_printf(
+        s, ",\n  \"seed\": %" G_GUINT64_FORMAT ",\n  \"elapsed_s\": ", r->seed);
     put_time(s, r->elapsed);
 }
 
@@ -120,8 +120,7 @@ static void json_frames(GString *s, const SimResult *r)
     g_string_append(s, "]}");
 }
 
-static void json_phases(GString *s, const SimResult *r,
-                        const SimNodeResult *n)
+static void json_phases(GString *s, const SimResult *r, const SimNodeResult *n)
 {
     g_string_append(s, ", \"phases\": {");
     for (guint p = 0; p < r->phases->len; p++) {
@@ -158,13 +157,15 @@ static void json_nodes(GString *s, const SimResult *r)
 
 static void json_comm(GString *s, const SimResult *r)
 {
-    g_string_append_printf(s, ",\n  \"comm\": {\"bytes\": %" G_GUINT64_FORMAT
+    g_string_append_printf(s,
+                           ",\n  \"comm\": {\"bytes\": %" G_GUINT64_FORMAT
                            ", \"messages\": %" G_GUINT64_FORMAT
-                           ", \"busiest_link\": ", r->comm_bytes,
-                           r->comm_messages);
+                           ", \"busiest_link\": ",
+                           r->comm_bytes, r->comm_messages);
     json_put_str(s, r->busiest_link);
-    g_string_append_printf(s, ", \"busiest_link_bytes\": %" G_GUINT64_FORMAT
-                           "}", r->busiest_link_bytes);
+    g_string_append_printf(s,
+                           ", \"busiest_link_bytes\": %" G_GUINT64_FORMAT "}",
+                           r->busiest_link_bytes);
 }
 
 static void json_metrics(GString *s, const SimResult *r, gboolean timing)
@@ -280,8 +281,8 @@ static void csv_nodes(GString *s, const SimResult *r)
         const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
         csv_row(s, "node", n->name, NULL, "kind", n->kind, NULL);
         csv_time(s, "node", n->name, NULL, "busy", n->busy.total);
-        csv_num(s, "node", n->name, NULL, "utilisation",
-                util(r, n->busy.total), NULL);
+        csv_num(s, "node", n->name, NULL, "utilisation", util(r, n->busy.total),
+                NULL);
         for (guint p = 0; p < r->phases->len; p++) {
             const char *ph = g_ptr_array_index(r->phases, p);
             SimTime b = sim_busy_phase(&n->busy, p);
@@ -304,8 +305,7 @@ static void csv_rest(GString *s, const SimResult *r, gboolean timing)
     csv_u64(s, "sim", "events", r->events, NULL);
     if (timing) {
         csv_num(s, "sim", NULL, NULL, "wall", r->wall_s, "s");
-        csv_num(s, "sim", NULL, NULL, "events_per_s", events_per_s(r),
-                NULL);
+        csv_num(s, "sim", NULL, NULL, "events_per_s", events_per_s(r), NULL);
     }
 }
 
@@ -351,14 +351,16 @@ static void text_frames(GString *s, const SimResult *r)
         lo = MIN(lo, frame_at(r, i));
         hi = MAX(hi, frame_at(r, i));
     }
-    g_string_append_printf(s, "%s on %s (fidelity %s, seed %" G_GUINT64_FORMAT
-                           ")\n", r->workload, r->machine, r->fidelity,
-                           r->seed);
+    g_string_append_printf(
+        s, "%s on %s (fidelity %s, seed %" G_GUINT64_FORMAT ")\n", r->workload,
+        r->machine, r->fidelity, r->seed);
     g_string_append_printf(s, "simulated     %s\n",
                            dur(a, sim_time_to_s(r->elapsed)));
     if (n)
-        g_string_append_printf(s, "frames        %u, mean %s (min %s, max "
-                               "%s)\n", n, dur(a, sim_result_mean_frame_s(r)),
+        g_string_append_printf(s,
+                               "frames        %u, mean %s (min %s, max "
+                               "%s)\n",
+                               n, dur(a, sim_result_mean_frame_s(r)),
                                dur(b, sim_time_to_s(lo)),
                                dur(c, sim_time_to_s(hi)));
     for (guint i = 0; i < n && n <= 10; i++)
@@ -382,8 +384,10 @@ static void text_nodes(GString *s, const SimResult *r)
     guint n = r->nodes->len, shown = n <= 32 ? n : 16;
     if (!n)
         return;
-    g_string_append_printf(s, "utilisation   busy / simulated time, per "
-                           "phase\n  %-12s %-10s %8s", "node", "kind", "busy");
+    g_string_append_printf(s,
+                           "utilisation   busy / simulated time, per "
+                           "phase\n  %-12s %-10s %8s",
+                           "node", "kind", "busy");
     for (guint p = 0; p < r->phases->len; p++)
         g_string_append_printf(s, " %10.10s",
                                (const char *)g_ptr_array_index(r->phases, p));
@@ -398,30 +402,30 @@ static void text_nodes(GString *s, const SimResult *r)
 static void text_rest(GString *s, const SimResult *r, gboolean timing)
 {
     char a[32];
-    g_string_append_printf(s, "communication %" G_GUINT64_FORMAT " messages, "
-                           "%" G_GUINT64_FORMAT " bytes", r->comm_messages,
-                           r->comm_bytes);
+    g_string_append_printf(s,
+                           "communication %" G_GUINT64_FORMAT " messages, "
+                           "%" G_GUINT64_FORMAT " bytes",
+                           r->comm_messages, r->comm_bytes);
     if (r->busiest_link)
-        g_string_append_printf(s, "; busiest link %s (%" G_GUINT64_FORMAT
-                               " bytes)", r->busiest_link,
-                               r->busiest_link_bytes);
+        g_string_append_printf(
+            s, "; busiest link %s (%" G_GUINT64_FORMAT " bytes)",
+            r->busiest_link, r->busiest_link_bytes);
     g_string_append_c(s, '\n');
     if (r->metrics->len)
         g_string_append(s, "metrics\n");
     for (guint i = 0; i < r->metrics->len; i++) {
         const SimMetric *m = g_ptr_array_index(r->metrics, i);
         g_string_append_printf(s, "  %-28s %s%s%s\n", m->name,
-                               g_ascii_formatd(a, sizeof a, "%.6g",
-                                               m->value),
+                               g_ascii_formatd(a, sizeof a, "%.6g", m->value),
                                *m->unit ? " " : "", m->unit);
     }
     g_string_append_printf(s, "simulator     %" G_GUINT64_FORMAT " events",
                            r->events);
     if (timing)
-        g_string_append_printf(s, " in %s s wall (%s events/s)",
-                               g_ascii_formatd(a, 16, "%.3g", r->wall_s),
-                               g_ascii_formatd(a + 16, 16, "%.3g",
-                                               events_per_s(r)));
+        g_string_append_printf(
+            s, " in %s s wall (%s events/s)",
+            g_ascii_formatd(a, 16, "%.3g", r->wall_s),
+            g_ascii_formatd(a + 16, 16, "%.3g", events_per_s(r)));
     g_string_append_c(s, '\n');
 }
 
@@ -450,8 +454,10 @@ gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
                        GError **err)
 {
     if (g_mkdir_with_parents(dir, 0755) != 0) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: found %s, expected a "
-                    "directory that can be created", dir, g_strerror(errno));
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                    "%s: found %s, expected a "
+                    "directory that can be created",
+                    dir, g_strerror(errno));
         return FALSE;
     }
     gboolean ok = TRUE;

@@ -33,7 +33,7 @@ typedef struct {
 } RpContext;
 
 typedef struct {
-    const char *name;    /* "kurc96", "ellsworth90" */
+    const char *name; /* "kurc96", "ellsworth90" */
     const char *summary;
     /* Runs the simulations; appends RpRow * (made with rp_row_new) to
      * rows.  FALSE with *err on failure. */

@@ -34,13 +34,11 @@ static DataTable *scatter_table(const RpTable *t)
     g_ptr_array_free(names, TRUE);
     for (guint i = 0; i < t->cells->len; i++) {
         const RpJoined *j = g_ptr_array_index(t->cells, i);
-        if (j->status != RP_COMPARED || !(j->published > 0) ||
-            !(j->sim > 0))
+        if (j->status != RP_COMPARED || !(j->published > 0) || !(j->sim > 0))
             continue;
         char a[32], b[32];
         char *row[] = {(char *)json_fmt_num(a, j->published),
-                       (char *)json_fmt_num(b, j->sim),
-                       j->table};
+                       (char *)json_fmt_num(b, j->sim), j->table};
         dt_add_row(d, row);
     }
     return d;
@@ -58,7 +56,8 @@ gboolean rp_doc_chart(const RpTable *t, const char *dir, GError **err)
         g_free(p->style);
         p->style = g_strdup("points");
         p->title = g_strdup_printf("%s: simulated against published "
-                                   "(fidelity %s)", t->paper, t->fidelity);
+                                   "(fidelity %s)",
+                                   t->paper, t->fidelity);
         ok = plot_render(p, d, dir, err);
         plot_spec_free(p);
         g_free(name);
@@ -78,8 +77,7 @@ static void md_num(GString *md, double x)
 static void md_row(GString *md, const RpJoined *j)
 {
     g_string_append_printf(md, "| %s | %s%s%s%s |", j->row, j->column,
-                           *j->unit ? " [" : "", j->unit,
-                           *j->unit ? "]" : "");
+                           *j->unit ? " [" : "", j->unit, *j->unit ? "]" : "");
     if (j->status == RP_WITHHELD)
         g_string_append(md, " *withheld* |");
     else
@@ -122,9 +120,8 @@ static void md_chart(GString *md, const char *dir, const char *rel,
     g_free(png);
 }
 
-void rp_doc_paper(GString *md, const GPtrArray *passes,
-                  GHashTable *captions, const char *chart_dir,
-                  const char *chart_rel)
+void rp_doc_paper(GString *md, const GPtrArray *passes, GHashTable *captions,
+                  const char *chart_dir, const char *chart_rel)
 {
     const RpTable *t = g_ptr_array_index(passes, passes->len - 1);
     g_string_append_printf(md, "## %s\n\n", t->paper);

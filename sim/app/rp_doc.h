@@ -15,9 +15,8 @@
 gboolean rp_doc_chart(const RpTable *t, const char *dir, GError **err);
 /* passes: RpTable * (one, or one per fidelity); captions may be NULL;
  * chart_rel: the charts' directory relative to the document. */
-void rp_doc_paper(GString *md, const GPtrArray *passes,
-                  GHashTable *captions, const char *chart_dir,
-                  const char *chart_rel);
+void rp_doc_paper(GString *md, const GPtrArray *passes, GHashTable *captions,
+                  const char *chart_dir, const char *chart_rel);
 /* The document's opening lines. */
 void rp_doc_head(GString *md, const char *fidelity);
 

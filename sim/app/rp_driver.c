@@ -24,8 +24,8 @@ static RpPaper *load_paper(const RpReproduction *rp, const char *dir,
     RpPaper *p = rp_paper_load(path, err);
     if (p && strcmp(p->name, rp->name) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "%s: found paper.name '%s', expected '%s'", path,
-                    p->name, rp->name);
+                    "%s: found paper.name '%s', expected '%s'", path, p->name,
+                    rp->name);
         rp_paper_free(p);
         p = NULL;
     }
@@ -52,9 +52,8 @@ RpTable *rp_drive(const RpReproduction *rp, const char *papers_dir,
     return t;
 }
 
-GPtrArray *rp_drive_fidelities(const RpReproduction *rp,
-                               const char *papers_dir, const RpContext *ctx,
-                               GError **err)
+GPtrArray *rp_drive_fidelities(const RpReproduction *rp, const char *papers_dir,
+                               const RpContext *ctx, GError **err)
 {
     GPtrArray *out =
         g_ptr_array_new_with_free_func((GDestroyNotify)rp_table_free);

@@ -24,8 +24,7 @@ RpTable *rp_drive(const RpReproduction *rp, const char *papers_dir,
 
 /* Runs rp at every fidelity; returns a new array of RpTable * (one per
  * entry of rp_fidelities, array frees them) or NULL with *err set. */
-GPtrArray *rp_drive_fidelities(const RpReproduction *rp,
-                               const char *papers_dir, const RpContext *ctx,
-                               GError **err);
+GPtrArray *rp_drive_fidelities(const RpReproduction *rp, const char *papers_dir,
+                               const RpContext *ctx, GError **err);
 
 #endif

@@ -28,9 +28,8 @@
 #define SETUP_FILE "configs/kurc96/setup.yaml"
 #define SETUP_ENV "PGSIM_KURC96_SETUP" /* another setup (tests) */
 
-const char *const rp_kurc96_scenes[] = {"1POT",   "2POT",   "4POT_1",
-                                        "4POT_2", "8POT_1", "8POT_2",
-                                        NULL};
+const char *const rp_kurc96_scenes[] = {"1POT",   "2POT",   "4POT_1", "4POT_2",
+                                        "8POT_1", "8POT_2", NULL};
 enum { N_SCENES = 6 };
 
 typedef struct {
@@ -47,8 +46,10 @@ static gboolean load_scenes(Kurc *k, GError **err)
     for (int i = 0; i < N_SCENES; i++) {
         const CfgNode *s = sc ? cfg_get(sc, rp_kurc96_scenes[i]) : NULL;
         if (!s) {
-            cfg_error(err, sc ? sc : k->setup, "no scene "
-                      "'1POT' ... '8POT_2'", "scenes: {1POT: ..., 2POT: "
+            cfg_error(err, sc ? sc : k->setup,
+                      "no scene "
+                      "'1POT' ... '8POT_2'",
+                      "scenes: {1POT: ..., 2POT: "
                       "..., 4POT_1, 4POT_2, 8POT_1, 8POT_2}");
             return FALSE;
         }
@@ -62,8 +63,7 @@ static gboolean load_scenes(Kurc *k, GError **err)
 static gboolean kurc_init(Kurc *k, const RpContext *ctx, GError **err)
 {
     k->ctx = ctx;
-    k->cache = g_hash_table_new_full(g_str_hash, g_str_equal, g_free,
-                                     g_free);
+    k->cache = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
     const char *path = g_getenv(SETUP_ENV);
     k->setup = cfg_load_file(path && *path ? path : SETUP_FILE, err);
     if (!k->setup)
@@ -123,8 +123,7 @@ static gboolean simulate(Kurc *k, const WlPmParams *p, int scene,
                                        k->ctx->fidelity, err);
     SimResult *r = sim_result_new("pixelmerge", "ipsc2");
     WlPmCosts c;
-    gboolean ok = m &&
-                  wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
+    gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
                   wl_pm_run_frames(m, k->scenes[scene], p, &c, 1, r, err);
     if (ok)
         run_from_result(run, r, m);
@@ -139,8 +138,7 @@ static const RpKurcRun *get_run(Kurc *k, int scene, guint n, guint procs,
                                 WlPmScheme scheme, WlPmBalance bal,
                                 GError **err)
 {
-    char *key = g_strdup_printf("%d/%u/%u/%d/%d", scene, n, procs, scheme,
-                                bal);
+    char *key = g_strdup_printf("%d/%u/%u/%d/%d", scene, n, procs, scheme, bal);
     RpKurcRun *run = g_hash_table_lookup(k->cache, key);
     if (run) {
         g_free(key);
@@ -158,9 +156,8 @@ static const RpKurcRun *get_run(Kurc *k, int scene, guint n, guint procs,
         return NULL;
     }
     if (!k->ctx->quiet)
-        g_printerr("kurc96: %s N=%u P=%u %s-%s\n", rp_kurc96_scenes[scene],
-                   n, procs, wl_pm_scheme_names[scheme],
-                   wl_pm_balance_names[bal]);
+        g_printerr("kurc96: %s N=%u P=%u %s-%s\n", rp_kurc96_scenes[scene], n,
+                   procs, wl_pm_scheme_names[scheme], wl_pm_balance_names[bal]);
     g_hash_table_insert(k->cache, key, run);
     return run;
 }
@@ -175,11 +172,10 @@ static gboolean table1(Kurc *k, GPtrArray *rows, GError **err)
 {
     for (int i = 0; i < N_SCENES; i++) {
         const char *s = rp_kurc96_scenes[i];
-        const RpKurcRun *a = get_run(k, i, 400, 16, WL_PM_AAPC,
-                                     WL_PM_BAL_HBP, err);
-        const RpKurcRun *b = a ? get_run(k, i, 640, 16, WL_PM_AAPC,
-                                         WL_PM_BAL_HBP, err)
-                               : NULL;
+        const RpKurcRun *a =
+            get_run(k, i, 400, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err);
+        const RpKurcRun *b =
+            a ? get_run(k, i, 640, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err) : NULL;
         if (!b)
             return FALSE;
         add(rows, "1", s, "polygons", a->polygons, NULL);
@@ -219,16 +215,16 @@ static gboolean table2(Kurc *k, GPtrArray *rows, GError **err)
     static const guint procs[] = {16, 8};
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < N_SCENES; i++) {
-            const RpKurcRun *pr = get_run(k, i, 400, procs[j], WL_PM_PAIR,
-                                          WL_PM_BAL_RS, err);
+            const RpKurcRun *pr =
+                get_run(k, i, 400, procs[j], WL_PM_PAIR, WL_PM_BAL_RS, err);
             const RpKurcRun *zx =
                 pr ? get_run(k, i, 400, procs[j], WL_PM_ZBUF_EXC,
                              WL_PM_BAL_STRIPS, err)
                    : NULL;
             if (!zx)
                 return FALSE;
-            char *row = g_strdup_printf("P%u/%s", procs[j],
-                                        rp_kurc96_scenes[i]);
+            char *row =
+                g_strdup_printf("P%u/%s", procs[j], rp_kurc96_scenes[i]);
             char *note = procs[j] == 8 ? memory_note(zx) : NULL;
             table2_row(rows, row, pr, zx, note);
             g_free(note);
@@ -263,8 +259,7 @@ static gboolean fig_point(Kurc *k, GPtrArray *rows, int scene, guint n,
     return TRUE;
 }
 
-static gboolean figures(Kurc *k, GPtrArray *rows, RpKurcFigs *f,
-                        GError **err)
+static gboolean figures(Kurc *k, GPtrArray *rows, RpKurcFigs *f, GError **err)
 {
     gboolean ok = TRUE;
     for (guint p = 2; ok && p <= 16; p *= 2) {
@@ -283,16 +278,14 @@ static gboolean figures(Kurc *k, GPtrArray *rows, RpKurcFigs *f,
 
 static gboolean speedup(Kurc *k, GPtrArray *rows, GError **err)
 {
-    const RpKurcRun *r = get_run(k, 1, 640, 16, WL_PM_AAPC, WL_PM_BAL_HBP,
-                                 err);
+    const RpKurcRun *r = get_run(k, 1, 640, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err);
     if (r)
         add(rows, "text", "P16/2POT/640", "aapc_hbp_speedup", r->speedup,
             "serial = the local phases of the whole scene on one node");
     return r != NULL;
 }
 
-static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows,
-                           GError **err)
+static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows, GError **err)
 {
     Kurc k = {0};
     RpKurcFigs figs = {0};

@@ -9,8 +9,8 @@
 #include "sim/app/rp_kurc96.h"
 #include <stdio.h>
 
-static const char *const volume_series[4] = {"PAIR-RS", "PAIR-HBP",
-                                             "AAPC-RS", "AAPC-HBP"};
+static const char *const volume_series[4] = {"PAIR-RS", "PAIR-HBP", "AAPC-RS",
+                                             "AAPC-HBP"};
 static const char *const imbalance_series[2] = {"RS", "HBP"};
 
 void rp_kurc96_figs_clear(RpKurcFigs *f)
@@ -33,8 +33,7 @@ static DataTable *table_new(void)
     return t;
 }
 
-static void add_row(DataTable *t, const char *x, double y,
-                    const char *series)
+static void add_row(DataTable *t, const char *x, double y, const char *series)
 {
     char ys[40];
     g_snprintf(ys, sizeof ys, "%.17g", y);
@@ -55,8 +54,8 @@ static const char *x_of(const RpKurcPoint *p, gboolean by_procs, char *buf,
 }
 
 /* One table of the volumes (volume TRUE) or the imbalances of points. */
-static DataTable *fig_table(const RpKurcPoint *pts, guint n,
-                            gboolean by_procs, gboolean volume)
+static DataTable *fig_table(const RpKurcPoint *pts, guint n, gboolean by_procs,
+                            gboolean volume)
 {
     DataTable *t = table_new();
     guint k = volume ? 4 : 2;

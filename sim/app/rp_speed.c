@@ -48,14 +48,15 @@ static void pct(GString *o, double x)
 void rp_speed_summary(const GPtrArray *passes, GString *out)
 {
     const RpTable *ref = ref_of(passes);
-    g_string_append_printf(out, "%s: speed against error (reference: %s)\n"
-                                "fidelity      wall_s  compared  "
-                                "vs paper     worst  vs %s\n",
+    g_string_append_printf(out,
+                           "%s: speed against error (reference: %s)\n"
+                           "fidelity      wall_s  compared  "
+                           "vs paper     worst  vs %s\n",
                            ref->paper, ref->fidelity, ref->fidelity);
     for (guint p = 0; p < passes->len; p++) {
         const RpTable *t = g_ptr_array_index(passes, p);
-        g_string_append_printf(out, "%-10s %9.3f  %8u ", t->fidelity,
-                               t->wall_s, t->compared);
+        g_string_append_printf(out, "%-10s %9.3f  %8u ", t->fidelity, t->wall_s,
+                               t->compared);
         pct(out, t->mean_abs);
         pct(out, t->worst_abs);
         pct(out, rp_speed_mean_vs_ref(t, ref));
@@ -141,8 +142,7 @@ static DataTable *speed_table(const GPtrArray *passes)
     return d;
 }
 
-gboolean rp_speed_chart(const GPtrArray *passes, const char *dir,
-                        GError **err)
+gboolean rp_speed_chart(const GPtrArray *passes, const char *dir, GError **err)
 {
     const RpTable *ref = ref_of(passes);
     char *name = g_strdup_printf("%s-speed", ref->paper);
@@ -150,7 +150,8 @@ gboolean rp_speed_chart(const GPtrArray *passes, const char *dir,
     p->series = g_strdup("against");
     p->logx = TRUE;
     p->title = g_strdup_printf("%s: mean |relative error| against wall "
-                               "time (analytic, flow, packet)", ref->paper);
+                               "time (analytic, flow, packet)",
+                               ref->paper);
     p->xlabel = g_strdup("wall time of the reproduction [s]");
     p->ylabel = g_strdup("mean |relative error|");
     DataTable *d = speed_table(passes);

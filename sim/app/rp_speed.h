@@ -27,7 +27,6 @@ void rp_speed_text(const GPtrArray *passes, GString *out);
 void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out);
 void rp_speed_json(const GPtrArray *passes, GString *out);
 /* Writes <dir>/<paper>-speed.{dat,gp,png,svg}. */
-gboolean rp_speed_chart(const GPtrArray *passes, const char *dir,
-                        GError **err);
+gboolean rp_speed_chart(const GPtrArray *passes, const char *dir, GError **err);
 
 #endif

@@ -150,8 +150,16 @@ const RpJoined *rp_table_find(const RpTable *t, const char *table,
 
 /* ---- text ------------------------------------------------------------ */
 
-enum { COL_TABLE, COL_ROW, COL_COLUMN, COL_PUB, COL_SIM, COL_ERR, COL_NOTE,
-       N_COLS };
+enum {
+    COL_TABLE,
+    COL_ROW,
+    COL_COLUMN,
+    COL_PUB,
+    COL_SIM,
+    COL_ERR,
+    COL_NOTE,
+    N_COLS
+};
 
 static void fmt_num(char *buf, size_t n, double x)
 {
@@ -173,11 +181,12 @@ static char **text_fields(const RpJoined *j)
     if (j->status == RP_WITHHELD)
         g_strlcpy(pub, "withheld", sizeof pub);
     gboolean odd = j->status == RP_UNLISTED || j->status == RP_MISSING;
-    char *note = odd && j->note
-                     ? g_strdup_printf("%s; %s", rp_status_name(j->status),
-                                       j->note)
-                     : g_strdup(odd ? rp_status_name(j->status)
-                                    : j->note ? j->note : "");
+    char *note =
+        odd && j->note
+            ? g_strdup_printf("%s; %s", rp_status_name(j->status), j->note)
+            : g_strdup(odd       ? rp_status_name(j->status)
+                       : j->note ? j->note
+                                 : "");
     char **f = g_new0(char *, N_COLS + 1);
     f[COL_TABLE] = g_strdup(j->table);
     f[COL_ROW] = g_strdup(j->row);
@@ -225,9 +234,10 @@ void rp_table_summary(const RpTable *t, GString *out)
 
 void rp_table_text(const RpTable *t, GString *out)
 {
-    static char *const head[] = {"table", "row", "column", "published",
-                                 "sim", "error", "note", NULL};
-    GPtrArray *lines = g_ptr_array_new_with_free_func((GDestroyNotify)g_strfreev);
+    static char *const head[] = {"table", "row",   "column", "published",
+                                 "sim",   "error", "note",   NULL};
+    GPtrArray *lines =
+        g_ptr_array_new_with_free_func((GDestroyNotify)g_strfreev);
     int w[N_COLS];
     for (int c = 0; c < N_COLS; c++)
         w[c] = (int)strlen(head[c]);
@@ -237,9 +247,8 @@ void rp_table_text(const RpTable *t, GString *out)
             w[c] = MAX(w[c], (int)g_utf8_strlen(f[c], -1));
         g_ptr_array_add(lines, f);
     }
-    g_string_append_printf(out, "%s (fidelity %s)%s%s\n", t->paper,
-                           t->fidelity, *t->citation ? ": " : "",
-                           t->citation);
+    g_string_append_printf(out, "%s (fidelity %s)%s%s\n", t->paper, t->fidelity,
+                           *t->citation ? ": " : "", t->citation);
     text_line(out, head, w);
     for (guint i = 0; i < lines->len; i++)
         text_line(out, g_ptr_array_index(lines, i), w);
@@ -308,8 +317,9 @@ void rp_table_json(const RpTable *t, GString *out)
             g_string_append_c(out, ',');
         json_cell(out, g_ptr_array_index(t->cells, i));
     }
-    g_string_append_printf(out, "],\"summary\":{\"compared\":%u,"
-                                "\"mean_abs_rel_error\":",
+    g_string_append_printf(out,
+                           "],\"summary\":{\"compared\":%u,"
+                           "\"mean_abs_rel_error\":",
                            t->compared);
     json_put_num(out, t->mean_abs);
     g_string_append(out, ",\"worst_abs_rel_error\":");

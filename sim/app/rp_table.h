@@ -19,10 +19,10 @@
 #include "sim/core/error.h"
 
 typedef enum {
-    RP_COMPARED,  /* sim and published both known */
-    RP_WITHHELD,  /* the paper's value is withheld: prediction only */
-    RP_UNLISTED,  /* the paper file has no such cell */
-    RP_MISSING    /* published, but the reproduction did not produce it */
+    RP_COMPARED, /* sim and published both known */
+    RP_WITHHELD, /* the paper's value is withheld: prediction only */
+    RP_UNLISTED, /* the paper file has no such cell */
+    RP_MISSING   /* published, but the reproduction did not produce it */
 } RpStatus;
 
 typedef struct {
@@ -31,20 +31,20 @@ typedef struct {
     double published; /* NAN when withheld / unlisted */
     double rel_error; /* NAN unless both known and published != 0 */
     RpStatus status;
-    char *unit;       /* from the paper file; "" if none */
-    char *note;       /* row note, else cell note; NULL if none */
+    char *unit; /* from the paper file; "" if none */
+    char *note; /* row note, else cell note; NULL if none */
 } RpJoined;
 
 typedef struct {
     char *paper;
     char *citation;
     char *fidelity;
-    double wall_s;     /* wall time of the reproduction run; 0 if unknown */
-    GPtrArray *cells;  /* RpJoined * */
-    guint compared;    /* cells with a finite rel_error */
-    double mean_abs;   /* mean |rel_error| over them; NAN when none */
-    double worst_abs;  /* max |rel_error|; NAN when none */
-    int worst;         /* index into cells of the worst; -1 when none */
+    double wall_s;    /* wall time of the reproduction run; 0 if unknown */
+    GPtrArray *cells; /* RpJoined * */
+    guint compared;   /* cells with a finite rel_error */
+    double mean_abs;  /* mean |rel_error| over them; NAN when none */
+    double worst_abs; /* max |rel_error|; NAN when none */
+    int worst;        /* index into cells of the worst; -1 when none */
 } RpTable;
 
 /* Joins rows (RpRow *, borrowed) to the paper; returns a new table (free

@@ -28,8 +28,8 @@ struct SweepLog {
 
 static gboolean io_error(GError **err, const char *path, const char *what)
 {
-    g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot %s: %s", path,
-                what, g_strerror(errno));
+    g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot %s: %s", path, what,
+                g_strerror(errno));
     return FALSE;
 }
 
@@ -49,13 +49,12 @@ static char **complete_lines(const char *text, gsize len, gsize *complete)
     return lines;
 }
 
-static gboolean line_point(const char *line, guint n, guint *idx,
-                           gboolean *ok)
+static gboolean line_point(const char *line, guint n, guint *idx, gboolean *ok)
 {
     JsonVal *v = json_parse(line, -1, LOG_NAME, NULL);
     const JsonVal *p = json_get(v, "point"), *s = json_get(v, "status");
-    gboolean good = p && p->kind == JSON_NUMBER && p->num >= 0 &&
-                    p->num < n && s && s->kind == JSON_STRING;
+    gboolean good = p && p->kind == JSON_NUMBER && p->num >= 0 && p->num < n &&
+                    s && s->kind == JSON_STRING;
     if (good) {
         *idx = (guint)p->num;
         *ok = strcmp(s->str, "ok") == 0;
@@ -75,7 +74,8 @@ static gboolean check_fingerprint(const char *dir, const SweepSpec *spec,
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "%s: found the log of another sweep (the sweep file or "
                     "its base config changed), expected the same sweep to "
-                    "resume", dir);
+                    "resume",
+                    dir);
         ok = FALSE;
     }
     char *text = g_strconcat(fp, "\n", NULL);
@@ -137,8 +137,7 @@ SweepLog *sweep_log_open(const char *dir, const SweepSpec *spec,
         sweep_log_close(log);
         return NULL;
     }
-    log->fd = open(log->path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC,
-                   0644);
+    log->fd = open(log->path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
     if (log->fd < 0) {
         io_error(err, log->path, "open");
         sweep_log_close(log);
@@ -193,8 +192,9 @@ static GPtrArray *base_columns(const SweepSpec *spec)
     for (int i = 0; i < 3; i++)
         g_ptr_array_add(cols, g_strdup(first[i]));
     for (guint i = 0; i < spec->params->len; i++)
-        g_ptr_array_add(cols, g_strdup(((SweepParam *)g_ptr_array_index(
-                                            spec->params, i))->key));
+        g_ptr_array_add(
+            cols,
+            g_strdup(((SweepParam *)g_ptr_array_index(spec->params, i))->key));
     g_ptr_array_add(cols, g_strdup("status"));
     g_ptr_array_add(cols, g_strdup("error"));
     return cols;

@@ -33,9 +33,9 @@ static GString *line_head(const SweepSpec *s, guint i)
 {
     SweepPoint pt = sweep_spec_point(s, i);
     GString *o = g_string_new(NULL);
-    g_string_append_printf(o, "{\"point\":%u,\"repetition\":%u,\"seed\":%"
-                              G_GUINT64_FORMAT,
-                           pt.index, pt.rep, pt.seed);
+    g_string_append_printf(
+        o, "{\"point\":%u,\"repetition\":%u,\"seed\":%" G_GUINT64_FORMAT,
+        pt.index, pt.rep, pt.seed);
     for (guint p = 0; p < s->params->len; p++) {
         const SweepParam *sp = g_ptr_array_index(s->params, p);
         g_string_append_c(o, ',');
@@ -94,8 +94,8 @@ char *sweep_point_line(const SweepSpec *s, guint i, SweepRunFn fn)
     gboolean ok = cfg && fn(cfg, pt.seed, &r, &err);
     cfg_free(cfg);
     if (!ok) {
-        char *line = sweep_point_error_line(s, i, err ? err->message
-                                                      : "run failed");
+        char *line =
+            sweep_point_error_line(s, i, err ? err->message : "run failed");
         g_clear_error(&err);
         sim_result_free(r);
         return line;
@@ -127,8 +127,7 @@ static G_NORETURN void child_main(const SweepSpec *s, guint i, SweepRunFn fn,
 }
 
 /* Forks a child for point i; returns its pid and the pipe's read end. */
-static pid_t spawn_point(const SweepSpec *s, guint i, SweepRunFn fn,
-                         int *rfd)
+static pid_t spawn_point(const SweepSpec *s, guint i, SweepRunFn fn, int *rfd)
 {
     int fds[2];
     if (pipe(fds) != 0)
@@ -297,8 +296,8 @@ static gboolean poll_kids(SweepJob *j, GArray *kids, GError **err)
 {
     struct pollfd *pf = g_new0(struct pollfd, kids->len);
     for (guint k = 0; k < kids->len; k++)
-        pf[k] = (struct pollfd){g_array_index(kids, SweepChild, k).fd,
-                                POLLIN, 0};
+        pf[k] =
+            (struct pollfd){g_array_index(kids, SweepChild, k).fd, POLLIN, 0};
     int r = poll(pf, kids->len, -1);
     gboolean ok = TRUE;
     for (guint k = kids->len; ok && r > 0 && k-- > 0;) {
@@ -329,8 +328,7 @@ gboolean sweep_run_local(SweepJob *j, int jobs, GError **err)
     while (ok) {
         if (!fill_pool(j, kids, jobs)) {
             g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                        "cannot start a worker process: %s",
-                        g_strerror(errno));
+                        "cannot start a worker process: %s", g_strerror(errno));
             ok = FALSE;
         } else if (kids->len == 0) {
             break;

@@ -37,11 +37,11 @@ typedef struct {
     const SweepSpec *spec;
     SweepLog *log;
     SweepRunFn fn;
-    GArray *todo;       /* guint point indices not yet done, ascending */
-    guint next;         /* next entry of todo to hand out */
-    guint finished;     /* points finished in this run */
-    guint failed;       /* of which failed */
-    RptProgress *bar;   /* progress on a terminal; NULL: none */
+    GArray *todo;     /* guint point indices not yet done, ascending */
+    guint next;       /* next entry of todo to hand out */
+    guint finished;   /* points finished in this run */
+    guint failed;     /* of which failed */
+    RptProgress *bar; /* progress on a terminal; NULL: none */
 } SweepJob;
 
 void sweep_job_init(SweepJob *j, const SweepSpec *s, SweepLog *log,

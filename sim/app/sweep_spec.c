@@ -27,9 +27,9 @@
 #define SWEEP_MAX_VALUES 100000
 #define SWEEP_MAX_POINTS 10000000
 
-static const char *const top_keys[] = {"name", "base", "parameters",
-                                       "combine", "repetitions", "seed",
-                                       "seed_key", "plots", NULL};
+static const char *const top_keys[] = {"name",     "base",        "parameters",
+                                       "combine",  "repetitions", "seed",
+                                       "seed_key", "plots",       NULL};
 
 static gboolean check_keys(const CfgNode *map, const char *const *allowed,
                            GError **err)
@@ -109,8 +109,8 @@ static void add_number(GPtrArray *out, double v, gboolean integer)
         g_ptr_array_add(out, g_strdup_printf("%.0f", v));
     else {
         char buf[G_ASCII_DTOSTR_BUF_SIZE];
-        g_ptr_array_add(out, g_strdup(g_ascii_formatd(buf, sizeof buf,
-                                                      "%.12g", v)));
+        g_ptr_array_add(out,
+                        g_strdup(g_ascii_formatd(buf, sizeof buf, "%.12g", v)));
     }
 }
 
@@ -139,8 +139,10 @@ static gboolean factor_range(const CfgNode *map, double from, double to,
                              double factor, GPtrArray *out, GError **err)
 {
     if (!(factor > 1.0) || !(from > 0.0) || to < from) {
-        cfg_error(err, cfg_get(map, "factor"), "a geometric range that "
-                  "never reaches 'to'", "0 < from <= to and factor > 1");
+        cfg_error(err, cfg_get(map, "factor"),
+                  "a geometric range that "
+                  "never reaches 'to'",
+                  "0 < from <= to and factor > 1");
         return FALSE;
     }
     gboolean integer = is_int_text(map, "from") && is_int_text(map, "factor");
@@ -162,8 +164,9 @@ static gboolean range_values(const CfgNode *map, GPtrArray *out, GError **err)
         return FALSE;
     gboolean has_step = cfg_get(map, "step") != NULL;
     if (has_step == (cfg_get(map, "factor") != NULL)) {
-        cfg_error(err, map, has_step ? "both 'step' and 'factor'"
-                                     : "neither 'step' nor 'factor'",
+        cfg_error(err, map,
+                  has_step ? "both 'step' and 'factor'"
+                           : "neither 'step' nor 'factor'",
                   "exactly one of them");
         return FALSE;
     }
@@ -223,10 +226,10 @@ static gboolean count_combos(SweepSpec *s, const CfgNode *pmap, GError **err)
     for (guint i = 0; i < s->params->len; i++) {
         const SweepParam *p = g_ptr_array_index(s->params, i);
         if (s->zip && i > 0 && p->values->len != n) {
-            char *f = g_strdup_printf("%u values for '%s'", p->values->len,
-                                      p->key);
-            char *e = g_strdup_printf("%u, as for every zipped parameter",
-                                      (guint)n);
+            char *f =
+                g_strdup_printf("%u values for '%s'", p->values->len, p->key);
+            char *e =
+                g_strdup_printf("%u, as for every zipped parameter", (guint)n);
             cfg_error(err, cfg_get(pmap, p->key), f, e);
             g_free(f);
             g_free(e);
@@ -393,8 +396,7 @@ SweepPoint sweep_spec_point(const SweepSpec *s, guint index)
     return pt;
 }
 
-const char *sweep_spec_value(const SweepSpec *s, const SweepPoint *pt,
-                             guint p)
+const char *sweep_spec_value(const SweepSpec *s, const SweepPoint *pt, guint p)
 {
     g_assert(p < s->params->len);
     guint c = pt->combo;
@@ -439,8 +441,8 @@ char *sweep_spec_fingerprint(const SweepSpec *s)
 {
     GString *t = g_string_new(s->base_text);
     g_string_append_printf(t, "\n%s %u %" G_GUINT64_FORMAT " %s\n",
-                           s->zip ? "zip" : "product", s->repetitions,
-                           s->seed, s->seed_key);
+                           s->zip ? "zip" : "product", s->repetitions, s->seed,
+                           s->seed_key);
     for (guint i = 0; i < s->params->len; i++) {
         const SweepParam *p = g_ptr_array_index(s->params, i);
         g_string_append_printf(t, "%s:", p->key);

@@ -22,17 +22,17 @@ typedef struct {
 } SweepParam;
 
 typedef struct {
-    char *path;          /* the sweep file */
-    char *name;          /* sweep name (file stem by default) */
-    CfgNode *base;       /* base config, owned */
-    GPtrArray *params;   /* SweepParam *, in file order */
-    gboolean zip;        /* FALSE: product */
-    guint repetitions;   /* >= 1 */
-    uint64_t seed;       /* seed of repetition 0 */
-    char *seed_key;      /* config key the seed is written to ("seed") */
-    guint combos;        /* number of parameter combinations */
-    GPtrArray *plots;    /* PlotSpec * */
-    char *base_text;     /* what the fingerprint covers of the base */
+    char *path;        /* the sweep file */
+    char *name;        /* sweep name (file stem by default) */
+    CfgNode *base;     /* base config, owned */
+    GPtrArray *params; /* SweepParam *, in file order */
+    gboolean zip;      /* FALSE: product */
+    guint repetitions; /* >= 1 */
+    uint64_t seed;     /* seed of repetition 0 */
+    char *seed_key;    /* config key the seed is written to ("seed") */
+    guint combos;      /* number of parameter combinations */
+    GPtrArray *plots;  /* PlotSpec * */
+    char *base_text;   /* what the fingerprint covers of the base */
 } SweepSpec;
 
 typedef struct {
@@ -45,16 +45,14 @@ typedef struct {
 SweepSpec *sweep_spec_load(const char *path, GError **err);
 /* The same from text; `name` is the file name used in errors and the
  * directory that relative base paths are resolved against. */
-SweepSpec *sweep_spec_parse(const char *text, const char *name,
-                            GError **err);
+SweepSpec *sweep_spec_parse(const char *text, const char *name, GError **err);
 void sweep_spec_free(SweepSpec *s);
 
 guint sweep_spec_points(const SweepSpec *s);
 /* Decodes a point index (< sweep_spec_points()). */
 SweepPoint sweep_spec_point(const SweepSpec *s, guint index);
 /* The value of parameter p at a point.  Borrowed. */
-const char *sweep_spec_value(const SweepSpec *s, const SweepPoint *pt,
-                             guint p);
+const char *sweep_spec_value(const SweepSpec *s, const SweepPoint *pt, guint p);
 /* A new config for the point: the base with every parameter and the seed
  * applied (cfg_set_override); NULL with *err if an override fails. */
 CfgNode *sweep_spec_config(const SweepSpec *s, const SweepPoint *pt,

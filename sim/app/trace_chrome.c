@@ -30,8 +30,9 @@ static void node_meta(TrcWriter *w, uint32_t node, const char *name)
 {
     if (!trc_new_node(w, node, name))
         return;
-    fprintf(w->f, ",\n{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":0,"
-                  "\"tid\":%u,\"args\":{\"name\":",
+    fprintf(w->f,
+            ",\n{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":0,"
+            "\"tid\":%u,\"args\":{\"name\":",
             node);
     put_name(w->f, g_hash_table_lookup(w->nodes, GUINT_TO_POINTER(node + 1)));
     fputs("}}", w->f);
@@ -46,8 +47,7 @@ static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
     node_meta(w, node, node_name);
     fputs(",\n{\"name\":", w->f);
     put_name(w->f, phase);
-    fprintf(w->f, ",\"cat\":\"phase\",\"ph\":\"X\",\"pid\":0,\"tid\":%u",
-            node);
+    fprintf(w->f, ",\"cat\":\"phase\",\"ph\":\"X\",\"pid\":0,\"tid\":%u", node);
     put_us(w->f, "ts", start);
     put_us(w->f, "dur", end - start);
     fputc('}', w->f);
@@ -57,14 +57,16 @@ static void flow_end(TrcWriter *w, const char *ph, uint32_t node, SimTime t,
                      uint64_t id, uint64_t bytes)
 {
     gboolean send = ph[0] == 's';
-    fprintf(w->f, ",\n{\"name\":\"%s\",\"cat\":\"msg\",\"ph\":\"X\","
-                  "\"pid\":0,\"tid\":%u",
+    fprintf(w->f,
+            ",\n{\"name\":\"%s\",\"cat\":\"msg\",\"ph\":\"X\","
+            "\"pid\":0,\"tid\":%u",
             send ? "send" : "recv", node);
     put_us(w->f, "ts", t);
     fprintf(w->f, ",\"dur\":0,\"args\":{\"bytes\":%" G_GUINT64_FORMAT "}}",
             bytes);
-    fprintf(w->f, ",\n{\"name\":\"message\",\"cat\":\"msg\",\"ph\":\"%s\","
-                  "\"pid\":0,\"tid\":%u,\"id\":%" G_GUINT64_FORMAT "%s",
+    fprintf(w->f,
+            ",\n{\"name\":\"message\",\"cat\":\"msg\",\"ph\":\"%s\","
+            "\"pid\":0,\"tid\":%u,\"id\":%" G_GUINT64_FORMAT "%s",
             ph, node, id, send ? "" : ",\"bp\":\"e\"");
     put_us(w->f, "ts", t);
     fputc('}', w->f);
@@ -119,9 +121,10 @@ static void cap_note(TrcWriter *w, SimTime t)
 
 static void end(TrcWriter *w)
 {
-    fprintf(w->f, "\n],\"displayTimeUnit\":\"ns\",\"otherData\":{"
-                  "\"generator\":\"pgsim\",\"events\":%" G_GUINT64_FORMAT
-                  ",\"cap\":%" G_GUINT64_FORMAT ",\"truncated\":%s}}\n",
+    fprintf(w->f,
+            "\n],\"displayTimeUnit\":\"ns\",\"otherData\":{"
+            "\"generator\":\"pgsim\",\"events\":%" G_GUINT64_FORMAT
+            ",\"cap\":%" G_GUINT64_FORMAT ",\"truncated\":%s}}\n",
             w->events, w->cap, w->truncated ? "true" : "false");
 }
 

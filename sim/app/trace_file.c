@@ -25,7 +25,8 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
     if (!fmt) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "--trace: found '%s', expected a file ending in .json "
-                    "(Chrome/Perfetto) or .paje (ViTE)", path);
+                    "(Chrome/Perfetto) or .paje (ViTE)",
+                    path);
         return NULL;
     }
     TrcWriter *w = g_new0(TrcWriter, 1);
@@ -59,9 +60,10 @@ gboolean trc_admit(TrcWriter *w, SimTime t)
     }
     w->truncated = TRUE;
     w->fmt->cap_note(w, t);
-    fprintf(stderr, "pgsim: trace %s: cap of %" G_GUINT64_FORMAT
-                    " events reached at %.6f ms; later events are not "
-                    "recorded\n",
+    fprintf(stderr,
+            "pgsim: trace %s: cap of %" G_GUINT64_FORMAT
+            " events reached at %.6f ms; later events are not "
+            "recorded\n",
             w->path, w->cap, sim_time_to_ms(t));
     return FALSE;
 }
@@ -74,9 +76,8 @@ gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name)
     if (old && (!name || strcmp(old, name) == 0 ||
                 !g_hash_table_contains(w->default_named, key)))
         return FALSE;
-    g_hash_table_insert(w->nodes, key,
-                        name ? g_strdup(name)
-                             : g_strdup_printf("node%u", node));
+    g_hash_table_insert(
+        w->nodes, key, name ? g_strdup(name) : g_strdup_printf("node%u", node));
     if (name)
         g_hash_table_remove(w->default_named, key);
     else

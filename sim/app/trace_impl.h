@@ -17,15 +17,15 @@ typedef struct {
 } TrcFormat;
 
 struct TrcWriter {
-    SimTrace trace;      /* first: a SimTrace * is a TrcWriter * */
+    SimTrace trace; /* first: a SimTrace * is a TrcWriter * */
     const TrcFormat *fmt;
     FILE *f;
     char *path, *tmp;
     uint64_t cap, events, next_flow;
     gboolean truncated;
-    GHashTable *nodes;   /* node id + 1 -> name (seen nodes) */
+    GHashTable *nodes;         /* node id + 1 -> name (seen nodes) */
     GHashTable *default_named; /* node id + 1 of nodes named "node<id>" */
-    GPtrArray *buffer;   /* Paje: lines waiting to be sorted by time */
+    GPtrArray *buffer;         /* Paje: lines waiting to be sorted by time */
 };
 
 /* Counts one event; FALSE once the cap is reached (then the note is

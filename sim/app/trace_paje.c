@@ -100,12 +100,14 @@ static void on_flow(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t bytes,
     see_node(w, src, NULL);
     see_node(w, dst, NULL);
     uint64_t key = ++w->next_flow;
-    add(w, 7, sent, g_strdup_printf("LT_Msg machine \"%" G_GUINT64_FORMAT
-                                    " B\" n%u m%" G_GUINT64_FORMAT,
-                                    bytes, src, key));
-    add(w, 8, arrived, g_strdup_printf("LT_Msg machine \"%" G_GUINT64_FORMAT
-                                       " B\" n%u m%" G_GUINT64_FORMAT,
-                                       bytes, dst, key));
+    add(w, 7, sent,
+        g_strdup_printf("LT_Msg machine \"%" G_GUINT64_FORMAT
+                        " B\" n%u m%" G_GUINT64_FORMAT,
+                        bytes, src, key));
+    add(w, 8, arrived,
+        g_strdup_printf("LT_Msg machine \"%" G_GUINT64_FORMAT
+                        " B\" n%u m%" G_GUINT64_FORMAT,
+                        bytes, dst, key));
 }
 
 static void mark(TrcWriter *w, const char *name, SimTime t)
@@ -131,8 +133,8 @@ static void begin(TrcWriter *w)
 
 static void cap_note(TrcWriter *w, SimTime t)
 {
-    char *msg = g_strdup_printf("trace truncated: cap of %" G_GUINT64_FORMAT
-                                " events reached", w->cap);
+    char *msg = g_strdup_printf(
+        "trace truncated: cap of %" G_GUINT64_FORMAT " events reached", w->cap);
     mark(w, msg, t);
     fprintf(w->f, "# %s; later events are not recorded\n", msg);
     g_free(msg);
@@ -171,28 +173,28 @@ static void end(TrcWriter *w)
     GArray *ids = node_ids(w);
     for (guint i = 0; i < ids->len; i++) {
         guint id = g_array_index(ids, guint, i);
-        char *q = quoted(g_hash_table_lookup(w->nodes,
-                                             GUINT_TO_POINTER(id + 1)));
-        fprintf(w->f, "4 0.000000000000 n%u CT_Node machine \"%s\"\n", id,
-                q);
+        char *q =
+            quoted(g_hash_table_lookup(w->nodes, GUINT_TO_POINTER(id + 1)));
+        fprintf(w->f, "4 0.000000000000 n%u CT_Node machine \"%s\"\n", id, q);
         g_free(q);
     }
     g_ptr_array_sort(w->buffer, by_time);
     SimTime last = 0;
     for (guint i = 0; i < w->buffer->len; i++) {
         const PajeLine *l = g_ptr_array_index(w->buffer, i);
-        fprintf(w->f, "%d %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
-                      " %s\n",
+        fprintf(w->f, "%d %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT " %s\n",
                 l->code, l->t / SIM_S, l->t % SIM_S, l->line);
         last = l->t;
     }
     for (guint i = 0; i < ids->len; i++)
-        fprintf(w->f, "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
-                      " CT_Node n%u\n",
+        fprintf(w->f,
+                "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
+                " CT_Node n%u\n",
                 last / SIM_S, last % SIM_S, g_array_index(ids, guint, i));
     g_array_free(ids, TRUE);
-    fprintf(w->f, "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
-                  " CT_Machine machine\n",
+    fprintf(w->f,
+            "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
+            " CT_Machine machine\n",
             last / SIM_S, last % SIM_S);
 }
 

@@ -4,8 +4,8 @@
  * libyaml's start mark.  Plain scalars "", "~", "null" become CFG_NULL.
  * Aliases are resolved by deep copy of the anchored node (at most a
  * million copied nodes per file, against "billion laughs" inputs); merge
- * keys and multiple documents are rejected.  Duplicate keys in a map are an error
- * located at the second occurrence.  Nesting deeper than CFG_MAX_DEPTH is
+ * keys and multiple documents are rejected.  Duplicate keys in a map are an
+ * error located at the second occurrence.  Nesting deeper than CFG_MAX_DEPTH is
  * rejected so hostile input cannot exhaust the stack.
  *
  * Read tracking: each map entry has a `read` flag and each map a list of
@@ -26,10 +26,10 @@
 
 typedef struct {
     yaml_parser_t parser;
-    const char *file; /* interned */
+    const char *file;    /* interned */
     GHashTable *anchors; /* name -> CfgNode * (owned copies) */
     int depth;
-    gboolean ended; /* the stream end was seen */
+    gboolean ended;      /* the stream end was seen */
     guint64 alias_nodes; /* nodes created by alias copies so far */
 } Loader;
 
@@ -81,8 +81,8 @@ void cfg_node_assign(CfgNode *dst, CfgNode *src)
     g_free(src);
 }
 
-CfgEntry *cfg_map_add(CfgNode *map, const char *key, const char *file,
-                      int line, int col, CfgNode *value)
+CfgEntry *cfg_map_add(CfgNode *map, const char *key, const char *file, int line,
+                      int col, CfgNode *value)
 {
     CfgEntry *e = g_new0(CfgEntry, 1);
     e->key = g_strdup(key);
@@ -113,8 +113,7 @@ CfgNode *cfg_copy(const CfgNode *n)
     c->quoted = n->quoted;
     for (guint i = 0; n->items && i < n->items->len; i++) {
         if (n->kind == CFG_SEQ) {
-            g_ptr_array_add(c->items,
-                            cfg_copy(g_ptr_array_index(n->items, i)));
+            g_ptr_array_add(c->items, cfg_copy(g_ptr_array_index(n->items, i)));
         } else {
             const CfgEntry *e = g_ptr_array_index(n->items, i);
             cfg_map_add(c, e->key, e->file, e->line, e->col,
@@ -129,11 +128,10 @@ CfgNode *cfg_copy(const CfgNode *n)
 static void syntax_error(Loader *L, GError **err)
 {
     const yaml_parser_t *p = &L->parser;
-    char *found = p->context
-                      ? g_strdup_printf("YAML syntax error '%s' %s",
-                                        p->problem, p->context)
-                      : g_strdup_printf("YAML syntax error '%s'",
-                                        p->problem ? p->problem : "?");
+    char *found = p->context ? g_strdup_printf("YAML syntax error '%s' %s",
+                                               p->problem, p->context)
+                             : g_strdup_printf("YAML syntax error '%s'",
+                                               p->problem ? p->problem : "?");
     sim_error_located(err, L->file, (int)p->problem_mark.line + 1,
                       (int)p->problem_mark.column + 1, found,
                       "well-formed YAML");
@@ -219,8 +217,10 @@ static char *load_key(Loader *L, yaml_event_t *ev, GError **err)
     const char *k = (const char *)ev->data.scalar.value;
     if (strcmp(k, "<<") == 0 &&
         ev->data.scalar.style == YAML_PLAIN_SCALAR_STYLE) {
-        ev_error(L, ev, "merge key '<<'", "a plain key (merge keys are not "
-                 "supported)", err);
+        ev_error(L, ev, "merge key '<<'",
+                 "a plain key (merge keys are not "
+                 "supported)",
+                 err);
         return NULL;
     }
     return g_strndup(k, ev->data.scalar.length);
@@ -237,7 +237,8 @@ static gboolean add_pair(Loader *L, CfgNode *map, yaml_event_t *kev,
     CfgEntry *dup = cfg_map_find(map, key);
     if (dup) {
         char *found = g_strdup_printf("duplicate key '%s' (first at line "
-                                      "%d)", key, dup->line);
+                                      "%d)",
+                                      key, dup->line);
         sim_error_located(err, L->file, line, col, found,
                           "each key once per map");
         g_free(found);
@@ -295,8 +296,10 @@ static CfgNode *load_node(Loader *L, yaml_event_t *ev, GError **err)
     int line = (int)ev->start_mark.line + 1;
     int col = (int)ev->start_mark.column + 1;
     if (++L->depth > CFG_MAX_DEPTH) {
-        ev_error(L, ev, "nesting deeper than 200 levels", "a shallower "
-                 "document", err);
+        ev_error(L, ev, "nesting deeper than 200 levels",
+                 "a shallower "
+                 "document",
+                 err);
     } else if (ev->type == YAML_SCALAR_EVENT) {
         n = load_scalar(L, ev);
         remember_anchor(L, ev->data.scalar.anchor, n);
@@ -344,8 +347,10 @@ static gboolean load_tail(Loader *L, GError **err)
     while (next_event(L, &ev, err)) {
         yaml_event_type_t t = ev.type;
         if (t == YAML_DOCUMENT_START_EVENT)
-            ev_error(L, &ev, "a second YAML document", "one document per "
-                     "file", err);
+            ev_error(L, &ev, "a second YAML document",
+                     "one document per "
+                     "file",
+                     err);
         yaml_event_delete(&ev);
         if (t == YAML_DOCUMENT_START_EVENT)
             return FALSE;
@@ -355,8 +360,8 @@ static gboolean load_tail(Loader *L, GError **err)
     return FALSE;
 }
 
-static CfgNode *load(const unsigned char *text, size_t len,
-                     const char *name, GError **err)
+static CfgNode *load(const unsigned char *text, size_t len, const char *name,
+                     GError **err)
 {
     Loader L = {.file = g_intern_string(name)};
     L.anchors = g_hash_table_new_full(g_str_hash, g_str_equal, g_free,
@@ -387,7 +392,8 @@ CfgNode *cfg_load_file(const char *name, GError **err)
     if (!g_file_get_contents(path, &text, &len, &e)) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
                     "%s:0:0: found an unreadable file (%s), expected a "
-                    "readable YAML file", path, e->message);
+                    "readable YAML file",
+                    path, e->message);
         g_error_free(e);
     } else {
         root = load((const unsigned char *)text, len, path, err);
@@ -520,13 +526,11 @@ static char *asked_list(const CfgNode *map)
     GString *s = g_string_new("one of: ");
     for (guint i = 0; i < map->asked->len; i++)
         g_string_append_printf(s, "%s%s", i ? ", " : "",
-                               (const char *)g_ptr_array_index(map->asked,
-                                                               i));
+                               (const char *)g_ptr_array_index(map->asked, i));
     return g_string_free(s, FALSE);
 }
 
-static gboolean check_entry(const CfgNode *map, const CfgEntry *e,
-                            GError **err)
+static gboolean check_entry(const CfgNode *map, const CfgEntry *e, GError **err)
 {
     if (e->read)
         return cfg_check_unused(e->value, err);

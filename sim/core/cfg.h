@@ -62,9 +62,8 @@ gboolean cfg_get_bool(const CfgNode *map, const char *key, gboolean required,
                       gboolean *out, GError **err);
 gboolean cfg_get_int(const CfgNode *map, const char *key, gboolean required,
                      int64_t min, int64_t max, int64_t *out, GError **err);
-gboolean cfg_get_double(const CfgNode *map, const char *key,
-                        gboolean required, double min, double max,
-                        double *out, GError **err);
+gboolean cfg_get_double(const CfgNode *map, const char *key, gboolean required,
+                        double min, double max, double *out, GError **err);
 /* A key whose value must be a map: *out is it, or NULL when the key is
  * absent and optional.  `what` describes the map in errors, e.g.
  * "a map {base, polygon} of sizes". */
@@ -83,8 +82,7 @@ gboolean cfg_get_freq(const CfgNode *map, const char *key, gboolean required,
 gboolean cfg_get_size(const CfgNode *map, const char *key, gboolean required,
                       uint64_t *bytes, GError **err);
 gboolean cfg_get_count(const CfgNode *map, const char *key, gboolean required,
-                       uint64_t min, uint64_t max, uint64_t *out,
-                       GError **err);
+                       uint64_t min, uint64_t max, uint64_t *out, GError **err);
 
 /* The same conversions on a bare string (for CLI flags); `what` names the
  * source in errors, e.g. "--lookahead". */
@@ -114,8 +112,7 @@ void cfg_mark_read(const CfgNode *n);
 
 /* Applies "a.b.c=value" (value parsed as YAML) to the tree, creating maps
  * as needed; errors name the override as "--set a.b.c=value". */
-gboolean cfg_set_override(CfgNode *root, const char *assignment,
-                          GError **err);
+gboolean cfg_set_override(CfgNode *root, const char *assignment, GError **err);
 /* Deep-merges `over` into `base` (maps merge, anything else replaces);
  * used for machine models included by name and then overridden. */
 void cfg_merge(CfgNode *base, const CfgNode *over);

@@ -57,16 +57,15 @@ static void missing(GError **err, const CfgNode *map, const char *key,
     if (map)
         cfg_error(err, map, found, exp);
     else
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "found %s, expected %s", found, exp);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "found %s, expected %s",
+                    found, exp);
     g_free(found);
     g_free(exp);
 }
 
 /* The scalar at key; TRUE with *out NULL when absent and optional. */
-static gboolean lookup(const CfgNode *map, const char *key,
-                       gboolean required, const char *expected,
-                       const CfgNode **out, GError **err)
+static gboolean lookup(const CfgNode *map, const char *key, gboolean required,
+                       const char *expected, const CfgNode **out, GError **err)
 {
     *out = NULL;
     if (map && map->kind != CFG_MAP) {
@@ -122,10 +121,10 @@ gboolean cfg_get_str(const CfgNode *map, const char *key, gboolean required,
 
 static int bool_value(const char *s)
 {
-    static const char *const yes[] = {"true", "True", "TRUE", "yes", "on",
-                                      NULL};
-    static const char *const no[] = {"false", "False", "FALSE", "no", "off",
-                                     NULL};
+    static const char *const yes[] = {"true", "True", "TRUE",
+                                      "yes",  "on",   NULL};
+    static const char *const no[] = {"false", "False", "FALSE",
+                                     "no",    "off",   NULL};
     return g_strv_contains(yes, s) ? 1 : g_strv_contains(no, s) ? 0 : -1;
 }
 
@@ -153,8 +152,8 @@ static char *int_range_text(int64_t min, int64_t max)
         return g_strdup("an integer");
     if (max == INT64_MAX)
         return g_strdup_printf("an integer >= %" G_GINT64_FORMAT, min);
-    return g_strdup_printf("an integer in [%" G_GINT64_FORMAT ", %"
-                           G_GINT64_FORMAT "]", min, max);
+    return g_strdup_printf(
+        "an integer in [%" G_GINT64_FORMAT ", %" G_GINT64_FORMAT "]", min, max);
 }
 
 gboolean cfg_get_int(const CfgNode *map, const char *key, gboolean required,
@@ -164,8 +163,7 @@ gboolean cfg_get_int(const CfgNode *map, const char *key, gboolean required,
     const CfgNode *v;
     gboolean ok = lookup(map, key, required, exp, &v, err);
     gint64 x;
-    if (ok && v && !g_ascii_string_to_signed(v->text, 10, min, max, &x,
-                                             NULL)) {
+    if (ok && v && !g_ascii_string_to_signed(v->text, 10, min, max, &x, NULL)) {
         error_at(err, v, exp);
         ok = FALSE;
     } else if (ok && v) {
@@ -188,9 +186,8 @@ static gboolean parse_real(const char *s, double *out)
     return TRUE;
 }
 
-gboolean cfg_get_double(const CfgNode *map, const char *key,
-                        gboolean required, double min, double max,
-                        double *out, GError **err)
+gboolean cfg_get_double(const CfgNode *map, const char *key, gboolean required,
+                        double min, double max, double *out, GError **err)
 {
     char *exp = g_strdup_printf("a number in [%g, %g]", min, max);
     const CfgNode *v;
@@ -234,9 +231,8 @@ gboolean cfg_get_enum(const CfgNode *map, const char *key, gboolean required,
 }
 
 /* Looks up a scalar and converts it with the units module. */
-static gboolean get_u64(const CfgNode *map, const char *key,
-                        gboolean required, CfgUnitKind kind, uint64_t *out,
-                        GError **err)
+static gboolean get_u64(const CfgNode *map, const char *key, gboolean required,
+                        CfgUnitKind kind, uint64_t *out, GError **err)
 {
     const CfgNode *v;
     const char *exp = cfg_units_expected(kind);
@@ -249,9 +245,8 @@ static gboolean get_u64(const CfgNode *map, const char *key,
     return TRUE;
 }
 
-static gboolean get_real(const CfgNode *map, const char *key,
-                         gboolean required, CfgUnitKind kind, double *out,
-                         GError **err)
+static gboolean get_real(const CfgNode *map, const char *key, gboolean required,
+                         CfgUnitKind kind, double *out, GError **err)
 {
     const CfgNode *v;
     const char *exp = cfg_units_expected(kind);
@@ -271,11 +266,9 @@ gboolean cfg_get_time(const CfgNode *map, const char *key, gboolean required,
 }
 
 gboolean cfg_get_bandwidth(const CfgNode *map, const char *key,
-                           gboolean required, double *bytes_per_s,
-                           GError **err)
+                           gboolean required, double *bytes_per_s, GError **err)
 {
-    return get_real(map, key, required, CFG_UNIT_BANDWIDTH, bytes_per_s,
-                    err);
+    return get_real(map, key, required, CFG_UNIT_BANDWIDTH, bytes_per_s, err);
 }
 
 gboolean cfg_get_freq(const CfgNode *map, const char *key, gboolean required,
@@ -291,8 +284,7 @@ gboolean cfg_get_size(const CfgNode *map, const char *key, gboolean required,
 }
 
 gboolean cfg_get_count(const CfgNode *map, const char *key, gboolean required,
-                       uint64_t min, uint64_t max, uint64_t *out,
-                       GError **err)
+                       uint64_t min, uint64_t max, uint64_t *out, GError **err)
 {
     uint64_t v = 0;
     const CfgNode *at;
@@ -307,7 +299,8 @@ gboolean cfg_get_count(const CfgNode *map, const char *key, gboolean required,
     }
     if (v < min || v > max) {
         char *range = g_strdup_printf("a count in [%" G_GUINT64_FORMAT
-                                      ", %" G_GUINT64_FORMAT "]", min, max);
+                                      ", %" G_GUINT64_FORMAT "]",
+                                      min, max);
         error_at(err, at, range);
         g_free(range);
         return FALSE;
@@ -381,9 +374,9 @@ static gboolean place(CfgNode *n, char **parts, CfgNode *value,
     CfgEntry *e;
     CfgNode *c = child(n, parts[0], &e);
     if (!c && n->kind != CFG_MAP) {
-        char *found = g_strdup_printf("'%s' below %s", parts[0],
-                                      n->kind == CFG_SEQ ? "a sequence"
-                                                         : "a scalar");
+        char *found =
+            g_strdup_printf("'%s' below %s", parts[0],
+                            n->kind == CFG_SEQ ? "a sequence" : "a scalar");
         sim_error_located(err, name, 1, 1, found,
                           n->kind == CFG_SEQ ? "an index in range"
                                              : "a path through maps");
@@ -400,7 +393,8 @@ static gboolean place(CfgNode *n, char **parts, CfgNode *value,
     }
     if (!c)
         c = cfg_map_add(n, parts[0], name, 1, 1,
-                        cfg_node_new(CFG_MAP, name, 1, 1))->value;
+                        cfg_node_new(CFG_MAP, name, 1, 1))
+                ->value;
     return place(c, parts + 1, value, name, err);
 }
 
@@ -419,8 +413,7 @@ static gboolean valid_path(const char *path)
     return ok;
 }
 
-gboolean cfg_set_override(CfgNode *root, const char *assignment,
-                          GError **err)
+gboolean cfg_set_override(CfgNode *root, const char *assignment, GError **err)
 {
     g_assert(root && root->kind == CFG_MAP);
     const char *eq = strchr(assignment, '=');

@@ -11,8 +11,8 @@ typedef struct {
     char *key;
     const char *file; /* of the key (interned): overrides add keys */
     int line, col;    /* of the key */
-    CfgNode *value;  /* owned */
-    gboolean read;   /* a consumer looked the key up */
+    CfgNode *value;   /* owned */
+    gboolean read;    /* a consumer looked the key up */
 } CfgEntry;
 
 struct CfgNode {
@@ -28,8 +28,8 @@ struct CfgNode {
 CfgNode *cfg_node_new(CfgKind kind, const char *file, int line, int col);
 /* Replaces *dst's contents by *src's and frees the src shell. */
 void cfg_node_assign(CfgNode *dst, CfgNode *src);
-CfgEntry *cfg_map_add(CfgNode *map, const char *key, const char *file,
-                      int line, int col, CfgNode *value);
+CfgEntry *cfg_map_add(CfgNode *map, const char *key, const char *file, int line,
+                      int col, CfgNode *value);
 CfgEntry *cfg_map_find(const CfgNode *map, const char *key);
 /* Decimal sequence index in a path component, or -1. */
 gint64 cfg_path_index(const char *s, size_t len);

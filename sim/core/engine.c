@@ -33,7 +33,7 @@ struct SimEngine {
     uint64_t seq;
     uint64_t events;
     uint64_t seed;
-    gboolean hole;    /* heap root is the event being run */
+    gboolean hole; /* heap root is the event being run */
     gboolean stopped;
     GError *error;
     GArray *entities; /* SimEntity */
@@ -77,9 +77,18 @@ void sim_engine_free(SimEngine *e)
     g_free(e);
 }
 
-SimTime sim_now(const SimEngine *e) { return e->now; }
-uint64_t sim_engine_seed(const SimEngine *e) { return e->seed; }
-uint64_t sim_engine_events(const SimEngine *e) { return e->events; }
+SimTime sim_now(const SimEngine *e)
+{
+    return e->now;
+}
+uint64_t sim_engine_seed(const SimEngine *e)
+{
+    return e->seed;
+}
+uint64_t sim_engine_events(const SimEngine *e)
+{
+    return e->events;
+}
 
 size_t sim_engine_pending(const SimEngine *e)
 {
@@ -115,22 +124,26 @@ gboolean sim_schedule_at(SimEngine *e, SimTime t, SimHandler fn, void *ctx,
     return TRUE;
 }
 
-gboolean sim_schedule_in(SimEngine *e, SimTime delay, SimHandler fn,
-                         void *ctx, void *arg)
+gboolean sim_schedule_in(SimEngine *e, SimTime delay, SimHandler fn, void *ctx,
+                         void *arg)
 {
     SimTime t;
     if (G_UNLIKELY(!sim_time_add(e->now, delay, &t))) {
-        sim_engine_fail(e, g_error_new(SIM_ERROR, SIM_ERROR_OVERFLOW,
-                                       "simulated time overflow: %" G_GUINT64_FORMAT
-                                       " ps + %" G_GUINT64_FORMAT
-                                       " ps exceeds the 64-bit clock",
-                                       e->now, delay));
+        sim_engine_fail(
+            e, g_error_new(SIM_ERROR, SIM_ERROR_OVERFLOW,
+                           "simulated time overflow: %" G_GUINT64_FORMAT
+                           " ps + %" G_GUINT64_FORMAT
+                           " ps exceeds the 64-bit clock",
+                           e->now, delay));
         return FALSE;
     }
     return sim_schedule_at(e, t, fn, ctx, arg);
 }
 
-void sim_engine_stop(SimEngine *e) { e->stopped = TRUE; }
+void sim_engine_stop(SimEngine *e)
+{
+    e->stopped = TRUE;
+}
 
 void sim_engine_fail(SimEngine *e, GError *err)
 {
@@ -143,9 +156,8 @@ void sim_engine_fail(SimEngine *e, GError *err)
 
 gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
 {
-    uint64_t next_progress = e->progress_every
-                                 ? e->events + e->progress_every
-                                 : UINT64_MAX;
+    uint64_t next_progress =
+        e->progress_every ? e->events + e->progress_every : UINT64_MAX;
     e->stopped = FALSE;
     while (!e->stopped && sim_evq_len(e->q) > 0) {
         SimEvKey k = sim_evq_top(e->q);
@@ -217,7 +229,10 @@ const char *sim_engine_phase_name(const SimEngine *e, unsigned id)
     return g_ptr_array_index(e->phases, id);
 }
 
-unsigned sim_engine_phase_count(const SimEngine *e) { return e->phases->len; }
+unsigned sim_engine_phase_count(const SimEngine *e)
+{
+    return e->phases->len;
+}
 
 void sim_engine_set_progress(SimEngine *e, uint64_t every, SimProgressFn fn,
                              void *ctx)
@@ -227,5 +242,11 @@ void sim_engine_set_progress(SimEngine *e, uint64_t every, SimProgressFn fn,
     e->progress_ctx = ctx;
 }
 
-void sim_engine_set_trace(SimEngine *e, SimTrace *tr) { e->trace = tr; }
-SimTrace *sim_engine_trace(const SimEngine *e) { return e->trace; }
+void sim_engine_set_trace(SimEngine *e, SimTrace *tr)
+{
+    e->trace = tr;
+}
+SimTrace *sim_engine_trace(const SimEngine *e)
+{
+    return e->trace;
+}

@@ -1,7 +1,7 @@
 /* error.c — the pgsim error domain and located input errors. */
 #include "sim/core/error.h"
 
-G_DEFINE_QUARK(pgsim-error-quark, sim_error)
+G_DEFINE_QUARK(pgsim - error - quark, sim_error)
 
 int sim_error_exit_status(const GError *err)
 {

@@ -13,8 +13,7 @@
 
 #define EVQ_PAD 3 /* entries before h[0], so that h[1] is line-aligned */
 
-static inline gboolean entry_less(const SimEvq *q, SimEvEntry a,
-                                  SimEvEntry b)
+static inline gboolean entry_less(const SimEvq *q, SimEvEntry a, SimEvEntry b)
 {
     return a.time < b.time ||
            (a.time == b.time && q->seqs[a.slot] < q->seqs[b.slot]);
@@ -96,12 +95,11 @@ static inline size_t lesser(const SimEvq *q, const SimEvEntry *h, size_t a,
  * common case).  Choosing the least child is a coin toss for a branch
  * predictor; callgrind's branch simulation counted 6.8 mispredictions per
  * PHOLD event with a compare loop, 1.4 with the tournament. */
-static inline size_t least_child(const SimEvq *q, const SimEvEntry *h,
-                                 size_t n, size_t c)
+static inline size_t least_child(const SimEvq *q, const SimEvEntry *h, size_t n,
+                                 size_t c)
 {
     if (G_LIKELY(c + 4 <= n))
-        return lesser(q, h, lesser(q, h, c, c + 1),
-                      lesser(q, h, c + 2, c + 3));
+        return lesser(q, h, lesser(q, h, c, c + 1), lesser(q, h, c + 2, c + 3));
     size_t m = c;
     for (size_t j = c + 1; j < n; j++)
         m = lesser(q, h, m, j);

@@ -34,8 +34,8 @@ typedef struct {
 /* Exposed so that len and top inline into the engine's loop; use the
  * functions, never the fields. */
 typedef struct SimEvq {
-    SimEvEntry *h;  /* h[0] is the root; 64-byte aligned children groups */
-    void *mem;      /* the allocation behind h */
+    SimEvEntry *h; /* h[0] is the root; 64-byte aligned children groups */
+    void *mem;     /* the allocation behind h */
     size_t n, cap;
     uint64_t *seqs; /* seq of each slot */
     size_t seq_cap;

@@ -109,7 +109,8 @@ double sim_result_mean_frame_s(const SimResult *r)
         return 0.0;
     SimSum s = {0};
     for (guint i = 0; i < r->frame_times->len; i++)
-        sim_sum_add(&s, sim_time_to_s(g_array_index(r->frame_times, SimTime, i)));
+        sim_sum_add(&s,
+                    sim_time_to_s(g_array_index(r->frame_times, SimTime, i)));
     return sim_sum_value(&s) / r->frame_times->len;
 }
 

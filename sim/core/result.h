@@ -13,9 +13,9 @@
 #include "sim/core/stats.h"
 
 typedef struct {
-    char *name;  /* "gp3", "node12" */
-    char *kind;  /* "gp", "renderer", "node" ... */
-    SimBusy busy;/* per_phase indexed like SimResult.phases */
+    char *name;   /* "gp3", "node12" */
+    char *kind;   /* "gp", "renderer", "node" ... */
+    SimBusy busy; /* per_phase indexed like SimResult.phases */
 } SimNodeResult;
 
 typedef struct {
@@ -35,11 +35,11 @@ typedef struct {
     GPtrArray *nodes;    /* SimNodeResult * */
     uint64_t comm_bytes;
     uint64_t comm_messages;
-    char *busiest_link;  /* NULL when no message was sent */
+    char *busiest_link; /* NULL when no message was sent */
     uint64_t busiest_link_bytes;
-    GPtrArray *metrics;  /* SimMetric *, insertion order */
-    uint64_t events;     /* engine events run */
-    double wall_s;       /* wall-clock seconds of the run (not deterministic) */
+    GPtrArray *metrics; /* SimMetric *, insertion order */
+    uint64_t events;    /* engine events run */
+    double wall_s;      /* wall-clock seconds of the run (not deterministic) */
 } SimResult;
 
 /* Returns a new empty result; free with sim_result_free(). */

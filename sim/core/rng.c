@@ -18,7 +18,8 @@ uint64_t sim_rng_mix(uint64_t x)
 
 void sim_rng_init(SimRng *r, uint64_t seed, uint64_t stream)
 {
-    uint64_t x = sim_rng_mix(seed) ^ sim_rng_mix(stream + 0x632be59bd9b4e019ULL);
+    uint64_t x =
+        sim_rng_mix(seed) ^ sim_rng_mix(stream + 0x632be59bd9b4e019ULL);
     for (int i = 0; i < 4; i++) {
         x = sim_rng_mix(x);
         r->s[i] = x;

@@ -37,8 +37,7 @@ static inline void sim_trace_span(SimTrace *tr, uint32_t node,
 }
 
 static inline void sim_trace_flow(SimTrace *tr, uint32_t src, uint32_t dst,
-                                  uint64_t bytes, SimTime sent,
-                                  SimTime arrived)
+                                  uint64_t bytes, SimTime sent, SimTime arrived)
 {
     if (tr && tr->ops->flow)
         tr->ops->flow(tr, src, dst, bytes, sent, arrived);

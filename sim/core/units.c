@@ -2,11 +2,12 @@
  *
  * A number is scanned into an exact decimal (mantissa, power of ten) of
  * at most 20 significant digits (what fits in 64 bits); a unit is an
- * exact, case-sensitive match in the kind's table and contributes a power of ten, a power-of-two
- * factor (KiB ...) and an optional division by 8 (bits).  Integer results
- * are computed in checked 64-bit arithmetic after cancelling powers of
- * ten, so no binary rounding ever enters a time, size or count; doubles go
- * through one correctly rounded g_ascii_strtod() (locale-independent).
+ * exact, case-sensitive match in the kind's table and contributes a power of
+ * ten, a power-of-two factor (KiB ...) and an optional division by 8 (bits).
+ * Integer results are computed in checked 64-bit arithmetic after cancelling
+ * powers of ten, so no binary rounding ever enters a time, size or count;
+ * doubles go through one correctly rounded g_ascii_strtod()
+ * (locale-independent).
  *
  * Invariants: never accepts a negative value, a missing number, trailing
  * junk or a value that does not fit.  Complexity O(length of the text).
@@ -31,24 +32,29 @@ typedef struct {
 typedef enum { NUM_OK, NUM_NONE, NUM_NEG, NUM_DIGITS } NumStatus;
 
 static const Unit time_units[] = {
-    {"ps", 0, 1, 1}, {"ns", 3, 1, 1}, {"us", 6, 1, 1},
+    {"ps", 0, 1, 1},        {"ns", 3, 1, 1},        {"us", 6, 1, 1},
     {"\xc2\xb5s", 6, 1, 1}, {"\xce\xbcs", 6, 1, 1}, /* micro, mu */
-    {"ms", 9, 1, 1}, {"s", 12, 1, 1}, {NULL, 0, 0, 0},
+    {"ms", 9, 1, 1},        {"s", 12, 1, 1},        {NULL, 0, 0, 0},
 };
 
 static const Unit bw_units[] = {
-    {"B/s", 0, 1, 1},         {"KB/s", 3, 1, 1},
-    {"MB/s", 6, 1, 1},        {"GB/s", 9, 1, 1},
-    {"KiB/s", 0, 1024, 1},    {"MiB/s", 0, 1048576, 1},
+    {"B/s", 0, 1, 1},
+    {"KB/s", 3, 1, 1},
+    {"MB/s", 6, 1, 1},
+    {"GB/s", 9, 1, 1},
+    {"KiB/s", 0, 1024, 1},
+    {"MiB/s", 0, 1048576, 1},
     {"GiB/s", 0, 1073741824, 1},
-    {"bit/s", 0, 1, 8},       {"Kbit/s", 3, 1, 8},
-    {"Mbit/s", 6, 1, 8},      {"Gbit/s", 9, 1, 8},
+    {"bit/s", 0, 1, 8},
+    {"Kbit/s", 3, 1, 8},
+    {"Mbit/s", 6, 1, 8},
+    {"Gbit/s", 9, 1, 8},
     {NULL, 0, 0, 0},
 };
 
 static const Unit freq_units[] = {
-    {"Hz", 0, 1, 1}, {"kHz", 3, 1, 1}, {"MHz", 6, 1, 1}, {"GHz", 9, 1, 1},
-    {NULL, 0, 0, 0},
+    {"Hz", 0, 1, 1},  {"kHz", 3, 1, 1}, {"MHz", 6, 1, 1},
+    {"GHz", 9, 1, 1}, {NULL, 0, 0, 0},
 };
 
 static const Unit size_units[] = {
@@ -65,7 +71,10 @@ static const Unit size_units[] = {
 };
 
 static const Unit count_units[] = {
-    {"", 0, 1, 1}, {"K", 3, 1, 1}, {"M", 6, 1, 1}, {NULL, 0, 0, 0},
+    {"", 0, 1, 1},
+    {"K", 3, 1, 1},
+    {"M", 6, 1, 1},
+    {NULL, 0, 0, 0},
 };
 
 static const Unit *const tables[] = {
@@ -220,8 +229,8 @@ static gboolean mul_checked(uint64_t a, uint64_t b, uint64_t *out)
 }
 
 /* mant * 10^e * bin exactly; non-integral results round (times) or fail. */
-static gboolean scale_exact(uint64_t mant, int e, uint64_t bin,
-                            gboolean round, uint64_t *out, gboolean *inexact)
+static gboolean scale_exact(uint64_t mant, int e, uint64_t bin, gboolean round,
+                            uint64_t *out, gboolean *inexact)
 {
     uint64_t v;
     *inexact = FALSE;
@@ -267,8 +276,8 @@ gboolean cfg_units_u64(const char *s, CfgUnitKind kind, uint64_t *out,
     if (!u)
         return FALSE;
     gboolean inexact;
-    if (!scale_exact(n.mant, n.exp10 + u->pow10, u->bin,
-                     kind == CFG_UNIT_TIME, out, &inexact)) {
+    if (!scale_exact(n.mant, n.exp10 + u->pow10, u->bin, kind == CFG_UNIT_TIME,
+                     out, &inexact)) {
         *expected = overflow_text[kind];
         return FALSE;
     }

@@ -20,23 +20,23 @@
 typedef struct {
     MachKindInfo info;
     char *name;
-    GHashTable *costs;      /* op (borrowed from tree) -> SimTime * */
+    GHashTable *costs;       /* op (borrowed from tree) -> SimTime * */
     const CfgNode *costs_at; /* for located errors; may be NULL */
     const CfgNode *at;
 } MachKind;
 
 struct MachMachine {
     SimEngine *eng;
-    CfgNode *tree;          /* owned: merged, checked model */
+    CfgNode *tree; /* owned: merged, checked model */
     char *name;
     char *fidelity;
-    GArray *kinds;          /* MachKind */
-    MachProc **pages;       /* PROC_PAGE processors each, NULL until used */
+    GArray *kinds;    /* MachKind */
+    MachProc **pages; /* PROC_PAGE processors each, NULL until used */
     guint n_procs;
     const CfgNode *network;
-    NetTopo *topo;          /* NULL when the topology is not built yet */
+    NetTopo *topo; /* NULL when the topology is not built yet */
     NetNet *net;
-    GError *net_err;        /* why net is NULL */
+    GError *net_err; /* why net is NULL */
 };
 
 /* Upper bound on processors: one page pointer per PROC_PAGE of them. */
@@ -76,15 +76,14 @@ static gboolean read_kind(MachKind *k, const char *name, const CfgNode *kind,
         !mach_param_freq(kind, "clock", FALSE, &k->info.clock_hz, err) ||
         !mach_param_size(kind, "memory", FALSE, &k->info.memory, err) ||
         !mach_param_count(kind, "lanes", FALSE, &lanes, err) ||
-        !mach_param_size(kind, "lane_memory", FALSE, &k->info.lane_memory,
-                         err))
+        !mach_param_size(kind, "lane_memory", FALSE, &k->info.lane_memory, err))
         return FALSE;
     if (count > MACH_MAX_PROCS || lanes == 0) {
-        cfg_error(err, mach_param_node(kind, count > MACH_MAX_PROCS
-                                                 ? "count" : "lanes"),
-                  count > MACH_MAX_PROCS ? "more than 16M processors"
-                                         : "zero lanes",
-                  "a count in 0 .. 16M (lanes >= 1)");
+        cfg_error(
+            err,
+            mach_param_node(kind, count > MACH_MAX_PROCS ? "count" : "lanes"),
+            count > MACH_MAX_PROCS ? "more than 16M processors" : "zero lanes",
+            "a count in 0 .. 16M (lanes >= 1)");
         return FALSE;
     }
     k->info.count = (guint)count;
@@ -98,8 +97,8 @@ static gboolean build_kinds(MachMachine *m, GError **err)
     guint first = 0;
     for (guint i = 0; i < cfg_map_len(nodes); i++) {
         MachKind k = {0};
-        gboolean ok = read_kind(&k, cfg_map_key(nodes, i),
-                                cfg_map_value(nodes, i), err);
+        gboolean ok =
+            read_kind(&k, cfg_map_key(nodes, i), cfg_map_value(nodes, i), err);
         k.info.first = first;
         g_array_append_val(m->kinds, k);
         if (!ok)
@@ -155,8 +154,8 @@ static MachProc *proc_get(const MachMachine *mc, guint id)
 static guint endpoint_count(const MachMachine *m, const char *topo,
                             const CfgNode **count_at)
 {
-    const MachKind *last = &g_array_index(m->kinds, MachKind,
-                                          m->kinds->len - 1);
+    const MachKind *last =
+        &g_array_index(m->kinds, MachKind, m->kinds->len - 1);
     *count_at = mach_param_node(last->at, "count");
     if (g_strcmp0(topo, "cm-router") != 0)
         return m->n_procs;
@@ -188,7 +187,8 @@ static gboolean build_net(MachMachine *m, GError **err)
     if (!mach_topo_supported(topo)) {
         const CfgNode *at = mach_param_node(m->network, "topology");
         char *found = g_strdup_printf("topology '%s' (not yet built by the "
-                                      "machine layer)", topo);
+                                      "machine layer)",
+                                      topo);
         cfg_error(&m->net_err, at, found,
                   "hypercube, ring, fat-tree, cm-router, mesh, torus, "
                   "crossbar or bus");
@@ -221,8 +221,8 @@ CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
     }
     CfgNode *tree = mach_load_model(model, err);
     if (!tree) {
-        g_prefix_error(err, "%s:%d:%d: ", cfg_file(section),
-                       cfg_line(section), cfg_col(section));
+        g_prefix_error(err, "%s:%d:%d: ", cfg_file(section), cfg_line(section),
+                       cfg_col(section));
         return NULL;
     }
     *model_file = g_strdup(cfg_file(tree));
@@ -239,16 +239,14 @@ static MachMachine *machine_alloc(SimEngine *eng, const char *fidelity)
     return m;
 }
 
-static MachMachine *build(SimEngine *eng, CfgNode *tree,
-                          const char *model_file, const char *fidelity,
-                          GError **err)
+static MachMachine *build(SimEngine *eng, CfgNode *tree, const char *model_file,
+                          const char *fidelity, GError **err)
 {
     MachMachine *m = machine_alloc(eng, fidelity);
     m->tree = tree;
     const char *name = NULL;
     if (!mach_model_check(tree, model_file, err) ||
-        !cfg_get_str(tree, "name", TRUE, &name, err) ||
-        !build_kinds(m, err)) {
+        !cfg_get_str(tree, "name", TRUE, &name, err) || !build_kinds(m, err)) {
         mach_free(m);
         return NULL;
     }
@@ -268,8 +266,7 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
     g_assert(eng && section);
     char *model_file = NULL;
     CfgNode *tree = mach_section_tree(section, &model_file, err);
-    MachMachine *m = tree ? build(eng, tree, model_file, fidelity, err)
-                          : NULL;
+    MachMachine *m = tree ? build(eng, tree, model_file, fidelity, err) : NULL;
     g_free(model_file);
     if (m)
         cfg_mark_read(section);
@@ -311,8 +308,9 @@ void mach_free(MachMachine *m)
     if (m->net_err)
         g_error_free(m->net_err);
     for (guint pg = 0; m->pages && pg < n_pages(m); pg++) {
-        for (guint i = 0; m->pages[pg] && i < PROC_PAGE &&
-                          pg * PROC_PAGE + i < m->n_procs; i++)
+        for (guint i = 0;
+             m->pages[pg] && i < PROC_PAGE && pg * PROC_PAGE + i < m->n_procs;
+             i++)
             mach_proc_clear(&m->pages[pg][i]);
         g_free(m->pages[pg]);
     }
@@ -332,12 +330,30 @@ void mach_free(MachMachine *m)
 
 /* ---- queries ------------------------------------------------------------- */
 
-const char *mach_name(const MachMachine *m) { return m->name; }
-const char *mach_fidelity(const MachMachine *m) { return m->fidelity; }
-SimEngine *mach_engine(const MachMachine *m) { return m->eng; }
-const CfgNode *mach_model_cfg(const MachMachine *m) { return m->tree; }
-guint mach_kind_count(const MachMachine *m) { return m->kinds->len; }
-guint mach_proc_total(const MachMachine *m) { return m->n_procs; }
+const char *mach_name(const MachMachine *m)
+{
+    return m->name;
+}
+const char *mach_fidelity(const MachMachine *m)
+{
+    return m->fidelity;
+}
+SimEngine *mach_engine(const MachMachine *m)
+{
+    return m->eng;
+}
+const CfgNode *mach_model_cfg(const MachMachine *m)
+{
+    return m->tree;
+}
+guint mach_kind_count(const MachMachine *m)
+{
+    return m->kinds->len;
+}
+guint mach_proc_total(const MachMachine *m)
+{
+    return m->n_procs;
+}
 
 const MachKindInfo *mach_kind_at(const MachMachine *m, guint i)
 {
@@ -373,7 +389,8 @@ MachProc *mach_proc(MachMachine *m, const char *kind, guint i)
     return proc_get(m, k->info.first + i);
 }
 
-/* ---- costs ---------------------------------------------------------------- */
+/* ---- costs ----------------------------------------------------------------
+ */
 
 gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
                           const char *op, SimTime *out, GError **err)
@@ -384,8 +401,8 @@ gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
         *out = *t;
         return TRUE;
     }
-    const CfgNode *at = k ? (k->costs_at ? k->costs_at : k->at)
-                          : cfg_get(m->tree, "nodes");
+    const CfgNode *at =
+        k ? (k->costs_at ? k->costs_at : k->at) : cfg_get(m->tree, "nodes");
     char *found = k ? g_strdup_printf("no cost for '%s' on '%s'", op, kind)
                     : g_strdup_printf("no node kind '%s'", kind);
     char *exp = g_strdup_printf("costs: {%s: {value: <time>, source: ...}} "
@@ -428,8 +445,14 @@ gboolean mach_cost_n(SimTime cost, uint64_t n, SimTime *out)
 
 /* ---- network parameters ------------------------------------------------ */
 
-const CfgNode *mach_network_cfg(const MachMachine *m) { return m->network; }
-NetNet *mach_net(const MachMachine *m) { return m->net; }
+const CfgNode *mach_network_cfg(const MachMachine *m)
+{
+    return m->network;
+}
+NetNet *mach_net(const MachMachine *m)
+{
+    return m->net;
+}
 
 gboolean mach_require_net(const MachMachine *m, GError **err)
 {
@@ -445,13 +468,13 @@ const char *mach_net_word(const MachMachine *m, const char *key)
 }
 
 /* The tree was checked, so a present key always parses. */
-#define NET_GET(fn, key, out)                                         \
-    do {                                                              \
-        if (!mach_param_node(m->network, key))                        \
-            return FALSE;                                             \
-        gboolean ok_ = fn(m->network, key, TRUE, out, NULL);          \
-        g_assert(ok_);                                                \
-        return TRUE;                                                  \
+#define NET_GET(fn, key, out)                                                  \
+    do {                                                                       \
+        if (!mach_param_node(m->network, key))                                 \
+            return FALSE;                                                      \
+        gboolean ok_ = fn(m->network, key, TRUE, out, NULL);                   \
+        g_assert(ok_);                                                         \
+        return TRUE;                                                           \
     } while (0)
 
 gboolean mach_net_time(const MachMachine *m, const char *key, SimTime *out)
@@ -459,8 +482,7 @@ gboolean mach_net_time(const MachMachine *m, const char *key, SimTime *out)
     NET_GET(mach_param_time, key, out);
 }
 
-gboolean mach_net_bandwidth(const MachMachine *m, const char *key,
-                            double *out)
+gboolean mach_net_bandwidth(const MachMachine *m, const char *key, double *out)
 {
     NET_GET(mach_param_bandwidth, key, out);
 }

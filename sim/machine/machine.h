@@ -32,13 +32,13 @@
 
 /* What a node kind is: borrowed from the machine. */
 typedef struct {
-    const char *name;      /* "gp", "renderer", "node" ... */
-    guint first;           /* global id of its first processor */
+    const char *name; /* "gp", "renderer", "node" ... */
+    guint first;      /* global id of its first processor */
     guint count;
-    double clock_hz;       /* 0 when the model gives none */
-    uint64_t memory;       /* bytes per node, 0 when not given */
-    uint64_t lanes;        /* SIMD lanes per processor, 1 if not SIMD */
-    uint64_t lane_memory;  /* bytes per lane, 0 when not given */
+    double clock_hz;      /* 0 when the model gives none */
+    uint64_t memory;      /* bytes per node, 0 when not given */
+    uint64_t lanes;       /* SIMD lanes per processor, 1 if not SIMD */
+    uint64_t lane_memory; /* bytes per lane, 0 when not given */
 } MachKindInfo;
 
 /* Builds a machine from a config's `machine` section (borrowed; copied).
@@ -100,11 +100,9 @@ gboolean mach_require_net(const MachMachine *m, GError **err);
 const CfgNode *mach_network_cfg(const MachMachine *m);
 const char *mach_net_word(const MachMachine *m, const char *key);
 gboolean mach_net_time(const MachMachine *m, const char *key, SimTime *out);
-gboolean mach_net_bandwidth(const MachMachine *m, const char *key,
-                            double *out);
+gboolean mach_net_bandwidth(const MachMachine *m, const char *key, double *out);
 gboolean mach_net_size(const MachMachine *m, const char *key, uint64_t *out);
-gboolean mach_net_count(const MachMachine *m, const char *key,
-                        uint64_t *out);
+gboolean mach_net_count(const MachMachine *m, const char *key, uint64_t *out);
 /* Per-level bandwidths (bytes/s) in a new GArray of double, or NULL. */
 GArray *mach_net_bw_list(const MachMachine *m, const char *key);
 

@@ -63,21 +63,19 @@ static gboolean read_levels(const CfgNode *net, NetParams *out, GError **err)
 }
 
 /* CM-200: level_bw[0] router cube links, level_bw[1] NEWS links. */
-static gboolean read_cm_levels(const CfgNode *net, NetParams *out,
-                               GError **err)
+static gboolean read_cm_levels(const CfgNode *net, NetParams *out, GError **err)
 {
     return mach_param_bandwidth(net, "router_link_bandwidth", FALSE,
                                 &out->level_bw[0], err) &&
-           mach_param_bandwidth(net, "news_bandwidth", FALSE,
-                                &out->level_bw[1], err);
+           mach_param_bandwidth(net, "news_bandwidth", FALSE, &out->level_bw[1],
+                                err);
 }
 
-static gboolean read_bandwidth(const CfgNode *net, NetParams *out,
-                               GError **err)
+static gboolean read_bandwidth(const CfgNode *net, NetParams *out, GError **err)
 {
     double total = 0.0;
-    if (!mach_param_bandwidth(net, "bandwidth", FALSE, &out->bandwidth, err)
-        || !mach_param_bandwidth(net, "total_bandwidth", FALSE, &total, err))
+    if (!mach_param_bandwidth(net, "bandwidth", FALSE, &out->bandwidth, err) ||
+        !mach_param_bandwidth(net, "total_bandwidth", FALSE, &total, err))
         return FALSE;
     if (out->bandwidth <= 0.0 && total > 0.0)
         out->bandwidth = total / out->channels;
@@ -95,15 +93,15 @@ static gboolean read_long(const CfgNode *net, NetParams *out, GError **err)
 {
     const CfgNode *sl = mach_param_node(net, "startup_long");
     const CfgNode *th = mach_param_node(net, "long_threshold");
-    if (!mach_param_time(net, "startup_long", FALSE, &out->startup_long,
-                         err) ||
+    if (!mach_param_time(net, "startup_long", FALSE, &out->startup_long, err) ||
         !mach_param_size(net, "long_threshold", FALSE, &out->long_threshold,
                          err))
         return FALSE;
     if (!sl == !th)
         return TRUE;
-    cfg_error(err, sl ? sl : th, sl ? "startup_long without long_threshold"
-                                    : "long_threshold without startup_long",
+    cfg_error(err, sl ? sl : th,
+              sl ? "startup_long without long_threshold"
+                 : "long_threshold without startup_long",
               "both (messages above long_threshold pay startup_long)");
     return FALSE;
 }
@@ -121,8 +119,9 @@ gboolean mach_net_params(const CfgNode *net, NetParams *out, GError **err)
         !read_levels(net, out, err) || !read_cm_levels(net, out, err))
         return FALSE;
     if (channels == 0 || channels > UINT32_MAX || packet > UINT32_MAX) {
-        cfg_error(err, net, channels == 0 ? "zero channels"
-                                          : "an oversized channel/packet",
+        cfg_error(err, net,
+                  channels == 0 ? "zero channels"
+                                : "an oversized channel/packet",
                   "channels >= 1 and a packet size under 4 GB");
         return FALSE;
     }
@@ -148,11 +147,12 @@ static NetTopo *hypercube_new(const CfgNode *net, guint endpoints,
     if (!mach_param_count(net, "dimension", FALSE, &dim, err))
         return NULL;
     if (!log2_exact(endpoints, &d) || d > 24 || (dim && dim != d)) {
-        char *found = g_strdup_printf("%u processors on a hypercube",
-                                      endpoints);
+        char *found =
+            g_strdup_printf("%u processors on a hypercube", endpoints);
         cfg_error(err, count_at ? count_at : mach_param_node(net, "topology"),
-                  found, "a power of two up to 2^24 processors "
-                         "(= 2^dimension)");
+                  found,
+                  "a power of two up to 2^24 processors "
+                  "(= 2^dimension)");
         g_free(found);
         return NULL;
     }
@@ -178,8 +178,9 @@ static NetTopo *fattree_new(const CfgNode *net, guint endpoints,
     if (!mach_param_count(net, "arity", TRUE, &arity, err))
         return NULL;
     if (arity < 2 || arity > 64 || endpoints < 2) {
-        cfg_error(err, arity < 2 || arity > 64
-                           ? mach_param_node(net, "arity") : count_at,
+        cfg_error(err,
+                  arity < 2 || arity > 64 ? mach_param_node(net, "arity")
+                                          : count_at,
                   arity < 2 || arity > 64 ? "an unusable fat-tree arity"
                                           : "fewer than 2 leaves",
                   "arity 2..64 and at least 2 processors");
@@ -202,8 +203,10 @@ static NetTopo *cm_new(const CfgNode *net, guint endpoints,
         !log2_exact(endpoints / group, &d) || d > 20 ||
         (routers && routers != endpoints / group)) {
         char *found = g_strdup_printf("%u lanes for router_nodes x "
-                                      "procs_per_router", endpoints);
-        cfg_error(err, count_at, found, "lanes = 2^d x procs_per_router "
+                                      "procs_per_router",
+                                      endpoints);
+        cfg_error(err, count_at, found,
+                  "lanes = 2^d x procs_per_router "
                   "(d <= 20) = router_nodes x procs_per_router");
         g_free(found);
         return NULL;
@@ -232,14 +235,14 @@ static NetTopo *grid_new(const CfgNode *net, guint endpoints,
     guint nd = ext->len;
     g_array_unref(ext);
     if (!ok) {
-        cfg_error(err, mach_param_node(net, "extents"),
-                  "unusable mesh extents", "1 to 3 extents of 1 .. 2^24");
+        cfg_error(err, mach_param_node(net, "extents"), "unusable mesh extents",
+                  "1 to 3 extents of 1 .. 2^24");
         return NULL;
     }
     if (prod != endpoints) {
-        char *found = g_strdup_printf("%u processors on a mesh of %"
-                                      G_GUINT64_FORMAT " nodes", endpoints,
-                                      prod);
+        char *found = g_strdup_printf(
+            "%u processors on a mesh of %" G_GUINT64_FORMAT " nodes", endpoints,
+            prod);
         cfg_error(err, count_at, found, "the product of network.extents");
         g_free(found);
         return NULL;
@@ -311,7 +314,8 @@ NetTopo *mach_topo_new(const CfgNode *net, guint endpoints,
     if (fn)
         return fn(net, endpoints, count_at ? count_at : net, err);
     char *found = g_strdup_printf("topology '%s' (not built by the machine "
-                                  "layer)", topo ? topo : "");
+                                  "layer)",
+                                  topo ? topo : "");
     cfg_error(err, mach_param_node(net, "topology"), found,
               "hypercube, ring, fat-tree, cm-router, mesh, torus, "
               "crossbar or bus");

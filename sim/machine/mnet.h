@@ -20,8 +20,7 @@
 
 /* Fills *out from the network section; FALSE with a located *err if a
  * value is unusable (no bandwidth, unknown switching word ...). */
-gboolean mach_net_params(const CfgNode *network, NetParams *out,
-                         GError **err);
+gboolean mach_net_params(const CfgNode *network, NetParams *out, GError **err);
 
 /* Whether mach_topo_new() can build this topology word yet. */
 gboolean mach_topo_supported(const char *topology);

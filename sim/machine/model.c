@@ -23,11 +23,11 @@ typedef struct {
 
 /* Keys a node kind may have, besides `costs` (a map of times). */
 static const MachKeyType kind_keys[] = {
-    {"count", MACH_T_COUNT},       {"processor", MACH_T_WORD},
-    {"clock", MACH_T_FREQ},        {"memory", MACH_T_SIZE},
-    {"lanes", MACH_T_COUNT},       {"lane_memory", MACH_T_SIZE},
-    {"fpa_lanes", MACH_T_COUNT},   {"cores", MACH_T_COUNT},
-    {"peak_flops", MACH_T_COUNT},  {NULL, 0},
+    {"count", MACH_T_COUNT},      {"processor", MACH_T_WORD},
+    {"clock", MACH_T_FREQ},       {"memory", MACH_T_SIZE},
+    {"lanes", MACH_T_COUNT},      {"lane_memory", MACH_T_SIZE},
+    {"fpa_lanes", MACH_T_COUNT},  {"cores", MACH_T_COUNT},
+    {"peak_flops", MACH_T_COUNT}, {NULL, 0},
 };
 
 /* Keys the network section may have. */
@@ -171,14 +171,22 @@ static gboolean has_unit(const char *s)
 static const char *type_example(MachType t)
 {
     switch (t) {
-    case MACH_T_TIME: return "a time with its unit, e.g. '350 us'";
-    case MACH_T_BANDWIDTH: return "a bandwidth with its unit, e.g. '2.8 MB/s'";
-    case MACH_T_FREQ: return "a frequency with its unit, e.g. '16 MHz'";
-    case MACH_T_SIZE: return "a size with its unit, e.g. '4 MB'";
-    case MACH_T_BW_LIST: return "a list of bandwidths, e.g. [20 MB/s, 10 MB/s]";
-    case MACH_T_COUNT_LIST: return "a list of counts, e.g. [8, 8]";
-    case MACH_T_COUNT: return "a count, e.g. 16 or 64K";
-    default: return "a word, e.g. hypercube";
+    case MACH_T_TIME:
+        return "a time with its unit, e.g. '350 us'";
+    case MACH_T_BANDWIDTH:
+        return "a bandwidth with its unit, e.g. '2.8 MB/s'";
+    case MACH_T_FREQ:
+        return "a frequency with its unit, e.g. '16 MHz'";
+    case MACH_T_SIZE:
+        return "a size with its unit, e.g. '4 MB'";
+    case MACH_T_BW_LIST:
+        return "a list of bandwidths, e.g. [20 MB/s, 10 MB/s]";
+    case MACH_T_COUNT_LIST:
+        return "a list of counts, e.g. [8, 8]";
+    case MACH_T_COUNT:
+        return "a count, e.g. 16 or 64K";
+    default:
+        return "a word, e.g. hypercube";
     }
 }
 
@@ -226,11 +234,14 @@ static gboolean check_typed(const CfgNode *map, const char *key, MachType t,
     GArray *list = NULL;
     gboolean ok;
     switch (t) {
-    case MACH_T_TIME: return cfg_get_time(map, key, TRUE, &tm, err);
+    case MACH_T_TIME:
+        return cfg_get_time(map, key, TRUE, &tm, err);
     case MACH_T_BANDWIDTH:
         return cfg_get_bandwidth(map, key, TRUE, &d, err);
-    case MACH_T_FREQ: return cfg_get_freq(map, key, TRUE, &d, err);
-    case MACH_T_SIZE: return cfg_get_size(map, key, TRUE, &u, err);
+    case MACH_T_FREQ:
+        return cfg_get_freq(map, key, TRUE, &d, err);
+    case MACH_T_SIZE:
+        return cfg_get_size(map, key, TRUE, &u, err);
     case MACH_T_COUNT:
         return cfg_get_count(map, key, TRUE, 0, UINT64_MAX, &u, err);
     case MACH_T_BW_LIST:
@@ -241,7 +252,8 @@ static gboolean check_typed(const CfgNode *map, const char *key, MachType t,
         if (list)
             g_array_unref(list);
         return ok;
-    default: return cfg_get_str(map, key, TRUE, &w, err);
+    default:
+        return cfg_get_str(map, key, TRUE, &w, err);
     }
 }
 
@@ -261,15 +273,14 @@ static gboolean check_provenance(const CfgNode *p, const char *name,
     }
     if (found_any)
         return TRUE;
-    char *found = g_strdup_printf("parameter '%s' without a provenance",
-                                  name);
+    char *found = g_strdup_printf("parameter '%s' without a provenance", name);
     cfg_error(err, p, found, "one of source:, calibrated: or assumption:");
     g_free(found);
     return FALSE;
 }
 
-static gboolean check_param_map(const CfgNode *p, const char *name,
-                                MachType t, GError **err)
+static gboolean check_param_map(const CfgNode *p, const char *name, MachType t,
+                                GError **err)
 {
     const CfgNode *v = cfg_get(p, "value");
     if (!v) {
@@ -343,7 +354,8 @@ static gboolean check_kind(const CfgNode *kind, const char *model_file,
         return FALSE;
     }
     if (!cfg_get(kind, "count")) {
-        cfg_error(err, kind, "a node kind without count", "count: {value: N, "
+        cfg_error(err, kind, "a node kind without count",
+                  "count: {value: N, "
                   "source: ...}");
         return FALSE;
     }
@@ -354,8 +366,8 @@ static gboolean check_kind(const CfgNode *kind, const char *model_file,
             if (!check_costs(cfg_map_value(kind, i), model_file, err))
                 return FALSE;
         } else if (!mach_kind_key_type(key, &t)) {
-            return unknown_key(cfg_map_value(kind, i), key, kind_keys,
-                               "costs", err);
+            return unknown_key(cfg_map_value(kind, i), key, kind_keys, "costs",
+                               err);
         } else if (!check_param(kind, key, t, model_file, err)) {
             return FALSE;
         }
@@ -383,16 +395,16 @@ static gboolean check_network(const CfgNode *net, const char *model_file,
                               GError **err)
 {
     if (cfg_kind(net) != CFG_MAP || !cfg_get(net, "topology")) {
-        cfg_error(err, net, "a network section without topology",
-                  "topology: {value: ring|hypercube|fat-tree|..., source: ...}");
+        cfg_error(
+            err, net, "a network section without topology",
+            "topology: {value: ring|hypercube|fat-tree|..., source: ...}");
         return FALSE;
     }
     for (guint i = 0; i < cfg_map_len(net); i++) {
         const char *key = cfg_map_key(net, i);
         MachType t;
         if (!mach_net_key_type(key, &t))
-            return unknown_key(cfg_map_value(net, i), key, net_keys, NULL,
-                               err);
+            return unknown_key(cfg_map_value(net, i), key, net_keys, NULL, err);
         if (!check_param(net, key, t, model_file, err))
             return FALSE;
     }
@@ -431,8 +443,10 @@ static gboolean check_workload_entry(const CfgNode *e, const char *name,
 {
     if (cfg_kind(e) != CFG_MAP || !cfg_get(e, "value")) {
         char *found = g_strdup_printf("workload parameter '%s' without a "
-                                      "value", name);
-        cfg_error(err, e, found, "{value: ..., unit: ..., source|"
+                                      "value",
+                                      name);
+        cfg_error(err, e, found,
+                  "{value: ..., unit: ..., source|"
                   "calibrated|assumption: ...}");
         g_free(found);
         return FALSE;
@@ -454,8 +468,7 @@ static gboolean check_workload_entry(const CfgNode *e, const char *name,
     }
     if (found_any)
         return TRUE;
-    char *found = g_strdup_printf("parameter '%s' without a provenance",
-                                  name);
+    char *found = g_strdup_printf("parameter '%s' without a provenance", name);
     cfg_error(err, e, found, "one of source:, calibrated: or assumption:");
     g_free(found);
     return FALSE;
@@ -470,15 +483,15 @@ static gboolean check_workload_section(const CfgNode *sec, GError **err)
         return FALSE;
     }
     for (guint i = 0; i < cfg_map_len(sec); i++)
-        if (!check_workload_entry(cfg_map_value(sec, i),
-                                  cfg_map_key(sec, i), err))
+        if (!check_workload_entry(cfg_map_value(sec, i), cfg_map_key(sec, i),
+                                  err))
             return FALSE;
     return TRUE;
 }
 
-static const char *const top_keys[] = {"schema_version", "name",
-                                       "description", "references",
-                                       "nodes", "network", "model", NULL};
+static const char *const top_keys[] = {"schema_version", "name",  "description",
+                                       "references",     "nodes", "network",
+                                       "model",          NULL};
 
 static gboolean is_top_key(const char *k)
 {
@@ -554,8 +567,8 @@ const CfgNode *mach_param_node(const CfgNode *map, const char *key)
     return h ? cfg_get(h, key) : NULL;
 }
 
-static gboolean absent(const CfgNode *map, const char *key,
-                       gboolean required, GError **err)
+static gboolean absent(const CfgNode *map, const char *key, gboolean required,
+                       GError **err)
 {
     if (required) {
         char *found = g_strdup_printf("no parameter '%s'", key);
@@ -566,8 +579,8 @@ static gboolean absent(const CfgNode *map, const char *key,
     return TRUE;
 }
 
-gboolean mach_param_time(const CfgNode *map, const char *key,
-                         gboolean required, SimTime *out, GError **err)
+gboolean mach_param_time(const CfgNode *map, const char *key, gboolean required,
+                         SimTime *out, GError **err)
 {
     const CfgNode *h = holder(map, &key);
     return h ? cfg_get_time(h, key, TRUE, out, err)
@@ -590,16 +603,16 @@ gboolean mach_param_bandwidth(const CfgNode *map, const char *key,
              : absent(map, key, required, err);
 }
 
-gboolean mach_param_freq(const CfgNode *map, const char *key,
-                         gboolean required, double *out, GError **err)
+gboolean mach_param_freq(const CfgNode *map, const char *key, gboolean required,
+                         double *out, GError **err)
 {
     const CfgNode *h = holder(map, &key);
     return h ? cfg_get_freq(h, key, TRUE, out, err)
              : absent(map, key, required, err);
 }
 
-gboolean mach_param_size(const CfgNode *map, const char *key,
-                         gboolean required, uint64_t *out, GError **err)
+gboolean mach_param_size(const CfgNode *map, const char *key, gboolean required,
+                         uint64_t *out, GError **err)
 {
     const CfgNode *h = holder(map, &key);
     return h ? cfg_get_size(h, key, TRUE, out, err)
@@ -611,12 +624,12 @@ gboolean mach_param_size(const CfgNode *map, const char *key,
 static gboolean parse_item(const CfgNode *v, MachType t, void *out,
                            GError **err)
 {
-    char *what = g_strdup_printf("%s:%d:%d", cfg_file(v), cfg_line(v),
-                                 cfg_col(v));
+    char *what =
+        g_strdup_printf("%s:%d:%d", cfg_file(v), cfg_line(v), cfg_col(v));
     const char *s = cfg_scalar(v);
-    gboolean ok = s && (t == MACH_T_BANDWIDTH
-                            ? cfg_parse_bandwidth(s, what, out, err)
-                            : cfg_parse_count(s, what, out, err));
+    gboolean ok =
+        s && (t == MACH_T_BANDWIDTH ? cfg_parse_bandwidth(s, what, out, err)
+                                    : cfg_parse_count(s, what, out, err));
     if (!s)
         cfg_error(err, v, "a non-scalar list item",
                   t == MACH_T_BANDWIDTH ? "a bandwidth" : "a count");
@@ -639,7 +652,10 @@ static gboolean param_list(const CfgNode *map, const char *key,
     MachType item = t == MACH_T_BW_LIST ? MACH_T_BANDWIDTH : MACH_T_COUNT;
     GArray *a = g_array_new(FALSE, FALSE, 8);
     for (guint i = 0; i < cfg_seq_len(v); i++) {
-        union { double d; uint64_t u; } x;
+        union {
+            double d;
+            uint64_t u;
+        } x;
         if (!parse_item(cfg_seq_at(v, i), item, &x, err)) {
             g_array_unref(a);
             return FALSE;
@@ -657,8 +673,7 @@ gboolean mach_param_bw_list(const CfgNode *map, const char *key,
 }
 
 gboolean mach_param_count_list(const CfgNode *map, const char *key,
-                               gboolean required, GArray **out,
-                               GError **err)
+                               gboolean required, GArray **out, GError **err)
 {
     return param_list(map, key, required, MACH_T_COUNT_LIST, out, err);
 }

@@ -84,16 +84,16 @@ const CfgNode *mach_param_node(const CfgNode *map, const char *key);
 
 /* Typed getters on a checked tree; FALSE with *err when absent (if
  * required) or malformed.  An absent optional key leaves *out alone. */
-gboolean mach_param_time(const CfgNode *map, const char *key,
-                         gboolean required, SimTime *out, GError **err);
+gboolean mach_param_time(const CfgNode *map, const char *key, gboolean required,
+                         SimTime *out, GError **err);
 gboolean mach_param_count(const CfgNode *map, const char *key,
                           gboolean required, uint64_t *out, GError **err);
 gboolean mach_param_bandwidth(const CfgNode *map, const char *key,
                               gboolean required, double *out, GError **err);
-gboolean mach_param_freq(const CfgNode *map, const char *key,
-                         gboolean required, double *out, GError **err);
-gboolean mach_param_size(const CfgNode *map, const char *key,
-                         gboolean required, uint64_t *out, GError **err);
+gboolean mach_param_freq(const CfgNode *map, const char *key, gboolean required,
+                         double *out, GError **err);
+gboolean mach_param_size(const CfgNode *map, const char *key, gboolean required,
+                         uint64_t *out, GError **err);
 /* A list of bandwidths (bytes/s); *out is a new GArray of double
  * (g_array_unref) or untouched when the optional key is absent. */
 gboolean mach_param_bw_list(const CfgNode *map, const char *key,
@@ -101,8 +101,7 @@ gboolean mach_param_bw_list(const CfgNode *map, const char *key,
 /* A list of counts; *out is a new GArray of uint64_t (g_array_unref) or
  * untouched when the optional key is absent. */
 gboolean mach_param_count_list(const CfgNode *map, const char *key,
-                               gboolean required, GArray **out,
-                               GError **err);
+                               gboolean required, GArray **out, GError **err);
 /* A word value (borrowed), or NULL when absent. */
 const char *mach_param_word(const CfgNode *map, const char *key);
 

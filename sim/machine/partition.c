@@ -15,16 +15,16 @@
 #include <string.h>
 
 typedef struct {
-    const char *name;  /* borrowed from the tree */
-    uint64_t count;    /* model count */
-    uint64_t want;     /* partition count */
+    const char *name; /* borrowed from the tree */
+    uint64_t count;   /* model count */
+    uint64_t want;    /* partition count */
     gboolean scalable;
 } PartKind;
 
 static gboolean fail(GError **err, char *found, const char *expected)
 {
-    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "found %s, expected %s",
-                found, expected);
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "found %s, expected %s", found,
+                expected);
     g_free(found);
     return FALSE;
 }
@@ -152,7 +152,8 @@ static gboolean by_kinds(CfgNode *root, const CfgNode *tree, guint nodes,
     if (!ok) {
         char *exp = g_strdup_printf("at least %" G_GUINT64_FORMAT " (the "
                                     "single-processor kinds plus one of "
-                                    "each other kind)", fixed + n_scal);
+                                    "each other kind)",
+                                    fixed + n_scal);
         fail(err, g_strdup_printf("%u nodes for a %s", nodes, topo), exp);
         g_free(exp);
     }
@@ -183,8 +184,7 @@ static gboolean by_lanes(CfgNode *root, const CfgNode *tree, guint nodes,
     uint64_t best = 0, group = 0;
     for (guint i = 0; i < cfg_map_len(kinds); i++) {
         uint64_t lanes = 1;
-        mach_param_count(cfg_map_value(kinds, i), "lanes", FALSE, &lanes,
-                         NULL);
+        mach_param_count(cfg_map_value(kinds, i), "lanes", FALSE, &lanes, NULL);
         if (!wide || lanes > best) {
             wide = cfg_map_key(kinds, i);
             best = lanes;
@@ -194,10 +194,12 @@ static gboolean by_lanes(CfgNode *root, const CfgNode *tree, guint nodes,
     mach_param_count(net, "procs_per_router", FALSE, &group, NULL);
     uint64_t routers = group ? nodes / group : 0;
     if (!group || nodes % group || !routers || (routers & (routers - 1)))
-        return fail(err, g_strdup_printf("%u lanes for a cm-router of %"
-                                         G_GUINT64_FORMAT " per router",
-                                         nodes, group),
-                    "procs_per_router x a power of two");
+        return fail(
+            err,
+            g_strdup_printf("%u lanes for a cm-router of %" G_GUINT64_FORMAT
+                            " per router",
+                            nodes, group),
+            "procs_per_router x a power of two");
     if (!set(root, err, "machine.nodes.%s.lanes=%u", wide, nodes) ||
         (mach_param_node(net, "router_nodes") &&
          !set(root, err, "machine.network.router_nodes=%" G_GUINT64_FORMAT,
@@ -205,8 +207,8 @@ static gboolean by_lanes(CfgNode *root, const CfgNode *tree, guint nodes,
         return FALSE;
     if (desc)
         *desc = g_strdup_printf("%s lanes %u = %" G_GUINT64_FORMAT
-                                " routers x %" G_GUINT64_FORMAT, wide, nodes,
-                                routers, group);
+                                " routers x %" G_GUINT64_FORMAT,
+                                wide, nodes, routers, group);
     return TRUE;
 }
 
@@ -245,8 +247,7 @@ static gboolean by_extents(CfgNode *root, const CfgNode *tree, guint nodes,
     return ok;
 }
 
-gboolean mach_partition(CfgNode *root, guint nodes, char **desc,
-                        GError **err)
+gboolean mach_partition(CfgNode *root, guint nodes, char **desc, GError **err)
 {
     const CfgNode *section = cfg_get(root, "machine");
     char *file = NULL;
@@ -258,8 +259,8 @@ gboolean mach_partition(CfgNode *root, guint nodes, char **desc,
     CfgNode *tree = mach_section_tree(section, &file, err);
     gboolean ok = tree && mach_model_check(tree, file, err);
     if (ok) {
-        const char *topo = mach_param_word(cfg_get(tree, "network"),
-                                           "topology");
+        const char *topo =
+            mach_param_word(cfg_get(tree, "network"), "topology");
         if (g_strcmp0(topo, "cm-router") == 0)
             ok = by_lanes(root, tree, nodes, desc, err);
         else if (!g_strcmp0(topo, "mesh") || !g_strcmp0(topo, "torus"))

@@ -32,7 +32,6 @@
  * gets the resulting counts ("host 1, gp 15, renderer 15, frame_buffer
  * 1"; "array lanes 256 = 16 routers x 16").
  * FALSE with *err if the section is unusable or N cannot be met. */
-gboolean mach_partition(CfgNode *root, guint nodes, char **desc,
-                        GError **err);
+gboolean mach_partition(CfgNode *root, guint nodes, char **desc, GError **err);
 
 #endif

@@ -32,8 +32,7 @@ static void charge(MachProc *p, unsigned phase, SimTime cost,
     *overflow = !sim_busy_add(&p->busy, phase, cost);
 }
 
-static void trace_span(MachProc *p, unsigned phase, SimTime start,
-                       SimTime end)
+static void trace_span(MachProc *p, unsigned phase, SimTime start, SimTime end)
 {
     SimEngine *eng = mach_engine(p->m);
     SimTrace *tr = sim_engine_trace(eng);
@@ -117,8 +116,8 @@ const char *mach_proc_kind(const MachProc *p)
 const char *mach_proc_name(MachProc *p)
 {
     if (!p->name)
-        p->name = g_strdup_printf("%s%u", mach_proc_kind(p),
-                                  mach_proc_index(p));
+        p->name =
+            g_strdup_printf("%s%u", mach_proc_kind(p), mach_proc_index(p));
     return p->name;
 }
 

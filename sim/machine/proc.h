@@ -55,10 +55,10 @@ MachMachine *mach_proc_machine(const MachProc *p);
 struct MachProc {
     MachMachine *m;
     SimTime free_at;
-    SimBusy busy;      /* per_phase NULL until first used */
+    SimBusy busy; /* per_phase NULL until first used */
     uint64_t requests;
-    char *name;        /* NULL until first asked for */
-    uint32_t entity;   /* UINT32_MAX until first asked for */
+    char *name;      /* NULL until first asked for */
+    uint32_t entity; /* UINT32_MAX until first asked for */
     guint id;
     guint16 kind;
 };

@@ -39,12 +39,12 @@ struct NetColl {
     CollPlan plan;
     uint32_t root;
     uint64_t bytes;
-    uint64_t *table;  /* a2a matrix, pairwise steps or list sizes */
-    uint32_t *dst;    /* send lists */
+    uint64_t *table; /* a2a matrix, pairwise steps or list sizes */
+    uint32_t *dst;   /* send lists */
     uint32_t *off, *count;
-    guint *step;      /* per node */
-    uint8_t *state;   /* per node: ST_* of the current step */
-    uint8_t *recvd;   /* n * steps receipts, NULL if none expected */
+    guint *step;    /* per node */
+    uint8_t *state; /* per node: ST_* of the current step */
+    uint8_t *recvd; /* n * steps receipts, NULL if none expected */
     uint32_t nodes_left;
     uint64_t inflight;
     NetCollDone done;
@@ -113,8 +113,8 @@ static void start_step(NetColl *c, uint32_t i)
     }
     c->state[i] = ST_SENDING;
     c->inflight++;
-    net_send(c->net, i, s.to, s.bytes, GUINT_TO_POINTER(c->step[i]),
-             on_arrive, c);
+    net_send(c->net, i, s.to, s.bytes, GUINT_TO_POINTER(c->step[i]), on_arrive,
+             c);
 }
 
 /* Moves node i on as far as it can; returns TRUE if it just finished. */
@@ -252,27 +252,26 @@ static gboolean power_of_two(uint32_t n)
     return n > 0 && (n & (n - 1)) == 0;
 }
 
-void net_broadcast(NetNet *net, uint32_t root, uint64_t bytes,
-                   NetCollDone done, void *ctx)
+void net_broadcast(NetNet *net, uint32_t root, uint64_t bytes, NetCollDone done,
+                   void *ctx)
 {
     g_assert(root < net_nodes(net));
     if (via_control(net, bytes, done, ctx))
         return;
-    NetColl *c = coll_new(net, log2_ceil(net_nodes(net)), plan_bcast, TRUE,
-                          done, ctx);
+    NetColl *c =
+        coll_new(net, log2_ceil(net_nodes(net)), plan_bcast, TRUE, done, ctx);
     c->root = root;
     c->bytes = bytes;
     coll_run(c);
 }
 
-static void doubling(NetNet *net, uint64_t bytes, NetCollDone done,
-                     void *ctx)
+static void doubling(NetNet *net, uint64_t bytes, NetCollDone done, void *ctx)
 {
     g_assert(power_of_two(net_nodes(net)));
     if (via_control(net, bytes, done, ctx))
         return;
-    NetColl *c = coll_new(net, log2_ceil(net_nodes(net)), plan_doubling,
-                          TRUE, done, ctx);
+    NetColl *c = coll_new(net, log2_ceil(net_nodes(net)), plan_doubling, TRUE,
+                          done, ctx);
     c->bytes = bytes;
     coll_run(c);
 }
@@ -298,16 +297,16 @@ void net_alltoall(NetNet *net, const uint64_t *bytes, NetA2ASchedule sched,
     uint32_t n = net_nodes(net);
     gboolean xor = sched == NET_A2A_XOR;
     g_assert(!xor || power_of_two(n));
-    CollPlan plan = xor ? plan_a2a_xor
-                        : sched == NET_A2A_SHIFT ? plan_a2a_shift
-                                                 : plan_a2a_naive;
+    CollPlan plan = xor                      ? plan_a2a_xor
+                    : sched == NET_A2A_SHIFT ? plan_a2a_shift
+                                             : plan_a2a_naive;
     NetColl *c = coll_new(net, n - 1, plan, xor, done, ctx);
     c->table = g_memdup2(bytes, (gsize)n * n * sizeof *bytes);
     coll_run(c);
 }
 
-void net_pairwise_exchange(NetNet *net, const uint64_t *bytes,
-                           NetCollDone done, void *ctx)
+void net_pairwise_exchange(NetNet *net, const uint64_t *bytes, NetCollDone done,
+                           void *ctx)
 {
     uint32_t n = net_nodes(net);
     g_assert(power_of_two(n));

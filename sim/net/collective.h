@@ -48,19 +48,18 @@ typedef enum { NET_A2A_NAIVE, NET_A2A_SHIFT, NET_A2A_XOR } NetA2ASchedule;
 /* Called once when every node has finished. */
 typedef void (*NetCollDone)(NetNet *net, void *ctx);
 
-void net_broadcast(NetNet *net, uint32_t root, uint64_t bytes,
-                   NetCollDone done, void *ctx);
+void net_broadcast(NetNet *net, uint32_t root, uint64_t bytes, NetCollDone done,
+                   void *ctx);
 void net_allreduce(NetNet *net, uint64_t bytes, NetCollDone done, void *ctx);
-void net_prefix_sum(NetNet *net, uint64_t bytes, NetCollDone done,
-                    void *ctx);
+void net_prefix_sum(NetNet *net, uint64_t bytes, NetCollDone done, void *ctx);
 void net_barrier(NetNet *net, NetCollDone done, void *ctx);
 /* bytes[i * n + j]: bytes from i to j (copied; zero entries still send a
  * zero-byte message under NET_A2A_XOR, none otherwise). */
 void net_alltoall(NetNet *net, const uint64_t *bytes, NetA2ASchedule sched,
                   NetCollDone done, void *ctx);
 /* bytes[i * d + s]: what node i sends at step s (copied). */
-void net_pairwise_exchange(NetNet *net, const uint64_t *bytes,
-                           NetCollDone done, void *ctx);
+void net_pairwise_exchange(NetNet *net, const uint64_t *bytes, NetCollDone done,
+                           void *ctx);
 /* Node i sends count[i] messages dst[off[i] + k], size[off[i] + k], in
  * order, each after the previous one is delivered (arrays copied;
  * off[i] = count[0] + ... + count[i-1]). */

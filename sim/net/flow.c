@@ -76,13 +76,13 @@ static inline void vec_push(PtrVec *v, void *p)
 
 typedef struct {
     uint64_t epoch;
-    gboolean pending;  /* a recomputation is scheduled at now */
-    PtrVec dirty;      /* NetLink *, may repeat */
-    PtrVec clinks;     /* component scratch */
-    PtrVec cflows;     /* NetFlow * */
-    HeapEnt *lh;       /* link min-heap on share */
+    gboolean pending; /* a recomputation is scheduled at now */
+    PtrVec dirty;     /* NetLink *, may repeat */
+    PtrVec clinks;    /* component scratch */
+    PtrVec cflows;    /* NetFlow * */
+    HeapEnt *lh;      /* link min-heap on share */
     guint lh_n, lh_cap;
-    NetFlow **eh;      /* end heap: flows in flight by (end, seq) */
+    NetFlow **eh; /* end heap: flows in flight by (end, seq) */
     guint eh_n, eh_cap;
     uint32_t timer_gen; /* generation of the armed timer */
     gboolean armed;

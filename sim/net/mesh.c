@@ -48,8 +48,8 @@ static uint32_t stride(const NetMesh *m, unsigned k)
 }
 
 /* Steps along dimension k from coordinate a to b: count and direction. */
-static uint32_t mesh_steps(const NetMesh *m, unsigned k, uint32_t a,
-                           uint32_t b, unsigned *dir)
+static uint32_t mesh_steps(const NetMesh *m, unsigned k, uint32_t a, uint32_t b,
+                           unsigned *dir)
 {
     uint32_t fwd = (b + m->e[k] - a) % m->e[k];
     if (!m->wrap) {

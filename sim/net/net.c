@@ -26,11 +26,11 @@ struct NetNet {
     NetFidelity fid;
     const NetTransportOps *tp;
     void *tp_state;
-    GHashTable *links;   /* NetLinkId * -> NetLink * (owned) */
-    NetLinkId *route;    /* scratch, max_hops entries */
+    GHashTable *links; /* NetLinkId * -> NetLink * (owned) */
+    NetLinkId *route;  /* scratch, max_hops entries */
     uint64_t seq;
     uint64_t bytes, messages, delivered;
-    gssize mem;          /* bytes held by links and messages in flight */
+    gssize mem; /* bytes held by links and messages in flight */
 };
 
 static const NetTransportOps *pick_transport(const NetParams *p,
@@ -74,8 +74,8 @@ NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
         n->par.packet_bytes = 1024;
     n->fid = fid;
     n->tp = pick_transport(&n->par, fid);
-    n->links = g_hash_table_new_full(g_int64_hash, g_int64_equal, NULL,
-                                     link_free);
+    n->links =
+        g_hash_table_new_full(g_int64_hash, g_int64_equal, NULL, link_free);
     n->route = g_new(NetLinkId, topo->ops->max_hops(topo->state));
     return n;
 }
@@ -91,14 +91,38 @@ void net_free(NetNet *n)
     g_free(n);
 }
 
-SimEngine *net_engine(const NetNet *n) { return n->eng; }
-SimEngine *net_eng(NetNet *n) { return n->eng; }
-const NetTopo *net_topo(const NetNet *n) { return n->topo; }
-const NetParams *net_params(const NetNet *n) { return &n->par; }
-const NetParams *net_par(NetNet *n) { return &n->par; }
-NetFidelity net_fidelity(const NetNet *n) { return n->fid; }
-void **net_tp_slot(NetNet *n) { return &n->tp_state; }
-void net_account(NetNet *n, gssize b) { n->mem += b; }
+SimEngine *net_engine(const NetNet *n)
+{
+    return n->eng;
+}
+SimEngine *net_eng(NetNet *n)
+{
+    return n->eng;
+}
+const NetTopo *net_topo(const NetNet *n)
+{
+    return n->topo;
+}
+const NetParams *net_params(const NetNet *n)
+{
+    return &n->par;
+}
+const NetParams *net_par(NetNet *n)
+{
+    return &n->par;
+}
+NetFidelity net_fidelity(const NetNet *n)
+{
+    return n->fid;
+}
+void **net_tp_slot(NetNet *n)
+{
+    return &n->tp_state;
+}
+void net_account(NetNet *n, gssize b)
+{
+    n->mem += b;
+}
 
 uint32_t net_nodes(const NetNet *n)
 {
@@ -144,8 +168,7 @@ SimTime net_ideal_time(const NetNet *n, uint32_t src, uint32_t dst,
     guint h = route(n, src, dst);
     double bw = n->par.bandwidth;
     for (guint i = 0; i < h; i++) {
-        double b = n->topo->ops->link_bw(n->topo->state, n->route[i],
-                                         &n->par);
+        double b = n->topo->ops->link_bw(n->topo->state, n->route[i], &n->par);
         bw = i == 0 || b < bw ? b : bw;
     }
     SimTime t = latency(&n->par, h, bytes);
@@ -172,8 +195,14 @@ void net_send(NetNet *n, uint32_t src, uint32_t dst, uint64_t bytes,
     uint32_t nn = net_nodes(n);
     g_assert(src < nn && dst < nn);
     NetMsg *m = g_new0(NetMsg, 1);
-    *m = (NetMsg){.net = n, .seq = n->seq++, .src = src, .dst = dst,
-                  .bytes = bytes, .payload = payload, .cb = cb, .ctx = ctx,
+    *m = (NetMsg){.net = n,
+                  .seq = n->seq++,
+                  .src = src,
+                  .dst = dst,
+                  .bytes = bytes,
+                  .payload = payload,
+                  .cb = cb,
+                  .ctx = ctx,
                   .sent = sim_now(n->eng)};
     m->hops = route(n, src, dst);
     m->path = g_new(NetLink *, m->hops ? m->hops : 1);
@@ -192,12 +221,12 @@ void net_send(NetNet *n, uint32_t src, uint32_t dst, uint64_t bytes,
 void net_msg_deliver(NetNet *n, NetMsg *m)
 {
     SimTime now = sim_now(n->eng);
-    NetDelivery d = {m->src, m->dst, m->bytes, m->payload, m->sent, now,
-                     m->hops};
+    NetDelivery d = {m->src,  m->dst, m->bytes, m->payload,
+                     m->sent, now,    m->hops};
     n->delivered++;
     n->mem -= sizeof *m + m->hops * sizeof(NetLink *);
-    sim_trace_flow(sim_engine_trace(n->eng), m->src, m->dst, m->bytes,
-                   m->sent, now);
+    sim_trace_flow(sim_engine_trace(n->eng), m->src, m->dst, m->bytes, m->sent,
+                   now);
     NetArriveFn cb = m->cb;
     void *ctx = m->ctx;
     g_free(m->path);
@@ -261,9 +290,18 @@ guint net_links_touched(const NetNet *n)
     return g_hash_table_size(n->links);
 }
 
-uint64_t net_total_bytes(const NetNet *n) { return n->bytes; }
-uint64_t net_total_messages(const NetNet *n) { return n->messages; }
-uint64_t net_delivered(const NetNet *n) { return n->delivered; }
+uint64_t net_total_bytes(const NetNet *n)
+{
+    return n->bytes;
+}
+uint64_t net_total_messages(const NetNet *n)
+{
+    return n->messages;
+}
+uint64_t net_delivered(const NetNet *n)
+{
+    return n->delivered;
+}
 
 gboolean net_busiest_link(const NetNet *n, NetLinkId *out)
 {

@@ -23,18 +23,18 @@ typedef struct {
 typedef struct {
     NetLinkId id;
     SimLinkStats st;
-    double bw;         /* B/s per channel */
+    double bw; /* B/s per channel */
     uint32_t channels;
     /* flow transport */
     NetFlowRef *flows; /* active flows crossing the link */
     guint n_flows, cap_flows;
-    uint64_t mark;     /* component-search epoch */
-    double rem;        /* max-min scratch: capacity left */
-    guint unfixed;     /* max-min scratch: flows not yet fixed */
+    uint64_t mark; /* component-search epoch */
+    double rem;    /* max-min scratch: capacity left */
+    guint unfixed; /* max-min scratch: flows not yet fixed */
     /* circuit / ring-slot / packet transports */
-    NetMsg **holder;   /* per channel, NULL when free (lazily allocated) */
-    GQueue wait;       /* NetMsg * waiting for a channel, FIFO */
-    SimTime free_at;   /* packet FIFO: when the link is next free */
+    NetMsg **holder; /* per channel, NULL when free (lazily allocated) */
+    GQueue wait;     /* NetMsg * waiting for a channel, FIFO */
+    SimTime free_at; /* packet FIFO: when the link is next free */
 } NetLink;
 
 struct NetMsg {
@@ -47,11 +47,11 @@ struct NetMsg {
     void *ctx;
     SimTime sent;
     guint hops;
-    double bw;       /* bottleneck channel bandwidth along the path */
-    NetLink **path;  /* hops links, borrowed from the net's table */
-    guint step;      /* transport progress (links held, packets left) */
-    uint32_t *chan;  /* ring slots: channel held on each hop */
-    void *tp;        /* transport-private state */
+    double bw;      /* bottleneck channel bandwidth along the path */
+    NetLink **path; /* hops links, borrowed from the net's table */
+    guint step;     /* transport progress (links held, packets left) */
+    uint32_t *chan; /* ring slots: channel held on each hop */
+    void *tp;       /* transport-private state */
 };
 
 /* A transport: started once per message after route lookup. */

@@ -58,8 +58,8 @@ static SimTime pkt_cross(NetNet *n, NetPkt *p, SimTime now)
 
 static void pkt_schedule(NetNet *n, NetPkt *p, SimTime t)
 {
-    sim_schedule_at(net_eng(n), t, p->hop == p->m->hops ? pkt_arrive
-                                                         : pkt_hop, n, p);
+    sim_schedule_at(net_eng(n), t, p->hop == p->m->hops ? pkt_arrive : pkt_hop,
+                    n, p);
 }
 
 /* A packet's first event after injection schedules its successor's, so a

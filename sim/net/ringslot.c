@@ -111,8 +111,8 @@ static void ring_request(SimEngine *eng, void *ctx, void *arg)
 
 static void ring_start(NetNet *n, NetMsg *m)
 {
-    sim_schedule_in(net_eng(n), net_startup(net_par(n), m->bytes),
-                    ring_request, n, m);
+    sim_schedule_in(net_eng(n), net_startup(net_par(n), m->bytes), ring_request,
+                    n, m);
 }
 
 const NetTransportOps net_ringslot_transport = {

@@ -58,14 +58,14 @@ typedef struct {
     /* Fat tree: B/s per node at each level (0 = leaves); 0 = bandwidth.
      * CM-200: level_bw[0] router cube links, level_bw[1] NEWS links. */
     double level_bw[NET_MAX_LEVELS];
-    uint64_t startup;      /* ps, per-message software start-up */
+    uint64_t startup; /* ps, per-message software start-up */
     /* Long-message protocol (iPSC/2 NX: request/acknowledge above a size,
      * Bomans & Roose 1989): a message of more than long_threshold bytes
      * pays startup_long instead of startup; startup_long 0 = none. */
     uint64_t startup_long;   /* ps */
     uint64_t long_threshold; /* bytes */
-    uint64_t per_hop;      /* ps, per router / station traversed */
-    uint32_t packet_bytes; /* packet payload for packet transports */
+    uint64_t per_hop;        /* ps, per router / station traversed */
+    uint32_t packet_bytes;   /* packet payload for packet transports */
     NetSwitching switching;
     /* Control network (CM-5): 0 = none; see collective.h. */
     uint64_t ctrl_latency; /* ps per combine / broadcast / barrier */
@@ -79,8 +79,7 @@ typedef struct {
     guint (*max_hops)(const void *st);
     /* Writes the directed links from src to dst (src != dst) into out;
      * returns the hop count (>= 1). */
-    guint (*route)(const void *st, uint32_t src, uint32_t dst,
-                   NetLinkId *out);
+    guint (*route)(const void *st, uint32_t src, uint32_t dst, NetLinkId *out);
     /* Vertex ids (topology-defined: nodes, then routers/switches) that a
      * link joins. */
     void (*link_ends)(const void *st, NetLinkId l, uint64_t *from,
@@ -107,7 +106,7 @@ extern const NetTopologyOps net_crossbar_ops;
 extern const NetTopologyOps net_bus_ops;
 
 /* Constructors: each returns a new topology; free with net_topo_free(). */
-NetTopo *net_hypercube_new(unsigned dims);             /* 2^dims nodes */
+NetTopo *net_hypercube_new(unsigned dims); /* 2^dims nodes */
 NetTopo *net_ring_new(uint32_t stations);
 /* arity-ary fat tree over `nodes` leaves (rounded up to a power). */
 NetTopo *net_fattree_new(uint32_t nodes, unsigned arity);

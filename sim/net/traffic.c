@@ -48,8 +48,10 @@ gboolean net_traffic_check(NetTraffic t, uint32_t n, GError **err)
         return TRUE;
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "found pattern %s on %u nodes, expected %s from 2 to %u "
-                "nodes", net_traffic_name(t), n,
-                pow2 ? "a power of two" : "a node count", NET_TRAFFIC_MAX_NODES);
+                "nodes",
+                net_traffic_name(t), n,
+                pow2 ? "a power of two" : "a node count",
+                NET_TRAFFIC_MAX_NODES);
     return FALSE;
 }
 
@@ -112,8 +114,8 @@ static void start_lists(NetNet *net, gboolean hot, uint64_t bytes,
     g_free(size);
 }
 
-void net_traffic_start(NetNet *net, NetTraffic t, uint64_t bytes,
-                       uint64_t seed, NetCollDone done, void *ctx)
+void net_traffic_start(NetNet *net, NetTraffic t, uint64_t bytes, uint64_t seed,
+                       NetCollDone done, void *ctx)
 {
     g_assert(net_traffic_check(t, net_nodes(net), NULL));
     switch (t) {

@@ -50,7 +50,7 @@ uint64_t net_traffic_messages(NetTraffic t, uint32_t n);
 
 /* Starts the pattern on every node of net; done(net, ctx) runs when the
  * last message has been delivered.  Asserts net_traffic_check(). */
-void net_traffic_start(NetNet *net, NetTraffic t, uint64_t bytes,
-                       uint64_t seed, NetCollDone done, void *ctx);
+void net_traffic_start(NetNet *net, NetTraffic t, uint64_t bytes, uint64_t seed,
+                       NetCollDone done, void *ctx);
 
 #endif

@@ -46,7 +46,7 @@ static double d_top(Vec4 p, double g)
 }
 
 /* In the order of the outcode bits. */
-static const PlaneFn planes[] = {d_near, d_far,    d_w,  d_left,
+static const PlaneFn planes[] = {d_near,  d_far,    d_w,  d_left,
                                  d_right, d_bottom, d_top};
 #define N_PLANES ((int)(sizeof planes / sizeof planes[0]))
 
@@ -119,8 +119,7 @@ static int clip_plane(const RastVert *in, int n, PlaneFn d, double g,
     return m;
 }
 
-int rast_clip_polygon(const RastVert *in, int n, double guard,
-                      RastVert *out)
+int rast_clip_polygon(const RastVert *in, int n, double guard, RastVert *out)
 {
     g_assert(n >= 3 && n <= RAST_CLIP_MAX - N_PLANES);
     g_assert(guard >= 1.0);

@@ -58,7 +58,6 @@ unsigned rast_clip_outcode(Vec4 p, double guard);
  * which must hold RAST_CLIP_MAX vertices.  `guard` (>= 1) is the guard
  * band factor g.  Returns the number of output vertices: 0 when nothing
  * is left, otherwise >= 3.  Vertex order (winding) is preserved. */
-int rast_clip_polygon(const RastVert *in, int n, double guard,
-                      RastVert *out);
+int rast_clip_polygon(const RastVert *in, int n, double guard, RastVert *out);
 
 #endif

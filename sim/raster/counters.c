@@ -29,7 +29,6 @@ char *rast_counters_format(const RastCounters *c)
         " spans=%" G_GUINT64_FORMAT " TPG=%" G_GUINT64_FORMAT
         " TPF=%" G_GUINT64_FORMAT " zcmp=%" G_GUINT64_FORMAT
         " zwrites=%" G_GUINT64_FORMAT,
-        c->verts, c->prims, c->culled, c->clipped, c->rejected,
-        c->degenerate, c->spans, c->pixels, c->winners, c->zcompares,
-        c->zwrites);
+        c->verts, c->prims, c->culled, c->clipped, c->rejected, c->degenerate,
+        c->spans, c->pixels, c->winners, c->zcompares, c->zwrites);
 }

@@ -49,8 +49,7 @@ uint32_t rast_image_get(const RastImage *img, int x, int y)
 
 void rast_image_fill(RastImage *img, RastColor c)
 {
-    uint8_t r = rast_channel(c.r), g = rast_channel(c.g),
-            b = rast_channel(c.b);
+    uint8_t r = rast_channel(c.r), g = rast_channel(c.g), b = rast_channel(c.b);
     size_t n = (size_t)img->width * img->height;
     for (size_t i = 0; i < n; i++) {
         img->rgb[3 * i] = r;
@@ -72,8 +71,7 @@ void rast_image_from_zbuffer(RastImage *img, const RastZBuffer *zb,
         }
 }
 
-void rast_image_from_active(RastImage *img, const RastActive *a,
-                            RastColor bg)
+void rast_image_from_active(RastImage *img, const RastActive *a, RastColor bg)
 {
     g_assert(img->width == rast_active_width(a));
     g_assert(img->height == rast_active_height(a));
@@ -168,8 +166,7 @@ gboolean rast_image_write_ppm(const RastImage *img, const char *path,
     return write_atomic(img, path, encode_ppm, err);
 }
 
-gboolean rast_image_write(const RastImage *img, const char *path,
-                          GError **err)
+gboolean rast_image_write(const RastImage *img, const char *path, GError **err)
 {
     if (g_str_has_suffix(path, ".ppm"))
         return rast_image_write_ppm(img, path, err);
@@ -215,8 +212,7 @@ RastImage *rast_image_read_png(const char *path, GError **err)
     memset(&pi, 0, sizeof pi);
     pi.version = PNG_IMAGE_VERSION;
     if (!png_image_begin_read_from_file(&pi, path)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: %s", path,
-                    pi.message);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: %s", path, pi.message);
         png_image_free(&pi);
         return NULL;
     }
@@ -229,8 +225,7 @@ RastImage *rast_image_read_png(const char *path, GError **err)
     }
     RastImage *img = rast_image_new((int)pi.width, (int)pi.height);
     if (!png_image_finish_read(&pi, NULL, img->rgb, 0, NULL)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: %s", path,
-                    pi.message);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: %s", path, pi.message);
         png_image_free(&pi);
         rast_image_free(img);
         return NULL;

@@ -30,8 +30,7 @@ uint32_t rast_image_get(const RastImage *img, int x, int y);
 /* Background, then every covered pixel of the z-buffer / active set. */
 void rast_image_from_zbuffer(RastImage *img, const RastZBuffer *zb,
                              RastColor bg);
-void rast_image_from_active(RastImage *img, const RastActive *a,
-                            RastColor bg);
+void rast_image_from_active(RastImage *img, const RastActive *a, RastColor bg);
 
 gboolean rast_image_equal(const RastImage *a, const RastImage *b);
 /* Number of pixels that differ (sizes must match). */
@@ -43,8 +42,7 @@ gboolean rast_image_write_png(const RastImage *img, const char *path,
 gboolean rast_image_write_ppm(const RastImage *img, const char *path,
                               GError **err);
 /* PPM when the name ends in ".ppm", PNG otherwise. */
-gboolean rast_image_write(const RastImage *img, const char *path,
-                          GError **err);
+gboolean rast_image_write(const RastImage *img, const char *path, GError **err);
 /* Reads a binary PPM (P6, maxval 255) written by rast_image_write_ppm();
  * NULL with SIM_ERROR_INPUT/IO on anything else. */
 RastImage *rast_image_read_ppm(const char *path, GError **err);

@@ -82,8 +82,8 @@ static gboolean finite4(Vec4 p)
 
 /* Trivial reject: FALSE (counted) when the polygon is non-finite or
  * outside one plane; *any gets the planes some vertex is outside of. */
-static gboolean trivial(const RastVert *in, int n, double guard,
-                        unsigned *any, RastCounters *c)
+static gboolean trivial(const RastVert *in, int n, double guard, unsigned *any,
+                        RastCounters *c)
 {
     unsigned all = ~0u;
     *any = 0;
@@ -151,9 +151,9 @@ static void draw_unclipped(const RastView *v, RastVert *in, int n,
     scan_polygon(v, s, n, area, prim, sink, c);
 }
 
-static void draw_polygon(const RastView *v, RastVert *in, int n,
-                         uint32_t prim, ShadeFn shade_fn, void *ctx,
-                         RastSpanSink sink, RastCounters *c)
+static void draw_polygon(const RastView *v, RastVert *in, int n, uint32_t prim,
+                         ShadeFn shade_fn, void *ctx, RastSpanSink sink,
+                         RastCounters *c)
 {
     g_assert(n >= 3 && n <= RAST_POLY_MAX);
     c->prims++;
@@ -183,8 +183,7 @@ static void draw_polygon(const RastView *v, RastVert *in, int n,
 }
 
 void rast_draw_clip_polygon(const RastView *v, const RastVert *in, int n,
-                            uint32_t prim, RastSpanSink sink,
-                            RastCounters *c)
+                            uint32_t prim, RastSpanSink sink, RastCounters *c)
 {
     g_assert(n >= 3 && n <= RAST_POLY_MAX);
     RastVert vs[RAST_POLY_MAX];
@@ -224,8 +223,8 @@ static void shade_poly(void *ctx, RastVert *out, int n)
     if (v->lighting && (v->shading == RAST_SHADE_FLAT || !k->vnormals))
         fn = xform_dir(k->normal, scene_mesh_poly_normal(k->m, pc->poly));
     if (v->shading == RAST_SHADE_FLAT) {
-        SceneColor flat = mul(
-            g_array_index(k->m->poly_color, SceneColor, pc->poly), k->tint);
+        SceneColor flat =
+            mul(g_array_index(k->m->poly_color, SceneColor, pc->poly), k->tint);
         RastColor fc = shade(v, flat, fn);
         for (int i = 0; i < n; i++)
             out[i].col = fc;
@@ -233,10 +232,10 @@ static void shade_poly(void *ctx, RastVert *out, int n)
     }
     for (int i = 0; i < n; i++) {
         uint32_t vi = pc->idx[i];
-        Vec3 nn = k->vnormals && v->lighting
-                      ? xform_dir(k->normal,
-                                  g_array_index(k->m->normals, Vec3, vi))
-                      : fn;
+        Vec3 nn =
+            k->vnormals && v->lighting
+                ? xform_dir(k->normal, g_array_index(k->m->normals, Vec3, vi))
+                : fn;
         out[i].col = shade(v, vertex_base(k, pc->poly, vi), nn);
     }
 }
@@ -272,12 +271,14 @@ static void draw_poly(const MeshCtx *k, guint poly, uint32_t prim,
 }
 
 void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
-                    SceneColor tint, uint32_t id_base,
-                    const uint32_t *subset, guint n_subset,
-                    RastSpanSink sink, RastCounters *c)
+                    SceneColor tint, uint32_t id_base, const uint32_t *subset,
+                    guint n_subset, RastSpanSink sink, RastCounters *c)
 {
-    MeshCtx k = {v, m, mat4_mul(v->view_proj, model),
-                 mat4_normal_matrix(model), tint,
+    MeshCtx k = {v,
+                 m,
+                 mat4_mul(v->view_proj, model),
+                 mat4_normal_matrix(model),
+                 tint,
                  m->normals->len == m->pos->len && m->pos->len > 0,
                  m->colors->len == m->pos->len && m->pos->len > 0};
     guint np = scene_mesh_n_polys(m);

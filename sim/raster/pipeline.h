@@ -37,12 +37,12 @@
 typedef enum { RAST_SHADE_FLAT, RAST_SHADE_GOURAUD } RastShading;
 
 typedef struct {
-    Mat4 view_proj;      /* world -> clip */
-    int width, height;   /* viewport in pixels (<= RAST_MAX_SIDE) */
-    gboolean cull_back;  /* drop back-facing polygons (default TRUE) */
-    gboolean lighting;   /* FALSE: colours used as given (default TRUE) */
-    RastShading shading; /* default RAST_SHADE_GOURAUD */
-    Vec3 light_dir;      /* world space, towards the light (unit) */
+    Mat4 view_proj;         /* world -> clip */
+    int width, height;      /* viewport in pixels (<= RAST_MAX_SIDE) */
+    gboolean cull_back;     /* drop back-facing polygons (default TRUE) */
+    gboolean lighting;      /* FALSE: colours used as given (default TRUE) */
+    RastShading shading;    /* default RAST_SHADE_GOURAUD */
+    Vec3 light_dir;         /* world space, towards the light (unit) */
     float ambient, diffuse; /* default 0.25, 0.75 */
 } RastView;
 
@@ -58,9 +58,8 @@ RastView rast_view_for_camera(const SceneCamera *cam, int width, int height);
  * primitive id = id_base + polygon index.  Spans go to `sink`; work is
  * added to *c. */
 void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
-                    SceneColor tint, uint32_t id_base,
-                    const uint32_t *subset, guint n_subset,
-                    RastSpanSink sink, RastCounters *c);
+                    SceneColor tint, uint32_t id_base, const uint32_t *subset,
+                    guint n_subset, RastSpanSink sink, RastCounters *c);
 
 /* Rasterises every instance of a scene; ids are consecutive over the
  * instances' polygons in instance order (the order of scene_flatten()). */
@@ -70,7 +69,6 @@ void rast_draw_scene(const RastView *v, const Scene *s, RastSpanSink sink,
 /* The low-level entry: one convex polygon already in clip space
  * (3 <= n <= RAST_POLY_MAX), colours final.  Counts it as one primitive. */
 void rast_draw_clip_polygon(const RastView *v, const RastVert *in, int n,
-                            uint32_t prim, RastSpanSink sink,
-                            RastCounters *c);
+                            uint32_t prim, RastSpanSink sink, RastCounters *c);
 
 #endif

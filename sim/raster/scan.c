@@ -90,8 +90,7 @@ static void setup_planes(const RastScreenVert v[3], Planes *p)
     double e2x = (v[2].x - v[0].x) * s, e2y = (v[2].y - v[0].y) * s;
     double inv = 1.0 / (e1x * e2y - e1y * e2x);
     p->z = v[0].z;
-    plane(v[0].z, v[1].z, v[2].z, e1x, e1y, e2x, e2y, inv, &p->dzdx,
-          &p->dzdy);
+    plane(v[0].z, v[1].z, v[2].z, e1x, e1y, e2x, e2y, inv, &p->dzdx, &p->dzdy);
     p->zlo = fmin(v[0].z, fmin(v[1].z, v[2].z));
     p->zhi = fmax(v[0].z, fmax(v[1].z, v[2].z));
     const float *c0 = &v[0].col.r, *c1 = &v[1].col.r, *c2 = &v[2].col.r;
@@ -104,8 +103,7 @@ static void setup_planes(const RastScreenVert v[3], Planes *p)
 
 /* Narrows [*lo, *hi) to the pixels of row centre py inside edge e;
  * returns FALSE if the row is empty. */
-static gboolean edge_bound(const Edge *e, int64_t py, int64_t *lo,
-                           int64_t *hi)
+static gboolean edge_bound(const Edge *e, int64_t py, int64_t *lo, int64_t *hi)
 {
     const int64_t half = RAST_SUBPIX / 2;
     if (e->dy == 0) {
@@ -161,9 +159,8 @@ static void row_range(int64_t ymin, int64_t ymax, int height, int64_t *r0,
         *r1 = height;
 }
 
-uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim,
-                            int width, int height, RastSpanSink sink,
-                            RastCounters *c)
+uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
+                            int height, RastSpanSink sink, RastCounters *c)
 {
     /* Order the vertices so that E > 0 inside (negative rast_area2). */
     RastScreenVert t[3] = {v[0], v[1], v[2]};

@@ -51,8 +51,8 @@ typedef struct {
 typedef struct {
     int32_t y, x0, x1; /* pixels x0 <= x < x1 on row y */
     uint32_t prim;
-    double z0, dzdx;   /* depth at pixel x0 and its change per pixel */
-    double zlo, zhi;   /* depth clamp range */
+    double z0, dzdx; /* depth at pixel x0 and its change per pixel */
+    double zlo, zhi; /* depth clamp range */
     float c0[3], dcdx[3];
 } RastSpan;
 
@@ -80,9 +80,8 @@ int64_t rast_area2(const RastScreenVert *a, const RastScreenVert *b,
 /* Scan converts one front-or-back facing triangle with non-zero area
  * into spans clipped to the width x height image, sends each to `sink`
  * and counts spans and pixels (TPG) in *c.  Returns the span count. */
-uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim,
-                            int width, int height, RastSpanSink sink,
-                            RastCounters *c);
+uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
+                            int height, RastSpanSink sink, RastCounters *c);
 
 /* Depth of span pixel x (x0 <= x < x1). */
 static inline double rast_span_z(const RastSpan *s, int x)

@@ -73,8 +73,7 @@ static void segment_test(RastActive *a, const RastSpan *s, int from, int to,
         double z = rast_span_z(s, x);
         uint32_t idx = a->msa[x];
         g_assert(idx >= range);
-        RastActivePixel *w =
-            &g_array_index(a->wpa, RastActivePixel, idx - 1);
+        RastActivePixel *w = &g_array_index(a->wpa, RastActivePixel, idx - 1);
         c->zcompares++;
         if (rast_depth_wins(z, s->prim, w->z, w->prim)) {
             w->z = z;

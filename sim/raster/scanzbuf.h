@@ -57,8 +57,7 @@ void rast_scanline_zbuffer(RastActive *a, const RastSpanList *sl,
 /* All active pixels (the WPA), rows consecutive; *n of them.  Borrowed. */
 const RastActivePixel *rast_active_pixels(const RastActive *a, size_t *n);
 /* The active pixels of row y; *n of them.  Borrowed. */
-const RastActivePixel *rast_active_row(const RastActive *a, int y,
-                                       size_t *n);
+const RastActivePixel *rast_active_row(const RastActive *a, int y, size_t *n);
 /* Row offsets into the WPA, height + 1 of them: row y holds entries
  * [offsets[y], offsets[y + 1]); the differences are the per-scanline
  * active pixel counts used for load balancing (seed 003, §4). Borrowed. */

@@ -150,8 +150,7 @@ static void sort_ties(const RastSpan *raw, uint64_t *rec, size_t n)
 }
 
 /* Row offsets of the sorted records. */
-static void row_starts(const uint64_t *rec, size_t n, size_t *start,
-                       size_t h)
+static void row_starts(const uint64_t *rec, size_t n, size_t *start, size_t h)
 {
     memset(start, 0, sizeof(size_t) * (h + 1));
     for (size_t i = 0; i < n; i++)
@@ -171,8 +170,10 @@ void rast_spanlist_sort(RastSpanList *sl)
     uint64_t *rec = (uint64_t *)sl->perm->data;
     uint64_t *tmp = (uint64_t *)sl->tmp->data;
     for (size_t i = 0; i < n; i++)
-        rec[i] = (uint64_t)((uint32_t)raw[i].y << KEY_BITS |
-                            (uint32_t)raw[i].x0) << 32 | i;
+        rec[i] =
+            (uint64_t)((uint32_t)raw[i].y << KEY_BITS | (uint32_t)raw[i].x0)
+                << 32 |
+            i;
     counting_pass(rec, tmp, n, sl->xcount, (size_t)sl->width, 0);
     counting_pass(tmp, rec, n, sl->xcount, h, KEY_BITS);
     sort_ties(raw, rec, n);

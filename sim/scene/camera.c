@@ -12,18 +12,25 @@
 struct SceneCameraPath {
     ScenePathKind kind;
     SceneInterp interp;
-    SceneCamera base;    /* fixed / orbit */
-    Vec3 center, axis;   /* orbit */
+    SceneCamera base;  /* fixed / orbit */
+    Vec3 center, axis; /* orbit */
     double deg0, deg_per_frame;
-    GArray *key_frame;   /* double, increasing */
-    GArray *key_cam;     /* SceneCamera */
+    GArray *key_frame; /* double, increasing */
+    GArray *key_cam;   /* SceneCamera */
     guint frames;
 };
 
 SceneCamera scene_camera_default(void)
 {
-    SceneCamera c = {SCENE_PERSPECTIVE, {0, 0, 5}, {0, 0, 0}, {0, 1, 0},
-                     45.0, 2.0, 0.1, 100.0, 1.0};
+    SceneCamera c = {SCENE_PERSPECTIVE,
+                     {0, 0, 5},
+                     {0, 0, 0},
+                     {0, 1, 0},
+                     45.0,
+                     2.0,
+                     0.1,
+                     100.0,
+                     1.0};
     return c;
 }
 
@@ -241,8 +248,7 @@ SceneCameraPath *scene_path_new_keyframes(SceneInterp interp)
     return p;
 }
 
-void scene_path_add_key(SceneCameraPath *p, double frame,
-                        const SceneCamera *c)
+void scene_path_add_key(SceneCameraPath *p, double frame, const SceneCamera *c)
 {
     g_assert(p->kind == SCENE_PATH_KEYFRAMES);
     guint n = p->key_frame->len;

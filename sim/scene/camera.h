@@ -28,7 +28,7 @@ typedef struct {
     double fov_deg; /* perspective: full vertical field of view */
     double height;  /* orthographic: full vertical extent */
     double near, far;
-    double aspect;  /* viewport width / height */
+    double aspect; /* viewport width / height */
 } SceneCamera;
 
 /* A perspective camera at (0, 0, 5) looking at the origin, +y up, 45°,
@@ -75,8 +75,7 @@ SceneCameraPath *scene_path_new_orbit(const SceneCamera *base, Vec3 center,
 /* Keyframed path; add keys with scene_path_add_key() in increasing frame
  * order (asserted).  frames = last key's frame + 1 unless set larger. */
 SceneCameraPath *scene_path_new_keyframes(SceneInterp interp);
-void scene_path_add_key(SceneCameraPath *p, double frame,
-                        const SceneCamera *c);
+void scene_path_add_key(SceneCameraPath *p, double frame, const SceneCamera *c);
 void scene_path_free(SceneCameraPath *p);
 
 ScenePathKind scene_path_kind(const SceneCameraPath *p);

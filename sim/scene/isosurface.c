@@ -17,7 +17,7 @@ static const int tets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
 
 SceneIsoParams scene_iso_defaults(void)
 {
-    SceneIsoParams p = {SCENE_FIELD_GYROID, 32, 0.0, 2.0, 12, 1,
+    SceneIsoParams p = {SCENE_FIELD_GYROID,   32, 0.0, 2.0, 12, 1,
                         {0.55f, 0.75f, 0.95f}};
     return p;
 }
@@ -39,10 +39,10 @@ double scene_iso_field(const SceneIsoParams *p, const Vec3 *centres, Vec3 x)
 
 typedef struct {
     const SceneIsoParams *p;
-    guint n;             /* lattice points per axis = grid + 1 */
-    double *val;         /* field at lattice points */
+    guint n;     /* lattice points per axis = grid + 1 */
+    double *val; /* field at lattice points */
     SceneMesh *m;
-    GHashTable *edges;   /* (lo id, hi id) -> vertex index + 1 */
+    GHashTable *edges; /* (lo id, hi id) -> vertex index + 1 */
 } Iso;
 
 static Vec3 lattice_point(const Iso *s, guint64 id)
@@ -77,8 +77,7 @@ static uint32_t edge_vertex(Iso *s, guint64 a, guint64 b)
 /* Midpoint of the lattice edge a-b. */
 static Vec3 mid(const Iso *s, guint64 a, guint64 b)
 {
-    return vec3_scale(vec3_add(lattice_point(s, a), lattice_point(s, b)),
-                      0.5);
+    return vec3_scale(vec3_add(lattice_point(s, a), lattice_point(s, b)), 0.5);
 }
 
 /* Emits triangle (a, b, c) wound so its normal points from the inside
@@ -125,8 +124,8 @@ static void do_tet(Iso *s, const guint64 id[4])
         return;
     }
     /* a quad: edges in0-out0, in0-out1, in1-out1, in1-out0 */
-    guint64 e[4][2] = {{in[0], out[0]}, {in[0], out[1]}, {in[1], out[1]},
-                       {in[1], out[0]}};
+    guint64 e[4][2] = {
+        {in[0], out[0]}, {in[0], out[1]}, {in[1], out[1]}, {in[1], out[0]}};
     uint32_t q[4];
     Vec3 mq[4];
     for (int k = 0; k < 4; k++) {
@@ -161,8 +160,7 @@ SceneMesh *scene_iso_mesh(const SceneIsoParams *p)
 {
     g_assert(p->grid >= 2 && p->grid <= 2048);
     Iso s = {p, p->grid + 1, NULL, scene_mesh_new(), NULL};
-    s.edges = g_hash_table_new_full(g_int64_hash, g_int64_equal, g_free,
-                                    NULL);
+    s.edges = g_hash_table_new_full(g_int64_hash, g_int64_equal, g_free, NULL);
     sample(&s);
     guint n = s.n;
     for (guint z = 0; z < p->grid; z++)
@@ -234,8 +232,7 @@ static guint huge_polygon(SimRng *r, Vec3 *pts)
 /* A regular polygon of 3..max_sides corners, radius in [min, max]. */
 static guint small_polygon(SimRng *r, const SceneBigPolyParams *p, Vec3 *pts)
 {
-    double rad = p->min_size + (p->max_size - p->min_size) *
-                                   sim_rng_uniform(r);
+    double rad = p->min_size + (p->max_size - p->min_size) * sim_rng_uniform(r);
     guint sides = 3 + (guint)sim_rng_below(r, p->max_sides - 2);
     double cx = 2 * sim_rng_uniform(r) - 1, cy = 2 * sim_rng_uniform(r) - 1;
     double z = -1 + 2 * sim_rng_uniform(r);
@@ -252,9 +249,8 @@ static void big_polygon(SceneMesh *m, SimRng *r, const SceneBigPolyParams *p,
 {
     Vec3 pts[16];
     uint32_t v[16];
-    guint n = sim_rng_uniform(r) < p->huge_fraction
-                  ? huge_polygon(r, pts)
-                  : small_polygon(r, p, pts);
+    guint n = sim_rng_uniform(r) < p->huge_fraction ? huge_polygon(r, pts)
+                                                    : small_polygon(r, p, pts);
     for (guint k = 0; k < n; k++)
         v[k] = scene_mesh_add_vertex(m, pts[k]);
     SceneColor c = {(float)sim_rng_uniform(r), (float)sim_rng_uniform(r),

@@ -40,11 +40,11 @@ typedef enum { SCENE_FIELD_GYROID, SCENE_FIELD_METABALLS } SceneFieldKind;
 
 typedef struct {
     SceneFieldKind field;
-    guint grid;      /* cells per axis, >= 2 */
-    double iso;      /* level */
-    double periods;  /* gyroid: periods across the cube */
-    guint balls;     /* metaballs */
-    uint64_t seed;   /* metaballs */
+    guint grid;     /* cells per axis, >= 2 */
+    double iso;     /* level */
+    double periods; /* gyroid: periods across the cube */
+    guint balls;    /* metaballs */
+    uint64_t seed;  /* metaballs */
     SceneColor color;
 } SceneIsoParams;
 
@@ -58,8 +58,8 @@ Scene *scene_iso_new(const SceneIsoParams *p);
 
 typedef struct {
     guint count;
-    guint max_sides;      /* 3 .. 16 */
-    double huge_fraction; /* [0, 1] */
+    guint max_sides;           /* 3 .. 16 */
+    double huge_fraction;      /* [0, 1] */
     double min_size, max_size; /* fractions of the half-screen */
     uint64_t seed;
 } SceneBigPolyParams;

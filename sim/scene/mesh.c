@@ -242,10 +242,10 @@ static Vec3 xform_point(Mat4 m, Vec3 p)
 static void append_vertices(SceneMesh *dst, const SceneMesh *src, Mat4 xf)
 {
     guint base = dst->pos->len;
-    gboolean want_n = src->normals->len > 0 &&
-                      (base == 0 || dst->normals->len == base);
-    gboolean want_c = src->colors->len > 0 &&
-                      (base == 0 || dst->colors->len == base);
+    gboolean want_n =
+        src->normals->len > 0 && (base == 0 || dst->normals->len == base);
+    gboolean want_c =
+        src->colors->len > 0 && (base == 0 || dst->colors->len == base);
     Mat4 nm = mat4_normal_matrix(xf);
     for (guint i = 0; i < src->pos->len; i++)
         scene_mesh_add_vertex(dst, xform_point(xf, scene_mesh_vertex(src, i)));
@@ -280,12 +280,10 @@ void scene_mesh_append(SceneMesh *dst, const SceneMesh *src, Mat4 xf)
     }
     g_array_append_vals(dst->poly_color, src->poly_color->data,
                         src->poly_color->len);
-    g_array_append_vals(dst->poly_tag, src->poly_tag->data,
-                        src->poly_tag->len);
+    g_array_append_vals(dst->poly_tag, src->poly_tag->data, src->poly_tag->len);
 }
 
-static gboolean fail(GError **err, const char *what, const char *msg,
-                     guint i)
+static gboolean fail(GError **err, const char *what, const char *msg, guint i)
 {
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "%s: polygon %u: found %s, expected a valid polygon", what, i,
@@ -293,8 +291,7 @@ static gboolean fail(GError **err, const char *what, const char *msg,
     return FALSE;
 }
 
-gboolean scene_mesh_validate(const SceneMesh *m, const char *what,
-                             GError **err)
+gboolean scene_mesh_validate(const SceneMesh *m, const char *what, GError **err)
 {
     guint nv = m->pos->len, np = scene_mesh_n_polys(m);
     g_assert(m->start->len == np + 1 && m->poly_tag->len == np);

@@ -18,7 +18,7 @@ typedef struct {
     const char *line_start;
     const char *p, *end; /* cursor within the current line */
     SceneMesh *m;
-    GArray *normals;     /* Vec3 from vn */
+    GArray *normals; /* Vec3 from vn */
     guint n_texcoords;
     guint tag;
     gboolean all_normals, any_face;
@@ -33,8 +33,7 @@ static int col_of(const ObjParser *o, const char *at)
 static gboolean fail_at(ObjParser *o, const char *at, const char *found,
                         const char *expected)
 {
-    sim_error_located(o->err, o->name, o->line, col_of(o, at), found,
-                      expected);
+    sim_error_located(o->err, o->name, o->line, col_of(o, at), found, expected);
     return FALSE;
 }
 
@@ -150,7 +149,8 @@ static gboolean read_index(ObjParser *o, guint count, const char *what,
         char *exp = count ? g_strdup_printf("a %s index in 1..%u or -1..-%u",
                                             what, count, count)
                           : g_strdup_printf("no %s index (none defined "
-                                            "above)", what);
+                                            "above)",
+                                            what);
         fail_token(o, start, exp);
         g_free(exp);
         return FALSE;
@@ -204,8 +204,9 @@ static gboolean parse_f(ObjParser *o)
         }
     }
     if (ok && idx->len < 3)
-        ok = fail_at(o, start, idx->len ? "a face of fewer than 3 corners"
-                                        : "an empty face",
+        ok = fail_at(o, start,
+                     idx->len ? "a face of fewer than 3 corners"
+                              : "an empty face",
                      "at least 3 corners");
     if (ok) {
         scene_mesh_add_poly(o->m, (uint32_t *)idx->data, idx->len,
@@ -253,9 +254,18 @@ static void finish_arrays(ObjParser *o)
 SceneMesh *scene_obj_parse(const char *text, gsize len, const char *name,
                            GError **err)
 {
-    ObjParser o = {name, 0, text, text, text, scene_mesh_new(),
-                   g_array_new(FALSE, FALSE, sizeof(Vec3)), 0, 0, TRUE,
-                   FALSE, err};
+    ObjParser o = {name,
+                   0,
+                   text,
+                   text,
+                   text,
+                   scene_mesh_new(),
+                   g_array_new(FALSE, FALSE, sizeof(Vec3)),
+                   0,
+                   0,
+                   TRUE,
+                   FALSE,
+                   err};
     const char *end = text + len;
     gboolean ok = TRUE;
     for (const char *s = text; ok && s < end;) {
@@ -264,8 +274,8 @@ SceneMesh *scene_obj_parse(const char *text, gsize len, const char *name,
         o.line_start = o.p = s;
         o.end = nl ? nl : end;
         if (memchr(s, '\0', (size_t)(o.end - s)))
-            ok = fail_at(&o, memchr(s, '\0', (size_t)(o.end - s)),
-                         "a NUL byte", "text");
+            ok = fail_at(&o, memchr(s, '\0', (size_t)(o.end - s)), "a NUL byte",
+                         "text");
         else
             ok = parse_line(&o);
         s = nl ? nl + 1 : end;

@@ -15,9 +15,9 @@
 typedef enum { P_I8, P_U8, P_I16, P_U16, P_I32, P_U32, P_F32, P_F64 } PType;
 
 static const char *const type_names[] = {
-    "char", "uchar", "short", "ushort", "int", "uint", "float", "double",
-    "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32",
-    "float64", NULL};
+    "char",  "uchar",  "short",   "ushort",  "int",   "uint",
+    "float", "double", "int8",    "uint8",   "int16", "uint16",
+    "int32", "uint32", "float32", "float64", NULL};
 static const guint type_size[] = {1, 1, 2, 2, 4, 4, 4, 8};
 
 typedef struct {
@@ -38,10 +38,10 @@ typedef struct {
     const guchar *data;
     gsize len, pos;
     ScenePlyFormat fmt;
-    int line, col;  /* ASCII position of pos */
-    gsize tok_pos;  /* start of the last token / value */
+    int line, col; /* ASCII position of pos */
+    gsize tok_pos; /* start of the last token / value */
     int tok_line, tok_col;
-    GArray *elems;  /* PElem */
+    GArray *elems; /* PElem */
     GError **err;
 } Ply;
 
@@ -142,8 +142,9 @@ static gboolean parse_type(Ply *p, PType *t)
             *t = (PType)(i % 8);
             return TRUE;
         }
-    return fail_tok(p, tok, "a type (char uchar short ushort int uint "
-                            "float double or int8 ... float64)");
+    return fail_tok(p, tok,
+                    "a type (char uchar short ushort int uint "
+                    "float double or int8 ... float64)");
 }
 
 static gboolean parse_property(Ply *p)
@@ -214,8 +215,9 @@ static gboolean parse_format(Ply *p)
     else if (!strcmp(tok, "binary_big_endian"))
         p->fmt = SCENE_PLY_BINARY_BE;
     else
-        return fail_tok(p, tok, "ascii, binary_little_endian or "
-                                "binary_big_endian");
+        return fail_tok(p, tok,
+                        "ascii, binary_little_endian or "
+                        "binary_big_endian");
     token(p, FALSE, tok, sizeof tok);
     if (strcmp(tok, "1.0"))
         return fail_tok(p, tok, "version 1.0");
@@ -251,8 +253,9 @@ static gboolean parse_header(Ply *p)
         } else if (!strcmp(tok, "end_header")) {
             break;
         } else {
-            return fail_tok(p, tok, "format, comment, obj_info, element, "
-                                    "property or end_header");
+            return fail_tok(p, tok,
+                            "format, comment, obj_info, element, "
+                            "property or end_header");
         }
     }
     if (!have_format)
@@ -292,12 +295,18 @@ static guint64 load_bytes(const guchar *b, guint n, gboolean big)
 static double decode(guint64 v, PType t)
 {
     switch (t) {
-    case P_I8: return (gint8)v;
-    case P_U8: return (guint8)v;
-    case P_I16: return (gint16)v;
-    case P_U16: return (guint16)v;
-    case P_I32: return (gint32)v;
-    case P_U32: return (guint32)v;
+    case P_I8:
+        return (gint8)v;
+    case P_U8:
+        return (guint8)v;
+    case P_I16:
+        return (gint16)v;
+    case P_U16:
+        return (guint16)v;
+    case P_I32:
+        return (gint32)v;
+    case P_U32:
+        return (guint32)v;
     case P_F32: {
         guint32 u = (guint32)v;
         float f;
@@ -318,12 +327,11 @@ static gboolean binary_value(Ply *p, PType t, double *out)
     p->tok_pos = p->pos;
     if (p->len - p->pos < n) {
         char exp[64];
-        g_snprintf(exp, sizeof exp, "%u more bytes (a %s)", n,
-                   type_names[t]);
+        g_snprintf(exp, sizeof exp, "%u more bytes (a %s)", n, type_names[t]);
         return fail(p, "end of file", exp);
     }
-    *out = decode(load_bytes(p->data + p->pos, n,
-                             p->fmt == SCENE_PLY_BINARY_BE), t);
+    *out = decode(
+        load_bytes(p->data + p->pos, n, p->fmt == SCENE_PLY_BINARY_BE), t);
     p->pos += n;
     if (!isfinite(*out))
         return fail(p, "a non-finite number", "a finite number");
@@ -353,9 +361,10 @@ static int find_prop(const PElem *e, const char *name)
 
 static Roles roles_of(const PElem *e)
 {
-    Roles r = {find_prop(e, "x"), find_prop(e, "y"), find_prop(e, "z"),
-               find_prop(e, "nx"), find_prop(e, "ny"), find_prop(e, "nz"),
-               find_prop(e, "red"), find_prop(e, "green"),
+    Roles r = {find_prop(e, "x"),    find_prop(e, "y"),
+               find_prop(e, "z"),    find_prop(e, "nx"),
+               find_prop(e, "ny"),   find_prop(e, "nz"),
+               find_prop(e, "red"),  find_prop(e, "green"),
                find_prop(e, "blue"), find_prop(e, "vertex_indices")};
     if (r.list < 0)
         r.list = find_prop(e, "vertex_index");
@@ -432,8 +441,8 @@ static gboolean check_face(Ply *p, GArray *idx, guint nverts, gsize at,
     return TRUE;
 }
 
-static gboolean read_face(Ply *p, const PElem *e, const Roles *r,
-                          SceneMesh *m, GArray *idx)
+static gboolean read_face(Ply *p, const PElem *e, const Roles *r, SceneMesh *m,
+                          GArray *idx)
 {
     double val[64] = {0};
     if (p->fmt == SCENE_PLY_ASCII)
@@ -474,14 +483,14 @@ static gboolean check_roles(Ply *p, const PElem *e, const Roles *r,
         what = "all of nx, ny, nz or none";
     else if ((r->r >= 0) != (r->g >= 0 && r->b >= 0))
         what = "all of red, green, blue or none";
-    else if (face && (r->list < 0 ||
-                      !g_array_index(e->props, PProp, r->list).list))
+    else if (face &&
+             (r->list < 0 || !g_array_index(e->props, PProp, r->list).list))
         what = "a face list property vertex_indices";
     else if (face && !seen_vertex)
         what = "the vertex element before the face element";
-    else if (MAX(MAX(r->x, MAX(r->y, r->z)),
-                 MAX(MAX(r->nx, MAX(r->ny, r->nz)),
-                     MAX(r->r, MAX(r->g, r->b)))) >= 64)
+    else if (MAX(MAX(r->x, MAX(r->y, r->z)), MAX(MAX(r->nx, MAX(r->ny, r->nz)),
+                                                 MAX(r->r, MAX(r->g, r->b)))) >=
+             64)
         what = "x, y, z, normals and colours among the first 64 properties";
     if (!what)
         return TRUE;
@@ -536,8 +545,18 @@ static void free_elems(GArray *elems)
 SceneMesh *scene_ply_parse(const guchar *data, gsize len, const char *name,
                            GError **err)
 {
-    Ply p = {name, data, len, 0, SCENE_PLY_ASCII, 1, 1, 0, 1, 1,
-             g_array_new(FALSE, FALSE, sizeof(PElem)), err};
+    Ply p = {name,
+             data,
+             len,
+             0,
+             SCENE_PLY_ASCII,
+             1,
+             1,
+             0,
+             1,
+             1,
+             g_array_new(FALSE, FALSE, sizeof(PElem)),
+             err};
     SceneMesh *m = scene_mesh_new();
     gboolean ok = parse_header(&p);
     if (ok && p.fmt != SCENE_PLY_ASCII)
@@ -572,8 +591,7 @@ static void put(GByteArray *b, ScenePlyFormat f, guint64 v, guint n)
 {
     guchar buf[8];
     for (guint i = 0; i < n; i++)
-        buf[f == SCENE_PLY_BINARY_BE ? n - 1 - i : i] =
-            (guchar)(v >> (8 * i));
+        buf[f == SCENE_PLY_BINARY_BE ? n - 1 - i : i] = (guchar)(v >> (8 * i));
     g_byte_array_append(b, buf, n);
 }
 
@@ -675,8 +693,8 @@ guchar *scene_ply_encode(const SceneMesh *m, ScenePlyFormat f, gsize *len)
     return g_byte_array_free(b, FALSE);
 }
 
-gboolean scene_ply_save(const SceneMesh *m, const char *path,
-                        ScenePlyFormat f, GError **err)
+gboolean scene_ply_save(const SceneMesh *m, const char *path, ScenePlyFormat f,
+                        GError **err)
 {
     gsize len;
     guchar *data = scene_ply_encode(m, f, &len);

@@ -36,7 +36,7 @@ SceneMesh *scene_ply_parse(const guchar *data, gsize len, const char *name,
 SceneMesh *scene_ply_load(const char *path, GError **err);
 /* Encodes a mesh; returns new bytes (free with g_free()), *len set. */
 guchar *scene_ply_encode(const SceneMesh *m, ScenePlyFormat f, gsize *len);
-gboolean scene_ply_save(const SceneMesh *m, const char *path,
-                        ScenePlyFormat f, GError **err);
+gboolean scene_ply_save(const SceneMesh *m, const char *path, ScenePlyFormat f,
+                        GError **err);
 
 #endif

@@ -21,7 +21,10 @@
 #include <string.h>
 
 static const char *const kind_names[SCENE_PPHIGS_NKINDS] = {
-    "space_station", "building_lobby", "flock_old_well", "two_human_figures",
+    "space_station",
+    "building_lobby",
+    "flock_old_well",
+    "two_human_figures",
 };
 
 const char *scene_pphigs_kind_name(ScenePphigsKind k)
@@ -50,8 +53,7 @@ typedef struct {
 /* Item k's share when `total` items are spread over n slots. */
 static guint share(guint k, guint total, guint n)
 {
-    return (guint)(((uint64_t)(k + 1) * total) / n -
-                   ((uint64_t)k * total) / n);
+    return (guint)(((uint64_t)(k + 1) * total) / n - ((uint64_t)k * total) / n);
 }
 
 static double uni(Gen *g, double lo, double hi)
@@ -73,8 +75,8 @@ static void add_poly(Gen *g, guint sid, Vec3 c, double r)
     Vec3 *p = g_new(Vec3, g->verts);
     for (guint i = 0; i < g->verts; i++) {
         double t = 2 * G_PI * i / g->verts;
-        p[i] = vec3_add(c, vec3_add(vec3_scale(u, r * cos(t)),
-                                    vec3_scale(v, r * sin(t))));
+        p[i] = vec3_add(
+            c, vec3_add(vec3_scale(u, r * cos(t)), vec3_scale(v, r * sin(t))));
     }
     SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, p, g->verts);
     e.tag = g->next_tag++;
@@ -91,15 +93,16 @@ static void add_el(Gen *g, guint sid, SceneElem e)
 
 static void add_color(Gen *g, guint sid)
 {
-    add_el(g, sid, scene_elem_color(vec3(uni(g, 0.2, 1), uni(g, 0.2, 1),
-                                         uni(g, 0.2, 1))));
+    add_el(
+        g, sid,
+        scene_elem_color(vec3(uni(g, 0.2, 1), uni(g, 0.2, 1), uni(g, 0.2, 1))));
 }
 
 /* `polys` polygons in `groups` objects, each object opened by a colour,
  * centres drawn in [lo, hi]; object radius r.  The first of `attrs`
  * attributes is a REPLACE matrix (the model's placement). */
-static void add_objects(Gen *g, guint sid, guint polys, guint attrs,
-                        Vec3 lo, Vec3 hi, double r)
+static void add_objects(Gen *g, guint sid, guint polys, guint attrs, Vec3 lo,
+                        Vec3 hi, double r)
 {
     add_el(g, sid, scene_elem_matrix(mat4_identity(), SCENE_MAT_REPLACE));
     guint groups = attrs - 1;
@@ -108,8 +111,8 @@ static void add_objects(Gen *g, guint sid, guint polys, guint attrs,
         Vec3 c = rnd_in(g, lo, hi);
         guint n = share(k, polys, groups);
         for (guint i = 0; i < n; i++)
-            add_poly(g, sid, vec3_add(c, rnd_in(g, vec3(-r, -r, -r),
-                                                vec3(r, r, r))),
+            add_poly(g, sid,
+                     vec3_add(c, rnd_in(g, vec3(-r, -r, -r), vec3(r, r, r))),
                      r * 0.5);
     }
 }
@@ -160,9 +163,10 @@ static void gen_well(Gen *g, const ScenePphigsSpec *s, guint root)
             double t = 2 * G_PI * obj / MAX(s->well_attributes, 1);
             Vec3 c = vec3(r * cos(t), h / 4 * uni(g, 0, 1), r * sin(t));
             for (guint i = 0; i < share(j, npoly, MAX(ncol, 1)); i++)
-                add_poly(g, w, vec3_add(c, rnd_in(g, vec3(-1, -1, -1),
-                                                  vec3(1, 1, 1))),
-                         h / 40);
+                add_poly(
+                    g, w,
+                    vec3_add(c, rnd_in(g, vec3(-1, -1, -1), vec3(1, 1, 1))),
+                    h / 40);
         }
         add_el(g, root, scene_elem_execute(w));
     }
@@ -216,13 +220,15 @@ static void gen_figure(Gen *g, const ScenePphigsSpec *s, guint f, guint n,
         Mat4 m = i == 0 ? mat4_translate(f * s->size / 2, 0, 0)
                         : mat4_mul(mat4_translate(uni(g, -seg, seg), seg, 0),
                                    mat4_rotate(vec3(0, 0, 1), uni(g, -1, 1)));
-        add_el(g, ids[i], scene_elem_matrix(m, i == 0 ? SCENE_MAT_REPLACE
-                                                      : SCENE_MAT_CONCAT));
+        add_el(g, ids[i],
+               scene_elem_matrix(m, i == 0 ? SCENE_MAT_REPLACE
+                                           : SCENE_MAT_CONCAT));
         add_color(g, ids[i]);
         guint np = share((*k)++, s->polygons, s->structures);
         for (guint p = 0; p < np; p++)
-            add_poly(g, ids[i], rnd_in(g, vec3(-seg / 4, 0, -seg / 4),
-                                       vec3(seg / 4, seg, seg / 4)),
+            add_poly(g, ids[i],
+                     rnd_in(g, vec3(-seg / 4, 0, -seg / 4),
+                            vec3(seg / 4, seg, seg / 4)),
                      seg / 8);
     }
     for (guint i = 1; i < n; i++)
@@ -241,8 +247,8 @@ static void gen_humans(Gen *g, const ScenePphigsSpec *s)
 
 static gboolean check_spec(const ScenePphigsSpec *s, GError **err)
 {
-    if (!need(s->verts >= 3, "a polygon of fewer than 3 vertices",
-              "verts >= 3", err))
+    if (!need(s->verts >= 3, "a polygon of fewer than 3 vertices", "verts >= 3",
+              err))
         return FALSE;
     switch (s->kind) {
     case SCENE_PPHIGS_STATION:
@@ -264,8 +270,8 @@ static gboolean check_spec(const ScenePphigsSpec *s, GError **err)
     }
 }
 
-gboolean scene_pphigs_generate(const ScenePphigsSpec *spec,
-                               ScenePphigsDb *out, GError **err)
+gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
+                               GError **err)
 {
     if (!check_spec(spec, err))
         return FALSE;

@@ -28,25 +28,25 @@ typedef enum {
 typedef struct {
     ScenePphigsKind kind;
     uint64_t seed;
-    guint polygons;      /* station, lobby: polygons; humans: total */
-    guint attributes;    /* station, lobby: attribute elements */
-    guint verts;         /* vertices per polygon (all kinds) */
-    double size;         /* extent of the model (world units) */
-    double fov_deg;      /* lobby: the standard view's vertical fov */
-    guint boids;         /* flock: boid instances */
-    guint boid_polygons; /* flock: polygons in the boid structure */
-    guint boid_colors;   /* flock: colours in the boid structure */
-    guint well_structs;  /* flock: structures of the Old Well */
-    guint well_polygons; /* flock: polygons of the Old Well, in total */
+    guint polygons;        /* station, lobby: polygons; humans: total */
+    guint attributes;      /* station, lobby: attribute elements */
+    guint verts;           /* vertices per polygon (all kinds) */
+    double size;           /* extent of the model (world units) */
+    double fov_deg;        /* lobby: the standard view's vertical fov */
+    guint boids;           /* flock: boid instances */
+    guint boid_polygons;   /* flock: polygons in the boid structure */
+    guint boid_colors;     /* flock: colours in the boid structure */
+    guint well_structs;    /* flock: structures of the Old Well */
+    guint well_polygons;   /* flock: polygons of the Old Well, in total */
     guint well_attributes; /* flock: colours of the Old Well, in total */
-    guint figures;       /* humans: figures */
-    guint structures;    /* humans: structures over all figures */
-    guint levels;        /* humans: hierarchy depth (levels) */
+    guint figures;         /* humans: figures */
+    guint structures;      /* humans: structures over all figures */
+    guint levels;          /* humans: hierarchy depth (levels) */
 } ScenePphigsSpec;
 
 typedef struct {
-    SceneDb *db;         /* owned */
-    SceneCamera camera;  /* the database's standard view */
+    SceneDb *db;        /* owned */
+    SceneCamera camera; /* the database's standard view */
 } ScenePphigsDb;
 
 /* "space_station", "building_lobby", "flock_old_well",
@@ -56,8 +56,8 @@ gboolean scene_pphigs_kind_parse(const char *s, ScenePphigsKind *out);
 
 /* Builds the database; FALSE with *err (SIM_ERROR_INPUT) when the spec
  * cannot be met (e.g. more attributes than polygons allow). */
-gboolean scene_pphigs_generate(const ScenePphigsSpec *spec,
-                               ScenePphigsDb *out, GError **err);
+gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
+                               GError **err);
 void scene_pphigs_db_clear(ScenePphigsDb *d);
 
 /* The database as a renderable scene named after its kind: the posted

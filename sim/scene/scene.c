@@ -66,9 +66,9 @@ static void fit_instance_boxes(const Scene *s, SceneCamera *c, double fill)
     guint n = scene_n_instances(s);
     Vec3 *pts = g_new(Vec3, 8 * n);
     for (guint i = 0; i < n; i++) {
-        SceneBox b = scene_box_transform(
-            scene_mesh_bbox(scene_instance_mesh(s, i)),
-            scene_instance(s, i)->xform);
+        SceneBox b =
+            scene_box_transform(scene_mesh_bbox(scene_instance_mesh(s, i)),
+                                scene_instance(s, i)->xform);
         for (int k = 0; k < 8; k++)
             pts[8 * i + k] =
                 vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
@@ -80,8 +80,7 @@ static void fit_instance_boxes(const Scene *s, SceneCamera *c, double fill)
 
 /* Fits every vertex of every instance (the silhouette).  O(vertices x
  * instances). */
-static void fit_instance_vertices(const Scene *s, SceneCamera *c,
-                                  double fill)
+static void fit_instance_vertices(const Scene *s, SceneCamera *c, double fill)
 {
     GArray *pts = g_array_new(FALSE, FALSE, sizeof(Vec3));
     for (guint i = 0; i < scene_n_instances(s); i++) {

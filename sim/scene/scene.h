@@ -23,10 +23,10 @@ typedef struct {
 } SceneInstance;
 
 typedef struct {
-    char *name;          /* generator or file name */
-    GPtrArray *meshes;   /* SceneMesh *, owned */
-    GArray *instances;   /* SceneInstance */
-    SceneCamera camera;  /* frame-0 camera */
+    char *name;            /* generator or file name */
+    GPtrArray *meshes;     /* SceneMesh *, owned */
+    GArray *instances;     /* SceneInstance */
+    SceneCamera camera;    /* frame-0 camera */
     SceneCameraPath *path; /* owned, may be NULL (fixed camera) */
     SceneColor background;
     guint width, height; /* suggested viewport in pixels (0 = unset) */
@@ -45,11 +45,11 @@ typedef struct {
 typedef struct {
     SceneProjection proj;
     double azimuth_deg, elevation_deg;
-    double fov_deg;  /* perspective */
-    double fill;     /* (0, 1] */
-    double aspect;   /* width / height */
-    gboolean fit_box; /* fit the instances' box corners instead of
-                         the bounding sphere */
+    double fov_deg;        /* perspective */
+    double fill;           /* (0, 1] */
+    double aspect;         /* width / height */
+    gboolean fit_box;      /* fit the instances' box corners instead of
+                              the bounding sphere */
     gboolean fit_vertices; /* fit every instance vertex (tightest) */
 } SceneView;
 

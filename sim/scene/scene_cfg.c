@@ -47,8 +47,8 @@ static gboolean get_vec3(const CfgNode *map, const char *key, Vec3 *out,
     return TRUE;
 }
 
-static gboolean get_color(const CfgNode *map, const char *key,
-                          SceneColor *out, GError **err)
+static gboolean get_color(const CfgNode *map, const char *key, SceneColor *out,
+                          GError **err)
 {
     Vec3 v = {out->r, out->g, out->b};
     if (!get_vec3(map, key, &v, err))
@@ -73,8 +73,7 @@ static char *where(const CfgNode *map, const char *key)
     const CfgNode *at = cfg_get(map, key);
     if (!at)
         at = map;
-    return g_strdup_printf("%s:%d:%d", cfg_file(at), cfg_line(at),
-                           cfg_col(at));
+    return g_strdup_printf("%s:%d:%d", cfg_file(at), cfg_line(at), cfg_col(at));
 }
 
 static gboolean want_map(const CfgNode *n, const char *what, GError **err)
@@ -120,8 +119,7 @@ static gboolean get_layout(const CfgNode *sec, SceneTeapotsParams *p,
 {
     int layout = p->layout;
     if (cfg_get(sec, "arrangement")) {
-        if (!cfg_get_enum(sec, "arrangement", TRUE, arrangements, &layout,
-                          err))
+        if (!cfg_get_enum(sec, "arrangement", TRUE, arrangements, &layout, err))
             return FALSE;
     } else if (!cfg_get_enum(sec, "layout", FALSE, layouts, &layout, err)) {
         return FALSE;
@@ -138,13 +136,12 @@ static Scene *gen_teapots(const CfgNode *sec, GError **err)
     GArray *pl = g_array_new(FALSE, FALSE, sizeof(SceneTeapotPlacement));
     Scene *s = NULL;
     if (get_guint(sec, count_key, 1, 4096, &p.count, err) &&
-        cfg_get_count(sec, "polygons_per_teapot", FALSE, 1, 1u << 26,
-                      &polys, err) &&
+        cfg_get_count(sec, "polygons_per_teapot", FALSE, 1, 1u << 26, &polys,
+                      err) &&
         get_layout(sec, &p, err) &&
         cfg_get_double(sec, "spacing", FALSE, 0, 1e3, &p.spacing, err) &&
         cfg_get_double(sec, "shift", FALSE, -1e3, 1e3, &p.shift, err) &&
-        cfg_get_double(sec, "yaw_step", FALSE, -360, 360, &p.yaw_step,
-                       err) &&
+        cfg_get_double(sec, "yaw_step", FALSE, -360, 360, &p.yaw_step, err) &&
         get_color(sec, "color", &p.color, err) &&
         cfg_get_bool(sec, "vary_color", FALSE, &p.vary_color, err) &&
         get_placements(sec, &p, pl, err)) {
@@ -164,10 +161,10 @@ static Scene *gen_vehicle(const CfgNode *sec, GError **err)
     if (!get_guint(sec, "structures", 10, 1u << 24, &p.structures, err) ||
         !cfg_get_count(sec, "triangles", FALSE, 8, 1u << 28, &tris, err) ||
         !get_guint(sec, "instances", 1, 1024, &p.instances, err) ||
-        !cfg_get_double(sec, "circle_radius", FALSE, 0, 1e6,
-                        &p.circle_radius, err) ||
-        !cfg_get_double(sec, "camera_radius", FALSE, 0, 1e6,
-                        &p.camera_radius, err) ||
+        !cfg_get_double(sec, "circle_radius", FALSE, 0, 1e6, &p.circle_radius,
+                        err) ||
+        !cfg_get_double(sec, "camera_radius", FALSE, 0, 1e6, &p.camera_radius,
+                        err) ||
         !cfg_get_double(sec, "camera_height", FALSE, -1e6, 1e6,
                         &p.camera_height, err) ||
         !cfg_get_double(sec, "fov", FALSE, 1, 170, &p.fov_deg, err) ||
@@ -229,20 +226,24 @@ static Scene *gen_large_polygons(const CfgNode *sec, GError **err)
 static const char *const pphigs_keys[SCENE_PPHIGS_NKINDS][8] = {
     {"polygons", "attributes", NULL},
     {"polygons", "attributes", NULL},
-    {"boids", "boid_polygons", "boid_colors", "well_structs",
-     "well_polygons", "well_attributes", NULL},
+    {"boids", "boid_polygons", "boid_colors", "well_structs", "well_polygons",
+     "well_attributes", NULL},
     {"figures", "structures", "polygons", "levels", NULL},
 };
 
 static guint *pphigs_field(ScenePphigsSpec *p, const char *key)
 {
-#define F(k) {#k, G_STRUCT_OFFSET(ScenePphigsSpec, k)}
+#define F(k)                                                                   \
+    {                                                                          \
+#k, G_STRUCT_OFFSET(ScenePphigsSpec, k)                                \
+    }
     static const struct {
         const char *key;
         gsize off;
-    } fields[] = {F(polygons), F(attributes), F(boids), F(boid_polygons),
-                  F(boid_colors), F(well_structs), F(well_polygons),
-                  F(well_attributes), F(figures), F(structures), F(levels)};
+    } fields[] = {F(polygons),      F(attributes),      F(boids),
+                  F(boid_polygons), F(boid_colors),     F(well_structs),
+                  F(well_polygons), F(well_attributes), F(figures),
+                  F(structures),    F(levels)};
 #undef F
     for (guint i = 0; i < G_N_ELEMENTS(fields); i++)
         if (!strcmp(fields[i].key, key))
@@ -250,8 +251,7 @@ static guint *pphigs_field(ScenePphigsSpec *p, const char *key)
     g_assert_not_reached();
 }
 
-static Scene *gen_pphigs(const CfgNode *sec, ScenePphigsKind kind,
-                         GError **err)
+static Scene *gen_pphigs(const CfgNode *sec, ScenePphigsKind kind, GError **err)
 {
     ScenePphigsSpec p = {.kind = kind, .seed = 1, .verts = 4, .fov_deg = 45};
     if (!cfg_get_count(sec, "seed", FALSE, 0, UINT64_MAX, &p.seed, err) ||
@@ -271,8 +271,7 @@ static Scene *gen_pphigs(const CfgNode *sec, ScenePphigsKind kind,
     Scene *s = scene_pphigs_scene_new(&p, &e);
     if (!s) {
         char *at = where(sec, "generator");
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "%s: %s", at,
-                    e->message);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "%s: %s", at, e->message);
         g_free(at);
         g_error_free(e);
     }
@@ -297,11 +296,12 @@ static Scene *gen_humans(const CfgNode *sec, GError **err)
 }
 
 static const char *const gen_names[] = {
-    "teapots", "vehicle", "isosurface", "large_polygons", "space_station",
-    "building_lobby", "flock_old_well", "two_human_figures", NULL};
-static const GenFn gen_fns[] = {gen_teapots, gen_vehicle, gen_isosurface,
+    "teapots",        "vehicle",           "isosurface",
+    "large_polygons", "space_station",     "building_lobby",
+    "flock_old_well", "two_human_figures", NULL};
+static const GenFn gen_fns[] = {gen_teapots,        gen_vehicle, gen_isosurface,
                                 gen_large_polygons, gen_station, gen_lobby,
-                                gen_flock, gen_humans};
+                                gen_flock,          gen_humans};
 
 const char *const *scene_generator_names(void)
 {
@@ -351,8 +351,7 @@ static Scene *load_file(const CfgNode *sec, GError **err)
 
 /* ---- view, camera, path ------------------------------------------------ */
 
-static const char *const projections[] = {"perspective", "orthographic",
-                                          NULL};
+static const char *const projections[] = {"perspective", "orthographic", NULL};
 
 static const char *const fits[] = {"sphere", "box", "vertices", NULL};
 
@@ -361,8 +360,7 @@ static gboolean apply_view(Scene *s, const CfgNode *n, GError **err)
     SceneView v = scene_view_default();
     int proj = v.proj, fit = 0;
     if (!want_map(n, "a map {azimuth, elevation, fov, fill ...}", err) ||
-        !cfg_get_double(n, "azimuth", FALSE, -360, 360, &v.azimuth_deg,
-                        err) ||
+        !cfg_get_double(n, "azimuth", FALSE, -360, 360, &v.azimuth_deg, err) ||
         !cfg_get_double(n, "elevation", FALSE, -90, 90, &v.elevation_deg,
                         err) ||
         !cfg_get_double(n, "fov", FALSE, 1, 170, &v.fov_deg, err) ||
@@ -396,16 +394,16 @@ static gboolean read_camera(const CfgNode *n, SceneCamera *c, GError **err)
     Vec3 d = vec3_sub(c->target, c->eye);
     if (c->far <= c->near || vec3_len(d) == 0 ||
         vec3_len(vec3_cross(d, c->up)) == 0) {
-        cfg_error(err, n, "a degenerate camera (near >= far, eye = target "
-                          "or up along the view direction)",
+        cfg_error(err, n,
+                  "a degenerate camera (near >= far, eye = target "
+                  "or up along the view direction)",
                   "a valid camera");
         return FALSE;
     }
     return TRUE;
 }
 
-static const char *const path_kinds[] = {"fixed", "orbit", "keyframes",
-                                         NULL};
+static const char *const path_kinds[] = {"fixed", "orbit", "keyframes", NULL};
 static const char *const interps[] = {"linear", "catmull_rom", NULL};
 
 static SceneCameraPath *read_orbit(const CfgNode *n, const SceneCamera *c,
@@ -416,8 +414,7 @@ static SceneCameraPath *read_orbit(const CfgNode *n, const SceneCamera *c,
     if (!get_vec3(n, "center", &center, err) ||
         !get_vec3(n, "axis", &axis, err) ||
         !cfg_get_double(n, "start", FALSE, -360, 360, &start, err) ||
-        !cfg_get_double(n, "degrees_per_frame", FALSE, -360, 360, &step,
-                        err))
+        !cfg_get_double(n, "degrees_per_frame", FALSE, -360, 360, &step, err))
         return NULL;
     if (vec3_len(axis) == 0) {
         cfg_error(err, cfg_get(n, "axis"), "a zero axis", "a non-zero axis");
@@ -567,8 +564,7 @@ static Scene *scene_from_yaml(const char *path, GError **err)
         for (guint i = 0; run_sections[i]; i++)
             if (cfg_get(root, run_sections[i]))
                 cfg_mark_read(cfg_get(root, run_sections[i]));
-    if (sec && (s = scene_from_cfg(sec, err)) &&
-        !cfg_check_unused(root, err)) {
+    if (sec && (s = scene_from_cfg(sec, err)) && !cfg_check_unused(root, err)) {
         scene_free(s);
         s = NULL;
     }
@@ -579,8 +575,8 @@ static Scene *scene_from_yaml(const char *path, GError **err)
 Scene *scene_load(const char *path, GError **err)
 {
     char *lower = g_ascii_strdown(path, -1);
-    gboolean yaml = g_str_has_suffix(lower, ".yaml") ||
-                    g_str_has_suffix(lower, ".yml");
+    gboolean yaml =
+        g_str_has_suffix(lower, ".yaml") || g_str_has_suffix(lower, ".yml");
     g_free(lower);
     if (yaml)
         return scene_from_yaml(path, err);

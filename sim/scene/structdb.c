@@ -22,7 +22,7 @@ typedef struct {
 } SceneStruct;
 
 struct SceneDb {
-    GPtrArray *structs; /* SceneStruct * */
+    GPtrArray *structs;  /* SceneStruct * */
     GHashTable *by_name; /* name -> id + 1 */
     GArray *posted;      /* guint */
     uint64_t gen;        /* bumped by every edit */
@@ -44,8 +44,7 @@ static SceneElem elem_blank(SceneElemKind k)
     return e;
 }
 
-SceneElem scene_elem_prim(SceneElemKind kind, const Vec3 *verts,
-                          guint nverts)
+SceneElem scene_elem_prim(SceneElemKind kind, const Vec3 *verts, guint nverts)
 {
     g_assert(scene_elem_is_prim(kind));
     SceneElem e = elem_blank(kind);
@@ -96,8 +95,7 @@ const char *scene_elem_kind_name(SceneElemKind k)
 static SceneElem elem_dup(const SceneElem *e)
 {
     SceneElem c = *e;
-    c.verts = e->nverts ? g_memdup2(e->verts, e->nverts * sizeof(Vec3))
-                        : NULL;
+    c.verts = e->nverts ? g_memdup2(e->verts, e->nverts * sizeof(Vec3)) : NULL;
     return c;
 }
 
@@ -252,8 +250,8 @@ static gboolean reaches(const SceneDb *db, guint from, guint target,
     return FALSE;
 }
 
-static gboolean check_execute(const SceneDb *db, guint sid,
-                              const SceneElem *e, GError **err)
+static gboolean check_execute(const SceneDb *db, guint sid, const SceneElem *e,
+                              GError **err)
 {
     if (e->kind != SCENE_EL_EXECUTE)
         return TRUE;
@@ -291,8 +289,8 @@ gboolean scene_db_append(SceneDb *db, guint sid, const SceneElem *e,
     return scene_db_insert(db, sid, get(db, sid)->elems->len, e, err);
 }
 
-gboolean scene_db_insert(SceneDb *db, guint sid, guint pos,
-                         const SceneElem *e, GError **err)
+gboolean scene_db_insert(SceneDb *db, guint sid, guint pos, const SceneElem *e,
+                         GError **err)
 {
     SceneStruct *s = get(db, sid);
     g_assert(pos <= s->elems->len);
@@ -305,8 +303,8 @@ gboolean scene_db_insert(SceneDb *db, guint sid, guint pos,
     return TRUE;
 }
 
-gboolean scene_db_modify(SceneDb *db, guint sid, guint pos,
-                         const SceneElem *e, GError **err)
+gboolean scene_db_modify(SceneDb *db, guint sid, guint pos, const SceneElem *e,
+                         GError **err)
 {
     SceneStruct *s = get(db, sid);
     g_assert(pos < s->elems->len);
@@ -411,8 +409,8 @@ static void walk(Walk *w, guint sid, Mat4 g, Vec3 color, guint depth)
         } else if (e->kind == SCENE_EL_EXECUTE) {
             walk(w, e->child, comp, color, depth + 1);
         } else if (w->fn) {
-            ScenePrimInst pi = {sid, i, e, comp, color, w->priority, depth,
-                                inst};
+            ScenePrimInst pi = {sid,   i,           e,     comp,
+                                color, w->priority, depth, inst};
             w->fn(&pi, w->ud);
         }
     }
@@ -446,8 +444,7 @@ static void flatten_prim(const ScenePrimInst *pi, void *ud)
         Vec4 h = mat4_apply_point(pi->matrix, e->verts[k]);
         scene_mesh_add_vertex(m, vec3(h.x, h.y, h.z));
     }
-    SceneColor c = {(float)pi->color.x, (float)pi->color.y,
-                    (float)pi->color.z};
+    SceneColor c = {(float)pi->color.x, (float)pi->color.y, (float)pi->color.z};
     if (e->kind != SCENE_EL_TRISTRIP) {
         uint32_t *idx = g_new(uint32_t, e->nverts);
         for (guint k = 0; k < e->nverts; k++)
@@ -572,8 +569,8 @@ SceneBox scene_db_struct_bbox(const SceneDb *db, guint sid)
             local = local_after(local, e);
         else if (e->kind == SCENE_EL_EXECUTE)
             b = scene_box_union(
-                b, scene_box_transform(scene_db_struct_bbox(db, e->child),
-                                       local));
+                b,
+                scene_box_transform(scene_db_struct_bbox(db, e->child), local));
         else if (scene_elem_is_prim(e->kind))
             add_prim(&b, e, local);
     }
@@ -620,8 +617,8 @@ static void stats_walk(const SceneDb *db, guint sid, guint depth,
         seen[sid] = 1;
         st->structures++;
         for (guint i = 0; i < s->elems->len; i++)
-            st->min_primitives += scene_elem_is_prim(
-                g_array_index(s->elems, SceneElem, i).kind);
+            st->min_primitives +=
+                scene_elem_is_prim(g_array_index(s->elems, SceneElem, i).kind);
     }
     for (guint i = 0; i < s->elems->len; i++) {
         const SceneElem *e = &g_array_index(s->elems, SceneElem, i);

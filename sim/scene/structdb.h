@@ -68,8 +68,7 @@ typedef struct SceneDb SceneDb;
 
 /* Element constructors: plain values; `verts` is borrowed (the db copies
  * it when the element is added).  Tags start at 0; set e.tag yourself. */
-SceneElem scene_elem_prim(SceneElemKind kind, const Vec3 *verts,
-                          guint nverts);
+SceneElem scene_elem_prim(SceneElemKind kind, const Vec3 *verts, guint nverts);
 SceneElem scene_elem_color(Vec3 rgb);
 SceneElem scene_elem_matrix(Mat4 m, SceneMatMode mode);
 SceneElem scene_elem_execute(guint child);
@@ -105,10 +104,10 @@ gboolean scene_db_is_primitive(const SceneDb *db, guint sid);
  * an acyclic structure network").  modify keeps the element's kind. */
 gboolean scene_db_append(SceneDb *db, guint sid, const SceneElem *e,
                          GError **err);
-gboolean scene_db_insert(SceneDb *db, guint sid, guint pos,
-                         const SceneElem *e, GError **err);
-gboolean scene_db_modify(SceneDb *db, guint sid, guint pos,
-                         const SceneElem *e, GError **err);
+gboolean scene_db_insert(SceneDb *db, guint sid, guint pos, const SceneElem *e,
+                         GError **err);
+gboolean scene_db_modify(SceneDb *db, guint sid, guint pos, const SceneElem *e,
+                         GError **err);
 void scene_db_delete(SceneDb *db, guint sid, guint pos);
 
 /* Posting: roots of the traversal, in posting order; posting twice is a
@@ -122,14 +121,14 @@ guint scene_db_posted_at(const SceneDb *db, guint i);
 /* Traversal.  One call per primitive instance with the state it inherits;
  * `path` is the execute chain (structure ids, root first).  Borrowed. */
 typedef struct {
-    guint sid;            /* structure holding the primitive */
-    guint pos;            /* its position there */
-    const SceneElem *el;  /* the primitive */
-    Mat4 matrix;          /* composite G L */
-    Vec3 color;           /* inherited colour (default 1, 1, 1) */
-    int64_t priority;     /* ODP priority (meaningful for ODPs) */
-    guint depth;          /* 1 for a posted structure's own elements */
-    guint instance;       /* max-set node (scene_db_maxset numbering) */
+    guint sid;           /* structure holding the primitive */
+    guint pos;           /* its position there */
+    const SceneElem *el; /* the primitive */
+    Mat4 matrix;         /* composite G L */
+    Vec3 color;          /* inherited colour (default 1, 1, 1) */
+    int64_t priority;    /* ODP priority (meaningful for ODPs) */
+    guint depth;         /* 1 for a posted structure's own elements */
+    guint instance;      /* max-set node (scene_db_maxset numbering) */
 } ScenePrimInst;
 
 typedef void (*ScenePrimFn)(const ScenePrimInst *pi, void *ud);
@@ -151,9 +150,9 @@ SceneMesh *scene_db_flatten(const SceneDb *db);
  * instance reached from the posted roots, in traversal (pre-)order. */
 typedef struct {
     guint sid;
-    gint parent;   /* node index, -1 for a posted root */
-    guint depth;   /* 1 for roots */
-    Mat4 matrix;   /* composite matrix at the instance's entry */
+    gint parent; /* node index, -1 for a posted root */
+    guint depth; /* 1 for roots */
+    Mat4 matrix; /* composite matrix at the instance's entry */
 } SceneMaxNode;
 /* Returns a new GArray of SceneMaxNode; free with g_array_unref(). */
 GArray *scene_db_maxset(const SceneDb *db);
@@ -177,13 +176,13 @@ GArray *scene_db_chunk_bboxes(const SceneDb *db, guint sid, guint n);
  * counts them: primitives and attributes per instance (max-set),
  * structures reachable from posted roots (min-set), depth in levels. */
 typedef struct {
-    guint structures;      /* reachable, min-set */
-    guint depth;           /* levels (1: no executes) */
-    uint64_t primitives;   /* max-set primitive instances */
-    uint64_t attributes;   /* max-set attribute instances */
-    uint64_t executes;     /* max-set execute instances */
+    guint structures;        /* reachable, min-set */
+    guint depth;             /* levels (1: no executes) */
+    uint64_t primitives;     /* max-set primitive instances */
+    uint64_t attributes;     /* max-set attribute instances */
+    uint64_t executes;       /* max-set execute instances */
     uint64_t min_primitives; /* primitives stored (min-set) */
-    uint64_t instances;    /* max-set structure instances */
+    uint64_t instances;      /* max-set structure instances */
 } SceneDbStats;
 void scene_db_stats(const SceneDb *db, SceneDbStats *st);
 

@@ -16,8 +16,8 @@ static const SceneColor palette[8] = {
 
 SceneTeapotsParams scene_teapots_defaults(void)
 {
-    SceneTeapotsParams p = {3200, 1, SCENE_TEAPOTS_SPREAD, 1.1, 0.5, 0,
-                            NULL, 0, {1, 1, 1}, TRUE};
+    SceneTeapotsParams p = {
+        3200, 1, SCENE_TEAPOTS_SPREAD, 1.1, 0.5, 0, NULL, 0, {1, 1, 1}, TRUE};
     return p;
 }
 

@@ -40,9 +40,9 @@ typedef struct {
     uint64_t polygons_per_teapot;
     guint count;
     SceneTeapotLayout layout;
-    double spacing;  /* see above */
-    double shift;    /* depth layout only */
-    double yaw_step; /* degrees per teapot */
+    double spacing;                         /* see above */
+    double shift;                           /* depth layout only */
+    double yaw_step;                        /* degrees per teapot */
     const SceneTeapotPlacement *placements; /* NULL: use the layout */
     guint n_placements;                     /* == count when set */
     SceneColor color;

@@ -14,20 +14,22 @@ typedef enum { P_PANEL, P_TUBE, P_ELLIPSOID, P_TORUS } PatchKind;
 
 typedef struct {
     PatchKind kind;
-    Vec3 c;          /* panel origin; tube/ellipsoid/torus centre */
-    Vec3 a, b;       /* panel edges; tube axis (a) and radius (b.x);
-                        ellipsoid radii (a); torus R = a.x, r = a.y */
-    double u0, u1;   /* angle ranges (radians) where used */
+    Vec3 c;        /* panel origin; tube/ellipsoid/torus centre */
+    Vec3 a, b;     /* panel edges; tube axis (a) and radius (b.x);
+                      ellipsoid radii (a); torus R = a.x, r = a.y */
+    double u0, u1; /* angle ranges (radians) where used */
     double v0, v1;
-    double weight;   /* share of the triangle budget */
+    double weight; /* share of the triangle budget */
     guint group;
 } Patch;
 
 static const char *const group_names[SCENE_VEHICLE_GROUPS] = {
     "body", "chassis", "wheels", "interior", "trim"};
-static const Vec3 group_rgb[SCENE_VEHICLE_GROUPS] = {
-    {0.75, 0.15, 0.12}, {0.25, 0.25, 0.27}, {0.08, 0.08, 0.08},
-    {0.45, 0.32, 0.22}, {0.85, 0.85, 0.80}};
+static const Vec3 group_rgb[SCENE_VEHICLE_GROUPS] = {{0.75, 0.15, 0.12},
+                                                     {0.25, 0.25, 0.27},
+                                                     {0.08, 0.08, 0.08},
+                                                     {0.45, 0.32, 0.22},
+                                                     {0.85, 0.85, 0.80}};
 
 SceneVehicleParams scene_vehicle_defaults(void)
 {
@@ -50,8 +52,8 @@ static Vec3 patch_eval(const Patch *p, double u, double v)
     double ph = p->v0 + v * (p->v1 - p->v0);
     switch (p->kind) {
     case P_PANEL:
-        return vec3_add(p->c, vec3_add(vec3_scale(p->a, u),
-                                       vec3_scale(p->b, v)));
+        return vec3_add(p->c,
+                        vec3_add(vec3_scale(p->a, u), vec3_scale(p->b, v)));
     case P_TUBE: {
         Vec3 e2, e1 = perp_basis(p->a, &e2);
         Vec3 r = vec3_add(vec3_scale(e1, cos(th)), vec3_scale(e2, sin(th)));
@@ -59,13 +61,11 @@ static Vec3 patch_eval(const Patch *p, double u, double v)
                         vec3_scale(r, p->b.x));
     }
     case P_ELLIPSOID:
-        return vec3_add(p->c, vec3(p->a.x * cos(ph) * cos(th),
-                                   p->a.y * sin(ph),
+        return vec3_add(p->c, vec3(p->a.x * cos(ph) * cos(th), p->a.y * sin(ph),
                                    -p->a.z * cos(ph) * sin(th)));
     default: {
         double w = p->a.x + p->a.y * cos(ph);
-        return vec3_add(p->c, vec3(w * cos(th), w * sin(th),
-                                   p->a.y * sin(ph)));
+        return vec3_add(p->c, vec3(w * cos(th), w * sin(th), p->a.y * sin(ph)));
     }
     }
 }
@@ -95,10 +95,16 @@ static void add_body(GArray *ps, guint n)
     for (guint k = 0; k < 10; k++) {
         guint m = n / 10 + (k < n % 10);
         for (guint j = 0; j < m; j++) {
-            Patch p = {P_PANEL, vec3_add(f[k].o, vec3_scale(f[k].a,
-                                                            (double)j / m)),
-                       vec3_scale(f[k].a, 1.0 / m), f[k].b,
-                       0, 0, 0, 0, 1.5, 0};
+            Patch p = {P_PANEL,
+                       vec3_add(f[k].o, vec3_scale(f[k].a, (double)j / m)),
+                       vec3_scale(f[k].a, 1.0 / m),
+                       f[k].b,
+                       0,
+                       0,
+                       0,
+                       0,
+                       1.5,
+                       0};
             g_array_append_val(ps, p);
         }
     }
@@ -107,8 +113,8 @@ static void add_body(GArray *ps, guint n)
 static void add_chassis(GArray *ps, guint n)
 {
     for (guint i = 0; i < n; i++) {
-        Patch p = {P_TUBE, {0, 0, 0}, {0, 0, 0}, {0.06, 0, 0},
-                   0, 2 * G_PI, 0, 0, 0.6, 1};
+        Patch p = {P_TUBE,   {0, 0, 0}, {0, 0, 0}, {0.06, 0, 0}, 0,
+                   2 * G_PI, 0,         0,         0.6,          1};
         if (i % 2 == 0) {
             p.c = vec3(-1.75 + 0.5 * ((i / 4) % 8), 0.45,
                        (i / 2) % 2 ? 0.6 : -0.6);
@@ -129,13 +135,27 @@ static void add_wheels(GArray *ps, guint n)
         double side = w % 2 ? 1 : -1;
         Vec3 c = vec3(w < 2 ? 1.35 : -1.35, 0.4, 0.85 * side);
         for (guint j = 0; j < k; j++) {
-            Patch p = {P_TORUS, c, {0.28, 0.12, 0}, {0, 0, 0},
-                       2 * G_PI * j / sectors, 2 * G_PI * (j + 1) / sectors,
-                       0, 2 * G_PI, 2.0, 2};
+            Patch p = {P_TORUS,
+                       c,
+                       {0.28, 0.12, 0},
+                       {0, 0, 0},
+                       2 * G_PI * j / sectors,
+                       2 * G_PI * (j + 1) / sectors,
+                       0,
+                       2 * G_PI,
+                       2.0,
+                       2};
             if (j == sectors) { /* the hub */
-                p = (Patch){P_ELLIPSOID, vec3(c.x, c.y, c.z + 0.1 * side),
-                            {0.2, 0.2, 0.06}, {0, 0, 0}, 0, 2 * G_PI,
-                            -0.45 * G_PI, 0.45 * G_PI, 1.0, 2};
+                p = (Patch){P_ELLIPSOID,
+                            vec3(c.x, c.y, c.z + 0.1 * side),
+                            {0.2, 0.2, 0.06},
+                            {0, 0, 0},
+                            0,
+                            2 * G_PI,
+                            -0.45 * G_PI,
+                            0.45 * G_PI,
+                            1.0,
+                            2};
             }
             g_array_append_val(ps, p);
         }
@@ -148,8 +168,14 @@ static void add_interior(GArray *ps, guint n)
         Patch p = {P_ELLIPSOID,
                    {-1.6 + 0.5 * (i % 4), 0.9 + 0.3 * ((i / 12) % 2),
                     0.5 * ((double)((i / 4) % 3) - 1)},
-                   {0.25, 0.15, 0.2}, {0, 0, 0}, 0, 2 * G_PI,
-                   -0.45 * G_PI, 0.45 * G_PI, 1.0, 3};
+                   {0.25, 0.15, 0.2},
+                   {0, 0, 0},
+                   0,
+                   2 * G_PI,
+                   -0.45 * G_PI,
+                   0.45 * G_PI,
+                   1.0,
+                   3};
         g_array_append_val(ps, p);
     }
 }
@@ -158,15 +184,27 @@ static void add_trim(GArray *ps, guint n)
 {
     for (guint i = 0; i < n; i++) {
         double x = (i / 2) % 2 ? 2.14 : -2.14;
-        Patch p = {P_ELLIPSOID, {x, 0.8 + 0.1 * (i % 3),
-                                 -0.8 + 1.6 * (i % 7) / 6.0},
-                   {0.04, 0.08, 0.1}, {0, 0, 0}, 0, 2 * G_PI,
-                   -0.45 * G_PI, 0.45 * G_PI, 0.4, 4};
+        Patch p = {P_ELLIPSOID,
+                   {x, 0.8 + 0.1 * (i % 3), -0.8 + 1.6 * (i % 7) / 6.0},
+                   {0.04, 0.08, 0.1},
+                   {0, 0, 0},
+                   0,
+                   2 * G_PI,
+                   -0.45 * G_PI,
+                   0.45 * G_PI,
+                   0.4,
+                   4};
         if (i % 2) {
-            p = (Patch){P_TUBE, {x + (x > 0 ? 0.03 : -0.03),
-                                 0.55 + 0.05 * (i % 8), 0},
-                        {0, 0, 1.8}, {0.03, 0, 0}, 0, 2 * G_PI, 0, 0,
-                        0.4, 4};
+            p = (Patch){P_TUBE,
+                        {x + (x > 0 ? 0.03 : -0.03), 0.55 + 0.05 * (i % 8), 0},
+                        {0, 0, 1.8},
+                        {0.03, 0, 0},
+                        0,
+                        2 * G_PI,
+                        0,
+                        0,
+                        0.4,
+                        4};
         }
         g_array_append_val(ps, p);
     }
@@ -261,9 +299,8 @@ static void append_exec(SceneDb *db, guint parent, guint child)
     g_assert(ok); /* a fresh tree cannot close a cycle */
 }
 
-gboolean scene_vehicle_build(SceneDb *db, guint structures,
-                             uint64_t triangles, const char *what,
-                             guint *root, GError **err)
+gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
+                             const char *what, guint *root, GError **err)
 {
     if (structures < 10 || triangles < 2 * (uint64_t)(structures - 6) ||
         triangles > (1u << 28)) {
@@ -307,8 +344,7 @@ static void collect(const ScenePrimInst *pi, void *ud)
         Vec4 h = mat4_apply_point(pi->matrix, pi->el->verts[k]);
         v[k] = scene_mesh_add_vertex(m, vec3(h.x, h.y, h.z));
     }
-    SceneColor c = {(float)pi->color.x, (float)pi->color.y,
-                    (float)pi->color.z};
+    SceneColor c = {(float)pi->color.x, (float)pi->color.y, (float)pi->color.z};
     scene_mesh_add_poly(m, v, 3, c, pi->sid);
 }
 
@@ -316,9 +352,9 @@ static Mat4 copy_xform(const SceneVehicleParams *p, guint k)
 {
     double a = 2 * G_PI * k / p->instances;
     Mat4 rot = mat4_rotate(vec3(0, 1, 0), -(a + G_PI / 2));
-    return mat4_mul(mat4_translate(p->circle_radius * cos(a), 0,
-                                   p->circle_radius * sin(a)),
-                    rot);
+    return mat4_mul(
+        mat4_translate(p->circle_radius * cos(a), 0, p->circle_radius * sin(a)),
+        rot);
 }
 
 static void add_world(SceneDb *db, const SceneVehicleParams *p, guint root)
@@ -342,9 +378,8 @@ static void set_camera(Scene *s, const SceneVehicleParams *p)
     c.near = far * 1e-3;
     c.far = far;
     s->camera = c;
-    scene_set_path(s, scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0),
-                                           0, p->degrees_per_frame,
-                                           p->frames));
+    scene_set_path(s, scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0), 0,
+                                           p->degrees_per_frame, p->frames));
 }
 
 Scene *scene_vehicle_new(const SceneVehicleParams *p, const char *what,

@@ -30,10 +30,10 @@
 #define SCENE_VEHICLE_GROUPS 5
 
 typedef struct {
-    guint structures;       /* in the vehicle, root included */
-    uint64_t triangles;     /* in the vehicle */
-    guint instances;        /* copies around the circle */
-    double circle_radius;   /* of the copies' centres */
+    guint structures;     /* in the vehicle, root included */
+    uint64_t triangles;   /* in the vehicle */
+    guint instances;      /* copies around the circle */
+    double circle_radius; /* of the copies' centres */
     /* camera: eye at camera_radius from the circle's centre, camera_height
      * above the ground, looking at the centre; fov in degrees; the path
      * revolves the eye about +y by degrees_per_frame for `frames`. */
@@ -49,9 +49,8 @@ SceneVehicleParams scene_vehicle_defaults(void);
 /* Adds the vehicle's structures to db (not posted); *root receives the
  * root's id.  Input error (naming `what`) unless structures >= 10 and
  * triangles >= 2 * (structures - 6) and <= 2^28. */
-gboolean scene_vehicle_build(SceneDb *db, guint structures,
-                             uint64_t triangles, const char *what,
-                             guint *root, GError **err);
+gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
+                             const char *what, guint *root, GError **err);
 /* A new scene named "vehicle": the vehicle flattened into one mesh
  * (polygon tag = structure id), `instances` copies facing along the
  * circle, an orbit camera path, and s->db holding the vehicle plus a

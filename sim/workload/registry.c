@@ -9,12 +9,8 @@
 extern const WlOps wl_pphigs_ops;
 
 const WlOps *const wl_all[] = {
-    &wl_pphigs_ops,
-    &wl_dpscan_ops,
-    &wl_pixelmerge_ops,
-    &wl_sortfirst_ops,
-    &wl_tokenring_ops,
-    NULL,
+    &wl_pphigs_ops,    &wl_dpscan_ops,    &wl_pixelmerge_ops,
+    &wl_sortfirst_ops, &wl_tokenring_ops, NULL,
 };
 
 const WlOps *wl_find(const char *name)

@@ -14,13 +14,13 @@
 #include "sim/core/result.h"
 
 typedef struct {
-    SimEngine *eng;          /* fresh engine seeded with `seed`; borrowed */
-    const CfgNode *root;     /* whole config (machine, scene ...); borrowed */
+    SimEngine *eng;      /* fresh engine seeded with `seed`; borrowed */
+    const CfgNode *root; /* whole config (machine, scene ...); borrowed */
     uint64_t seed;
-    const char *fidelity;    /* "analytic", "flow" or "packet" */
-    int frames;              /* frames to simulate (>= 1) */
-    const char *out_dir;     /* where images etc. may go; NULL: none */
-    gboolean quiet;          /* no progress output */
+    const char *fidelity; /* "analytic", "flow" or "packet" */
+    int frames;           /* frames to simulate (>= 1) */
+    const char *out_dir;  /* where images etc. may go; NULL: none */
+    gboolean quiet;       /* no progress output */
 } WlContext;
 
 typedef struct {

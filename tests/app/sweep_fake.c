@@ -29,8 +29,7 @@ gboolean sweep_fake_run(const CfgNode *cfg, uint64_t seed, SimResult **out,
 
 void sweep_test_rm_out(char *dir)
 {
-    const char *files[] = {"results.csv", "results.jsonl",
-                           "sweep.fingerprint"};
+    const char *files[] = {"results.csv", "results.jsonl", "sweep.fingerprint"};
     for (int i = 0; i < 3; i++) {
         char *p = g_build_filename(dir, files[i], NULL);
         g_remove(p);
@@ -39,4 +38,3 @@ void sweep_test_rm_out(char *dir)
     g_rmdir(dir);
     g_free(dir);
 }
-

@@ -13,12 +13,15 @@
 #include "sim/app/bench_net.h"
 
 static const char *const machines[] = {"ipsc2", "pixel-planes-5", "cm200",
-                                       "cm5", "cluster-ib", NULL};
+                                       "cm5",   "cluster-ib",     NULL};
 
 static void run_pattern(const char *machine, NetTraffic t)
 {
-    BenchNetSpec s = {.machine = machine, .nodes = 16, .pattern = t,
-                      .bytes = 2000, .seed = 3};
+    BenchNetSpec s = {.machine = machine,
+                      .nodes = 16,
+                      .pattern = t,
+                      .bytes = 2000,
+                      .seed = 3};
     GError *err = NULL;
     BenchNet *b = bench_net_new(&s, &err);
     if (!b)
@@ -60,8 +63,10 @@ static void test_every_machine_pattern_fidelity(void **state)
 static void test_deterministic(void **state)
 {
     (void)state;
-    BenchNetSpec s = {.machine = "ipsc2", .nodes = 64,
-                      .pattern = NET_TRAFFIC_HOTSPOT, .bytes = 10240,
+    BenchNetSpec s = {.machine = "ipsc2",
+                      .nodes = 64,
+                      .pattern = NET_TRAFFIC_HOTSPOT,
+                      .bytes = 10240,
                       .seed = 9};
     SimTime end[2];
     for (int i = 0; i < 2; i++) {
@@ -84,8 +89,10 @@ static void test_overrides(void **state)
                                 "machine.network.startup_long=0 us",
                                 "machine.network.per_hop=0 us",
                                 "machine.network.bandwidth=1 MB/s", NULL};
-    BenchNetSpec s = {.machine = "ipsc2", .nodes = 2,
-                      .pattern = NET_TRAFFIC_PAIRWISE, .bytes = 1000,
+    BenchNetSpec s = {.machine = "ipsc2",
+                      .nodes = 2,
+                      .pattern = NET_TRAFFIC_PAIRWISE,
+                      .bytes = 1000,
                       .sets = sets};
     GError *err = NULL;
     BenchNet *b = bench_net_new(&s, &err);
@@ -111,8 +118,8 @@ static void expect_refused(const BenchNetSpec *s, const char *needle)
 static void test_refused(void **state)
 {
     (void)state;
-    BenchNetSpec s = {.machine = "ipsc2", .nodes = 12,
-                      .pattern = NET_TRAFFIC_RANDOM};
+    BenchNetSpec s = {
+        .machine = "ipsc2", .nodes = 12, .pattern = NET_TRAFFIC_RANDOM};
     expect_refused(&s, "12 processors on a hypercube");
     s.machine = "pixel-planes-5"; /* 34 stations */
     s.nodes = 0;

@@ -172,8 +172,8 @@ static void test_overrides(void **state)
 {
     (void)state;
     GError *e = NULL;
-    const char *const ov[] = {"run.seed=9", "workload.nodes=3",
-                              "run.frames=2", NULL};
+    const char *const ov[] = {"run.seed=9", "workload.nodes=3", "run.frames=2",
+                              NULL};
     CfgRun *r = cfg_run_load("configs/quickstart.yaml", ov, &e);
     assert_non_null(r);
     assert_int_equal(r->seed, 9);
@@ -256,8 +256,8 @@ static void test_binary_determinism(void **state)
     for (int i = 0; i < 2; i++) {
         d[i] = g_dir_make_tmp("pgsim-det-XXXXXX", NULL);
         char *out, *err;
-        const char *args[] = {"run", "configs/quickstart.yaml", "--quiet",
-                              "--out", d[i], NULL};
+        const char *args[] = {
+            "run", "configs/quickstart.yaml", "--quiet", "--out", d[i], NULL};
         assert_int_equal(run_pgsim(args, &out, &err), 0);
         assert_non_null(strstr(out, "tokenring on ring-8"));
         g_free(out);

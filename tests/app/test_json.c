@@ -10,8 +10,8 @@
 static void test_numbers_round_trip(void **state)
 {
     (void)state;
-    const double xs[] = {0.1, 1.0 / 3.0, 12.0, -0.25, 1e-300, 6.02e23,
-                         123456789012.5};
+    const double xs[] = {0.1,    1.0 / 3.0, 12.0,          -0.25,
+                         1e-300, 6.02e23,   123456789012.5};
     char buf[32];
     for (size_t i = 0; i < G_N_ELEMENTS(xs); i++) {
         json_fmt_num(buf, xs[i]);

@@ -182,12 +182,12 @@ static void test_progress(void **state)
     FILE *f = open_memstream(&buf, &len);
     fake_now = 0;
     RptProgress *p = rpt_progress_new_full(10, "run", f, fake_clock);
-    rpt_progress_update(p, 1);   /* first update draws */
+    rpt_progress_update(p, 1); /* first update draws */
     fake_now = 50000;
-    rpt_progress_update(p, 2);   /* 50 ms later: rate limited */
+    rpt_progress_update(p, 2); /* 50 ms later: rate limited */
     fake_now = 100000;
-    rpt_progress_update(p, 5);   /* 100 ms: draws */
-    rpt_progress_finish(p);      /* final line and newline */
+    rpt_progress_update(p, 5); /* 100 ms: draws */
+    rpt_progress_finish(p);    /* final line and newline */
     fclose(f);
     gchar **lines = g_strsplit(buf, "\r", -1);
     assert_int_equal(g_strv_length(lines), 4); /* "", 1, 5, final */

@@ -36,8 +36,7 @@ static gboolean fake_run(const RpContext *ctx, GPtrArray *rows, GError **err)
     return TRUE;
 }
 
-static gboolean failing_run(const RpContext *ctx, GPtrArray *rows,
-                            GError **err)
+static gboolean failing_run(const RpContext *ctx, GPtrArray *rows, GError **err)
 {
     (void)ctx;
     (void)rows;
@@ -161,8 +160,7 @@ static void test_json(void **state)
     assert_int_equal(json_len(cells), 5);
     const JsonVal *a = json_at(cells, 0);
     assert_true(fabs(json_get(a, "sim")->num - 12.1) < 1e-12);
-    assert_int_equal(json_get(json_at(cells, 2), "published")->kind,
-                     JSON_NULL);
+    assert_int_equal(json_get(json_at(cells, 2), "published")->kind, JSON_NULL);
     const JsonVal *sum = json_get(v, "summary");
     assert_int_equal((int)json_get(sum, "compared")->num, 2);
     json_free(v);
@@ -182,8 +180,7 @@ static void test_fidelities(void **state)
     assert_int_equal(passes->len, 3);
     const RpTable *an = g_ptr_array_index(passes, 0);
     assert_string_equal(an->fidelity, "analytic");
-    assert_true(fabs(rp_table_find(an, "1", "a", "t_ms")->sim - 16.5) <
-                1e-12);
+    assert_true(fabs(rp_table_find(an, "1", "a", "t_ms")->sim - 16.5) < 1e-12);
     const RpTable *fl = g_ptr_array_index(passes, 1);
     const RpTable *pk = g_ptr_array_index(passes, 2);
     assert_true(fabs(rp_speed_mean_vs_ref(an, pk) - 0.375) < 1e-12);
@@ -224,8 +221,7 @@ static void test_fidelities(void **state)
     rm_dir(dir, "fake");
 }
 
-static void expect_bad(const char *yaml, const char *where,
-                       const char *what)
+static void expect_bad(const char *yaml, const char *where, const char *what)
 {
     char *dir = tmpdir_with("fake", yaml);
     RpContext ctx = {"flow", NULL, TRUE};
@@ -292,10 +288,8 @@ static void test_compact_shape(void **state)
     const RpJoined *b = rp_table_find(t, "1", "b", "t_ms");
     assert_string_equal(b->unit, "ms");
     assert_string_equal(b->note, "read off");
-    assert_int_equal(rp_table_find(t, "1", "c", "t_ms")->status,
-                     RP_WITHHELD);
-    assert_int_equal(rp_table_find(t, "2", "y", "speedup")->status,
-                     RP_MISSING);
+    assert_int_equal(rp_table_find(t, "1", "c", "t_ms")->status, RP_WITHHELD);
+    assert_int_equal(rp_table_find(t, "2", "y", "speedup")->status, RP_MISSING);
     assert_int_equal(t->compared, 2);
     rp_table_free(t);
     rm_dir(dir, "fake");
@@ -348,8 +342,7 @@ static void test_run_failure(void **state)
     GError *err = NULL;
     assert_null(rp_drive(&failing, dir, &ctx, &err));
     assert_non_null(err);
-    assert_string_equal(err->message,
-                        "fake (fidelity packet): model exploded");
+    assert_string_equal(err->message, "fake (fidelity packet): model exploded");
     g_error_free(err);
     rm_dir(dir, "fake");
 }
@@ -357,9 +350,12 @@ static void test_run_failure(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_join_errors), cmocka_unit_test(test_summary),
-        cmocka_unit_test(test_csv),         cmocka_unit_test(test_json),
-        cmocka_unit_test(test_fidelities),  cmocka_unit_test(test_bad_papers),
+        cmocka_unit_test(test_join_errors),
+        cmocka_unit_test(test_summary),
+        cmocka_unit_test(test_csv),
+        cmocka_unit_test(test_json),
+        cmocka_unit_test(test_fidelities),
+        cmocka_unit_test(test_bad_papers),
         cmocka_unit_test(test_run_failure),
         cmocka_unit_test(test_compact_shape),
         cmocka_unit_test(test_doc),

@@ -19,14 +19,14 @@
 static char *small_setup(void)
 {
     char *text = NULL;
-    assert_true(g_file_get_contents("configs/kurc96/setup.yaml", &text,
-                                    NULL, NULL));
+    assert_true(
+        g_file_get_contents("configs/kurc96/setup.yaml", &text, NULL, NULL));
     GString *s = g_string_new(text);
     guint n = g_string_replace(s, "polygons_per_teapot: 3751",
                                "polygons_per_teapot: 300", 0);
     assert_int_equal(n, 6);
-    char *path = g_build_filename(g_get_tmp_dir(), "pgsim-kurc96-test.yaml",
-                                  NULL);
+    char *path =
+        g_build_filename(g_get_tmp_dir(), "pgsim-kurc96-test.yaml", NULL);
     assert_true(g_file_set_contents(path, s->str, -1, NULL));
     g_string_free(s, TRUE);
     g_free(text);
@@ -47,10 +47,9 @@ static void check_tables(const RpTable *t)
 {
     static const char *const t1[] = {"polygons", "tpg_400", "tpf_400",
                                      "tpg_640", "tpf_640"};
-    static const char *const t2[] = {"pair_rs_span_ms", "pair_rs_zbuf_ms",
+    static const char *const t2[] = {"pair_rs_span_ms",  "pair_rs_zbuf_ms",
                                      "pair_rs_merge_ms", "zbuf_exc_span_ms",
-                                     "zbuf_exc_zbuf_ms",
-                                     "zbuf_exc_merge_ms"};
+                                     "zbuf_exc_zbuf_ms", "zbuf_exc_merge_ms"};
     for (int i = 0; rp_kurc96_scenes[i]; i++) {
         const char *s = rp_kurc96_scenes[i];
         for (int c = 0; c < 5; c++)
@@ -113,8 +112,7 @@ static void test_rows_complete(void **state)
     for (guint i = 0; i < t->cells->len; i++) {
         const RpJoined *j = g_ptr_array_index(t->cells, i);
         if (j->status == RP_MISSING)
-            fail_msg("not simulated: %s %s %s", j->table, j->row,
-                     j->column);
+            fail_msg("not simulated: %s %s %s", j->table, j->row, j->column);
     }
     check_tables(t);
     check_figs(t);

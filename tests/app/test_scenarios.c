@@ -39,13 +39,13 @@ static const char *pgsim_bin(void)
  * run does not exit 0. */
 static char *run_json(const char *config)
 {
-    const char *argv[] = {pgsim_bin(), "run", config, "--quiet",
-                          "--format", "json", NULL};
+    const char *argv[] = {pgsim_bin(), "run",  config, "--quiet",
+                          "--format",  "json", NULL};
     char *out = NULL, *err = NULL;
     int status = 0;
     GError *e = NULL;
-    assert_true(g_spawn_sync(NULL, (char **)argv, NULL, G_SPAWN_DEFAULT,
-                             NULL, NULL, &out, &err, &status, &e));
+    assert_true(g_spawn_sync(NULL, (char **)argv, NULL, G_SPAWN_DEFAULT, NULL,
+                             NULL, &out, &err, &status, &e));
     if (!g_spawn_check_wait_status(status, NULL))
         fail_msg("%s exited with status %d: %s", config, status, err);
     g_free(err);
@@ -67,7 +67,8 @@ static void check_scenario(const Scenario *s)
             fail_msg("%s missing: run make golden", path);
         if (strcmp(a, want) != 0)
             fail_msg("%s: result differs from %s (a model changed? "
-                     "review, then make golden)", s->config, path);
+                     "review, then make golden)",
+                     s->config, path);
         g_free(want);
     }
     g_free(path);

@@ -121,8 +121,8 @@ static void test_bad_data_files(void **state)
         {"missing-base.yaml", "no-such-base.yaml"},
     };
     for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
-        char *path = g_build_filename("tests/data/bad/sweep", cases[i][0],
-                                      NULL);
+        char *path =
+            g_build_filename("tests/data/bad/sweep", cases[i][0], NULL);
         GError *err = NULL;
         assert_null(sweep_spec_load(path, &err));
         assert_non_null(err);
@@ -142,8 +142,7 @@ static const char run_yaml[] = "base: {run: {seed: 11}, a: 0, b: 0}\n"
                                "  b: {from: 0, to: 4, step: 1}\n"
                                "repetitions: 2\n";
 
-static char *run_sweep(const char *yaml, int jobs, gboolean resume,
-                       char *dir)
+static char *run_sweep(const char *yaml, int jobs, gboolean resume, char *dir)
 {
     SweepSpec *s = parse_ok(yaml);
     GError *err = NULL;
@@ -194,8 +193,8 @@ static void test_failures_recorded(void **state)
 {
     (void)state;
     char *d = g_dir_make_tmp("pgsim-sw-XXXXXX", NULL);
-    char *csv = run_sweep("base: {a: 0}\nparameters: {a: [3, 4, 5, 6]}\n",
-                          2, FALSE, d);
+    char *csv =
+        run_sweep("base: {a: 0}\nparameters: {a: [3, 4, 5, 6]}\n", 2, FALSE, d);
     assert_int_equal(count_lines(csv), 5);
     assert_non_null(strstr(csv, "\n1,0,1,4,error,a is 4,"));
     assert_non_null(strstr(csv, "\n2,0,1,5,error,worker killed by "

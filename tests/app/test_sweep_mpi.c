@@ -88,8 +88,8 @@ static void run_ok(char **argv)
     /* Open MPI's own allocations are not ours to report under ASan */
     char **env = g_environ_setenv(g_get_environ(), "ASAN_OPTIONS",
                                   "detect_leaks=0", TRUE);
-    assert_true(g_spawn_sync(NULL, argv, env, G_SPAWN_SEARCH_PATH, NULL,
-                             NULL, &out, &errs, &status, &err));
+    assert_true(g_spawn_sync(NULL, argv, env, G_SPAWN_SEARCH_PATH, NULL, NULL,
+                             &out, &errs, &status, &err));
     g_strfreev(env);
     if (!g_spawn_check_wait_status(status, NULL))
         fail_msg("%s failed: %s%s", argv[2], out, errs);
@@ -106,8 +106,16 @@ static void test_mpi_equals_local(void **state)
     char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
     char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
     local_sweep(dl);
-    char *argv[] = {"timeout", "120", mpirun, "--allow-run-as-root",
-                    "--oversubscribe", "-np", "2", (char *)self, dm, NULL};
+    char *argv[] = {"timeout",
+                    "120",
+                    mpirun,
+                    "--allow-run-as-root",
+                    "--oversubscribe",
+                    "-np",
+                    "2",
+                    (char *)self,
+                    dm,
+                    NULL};
     run_ok(argv);
     char *a = results(dl), *b = results(dm);
     assert_non_null(a);
@@ -154,11 +162,23 @@ static void test_cli_mpi_equals_local(void **state)
         skip();
     char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
     char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
-    char *local[] = {"timeout", "120", pgsim, "sweep", "-q", "-j", "2",
-                     "configs/sweep-tokenring.yaml", "--out", dl, NULL};
-    char *mpi[] = {"timeout", "120", mpirun, "--allow-run-as-root",
-                   "--oversubscribe", "-np", "2", pgsim, "sweep", "-q",
-                   "configs/sweep-tokenring.yaml", "--out", dm, NULL};
+    char *local[] = {"timeout", "120", pgsim, "sweep",
+                     "-q",      "-j",  "2",   "configs/sweep-tokenring.yaml",
+                     "--out",   dl,    NULL};
+    char *mpi[] = {"timeout",
+                   "120",
+                   mpirun,
+                   "--allow-run-as-root",
+                   "--oversubscribe",
+                   "-np",
+                   "2",
+                   pgsim,
+                   "sweep",
+                   "-q",
+                   "configs/sweep-tokenring.yaml",
+                   "--out",
+                   dm,
+                   NULL};
     run_ok(local);
     run_ok(mpi);
     char *a = results(dl), *b = results(dm);

@@ -99,8 +99,7 @@ static void test_chrome(void **state)
             json_get(e, "tid")->num == 0)
             last = e;
     }
-    assert_string_equal(json_get(json_get(last, "args"), "name")->str,
-                        "gp0");
+    assert_string_equal(json_get(json_get(last, "args"), "name")->str, "gp0");
     find_ev(evs, "i", "frame 0", &n);
     assert_int_equal(n, 1);
     assert_false(json_get(json_get(v, "otherData"), "truncated")->b);
@@ -121,8 +120,10 @@ static void test_cap(void **state)
     JsonVal *v = load_json(path);
     guint n;
     const JsonVal *evs = json_get(v, "traceEvents");
-    find_ev(evs, "i", "trace truncated: cap of 2 events reached; later "
-                      "events are not recorded", &n);
+    find_ev(evs, "i",
+            "trace truncated: cap of 2 events reached; later "
+            "events are not recorded",
+            &n);
     assert_int_equal(n, 1);
     find_ev(evs, "X", "merge", &n);
     assert_int_equal(n, 0);

@@ -8,22 +8,21 @@
 
 #include "sim/core/cfg.h"
 
-static const char *doc =
-    "schema_version: 1\n"             /* 1 */
-    "machine:\n"                      /* 2 */
-    "  links:\n"                      /* 3 */
-    "    bandwidth: 640 MB/s\n"       /* 4 */
-    "    latency: 350us\n"            /* 5 */
-    "  nodes: 16K\n"                  /* 6 */
-    "  clock: 1.5 GHz\n"              /* 7 */
-    "  memory: 64KiB\n"               /* 8 */
-    "run:\n"                          /* 9 */
-    "  seed: 42\n"                    /* 10 */
-    "  fast: true\n"                  /* 11 */
-    "  ratio: 0.25\n"                 /* 12 */
-    "  fidelity: flow\n"              /* 13 */
-    "  list: [1, 'two', {a: 3}]\n"    /* 14 */
-    "  nothing:\n";                   /* 15 */
+static const char *doc = "schema_version: 1\n"          /* 1 */
+                         "machine:\n"                   /* 2 */
+                         "  links:\n"                   /* 3 */
+                         "    bandwidth: 640 MB/s\n"    /* 4 */
+                         "    latency: 350us\n"         /* 5 */
+                         "  nodes: 16K\n"               /* 6 */
+                         "  clock: 1.5 GHz\n"           /* 7 */
+                         "  memory: 64KiB\n"            /* 8 */
+                         "run:\n"                       /* 9 */
+                         "  seed: 42\n"                 /* 10 */
+                         "  fast: true\n"               /* 11 */
+                         "  ratio: 0.25\n"              /* 12 */
+                         "  fidelity: flow\n"           /* 13 */
+                         "  list: [1, 'two', {a: 3}]\n" /* 14 */
+                         "  nothing:\n";                /* 15 */
 
 static CfgNode *load(const char *text)
 {
@@ -100,11 +99,10 @@ static void test_getters(void **state)
     int fid = -1;
     const char *s = NULL;
     const char *const fids[] = {"analytic", "flow", "packet", NULL};
-    assert_true(cfg_get_bandwidth(cfg_get(m, "links"), "bandwidth", TRUE,
-                                  &bw, &e));
+    assert_true(
+        cfg_get_bandwidth(cfg_get(m, "links"), "bandwidth", TRUE, &bw, &e));
     assert_true(bw == 640e6);
-    assert_true(cfg_get_time(cfg_get(m, "links"), "latency", TRUE, &lat,
-                             &e));
+    assert_true(cfg_get_time(cfg_get(m, "links"), "latency", TRUE, &lat, &e));
     assert_int_equal(lat, 350 * SIM_US);
     assert_true(cfg_get_count(m, "nodes", TRUE, 1, 1 << 20, &nodes, &e));
     assert_int_equal(nodes, 16000);
@@ -205,15 +203,16 @@ static void test_unknown_keys(void **state)
 static void test_load_errors(void **state)
 {
     (void)state;
-    load_fails("a: 1\nb: 2\na: 3\n", "t.yaml:3:1: found duplicate key 'a' "
+    load_fails("a: 1\nb: 2\na: 3\n",
+               "t.yaml:3:1: found duplicate key 'a' "
                "(first at line 1), expected each key once per map");
     load_fails("a: [1, 2\nb: 3\n", "t.yaml:");
     load_fails("a: b: c\n", "t.yaml:1:5: found YAML syntax error");
     load_fails("a: 1\n---\nb: 2\n", "t.yaml:2:1: found a second YAML "
-               "document");
+                                    "document");
     load_fails("a: *nope\n", "t.yaml:1:4: found alias '*nope'");
     load_fails("base: &b {x: 1}\nd:\n  <<: *b\n", "t.yaml:3:3: found "
-               "merge key '<<'");
+                                                  "merge key '<<'");
     GString *deep = g_string_new("");
     for (int i = 0; i < 300; i++)
         g_string_append_c(deep, '[');
@@ -221,9 +220,10 @@ static void test_load_errors(void **state)
     g_string_free(deep, TRUE);
     GString *bomb = g_string_new("a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n");
     for (int i = 1; i < 8; i++)
-        g_string_append_printf(bomb, "a%d: &a%d [*a%d, *a%d, *a%d, *a%d, "
-                               "*a%d, *a%d, *a%d, *a%d, *a%d, *a%d]\n", i,
-                               i, i - 1, i - 1, i - 1, i - 1, i - 1, i - 1,
+        g_string_append_printf(bomb,
+                               "a%d: &a%d [*a%d, *a%d, *a%d, *a%d, "
+                               "*a%d, *a%d, *a%d, *a%d, *a%d, *a%d]\n",
+                               i, i, i - 1, i - 1, i - 1, i - 1, i - 1, i - 1,
                                i - 1, i - 1, i - 1, i - 1);
     load_fails(bomb->str, "t.yaml:");
     g_string_free(bomb, TRUE);
@@ -277,8 +277,8 @@ static void test_overrides(void **state)
     /* a value from an override is located at the override */
     assert_true(cfg_set_override(r, "run.ratio=x", &e));
     double d;
-    assert_false(cfg_get_double(cfg_get(r, "run"), "ratio", TRUE, 0, 1, &d,
-                                &e));
+    assert_false(
+        cfg_get_double(cfg_get(r, "run"), "ratio", TRUE, 0, 1, &d, &e));
     assert_err(&e, "--set run.ratio=x:1:1: found 'x', expected a number in "
                    "[0, 1]");
     cfg_free(r);
@@ -289,8 +289,8 @@ static void test_merge(void **state)
     (void)state;
     CfgNode *base = load("a: 1\nm: {x: 1, y: 2}\ns: [1, 2]\n");
     GError *e = NULL;
-    CfgNode *over = cfg_load_string("m: {y: 3, z: 4}\ns: [9]\nb: 5\n",
-                                    "o.yaml", &e);
+    CfgNode *over =
+        cfg_load_string("m: {y: 3, z: 4}\ns: [9]\nb: 5\n", "o.yaml", &e);
     cfg_merge(base, over);
     cfg_free(over);
     assert_string_equal(cfg_scalar(cfg_path(base, "a")), "1");

@@ -98,14 +98,14 @@ static void test_bad(void **state)
 {
     (void)state;
     const char *t = cfg_units_expected(CFG_UNIT_TIME);
-    assert_string_equal(u64_bad("-5 us", CFG_UNIT_TIME), t);   /* negative */
-    assert_string_equal(u64_bad("us", CFG_UNIT_TIME), t);      /* no number */
+    assert_string_equal(u64_bad("-5 us", CFG_UNIT_TIME), t); /* negative */
+    assert_string_equal(u64_bad("us", CFG_UNIT_TIME), t);    /* no number */
     assert_string_equal(u64_bad("", CFG_UNIT_TIME), t);
     assert_string_equal(u64_bad(".", CFG_UNIT_TIME), t);
     assert_string_equal(u64_bad("5 furlongs", CFG_UNIT_TIME), t);
-    assert_string_equal(u64_bad("5", CFG_UNIT_TIME), t);       /* no unit */
-    assert_string_equal(u64_bad("5 US", CFG_UNIT_TIME), t);    /* case */
-    assert_string_equal(u64_bad("5 us x", CFG_UNIT_TIME), t);  /* junk */
+    assert_string_equal(u64_bad("5", CFG_UNIT_TIME), t);      /* no unit */
+    assert_string_equal(u64_bad("5 US", CFG_UNIT_TIME), t);   /* case */
+    assert_string_equal(u64_bad("5 us x", CFG_UNIT_TIME), t); /* junk */
     assert_string_equal(u64_bad("1e30 s", CFG_UNIT_TIME),
                         "a time below 2^64 ps (about 213 days)");
     assert_string_equal(u64_bad("18446744073709551616", CFG_UNIT_COUNT),

@@ -62,7 +62,7 @@ static void test_all_models_build(void **state)
 {
     (void)state;
     static const char *const names[] = {"ipsc2", "pixel-planes-5", "cm200",
-                                        "cm5", "cluster-ib", NULL};
+                                        "cm5",   "cluster-ib",     NULL};
     static const char *const fids[] = {"analytic", "flow", "packet"};
     for (const char *const *n = names; *n; n++) {
         for (guint i = 0; i < G_N_ELEMENTS(fids); i++) {
@@ -84,8 +84,7 @@ static void test_model_contents(void **state)
 {
     (void)state;
     SimEngine *eng = sim_engine_new(1);
-    MachMachine *m = mach_new_from_model(eng, "pixel-planes-5", "flow",
-                                         NULL);
+    MachMachine *m = mach_new_from_model(eng, "pixel-planes-5", "flow", NULL);
     assert_non_null(m);
     assert_int_equal(mach_kind_count(m), 4);
     assert_string_equal(mach_kind_at(m, 0)->name, "host");
@@ -151,18 +150,18 @@ static void test_fifo_serialisation(void **state)
     unsigned b = sim_engine_phase(f->eng, "merge");
     MachProc *p = mach_proc(f->m, "cpu", 1);
     assert_true(mach_proc_idle(p));
-    assert_true(mach_proc_compute(p, 10 * SIM_US, a, record, f,
-                                  GINT_TO_POINTER(1)));
-    assert_true(mach_proc_compute(p, 20 * SIM_US, b, record, f,
-                                  GINT_TO_POINTER(2)));
-    assert_true(mach_proc_compute(p, 5 * SIM_US, a, record, f,
-                                  GINT_TO_POINTER(3)));
+    assert_true(
+        mach_proc_compute(p, 10 * SIM_US, a, record, f, GINT_TO_POINTER(1)));
+    assert_true(
+        mach_proc_compute(p, 20 * SIM_US, b, record, f, GINT_TO_POINTER(2)));
+    assert_true(
+        mach_proc_compute(p, 5 * SIM_US, a, record, f, GINT_TO_POINTER(3)));
     assert_false(mach_proc_idle(p));
     assert_int_equal(mach_proc_free_at(p), 35 * SIM_US);
     /* another processor is independent */
     MachProc *q = mach_proc(f->m, "cpu", 2);
-    assert_true(mach_proc_compute(q, 7 * SIM_US, a, record, f,
-                                  GINT_TO_POINTER(4)));
+    assert_true(
+        mach_proc_compute(q, 7 * SIM_US, a, record, f, GINT_TO_POINTER(4)));
     assert_true(sim_engine_run(f->eng, SIM_TIME_MAX, NULL));
     assert_int_equal(f->log->len, 4);
     assert_int_equal(logged(f, 0).tag, 4);
@@ -202,8 +201,7 @@ static void late_submit(SimEngine *eng, void *ctx, void *arg)
     (void)eng;
     (void)arg;
     Chain *c = ctx;
-    mach_proc_compute(c->p, 5 * SIM_US, 0, record, c->f,
-                      GINT_TO_POINTER(7));
+    mach_proc_compute(c->p, 5 * SIM_US, 0, record, c->f, GINT_TO_POINTER(7));
 }
 
 static void test_fifo_from_handlers_and_idle_gap(void **state)
@@ -258,9 +256,9 @@ static void span_cb(SimTrace *tr, uint32_t node, const char *name,
                     const char *phase, SimTime start, SimTime end)
 {
     SpanLog *l = tr->state;
-    g_string_append_printf(l->text, "%u:%s:%s:%" G_GUINT64_FORMAT
-                           "-%" G_GUINT64_FORMAT ";",
-                           node, name, phase, start / SIM_US, end / SIM_US);
+    g_string_append_printf(
+        l->text, "%u:%s:%s:%" G_GUINT64_FORMAT "-%" G_GUINT64_FORMAT ";", node,
+        name, phase, start / SIM_US, end / SIM_US);
 }
 
 static void test_trace_spans(void **state)
@@ -276,8 +274,8 @@ static void test_trace_spans(void **state)
     mach_proc_compute(p, 5 * SIM_US, 0, NULL, NULL, NULL);
     assert_true(sim_engine_run(f->eng, SIM_TIME_MAX, NULL));
     uint32_t e = mach_proc_entity(p);
-    char *want = g_strdup_printf("%u:cpu2:zbuf:0-10;%u:cpu2:compute:10-15;",
-                                 e, e);
+    char *want =
+        g_strdup_printf("%u:cpu2:zbuf:0-10;%u:cpu2:compute:10-15;", e, e);
     assert_string_equal(l.text->str, want);
     assert_string_equal(sim_entity_name(f->eng, e), "cpu2");
     g_free(want);
@@ -440,12 +438,10 @@ int main(void)
                                         setup_tiny, teardown),
         cmocka_unit_test_setup_teardown(test_zero_cost_and_null_done,
                                         setup_tiny, teardown),
-        cmocka_unit_test_setup_teardown(test_overflow_stops_engine,
-                                        setup_tiny, teardown),
-        cmocka_unit_test_setup_teardown(test_trace_spans, setup_tiny,
+        cmocka_unit_test_setup_teardown(test_overflow_stops_engine, setup_tiny,
                                         teardown),
-        cmocka_unit_test_setup_teardown(test_fill_result, setup_tiny,
-                                        teardown),
+        cmocka_unit_test_setup_teardown(test_trace_spans, setup_tiny, teardown),
+        cmocka_unit_test_setup_teardown(test_fill_result, setup_tiny, teardown),
         cmocka_unit_test(test_network_from_model),
         cmocka_unit_test(test_shipped_networks),
         cmocka_unit_test(test_bad_fidelity),

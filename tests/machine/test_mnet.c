@@ -19,8 +19,8 @@ static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
 }
 
 /* A run config with the given machine section text. */
-static MachMachine *from_text(SimEngine *eng, const char *text,
-                              const char *fid, CfgNode **root, GError **err)
+static MachMachine *from_text(SimEngine *eng, const char *text, const char *fid,
+                              CfgNode **root, GError **err)
 {
     *root = cfg_load_string(text, "run.yaml", err);
     assert_non_null(*root);
@@ -77,7 +77,8 @@ static void test_torus_override(void **state)
     SimEngine *eng = sim_engine_new(1);
     CfgNode *root;
     GError *err = NULL;
-    MachMachine *m = from_text(eng, "machine:\n  model: mesh2d\n"
+    MachMachine *m = from_text(eng,
+                               "machine:\n  model: mesh2d\n"
                                "  network: {topology: torus}\n",
                                "analytic", &root, &err);
     if (!m)
@@ -86,7 +87,8 @@ static void test_torus_override(void **state)
                      20 * SIM_US + 2 * SIM_US);
     mach_free(m);
     cfg_free(root);
-    m = from_text(eng, "machine:\n  model: mesh2d\n"
+    m = from_text(eng,
+                  "machine:\n  model: mesh2d\n"
                   "  nodes: {node: {count: 24}}\n"
                   "  network: {extents: [2, 3, 4]}\n",
                   "analytic", &root, &err);
@@ -144,16 +146,16 @@ static void test_lazy_64k_through_model(void **state)
     static const char *const fids[] = {"analytic", "flow", "packet"};
     for (guint f = 0; f < G_N_ELEMENTS(fids); f++) {
         GError *err = NULL;
-        CfgNode *root = cfg_load_string("machine: {model: ipsc2}\n",
-                                        "run.yaml", &err);
-        assert_true(cfg_set_override(root, "machine.nodes.node.count=65536",
-                                     &err));
-        assert_true(cfg_set_override(root, "machine.network.dimension=16",
-                                     &err));
+        CfgNode *root =
+            cfg_load_string("machine: {model: ipsc2}\n", "run.yaml", &err);
+        assert_true(
+            cfg_set_override(root, "machine.nodes.node.count=65536", &err));
+        assert_true(
+            cfg_set_override(root, "machine.network.dimension=16", &err));
         SimEngine *eng = sim_engine_new(1);
         size_t before = heap_in_use();
-        MachMachine *m = mach_new_from_cfg(eng, cfg_get(root, "machine"),
-                                           fids[f], &err);
+        MachMachine *m =
+            mach_new_from_cfg(eng, cfg_get(root, "machine"), fids[f], &err);
         if (!m)
             fail_msg("%s", err->message);
         NetNet *net = mach_net(m);
@@ -179,12 +181,11 @@ static void test_dimension_mismatch(void **state)
 {
     (void)state;
     GError *err = NULL;
-    CfgNode *root = cfg_load_string("machine: {model: ipsc2}\n", "run.yaml",
-                                    &err);
+    CfgNode *root =
+        cfg_load_string("machine: {model: ipsc2}\n", "run.yaml", &err);
     assert_true(cfg_set_override(root, "machine.network.dimension=16", &err));
     SimEngine *eng = sim_engine_new(1);
-    assert_null(mach_new_from_cfg(eng, cfg_get(root, "machine"), "flow",
-                                  &err));
+    assert_null(mach_new_from_cfg(eng, cfg_get(root, "machine"), "flow", &err));
     assert_non_null(strstr(err->message, "processors on a hypercube"));
     assert_non_null(strstr(err->message, "2^dimension"));
     g_error_free(err);

@@ -10,7 +10,7 @@
 #include "sim/machine/model.h"
 
 static const char *const shipped[] = {"ipsc2", "pixel-planes-5", "cm200",
-                                      "cm5", "cluster-ib", NULL};
+                                      "cm5",   "cluster-ib",     NULL};
 
 static void test_shipped_models_check(void **state)
 {
@@ -45,17 +45,16 @@ static void test_workload_section_kept(void **state)
     const CfgNode *w = cfg_path(root, "wl.weight.value");
     assert_non_null(w);
     assert_string_equal(cfg_scalar(w), "0.6");
-    assert_int_equal(cfg_kind(cfg_path(root, "wl.weight.calibrated")),
-                     CFG_SEQ);
+    assert_int_equal(cfg_kind(cfg_path(root, "wl.weight.calibrated")), CFG_SEQ);
     cfg_free(root);
     /* pixel-planes-5 has one GP cost table, with calibrated entries */
     root = mach_load_model("pixel-planes-5", &err);
     assert_non_null(root);
     assert_null(cfg_get(root, "pphigs"));
     const char *text = NULL;
-    assert_int_equal(mach_param_provenance(cfg_path(root, "nodes.gp.costs"),
-                                           "color", &text),
-                     MACH_PROV_CALIBRATED);
+    assert_int_equal(
+        mach_param_provenance(cfg_path(root, "nodes.gp.costs"), "color", &text),
+        MACH_PROV_CALIBRATED);
     assert_non_null(strstr(text, "4-GP"));
     cfg_free(root);
 }
@@ -85,10 +84,9 @@ static void expect_bad(const char *file, int line, const char *needle)
     assert_false(mach_model_check(root, cfg_file(root), &err));
     assert_non_null(err);
     char *loc = g_strdup_printf("%s:%d:", path, line);
-    if (!g_str_has_prefix(err->message, loc) ||
-        !strstr(err->message, needle))
-        fail_msg("%s: got '%s', want prefix '%s' and '%s'", file,
-                 err->message, loc, needle);
+    if (!g_str_has_prefix(err->message, loc) || !strstr(err->message, needle))
+        fail_msg("%s: got '%s', want prefix '%s' and '%s'", file, err->message,
+                 loc, needle);
     g_free(loc);
     g_error_free(err);
     cfg_free(root);
@@ -128,13 +126,12 @@ static void test_models_path_from_env(void **state)
     g_error_free(err);
 }
 
-static MachMachine *from_text(SimEngine *eng, const char *text,
-                              CfgNode **root, GError **err)
+static MachMachine *from_text(SimEngine *eng, const char *text, CfgNode **root,
+                              GError **err)
 {
     *root = cfg_load_string(text, "run.yaml", err);
     assert_non_null(*root);
-    return mach_new_from_cfg(eng, cfg_get(*root, "machine"), "analytic",
-                             err);
+    return mach_new_from_cfg(eng, cfg_get(*root, "machine"), "analytic", err);
 }
 
 static void test_overrides_apply(void **state)
@@ -210,8 +207,7 @@ static void expect_bad_override(const char *text, const char *needle)
     assert_non_null(err);
     if (!g_str_has_prefix(err->message, "run.yaml:") ||
         !strstr(err->message, needle))
-        fail_msg("got '%s', want run.yaml:... and '%s'", err->message,
-                 needle);
+        fail_msg("got '%s', want run.yaml:... and '%s'", err->message, needle);
     g_error_free(err);
     cfg_free(root);
     sim_engine_free(eng);

@@ -29,8 +29,7 @@ static gboolean part_open(Part *p, const char *model, guint n, GError **err)
     p->eng = sim_engine_new(1);
     if (!mach_partition(p->root, n, &p->desc, err))
         return FALSE;
-    p->m = mach_new_from_cfg(p->eng, cfg_get(p->root, "machine"), "flow",
-                             err);
+    p->m = mach_new_from_cfg(p->eng, cfg_get(p->root, "machine"), "flow", err);
     return p->m != NULL;
 }
 
@@ -75,8 +74,7 @@ static void test_ring_split(void **state)
     (void)state;
     Part p;
     expect_ok(&p, "pixel-planes-5", 32);
-    assert_string_equal(p.desc,
-                        "host 1, gp 15, renderer 15, frame_buffer 1");
+    assert_string_equal(p.desc, "host 1, gp 15, renderer 15, frame_buffer 1");
     part_close(&p);
     expect_ok(&p, "pixel-planes-5", 33); /* the odd one goes to gp */
     assert_int_equal(mach_kind(p.m, "gp")->count, 16);
@@ -114,8 +112,8 @@ static void expect_refused(const char *model, guint n, const char *needle)
     assert_false(part_open(&p, model, n, &err));
     assert_non_null(err);
     if (!strstr(err->message, needle))
-        fail_msg("%s --nodes %u: got '%s', want '%s'", model, n,
-                 err->message, needle);
+        fail_msg("%s --nodes %u: got '%s', want '%s'", model, n, err->message,
+                 needle);
     g_error_free(err);
     part_close(&p);
 }
@@ -158,6 +156,5 @@ int main(void)
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_mesh_keeps_shape),
     };
-    return cmocka_run_group_tests_name("machine_partition", tests, setup,
-                                       NULL);
+    return cmocka_run_group_tests_name("machine_partition", tests, setup, NULL);
 }

@@ -26,14 +26,14 @@
 typedef struct {
     uint32_t src, dst;
     uint64_t bytes;
-    SimTime start;      /* net_send() time */
+    SimTime start; /* net_send() time */
     NetLinkId path[MAXH];
     guint hops;
-    double bound;       /* B/s: least channel bandwidth on the path */
-    double active_at;   /* s: start + latency */
-    double rem, rate;   /* reference state */
-    double ref_end;     /* s */
-    SimTime got;        /* arrival in the transport */
+    double bound;     /* B/s: least channel bandwidth on the path */
+    double active_at; /* s: start + latency */
+    double rem, rate; /* reference state */
+    double ref_end;   /* s */
+    SimTime got;      /* arrival in the transport */
     gboolean live, over;
 } Msg;
 
@@ -179,11 +179,10 @@ static void fill_msgs(Msg *ms, const NetTopo *t, const NetParams *p,
         g_assert(m->hops <= MAXH);
         m->bound = INFINITY;
         for (guint h = 0; h < m->hops; h++)
-            m->bound = fmin(m->bound, t->ops->link_bw(t->state, m->path[h],
-                                                      p));
+            m->bound = fmin(m->bound, t->ops->link_bw(t->state, m->path[h], p));
         m->rem = (double)m->bytes;
-        m->active_at = sim_time_to_s(m->start + p->startup +
-                                     m->hops * p->per_hop);
+        m->active_at =
+            sim_time_to_s(m->start + p->startup + m->hops * p->per_hop);
     }
 }
 
@@ -216,10 +215,10 @@ static void compare(const NetTopo *t, const NetParams *p, uint64_t seed)
     for (guint i = 0; i < NMSG; i++) {
         double got = sim_time_to_s(ms[i].got);
         if (fabs(got - ms[i].ref_end) > 1e-9)
-            fail_msg("seed %" G_GUINT64_FORMAT " msg %u (%u->%u, %"
-                     G_GUINT64_FORMAT " B): flow %.12f s, reference %.12f s",
-                     seed, i, ms[i].src, ms[i].dst, ms[i].bytes, got,
-                     ms[i].ref_end);
+            fail_msg(
+                "seed %" G_GUINT64_FORMAT " msg %u (%u->%u, %" G_GUINT64_FORMAT
+                " B): flow %.12f s, reference %.12f s",
+                seed, i, ms[i].src, ms[i].dst, ms[i].bytes, got, ms[i].ref_end);
     }
     g_array_free(links, TRUE);
     net_free(net);

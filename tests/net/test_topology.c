@@ -38,7 +38,7 @@ static void test_fattree_up_down(void **state)
     /* 5 and 60: LCA is the root (level 3): up0.5 up1.1 up2.0, then down */
     h = t->ops->route(t->state, 5, 60, r);
     assert_int_equal(h, 6);
-    const char *want[6] = {"up0.5", "up1.1", "up2.0",
+    const char *want[6] = {"up0.5",   "up1.1",    "up2.0",
                            "down2.3", "down1.15", "down0.60"};
     for (guint i = 0; i < 6; i++) {
         t->ops->link_name(t->state, r[i], name, sizeof name);

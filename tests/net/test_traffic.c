@@ -85,8 +85,7 @@ static void check_same_traffic(NetTraffic t)
             for (guint k = 0; k < a->len; k++) {
                 Sent *s = &g_array_index(a, Sent, k);
                 assert_int_equal(s->dst, g_array_index(ref, Sent, k).dst);
-                assert_int_equal(s->bytes,
-                                 g_array_index(ref, Sent, k).bytes);
+                assert_int_equal(s->bytes, g_array_index(ref, Sent, k).bytes);
                 if (k > 0)
                     assert_true(s->sent >=
                                 g_array_index(a, Sent, k - 1).arrived);
@@ -115,8 +114,7 @@ static void test_pattern_orders(void **state)
         GArray *a = lg.by_src[i];
         assert_int_equal(a->len, N - 1);
         for (guint k = 0; k < a->len; k++)
-            assert_int_equal(g_array_index(a, Sent, k).dst,
-                             k < i ? k : k + 1);
+            assert_int_equal(g_array_index(a, Sent, k).dst, k < i ? k : k + 1);
         assert_int_equal(g_array_index(a, Sent, 0).sent, 0);
     }
     log_free(&lg);

@@ -53,8 +53,8 @@ static void test_lone_message_all_fidelities(void **state)
             assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
             assert_int_equal(lg.n, 1);
             /* 3 ^ 28 = 31: five hops */
-            assert_int_equal(lg.at[0], 50 * SIM_US + 5 * 7 * SIM_US +
-                                           1200 * SIM_US);
+            assert_int_equal(lg.at[0],
+                             50 * SIM_US + 5 * 7 * SIM_US + 1200 * SIM_US);
             net_free(net);
             sim_engine_free(eng);
         }
@@ -85,10 +85,9 @@ static void test_long_message_startup(void **state)
                 assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
                 SimTime s = sizes[i] > 200 ? 120 * SIM_US : 50 * SIM_US;
                 /* 1 ^ 6 = 7: three hops */
-                assert_int_equal(lg.at[0], s + 3 * 7 * SIM_US +
-                                               sizes[i] * SIM_US);
-                assert_int_equal(net_ideal_time(net, 1, 6, sizes[i]),
-                                 lg.at[0]);
+                assert_int_equal(lg.at[0],
+                                 s + 3 * 7 * SIM_US + sizes[i] * SIM_US);
+                assert_int_equal(net_ideal_time(net, 1, 6, sizes[i]), lg.at[0]);
                 net_free(net);
                 sim_engine_free(eng);
             }

@@ -78,9 +78,8 @@ RastVert tu_cv(double x, double y, double z, double w)
 }
 
 void tu_render_both(const RastView *view, const SceneMesh *m,
-                    const uint32_t *subset, guint n_subset,
-                    RastImage **full, RastImage **scan, RastCounters *cf,
-                    RastCounters *cs)
+                    const uint32_t *subset, guint n_subset, RastImage **full,
+                    RastImage **scan, RastCounters *cf, RastCounters *cs)
 {
     int w = view->width, h = view->height;
     RastZBuffer *zb = rast_zbuffer_new(w, h);
@@ -153,9 +152,9 @@ SceneMesh *tu_random_tris(uint64_t seed, int n, double size)
                           (sim_rng_uniform(&r) - 0.5) * 0.4);
             v[k] = scene_mesh_add_vertex(m, vec3_add(c, d));
         }
-        SceneColor col = scene_color((float)sim_rng_uniform(&r),
-                                     (float)sim_rng_uniform(&r),
-                                     (float)sim_rng_uniform(&r));
+        SceneColor col =
+            scene_color((float)sim_rng_uniform(&r), (float)sim_rng_uniform(&r),
+                        (float)sim_rng_uniform(&r));
         scene_mesh_add_tri(m, v[0], v[1], v[2], col, 0);
     }
     return m;

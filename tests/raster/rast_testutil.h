@@ -41,9 +41,8 @@ RastVert tu_cv(double x, double y, double z, double w);
  * through the full z-buffer and through the modified scanline z-buffer;
  * returns both images (new) and adds the work to the counters. */
 void tu_render_both(const RastView *view, const SceneMesh *m,
-                    const uint32_t *subset, guint n_subset,
-                    RastImage **full, RastImage **scan, RastCounters *cf,
-                    RastCounters *cs);
+                    const uint32_t *subset, guint n_subset, RastImage **full,
+                    RastImage **scan, RastCounters *cf, RastCounters *cs);
 
 /* A UV sphere of radius r about the origin with inward (invert = TRUE)
  * or outward facing polygons (quads, triangles at the poles). */

@@ -17,8 +17,8 @@ static SceneCamera camera(Vec3 eye, Vec3 target, double fov, double near)
     return c;
 }
 
-static TuCoverage *cover_mesh(const RastView *v, const SceneMesh *m,
-                              Mat4 model, RastCounters *c)
+static TuCoverage *cover_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
+                              RastCounters *c)
 {
     TuCoverage *cv = tu_coverage_new(v->width, v->height);
     rast_draw_mesh(v, m, model, scene_color(1, 1, 1), 0, NULL, 0,
@@ -49,8 +49,7 @@ static void test_clip_shared_edge(void **state)
             }
     assert_int_equal(matches, 2); /* b and the cut point */
     for (int i = 0; i < n1; i++)
-        assert_int_equal(rast_clip_outcode(o1[i].pos, 4.0) & RAST_OUT_NEAR,
-                         0);
+        assert_int_equal(rast_clip_outcode(o1[i].pos, 4.0) & RAST_OUT_NEAR, 0);
 }
 
 /* Triangles behind the eye (w <= 0) vanish; one crossing w = 0 is
@@ -304,7 +303,8 @@ static void test_shading(void **state)
     RastImage *gour = render(&v, m, mat4_identity());
     /* screen y points down: vertex 0 is bottom-left, 1 bottom-right,
      * 2 top-left */
-    uint32_t f0 = rast_image_get(flat, 2, 37), f1 = rast_image_get(flat, 35, 37);
+    uint32_t f0 = rast_image_get(flat, 2, 37),
+             f1 = rast_image_get(flat, 35, 37);
     assert_int_equal(f0 & 0xff, 255); /* 0.25 + 0.75 |(0,0,1).l| */
     assert_int_equal(f1, f0);
     uint32_t g0 = rast_image_get(gour, 2, 37) & 0xff;
@@ -350,8 +350,8 @@ static void test_nonuniform_scale_normals(void **state)
     (void)state;
     SceneMesh *m = tu_sphere(1.0, 36, 18, FALSE);
     scene_mesh_compute_normals(m);
-    Mat4 model = mat4_mul(mat4_rotate(vec3(1, 0.5, 0.2), 0.7),
-                          mat4_scale(1, 3, 0.4));
+    Mat4 model =
+        mat4_mul(mat4_rotate(vec3(1, 0.5, 0.2), 0.7), mat4_scale(1, 3, 0.4));
     SceneMesh *w = scene_mesh_new();
     scene_mesh_append(w, m, model);
     SceneCamera cam = camera(vec3(1, 2, 9), vec3(0, 0, 0), 40, 0.1);

@@ -127,8 +127,8 @@ static RastImage *render_yaml(const char *dir, const char *name,
     char *path = g_build_filename(dir, name, NULL);
     char *png = g_build_filename(dir, "out.png", NULL);
     g_file_set_contents(path, yaml, -1, NULL);
-    const char *args[] = {"render", path, "-o", png, "--width", "96",
-                          "--height", "80", flag, value};
+    const char *args[] = {"render", path,       "-o", png,  "--width",
+                          "96",     "--height", "80", flag, value};
     *rc = run_argv(flag ? 10 : 8, args);
     RastImage *img = *rc == 0 ? rast_image_read_png(png, NULL) : NULL;
     g_unlink(png);
@@ -151,8 +151,8 @@ static void test_render_yaml(void **state)
     uint64_t n = covered(a);
     assert_true(n > 96 * 80 / 20 && n < 96 * 80 * 9 / 10);
     /* the full z-buffer draws the same picture */
-    RastImage *b = render_yaml(d, "s.yaml", small_yaml, "--zbuffer", "full",
-                               &rc);
+    RastImage *b =
+        render_yaml(d, "s.yaml", small_yaml, "--zbuffer", "full", &rc);
     assert_non_null(b);
     assert_true(rast_image_equal(a, b));
     rast_image_free(b);
@@ -261,9 +261,9 @@ static void test_render_bad_flags(void **state)
     (void)state;
     char *d = g_dir_make_tmp("rast-render-XXXXXX", NULL);
     const char *bad[][2] = {
-        {"--frame", "8"},     /* the path has frames 0 .. 7 */
-        {"--frame", "-1"},    {"--width", "0"},
-        {"--height", "20000"}, {"--zbuffer", "odd"},
+        {"--frame", "8"}, /* the path has frames 0 .. 7 */
+        {"--frame", "-1"},      {"--width", "0"},
+        {"--height", "20000"},  {"--zbuffer", "odd"},
         {"--shading", "phong"}, {"--teapots", "2"}, /* two scenes */
     };
     for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {

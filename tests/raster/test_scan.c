@@ -50,10 +50,8 @@ static void test_winding_independent(void **state)
     (void)state;
     TuCoverage *a = tu_coverage_new(16, 16), *b = tu_coverage_new(16, 16);
     RastCounters c = {0};
-    tu_scan(1.3, 2.7, 14.1, 5.5, 6.5, 13.5, 0, 16, 16, tu_coverage_sink(a),
-            &c);
-    tu_scan(6.5, 13.5, 14.1, 5.5, 1.3, 2.7, 0, 16, 16, tu_coverage_sink(b),
-            &c);
+    tu_scan(1.3, 2.7, 14.1, 5.5, 6.5, 13.5, 0, 16, 16, tu_coverage_sink(a), &c);
+    tu_scan(6.5, 13.5, 14.1, 5.5, 1.3, 2.7, 0, 16, 16, tu_coverage_sink(b), &c);
     assert_memory_equal(a->count, b->count, 16 * 16 * sizeof(uint16_t));
     assert_true(tu_coverage_count(a, 1) > 40);
     tu_coverage_free(a);
@@ -97,8 +95,7 @@ static void test_jittered_grid_watertight(void **state)
             for (int i = 0; i < G; i++) {
                 double ax = X[j][i], ay = Y[j][i], bx = X[j][i + 1],
                        by = Y[j][i + 1], cx = X[j + 1][i + 1],
-                       cy = Y[j + 1][i + 1], dx = X[j + 1][i],
-                       dy = Y[j + 1][i];
+                       cy = Y[j + 1][i + 1], dx = X[j + 1][i], dy = Y[j + 1][i];
                 RastSpanSink s = tu_coverage_sink(cv);
                 if (sim_rng_below(&r, 2)) {
                     tu_scan(ax, ay, bx, by, cx, cy, id++, W, H, s, &c);
@@ -235,8 +232,7 @@ static void test_sliver_depth_clamped(void **state)
         if (rast_area2(&v[0], &v[1], &v[2]) == 0)
             continue;
         RastCounters c = {0};
-        rast_scan_triangle(v, 0, 128, 128, (RastSpanSink){clamp_fn, &st},
-                           &c);
+        rast_scan_triangle(v, 0, 128, 128, (RastSpanSink){clamp_fn, &st}, &c);
     }
     print_message("%" G_GUINT64_FORMAT " pixels, %" G_GUINT64_FORMAT
                   " planes overshoot the vertex range\n",

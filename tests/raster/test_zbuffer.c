@@ -25,7 +25,7 @@ static void test_depth_and_ties(void **state)
     RastZBuffer *zb = rast_zbuffer_new(8, 1);
     RastCounters c = {0};
     RastSpan a = flat_span(0, 0, 4, 0.5, 7, 1.0f);
-    RastSpan b = flat_span(0, 2, 6, 0.5, 3, 0.5f); /* same z, lower id */
+    RastSpan b = flat_span(0, 2, 6, 0.5, 3, 0.5f);  /* same z, lower id */
     RastSpan d = flat_span(0, 3, 8, 0.25, 9, 0.0f); /* nearer */
     rast_zbuffer_span(zb, &a, &c);
     rast_zbuffer_span(zb, &b, &c);
@@ -138,8 +138,8 @@ static void test_subsets_merge(void **state)
         uint32_t *sub = g_new(uint32_t, np);
         for (guint i = (guint)p; i < np; i += 2)
             sub[k++] = ids[i];
-        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, sub,
-                       k, rast_spanlist_sink(sl), &c);
+        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, sub, k,
+                       rast_spanlist_sink(sl), &c);
         rast_spanlist_sort(sl);
         RastActive *a = rast_active_new(W, H);
         rast_scanline_zbuffer(a, sl, &c);
@@ -148,8 +148,8 @@ static void test_subsets_merge(void **state)
             const RastActivePixel *row = rast_active_row(a, y, &n);
             for (size_t i = 0; i < n; i++) {
                 size_t at = (size_t)y * W + row[i].x;
-                if (rast_depth_wins(row[i].z, row[i].prim,
-                                    merged->depth[at], merged->prim[at])) {
+                if (rast_depth_wins(row[i].z, row[i].prim, merged->depth[at],
+                                    merged->prim[at])) {
                     merged->depth[at] = row[i].z;
                     merged->prim[at] = row[i].prim;
                     merged->rgba[at] = row[i].rgba;

@@ -10,8 +10,7 @@
 
 static GArray *edge_keys(const SceneMesh *m)
 {
-    GArray *keys = g_array_sized_new(FALSE, FALSE, sizeof(gint64),
-                                     m->idx->len);
+    GArray *keys = g_array_sized_new(FALSE, FALSE, sizeof(gint64), m->idx->len);
     for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
         guint n = scene_mesh_poly_len(m, i);
         const uint32_t *v = scene_mesh_poly(m, i);

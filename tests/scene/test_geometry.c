@@ -90,8 +90,9 @@ static void test_mesh(void **st)
 static void test_normal_matrix(void **st)
 {
     (void)st;
-    Mat4 a = mat4_mul(mat4_rotate(vec3(0.3, 1, -0.2), 0.9),
-                      mat4_mul(mat4_scale(2, -0.5, 7), mat4_translate(3, 1, 2)));
+    Mat4 a =
+        mat4_mul(mat4_rotate(vec3(0.3, 1, -0.2), 0.9),
+                 mat4_mul(mat4_scale(2, -0.5, 7), mat4_translate(3, 1, 2)));
     Vec3 u = vec3(0.2, -1.1, 0.7), v = vec3(1.3, 0.4, -0.6);
     Vec4 au = mat4_apply(a, (Vec4){u.x, u.y, u.z, 0});
     Vec4 av = mat4_apply(a, (Vec4){v.x, v.y, v.z, 0});
@@ -121,7 +122,8 @@ static void test_normal_matrix(void **st)
     w = scene_mesh_new();
     scene_mesh_append(w, m, mat4_scale(-1, 1, 1));
     NEAR(vec3_dot(g_array_index(w->normals, Vec3, 0),
-                  scene_mesh_poly_normal(w, 0)), 1);
+                  scene_mesh_poly_normal(w, 0)),
+         1);
     scene_mesh_free(w);
     scene_mesh_free(m);
 }
@@ -196,7 +198,7 @@ static void test_fit(void **st)
 static void test_fit_points(void **st)
 {
     (void)st;
-    Vec3 pts[6] = {{0, 0, 0}, {10, 0, -30}, {2, 3, 1},
+    Vec3 pts[6] = {{0, 0, 0},    {10, 0, -30}, {2, 3, 1},
                    {-1, -2, -4}, {12, 1, -31}, {5, 5, -10}};
     for (int proj = 0; proj < 2; proj++) {
         SceneCamera c = scene_camera_default();
@@ -227,8 +229,8 @@ static void test_orbit(void **st)
     SceneCamera c = scene_camera_default();
     c.eye = vec3(10, 2, 0);
     c.target = vec3(0, 2, 0);
-    SceneCameraPath *p = scene_path_new_orbit(&c, vec3(0, 0, 0),
-                                              vec3(0, 1, 0), 0, 90, 4);
+    SceneCameraPath *p =
+        scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0), 0, 90, 4);
     assert_int_equal(scene_path_n_frames(p), 4);
     SceneCamera f1 = scene_path_camera(p, 1);
     NEAR(f1.eye.x, 0);
@@ -279,8 +281,7 @@ static void test_scene(void **st)
     Scene *s = scene_new("t");
     guint m = scene_add_mesh(s, unit_quad_mesh());
     scene_add_instance(s, m, mat4_identity(), scene_color(1, 1, 1), 0);
-    scene_add_instance(s, m, mat4_translate(5, 0, 0), scene_color(.5, 1, 1),
-                       1);
+    scene_add_instance(s, m, mat4_translate(5, 0, 0), scene_color(.5, 1, 1), 1);
     assert_int_equal(scene_n_polys(s), 4);
     assert_int_equal(scene_n_triangles(s), 6);
     SceneBox b = scene_bbox(s);
@@ -293,8 +294,8 @@ static void test_scene(void **st)
     scene_mesh_free(f);
     SceneCamera c = scene_camera_at(s, 3);
     NEAR(c.eye.z, 5);
-    scene_set_path(s, scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0),
-                                           0, 180, 2));
+    scene_set_path(
+        s, scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0), 0, 180, 2));
     NEAR(scene_camera_at(s, 1).eye.z, -5);
     scene_free(s);
     scene_free(NULL);
@@ -303,11 +304,15 @@ static void test_scene(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_box),         cmocka_unit_test(test_mesh),
-        cmocka_unit_test(test_view_matrix), cmocka_unit_test(test_perspective),
-        cmocka_unit_test(test_fit),         cmocka_unit_test(test_fit_points),
+        cmocka_unit_test(test_box),
+        cmocka_unit_test(test_mesh),
+        cmocka_unit_test(test_view_matrix),
+        cmocka_unit_test(test_perspective),
+        cmocka_unit_test(test_fit),
+        cmocka_unit_test(test_fit_points),
         cmocka_unit_test(test_orbit),
-        cmocka_unit_test(test_keyframes),   cmocka_unit_test(test_scene),
+        cmocka_unit_test(test_keyframes),
+        cmocka_unit_test(test_scene),
         cmocka_unit_test(test_normal_matrix),
     };
     return cmocka_run_group_tests_name("geometry", tests, NULL, NULL);

@@ -47,7 +47,8 @@ static void test_gyroid_count(void **st)
     Scene *s = scene_iso_new(&p);
     uint64_t n = scene_n_triangles(s);
     print_message("isosurface gyroid grid 80: %" G_GUINT64_FORMAT
-                  " triangles (seed 004: 355,948)\n", n);
+                  " triangles (seed 004: 355,948)\n",
+                  n);
     assert_true(n > 355948 * 0.98 && n < 355948 * 1.02);
     SceneMesh *m = g_ptr_array_index(s->meshes, 0);
     assert_int_equal(scene_mesh_count_ngons(m, 3), scene_mesh_n_polys(m));
@@ -96,7 +97,7 @@ static void test_bigpoly(void **st)
         assert_true(scene_mesh_poly_normal(m, i).z > 0.999);
     }
     assert_true(huge > 150 && huge < 250); /* ~10 % of 2000 */
-    Scene *t = scene_bigpoly_new(&p); /* deterministic */
+    Scene *t = scene_bigpoly_new(&p);      /* deterministic */
     const SceneMesh *m2 = g_ptr_array_index(t->meshes, 0);
     assert_memory_equal(m->pos->data, m2->pos->data,
                         m->pos->len * sizeof(Vec3));

@@ -79,8 +79,8 @@ static void test_ply_ascii(void **st)
 {
     (void)st;
     GError *err = NULL;
-    SceneMesh *m = scene_ply_parse((const guchar *)ply_ascii,
-                                   strlen(ply_ascii), "a.ply", &err);
+    SceneMesh *m = scene_ply_parse((const guchar *)ply_ascii, strlen(ply_ascii),
+                                   "a.ply", &err);
     assert_non_null(m);
     assert_int_equal(scene_mesh_n_vertices(m), 4);
     assert_int_equal(scene_mesh_n_polys(m), 2);
@@ -101,10 +101,10 @@ static void test_ply_binary_types(void **st)
                        "element face 1\n"
                        "property list ushort uint32 vertex_index\n"
                        "end_header\n";
-    guchar body[] = {0, 1,  0x40, 0, 0, 0, 0, 0, 0, 0, 0xff, /* 1, 2, -1 */
-                     0, 2,  0, 0, 0, 0, 0, 0, 0, 0, 0,
-                     0xff, 0xfe, 0, 0, 0, 0, 0, 0, 0, 0, 3,
-                     0, 3,  0, 0, 0, 2, 0, 0, 0, 1, 0, 0, 0, 0};
+    guchar body[] = {0,    1, 0x40, 0, 0, 0, 0, 0, 0, 0, 0xff, /* 1, 2, -1 */
+                     0,    2, 0,    0, 0, 0, 0, 0, 0, 0, 0,    0xff,
+                     0xfe, 0, 0,    0, 0, 0, 0, 0, 0, 3, 0,    3,
+                     0,    0, 0,    2, 0, 0, 0, 1, 0, 0, 0,    0};
     GByteArray *b = g_byte_array_new();
     g_byte_array_append(b, (const guchar *)hdr, strlen(hdr));
     g_byte_array_append(b, body, sizeof body);
@@ -232,8 +232,8 @@ static void test_bad_files(void **st)
 {
     (void)st;
     for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
-        char *path = g_build_filename("tests/data/bad/scene", bad[i].file,
-                                      NULL);
+        char *path =
+            g_build_filename("tests/data/bad/scene", bad[i].file, NULL);
         GError *err = NULL;
         SceneMesh *m = g_str_has_suffix(path, ".obj")
                            ? scene_obj_load(path, &err)
@@ -302,8 +302,7 @@ static void test_corruptions(void **st)
             for (int k = 0; k < 4; k++)
                 bad[sim_rng_below(&r, len)] = (guchar)sim_rng_below(&r, 256);
             GError *err = NULL;
-            SceneMesh *x = f < 0 ? scene_obj_parse((char *)bad, len, "c",
-                                                   &err)
+            SceneMesh *x = f < 0 ? scene_obj_parse((char *)bad, len, "c", &err)
                                  : scene_ply_parse(bad, len, "c", &err);
             assert_true((x == NULL) == (err != NULL));
             if (x)
@@ -321,10 +320,12 @@ static void test_corruptions(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_obj_forms),     cmocka_unit_test(test_ply_ascii),
+        cmocka_unit_test(test_obj_forms),
+        cmocka_unit_test(test_ply_ascii),
         cmocka_unit_test(test_ply_binary_types),
         cmocka_unit_test(test_obj_roundtrip),
-        cmocka_unit_test(test_ply_roundtrip), cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_ply_roundtrip),
+        cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_truncations),
         cmocka_unit_test(test_corruptions),
     };

@@ -32,8 +32,8 @@ static Scene *from_file(const char *path)
 static void test_table1_configs(void **st)
 {
     (void)st;
-    const char *files[] = {"1pot", "2pot", "4pot_1", "4pot_2", "8pot_1",
-                           "8pot_2"};
+    const char *files[] = {"1pot",   "2pot",   "4pot_1",
+                           "4pot_2", "8pot_1", "8pot_2"};
     const uint64_t polys[] = {3751, 7502, 15004, 15004, 30008, 30008};
     for (guint i = 0; i < 6; i++) {
         char *path = g_strdup_printf("configs/scenes/%s.yaml", files[i]);
@@ -56,7 +56,8 @@ static void test_fit_vertices(void **st)
     CfgNode *root = cfg_load_string(
         "scene: {generator: teapots, count: 3, polygons_per_teapot: 300,\n"
         "        layout: depth, view: {azimuth: 0, elevation: 20,\n"
-        "        fill: 0.8, fit: vertices}}\n", "v.yaml", &err);
+        "        fill: 0.8, fit: vertices}}\n",
+        "v.yaml", &err);
     assert_non_null(root);
     Scene *s = scene_from_cfg(cfg_get(root, "scene"), &err);
     assert_non_null(s);
@@ -173,8 +174,8 @@ static void test_pphigs_configs(void **st)
     }
     /* the lobby keeps its standard view: 55 % off-screen */
     Scene *s = from_file("configs/scenes/building_lobby.yaml");
-    double off = scene_pphigs_offscreen_share(
-        s->db, scene_camera_view_proj(&s->camera));
+    double off =
+        scene_pphigs_offscreen_share(s->db, scene_camera_view_proj(&s->camera));
     double v;
     assert_true(paper_cell(paper, "building_lobby", "offscreen_pct", &v));
     assert_true(fabs(100 * off - v) < 2.0);
@@ -329,8 +330,8 @@ static void test_bad_sections(void **st)
         assert_null(s);
         assert_non_null(err);
         if (!g_str_has_prefix(err->message, bad[i].message))
-            print_error("case %u: got  %s\n        want %s\n", i,
-                        err->message, bad[i].message);
+            print_error("case %u: got  %s\n        want %s\n", i, err->message,
+                        bad[i].message);
         assert_true(g_str_has_prefix(err->message, bad[i].message));
         g_error_free(err);
     }

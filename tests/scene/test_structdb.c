@@ -57,8 +57,8 @@ static SceneDb *sample(guint *root, guint *child)
     *root = scene_db_add_struct(db, "root");
     *child = scene_db_add_struct(db, "child");
     add(db, *root, scene_elem_color(vec3(1, 0, 0)));
-    add(db, *root, scene_elem_matrix(mat4_translate(10, 0, 0),
-                                     SCENE_MAT_REPLACE));
+    add(db, *root,
+        scene_elem_matrix(mat4_translate(10, 0, 0), SCENE_MAT_REPLACE));
     add_tri(db, *root, 0, 1);
     add(db, *root, scene_elem_execute(*child));
     add_tri(db, *root, 0, 4);
@@ -129,8 +129,8 @@ static void test_edits(void **st)
     NEAR(g_array_index(a, ScenePrimInst, 3).color.y, 1);
     g_array_unref(a);
     /* modify the translation; a kind change is refused */
-    SceneElem m = scene_elem_matrix(mat4_translate(20, 0, 0),
-                                    SCENE_MAT_REPLACE);
+    SceneElem m =
+        scene_elem_matrix(mat4_translate(20, 0, 0), SCENE_MAT_REPLACE);
     assert_true(scene_db_modify(db, root, 1, &m, NULL));
     GError *err = NULL;
     assert_false(scene_db_modify(db, root, 1, &g, &err));
@@ -142,8 +142,7 @@ static void test_edits(void **st)
     a = collect(db);
     assert_int_equal(a->len, 3);
     assert_int_equal(g_array_index(a, ScenePrimInst, 1).el->tag, 3);
-    NEAR(xf(g_array_index(a, ScenePrimInst, 0).matrix, vec3(0, 0, 0)).x,
-         20);
+    NEAR(xf(g_array_index(a, ScenePrimInst, 0).matrix, vec3(0, 0, 0)).x, 20);
     g_array_unref(a);
     scene_db_free(db);
 }
@@ -214,8 +213,8 @@ static void test_views(void **st)
     guint arm = scene_db_add_struct(db, "arm");
     guint hand = scene_db_add_struct(db, "hand");
     for (int i = 0; i < 3; i++) {
-        add(db, top, scene_elem_matrix(mat4_translate(i, 0, 0),
-                                       SCENE_MAT_REPLACE));
+        add(db, top,
+            scene_elem_matrix(mat4_translate(i, 0, 0), SCENE_MAT_REPLACE));
         add(db, top, scene_elem_execute(arm));
     }
     add(db, arm, scene_elem_execute(hand));
@@ -266,8 +265,8 @@ static void test_bboxes(void **st)
     b = scene_db_struct_bbox(db, root);
     NEAR(b.min.x, 10);
     NEAR(b.max.x, 12);
-    SceneElem m = scene_elem_matrix(mat4_translate(-5, 0, 0),
-                                    SCENE_MAT_REPLACE);
+    SceneElem m =
+        scene_elem_matrix(mat4_translate(-5, 0, 0), SCENE_MAT_REPLACE);
     assert_true(scene_db_modify(db, root, 1, &m, NULL));
     b = scene_db_struct_bbox(db, root); /* the cache follows the edit */
     NEAR(b.min.x, -5);
@@ -339,8 +338,8 @@ static void test_flatten(void **st)
     (void)st;
     guint root, child;
     SceneDb *db = sample(&root, &child);
-    Vec3 strip[5] = {vec3(0, 0, 0), vec3(0, 1, 0), vec3(1, 0, 0),
-                     vec3(1, 1, 0), vec3(2, 0, 0)};
+    Vec3 strip[5] = {vec3(0, 0, 0), vec3(0, 1, 0), vec3(1, 0, 0), vec3(1, 1, 0),
+                     vec3(2, 0, 0)};
     add(db, child, scene_elem_prim(SCENE_EL_TRISTRIP, strip, 5));
     SceneMesh *m = scene_db_flatten(db);
     /* tri#1, (child: tri#2, tri#3, strip = 3 triangles), tri#4 */

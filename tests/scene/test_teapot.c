@@ -102,8 +102,7 @@ static void test_counts_exact(void **st)
         assert_true(scene_teapot_tess_for(counts[i], "x", &t, NULL));
         SceneMesh *m = scene_teapot_mesh(t, scene_color(1, 1, 1));
         assert_int_equal(scene_mesh_n_polys(m), counts[i]);
-        assert_int_equal(scene_mesh_count_ngons(m, 3) - 8 * t.n,
-                         2 * t.split);
+        assert_int_equal(scene_mesh_count_ngons(m, 3) - 8 * t.n, 2 * t.split);
         assert_int_equal(mesh_check_open_edges(m), 16 * t.n);
         scene_mesh_free(m);
     }
@@ -124,7 +123,8 @@ static void test_eval(void **st)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_data_matches_file), cmocka_unit_test(test_rule),
+        cmocka_unit_test(test_data_matches_file),
+        cmocka_unit_test(test_rule),
         cmocka_unit_test(test_3751),
         cmocka_unit_test(test_counts_exact),
         cmocka_unit_test(test_eval),

@@ -24,20 +24,20 @@ static Scene *pots(guint count, SceneTeapotLayout layout)
 static void test_table1_counts(void **st)
 {
     (void)st;
-    const char *name[] = {"1POT", "2POT", "4POT_1", "4POT_2", "8POT_1",
-                          "8POT_2"};
+    const char *name[] = {"1POT",   "2POT",   "4POT_1",
+                          "4POT_2", "8POT_1", "8POT_2"};
     const guint count[] = {1, 2, 4, 4, 8, 8};
     const uint64_t polys[] = {3751, 7502, 15004, 15004, 30008, 30008};
     for (guint i = 0; i < 6; i++) {
-        Scene *s = pots(count[i], i % 2 ? SCENE_TEAPOTS_DEPTH
-                                        : SCENE_TEAPOTS_SPREAD);
+        Scene *s =
+            pots(count[i], i % 2 ? SCENE_TEAPOTS_DEPTH : SCENE_TEAPOTS_SPREAD);
         const SceneMesh *m = g_ptr_array_index(s->meshes, 0);
-        print_message("%-7s teapots %u polygons %" G_GUINT64_FORMAT
-                      " (per teapot %u quads + %u triangles) triangles %"
-                      G_GUINT64_FORMAT "\n",
-                      name[i], count[i], scene_n_polys(s),
-                      scene_mesh_count_ngons(m, 4),
-                      scene_mesh_count_ngons(m, 3), scene_n_triangles(s));
+        print_message(
+            "%-7s teapots %u polygons %" G_GUINT64_FORMAT
+            " (per teapot %u quads + %u triangles) triangles %" G_GUINT64_FORMAT
+            "\n",
+            name[i], count[i], scene_n_polys(s), scene_mesh_count_ngons(m, 4),
+            scene_mesh_count_ngons(m, 3), scene_n_triangles(s));
         assert_int_equal(scene_n_polys(s), polys[i]);
         assert_int_equal(scene_n_instances(s), count[i]);
         scene_free(s);

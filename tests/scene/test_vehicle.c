@@ -20,7 +20,8 @@ static void test_paper_counts(void **st)
     SceneDbStats s;
     scene_db_stats(db, &s);
     print_message("vehicle: structures %u triangles %" G_GUINT64_FORMAT
-                  " depth %u\n", s.structures, s.min_primitives, s.depth);
+                  " depth %u\n",
+                  s.structures, s.min_primitives, s.depth);
     assert_int_equal(s.structures, 466);
     assert_int_equal(s.min_primitives, 74647);
     assert_int_equal(s.primitives, 74647);
@@ -40,8 +41,8 @@ static void test_other_counts(void **st)
     for (guint i = 0; i < G_N_ELEMENTS(structs); i++) {
         SceneDb *db = scene_db_new();
         guint root;
-        assert_true(scene_vehicle_build(db, structs[i], tris[i], "x", &root,
-                                        NULL));
+        assert_true(
+            scene_vehicle_build(db, structs[i], tris[i], "x", &root, NULL));
         scene_db_post(db, root);
         SceneDbStats s;
         scene_db_stats(db, &s);

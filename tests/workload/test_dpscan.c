@@ -29,8 +29,13 @@ static void test_vp_ratio(void **state)
 static void test_simd_costs(void **state)
 {
     (void)state;
-    WlDpMachine m = {.arch = WL_DP_SIMD, .procs = 4, .op = 10, .step = 100,
-                     .scan_slice = 20, .send_setup = 50, .send_slice = 7,
+    WlDpMachine m = {.arch = WL_DP_SIMD,
+                     .procs = 4,
+                     .op = 10,
+                     .step = 100,
+                     .scan_slice = 20,
+                     .send_setup = 50,
+                     .send_slice = 7,
                      .send_vp = 1};
     WlDpCoef k = {0};
     /* 10 elements on 4 lanes: VP ratio 3; 100 + 3 * 3 * 10. */
@@ -49,9 +54,15 @@ static void test_simd_costs(void **state)
 static void test_spmd_costs(void **state)
 {
     (void)state;
-    WlDpMachine m = {.arch = WL_DP_SPMD, .procs = 4, .op = 1, .step = 0,
-                     .net_latency = 5, .msg_overhead = 1000,
-                     .msg_bytes = 20, .arity = 4, .levels = 1,
+    WlDpMachine m = {.arch = WL_DP_SPMD,
+                     .procs = 4,
+                     .op = 1,
+                     .step = 0,
+                     .net_latency = 5,
+                     .msg_overhead = 1000,
+                     .msg_bytes = 20,
+                     .arity = 4,
+                     .levels = 1,
                      .level_bw = {20e6}};
     /* Load 2 on 4 nodes: 40 B, 3/4 leave the node at 20 MB/s: 1.5 us of
      * wire > 2 ns of software. */
@@ -103,19 +114,31 @@ static WlDpGeom *tiny_geom(void)
 
 static WlDpAlgo unit_algo(void)
 {
-    return (WlDpAlgo){.clear_ops = 1, .transform_ops = 1,
-                      .transform_steps = 1, .scan_ops = 1, .scan_steps = 1,
-                      .scan_scans = 1, .pixel_ops = 1, .pixel_steps = 1,
-                      .extract_ops = 1, .segment_words = 1,
-                      .pixel_words = 1, .buffer_factor = 1.0};
+    return (WlDpAlgo){.clear_ops = 1,
+                      .transform_ops = 1,
+                      .transform_steps = 1,
+                      .scan_ops = 1,
+                      .scan_steps = 1,
+                      .scan_scans = 1,
+                      .pixel_ops = 1,
+                      .pixel_steps = 1,
+                      .extract_ops = 1,
+                      .segment_words = 1,
+                      .pixel_words = 1,
+                      .buffer_factor = 1.0};
 }
 
 static void test_frame_schedule(void **state)
 {
     (void)state;
     WlDpGeom *g = tiny_geom();
-    WlDpMachine m = {.arch = WL_DP_SIMD, .procs = 2, .op = 1, .step = 0,
-                     .scan_slice = 100, .send_setup = 0, .send_slice = 1};
+    WlDpMachine m = {.arch = WL_DP_SIMD,
+                     .procs = 2,
+                     .op = 1,
+                     .step = 0,
+                     .scan_slice = 100,
+                     .send_setup = 0,
+                     .send_slice = 1};
     WlDpAlgo a = unit_algo();
     WlDpFrame f;
     wl_dp_frame_run(g, &m, &a, &f);
@@ -138,8 +161,8 @@ static void test_frame_schedule(void **state)
     assert_int_equal(f.counts.messages, 3 + 6);
     /* The linear coefficients reproduce the total. */
     double t = f.coef.op_slices * m.op + f.coef.steps * m.step +
-               f.coef.scan_slices * m.scan_slice +
-               f.coef.sends * m.send_setup + f.coef.slices * m.send_slice;
+               f.coef.scan_slices * m.scan_slice + f.coef.sends * m.send_setup +
+               f.coef.slices * m.send_slice;
     assert_true(t == (double)f.total);
     /* A buffer of one polygon's worth flushes before scan line 1. */
     a.buffer_factor = 1.0 / 3.0;
@@ -188,8 +211,13 @@ static void test_pixels_match_raster(void **state)
 static void test_deterministic(void **state)
 {
     (void)state;
-    WlDpMachine m = {.arch = WL_DP_SIMD, .procs = 64, .op = 7, .step = 3,
-                     .scan_slice = 5, .send_setup = 11, .send_slice = 13};
+    WlDpMachine m = {.arch = WL_DP_SIMD,
+                     .procs = 64,
+                     .op = 7,
+                     .step = 3,
+                     .scan_slice = 5,
+                     .send_setup = 11,
+                     .send_slice = 13};
     WlDpAlgo a = wl_dp_algo_defaults();
     WlDpFrame f[2];
     for (int i = 0; i < 2; i++) {
@@ -218,8 +246,7 @@ static void test_exec_simd_equals_closed_form(void **state)
     WlDpFrame cf, ev;
     wl_dp_frame_run(g, &m, &a, &cf);
     SimEngine *eng = sim_engine_new(1);
-    MachMachine *mach = wl_dp_exec_machine(eng, "cm200", &m, "analytic",
-                                           &err);
+    MachMachine *mach = wl_dp_exec_machine(eng, "cm200", &m, "analytic", &err);
     assert_non_null(mach);
     assert_true(wl_dp_exec_frame(mach, &m, g, &a, &ev, &err));
     assert_true(cf.total > 0);
@@ -309,8 +336,8 @@ static void test_workload_run(void **state)
     void *p = ops->parse(cfg_get(root, "workload"), &err);
     assert_non_null(p);
     SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .frames = 2,
-                     .fidelity = "analytic"};
+    WlContext ctx = {
+        .eng = eng, .root = root, .frames = 2, .fidelity = "analytic"};
     SimResult *r = sim_result_new("dpscan", "cm200");
     assert_true(ops->run(&ctx, p, r, &err));
     assert_true(sim_engine_events(eng) > 10);

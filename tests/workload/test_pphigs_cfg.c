@@ -4,7 +4,8 @@
  * inputs fail with a located error; the reproduction's event-driven
  * frames give the analytic traversal's metrics exactly; the `pphigs`
  * workload runs configs/pphigs-flock.yaml deterministically and honours
- * overrides of the workload and of the machine section.  Run from the repository root (make test does).
+ * overrides of the workload and of the machine section.  Run from the
+ * repository root (make test does).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -94,8 +95,8 @@ static void test_bad_specs(void **st)
     expect_error("{kind: space_station, polygons: -3}", "-3");
     GError *err = NULL;
     ScenePphigsSpec s;
-    assert_false(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
-                                     "teapots", NULL, &s, &err));
+    assert_false(wl_pphigs_spec_load("configs/pphigs/databases.yaml", "teapots",
+                                     NULL, &s, &err));
     assert_non_null(strstr(err->message, "teapots"));
     assert_non_null(strstr(err->message, "flock_old_well"));
     g_clear_error(&err);
@@ -111,10 +112,12 @@ static void test_bad_specs(void **st)
     assert_non_null(strstr(err->message, "provenance"));
     g_clear_error(&err);
     cfg_free(n);
-    n = cfg_load_string("{width: 1, height: 1, region: 1, cmd_bytes: 1, "
-                        "end_bytes: 1, batch: 1, pixel_bytes: 1, element_bytes: 1, "
-                        "cluster_scale: {value: 8, assumption: x}, "
-                        "widht: 3}", "fr.yaml", NULL);
+    n = cfg_load_string(
+        "{width: 1, height: 1, region: 1, cmd_bytes: 1, "
+        "end_bytes: 1, batch: 1, pixel_bytes: 1, element_bytes: 1, "
+        "cluster_scale: {value: 8, assumption: x}, "
+        "widht: 3}",
+        "fr.yaml", NULL);
     assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
     assert_non_null(strstr(err->message, "widht"));
     g_clear_error(&err);
@@ -125,11 +128,11 @@ static void test_frames_equal_analytic(void **st)
 {
     (void)st;
     WlPphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0}};
-    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
-                                     NULL));
+    assert_true(
+        wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
     SimEngine *eng = sim_engine_new(1);
-    MachMachine *m = wl_pphigs_machine_new(eng, "pixel-planes-5", 4,
-                                           "packet", NULL);
+    MachMachine *m =
+        wl_pphigs_machine_new(eng, "pixel-planes-5", 4, "packet", NULL);
     assert_non_null(m);
     WlPphigsCosts c;
     SimTime send;
@@ -194,8 +197,7 @@ static void run_flock(const char *const *sets, Out *o)
     assert_true(ops->run(&ctx, p, r, &err));
     assert_true(cfg_check_unused(cfg_get(root, "workload"), NULL));
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
-    g_array_append_vals(o->frames, r->frame_times->data,
-                        r->frame_times->len);
+    g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
     assert_int_equal(r->metrics->len, 13);
     for (guint i = 0; i < 13; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
@@ -214,8 +216,7 @@ static void test_workload_runs(void **st)
     run_flock(NULL, &a);
     run_flock(NULL, &b);
     assert_int_equal(a.frames->len, 3);
-    assert_memory_equal(a.frames->data, b.frames->data,
-                        3 * sizeof(SimTime));
+    assert_memory_equal(a.frames->data, b.frames->data, 3 * sizeof(SimTime));
     assert_memory_equal(a.m, b.m, sizeof a.m);
     assert_int_equal(a.bytes, b.bytes);
     assert_true(a.m[7] == 12); /* 4 edits x 3 frames */
@@ -225,7 +226,7 @@ static void test_workload_runs(void **st)
                           "workload.edits_per_frame=0", NULL};
     run_flock(sets, &c);
     assert_true(c.m[7] == 0);
-    assert_true(c.m[8] == 0); /* no edits, and no moves on a fresh list */
+    assert_true(c.m[8] == 0);      /* no edits, and no moves on a fresh list */
     assert_true(c.m[4] != a.m[4]); /* other database: other commands */
     g_array_unref(a.frames);
     g_array_unref(b.frames);
@@ -255,8 +256,7 @@ static double metric(const SimResult *r, const char *name)
 static void test_machine_overrides(void **st)
 {
     (void)st;
-    const char *base[] = {"run.frames=1", "workload.edits_per_frame=0",
-                          NULL};
+    const char *base[] = {"run.frames=1", "workload.edits_per_frame=0", NULL};
     SimResult *a = app_run(base, NULL);
     assert_non_null(a);
     assert_true(metric(a, "gps") == 16); /* the model's count */
@@ -280,8 +280,7 @@ static void test_machine_overrides(void **st)
     sim_result_free(c);
     sim_result_free(d);
     /* both counts given and different: a located error at workload.gps */
-    const char *clash[] = {"workload.gps=8", "machine.nodes.gp.count=4",
-                           NULL};
+    const char *clash[] = {"workload.gps=8", "machine.nodes.gp.count=4", NULL};
     GError *err = NULL;
     assert_null(app_run(clash, &err));
     assert_non_null(strstr(err->message, "--set workload.gps=8:1:1: "
@@ -298,14 +297,17 @@ static void test_machine_overrides(void **st)
 static void test_run_matches_table(void **st)
 {
     (void)st;
-    const char *sets[] = {"run.frames=1", "run.fidelity=analytic",
-                          "workload.edits_per_frame=0", "workload.gps=4",
-                          "workload.rebalance.enabled=false", NULL};
+    const char *sets[] = {"run.frames=1",
+                          "run.fidelity=analytic",
+                          "workload.edits_per_frame=0",
+                          "workload.gps=4",
+                          "workload.rebalance.enabled=false",
+                          NULL};
     SimResult *r = app_run(sets, NULL);
     assert_non_null(r);
     WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0}};
-    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
-                                     NULL));
+    assert_true(
+        wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
     ScenePphigsSpec s;
     assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
                                     "flock_old_well", NULL, &s, NULL));

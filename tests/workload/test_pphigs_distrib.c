@@ -52,16 +52,18 @@ static void assert_same_render(const WlPphigsDist *d)
 }
 
 static const WlPphigsWeights W = {
-    .w = {[SCENE_EL_TRIANGLE] = 1, [SCENE_EL_POLYGON] = 1,
-          [SCENE_EL_TRISTRIP] = 2, [SCENE_EL_POLYGON2D] = 1,
-          [SCENE_EL_COLOR] = 0.1, [SCENE_EL_MATRIX] = 0.3,
+    .w = {[SCENE_EL_TRIANGLE] = 1,
+          [SCENE_EL_POLYGON] = 1,
+          [SCENE_EL_TRISTRIP] = 2,
+          [SCENE_EL_POLYGON2D] = 1,
+          [SCENE_EL_COLOR] = 0.1,
+          [SCENE_EL_MATRIX] = 0.3,
           [SCENE_EL_EXECUTE] = 0.2},
     .w_vertex = 0,
     .cluster = 2,
 };
 
-static SceneElem rnd_elem(SimRng *r, guint nstruct, guint self,
-                          Vec3 *v)
+static SceneElem rnd_elem(SimRng *r, guint nstruct, guint self, Vec3 *v)
 {
     for (int i = 0; i < 3; i++)
         v[i] = vec3(sim_rng_uniform(r), sim_rng_uniform(r), i);
@@ -238,7 +240,7 @@ static void test_attribute_copies(void **st)
         prims += count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_TRIANGLE);
     }
     assert_int_equal(simple, 4 * 100); /* every colour on every GP */
-    assert_true(complex < 2 * 100);     /* mostly on one or two GPs */
+    assert_true(complex < 2 * 100);    /* mostly on one or two GPs */
     assert_int_equal(prims, 300);
     double load[4];
     wl_pphigs_dist_loads(c, load);
@@ -265,8 +267,8 @@ static void test_primitive_structure(void **st)
         assert_true(scene_db_append(db, boid, &e, NULL));
     }
     for (int b = 0; b < 40; b++) {
-        SceneElem m = scene_elem_matrix(mat4_translate(b, 0, 0),
-                                        SCENE_MAT_REPLACE);
+        SceneElem m =
+            scene_elem_matrix(mat4_translate(b, 0, 0), SCENE_MAT_REPLACE);
         SceneElem x = scene_elem_execute(boid);
         assert_true(scene_db_append(db, top, &m, NULL));
         assert_true(scene_db_append(db, top, &x, NULL));

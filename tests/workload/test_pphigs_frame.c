@@ -3,8 +3,8 @@
  * processor time (traverse + transform busy) equals the analytic
  * traversal cost of each portion to the picosecond; every processor kind
  * is busy in its phases; every region reaches the frame buffer; the same
- * inputs give the same results twice; ring-slot packets are never faster than the
- * contention-free analytic transport; off-screen work sends nothing; the
+ * inputs give the same results twice; ring-slot packets are never faster than
+ * the contention-free analytic transport; off-screen work sends nothing; the
  * host's edit traffic delays the GP it goes to; a machine the frame
  * cannot use is a located error.
  */
@@ -30,18 +30,26 @@ static const char *const MACHINE =
     "  frame_buffer: {costs: {store_region: 10 us}}\n"
     "  host: {costs: {send_element: 20 us}}\n";
 
-static const WlPphigsCosts C = {
-    .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
-    .color = 100 * SIM_NS, .matrix = 300 * SIM_NS, .concat = SIM_US,
-    .execute = 500 * SIM_NS};
+static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
+                                .vertex = 100 * SIM_NS,
+                                .reject_vertex = 75 * SIM_NS,
+                                .color = 100 * SIM_NS,
+                                .matrix = 300 * SIM_NS,
+                                .concat = SIM_US,
+                                .execute = 500 * SIM_NS};
 
 #define RENDERERS 4
 
 static WlPphigsFrameSpec spec(void)
 {
-    WlPphigsFrameSpec s = {.cmd_bytes = 100, .end_bytes = 16, .batch = 16,
-                           .pixel_bytes = 4, .width = 640, .height = 512,
-                           .region = 128, .element_bytes = 80};
+    WlPphigsFrameSpec s = {.cmd_bytes = 100,
+                           .end_bytes = 16,
+                           .batch = 16,
+                           .pixel_bytes = 4,
+                           .width = 640,
+                           .height = 512,
+                           .region = 128,
+                           .element_bytes = 80};
     return s;
 }
 
@@ -70,9 +78,9 @@ static void check_result(MachMachine *m, guint ngp)
     SimResult *r = sim_result_new("pphigs", "test");
     mach_fill_result(m, r);
     assert_int_equal(r->nodes->len, 1 + ngp + RENDERERS + 1);
-    static const char *const want[][3] = {
-        {"gp", "transform", "send"}, {"renderer", "rasterise", "shade"},
-        {"frame_buffer", "store", "store"}};
+    static const char *const want[][3] = {{"gp", "transform", "send"},
+                                          {"renderer", "rasterise", "shade"},
+                                          {"frame_buffer", "store", "store"}};
     for (guint i = 0; i < r->nodes->len; i++) {
         SimNodeResult *n = g_ptr_array_index(r->nodes, i);
         for (guint k = 0; k < G_N_ELEMENTS(want); k++) {
@@ -125,11 +133,19 @@ static void run(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
 
 static ScenePphigsDb make_db(ScenePphigsKind k)
 {
-    ScenePphigsSpec s = {.kind = k, .seed = 2, .polygons = 600,
-                         .attributes = 60, .verts = 4, .size = 100,
-                         .fov_deg = 51, .boids = 30, .boid_polygons = 5,
-                         .boid_colors = 4, .well_structs = 10,
-                         .well_polygons = 60, .well_attributes = 5};
+    ScenePphigsSpec s = {.kind = k,
+                         .seed = 2,
+                         .polygons = 600,
+                         .attributes = 60,
+                         .verts = 4,
+                         .size = 100,
+                         .fov_deg = 51,
+                         .boids = 30,
+                         .boid_polygons = 5,
+                         .boid_colors = 4,
+                         .well_structs = 10,
+                         .well_polygons = 60,
+                         .well_attributes = 5};
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     return db;
@@ -192,9 +208,9 @@ static void test_traffic_and_fidelity(void **st)
     assert_int_equal(pk.bytes, an.bytes);
     /* 2 frames: commands, 20 regions of 128x128x4 bytes, end markers */
     guint regions = 5 * 4;
-    uint64_t want = 2 * (pk.commands * s.cmd_bytes +
-                         (uint64_t)regions * 128 * 128 * 4 +
-                         4 * RENDERERS * s.end_bytes);
+    uint64_t want =
+        2 * (pk.commands * s.cmd_bytes + (uint64_t)regions * 128 * 128 * 4 +
+             4 * RENDERERS * s.end_bytes);
     assert_int_equal(pk.bytes, want);
     /* fewer, larger batches: fewer messages, same bytes */
     WlPphigsFrameSpec big = s;
@@ -215,8 +231,8 @@ static void test_offscreen_sends_nothing(void **st)
     run(&db, 4, WL_PPHIGS_COMPLEX, "analytic", &s, &r);
     assert_true(r.offscreen > 0);
     /* look away: every primitive is off-screen, no command is sent */
-    db.camera.target = vec3_scale(vec3_sub(db.camera.eye, db.camera.target),
-                                  1.0);
+    db.camera.target =
+        vec3_scale(vec3_sub(db.camera.eye, db.camera.target), 1.0);
     db.camera.target = vec3_add(db.camera.eye, db.camera.target);
     Run away = {0};
     run(&db, 4, WL_PPHIGS_COMPLEX, "analytic", &s, &away);

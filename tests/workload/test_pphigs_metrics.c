@@ -12,17 +12,26 @@
 #include "sim/workload/pphigs/ellsworth90.h"
 
 /* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
-static const WlPphigsCosts C = {
-    .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
-    .color = 100 * SIM_NS, .matrix = 300 * SIM_NS, .concat = SIM_US,
-    .execute = 500 * SIM_NS};
+static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
+                                .vertex = 100 * SIM_NS,
+                                .reject_vertex = 75 * SIM_NS,
+                                .color = 100 * SIM_NS,
+                                .matrix = 300 * SIM_NS,
+                                .concat = SIM_US,
+                                .execute = 500 * SIM_NS};
 
 static ScenePphigsSpec flock(void)
 {
-    ScenePphigsSpec s = {.kind = SCENE_PPHIGS_FLOCK, .seed = 9, .verts = 4,
-                         .size = 10, .boids = 30, .boid_polygons = 5,
-                         .boid_colors = 4, .well_structs = 10,
-                         .well_polygons = 60, .well_attributes = 5};
+    ScenePphigsSpec s = {.kind = SCENE_PPHIGS_FLOCK,
+                         .seed = 9,
+                         .verts = 4,
+                         .size = 10,
+                         .boids = 30,
+                         .boid_polygons = 5,
+                         .boid_colors = 4,
+                         .well_structs = 10,
+                         .well_polygons = 60,
+                         .well_attributes = 5};
     return s;
 }
 
@@ -47,9 +56,13 @@ static void test_one_gp_is_serial(void **st)
 static void test_offscreen_is_cheaper(void **st)
 {
     (void)st;
-    ScenePphigsSpec s = {.kind = SCENE_PPHIGS_LOBBY, .seed = 2,
-                         .polygons = 400, .attributes = 50, .verts = 4,
-                         .size = 100, .fov_deg = 51};
+    ScenePphigsSpec s = {.kind = SCENE_PPHIGS_LOBBY,
+                         .seed = 2,
+                         .polygons = 400,
+                         .attributes = 50,
+                         .verts = 4,
+                         .size = 100,
+                         .fov_deg = 51};
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     Mat4 vp = scene_camera_view_proj(&db.camera);
@@ -60,8 +73,8 @@ static void test_offscreen_is_cheaper(void **st)
     double off = scene_pphigs_offscreen_share(db.db, vp);
     assert_true(off > 0.3 && off < 0.8);
     uint64_t n_off = (uint64_t)llround(400 * off);
-    assert_int_equal(tf - t, n_off * (C.poly + 4 * C.vertex -
-                                      4 * C.reject_vertex));
+    assert_int_equal(tf - t,
+                     n_off * (C.poly + 4 * C.vertex - 4 * C.reject_vertex));
     scene_pphigs_db_clear(&db);
 }
 
@@ -73,8 +86,7 @@ static void test_table_rows(void **st)
     s[1].figures = 2, s[1].structures = 20, s[1].polygons = 200;
     s[1].levels = 5;
     WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 64}};
-    rig.setup.frame = (WlPphigsFrameSpec){100, 16, 16, 4, 640, 512, 128,
-                                             80};
+    rig.setup.frame = (WlPphigsFrameSpec){100, 16, 16, 4, 640, 512, 128, 80};
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
     assert_true(wl_pphigs_table1(s, 2, &rig, rows, NULL));
     assert_int_equal(rows->len, 2 * (8 + 5));

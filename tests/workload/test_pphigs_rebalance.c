@@ -14,12 +14,17 @@
 #include "sim/workload/pphigs/rebalance.h"
 
 /* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
-static const WlPphigsCosts C = {
-    .poly = 600 * SIM_NS, .vertex = 100 * SIM_NS, .reject_vertex = 75 * SIM_NS,
-    .color = 100 * SIM_NS, .matrix = 300 * SIM_NS, .concat = SIM_US,
-    .execute = 500 * SIM_NS};
-static const WlPphigsRebalParams P = {.threshold = 0.10, .frames = 3,
-                                      .fraction = 0.5, .max_moves = 16,
+static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
+                                .vertex = 100 * SIM_NS,
+                                .reject_vertex = 75 * SIM_NS,
+                                .color = 100 * SIM_NS,
+                                .matrix = 300 * SIM_NS,
+                                .concat = SIM_US,
+                                .execute = 500 * SIM_NS};
+static const WlPphigsRebalParams P = {.threshold = 0.10,
+                                      .frames = 3,
+                                      .fraction = 0.5,
+                                      .max_moves = 16,
                                       .seed = 11};
 
 #define NGP 4
@@ -32,8 +37,12 @@ typedef struct {
 
 static void fix_new(Fix *x, ScenePphigsKind k, double cluster)
 {
-    ScenePphigsSpec s = {.kind = k, .seed = 5, .polygons = 800,
-                         .attributes = 40, .verts = 4, .size = 100,
+    ScenePphigsSpec s = {.kind = k,
+                         .seed = 5,
+                         .polygons = 800,
+                         .attributes = 40,
+                         .verts = 4,
+                         .size = 100,
                          .fov_deg = 51};
     assert_true(scene_pphigs_generate(&s, &x->db, NULL));
     WlPphigsWeights w;
@@ -137,6 +146,5 @@ int main(void)
         cmocka_unit_test(test_imperfect_converges),
         cmocka_unit_test(test_invalidated_converges),
     };
-    return cmocka_run_group_tests_name("pphigs_rebalance", tests, NULL,
-                                       NULL);
+    return cmocka_run_group_tests_name("pphigs_rebalance", tests, NULL, NULL);
 }

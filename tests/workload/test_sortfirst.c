@@ -27,8 +27,8 @@ static const char *small =
     "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
     "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
 
-static SimResult *run_cfg(const char *text, const char *override,
-                          int frames, GError **err)
+static SimResult *run_cfg(const char *text, const char *override, int frames,
+                          GError **err)
 {
     CfgNode *root = cfg_load_string(text, "sf.yaml", err);
     assert_non_null(root);
@@ -38,8 +38,11 @@ static SimResult *run_cfg(const char *text, const char *override,
     SimResult *r = NULL;
     if (p) {
         SimEngine *eng = sim_engine_new(1);
-        WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                         .fidelity = "analytic", .frames = frames};
+        WlContext ctx = {.eng = eng,
+                         .root = root,
+                         .seed = 1,
+                         .fidelity = "analytic",
+                         .frames = frames};
         r = sim_result_new("sortfirst", "");
         if (!wl_sortfirst_ops.run(&ctx, p, r, err)) {
             sim_result_free(r);
@@ -84,8 +87,8 @@ static void fixture_init(Fixture *f, guint procs, WlSfBookkeeping bk,
     assert_non_null(f->m);
     WlSfCosts c;
     assert_true(wl_sf_costs_from_machine(f->m, &c, &e));
-    f->db = wl_sf_db_new(f->scene->db, procs, granularity,
-                         WL_SF_CHUNK_SORTED, &e);
+    f->db =
+        wl_sf_db_new(f->scene->db, procs, granularity, WL_SF_CHUNK_SORTED, &e);
     assert_non_null(f->db);
     f->s = (WlSfSetup){procs, 64, bk, {64, 40, 36, 8}, TRUE, FALSE};
     f->run = wl_sf_run_new(f->m, f->scene, f->db, &f->s, &c);
@@ -117,8 +120,7 @@ static void test_chunks_partition(void **state)
         assert_true(ch->n_prims >= 1 && ch->n_prims <= 5);
         assert_int_equal(ch->n_inst, 3);
         per_master[ch->master]++;
-        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst;
-             i++) {
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
             const uint32_t *p = wl_sf_inst_polys(d, i);
             for (guint k = 0; k < ch->polys; k++)
                 seen[p[k]]++;
@@ -147,8 +149,8 @@ static uint64_t poly_regions(const Fixture *f, const RastView *v,
     unsigned all = 0x3f;
     gboolean behind = FALSE;
     for (uint32_t k = a; k < b; k++) {
-        Vec3 p = g_array_index(m->pos, Vec3,
-                               g_array_index(m->idx, uint32_t, k));
+        Vec3 p =
+            g_array_index(m->pos, Vec3, g_array_index(m->idx, uint32_t, k));
         Vec4 c = mat4_apply_point(v->view_proj, p);
         all &= (c.x < -c.w) | (c.x > c.w) << 1 | (c.y < -c.w) << 2 |
                (c.y > c.w) << 3 | (c.z < -c.w) << 4 | (c.z > c.w) << 5;
@@ -158,8 +160,7 @@ static uint64_t poly_regions(const Fixture *f, const RastView *v,
         }
         double sx = (c.x / c.w + 1) * 0.5 * rg->width;
         double sy = (1 - c.y / c.w) * 0.5 * rg->height;
-        x0 = MIN(x0, sx), x1 = MAX(x1, sx), y0 = MIN(y0, sy),
-        y1 = MAX(y1, sy);
+        x0 = MIN(x0, sx), x1 = MAX(x1, sx), y0 = MIN(y0, sy), y1 = MAX(y1, sy);
     }
     if (all)
         return 0;
@@ -220,8 +221,7 @@ static void test_migration_and_image(void **state)
         const GArray *st = wl_sf_run_stats(f.run);
         assert_int_equal(st->len, 5);
         /* the camera moved: chunks migrated after the first frame */
-        assert_true(g_array_index(st, WlSfFrameStats, 3).migrated_chunks
-                    > 0);
+        assert_true(g_array_index(st, WlSfFrameStats, 3).migrated_chunks > 0);
         fixture_clear(&f);
     }
 }
@@ -268,8 +268,8 @@ static void test_minset_equals_maxset(void **state)
     assert_int_equal(sa->polys_rendered, sb->polys_rendered);
     assert_int_equal(sa->master_boxes, sb->master_boxes);
     assert_true(sa->slave_boxes > sb->slave_boxes);
-    assert_true(sa->migrated_chunks <= sb->migrated_chunks +
-                                           sb->migrated_insts);
+    assert_true(sa->migrated_chunks <=
+                sb->migrated_chunks + sb->migrated_insts);
     fixture_clear(&a);
     fixture_clear(&b);
 }
@@ -328,8 +328,8 @@ static void test_frame_log(void **state)
     assert_true(g_str_has_prefix(lines[0], "frame,frame_ms,"));
     assert_true(g_str_has_prefix(lines[3], "2,"));
     /* the first frame distributes from the masters: most bytes */
-    char **f0 = g_strsplit(lines[1], ",", -1), **f2 = g_strsplit(lines[3],
-                                                                  ",", -1);
+    char **f0 = g_strsplit(lines[1], ",", -1),
+         **f2 = g_strsplit(lines[3], ",", -1);
     assert_true(g_ascii_strtod(f0[5], NULL) > g_ascii_strtod(f2[5], NULL));
     g_strfreev(f0);
     g_strfreev(f2);

@@ -21,8 +21,11 @@ static SimResult *run_ring(const char *text, int frames, GError **err)
     void *p = wl_tokenring_ops.parse(cfg_get(root, "workload"), err);
     assert_non_null(p);
     SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                     .fidelity = "analytic", .frames = frames};
+    WlContext ctx = {.eng = eng,
+                     .root = root,
+                     .seed = 1,
+                     .fidelity = "analytic",
+                     .frames = frames};
     SimResult *r = sim_result_new("tokenring", "");
     gboolean ok = wl_tokenring_ops.run(&ctx, p, r, err);
     assert_true(ok);

@@ -95,9 +95,9 @@ SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
     }
     SimTime one;
     if (m->arch == WL_DP_SIMD) {
-        one = add_time(add_time(m->step, m->send_setup),
-                       add_time(mul_time(m->send_vp, vps),
-                                mul_time(m->send_slice, load)));
+        one = add_time(
+            add_time(m->step, m->send_setup),
+            add_time(mul_time(m->send_vp, vps), mul_time(m->send_slice, load)));
     } else {
         SimTime soft = mul_time(m->msg_overhead, load);
         one = add_time(add_time(m->step, m->net_latency),
@@ -114,8 +114,7 @@ static unsigned log2u(uint64_t v)
     return r;
 }
 
-WlDpLayout *wl_dp_layout_new(uint64_t procs, uint32_t width,
-                             uint32_t height)
+WlDpLayout *wl_dp_layout_new(uint64_t procs, uint32_t width, uint32_t height)
 {
     g_assert(procs > 0 && width > 0 && height > 0);
     WlDpLayout *l = g_new0(WlDpLayout, 1);
@@ -152,8 +151,7 @@ void wl_dp_layout_free(WlDpLayout *l)
 }
 
 /* Most pixels of this send landing on one processor's block. */
-static uint64_t zbuf_load(WlDpLayout *l, const WlDpSched *s,
-                          uint64_t active)
+static uint64_t zbuf_load(WlDpLayout *l, const WlDpSched *s, uint64_t active)
 {
     uint32_t j, worst = 0, *count = l->count;
     const WlDpSeg *seg = wl_dp_sched_live(s, &j);
@@ -182,9 +180,8 @@ uint64_t wl_dp_send_load(const WlDpMachine *m, WlDpLayout *l,
     return MAX(src, zbuf_load(l, s, st->active));
 }
 
-SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l,
-                        const WlDpSched *s, const WlDpStep *st,
-                        WlDpCoef *k)
+SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l, const WlDpSched *s,
+                        const WlDpStep *st, WlDpCoef *k)
 {
     switch (st->kind) {
     case WL_DP_COMPUTE:

@@ -49,21 +49,21 @@ typedef enum { WL_DP_SIMD, WL_DP_SPMD } WlDpArch;
 
 typedef struct {
     WlDpArch arch;
-    uint64_t procs;      /* physical processors (SIMD lanes or nodes) */
-    gboolean vp_pow2;    /* VP ratios are powers of two */
-    SimTime op;          /* one element operation at VP ratio 1 */
-    SimTime step;        /* issue overhead of one data-parallel step */
-    SimTime scan_slice;  /* parallel prefix, per VP slice */
+    uint64_t procs;     /* physical processors (SIMD lanes or nodes) */
+    gboolean vp_pow2;   /* VP ratios are powers of two */
+    SimTime op;         /* one element operation at VP ratio 1 */
+    SimTime step;       /* issue overhead of one data-parallel step */
+    SimTime scan_slice; /* parallel prefix, per VP slice */
     /* SIMD router */
-    SimTime send_setup;  /* per array sent */
-    SimTime send_slice;  /* per message per processor (load) */
-    SimTime send_vp;     /* per VP slice that holds a message */
+    SimTime send_setup; /* per array sent */
+    SimTime send_slice; /* per message per processor (load) */
+    SimTime send_vp;    /* per VP slice that holds a message */
     /* SPMD data network */
-    SimTime net_latency; /* per array sent (send phase) */
-    SimTime msg_overhead;/* software cost of one message, both ends */
-    uint32_t msg_bytes;  /* bytes of one message on the wire */
-    unsigned arity;      /* fat-tree arity */
-    unsigned levels;     /* entries of level_bw in use */
+    SimTime net_latency;  /* per array sent (send phase) */
+    SimTime msg_overhead; /* software cost of one message, both ends */
+    uint32_t msg_bytes;   /* bytes of one message on the wire */
+    unsigned arity;       /* fat-tree arity */
+    unsigned levels;      /* entries of level_bw in use */
     double level_bw[NET_MAX_LEVELS]; /* B/s per node, level 0 = leaves */
 } WlDpMachine;
 
@@ -85,12 +85,12 @@ typedef struct {
  * over a px x py processor grid (CM Fortran's default block layout). */
 typedef struct {
     uint64_t procs;
-    uint32_t px, py;   /* processor grid, px * py == procs */
-    uint32_t bw, bh;   /* block (subgrid) size */
+    uint32_t px, py; /* processor grid, px * py == procs */
+    uint32_t bw, bh; /* block (subgrid) size */
     uint32_t width, height;
-    uint32_t *col;     /* x -> x / bw, width entries */
-    uint32_t *row;     /* y -> (y / bh) * px, height entries */
-    uint32_t *count;   /* procs counters (zero between sends) */
+    uint32_t *col;   /* x -> x / bw, width entries */
+    uint32_t *row;   /* y -> (y / bh) * px, height entries */
+    uint32_t *count; /* procs counters (zero between sends) */
 } WlDpLayout;
 
 /* ceil(n / procs) (a power of two if m->vp_pow2); 0 for an empty array. */
@@ -112,8 +112,7 @@ double wl_dp_fattree_escape(unsigned arity, uint64_t p, unsigned level);
 /* Block layout of a width x height array over procs processors (the
  * grid as square as the power-of-two factors allow, wider than tall).
  * Returns a new layout; free with wl_dp_layout_free(). */
-WlDpLayout *wl_dp_layout_new(uint64_t procs, uint32_t width,
-                             uint32_t height);
+WlDpLayout *wl_dp_layout_new(uint64_t procs, uint32_t width, uint32_t height);
 void wl_dp_layout_free(WlDpLayout *l);
 static inline uint64_t wl_dp_layout_owner(const WlDpLayout *l, uint32_t x,
                                           uint32_t y)
@@ -130,8 +129,7 @@ uint64_t wl_dp_send_load(const WlDpMachine *m, WlDpLayout *l,
                          const WlDpSched *s, const WlDpStep *st);
 
 /* Closed-form cost of one step (any kind) on m. */
-SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l,
-                        const WlDpSched *s, const WlDpStep *st,
-                        WlDpCoef *k);
+SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l, const WlDpSched *s,
+                        const WlDpStep *st, WlDpCoef *k);
 
 #endif

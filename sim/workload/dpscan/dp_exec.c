@@ -106,16 +106,16 @@ static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
     DpExec *x = ctx;
     uint64_t words = d->bytes / x->m->msg_bytes;
     SimTime cost = (x->m->msg_overhead / 2) * words;
-    mach_proc_compute(proc(x, d->dst), cost, x->phase[x->cur], send_done,
-                      x, NULL);
+    mach_proc_compute(proc(x, d->dst), cost, x->phase[x->cur], send_done, x,
+                      NULL);
 }
 
 static void inject(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     DpExec *x = ctx;
-    uint64_t key = GPOINTER_TO_SIZE(arg) >> 32, words = GPOINTER_TO_SIZE(arg)
-                                                        & 0xffffffffu;
+    uint64_t key = GPOINTER_TO_SIZE(arg) >> 32,
+             words = GPOINTER_TO_SIZE(arg) & 0xffffffffu;
     uint64_t p = x->m->procs;
     net_send(x->net, x->first + (uint32_t)(key / p),
              x->first + (uint32_t)(key % p), words * x->m->msg_bytes, NULL,
@@ -140,9 +140,8 @@ static void spmd_send(DpExec *x, const WlDpStep *st)
         uint64_t key = GPOINTER_TO_SIZE(k) - 1, words = GPOINTER_TO_SIZE(v);
         g_assert(words <= 0xffffffffu && key < (1ull << 31));
         SimTime soft = (x->m->msg_overhead - x->m->msg_overhead / 2) * words;
-        mach_proc_compute(proc(x, key / x->m->procs), soft,
-                          x->phase[st->phase], inject, x,
-                          GSIZE_TO_POINTER((key << 32) | words));
+        mach_proc_compute(proc(x, key / x->m->procs), soft, x->phase[st->phase],
+                          inject, x, GSIZE_TO_POINTER((key << 32) | words));
     }
     g_hash_table_remove_all(x->pairs);
 }
@@ -203,10 +202,11 @@ static gboolean find_procs(DpExec *x, GError **err)
     uint64_t want = x->m->arch == WL_DP_SIMD ? 1 : x->m->procs;
     const MachKindInfo *k = mach_kind(x->mach, kind);
     if (!k || k->count < want) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "machine %s: found %u '%s' processors, expected %"
-                    G_GUINT64_FORMAT " for the dpscan model",
-                    mach_name(x->mach), k ? k->count : 0, kind, want);
+        g_set_error(
+            err, SIM_ERROR, SIM_ERROR_INPUT,
+            "machine %s: found %u '%s' processors, expected %" G_GUINT64_FORMAT
+            " for the dpscan model",
+            mach_name(x->mach), k ? k->count : 0, kind, want);
         return FALSE;
     }
     x->first = k->first;
@@ -225,8 +225,8 @@ static void fill_phases(DpExec *x, SimTime start)
 }
 
 gboolean wl_dp_exec_frame(MachMachine *mach, const WlDpMachine *m,
-                          const WlDpGeom *g, const WlDpAlgo *a,
-                          WlDpFrame *out, GError **err)
+                          const WlDpGeom *g, const WlDpAlgo *a, WlDpFrame *out,
+                          GError **err)
 {
     memset(out, 0, sizeof(*out));
     DpExec x = {.mach = mach, .m = m, .f = out, .eng = mach_engine(mach)};
@@ -239,8 +239,7 @@ gboolean wl_dp_exec_frame(MachMachine *mach, const WlDpMachine *m,
     for (int ph = 0; ph < WL_DP_N_PHASES; ph++)
         busy0[ph] = mach_proc_busy_phase(proc(&x, 0), x.phase[ph]);
     x.s = wl_dp_sched_new(g, a);
-    x.l = wl_dp_layout_new(m->procs, (uint32_t)g->width,
-                           (uint32_t)g->height);
+    x.l = wl_dp_layout_new(m->procs, (uint32_t)g->width, (uint32_t)g->height);
     x.pairs = g_hash_table_new(g_direct_hash, g_direct_equal);
     gboolean ok = sim_schedule_in(x.eng, 0, issue, &x, NULL) &&
                   sim_engine_run(x.eng, SIM_TIME_MAX, err);
@@ -262,13 +261,15 @@ MachMachine *wl_dp_exec_machine(SimEngine *eng, const char *model,
 {
     char *text;
     if (m->arch == WL_DP_SIMD)
-        text = g_strdup_printf("model: %s\nnodes: {array: {lanes: %"
-                               G_GUINT64_FORMAT "}}\nnetwork: "
-                               "{router_nodes: %" G_GUINT64_FORMAT "}\n",
-                               model, m->procs, MAX(m->procs / 16, 1));
+        text = g_strdup_printf(
+            "model: %s\nnodes: {array: {lanes: %" G_GUINT64_FORMAT
+            "}}\nnetwork: "
+            "{router_nodes: %" G_GUINT64_FORMAT "}\n",
+            model, m->procs, MAX(m->procs / 16, 1));
     else
-        text = g_strdup_printf("model: %s\nnodes: {node: {count: %"
-                               G_GUINT64_FORMAT "}}\n", model, m->procs);
+        text = g_strdup_printf(
+            "model: %s\nnodes: {node: {count: %" G_GUINT64_FORMAT "}}\n", model,
+            m->procs);
     CfgNode *sec = cfg_load_string(text, "dpscan machine", err);
     g_free(text);
     if (!sec)

@@ -44,8 +44,8 @@
  * time).  FALSE with *err if the machine does not fit or the engine
  * failed. */
 gboolean wl_dp_exec_frame(MachMachine *mach, const WlDpMachine *m,
-                          const WlDpGeom *g, const WlDpAlgo *a,
-                          WlDpFrame *out, GError **err);
+                          const WlDpGeom *g, const WlDpAlgo *a, WlDpFrame *out,
+                          GError **err);
 
 /* A new machine for the dpscan model `model` (cm200, cm5 ...) with
  * `procs` lanes (SIMD) or nodes (SPMD) at `fidelity`; free with

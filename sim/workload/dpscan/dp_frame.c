@@ -16,13 +16,13 @@ static void charge(WlDpFrame *f, WlDpPhase ph, SimTime t)
     g_assert(ok);
 }
 
-void wl_dp_frame_run(const WlDpGeom *g, const WlDpMachine *m,
-                     const WlDpAlgo *a, WlDpFrame *out)
+void wl_dp_frame_run(const WlDpGeom *g, const WlDpMachine *m, const WlDpAlgo *a,
+                     WlDpFrame *out)
 {
     memset(out, 0, sizeof(*out));
     WlDpSched *s = wl_dp_sched_new(g, a);
-    WlDpLayout *l = wl_dp_layout_new(m->procs, (uint32_t)g->width,
-                                     (uint32_t)g->height);
+    WlDpLayout *l =
+        wl_dp_layout_new(m->procs, (uint32_t)g->width, (uint32_t)g->height);
     double useful = 0.0, slots = 0.0;
     WlDpStep st;
     while (wl_dp_sched_next(s, &st)) {

@@ -15,14 +15,14 @@
 typedef struct {
     SimTime phase[WL_DP_N_PHASES];
     SimTime total;
-    WlDpCoef coef;      /* linear coefficients (SIMD calibration) */
-    WlDpCounts counts;  /* iterations, flushes, segments, messages */
-    uint64_t steps;     /* data-parallel operations issued */
-    double util;        /* element ops / element-op slots (padding) */
+    WlDpCoef coef;     /* linear coefficients (SIMD calibration) */
+    WlDpCounts counts; /* iterations, flushes, segments, messages */
+    uint64_t steps;    /* data-parallel operations issued */
+    double util;       /* element ops / element-op slots (padding) */
 } WlDpFrame;
 
 /* Costs one frame of geometry g on machine m; fills *out. */
-void wl_dp_frame_run(const WlDpGeom *g, const WlDpMachine *m,
-                     const WlDpAlgo *a, WlDpFrame *out);
+void wl_dp_frame_run(const WlDpGeom *g, const WlDpMachine *m, const WlDpAlgo *a,
+                     WlDpFrame *out);
 
 #endif

@@ -22,9 +22,9 @@ typedef struct {
 
 typedef struct {
     WlDpGeom *g;
-    uint32_t cur;    /* primitive id being collected */
-    GArray *spans;   /* DpSpan of the current primitive */
-    int32_t *cov;    /* (width + 1) * height difference counts */
+    uint32_t cur;  /* primitive id being collected */
+    GArray *spans; /* DpSpan of the current primitive */
+    int32_t *cov;  /* (width + 1) * height difference counts */
 } DpCollect;
 
 static int span_cmp(const void *a, const void *b)
@@ -74,8 +74,8 @@ static void flush_poly(DpCollect *c)
     g_array_append_val(g->poly_y0, top);
     uint32_t end = g->seg_len->len;
     g_array_append_val(g->seg_start, end);
-    uint32_t rows = end - g_array_index(g->seg_start, uint32_t,
-                                        g->seg_start->len - 2);
+    uint32_t rows =
+        end - g_array_index(g->seg_start, uint32_t, g->seg_start->len - 2);
     if (rows > g->max_rows)
         g->max_rows = rows;
     g->n_visible++;

@@ -48,20 +48,20 @@
 
 typedef struct {
     int width, height;
-    uint64_t n_polys;     /* polygons submitted (transform / shade work) */
-    uint64_t n_visible;   /* polygons with at least one pixel */
-    GArray *seg_start;    /* uint32_t, n_visible + 1 entries (CSR) */
-    GArray *seg_len;      /* uint32_t, one per (polygon, row) */
-    GArray *seg_x0;       /* uint32_t, left end of each segment (screen x) */
-    GArray *poly_y0;      /* uint32_t, top row of each visible polygon */
-    uint64_t pixels;      /* TPG: pixels the raster library generated */
-    uint64_t seg_pixels;  /* sum of segment lengths (what dpscan sends) */
-    unsigned inclusive;   /* 1: end points inclusive (see above) */
-    uint64_t covered;     /* distinct screen pixels covered */
-    uint32_t max_rows;    /* scan lines of the tallest polygon */
-    uint32_t max_len;     /* longest segment */
-    uint32_t max_depth;   /* most pixels landing on one screen location */
-    RastCounters counters;/* the raster library's own counts */
+    uint64_t n_polys;      /* polygons submitted (transform / shade work) */
+    uint64_t n_visible;    /* polygons with at least one pixel */
+    GArray *seg_start;     /* uint32_t, n_visible + 1 entries (CSR) */
+    GArray *seg_len;       /* uint32_t, one per (polygon, row) */
+    GArray *seg_x0;        /* uint32_t, left end of each segment (screen x) */
+    GArray *poly_y0;       /* uint32_t, top row of each visible polygon */
+    uint64_t pixels;       /* TPG: pixels the raster library generated */
+    uint64_t seg_pixels;   /* sum of segment lengths (what dpscan sends) */
+    unsigned inclusive;    /* 1: end points inclusive (see above) */
+    uint64_t covered;      /* distinct screen pixels covered */
+    uint32_t max_rows;     /* scan lines of the tallest polygon */
+    uint32_t max_len;      /* longest segment */
+    uint32_t max_depth;    /* most pixels landing on one screen location */
+    RastCounters counters; /* the raster library's own counts */
 } WlDpGeom;
 
 /* Measures the frame-`frame` view of `scene` at width x height (back
@@ -78,8 +78,7 @@ static inline uint32_t wl_dp_geom_rows(const WlDpGeom *g, uint64_t p)
            g_array_index(g->seg_start, uint32_t, p);
 }
 /* Length of row r (0 = top) of visible polygon p. */
-static inline uint32_t wl_dp_geom_x0(const WlDpGeom *g, uint64_t p,
-                                     uint32_t r)
+static inline uint32_t wl_dp_geom_x0(const WlDpGeom *g, uint64_t p, uint32_t r)
 {
     return g_array_index(g->seg_x0, uint32_t,
                          g_array_index(g->seg_start, uint32_t, p) + r);
@@ -88,8 +87,7 @@ static inline uint32_t wl_dp_geom_y0(const WlDpGeom *g, uint64_t p)
 {
     return g_array_index(g->poly_y0, uint32_t, p);
 }
-static inline uint32_t wl_dp_geom_len(const WlDpGeom *g, uint64_t p,
-                                      uint32_t r)
+static inline uint32_t wl_dp_geom_len(const WlDpGeom *g, uint64_t p, uint32_t r)
 {
     return g_array_index(g->seg_len, uint32_t,
                          g_array_index(g->seg_start, uint32_t, p) + r);

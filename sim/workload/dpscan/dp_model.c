@@ -7,8 +7,8 @@
  */
 #include "sim/workload/dpscan/dp_model.h"
 
-static const char *const provenance[] = {"source", "assumption",
-                                         "calibrated", NULL};
+static const char *const provenance[] = {"source", "assumption", "calibrated",
+                                         NULL};
 
 /* The parameter map `key` after checking its provenance; NULL when absent
  * (error set if required). */
@@ -40,8 +40,8 @@ static const CfgNode *param(const CfgNode *sec, const char *key,
     return p;
 }
 
-static gboolean get_time(const CfgNode *sec, const char *key,
-                         gboolean required, SimTime *out, GError **err)
+static gboolean get_time(const CfgNode *sec, const char *key, gboolean required,
+                         SimTime *out, GError **err)
 {
     GError *e = NULL;
     const CfgNode *p = param(sec, key, required, &e);
@@ -87,8 +87,9 @@ static gboolean get_levels(const CfgNode *sec, WlDpMachine *m, GError **err)
         const CfgNode *v = cfg_seq_at(seq, i);
         const char *s = cfg_scalar(v);
         GError *pe = NULL;
-        if (!s || !cfg_parse_bandwidth(s, "level_bandwidth", &m->level_bw[i],
-                                       &pe) || m->level_bw[i] <= 0.0) {
+        if (!s ||
+            !cfg_parse_bandwidth(s, "level_bandwidth", &m->level_bw[i], &pe) ||
+            m->level_bw[i] <= 0.0) {
             g_clear_error(&pe);
             cfg_error(err, v, s ? s : "a non-scalar", "a bandwidth > 0");
             return FALSE;

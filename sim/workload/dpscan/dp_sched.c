@@ -20,23 +20,31 @@
 typedef WlDpSeg DpSeg;
 
 typedef enum {
-    ST_CLEAR, ST_TRANSFORM, ST_SCAN_COMPUTE, ST_SCAN_ENUM, ST_SCAN_CHECK,
-    ST_SCAN_SEND, ST_FLUSH_MAX, ST_PIX_COMPUTE, ST_PIX_SEND,
-    ST_EXTRACT, ST_DONE
+    ST_CLEAR,
+    ST_TRANSFORM,
+    ST_SCAN_COMPUTE,
+    ST_SCAN_ENUM,
+    ST_SCAN_CHECK,
+    ST_SCAN_SEND,
+    ST_FLUSH_MAX,
+    ST_PIX_COMPUTE,
+    ST_PIX_SEND,
+    ST_EXTRACT,
+    ST_DONE
 } DpState;
 
 struct WlDpSched {
     const WlDpGeom *g;
     WlDpAlgo a;
     WlDpCounts c;
-    uint32_t *ord;        /* visible polygons, tallest first */
-    uint64_t live_polys;  /* alive in the current scan line */
-    GArray *buf;          /* DpSeg, slot order */
-    DpSeg *fl;            /* the buffer being flushed, longest first */
+    uint32_t *ord;       /* visible polygons, tallest first */
+    uint64_t live_polys; /* alive in the current scan line */
+    GArray *buf;         /* DpSeg, slot order */
+    DpSeg *fl;           /* the buffer being flushed, longest first */
     uint64_t fl_n, fl_live;
     uint32_t longest, fl_longest;
     uint64_t capacity;
-    uint64_t sent_first;  /* first slot of the last segment send */
+    uint64_t sent_first; /* first slot of the last segment send */
     DpState st;
     gboolean final_flush;
     uint32_t i, j, k;
@@ -57,11 +65,16 @@ WlDpAlgo wl_dp_algo_defaults(void)
 {
     return (WlDpAlgo){
         .clear_ops = 2,
-        .transform_ops = 240, .transform_steps = 12,
-        .scan_ops = 60, .scan_steps = 6, .scan_scans = 1,
-        .pixel_ops = 14, .pixel_steps = 3,
+        .transform_ops = 240,
+        .transform_steps = 12,
+        .scan_ops = 60,
+        .scan_steps = 6,
+        .scan_scans = 1,
+        .pixel_ops = 14,
+        .pixel_steps = 3,
         .extract_ops = 3,
-        .segment_words = 7, .pixel_words = 2,
+        .segment_words = 7,
+        .pixel_words = 2,
         .buffer_factor = 1.0,
     };
 }
@@ -86,8 +99,8 @@ WlDpSched *wl_dp_sched_new(const WlDpGeom *g, const WlDpAlgo *a)
     s->ord = g_new(uint32_t, MAX(g->n_visible, 1));
     for (uint64_t p = 0; p < g->n_visible; p++)
         s->ord[p] = (uint32_t)p;
-    g_qsort_with_data(s->ord, (gint)g->n_visible, sizeof(uint32_t),
-                      rows_desc, (gpointer)g);
+    g_qsort_with_data(s->ord, (gint)g->n_visible, sizeof(uint32_t), rows_desc,
+                      (gpointer)g);
     s->live_polys = g->n_visible;
     s->buf = g_array_new(FALSE, FALSE, sizeof(DpSeg));
     s->capacity = (uint64_t)ceil(a->buffer_factor * (double)g->n_polys);
@@ -175,7 +188,8 @@ static void add_segments(WlDpSched *s)
         DpSeg d = {.x0 = wl_dp_geom_x0(g, p, s->i),
                    .y = wl_dp_geom_y0(g, p) + s->i,
                    .len = wl_dp_geom_len(g, p, s->i),
-                   .slot = (uint32_t)s->buf->len, .poly = p};
+                   .slot = (uint32_t)s->buf->len,
+                   .poly = p};
         g_array_append_val(s->buf, d);
         s->longest = MAX(s->longest, d.len);
     }
@@ -195,9 +209,12 @@ static gboolean pixel_step(WlDpSched *s, WlDpStep *o)
         s->k++;
         return TRUE;
     }
-    *o = (WlDpStep){.kind = WL_DP_SEND, .phase = WL_DP_PH_ROUTER,
-                    .n = s->capacity, .words = s->a.pixel_words,
-                    .active = s->fl_live, .zbuf = TRUE};
+    *o = (WlDpStep){.kind = WL_DP_SEND,
+                    .phase = WL_DP_PH_ROUTER,
+                    .n = s->capacity,
+                    .words = s->a.pixel_words,
+                    .active = s->fl_live,
+                    .zbuf = TRUE};
     s->c.messages += s->fl_live * s->a.pixel_words;
     s->c.words += s->fl_live * s->a.pixel_words;
     s->c.pixel_iters++;
@@ -244,8 +261,10 @@ static gboolean scan_step(WlDpSched *s, WlDpStep *o)
         break;
     }
     g_assert(s->st == ST_SCAN_SEND);
-    *o = (WlDpStep){.kind = WL_DP_SEND, .phase = WL_DP_PH_ROUTER,
-                    .n = n, .words = s->a.segment_words,
+    *o = (WlDpStep){.kind = WL_DP_SEND,
+                    .phase = WL_DP_PH_ROUTER,
+                    .n = n,
+                    .words = s->a.segment_words,
                     .active = s->live_polys};
     s->c.messages += s->live_polys * s->a.segment_words;
     s->c.words += s->live_polys * s->a.segment_words;
@@ -258,8 +277,8 @@ static gboolean flush_step(WlDpSched *s, WlDpStep *o)
 {
     if (s->st == ST_FLUSH_MAX) {
         start_flush(s);
-        *o = (WlDpStep){.kind = WL_DP_SCAN, .phase = WL_DP_PH_PIXEL,
-                        .n = s->capacity};
+        *o = (WlDpStep){
+            .kind = WL_DP_SCAN, .phase = WL_DP_PH_PIXEL, .n = s->capacity};
         s->st = ST_PIX_COMPUTE;
         return TRUE;
     }
@@ -292,9 +311,9 @@ gboolean wl_dp_sched_next(WlDpSched *s, WlDpStep *o)
             }
             return TRUE;
         case ST_SCAN_CHECK:
-            s->st = s->buf->len > 0 &&
-                    s->buf->len + s->live_polys > s->capacity
-                        ? ST_FLUSH_MAX : ST_SCAN_SEND;
+            s->st = s->buf->len > 0 && s->buf->len + s->live_polys > s->capacity
+                        ? ST_FLUSH_MAX
+                        : ST_SCAN_SEND;
             continue;
         case ST_SCAN_COMPUTE:
         case ST_SCAN_ENUM:

@@ -59,9 +59,9 @@ typedef struct {
     uint32_t scan_scans;                     /* enumerates per scan line */
     uint32_t pixel_ops, pixel_steps;         /* per buffer slot, per pixel */
     uint32_t extract_ops;                    /* per screen pixel */
-    uint32_t segment_words;  /* arrays sent per segment (32-bit words) */
-    uint32_t pixel_words;    /* z and colour packed in a double: 2 */
-    double buffer_factor;    /* buffer capacity / polygons, > 0 */
+    uint32_t segment_words; /* arrays sent per segment (32-bit words) */
+    uint32_t pixel_words;   /* z and colour packed in a double: 2 */
+    double buffer_factor;   /* buffer capacity / polygons, > 0 */
 } WlDpAlgo;
 
 typedef struct {
@@ -76,8 +76,8 @@ typedef struct {
 
 typedef struct {
     uint64_t scan_iters, flushes, pixel_iters, segments;
-    uint64_t messages;  /* segment and pixel messages (per array) */
-    uint64_t words;     /* 32-bit words sent */
+    uint64_t messages; /* segment and pixel messages (per array) */
+    uint64_t words;    /* 32-bit words sent */
 } WlDpCounts;
 
 typedef struct WlDpSched WlDpSched;
@@ -98,7 +98,7 @@ const WlDpGeom *wl_dp_sched_geom(const WlDpSched *s);
 typedef struct {
     uint32_t x0, y, len;
     uint32_t slot;
-    uint32_t poly;  /* visible polygon it came from */
+    uint32_t poly; /* visible polygon it came from */
 } WlDpSeg;
 
 /* During a z-buffer SEND: the live segments (step.active of them; live

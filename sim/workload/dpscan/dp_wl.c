@@ -28,8 +28,7 @@ static void *dp_parse(const CfgNode *sec, GError **err)
         !cfg_get_count(sec, "processors", FALSE, 1, G_MAXUINT32, &p->procs,
                        err) ||
         !cfg_get_int(sec, "width", FALSE, 1, RAST_MAX_SIDE, &p->width, err) ||
-        !cfg_get_int(sec, "height", FALSE, 1, RAST_MAX_SIDE, &p->height,
-                     err) ||
+        !cfg_get_int(sec, "height", FALSE, 1, RAST_MAX_SIDE, &p->height, err) ||
         !cfg_get_double(sec, "buffer_factor", FALSE, 1e-6, 1e6,
                         &p->buffer_factor, err)) {
         g_free(p);
@@ -43,8 +42,7 @@ static void dp_free_params(void *p)
     g_free(p);
 }
 
-static void add_metrics(SimResult *out, const WlDpFrame *f,
-                        const WlDpGeom *g)
+static void add_metrics(SimResult *out, const WlDpFrame *f, const WlDpGeom *g)
 {
     for (int ph = 0; ph < WL_DP_N_PHASES; ph++) {
         char *name = g_strdup_printf("%s_s", wl_dp_phase_name(ph));
@@ -52,17 +50,15 @@ static void add_metrics(SimResult *out, const WlDpFrame *f,
         g_free(name);
     }
     sim_result_set_metric(out, "polygons_per_s",
-                          (double)g->n_polys / sim_time_to_s(f->total),
-                          "1/s");
+                          (double)g->n_polys / sim_time_to_s(f->total), "1/s");
     sim_result_set_metric(out, "steps", (double)f->steps, "");
-    sim_result_set_metric(out, "scan_iters", (double)f->counts.scan_iters,
-                          "");
+    sim_result_set_metric(out, "scan_iters", (double)f->counts.scan_iters, "");
     sim_result_set_metric(out, "pixel_iters", (double)f->counts.pixel_iters,
                           "");
     sim_result_set_metric(out, "flushes", (double)f->counts.flushes, "");
     sim_result_set_metric(out, "pixels", (double)g->pixels, "");
-    sim_result_set_metric(out, "collisions",
-                          (double)wl_dp_geom_collisions(g), "");
+    sim_result_set_metric(out, "collisions", (double)wl_dp_geom_collisions(g),
+                          "");
     sim_result_set_metric(out, "messages", (double)f->counts.messages, "");
 }
 
@@ -73,8 +69,8 @@ static gboolean run_frames(const WlContext *ctx, DpParams *p,
     WlDpAlgo a = wl_dp_algo_defaults();
     a.buffer_factor = p->buffer_factor;
     for (int fr = 0; fr < ctx->frames; fr++) {
-        WlDpGeom *g = wl_dp_geom_new(s, fr, (int)p->width, (int)p->height,
-                                     TRUE);
+        WlDpGeom *g =
+            wl_dp_geom_new(s, fr, (int)p->width, (int)p->height, TRUE);
         WlDpFrame f;
         gboolean ok = wl_dp_exec_frame(mach, m, g, &a, &f, err);
         if (ok) {
@@ -99,8 +95,8 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     Scene *s = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
     if (!s)
         return FALSE;
-    MachMachine *mach = wl_dp_exec_machine(ctx->eng, p->model, &m,
-                                           ctx->fidelity, err);
+    MachMachine *mach =
+        wl_dp_exec_machine(ctx->eng, p->model, &m, ctx->fidelity, err);
     gboolean ok = mach && run_frames(ctx, p, &m, mach, s, out, err);
     if (ok) {
         mach_fill_result(mach, out);

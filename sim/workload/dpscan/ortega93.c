@@ -18,9 +18,9 @@
 typedef struct {
     const RpContext *ctx;
     const CfgNode *root;
-    char *dir;        /* directory of the sweep file */
-    GPtrArray *rows;  /* RpRow * */
-    FILE *coef;       /* PGSIM_DP_COEF or NULL */
+    char *dir;       /* directory of the sweep file */
+    GPtrArray *rows; /* RpRow * */
+    FILE *coef;      /* PGSIM_DP_COEF or NULL */
 } OrRun;
 
 /* Loads the scene file named by scenes.<key>. */
@@ -53,8 +53,8 @@ static gboolean run_cell(OrRun *r, const char *model, const WlDpGeom *g,
 {
     WlDpAlgo a = wl_dp_algo_defaults();
     SimEngine *eng = sim_engine_new(1);
-    const char *fid = r->ctx && r->ctx->fidelity ? r->ctx->fidelity
-                                                 : "analytic";
+    const char *fid =
+        r->ctx && r->ctx->fidelity ? r->ctx->fidelity : "analytic";
     MachMachine *mach = wl_dp_exec_machine(eng, model, m, fid, err);
     gboolean ok = mach && wl_dp_exec_frame(mach, m, g, &a, f, err);
     mach_free(mach);
@@ -78,8 +78,8 @@ static gboolean cell(OrRun *r, const char *table, const char *model,
     g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
                                         (double)g->n_polys / t, NULL));
     if (r->coef && m->arch == WL_DP_SIMD)
-        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table,
-                row, f.coef.op_slices, f.coef.steps, f.coef.scan_slices,
+        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table, row,
+                f.coef.op_slices, f.coef.steps, f.coef.scan_slices,
                 f.coef.sends, f.coef.slices, f.coef.vp_slices);
     return TRUE;
 }
@@ -120,7 +120,8 @@ static gboolean read_res(const CfgNode *res, int *w, int *h, GError **err)
     int64_t v[2];
     for (guint k = 0; k < 2; k++) {
         const char *s = cfg_kind(res) == CFG_SEQ && cfg_seq_len(res) == 2
-                            ? cfg_scalar(cfg_seq_at(res, k)) : NULL;
+                            ? cfg_scalar(cfg_seq_at(res, k))
+                            : NULL;
         char *end = NULL;
         v[k] = s ? g_ascii_strtoll(s, &end, 10) : 0;
         if (!s || *end || v[k] < 1 || v[k] > RAST_MAX_SIDE) {
@@ -166,13 +167,15 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
     CfgNode *root = cfg_load_file(ORTEGA93_CONFIG, err);
     if (!root)
         return FALSE;
-    OrRun r = {.ctx = ctx, .root = root, .dir = g_path_get_dirname(ORTEGA93_CONFIG),
+    OrRun r = {.ctx = ctx,
+               .root = root,
+               .dir = g_path_get_dirname(ORTEGA93_CONFIG),
                .rows = rows};
     const char *coef = g_getenv("PGSIM_DP_COEF");
     if (coef)
         r.coef = fopen(coef, "w");
-    gboolean ok = scene_cells(&r, "small", err) &&
-                  scene_cells(&r, "large", err);
+    gboolean ok =
+        scene_cells(&r, "small", err) && scene_cells(&r, "large", err);
     if (r.coef)
         fclose(r.coef);
     g_free(r.dir);

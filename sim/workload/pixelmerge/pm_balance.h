@@ -26,19 +26,15 @@
 #include <glib.h>
 #include <stdint.h>
 
-typedef enum {
-    WL_PM_BAL_STRIPS,
-    WL_PM_BAL_RS,
-    WL_PM_BAL_HBP
-} WlPmBalance;
+typedef enum { WL_PM_BAL_STRIPS, WL_PM_BAL_RS, WL_PM_BAL_HBP } WlPmBalance;
 
 /* NULL-terminated names, indexed by WlPmBalance: "strips", "rs", "hbp". */
 extern const char *const wl_pm_balance_names[];
 
 typedef struct {
-    guint n_procs; /* a power of two */
-    guint height;  /* scanlines */
-    guint *owner;  /* per scanline, < n_procs */
+    guint n_procs;   /* a power of two */
+    guint height;    /* scanlines */
+    guint *owner;    /* per scanline, < n_procs */
     gboolean banded; /* every processor owns consecutive scanlines */
 } WlPmPartition;
 

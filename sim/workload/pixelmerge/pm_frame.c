@@ -47,8 +47,8 @@ double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
     v.cull_back = s->cull_back;
     WlPmCounts k;
     WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
-    SimTime t = add(span_time(&k, c, TRUE),
-                    zbuf_time(&k, c, resolution, FALSE));
+    SimTime t =
+        add(span_time(&k, c, TRUE), zbuf_time(&k, c, resolution, FALSE));
     wl_pm_wpa_free(w);
     scene_mesh_free(flat);
     return sim_time_to_ms(t);
@@ -93,8 +93,8 @@ static void local_clear(Local *l, guint n)
 static gboolean image_matches(const Local *l, const WlPmFrame *img)
 {
     WlPmCounts k;
-    WlPmWpa *w = wl_pm_render_local(&l->view, l->flat, 0, 1,
-                                     WL_PM_SPLIT_BLOCK, &k);
+    WlPmWpa *w =
+        wl_pm_render_local(&l->view, l->flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
     WlPmFrame *f = wl_pm_frame_new(img->width, img->height);
     wl_pm_frame_put_wpa(f, w);
     gboolean ok = wl_pm_frame_diff(f, img) < 0;
@@ -152,17 +152,16 @@ static void merge_metrics(const Local *l, const WlPmSetup *s,
     g_free(load);
 }
 
-gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
-                         const WlPmSetup *s, const WlPmCosts *c,
-                         WlPmFrameOut *out, GError **err)
+gboolean wl_pm_frame_run(NetNet *net, const Scene *scene, const WlPmSetup *s,
+                         const WlPmCosts *c, WlPmFrameOut *out, GError **err)
 {
     return wl_pm_frame_run_procs(net, NULL, 0, scene, s, c, out, err);
 }
 
-gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs,
-                               guint frame, const Scene *scene,
-                               const WlPmSetup *s, const WlPmCosts *c,
-                               WlPmFrameOut *out, GError **err)
+gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
+                               const Scene *scene, const WlPmSetup *s,
+                               const WlPmCosts *c, WlPmFrameOut *out,
+                               GError **err)
 {
     guint n = s->procs;
     SimEngine *eng = net_engine(net);
@@ -172,8 +171,8 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs,
         sim_busy_init(&out->busy[p]);
     Local l;
     render_all(&l, scene, frame, s);
-    WlPmPartition *part = wl_pm_partition_new(s->balance, n, l.rows,
-                                              s->resolution);
+    WlPmPartition *part =
+        wl_pm_partition_new(s->balance, n, l.rows, s->resolution);
     WlPmMerge *m = wl_pm_merge_run(s->scheme, l.local, n, part, &s->fmt);
     merge_metrics(&l, s, m, part, out);
     if (s->check_image) {
@@ -186,12 +185,11 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs,
     for (guint p = 0; p < n; p++)
         ready[p] = barrier;
     WlPmReplayOut ro = {0};
-    WlPmBalance bal = s->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS
-                                                  : s->balance;
-    gboolean ok = wl_pm_replay_procs(net, procs, m, bal, s->resolution,
-                                     &c->merge, ready, out->busy,
-                                     sim_engine_phase(eng, "merge"), &ro,
-                                     err);
+    WlPmBalance bal =
+        s->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS : s->balance;
+    gboolean ok =
+        wl_pm_replay_procs(net, procs, m, bal, s->resolution, &c->merge, ready,
+                           out->busy, sim_engine_phase(eng, "merge"), &ro, err);
     if (ok) {
         out->merge_ms = sim_time_to_ms(ro.end - barrier);
         out->frame_ms = sim_time_to_ms(ro.end - base);

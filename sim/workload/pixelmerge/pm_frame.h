@@ -53,7 +53,7 @@ typedef struct {
     double load_imbalance;       /* merge operations, Fig. 2 */
     double partition_imbalance;  /* pixels z-buffered per owner (AAPC) */
     gboolean image_checked, image_ok;
-    SimBusy *busy; /* per processor: phases "span", "zbuf", "merge" */
+    SimBusy *busy;      /* per processor: phases "span", "zbuf", "merge" */
     WlPmCounts *counts; /* per processor: its local rendering counts */
     uint64_t *active;   /* per processor: its local foremost pixels */
 } WlPmFrameOut;
@@ -62,17 +62,16 @@ typedef struct {
  * (P <= its nodes; the engine is net's), starting at the engine's current
  * time, which it advances to the frame's end; fills *out (free its busy with
  * wl_pm_frame_out_clear()).  FALSE with *err on engine failure. */
-gboolean wl_pm_frame_run(NetNet *net, const Scene *scene,
-                         const WlPmSetup *s, const WlPmCosts *c,
-                         WlPmFrameOut *out, GError **err);
+gboolean wl_pm_frame_run(NetNet *net, const Scene *scene, const WlPmSetup *s,
+                         const WlPmCosts *c, WlPmFrameOut *out, GError **err);
 /* The same for the scene's camera of frame `frame`, computing on machine
  * processors procs[0 .. P-1] (borrowed; NULL: plain engine events): each
  * is charged its span, zbuf and merge work through mach_proc_compute(),
  * in the engine's phases "span", "zbuf" and "merge". */
-gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs,
-                               guint frame, const Scene *scene,
-                               const WlPmSetup *s, const WlPmCosts *c,
-                               WlPmFrameOut *out, GError **err);
+gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
+                               const Scene *scene, const WlPmSetup *s,
+                               const WlPmCosts *c, WlPmFrameOut *out,
+                               GError **err);
 void wl_pm_frame_out_clear(WlPmFrameOut *out, guint procs);
 
 /* Time of the local phases of the whole scene on one processor (the

@@ -59,8 +59,7 @@ static void merge_put(WlPmWpa *out, int32_t *msa, const WlPmPixel *p)
         *held = *p;
 }
 
-static void merge_row(WlPmWpa *out, int32_t *msa, const WlPmWpa *w,
-                      guint y)
+static void merge_row(WlPmWpa *out, int32_t *msa, const WlPmWpa *w, guint y)
 {
     const WlPmPixel *r = wl_pm_wpa_row(w, y);
     guint n = wl_pm_wpa_row_len(w, y);
@@ -70,8 +69,7 @@ static void merge_row(WlPmWpa *out, int32_t *msa, const WlPmWpa *w,
 
 /* Z-buffers a and b (same size) into a new array: a's pixels first, then
  * b's compared; one pixel per location in the result. */
-static WlPmWpa *merge_arrays(const WlPmWpa *a, const WlPmWpa *b,
-                             int32_t *msa)
+static WlPmWpa *merge_arrays(const WlPmWpa *a, const WlPmWpa *b, int32_t *msa)
 {
     WlPmWpa *out = wl_pm_wpa_new(a->width, a->height);
     for (guint y = 0; y < a->height; y++) {
@@ -120,8 +118,8 @@ static guint pair_send_rows(const WlPmPartition *part, guint p, guint i,
 }
 
 static void pair_account(WlPmStep *st, guint p, guint partner,
-                         const WlPmWpa *out, const WlPmWpa *keep,
-                         guint rows, const PairCfg *c)
+                         const WlPmWpa *out, const WlPmWpa *keep, guint rows,
+                         const PairCfg *c)
 {
     WlPmMsg *m = &st->msg[p];
     WlPmWork *w = &st->work[p];
@@ -137,8 +135,8 @@ static void pair_account(WlPmStep *st, guint p, guint partner,
     }
 }
 
-static void pair_stage(WlPmMerge *m, WlPmWpa **held, guint i,
-                       const PairCfg *c, int32_t *msa)
+static void pair_stage(WlPmMerge *m, WlPmWpa **held, guint i, const PairCfg *c,
+                       int32_t *msa)
 {
     guint n = m->n_procs, h = c->part->height;
     WlPmStep *st = step_new(n, TRUE);
@@ -176,12 +174,12 @@ static guint log2u(guint n)
     return d;
 }
 
-static void run_pair(WlPmMerge *m, WlPmWpa *const *local,
-                     const PairCfg *c, int32_t *msa)
+static void run_pair(WlPmMerge *m, WlPmWpa *const *local, const PairCfg *c,
+                     int32_t *msa)
 {
     for (guint p = 0; p < m->n_procs; p++)
-        m->held[p] = c->full ? expand_full(local[p])
-                             : extract_rows(local[p], NULL);
+        m->held[p] =
+            c->full ? expand_full(local[p]) : extract_rows(local[p], NULL);
     for (guint i = 0; i < log2u(m->n_procs); i++)
         pair_stage(m, m->held, i, c, msa);
 }
@@ -293,8 +291,7 @@ WlPmMerge *wl_pm_merge_run(WlPmScheme scheme, WlPmWpa *const *local,
     memset(msa, 0xff, w * sizeof *msa); /* all -1 */
     WlPmPartition *strips = NULL;
     if (scheme == WL_PM_ZBUF_EXC)
-        part = strips = wl_pm_partition_new(WL_PM_BAL_STRIPS, n_procs,
-                                            NULL, h);
+        part = strips = wl_pm_partition_new(WL_PM_BAL_STRIPS, n_procs, NULL, h);
     PairCfg c = {part, fmt, scheme == WL_PM_ZBUF_EXC};
     if (scheme == WL_PM_AAPC)
         run_aapc(m, local, part, fmt, msa);

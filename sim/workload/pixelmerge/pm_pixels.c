@@ -112,8 +112,7 @@ static gboolean pixel_same(const WlPmPixel *a, const WlPmPixel *b)
         return FALSE;
     if (a->poly == WL_PM_EMPTY)
         return TRUE;
-    return a->z == b->z && a->color == b->color && a->x == b->x &&
-           a->y == b->y;
+    return a->z == b->z && a->color == b->color && a->x == b->x && a->y == b->y;
 }
 
 int64_t wl_pm_frame_diff(const WlPmFrame *a, const WlPmFrame *b)

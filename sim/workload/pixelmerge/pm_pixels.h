@@ -32,8 +32,7 @@ typedef struct {
 } WlPmPixel;
 
 /* TRUE when a is in front of b (an empty pixel is behind everything). */
-static inline gboolean wl_pm_pixel_front(const WlPmPixel *a,
-                                         const WlPmPixel *b)
+static inline gboolean wl_pm_pixel_front(const WlPmPixel *a, const WlPmPixel *b)
 {
     if (a->poly == WL_PM_EMPTY)
         return FALSE;
@@ -44,9 +43,9 @@ static inline gboolean wl_pm_pixel_front(const WlPmPixel *a,
 
 typedef struct {
     guint width, height;
-    GArray *px;         /* WlPmPixel, scanline order */
+    GArray *px;          /* WlPmPixel, scanline order */
     uint32_t *row_start; /* height + 1 offsets into px */
-    guint next_row;     /* first row whose start is not yet fixed */
+    guint next_row;      /* first row whose start is not yet fixed */
 } WlPmWpa;
 
 /* Returns a new empty array for a width x height screen; free with

@@ -49,8 +49,8 @@ static WlPmWpa *to_wpa(const RastActive *a)
         size_t n;
         const RastActivePixel *r = rast_active_row(a, y, &n);
         for (size_t i = 0; i < n; i++) {
-            WlPmPixel px = {(uint16_t)r[i].x, (uint16_t)y, r[i].z,
-                            r[i].prim, r[i].rgba};
+            WlPmPixel px = {(uint16_t)r[i].x, (uint16_t)y, r[i].z, r[i].prim,
+                            r[i].rgba};
             wl_pm_wpa_push(out, &px);
         }
     }
@@ -58,9 +58,8 @@ static WlPmWpa *to_wpa(const RastActive *a)
     return out;
 }
 
-WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat,
-                            guint p, guint n, WlPmSplit split,
-                            WlPmCounts *c)
+WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat, guint p,
+                            guint n, WlPmSplit split, WlPmCounts *c)
 {
     memset(c, 0, sizeof *c);
     guint k;
@@ -68,8 +67,8 @@ WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat,
     c->polygons = k;
     RastSpanList *sl = rast_spanlist_new(v->width, v->height);
     if (k > 0)
-        rast_draw_mesh(v, flat, mat4_identity(), scene_color(1, 1, 1), 0,
-                       ids, k, rast_spanlist_sink(sl), &c->rc);
+        rast_draw_mesh(v, flat, mat4_identity(), scene_color(1, 1, 1), 0, ids,
+                       k, rast_spanlist_sink(sl), &c->rc);
     rast_spanlist_sort(sl);
     count_rows(sl, c);
     RastActive *a = rast_active_new(v->width, v->height);

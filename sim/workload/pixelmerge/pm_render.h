@@ -36,8 +36,7 @@ typedef struct {
 /* Renders processor p's share (of n) of `flat` (a world-space mesh from
  * scene_flatten(), polygon i has primitive id i) with view v; returns its
  * active pixels (free with wl_pm_wpa_free()) and fills *c. */
-WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat,
-                            guint p, guint n, WlPmSplit split,
-                            WlPmCounts *c);
+WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat, guint p,
+                            guint n, WlPmSplit split, WlPmCounts *c);
 
 #endif

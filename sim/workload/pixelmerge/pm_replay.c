@@ -181,8 +181,7 @@ static void build_steps(Replay *r, const WlPmMerge *m, WlPmBalance bal,
 {
     guint max = log2u(r->n) + 1 + m->steps->len;
     r->steps = g_new0(RStep, max);
-    r->n_steps = global_sum_steps(r->steps, r->n, bal, height, c,
-                                  &r->overflow);
+    r->n_steps = global_sum_steps(r->steps, r->n, bal, height, c, &r->overflow);
     for (guint s = 0; s < m->steps->len; s++)
         merge_step(&r->steps[r->n_steps++], g_ptr_array_index(m->steps, s),
                    r->n, c, &r->overflow);
@@ -208,16 +207,19 @@ gboolean wl_pm_replay(NetNet *net, const WlPmMerge *m, WlPmBalance bal,
 }
 
 gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
-                            const WlPmMerge *m, WlPmBalance bal,
-                            guint height, const WlPmMergeCosts *costs,
-                            const SimTime *ready, SimBusy *busy,
-                            unsigned phase, WlPmReplayOut *out,
+                            const WlPmMerge *m, WlPmBalance bal, guint height,
+                            const WlPmMergeCosts *costs, const SimTime *ready,
+                            SimBusy *busy, unsigned phase, WlPmReplayOut *out,
                             GError **err)
 {
     guint n = m->n_procs;
     g_assert(net_nodes(net) >= n);
-    Replay r = {.net = net, .procs = procs, .eng = net_engine(net), .n = n,
-                .busy = busy, .phase = phase};
+    Replay r = {.net = net,
+                .procs = procs,
+                .eng = net_engine(net),
+                .n = n,
+                .busy = busy,
+                .phase = phase};
     build_steps(&r, m, bal, height, costs);
     r.cur = g_new0(guint, n);
     r.waiting = g_new0(gboolean, n);

@@ -26,12 +26,12 @@
 
 /* Cost of one operation of the merge phase. */
 typedef struct {
-    SimTime pack;      /* copy a pixel into a send buffer */
-    SimTime scatter;   /* store a pixel without depth comparison */
-    SimTime compare;   /* depth-test a received pixel */
-    SimTime gather;    /* copy a pixel back into consecutive storage */
-    SimTime sum_elem;  /* add one scanline count in the global sum */
-    SimTime sort_elem; /* HBP: one scanline x log2 N of sort and assign */
+    SimTime pack;         /* copy a pixel into a send buffer */
+    SimTime scatter;      /* store a pixel without depth comparison */
+    SimTime compare;      /* depth-test a received pixel */
+    SimTime gather;       /* copy a pixel back into consecutive storage */
+    SimTime sum_elem;     /* add one scanline count in the global sum */
+    SimTime sort_elem;    /* HBP: one scanline x log2 N of sort and assign */
     uint32_t count_bytes; /* bytes of one scanline count in a message */
 } WlPmMergeCosts;
 
@@ -56,10 +56,9 @@ gboolean wl_pm_replay(NetNet *net, const WlPmMerge *m, WlPmBalance bal,
  * mach_proc_compute(), so its busy time and trace spans are the
  * machine's as well as busy[p]'s. */
 gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
-                            const WlPmMerge *m, WlPmBalance bal,
-                            guint height, const WlPmMergeCosts *costs,
-                            const SimTime *ready, SimBusy *busy,
-                            unsigned phase, WlPmReplayOut *out,
+                            const WlPmMerge *m, WlPmBalance bal, guint height,
+                            const WlPmMergeCosts *costs, const SimTime *ready,
+                            SimBusy *busy, unsigned phase, WlPmReplayOut *out,
                             GError **err);
 void wl_pm_replay_out_clear(WlPmReplayOut *out);
 

@@ -31,9 +31,9 @@
 #include <string.h>
 
 const char *const wl_pm_cost_ops[] = {
-    "polygon", "span",    "insert_step", "pixel",   "zcompare",
-    "scanline", "zbuf_init", "pack",     "scatter", "compare",
-    "gather",  "sum_elem", "sort_elem",  NULL};
+    "polygon",  "span",      "insert_step", "pixel",   "zcompare",
+    "scanline", "zbuf_init", "pack",        "scatter", "compare",
+    "gather",   "sum_elem",  "sort_elem",   NULL};
 
 /* Scheme words: the library's names plus "zbuf_exc" (underscore). */
 static const char *const scheme_words[] = {"zbuf-exc", "pair", "aapc",
@@ -44,12 +44,10 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
 {
     if (!mach_require_costs(m, "node", wl_pm_cost_ops, err))
         return FALSE;
-    SimTime *dst[] = {&c->polygon,       &c->span,
-                      &c->insert_step,   &c->pixel,
-                      &c->zcompare,      &c->scanline,
-                      &c->zbuf_init,     &c->merge.pack,
-                      &c->merge.scatter, &c->merge.compare,
-                      &c->merge.gather,  &c->merge.sum_elem,
+    SimTime *dst[] = {&c->polygon,        &c->span,         &c->insert_step,
+                      &c->pixel,          &c->zcompare,     &c->scanline,
+                      &c->zbuf_init,      &c->merge.pack,   &c->merge.scatter,
+                      &c->merge.compare,  &c->merge.gather, &c->merge.sum_elem,
                       &c->merge.sort_elem};
     for (guint i = 0; wl_pm_cost_ops[i]; i++)
         *dst[i] = mach_cost(m, "node", wl_pm_cost_ops[i]);
@@ -58,8 +56,7 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
 }
 
 uint64_t wl_pm_memory_bytes(const WlPmMemory *mem, const WlPmSetup *s,
-                            uint64_t polygons, uint64_t spans,
-                            uint64_t active)
+                            uint64_t polygons, uint64_t spans, uint64_t active)
 {
     uint64_t n2 = (uint64_t)s->resolution * s->resolution;
     uint64_t b = mem->base + polygons * mem->polygon + spans * mem->span;
@@ -72,10 +69,8 @@ static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
 {
     uint64_t bpp = 8, bpl = 4, bps = 2, bpc = 4;
     if (!cfg_get_count(sec, "bytes_per_pixel", FALSE, 1, 256, &bpp, err) ||
-        !cfg_get_count(sec, "bytes_per_location", FALSE, 1, 256, &bpl,
-                       err) ||
-        !cfg_get_count(sec, "bytes_per_scanline", FALSE, 0, 256, &bps,
-                       err) ||
+        !cfg_get_count(sec, "bytes_per_location", FALSE, 1, 256, &bpl, err) ||
+        !cfg_get_count(sec, "bytes_per_scanline", FALSE, 0, 256, &bps, err) ||
         !cfg_get_count(sec, "bytes_per_count", FALSE, 1, 16, &bpc, err))
         return FALSE;
     p->setup.fmt = (WlPmFormat){(guint)bpp, (guint)bpl, (guint)bps};
@@ -83,14 +78,12 @@ static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
     return TRUE;
 }
 
-static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m,
-                             GError **err)
+static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m, GError **err)
 {
     *m = (WlPmMemory){1000000, 200, 32, 8};
     const CfgNode *n;
     if (!cfg_get_map(sec, "memory", FALSE,
-                     "a map {base, polygon, span, location} of sizes", &n,
-                     err))
+                     "a map {base, polygon, span, location} of sizes", &n, err))
         return FALSE;
     if (!n)
         return TRUE;
@@ -100,8 +93,7 @@ static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m,
            cfg_get_size(n, "location", FALSE, &m->location, err);
 }
 
-static gboolean check_procs(const CfgNode *sec, uint64_t procs,
-                            GError **err)
+static gboolean check_procs(const CfgNode *sec, uint64_t procs, GError **err)
 {
     if ((procs & (procs - 1)) == 0)
         return TRUE;
@@ -116,10 +108,9 @@ static gboolean parse_words(const CfgNode *sec, WlPmSetup *s, GError **err)
 {
     int scheme = WL_PM_PAIR, bal = WL_PM_BAL_RS, split = WL_PM_SPLIT_CYCLIC;
     if (!cfg_get_enum(sec, "scheme", FALSE, scheme_words, &scheme, err) ||
-        !cfg_get_enum(sec, "balance", FALSE, wl_pm_balance_names, &bal,
-                      err) ||
-        !cfg_get_enum(sec, "polygon_split", FALSE, wl_pm_split_names,
-                      &split, err))
+        !cfg_get_enum(sec, "balance", FALSE, wl_pm_balance_names, &bal, err) ||
+        !cfg_get_enum(sec, "polygon_split", FALSE, wl_pm_split_names, &split,
+                      err))
         return FALSE;
     s->scheme = scheme == 3 ? WL_PM_ZBUF_EXC : (WlPmScheme)scheme;
     s->balance = bal;
@@ -161,22 +152,19 @@ static uint64_t peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
 {
     uint64_t peak = 0;
     for (guint q = 0; q < s->procs; q++)
-        peak = MAX(peak, wl_pm_memory_bytes(&p->mem, s,
-                                            fo->counts[q].polygons,
-                                            fo->counts[q].rc.spans,
-                                            fo->active[q]));
+        peak = MAX(peak,
+                   wl_pm_memory_bytes(&p->mem, s, fo->counts[q].polygons,
+                                      fo->counts[q].rc.spans, fo->active[q]));
     return peak;
 }
 
-static void set(SimResult *out, const char *name, double v,
-                const char *unit)
+static void set(SimResult *out, const char *name, double v, const char *unit)
 {
     sim_result_set_metric(out, name, v, unit);
 }
 
 static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
-                         double serial_ms, const WlPmSetup *s,
-                         uint64_t memory)
+                         double serial_ms, const WlPmSetup *s, uint64_t memory)
 {
     SimTime busy = 0;
     for (guint p = 0; p < s->procs; p++)
@@ -189,8 +177,8 @@ static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
     set(out, "frame_ms", fo->frame_ms, "ms");
     set(out, "serial_ms", serial_ms, "ms");
     set(out, "speedup", serial_ms / fo->frame_ms, "");
-    set(out, "utilisation",
-        sim_time_to_ms(busy) / (s->procs * fo->frame_ms), "");
+    set(out, "utilisation", sim_time_to_ms(busy) / (s->procs * fo->frame_ms),
+        "");
     set(out, "concurrent_volume", (double)fo->concurrent_volume, "B");
     set(out, "merge_bytes", (double)fo->merge_bytes, "B");
     set(out, "load_imbalance", fo->load_imbalance, "");
@@ -215,8 +203,8 @@ static gboolean check_machine(MachMachine *m, const WlPmSetup *s,
         return TRUE;
     char *found = g_strdup_printf("'%u' processors", s->procs);
     char *exp = g_strdup_printf("at most the %u nodes of kind 'node' of "
-                                "machine '%s'", k ? k->count : 0,
-                                mach_name(m));
+                                "machine '%s'",
+                                k ? k->count : 0, mach_name(m));
     if (at) {
         cfg_error(err, at, found, exp);
     } else {
@@ -230,12 +218,11 @@ static gboolean check_machine(MachMachine *m, const WlPmSetup *s,
 
 static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
                           const Scene *sc, const WlPmSetup *s,
-                          const WlPmCosts *c, WlPmFrameOut *fo,
-                          SimResult *out, GError **err)
+                          const WlPmCosts *c, WlPmFrameOut *fo, SimResult *out,
+                          GError **err)
 {
     wl_pm_frame_out_clear(fo, s->procs);
-    if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo,
-                               err))
+    if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo, err))
         return FALSE;
     SimTime t;
     if (!sim_time_from_s(fo->frame_ms * 1e-3, &t))
@@ -244,15 +231,16 @@ static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
     if (fo->image_checked && !fo->image_ok) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
                     "pixelmerge: the merged image of frame %d differs "
-                    "from the serial render", f);
+                    "from the serial render",
+                    f);
         return FALSE;
     }
     return TRUE;
 }
 
-gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc,
-                          const WlPmParams *p, const WlPmCosts *c,
-                          int frames, SimResult *out, GError **err)
+gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc, const WlPmParams *p,
+                          const WlPmCosts *c, int frames, SimResult *out,
+                          GError **err)
 {
     return wl_pm_run_frames_at(m, sc, p, c, frames, NULL, out, err);
 }
@@ -293,17 +281,14 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
     Scene *sc = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
     if (!sc)
         return FALSE;
-    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root,
-                                                         "machine"),
+    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
                                        ctx->fidelity, err);
     WlPmCosts c;
     WlPmParams *p = params;
-    gboolean ok = m &&
-                  wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
-                  wl_pm_run_frames_at(m, sc, p, &c, ctx->frames,
-                                      cfg_path(ctx->root,
-                                               "workload.processors"),
-                                      out, err);
+    gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
+                  wl_pm_run_frames_at(
+                      m, sc, p, &c, ctx->frames,
+                      cfg_path(ctx->root, "workload.processors"), out, err);
     if (ok) {
         out->seed = ctx->seed;
         out->events = sim_engine_events(ctx->eng);

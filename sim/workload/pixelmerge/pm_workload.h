@@ -17,10 +17,10 @@ extern const WlOps wl_pixelmerge_ops;
 /* Per-node memory footprint, bytes per item (assumptions, set in the
  * workload section); see wl_pm_memory_bytes(). */
 typedef struct {
-    uint64_t base;      /* program, OS and message buffers */
-    uint64_t polygon;   /* one local polygon (vertices, normals, colour) */
-    uint64_t span;      /* one span record in a scanline list */
-    uint64_t location;  /* one entry of a full N x N z-buffer (ZBUF-EXC) */
+    uint64_t base;     /* program, OS and message buffers */
+    uint64_t polygon;  /* one local polygon (vertices, normals, colour) */
+    uint64_t span;     /* one span record in a scanline list */
+    uint64_t location; /* one entry of a full N x N z-buffer (ZBUF-EXC) */
 } WlPmMemory;
 
 /* What wl_pixelmerge_ops.parse() returns (free with its free_params). */
@@ -44,17 +44,16 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
  * z-buffer and a receive buffer of half of it, for the active schemes
  * twice the WPA (local pixels and a merge buffer) at bytes_per_pixel. */
 uint64_t wl_pm_memory_bytes(const WlPmMemory *mem, const WlPmSetup *s,
-                            uint64_t polygons, uint64_t spans,
-                            uint64_t active);
+                            uint64_t polygons, uint64_t spans, uint64_t active);
 
 /* Runs `frames` frames of sc (frame f with the scene's camera of frame f)
  * with setup s on machine m (processors node0 .. node{P-1}, its network
  * and engine) and fills out (mach_fill_result plus the metrics listed in
  * docs/workloads.md).  FALSE with *err on failure (SIM_ERROR_INTERNAL if
  * the merged image differs from the serial render). */
-gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc,
-                          const WlPmParams *p, const WlPmCosts *c,
-                          int frames, SimResult *out, GError **err);
+gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc, const WlPmParams *p,
+                          const WlPmCosts *c, int frames, SimResult *out,
+                          GError **err);
 /* The same; a processor count the machine cannot hold is reported at
  * procs_at (the config's processors key; NULL: not located). */
 gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,

@@ -17,10 +17,10 @@
 #define NONE (-1)
 
 typedef struct {
-    GArray *mask;   /* uint64_t per host element */
-    double *load;   /* ngp nominal loads of this structure */
-    gint cur;       /* open cluster's GP, NONE */
-    double run;     /* nominal weight in the open cluster */
+    GArray *mask;     /* uint64_t per host element */
+    double *load;     /* ngp nominal loads of this structure */
+    gint cur;         /* open cluster's GP, NONE */
+    double run;       /* nominal weight in the open cluster */
     gint first, last; /* pending edit region, NONE */
 } StructMeta;
 
@@ -30,9 +30,9 @@ struct WlPphigsDist {
     guint ngp;
     WlPphigsAlgo algo;
     WlPphigsWeights w;
-    double maxw;        /* largest primitive weight seen */
-    GPtrArray *meta;    /* StructMeta * per structure */
-    double *gload;      /* global nominal load per GP */
+    double maxw;     /* largest primitive weight seen */
+    GPtrArray *meta; /* StructMeta * per structure */
+    double *gload;   /* global nominal load per GP */
     uint64_t next_id;
     WlPphigsTraffic traffic;
 };
@@ -222,8 +222,7 @@ static void simple_elem(WlPphigsDist *d, guint sid, guint i)
 }
 
 /* Deals element i (complex); returns the GPs it checked. */
-static uint64_t complex_elem(WlPphigsDist *d, guint sid, guint i,
-                             AttrState *s)
+static uint64_t complex_elem(WlPphigsDist *d, guint sid, guint i, AttrState *s)
 {
     const SceneElem *e = hel(d, sid, i);
     uint64_t *m = mask_at(d, sid, i);
@@ -341,9 +340,9 @@ static void struct_deltas(WlPphigsDist *d, guint sid, int64_t *memo,
         const SceneElem *e = hel(d, sid, i);
         gboolean odp = e->kind == SCENE_EL_POLYGON2D;
         int64_t adv = odp ? 1
-                      : e->kind == SCENE_EL_EXECUTE ? odp_total(d, e->child,
-                                                                memo)
-                                                    : 0;
+                      : e->kind == SCENE_EL_EXECUTE
+                          ? odp_total(d, e->child, memo)
+                          : 0;
         uint64_t m = *mask_at(d, sid, i);
         for (guint g = 0; g < d->ngp; g++) {
             if (!((m >> g) & 1))
@@ -549,8 +548,8 @@ void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos)
     region_add(m, (gint)pos);
 }
 
-gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid,
-                               const SceneElem *e, GError **err)
+gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid, const SceneElem *e,
+                               GError **err)
 {
     if (!wl_pphigs_dist_insert(d, sid, scene_db_len(d->host, sid), e, err))
         return FALSE;
@@ -581,8 +580,8 @@ gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
     uint64_t m = *mask_at(d, sid, pos);
     for (guint g = 0; g < d->ngp; g++)
         if ((m >> g) & 1) {
-            gboolean ok = scene_db_modify(d->gp[g], sid,
-                                          gp_pos(d, sid, pos, g), &c, NULL);
+            gboolean ok = scene_db_modify(d->gp[g], sid, gp_pos(d, sid, pos, g),
+                                          &c, NULL);
             g_assert(ok);
             d->traffic.elements_sent++; /* §3.1: new data to each holder */
             d->traffic.sent_to[g]++;

@@ -47,12 +47,12 @@ typedef struct {
 
 /* Host-to-GP traffic of the distribution and edits so far. */
 typedef struct {
-    uint64_t elements_sent;   /* element copies sent to GPs (inserted or,
-                                 by modify, replaced) */
-    uint64_t sent_to[64];     /* the same per GP */
+    uint64_t elements_sent; /* element copies sent to GPs (inserted or,
+                               by modify, replaced) */
+    uint64_t sent_to[64];   /* the same per GP */
     uint64_t elements_removed;
-    uint64_t last_scan;       /* elements examined by the last backward scan */
-    uint64_t max_scan;        /* the largest such scan */
+    uint64_t last_scan; /* elements examined by the last backward scan */
+    uint64_t max_scan;  /* the largest such scan */
 } WlPphigsTraffic;
 
 typedef struct WlPphigsDist WlPphigsDist;
@@ -80,8 +80,8 @@ void wl_pphigs_dist_loads(const WlPphigsDist *d, double *out);
  * scene_db_* (cycles, kind change on modify). */
 gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
                                const SceneElem *e, GError **err);
-gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid,
-                               const SceneElem *e, GError **err);
+gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid, const SceneElem *e,
+                               GError **err);
 gboolean wl_pphigs_dist_insert(WlPphigsDist *d, guint sid, guint pos,
                                const SceneElem *e, GError **err);
 void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos);

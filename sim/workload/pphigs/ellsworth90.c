@@ -12,12 +12,11 @@
 
 static const guint gp_counts[] = {4, 16};
 
-MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model,
-                                   guint ngp, const char *fidelity,
-                                   GError **err)
+MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model, guint ngp,
+                                   const char *fidelity, GError **err)
 {
-    char *text = g_strdup_printf("model: %s\nnodes: {gp: {count: %u}}\n",
-                                 model, ngp);
+    char *text =
+        g_strdup_printf("model: %s\nnodes: {gp: {count: %u}}\n", model, ngp);
     CfgNode *sec = cfg_load_string(text, "<pphigs machine>", err);
     MachMachine *m = sec ? mach_new_from_cfg(eng, sec, fidelity, err) : NULL;
     cfg_free(sec);
@@ -36,15 +35,14 @@ static WlPphigsDist *distribute(const ScenePphigsDb *db, guint ngp,
 }
 
 /* Per-GP processor times (us) of one frame of `a` on ngp GPs. */
-static gboolean frame_times(const ScenePphigsDb *db, guint ngp,
-                            WlPphigsAlgo a, const WlPphigsRig *rig,
-                            double *us, GError **err)
+static gboolean frame_times(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
+                            const WlPphigsRig *rig, double *us, GError **err)
 {
     SimEngine *eng = sim_engine_new(1);
-    MachMachine *m = wl_pphigs_machine_new(eng, rig->model, ngp,
-                                           rig->fidelity, err);
-    WlPphigsFrame *f = m ? wl_pphigs_frame_new(m, &rig->setup.frame, err)
-                         : NULL;
+    MachMachine *m =
+        wl_pphigs_machine_new(eng, rig->model, ngp, rig->fidelity, err);
+    WlPphigsFrame *f =
+        m ? wl_pphigs_frame_new(m, &rig->setup.frame, err) : NULL;
     gboolean ok = f != NULL;
     if (ok) {
         WlPphigsDist *d = distribute(db, ngp, a, wl_pphigs_frame_costs(f),
@@ -84,9 +82,8 @@ gboolean wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
            run_algo(db, ngp, WL_PPHIGS_COMPLEX, rig, t1, complex, err);
 }
 
-static void analytic_algo(const ScenePphigsDb *db, guint ngp,
-                          WlPphigsAlgo a, const WlPphigsCosts *c, double cs,
-                          WlPphigsMetrics *m)
+static void analytic_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
+                          const WlPphigsCosts *c, double cs, WlPphigsMetrics *m)
 {
     WlPphigsDist *d = distribute(db, ngp, a, c, cs);
     double *us = g_new(double, ngp);
@@ -112,8 +109,7 @@ static void add(GPtrArray *rows, const char *table, const char *row,
     g_ptr_array_add(rows, rp_row_new(table, row, col, v, NULL));
 }
 
-static void db_rows(const ScenePphigsDb *db, const char *row,
-                    GPtrArray *rows)
+static void db_rows(const ScenePphigsDb *db, const char *row, GPtrArray *rows)
 {
     SceneDbStats st;
     scene_db_stats(db->db, &st);
@@ -129,8 +125,7 @@ static void db_rows(const ScenePphigsDb *db, const char *row,
 }
 
 static gboolean cell_rows(const ScenePphigsDb *db, const char *row,
-                          const WlPphigsRig *rig, GPtrArray *rows,
-                          GError **err)
+                          const WlPphigsRig *rig, GPtrArray *rows, GError **err)
 {
     for (guint k = 0; k < G_N_ELEMENTS(gp_counts); k++) {
         WlPphigsMetrics s, x;
@@ -151,8 +146,7 @@ static gboolean cell_rows(const ScenePphigsDb *db, const char *row,
 }
 
 gboolean wl_pphigs_table1(const ScenePphigsSpec *specs, guint n,
-                          const WlPphigsRig *rig, GPtrArray *rows,
-                          GError **err)
+                          const WlPphigsRig *rig, GPtrArray *rows, GError **err)
 {
     for (guint i = 0; i < n; i++) {
         ScenePphigsDb db;

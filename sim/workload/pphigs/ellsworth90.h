@@ -30,9 +30,8 @@ typedef struct {
 
 /* A new machine of model `model` with `ngp` GPs (a `nodes.gp.count`
  * override), on eng; NULL with *err. */
-MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model,
-                                   guint ngp, const char *fidelity,
-                                   GError **err);
+MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model, guint ngp,
+                                   const char *fidelity, GError **err);
 
 /* One database at one GP count with both algorithms, from frames on
  * fresh machines (see above).  FALSE with *err (bad model ...). */

@@ -37,8 +37,8 @@ typedef struct {
     MachProc *p;
     GArray *steps; /* Step */
     guint next;
-    guint *buf;    /* per region: commands buffered */
-    guint *sent;   /* per renderer: batches sent */
+    guint *buf;     /* per region: commands buffered */
+    guint *sent;    /* per renderer: batches sent */
     uint64_t edits; /* elements the host sends before this frame */
 } Gp;
 
@@ -46,9 +46,9 @@ typedef struct {
     WlPphigsFrame *f;
     guint id;
     MachProc *p;
-    guint nreg;      /* its regions: id, id + R, id + 2R ... */
-    guint cur;       /* local index of the region being rasterised */
-    guint *pending;  /* per local region: commands not yet rasterised */
+    guint nreg;     /* its regions: id, id + R, id + 2R ... */
+    guint cur;      /* local index of the region being rasterised */
+    guint *pending; /* per local region: commands not yet rasterised */
     gboolean *begun;
     guint *got, *expect; /* per GP: batches received / announced */
     guint gps_done;
@@ -76,14 +76,12 @@ struct WlPphigsFrame {
 
 /* ---- costs from the machine ------------------------------------------- */
 
-gboolean wl_pphigs_costs_from_machine(const MachMachine *m,
-                                      WlPphigsCosts *c, SimTime *send,
-                                      GError **err)
+gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,
+                                      SimTime *send, GError **err)
 {
     return mach_cost_lookup(m, "gp", "polygon", &c->poly, err) &&
            mach_cost_lookup(m, "gp", "vertex", &c->vertex, err) &&
-           mach_cost_lookup(m, "gp", "reject_vertex", &c->reject_vertex,
-                            err) &&
+           mach_cost_lookup(m, "gp", "reject_vertex", &c->reject_vertex, err) &&
            mach_cost_lookup(m, "gp", "color", &c->color, err) &&
            mach_cost_lookup(m, "gp", "matrix_replace", &c->matrix, err) &&
            mach_cost_lookup(m, "gp", "matrix_concat", &c->concat, err) &&
@@ -95,8 +93,7 @@ static gboolean hw_costs(WlPphigsFrame *f, GError **err)
 {
     const MachMachine *m = f->m;
     return wl_pphigs_costs_from_machine(m, &f->c, &f->gp_send, err) &&
-           mach_cost_lookup(m, "renderer", "primitive", &f->rend_prim,
-                            err) &&
+           mach_cost_lookup(m, "renderer", "primitive", &f->rend_prim, err) &&
            mach_cost_lookup(m, "renderer", "region_begin", &f->rend_begin,
                             err) &&
            mach_cost_lookup(m, "renderer", "region_shade", &f->rend_shade,
@@ -118,8 +115,8 @@ static gboolean kind_count(const MachMachine *m, const char *kind, guint lo,
     const CfgNode *at = cfg_path(mach_model_cfg(m), path);
     char *found = k ? g_strdup_printf("%u %s processors", k->count, kind)
                     : g_strdup_printf("no '%s' processors", kind);
-    char *exp = g_strdup_printf("%u .. %u %s processors for a PPHIGS frame",
-                                lo, hi, kind);
+    char *exp = g_strdup_printf("%u .. %u %s processors for a PPHIGS frame", lo,
+                                hi, kind);
     cfg_error(err, at ? at : mach_model_cfg(m), found, exp);
     g_free(path);
     g_free(found);
@@ -266,8 +263,8 @@ static void rend_raster(Rend *r, guint j)
         mach_proc_compute(r->p, f->rend_begin, f->ph_rast, NULL, NULL, NULL);
     }
     if (r->pending[j])
-        mach_proc_compute(r->p, r->pending[j] * f->rend_prim, f->ph_rast,
-                          NULL, NULL, NULL);
+        mach_proc_compute(r->p, r->pending[j] * f->rend_prim, f->ph_rast, NULL,
+                          NULL, NULL);
     r->pending[j] = 0;
 }
 
@@ -277,8 +274,8 @@ static void rend_finish(Rend *r)
     WlPphigsFrame *f = r->f;
     for (; r->cur < r->nreg; r->cur++) {
         rend_raster(r, r->cur);
-        mach_proc_compute(r->p, f->rend_shade, f->ph_shade,
-                          rend_region_done, r, GUINT_TO_POINTER(r->cur));
+        mach_proc_compute(r->p, f->rend_shade, f->ph_shade, rend_region_done, r,
+                          GUINT_TO_POINTER(r->cur));
     }
 }
 
@@ -405,8 +402,8 @@ static void rend_init(WlPphigsFrame *f, Rend *r, guint id)
     r->f = f;
     r->id = id;
     r->p = mach_proc(f->m, "renderer", id);
-    r->nreg = f->nregions > id ? (f->nregions - id + f->nrend - 1) / f->nrend
-                               : 0;
+    r->nreg =
+        f->nregions > id ? (f->nregions - id + f->nrend - 1) / f->nrend : 0;
     r->pending = g_new0(guint, MAX(r->nreg, 1));
     r->begun = g_new0(gboolean, MAX(r->nreg, 1));
     r->got = g_new0(guint, f->ngp);
@@ -445,8 +442,7 @@ static gboolean check_machine(WlPphigsFrame *f, GError **err)
 }
 
 WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
-                                   const WlPphigsFrameSpec *spec,
-                                   GError **err)
+                                   const WlPphigsFrameSpec *spec, GError **err)
 {
     g_assert(spec->region >= 1 && spec->batch >= 1);
     g_assert(spec->width >= 1 && spec->height >= 1);
@@ -537,8 +533,8 @@ static void frame_reset(WlPphigsFrame *f)
     f->start = f->end = sim_now(f->eng);
 }
 
-gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d,
-                             Mat4 vp, const uint64_t *host_elems,
+gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
+                             const uint64_t *host_elems,
                              WlPphigsFrameStats *out, GError **err)
 {
     g_assert(wl_pphigs_dist_ngp(d) == f->ngp);

@@ -48,13 +48,13 @@
 
 /* The frame's own sizes (configs/pphigs/frame.yaml). */
 typedef struct {
-    guint cmd_bytes;      /* one renderer command on the ring */
-    guint end_bytes;      /* an end marker */
-    guint batch;          /* commands per region buffer before a send */
-    guint pixel_bytes;    /* per pixel sent to the frame buffer */
-    guint width, height;  /* screen, pixels */
-    guint region;         /* region side, pixels (128 on Pixel-Planes 5) */
-    guint element_bytes;  /* one display-list element, host to GP */
+    guint cmd_bytes;     /* one renderer command on the ring */
+    guint end_bytes;     /* an end marker */
+    guint batch;         /* commands per region buffer before a send */
+    guint pixel_bytes;   /* per pixel sent to the frame buffer */
+    guint width, height; /* screen, pixels */
+    guint region;        /* region side, pixels (128 on Pixel-Planes 5) */
+    guint element_bytes; /* one display-list element, host to GP */
 } WlPphigsFrameSpec;
 
 typedef struct WlPphigsFrame WlPphigsFrame;
@@ -71,16 +71,14 @@ typedef struct {
 
 /* The GP cost table and the per-command send cost of machine m (its
  * `gp` kind); FALSE with a located *err if one is missing. */
-gboolean wl_pphigs_costs_from_machine(const MachMachine *m,
-                                      WlPphigsCosts *c, SimTime *send,
-                                      GError **err);
+gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,
+                                      SimTime *send, GError **err);
 
 /* A frame driver on machine m (borrowed; needs kinds gp (1..64),
  * renderer and frame_buffer with their costs, and a network).  Returns a
  * new frame (wl_pphigs_frame_free) or NULL with a located *err. */
 WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
-                                   const WlPphigsFrameSpec *spec,
-                                   GError **err);
+                                   const WlPphigsFrameSpec *spec, GError **err);
 void wl_pphigs_frame_free(WlPphigsFrame *f);
 guint wl_pphigs_frame_gps(const WlPphigsFrame *f);
 const WlPphigsCosts *wl_pphigs_frame_costs(const WlPphigsFrame *f);
@@ -92,8 +90,8 @@ const WlPphigsCosts *wl_pphigs_frame_costs(const WlPphigsFrame *f);
  * host packs each (`send_element`, phase "edit") and sends them in one
  * message per GP, which starts its frame when they arrive.  FALSE with
  * *err if the engine failed. */
-gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d,
-                             Mat4 vp, const uint64_t *host_elems,
+gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
+                             const uint64_t *host_elems,
                              WlPphigsFrameStats *out, GError **err);
 
 /* Utilisation over `elapsed`: mean of busy / elapsed over GPs and over

@@ -29,15 +29,14 @@ SimTime wl_pphigs_elem_cost(const WlPphigsCosts *c, const SceneElem *e)
 SimTime wl_pphigs_prim_cost(const WlPphigsCosts *c, const SceneElem *e,
                             gboolean offscreen)
 {
-    return offscreen ? c->reject_vertex * e->nverts
-                     : wl_pphigs_elem_cost(c, e);
+    return offscreen ? c->reject_vertex * e->nverts : wl_pphigs_elem_cost(c, e);
 }
 
 static void prim_fn(const ScenePrimInst *pi, void *ud)
 {
     Walk *w = ud;
-    gboolean off = scene_pphigs_prim_offscreen(mat4_mul(w->vp, pi->matrix),
-                                               pi->el);
+    gboolean off =
+        scene_pphigs_prim_offscreen(mat4_mul(w->vp, pi->matrix), pi->el);
     w->t += wl_pphigs_prim_cost(w->c, pi->el, off);
 }
 
@@ -79,9 +78,8 @@ void wl_pphigs_metrics_from(double t1, const double *gp_us, guint ngp,
     m->speedup = ngp * m->efficiency * m->utilisation;
 }
 
-void wl_pphigs_metrics(const WlPphigsDist *d, Mat4 vp,
-                       const WlPphigsCosts *c, double *gp_us,
-                       WlPphigsMetrics *m)
+void wl_pphigs_metrics(const WlPphigsDist *d, Mat4 vp, const WlPphigsCosts *c,
+                       double *gp_us, WlPphigsMetrics *m)
 {
     guint n = wl_pphigs_dist_ngp(d);
     SimTime t1 = wl_pphigs_traversal_cost(wl_pphigs_dist_host(d), vp, c);
@@ -95,8 +93,8 @@ void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,
                                   WlPphigsWeights *w)
 {
     for (int k = 0; k < SCENE_EL_NKINDS; k++)
-        w->w[k] = scene_elem_is_prim((SceneElemKind)k)
-                      ? sim_time_to_us(c->poly) : 0;
+        w->w[k] =
+            scene_elem_is_prim((SceneElemKind)k) ? sim_time_to_us(c->poly) : 0;
     w->w[SCENE_EL_COLOR] = sim_time_to_us(c->color);
     w->w[SCENE_EL_MATRIX] = sim_time_to_us(c->matrix);
     w->w[SCENE_EL_EXECUTE] = sim_time_to_us(c->execute);

@@ -22,14 +22,14 @@
 #include "sim/workload/pphigs/distrib.h"
 
 typedef struct {
-    SimTime poly, vertex;   /* on-screen polygon, plus per vertex */
-    SimTime reject_vertex;  /* per vertex of a trivially rejected polygon */
+    SimTime poly, vertex;  /* on-screen polygon, plus per vertex */
+    SimTime reject_vertex; /* per vertex of a trivially rejected polygon */
     SimTime color, matrix, concat, execute; /* per element */
 } WlPphigsCosts;
 
 typedef struct {
-    double t1;         /* single processor (us) */
-    double sum, max;   /* over the GPs (us) */
+    double t1;                               /* single processor (us) */
+    double sum, max;                         /* over the GPs (us) */
     double efficiency, utilisation, speedup; /* fractions, factor */
 } WlPphigsMetrics;
 
@@ -51,9 +51,8 @@ void wl_pphigs_metrics_from(double t1, const double *gp_us, guint ngp,
                             WlPphigsMetrics *m);
 /* Per-GP times (out[g], ngp entries, us) and the metrics, analytically:
  * the same sums a frame's busy times give (tests compare the two). */
-void wl_pphigs_metrics(const WlPphigsDist *d, Mat4 vp,
-                       const WlPphigsCosts *c, double *gp_us,
-                       WlPphigsMetrics *m);
+void wl_pphigs_metrics(const WlPphigsDist *d, Mat4 vp, const WlPphigsCosts *c,
+                       double *gp_us, WlPphigsMetrics *m);
 /* Nominal weights from the costs (§2.3.4: the usual on-screen time, in
  * microseconds), with clustering factor `cluster`. */
 void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,

@@ -9,11 +9,14 @@ typedef struct {
     gsize off;
 } Field;
 
-#define F(k) {#k, G_STRUCT_OFFSET(ScenePphigsSpec, k)}
+#define F(k)                                                                   \
+    {                                                                          \
+#k, G_STRUCT_OFFSET(ScenePphigsSpec, k)                                \
+    }
 static const Field count_fields[] = {
-    F(polygons), F(attributes), F(verts), F(boids), F(boid_polygons),
-    F(boid_colors), F(well_structs), F(well_polygons), F(well_attributes),
-    F(figures), F(structures), F(levels)};
+    F(polygons),        F(attributes),  F(verts),        F(boids),
+    F(boid_polygons),   F(boid_colors), F(well_structs), F(well_polygons),
+    F(well_attributes), F(figures),     F(structures),   F(levels)};
 #undef F
 
 static const char *const db_names =
@@ -62,8 +65,7 @@ static void no_such_db(const CfgNode *root, const char *name,
 {
     GString *exp = g_string_new("one of the databases of ");
     g_string_append(exp, cfg_file(root));
-    for (guint i = 0; cfg_kind(root) == CFG_MAP && i < cfg_map_len(root);
-         i++)
+    for (guint i = 0; cfg_kind(root) == CFG_MAP && i < cfg_map_len(root); i++)
         g_string_append_printf(exp, "%s %s", i ? "," : ":",
                                cfg_map_key(root, i));
     char *found = g_strdup_printf("database '%s'", name);
@@ -79,8 +81,7 @@ gboolean wl_pphigs_spec_load(const char *path, const char *name,
     CfgNode *root = cfg_load_file(path, err);
     if (!root)
         return FALSE;
-    const CfgNode *m = cfg_kind(root) == CFG_MAP ? cfg_get(root, name)
-                                                  : NULL;
+    const CfgNode *m = cfg_kind(root) == CFG_MAP ? cfg_get(root, name) : NULL;
     gboolean ok = m && wl_pphigs_spec_from_cfg(m, out, err);
     if (!m)
         no_such_db(root, name, name_at, err);
@@ -93,12 +94,12 @@ gboolean wl_pphigs_spec_load(const char *path, const char *name,
 static gboolean frame_sizes(const CfgNode *fr, WlPphigsFrameSpec *s,
                             GError **err)
 {
-    static const char *const keys[] = {"width", "height", "region",
-                                       "cmd_bytes", "end_bytes", "batch",
+    static const char *const keys[] = {"width",       "height",       "region",
+                                       "cmd_bytes",   "end_bytes",    "batch",
                                        "pixel_bytes", "element_bytes"};
-    guint *dst[] = {&s->width, &s->height, &s->region, &s->cmd_bytes,
-                    &s->end_bytes, &s->batch, &s->pixel_bytes,
-                    &s->element_bytes};
+    guint *dst[] = {&s->width,       &s->height,       &s->region,
+                    &s->cmd_bytes,   &s->end_bytes,    &s->batch,
+                    &s->pixel_bytes, &s->element_bytes};
     for (guint i = 0; i < G_N_ELEMENTS(keys); i++) {
         uint64_t v = 0;
         if (!cfg_get_count(fr, keys[i], TRUE, 1, 1u << 24, &v, err))
@@ -114,8 +115,9 @@ static gboolean cluster_scale(const CfgNode *fr, double *out, GError **err)
     static const char *const prov[] = {"calibrated", "assumption", "source"};
     const CfgNode *p = cfg_get(fr, "cluster_scale");
     if (!p || cfg_kind(p) != CFG_MAP) {
-        cfg_error(err, p ? p : fr, p ? "a bare cluster_scale"
-                                     : "no key 'cluster_scale' in this map",
+        cfg_error(err, p ? p : fr,
+                  p ? "a bare cluster_scale"
+                    : "no key 'cluster_scale' in this map",
                   "cluster_scale: {value: <number>, calibrated: <cells>}");
         return FALSE;
     }

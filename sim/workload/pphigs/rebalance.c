@@ -27,11 +27,11 @@ typedef struct {
 typedef struct {
     WlPphigsDist *d;
     guint ngp;
-    GArray **by_gp;   /* Cand, per GP */
-    double *est;      /* load estimate per GP, updated by moves */
-    guint *off;       /* per structure: index of its first element */
-    double *actual;   /* per host element: actual cost, all instances */
-    guint *inst;      /* per structure: max-set instances */
+    GArray **by_gp; /* Cand, per GP */
+    double *est;    /* load estimate per GP, updated by moves */
+    guint *off;     /* per structure: index of its first element */
+    double *actual; /* per host element: actual cost, all instances */
+    guint *inst;    /* per structure: max-set instances */
 } Pool;
 
 WlPphigsRebal *wl_pphigs_rebal_new(const WlPphigsRebalParams *p)
@@ -86,8 +86,8 @@ typedef struct {
 static void measure_prim(const ScenePrimInst *pi, void *ud)
 {
     Measure *m = ud;
-    gboolean off = scene_pphigs_prim_offscreen(mat4_mul(m->vp, pi->matrix),
-                                               pi->el);
+    gboolean off =
+        scene_pphigs_prim_offscreen(mat4_mul(m->vp, pi->matrix), pi->el);
     m->pl->actual[m->pl->off[pi->sid] + pi->pos] +=
         sim_time_to_us(wl_pphigs_prim_cost(m->c, pi->el, off));
 }
@@ -230,8 +230,8 @@ static double exchange(WlPphigsRebal *rb, Pool *pl, guint h, guint l)
     return 0;
 }
 
-static guint fix_invalidated(WlPphigsRebal *rb, Pool *pl,
-                             const double *gp_us, double budget)
+static guint fix_invalidated(WlPphigsRebal *rb, Pool *pl, const double *gp_us,
+                             double budget)
 {
     memcpy(pl->est, gp_us, pl->ngp * sizeof *pl->est);
     guint moves = 0;

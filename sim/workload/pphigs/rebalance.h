@@ -32,26 +32,26 @@
 #include "sim/workload/pphigs/metrics.h"
 
 typedef struct {
-    double threshold;  /* imbalance that counts (0.10 in §5) */
-    guint frames;      /* consecutive frames over it before acting */
-    double fraction;   /* share of the excess corrected per frame */
-    guint max_moves;   /* element moves per frame, at most */
-    uint64_t seed;     /* random picks of §5.1 */
+    double threshold; /* imbalance that counts (0.10 in §5) */
+    guint frames;     /* consecutive frames over it before acting */
+    double fraction;  /* share of the excess corrected per frame */
+    guint max_moves;  /* element moves per frame, at most */
+    uint64_t seed;    /* random picks of §5.1 */
 } WlPphigsRebalParams;
 
 typedef enum {
     WL_PPHIGS_REBAL_NONE,
-    WL_PPHIGS_REBAL_IMPERFECT,   /* §5.1 */
-    WL_PPHIGS_REBAL_INVALIDATED  /* §5.2 */
+    WL_PPHIGS_REBAL_IMPERFECT,  /* §5.1 */
+    WL_PPHIGS_REBAL_INVALIDATED /* §5.2 */
 } WlPphigsRebalCause;
 
 typedef struct {
-    double imbalance;          /* measured this frame */
-    double nominal_imbalance;  /* of the nominal loads */
-    guint over;                /* consecutive frames over the threshold */
-    WlPphigsRebalCause cause;  /* of this frame's correction */
-    guint moves;               /* elements moved this frame */
-    uint64_t total_moves;      /* since wl_pphigs_rebal_new */
+    double imbalance;         /* measured this frame */
+    double nominal_imbalance; /* of the nominal loads */
+    guint over;               /* consecutive frames over the threshold */
+    WlPphigsRebalCause cause; /* of this frame's correction */
+    guint moves;              /* elements moved this frame */
+    uint64_t total_moves;     /* since wl_pphigs_rebal_new */
 } WlPphigsRebalStep;
 
 typedef struct WlPphigsRebal WlPphigsRebal;

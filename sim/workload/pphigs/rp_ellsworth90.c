@@ -12,13 +12,12 @@
 #define MODEL "pixel-planes-5"
 
 static const char *const db_names[] = {"space_station", "building_lobby",
-                                       "flock_old_well",
-                                       "two_human_figures"};
+                                       "flock_old_well", "two_human_figures"};
 
 static gboolean rp_run(const RpContext *ctx, GPtrArray *rows, GError **err)
 {
-    WlPphigsRig rig = {MODEL, ctx->fidelity ? ctx->fidelity : "analytic",
-                       {{0}, 0}};
+    WlPphigsRig rig = {
+        MODEL, ctx->fidelity ? ctx->fidelity : "analytic", {{0}, 0}};
     if (!wl_pphigs_setup_load(SETUP_FILE, &rig.setup, err))
         return FALSE;
     ScenePphigsSpec specs[G_N_ELEMENTS(db_names)];

@@ -59,11 +59,9 @@ static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
         return TRUE;
     gboolean ok =
         cfg_get_bool(r, "enabled", FALSE, &p->rebalance, err) &&
-        cfg_get_double(r, "threshold", FALSE, 1e-6, 1, &p->rb.threshold,
-                       err) &&
+        cfg_get_double(r, "threshold", FALSE, 1e-6, 1, &p->rb.threshold, err) &&
         cfg_get_count(r, "frames", FALSE, 1, 1000000, &frames, err) &&
-        cfg_get_double(r, "fraction", FALSE, 1e-6, 1, &p->rb.fraction,
-                       err) &&
+        cfg_get_double(r, "fraction", FALSE, 1e-6, 1, &p->rb.fraction, err) &&
         cfg_get_count(r, "max_moves", FALSE, 1, 1000000, &moves, err);
     p->rb.frames = (guint)frames;
     p->rb.max_moves = (guint)moves;
@@ -90,14 +88,13 @@ static void *parse(const CfgNode *sec, GError **err)
     p->algo = WL_PPHIGS_COMPLEX;
     p->rebalance = TRUE;
     p->rb = (WlPphigsRebalParams){0.10, 3, 0.5, 16, 1};
-    gboolean ok =
-        cfg_get_enum(sec, "algorithm", FALSE, algos, &p->algo, err) &&
-        cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
-        cfg_get_int(sec, "edits_per_frame", FALSE, 0, 1000000, &p->edits,
-                    err) &&
-        cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
-                       &p->edit_angle, err) &&
-        parse_rebalance(sec, p, err) && parse_files(sec, p, err);
+    gboolean ok = cfg_get_enum(sec, "algorithm", FALSE, algos, &p->algo, err) &&
+                  cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
+                  cfg_get_int(sec, "edits_per_frame", FALSE, 0, 1000000,
+                              &p->edits, err) &&
+                  cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
+                                 &p->edit_angle, err) &&
+                  parse_rebalance(sec, p, err) && parse_files(sec, p, err);
     if (!ok) {
         params_free(p);
         return NULL;
@@ -116,9 +113,10 @@ static gboolean check_gps(const WlContext *ctx, const CfgNode *mach,
     if (!gps || !gp || !mach_param_node(gp, "count") ||
         !mach_param_count(gp, "count", TRUE, &n, NULL) || n == (uint64_t)gps)
         return TRUE;
-    char *found = g_strdup_printf("gps %" G_GINT64_FORMAT " while "
-                                  "machine.nodes.gp.count is %" G_GUINT64_FORMAT,
-                                  gps, n);
+    char *found =
+        g_strdup_printf("gps %" G_GINT64_FORMAT " while "
+                        "machine.nodes.gp.count is %" G_GUINT64_FORMAT,
+                        gps, n);
     cfg_error(err, cfg_path(ctx->root, "workload.gps"), found,
               "one GP count (set workload.gps or machine.nodes.gp.count, "
               "or both to the same value)");
@@ -136,15 +134,13 @@ static MachMachine *build_machine(const WlContext *ctx, const Params *p,
                         : cfg_load_string("model: pixel-planes-5\n",
                                           "<pphigs default machine>", err);
     if (sec && p->gps) {
-        char *ov = g_strdup_printf("nodes.gp.count=%" G_GINT64_FORMAT,
-                                   p->gps);
+        char *ov = g_strdup_printf("nodes.gp.count=%" G_GINT64_FORMAT, p->gps);
         gboolean ok = cfg_set_override(sec, ov, err);
         g_assert(ok);
         g_free(ov);
     }
-    MachMachine *m = sec ? mach_new_from_cfg(ctx->eng, sec, ctx->fidelity,
-                                             err)
-                         : NULL;
+    MachMachine *m =
+        sec ? mach_new_from_cfg(ctx->eng, sec, ctx->fidelity, err) : NULL;
     cfg_free(sec);
     return m;
 }
@@ -161,7 +157,7 @@ typedef struct {
     SimRng *rng;
     guint ngp;
     uint64_t edits, moves, commands, host_elems;
-    uint64_t sent[64];     /* WlPphigsTraffic.sent_to at the last frame */
+    uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
     double imbalance;
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
 } Run;
@@ -169,8 +165,7 @@ typedef struct {
 static gboolean build(Run *r, const WlContext *ctx, GError **err)
 {
     r->m = build_machine(ctx, r->p, err);
-    r->frame = r->m ? wl_pphigs_frame_new(r->m, &r->p->setup.frame, err)
-                    : NULL;
+    r->frame = r->m ? wl_pphigs_frame_new(r->m, &r->p->setup.frame, err) : NULL;
     if (!r->frame || !scene_pphigs_generate(&r->p->spec, &r->db, err))
         return FALSE;
     r->ngp = wl_pphigs_frame_gps(r->frame);
@@ -178,8 +173,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
     wl_pphigs_weights_from_costs(
         wl_pphigs_frame_costs(r->frame),
         wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
-    r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo,
-                              &w);
+    r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
     memcpy(r->sent, wl_pphigs_dist_traffic(r->d)->sent_to, sizeof r->sent);
     WlPphigsRebalParams rb = r->p->rb;
     rb.seed = ctx->seed;
@@ -210,8 +204,7 @@ static void edit_one(Run *r)
                 g_array_append_val(at, sp);
             }
     if (at->len) {
-        guint *sp = (guint *)at->data +
-                    2 * sim_rng_below(r->rng, at->len);
+        guint *sp = (guint *)at->data + 2 * sim_rng_below(r->rng, at->len);
         SceneElem e = *scene_db_elem(h, sp[0], sp[1]);
         double a = r->p->edit_angle * G_PI / 180;
         e.matrix = mat4_mul(e.matrix, mat4_rotate(vec3(0, 1, 0), a));
@@ -252,8 +245,7 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     wl_pphigs_metrics_from(t1, st.gp_time_us, r->ngp, &r->paper);
     if (r->rb) {
         WlPphigsRebalStep rs;
-        wl_pphigs_rebal_frame(r->rb, r->d, vp,
-                              wl_pphigs_frame_costs(r->frame),
+        wl_pphigs_rebal_frame(r->rb, r->d, vp, wl_pphigs_frame_costs(r->frame),
                               st.gp_time_us, &rs);
         r->moves = rs.total_moves;
     }
@@ -279,8 +271,7 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
                           (double)net_total_bytes(net) / n, "B");
     sim_result_set_metric(out, "commands_per_frame", r->commands / n, "");
     sim_result_set_metric(out, "gps", r->ngp, "");
-    sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance,
-                          "%");
+    sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance, "%");
     sim_result_set_metric(out, "edits", (double)r->edits, "");
     sim_result_set_metric(out, "host_elements_per_frame",
                           (double)r->host_elems / n, "");

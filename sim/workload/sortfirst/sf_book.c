@@ -23,8 +23,7 @@ void wl_sf_batch_clear(WlSfBatch *bt)
     memset(bt, 0, sizeof *bt);
 }
 
-static void batch_reset(WlSfBatch *bt, guint src, guint dst,
-                        const WlSfSizes *s)
+static void batch_reset(WlSfBatch *bt, guint src, guint dst, const WlSfSizes *s)
 {
     g_array_set_size(bt->chunks, 0);
     g_array_set_size(bt->insts, 0);
@@ -95,8 +94,7 @@ static void send_chunk(WlSfBook *b, WlSfBatch *bt, guint c, guint hint,
     w->sent_polys += ch->polys;
 }
 
-static void send_pointer(WlSfBook *b, WlSfBatch *bt, guint i,
-                         WlSfBookWork *w)
+static void send_pointer(WlSfBook *b, WlSfBatch *bt, guint i, WlSfBookWork *w)
 {
     g_array_append_val(bt->insts, i);
     bt->bytes += b->sizes.instance;
@@ -222,8 +220,7 @@ void wl_sf_book_receive(WlSfBook *b, const WlSfBatch *in, WlSfBookWork *w)
     }
 }
 
-static gboolean any_pointer(const WlSfBook *b, const WlSfChunk *ch,
-                            uint64_t me)
+static gboolean any_pointer(const WlSfBook *b, const WlSfChunk *ch, uint64_t me)
 {
     for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
         if (b->held_inst[i] & me)
@@ -252,8 +249,8 @@ void wl_sf_book_render_set(WlSfBook *b, guint p, const GArray *fresh,
     uint64_t me = wl_sf_bit(p);
     gboolean maxset = b->bk == WL_SF_MAXSET;
     for (guint k = 0; !maxset && fresh && k < fresh->len; k++)
-        w->new_boxes += wl_sf_chunk(b->db, g_array_index(fresh, guint,
-                                                         k))->n_inst;
+        w->new_boxes +=
+            wl_sf_chunk(b->db, g_array_index(fresh, guint, k))->n_inst;
     for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
         const WlSfChunk *ch = wl_sf_chunk(b->db, c);
         if (!(b->held_data[c] & me))
@@ -282,8 +279,8 @@ uint64_t wl_sf_book_memory(const WlSfBook *b, guint p)
         if (!(b->held_data[c] & me))
             continue;
         bytes += b->sizes.chunk + ch->polys * b->sizes.triangle;
-        for (guint i = ch->inst_first; maxset &&
-                                       i < ch->inst_first + ch->n_inst; i++)
+        for (guint i = ch->inst_first;
+             maxset && i < ch->inst_first + ch->n_inst; i++)
             bytes += (b->held_inst[i] & me) ? b->sizes.instance : 0;
     }
     return bytes;

@@ -45,10 +45,10 @@ extern const char *const wl_sf_bookkeeping_names[]; /* minset, maxset */
 
 /* Message sizes in bytes (workload YAML). */
 typedef struct {
-    uint64_t message;   /* per message (header, end-of-sort marker) */
-    uint64_t chunk;     /* per chunk: id, structure, box, first instance */
-    uint64_t triangle;  /* per polygon of a chunk's data */
-    uint64_t instance;  /* per instance pointer (max-set) */
+    uint64_t message;  /* per message (header, end-of-sort marker) */
+    uint64_t chunk;    /* per chunk: id, structure, box, first instance */
+    uint64_t triangle; /* per polygon of a chunk's data */
+    uint64_t instance; /* per instance pointer (max-set) */
 } WlSfSizes;
 
 /* What one processor sends one other processor in a frame. */

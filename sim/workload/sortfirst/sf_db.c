@@ -20,13 +20,13 @@ static uint32_t elem_polys(const SceneElem *e)
 /* Per max-set node: where its primitives' polygons start in `flat`. */
 typedef struct {
     const SceneDb *db;
-    GArray *nodes;       /* SceneMaxNode */
-    guint *node_off;     /* node -> offset into first_poly */
+    GArray *nodes;        /* SceneMaxNode */
+    guint *node_off;      /* node -> offset into first_poly */
     uint32_t *first_poly; /* (node, pos) -> first polygon */
     Mat4 *node_matrix;
     gboolean *node_seen;
     uint32_t next_poly;
-    gboolean mixed;      /* a node's primitives had different matrices */
+    gboolean mixed; /* a node's primitives had different matrices */
     guint mixed_sid;
 } Walk;
 
@@ -40,7 +40,8 @@ static void walk_prim(const ScenePrimInst *pi, void *ud)
         w->node_seen[pi->instance] = TRUE;
         w->node_matrix[pi->instance] = pi->matrix;
     } else if (memcmp(&w->node_matrix[pi->instance], &pi->matrix,
-                      sizeof(Mat4)) != 0 && !w->mixed) {
+                      sizeof(Mat4)) != 0 &&
+               !w->mixed) {
         w->mixed = TRUE;
         w->mixed_sid = pi->sid;
     }
@@ -55,8 +56,7 @@ static void walk_init(Walk *w, const SceneDb *db)
     w->node_off = g_new(guint, n + 1);
     for (guint i = 0; i < n; i++) {
         w->node_off[i] = total;
-        total += scene_db_len(db, g_array_index(w->nodes, SceneMaxNode,
-                                                 i).sid);
+        total += scene_db_len(db, g_array_index(w->nodes, SceneMaxNode, i).sid);
     }
     w->node_off[n] = total;
     w->first_poly = g_new0(uint32_t, total ? total : 1);
@@ -121,8 +121,10 @@ typedef struct {
 
 static void emit_chunk(Builder *b, const Prim *p, guint n)
 {
-    WlSfChunk c = {.sid = b->sid, .prim_first = b->d->prims->len,
-                   .n_prims = n, .box = scene_box_empty()};
+    WlSfChunk c = {.sid = b->sid,
+                   .prim_first = b->d->prims->len,
+                   .n_prims = n,
+                   .box = scene_box_empty()};
     for (guint i = 0; i < n; i++) {
         const SceneElem *e = scene_db_elem(b->db, b->sid, p[i].pos);
         g_array_append_val(b->d->prims, p[i].pos);
@@ -197,13 +199,14 @@ static void add_instances(WlSfDb *d, const Walk *w, guint c, GArray *nodes)
 /* Max-set nodes of each structure, in node order. */
 static GPtrArray *nodes_by_struct(const SceneDb *db, const GArray *nodes)
 {
-    GPtrArray *by = g_ptr_array_new_with_free_func(
-        (GDestroyNotify)g_array_unref);
+    GPtrArray *by =
+        g_ptr_array_new_with_free_func((GDestroyNotify)g_array_unref);
     for (guint s = 0; s < scene_db_struct_count(db); s++)
         g_ptr_array_add(by, g_array_new(FALSE, FALSE, sizeof(guint)));
     for (guint i = 0; i < nodes->len; i++)
-        g_array_append_val(g_ptr_array_index(by, g_array_index(
-                               nodes, SceneMaxNode, i).sid), i);
+        g_array_append_val(
+            g_ptr_array_index(by, g_array_index(nodes, SceneMaxNode, i).sid),
+            i);
     return by;
 }
 

@@ -40,30 +40,30 @@ typedef enum { WL_SF_CHUNK_SORTED, WL_SF_CHUNK_UNSORTED } WlSfChunking;
 extern const char *const wl_sf_chunking_names[]; /* "sorted", "unsorted" */
 
 typedef struct {
-    guint sid;                /* structure holding the primitives */
+    guint sid;                 /* structure holding the primitives */
     guint prim_first, n_prims; /* range of WlSfDb.prims (element positions) */
-    uint32_t polys;           /* polygons drawn for one instance */
-    SceneBox box;             /* in the primitives' own coordinates */
-    guint master;             /* fixed master processor */
-    guint inst_first, n_inst; /* range of WlSfDb.insts */
+    uint32_t polys;            /* polygons drawn for one instance */
+    SceneBox box;              /* in the primitives' own coordinates */
+    guint master;              /* fixed master processor */
+    guint inst_first, n_inst;  /* range of WlSfDb.insts */
 } WlSfChunk;
 
 typedef struct {
     guint chunk;
-    guint node;               /* max-set node (scene_db_maxset numbering) */
-    guint poly_first;         /* range of WlSfDb.inst_polys */
-    Mat4 matrix;              /* object -> world of the chunk's primitives */
+    guint node;       /* max-set node (scene_db_maxset numbering) */
+    guint poly_first; /* range of WlSfDb.inst_polys */
+    Mat4 matrix;      /* object -> world of the chunk's primitives */
 } WlSfInst;
 
 typedef struct {
     guint procs, granularity;
     WlSfChunking chunking;
-    GArray *chunks;      /* WlSfChunk */
-    GArray *insts;       /* WlSfInst, grouped by chunk */
-    GArray *prims;       /* guint element positions, grouped by chunk */
-    GArray *inst_polys;  /* uint32_t polygon indices of `flat` */
-    SceneMesh *flat;     /* the posted network in world space (owned) */
-    uint64_t min_prims;  /* primitives stored once (min-set) */
+    GArray *chunks;     /* WlSfChunk */
+    GArray *insts;      /* WlSfInst, grouped by chunk */
+    GArray *prims;      /* guint element positions, grouped by chunk */
+    GArray *inst_polys; /* uint32_t polygon indices of `flat` */
+    SceneMesh *flat;    /* the posted network in world space (owned) */
+    uint64_t min_prims; /* primitives stored once (min-set) */
 } WlSfDb;
 
 /* Builds the chunk database of db's posted network for `procs` masters

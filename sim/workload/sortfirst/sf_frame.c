@@ -13,14 +13,14 @@ typedef struct {
     WlSfRun *run;
     guint p;
     MachProc *proc;
-    WlSfBatch *out;   /* P batches: what p sends each processor */
+    WlSfBatch *out; /* P batches: what p sends each processor */
     WlSfBookWork w;
-    GArray *fresh;    /* chunks received this frame */
+    GArray *fresh; /* chunks received this frame */
     guint received;
     gboolean sorted;
-    RastCounters rc;  /* raster work (vertices, primitives ...) */
+    RastCounters rc; /* raster work (vertices, primitives ...) */
     uint64_t spans, pixels, polys;
-    SimTime busy0;    /* busy time at the frame's start */
+    SimTime busy0; /* busy time at the frame's start */
 } Proc;
 
 struct WlSfRun {
@@ -36,9 +36,9 @@ struct WlSfRun {
     Proc *procs;
     RastView view;
     RastZBuffer *zb, *serial;
-    GArray *stats;     /* WlSfFrameStats */
-    GArray *render;    /* scratch: instances */
-    GArray *subset;    /* scratch: polygons */
+    GArray *stats;  /* WlSfFrameStats */
+    GArray *render; /* scratch: instances */
+    GArray *subset; /* scratch: polygons */
     int frame, frames;
     guint done;
     SimTime start;
@@ -102,8 +102,7 @@ static void region_span(void *ctx, const RastSpan *s, RastCounters *c)
     }
 }
 
-static RastView frame_view(const Scene *scene, const WlSfSetup *s,
-                           guint frame)
+static RastView frame_view(const Scene *scene, const WlSfSetup *s, guint frame)
 {
     SceneCamera cam = scene_camera_at(scene, frame);
     RastView v = rast_view_for_camera(&cam, s->resolution, s->resolution);
@@ -117,9 +116,8 @@ void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
     RastView v = frame_view(scene, s, frame);
     RastCounters c = {0};
     rast_zbuffer_clear(zb);
-    rast_draw_mesh(&v, db->flat, mat4_identity(),
-                   (SceneColor){1, 1, 1}, 0, NULL, 0,
-                   rast_zbuffer_sink(zb), &c);
+    rast_draw_mesh(&v, db->flat, mat4_identity(), (SceneColor){1, 1, 1}, 0,
+                   NULL, 0, rast_zbuffer_sink(zb), &c);
 }
 
 static void render_region(WlSfRun *r, Proc *pr)
@@ -143,7 +141,8 @@ static void render_region(WlSfRun *r, Proc *pr)
     pr->pixels = k.pixels;
 }
 
-/* ---- the frame's events --------------------------------------------------- */
+/* ---- the frame's events ---------------------------------------------------
+ */
 
 static void start_frame(SimEngine *eng, void *ctx, void *arg);
 
@@ -196,8 +195,8 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
         if (q == pr->p)
             continue;
         WlSfBatch *bt = &pr->out[q];
-        net_send(r->net, mach_proc_id(pr->proc),
-                 mach_proc_id(r->procs[q].proc), bt->bytes, bt, arrive, r);
+        net_send(r->net, mach_proc_id(pr->proc), mach_proc_id(r->procs[q].proc),
+                 bt->bytes, bt, arrive, r);
     }
     pr->sorted = TRUE;
     maybe_render(r, pr);
@@ -231,7 +230,8 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
         sort(r, &r->procs[p]);
 }
 
-/* ---- the frame's figures -------------------------------------------------- */
+/* ---- the frame's figures --------------------------------------------------
+ */
 
 static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
 {
@@ -250,8 +250,7 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
         st->pixels += pr->pixels;
         st->load_max = MAX(st->load_max, pr->polys);
         st->load_min = MIN(st->load_min, pr->polys);
-        st->peak_memory = MAX(st->peak_memory,
-                              wl_sf_book_memory(r->book, p));
+        st->peak_memory = MAX(st->peak_memory, wl_sf_book_memory(r->book, p));
         total += pr->polys;
     }
     st->messages = (uint64_t)r->s.procs * (r->s.procs - 1);
@@ -286,13 +285,13 @@ static gboolean check_frame(WlSfRun *r, WlSfFrameStats *st, GError **err)
         g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
                     "sortfirst: frame %d: found chunk instance %u over "
                     "region %u not held by processor %u, expected every "
-                    "overlapping instance held", r->frame, inst, proc, proc);
+                    "overlapping instance held",
+                    r->frame, inst, proc, proc);
         return FALSE;
     }
     if (!r->s.check_image)
         return TRUE;
-    wl_sf_render_serial(r->scene, r->db, &r->s, (guint)r->frame,
-                        r->serial);
+    wl_sf_render_serial(r->scene, r->db, &r->s, (guint)r->frame, r->serial);
     size_t n = (size_t)r->s.resolution * (size_t)r->s.resolution;
     st->image_checked = TRUE;
     st->image_ok = memcmp(r->zb->rgba, r->serial->rgba, n * 4) == 0 &&
@@ -326,7 +325,8 @@ static void render_done(SimEngine *eng, void *ctx, void *arg)
         sim_schedule_in(eng, 0, start_frame, r, NULL);
 }
 
-/* ---- lifetime ------------------------------------------------------------- */
+/* ---- lifetime -------------------------------------------------------------
+ */
 
 WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
                        const WlSfSetup *s, const WlSfCosts *c)
@@ -384,8 +384,7 @@ void wl_sf_run_free(WlSfRun *r)
     g_free(r);
 }
 
-gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until,
-                          GError **err)
+gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until, GError **err)
 {
     g_assert(frames >= 1);
     r->frames = r->frame + frames;

@@ -46,7 +46,7 @@ typedef struct {
 
 typedef struct {
     guint procs;
-    int resolution;           /* N x N screen */
+    int resolution; /* N x N screen */
     WlSfBookkeeping bk;
     WlSfSizes sizes;
     gboolean cull_back, check_image;
@@ -58,14 +58,14 @@ typedef struct {
     uint64_t migrated_chunks, migrated_polys, migrated_insts;
     uint64_t migrated_bytes, messages;
     uint64_t master_boxes, slave_boxes, new_boxes, deleted_chunks;
-    uint64_t polys_rendered;      /* polygons transformed for rendering */
-    uint64_t load_max, load_min;  /* polygons rendered per processor */
-    double imbalance;             /* (max - mean) / mean polygons */
-    uint64_t onscreen_insts;      /* chunk instances in some region */
-    uint64_t region_insts;        /* Σ regions over them */
-    uint64_t pixels;              /* pixels z-buffered in the regions */
-    uint64_t peak_memory;         /* largest processor's store, bytes */
-    double utilisation;           /* busy / (P x frame time) */
+    uint64_t polys_rendered;     /* polygons transformed for rendering */
+    uint64_t load_max, load_min; /* polygons rendered per processor */
+    double imbalance;            /* (max - mean) / mean polygons */
+    uint64_t onscreen_insts;     /* chunk instances in some region */
+    uint64_t region_insts;       /* Σ regions over them */
+    uint64_t pixels;             /* pixels z-buffered in the regions */
+    uint64_t peak_memory;        /* largest processor's store, bytes */
+    double utilisation;          /* busy / (P x frame time) */
     gboolean image_checked, image_ok;
 } WlSfFrameStats;
 
@@ -81,8 +81,7 @@ void wl_sf_run_free(WlSfRun *r);
 /* Runs `frames` frames from the engine's present time (the engine stops
  * at `until`); FALSE with *err on an engine error, an image differing
  * from the serial render or a broken migration invariant. */
-gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until,
-                          GError **err);
+gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until, GError **err);
 /* Per-frame figures (borrowed GArray of WlSfFrameStats). */
 const GArray *wl_sf_run_stats(const WlSfRun *r);
 /* The bookkeeping state (borrowed), for tests. */

@@ -33,8 +33,8 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
     *z = (WlSfSizes){64, 40, 36, 8};
     const CfgNode *n;
     if (!cfg_get_map(sec, "bytes", FALSE,
-                     "a map {message, chunk, triangle, instance} of sizes",
-                     &n, err))
+                     "a map {message, chunk, triangle, instance} of sizes", &n,
+                     err))
         return FALSE;
     if (!n)
         return TRUE;
@@ -47,10 +47,9 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
     int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED;
-    if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names,
-                      &bk, err) ||
-        !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch,
-                      err))
+    if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
+                      err) ||
+        !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch, err))
         return FALSE;
     p->setup.bk = (WlSfBookkeeping)bk;
     p->chunking = (WlSfChunking)ch;
@@ -131,14 +130,13 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
     }
 }
 
-static void set(SimResult *out, const char *name, double v,
-                const char *unit)
+static void set(SimResult *out, const char *name, double v, const char *unit)
 {
     sim_result_set_metric(out, name, v, unit);
 }
 
-void wl_sf_fill_metrics(SimResult *out, const GArray *stats,
-                        const WlSfDb *db, const WlSfSetup *s)
+void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
+                        const WlSfSetup *s)
 {
     /* Steady state: frames after the first (which distributes from the
      * masters); a one-frame run reports its only frame. */
@@ -166,8 +164,8 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats,
     set(out, "polygons_rendered_per_frame", m.rendered / n, "");
     set(out, "transforms_per_frame",
         (m.master + m.slave + m.fresh + m.rendered) / n, "");
-    set(out, "chunk_overlap",
-        m.onscreen ? (double)m.regions / m.onscreen : 0, "");
+    set(out, "chunk_overlap", m.onscreen ? (double)m.regions / m.onscreen : 0,
+        "");
     set(out, "load_imbalance", m.imbalance / n, "");
     set(out, "load_imbalance_max", m.imbalance_max, "");
     set(out, "utilisation", m.util / n, "");
@@ -176,8 +174,7 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats,
         set(out, "image_matches_serial", m.image_ok, "");
 }
 
-static gboolean write_log(const char *path, const GArray *stats,
-                          GError **err)
+static gboolean write_log(const char *path, const GArray *stats, GError **err)
 {
     GString *s = g_string_new(
         "frame,frame_ms,migrated_chunks,migrated_polygons,"
@@ -187,23 +184,24 @@ static gboolean write_log(const char *path, const GArray *stats,
     for (guint f = 0; f < stats->len; f++) {
         const WlSfFrameStats *t = &g_array_index(stats, WlSfFrameStats, f);
         g_string_append_printf(
-            s, "%u,%.6f,%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
-               ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
-               ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
-               ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
-               ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
-               ",%.6f,%.6f,%" G_GUINT64_FORMAT "\n",
+            s,
+            "%u,%.6f,%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%.6f,%.6f,%" G_GUINT64_FORMAT "\n",
             f, sim_time_to_ms(t->end - t->start), t->migrated_chunks,
             t->migrated_polys, t->migrated_insts, t->migrated_bytes,
-            t->master_boxes, t->slave_boxes, t->new_boxes,
-            t->polys_rendered, t->load_max, t->load_min, t->imbalance,
-            t->utilisation, t->peak_memory);
+            t->master_boxes, t->slave_boxes, t->new_boxes, t->polys_rendered,
+            t->load_max, t->load_min, t->imbalance, t->utilisation,
+            t->peak_memory);
     }
     gboolean ok = g_file_set_contents(path, s->str, (gssize)s->len, NULL);
     if (!ok)
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
                     "sortfirst: found an unwritable frame_log '%s', "
-                    "expected a writable path", path);
+                    "expected a writable path",
+                    path);
     g_string_free(s, TRUE);
     return ok;
 }
@@ -218,7 +216,8 @@ static char *log_path(const WlContext *ctx, const WlSfParams *p)
     return g_build_filename(ctx->out_dir, "sortfirst_frames.csv", NULL);
 }
 
-/* ---- running -------------------------------------------------------------- */
+/* ---- running --------------------------------------------------------------
+ */
 
 static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
                             const CfgNode *at, GError **err)
@@ -226,13 +225,13 @@ static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
     const MachKindInfo *k = mach_kind(m, "node");
     if (!mach_require_net(m, err))
         return FALSE;
-    if (k && k->count >= s->procs && net_nodes(mach_net(m)) > k->first +
-                                                              s->procs - 1)
+    if (k && k->count >= s->procs &&
+        net_nodes(mach_net(m)) > k->first + s->procs - 1)
         return TRUE;
     char *found = g_strdup_printf("'%u' processors", s->procs);
     char *exp = g_strdup_printf("at most the %u nodes of kind 'node' of "
-                                "machine '%s'", k ? k->count : 0,
-                                mach_name(m));
+                                "machine '%s'",
+                                k ? k->count : 0, mach_name(m));
     if (at)
         cfg_error(err, at, found, exp);
     else
@@ -256,16 +255,16 @@ static Scene *load_scene(const CfgNode *root, GError **err)
 }
 
 static gboolean run_frames(const WlContext *ctx, MachMachine *m,
-                           const Scene *sc, const WlSfParams *p,
-                           SimResult *out, GError **err)
+                           const Scene *sc, const WlSfParams *p, SimResult *out,
+                           GError **err)
 {
     WlSfCosts c;
     if (!wl_sf_costs_from_machine(m, &c, err) ||
-        !check_procs(m, &p->setup, cfg_path(ctx->root,
-                                            "workload.processors"), err))
+        !check_procs(m, &p->setup, cfg_path(ctx->root, "workload.processors"),
+                     err))
         return FALSE;
-    WlSfDb *db = wl_sf_db_new(sc->db, p->setup.procs, p->granularity,
-                              p->chunking, err);
+    WlSfDb *db =
+        wl_sf_db_new(sc->db, p->setup.procs, p->granularity, p->chunking, err);
     if (!db)
         return FALSE;
     WlSfRun *r = wl_sf_run_new(m, sc, db, &p->setup, &c);
@@ -295,8 +294,7 @@ static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
     Scene *sc = load_scene(ctx->root, err);
     if (!sc)
         return FALSE;
-    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root,
-                                                         "machine"),
+    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
                                        ctx->fidelity, err);
     gboolean ok = m && run_frames(ctx, m, sc, params, out, err);
     if (ok) {

@@ -17,7 +17,7 @@ typedef struct {
 extern const WlOps wl_sortfirst_ops;
 
 /* The metrics of a finished run into out (frames: stats of each). */
-void wl_sf_fill_metrics(SimResult *out, const GArray *stats,
-                        const WlSfDb *db, const WlSfSetup *s);
+void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
+                        const WlSfSetup *s);
 
 #endif

@@ -17,9 +17,9 @@
 
 typedef struct {
     uint64_t nodes;
-    uint64_t token;  /* bytes */
+    uint64_t token; /* bytes */
     SimTime compute;
-    double jitter;   /* 0 .. 1 */
+    double jitter; /* 0 .. 1 */
     SimTime latency;
     double bandwidth; /* bytes/s */
 } TrParams;
@@ -37,8 +37,12 @@ typedef struct {
 static void *tr_parse(const CfgNode *sec, GError **err)
 {
     TrParams *p = g_new0(TrParams, 1);
-    *p = (TrParams){.nodes = 8, .token = 1000, .compute = 20 * SIM_US,
-                    .jitter = 0.0, .latency = 5 * SIM_US, .bandwidth = 2.8e6};
+    *p = (TrParams){.nodes = 8,
+                    .token = 1000,
+                    .compute = 20 * SIM_US,
+                    .jitter = 0.0,
+                    .latency = 5 * SIM_US,
+                    .bandwidth = 2.8e6};
     const CfgNode *link = cfg_get(sec, "link");
     gboolean ok =
         cfg_get_count(sec, "nodes", FALSE, 2, 1000000, &p->nodes, err) &&
@@ -140,19 +144,18 @@ static void fill_comm(TrState *s)
             best = i;
     }
     if (r->comm_messages) {
-        r->busiest_link = g_strdup_printf("node%" G_GUINT64_FORMAT
-                                          "->node%" G_GUINT64_FORMAT, best,
-                                          (best + 1) % s->p->nodes);
+        r->busiest_link =
+            g_strdup_printf("node%" G_GUINT64_FORMAT "->node%" G_GUINT64_FORMAT,
+                            best, (best + 1) % s->p->nodes);
         r->busiest_link_bytes = s->links[best].bytes;
     }
     double el = sim_time_to_s(r->elapsed);
     sim_result_set_metric(r, "hops", (double)r->comm_messages, "");
     sim_result_set_metric(r, "hop_time_mean",
                           r->comm_messages ? el / r->comm_messages : 0, "s");
-    sim_result_set_metric(r, "link_utilisation_mean",
-                          el > 0 ? sim_time_to_s(link_busy) /
-                                       (el * (double)s->p->nodes)
-                                 : 0, "");
+    sim_result_set_metric(
+        r, "link_utilisation_mean",
+        el > 0 ? sim_time_to_s(link_busy) / (el * (double)s->p->nodes) : 0, "");
 }
 
 static gboolean tr_run(const WlContext *ctx, void *params, SimResult *out,

@@ -26,13 +26,20 @@ static Scene *two_teapots(void)
     return s;
 }
 
-static const WlPmCosts costs = {
-    .polygon = 1000 * SIM_US, .span = 20 * SIM_US, .insert_step = SIM_US,
-    .pixel = 100 * SIM_US, .zcompare = 2 * SIM_US, .scanline = 5 * SIM_US,
-    .zbuf_init = SIM_US,
-    .merge = {.pack = SIM_US, .scatter = 2 * SIM_US, .compare = 10 * SIM_US,
-              .gather = 2 * SIM_US, .sum_elem = SIM_US,
-              .sort_elem = SIM_US, .count_bytes = 4}};
+static const WlPmCosts costs = {.polygon = 1000 * SIM_US,
+                                .span = 20 * SIM_US,
+                                .insert_step = SIM_US,
+                                .pixel = 100 * SIM_US,
+                                .zcompare = 2 * SIM_US,
+                                .scanline = 5 * SIM_US,
+                                .zbuf_init = SIM_US,
+                                .merge = {.pack = SIM_US,
+                                          .scatter = 2 * SIM_US,
+                                          .compare = 10 * SIM_US,
+                                          .gather = 2 * SIM_US,
+                                          .sum_elem = SIM_US,
+                                          .sort_elem = SIM_US,
+                                          .count_bytes = 4}};
 
 typedef struct {
     SimEngine *eng;
@@ -42,8 +49,10 @@ typedef struct {
 
 static void run(const Scene *sc, const WlPmSetup *s, WlPmFrameOut *out)
 {
-    NetParams np = {.bandwidth = 2.8e6, .channels = 1,
-                    .startup = 350 * SIM_US, .per_hop = 10 * SIM_US,
+    NetParams np = {.bandwidth = 2.8e6,
+                    .channels = 1,
+                    .startup = 350 * SIM_US,
+                    .per_hop = 10 * SIM_US,
                     .switching = NET_SW_CIRCUIT};
     SimEngine *eng = sim_engine_new(1);
     NetTopo *topo = net_hypercube_new(3);
@@ -63,9 +72,14 @@ static void test_images_match_serial(void **state)
     for (guint n = 1; n <= 8; n *= 2)
         for (int sch = 0; sch < 3; sch++)
             for (int bal = 0; bal < 3; bal++) {
-                WlPmSetup s = {sch, bal, n, N, (n & 2) ? WL_PM_SPLIT_BLOCK
-                                                       : WL_PM_SPLIT_CYCLIC,
-                               {8, 4, 2}, TRUE, n == 4};
+                WlPmSetup s = {sch,
+                               bal,
+                               n,
+                               N,
+                               (n & 2) ? WL_PM_SPLIT_BLOCK : WL_PM_SPLIT_CYCLIC,
+                               {8, 4, 2},
+                               TRUE,
+                               n == 4};
                 WlPmFrameOut out;
                 run(sc, &s, &out);
                 assert_true(out.image_checked);
@@ -87,8 +101,8 @@ static void test_zbuf_exc_costs_more(void **state)
 {
     (void)state;
     Scene *sc = two_teapots();
-    WlPmSetup s = {WL_PM_PAIR, WL_PM_BAL_RS, 8, N, WL_PM_SPLIT_CYCLIC,
-                   {8, 4, 2}, FALSE, TRUE};
+    WlPmSetup s = {WL_PM_PAIR,         WL_PM_BAL_RS, 8,     N,
+                   WL_PM_SPLIT_CYCLIC, {8, 4, 2},    FALSE, TRUE};
     WlPmFrameOut pair, full;
     run(sc, &s, &pair);
     s.scheme = WL_PM_ZBUF_EXC;

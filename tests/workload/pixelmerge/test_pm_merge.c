@@ -14,8 +14,7 @@ enum { W = 37, H = 29, NPOLY = 60 };
 /* Random rectangles with random depths, polygon i to processor i % n;
  * local[p] is p's local z-buffer as an active pixel array; *serial the
  * serial z-buffer of all polygons (id order). */
-static void synth(guint n, uint64_t seed, WlPmWpa **local,
-                  WlPmFrame **serial)
+static void synth(guint n, uint64_t seed, WlPmWpa **local, WlPmFrame **serial)
 {
     SimRng r;
     sim_rng_init(&r, seed, 0);
@@ -45,8 +44,7 @@ static void synth(guint n, uint64_t seed, WlPmWpa **local,
 
 static const WlPmFormat fmt = {8, 5, 2};
 
-static WlPmPartition *partition_for(WlPmBalance b, WlPmWpa **local,
-                                    guint n)
+static WlPmPartition *partition_for(WlPmBalance b, WlPmWpa **local, guint n)
 {
     uint64_t counts[H] = {0};
     for (guint p = 0; p < n; p++)
@@ -58,8 +56,7 @@ static void check_owned_rows(const WlPmMerge *m, const WlPmPartition *part)
 {
     for (guint p = 0; p < m->n_procs; p++)
         for (guint i = 0; i < wl_pm_wpa_len(m->held[p]); i++) {
-            const WlPmPixel *px =
-                &g_array_index(m->held[p]->px, WlPmPixel, i);
+            const WlPmPixel *px = &g_array_index(m->held[p]->px, WlPmPixel, i);
             if (m->scheme == WL_PM_ZBUF_EXC)
                 continue; /* a full z-buffer holds empty locations */
             assert_int_not_equal(px->poly, WL_PM_EMPTY);

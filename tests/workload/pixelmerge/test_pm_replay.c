@@ -10,10 +10,13 @@
 enum { W = 8, H = 4 };
 
 static const WlPmFormat fmt = {8, 5, 2};
-static const WlPmMergeCosts costs = {
-    .pack = 1 * SIM_US, .scatter = 2 * SIM_US, .compare = 3 * SIM_US,
-    .gather = 5 * SIM_US, .sum_elem = 7 * SIM_US, .sort_elem = 11 * SIM_US,
-    .count_bytes = 4};
+static const WlPmMergeCosts costs = {.pack = 1 * SIM_US,
+                                     .scatter = 2 * SIM_US,
+                                     .compare = 3 * SIM_US,
+                                     .gather = 5 * SIM_US,
+                                     .sum_elem = 7 * SIM_US,
+                                     .sort_elem = 11 * SIM_US,
+                                     .count_bytes = 4};
 
 /* Processor p covers row p's first p + 1 pixels with depth p. */
 static void make_local(WlPmWpa **local, guint n)
@@ -37,8 +40,10 @@ typedef struct {
 
 static void rig_init(Rig *r, unsigned dims)
 {
-    NetParams np = {.bandwidth = 1e6, .channels = 1,
-                    .startup = 100 * SIM_US, .per_hop = 10 * SIM_US,
+    NetParams np = {.bandwidth = 1e6,
+                    .channels = 1,
+                    .startup = 100 * SIM_US,
+                    .per_hop = 10 * SIM_US,
                     .switching = NET_SW_CIRCUIT};
     r->eng = sim_engine_new(1);
     r->topo = net_hypercube_new(dims);
@@ -67,8 +72,8 @@ static void test_aapc_two(void **state)
     sim_busy_init(&busy[1]);
     SimTime ready[2] = {0, 50 * SIM_US};
     WlPmReplayOut out;
-    assert_true(wl_pm_replay(rig.net, m, WL_PM_BAL_STRIPS, H, &costs,
-                             ready, busy, 0, &out, NULL));
+    assert_true(wl_pm_replay(rig.net, m, WL_PM_BAL_STRIPS, H, &costs, ready,
+                             busy, 0, &out, NULL));
     /* p0 owns rows 0-1, p1 rows 2-3.  p1 sends 2 rows x 2 pixels:
      * 4*8 + 2*2 = 36 B -> 100 + 10 + 36 us, sent at 50 us -> 196 us.
      * p0 then scatters its 2 own pixels, compares 4: 4 + 12 us = 212. */
@@ -107,8 +112,8 @@ static void test_rs_global_sum(void **state)
     sim_busy_init(&busy[1]);
     SimTime ready[2] = {0, 0};
     WlPmReplayOut out;
-    assert_true(wl_pm_replay(rig.net, m, WL_PM_BAL_RS, H, &costs, ready,
-                             busy, 0, &out, NULL));
+    assert_true(wl_pm_replay(rig.net, m, WL_PM_BAL_RS, H, &costs, ready, busy,
+                             0, &out, NULL));
     /* Sum: 100 + 10 + 16 us = 126, + 4 x 7 = 154, + 2 x 11 = 176 us.
      * Rows split 2 | 2: p0 sends 2 rows x 1 px = 20 B (130 us) and p1
      * 2 x 2 = 36 B (146 us).  p0: 176 + 146 = 322, then scatter 2 (4),

@@ -30,8 +30,11 @@ static SimResult *run_cfg(const char *text, const char *fidelity,
     SimResult *r = NULL;
     if (p) {
         SimEngine *eng = sim_engine_new(1);
-        WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                         .fidelity = fidelity, .frames = 1};
+        WlContext ctx = {.eng = eng,
+                         .root = root,
+                         .seed = 1,
+                         .fidelity = fidelity,
+                         .frames = 1};
         r = sim_result_new("pixelmerge", "");
         if (!wl_pixelmerge_ops.run(&ctx, p, r, err)) {
             sim_result_free(r);
@@ -66,8 +69,8 @@ static void test_metrics(void **state)
     /* phases meet at barriers; span and zbuf are maxima over nodes */
     assert_true(frame <= span + zbuf + merge + 1e-6);
     assert_true(frame >= MAX(span, zbuf) + merge - 1e-6);
-    assert_true(fabs(g_array_index(r->frame_times, SimTime, 0) * 1e-9 -
-                     frame) < 1e-6);
+    assert_true(fabs(g_array_index(r->frame_times, SimTime, 0) * 1e-9 - frame) <
+                1e-6);
     assert_true(metric(r, "polygons") == 600);
     assert_true(metric(r, "tpf") > 0);
     assert_true(metric(r, "tpg") >= metric(r, "tpf"));
@@ -95,10 +98,9 @@ static void test_fidelities_and_schemes(void **state)
 {
     (void)state;
     static const char *const fid[] = {"analytic", "flow", "packet"};
-    static const char *const ov[] = {"workload.scheme=aapc",
-                                     "workload.scheme=zbuf_exc",
-                                     "workload.balance=hbp",
-                                     "workload.balance=strips"};
+    static const char *const ov[] = {
+        "workload.scheme=aapc", "workload.scheme=zbuf_exc",
+        "workload.balance=hbp", "workload.balance=strips"};
     GError *e = NULL;
     for (int o = 0; o < 4; o++) {
         double first = 0;
