@@ -20,6 +20,7 @@
  * same random streams (common random numbers).
  */
 #include "sim/app/sweep_spec.h"
+#include "sim/core/datapath.h"
 #include "sim/core/rng.h"
 #include <math.h>
 #include <string.h>
@@ -368,12 +369,8 @@ SweepSpec *sweep_spec_parse(const char *text, const char *name, GError **err)
 SweepSpec *sweep_spec_load(const char *path, GError **err)
 {
     char *text = NULL;
-    GError *e = NULL;
-    if (!g_file_get_contents(path, &text, NULL, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
-        g_error_free(e);
+    if (!sim_file_read(path, &text, NULL, err))
         return NULL;
-    }
     SweepSpec *s = sweep_spec_parse(text, path, err);
     g_free(text);
     return s;

@@ -6,6 +6,7 @@
  * record with another count is an error naming its line).  O(n).
  */
 #include "sim/app/table.h"
+#include "sim/core/datapath.h"
 #include <string.h>
 
 DataTable *dt_new(const GPtrArray *cols)
@@ -194,12 +195,8 @@ DataTable *dt_parse_csv(const char *text, const char *name, GError **err)
 DataTable *dt_read_csv(const char *path, GError **err)
 {
     char *text = NULL;
-    GError *e = NULL;
-    if (!g_file_get_contents(path, &text, NULL, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
-        g_error_free(e);
+    if (!sim_file_read(path, &text, NULL, err))
         return NULL;
-    }
     DataTable *t = dt_parse_csv(text, path, err);
     g_free(text);
     return t;

@@ -63,9 +63,12 @@ static void missing(GError **err, const CfgNode *map, const char *key,
     g_free(exp);
 }
 
-/* The scalar at key; TRUE with *out NULL when absent and optional. */
-static gboolean lookup(const CfgNode *map, const char *key, gboolean required,
-                       const char *expected, const CfgNode **out, GError **err)
+/* The node of kind `kind` at key; TRUE with *out NULL when absent and
+ * optional. */
+static gboolean lookup_kind(const CfgNode *map, const char *key,
+                            gboolean required, CfgKind kind,
+                            const char *expected, const CfgNode **out,
+                            GError **err)
 {
     *out = NULL;
     if (map && map->kind != CFG_MAP) {
@@ -78,7 +81,7 @@ static gboolean lookup(const CfgNode *map, const char *key, gboolean required,
             missing(err, map, key, expected);
         return !required;
     }
-    if (v->kind != CFG_SCALAR) {
+    if (v->kind != kind) {
         error_at(err, v, expected);
         return FALSE;
     }
@@ -86,26 +89,17 @@ static gboolean lookup(const CfgNode *map, const char *key, gboolean required,
     return TRUE;
 }
 
+/* The scalar at key; TRUE with *out NULL when absent and optional. */
+static gboolean lookup(const CfgNode *map, const char *key, gboolean required,
+                       const char *expected, const CfgNode **out, GError **err)
+{
+    return lookup_kind(map, key, required, CFG_SCALAR, expected, out, err);
+}
+
 gboolean cfg_get_map(const CfgNode *map, const char *key, gboolean required,
                      const char *what, const CfgNode **out, GError **err)
 {
-    *out = NULL;
-    if (map && map->kind != CFG_MAP) {
-        error_at(err, map, "a map");
-        return FALSE;
-    }
-    const CfgNode *v = cfg_get(map, key);
-    if (!v) {
-        if (required)
-            missing(err, map, key, what);
-        return !required;
-    }
-    if (v->kind != CFG_MAP) {
-        error_at(err, v, what);
-        return FALSE;
-    }
-    *out = v;
-    return TRUE;
+    return lookup_kind(map, key, required, CFG_MAP, what, out, err);
 }
 
 gboolean cfg_get_str(const CfgNode *map, const char *key, gboolean required,

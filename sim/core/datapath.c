@@ -1,6 +1,6 @@
 /* datapath.c — data-file search (see datapath.h for the order). */
 #include "sim/core/datapath.h"
-#include <glib.h>
+#include "sim/core/error.h"
 
 static char *try_root(const char *root, const char *name)
 {
@@ -50,4 +50,15 @@ char *sim_data_path(const char *name)
     if (!hit)
         hit = try_exe(name);
     return hit ? hit : g_strdup(name);
+}
+
+gboolean sim_file_read(const char *path, char **text, gsize *len,
+                       GError **err)
+{
+    GError *e = NULL;
+    if (g_file_get_contents(path, text, len, &e))
+        return TRUE;
+    g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
+    g_error_free(e);
+    return FALSE;
 }

@@ -14,7 +14,14 @@
 #ifndef PGSIM_CORE_DATAPATH_H
 #define PGSIM_CORE_DATAPATH_H
 
+#include <glib.h>
+
 /* Returns a newly allocated path (g_free). */
 char *sim_data_path(const char *name);
+
+/* Reads a whole file into *text (g_free; NUL-terminated), its length into
+ * *len if not NULL; FALSE with a SIM_ERROR_IO error naming the file. */
+gboolean sim_file_read(const char *path, char **text, gsize *len,
+                       GError **err);
 
 #endif

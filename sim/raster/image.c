@@ -7,6 +7,7 @@
  * O(W H) per operation.
  */
 #include "sim/raster/image.h"
+#include "sim/core/datapath.h"
 #include <errno.h>
 #include <png.h>
 #include <stdio.h>
@@ -183,12 +184,8 @@ RastImage *rast_image_read_ppm(const char *path, GError **err)
 {
     gchar *data;
     gsize len;
-    GError *e = NULL;
-    if (!g_file_get_contents(path, &data, &len, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s", e->message);
-        g_error_free(e);
+    if (!sim_file_read(path, &data, &len, err))
         return NULL;
-    }
     int w = 0, h = 0, max = 0, off = 0;
     if (sscanf(data, "P6 %d %d %d%n", &w, &h, &max, &off) != 3 || w <= 0 ||
         h <= 0 || max != 255 || w > RAST_MAX_SIDE || h > RAST_MAX_SIDE) {
