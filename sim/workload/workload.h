@@ -30,7 +30,9 @@ typedef struct {
      * NULL with *err set. */
     void *(*parse)(const CfgNode *section, GError **err);
     void (*free_params)(void *params);
-    /* Runs the workload and fills `out`; FALSE with *err on failure. */
+    /* Runs the workload and fills `out`; FALSE with *err on failure.
+     * The runner (cfg_run_exec) fills seed, fidelity, events, wall time
+     * and, if left 0, elapsed: workloads need not. */
     gboolean (*run)(const WlContext *ctx, void *params, SimResult *out,
                     GError **err);
 } WlOps;

@@ -289,10 +289,6 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
                   wl_pm_run_frames_at(
                       m, sc, p, &c, ctx->frames,
                       cfg_path(ctx->root, "workload.processors"), out, err);
-    if (ok) {
-        out->seed = ctx->seed;
-        out->events = sim_engine_events(ctx->eng);
-    }
     mach_free(m);
     scene_free(sc);
     return ok;

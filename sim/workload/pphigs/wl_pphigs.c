@@ -257,8 +257,6 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     SimTime now = sim_now(ctx->eng);
     NetNet *net = mach_net(r->m);
     out->elapsed = now;
-    out->seed = ctx->seed;
-    out->events = sim_engine_events(ctx->eng);
     mach_fill_result(r->m, out);
     double gu, ru;
     wl_pphigs_frame_util(r->frame, now, &gu, &ru);

@@ -297,10 +297,6 @@ static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
     MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
                                        ctx->fidelity, err);
     gboolean ok = m && run_frames(ctx, m, sc, params, out, err);
-    if (ok) {
-        out->seed = ctx->seed;
-        out->events = sim_engine_events(ctx->eng);
-    }
     mach_free(m);
     scene_free(sc);
     return ok;
