@@ -10,6 +10,7 @@
 #include "sim/scene/isosurface.h"
 #include "sim/scene/obj.h"
 #include "sim/scene/ply.h"
+#include "sim/scene/pn_triangles.h"
 #include "sim/scene/pphigs_db.h"
 #include "sim/scene/teapots.h"
 #include "sim/scene/vehicle.h"
@@ -506,9 +507,28 @@ static gboolean rebase_path(Scene *s, const CfgNode *at, GError **err)
     return TRUE;
 }
 
+static const char *const pn_normals[] = {"linear", "quadratic", NULL};
+
+/* pn_triangles: {level: L, normals: linear | quadratic} replaces every
+ * mesh by its curved PN tessellation (sim/scene/pn_triangles.h). */
+static gboolean apply_pn(Scene *s, const CfgNode *n, GError **err)
+{
+    ScenePnParams p = {.level = 1, .normals = SCENE_PN_LINEAR};
+    int normals = p.normals;
+    if (!want_map(n, "a map {level: L, normals: linear | quadratic}", err) ||
+        !get_guint(n, "level", 0, 64, &p.level, err) ||
+        !cfg_get_enum(n, "normals", FALSE, pn_normals, &normals, err))
+        return FALSE;
+    p.normals = (ScenePnNormals)normals;
+    scene_pn_apply(s, &p);
+    return TRUE;
+}
+
 static gboolean apply_common(Scene *s, const CfgNode *sec, GError **err)
 {
     const CfgNode *n, *cam = NULL;
+    if ((n = cfg_get(sec, "pn_triangles")) && !apply_pn(s, n, err))
+        return FALSE;
     if ((n = cfg_get(sec, "view")) && !apply_view(s, n, err))
         return FALSE;
     if ((cam = cfg_get(sec, "camera")) && !read_camera(cam, &s->camera, err))

@@ -19,8 +19,12 @@
  *                      fov: 45}, ...]}
  *     background: [r, g, b]
  *     two_sided: false                 # true: renderers should not cull
+     pn_triangles: {level: 2, normals: linear | quadratic}
+                                      # curved PN tessellation of every
+                                      # mesh, (L+1)^2 triangles each
  *
  * Order: the generator (or file) builds the scene with its own camera;
+ * `pn_triangles` tessellates its meshes (before the view is fitted);
  * `view` then re-fits the camera by the view rule (scene.h), `camera`
  * sets it explicitly (unset fields keep their values), `path` replaces
  * any path (orbit: the frame-0 camera rotated about center / axis).  A

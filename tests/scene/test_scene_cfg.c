@@ -319,6 +319,12 @@ static const Bad bad[] = {
      "t.yaml:1:74: found unknown key 'boids'"},
     {"scene: {generator: teapots, two_sided: maybe}\n",
      "t.yaml:1:40: found 'maybe'"},
+    {"scene: {generator: teapots, pn_triangles: {level: 65}}\n",
+     "t.yaml:1:51: found '65', expected a count in [0, 64]"},
+    {"scene: {generator: teapots, pn_triangles: {normals: cubic}}\n",
+     "t.yaml:1:53: found 'cubic', expected one of: linear, quadratic"},
+    {"scene: {generator: teapots, pn_triangles: 2}\n",
+     "t.yaml:1:43: found a non-map, expected a map {level: L"},
 };
 
 static void test_bad_sections(void **st)
