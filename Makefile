@@ -1,7 +1,8 @@
 # pgsim — one non-recursive Makefile.
 #   make          build build/pgsim (no package installs)
 #   make run      install missing Debian packages, build, run the quickstart
-#   make test     install missing packages, build, run every cmocka suite
+#   make test     install missing packages, build, check include layers,
+#                 run every cmocka suite
 #   make check    the tests under ASan + UBSan (-fno-sanitize-recover=all)
 #   make bench    benchmarks that print figures (never part of make test)
 #   make golden   rewrite the scenario tests' golden results (review the diff)
@@ -24,7 +25,7 @@ CFLAGS  += -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE $(OPT) \
            $(PKG_CFLAGS) $(MPIDEF) $(EXTRA_CFLAGS)
 LDLIBS  += $(PKG_LIBS) -lm $(EXTRA_LDFLAGS)
 
-MAIN    := sim/app/main.c
+MAIN    := sim/app/cli/main.c
 LIBSRC  := $(filter-out $(MAIN),$(shell find sim -name '*.c' | LC_ALL=C sort))
 LIBOBJ  := $(LIBSRC:%.c=$(BUILD)/obj/%.o)
 TESTSRC := $(shell find tests -name 'test_*.c' | LC_ALL=C sort)
@@ -59,6 +60,7 @@ run: deps
 
 test: deps
 	@$(MAKE) -s all $(TESTBIN)
+	@sh scripts/check-layers.sh
 	@sh scripts/run-tests.sh $(BUILD) $(TESTBIN)
 
 check: deps
@@ -70,8 +72,8 @@ check: deps
 	  $(TESTBIN:$(BUILD)/%=build-san/%)
 
 # Rewrites tests/data/golden/*.json after a deliberate model change.
-golden: all $(BUILD)/tests/app/test_scenarios
-	PGSIM_UPDATE_GOLDEN=1 ./$(BUILD)/tests/app/test_scenarios
+golden: all $(BUILD)/tests/app/run/test_scenarios
+	PGSIM_UPDATE_GOLDEN=1 ./$(BUILD)/tests/app/run/test_scenarios
 
 bench: deps
 	@$(MAKE) -s all

@@ -5,7 +5,7 @@ squares on relative error.  Nothing else is fitted; Tables 3-4 (CM-5) are
 never read.
 
     PGSIM_DP_COEF=/tmp/coef.csv build/pgsim reproduce ortega93 >/dev/null
-    python3 scripts/fit-ortega93.py /tmp/coef.csv configs/papers/ortega93.yaml
+    python3 scripts/fit-ortega93.py /tmp/coef.csv configs/papers/ortega93/published.yaml
 
 The frame time of a SIMD cell is linear in the costs (dp_cost.h):
 time = op * op_slices + step * steps + scan_slice * scan_slices

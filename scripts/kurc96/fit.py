@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Fit the iPSC/2 node costs of the pixelmerge workload to seed 003.
 
-Uses ONLY the P=16, N=400 rows of Table 2 (configs/papers/kurc96.yaml,
+Uses ONLY the P=16, N=400 rows of Table 2 (configs/papers/kurc96/published.yaml,
 rows "P16/<scene>", 6 scenes x 6 columns = 36 cells).  Nothing from the
 P=8 rows, N=640, Table 1 or the speed-up enters the fit.
 
-How: for each of the 6 scenes of configs/kurc96/setup.yaml it runs
+How: for each of the 6 scenes of configs/papers/kurc96/setup.yaml it runs
 `build/pgsim run` twice (PAIR-RS and ZBUF-EXC, 16 processors, N=400,
 analytic network, costs from models/ipsc2.yaml with the trial values as
 --set overrides) and reads span_ms, zbuf_ms, merge_ms.  Phase times are

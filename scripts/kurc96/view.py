@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Grid search of the two global view parameters of configs/kurc96/setup.yaml.
+"""Grid search of the two global view parameters of configs/papers/kurc96/setup.yaml.
 
 Fits `fill` (the share of the viewport the scene's silhouette fills) and
 the depth layout's `shift` (sideways step of the "_2" rows, in teapot
 widths) on the 12 visible Table 1 cells at N=400 only (tpg_400 and
-tpf_400 of 1POT .. 8POT_2, configs/papers/kurc96.yaml), minimising the
+tpf_400 of 1POT .. 8POT_2, configs/papers/kurc96/published.yaml), minimising the
 mean |relative error|.  Everything else of the view rule (azimuth,
 elevation, fov, fit: vertices, spacing, no culling) is as setup.yaml says.
 TPG and TPF do not depend on the node costs, so this runs before

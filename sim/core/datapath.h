@@ -2,7 +2,7 @@
  * wherever pgsim is run from.
  *
  * A data file is named relative to the project root, e.g.
- * "configs/papers/kurc96.yaml".  sim_data_path() returns the first of:
+ * "configs/papers/kurc96/published.yaml".  sim_data_path() returns the first of:
  *   1. the name itself, if it exists relative to the current directory;
  *   2. <root>/<name> for each root in $PGSIM_DATA (colon-separated);
  *   3. <exe>/../<name>, where <exe> is the directory of the running binary

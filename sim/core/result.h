@@ -2,7 +2,7 @@
  *
  * Frame times, per-node utilisation (overall and per phase), communication
  * volume, named workload metrics in insertion order, and simulator figures.
- * Writers (text, JSON, CSV) are in sim/app/report.c; docs/output.md is the
+ * Writers (text, JSON, CSV) are in sim/app/run/report.c; docs/output.md is the
  * schema.  Wall-clock figures are kept apart (wall_s) because they are the
  * only non-deterministic numbers a run produces.
  */

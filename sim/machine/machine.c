@@ -143,8 +143,11 @@ static MachProc *proc_get(const MachMachine *mc, guint id)
     if (!*pg) {
         guint base = id - id % PROC_PAGE;
         *pg = g_new0(MachProc, PROC_PAGE);
-        for (guint i = 0; i < PROC_PAGE && base + i < m->n_procs; i++)
-            mach_proc_init(&(*pg)[i], m, base + i, kind_of(m, base + i));
+        for (guint i = 0; i < PROC_PAGE && base + i < m->n_procs; i++) {
+            guint16 k = kind_of(m, base + i);
+            mach_proc_init(&(*pg)[i], m, m->eng, mach_kind_at(m, k), base + i,
+                           k);
+        }
     }
     return &(*pg)[id % PROC_PAGE];
 }

@@ -30,16 +30,6 @@
 #include "sim/machine/proc.h"
 #include "sim/net/net.h"
 
-/* What a node kind is: borrowed from the machine. */
-typedef struct {
-    const char *name; /* "gp", "renderer", "node" ... */
-    guint first;      /* global id of its first processor */
-    guint count;
-    double clock_hz;      /* 0 when the model gives none */
-    uint64_t memory;      /* bytes per node, 0 when not given */
-    uint64_t lanes;       /* SIMD lanes per processor, 1 if not SIMD */
-    uint64_t lane_memory; /* bytes per lane, 0 when not given */
-} MachKindInfo;
 
 /* Builds a machine from a config's `machine` section (borrowed; copied).
  * `fidelity` is "analytic", "flow" or "packet".  Returns a new machine

@@ -9,11 +9,16 @@
  */
 #include "sim/machine/proc.h"
 #include "sim/core/trace.h"
-#include "sim/machine/machine.h"
 
-void mach_proc_init(MachProc *p, MachMachine *m, guint id, guint16 kind)
+void mach_proc_init(MachProc *p, MachMachine *m, SimEngine *eng,
+                    const MachKindInfo *info, guint id, guint16 kind)
 {
-    *p = (MachProc){.m = m, .id = id, .kind = kind, .entity = UINT32_MAX};
+    *p = (MachProc){.m = m,
+                    .eng = eng,
+                    .info = info,
+                    .id = id,
+                    .kind = kind,
+                    .entity = UINT32_MAX};
 }
 
 void mach_proc_clear(MachProc *p)
@@ -34,7 +39,7 @@ static void charge(MachProc *p, unsigned phase, SimTime cost,
 
 static void trace_span(MachProc *p, unsigned phase, SimTime start, SimTime end)
 {
-    SimEngine *eng = mach_engine(p->m);
+    SimEngine *eng = p->eng;
     SimTrace *tr = sim_engine_trace(eng);
     if (!tr)
         return;
@@ -53,7 +58,7 @@ static void fail_overflow(SimEngine *eng, MachProc *p, const char *what)
 gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
                            SimHandler done, void *ctx, void *arg)
 {
-    SimEngine *eng = mach_engine(p->m);
+    SimEngine *eng = p->eng;
     g_assert(phase < sim_engine_phase_count(eng));
     SimTime now = sim_now(eng);
     SimTime start = p->free_at > now ? p->free_at : now, end;
@@ -80,7 +85,7 @@ SimTime mach_proc_free_at(const MachProc *p)
 
 gboolean mach_proc_idle(const MachProc *p)
 {
-    return p->free_at <= sim_now(mach_engine(p->m));
+    return p->free_at <= sim_now(p->eng);
 }
 
 SimTime mach_proc_busy(const MachProc *p)
@@ -105,12 +110,12 @@ guint mach_proc_id(const MachProc *p)
 
 guint mach_proc_index(const MachProc *p)
 {
-    return p->id - mach_kind_at(p->m, p->kind)->first;
+    return p->id - p->info->first;
 }
 
 const char *mach_proc_kind(const MachProc *p)
 {
-    return mach_kind_at(p->m, p->kind)->name;
+    return p->info->name;
 }
 
 const char *mach_proc_name(MachProc *p)
@@ -124,7 +129,7 @@ const char *mach_proc_name(MachProc *p)
 uint32_t mach_proc_entity(MachProc *p)
 {
     if (p->entity == UINT32_MAX)
-        p->entity = sim_entity_add(mach_engine(p->m), mach_proc_name(p));
+        p->entity = sim_entity_add(p->eng, mach_proc_name(p));
     return p->entity;
 }
 

@@ -23,6 +23,17 @@
 typedef struct MachMachine MachMachine;
 typedef struct MachProc MachProc;
 
+/* What a node kind is: borrowed from the machine. */
+typedef struct {
+    const char *name; /* "gp", "renderer", "node" ... */
+    guint first;      /* global id of its first processor */
+    guint count;
+    double clock_hz;      /* 0 when the model gives none */
+    uint64_t memory;      /* bytes per node, 0 when not given */
+    uint64_t lanes;       /* SIMD lanes per processor, 1 if not SIMD */
+    uint64_t lane_memory; /* bytes per lane, 0 when not given */
+} MachKindInfo;
+
 /* Submits `cost` of work in `phase`; done(eng, ctx, arg) runs when it
  * completes (done may be NULL: the work only occupies the processor).
  * Returns FALSE if the completion time overflows SimTime (the engine is
@@ -53,7 +64,9 @@ MachMachine *mach_proc_machine(const MachProc *p);
 /* ---- for machine.c only ------------------------------------------------ */
 
 struct MachProc {
-    MachMachine *m;
+    MachMachine *m;            /* opaque here: only handed back */
+    SimEngine *eng;            /* the machine's engine */
+    const MachKindInfo *info;  /* its kind (the machine's, stable) */
     SimTime free_at;
     SimBusy busy; /* per_phase NULL until first used */
     uint64_t requests;
@@ -63,7 +76,8 @@ struct MachProc {
     guint16 kind;
 };
 
-void mach_proc_init(MachProc *p, MachMachine *m, guint id, guint16 kind);
+void mach_proc_init(MachProc *p, MachMachine *m, SimEngine *eng,
+                    const MachKindInfo *info, guint id, guint16 kind);
 void mach_proc_clear(MachProc *p);
 
 #endif

@@ -7,7 +7,7 @@
  * network with the published shape (structures, hierarchy depth,
  * polygons per structure, polygon/attribute ratio, the lobby's off-screen
  * share) from parameters that live in YAML (configs/pphigs/databases.yaml;
- * the published statistics are in configs/papers/ellsworth90.yaml and a
+ * the published statistics are in configs/papers/ellsworth90/published.yaml and a
  * test compares the two).  Geometry is synthetic but spatially coherent
  * in list order, as the paper assumes (§2.2).  Deterministic for a seed.
  */

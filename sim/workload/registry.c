@@ -1,9 +1,9 @@
 /* registry.c — the table of workloads (one row per workload). */
 #include "sim/workload/workload.h"
-#include "sim/workload/dpscan/dp_wl.h"
+#include "sim/workload/dpscan/dp_workload.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
-#include "sim/workload/sortfirst/wl_sortfirst.h"
-#include "sim/workload/tokenring/tokenring.h"
+#include "sim/workload/sortfirst/sf_workload.h"
+#include "sim/workload/tokenring/tokenring_workload.h"
 #include <string.h>
 
 extern const WlOps wl_pphigs_ops;

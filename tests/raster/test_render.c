@@ -3,7 +3,7 @@
  * files (tests/data/bad/render/, each naming its expected message in a
  * first-line comment) and bad flags: exit 2, a located message, and no
  * image written.  Run from the repository root (make test does). */
-#include "sim/app/commands.h"
+#include "sim/app/cli/commands.h"
 #include "sim/scene/obj.h"
 #include "sim/scene/ply.h"
 #include "sim/scene/scene_cfg.h"

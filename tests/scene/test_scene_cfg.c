@@ -1,6 +1,6 @@
 /* test_scene_cfg.c — scenes from YAML: the configs/scenes/ files give the
  * published counts (seed 003 Table 1, seed 000, seed 004, and seed 001's
- * four PPHIGS databases against configs/papers/ellsworth90.yaml), a
+ * four PPHIGS databases against configs/papers/ellsworth90/published.yaml), a
  * camera or view re-bases a generator's camera path, and every malformed
  * section fails with a located error.  Run from the repository root.
  */
@@ -129,7 +129,7 @@ static void assert_near(double sim, double pub, double rel)
 static void test_pphigs_configs(void **st)
 {
     (void)st;
-    CfgNode *paper = cfg_load_file("configs/papers/ellsworth90.yaml", NULL);
+    CfgNode *paper = cfg_load_file("configs/papers/ellsworth90/published.yaml", NULL);
     CfgNode *dbs = cfg_load_file("configs/pphigs/databases.yaml", NULL);
     assert_non_null(paper);
     assert_non_null(dbs);

@@ -2,7 +2,7 @@
  * (seed 004).
  *
  * A data-parallel machine is modelled as steps over arrays, never as
- * 64K entities (design.md).  An array of n elements on p physical
+ * 64K entities (the design notes).  An array of n elements on p physical
  * processors runs at virtual-processor ratio v = ceil(n / p) (Hillis,
  * The Connection Machine, 1985; seed 004 §3: "each physical processor is
  * given a number of data elements ... each of these data elements is

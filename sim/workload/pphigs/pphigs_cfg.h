@@ -11,7 +11,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/scene/pphigs_db.h"
-#include "sim/workload/pphigs/frame.h"
+#include "sim/workload/pphigs/pphigs_frame.h"
 
 /* One database's generator parameters (a map of databases.yaml). */
 gboolean wl_pphigs_spec_from_cfg(const CfgNode *map, ScenePphigsSpec *out,

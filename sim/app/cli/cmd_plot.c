@@ -1,0 +1,103 @@
+/* cmd_plot.c — `pgsim plot RESULTS.csv --x K --y K [--series K] [--logx]
+ * [--logy] [--title T] [-o FILE.png]`: an ad hoc chart of two columns of
+ * a CSV file (a sweep's results.csv, a reproduction's table ...).
+ *
+ * Writes FILE.png, FILE.svg, FILE.gp and FILE.dat (default: <y>-vs-<x>
+ * next to the CSV) through plot_render().
+ */
+#include "sim/app/cli/cli.h"
+#include "sim/app/cli/commands.h"
+#include "sim/output/plot.h"
+#include <stdio.h>
+#include <string.h>
+
+typedef struct {
+    char *x, *y, *series, *title, *out;
+    gboolean logx, logy;
+} PlotOpts;
+
+/* FALSE when the caller should return *status (help, or a bad option). */
+static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
+{
+    GOptionEntry entries[] = {
+        {"x", 0, 0, G_OPTION_ARG_STRING, &o->x, "x column", "K"},
+        {"y", 0, 0, G_OPTION_ARG_STRING, &o->y, "y column", "K"},
+        {"series", 0, 0, G_OPTION_ARG_STRING, &o->series,
+         "column that splits rows into lines", "K"},
+        {"logx", 0, 0, G_OPTION_ARG_NONE, &o->logx, "log x axis", NULL},
+        {"logy", 0, 0, G_OPTION_ARG_NONE, &o->logy, "log y axis", NULL},
+        {"title", 0, 0, G_OPTION_ARG_STRING, &o->title, "chart title", "T"},
+        {"output", 'o', 0, G_OPTION_ARG_FILENAME, &o->out,
+         "PNG to write (an SVG, .gp and .dat go beside it)", "FILE.png"},
+        {NULL, 0, 0, 0, NULL, NULL, NULL}};
+    if (!cli_parse("plot", "RESULTS.csv",
+                   "Charts two columns of a CSV file with gnuplot "
+                   "(docs/sweeps.md).",
+                   entries, argc, argv, status))
+        return FALSE;
+    *status = 2;
+    if (!cli_want_args("plot", "RESULTS.csv", *argc, *argv, 1))
+        return FALSE;
+    if (!o->x || !o->y) {
+        fprintf(stderr, "pgsim plot: found no --%s, expected --x K --y K\n",
+                o->x ? "y" : "x");
+        return FALSE;
+    }
+    return TRUE;
+}
+
+/* Splits -o FILE.png (or the default) into a directory and a stem. */
+static void out_names(const PlotOpts *o, const char *csv, char **dir,
+                      char **stem)
+{
+    if (o->out) {
+        *dir = g_path_get_dirname(o->out);
+        char *base = g_path_get_basename(o->out);
+        if (g_str_has_suffix(base, ".png"))
+            base[strlen(base) - 4] = '\0';
+        *stem = base;
+    } else {
+        *dir = g_path_get_dirname(csv);
+        *stem = g_strdup_printf("%s-vs-%s", o->y, o->x);
+    }
+}
+
+static gboolean plot_csv(const PlotOpts *o, const char *csv, GError **err)
+{
+    DataTable *t = dt_read_csv(csv, err);
+    if (!t)
+        return FALSE;
+    char *dir, *stem;
+    out_names(o, csv, &dir, &stem);
+    PlotSpec *p = plot_spec_new(stem, o->x, o->y);
+    p->series = g_strdup(o->series);
+    p->title = g_strdup(o->title);
+    p->logx = o->logx;
+    p->logy = o->logy;
+    gboolean ok = plot_render(p, t, dir, err);
+    if (ok)
+        printf("%s/%s.png\n", dir, stem);
+    plot_spec_free(p);
+    dt_free(t);
+    g_free(dir);
+    g_free(stem);
+    return ok;
+}
+
+int cmd_plot(int argc, char **argv)
+{
+    PlotOpts o = {0};
+    GError *err = NULL;
+    int st = 0;
+    if (parse_opts(&o, &argc, &argv, &st)) {
+        st = 0;
+        if (!plot_csv(&o, argv[1], &err))
+            st = cli_fail(err);
+    }
+    g_free(o.x);
+    g_free(o.y);
+    g_free(o.series);
+    g_free(o.title);
+    g_free(o.out);
+    return st;
+}

@@ -1,0 +1,284 @@
+/* cmd_reproduce.c — `pgsim reproduce NAME|all [--format text|csv|json]
+ * [--out DIR] [--fidelity analytic|flow|packet|all] [--papers DIR]
+ * [--quiet]`.
+ *
+ * Runs paper reproductions (sim/reproduce/reproduce.h), joins them to the
+ * published values in configs/papers/<name>.yaml and prints the tables in
+ * the chosen format on stdout.  With --out DIR each reproduction's table
+ * is also written, atomically, as DIR/<name>.{txt,csv,json} (and, with
+ * --fidelity all, the chart DIR/<name>-speed.png).  `all` also writes the
+ * Markdown report --doc FILE (default docs/reproduction.md) with charts
+ * in <its directory>/reproduction/.
+ */
+#include "sim/output/atomic.h"
+#include "sim/app/cli/cli.h"
+#include "sim/app/cli/commands.h"
+#include "sim/reproduce/rp_doc.h"
+#include "sim/reproduce/rp_driver.h"
+#include "sim/reproduce/rp_speed.h"
+#include <stdio.h>
+#include <string.h>
+
+typedef enum { FMT_TEXT, FMT_CSV, FMT_JSON } RpFormat;
+
+typedef struct {
+    char *format;
+    char *out_dir;
+    char *fidelity;
+    char *papers;
+    char *doc;
+    gboolean quiet;
+    RpFormat fmt;
+} RpOpts;
+
+static gboolean parse_format(RpOpts *o, GError **err)
+{
+    static const char *const names[] = {"text", "csv", "json"};
+    for (int i = 0; i < 3; i++)
+        if (strcmp(o->format, names[i]) == 0) {
+            o->fmt = (RpFormat)i;
+            return TRUE;
+        }
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "--format: found '%s', expected text, csv or json", o->format);
+    return FALSE;
+}
+
+/* FALSE when the caller should return *status (help, or a bad option). */
+static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
+{
+    GOptionEntry entries[] = {
+        {"format", 0, 0, G_OPTION_ARG_STRING, &o->format,
+         "text (default), csv or json", "FMT"},
+        {"out", 0, 0, G_OPTION_ARG_FILENAME, &o->out_dir,
+         "also write <name>.{txt,csv,json} and charts here", "DIR"},
+        {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o->fidelity,
+         "analytic, flow (default), packet or all", "F"},
+        {"papers", 0, 0, G_OPTION_ARG_FILENAME, &o->papers,
+         "published values (default configs/papers)", "DIR"},
+        {"doc", 0, 0, G_OPTION_ARG_FILENAME, &o->doc,
+         "with 'all': the Markdown report (default docs/reproduction.md)",
+         "FILE"},
+        {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
+        {NULL, 0, 0, 0, NULL, NULL, NULL}};
+    if (!cli_parse("reproduce", "NAME|all",
+                   "Reruns a paper's tables and compares them with the "
+                   "published values (docs/reproduction-format.md).",
+                   entries, argc, argv, status))
+        return FALSE;
+    *status = 2;
+    return cli_want_args("reproduce", "NAME|all", *argc, *argv, 1);
+}
+
+static gboolean check_opts(RpOpts *o, GError **err)
+{
+    if (!o->format)
+        o->format = g_strdup("text");
+    if (!o->fidelity)
+        o->fidelity = g_strdup(RP_DEFAULT_FIDELITY);
+    if (!rp_fidelity_valid(o->fidelity) && strcmp(o->fidelity, "all")) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "--fidelity: found '%s', expected analytic, flow, "
+                    "packet or all",
+                    o->fidelity);
+        return FALSE;
+    }
+    return parse_format(o, err);
+}
+
+/* passes: one RpTable, or one per fidelity for --fidelity all. */
+static void format_passes(const GPtrArray *passes, RpFormat f, gboolean first,
+                          GString *out)
+{
+    gboolean speed = passes->len > 1;
+    const RpTable *t = g_ptr_array_index(passes, 0);
+    if (f == FMT_TEXT) {
+        if (!first)
+            g_string_append_c(out, '\n');
+        if (speed)
+            rp_speed_text(passes, out);
+        else
+            rp_table_text(t, out);
+    } else if (f == FMT_CSV) {
+        if (speed)
+            rp_speed_csv(passes, first, out);
+        else
+            rp_table_csv(t, first, out);
+    } else {
+        if (speed)
+            rp_speed_json(passes, out);
+        else
+            rp_table_json(t, out);
+        g_string_append_c(out, '\n');
+    }
+}
+
+static gboolean write_file(const char *dir, const char *name, const char *ext,
+                           const GString *s, GError **err)
+{
+    char *file = g_strconcat(name, ".", ext, NULL);
+    char *path = g_build_filename(dir, file, NULL);
+    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
+    g_free(path);
+    g_free(file);
+    return ok;
+}
+
+static gboolean write_outputs(const GPtrArray *passes, const char *dir,
+                              GError **err)
+{
+    static const char *const ext[] = {"txt", "csv", "json"};
+    const RpTable *t = g_ptr_array_index(passes, 0);
+    if (g_mkdir_with_parents(dir, 0755) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
+        return FALSE;
+    }
+    for (int f = 0; f < 3; f++) {
+        GString *s = g_string_new(NULL);
+        format_passes(passes, (RpFormat)f, TRUE, s);
+        gboolean ok = write_file(dir, t->paper, ext[f], s, err);
+        g_string_free(s, TRUE);
+        if (!ok)
+            return FALSE;
+    }
+    return passes->len < 2 || rp_speed_chart(passes, dir, err);
+}
+
+static GPtrArray *run_passes(const RpPaperOps *rp, const RpOpts *o,
+                             GError **err)
+{
+    RpContext ctx = {
+        .fidelity = o->fidelity, .out_dir = o->out_dir, .quiet = o->quiet};
+    if (strcmp(o->fidelity, "all") == 0)
+        return rp_drive_fidelities(rp, o->papers, &ctx, err);
+    RpTable *t = rp_drive(rp, o->papers, &ctx, err);
+    if (!t)
+        return NULL;
+    GPtrArray *passes =
+        g_ptr_array_new_with_free_func((GDestroyNotify)rp_table_free);
+    g_ptr_array_add(passes, t);
+    return passes;
+}
+
+/* Runs one reproduction, prints it and writes --out files; returns its
+ * passes (the caller frees them) or NULL with *err. */
+static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o,
+                          gboolean first, GError **err)
+{
+    if (!o->quiet)
+        fprintf(stderr, "reproduce: %s (fidelity %s)\n", rp->name, o->fidelity);
+    GPtrArray *passes = run_passes(rp, o, err);
+    if (!passes)
+        return NULL;
+    GString *s = g_string_new(NULL);
+    format_passes(passes, o->fmt, first, s);
+    fputs(s->str, stdout);
+    fflush(stdout);
+    g_string_free(s, TRUE);
+    if (o->out_dir && !write_outputs(passes, o->out_dir, err)) {
+        g_ptr_array_free(passes, TRUE);
+        return NULL;
+    }
+    return passes;
+}
+
+static GHashTable *captions_of(const RpPaperOps *rp, const RpOpts *o)
+{
+    char *path = rp_paper_path(o->papers ? o->papers : RP_PAPERS_DIR, rp->name);
+    RpPaper *p = rp_paper_load(path, NULL);
+    g_free(path);
+    if (!p)
+        return NULL;
+    GHashTable *c = g_hash_table_ref(p->captions);
+    rp_paper_free(p);
+    return c;
+}
+
+/* Adds one paper's section (and its charts) to the report. */
+static gboolean doc_paper(GString *md, const RpPaperOps *rp,
+                          const GPtrArray *passes, const RpOpts *o,
+                          const char *chart_dir, GError **err)
+{
+    const RpTable *fin = g_ptr_array_index(passes, passes->len - 1);
+    if (g_mkdir_with_parents(chart_dir, 0755) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create",
+                    chart_dir);
+        return FALSE;
+    }
+    if (!rp_doc_chart(fin, chart_dir, err) ||
+        (passes->len > 1 && !rp_speed_chart(passes, chart_dir, err)))
+        return FALSE;
+    GHashTable *caps = captions_of(rp, o);
+    rp_doc_paper(md, passes, caps, chart_dir, "reproduction");
+    if (caps)
+        g_hash_table_unref(caps);
+    return TRUE;
+}
+
+static gboolean run_all(const RpOpts *o, GError **err)
+{
+    const char *doc = o->doc ? o->doc : "docs/reproduction.md";
+    char *dir = g_path_get_dirname(doc);
+    char *charts = g_build_filename(dir, "reproduction", NULL);
+    GString *md = g_string_new(NULL);
+    rp_doc_head(md, o->fidelity);
+    gboolean ok = TRUE;
+    for (int i = 0; ok && rp_all[i]; i++) {
+        GPtrArray *passes = run_one(rp_all[i], o, i == 0, err);
+        ok = passes && doc_paper(md, rp_all[i], passes, o, charts, err);
+        if (passes)
+            g_ptr_array_free(passes, TRUE);
+    }
+    if (!rp_all[0])
+        g_string_append(md, "No reproduction is registered yet.\n");
+    if (ok && g_mkdir_with_parents(dir, 0755) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
+        ok = FALSE;
+    }
+    ok = ok && rpt_write_atomic(doc, md->str, md->len, err);
+    if (ok && !o->quiet)
+        fprintf(stderr, "reproduce: wrote %s\n", doc);
+    g_string_free(md, TRUE);
+    g_free(charts);
+    g_free(dir);
+    return ok;
+}
+
+static gboolean run_named(const char *name, const RpOpts *o, GError **err)
+{
+    if (strcmp(name, "all") == 0)
+        return run_all(o, err);
+    const RpPaperOps *rp = rp_find(name);
+    if (!rp) {
+        GString *known = g_string_new("all");
+        for (int i = 0; rp_all[i]; i++)
+            g_string_append_printf(known, ", %s", rp_all[i]->name);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "reproduce: found '%s', expected one of: %s", name,
+                    known->str);
+        g_string_free(known, TRUE);
+        return FALSE;
+    }
+    GPtrArray *passes = run_one(rp, o, TRUE, err);
+    if (passes)
+        g_ptr_array_free(passes, TRUE);
+    return passes != NULL;
+}
+
+int cmd_reproduce(int argc, char **argv)
+{
+    RpOpts o = {0};
+    GError *err = NULL;
+    int status = 0;
+    if (parse_opts(&o, &argc, &argv, &status)) {
+        status = 0;
+        if (!check_opts(&o, &err) || !run_named(argv[1], &o, &err))
+            status = cli_fail(err);
+    }
+    g_free(o.format);
+    g_free(o.out_dir);
+    g_free(o.fidelity);
+    g_free(o.papers);
+    g_free(o.doc);
+    return status;
+}

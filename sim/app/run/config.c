@@ -1,0 +1,263 @@
+/* config.c — loading and running a run config (config.h).
+ *
+ * Order matters for good errors: overrides first (so --set can fix or
+ * break anything), then the sections in a fixed order (schema_version,
+ * run, workload, machine, scene), each read by its consumer, and last the
+ * unknown-key check over the whole tree, which therefore sees exactly the
+ * keys no consumer knew.  Every error is located (file:line:col).
+ *
+ * Model search path: the machine layer looks in ./models and then
+ * $PGSIM_MODELS; cfg_run_load() appends to $PGSIM_MODELS the models/
+ * directory of the repository that holds the config (nearest ancestor of
+ * the config's directory with a models/ folder) and the install prefix's
+ * share/pgsim/models (next to the executable, then PGSIM_PREFIX).
+ */
+#include "sim/app/run/config.h"
+#include "sim/output/progress.h"
+#include "sim/machine/machine.h"
+#include "sim/scene/scene_cfg.h"
+#include <string.h>
+
+#ifndef PGSIM_PREFIX
+#define PGSIM_PREFIX "/usr/local"
+#endif
+
+static const char *const fidelities[] = {"analytic", "flow", "packet", NULL};
+
+/* Nearest ancestor directory of `path` that has a models/ folder. */
+static char *repo_models_dir(const char *path)
+{
+    char *dir = g_path_get_dirname(path);
+    char *abs = g_canonicalize_filename(dir, NULL);
+    g_free(dir);
+    for (;;) {
+        char *m = g_build_filename(abs, "models", NULL);
+        if (g_file_test(m, G_FILE_TEST_IS_DIR)) {
+            g_free(abs);
+            return m;
+        }
+        g_free(m);
+        char *up = g_path_get_dirname(abs);
+        gboolean top = strcmp(up, abs) == 0;
+        g_free(abs);
+        abs = up;
+        if (top)
+            break;
+    }
+    g_free(abs);
+    return NULL;
+}
+
+static void add_dir(GString *s, const char *dir)
+{
+    if (!dir || !g_file_test(dir, G_FILE_TEST_IS_DIR))
+        return;
+    if (s->len)
+        g_string_append_c(s, ':');
+    g_string_append(s, dir);
+}
+
+/* Extends $PGSIM_MODELS as described above (once per config). */
+static void extend_model_path(const char *config_path)
+{
+    GString *s = g_string_new(g_getenv("PGSIM_MODELS"));
+    char *repo = repo_models_dir(config_path);
+    add_dir(s, repo);
+    char *exe = g_file_read_link("/proc/self/exe", NULL);
+    if (exe) {
+        char *bindir = g_path_get_dirname(exe);
+        char *share =
+            g_build_filename(bindir, "..", "share", "pgsim", "models", NULL);
+        add_dir(s, share);
+        g_free(share);
+        g_free(bindir);
+        g_free(exe);
+    }
+    add_dir(s, PGSIM_PREFIX "/share/pgsim/models");
+    g_setenv("PGSIM_MODELS", s->str, TRUE);
+    g_free(repo);
+    g_string_free(s, TRUE);
+}
+
+static gboolean check_root(const CfgNode *root, GError **err)
+{
+    if (cfg_kind(root) == CFG_MAP)
+        return TRUE;
+    char *found = cfg_describe(root);
+    cfg_error(err, root, found, "a map starting with schema_version: 1");
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean check_schema(const CfgNode *root, GError **err)
+{
+    const CfgNode *v = cfg_get(root, "schema_version");
+    if (!v) {
+        cfg_error(err, root, "no key 'schema_version'",
+                  "schema_version: 1 at the top");
+        return FALSE;
+    }
+    if (g_strcmp0(cfg_scalar(v), "1") != 0) {
+        char *found = cfg_describe(v);
+        cfg_error(err, v, found, "1 (the only schema version)");
+        g_free(found);
+        return FALSE;
+    }
+    return TRUE;
+}
+
+static gboolean read_run(CfgRun *r, GError **err)
+{
+    const CfgNode *run = cfg_get(r->root, "run");
+    int64_t seed = 1, frames = 1;
+    int fid = 0;
+    r->until = SIM_TIME_MAX;
+    if (run && cfg_kind(run) != CFG_MAP) {
+        char *found = cfg_describe(run);
+        cfg_error(err, run, found, "a map (seed, frames, fidelity, until)");
+        g_free(found);
+        return FALSE;
+    }
+    if (!cfg_get_int(run, "seed", FALSE, 0, INT64_MAX, &seed, err) ||
+        !cfg_get_int(run, "frames", FALSE, 1, 10000000, &frames, err) ||
+        !cfg_get_enum(run, "fidelity", FALSE, fidelities, &fid, err) ||
+        !cfg_get_time(run, "until", FALSE, &r->until, err))
+        return FALSE;
+    r->seed = (uint64_t)seed;
+    r->frames = (int)frames;
+    r->fidelity = fidelities[fid];
+    return TRUE;
+}
+
+static char *workload_names(void)
+{
+    GString *s = g_string_new("one of: ");
+    for (int i = 0; wl_all[i]; i++)
+        g_string_append_printf(s, "%s%s", i ? ", " : "", wl_all[i]->name);
+    if (!wl_all[0])
+        g_string_append(s, "(no workload is registered)");
+    return g_string_free(s, FALSE);
+}
+
+static gboolean read_workload(CfgRun *r, GError **err)
+{
+    const char *type = NULL;
+    r->workload = cfg_get(r->root, "workload");
+    if (!r->workload) {
+        cfg_error(err, r->root, "no key 'workload'",
+                  "workload: {type: <name>, ...}");
+        return FALSE;
+    }
+    if (!cfg_get_str(r->workload, "type", TRUE, &type, err))
+        return FALSE;
+    r->wl = wl_find(type);
+    if (!r->wl) {
+        char *found = g_strdup_printf("workload '%s'", type);
+        char *names = workload_names();
+        cfg_error(err, cfg_get(r->workload, "type"), found, names);
+        g_free(found);
+        g_free(names);
+        return FALSE;
+    }
+    r->wl_params = r->wl->parse(r->workload, err);
+    return r->wl_params != NULL;
+}
+
+static gboolean read_scene(CfgRun *r, GError **err)
+{
+    r->scene = cfg_get(r->root, "scene");
+    if (!r->scene)
+        return TRUE;
+    Scene *s = scene_from_cfg(r->scene, err);
+    scene_free(s);
+    return s != NULL;
+}
+
+static gboolean apply_overrides(CfgNode *root, const char *const *ov,
+                                GError **err)
+{
+    for (int i = 0; ov && ov[i]; i++)
+        if (!cfg_set_override(root, ov[i], err))
+            return FALSE;
+    return TRUE;
+}
+
+CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
+                          GError **err)
+{
+    CfgRun *r = g_new0(CfgRun, 1);
+    r->root = root;
+    gboolean ok =
+        check_root(root, err) && apply_overrides(root, overrides, err) &&
+        check_schema(root, err) && read_run(r, err) && read_workload(r, err);
+    r->machine = ok ? cfg_get(root, "machine") : NULL;
+    ok = ok && (!r->machine || mach_check_section(r->machine, err)) &&
+         read_scene(r, err) && cfg_check_unused(root, err);
+    if (!ok) {
+        cfg_run_free(r);
+        return NULL;
+    }
+    return r;
+}
+
+CfgRun *cfg_run_load(const char *path, const char *const *overrides,
+                     GError **err)
+{
+    CfgNode *root = cfg_load_file(path, err);
+    if (!root)
+        return NULL;
+    extend_model_path(path);
+    return cfg_run_from_tree(root, overrides, err);
+}
+
+void cfg_run_free(CfgRun *r)
+{
+    if (!r)
+        return;
+    if (r->wl && r->wl_params)
+        r->wl->free_params(r->wl_params);
+    cfg_free(r->root);
+    g_free(r);
+}
+
+static char *machine_name(const CfgRun *r)
+{
+    const char *model = cfg_scalar(cfg_get(r->machine, "model"));
+    return g_strdup(model ? model : r->machine ? "inline" : "none");
+}
+
+SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
+{
+    SimEngine *eng = sim_engine_new(r->seed);
+    sim_engine_set_trace(eng, opts ? opts->trace : NULL);
+    char *mname = machine_name(r);
+    SimResult *res = sim_result_new(r->wl->name, mname);
+    g_free(mname);
+    g_free(res->fidelity);
+    res->fidelity = g_strdup(r->fidelity);
+    res->seed = r->seed;
+    WlContext ctx = {eng,
+                     r->root,
+                     r->seed,
+                     r->fidelity,
+                     r->frames,
+                     opts ? opts->out_dir : NULL,
+                     opts ? opts->quiet : TRUE};
+    RptProgress *p = opts && opts->progress && !opts->quiet
+                         ? rpt_progress_new(0, r->wl->name)
+                         : NULL;
+    rpt_progress_attach(p, eng);
+    gint64 t0 = g_get_monotonic_time();
+    gboolean ok = r->wl->run(&ctx, r->wl_params, res, err);
+    res->wall_s = (double)(g_get_monotonic_time() - t0) * 1e-6;
+    rpt_progress_finish(p);
+    res->events = sim_engine_events(eng);
+    if (!res->elapsed)
+        res->elapsed = sim_now(eng);
+    sim_engine_free(eng);
+    if (!ok) {
+        sim_result_free(res);
+        return NULL;
+    }
+    return res;
+}

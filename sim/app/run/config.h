@@ -1,0 +1,62 @@
+/* config.h — the run config: a YAML file checked from top to bottom.
+ *
+ *     schema_version: 1                 # required, must be 1
+ *     machine: {model: ipsc2, ...}      # optional; sim/machine checks it
+ *     workload: {type: tokenring, ...}  # required; the workload parses it
+ *     scene: {...}                      # optional; sim/scene checks it
+ *     run: {seed: 1, frames: 1, fidelity: analytic, until: 10 ms}
+ *
+ * Loading applies --set overrides first, then reads every section with
+ * its consumer (workload parse, mach_check_section, scene_from_cfg) and
+ * finally rejects any key nobody read (cfg_check_unused on the whole
+ * tree).  Every problem is a located error with exit status 2
+ * (docs/config.md).  Machine models are looked up by the machine layer;
+ * cfg_run_load() adds the config's repository models/ directory and the
+ * install prefix's share/pgsim/models to its search path ($PGSIM_MODELS).
+ */
+#ifndef PGSIM_APP_RUN_CONFIG_H
+#define PGSIM_APP_RUN_CONFIG_H
+
+#include "sim/core/cfg.h"
+#include "sim/core/result.h"
+#include "sim/workload/workload.h"
+
+typedef struct {
+    CfgNode *root;           /* owned: the tree after overrides */
+    const CfgNode *machine;  /* borrowed from root; NULL when absent */
+    const CfgNode *scene;    /* borrowed from root; NULL when absent */
+    const CfgNode *workload; /* borrowed: the workload section */
+    const WlOps *wl;
+    void *wl_params;      /* owned (wl->free_params) */
+    uint64_t seed;        /* run.seed, default 1 */
+    int frames;           /* run.frames, default 1 */
+    const char *fidelity; /* run.fidelity, default "analytic" (static) */
+    SimTime until;        /* run.until; SIM_TIME_MAX when absent */
+} CfgRun;
+
+/* Loads and checks a run config; `overrides` is a NULL-terminated list of
+ * "key.path=value" (may be NULL).  Returns a new CfgRun (cfg_run_free) or
+ * NULL with *err set. */
+CfgRun *cfg_run_load(const char *path, const char *const *overrides,
+                     GError **err);
+/* The same from a tree already loaded (takes ownership of root, also on
+ * failure); overrides are applied first.  For sweeps. */
+CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
+                          GError **err);
+void cfg_run_free(CfgRun *run);
+
+/* Options for one execution of a loaded config. */
+typedef struct {
+    const char *out_dir; /* passed to the workload; NULL: none */
+    gboolean quiet;      /* no progress display */
+    gboolean progress;   /* show progress (when stderr is a terminal) */
+    SimTrace *trace;     /* attached to the engine; NULL: none (borrowed) */
+} CfgRunOpts;
+
+/* Runs the config's workload on a fresh engine seeded with run->seed and
+ * returns a new result (sim_result_free) with the engine figures and
+ * wall-clock time filled, or NULL with *err set. */
+SimResult *cfg_run_exec(const CfgRun *run, const CfgRunOpts *opts,
+                        GError **err);
+
+#endif

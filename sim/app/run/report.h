@@ -1,0 +1,31 @@
+/* report.h — writing a SimResult as text, JSON or CSV (docs/output.md).
+ *
+ * Text is for people; JSON and CSV are for programs and are byte-for-byte
+ * deterministic for a given result unless `timing` is set: wall-clock
+ * figures (wall seconds, events per second) are the only
+ * non-deterministic numbers and appear only with timing.  Numbers are
+ * printed locale-independently: simulated times as exact decimal
+ * seconds from integer picoseconds, other doubles so that they read back
+ * exactly (json_fmt_num).
+ */
+#ifndef PGSIM_APP_RUN_REPORT_H
+#define PGSIM_APP_RUN_REPORT_H
+
+#include "sim/core/result.h"
+
+typedef enum { RPT_TEXT, RPT_JSON, RPT_CSV } RptFormat;
+
+/* "text", "json", "csv" -> format; FALSE if unknown. */
+gboolean rpt_format_parse(const char *s, RptFormat *out);
+/* The file name used in an output directory: summary.txt, result.json,
+ * result.csv. */
+const char *rpt_format_file(RptFormat f);
+
+/* Returns the rendering as a new string (g_free). */
+char *rpt_render(const SimResult *r, RptFormat f, gboolean timing);
+/* Writes all three renderings into dir (created if needed), atomically;
+ * FALSE with *err on failure. */
+gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
+                       GError **err);
+
+#endif

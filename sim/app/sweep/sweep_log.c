@@ -1,0 +1,311 @@
+/* sweep_log.c — the append-only results log of a sweep and its final,
+ * ordered outputs.
+ *
+ * Durability: each line is written with one write() on an O_APPEND
+ * descriptor and followed by fsync(), so after a crash the file is a
+ * sequence of complete lines plus at most one partial line at the end,
+ * which resume truncates.  Lines are never edited in place.  Reading the
+ * log is O(bytes); finishing is O(points * columns).
+ */
+#include "sim/app/sweep/sweep_log.h"
+#include "sim/output/atomic.h"
+#include "sim/output/json.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <string.h>
+#include <unistd.h>
+
+#define LOG_NAME "results.jsonl"
+#define FP_NAME "sweep.fingerprint"
+
+struct SweepLog {
+    int fd;
+    char *path;
+    guint n_points;
+    guint8 *done; /* n_points flags */
+    guint n_done;
+};
+
+static gboolean io_error(GError **err, const char *path, const char *what)
+{
+    g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot %s: %s", path, what,
+                g_strerror(errno));
+    return FALSE;
+}
+
+static char *in_dir(const char *dir, const char *name)
+{
+    return g_build_filename(dir, name, NULL);
+}
+
+/* Splits text into complete lines; *complete = bytes up to the last '\n'. */
+static char **complete_lines(const char *text, gsize len, gsize *complete)
+{
+    const char *last = len ? g_strrstr_len(text, (gssize)len, "\n") : NULL;
+    *complete = last ? (gsize)(last - text) + 1 : 0;
+    char *body = g_strndup(text, *complete);
+    char **lines = g_strsplit(body, "\n", -1);
+    g_free(body);
+    return lines;
+}
+
+static gboolean line_point(const char *line, guint n, guint *idx, gboolean *ok)
+{
+    JsonVal *v = json_parse(line, -1, LOG_NAME, NULL);
+    const JsonVal *p = json_get(v, "point"), *s = json_get(v, "status");
+    gboolean good = p && p->kind == JSON_NUMBER && p->num >= 0 && p->num < n &&
+                    s && s->kind == JSON_STRING;
+    if (good) {
+        *idx = (guint)p->num;
+        *ok = strcmp(s->str, "ok") == 0;
+    }
+    json_free(v);
+    return good;
+}
+
+static gboolean check_fingerprint(const char *dir, const SweepSpec *spec,
+                                  gboolean resume, GError **err)
+{
+    char *path = in_dir(dir, FP_NAME), *old = NULL;
+    char *fp = sweep_spec_fingerprint(spec);
+    gboolean ok = TRUE;
+    if (resume && g_file_get_contents(path, &old, NULL, NULL) &&
+        strcmp(g_strstrip(old), fp) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s: found the log of another sweep (the sweep file or "
+                    "its base config changed), expected the same sweep to "
+                    "resume",
+                    dir);
+        ok = FALSE;
+    }
+    char *text = g_strconcat(fp, "\n", NULL);
+    ok = ok && rpt_write_atomic(path, text, strlen(text), err);
+    g_free(text);
+    g_free(old);
+    g_free(fp);
+    g_free(path);
+    return ok;
+}
+
+static gboolean load_existing(SweepLog *log, gboolean resume, GError **err)
+{
+    char *text = NULL;
+    gsize len = 0, complete = 0;
+    if (!g_file_get_contents(log->path, &text, &len, NULL) || len == 0) {
+        g_free(text);
+        return TRUE;
+    }
+    if (!resume) {
+        g_free(text);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s: found results of an earlier run, expected an "
+                    "empty output (use --resume, or another --out)",
+                    log->path);
+        return FALSE;
+    }
+    char **lines = complete_lines(text, len, &complete);
+    for (char **l = lines; *l; l++) {
+        guint idx;
+        gboolean ok;
+        if (**l && line_point(*l, log->n_points, &idx, &ok) && ok &&
+            !log->done[idx]) {
+            log->done[idx] = 1;
+            log->n_done++;
+        }
+    }
+    g_strfreev(lines);
+    g_free(text);
+    if (complete < len && truncate(log->path, (off_t)complete) != 0)
+        return io_error(err, log->path, "truncate the partial last line");
+    return TRUE;
+}
+
+SweepLog *sweep_log_open(const char *dir, const SweepSpec *spec,
+                         gboolean resume, GError **err)
+{
+    if (g_mkdir_with_parents(dir, 0755) != 0) {
+        io_error(err, dir, "create the directory");
+        return NULL;
+    }
+    SweepLog *log = g_new0(SweepLog, 1);
+    log->fd = -1;
+    log->path = in_dir(dir, LOG_NAME);
+    log->n_points = sweep_spec_points(spec);
+    log->done = g_new0(guint8, log->n_points);
+    if (!load_existing(log, resume, err) ||
+        !check_fingerprint(dir, spec, resume, err)) {
+        sweep_log_close(log);
+        return NULL;
+    }
+    log->fd = open(log->path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (log->fd < 0) {
+        io_error(err, log->path, "open");
+        sweep_log_close(log);
+        return NULL;
+    }
+    return log;
+}
+
+void sweep_log_close(SweepLog *log)
+{
+    if (!log)
+        return;
+    if (log->fd >= 0)
+        close(log->fd);
+    g_free(log->path);
+    g_free(log->done);
+    g_free(log);
+}
+
+gboolean sweep_log_done(const SweepLog *log, guint i)
+{
+    g_assert(i < log->n_points);
+    return log->done[i] != 0;
+}
+
+guint sweep_log_n_done(const SweepLog *log)
+{
+    return log->n_done;
+}
+
+gboolean sweep_log_append(SweepLog *log, const char *line, GError **err)
+{
+    size_t len = strlen(line);
+    g_assert(len > 0 && line[len - 1] == '\n');
+    ssize_t w;
+    do
+        w = write(log->fd, line, len);
+    while (w < 0 && errno == EINTR);
+    if (w != (ssize_t)len)
+        return io_error(err, log->path, "append a line");
+    if (fsync(log->fd) != 0)
+        return io_error(err, log->path, "sync");
+    return TRUE;
+}
+
+/* ---- finishing ------------------------------------------------------- */
+
+static GPtrArray *base_columns(const SweepSpec *spec)
+{
+    GPtrArray *cols = g_ptr_array_new_with_free_func(g_free);
+    const char *const first[] = {"point", "repetition", "seed"};
+    for (int i = 0; i < 3; i++)
+        g_ptr_array_add(cols, g_strdup(first[i]));
+    for (guint i = 0; i < spec->params->len; i++)
+        g_ptr_array_add(
+            cols,
+            g_strdup(((SweepParam *)g_ptr_array_index(spec->params, i))->key));
+    g_ptr_array_add(cols, g_strdup("status"));
+    g_ptr_array_add(cols, g_strdup("error"));
+    return cols;
+}
+
+static gboolean has_col(const GPtrArray *cols, const char *k)
+{
+    for (guint i = 0; i < cols->len; i++)
+        if (strcmp(g_ptr_array_index(cols, i), k) == 0)
+            return TRUE;
+    return FALSE;
+}
+
+static char *cell_text(const JsonVal *v)
+{
+    if (!v || v->kind == JSON_NULL)
+        return g_strdup("");
+    if (v->kind == JSON_STRING)
+        return g_strdup(v->str);
+    if (v->kind == JSON_NUMBER)
+        return g_strdup(v->raw);
+    if (v->kind == JSON_BOOL)
+        return g_strdup(v->b ? "true" : "false");
+    return g_strdup("");
+}
+
+static DataTable *build_table(const SweepSpec *spec, JsonVal **rows, guint n)
+{
+    GPtrArray *cols = base_columns(spec);
+    for (guint i = 0; i < n; i++)
+        for (guint k = 0; rows[i] && k < rows[i]->keys->len; k++) {
+            const char *key = g_ptr_array_index(rows[i]->keys, k);
+            if (!has_col(cols, key))
+                g_ptr_array_add(cols, g_strdup(key));
+        }
+    DataTable *t = dt_new(cols);
+    char **cells = g_new0(char *, cols->len + 1);
+    for (guint i = 0; i < n; i++) {
+        if (!rows[i])
+            continue;
+        for (guint c = 0; c < cols->len; c++)
+            cells[c] = cell_text(json_get(rows[i], cols->pdata[c]));
+        dt_add_row(t, cells);
+        for (guint c = 0; c < cols->len; c++)
+            g_free(cells[c]);
+    }
+    g_free(cells);
+    g_ptr_array_free(cols, TRUE);
+    return t;
+}
+
+static gboolean write_atomic(const char *dir, const char *name,
+                             const GString *s, GError **err)
+{
+    char *path = in_dir(dir, name);
+    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
+    g_free(path);
+    return ok;
+}
+
+static gboolean write_outputs(const char *dir, const SweepSpec *spec,
+                              char **lines, JsonVal **rows, guint n,
+                              DataTable **table_out, GError **err)
+{
+    GString *jl = g_string_new(NULL), *csv = g_string_new(NULL);
+    for (guint i = 0; i < n; i++)
+        if (lines[i])
+            g_string_append_printf(jl, "%s\n", lines[i]);
+    DataTable *t = build_table(spec, rows, n);
+    dt_write_csv(t, csv);
+    gboolean ok = write_atomic(dir, LOG_NAME, jl, err) &&
+                  write_atomic(dir, "results.csv", csv, err);
+    if (ok && table_out)
+        *table_out = t;
+    else
+        dt_free(t);
+    g_string_free(jl, TRUE);
+    g_string_free(csv, TRUE);
+    return ok;
+}
+
+gboolean sweep_log_finish(const char *dir, const SweepSpec *spec,
+                          DataTable **table_out, GError **err)
+{
+    char *path = in_dir(dir, LOG_NAME), *text = NULL;
+    gsize len = 0, complete;
+    if (!g_file_get_contents(path, &text, &len, NULL)) {
+        g_free(path);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot read", dir);
+        return FALSE;
+    }
+    guint n = sweep_spec_points(spec);
+    char **lines = complete_lines(text, len, &complete);
+    char **last = g_new0(char *, n);
+    JsonVal **rows = g_new0(JsonVal *, n);
+    for (char **l = lines; *l; l++) {
+        guint idx;
+        gboolean ok;
+        if (!**l || !line_point(*l, n, &idx, &ok))
+            continue;
+        json_free(rows[idx]);
+        rows[idx] = json_parse(*l, -1, LOG_NAME, NULL);
+        last[idx] = *l;
+    }
+    gboolean ok = write_outputs(dir, spec, last, rows, n, table_out, err);
+    for (guint i = 0; i < n; i++)
+        json_free(rows[i]);
+    g_free(rows);
+    g_free(last);
+    g_strfreev(lines);
+    g_free(text);
+    g_free(path);
+    return ok;
+}

@@ -1,0 +1,203 @@
+/* table.c — text tables and CSV.
+ *
+ * The reader is a small state machine over the text: fields end at ',',
+ * records at LF or CRLF; a quoted field may hold commas, newlines and
+ * doubled quotes.  Invariant: every row has exactly cols->len cells (a
+ * record with another count is an error naming its line).  O(n).
+ */
+#include "sim/output/table.h"
+#include "sim/core/datapath.h"
+#include <string.h>
+
+DataTable *dt_new(const GPtrArray *cols)
+{
+    DataTable *t = g_new0(DataTable, 1);
+    t->cols = g_ptr_array_new_with_free_func(g_free);
+    for (guint i = 0; i < cols->len; i++)
+        g_ptr_array_add(t->cols, g_strdup(g_ptr_array_index(cols, i)));
+    t->rows = g_ptr_array_new_with_free_func((GDestroyNotify)g_strfreev);
+    return t;
+}
+
+void dt_free(DataTable *t)
+{
+    if (!t)
+        return;
+    g_ptr_array_free(t->cols, TRUE);
+    g_ptr_array_free(t->rows, TRUE);
+    g_free(t);
+}
+
+void dt_add_row(DataTable *t, char *const *cells)
+{
+    char **row = g_new0(char *, t->cols->len + 1);
+    for (guint i = 0; i < t->cols->len; i++)
+        row[i] = g_strdup(cells[i] ? cells[i] : "");
+    g_ptr_array_add(t->rows, row);
+}
+
+int dt_col(const DataTable *t, const char *name)
+{
+    for (guint i = 0; i < t->cols->len; i++)
+        if (strcmp(g_ptr_array_index(t->cols, i), name) == 0)
+            return (int)i;
+    return -1;
+}
+
+const char *dt_cell(const DataTable *t, guint row, int col)
+{
+    g_assert(row < t->rows->len && col >= 0 && (guint)col < t->cols->len);
+    return ((char **)g_ptr_array_index(t->rows, row))[col];
+}
+
+void dt_csv_field(GString *out, const char *s)
+{
+    if (!strpbrk(s, ",\"\n\r")) {
+        g_string_append(out, s);
+        return;
+    }
+    g_string_append_c(out, '"');
+    for (const char *p = s; *p; p++) {
+        if (*p == '"')
+            g_string_append_c(out, '"');
+        g_string_append_c(out, *p);
+    }
+    g_string_append_c(out, '"');
+}
+
+static void write_record(GString *out, char *const *cells, guint n)
+{
+    for (guint i = 0; i < n; i++) {
+        if (i)
+            g_string_append_c(out, ',');
+        dt_csv_field(out, cells[i]);
+    }
+    g_string_append_c(out, '\n');
+}
+
+void dt_write_csv(const DataTable *t, GString *out)
+{
+    write_record(out, (char *const *)t->cols->pdata, t->cols->len);
+    for (guint r = 0; r < t->rows->len; r++)
+        write_record(out, g_ptr_array_index(t->rows, r), t->cols->len);
+}
+
+/* ---- reader ---------------------------------------------------------- */
+
+typedef struct {
+    const char *s;
+    size_t pos;
+    int line, col;
+    const char *name;
+} CsvReader;
+
+static void advance(CsvReader *r)
+{
+    if (r->s[r->pos] == '\n') {
+        r->line++;
+        r->col = 0;
+    }
+    r->pos++;
+    r->col++;
+}
+
+static gboolean quoted_field(CsvReader *r, GString *f, GError **err)
+{
+    int line = r->line, col = r->col;
+    advance(r);
+    for (;;) {
+        char c = r->s[r->pos];
+        if (!c) {
+            sim_error_located(err, r->name, line, col,
+                              "a quoted field without its closing quote",
+                              "'\"' before the end of the file");
+            return FALSE;
+        }
+        advance(r);
+        if (c != '"') {
+            g_string_append_c(f, c);
+        } else if (r->s[r->pos] == '"') {
+            g_string_append_c(f, '"');
+            advance(r);
+        } else {
+            return TRUE;
+        }
+    }
+}
+
+/* Reads one record into a new strv; *eof when the text is exhausted. */
+static GPtrArray *read_record(CsvReader *r, GError **err)
+{
+    GPtrArray *cells = g_ptr_array_new_with_free_func(g_free);
+    for (;;) {
+        GString *f = g_string_new(NULL);
+        if (r->s[r->pos] == '"' && !quoted_field(r, f, err)) {
+            g_string_free(f, TRUE);
+            g_ptr_array_free(cells, TRUE);
+            return NULL;
+        }
+        while (r->s[r->pos] && !strchr(",\r\n", r->s[r->pos])) {
+            g_string_append_c(f, r->s[r->pos]);
+            advance(r);
+        }
+        g_ptr_array_add(cells, g_string_free(f, FALSE));
+        if (r->s[r->pos] != ',')
+            break;
+        advance(r);
+    }
+    if (r->s[r->pos] == '\r')
+        advance(r);
+    if (r->s[r->pos] == '\n')
+        advance(r);
+    return cells;
+}
+
+static gboolean add_record(DataTable *t, GPtrArray *cells, CsvReader *r,
+                           int line, GError **err)
+{
+    if (cells->len != t->cols->len) {
+        char *f = g_strdup_printf("%u fields", cells->len);
+        char *e = g_strdup_printf("%u, as in the header", t->cols->len);
+        sim_error_located(err, r->name, line, 1, f, e);
+        g_free(f);
+        g_free(e);
+        return FALSE;
+    }
+    g_ptr_array_add(cells, NULL);
+    g_ptr_array_add(t->rows, g_ptr_array_free(cells, FALSE));
+    return TRUE;
+}
+
+DataTable *dt_parse_csv(const char *text, const char *name, GError **err)
+{
+    CsvReader r = {text, 0, 1, 1, name};
+    GPtrArray *head = read_record(&r, err);
+    if (!head)
+        return NULL;
+    DataTable *t = dt_new(head);
+    g_ptr_array_free(head, TRUE);
+    while (r.s[r.pos]) {
+        int line = r.line;
+        GPtrArray *cells = read_record(&r, err);
+        gboolean ok = cells != NULL;
+        if (ok && cells->len == 1 && !*(char *)cells->pdata[0])
+            g_ptr_array_free(cells, TRUE); /* blank line */
+        else if (!ok || !add_record(t, cells, &r, line, err)) {
+            if (cells && ok)
+                g_ptr_array_free(cells, TRUE);
+            dt_free(t);
+            return NULL;
+        }
+    }
+    return t;
+}
+
+DataTable *dt_read_csv(const char *path, GError **err)
+{
+    char *text = NULL;
+    if (!sim_file_read(path, &text, NULL, err))
+        return NULL;
+    DataTable *t = dt_parse_csv(text, path, err);
+    g_free(text);
+    return t;
+}

@@ -1,0 +1,35 @@
+/* table.h — a table of text cells with named columns, read from and
+ * written as CSV (RFC 4180: quoted fields, doubled quotes, CRLF or LF).
+ *
+ * Used for sweep results and by `pgsim plot`.  Cells are strings; an empty
+ * string is a missing value.  Column lookup is O(columns).
+ */
+#ifndef PGSIM_OUTPUT_TABLE_H
+#define PGSIM_OUTPUT_TABLE_H
+
+#include "sim/core/error.h"
+
+typedef struct {
+    GPtrArray *cols; /* char * */
+    GPtrArray *rows; /* char ** (cols->len strings each) */
+} DataTable;
+
+/* Returns a new table with the given columns (copied); free with
+ * dt_free(). */
+DataTable *dt_new(const GPtrArray *cols);
+void dt_free(DataTable *t);
+/* Appends a row of cols->len strings (copied). */
+void dt_add_row(DataTable *t, char *const *cells);
+/* Column index, or -1. */
+int dt_col(const DataTable *t, const char *name);
+const char *dt_cell(const DataTable *t, guint row, int col);
+
+/* Reads a CSV file whose first line is the header; NULL with *err
+ * ("file:line:column: found ..., expected ...") on a bad file. */
+DataTable *dt_read_csv(const char *path, GError **err);
+DataTable *dt_parse_csv(const char *text, const char *name, GError **err);
+void dt_write_csv(const DataTable *t, GString *out);
+/* Appends one CSV field, quoted when needed. */
+void dt_csv_field(GString *out, const char *s);
+
+#endif

@@ -1,0 +1,26 @@
+/* ellsworth90.h — `pgsim reproduce ellsworth90`: seed 001's table for
+ * the four generated databases at the setup's GP counts (4 and 16).
+ *
+ * Rows (table "1"): one per database; columns simple_eff_P,
+ * complex_eff_P, util_P, speedup_P for each P (efficiency and
+ * utilisation in percent, of the complex algorithm for util and
+ * speedup).  Table "db": the generated databases' depth, structures,
+ * polys_per_structure, poly_attr_ratio, offscreen_pct.
+ */
+#ifndef PGSIM_REPRODUCE_ELLSWORTH90_H
+#define PGSIM_REPRODUCE_ELLSWORTH90_H
+
+#include "sim/reproduce/reproduce.h"
+#include "sim/workload/pphigs/pphigs_run.h"
+
+extern const RpPaperOps rp_ellsworth90;
+
+/* Appends RpRow * for the given databases (n specs, in row order) at
+ * each of the n_gp GP counts.  FALSE with *err if a spec or the machine
+ * is bad. */
+gboolean rp_ellsworth90_table1(const ScenePphigsSpec *specs, guint n,
+                               const guint *gp_counts, guint n_gp,
+                               const WlPphigsRig *rig, GPtrArray *rows,
+                               GError **err);
+
+#endif

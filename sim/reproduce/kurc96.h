@@ -1,0 +1,45 @@
+/* kurc96.h — `pgsim reproduce kurc96` (seed 003, kurc96.c) and its
+ * charts (kurc96_plot.c): Figs. 1 and 2 drawn from the simulated
+ * points through sim/output/plot.h.
+ */
+#ifndef PGSIM_REPRODUCE_KURC96_H
+#define PGSIM_REPRODUCE_KURC96_H
+
+#include "sim/reproduce/reproduce.h"
+
+extern const RpPaperOps rp_kurc96;
+
+/* Scene row keys in the paper's order, NULL-terminated. */
+extern const char *const rp_kurc96_scenes[];
+
+/* What one simulated run contributes to the tables. */
+typedef struct {
+    double span_ms, zbuf_ms, merge_ms, volume, imbalance, speedup;
+    double polygons, tpg, tpf;
+    double memory, node_memory; /* bytes per node: estimate, machine's */
+} RpKurcRun;
+
+/* One point of Figs. 1-2: volumes of PAIR-RS, PAIR-HBP, AAPC-RS,
+ * AAPC-HBP (bytes) and the RS, HBP imbalances of AAPC. */
+typedef struct {
+    char *label; /* the row key, "a/P4" or "b/2POT/640" */
+    guint procs;
+    double volume[4];
+    double imbalance[2];
+} RpKurcPoint;
+
+typedef struct {
+    RpKurcPoint a[4];  /* 2POT, N=400, P = 2, 4, 8, 16 */
+    RpKurcPoint b[12]; /* every scene at N=400 and 640, P=16 */
+    guint n_a, n_b;
+} RpKurcFigs;
+
+void rp_kurc96_figs_clear(RpKurcFigs *f);
+
+/* Writes kurc96-fig1a/1b/2a/2b.{dat,gp,png,svg} into dir through gnuplot;
+ * a chart that cannot be drawn prints a warning and is skipped (the
+ * rows are the result, charts a convenience). */
+void rp_kurc96_charts(const RpKurcFigs *f, const char *dir,
+                      const char *fidelity);
+
+#endif

@@ -1,0 +1,28 @@
+/* ortega93.h — `pgsim reproduce ortega93`: seed 004's Tables 1-4.
+ *
+ * Ortega, Hansen and Ahrens, "Fast data parallel polygon rendering"
+ * (LA-UR 93-3173; Supercomputing '93): times and polygons per second of
+ * a small-polygon and a large-polygon data set on CM-200 partitions of
+ * 16K-64K processors (Tables 1, 2: visible) and CM-5 partitions of
+ * 32-512 nodes (Tables 3, 4: withheld, predicted from the CM-5 model).
+ *
+ * The sweep is declared in configs/papers/ortega93/setup.yaml (ctx->setup) (scenes,
+ * resolutions, partitions, machine per table); machine constants come
+ * from the `dpscan:` sections of models/<machine>.yaml.  Rows are
+ * "<partition>/<width>x<height>" (e.g. "16K/1280x1024", "512/640x480");
+ * columns `time_s` (frame time, seconds) and `polygons_per_s` (polygons
+ * in the data set / frame time), as the paper's two halves of a table.
+ * Geometry is measured once per (scene, resolution) and costed for every
+ * partition: a few seconds in all.
+ *
+ * Setting PGSIM_DP_COEF=<file> also writes the linear coefficients of
+ * every SIMD cell (dp_cost.h) as CSV, for scripts/fit-ortega93.py.
+ */
+#ifndef PGSIM_REPRODUCE_ORTEGA93_H
+#define PGSIM_REPRODUCE_ORTEGA93_H
+
+#include "sim/reproduce/reproduce.h"
+
+extern const RpPaperOps rp_ortega93;
+
+#endif

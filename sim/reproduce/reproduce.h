@@ -1,0 +1,59 @@
+/* reproduce.h — paper reproductions: one small table of hooks per paper.
+ *
+ * A paper lives in two places: sim/reproduce/<name>.c (its RpPaperOps:
+ * name, citation, setup file, rows hook) and configs/papers/<name>/
+ * (published.yaml: what the paper printed; setup.yaml: what to simulate).
+ * Adding a paper is one file here, one line in rp_registry.c and one
+ * folder of YAML.  The rows hook regenerates the paper's tables by
+ * running the simulator and fills rows (table, row, column, sim).
+ * Published values are never in C: the driver reads them from
+ * published.yaml and joins them to the rows by (table, row, column); a
+ * withheld cell has no published value and the prediction is printed all
+ * the same.  The driver
+ * (`pgsim reproduce NAME|all [--format text|csv|json] [--out DIR]
+ * [--fidelity analytic|flow|packet|all]`) prints the table with the
+ * relative error (sim - published) / published, writes charts, and
+ * reports wall time per fidelity.
+ *
+ * CSV columns: paper,table,row,column,sim,published,rel_error
+ */
+#ifndef PGSIM_REPRODUCE_REPRODUCE_H
+#define PGSIM_REPRODUCE_REPRODUCE_H
+
+#include <glib.h>
+
+typedef struct {
+    char *table;  /* "1", "2", "fig1", "text" ... */
+    char *row;    /* "2POT", "P16/2POT" ... */
+    char *column; /* "tpg_400", "pair_rs_merge_ms" ... */
+    double sim;   /* NAN when the simulator could not produce it */
+    char *note;   /* optional ("out of memory in the paper"); NULL */
+} RpRow;
+
+typedef struct {
+    const char *setup;    /* the paper's setup file (path, borrowed) */
+    const char *fidelity; /* network fidelity for this pass */
+    const char *out_dir;  /* where charts may be written; NULL for none */
+    gboolean quiet;       /* no progress output */
+} RpContext;
+
+typedef struct {
+    const char *name;     /* "kurc96": also its folder configs/papers/<name> */
+    const char *citation; /* one line: authors, title, what is simulated */
+    const char *setup;    /* setup file in that folder: "setup.yaml" */
+    /* Runs the simulations described by ctx->setup; appends RpRow * (made
+     * with rp_row_new) to rows.  FALSE with *err on failure. */
+    gboolean (*rows)(const RpContext *ctx, GPtrArray *rows, GError **err);
+} RpPaperOps;
+
+/* Returns a new row (copies strings); the array's free func is
+ * rp_row_free. */
+RpRow *rp_row_new(const char *table, const char *row, const char *column,
+                  double sim, const char *note);
+void rp_row_free(gpointer row);
+
+/* NULL-terminated list of every reproduction (sim/reproduce/rp_registry.c). */
+extern const RpPaperOps *const rp_all[];
+const RpPaperOps *rp_find(const char *name);
+
+#endif

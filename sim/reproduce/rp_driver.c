@@ -1,0 +1,78 @@
+/* rp_driver.c — running reproductions and collecting their tables.
+ *
+ * A pass: run the paper's rows hook on its setup file (wall time
+ * measured around the hook only), then load the published values and
+ * join.  The paper file is read once per
+ * pass, which is negligible next to the simulation.  O(rows + cells).
+ */
+#include "sim/reproduce/rp_driver.h"
+#include <string.h>
+
+const char *const rp_fidelities[] = {"analytic", "flow", "packet", NULL};
+
+gboolean rp_fidelity_valid(const char *f)
+{
+    for (int i = 0; rp_fidelities[i]; i++)
+        if (strcmp(f, rp_fidelities[i]) == 0)
+            return TRUE;
+    return FALSE;
+}
+
+static RpPaper *load_paper(const RpPaperOps *rp, const char *dir,
+                           GError **err)
+{
+    char *path = rp_paper_path(dir ? dir : RP_PAPERS_DIR, rp->name);
+    RpPaper *p = rp_paper_load(path, err);
+    if (p && strcmp(p->name, rp->name) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s: found paper.name '%s', expected '%s'", path, p->name,
+                    rp->name);
+        rp_paper_free(p);
+        p = NULL;
+    }
+    g_free(path);
+    return p;
+}
+
+RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
+                  const RpContext *ctx, GError **err)
+{
+    g_assert(ctx->fidelity);
+    RpPaper *paper = load_paper(rp, papers_dir, err);
+    if (!paper)
+        return NULL;
+    RpContext c = *ctx;
+    char *setup = rp_paper_file(papers_dir ? papers_dir : RP_PAPERS_DIR,
+                                rp->name, rp->setup);
+    if (!c.setup)
+        c.setup = setup;
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    gint64 t0 = g_get_monotonic_time();
+    gboolean ok = rp->rows(&c, rows, err);
+    double wall = (double)(g_get_monotonic_time() - t0) * 1e-6;
+    RpTable *t = ok ? rp_table_join(paper, rows, ctx->fidelity, wall) : NULL;
+    if (!ok)
+        g_prefix_error(err, "%s (fidelity %s): ", rp->name, ctx->fidelity);
+    g_ptr_array_free(rows, TRUE);
+    rp_paper_free(paper);
+    g_free(setup);
+    return t;
+}
+
+GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
+                               const RpContext *ctx, GError **err)
+{
+    GPtrArray *out =
+        g_ptr_array_new_with_free_func((GDestroyNotify)rp_table_free);
+    for (int i = 0; rp_fidelities[i]; i++) {
+        RpContext c = *ctx;
+        c.fidelity = rp_fidelities[i];
+        RpTable *t = rp_drive(rp, papers_dir, &c, err);
+        if (!t) {
+            g_ptr_array_free(out, TRUE);
+            return NULL;
+        }
+        g_ptr_array_add(out, t);
+    }
+    return out;
+}

@@ -1,0 +1,31 @@
+/* rp_driver.h — running reproductions and collecting their tables.
+ *
+ * rp_drive() runs one RpPaperOps at one fidelity on its setup
+ * (<papers_dir>/<name>/setup.yaml unless ctx->setup names another),
+ * times it, reads the paper's published values from
+ * <papers_dir>/<name>/published.yaml and returns the joined table.  rp_drive_fidelities() does it once per network fidelity
+ * (analytic, flow, packet) for `--fidelity all`.
+ */
+#ifndef PGSIM_REPRODUCE_RP_DRIVER_H
+#define PGSIM_REPRODUCE_RP_DRIVER_H
+
+#include "sim/reproduce/rp_table.h"
+
+#define RP_PAPERS_DIR "configs/papers"
+#define RP_DEFAULT_FIDELITY "flow"
+
+/* The fidelities in order, coarse to fine; NULL-terminated. */
+extern const char *const rp_fidelities[];
+gboolean rp_fidelity_valid(const char *f);
+
+/* Runs rp with ctx (ctx->fidelity set) and joins; returns a new table
+ * (free with rp_table_free()) or NULL with *err set. */
+RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
+                  const RpContext *ctx, GError **err);
+
+/* Runs rp at every fidelity; returns a new array of RpTable * (one per
+ * entry of rp_fidelities, array frees them) or NULL with *err set. */
+GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
+                               const RpContext *ctx, GError **err);
+
+#endif

@@ -1,0 +1,328 @@
+/* rp_table.c — joining reproduction rows to published values; writers.
+ *
+ * Invariants: every row appears once, in the order produced; every
+ * published cell appears once (matched, or appended as RP_MISSING).
+ * rel_error is finite only for RP_COMPARED cells with published != 0.
+ * Join: O(rows + cells) with the paper's hash index.
+ */
+#include "sim/reproduce/rp_table.h"
+#include "sim/output/json.h"
+#include "sim/output/table.h"
+#include <math.h>
+#include <string.h>
+
+static void joined_free(gpointer p)
+{
+    RpJoined *j = p;
+    g_free(j->table);
+    g_free(j->row);
+    g_free(j->column);
+    g_free(j->unit);
+    g_free(j->note);
+    g_free(j);
+}
+
+void rp_table_free(RpTable *t)
+{
+    if (!t)
+        return;
+    g_free(t->paper);
+    g_free(t->citation);
+    g_free(t->fidelity);
+    g_ptr_array_free(t->cells, TRUE);
+    g_free(t);
+}
+
+const char *rp_status_name(RpStatus s)
+{
+    static const char *const names[] = {"compared", "withheld", "unlisted",
+                                        "not simulated"};
+    g_assert((unsigned)s < G_N_ELEMENTS(names));
+    return names[s];
+}
+
+static RpJoined *joined_new(const char *t, const char *r, const char *c)
+{
+    RpJoined *j = g_new0(RpJoined, 1);
+    j->table = g_strdup(t);
+    j->row = g_strdup(r);
+    j->column = g_strdup(c);
+    j->sim = j->published = j->rel_error = NAN;
+    j->unit = g_strdup("");
+    return j;
+}
+
+static void apply_cell(RpJoined *j, const RpCell *c)
+{
+    g_free(j->unit);
+    j->unit = g_strdup(c->unit);
+    if (!j->note)
+        j->note = g_strdup(c->note);
+    if (c->withheld) {
+        j->status = RP_WITHHELD;
+        return;
+    }
+    j->published = c->value;
+    j->status = isfinite(j->sim) ? RP_COMPARED : RP_MISSING;
+    if (j->status == RP_COMPARED && c->value != 0.0)
+        j->rel_error = (j->sim - c->value) / c->value;
+}
+
+static void join_rows(RpTable *t, const RpPaper *paper, const GPtrArray *rows,
+                      GHashTable *seen)
+{
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = g_ptr_array_index(rows, i);
+        RpJoined *j = joined_new(r->table, r->row, r->column);
+        j->sim = r->sim;
+        j->note = g_strdup(r->note);
+        j->status = RP_UNLISTED;
+        const RpCell *c = rp_paper_cell(paper, r->table, r->row, r->column);
+        if (c) {
+            apply_cell(j, c);
+            g_hash_table_add(seen, (gpointer)c);
+        }
+        g_ptr_array_add(t->cells, j);
+    }
+}
+
+static void add_missing(RpTable *t, const RpPaper *paper, GHashTable *seen)
+{
+    for (guint i = 0; i < paper->cells->len; i++) {
+        const RpCell *c = g_ptr_array_index(paper->cells, i);
+        if (g_hash_table_contains(seen, c))
+            continue;
+        RpJoined *j = joined_new(c->table, c->row, c->column);
+        apply_cell(j, c);
+        g_ptr_array_add(t->cells, j);
+    }
+}
+
+static void summarise(RpTable *t)
+{
+    double sum = 0.0;
+    t->worst = -1;
+    t->mean_abs = t->worst_abs = NAN;
+    for (guint i = 0; i < t->cells->len; i++) {
+        const RpJoined *j = g_ptr_array_index(t->cells, i);
+        if (!isfinite(j->rel_error))
+            continue;
+        double a = fabs(j->rel_error);
+        sum += a;
+        t->compared++;
+        if (t->worst < 0 || a > t->worst_abs) {
+            t->worst_abs = a;
+            t->worst = (int)i;
+        }
+    }
+    if (t->compared)
+        t->mean_abs = sum / t->compared;
+}
+
+RpTable *rp_table_join(const RpPaper *paper, const GPtrArray *rows,
+                       const char *fidelity, double wall_s)
+{
+    RpTable *t = g_new0(RpTable, 1);
+    t->paper = g_strdup(paper->name);
+    t->citation = g_strdup(paper->citation);
+    t->fidelity = g_strdup(fidelity);
+    t->wall_s = wall_s;
+    t->cells = g_ptr_array_new_with_free_func(joined_free);
+    GHashTable *seen = g_hash_table_new(NULL, NULL);
+    join_rows(t, paper, rows, seen);
+    add_missing(t, paper, seen);
+    g_hash_table_destroy(seen);
+    summarise(t);
+    return t;
+}
+
+const RpJoined *rp_table_find(const RpTable *t, const char *table,
+                              const char *row, const char *column)
+{
+    for (guint i = 0; i < t->cells->len; i++) {
+        const RpJoined *j = g_ptr_array_index(t->cells, i);
+        if (!strcmp(j->table, table) && !strcmp(j->row, row) &&
+            !strcmp(j->column, column))
+            return j;
+    }
+    return NULL;
+}
+
+/* ---- text ------------------------------------------------------------ */
+
+enum {
+    COL_TABLE,
+    COL_ROW,
+    COL_COLUMN,
+    COL_PUB,
+    COL_SIM,
+    COL_ERR,
+    COL_NOTE,
+    N_COLS
+};
+
+static void fmt_num(char *buf, size_t n, double x)
+{
+    if (isfinite(x))
+        g_snprintf(buf, n, "%.4g", x);
+    else
+        g_strlcpy(buf, "-", n);
+}
+
+static char **text_fields(const RpJoined *j)
+{
+    char pub[48], sim[48], err[48];
+    fmt_num(pub, sizeof pub, j->published);
+    fmt_num(sim, sizeof sim, j->sim);
+    if (isfinite(j->rel_error))
+        g_snprintf(err, sizeof err, "%+.1f%%", 100.0 * j->rel_error);
+    else
+        g_strlcpy(err, "-", sizeof err);
+    if (j->status == RP_WITHHELD)
+        g_strlcpy(pub, "withheld", sizeof pub);
+    gboolean odd = j->status == RP_UNLISTED || j->status == RP_MISSING;
+    char *note =
+        odd && j->note
+            ? g_strdup_printf("%s; %s", rp_status_name(j->status), j->note)
+            : g_strdup(odd       ? rp_status_name(j->status)
+                       : j->note ? j->note
+                                 : "");
+    char **f = g_new0(char *, N_COLS + 1);
+    f[COL_TABLE] = g_strdup(j->table);
+    f[COL_ROW] = g_strdup(j->row);
+    f[COL_COLUMN] = *j->unit ? g_strdup_printf("%s [%s]", j->column, j->unit)
+                             : g_strdup(j->column);
+    f[COL_PUB] = g_strdup(pub);
+    f[COL_SIM] = g_strdup(sim);
+    f[COL_ERR] = g_strdup(err);
+    f[COL_NOTE] = note;
+    return f;
+}
+
+static void text_line(GString *out, char *const *f, const int *w)
+{
+    for (int c = 0; c < N_COLS; c++) {
+        gboolean right = c == COL_PUB || c == COL_SIM || c == COL_ERR;
+        int pad = w[c] - (int)g_utf8_strlen(f[c], -1);
+        if (c == COL_NOTE) {
+            g_string_append(out, f[c]);
+            break;
+        }
+        if (right)
+            g_string_append_printf(out, "%*s%s  ", pad, "", f[c]);
+        else
+            g_string_append_printf(out, "%s%*s  ", f[c], pad, "");
+    }
+    while (out->len && out->str[out->len - 1] == ' ')
+        g_string_truncate(out, out->len - 1);
+    g_string_append_c(out, '\n');
+}
+
+void rp_table_summary(const RpTable *t, GString *out)
+{
+    if (!t->compared) {
+        g_string_append(out, "no cell compared with a published value");
+        return;
+    }
+    const RpJoined *w = g_ptr_array_index(t->cells, t->worst);
+    g_string_append_printf(out,
+                           "mean |rel_error| %.1f%% over %u cells, worst "
+                           "%.1f%% (table %s, %s, %s)",
+                           100.0 * t->mean_abs, t->compared,
+                           100.0 * t->worst_abs, w->table, w->row, w->column);
+}
+
+void rp_table_text(const RpTable *t, GString *out)
+{
+    static char *const head[] = {"table", "row",   "column", "published",
+                                 "sim",   "error", "note",   NULL};
+    GPtrArray *lines =
+        g_ptr_array_new_with_free_func((GDestroyNotify)g_strfreev);
+    int w[N_COLS];
+    for (int c = 0; c < N_COLS; c++)
+        w[c] = (int)strlen(head[c]);
+    for (guint i = 0; i < t->cells->len; i++) {
+        char **f = text_fields(g_ptr_array_index(t->cells, i));
+        for (int c = 0; c < N_COLS; c++)
+            w[c] = MAX(w[c], (int)g_utf8_strlen(f[c], -1));
+        g_ptr_array_add(lines, f);
+    }
+    g_string_append_printf(out, "%s (fidelity %s)%s%s\n", t->paper, t->fidelity,
+                           *t->citation ? ": " : "", t->citation);
+    text_line(out, head, w);
+    for (guint i = 0; i < lines->len; i++)
+        text_line(out, g_ptr_array_index(lines, i), w);
+    rp_table_summary(t, out);
+    g_string_append_c(out, '\n');
+    g_ptr_array_free(lines, TRUE);
+}
+
+/* ---- CSV and JSON ---------------------------------------------------- */
+
+void rp_table_csv(const RpTable *t, gboolean header, GString *out)
+{
+    char buf[32];
+    if (header)
+        g_string_append(out, "paper,table,row,column,sim,published,"
+                             "rel_error\n");
+    for (guint i = 0; i < t->cells->len; i++) {
+        const RpJoined *j = g_ptr_array_index(t->cells, i);
+        const char *f[] = {t->paper, j->table, j->row, j->column};
+        for (int k = 0; k < 4; k++) {
+            dt_csv_field(out, f[k]);
+            g_string_append_c(out, ',');
+        }
+        g_string_append_printf(out, "%s,", json_fmt_num(buf, j->sim));
+        g_string_append_printf(out, "%s,", json_fmt_num(buf, j->published));
+        g_string_append_printf(out, "%s\n", json_fmt_num(buf, j->rel_error));
+    }
+}
+
+static void json_cell(GString *out, const RpJoined *j)
+{
+    g_string_append(out, "{\"table\":");
+    json_put_str(out, j->table);
+    g_string_append(out, ",\"row\":");
+    json_put_str(out, j->row);
+    g_string_append(out, ",\"column\":");
+    json_put_str(out, j->column);
+    g_string_append(out, ",\"unit\":");
+    json_put_str(out, j->unit);
+    g_string_append(out, ",\"sim\":");
+    json_put_num(out, j->sim);
+    g_string_append(out, ",\"published\":");
+    json_put_num(out, j->published);
+    g_string_append(out, ",\"rel_error\":");
+    json_put_num(out, j->rel_error);
+    g_string_append(out, ",\"status\":");
+    json_put_str(out, rp_status_name(j->status));
+    g_string_append(out, ",\"note\":");
+    json_put_str(out, j->note);
+    g_string_append_c(out, '}');
+}
+
+void rp_table_json(const RpTable *t, GString *out)
+{
+    g_string_append(out, "{\"paper\":");
+    json_put_str(out, t->paper);
+    g_string_append(out, ",\"citation\":");
+    json_put_str(out, t->citation);
+    g_string_append(out, ",\"fidelity\":");
+    json_put_str(out, t->fidelity);
+    g_string_append(out, ",\"wall_s\":");
+    json_put_num(out, t->wall_s);
+    g_string_append(out, ",\"cells\":[");
+    for (guint i = 0; i < t->cells->len; i++) {
+        if (i)
+            g_string_append_c(out, ',');
+        json_cell(out, g_ptr_array_index(t->cells, i));
+    }
+    g_string_append_printf(out,
+                           "],\"summary\":{\"compared\":%u,"
+                           "\"mean_abs_rel_error\":",
+                           t->compared);
+    json_put_num(out, t->mean_abs);
+    g_string_append(out, ",\"worst_abs_rel_error\":");
+    json_put_num(out, t->worst_abs);
+    g_string_append(out, "}}");
+}

@@ -1,0 +1,101 @@
+/* pphigs_distrib.h — distributing a hierarchical display list over graphics
+ * processors by primitive (seed 001, Ellsworth, Good, Tebbs 1990).
+ *
+ * The host keeps the global display list (a SceneDb copy whose element
+ * tags are replaced by unique element ids); each GP holds its portion, a
+ * SceneDb with the same structure ids whose structures are subsequences
+ * (in host order) of the host's, with ODP priority deltas (§4).
+ *
+ *   SIMPLE  (§2.2) every attribute and execute to every GP, primitives
+ *           one at a time to the least-loaded GP.
+ *   COMPLEX (§2.3) per-GP attribute states: an attribute is sent to a GP
+ *           only when a primitive placed there needs it; clusters of up
+ *           to c*maxw nominal weight to one GP; concatenate-mode matrices
+ *           broadcast with the pending replace-mode matrix; the state is
+ *           flushed to every GP before an ordinary execute; primitive
+ *           structures broadcast whole, each instance dealt to one GP
+ *           like a primitive (§2.3.3).
+ *
+ * Invariant (checked by the tests): at each of its primitives and at
+ * each ordinary execute, every GP holds the host's current attribute
+ * elements, so the union of the GPs' traversals is the host's traversal,
+ * with the same matrices, colours and ODP priorities.
+ *
+ * Editing (§3): modify and append act at once; insert and delete are two
+ * steps: step 1 changes the host (and sends inserted primitives and
+ * executes, deletes from GPs at once), step 2 (wl_pphigs_dist_finish)
+ * scans backwards from the first edited point until every GP is known
+ * current (a primitive of that GP, an ordinary execute, or the start of
+ * the structure; O(c maxw/minw n) elements, §3.5) and then walks forward
+ * sending the attributes GPs need, past the last edited point until every
+ * GP has been checked once.  Deltas are then recomputed (§4).
+ */
+#ifndef PGSIM_WORKLOAD_PPHIGS_PPHIGS_DISTRIB_H
+#define PGSIM_WORKLOAD_PPHIGS_PPHIGS_DISTRIB_H
+
+#include "sim/scene/structdb.h"
+
+typedef enum { WL_PPHIGS_SIMPLE, WL_PPHIGS_COMPLEX } WlPphigsAlgo;
+
+/* Nominal weights (§2.3.4), per element kind; a polygon's weight is
+ * w[kind] + w_vertex * nverts.  cluster is the clustering factor c. */
+typedef struct {
+    double w[SCENE_EL_NKINDS];
+    double w_vertex;
+    double cluster;
+} WlPphigsWeights;
+
+/* Host-to-GP traffic of the distribution and edits so far. */
+typedef struct {
+    uint64_t elements_sent; /* element copies sent to GPs (inserted or,
+                               by modify, replaced) */
+    uint64_t sent_to[64];   /* the same per GP */
+    uint64_t elements_removed;
+    uint64_t last_scan; /* elements examined by the last backward scan */
+    uint64_t max_scan;  /* the largest such scan */
+} WlPphigsTraffic;
+
+typedef struct WlPphigsDist WlPphigsDist;
+
+/* Copies `src` as the host list and distributes it over ngp (1..64) GPs.
+ * Returns a new distribution; free with wl_pphigs_dist_free(). */
+WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
+                                 WlPphigsAlgo algo, const WlPphigsWeights *w);
+void wl_pphigs_dist_free(WlPphigsDist *d);
+
+guint wl_pphigs_dist_ngp(const WlPphigsDist *d);
+/* Borrowed views; never edit them directly. */
+const SceneDb *wl_pphigs_dist_host(const WlPphigsDist *d);
+const SceneDb *wl_pphigs_dist_gp(const WlPphigsDist *d, guint g);
+const WlPphigsTraffic *wl_pphigs_dist_traffic(const WlPphigsDist *d);
+/* Nominal weight of one element (a primitive-structure execute weighs
+ * its structure's traversal). */
+double wl_pphigs_dist_weight(const WlPphigsDist *d, const SceneElem *e);
+/* Nominal load of each GP (sum of nominal weights over its portion's
+ * traversal, §5.1); `out` has ngp entries. */
+void wl_pphigs_dist_loads(const WlPphigsDist *d, double *out);
+
+/* Edits in host coordinates (structure id, element position).  The
+ * element's tag is replaced by a fresh element id.  Errors as for
+ * scene_db_* (cycles, kind change on modify). */
+gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
+                               const SceneElem *e, GError **err);
+gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid, const SceneElem *e,
+                               GError **err);
+gboolean wl_pphigs_dist_insert(WlPphigsDist *d, guint sid, guint pos,
+                               const SceneElem *e, GError **err);
+void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos);
+/* Step 2 of every pending insert/delete region, then the ODP deltas. */
+void wl_pphigs_dist_finish(WlPphigsDist *d);
+void wl_pphigs_dist_post(WlPphigsDist *d, guint sid);
+void wl_pphigs_dist_unpost(WlPphigsDist *d, guint sid);
+
+/* Moves the primitive at (sid, pos), owned by one GP, to GP `to`, with
+ * the attributes it needs there (used by rebalancing, §5).  FALSE when
+ * the element is not a dealt primitive. */
+gboolean wl_pphigs_dist_move(WlPphigsDist *d, guint sid, guint pos, guint to);
+/* The GP owning the dealt element at (sid, pos), or -1 (attributes,
+ * ordinary executes, primitive-structure contents). */
+gint wl_pphigs_dist_owner(const WlPphigsDist *d, guint sid, guint pos);
+
+#endif

@@ -1,0 +1,572 @@
+/* pphigs_frame.c — one PPHIGS frame on the Pixel-Planes 5 machine (pphigs_frame.h).
+ *
+ * Each GP's frame is first planned (a list of steps: traverse, transform
+ * and send costs, then one ring message) by walking its portion; the
+ * steps then run on the GP's MachProc (FIFO, busy time per phase).
+ * Renderers and the frame buffer react to ring arrivals.  Invariant:
+ * every region is stored exactly once per frame, so the frame ends when
+ * the frame buffer has stored them all.  Hardware costs, processor
+ * counts and the ring come from the machine, never from this file.
+ * Seed 001 §1.1 (the pipeline), §5.2 (off-screen primitives are cheaper),
+ * §6 (processor time).  Cost: see frame.h.
+ */
+#include "sim/workload/pphigs/pphigs_frame.h"
+#include "sim/scene/pphigs_db.h"
+#include <string.h>
+
+#define NONE G_MAXUINT
+#define MAX_GPS 64 /* one bit per GP in the distribution's masks */
+
+typedef struct {
+    SimTime trav, xform, send; /* work before the message */
+    guint region;              /* NONE: no batch */
+    guint count;               /* commands in the batch */
+} Step;
+
+typedef struct {
+    guint gp, region, count;
+    gboolean end;
+    guint msgs; /* end marker: batches this GP sent to the renderer */
+} Msg;
+
+typedef struct WlPphigsFrame WlPphigsFrame;
+
+typedef struct {
+    WlPphigsFrame *f;
+    guint id;
+    MachProc *p;
+    GArray *steps; /* Step */
+    guint next;
+    guint *buf;     /* per region: commands buffered */
+    guint *sent;    /* per renderer: batches sent */
+    uint64_t edits; /* elements the host sends before this frame */
+} Gp;
+
+typedef struct {
+    WlPphigsFrame *f;
+    guint id;
+    MachProc *p;
+    guint nreg;     /* its regions: id, id + R, id + 2R ... */
+    guint cur;      /* local index of the region being rasterised */
+    guint *pending; /* per local region: commands not yet rasterised */
+    gboolean *begun;
+    guint *got, *expect; /* per GP: batches received / announced */
+    guint gps_done;
+} Rend;
+
+struct WlPphigsFrame {
+    MachMachine *m;
+    SimEngine *eng;
+    NetNet *net;
+    WlPphigsFrameSpec s;
+    WlPphigsCosts c;
+    SimTime gp_send, rend_prim, rend_begin, rend_shade, fb_store, host_send;
+    guint ngp, nrend, nx, ny, nregions;
+    Gp *gp;
+    Rend *rend;
+    MachProc *fb, *host;
+    guint stored;
+    SimTime start, end;
+    unsigned ph_trav, ph_xform, ph_send, ph_rast, ph_shade, ph_store, ph_edit;
+    double *gp_us;  /* processor time of the frame just run */
+    SimTime *busy0; /* traverse + transform busy at the frame's start */
+    uint64_t commands, offscreen, prims, host_elems;
+    Mat4 vp;
+};
+
+/* ---- costs from the machine ------------------------------------------- */
+
+gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,
+                                      SimTime *send, GError **err)
+{
+    return mach_cost_lookup(m, "gp", "polygon", &c->poly, err) &&
+           mach_cost_lookup(m, "gp", "vertex", &c->vertex, err) &&
+           mach_cost_lookup(m, "gp", "reject_vertex", &c->reject_vertex, err) &&
+           mach_cost_lookup(m, "gp", "color", &c->color, err) &&
+           mach_cost_lookup(m, "gp", "matrix_replace", &c->matrix, err) &&
+           mach_cost_lookup(m, "gp", "matrix_concat", &c->concat, err) &&
+           mach_cost_lookup(m, "gp", "execute", &c->execute, err) &&
+           mach_cost_lookup(m, "gp", "send_primitive", send, err);
+}
+
+static gboolean hw_costs(WlPphigsFrame *f, GError **err)
+{
+    const MachMachine *m = f->m;
+    return wl_pphigs_costs_from_machine(m, &f->c, &f->gp_send, err) &&
+           mach_cost_lookup(m, "renderer", "primitive", &f->rend_prim, err) &&
+           mach_cost_lookup(m, "renderer", "region_begin", &f->rend_begin,
+                            err) &&
+           mach_cost_lookup(m, "renderer", "region_shade", &f->rend_shade,
+                            err) &&
+           mach_cost_lookup(m, "frame_buffer", "store_region", &f->fb_store,
+                            err) &&
+           mach_cost_lookup(m, "host", "send_element", &f->host_send, err);
+}
+
+/* The kind's processor count, checked against [lo, hi]. */
+static gboolean kind_count(const MachMachine *m, const char *kind, guint lo,
+                           guint hi, guint *out, GError **err)
+{
+    const MachKindInfo *k = mach_kind(m, kind);
+    *out = k ? k->count : 0;
+    if (k && k->count >= lo && k->count <= hi)
+        return TRUE;
+    char *path = g_strdup_printf("nodes.%s.count", kind);
+    const CfgNode *at = cfg_path(mach_model_cfg(m), path);
+    char *found = k ? g_strdup_printf("%u %s processors", k->count, kind)
+                    : g_strdup_printf("no '%s' processors", kind);
+    char *exp = g_strdup_printf("%u .. %u %s processors for a PPHIGS frame", lo,
+                                hi, kind);
+    cfg_error(err, at ? at : mach_model_cfg(m), found, exp);
+    g_free(path);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+/* ---- planning a GP's frame -------------------------------------------- */
+
+typedef struct {
+    WlPphigsFrame *f;
+    Gp *g;
+    SimTime trav, xform, send; /* accumulated since the last step */
+} Plan;
+
+static void plan_step(Plan *pl, guint region, guint count)
+{
+    Step st = {pl->trav, pl->xform, pl->send, region, count};
+    g_array_append_val(pl->g->steps, st);
+    pl->trav = pl->xform = pl->send = 0;
+    if (region != NONE)
+        pl->g->sent[region % pl->f->nrend]++;
+}
+
+static guint clampi(double v, guint hi)
+{
+    return v <= 0 ? 0 : v >= hi ? hi - 1 : (guint)v;
+}
+
+/* Screen box of a primitive that is not trivially rejected, in regions.
+ * A vertex behind the eye makes the box the whole screen (conservative).*/
+static void prim_regions(const WlPphigsFrame *f, Mat4 m, const SceneElem *e,
+                         guint r[4])
+{
+    double x0 = 1, x1 = -1, y0 = 1, y1 = -1;
+    for (guint v = 0; v < e->nverts; v++) {
+        Vec4 q = mat4_apply_point(m, e->verts[v]);
+        if (q.w <= 0) {
+            x0 = y0 = -1;
+            x1 = y1 = 1;
+            break;
+        }
+        x0 = MIN(x0, q.x / q.w);
+        x1 = MAX(x1, q.x / q.w);
+        y0 = MIN(y0, q.y / q.w);
+        y1 = MAX(y1, q.y / q.w);
+    }
+    guint W = f->s.width, H = f->s.height, R = f->s.region;
+    r[0] = clampi((x0 + 1) / 2 * W, W) / R;
+    r[1] = clampi((x1 + 1) / 2 * W, W) / R;
+    r[2] = clampi((1 - y1) / 2 * H, H) / R;
+    r[3] = clampi((1 - y0) / 2 * H, H) / R;
+}
+
+static void plan_command(Plan *pl, guint region)
+{
+    WlPphigsFrame *f = pl->f;
+    pl->send += f->gp_send;
+    f->commands++;
+    if (++pl->g->buf[region] >= f->s.batch) {
+        plan_step(pl, region, pl->g->buf[region]);
+        pl->g->buf[region] = 0;
+    }
+}
+
+static void plan_prim(const ScenePrimInst *pi, void *ud)
+{
+    Plan *pl = ud;
+    WlPphigsFrame *f = pl->f;
+    Mat4 m = mat4_mul(f->vp, pi->matrix);
+    gboolean off = scene_pphigs_prim_offscreen(m, pi->el);
+    f->prims++;
+    pl->xform += wl_pphigs_prim_cost(&f->c, pi->el, off);
+    if (off) {
+        f->offscreen++;
+        return;
+    }
+    guint r[4];
+    prim_regions(f, m, pi->el, r);
+    for (guint y = r[2]; y <= r[3]; y++)
+        for (guint x = r[0]; x <= r[1]; x++)
+            plan_command(pl, y * f->nx + x);
+}
+
+static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
+{
+    g_array_set_size(g->steps, 0);
+    g->next = 0;
+    memset(g->sent, 0, f->nrend * sizeof *g->sent);
+    Plan pl = {f, g, wl_pphigs_nonprim_cost(db, &f->c), 0, 0};
+    plan_step(&pl, NONE, 0);
+    scene_db_traverse(db, plan_prim, &pl);
+    for (guint k = 0; k < f->nregions; k++)
+        if (g->buf[k]) {
+            plan_step(&pl, k, g->buf[k]);
+            g->buf[k] = 0;
+        }
+    if (pl.trav || pl.xform || pl.send)
+        plan_step(&pl, NONE, 0);
+}
+
+/* ---- frame buffer ----------------------------------------------------- */
+
+static void fb_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)arg;
+    WlPphigsFrame *f = ctx;
+    if (++f->stored == f->nregions)
+        f->end = sim_now(eng);
+}
+
+static void fb_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    (void)d;
+    WlPphigsFrame *f = ctx;
+    mach_proc_compute(f->fb, f->fb_store, f->ph_store, fb_done, f, NULL);
+}
+
+/* ---- renderers -------------------------------------------------------- */
+
+static guint region_bytes(const WlPphigsFrame *f, guint k)
+{
+    guint R = f->s.region, x = k % f->nx, y = k / f->nx;
+    guint w = MIN(R, f->s.width - x * R), h = MIN(R, f->s.height - y * R);
+    return w * h * f->s.pixel_bytes;
+}
+
+static void rend_region_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    Rend *r = ctx;
+    WlPphigsFrame *f = r->f;
+    guint k = GPOINTER_TO_UINT(arg) * f->nrend + r->id;
+    net_send(f->net, mach_proc_id(r->p), mach_proc_id(f->fb),
+             region_bytes(f, k), NULL, fb_arrive, f);
+}
+
+static void rend_raster(Rend *r, guint j)
+{
+    WlPphigsFrame *f = r->f;
+    if (!r->begun[j]) {
+        r->begun[j] = TRUE;
+        mach_proc_compute(r->p, f->rend_begin, f->ph_rast, NULL, NULL, NULL);
+    }
+    if (r->pending[j])
+        mach_proc_compute(r->p, r->pending[j] * f->rend_prim, f->ph_rast, NULL,
+                          NULL, NULL);
+    r->pending[j] = 0;
+}
+
+/* Every GP is done with this renderer: complete its regions in order. */
+static void rend_finish(Rend *r)
+{
+    WlPphigsFrame *f = r->f;
+    for (; r->cur < r->nreg; r->cur++) {
+        rend_raster(r, r->cur);
+        mach_proc_compute(r->p, f->rend_shade, f->ph_shade, rend_region_done, r,
+                          GUINT_TO_POINTER(r->cur));
+    }
+}
+
+static void rend_check_gp(Rend *r, guint g)
+{
+    if (r->got[g] == r->expect[g] && ++r->gps_done == r->f->ngp)
+        rend_finish(r);
+}
+
+static void rend_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    WlPphigsFrame *f = ctx;
+    Msg *m = d->payload;
+    Rend *r = &f->rend[d->dst - mach_proc_id(f->rend[0].p)];
+    if (m->end) {
+        r->expect[m->gp] = m->msgs;
+    } else {
+        guint j = m->region / f->nrend;
+        r->pending[j] += m->count;
+        r->got[m->gp]++;
+        if (j == r->cur)
+            rend_raster(r, j);
+    }
+    rend_check_gp(r, m->gp);
+    g_free(m);
+}
+
+/* ---- GPs -------------------------------------------------------------- */
+
+static void gp_send_ends(WlPphigsFrame *f, Gp *g)
+{
+    for (guint r = 0; r < f->nrend; r++) {
+        Msg *m = g_new0(Msg, 1);
+        m->gp = g->id;
+        m->end = TRUE;
+        m->msgs = g->sent[r];
+        net_send(f->net, mach_proc_id(g->p), mach_proc_id(f->rend[r].p),
+                 f->s.end_bytes, m, rend_arrive, f);
+    }
+}
+
+static void gp_next(Gp *g);
+
+static void gp_step_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    Gp *g = ctx;
+    WlPphigsFrame *f = g->f;
+    const Step *st = &g_array_index(g->steps, Step, g->next);
+    if (st->region != NONE) {
+        Msg *m = g_new0(Msg, 1);
+        m->gp = g->id;
+        m->region = st->region;
+        m->count = st->count;
+        net_send(f->net, mach_proc_id(g->p),
+                 mach_proc_id(f->rend[st->region % f->nrend].p),
+                 (uint64_t)st->count * f->s.cmd_bytes, m, rend_arrive, f);
+    }
+    g->next++;
+    gp_next(g);
+}
+
+static void gp_next(Gp *g)
+{
+    WlPphigsFrame *f = g->f;
+    if (g->next == g->steps->len) {
+        gp_send_ends(f, g);
+        return;
+    }
+    const Step *st = &g_array_index(g->steps, Step, g->next);
+    if (st->trav)
+        mach_proc_compute(g->p, st->trav, f->ph_trav, NULL, NULL, NULL);
+    if (st->xform)
+        mach_proc_compute(g->p, st->xform, f->ph_xform, NULL, NULL, NULL);
+    mach_proc_compute(g->p, st->send, f->ph_send, gp_step_done, g, NULL);
+}
+
+static void gp_start(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    gp_next(ctx);
+}
+
+/* ---- the host: edits and moves since the last frame ------------------- */
+
+static void gp_edits_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    (void)d;
+    gp_next(ctx);
+}
+
+static void host_packed(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    Gp *g = ctx;
+    WlPphigsFrame *f = g->f;
+    net_send(f->net, mach_proc_id(f->host), mach_proc_id(g->p),
+             g->edits * f->s.element_bytes, NULL, gp_edits_arrive, g);
+}
+
+/* A GP with edits starts when they arrive; the others at once. */
+static void gp_launch(WlPphigsFrame *f, Gp *g)
+{
+    if (!g->edits) {
+        sim_schedule_in(f->eng, 0, gp_start, g, NULL);
+        return;
+    }
+    SimTime cost;
+    if (!mach_cost_n(f->host_send, g->edits, &cost))
+        cost = SIM_TIME_MAX; /* mach_proc_compute reports the overflow */
+    mach_proc_compute(f->host, cost, f->ph_edit, host_packed, g, NULL);
+    f->host_elems += g->edits;
+}
+
+/* ---- lifetime --------------------------------------------------------- */
+
+static void rend_init(WlPphigsFrame *f, Rend *r, guint id)
+{
+    r->f = f;
+    r->id = id;
+    r->p = mach_proc(f->m, "renderer", id);
+    r->nreg =
+        f->nregions > id ? (f->nregions - id + f->nrend - 1) / f->nrend : 0;
+    r->pending = g_new0(guint, MAX(r->nreg, 1));
+    r->begun = g_new0(gboolean, MAX(r->nreg, 1));
+    r->got = g_new0(guint, f->ngp);
+    r->expect = g_new0(guint, f->ngp);
+}
+
+static void gp_init(WlPphigsFrame *f, Gp *g, guint id)
+{
+    g->f = f;
+    g->id = id;
+    g->p = mach_proc(f->m, "gp", id);
+    g->steps = g_array_new(FALSE, FALSE, sizeof(Step));
+    g->buf = g_new0(guint, f->nregions);
+    g->sent = g_new0(guint, f->nrend);
+}
+
+static void intern_phases(WlPphigsFrame *f)
+{
+    f->ph_trav = sim_engine_phase(f->eng, "traverse");
+    f->ph_xform = sim_engine_phase(f->eng, "transform");
+    f->ph_send = sim_engine_phase(f->eng, "send");
+    f->ph_rast = sim_engine_phase(f->eng, "rasterise");
+    f->ph_shade = sim_engine_phase(f->eng, "shade");
+    f->ph_store = sim_engine_phase(f->eng, "store");
+    f->ph_edit = sim_engine_phase(f->eng, "edit");
+}
+
+static gboolean check_machine(WlPphigsFrame *f, GError **err)
+{
+    guint nfb, nhost;
+    return kind_count(f->m, "host", 1, G_MAXUINT, &nhost, err) &&
+           kind_count(f->m, "gp", 1, MAX_GPS, &f->ngp, err) &&
+           kind_count(f->m, "renderer", 1, G_MAXUINT16, &f->nrend, err) &&
+           kind_count(f->m, "frame_buffer", 1, 1, &nfb, err) &&
+           hw_costs(f, err) && mach_require_net(f->m, err);
+}
+
+WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
+                                   const WlPphigsFrameSpec *spec, GError **err)
+{
+    g_assert(spec->region >= 1 && spec->batch >= 1);
+    g_assert(spec->width >= 1 && spec->height >= 1);
+    WlPphigsFrame *f = g_new0(WlPphigsFrame, 1);
+    f->m = m;
+    f->eng = mach_engine(m);
+    f->s = *spec;
+    if (!check_machine(f, err)) {
+        g_free(f);
+        return NULL;
+    }
+    f->net = mach_net(m);
+    f->nx = (spec->width + spec->region - 1) / spec->region;
+    f->ny = (spec->height + spec->region - 1) / spec->region;
+    f->nregions = f->nx * f->ny;
+    intern_phases(f);
+    f->fb = mach_proc(m, "frame_buffer", 0);
+    f->host = mach_proc(m, "host", 0);
+    f->gp_us = g_new0(double, f->ngp);
+    f->busy0 = g_new0(SimTime, f->ngp);
+    f->gp = g_new0(Gp, f->ngp);
+    for (guint g = 0; g < f->ngp; g++)
+        gp_init(f, &f->gp[g], g);
+    f->rend = g_new0(Rend, f->nrend);
+    for (guint r = 0; r < f->nrend; r++)
+        rend_init(f, &f->rend[r], r);
+    return f;
+}
+
+void wl_pphigs_frame_free(WlPphigsFrame *f)
+{
+    if (!f)
+        return;
+    for (guint g = 0; g < f->ngp; g++) {
+        g_array_unref(f->gp[g].steps);
+        g_free(f->gp[g].buf);
+        g_free(f->gp[g].sent);
+    }
+    for (guint r = 0; r < f->nrend; r++) {
+        Rend *x = &f->rend[r];
+        g_free(x->pending);
+        g_free(x->begun);
+        g_free(x->got);
+        g_free(x->expect);
+    }
+    g_free(f->gp);
+    g_free(f->rend);
+    g_free(f->gp_us);
+    g_free(f->busy0);
+    g_free(f);
+}
+
+guint wl_pphigs_frame_gps(const WlPphigsFrame *f)
+{
+    return f->ngp;
+}
+
+const WlPphigsCosts *wl_pphigs_frame_costs(const WlPphigsFrame *f)
+{
+    return &f->c;
+}
+
+/* ---- running ---------------------------------------------------------- */
+
+static SimTime gp_busy(const WlPphigsFrame *f, guint g)
+{
+    const MachProc *p = f->gp[g].p;
+    return mach_proc_busy_phase(p, f->ph_trav) +
+           mach_proc_busy_phase(p, f->ph_xform);
+}
+
+static void frame_reset(WlPphigsFrame *f)
+{
+    for (guint r = 0; r < f->nrend; r++) {
+        Rend *x = &f->rend[r];
+        x->cur = 0;
+        x->gps_done = 0;
+        memset(x->pending, 0, MAX(x->nreg, 1) * sizeof *x->pending);
+        memset(x->begun, 0, MAX(x->nreg, 1) * sizeof *x->begun);
+        memset(x->got, 0, f->ngp * sizeof *x->got);
+        for (guint g = 0; g < f->ngp; g++)
+            x->expect[g] = NONE;
+    }
+    for (guint g = 0; g < f->ngp; g++)
+        f->busy0[g] = gp_busy(f, g);
+    f->stored = 0;
+    f->commands = f->offscreen = f->prims = f->host_elems = 0;
+    f->start = f->end = sim_now(f->eng);
+}
+
+gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
+                             const uint64_t *host_elems,
+                             WlPphigsFrameStats *out, GError **err)
+{
+    g_assert(wl_pphigs_dist_ngp(d) == f->ngp);
+    frame_reset(f);
+    f->vp = vp;
+    for (guint g = 0; g < f->ngp; g++) {
+        plan_gp(f, &f->gp[g], wl_pphigs_dist_gp(d, g));
+        f->gp[g].edits = host_elems ? host_elems[g] : 0;
+        gp_launch(f, &f->gp[g]);
+    }
+    if (!sim_engine_run(f->eng, SIM_TIME_MAX, err))
+        return FALSE;
+    g_assert(f->stored == f->nregions);
+    for (guint g = 0; g < f->ngp; g++)
+        f->gp_us[g] = sim_time_to_us(gp_busy(f, g) - f->busy0[g]);
+    out->time = f->end - f->start;
+    out->gp_time_us = f->gp_us;
+    out->commands = f->commands;
+    out->offscreen = f->offscreen;
+    out->primitives = f->prims;
+    out->host_elements = f->host_elems;
+    return TRUE;
+}
+
+void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,
+                          double *gp_util, double *rend_util)
+{
+    double e = (double)MAX(elapsed, 1), gs = 0, rs = 0;
+    for (guint g = 0; g < f->ngp; g++)
+        gs += (double)mach_proc_busy(f->gp[g].p) / e;
+    for (guint i = 0; i < f->nrend; i++)
+        rs += (double)mach_proc_busy(f->rend[i].p) / e;
+    *gp_util = gs / f->ngp;
+    *rend_util = rs / f->nrend;
+}

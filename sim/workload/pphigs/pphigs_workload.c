@@ -1,0 +1,305 @@
+/* pphigs_workload.c — the `pphigs` workload: a display list distributed over
+ * the GPs of Pixel-Planes 5 (seed 001), drawn frame after frame on the
+ * event-driven model (pphigs_frame.h), with per-frame matrix edits (§1.3, §3.1:
+ * "changing only a few transformation matrices") and rebalancing (§5).
+ *
+ * workload section:
+ *   type: pphigs
+ *   algorithm: simple | complex        (default complex)
+ *   gps: 1..64                          (default: the machine's GP count;
+ *                                        given, it sets nodes.gp.count)
+ *   database: a name in `databases` (the four of seed 001)
+ *   databases: generator parameters (configs/pphigs/databases.yaml)
+ *   frame: frame sizes and clustering (configs/pphigs/frame.yaml)
+ *   edits_per_frame: matrix modifies per frame (default 0)
+ *   edit_angle_deg: rotation each edit applies (default 0)
+ *   rebalance: {enabled, threshold, frames, fraction, max_moves}
+ * Relative paths are found as project data files (sim/core/datapath.h)
+ * and read when the config is loaded.  The machine is the run
+ * config's `machine` section (default: model pixel-planes-5), built by
+ * the machine layer at the run's fidelity; `run.until` ends the run
+ * after the frame that crosses it.
+ * Metrics: frame time, GP and renderer utilisation (busy / elapsed),
+ * ring bytes and commands per frame, edits, elements the host sent per
+ * frame (edits and moves go over the ring before the frame that needs
+ * them, frame.h), rebalancing moves, and seed
+ * 001 §6's distribution efficiency, processor utilisation and speed-up
+ * of the last frame (GP processor times are its traverse + transform
+ * busy times; T1 is the host list's traversal cost, metrics.h, which is
+ * what a one-GP frame's busy time is, to the picosecond).
+ * Cost per frame: the frame's (pphigs_frame.h) plus O(host size) per edit.
+ */
+#include "sim/workload/pphigs/pphigs_run.h"
+#include "sim/workload/pphigs/pphigs_rebalance.h"
+#include "sim/machine/model.h"
+#include "sim/workload/workload.h"
+#include <string.h>
+
+typedef struct {
+    int algo;
+    int64_t gps; /* 0: the machine's count */
+    ScenePphigsSpec spec;
+    WlPphigsSetup setup;
+    int64_t edits;
+    double edit_angle;
+    gboolean rebalance;
+    WlPphigsRebalParams rb;
+} Params;
+
+static void params_free(void *p)
+{
+    g_free(p);
+}
+
+static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
+{
+    const CfgNode *r = cfg_get(sec, "rebalance");
+    uint64_t frames = p->rb.frames, moves = p->rb.max_moves;
+    if (!r)
+        return TRUE;
+    gboolean ok =
+        cfg_get_bool(r, "enabled", FALSE, &p->rebalance, err) &&
+        cfg_get_double(r, "threshold", FALSE, 1e-6, 1, &p->rb.threshold, err) &&
+        cfg_get_count(r, "frames", FALSE, 1, 1000000, &frames, err) &&
+        cfg_get_double(r, "fraction", FALSE, 1e-6, 1, &p->rb.fraction, err) &&
+        cfg_get_count(r, "max_moves", FALSE, 1, 1000000, &moves, err);
+    p->rb.frames = (guint)frames;
+    p->rb.max_moves = (guint)moves;
+    return ok;
+}
+
+/* Loads the database spec and the frame setup the section names. */
+static gboolean parse_files(const CfgNode *sec, Params *p, GError **err)
+{
+    const char *db = NULL, *dbs = NULL, *fr = NULL;
+    if (!cfg_get_str(sec, "database", TRUE, &db, err) ||
+        !cfg_get_str(sec, "databases", TRUE, &dbs, err) ||
+        !cfg_get_str(sec, "frame", TRUE, &fr, err))
+        return FALSE;
+    return wl_pphigs_spec_load(dbs, db, cfg_get(sec, "database"), &p->spec,
+                               err) &&
+           wl_pphigs_setup_load(fr, &p->setup, err);
+}
+
+static void *parse(const CfgNode *sec, GError **err)
+{
+    static const char *const algos[] = {"simple", "complex", NULL};
+    Params *p = g_new0(Params, 1);
+    p->algo = WL_PPHIGS_COMPLEX;
+    p->rebalance = TRUE;
+    p->rb = (WlPphigsRebalParams){0.10, 3, 0.5, 16, 1};
+    gboolean ok = cfg_get_enum(sec, "algorithm", FALSE, algos, &p->algo, err) &&
+                  cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
+                  cfg_get_int(sec, "edits_per_frame", FALSE, 0, 1000000,
+                              &p->edits, err) &&
+                  cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
+                                 &p->edit_angle, err) &&
+                  parse_rebalance(sec, p, err) && parse_files(sec, p, err);
+    if (!ok) {
+        params_free(p);
+        return NULL;
+    }
+    return p;
+}
+
+/* ---- the machine ------------------------------------------------------ */
+
+/* workload.gps and machine.nodes.gp.count must not disagree. */
+static gboolean check_gps(const WlContext *ctx, const CfgNode *mach,
+                          int64_t gps, GError **err)
+{
+    const CfgNode *gp = cfg_path(mach, "nodes.gp");
+    uint64_t n = 0;
+    if (!gps || !gp || !mach_param_node(gp, "count") ||
+        !mach_param_count(gp, "count", TRUE, &n, NULL) || n == (uint64_t)gps)
+        return TRUE;
+    char *found =
+        g_strdup_printf("gps %" G_GINT64_FORMAT " while "
+                        "machine.nodes.gp.count is %" G_GUINT64_FORMAT,
+                        gps, n);
+    cfg_error(err, cfg_path(ctx->root, "workload.gps"), found,
+              "one GP count (set workload.gps or machine.nodes.gp.count, "
+              "or both to the same value)");
+    g_free(found);
+    return FALSE;
+}
+
+static MachMachine *build_machine(const WlContext *ctx, const Params *p,
+                                  GError **err)
+{
+    const CfgNode *mach = cfg_get(ctx->root, "machine");
+    if (!check_gps(ctx, mach, p->gps, err))
+        return NULL;
+    CfgNode *sec = mach ? cfg_copy(mach)
+                        : cfg_load_string("model: pixel-planes-5\n",
+                                          "<pphigs default machine>", err);
+    if (sec && p->gps) {
+        char *ov = g_strdup_printf("nodes.gp.count=%" G_GINT64_FORMAT, p->gps);
+        gboolean ok = cfg_set_override(sec, ov, err);
+        g_assert(ok);
+        g_free(ov);
+    }
+    MachMachine *m =
+        sec ? mach_new_from_cfg(ctx->eng, sec, ctx->fidelity, err) : NULL;
+    cfg_free(sec);
+    return m;
+}
+
+/* ---- one run ---------------------------------------------------------- */
+
+typedef struct {
+    const Params *p;
+    MachMachine *m;
+    ScenePphigsDb db;
+    WlPphigsDist *d;
+    WlPphigsFrame *frame;
+    WlPphigsRebal *rb;
+    SimRng *rng;
+    guint ngp;
+    uint64_t edits, moves, commands, host_elems;
+    uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
+    double imbalance;
+    WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
+} Run;
+
+static gboolean build(Run *r, const WlContext *ctx, GError **err)
+{
+    r->m = build_machine(ctx, r->p, err);
+    r->frame = r->m ? wl_pphigs_frame_new(r->m, &r->p->setup.frame, err) : NULL;
+    if (!r->frame || !scene_pphigs_generate(&r->p->spec, &r->db, err))
+        return FALSE;
+    r->ngp = wl_pphigs_frame_gps(r->frame);
+    WlPphigsWeights w;
+    wl_pphigs_weights_from_costs(
+        wl_pphigs_frame_costs(r->frame),
+        wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
+    r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
+    memcpy(r->sent, wl_pphigs_dist_traffic(r->d)->sent_to, sizeof r->sent);
+    WlPphigsRebalParams rb = r->p->rb;
+    rb.seed = ctx->seed;
+    r->rb = r->p->rebalance ? wl_pphigs_rebal_new(&rb) : NULL;
+    r->rng = sim_entity_rng(ctx->eng, sim_entity_add(ctx->eng, "host"));
+    return TRUE;
+}
+
+static void run_clear(Run *r)
+{
+    wl_pphigs_rebal_free(r->rb);
+    wl_pphigs_frame_free(r->frame);
+    mach_free(r->m);
+    wl_pphigs_dist_free(r->d);
+    if (r->db.db)
+        scene_pphigs_db_clear(&r->db);
+}
+
+/* One modify of a random matrix element of the host list (§3.1). */
+static void edit_one(Run *r)
+{
+    const SceneDb *h = wl_pphigs_dist_host(r->d);
+    GArray *at = g_array_new(FALSE, FALSE, sizeof(guint) * 2);
+    for (guint s = 0; s < scene_db_struct_count(h); s++)
+        for (guint i = 0; i < scene_db_len(h, s); i++)
+            if (scene_db_elem(h, s, i)->kind == SCENE_EL_MATRIX) {
+                guint sp[2] = {s, i};
+                g_array_append_val(at, sp);
+            }
+    if (at->len) {
+        guint *sp = (guint *)at->data + 2 * sim_rng_below(r->rng, at->len);
+        SceneElem e = *scene_db_elem(h, sp[0], sp[1]);
+        double a = r->p->edit_angle * G_PI / 180;
+        e.matrix = mat4_mul(e.matrix, mat4_rotate(vec3(0, 1, 0), a));
+        gboolean ok = wl_pphigs_dist_modify(r->d, sp[0], sp[1], &e, NULL);
+        g_assert(ok);
+        r->edits++;
+    }
+    g_array_unref(at);
+}
+
+/* Elements sent to each GP since the last frame (edits, moves). */
+static void host_elems(Run *r, uint64_t *out)
+{
+    const uint64_t *now = wl_pphigs_dist_traffic(r->d)->sent_to;
+    for (guint g = 0; g < r->ngp; g++) {
+        out[g] = now[g] - r->sent[g];
+        r->sent[g] = now[g];
+    }
+}
+
+static gboolean one_frame(Run *r, SimResult *out, GError **err)
+{
+    for (int64_t k = 0; k < r->p->edits; k++)
+        edit_one(r);
+    uint64_t elems[64];
+    host_elems(r, elems);
+    WlPphigsFrameStats st;
+    Mat4 vp = scene_camera_view_proj(&r->db.camera);
+    if (!wl_pphigs_frame_run(r->frame, r->d, vp, elems, &st, err))
+        return FALSE;
+    r->host_elems += st.host_elements;
+    sim_result_add_frame(out, st.time);
+    r->commands += st.commands;
+    r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);
+    const WlPphigsCosts *c = wl_pphigs_frame_costs(r->frame);
+    double t1 = sim_time_to_us(
+        wl_pphigs_traversal_cost(wl_pphigs_dist_host(r->d), vp, c));
+    wl_pphigs_metrics_from(t1, st.gp_time_us, r->ngp, &r->paper);
+    if (r->rb) {
+        WlPphigsRebalStep rs;
+        wl_pphigs_rebal_frame(r->rb, r->d, vp, wl_pphigs_frame_costs(r->frame),
+                              st.gp_time_us, &rs);
+        r->moves = rs.total_moves;
+    }
+    return TRUE;
+}
+
+static void fill(Run *r, const WlContext *ctx, SimResult *out)
+{
+    SimTime now = sim_now(ctx->eng);
+    NetNet *net = mach_net(r->m);
+    out->elapsed = now;
+    mach_fill_result(r->m, out);
+    double gu, ru;
+    wl_pphigs_frame_util(r->frame, now, &gu, &ru);
+    double n = MAX(out->frame_times->len, 1);
+    sim_result_set_metric(out, "frame_ms", sim_result_mean_frame_s(out) * 1e3,
+                          "ms");
+    sim_result_set_metric(out, "gp_util_pct", 100 * gu, "%");
+    sim_result_set_metric(out, "renderer_util_pct", 100 * ru, "%");
+    sim_result_set_metric(out, "ring_bytes_per_frame",
+                          (double)net_total_bytes(net) / n, "B");
+    sim_result_set_metric(out, "commands_per_frame", r->commands / n, "");
+    sim_result_set_metric(out, "gps", r->ngp, "");
+    sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance, "%");
+    sim_result_set_metric(out, "edits", (double)r->edits, "");
+    sim_result_set_metric(out, "host_elements_per_frame",
+                          (double)r->host_elems / n, "");
+    sim_result_set_metric(out, "rebalance_moves", (double)r->moves, "");
+    sim_result_set_metric(out, "distribution_efficiency_pct",
+                          100 * r->paper.efficiency, "%");
+    sim_result_set_metric(out, "processor_utilisation_pct",
+                          100 * r->paper.utilisation, "%");
+    sim_result_set_metric(out, "speedup", r->paper.speedup, "");
+}
+
+static gboolean run(const WlContext *ctx, void *params, SimResult *out,
+                    GError **err)
+{
+    Run r = {.p = params};
+    gboolean ok = build(&r, ctx, err);
+    SimTime until = wl_until(ctx);
+    for (int f = 0; ok && f < ctx->frames && sim_now(ctx->eng) < until; f++)
+        ok = one_frame(&r, out, err);
+    if (ok)
+        fill(&r, ctx, out);
+    run_clear(&r);
+    return ok;
+}
+
+const WlOps wl_pphigs_ops = {
+    .name = "pphigs",
+    .summary = "PPHIGS display list distributed by primitive over the "
+               "GPs of Pixel-Planes 5 (seed 001)",
+    .parse = parse,
+    .free_params = params_free,
+    .run = run,
+};

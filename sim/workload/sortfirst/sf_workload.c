@@ -1,0 +1,313 @@
+/* sf_workload.c — the `sortfirst` workload: sort-first parallel
+ * rendering of a hierarchical graphics database with migrating primitive
+ * chunks and min-set or max-set bookkeeping (Mueller, seed 000).
+ *
+ *   workload:
+ *     type: sortfirst
+ *     processors: 16         # P <= 64 and <= the machine's `node` count
+ *     granularity: 12        # primitives per chunk (§3.2; §4.1: 1 5 12 26)
+ *     bookkeeping: maxset    # minset (§3.3) | maxset (§3.4)
+ *     chunking: sorted       # sorted | unsorted (§4.1)
+ *     resolution: 256        # N x N screen
+ *     check_image: true      # each frame equals the serial render
+ *     cull_back: true
+ *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B}
+ *     frame_log: frames.csv  # optional per-frame figures (default under
+ *                            # `pgsim run --out DIR`: DIR/sortfirst_frames.csv)
+ *
+ * The scene is the config's `scene:` section and must carry a structure
+ * database (the `vehicle` generator: configs/scenes/bronco.yaml); the
+ * camera of frame f is the scene path's (camera speed: the scene's
+ * `degrees_per_frame`; frames: run.frames).  The machine is the
+ * `machine:` section (normally `model: cluster-ib`); its `node` kind
+ * must have the costs of sf_frame.h.  Frames: sf_frame.h; bookkeeping:
+ * sf_book.h; chunks: sf_db.h.
+ */
+#include "sim/workload/sortfirst/sf_workload.h"
+#include "sim/scene/scene_cfg.h"
+#include <glib/gstdio.h>
+#include <stdio.h>
+
+static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
+{
+    *z = (WlSfSizes){64, 40, 36, 8};
+    const CfgNode *n;
+    if (!cfg_get_map(sec, "bytes", FALSE,
+                     "a map {message, chunk, triangle, instance} of sizes", &n,
+                     err))
+        return FALSE;
+    if (!n)
+        return TRUE;
+    return cfg_get_size(n, "message", FALSE, &z->message, err) &&
+           cfg_get_size(n, "chunk", FALSE, &z->chunk, err) &&
+           cfg_get_size(n, "triangle", FALSE, &z->triangle, err) &&
+           cfg_get_size(n, "instance", FALSE, &z->instance, err);
+}
+
+static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
+{
+    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED;
+    if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
+                      err) ||
+        !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch, err))
+        return FALSE;
+    p->setup.bk = (WlSfBookkeeping)bk;
+    p->chunking = (WlSfChunking)ch;
+    return TRUE;
+}
+
+static void sf_free_params(void *params)
+{
+    WlSfParams *p = params;
+    if (p)
+        g_free(p->frame_log);
+    g_free(p);
+}
+
+static void *sf_parse(const CfgNode *sec, GError **err)
+{
+    WlSfParams *p = g_new0(WlSfParams, 1);
+    uint64_t procs = 16, gran = 12, res = 256;
+    gboolean check = TRUE, cull = TRUE;
+    const char *log = NULL;
+    gboolean ok =
+        parse_words(sec, p, err) &&
+        cfg_get_count(sec, "processors", FALSE, 1, WL_SF_MAX_PROCS, &procs,
+                      err) &&
+        cfg_get_count(sec, "granularity", FALSE, 1, 1u << 20, &gran, err) &&
+        cfg_get_count(sec, "resolution", FALSE, 16, 4096, &res, err) &&
+        cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
+        cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
+        cfg_get_str(sec, "frame_log", FALSE, &log, err) &&
+        parse_bytes(sec, &p->setup.sizes, err);
+    if (!ok) {
+        sf_free_params(p);
+        return NULL;
+    }
+    p->setup.procs = (guint)procs;
+    p->setup.resolution = (int)res;
+    p->setup.check_image = check;
+    p->setup.cull_back = cull;
+    p->granularity = (guint)gran;
+    p->frame_log = g_strdup(log);
+    return p;
+}
+
+/* ---- metrics ------------------------------------------------------------- */
+
+typedef struct {
+    double chunks, polys, insts, bytes, master, slave, fresh, rendered;
+    double imbalance, imbalance_max, util, frame_ms;
+    uint64_t onscreen, regions, peak;
+    gboolean checked, image_ok;
+} Sums;
+
+static void sum_frames(const GArray *stats, guint from, Sums *m)
+{
+    memset(m, 0, sizeof *m);
+    m->image_ok = TRUE;
+    for (guint f = 0; f < stats->len; f++) {
+        const WlSfFrameStats *s = &g_array_index(stats, WlSfFrameStats, f);
+        m->peak = MAX(m->peak, s->peak_memory);
+        m->checked |= s->image_checked;
+        m->image_ok &= !s->image_checked || s->image_ok;
+        if (f < from)
+            continue;
+        m->chunks += s->migrated_chunks;
+        m->polys += s->migrated_polys;
+        m->insts += s->migrated_insts;
+        m->bytes += s->migrated_bytes;
+        m->master += s->master_boxes;
+        m->slave += s->slave_boxes;
+        m->fresh += s->new_boxes;
+        m->rendered += s->polys_rendered;
+        m->imbalance += s->imbalance;
+        m->imbalance_max = MAX(m->imbalance_max, s->imbalance);
+        m->util += s->utilisation;
+        m->frame_ms += sim_time_to_ms(s->end - s->start);
+        m->onscreen += s->onscreen_insts;
+        m->regions += s->region_insts;
+    }
+}
+
+static void set(SimResult *out, const char *name, double v, const char *unit)
+{
+    sim_result_set_metric(out, name, v, unit);
+}
+
+void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
+                        const WlSfSetup *s)
+{
+    /* Steady state: frames after the first (which distributes from the
+     * masters); a one-frame run reports its only frame. */
+    guint from = stats->len > 1 ? 1 : 0;
+    double n = stats->len - from;
+    Sums m;
+    sum_frames(stats, from, &m);
+    const WlSfFrameStats *f0 = &g_array_index(stats, WlSfFrameStats, 0);
+    set(out, "processors", s->procs, "");
+    set(out, "granularity", db->granularity, "");
+    set(out, "resolution", s->resolution, "");
+    set(out, "chunks", wl_sf_n_chunks(db), "");
+    set(out, "chunk_instances", wl_sf_n_insts(db), "");
+    set(out, "min_set_polygons", (double)db->min_prims, "");
+    set(out, "max_set_polygons", (double)scene_mesh_n_polys(db->flat), "");
+    set(out, "frame_ms", m.frame_ms / n, "ms");
+    set(out, "migrated_chunks_per_frame", m.chunks / n, "");
+    set(out, "migrated_polygons_per_frame", m.polys / n, "");
+    set(out, "migrated_pointers_per_frame", m.insts / n, "");
+    set(out, "migrated_bytes_per_frame", m.bytes / n, "B");
+    set(out, "initial_bytes", (double)f0->migrated_bytes, "B");
+    set(out, "master_boxes_per_frame", m.master / n, "");
+    set(out, "slave_boxes_per_frame", m.slave / n, "");
+    set(out, "new_boxes_per_frame", m.fresh / n, "");
+    set(out, "polygons_rendered_per_frame", m.rendered / n, "");
+    set(out, "transforms_per_frame",
+        (m.master + m.slave + m.fresh + m.rendered) / n, "");
+    set(out, "chunk_overlap", m.onscreen ? (double)m.regions / m.onscreen : 0,
+        "");
+    set(out, "load_imbalance", m.imbalance / n, "");
+    set(out, "load_imbalance_max", m.imbalance_max, "");
+    set(out, "utilisation", m.util / n, "");
+    set(out, "peak_memory", (double)m.peak, "B");
+    if (m.checked)
+        set(out, "image_matches_serial", m.image_ok, "");
+}
+
+static gboolean write_log(const char *path, const GArray *stats, GError **err)
+{
+    GString *s = g_string_new(
+        "frame,frame_ms,migrated_chunks,migrated_polygons,"
+        "migrated_pointers,migrated_bytes,master_boxes,slave_boxes,"
+        "new_boxes,polygons_rendered,load_max,load_min,imbalance,"
+        "utilisation,peak_memory\n");
+    for (guint f = 0; f < stats->len; f++) {
+        const WlSfFrameStats *t = &g_array_index(stats, WlSfFrameStats, f);
+        g_string_append_printf(
+            s,
+            "%u,%.6f,%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+            ",%.6f,%.6f,%" G_GUINT64_FORMAT "\n",
+            f, sim_time_to_ms(t->end - t->start), t->migrated_chunks,
+            t->migrated_polys, t->migrated_insts, t->migrated_bytes,
+            t->master_boxes, t->slave_boxes, t->new_boxes, t->polys_rendered,
+            t->load_max, t->load_min, t->imbalance, t->utilisation,
+            t->peak_memory);
+    }
+    gboolean ok = g_file_set_contents(path, s->str, (gssize)s->len, NULL);
+    if (!ok)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                    "sortfirst: found an unwritable frame_log '%s', "
+                    "expected a writable path",
+                    path);
+    g_string_free(s, TRUE);
+    return ok;
+}
+
+/* frame_log, else <out_dir>/sortfirst_frames.csv under --out, else NULL. */
+static char *log_path(const WlContext *ctx, const WlSfParams *p)
+{
+    if (p->frame_log)
+        return g_strdup(p->frame_log);
+    if (!ctx->out_dir || g_mkdir_with_parents(ctx->out_dir, 0755) != 0)
+        return NULL;
+    return g_build_filename(ctx->out_dir, "sortfirst_frames.csv", NULL);
+}
+
+/* ---- running --------------------------------------------------------------
+ */
+
+static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
+                            const CfgNode *at, GError **err)
+{
+    const MachKindInfo *k = mach_kind(m, "node");
+    if (!mach_require_net(m, err))
+        return FALSE;
+    if (k && k->count >= s->procs &&
+        net_nodes(mach_net(m)) > k->first + s->procs - 1)
+        return TRUE;
+    char *found = g_strdup_printf("'%u' processors", s->procs);
+    char *exp = g_strdup_printf("at most the %u nodes of kind 'node' of "
+                                "machine '%s'",
+                                k ? k->count : 0, mach_name(m));
+    if (at)
+        cfg_error(err, at, found, exp);
+    else
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "sortfirst: found %s, expected %s", found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+static Scene *load_scene(const CfgNode *root, GError **err)
+{
+    const CfgNode *sec = cfg_get(root, "scene");
+    Scene *sc = scene_from_cfg(sec, err);
+    if (!sc || sc->db)
+        return sc;
+    cfg_error(err, sec ? sec : root, "a scene without a structure database",
+              "a hierarchical scene (e.g. generator: vehicle)");
+    scene_free(sc);
+    return NULL;
+}
+
+static gboolean run_frames(const WlContext *ctx, MachMachine *m,
+                           const Scene *sc, const WlSfParams *p, SimResult *out,
+                           GError **err)
+{
+    WlSfCosts c;
+    if (!wl_sf_costs_from_machine(m, &c, err) ||
+        !check_procs(m, &p->setup, cfg_path(ctx->root, "workload.processors"),
+                     err))
+        return FALSE;
+    WlSfDb *db =
+        wl_sf_db_new(sc->db, p->setup.procs, p->granularity, p->chunking, err);
+    if (!db)
+        return FALSE;
+    WlSfRun *r = wl_sf_run_new(m, sc, db, &p->setup, &c);
+    gboolean ok = wl_sf_run_frames(r, ctx->frames, wl_until(ctx), err);
+    const GArray *st = wl_sf_run_stats(r);
+    for (guint f = 0; ok && f < st->len; f++) {
+        const WlSfFrameStats *t = &g_array_index(st, WlSfFrameStats, f);
+        sim_result_add_frame(out, t->end - t->start);
+    }
+    if (ok && st->len) {
+        mach_fill_result(m, out);
+        wl_sf_fill_metrics(out, st, db, &p->setup);
+        out->elapsed = sim_now(mach_engine(m));
+    }
+    char *log = log_path(ctx, p);
+    if (ok && log)
+        ok = write_log(log, st, err);
+    g_free(log);
+    wl_sf_run_free(r);
+    wl_sf_db_free(db);
+    return ok;
+}
+
+static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
+                       GError **err)
+{
+    Scene *sc = load_scene(ctx->root, err);
+    if (!sc)
+        return FALSE;
+    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
+                                       ctx->fidelity, err);
+    gboolean ok = m && run_frames(ctx, m, sc, params, out, err);
+    mach_free(m);
+    scene_free(sc);
+    return ok;
+}
+
+const WlOps wl_sortfirst_ops = {
+    .name = "sortfirst",
+    .summary = "seed 000: sort-first rendering of a hierarchical database "
+               "with migrating primitive chunks, min-set or max-set "
+               "bookkeeping",
+    .parse = sf_parse,
+    .free_params = sf_free_params,
+    .run = sf_run,
+};

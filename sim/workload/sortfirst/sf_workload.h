@@ -1,0 +1,23 @@
+/* sf_workload.h — the `sortfirst` workload (seed 000, Mueller,
+ * "Hierarchical graphics databases in sort-first"): WlOps row and the
+ * entry points the tests use.  Keys and metrics: docs/workloads.md. */
+#ifndef PGSIM_WORKLOAD_SORTFIRST_SF_WORKLOAD_H
+#define PGSIM_WORKLOAD_SORTFIRST_SF_WORKLOAD_H
+
+#include "sim/workload/sortfirst/sf_frame.h"
+#include "sim/workload/workload.h"
+
+typedef struct {
+    WlSfSetup setup;
+    guint granularity;
+    WlSfChunking chunking;
+    char *frame_log; /* CSV of per-frame figures, or NULL */
+} WlSfParams;
+
+extern const WlOps wl_sortfirst_ops;
+
+/* The metrics of a finished run into out (frames: stats of each). */
+void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
+                        const WlSfSetup *s);
+
+#endif

@@ -1,0 +1,229 @@
+/* test_report.c — report writers (JSON parses back with the documented
+ * fields, CSV has the documented columns, timing only on request), atomic
+ * writes (a failed write leaves no file behind) and the progress display
+ * (nothing when disabled, rate limited by a fake clock). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib/gstdio.h>
+#include <string.h>
+
+#include "sim/output/atomic.h"
+#include "sim/output/json.h"
+#include "sim/output/progress.h"
+#include "sim/app/run/report.h"
+
+/* A small hand-made result: 2 frames, 2 nodes, 2 phases, one metric. */
+static SimResult *sample(void)
+{
+    SimResult *r = sim_result_new("demo", "m,1");
+    r->seed = 3;
+    r->elapsed = 4 * SIM_MS;
+    sim_result_add_frame(r, 1 * SIM_MS);
+    sim_result_add_frame(r, 3 * SIM_MS + 1);
+    g_ptr_array_add(r->phases, g_strdup("compute"));
+    g_ptr_array_add(r->phases, g_strdup("send"));
+    SimNodeResult *a = sim_result_add_node(r, "a", "gp");
+    sim_busy_add(&a->busy, 0, 1 * SIM_MS);
+    sim_busy_add(&a->busy, 1, 1 * SIM_MS);
+    sim_result_add_node(r, "b", "gp");
+    r->comm_bytes = 100;
+    r->comm_messages = 2;
+    r->busiest_link = g_strdup("a->b");
+    r->busiest_link_bytes = 60;
+    sim_result_set_metric(r, "rate \"x\"", 0.1, "1/s");
+    r->events = 10;
+    r->wall_s = 0.5;
+    return r;
+}
+
+static void test_json(void **state)
+{
+    (void)state;
+    SimResult *r = sample();
+    char *text = rpt_render(r, RPT_JSON, FALSE);
+    GError *e = NULL;
+    JsonVal *v = json_parse(text, -1, "result.json", &e);
+    if (!v)
+        fail_msg("%s\n%s", e->message, text);
+    assert_string_equal(json_get(v, "machine")->str, "m,1");
+    assert_true(json_get(v, "elapsed_s")->num == 0.004);
+    const JsonVal *fr = json_get(v, "frames");
+    assert_int_equal(json_len(json_get(fr, "times_s")), 2);
+    assert_string_equal(json_at(json_get(fr, "times_s"), 1)->raw,
+                        "0.003000000001"); /* exact from picoseconds */
+    const JsonVal *n0 = json_at(json_get(v, "nodes"), 0);
+    assert_true(json_get(n0, "utilisation")->num == 0.5);
+    const JsonVal *send = json_get(json_get(n0, "phases"), "send");
+    assert_true(json_get(send, "utilisation")->num == 0.25);
+    assert_string_equal(json_get(json_get(v, "comm"), "busiest_link")->str,
+                        "a->b");
+    const JsonVal *m = json_at(json_get(v, "metrics"), 0);
+    assert_string_equal(json_get(m, "name")->str, "rate \"x\"");
+    const JsonVal *sim = json_get(v, "sim");
+    assert_true(json_get(sim, "events")->num == 10);
+    assert_null(json_get(sim, "wall_s")); /* only with timing */
+    json_free(v);
+    g_free(text);
+    text = rpt_render(r, RPT_JSON, TRUE);
+    v = json_parse(text, -1, "result.json", &e);
+    assert_non_null(v);
+    assert_true(json_get(json_get(v, "sim"), "events_per_s")->num == 20);
+    json_free(v);
+    g_free(text);
+    sim_result_free(r);
+}
+
+static void test_csv_and_text(void **state)
+{
+    (void)state;
+    SimResult *r = sample();
+    char *csv = rpt_render(r, RPT_CSV, FALSE);
+    assert_true(g_str_has_prefix(csv, "section,name,phase,field,value,unit"
+                                      "\n"));
+    assert_non_null(strstr(csv, "\nrun,,,machine,\"m,1\",\n"));
+    assert_non_null(strstr(csv, "\nframe,1,,time,0.003000000001,s\n"));
+    assert_non_null(strstr(csv, "\nnode,a,send,utilisation,0.25,\n"));
+    assert_non_null(strstr(csv, "\nmetric,\"rate \"\"x\"\"\",,value,0.1,"
+                                "1/s\n"));
+    assert_null(strstr(csv, "wall"));
+    g_free(csv);
+    csv = rpt_render(r, RPT_CSV, TRUE);
+    assert_non_null(strstr(csv, "\nsim,,,wall,0.5,s\n"));
+    g_free(csv);
+    char *text = rpt_render(r, RPT_TEXT, TRUE);
+    assert_non_null(strstr(text, "demo on m,1"));
+    assert_non_null(strstr(text, "frames        2, mean 2.000 ms"));
+    assert_non_null(strstr(text, "50.0%"));
+    assert_non_null(strstr(text, "events/s"));
+    g_free(text);
+    RptFormat f;
+    assert_true(rpt_format_parse("csv", &f));
+    assert_int_equal(f, RPT_CSV);
+    assert_false(rpt_format_parse("xml", &f));
+    sim_result_free(r);
+}
+
+static guint dir_entries(const char *dir)
+{
+    GDir *d = g_dir_open(dir, 0, NULL);
+    guint n = 0;
+    while (g_dir_read_name(d))
+        n++;
+    g_dir_close(d);
+    return n;
+}
+
+static void test_atomic(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-atomic-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "out.json", NULL);
+    GError *e = NULL;
+    assert_true(rpt_write_atomic(path, "old", 3, &e));
+    assert_true(rpt_write_atomic(path, "new!", 4, &e));
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    assert_string_equal(text, "new!");
+    g_free(text);
+    assert_int_equal(dir_entries(dir), 1);
+    /* the rename fails (target is a directory): no temporary is left */
+    char *sub = g_build_filename(dir, "sub", NULL);
+    assert_int_equal(g_mkdir(sub, 0755), 0);
+    assert_false(rpt_write_atomic(sub, "x", 1, &e));
+    assert_int_equal(sim_error_exit_status(e), 2);
+    assert_non_null(strstr(e->message, "expected a writable file"));
+    g_clear_error(&e);
+    assert_int_equal(dir_entries(dir), 2);
+    /* a missing directory: nothing created anywhere */
+    char *nodir = g_build_filename(dir, "none", "f.json", NULL);
+    assert_false(rpt_write_atomic(nodir, "x", 1, &e));
+    g_clear_error(&e);
+    assert_int_equal(dir_entries(dir), 2);
+    /* rpt_write_dir writes the three files */
+    SimResult *r = sample();
+    char *outd = g_build_filename(dir, "o", NULL);
+    assert_true(rpt_write_dir(r, outd, FALSE, &e));
+    assert_int_equal(dir_entries(outd), 3);
+    const char *names[] = {"summary.txt", "result.json", "result.csv"};
+    for (int i = 0; i < 3; i++) {
+        char *p = g_build_filename(outd, names[i], NULL);
+        assert_int_equal(g_remove(p), 0);
+        g_free(p);
+    }
+    sim_result_free(r);
+    g_rmdir(outd);
+    g_rmdir(sub);
+    g_remove(path);
+    assert_int_equal(g_rmdir(dir), 0);
+    g_free(outd);
+    g_free(nodir);
+    g_free(sub);
+    g_free(path);
+    g_free(dir);
+}
+
+static gint64 fake_now;
+
+static gint64 fake_clock(void)
+{
+    return fake_now;
+}
+
+static void test_progress(void **state)
+{
+    (void)state;
+    assert_null(rpt_progress_new_full(10, "x", NULL, NULL)); /* disabled */
+    rpt_progress_update(NULL, 1);
+    rpt_progress_finish(NULL);
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    fake_now = 0;
+    RptProgress *p = rpt_progress_new_full(10, "run", f, fake_clock);
+    rpt_progress_update(p, 1); /* first update draws */
+    fake_now = 50000;
+    rpt_progress_update(p, 2); /* 50 ms later: rate limited */
+    fake_now = 100000;
+    rpt_progress_update(p, 5); /* 100 ms: draws */
+    rpt_progress_finish(p);    /* final line and newline */
+    fclose(f);
+    gchar **lines = g_strsplit(buf, "\r", -1);
+    assert_int_equal(g_strv_length(lines), 4); /* "", 1, 5, final */
+    assert_non_null(strstr(lines[1], "run:  10% (1/10)"));
+    assert_non_null(strstr(lines[2], "run:  50% (5/10)"));
+    assert_true(g_str_has_suffix(lines[3], "\n"));
+    g_strfreev(lines);
+    free(buf);
+}
+
+static void test_progress_note_eta(void **state)
+{
+    (void)state;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    fake_now = 0;
+    RptProgress *p = rpt_progress_new_full(4, "sweep", f, fake_clock);
+    rpt_progress_note(p, "1 failed");
+    fake_now = 2000000;
+    rpt_progress_update(p, 1); /* 2 s for 1 of 4: 6 s to go */
+    rpt_progress_finish(p);
+    fclose(f);
+    assert_non_null(strstr(buf, "sweep:  25% (1/4), 1 failed, 2.0 s, "
+                                "ETA 0:06"));
+    free(buf);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_json),
+        cmocka_unit_test(test_csv_and_text),
+        cmocka_unit_test(test_atomic),
+        cmocka_unit_test(test_progress),
+        cmocka_unit_test(test_progress_note_eta),
+    };
+    return cmocka_run_group_tests_name("report", tests, NULL, NULL);
+}

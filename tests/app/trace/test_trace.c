@@ -1,0 +1,190 @@
+/* test_trace.c — trace files: Chrome JSON parses and holds the spans,
+ * flows and marks; Paje is time-ordered; the cap truncates with a note. */
+#include "sim/output/json.h"
+#include "sim/app/trace/trace_file.h"
+#include <glib/gstdio.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include <cmocka.h>
+
+static char *tmp_path(const char *ext)
+{
+    char *dir = g_dir_make_tmp("pgsim-trc-XXXXXX", NULL);
+    char *p = g_strconcat(dir, "/t", ext, NULL);
+    g_free(dir);
+    return p;
+}
+
+static void rm_path(char *p)
+{
+    g_remove(p);
+    char *dir = g_path_get_dirname(p);
+    g_rmdir(dir);
+    g_free(dir);
+    g_free(p);
+}
+
+/* Node 1 computes, sends 64 B to node 0, which merges; then a mark. */
+static void emit(SimTrace *tr)
+{
+    sim_trace_span(tr, 1, "gp1", "transform", 0, 3 * SIM_US);
+    sim_trace_flow(tr, 1, 0, 64, 3 * SIM_US, 5 * SIM_US + 250);
+    sim_trace_span(tr, 0, "gp0", "merge", 5 * SIM_US + 250, 9 * SIM_US);
+    sim_trace_mark(tr, "frame 0", 9 * SIM_US);
+}
+
+static JsonVal *load_json(const char *path)
+{
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    GError *err = NULL;
+    JsonVal *v = json_parse(text, -1, path, &err);
+    g_assert_no_error(err);
+    g_free(text);
+    return v;
+}
+
+static const JsonVal *find_ev(const JsonVal *evs, const char *ph,
+                              const char *name, guint *count)
+{
+    const JsonVal *hit = NULL;
+    *count = 0;
+    for (guint i = 0; i < json_len(evs); i++) {
+        const JsonVal *e = json_at(evs, i);
+        if (strcmp(json_get(e, "ph")->str, ph) == 0 &&
+            (!name || strcmp(json_get(e, "name")->str, name) == 0)) {
+            hit = hit ? hit : e;
+            ++*count;
+        }
+    }
+    return hit;
+}
+
+static void test_chrome(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".json");
+    GError *err = NULL;
+    SimTrace *tr = trc_open(path, 0, &err);
+    g_assert_no_error(err);
+    emit(tr);
+    assert_int_equal(trc_events(tr), 4);
+    assert_true(trc_close(tr, &err));
+    JsonVal *v = load_json(path);
+    const JsonVal *evs = json_get(v, "traceEvents");
+    guint n;
+    const JsonVal *x = find_ev(evs, "X", "merge", &n);
+    assert_int_equal(n, 1);
+    assert_int_equal((int)json_get(x, "tid")->num, 0);
+    assert_string_equal(json_get(x, "ts")->raw, "5.000250");
+    assert_string_equal(json_get(x, "dur")->raw, "3.999750");
+    const JsonVal *s = find_ev(evs, "s", NULL, &n);
+    assert_int_equal(n, 1);
+    const JsonVal *f = find_ev(evs, "f", NULL, &n);
+    assert_int_equal(n, 1);
+    assert_true(json_get(s, "id")->num == json_get(f, "id")->num);
+    assert_int_equal((int)json_get(s, "tid")->num, 1);
+    assert_int_equal((int)json_get(f, "tid")->num, 0);
+    assert_string_equal(json_get(f, "bp")->str, "e");
+    /* node 0 is first seen in the flow ("node0"), then named by its span;
+     * the later thread_name wins in Perfetto */
+    find_ev(evs, "M", "thread_name", &n);
+    assert_int_equal(n, 3);
+    const JsonVal *last = json_at(evs, 0);
+    for (guint i = 0; i < json_len(evs); i++) {
+        const JsonVal *e = json_at(evs, i);
+        if (!strcmp(json_get(e, "name")->str, "thread_name") &&
+            json_get(e, "tid")->num == 0)
+            last = e;
+    }
+    assert_string_equal(json_get(json_get(last, "args"), "name")->str, "gp0");
+    find_ev(evs, "i", "frame 0", &n);
+    assert_int_equal(n, 1);
+    assert_false(json_get(json_get(v, "otherData"), "truncated")->b);
+    json_free(v);
+    rm_path(path);
+}
+
+static void test_cap(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".json");
+    SimTrace *tr = trc_open(path, 2, NULL);
+    emit(tr);
+    emit(tr);
+    assert_int_equal(trc_events(tr), 2);
+    assert_true(trc_truncated(tr));
+    assert_true(trc_close(tr, NULL));
+    JsonVal *v = load_json(path);
+    guint n;
+    const JsonVal *evs = json_get(v, "traceEvents");
+    find_ev(evs, "i",
+            "trace truncated: cap of 2 events reached; later "
+            "events are not recorded",
+            &n);
+    assert_int_equal(n, 1);
+    find_ev(evs, "X", "merge", &n);
+    assert_int_equal(n, 0);
+    assert_true(json_get(json_get(v, "otherData"), "truncated")->b);
+    json_free(v);
+    rm_path(path);
+}
+
+static void test_paje(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".paje");
+    SimTrace *tr = trc_open(path, 0, NULL);
+    emit(tr);
+    assert_true(trc_close(tr, NULL));
+    char *tmp = g_strconcat(path, ".tmp", NULL);
+    assert_false(g_file_test(tmp, G_FILE_TEST_EXISTS));
+    g_free(tmp);
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    assert_non_null(strstr(text, "%EventDef PajeSetState 6\n"));
+    assert_non_null(strstr(text, "4 0.000000000000 n1 CT_Node machine "
+                                 "\"gp1\"\n"));
+    assert_non_null(strstr(text, "6 0.000005000250 ST_Phase n0 \"merge\"\n"));
+    assert_non_null(strstr(text, "4 0.000000000000 n0 CT_Node machine "
+                                 "\"gp0\"\n"));
+    assert_non_null(strstr(text, "7 0.000003000000 LT_Msg machine \"64 B\" "
+                                 "n1 m1\n"));
+    assert_non_null(strstr(text, "8 0.000005000250 LT_Msg machine \"64 B\" "
+                                 "n0 m1\n"));
+    /* event lines are in time order */
+    char **lines = g_strsplit(text, "\n", -1);
+    double last = 0.0;
+    for (char **l = lines; *l; l++) {
+        if (**l < '4' || **l > '9' || (*l)[1] != ' ')
+            continue;
+        double t = g_ascii_strtod(*l + 2, NULL);
+        assert_true(t >= last);
+        last = t;
+    }
+    g_strfreev(lines);
+    g_free(text);
+    rm_path(path);
+}
+
+static void test_bad_name(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    assert_null(trc_open("/tmp/x.txt", 0, &err));
+    assert_non_null(strstr(err->message, "expected a file ending in .json"));
+    g_error_free(err);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_chrome),
+        cmocka_unit_test(test_cap),
+        cmocka_unit_test(test_paje),
+        cmocka_unit_test(test_bad_name),
+    };
+    return cmocka_run_group_tests_name("trace", tests, NULL, NULL);
+}

@@ -1,0 +1,133 @@
+/* test_kurc96.c — `pgsim reproduce kurc96` on a reduced setup (the
+ * real configs/papers/kurc96/setup.yaml with 300-polygon teapots, through
+ * RpContext.setup): every row key and column the issue names is
+ * produced once, joined to configs/papers/kurc96/published.yaml with no published
+ * cell left unsimulated, values are finite and sensible, the P=8
+ * ZBUF-EXC cells carry the out-of-memory note, and the run honours the
+ * context's fidelity. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <glib/gstdio.h>
+#include <string.h>
+
+#include "sim/reproduce/rp_driver.h"
+#include "sim/reproduce/kurc96.h"
+
+static char *small_setup(void)
+{
+    char *text = NULL;
+    assert_true(
+        g_file_get_contents("configs/papers/kurc96/setup.yaml", &text, NULL, NULL));
+    GString *s = g_string_new(text);
+    guint n = g_string_replace(s, "polygons_per_teapot: 3751",
+                               "polygons_per_teapot: 300", 0);
+    assert_int_equal(n, 6);
+    char *path =
+        g_build_filename(g_get_tmp_dir(), "pgsim-kurc96-test.yaml", NULL);
+    assert_true(g_file_set_contents(path, s->str, -1, NULL));
+    g_string_free(s, TRUE);
+    g_free(text);
+    return path;
+}
+
+static const RpJoined *cell(const RpTable *t, const char *table,
+                            const char *row, const char *col)
+{
+    const RpJoined *j = rp_table_find(t, table, row, col);
+    if (!j)
+        fail_msg("missing %s %s %s", table, row, col);
+    assert_true(isfinite(j->sim));
+    return j;
+}
+
+static void check_tables(const RpTable *t)
+{
+    static const char *const t1[] = {"polygons", "tpg_400", "tpf_400",
+                                     "tpg_640", "tpf_640"};
+    static const char *const t2[] = {"pair_rs_span_ms",  "pair_rs_zbuf_ms",
+                                     "pair_rs_merge_ms", "zbuf_exc_span_ms",
+                                     "zbuf_exc_zbuf_ms", "zbuf_exc_merge_ms"};
+    for (int i = 0; rp_kurc96_scenes[i]; i++) {
+        const char *s = rp_kurc96_scenes[i];
+        for (int c = 0; c < 5; c++)
+            assert_true(cell(t, "1", s, t1[c])->sim > 0);
+        /* TPF <= TPG, and more pixels at N=640 */
+        assert_true(cell(t, "1", s, "tpf_400")->sim <=
+                    cell(t, "1", s, "tpg_400")->sim);
+        assert_true(cell(t, "1", s, "tpf_640")->sim >
+                    cell(t, "1", s, "tpf_400")->sim);
+        for (int p = 16; p >= 8; p /= 2) {
+            char *row = g_strdup_printf("P%d/%s", p, s);
+            for (int c = 0; c < 6; c++) {
+                const RpJoined *j = cell(t, "2", row, t2[c]);
+                assert_true(j->sim > 0);
+                gboolean noted = j->note && strstr(j->note, "memory");
+                assert_int_equal(noted, p == 8 && c >= 3);
+            }
+            g_free(row);
+        }
+    }
+}
+
+static void check_figs(const RpTable *t)
+{
+    static const char *const f1[] = {"pair_rs_bytes", "pair_hbp_bytes",
+                                     "aapc_rs_bytes", "aapc_hbp_bytes"};
+    char row[64];
+    for (int p = 2; p <= 16; p *= 2) {
+        g_snprintf(row, sizeof row, "a/P%d", p);
+        for (int c = 0; c < 4; c++)
+            assert_true(cell(t, "fig1", row, f1[c])->sim > 0);
+        assert_true(cell(t, "fig2", row, "rs_imbalance")->sim >= 0);
+        assert_true(cell(t, "fig2", row, "hbp_imbalance")->sim >= 0);
+    }
+    for (int i = 0; rp_kurc96_scenes[i]; i++)
+        for (int n = 400; n <= 640; n += 240) {
+            g_snprintf(row, sizeof row, "b/%s/%d", rp_kurc96_scenes[i], n);
+            for (int c = 0; c < 4; c++)
+                assert_true(cell(t, "fig1", row, f1[c])->sim > 0);
+            /* HBP balances at least as well as RS (seed 003 Fig. 2) */
+            assert_true(cell(t, "fig2", row, "hbp_imbalance")->sim <=
+                        cell(t, "fig2", row, "rs_imbalance")->sim + 1e-9);
+        }
+    const RpJoined *s = cell(t, "text", "P16/2POT/640", "aapc_hbp_speedup");
+    assert_true(s->sim > 1 && s->sim < 32);
+    assert_int_equal(s->status, RP_WITHHELD);
+}
+
+static void test_rows_complete(void **state)
+{
+    (void)state;
+    char *path = small_setup();
+    RpContext ctx = {
+        .setup = path, .fidelity = "packet", .out_dir = NULL, .quiet = TRUE};
+    GError *err = NULL;
+    RpTable *t = rp_drive(&rp_kurc96, RP_PAPERS_DIR, &ctx, &err);
+    if (!t)
+        fail_msg("%s", err->message);
+    assert_string_equal(t->fidelity, "packet");
+    for (guint i = 0; i < t->cells->len; i++) {
+        const RpJoined *j = g_ptr_array_index(t->cells, i);
+        if (j->status == RP_MISSING)
+            fail_msg("not simulated: %s %s %s", j->table, j->row, j->column);
+    }
+    check_tables(t);
+    check_figs(t);
+    /* 6 x 5 + 12 x 6 + 16 x 6 (fig rows) + 1 */
+    assert_int_equal(t->cells->len, 30 + 72 + 96 + 1);
+    assert_int_equal(t->compared, 54);
+    rp_table_free(t);
+    g_unlink(path);
+    g_free(path);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rows_complete),
+    };
+    return cmocka_run_group_tests_name("rp_kurc96", tests, NULL, NULL);
+}

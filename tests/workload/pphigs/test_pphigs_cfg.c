@@ -1,0 +1,338 @@
+/* test_pphigs_cfg.c — the pphigs workload through its YAML: the generated
+ * databases' statistics match the published "db" rows of
+ * configs/papers/ellsworth90/published.yaml (both files read through cfg); bad
+ * inputs fail with a located error; the reproduction's event-driven
+ * frames give the analytic traversal's metrics exactly; the `pphigs`
+ * workload runs configs/pphigs-flock.yaml deterministically and honours
+ * overrides of the workload and of the machine section.  Run from the
+ * repository root (make test does).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/app/run/config.h"
+#include "sim/workload/pphigs/pphigs_run.h"
+#include "sim/workload/workload.h"
+#include <string.h>
+
+static const char *const names[] = {"space_station", "building_lobby",
+                                    "flock_old_well", "two_human_figures"};
+
+/* Published value of a "db" cell, or FALSE when the paper has none. */
+static gboolean published(const CfgNode *paper, const char *row,
+                          const char *col, double *v)
+{
+    char *path = g_strdup_printf("tables.db.rows.%s", row);
+    const CfgNode *r = cfg_path(paper, path);
+    g_free(path);
+    assert_non_null(r);
+    if (!cfg_get(r, col))
+        return FALSE;
+    assert_true(cfg_get_double(r, col, TRUE, 0, 1e9, v, NULL));
+    return TRUE;
+}
+
+/* Within the table's printed precision (3 significant digits). */
+static void near(double sim, double pub, double tol)
+{
+    assert_true(fabs(sim - pub) <= tol * fabs(pub) + 1e-9);
+}
+
+static void test_db_stats_match_paper(void **st)
+{
+    (void)st;
+    CfgNode *paper = cfg_load_file("configs/papers/ellsworth90/published.yaml", NULL);
+    assert_non_null(paper);
+    for (guint i = 0; i < G_N_ELEMENTS(names); i++) {
+        ScenePphigsSpec s;
+        ScenePphigsDb db;
+        assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
+                                        names[i], NULL, &s, NULL));
+        assert_true(scene_pphigs_generate(&s, &db, NULL));
+        SceneDbStats x;
+        scene_db_stats(db.db, &x);
+        double v;
+        assert_true(published(paper, names[i], "depth", &v));
+        assert_int_equal(x.depth, (guint)v);
+        assert_true(published(paper, names[i], "structures", &v));
+        assert_int_equal(x.instances, (guint)v); /* per instance */
+        assert_true(published(paper, names[i], "polys_per_structure", &v));
+        near((double)x.primitives / x.instances, v, 0.005);
+        assert_true(published(paper, names[i], "poly_attr_ratio", &v));
+        near((double)x.primitives / x.attributes, v, 0.005);
+        double off = 100 * scene_pphigs_offscreen_share(
+                               db.db, scene_camera_view_proj(&db.camera));
+        if (published(paper, names[i], "offscreen_pct", &v))
+            assert_true(fabs(off - v) < 2.0);
+        else
+            assert_true(off < 1.0);
+        scene_pphigs_db_clear(&db);
+    }
+    cfg_free(paper);
+}
+
+static void expect_error(const char *yaml, const char *what)
+{
+    GError *err = NULL;
+    CfgNode *n = cfg_load_string(yaml, "bad.yaml", NULL);
+    assert_non_null(n);
+    ScenePphigsSpec s;
+    assert_false(wl_pphigs_spec_from_cfg(n, &s, &err));
+    assert_non_null(err);
+    assert_non_null(strstr(err->message, "bad.yaml:"));
+    assert_non_null(strstr(err->message, what));
+    g_clear_error(&err);
+    cfg_free(n);
+}
+
+static void test_bad_specs(void **st)
+{
+    (void)st;
+    expect_error("{kind: teapot, seed: 1}", "teapot");
+    expect_error("{kind: space_station, polygns: 10}", "polygns");
+    expect_error("{kind: space_station, polygons: -3}", "-3");
+    GError *err = NULL;
+    ScenePphigsSpec s;
+    assert_false(wl_pphigs_spec_load("configs/pphigs/databases.yaml", "teapots",
+                                     NULL, &s, &err));
+    assert_non_null(strstr(err->message, "teapots"));
+    assert_non_null(strstr(err->message, "flock_old_well"));
+    g_clear_error(&err);
+    /* frame.yaml: a missing provenance and an unknown key */
+    WlPphigsSetup su;
+    CfgNode *n = cfg_load_string("{width: 1, height: 1, region: 1, "
+                                 "cmd_bytes: 1, end_bytes: 1, batch: 1, "
+                                 "pixel_bytes: 1, element_bytes: 1, "
+                                 "cluster_scale: {value: 8}}",
+                                 "fr.yaml", NULL);
+    assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
+    assert_non_null(strstr(err->message, "fr.yaml:1:"));
+    assert_non_null(strstr(err->message, "provenance"));
+    g_clear_error(&err);
+    cfg_free(n);
+    n = cfg_load_string(
+        "{width: 1, height: 1, region: 1, cmd_bytes: 1, "
+        "end_bytes: 1, batch: 1, pixel_bytes: 1, element_bytes: 1, "
+        "cluster_scale: {value: 8, assumption: x}, "
+        "widht: 3}",
+        "fr.yaml", NULL);
+    assert_false(wl_pphigs_setup_from_cfg(n, &su, &err));
+    assert_non_null(strstr(err->message, "widht"));
+    g_clear_error(&err);
+    cfg_free(n);
+}
+
+static void test_frames_equal_analytic(void **st)
+{
+    (void)st;
+    WlPphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0}};
+    assert_true(
+        wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        wl_pphigs_machine_new(eng, "pixel-planes-5", 4, "packet", NULL);
+    assert_non_null(m);
+    WlPphigsCosts c;
+    SimTime send;
+    assert_true(wl_pphigs_costs_from_machine(m, &c, &send, NULL));
+    assert_true(c.poly > 0 && c.vertex > 0 && send > 0);
+    mach_free(m);
+    sim_engine_free(eng);
+    ScenePphigsSpec s;
+    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
+                                    "flock_old_well", NULL, &s, NULL));
+    ScenePphigsDb db;
+    assert_true(scene_pphigs_generate(&s, &db, NULL));
+    WlPphigsMetrics a[2], b[2];
+    assert_true(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], NULL));
+    wl_pphigs_run_db_analytic(&db, 4, &c, rig.setup.cluster_scale, &b[0],
+                              &b[1]);
+    for (int k = 0; k < 2; k++) {
+        assert_true(a[k].t1 == b[k].t1); /* integer picoseconds */
+        assert_true(a[k].sum == b[k].sum && a[k].max == b[k].max);
+        near(a[k].efficiency, b[k].efficiency, 1e-12);
+        near(a[k].utilisation, b[k].utilisation, 1e-12);
+    }
+    assert_true(a[1].efficiency > a[0].efficiency); /* complex wins */
+    /* a bad model or fidelity is an error, not a crash */
+    GError *err = NULL;
+    rig.model = "no-such-machine";
+    assert_false(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], &err));
+    assert_non_null(strstr(err->message, "no-such-machine"));
+    g_clear_error(&err);
+    rig.model = "pixel-planes-5";
+    rig.fidelity = "exact";
+    assert_false(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], &err));
+    assert_non_null(strstr(err->message, "exact"));
+    g_clear_error(&err);
+    scene_pphigs_db_clear(&db);
+}
+
+typedef struct {
+    GArray *frames;
+    double m[13];
+    uint64_t bytes;
+    guint gps;
+} Out;
+
+static void run_flock(const char *const *sets, Out *o)
+{
+    CfgNode *root = cfg_load_file("configs/pphigs-flock.yaml", NULL);
+    assert_non_null(root);
+    assert_true(cfg_set_override(root, "workload.gps=4", NULL));
+    o->gps = 4;
+    for (; sets && *sets; sets++)
+        assert_true(cfg_set_override(root, *sets, NULL));
+    const WlOps *ops = wl_find("pphigs");
+    assert_non_null(ops);
+    GError *err = NULL;
+    assert_non_null(cfg_get(cfg_get(root, "workload"), "type")); /* app's */
+    void *p = ops->parse(cfg_get(root, "workload"), &err);
+    assert_non_null(p);
+    SimEngine *eng = sim_engine_new(3);
+    WlContext ctx = {eng, root, 3, "packet", 3, NULL, TRUE};
+    SimResult *r = sim_result_new("pphigs", "pixel-planes-5");
+    assert_true(ops->run(&ctx, p, r, &err));
+    assert_true(cfg_check_unused(cfg_get(root, "workload"), NULL));
+    o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
+    g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
+    assert_int_equal(r->metrics->len, 13);
+    for (guint i = 0; i < 13; i++)
+        o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
+    o->bytes = r->comm_bytes;
+    assert_int_equal(r->nodes->len, 1 + o->gps + 16 + 1);
+    sim_result_free(r);
+    sim_engine_free(eng);
+    ops->free_params(p);
+    cfg_free(root);
+}
+
+static void test_workload_runs(void **st)
+{
+    (void)st;
+    Out a, b, c;
+    run_flock(NULL, &a);
+    run_flock(NULL, &b);
+    assert_int_equal(a.frames->len, 3);
+    assert_memory_equal(a.frames->data, b.frames->data, 3 * sizeof(SimTime));
+    assert_memory_equal(a.m, b.m, sizeof a.m);
+    assert_int_equal(a.bytes, b.bytes);
+    assert_true(a.m[7] == 12); /* 4 edits x 3 frames */
+    assert_true(a.m[8] >= 4);  /* each edit sends >= 1 element per frame */
+    const char *sets[] = {"workload.database=building_lobby",
+                          "workload.algorithm=simple",
+                          "workload.edits_per_frame=0", NULL};
+    run_flock(sets, &c);
+    assert_true(c.m[7] == 0);
+    assert_true(c.m[8] == 0);      /* no edits, and no moves on a fresh list */
+    assert_true(c.m[4] != a.m[4]); /* other database: other commands */
+    g_array_unref(a.frames);
+    g_array_unref(b.frames);
+    g_array_unref(c.frames);
+}
+
+/* Runs configs/pphigs-flock.yaml through the app with overrides; returns
+ * the result (NULL with *err). */
+static SimResult *app_run(const char *const *sets, GError **err)
+{
+    CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, err);
+    if (!r)
+        return NULL;
+    SimResult *res = cfg_run_exec(r, NULL, err);
+    cfg_run_free(r);
+    return res;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    assert_true(sim_result_get_metric(r, name, &v));
+    return v;
+}
+
+/* The machine section reaches the frame: GP count, ring parameters. */
+static void test_machine_overrides(void **st)
+{
+    (void)st;
+    const char *base[] = {"run.frames=1", "workload.edits_per_frame=0", NULL};
+    SimResult *a = app_run(base, NULL);
+    assert_non_null(a);
+    assert_true(metric(a, "gps") == 16); /* the model's count */
+    const char *four[] = {"run.frames=1", "workload.edits_per_frame=0",
+                          "machine.nodes.gp.count=4", NULL};
+    SimResult *b = app_run(four, NULL);
+    assert_non_null(b);
+    assert_true(metric(b, "gps") == 4);
+    const char *slow[] = {"run.frames=1", "workload.edits_per_frame=0",
+                          "machine.network.startup=1 ms", NULL};
+    SimResult *c = app_run(slow, NULL);
+    assert_non_null(c);
+    assert_true(metric(c, "frame_ms") > metric(a, "frame_ms") + 1);
+    const char *gpcost[] = {"run.frames=1", "workload.edits_per_frame=0",
+                            "machine.nodes.gp.costs.vertex=20 us", NULL};
+    SimResult *d = app_run(gpcost, NULL);
+    assert_non_null(d);
+    assert_true(metric(d, "gp_util_pct") > metric(a, "gp_util_pct"));
+    sim_result_free(a);
+    sim_result_free(b);
+    sim_result_free(c);
+    sim_result_free(d);
+    /* both counts given and different: a located error at workload.gps */
+    const char *clash[] = {"workload.gps=8", "machine.nodes.gp.count=4", NULL};
+    GError *err = NULL;
+    assert_null(app_run(clash, &err));
+    assert_non_null(strstr(err->message, "--set workload.gps=8:1:1: "
+                                         "found gps 8 while"));
+    g_clear_error(&err);
+    const char *nodb[] = {"workload.database=teapot", NULL};
+    assert_null(app_run(nodb, &err));
+    assert_non_null(strstr(err->message, "--set workload.database=teapot"
+                                         ":1:1: found database 'teapot'"));
+    g_clear_error(&err);
+}
+
+/* `pgsim run` of one fresh frame reports the reproduction's cells. */
+static void test_run_matches_table(void **st)
+{
+    (void)st;
+    const char *sets[] = {"run.frames=1",
+                          "run.fidelity=analytic",
+                          "workload.edits_per_frame=0",
+                          "workload.gps=4",
+                          "workload.rebalance.enabled=false",
+                          NULL};
+    SimResult *r = app_run(sets, NULL);
+    assert_non_null(r);
+    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0}};
+    assert_true(
+        wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
+    ScenePphigsSpec s;
+    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
+                                    "flock_old_well", NULL, &s, NULL));
+    ScenePphigsDb db;
+    assert_true(scene_pphigs_generate(&s, &db, NULL));
+    WlPphigsMetrics simple, complex;
+    assert_true(wl_pphigs_run_db(&db, 4, &rig, &simple, &complex, NULL));
+    near(metric(r, "distribution_efficiency_pct"), 100 * complex.efficiency,
+         1e-12);
+    near(metric(r, "processor_utilisation_pct"), 100 * complex.utilisation,
+         1e-12);
+    near(metric(r, "speedup"), complex.speedup, 1e-12);
+    scene_pphigs_db_clear(&db);
+    sim_result_free(r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_db_stats_match_paper),
+        cmocka_unit_test(test_bad_specs),
+        cmocka_unit_test(test_frames_equal_analytic),
+        cmocka_unit_test(test_workload_runs),
+        cmocka_unit_test(test_machine_overrides),
+        cmocka_unit_test(test_run_matches_table),
+    };
+    return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);
+}

@@ -1,0 +1,302 @@
+/* test_pphigs_distrib.c — distribute-by-primitive (seed 001): after the
+ * initial distribution and after any edit sequence, the GPs together
+ * render exactly what a serial traversal of the host list renders, with
+ * the serial ODP priorities; the backward scan is bounded (§3.5).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/core/rng.h"
+#include "sim/workload/pphigs/pphigs_distrib.h"
+#include <string.h>
+
+typedef struct {
+    uint64_t uid;
+    int64_t prio;
+    double m[16];
+    double c[3];
+} Rend;
+
+static void rend_fn(const ScenePrimInst *pi, void *ud)
+{
+    Rend r;
+    memset(&r, 0, sizeof r);
+    r.uid = pi->el->tag;
+    r.prio = pi->el->kind == SCENE_EL_POLYGON2D ? pi->priority : 0;
+    memcpy(r.m, pi->matrix.m, sizeof r.m);
+    r.c[0] = pi->color.x, r.c[1] = pi->color.y, r.c[2] = pi->color.z;
+    g_array_append_val((GArray *)ud, r);
+}
+
+static gint rend_cmp(gconstpointer a, gconstpointer b)
+{
+    return memcmp(a, b, sizeof(Rend));
+}
+
+/* Host rendering == union of GP renderings, as sorted multisets. */
+static void assert_same_render(const WlPphigsDist *d)
+{
+    GArray *h = g_array_new(FALSE, FALSE, sizeof(Rend));
+    GArray *u = g_array_new(FALSE, FALSE, sizeof(Rend));
+    scene_db_traverse(wl_pphigs_dist_host(d), rend_fn, h);
+    for (guint g = 0; g < wl_pphigs_dist_ngp(d); g++)
+        scene_db_traverse(wl_pphigs_dist_gp(d, g), rend_fn, u);
+    assert_int_equal(h->len, u->len);
+    g_array_sort(h, rend_cmp);
+    g_array_sort(u, rend_cmp);
+    assert_memory_equal(h->data, u->data, h->len * sizeof(Rend));
+    g_array_unref(h);
+    g_array_unref(u);
+}
+
+static const WlPphigsWeights W = {
+    .w = {[SCENE_EL_TRIANGLE] = 1,
+          [SCENE_EL_POLYGON] = 1,
+          [SCENE_EL_TRISTRIP] = 2,
+          [SCENE_EL_POLYGON2D] = 1,
+          [SCENE_EL_COLOR] = 0.1,
+          [SCENE_EL_MATRIX] = 0.3,
+          [SCENE_EL_EXECUTE] = 0.2},
+    .w_vertex = 0,
+    .cluster = 2,
+};
+
+static SceneElem rnd_elem(SimRng *r, guint nstruct, guint self, Vec3 *v)
+{
+    for (int i = 0; i < 3; i++)
+        v[i] = vec3(sim_rng_uniform(r), sim_rng_uniform(r), i);
+    switch (sim_rng_below(r, 8)) {
+    case 0:
+    case 1:
+        return scene_elem_color(vec3(sim_rng_uniform(r), 0, 1));
+    case 2:
+        return scene_elem_matrix(mat4_translate(sim_rng_uniform(r), 1, 0),
+                                 SCENE_MAT_REPLACE);
+    case 3:
+        return scene_elem_matrix(mat4_scale(1 + sim_rng_uniform(r), 1, 1),
+                                 SCENE_MAT_CONCAT);
+    case 4:
+        return scene_elem_prim(SCENE_EL_POLYGON2D, v, 3);
+    case 5: {
+        guint c = (guint)sim_rng_below(r, nstruct);
+        return scene_elem_execute(c > self ? c : (self + 1) % nstruct);
+    }
+    default:
+        return scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    }
+}
+
+/* Structures 0..n-1; executes only to higher ids (acyclic); structure
+ * n-1 is a primitive structure of a few elements. */
+static SceneDb *rnd_db(SimRng *r, guint n, guint len)
+{
+    SceneDb *db = scene_db_new();
+    Vec3 v[3];
+    for (guint s = 0; s < n; s++) {
+        char name[16];
+        g_snprintf(name, sizeof name, "s%u", s);
+        scene_db_add_struct(db, name);
+    }
+    scene_db_set_primitive(db, n - 1, TRUE);
+    for (guint s = 0; s < n; s++)
+        for (guint i = 0; i < (s == n - 1 ? 4 : len); i++) {
+            SceneElem e = rnd_elem(r, n, s, v);
+            if (e.kind == SCENE_EL_EXECUTE && (s == n - 1 || e.child <= s))
+                e = scene_elem_prim(SCENE_EL_POLYGON2D, v, 3);
+            assert_true(scene_db_append(db, s, &e, NULL));
+        }
+    scene_db_post(db, 0);
+    scene_db_post(db, 1);
+    return db;
+}
+
+static void edit_some(WlPphigsDist *d, SimRng *r, guint nedits)
+{
+    const SceneDb *h = wl_pphigs_dist_host(d);
+    guint n = scene_db_struct_count(h);
+    Vec3 v[3];
+    for (guint k = 0; k < nedits; k++) {
+        guint s = (guint)sim_rng_below(r, n - 1);
+        guint len = scene_db_len(h, s);
+        SceneElem e = rnd_elem(r, n, s, v);
+        if (e.kind == SCENE_EL_EXECUTE && e.child <= s)
+            e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        guint op = (guint)sim_rng_below(r, 4);
+        if (op == 0 && len > 0) {
+            wl_pphigs_dist_delete(d, s, (guint)sim_rng_below(r, len));
+        } else if (op == 1 && len > 0) {
+            guint p = (guint)sim_rng_below(r, len);
+            SceneElem m = *scene_db_elem(h, s, p);
+            if (m.kind == SCENE_EL_COLOR)
+                m.color.y = sim_rng_uniform(r);
+            if (m.kind == SCENE_EL_MATRIX)
+                m.matrix.m[0][3] += 1;
+            assert_true(wl_pphigs_dist_modify(d, s, p, &m, NULL));
+        } else if (op == 2) {
+            assert_true(wl_pphigs_dist_append(d, s, &e, NULL));
+        } else {
+            guint p = (guint)sim_rng_below(r, len + 1);
+            assert_true(wl_pphigs_dist_insert(d, s, p, &e, NULL));
+        }
+        if (sim_rng_below(r, 3) == 0)
+            wl_pphigs_dist_finish(d);
+    }
+    wl_pphigs_dist_finish(d);
+}
+
+static void run_random(WlPphigsAlgo algo)
+{
+    static const guint gps[] = {1, 3, 4, 16};
+    for (guint t = 0; t < 4; t++) {
+        SimRng r;
+        sim_rng_init(&r, 42, t);
+        SceneDb *db = rnd_db(&r, 6, 40);
+        WlPphigsDist *d = wl_pphigs_dist_new(db, gps[t], algo, &W);
+        assert_same_render(d);
+        for (int round = 0; round < 6; round++) {
+            edit_some(d, &r, 12);
+            assert_same_render(d);
+        }
+        wl_pphigs_dist_unpost(d, 1);
+        assert_same_render(d);
+        wl_pphigs_dist_post(d, 2);
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+        scene_db_free(db);
+    }
+}
+
+static void test_simple_edits(void **st)
+{
+    (void)st;
+    run_random(WL_PPHIGS_SIMPLE);
+}
+
+static void test_complex_edits(void **st)
+{
+    (void)st;
+    run_random(WL_PPHIGS_COMPLEX);
+}
+
+/* One structure: a colour before every 4th triangle. */
+static SceneDb *long_db(guint prims)
+{
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "long");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint i = 0; i < prims; i++) {
+        SceneElem e = i % 4 ? scene_elem_prim(SCENE_EL_TRIANGLE, v, 3)
+                            : scene_elem_color(vec3(i, 0, 0));
+        assert_true(scene_db_append(db, s, &e, NULL));
+    }
+    scene_db_post(db, s);
+    return db;
+}
+
+static void test_scan_bound(void **st)
+{
+    (void)st;
+    SceneDb *db = long_db(4000);
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint n = 2; n <= 16; n *= 2) {
+        WlPphigsDist *d = wl_pphigs_dist_new(db, n, WL_PPHIGS_COMPLEX, &W);
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(wl_pphigs_dist_insert(d, 0, 3001, &e, NULL));
+        wl_pphigs_dist_finish(d);
+        /* c (maxw/minw) (n-1) primitives at most, plus one colour per 3
+         * primitives and the primitive that completes the set */
+        double prims = W.cluster * (n - 1) + 1;
+        assert_true(wl_pphigs_dist_traffic(d)->last_scan <=
+                    (uint64_t)(prims * 4.0 / 3.0 + 2));
+        assert_true(wl_pphigs_dist_traffic(d)->last_scan >= n - 1);
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+    }
+    scene_db_free(db);
+}
+
+static guint count_kind(const SceneDb *db, guint sid, SceneElemKind k)
+{
+    guint n = 0;
+    for (guint i = 0; i < scene_db_len(db, sid); i++)
+        n += scene_db_elem(db, sid, i)->kind == k;
+    return n;
+}
+
+static void test_attribute_copies(void **st)
+{
+    (void)st;
+    SceneDb *db = long_db(400);
+    WlPphigsDist *s = wl_pphigs_dist_new(db, 4, WL_PPHIGS_SIMPLE, &W);
+    WlPphigsWeights wc = W;
+    wc.cluster = 6;
+    WlPphigsDist *c = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &wc);
+    guint simple = 0, complex = 0, prims = 0;
+    for (guint g = 0; g < 4; g++) {
+        simple += count_kind(wl_pphigs_dist_gp(s, g), 0, SCENE_EL_COLOR);
+        complex += count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_COLOR);
+        prims += count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_TRIANGLE);
+    }
+    assert_int_equal(simple, 4 * 100); /* every colour on every GP */
+    assert_true(complex < 2 * 100);    /* mostly on one or two GPs */
+    assert_int_equal(prims, 300);
+    double load[4];
+    wl_pphigs_dist_loads(c, load);
+    double mean = (load[0] + load[1] + load[2] + load[3]) / 4;
+    for (guint g = 0; g < 4; g++) /* balanced within 5 % */
+        assert_true(fabs(load[g] - mean) < 0.05 * mean);
+    wl_pphigs_dist_free(s);
+    wl_pphigs_dist_free(c);
+    scene_db_free(db);
+}
+
+static void test_primitive_structure(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint top = scene_db_add_struct(db, "flock");
+    guint boid = scene_db_add_struct(db, "boid");
+    scene_db_set_primitive(db, boid, TRUE);
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (int i = 0; i < 5; i++) {
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        SceneElem c = scene_elem_color(vec3(i, 0, 0));
+        assert_true(scene_db_append(db, boid, i < 4 ? &c : &e, NULL));
+        assert_true(scene_db_append(db, boid, &e, NULL));
+    }
+    for (int b = 0; b < 40; b++) {
+        SceneElem m =
+            scene_elem_matrix(mat4_translate(b, 0, 0), SCENE_MAT_REPLACE);
+        SceneElem x = scene_elem_execute(boid);
+        assert_true(scene_db_append(db, top, &m, NULL));
+        assert_true(scene_db_append(db, top, &x, NULL));
+    }
+    scene_db_post(db, top);
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &W);
+    guint execs = 0;
+    for (guint g = 0; g < 4; g++) {
+        const SceneDb *p = wl_pphigs_dist_gp(d, g);
+        assert_int_equal(scene_db_len(p, boid), 10); /* broadcast whole */
+        guint e = count_kind(p, top, SCENE_EL_EXECUTE);
+        assert_int_equal(e, 10); /* instances dealt evenly */
+        execs += e;
+    }
+    assert_int_equal(execs, 40);
+    assert_same_render(d);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_simple_edits),
+        cmocka_unit_test(test_complex_edits),
+        cmocka_unit_test(test_scan_bound),
+        cmocka_unit_test(test_attribute_copies),
+        cmocka_unit_test(test_primitive_structure),
+    };
+    return cmocka_run_group_tests_name("pphigs_distrib", tests, NULL, NULL);
+}

@@ -1,0 +1,150 @@
+/* test_pphigs_rebalance.c — seed 001 §5: a balanced distribution is never
+ * touched; an imperfect one (primitives piled on one GP) and one with
+ * invalidated weights (strips of a coherent model, half off-screen)
+ * converge under the threshold, act only after `frames` frames over it,
+ * move at most `max_moves` per frame, and stay converged.  Per-frame GP
+ * times are the real traversal's (off-screen primitives cheaper).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/scene/pphigs_db.h"
+#include "sim/workload/pphigs/pphigs_rebalance.h"
+
+/* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
+static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
+                                .vertex = 100 * SIM_NS,
+                                .reject_vertex = 75 * SIM_NS,
+                                .color = 100 * SIM_NS,
+                                .matrix = 300 * SIM_NS,
+                                .concat = SIM_US,
+                                .execute = 500 * SIM_NS};
+static const WlPphigsRebalParams P = {.threshold = 0.10,
+                                      .frames = 3,
+                                      .fraction = 0.5,
+                                      .max_moves = 16,
+                                      .seed = 11};
+
+#define NGP 4
+
+typedef struct {
+    ScenePphigsDb db;
+    WlPphigsDist *d;
+    Mat4 vp;
+} Fix;
+
+static void fix_new(Fix *x, ScenePphigsKind k, double cluster)
+{
+    ScenePphigsSpec s = {.kind = k,
+                         .seed = 5,
+                         .polygons = 800,
+                         .attributes = 40,
+                         .verts = 4,
+                         .size = 100,
+                         .fov_deg = 51};
+    assert_true(scene_pphigs_generate(&s, &x->db, NULL));
+    WlPphigsWeights w;
+    wl_pphigs_weights_from_costs(&C, cluster, &w);
+    x->d = wl_pphigs_dist_new(x->db.db, NGP, WL_PPHIGS_COMPLEX, &w);
+    x->vp = scene_camera_view_proj(&x->db.camera);
+}
+
+static void fix_free(Fix *x)
+{
+    wl_pphigs_dist_free(x->d);
+    scene_pphigs_db_clear(&x->db);
+}
+
+/* One frame: measured times, then the rebalancer. */
+static void frame(Fix *x, WlPphigsRebal *rb, WlPphigsRebalStep *st)
+{
+    double us[NGP];
+    WlPphigsMetrics m;
+    wl_pphigs_metrics(x->d, x->vp, &C, us, &m);
+    wl_pphigs_rebal_frame(rb, x->d, x->vp, &C, us, st);
+    assert_true(fabs(st->imbalance - (1 - m.utilisation)) < 1e-12);
+    assert_true(st->moves <= P.max_moves);
+}
+
+/* Runs frames until converged; checks hysteresis and that it stays. */
+static void converge(Fix *x, WlPphigsRebalCause want)
+{
+    WlPphigsRebal *rb = wl_pphigs_rebal_new(&P);
+    WlPphigsRebalStep st;
+    int k, conv = -1;
+    for (k = 0; k < 200 && conv < 0; k++) {
+        frame(x, rb, &st);
+        assert_true(st.imbalance > P.threshold || k > 0);
+        if (k < (int)P.frames - 1)
+            assert_int_equal(st.moves, 0); /* not before `frames` frames */
+        if (k == (int)P.frames - 1) {
+            assert_int_equal(st.cause, want);
+            assert_true(st.moves > 0);
+        }
+        if (st.imbalance <= P.threshold)
+            conv = k;
+    }
+    assert_true(conv > 0);
+    uint64_t moved = st.total_moves;
+    for (k = 0; k < 30; k++) {
+        frame(x, rb, &st);
+        assert_true(st.imbalance <= P.threshold);
+        assert_int_equal(st.moves, 0);
+    }
+    assert_int_equal(st.total_moves, moved);
+    wl_pphigs_rebal_free(rb);
+}
+
+static void test_balanced_never_moves(void **s)
+{
+    (void)s;
+    for (int k = SCENE_PPHIGS_STATION; k <= SCENE_PPHIGS_LOBBY; k++) {
+        Fix x;
+        fix_new(&x, (ScenePphigsKind)k, 8);
+        WlPphigsRebal *rb = wl_pphigs_rebal_new(&P);
+        WlPphigsRebalStep st;
+        for (int f = 0; f < 30; f++) {
+            frame(&x, rb, &st);
+            assert_true(st.imbalance < P.threshold);
+            assert_int_equal(st.moves, 0);
+        }
+        assert_int_equal(st.total_moves, 0);
+        wl_pphigs_rebal_free(rb);
+        fix_free(&x);
+    }
+}
+
+static void test_imperfect_converges(void **s)
+{
+    (void)s;
+    Fix x;
+    fix_new(&x, SCENE_PPHIGS_STATION, 8);
+    const SceneDb *h = wl_pphigs_dist_host(x.d);
+    guint k = 0;
+    for (guint i = 0; i < scene_db_len(h, 0); i++) /* pile onto GP 0 */
+        if (wl_pphigs_dist_owner(x.d, 0, i) > 0 && k++ % 3 != 0)
+            assert_true(wl_pphigs_dist_move(x.d, 0, i, 0));
+    converge(&x, WL_PPHIGS_REBAL_IMPERFECT);
+    fix_free(&x);
+}
+
+static void test_invalidated_converges(void **s)
+{
+    (void)s;
+    Fix x; /* clusters of ~200 polygons: each GP holds a strip (§5.2) */
+    fix_new(&x, SCENE_PPHIGS_LOBBY, 200);
+    converge(&x, WL_PPHIGS_REBAL_INVALIDATED);
+    fix_free(&x);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_balanced_never_moves),
+        cmocka_unit_test(test_imperfect_converges),
+        cmocka_unit_test(test_invalidated_converges),
+    };
+    return cmocka_run_group_tests_name("pphigs_rebalance", tests, NULL, NULL);
+}

@@ -1,0 +1,381 @@
+/* test_sortfirst.c — the `sortfirst` workload (seed 000) on a small
+ * vehicle (40 structures, 3,000 triangles, 3 instances, 64 x 64 screen,
+ * 4 and 6 processors, the camera turning 12 degrees a frame):
+ * chunks partition the primitives; after every frame each primitive
+ * instance whose own screen box overlaps a region is held by that
+ * region's processor (checked polygon by polygon, independently of the
+ * chunk boxes); the regions' pixels equal the serial render; min-set and
+ * max-set give the same images; the min-set tests more slave boxes
+ * (seed 000 §4.2); runs repeat exactly; input errors are located. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <string.h>
+
+#include <glib/gstdio.h>
+
+#include "sim/scene/scene_cfg.h"
+#include "sim/workload/sortfirst/sf_workload.h"
+
+static const char *small =
+    "machine: {model: cluster-ib}\n"
+    "workload: {type: sortfirst, processors: 4, granularity: 5,\n"
+    "           resolution: 64, bookkeeping: maxset}\n"
+    "scene: {generator: vehicle, structures: 40, triangles: 3000,\n"
+    "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
+    "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
+
+static SimResult *run_cfg(const char *text, const char *override, int frames,
+                          GError **err)
+{
+    CfgNode *root = cfg_load_string(text, "sf.yaml", err);
+    assert_non_null(root);
+    if (override)
+        assert_true(cfg_set_override(root, override, err));
+    void *p = wl_sortfirst_ops.parse(cfg_get(root, "workload"), err);
+    SimResult *r = NULL;
+    if (p) {
+        SimEngine *eng = sim_engine_new(1);
+        WlContext ctx = {.eng = eng,
+                         .root = root,
+                         .seed = 1,
+                         .fidelity = "analytic",
+                         .frames = frames};
+        r = sim_result_new("sortfirst", "");
+        if (!wl_sortfirst_ops.run(&ctx, p, r, err)) {
+            sim_result_free(r);
+            r = NULL;
+        }
+        sim_engine_free(eng);
+        wl_sortfirst_ops.free_params(p);
+    }
+    cfg_free(root);
+    return r;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = NAN;
+    assert_true(sim_result_get_metric(r, name, &v));
+    return v;
+}
+
+/* ---- a run driven directly, to look at the state between frames ------- */
+
+typedef struct {
+    CfgNode *root;
+    Scene *scene;
+    SimEngine *eng;
+    MachMachine *m;
+    WlSfDb *db;
+    WlSfRun *run;
+    WlSfSetup s;
+} Fixture;
+
+static void fixture_init(Fixture *f, guint procs, WlSfBookkeeping bk,
+                         guint granularity)
+{
+    GError *e = NULL;
+    f->root = cfg_load_string(small, "sf.yaml", &e);
+    assert_non_null(f->root);
+    f->scene = scene_from_cfg(cfg_get(f->root, "scene"), &e);
+    assert_non_null(f->scene);
+    f->eng = sim_engine_new(1);
+    f->m = mach_new_from_model(f->eng, "cluster-ib", "analytic", &e);
+    assert_non_null(f->m);
+    WlSfCosts c;
+    assert_true(wl_sf_costs_from_machine(f->m, &c, &e));
+    f->db =
+        wl_sf_db_new(f->scene->db, procs, granularity, WL_SF_CHUNK_SORTED, &e);
+    assert_non_null(f->db);
+    f->s = (WlSfSetup){procs, 64, bk, {64, 40, 36, 8}, TRUE, FALSE};
+    f->run = wl_sf_run_new(f->m, f->scene, f->db, &f->s, &c);
+}
+
+static void fixture_clear(Fixture *f)
+{
+    wl_sf_run_free(f->run);
+    wl_sf_db_free(f->db);
+    mach_free(f->m);
+    sim_engine_free(f->eng);
+    scene_free(f->scene);
+    cfg_free(f->root);
+}
+
+static void test_chunks_partition(void **state)
+{
+    (void)state;
+    Fixture f;
+    fixture_init(&f, 4, WL_SF_MAXSET, 5);
+    const WlSfDb *d = f.db;
+    guint n = scene_mesh_n_polys(d->flat);
+    assert_int_equal(d->min_prims, 3000);
+    assert_int_equal(n, 9000);
+    guint *seen = g_new0(guint, n);
+    uint64_t per_master[4] = {0};
+    for (guint c = 0; c < wl_sf_n_chunks(d); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(d, c);
+        assert_true(ch->n_prims >= 1 && ch->n_prims <= 5);
+        assert_int_equal(ch->n_inst, 3);
+        per_master[ch->master]++;
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
+            const uint32_t *p = wl_sf_inst_polys(d, i);
+            for (guint k = 0; k < ch->polys; k++)
+                seen[p[k]]++;
+        }
+    }
+    for (guint k = 0; k < n; k++)
+        assert_int_equal(seen[k], 1);
+    for (int p = 1; p < 4; p++) /* fixed masters dealt evenly */
+        assert_true(per_master[p] + 1 >= per_master[0] &&
+                    per_master[p] <= per_master[0]);
+    g_free(seen);
+    fixture_clear(&f);
+}
+
+/* Regions whose pixel centres the screen rectangle of one world-space
+ * polygon's projected vertices reaches (no margin): culled when every
+ * vertex is outside one clip plane, everywhere when a vertex is at or
+ * behind the eye.  Independent of the chunk boxes. */
+static uint64_t poly_regions(const Fixture *f, const RastView *v,
+                             const WlSfRegions *rg, uint32_t poly)
+{
+    const SceneMesh *m = f->db->flat;
+    uint32_t a = g_array_index(m->start, uint32_t, poly);
+    uint32_t b = g_array_index(m->start, uint32_t, poly + 1);
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    unsigned all = 0x3f;
+    gboolean behind = FALSE;
+    for (uint32_t k = a; k < b; k++) {
+        Vec3 p =
+            g_array_index(m->pos, Vec3, g_array_index(m->idx, uint32_t, k));
+        Vec4 c = mat4_apply_point(v->view_proj, p);
+        all &= (c.x < -c.w) | (c.x > c.w) << 1 | (c.y < -c.w) << 2 |
+               (c.y > c.w) << 3 | (c.z < -c.w) << 4 | (c.z > c.w) << 5;
+        if (c.w <= 0) {
+            behind = TRUE;
+            continue;
+        }
+        double sx = (c.x / c.w + 1) * 0.5 * rg->width;
+        double sy = (1 - c.y / c.w) * 0.5 * rg->height;
+        x0 = MIN(x0, sx), x1 = MAX(x1, sx), y0 = MIN(y0, sy), y1 = MAX(y1, sy);
+    }
+    if (all)
+        return 0;
+    uint64_t mask = 0;
+    for (guint r = 0; r < rg->procs; r++) {
+        WlSfRect q = wl_sf_region_rect(rg, r);
+        if (behind || (q.x1 - 0.5 >= x0 && q.x0 + 0.5 <= x1 &&
+                       q.y1 - 0.5 >= y0 && q.y0 + 0.5 <= y1))
+            mask |= wl_sf_bit(r);
+    }
+    return mask;
+}
+
+static void check_holdings(const Fixture *f, guint frame)
+{
+    const WlSfBook *b = wl_sf_run_book(f->run);
+    SceneCamera cam = scene_camera_at(f->scene, frame);
+    RastView v = rast_view_for_camera(&cam, 64, 64);
+    guint checked = 0;
+    for (guint i = 0; i < wl_sf_n_insts(f->db); i++) {
+        const WlSfInst *in = wl_sf_inst(f->db, i);
+        const WlSfChunk *ch = wl_sf_chunk(f->db, in->chunk);
+        const uint32_t *p = wl_sf_inst_polys(f->db, i);
+        for (guint k = 0; k < ch->polys; k++) {
+            uint64_t need = poly_regions(f, &v, &b->regions, p[k]);
+            assert_int_equal(need & ~b->held_data[in->chunk], 0);
+            if (b->bk == WL_SF_MAXSET)
+                assert_int_equal(need & ~b->held_inst[i], 0);
+            checked += need != 0;
+        }
+    }
+    assert_true(checked > 1000); /* the scene is on screen */
+}
+
+static void compare_serial(const Fixture *f, guint frame)
+{
+    RastZBuffer *zb = rast_zbuffer_new(64, 64);
+    wl_sf_render_serial(f->scene, f->db, &f->s, frame, zb);
+    const RastZBuffer *par = wl_sf_run_zbuffer(f->run);
+    assert_memory_equal(zb->rgba, par->rgba, 64 * 64 * 4);
+    assert_memory_equal(zb->prim, par->prim, 64 * 64 * 4);
+    assert_true(rast_zbuffer_covered(zb) > 100);
+    rast_zbuffer_free(zb);
+}
+
+static void test_migration_and_image(void **state)
+{
+    (void)state;
+    for (int bk = 0; bk < 2; bk++) {
+        Fixture f;
+        fixture_init(&f, 6, (WlSfBookkeeping)bk, 5);
+        GError *e = NULL;
+        for (guint frame = 0; frame < 5; frame++) {
+            assert_true(wl_sf_run_frames(f.run, 1, SIM_TIME_MAX, &e));
+            check_holdings(&f, frame);
+            compare_serial(&f, frame);
+        }
+        const GArray *st = wl_sf_run_stats(f.run);
+        assert_int_equal(st->len, 5);
+        /* the camera moved: chunks migrated after the first frame */
+        assert_true(g_array_index(st, WlSfFrameStats, 3).migrated_chunks > 0);
+        fixture_clear(&f);
+    }
+}
+
+static void test_check_can_fail(void **state)
+{
+    (void)state;
+    Fixture f;
+    fixture_init(&f, 4, WL_SF_MINSET, 5);
+    /* before any sort only the masters hold chunks: the invariant fails */
+    WlSfRegions rg;
+    wl_sf_regions_init(&rg, 4, 64, 64);
+    WlSfBook *b = wl_sf_book_new(f.db, &rg, WL_SF_MINSET, &f.s.sizes);
+    SceneCamera cam = scene_camera_at(f.scene, 0);
+    RastView v = rast_view_for_camera(&cam, 64, 64);
+    wl_sf_book_need(b, v.view_proj);
+    guint inst = 0, proc = 0;
+    assert_false(wl_sf_book_check(b, &inst, &proc));
+    assert_true(b->need[inst] & wl_sf_bit(proc));
+    wl_sf_book_free(b);
+    fixture_clear(&f);
+}
+
+static void test_minset_equals_maxset(void **state)
+{
+    (void)state;
+    Fixture a, b;
+    fixture_init(&a, 4, WL_SF_MINSET, 12);
+    fixture_init(&b, 4, WL_SF_MAXSET, 12);
+    GError *e = NULL;
+    for (guint frame = 0; frame < 4; frame++) {
+        assert_true(wl_sf_run_frames(a.run, 1, SIM_TIME_MAX, &e));
+        assert_true(wl_sf_run_frames(b.run, 1, SIM_TIME_MAX, &e));
+        const RastZBuffer *za = wl_sf_run_zbuffer(a.run);
+        const RastZBuffer *zb = wl_sf_run_zbuffer(b.run);
+        assert_memory_equal(za->rgba, zb->rgba, 64 * 64 * 4);
+    }
+    /* same chunks rendered; the min-set tests every instance of each
+     * slave chunk, the max-set only those it holds (seed 000 §4.2) */
+    const WlSfFrameStats *sa =
+        &g_array_index(wl_sf_run_stats(a.run), WlSfFrameStats, 3);
+    const WlSfFrameStats *sb =
+        &g_array_index(wl_sf_run_stats(b.run), WlSfFrameStats, 3);
+    assert_int_equal(sa->polys_rendered, sb->polys_rendered);
+    assert_int_equal(sa->master_boxes, sb->master_boxes);
+    assert_true(sa->slave_boxes > sb->slave_boxes);
+    assert_true(sa->migrated_chunks <=
+                sb->migrated_chunks + sb->migrated_insts);
+    fixture_clear(&a);
+    fixture_clear(&b);
+}
+
+static void test_workload_metrics(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    SimResult *r = run_cfg(small, NULL, 4, &e);
+    assert_non_null(r);
+    assert_int_equal(r->frame_times->len, 4);
+    assert_true(metric(r, "image_matches_serial") == 1);
+    assert_true(metric(r, "migrated_bytes_per_frame") > 0);
+    assert_true(metric(r, "initial_bytes") >
+                metric(r, "migrated_bytes_per_frame"));
+    assert_true(metric(r, "chunk_overlap") >= 1);
+    double u = metric(r, "utilisation");
+    assert_true(u > 0 && u <= 1);
+    assert_true(metric(r, "load_imbalance") >= 0);
+    assert_true(r->comm_messages == 4 * 4 * 3); /* P(P-1) a frame */
+    /* determinism: the same config twice gives the same figures */
+    SimResult *r2 = run_cfg(small, NULL, 4, &e);
+    assert_non_null(r2);
+    assert_int_equal(r->metrics->len, r2->metrics->len);
+    for (guint i = 0; i < r->metrics->len; i++) {
+        const SimMetric *m1 = g_ptr_array_index(r->metrics, i);
+        const SimMetric *m2 = g_ptr_array_index(r2->metrics, i);
+        assert_string_equal(m1->name, m2->name);
+        assert_true(m1->value == m2->value);
+    }
+    assert_memory_equal(r->frame_times->data, r2->frame_times->data,
+                        4 * sizeof(SimTime));
+    assert_int_equal(r->comm_bytes, r2->comm_bytes);
+    sim_result_free(r);
+    sim_result_free(r2);
+    r = run_cfg(small, "workload.bookkeeping=minset", 3, &e);
+    assert_non_null(r);
+    assert_true(metric(r, "image_matches_serial") == 1);
+    sim_result_free(r);
+}
+
+static void test_frame_log(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("sf-XXXXXX", NULL);
+    assert_non_null(dir);
+    char *path = g_build_filename(dir, "frames.csv", NULL);
+    char *ov = g_strdup_printf("workload.frame_log=%s", path);
+    GError *e = NULL;
+    SimResult *r = run_cfg(small, ov, 3, &e);
+    assert_non_null(r);
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    char **lines = g_strsplit(text, "\n", -1);
+    assert_int_equal(g_strv_length(lines), 5); /* header, 3 rows, "" */
+    assert_true(g_str_has_prefix(lines[0], "frame,frame_ms,"));
+    assert_true(g_str_has_prefix(lines[3], "2,"));
+    /* the first frame distributes from the masters: most bytes */
+    char **f0 = g_strsplit(lines[1], ",", -1),
+         **f2 = g_strsplit(lines[3], ",", -1);
+    assert_true(g_ascii_strtod(f0[5], NULL) > g_ascii_strtod(f2[5], NULL));
+    g_strfreev(f0);
+    g_strfreev(f2);
+    g_strfreev(lines);
+    g_free(text);
+    sim_result_free(r);
+    g_unlink(path);
+    g_rmdir(dir);
+    g_free(ov);
+    g_free(path);
+    g_free(dir);
+}
+
+static void expect_error(const char *override, const char *what)
+{
+    GError *e = NULL;
+    SimResult *r = run_cfg(small, override, 1, &e);
+    assert_null(r);
+    assert_non_null(e);
+    if (!strstr(e->message, what))
+        fail_msg("'%s' not in '%s'", what, e->message);
+    g_clear_error(&e);
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    expect_error("workload.bookkeeping=both", "--set workload.bookk");
+    expect_error("workload.bookkeeping=both", "maxset");
+    expect_error("workload.processors=65", "processors");
+    expect_error("machine.nodes.node.count=2", "at most the 2 nodes");
+    expect_error("workload.granularity=0", "granularity");
+    expect_error("scene={generator: teapots, count: 1}",
+                 "without a structure database");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_chunks_partition),
+        cmocka_unit_test(test_migration_and_image),
+        cmocka_unit_test(test_check_can_fail),
+        cmocka_unit_test(test_minset_equals_maxset),
+        cmocka_unit_test(test_workload_metrics),
+        cmocka_unit_test(test_frame_log),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
+}
