@@ -39,7 +39,8 @@ static const NetTransportOps *pick_transport(const NetParams *p,
     if (fid == NET_ANALYTIC)
         return &net_analytic_transport;
     if (fid == NET_FLOW)
-        return &net_flow_transport;
+        return p->switching == NET_SW_CIRCUIT ? &net_circuit_flow_transport
+                                              : &net_flow_transport;
     switch (p->switching) {
     case NET_SW_CIRCUIT:
         return &net_circuit_transport;

@@ -64,6 +64,7 @@ typedef struct {
 extern const NetTransportOps net_analytic_transport;
 extern const NetTransportOps net_flow_transport;
 extern const NetTransportOps net_circuit_transport;
+extern const NetTransportOps net_circuit_flow_transport;
 extern const NetTransportOps net_packet_transport;
 extern const NetTransportOps net_ringslot_transport;
 

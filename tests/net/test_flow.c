@@ -232,7 +232,7 @@ static NetParams params(uint32_t channels)
     p.channels = channels;
     p.startup = 30 * SIM_US;
     p.per_hop = 2 * SIM_US;
-    p.switching = NET_SW_CIRCUIT;
+    p.switching = NET_SW_CUT_THROUGH;
     return p;
 }
 

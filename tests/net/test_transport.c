@@ -120,6 +120,7 @@ static void test_two_flows_share_link(void **state)
     (void)state;
     NetTopo *t = net_hypercube_new(2);
     NetParams p = params(0, 0);
+    p.switching = NET_SW_CUT_THROUGH; /* max-min: not a circuit machine */
     SimEngine *eng = sim_engine_new(1);
     NetNet *net = net_new(eng, t, &p, NET_FLOW);
     Log lg = {0};
@@ -147,6 +148,7 @@ static void test_flow_incremental(void **state)
     (void)state;
     NetTopo *t = net_hypercube_new(2);
     NetParams p = params(0, 0);
+    p.switching = NET_SW_CUT_THROUGH;
     SimEngine *eng = sim_engine_new(1);
     NetNet *net = net_new(eng, t, &p, NET_FLOW);
     Log lg = {0};
@@ -195,23 +197,52 @@ static void test_circuit_blocking_order(void **state)
     (void)state;
     NetTopo *t = net_hypercube_new(2);
     NetParams p = params(10 * SIM_US, 0);
-    SimEngine *eng = sim_engine_new(1);
-    NetNet *net = net_new(eng, t, &p, NET_PACKET);
-    Log lg = {0};
-    net_send(net, 1, 3, 100, GUINT_TO_POINTER(1), log_arrival, &lg);
-    net_send(net, 0, 3, 100, GUINT_TO_POINTER(2), log_arrival, &lg);
-    net_send(net, 0, 1, 100, GUINT_TO_POINTER(3), log_arrival, &lg);
-    net_send(net, 0, 1, 100, GUINT_TO_POINTER(4), log_arrival, &lg);
-    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
-    assert_int_equal(lg.n, 4);
-    uint32_t want[4] = {1, 2, 3, 4};
-    SimTime at[4] = {110, 210, 310, 410};
-    for (guint i = 0; i < 4; i++) {
-        assert_int_equal(lg.order[i], want[i]);
-        assert_int_equal(lg.at[i], at[i] * SIM_US);
+    for (int f = NET_FLOW; f <= NET_PACKET; f++) { /* both circuit rungs */
+        SimEngine *eng = sim_engine_new(1);
+        NetNet *net = net_new(eng, t, &p, (NetFidelity)f);
+        Log lg = {0};
+        net_send(net, 1, 3, 100, GUINT_TO_POINTER(1), log_arrival, &lg);
+        net_send(net, 0, 3, 100, GUINT_TO_POINTER(2), log_arrival, &lg);
+        net_send(net, 0, 1, 100, GUINT_TO_POINTER(3), log_arrival, &lg);
+        net_send(net, 0, 1, 100, GUINT_TO_POINTER(4), log_arrival, &lg);
+        assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+        assert_int_equal(lg.n, 4);
+        uint32_t want[4] = {1, 2, 3, 4};
+        SimTime at[4] = {110, 210, 310, 410};
+        for (guint i = 0; i < 4; i++) {
+            assert_int_equal(lg.order[i], want[i]);
+            assert_int_equal(lg.at[i], at[i] * SIM_US);
+        }
+        net_free(net);
+        sim_engine_free(eng);
     }
-    net_free(net);
-    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
+/* The flow rung on a circuit machine serialises a shared channel (first
+ * come, first served) where max-min would share it: 0->1 and 0->3 both
+ * cross n0->n1; circuits give 1000 and 2000 us, sharing 2000 and 2000. */
+static void test_circuit_flow_serialises(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(2);
+    NetParams p = params(0, 0);
+    SimTime want[2][2] = {{2000, 2000}, {1000, 2000}};
+    for (int k = 0; k < 2; k++) {
+        p.switching = k ? NET_SW_CIRCUIT : NET_SW_CUT_THROUGH;
+        SimEngine *eng = sim_engine_new(1);
+        NetNet *net = net_new(eng, t, &p, NET_FLOW);
+        Log lg = {0};
+        net_send(net, 0, 1, 1000, GUINT_TO_POINTER(1), log_arrival, &lg);
+        net_send(net, 0, 3, 1000, GUINT_TO_POINTER(2), log_arrival, &lg);
+        assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+        assert_int_equal(lg.n, 2);
+        assert_int_equal(lg.order[0], 1);
+        assert_int_equal(lg.at[0], want[k][0] * SIM_US);
+        assert_int_equal(lg.at[1], want[k][1] * SIM_US);
+        net_free(net);
+        sim_engine_free(eng);
+    }
     net_topo_free(t);
 }
 
@@ -255,6 +286,7 @@ int main(void)
         cmocka_unit_test(test_flow_incremental),
         cmocka_unit_test(test_xor_permutation_contention_free),
         cmocka_unit_test(test_circuit_blocking_order),
+        cmocka_unit_test(test_circuit_flow_serialises),
         cmocka_unit_test(test_memory_returns),
     };
     return cmocka_run_group_tests_name("net_transport", tests, NULL, NULL);
