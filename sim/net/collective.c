@@ -5,6 +5,12 @@
  * and whether that step's send is unstarted, in flight or delivered;
  * receipts are counted per (node, step) because a fast partner's message
  * for step s can arrive while the node is still at an earlier step.
+ * Receipts for a node's current step are a counter per node; the few
+ * that arrive for a later step (a fast partner) wait in a hash table
+ * keyed by (node, step), so memory is O(n) plus those early receipts,
+ * never O(n * steps).  Byte counts and destinations come from a table
+ * the caller gave, or are computed when the step starts (uniform
+ * all-to-all, generated send lists): no n x n table is needed.
  * Messages carry their step number as payload and the NetColl as context.
  * The collective ends when every node has passed its last step and no
  * message is in flight; then the caller's callback runs and the NetColl
@@ -39,12 +45,17 @@ struct NetColl {
     CollPlan plan;
     uint32_t root;
     uint64_t bytes;
-    uint64_t *table; /* a2a matrix, pairwise steps or list sizes */
+    uint64_t *table; /* a2a matrix, pairwise steps or list sizes; NULL:
+                        uniform c->bytes (a2a) or generated (lists) */
+    NetGenFn gen;    /* generated send lists */
+    void *gen_ctx;
     uint32_t *dst;   /* send lists */
     uint32_t *off, *count;
     guint *step;    /* per node */
     uint8_t *state; /* per node: ST_* of the current step */
-    uint8_t *recvd; /* n * steps receipts, NULL if none expected */
+    gboolean receipts; /* the schedule expects receipts */
+    guint *recvd;      /* per node: receipts for its current step */
+    GHashTable *early; /* (node * steps + step) -> receipts for later steps */
     uint32_t nodes_left;
     uint64_t inflight;
     NetCollDone done;
@@ -70,8 +81,11 @@ static NetColl *coll_new(NetNet *net, guint steps, CollPlan plan,
     c->plan = plan;
     c->step = g_new0(guint, c->n);
     c->state = g_new0(uint8_t, c->n);
-    if (receipts)
-        c->recvd = g_new0(uint8_t, (gsize)c->n * steps);
+    c->receipts = receipts;
+    if (receipts) {
+        c->recvd = g_new0(guint, c->n);
+        c->early = g_hash_table_new(g_int64_hash, g_int64_equal);
+    }
     c->nodes_left = c->n;
     c->done = done;
     c->ctx = ctx;
@@ -87,6 +101,10 @@ static void coll_free(NetColl *c)
     g_free(c->step);
     g_free(c->state);
     g_free(c->recvd);
+    if (c->early) {
+        g_assert(g_hash_table_size(c->early) == 0);
+        g_hash_table_destroy(c->early);
+    }
     g_free(c);
 }
 
@@ -103,6 +121,36 @@ static void maybe_finish(NetColl *c)
 }
 
 static void on_arrive(NetNet *net, const NetDelivery *d, void *ctx);
+
+/* Keys of the early-receipt table live in the table's values' slot: a
+ * key is a heap uint64 freed when its count is taken. */
+static void early_add(NetColl *c, uint32_t i, guint s)
+{
+    uint64_t k = (uint64_t)i * c->steps + s;
+    uint64_t *key = NULL;
+    gpointer old = NULL;
+    if (g_hash_table_lookup_extended(c->early, &k, (gpointer *)&key, &old)) {
+        g_hash_table_insert(c->early, key, GUINT_TO_POINTER(GPOINTER_TO_UINT(old) + 1));
+        return;
+    }
+    key = g_new(uint64_t, 1);
+    *key = k;
+    g_hash_table_insert(c->early, key, GUINT_TO_POINTER(1));
+}
+
+/* Node i has just reached step s: its early receipts become current. */
+static void early_take(NetColl *c, uint32_t i, guint s)
+{
+    uint64_t k = (uint64_t)i * c->steps + s;
+    uint64_t *key = NULL;
+    gpointer v = NULL;
+    c->recvd[i] = 0;
+    if (!g_hash_table_lookup_extended(c->early, &k, (gpointer *)&key, &v))
+        return;
+    c->recvd[i] = GPOINTER_TO_UINT(v);
+    g_hash_table_remove(c->early, &k);
+    g_free(key);
+}
 
 static void start_step(NetColl *c, uint32_t i)
 {
@@ -127,10 +175,12 @@ static gboolean advance(NetColl *c, uint32_t i)
         if (c->state[i] != ST_SENT)
             return FALSE;
         guint want = c->plan(c, i, s).expect;
-        if (want > 0 && c->recvd[(gsize)i * c->steps + s] < want)
+        if (want > 0 && c->recvd[i] < want)
             return FALSE;
         c->step[i]++;
         c->state[i] = ST_IDLE;
+        if (c->receipts && c->step[i] < c->steps)
+            early_take(c, i, c->step[i]);
     }
     c->nodes_left--;
     return TRUE;
@@ -144,8 +194,10 @@ static void on_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     c->inflight--;
     g_assert(c->step[d->src] == s && c->state[d->src] == ST_SENDING);
     c->state[d->src] = ST_SENT;
-    if (c->recvd)
-        c->recvd[(gsize)d->dst * c->steps + s]++;
+    if (c->receipts && c->step[d->dst] == s)
+        c->recvd[d->dst]++;
+    else if (c->receipts)
+        early_add(c, d->dst, s);
     advance(c, d->src);
     if (d->dst != d->src && c->step[d->dst] == s)
         advance(c, d->dst);
@@ -211,23 +263,31 @@ static CollStep plan_doubling(const NetColl *c, uint32_t i, guint k)
     return (CollStep){i ^ ((uint32_t)1 << k), c->bytes, 1};
 }
 
+/* Bytes from i to `to` in an all-to-all: the matrix, or uniform. */
+static uint64_t a2a_bytes(const NetColl *c, uint32_t i, uint32_t to)
+{
+    if (c->table)
+        return c->table[(gsize)i * c->n + to];
+    return i == to ? 0 : c->bytes;
+}
+
 static CollStep plan_a2a_xor(const NetColl *c, uint32_t i, guint s)
 {
     uint32_t to = i ^ (s + 1);
-    return (CollStep){to, c->table[(gsize)i * c->n + to], 1};
+    return (CollStep){to, a2a_bytes(c, i, to), 1};
 }
 
 static CollStep plan_a2a_shift(const NetColl *c, uint32_t i, guint s)
 {
     uint32_t to = (i + s + 1) % c->n;
-    uint64_t b = c->table[(gsize)i * c->n + to];
+    uint64_t b = a2a_bytes(c, i, to);
     return (CollStep){b ? to : NO_SEND, b, 0};
 }
 
 static CollStep plan_a2a_naive(const NetColl *c, uint32_t i, guint s)
 {
     uint32_t to = s < i ? s : s + 1; /* 0, 1, ... n-1, skipping i */
-    uint64_t b = c->table[(gsize)i * c->n + to];
+    uint64_t b = a2a_bytes(c, i, to);
     return (CollStep){b ? to : NO_SEND, b, 0};
 }
 
@@ -235,6 +295,14 @@ static CollStep plan_pairwise(const NetColl *c, uint32_t i, guint s)
 {
     uint32_t to = i ^ ((uint32_t)1 << (c->dims - 1 - s));
     return (CollStep){to, c->table[(gsize)i * c->dims + s], 1};
+}
+
+static CollStep plan_generated(const NetColl *c, uint32_t i, guint s)
+{
+    CollStep st = {NO_SEND, 0, 0};
+    c->gen(c->gen_ctx, i, s, &st.to, &st.bytes);
+    g_assert(st.to < c->n);
+    return st;
 }
 
 static CollStep plan_lists(const NetColl *c, uint32_t i, guint s)
@@ -291,8 +359,8 @@ void net_barrier(NetNet *net, NetCollDone done, void *ctx)
     doubling(net, 0, done, ctx);
 }
 
-void net_alltoall(NetNet *net, const uint64_t *bytes, NetA2ASchedule sched,
-                  NetCollDone done, void *ctx)
+static NetColl *a2a_new(NetNet *net, NetA2ASchedule sched, NetCollDone done,
+                        void *ctx)
 {
     uint32_t n = net_nodes(net);
     gboolean xor = sched == NET_A2A_XOR;
@@ -300,8 +368,32 @@ void net_alltoall(NetNet *net, const uint64_t *bytes, NetA2ASchedule sched,
     CollPlan plan = xor                      ? plan_a2a_xor
                     : sched == NET_A2A_SHIFT ? plan_a2a_shift
                                              : plan_a2a_naive;
-    NetColl *c = coll_new(net, n - 1, plan, xor, done, ctx);
+    return coll_new(net, n - 1, plan, xor, done, ctx);
+}
+
+void net_alltoall(NetNet *net, const uint64_t *bytes, NetA2ASchedule sched,
+                  NetCollDone done, void *ctx)
+{
+    uint32_t n = net_nodes(net);
+    NetColl *c = a2a_new(net, sched, done, ctx);
     c->table = g_memdup2(bytes, (gsize)n * n * sizeof *bytes);
+    coll_run(c);
+}
+
+void net_alltoall_uniform(NetNet *net, uint64_t bytes, NetA2ASchedule sched,
+                          NetCollDone done, void *ctx)
+{
+    NetColl *c = a2a_new(net, sched, done, ctx);
+    c->bytes = bytes;
+    coll_run(c);
+}
+
+void net_send_generated(NetNet *net, guint per_node, NetGenFn gen,
+                        void *gen_ctx, NetCollDone done, void *ctx)
+{
+    NetColl *c = coll_new(net, per_node, plan_generated, FALSE, done, ctx);
+    c->gen = gen;
+    c->gen_ctx = gen_ctx;
     coll_run(c);
 }
 

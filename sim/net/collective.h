@@ -36,7 +36,10 @@
  * after ctrl_latency + bytes / ctrl_bandwidth without touching the data
  * network (a fixed-latency tree).
  *
- * Memory: O(n * steps) bytes of counters for exchange schedules.
+ * Memory: O(n) node state plus the messages in flight and the receipts
+ * that arrived before their step (no n x n table unless the caller
+ * passes one: net_alltoall_uniform and net_send_generated compute each
+ * step's message when it starts).
  */
 #ifndef PGSIM_NET_COLLECTIVE_H
 #define PGSIM_NET_COLLECTIVE_H
@@ -48,6 +51,12 @@ typedef enum { NET_A2A_NAIVE, NET_A2A_SHIFT, NET_A2A_XOR } NetA2ASchedule;
 /* Called once when every node has finished. */
 typedef void (*NetCollDone)(NetNet *net, void *ctx);
 
+/* Node i's k-th message of a generated send list: writes *dst (!= i) and
+ * *bytes.  Must be a pure function of (ctx, i, k): it may be called more
+ * than once for the same message. */
+typedef void (*NetGenFn)(void *ctx, uint32_t i, guint k, uint32_t *dst,
+                         uint64_t *bytes);
+
 void net_broadcast(NetNet *net, uint32_t root, uint64_t bytes, NetCollDone done,
                    void *ctx);
 void net_allreduce(NetNet *net, uint64_t bytes, NetCollDone done, void *ctx);
@@ -57,6 +66,13 @@ void net_barrier(NetNet *net, NetCollDone done, void *ctx);
  * zero-byte message under NET_A2A_XOR, none otherwise). */
 void net_alltoall(NetNet *net, const uint64_t *bytes, NetA2ASchedule sched,
                   NetCollDone done, void *ctx);
+/* The same with `bytes` between every pair (no matrix). */
+void net_alltoall_uniform(NetNet *net, uint64_t bytes, NetA2ASchedule sched,
+                          NetCollDone done, void *ctx);
+/* Each node sends per_node messages gen(gen_ctx, i, 0 ..), one after
+ * another (gen_ctx borrowed until done runs). */
+void net_send_generated(NetNet *net, guint per_node, NetGenFn gen,
+                        void *gen_ctx, NetCollDone done, void *ctx);
 /* bytes[i * d + s]: what node i sends at step s (copied). */
 void net_pairwise_exchange(NetNet *net, const uint64_t *bytes, NetCollDone done,
                            void *ctx);

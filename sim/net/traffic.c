@@ -1,10 +1,11 @@
 /* traffic.c — synthetic traffic patterns over the collectives (traffic.h).
  *
- * Each pattern fills the byte matrix, per-step byte table or per-node
- * message lists of one collective and starts it.  Random destinations are
- * drawn node by node, message by message, from one stream, so a seed
- * gives the same lists whatever the fidelity.  Cost: O(n^2) to build the
- * tables, then the collective's own.
+ * Each pattern starts one collective that computes a node's next message
+ * when the node needs it: no n x n table.  Random destinations are a
+ * counter-based hash of (seed, node, message index) (splitmix64, the
+ * finaliser of sim/core/rng.h), so a seed gives the same lists whatever
+ * the fidelity and the order in which nodes ask.  Memory: O(n) plus the
+ * messages in flight (pairwise keeps its O(n log n) per-step table).
  */
 #include "sim/net/traffic.h"
 #include "sim/core/error.h"
@@ -65,15 +66,10 @@ uint64_t net_traffic_messages(NetTraffic t, uint32_t n)
 static void start_alltoall(NetNet *net, NetTraffic t, uint64_t bytes,
                            NetCollDone done, void *ctx)
 {
-    uint32_t n = net_nodes(net);
-    uint64_t *b = g_new(uint64_t, (gsize)n * n);
-    for (gsize i = 0; i < (gsize)n * n; i++)
-        b[i] = i / n == i % n ? 0 : bytes;
     NetA2ASchedule s = t == NET_TRAFFIC_XOR     ? NET_A2A_XOR
                        : t == NET_TRAFFIC_SHIFT ? NET_A2A_SHIFT
                                                 : NET_A2A_NAIVE;
-    net_alltoall(net, b, s, done, ctx);
-    g_free(b);
+    net_alltoall_uniform(net, bytes, s, done, ctx);
 }
 
 static void start_pairwise(NetNet *net, uint64_t bytes, NetCollDone done,
@@ -89,29 +85,49 @@ static void start_pairwise(NetNet *net, uint64_t bytes, NetCollDone done,
     g_free(b);
 }
 
+/* Random and hotspot lists, generated when a node needs its next message. */
+typedef struct {
+    uint32_t n;
+    gboolean hot;
+    uint64_t bytes, seed;
+    NetCollDone done;
+    void *ctx;
+} ListGen;
+
+/* Uniform in [0, m) from one 64-bit hash (bias below m / 2^64). */
+static uint32_t hash_below(uint64_t h, uint32_t m)
+{
+    return (uint32_t)(((unsigned __int128)h * m) >> 64);
+}
+
+/* Counter-based: message k of node i depends on (seed, i, k) only. */
+static void list_next(void *ctx, uint32_t i, guint k, uint32_t *dst,
+                      uint64_t *bytes)
+{
+    const ListGen *g = ctx;
+    uint64_t h = sim_rng_mix(g->seed ^ sim_rng_mix(((uint64_t)i << 32) | k));
+    uint32_t d = hash_below(h, g->n - 1);
+    d = d >= i ? d + 1 : d; /* never self */
+    if (g->hot && i != 0 && hash_below(sim_rng_mix(h), 4) == 0)
+        d = 0;
+    *dst = d;
+    *bytes = g->bytes;
+}
+
+static void list_done(NetNet *net, void *ctx)
+{
+    ListGen g = *(ListGen *)ctx;
+    g_free(ctx);
+    if (g.done)
+        g.done(net, g.ctx);
+}
+
 static void start_lists(NetNet *net, gboolean hot, uint64_t bytes,
                         uint64_t seed, NetCollDone done, void *ctx)
 {
-    uint32_t n = net_nodes(net), per = n - 1;
-    uint32_t *count = g_new(uint32_t, n), *dst = g_new(uint32_t, n * per);
-    uint64_t *size = g_new(uint64_t, (gsize)n * per);
-    SimRng rng;
-    sim_rng_init(&rng, seed, 0);
-    for (uint32_t i = 0; i < n; i++) {
-        count[i] = per;
-        for (uint32_t k = 0; k < per; k++) {
-            uint32_t d = (uint32_t)sim_rng_below(&rng, n - 1);
-            d = d >= i ? d + 1 : d; /* never self */
-            if (hot && i != 0 && sim_rng_below(&rng, 4) == 0)
-                d = 0;
-            dst[(gsize)i * per + k] = d;
-            size[(gsize)i * per + k] = bytes;
-        }
-    }
-    net_send_lists(net, count, dst, size, done, ctx);
-    g_free(count);
-    g_free(dst);
-    g_free(size);
+    ListGen *g = g_new(ListGen, 1);
+    *g = (ListGen){net_nodes(net), hot, bytes, seed, done, ctx};
+    net_send_generated(net, g->n - 1, list_next, g, list_done, g);
 }
 
 void net_traffic_start(NetNet *net, NetTraffic t, uint64_t bytes, uint64_t seed,

@@ -16,8 +16,9 @@
  *   random      n-1 messages per node to uniform other nodes;
  *   hotspot     the same, but each message goes to node 0 with
  *               probability 1/4 (node 0's own go elsewhere).
- * Random draws: sim/core/rng.h, stream 0 of the given seed.
- * Memory: O(n^2) for the all-to-all patterns and the message lists.
+ * Random draws: a hash of (seed, node, message index), so any node's k-th
+ * destination is computed when it is needed.
+ * Memory: O(n) plus the messages in flight; nothing grows with n^2.
  */
 #ifndef PGSIM_NET_TRAFFIC_H
 #define PGSIM_NET_TRAFFIC_H
@@ -33,8 +34,9 @@ typedef enum {
     NET_TRAFFIC_HOTSPOT
 } NetTraffic;
 
-/* Largest node count a pattern accepts (n^2 bytes matrices). */
-#define NET_TRAFFIC_MAX_NODES 4096u
+/* Largest node count a pattern accepts (a 16-cube; node ids and message
+ * indices fit in 32 bits). */
+#define NET_TRAFFIC_MAX_NODES 65536u
 
 const char *net_traffic_name(NetTraffic t);
 /* FALSE on an unknown word. */
@@ -43,7 +45,7 @@ gboolean net_traffic_parse(const char *s, NetTraffic *out);
 const char *net_traffic_words(void);
 
 /* Whether t can run on n nodes; FALSE with "found ..., expected ..." in
- * *err (a power of two for xor and pairwise, 2 .. 4096 nodes). */
+ * *err (a power of two for xor and pairwise, 2 .. 65,536 nodes). */
 gboolean net_traffic_check(NetTraffic t, uint32_t n, GError **err);
 /* Messages the pattern sends on n nodes. */
 uint64_t net_traffic_messages(NetTraffic t, uint32_t n);

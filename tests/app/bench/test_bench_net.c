@@ -125,9 +125,11 @@ static void test_refused(void **state)
     s.nodes = 0;
     s.pattern = NET_TRAFFIC_XOR;
     expect_refused(&s, "pattern xor on 34 nodes, expected a power of two");
-    s.machine = "cm200"; /* 65,536 lanes: no n^2 traffic */
+    s.machine = "ipsc2"; /* a 17-cube: beyond 32-bit message indices */
+    s.nodes = 131072;
     s.pattern = NET_TRAFFIC_RANDOM;
-    expect_refused(&s, "from 2 to 4096 nodes");
+    expect_refused(&s, "from 2 to 65536 nodes");
+    s.nodes = 0;
     s.machine = "nonesuch";
     expect_refused(&s, "no model 'nonesuch'");
     const char *const bad[] = {"network.startup=1 us", NULL};
