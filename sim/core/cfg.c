@@ -387,17 +387,9 @@ CfgNode *cfg_load_file(const char *name, GError **err)
 {
     char *text = NULL, *path = sim_data_path(name);
     gsize len = 0;
-    GError *e = NULL;
     CfgNode *root = NULL;
-    if (!g_file_get_contents(path, &text, &len, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
-                    "%s:0:0: found an unreadable file (%s), expected a "
-                    "readable YAML file",
-                    path, e->message);
-        g_error_free(e);
-    } else {
+    if (sim_file_read(path, &text, &len, err))
         root = load((const unsigned char *)text, len, path, err);
-    }
     g_free(text);
     g_free(path);
     return root;

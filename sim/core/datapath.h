@@ -19,9 +19,20 @@
 /* Returns a newly allocated path (g_free). */
 char *sim_data_path(const char *name);
 
-/* Reads a whole file into *text (g_free; NUL-terminated), its length into
- * *len if not NULL; FALSE with a SIM_ERROR_IO error naming the file. */
+/* Reads a whole input file in one pass into *text (g_free;
+ * NUL-terminated), its length into *len if not NULL.  The file must be a
+ * regular file (not a device, FIFO or directory) of at most
+ * sim_file_limit() bytes, checked before anything is allocated; FALSE
+ * with a SIM_ERROR_IO error "path:0:0: found ..., expected ..." naming
+ * the file otherwise. */
 gboolean sim_file_read(const char *path, char **text, gsize *len,
                        GError **err);
+
+/* The size limit of input files in bytes: SIM_FILE_LIMIT_DEFAULT (1 GiB)
+ * unless $PGSIM_MAX_INPUT (bytes, with an optional k/M/G suffix) or
+ * sim_file_set_limit() (0 restores the default) says otherwise. */
+#define SIM_FILE_LIMIT_DEFAULT ((guint64)1 << 30)
+guint64 sim_file_limit(void);
+void sim_file_set_limit(guint64 bytes);
 
 #endif

@@ -92,7 +92,9 @@ static inline double rast_span_z(const RastSpan *s, int x)
 
 static inline uint32_t rast_channel(float v)
 {
-    return v <= 0.0f ? 0u : (v >= 1.0f ? 255u : (uint32_t)(v * 255.0f + 0.5f));
+    /* !(v > 0) also maps NaN to 0: no undefined float-to-int cast */
+    return !(v > 0.0f) ? 0u
+                       : (v >= 1.0f ? 255u : (uint32_t)(v * 255.0f + 0.5f));
 }
 
 /* Colour of span pixel x packed as 0xAABBGGRR (opaque). */

@@ -195,6 +195,8 @@ const RastSpan *rast_spanlist_row(const RastSpanList *sl, int y, size_t *n)
     g_assert(sl->sorted);
     g_assert(y >= 0 && y < sl->height);
     *n = sl->start[y + 1] - sl->start[y];
+    if (!*n) /* rows->data is NULL before the first span: no NULL + 0 */
+        return NULL;
     return (const RastSpan *)sl->rows->data + sl->start[y];
 }
 

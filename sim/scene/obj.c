@@ -7,6 +7,8 @@
  * (.obj)", Advanced Visualizer manual, appendix B1).  O(file size).
  */
 #include "sim/scene/obj.h"
+#include "sim/core/datapath.h"
+#include "sim/scene/scene_limits.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -76,7 +78,7 @@ static gboolean read_double(ObjParser *o, double *out)
     char *endp;
     errno = 0;
     *out = g_ascii_strtod(buf, &endp);
-    if (n == 0 || *endp || errno || !isfinite(*out))
+    if (n == 0 || *endp || !isfinite(*out))
         return fail_token(o, start, "a finite number");
     return TRUE;
 }
@@ -91,13 +93,52 @@ static void pad(GArray *a, guint len, const void *val)
 static const SceneColor white = {1, 1, 1};
 static const Vec3 zero3 = {0, 0, 0};
 
+/* Fails at `at` unless ok: the value printed %g, the limit expected. */
+static gboolean check_value(ObjParser *o, const char *at, gboolean ok,
+                            const char *what, double v, const char *expected)
+{
+    if (ok)
+        return TRUE;
+    char *found = g_strdup_printf("%s %g", what, v);
+    fail_at(o, at, found, expected);
+    g_free(found);
+    return FALSE;
+}
+
+static gboolean check_coords(ObjParser *o, const char *const *at,
+                             const double *x, double w)
+{
+    char expected[96];
+    g_snprintf(expected, sizeof expected,
+               "a coordinate within +-%g (docs/config.md, Limits)",
+               SCENE_COORD_MAX);
+    for (int i = 0; i < 3; i++)
+        if (!check_value(o, at[i], scene_coord_ok(x[i] / w),
+                         w == 1.0 ? "a coordinate" : "a coordinate over w",
+                         x[i] / w, expected))
+            return FALSE;
+    return TRUE;
+}
+
+static gboolean check_colors(ObjParser *o, const char *const *at,
+                             const double *c)
+{
+    for (int i = 0; i < 3; i++)
+        if (!check_value(o, at[i], scene_color_ok(c[i]), "a colour", c[i],
+                         "a colour component in [0, 1]"))
+            return FALSE;
+    return TRUE;
+}
+
 static gboolean parse_v(ObjParser *o)
 {
     double x[7];
+    const char *at[7];
     int n = 0;
     while (!at_end(o)) {
         if (n == 6)
             return fail_token(o, o->p, "end of line after 3, 4 or 6 numbers");
+        at[n] = o->p;
         if (!read_double(o, &x[n++]))
             return FALSE;
     }
@@ -105,7 +146,9 @@ static gboolean parse_v(ObjParser *o)
         return fail_token(o, o->p, "a vertex of 3, 4 or 6 numbers");
     double w = n == 4 ? x[3] : 1.0;
     if (w == 0)
-        return fail_at(o, o->line_start, "w = 0", "a non-zero w");
+        return fail_at(o, at[3], "w = 0", "a non-zero w");
+    if (!check_coords(o, at, x, w) || (n == 6 && !check_colors(o, at + 3, x + 3)))
+        return FALSE;
     scene_mesh_add_vertex(o->m, vec3(x[0] / w, x[1] / w, x[2] / w));
     if (n == 6) {
         SceneColor c = {(float)x[3], (float)x[4], (float)x[5]};
@@ -118,13 +161,16 @@ static gboolean parse_v(ObjParser *o)
 static gboolean parse_vn(ObjParser *o)
 {
     double x[3];
+    const char *at[3];
     for (int i = 0; i < 3; i++)
         if (at_end(o))
             return fail_token(o, o->p, "3 numbers");
-        else if (!read_double(o, &x[i]))
+        else if (at[i] = o->p, !read_double(o, &x[i]))
             return FALSE;
     if (!at_end(o))
         return fail_token(o, o->p, "end of line");
+    if (!check_coords(o, at, x, 1.0))
+        return FALSE;
     Vec3 n = vec3_norm(vec3(x[0], x[1], x[2]));
     g_array_append_val(o->normals, n);
     return TRUE;
@@ -293,12 +339,8 @@ SceneMesh *scene_obj_load(const char *path, GError **err)
 {
     char *text;
     gsize len;
-    GError *e = NULL;
-    if (!g_file_get_contents(path, &text, &len, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: %s", path, e->message);
-        g_error_free(e);
+    if (!sim_file_read(path, &text, &len, err))
         return NULL;
-    }
     SceneMesh *m = scene_obj_parse(text, len, path, err);
     g_free(text);
     return m;

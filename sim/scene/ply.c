@@ -7,6 +7,8 @@
  * error can say where it happened.  Format: Turk 1994.  O(file size).
  */
 #include "sim/scene/ply.h"
+#include "sim/core/datapath.h"
+#include "sim/scene/scene_limits.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -277,7 +279,7 @@ static gboolean ascii_value(Ply *p, PType t, double *out)
         return fail(p, "end of file", "a number");
     errno = 0;
     *out = g_ascii_strtod(tok, &end);
-    if (*end || errno || !isfinite(*out))
+    if (*end || !isfinite(*out))
         return fail_tok(p, tok, "a finite number");
     if (t < P_F32 && *out != floor(*out))
         return fail_tok(p, tok, "an integer");
@@ -396,6 +398,31 @@ static gboolean read_list(Ply *p, const PProp *pr, GArray *idx)
     return TRUE;
 }
 
+/* Range check of property i's value v just read (docs/config.md,
+ * Limits): positions and normals within +-SCENE_COORD_MAX, colours in
+ * [0, 1] once scaled. */
+static gboolean check_range(Ply *p, const PElem *e, const Roles *r, int i,
+                            double v)
+{
+    char found[64], expected[96];
+    if (i == r->x || i == r->y || i == r->z || i == r->nx || i == r->ny ||
+        i == r->nz) {
+        if (scene_coord_ok(v))
+            return TRUE;
+        g_snprintf(found, sizeof found, "a coordinate %g", v);
+        g_snprintf(expected, sizeof expected,
+                   "a coordinate within +-%g (docs/config.md, Limits)",
+                   SCENE_COORD_MAX);
+        return fail(p, found, expected);
+    }
+    if ((i == r->r || i == r->g || i == r->b) &&
+        !scene_color_ok(colour_of(e, i, v))) {
+        g_snprintf(found, sizeof found, "a colour %g", v);
+        return fail(p, found, "a colour in [0, 1] (float) or 0..255 (integer)");
+    }
+    return TRUE;
+}
+
 static gboolean read_vertex(Ply *p, const PElem *e, const Roles *r,
                             SceneMesh *m)
 {
@@ -403,7 +430,8 @@ static gboolean read_vertex(Ply *p, const PElem *e, const Roles *r,
     for (guint i = 0; i < e->props->len; i++) {
         const PProp *pr = &g_array_index(e->props, PProp, i);
         double v;
-        if (pr->list ? !read_list(p, pr, NULL) : !value(p, pr->type, &v))
+        if (pr->list ? !read_list(p, pr, NULL)
+                     : !value(p, pr->type, &v) || !check_range(p, e, r, i, v))
             return FALSE;
         if (!pr->list && i < 64)
             val[i] = v;
@@ -456,7 +484,7 @@ static gboolean read_face(Ply *p, const PElem *e, const Roles *r, SceneMesh *m,
         if (pr->list) {
             if (!read_list(p, pr, (int)i == r->list ? idx : NULL))
                 return FALSE;
-        } else if (!value(p, pr->type, &v)) {
+        } else if (!value(p, pr->type, &v) || !check_range(p, e, r, i, v)) {
             return FALSE;
         } else if (i < 64) {
             val[i] = v;
@@ -530,6 +558,22 @@ static gboolean read_body(Ply *p, SceneMesh *m)
     return ok;
 }
 
+/* Nothing may follow the last element but white space (ASCII). */
+static gboolean check_tail(Ply *p)
+{
+    if (p->fmt == SCENE_PLY_ASCII)
+        skip_blanks(p, TRUE);
+    if (p->pos >= p->len)
+        return TRUE;
+    p->tok_pos = p->pos;
+    p->tok_line = p->line;
+    p->tok_col = p->col;
+    char found[64];
+    g_snprintf(found, sizeof found, "%" G_GSIZE_FORMAT " bytes more",
+               p->len - p->pos);
+    return fail(p, found, "the end of the file after the last element");
+}
+
 static void free_elems(GArray *elems)
 {
     for (guint i = 0; i < elems->len; i++) {
@@ -561,7 +605,7 @@ SceneMesh *scene_ply_parse(const guchar *data, gsize len, const char *name,
     gboolean ok = parse_header(&p);
     if (ok && p.fmt != SCENE_PLY_ASCII)
         p.line = 0; /* binary body: errors by byte offset */
-    ok = ok && read_body(&p, m);
+    ok = ok && read_body(&p, m) && check_tail(&p);
     free_elems(p.elems);
     if (!ok) {
         scene_mesh_free(m);
@@ -574,12 +618,8 @@ SceneMesh *scene_ply_load(const char *path, GError **err)
 {
     char *data;
     gsize len;
-    GError *e = NULL;
-    if (!g_file_get_contents(path, &data, &len, &e)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: %s", path, e->message);
-        g_error_free(e);
+    if (!sim_file_read(path, &data, &len, err))
         return NULL;
-    }
     SceneMesh *m = scene_ply_parse((const guchar *)data, len, path, err);
     g_free(data);
     return m;

@@ -12,6 +12,7 @@
 #include "sim/scene/ply.h"
 #include "sim/scene/pn_triangles.h"
 #include "sim/scene/pphigs_db.h"
+#include "sim/scene/scene_limits.h"
 #include "sim/scene/teapots.h"
 #include "sim/scene/vehicle.h"
 
@@ -21,8 +22,26 @@ typedef Scene *(*GenFn)(const CfgNode *sec, GError **err);
 
 /* ---- small readers ----------------------------------------------------- */
 
-static gboolean get_vec3(const CfgNode *map, const char *key, Vec3 *out,
+/* One element of an [x, y, z] list within [lo, hi]. */
+static gboolean get_elem(const CfgNode *e, double lo, double hi, double *v,
                          GError **err)
+{
+    const char *s = cfg_scalar(e);
+    char *end = NULL;
+    *v = s ? g_ascii_strtod(s, &end) : 0;
+    if (s && *s && !*end && isfinite(*v) && *v >= lo && *v <= hi)
+        return TRUE;
+    char *f = g_strdup_printf("'%s'", s ? s : "a non-scalar");
+    char *x = g_strdup_printf("a number in [%g, %g]", lo, hi);
+    cfg_error(err, e, f, x);
+    g_free(f);
+    g_free(x);
+    return FALSE;
+}
+
+/* map[key] as [x, y, z], each in [lo, hi]; absent leaves *out. */
+static gboolean get_triple(const CfgNode *map, const char *key, double lo,
+                           double hi, Vec3 *out, GError **err)
 {
     const CfgNode *n = cfg_get(map, key);
     if (!n)
@@ -32,27 +51,25 @@ static gboolean get_vec3(const CfgNode *map, const char *key, Vec3 *out,
         return FALSE;
     }
     double v[3];
-    for (guint i = 0; i < 3; i++) {
-        const CfgNode *e = cfg_seq_at(n, i);
-        const char *s = cfg_scalar(e);
-        char *end = NULL;
-        v[i] = s ? g_ascii_strtod(s, &end) : 0;
-        if (!s || !*s || *end || !isfinite(v[i])) {
-            char *f = g_strdup_printf("'%s'", s ? s : "a non-scalar");
-            cfg_error(err, e, f, "a finite number");
-            g_free(f);
+    for (guint i = 0; i < 3; i++)
+        if (!get_elem(cfg_seq_at(n, i), lo, hi, &v[i], err))
             return FALSE;
-        }
-    }
     *out = vec3(v[0], v[1], v[2]);
     return TRUE;
+}
+
+/* A position or direction: each coordinate within +-SCENE_COORD_MAX. */
+static gboolean get_vec3(const CfgNode *map, const char *key, Vec3 *out,
+                         GError **err)
+{
+    return get_triple(map, key, -SCENE_COORD_MAX, SCENE_COORD_MAX, out, err);
 }
 
 static gboolean get_color(const CfgNode *map, const char *key, SceneColor *out,
                           GError **err)
 {
     Vec3 v = {out->r, out->g, out->b};
-    if (!get_vec3(map, key, &v, err))
+    if (!get_triple(map, key, SCENE_COLOR_MIN, SCENE_COLOR_MAX, &v, err))
         return FALSE;
     *out = scene_color((float)v.x, (float)v.y, (float)v.z);
     return TRUE;
@@ -325,6 +342,14 @@ Scene *scene_from_file(const char *path, GError **err)
                     " (or a .yaml scene file)",
                     path);
     g_free(lower);
+    if (m && m->start->len < 2) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s:0:0: found a model without faces, expected at least"
+                    " one polygon (an OBJ 'f' line or a PLY face)",
+                    path);
+        scene_mesh_free(m);
+        m = NULL;
+    }
     if (!m)
         return NULL;
     Scene *s = scene_new(path);
@@ -344,7 +369,15 @@ static Scene *load_file(const CfgNode *sec, GError **err)
     char *path = g_path_is_absolute(file) || !strcmp(dir, ".")
                      ? g_strdup(file)
                      : g_build_filename(dir, file, NULL);
-    Scene *s = scene_from_file(path, err);
+    GError *e = NULL;
+    Scene *s = scene_from_file(path, &e);
+    if (e && e->domain == SIM_ERROR && e->code == SIM_ERROR_IO) {
+        const CfgNode *at = cfg_get(sec, "file");
+        g_prefix_error(&e, "%s:%d:%d: file: ", cfg_file(at), cfg_line(at),
+                       cfg_col(at));
+    }
+    if (e)
+        g_propagate_error(err, e);
     g_free(path);
     g_free(dir);
     return s;

@@ -288,7 +288,7 @@ static const Bad bad[] = {
     {"scene: {generator: teapots, color: [1, 1]}\n",
      "t.yaml:1:36: found not a list of 3, expected [x, y, z]"},
     {"scene: {generator: teapots, color: [1, x, 1]}\n",
-     "t.yaml:1:40: found 'x', expected a finite number"},
+     "t.yaml:1:40: found 'x', expected a number in [0, 1]"},
     {"scene: {generator: vehicle, structures: 466, triangles: 100}\n",
      "t.yaml:1:57: found 466 structures and 100 triangles"},
     {"scene: {generator: isosurface, field: sphere}\n",

@@ -288,8 +288,15 @@ static gboolean read_base(SweepSpec *s, const CfgNode *root, const char *text,
                      : g_build_filename(dir, cfg_scalar(b), NULL);
     g_free(dir);
     s->base = cfg_load_file(path, err);
+    if (s->base && cfg_kind(s->base) != CFG_MAP) {
+        char *found = cfg_describe(s->base);
+        cfg_error(err, s->base, found, "a run config (a map)");
+        g_free(found);
+        cfg_free(s->base);
+        s->base = NULL;
+    }
     if (s->base)
-        g_file_get_contents(path, &s->base_text, NULL, NULL);
+        sim_file_read(path, &s->base_text, NULL, NULL);
     else /* say which sweep file named it */
         g_prefix_error(err, "%s:%d:%d: base: ", cfg_file(b), cfg_line(b),
                        cfg_col(b));

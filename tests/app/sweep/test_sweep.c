@@ -119,6 +119,7 @@ static void test_bad_data_files(void **state)
         {"bad-step.yaml", ":3:30: found a step that never reaches 'to'"},
         {"plot-key.yaml", ":3:18: found unknown key 'logz'"},
         {"missing-base.yaml", "no-such-base.yaml"},
+        {"list-base.yaml", "list-base.txt:1:1: found a sequence, expected a run"},
     };
     for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
         char *path =
