@@ -20,7 +20,8 @@ import sys
 
 import yaml
 
-NAMES = ["op", "step", "scan_slice", "send_setup", "send_slice", "send_vp"]
+NAMES = ["op", "step", "scan_slice", "send_setup", "send_slice", "send_vp",
+         "news_slice"]
 
 
 def published(path):

@@ -8,7 +8,9 @@
  */
 #include "sim/reproduce/ortega93.h"
 #include "sim/scene/scene_cfg.h"
-#include "sim/workload/dpscan/dp_exec.h"
+#include "sim/workload/dpscan/dp_color.h"
+#include "sim/workload/dpscan/dp_render.h"
+#include "sim/raster/scan.h"
 #include "sim/workload/dpscan/dp_model.h"
 #include <stdio.h>
 
@@ -46,46 +48,8 @@ static void partition_name(uint64_t p, char *buf, size_t n)
         g_snprintf(buf, n, "%" G_GUINT64_FORMAT, p);
 }
 
-/* One frame on a fresh engine and machine at the pass's fidelity. */
-static gboolean run_cell(OrRun *r, const char *model, const WlDpGeom *g,
-                         const WlDpMachine *m, WlDpFrame *f, GError **err)
-{
-    WlDpAlgo a = wl_dp_algo_defaults();
-    SimEngine *eng = sim_engine_new(1);
-    const char *fid =
-        r->ctx && r->ctx->fidelity ? r->ctx->fidelity : "analytic";
-    MachMachine *mach = wl_dp_exec_machine(eng, model, m, fid, err);
-    gboolean ok = mach && wl_dp_exec_frame(mach, m, g, &a, f, err);
-    mach_free(mach);
-    sim_engine_free(eng);
-    return ok;
-}
-
-static gboolean cell(OrRun *r, const char *table, const char *model,
-                     const WlDpGeom *g, WlDpMachine *m, uint64_t procs,
-                     GError **err)
-{
-    WlDpFrame f;
-    m->procs = procs;
-    if (!run_cell(r, model, g, m, &f, err))
-        return FALSE;
-    char part[32], row[64];
-    partition_name(procs, part, sizeof part);
-    g_snprintf(row, sizeof row, "%s/%dx%d", part, g->width, g->height);
-    double t = sim_time_to_s(f.total);
-    g_ptr_array_add(r->rows, rp_row_new(table, row, "time_s", t, NULL));
-    g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
-                                        (double)g->n_polys / t, NULL));
-    if (r->coef && m->arch == WL_DP_SIMD)
-        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table, row,
-                f.coef.op_slices, f.coef.steps, f.coef.scan_slices,
-                f.coef.sends, f.coef.slices, f.coef.vp_slices);
-    return TRUE;
-}
-
-/* Costs geometry g on every partition of `table`. */
-static gboolean table_cells(OrRun *r, const char *table, const CfgNode *t,
-                            const WlDpGeom *g, GError **err)
+/* A table's machine at each of its partitions, appended to ms. */
+static gboolean table_machines(const CfgNode *t, GArray *ms, GError **err)
 {
     const char *mname = NULL;
     WlDpMachine m = {0};
@@ -102,16 +66,72 @@ static gboolean table_cells(OrRun *r, const char *table, const CfgNode *t,
         uint64_t p = 0;
         GError *e = NULL;
         const char *s = cfg_scalar(cfg_seq_at(parts, i));
-        if (!s || !cfg_parse_count(s, "partition", &p, &e) || p == 0) {
+        if (!s || !cfg_parse_count(s, "partition", &p, &e) || p == 0 ||
+            p > G_MAXUINT32) {
             g_clear_error(&e);
             cfg_error(err, cfg_seq_at(parts, i), s ? s : "a non-scalar",
                       "a processor count > 0");
             return FALSE;
         }
-        if (!cell(r, table, mname, g, &m, p, err))
-            return FALSE;
+        m.procs = p;
+        g_array_append_val(ms, m);
     }
     return TRUE;
+}
+
+static void cell_rows(OrRun *r, const char *table, const WlDpTarget *t,
+                      int w, int h, uint64_t n_polys)
+{
+    char part[32], row[64];
+    partition_name(t->m.procs, part, sizeof part);
+    g_snprintf(row, sizeof row, "%s/%dx%d", part, w, h);
+    double s = sim_time_to_s(t->total);
+    g_ptr_array_add(r->rows, rp_row_new(table, row, "time_s", s, NULL));
+    g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
+                                        (double)n_polys / s, NULL));
+    const WlDpCoef *k = &t->coef;
+    if (r->coef && t->m.arch == WL_DP_SIMD)
+        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table,
+                row, k->op_slices, k->steps, k->scan_slices, k->sends,
+                k->slices, k->vp_slices, k->news_slices);
+}
+
+/* Renders scene s once at w x h and costs it on every partition of
+ * every table that uses it. */
+static gboolean render_tables(OrRun *r, const char *key, const Scene *s,
+                              int w, int h, GError **err)
+{
+    const CfgNode *tabs = cfg_get(r->root, "tables");
+    GArray *ms = g_array_new(FALSE, FALSE, sizeof(WlDpMachine));
+    GPtrArray *names = g_ptr_array_new();
+    gboolean ok = TRUE;
+    for (guint t = 0; ok && t < cfg_map_len(tabs); t++) {
+        const CfgNode *tab = cfg_map_value(tabs, t);
+        const char *sk = NULL;
+        guint before = ms->len;
+        ok = cfg_get_str(tab, "scene", TRUE, &sk, err) &&
+             (g_strcmp0(sk, key) != 0 || table_machines(tab, ms, err));
+        for (guint i = before; ok && i < ms->len; i++)
+            g_ptr_array_add(names, (gpointer)cfg_map_key(tabs, t));
+    }
+    if (ok && ms->len > 0) {
+        float pal[WL_DP_COLORS][3];
+        wl_dp_palette_default(pal);
+        WlDpRenderOpts o = {.mode = WL_DP_MODE_GOURAUD,
+                            .buffer_factor = 1.0,
+                            .ops = wl_dp_ops_defaults()};
+        WlDpPolys *p = wl_dp_polys_new(s, 0.0, w, h, o.mode, pal);
+        WlDpVm *vm = wl_dp_vm_new((WlDpMachine *)ms->data, ms->len,
+                                  (uint32_t)w, (uint32_t)h);
+        wl_dp_image_free(wl_dp_render(vm, p, w, h, &o));
+        for (guint i = 0; i < ms->len; i++)
+            cell_rows(r, names->pdata[i], wl_dp_vm_target(vm, i), w, h, p->n);
+        wl_dp_vm_free(vm);
+        wl_dp_polys_free(p);
+    }
+    g_ptr_array_free(names, TRUE);
+    g_array_free(ms, TRUE);
+    return ok;
 }
 
 static gboolean read_res(const CfgNode *res, int *w, int *h, GError **err)
@@ -139,22 +159,13 @@ static gboolean scene_cells(OrRun *r, const char *key, GError **err)
     Scene *s = load_scene(r, key, err);
     if (!s)
         return FALSE;
-    const CfgNode *tabs = cfg_get(r->root, "tables");
     const CfgNode *res = cfg_get(r->root, "resolutions");
     gboolean ok = TRUE;
     for (guint i = 0; ok && i < cfg_seq_len(res); i++) {
         int w, h;
         if (!(ok = read_res(cfg_seq_at(res, i), &w, &h, err)))
             break;
-        WlDpGeom *g = wl_dp_geom_new(s, 0.0, w, h, TRUE);
-        for (guint t = 0; ok && t < cfg_map_len(tabs); t++) {
-            const CfgNode *tab = cfg_map_value(tabs, t);
-            const char *sk = NULL;
-            ok = cfg_get_str(tab, "scene", TRUE, &sk, err);
-            if (ok && g_strcmp0(sk, key) == 0)
-                ok = table_cells(r, cfg_map_key(tabs, t), tab, g, err);
-        }
-        wl_dp_geom_free(g);
+        ok = render_tables(r, key, s, w, h, err);
     }
     scene_free(s);
     return ok;

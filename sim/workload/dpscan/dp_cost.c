@@ -150,46 +150,12 @@ void wl_dp_layout_free(WlDpLayout *l)
     g_free(l);
 }
 
-/* Most pixels of this send landing on one processor's block. */
-static uint64_t zbuf_load(WlDpLayout *l, const WlDpSched *s, uint64_t active)
+SimTime wl_dp_news_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k)
 {
-    uint32_t j, worst = 0, *count = l->count;
-    const WlDpSeg *seg = wl_dp_sched_live(s, &j);
-    for (uint64_t k = 0; k < active; k++) {
-        uint32_t x = seg[k].x0 + j, y = seg[k].y;
-        if (x >= l->width || y >= l->height)
-            continue; /* clipped against the viewport (seed 004 §4) */
-        uint32_t c = ++count[l->row[y] + l->col[x]];
-        worst = MAX(worst, c);
+    uint64_t v = wl_dp_vp_ratio(m, n);
+    if (k) {
+        k->steps += 1.0;
+        k->news_slices += (double)v;
     }
-    for (uint64_t k = 0; k < active; k++) {
-        uint32_t x = seg[k].x0 + j, y = seg[k].y;
-        if (x < l->width && y < l->height)
-            count[l->row[y] + l->col[x]] = 0;
-    }
-    return worst;
-}
-
-uint64_t wl_dp_send_load(const WlDpMachine *m, WlDpLayout *l,
-                         const WlDpSched *s, const WlDpStep *st)
-{
-    g_assert(st->kind == WL_DP_SEND);
-    uint64_t src = st->active / m->procs + (st->active % m->procs != 0);
-    if (!st->zbuf || st->active == 0)
-        return src;
-    return MAX(src, zbuf_load(l, s, st->active));
-}
-
-SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l, const WlDpSched *s,
-                        const WlDpStep *st, WlDpCoef *k)
-{
-    switch (st->kind) {
-    case WL_DP_COMPUTE:
-        return wl_dp_step_cost(m, st->n, st->ops, k);
-    case WL_DP_SCAN:
-        return wl_dp_scan_cost(m, st->n, k);
-    default:
-        return wl_dp_send_cost(m, st->words, st->n, st->active,
-                               wl_dp_send_load(m, l, s, st), k);
-    }
+    return add_time(m->step, mul_time(m->news_slice, v));
 }

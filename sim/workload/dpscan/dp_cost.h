@@ -43,7 +43,7 @@
 
 #include "sim/core/time.h"
 #include "sim/net/topology.h"
-#include "sim/workload/dpscan/dp_sched.h"
+#include <glib.h>
 
 typedef enum { WL_DP_SIMD, WL_DP_SPMD } WlDpArch;
 
@@ -58,6 +58,7 @@ typedef struct {
     SimTime send_setup; /* per array sent */
     SimTime send_slice; /* per message per processor (load) */
     SimTime send_vp;    /* per VP slice that holds a message */
+    SimTime news_slice; /* NEWS grid move of one word, per VP slice */
     /* SPMD data network */
     SimTime net_latency;  /* per array sent (send phase) */
     SimTime msg_overhead; /* software cost of one message, both ends */
@@ -69,7 +70,8 @@ typedef struct {
 
 /* Linear coefficients of a SIMD frame time:
  * time = op * op_slices + step * steps + scan_slice * scan_slices
- *      + send_setup * sends + send_slice * slices + send_vp * vp_slices.
+ *      + send_setup * sends + send_slice * slices + send_vp * vp_slices
+ *      + news_slice * news_slices.
  * Kept so that calibration is a linear least-squares fit and tests can
  * check sums. */
 typedef struct {
@@ -79,6 +81,7 @@ typedef struct {
     double sends;       /* arrays sent */
     double slices;      /* sum over arrays sent of the load */
     double vp_slices;   /* sum over arrays sent of the VP slices used */
+    double news_slices; /* sum over NEWS moves of v */
 } WlDpCoef;
 
 /* Where a screen pixel lives: the z-buffer (width x height) in blocks
@@ -121,15 +124,9 @@ static inline uint64_t wl_dp_layout_owner(const WlDpLayout *l, uint32_t x,
     return (uint64_t)l->row[y] + l->col[x];
 }
 
-/* Load of one step's send: messages injected by the busiest processor
- * (sources spread evenly: ceil(active / procs)) or received by the
- * busiest one (z-buffer sends: counted from the real pixels of the
- * current step of s). */
-uint64_t wl_dp_send_load(const WlDpMachine *m, WlDpLayout *l,
-                         const WlDpSched *s, const WlDpStep *st);
-
-/* Closed-form cost of one step (any kind) on m. */
-SimTime wl_dp_step_time(const WlDpMachine *m, WlDpLayout *l, const WlDpSched *s,
-                        const WlDpStep *st, WlDpCoef *k);
+/* A NEWS move of one word over an array of n elements: step + v *
+ * news_slice (SIMD); on the SPMD machine a grid shift is boundary
+ * messages, charged the same way with news_slice per VP slice. */
+SimTime wl_dp_news_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k);
 
 #endif

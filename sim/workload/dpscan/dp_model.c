@@ -155,7 +155,8 @@ gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
         !get_time(sec, "op", TRUE, &m->op, err) ||
         !get_time(sec, "step", TRUE, &m->step, err) ||
         !get_time(sec, "scan_slice", TRUE, &m->scan_slice, err) ||
-        !get_flag(sec, "vp_pow2", &m->vp_pow2, err))
+        !get_flag(sec, "vp_pow2", &m->vp_pow2, err) ||
+        !get_time(sec, "news_slice", FALSE, &m->news_slice, err))
         return FALSE;
     m->arch = kind == 0 ? WL_DP_SIMD : WL_DP_SPMD;
     if (m->arch == WL_DP_SIMD)

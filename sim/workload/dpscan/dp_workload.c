@@ -1,20 +1,39 @@
-/* dp_workload.c — workload `dpscan` (dp_workload.h): parses its section, measures
- * each frame's geometry (dp_geom.h), schedules it (dp_frame.h) and fills
- * the SimResult.  The SIMD array is one processor in the result (design:
- * steps over arrays); its per-phase busy time is the frame's phases.
- * O(spans + segments) per frame.
+/* dp_workload.c — workload `dpscan` (dp_workload.h): parses its section, renders
+ * each frame with the data-parallel renderer on the array layer
+ * (dp_render.h), writes the image under --out, and plays the frame's
+ * counted phase times on the machine (one piece of work per phase on the
+ * SIMD array, or on every SPMD node) so the result has its busy times.
+ * O(render) per frame.
  */
 #include "sim/workload/dpscan/dp_workload.h"
 #include "sim/scene/scene_cfg.h"
-#include "sim/workload/dpscan/dp_exec.h"
+#include "sim/machine/machine.h"
+#include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_model.h"
+#include "sim/workload/dpscan/dp_render.h"
+#include "sim/raster/scan.h"
 
 typedef struct {
     const char *model;
     uint64_t procs;
     int64_t width, height;
-    double buffer_factor;
+    WlDpRenderOpts ro;
+    float pal[WL_DP_COLORS][3];
 } DpParams;
+
+static gboolean parse_mode(const CfgNode *sec, DpParams *p, GError **err)
+{
+    static const char *names[WL_DP_N_MODES + 1];
+    for (int m = 0; m < WL_DP_N_MODES; m++)
+        names[m] = wl_dp_mode_name((WlDpMode)m);
+    int mode = WL_DP_MODE_GOURAUD;
+    if (!cfg_get_enum(sec, "mode", FALSE, names, &mode, err))
+        return FALSE;
+    p->ro.mode = (WlDpMode)mode;
+    const CfgNode *pal = cfg_get(sec, "palette");
+    wl_dp_palette_default(p->pal);
+    return !pal || wl_dp_palette_from_cfg(pal, p->pal, err);
+}
 
 static void *dp_parse(const CfgNode *sec, GError **err)
 {
@@ -23,14 +42,16 @@ static void *dp_parse(const CfgNode *sec, GError **err)
     p->procs = 16384;
     p->width = 1280;
     p->height = 1024;
-    p->buffer_factor = 1.0;
+    p->ro.buffer_factor = 1.0;
+    p->ro.ops = wl_dp_ops_defaults();
     if (!cfg_get_str(sec, "model", FALSE, &p->model, err) ||
         !cfg_get_count(sec, "processors", FALSE, 1, G_MAXUINT32, &p->procs,
                        err) ||
         !cfg_get_int(sec, "width", FALSE, 1, RAST_MAX_SIDE, &p->width, err) ||
         !cfg_get_int(sec, "height", FALSE, 1, RAST_MAX_SIDE, &p->height, err) ||
         !cfg_get_double(sec, "buffer_factor", FALSE, 1e-6, 1e6,
-                        &p->buffer_factor, err)) {
+                        &p->ro.buffer_factor, err) ||
+        !parse_mode(sec, p, err)) {
         g_free(p);
         return NULL;
     }
@@ -42,46 +63,121 @@ static void dp_free_params(void *p)
     g_free(p);
 }
 
-static void add_metrics(SimResult *out, const WlDpFrame *f, const WlDpGeom *g)
+static void add_metrics(SimResult *out, const WlDpTarget *t,
+                        const WlDpImage *img, const WlDpVmCounts *c,
+                        uint64_t n_polys)
 {
     for (int ph = 0; ph < WL_DP_N_PHASES; ph++) {
         char *name = g_strdup_printf("%s_s", wl_dp_phase_name(ph));
-        sim_result_set_metric(out, name, sim_time_to_s(f->phase[ph]), "s");
+        sim_result_set_metric(out, name, sim_time_to_s(t->phase[ph]), "s");
         g_free(name);
     }
-    sim_result_set_metric(out, "polygons_per_s",
-                          (double)g->n_polys / sim_time_to_s(f->total), "1/s");
-    sim_result_set_metric(out, "steps", (double)f->steps, "");
-    sim_result_set_metric(out, "scan_iters", (double)f->counts.scan_iters, "");
-    sim_result_set_metric(out, "pixel_iters", (double)f->counts.pixel_iters,
-                          "");
-    sim_result_set_metric(out, "flushes", (double)f->counts.flushes, "");
-    sim_result_set_metric(out, "pixels", (double)g->pixels, "");
-    sim_result_set_metric(out, "collisions", (double)wl_dp_geom_collisions(g),
-                          "");
-    sim_result_set_metric(out, "messages", (double)f->counts.messages, "");
+    double s = sim_time_to_s(t->total);
+    sim_result_set_metric(out, "polygons_per_s", (double)n_polys / s, "1/s");
+    sim_result_set_metric(out, "steps", (double)c->steps, "");
+    sim_result_set_metric(out, "scan_iters", (double)img->scan_iters, "");
+    sim_result_set_metric(out, "pixel_iters", (double)img->pixel_iters, "");
+    sim_result_set_metric(out, "flushes", (double)img->flushes, "");
+    sim_result_set_metric(out, "segments", (double)img->segments, "");
+    sim_result_set_metric(out, "pixels", (double)img->pixels, "");
+    sim_result_set_metric(out, "collisions", (double)c->collisions, "");
+    sim_result_set_metric(out, "messages", (double)c->messages, "");
+    sim_result_set_metric(out, "max_load", (double)t->max_load, "");
 }
 
-static gboolean run_frames(const WlContext *ctx, DpParams *p,
-                           const WlDpMachine *m, MachMachine *mach,
-                           const Scene *s, SimResult *out, GError **err)
+/* A new machine for the dpscan model: the array (SIMD) or p nodes. */
+static MachMachine *dp_machine(SimEngine *eng, const char *model,
+                               const WlDpMachine *m, const char *fidelity,
+                               GError **err)
 {
-    WlDpAlgo a = wl_dp_algo_defaults();
-    a.buffer_factor = p->buffer_factor;
-    for (int fr = 0; fr < ctx->frames; fr++) {
-        WlDpGeom *g =
-            wl_dp_geom_new(s, fr, (int)p->width, (int)p->height, TRUE);
-        WlDpFrame f;
-        gboolean ok = wl_dp_exec_frame(mach, m, g, &a, &f, err);
-        if (ok) {
-            sim_result_add_frame(out, f.total);
-            add_metrics(out, &f, g);
-        }
-        wl_dp_geom_free(g);
-        if (!ok)
-            return FALSE;
+    char *text;
+    if (m->arch == WL_DP_SIMD)
+        text = g_strdup_printf("model: %s\nnodes: {array: {lanes: %" G_GUINT64_FORMAT
+                               "}}\nnetwork: {router_nodes: %" G_GUINT64_FORMAT
+                               "}\n",
+                               model, m->procs, MAX(m->procs / 16, 1));
+    else
+        text = g_strdup_printf("model: %s\nnodes: {node: {count: %" G_GUINT64_FORMAT
+                               "}}\n",
+                               model, m->procs);
+    CfgNode *sec = cfg_load_string(text, "dpscan machine", err);
+    g_free(text);
+    MachMachine *mach = sec ? mach_new_from_cfg(eng, sec, fidelity, err) : NULL;
+    cfg_free(sec);
+    return mach;
+}
+
+static void frame_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng, (void)ctx, (void)arg;
+}
+
+/* Busy time per phase on the array, or on every node; the last piece
+ * of work ends the frame (an event, so the clock reaches its end). */
+static gboolean play(SimEngine *eng, MachMachine *mach, const WlDpTarget *t,
+                     GError **err)
+{
+    const char *kind = t->m.arch == WL_DP_SIMD ? "array" : "node";
+    const MachKindInfo *k = mach_kind(mach, kind);
+    guint n = t->m.arch == WL_DP_SIMD ? 1 : (guint)t->m.procs;
+    if (!k || k->count < n) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "machine %s: found %u '%s' processors, expected %u for "
+                    "the dpscan model",
+                    mach_name(mach), k ? k->count : 0, kind, n);
+        return FALSE;
     }
-    return TRUE;
+    for (int ph = 0; ph < WL_DP_N_PHASES; ph++) {
+        unsigned id = sim_engine_phase(eng, wl_dp_phase_name(ph));
+        for (guint i = 0; i < n; i++)
+            mach_proc_compute(mach_proc_at(mach, k->first + i), t->phase[ph],
+                              id, ph == WL_DP_N_PHASES - 1 ? frame_done : NULL,
+                              NULL, NULL);
+    }
+    return sim_engine_run(eng, SIM_TIME_MAX, err);
+}
+
+static gboolean write_image(const WlContext *ctx, const DpParams *p,
+                            const WlDpImage *img, int frame, GError **err)
+{
+    if (!ctx->out_dir)
+        return TRUE;
+    WlDpColorTable t;
+    wl_dp_color_table(p->pal, &t);
+    RastImage *rgb = wl_dp_color_image(img->index, img->width, img->height, &t);
+    char *name = frame == 0 ? g_strdup("dpscan.png")
+                            : g_strdup_printf("dpscan_%04d.png", frame);
+    char *path = g_build_filename(ctx->out_dir, name, NULL);
+    gboolean ok = g_mkdir_with_parents(ctx->out_dir, 0755) == 0 &&
+                  rast_image_write_png(rgb, path, err);
+    if (!ok && err && !*err)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create",
+                    ctx->out_dir);
+    g_free(path);
+    g_free(name);
+    rast_image_free(rgb);
+    return ok;
+}
+
+static gboolean one_frame(const WlContext *ctx, const DpParams *p,
+                          const WlDpMachine *m, MachMachine *mach,
+                          const Scene *s, int fr, SimResult *out, GError **err)
+{
+    int w = (int)p->width, h = (int)p->height;
+    WlDpPolys *poly = wl_dp_polys_new(s, fr, w, h, p->ro.mode, p->pal);
+    WlDpVm *vm = wl_dp_vm_new(m, 1, (uint32_t)w, (uint32_t)h);
+    WlDpImage *img = wl_dp_render(vm, poly, w, h, &p->ro);
+    const WlDpTarget *t = wl_dp_vm_target(vm, 0);
+    gboolean ok = play(ctx->eng, mach, t, err) &&
+                  write_image(ctx, p, img, fr, err);
+    if (ok) {
+        sim_result_add_frame(out, t->total);
+        add_metrics(out, t, img, wl_dp_vm_counts(vm), poly->n);
+    }
+    wl_dp_image_free(img);
+    wl_dp_vm_free(vm);
+    wl_dp_polys_free(poly);
+    return ok;
 }
 
 static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
@@ -95,16 +191,15 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     Scene *s = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
     if (!s)
         return FALSE;
-    MachMachine *mach =
-        wl_dp_exec_machine(ctx->eng, p->model, &m, ctx->fidelity, err);
-    gboolean ok = mach && run_frames(ctx, p, &m, mach, s, out, err);
+    MachMachine *mach = dp_machine(ctx->eng, p->model, &m, ctx->fidelity, err);
+    gboolean ok = mach != NULL;
+    for (int fr = 0; ok && fr < ctx->frames; fr++)
+        ok = one_frame(ctx, p, &m, mach, s, fr, out, err);
     if (ok) {
         mach_fill_result(mach, out);
         out->elapsed = sim_now(ctx->eng);
-        if (m.arch == WL_DP_SIMD) {
-            out->comm_bytes = 0;
-            out->comm_messages = 0;
-        }
+        out->comm_bytes = 0;
+        out->comm_messages = 0;
     }
     mach_free(mach);
     scene_free(s);

@@ -1,13 +1,16 @@
-/* test_dpscan.c — the data-parallel renderer of seed 004: cost model
- * with exact times, a hand-checked frame schedule, pixel counts against
- * the raster library, determinism and model-file errors. */
+/* test_dpscan.c — seed 004's data-parallel machine: cost model with
+ * exact times, the array layer (combiners, collisions, loads, NEWS,
+ * masked ops), model-file errors and a workload run. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include "sim/scene/isosurface.h"
-#include "sim/workload/dpscan/dp_exec.h"
+#include "sim/workload/dpscan/dp_array.h"
+#include "sim/raster/image.h"
+#include <glib/gstdio.h>
+#include <string.h>
 #include "sim/workload/dpscan/dp_model.h"
 #include "sim/workload/workload.h"
 
@@ -92,208 +95,90 @@ static void test_layout(void **state)
     wl_dp_layout_free(l);
 }
 
-/* Two visible polygons (rows of length 3, 1 and 2), one invisible;
- * polygon 0 at (0,0),(0,1), polygon 1 at (1,0). */
-static WlDpGeom *tiny_geom(void)
+/* The array layer: real data movement, collisions and charged costs. */
+static WlDpMachine unit_simd(uint64_t procs)
 {
-    WlDpGeom *g = g_new0(WlDpGeom, 1);
-    uint32_t start[] = {0, 2, 3}, len[] = {3, 1, 2}, x0[] = {0, 0, 1};
-    uint32_t y0[] = {0, 0};
-    g->seg_start = g_array_new(FALSE, FALSE, sizeof(uint32_t));
-    g->seg_len = g_array_new(FALSE, FALSE, sizeof(uint32_t));
-    g->seg_x0 = g_array_new(FALSE, FALSE, sizeof(uint32_t));
-    g->poly_y0 = g_array_new(FALSE, FALSE, sizeof(uint32_t));
-    g_array_append_vals(g->seg_start, start, 3);
-    g_array_append_vals(g->seg_len, len, 3);
-    g_array_append_vals(g->seg_x0, x0, 3);
-    g_array_append_vals(g->poly_y0, y0, 2);
-    g->width = 4, g->height = 2, g->n_polys = 3, g->n_visible = 2;
-    g->max_rows = 2, g->max_len = 3, g->pixels = 6, g->seg_pixels = 6;
-    return g;
+    return (WlDpMachine){.arch = WL_DP_SIMD,
+                         .procs = procs,
+                         .op = 10,
+                         .step = 100,
+                         .scan_slice = 20,
+                         .send_setup = 50,
+                         .send_slice = 7,
+                         .news_slice = 3};
 }
 
-static WlDpAlgo unit_algo(void)
-{
-    return (WlDpAlgo){.clear_ops = 1,
-                      .transform_ops = 1,
-                      .transform_steps = 1,
-                      .scan_ops = 1,
-                      .scan_steps = 1,
-                      .scan_scans = 1,
-                      .pixel_ops = 1,
-                      .pixel_steps = 1,
-                      .extract_ops = 1,
-                      .segment_words = 1,
-                      .pixel_words = 1,
-                      .buffer_factor = 1.0};
-}
-
-static void test_frame_schedule(void **state)
+static void test_array_send_combiners(void **state)
 {
     (void)state;
-    WlDpGeom *g = tiny_geom();
-    WlDpMachine m = {.arch = WL_DP_SIMD,
-                     .procs = 2,
-                     .op = 1,
-                     .step = 0,
-                     .scan_slice = 100,
-                     .send_setup = 0,
-                     .send_slice = 1};
-    WlDpAlgo a = unit_algo();
-    WlDpFrame f;
-    wl_dp_frame_run(g, &m, &a, &f);
-    /* Worked by hand (VP ratios: screen 4, polygons 2, buffer 2):
-     * clear 4 + extract 4; transform 2; scan lines: 2 x (compute 2 +
-     * enumerate 200); one flush: max 200 + 3 pixel iterations of 2;
-     * sends: segments 2 then 1 (load 1 each), pixels: iteration 0 puts
-     * (0,0) (1,0) (0,1) in the 2x1 grid of 2x2 blocks: all on processor
-     * 0, load 3; iteration 1: (1,0) (2,0): load 1; iteration 2: load 1. */
-    assert_int_equal(f.phase[WL_DP_PH_DISPLAY], 8);
-    assert_int_equal(f.phase[WL_DP_PH_TRANSFORM], 2);
-    assert_int_equal(f.phase[WL_DP_PH_SCAN], 404);
-    assert_int_equal(f.phase[WL_DP_PH_PIXEL], 206);
-    assert_int_equal(f.phase[WL_DP_PH_ROUTER], 2 + 3 + 1 + 1);
-    assert_int_equal(f.total, 8 + 2 + 404 + 206 + 7);
-    assert_int_equal(f.counts.scan_iters, 2);
-    assert_int_equal(f.counts.flushes, 1);
-    assert_int_equal(f.counts.pixel_iters, 3);
-    assert_int_equal(f.counts.segments, 3);
-    assert_int_equal(f.counts.messages, 3 + 6);
-    /* The linear coefficients reproduce the total. */
-    double t = f.coef.op_slices * m.op + f.coef.steps * m.step +
-               f.coef.scan_slices * m.scan_slice + f.coef.sends * m.send_setup +
-               f.coef.slices * m.send_slice;
-    assert_true(t == (double)f.total);
-    /* A buffer of one polygon's worth flushes before scan line 1. */
-    a.buffer_factor = 1.0 / 3.0;
-    wl_dp_frame_run(g, &m, &a, &f);
-    assert_int_equal(f.counts.flushes, 2);
-    assert_int_equal(f.counts.pixel_iters, 3 + 1);
-    wl_dp_geom_free(g);
+    WlDpMachine ms[2] = {unit_simd(2), unit_simd(4)};
+    WlDpVm *vm = wl_dp_vm_new(ms, 2, 4, 2);
+    /* 4 messages from a 4-element array into a 4-element array: 3 land
+     * on element 1 (2 collisions). */
+    uint64_t dst[] = {1, 1, 3, 1}, val[] = {5, 9, 2, 7}, out[4] = {0};
+    WlDpSend s = {.phase = WL_DP_PH_ROUTER, .n_src = 4, .n_dst = 4,
+                  .lay = WL_DP_LAYOUT_LINEAR, .dst = dst, .val = val,
+                  .count = 4, .dest = out, .words = 1,
+                  .comb = WL_DP_COMBINE_MAX};
+    assert_int_equal(wl_dp_send(vm, &s), 2);
+    assert_int_equal(out[1], 9);
+    assert_int_equal(out[3], 2);
+    memset(out, 0, sizeof out);
+    s.comb = WL_DP_COMBINE_ADD;
+    wl_dp_send(vm, &s);
+    assert_int_equal(out[1], 21);
+    s.comb = WL_DP_COMBINE_OVERWRITE;
+    wl_dp_send(vm, &s);
+    assert_int_equal(out[1], 7);
+    const WlDpVmCounts *c = wl_dp_vm_counts(vm);
+    assert_int_equal(c->collisions, 6);
+    assert_int_equal(c->max_depth, 3);
+    /* 2 processors: VP ratio 2; processor 0 receives 3 (elements 0, 1):
+     * 100 + 50 + 3 * 7 per send.  4 processors: element 1 alone is
+     * processor 1, also 3. */
+    assert_int_equal(wl_dp_vm_target(vm, 0)->total, 3 * 171);
+    assert_int_equal(wl_dp_vm_target(vm, 1)->max_load, 3);
+    /* Spread destinations: load falls to what one processor injects. */
+    uint64_t spread[] = {0, 1, 2, 3};
+    s.dst = spread;
+    SimTime before = wl_dp_vm_target(vm, 1)->total;
+    wl_dp_send(vm, &s);
+    assert_int_equal(wl_dp_vm_target(vm, 1)->total - before, 100 + 50 + 7);
+    wl_dp_vm_free(vm);
 }
 
-static Scene *small_iso(void)
-{
-    SceneIsoParams p = scene_iso_defaults();
-    p.grid = 12;
-    return scene_iso_new(&p);
-}
-
-static void test_pixels_match_raster(void **state)
+static void test_array_masked_ops_cost_all(void **state)
 {
     (void)state;
-    Scene *s = small_iso();
-    WlDpGeom *g = wl_dp_geom_new(s, 0.0, 160, 120, FALSE);
-    assert_true(g->pixels > 0);
-    assert_int_equal(g->pixels, g->counters.pixels);
-    uint64_t sum = 0;
-    for (guint i = 0; i < g->seg_len->len; i++)
-        sum += g_array_index(g->seg_len, uint32_t, i);
-    /* Convex polygons: one gap-free segment per row. */
-    assert_int_equal(sum, g->pixels);
-    assert_int_equal(g->seg_pixels, g->pixels);
-    /* Inclusive end points: one more pixel per segment, one more row
-     * per polygon. */
-    WlDpGeom *gi = wl_dp_geom_new(s, 0.0, 160, 120, TRUE);
-    assert_int_equal(gi->n_visible, g->n_visible);
-    assert_int_equal(gi->seg_len->len, g->seg_len->len + g->n_visible);
-    assert_true(gi->seg_pixels > g->pixels + g->seg_len->len);
-    assert_int_equal(gi->pixels, g->pixels);
-    wl_dp_geom_free(gi);
-    assert_true(g->covered <= g->pixels);
-    assert_true(g->covered <= 160 * 120);
-    assert_true(g->n_visible <= g->n_polys);
-    assert_int_equal(g->n_polys, scene_n_polys(s));
-    wl_dp_geom_free(g);
-    scene_free(s);
+    WlDpMachine m = unit_simd(4);
+    WlDpVm *vm = wl_dp_vm_new(&m, 1, 4, 2);
+    /* 10 elements, 1 active: VP ratio 3, still 100 + 3 * 2 * 10. */
+    wl_dp_ew(vm, WL_DP_PH_SCAN, 10, 1, 2);
+    assert_int_equal(wl_dp_vm_target(vm, 0)->total, 160);
+    uint32_t in[] = {2, 0, 3}, out[3];
+    assert_int_equal(wl_dp_scan_add(vm, WL_DP_PH_SCAN, 10, in, out, 3), 5);
+    assert_int_equal(out[1], 2);
+    assert_int_equal(out[2], 2);
+    assert_int_equal(wl_dp_reduce_max(vm, WL_DP_PH_SCAN, 10, in, 3), 3);
+    assert_int_equal(wl_dp_vm_target(vm, 0)->total, 160 + 2 * 160);
+    wl_dp_vm_free(vm);
 }
 
-static void test_deterministic(void **state)
+static void test_array_news(void **state)
 {
     (void)state;
-    WlDpMachine m = {.arch = WL_DP_SIMD,
-                     .procs = 64,
-                     .op = 7,
-                     .step = 3,
-                     .scan_slice = 5,
-                     .send_setup = 11,
-                     .send_slice = 13};
-    WlDpAlgo a = wl_dp_algo_defaults();
-    WlDpFrame f[2];
-    for (int i = 0; i < 2; i++) {
-        Scene *s = small_iso();
-        WlDpGeom *g = wl_dp_geom_new(s, 0.0, 128, 128, TRUE);
-        wl_dp_frame_run(g, &m, &a, &f[i]);
-        wl_dp_geom_free(g);
-        scene_free(s);
-    }
-    assert_true(f[0].total > 0);
-    assert_memory_equal(&f[0], &f[1], sizeof(WlDpFrame));
-}
-
-/* The event-driven frame on the machine layer equals the closed form
- * on the SIMD machine, step by step (one event per step). */
-static void test_exec_simd_equals_closed_form(void **state)
-{
-    (void)state;
-    Scene *s = small_iso();
-    WlDpGeom *g = wl_dp_geom_new(s, 0.0, 96, 64, TRUE);
-    WlDpMachine m = {0};
-    GError *err = NULL;
-    assert_true(wl_dp_machine_load("models", "cm200", &m, &err));
-    m.procs = 1024;
-    WlDpAlgo a = wl_dp_algo_defaults();
-    WlDpFrame cf, ev;
-    wl_dp_frame_run(g, &m, &a, &cf);
-    SimEngine *eng = sim_engine_new(1);
-    MachMachine *mach = wl_dp_exec_machine(eng, "cm200", &m, "analytic", &err);
-    assert_non_null(mach);
-    assert_true(wl_dp_exec_frame(mach, &m, g, &a, &ev, &err));
-    assert_true(cf.total > 0);
-    assert_int_equal(ev.total, cf.total);
-    for (int ph = 0; ph < WL_DP_N_PHASES; ph++)
-        assert_int_equal(ev.phase[ph], cf.phase[ph]);
-    assert_int_equal(ev.steps, cf.steps);
-    assert_int_equal(sim_engine_events(eng), cf.steps + 1);
-    assert_memory_equal(&ev.counts, &cf.counts, sizeof ev.counts);
-    mach_free(mach);
-    sim_engine_free(eng);
-    wl_dp_geom_free(g);
-    scene_free(s);
-}
-
-/* CM-5: the tiny frame on 2 nodes, every send one message per node pair:
- * no contention, so flow and packet give the analytic time; and the run
- * is deterministic.  Times worked by hand for the first send. */
-static void test_exec_spmd_fidelities(void **state)
-{
-    (void)state;
-    WlDpGeom *g = tiny_geom();
-    WlDpMachine m = {0};
-    GError *err = NULL;
-    assert_true(wl_dp_machine_load("models", "cm5", &m, &err));
-    m.procs = 2;
-    WlDpAlgo a = unit_algo();
-    const char *fid[] = {"analytic", "flow", "packet", "analytic"};
-    SimTime t[4];
-    for (int i = 0; i < 4; i++) {
-        SimEngine *eng = sim_engine_new(1);
-        MachMachine *mach = wl_dp_exec_machine(eng, "cm5", &m, fid[i], &err);
-        assert_non_null(mach);
-        WlDpFrame f;
-        assert_true(wl_dp_exec_frame(mach, &m, g, &a, &f, &err));
-        t[i] = f.total;
-        assert_int_equal(f.counts.pixel_iters, 3);
-        assert_true(f.phase[WL_DP_PH_ROUTER] > 0);
-        mach_free(mach);
-        sim_engine_free(eng);
-    }
-    assert_true(t[0] > 0);
-    assert_int_equal(t[1], t[0]);
-    assert_int_equal(t[3], t[0]);
-    /* Packets of 20 B: a 1-word message is one packet, same time. */
-    assert_int_equal(t[2], t[0]);
-    wl_dp_geom_free(g);
+    WlDpMachine m = unit_simd(2);
+    WlDpVm *vm = wl_dp_vm_new(&m, 1, 3, 2);
+    uint64_t in[] = {1, 2, 3, 4, 5, 6}, out[6];
+    wl_dp_news(vm, WL_DP_PH_DISPLAY, in, out, 1, 0, 0);
+    uint64_t east[] = {0, 1, 2, 0, 4, 5};
+    assert_memory_equal(out, east, sizeof east);
+    wl_dp_news(vm, WL_DP_PH_DISPLAY, in, out, 0, -1, 9);
+    uint64_t north[] = {4, 5, 6, 9, 9, 9};
+    assert_memory_equal(out, north, sizeof north);
+    /* 6 elements on 2 processors: 100 + 3 * 3 each. */
+    assert_int_equal(wl_dp_vm_target(vm, 0)->total, 2 * 109);
+    wl_dp_vm_free(vm);
 }
 
 static void test_model_errors(void **state)
@@ -336,12 +221,32 @@ static void test_workload_run(void **state)
     void *p = ops->parse(cfg_get(root, "workload"), &err);
     assert_non_null(p);
     SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {
-        .eng = eng, .root = root, .frames = 2, .fidelity = "analytic"};
+    char *dir = g_dir_make_tmp("dpscan-XXXXXX", NULL);
+    WlContext ctx = {.eng = eng,
+                     .root = root,
+                     .frames = 2,
+                     .fidelity = "analytic",
+                     .out_dir = dir};
     SimResult *r = sim_result_new("dpscan", "cm200");
     assert_true(ops->run(&ctx, p, r, &err));
-    assert_true(sim_engine_events(eng) > 10);
     assert_int_equal(r->frame_times->len, 2);
+    /* The clock ends where the two frames' counted work ends. */
+    SimTime f0 = g_array_index(r->frame_times, SimTime, 0);
+    assert_true(f0 > 0);
+    assert_int_equal(sim_now(eng), 2 * f0);
+    char *png = g_build_filename(dir, "dpscan.png", NULL);
+    RastImage *img = rast_image_read_png(png, &err);
+    assert_non_null(img);
+    assert_int_equal(img->width, 64);
+    assert_true(rast_image_get(img, 32, 24) != rast_image_get(img, 0, 0));
+    rast_image_free(img);
+    g_unlink(png);
+    g_free(png);
+    png = g_build_filename(dir, "dpscan_0001.png", NULL);
+    g_unlink(png);
+    g_free(png);
+    g_rmdir(dir);
+    g_free(dir);
     double pps = 0;
     assert_true(sim_result_get_metric(r, "polygons_per_s", &pps));
     assert_true(pps > 0);
@@ -358,11 +263,9 @@ int main(void)
         cmocka_unit_test(test_simd_costs),
         cmocka_unit_test(test_spmd_costs),
         cmocka_unit_test(test_layout),
-        cmocka_unit_test(test_frame_schedule),
-        cmocka_unit_test(test_pixels_match_raster),
-        cmocka_unit_test(test_deterministic),
-        cmocka_unit_test(test_exec_simd_equals_closed_form),
-        cmocka_unit_test(test_exec_spmd_fidelities),
+        cmocka_unit_test(test_array_send_combiners),
+        cmocka_unit_test(test_array_masked_ops_cost_all),
+        cmocka_unit_test(test_array_news),
         cmocka_unit_test(test_model_errors),
         cmocka_unit_test(test_workload_run),
     };
