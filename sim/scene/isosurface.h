@@ -55,6 +55,11 @@ double scene_iso_field(const SceneIsoParams *p, const Vec3 *centres, Vec3 x);
 SceneMesh *scene_iso_mesh(const SceneIsoParams *p);
 /* A new scene "isosurface" with the mesh and the default view rule. */
 Scene *scene_iso_new(const SceneIsoParams *p);
+/* Checks the grid (2..SCENE_ISO_GRID_MAX) and the memory the field and
+ * the surface will take against sim_mem_limit(); `what` locates the grid
+ * in errors ("file:line:col" or a flag name). */
+gboolean scene_iso_check(const SceneIsoParams *p, const char *what,
+                         GError **err);
 
 typedef struct {
     guint count;
@@ -69,5 +74,9 @@ SceneBigPolyParams scene_bigpoly_defaults(void);
 /* A new scene "large_polygons" with an orthographic camera looking down
  * -z at [-1, 1]^2. */
 Scene *scene_bigpoly_new(const SceneBigPolyParams *p);
+/* The memory of `count` polygons of up to max_sides against
+ * sim_mem_limit(). */
+gboolean scene_bigpoly_check(const SceneBigPolyParams *p, const char *what,
+                             GError **err);
 
 #endif

@@ -153,7 +153,7 @@ static Scene *gen_teapots(const CfgNode *sec, GError **err)
     const char *count_key = cfg_get(sec, "teapots") ? "teapots" : "count";
     GArray *pl = g_array_new(FALSE, FALSE, sizeof(SceneTeapotPlacement));
     Scene *s = NULL;
-    if (get_guint(sec, count_key, 1, 4096, &p.count, err) &&
+    if (get_guint(sec, count_key, 1, SCENE_TEAPOTS_MAX, &p.count, err) &&
         cfg_get_count(sec, "polygons_per_teapot", FALSE, 1, 1u << 26, &polys,
                       err) &&
         get_layout(sec, &p, err) &&
@@ -205,7 +205,7 @@ static Scene *gen_isosurface(const CfgNode *sec, GError **err)
     int field = p.field;
     uint64_t seed = p.seed;
     if (!cfg_get_enum(sec, "field", FALSE, fields, &field, err) ||
-        !get_guint(sec, "grid", 2, 1024, &p.grid, err) ||
+        !get_guint(sec, "grid", 2, SCENE_ISO_GRID_MAX, &p.grid, err) ||
         !cfg_get_double(sec, "iso", FALSE, -1e6, 1e6, &p.iso, err) ||
         !cfg_get_double(sec, "periods", FALSE, 0, 1e3, &p.periods, err) ||
         !get_guint(sec, "balls", 1, 4096, &p.balls, err) ||
@@ -214,7 +214,10 @@ static Scene *gen_isosurface(const CfgNode *sec, GError **err)
         return NULL;
     p.field = (SceneFieldKind)field;
     p.seed = seed;
-    return scene_iso_new(&p);
+    char *what = where(sec, "grid");
+    gboolean ok = scene_iso_check(&p, what, err);
+    g_free(what);
+    return ok ? scene_iso_new(&p) : NULL;
 }
 
 static Scene *gen_large_polygons(const CfgNode *sec, GError **err)
@@ -235,7 +238,10 @@ static Scene *gen_large_polygons(const CfgNode *sec, GError **err)
                   "max_size >= min_size");
         return NULL;
     }
-    return scene_bigpoly_new(&p);
+    char *what = where(sec, "count");
+    gboolean ok = scene_bigpoly_check(&p, what, err);
+    g_free(what);
+    return ok ? scene_bigpoly_new(&p) : NULL;
 }
 
 /* The PPHIGS databases (seed 001): the keys each kind reads, all

@@ -26,6 +26,13 @@
 #define SCENE_TEAPOTS_MAX 4096
 #define SCENE_ISO_GRID_MAX 1024
 
+/* Bytes a scene and the workload rendering it hold per polygon (triangle
+ * or quad): the mesh (positions, normals and colours per vertex, indices,
+ * offsets, colour and tag per polygon: about 150 B with shared vertices,
+ * 250 B without) plus a transformed copy a workload keeps per frame.
+ * Assumption, checked against peak RSS in docs/config.md (Limits). */
+#define SCENE_POLY_BYTES 512.0
+
 static inline gboolean scene_coord_ok(double v)
 {
     return isfinite(v) && fabs(v) <= SCENE_COORD_MAX;

@@ -4,6 +4,8 @@
  * `count` times by a layout rule or explicit placements.  O(T + count).
  */
 #include "sim/scene/teapots.h"
+#include "sim/core/memlimit.h"
+#include "sim/scene/scene_limits.h"
 
 #include "sim/scene/teapot.h"
 
@@ -49,13 +51,33 @@ static Mat4 place(const SceneTeapotPlacement *pl, Vec3 centre)
     return mat4_mul(mat4_translate(pl->at.x, pl->at.y, pl->at.z), m);
 }
 
+gboolean scene_teapots_check(const SceneTeapotsParams *p, const char *what,
+                             GError **err)
+{
+    if (p->count < 1 || p->count > SCENE_TEAPOTS_MAX) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s: found %u teapots, expected 1 to %d", what, p->count,
+                    SCENE_TEAPOTS_MAX);
+        return FALSE;
+    }
+    char *size = g_strdup_printf("%u teapots x %" G_GUINT64_FORMAT
+                                 " polygons",
+                                 p->count, (guint64)p->polygons_per_teapot);
+    gboolean ok = sim_mem_check((double)p->count *
+                                    (double)p->polygons_per_teapot *
+                                    SCENE_POLY_BYTES,
+                                what, size, err);
+    g_free(size);
+    return ok;
+}
+
 Scene *scene_teapots_new(const SceneTeapotsParams *p, const char *what,
                          GError **err)
 {
     SceneTeapotTess t;
-    g_assert(p->count >= 1);
     g_assert(!p->placements || p->n_placements == p->count);
-    if (!scene_teapot_tess_for(p->polygons_per_teapot, what, &t, err))
+    if (!scene_teapots_check(p, what, err) ||
+        !scene_teapot_tess_for(p->polygons_per_teapot, what, &t, err))
         return NULL;
     Scene *s = scene_new("teapots");
     SceneMesh *m = scene_teapot_mesh(t, scene_color(1, 1, 1));

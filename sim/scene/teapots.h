@@ -55,6 +55,10 @@ typedef struct {
 SceneTeapotsParams scene_teapots_defaults(void);
 /* A new scene named "teapots" (free with scene_free()); an input error
  * (naming `what`) for a polygon count the rule cannot meet. */
+/* The size checks alone (count 1..SCENE_TEAPOTS_MAX, memory against
+ * sim_mem_limit()), so a caller can check before building. */
+gboolean scene_teapots_check(const SceneTeapotsParams *p, const char *what,
+                             GError **err);
 Scene *scene_teapots_new(const SceneTeapotsParams *p, const char *what,
                          GError **err);
 

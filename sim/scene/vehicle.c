@@ -7,6 +7,8 @@
  * sim/scene/structdb.h.  O(triangles + structures).
  */
 #include "sim/scene/vehicle.h"
+#include "sim/core/memlimit.h"
+#include "sim/scene/scene_limits.h"
 
 #include <stdlib.h>
 
@@ -386,6 +388,15 @@ Scene *scene_vehicle_new(const SceneVehicleParams *p, const char *what,
                          GError **err)
 {
     g_assert(p->instances >= 1);
+    char *size = g_strdup_printf("%u instances x %" G_GUINT64_FORMAT
+                                 " triangles",
+                                 p->instances, (guint64)p->triangles);
+    gboolean fits = sim_mem_check((double)p->instances * (double)p->triangles *
+                                      SCENE_POLY_BYTES,
+                                  what, size, err);
+    g_free(size);
+    if (!fits)
+        return NULL;
     SceneDb *db = scene_db_new();
     guint root;
     if (!scene_vehicle_build(db, p->structures, p->triangles, what, &root,

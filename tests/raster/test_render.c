@@ -3,6 +3,7 @@
  * files (tests/data/bad/render/, each naming its expected message in a
  * first-line comment) and bad flags: exit 2, a located message, and no
  * image written.  Run from the repository root (make test does). */
+#include "sim/core/memlimit.h"
 #include "sim/app/cli/commands.h"
 #include "sim/scene/obj.h"
 #include "sim/scene/ply.h"
@@ -222,6 +223,7 @@ static void test_render_bad_files(void **state)
 {
     (void)state;
     const char *root = "tests/data/bad/render";
+    sim_mem_set_limit((guint64)8 << 30); /* messages independent of RAM */
     GDir *dir = g_dir_open(root, 0, NULL);
     assert_non_null(dir);
     char *tmp = g_dir_make_tmp("rast-render-XXXXXX", NULL);
@@ -254,6 +256,7 @@ static void test_render_bad_files(void **state)
     g_rmdir(tmp);
     g_free(png);
     g_free(tmp);
+    sim_mem_set_limit(0);
 }
 
 static void test_render_bad_flags(void **state)

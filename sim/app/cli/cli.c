@@ -8,6 +8,7 @@
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
 #include <string.h>
 
 void cli_usage(FILE *f)
@@ -82,6 +83,31 @@ static void parse_error(const char *cmd, const GOptionEntry *entries, int argc,
     }
 }
 
+/* --mem-limit BYTES[k|M|G|T], accepted by every command (memlimit.h). */
+gboolean cli_set_mem_limit(const gchar *name, const gchar *value,
+                           gpointer data, GError **err)
+{
+    (void)name;
+    (void)data;
+    guint64 bytes = 0;
+    if (sim_mem_parse(value, &bytes)) {
+        sim_mem_set_limit(bytes);
+        return TRUE;
+    }
+    g_set_error(err, G_OPTION_ERROR, G_OPTION_ERROR_BAD_VALUE,
+                "--mem-limit: found '%s', expected a positive size in bytes "
+                "with an optional k, M, G or T suffix",
+                value);
+    return FALSE;
+}
+
+void cli_add_common(GOptionContext *ctx)
+{
+    static const GOptionEntry common[] = {CLI_MEM_LIMIT_ENTRY,
+                                          G_OPTION_ENTRY_NULL};
+    g_option_context_add_main_entries(ctx, common, NULL);
+}
+
 static GOptionContext *make_context(const char *cmd, const char *params,
                                     const char *summary,
                                     const GOptionEntry *entries, gboolean *help)
@@ -98,6 +124,7 @@ static GOptionContext *make_context(const char *cmd, const char *params,
     g_option_context_set_summary(ctx, summary);
     g_option_context_add_main_entries(ctx, entries, NULL);
     g_option_context_add_main_entries(ctx, help_entry, NULL);
+    cli_add_common(ctx);
     return ctx;
 }
 

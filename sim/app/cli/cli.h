@@ -23,6 +23,14 @@ int cli_main(int argc, char **argv);
  * Returns TRUE to go on (argv keeps argv[0] and the positional
  * arguments); FALSE when the caller should return *status: 0 after
  * printing help on stdout, 2 after printing an error on stderr. */
+/* The options every command takes (--mem-limit BYTES: memlimit.h);
+ * cli_parse() adds them itself, other parsers list the entry. */
+gboolean cli_set_mem_limit(const gchar *name, const gchar *value,
+                           gpointer data, GError **err);
+#define CLI_MEM_LIMIT_ENTRY                                                    \
+    {"mem-limit", 0, 0, G_OPTION_ARG_CALLBACK, (gpointer)cli_set_mem_limit,    \
+     "memory a run may ask for (default: physical memory)", "BYTES"}
+void cli_add_common(GOptionContext *ctx);
 gboolean cli_parse(const char *cmd, const char *params, const char *summary,
                    const GOptionEntry *entries, int *argc, char ***argv,
                    int *status);

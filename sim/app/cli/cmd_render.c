@@ -19,12 +19,15 @@
  * errors (bad files, bad flags) are reported as "where: found X,
  * expected Y" and exit with status 2.  Cost: O(polygons + pixels).
  */
+#include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
 #include "sim/raster/image.h"
 #include "sim/raster/pipeline.h"
 #include "sim/scene/isosurface.h"
 #include "sim/scene/scene_cfg.h"
+#include "sim/scene/scene_limits.h"
 #include "sim/scene/teapots.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -113,6 +116,13 @@ static gboolean check_opts(const RenderOpts *o, int argc, GError **err)
     if (!check_side(o->width, "--width", err) ||
         !check_side(o->height, "--height", err) || !check_kinds(o, err))
         return FALSE;
+    char *size = g_strdup_printf("%dx%d pixels", o->width, o->height);
+    /* image (4 B), z-buffer and span lists: about 16 B a pixel */
+    gboolean fits = sim_mem_check(16.0 * o->width * o->height,
+                                  "--width x --height", size, err);
+    g_free(size);
+    if (!fits)
+        return FALSE;
     if (argc > 2)
         return flag_error(err, "render", "more than one scene argument",
                           "one SCENE.yaml, .obj or .ply");
@@ -120,8 +130,12 @@ static gboolean check_opts(const RenderOpts *o, int argc, GError **err)
         return flag_error(err, "render", "no scene or two",
                           "one of SCENE.yaml/.obj/.ply, --teapots N, "
                           "--isosurface GRID");
-    if (o->iso_grid == 1 || o->iso_grid > 400)
-        return flag_error(err, "--isosurface", "a bad grid", "2 .. 400 cells");
+    if (o->teapots < 0 || o->teapots > SCENE_TEAPOTS_MAX)
+        return flag_error(err, "--teapots", "a bad count",
+                          "1 .. " G_STRINGIFY(SCENE_TEAPOTS_MAX) " teapots");
+    if (o->iso_grid < 0 || o->iso_grid == 1 || o->iso_grid > SCENE_ISO_GRID_MAX)
+        return flag_error(err, "--isosurface", "a bad grid",
+                          "2 .. " G_STRINGIFY(SCENE_ISO_GRID_MAX) " cells");
     if (!isfinite(o->frame) || o->frame < 0)
         return flag_error(err, "--frame", "a negative or non-finite frame",
                           "a frame number >= 0");
@@ -173,7 +187,8 @@ static Scene *load_scene(const RenderOpts *o, const char *arg, GError **err)
     if (o->iso_grid > 0) {
         SceneIsoParams p = scene_iso_defaults();
         p.grid = (guint)o->iso_grid;
-        return scene_iso_new(&p);
+        return scene_iso_check(&p, "--isosurface", err) ? scene_iso_new(&p)
+                                                        : NULL;
     }
     if (o->teapots > 0)
         return scene_for_teapots(o, err);
@@ -235,6 +250,7 @@ int cmd_render(int argc, char **argv)
          "built-in gyroid isosurface on a GRID^3 lattice", "GRID"},
         {"layout", 0, 0, G_OPTION_ARG_STRING, &o.layout,
          "teapot layout: spread or depth", "L"},
+        CLI_MEM_LIMIT_ENTRY,
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
     GOptionContext *ctx =
         g_option_context_new("SCENE.yaml|SCENE.obj|SCENE.ply -o FRAME.png");
