@@ -45,6 +45,7 @@ typedef struct {
     double *val; /* field at lattice points */
     SceneMesh *m;
     GHashTable *edges; /* (lo id, hi id) -> vertex index + 1 */
+    uint32_t tag;      /* cell of the cubes being polygonised */
 } Iso;
 
 static Vec3 lattice_point(const Iso *s, guint64 id)
@@ -97,7 +98,7 @@ static void emit(Iso *s, const uint32_t v[3], const Vec3 m[3], Vec3 inside)
     Vec3 n = vec3_cross(vec3_sub(m[1], m[0]), vec3_sub(m[2], m[0]));
     gboolean flip = vec3_dot(n, vec3_sub(m[0], inside)) < 0;
     scene_mesh_add_tri(s->m, v[0], flip ? v[2] : v[1], flip ? v[1] : v[2],
-                       s->p->color, 0);
+                       s->p->color, s->tag);
 }
 
 static void do_tet(Iso *s, const guint64 id[4])
@@ -158,30 +159,52 @@ static void sample(Iso *s)
     g_free(centres);
 }
 
-SceneMesh *scene_iso_mesh(const SceneIsoParams *p)
+/* The six tetrahedra of the cube at lattice point (x, y, z). */
+static void do_cube(Iso *s, guint x, guint y, guint z)
+{
+    guint n = s->n;
+    guint64 base = x + (guint64)n * (y + (guint64)n * z);
+    guint64 c[8];
+    for (int k = 0; k < 8; k++)
+        c[k] = base + (k & 1) + (k & 2 ? n : 0) + (k & 4 ? (guint64)n * n : 0);
+    for (int t = 0; t < 6; t++) {
+        guint64 id[4] = {c[tets[t][0]], c[tets[t][1]], c[tets[t][2]],
+                         c[tets[t][3]]};
+        do_tet(s, id);
+    }
+}
+
+/* The cubes of cell (cx, cy, cz), z slowest, tagged with the cell. */
+static void do_cell(Iso *s, guint cell, guint cx, guint cy, guint cz)
+{
+    guint nc = s->p->grid / cell;
+    s->tag = cx + nc * (cy + nc * cz);
+    for (guint z = cz * cell; z < (cz + 1) * cell; z++)
+        for (guint y = cy * cell; y < (cy + 1) * cell; y++)
+            for (guint x = cx * cell; x < (cx + 1) * cell; x++)
+                do_cube(s, x, y, z);
+}
+
+SceneMesh *scene_iso_mesh_cells(const SceneIsoParams *p, guint cell)
 {
     g_assert(p->grid >= 2 && p->grid <= 2048);
-    Iso s = {p, p->grid + 1, NULL, scene_mesh_new(), NULL};
+    g_assert(cell >= 1 && p->grid % cell == 0);
+    Iso s = {p, p->grid + 1, NULL, scene_mesh_new(), NULL, 0};
     s.edges = g_hash_table_new_full(g_int64_hash, g_int64_equal, g_free, NULL);
     sample(&s);
-    guint n = s.n;
-    for (guint z = 0; z < p->grid; z++)
-        for (guint y = 0; y < p->grid; y++)
-            for (guint x = 0; x < p->grid; x++) {
-                guint64 base = x + (guint64)n * (y + (guint64)n * z);
-                guint64 c[8];
-                for (int k = 0; k < 8; k++)
-                    c[k] = base + (k & 1) + (k & 2 ? n : 0) +
-                           (k & 4 ? (guint64)n * n : 0);
-                for (int t = 0; t < 6; t++) {
-                    guint64 id[4] = {c[tets[t][0]], c[tets[t][1]],
-                                     c[tets[t][2]], c[tets[t][3]]};
-                    do_tet(&s, id);
-                }
-            }
+    guint nc = p->grid / cell;
+    for (guint cz = 0; cz < nc; cz++)
+        for (guint cy = 0; cy < nc; cy++)
+            for (guint cx = 0; cx < nc; cx++)
+                do_cell(&s, cell, cx, cy, cz);
     g_hash_table_destroy(s.edges);
     g_free(s.val);
     return s.m;
+}
+
+SceneMesh *scene_iso_mesh(const SceneIsoParams *p)
+{
+    return scene_iso_mesh_cells(p, p->grid);
 }
 
 /* TRUE when the surface reaches the lattice's boundary, where it is cut

@@ -53,6 +53,12 @@ SceneIsoParams scene_iso_defaults(void);
 double scene_iso_field(const SceneIsoParams *p, const Vec3 *centres, Vec3 x);
 /* A new mesh of triangles (free with scene_mesh_free()). */
 SceneMesh *scene_iso_mesh(const SceneIsoParams *p);
+/* The same surface polygonised cell by cell: the lattice is cut into
+ * cells of cell^3 cubes (cell divides grid), visited z slowest, then y,
+ * then x; each cell's triangles are consecutive and tagged with the cell
+ * index cx + nc (cy + nc cz), nc = grid / cell (seed 002's March:
+ * 64^3 in 16^3 cells).  cell == grid gives scene_iso_mesh(). */
+SceneMesh *scene_iso_mesh_cells(const SceneIsoParams *p, guint cell);
 /* A new scene "isosurface" with the mesh and the default view rule. */
 Scene *scene_iso_new(const SceneIsoParams *p);
 /* Checks the grid (2..SCENE_ISO_GRID_MAX) and the memory the field and

@@ -8,6 +8,8 @@
 #include "sim/scene/scene_cfg.h"
 
 #include "sim/scene/isosurface.h"
+#include "sim/scene/march.h"
+#include "sim/scene/nurbs.h"
 #include "sim/scene/obj.h"
 #include "sim/scene/ply.h"
 #include "sim/scene/pn_triangles.h"
@@ -220,6 +222,43 @@ static Scene *gen_isosurface(const CfgNode *sec, GError **err)
     return ok ? scene_iso_new(&p) : NULL;
 }
 
+static Scene *gen_nurbs(const CfgNode *sec, GError **err)
+{
+    SceneNurbsParams p = scene_nurbs_defaults();
+    uint64_t seed = p.seed;
+    if (!get_guint(sec, "patches_u", 1, 256, &p.patches_u, err) ||
+        !get_guint(sec, "patches_v", 1, 256, &p.patches_v, err) ||
+        !get_guint(sec, "tess", 1, 256, &p.tess, err) ||
+        !get_guint(sec, "bumps", 0, 64, &p.bumps, err) ||
+        !cfg_get_double(sec, "amplitude", FALSE, 0, 0.9, &p.amplitude, err) ||
+        !cfg_get_count(sec, "seed", FALSE, 0, UINT64_MAX, &seed, err) ||
+        !get_color(sec, "color", &p.color, err))
+        return NULL;
+    p.seed = seed;
+    return scene_nurbs_new(&p);
+}
+
+static Scene *gen_march(const CfgNode *sec, GError **err)
+{
+    SceneMarchParams p = scene_march_defaults();
+    uint64_t seed = p.iso.seed;
+    if (!get_guint(sec, "grid", 2, 1024, &p.iso.grid, err) ||
+        !get_guint(sec, "cell", 1, 1024, &p.cell, err) ||
+        !cfg_get_double(sec, "iso", FALSE, -1e6, 1e6, &p.iso.iso, err) ||
+        !get_guint(sec, "balls", 1, 4096, &p.iso.balls, err) ||
+        !cfg_get_count(sec, "seed", FALSE, 0, UINT64_MAX, &seed, err) ||
+        !get_color(sec, "color", &p.iso.color, err))
+        return NULL;
+    p.iso.seed = seed;
+    if (p.iso.grid % p.cell != 0) {
+        cfg_error(err, cfg_get(sec, "cell") ? cfg_get(sec, "cell") : sec,
+                  "a cell size that does not divide the grid",
+                  "a cell size dividing grid (64 / 16 in seed 002)");
+        return NULL;
+    }
+    return scene_march_new(&p);
+}
+
 static Scene *gen_large_polygons(const CfgNode *sec, GError **err)
 {
     SceneBigPolyParams p = scene_bigpoly_defaults();
@@ -322,10 +361,12 @@ static Scene *gen_humans(const CfgNode *sec, GError **err)
 static const char *const gen_names[] = {
     "teapots",        "vehicle",           "isosurface",
     "large_polygons", "space_station",     "building_lobby",
-    "flock_old_well", "two_human_figures", NULL};
+    "flock_old_well", "two_human_figures", "nurbs",
+    "march",          NULL};
 static const GenFn gen_fns[] = {gen_teapots,        gen_vehicle, gen_isosurface,
                                 gen_large_polygons, gen_station, gen_lobby,
-                                gen_flock,          gen_humans};
+                                gen_flock,          gen_humans,  gen_nurbs,
+                                gen_march};
 
 const char *const *scene_generator_names(void)
 {
