@@ -1,5 +1,6 @@
 /* registry.c — the table of workloads (one row per workload). */
 #include "sim/workload/workload.h"
+#include "sim/workload/argus/ag_workload.h"
 #include "sim/workload/dpscan/dp_workload.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 #include "sim/workload/sortfirst/sf_workload.h"
@@ -10,7 +11,7 @@ extern const WlOps wl_pphigs_ops;
 
 const WlOps *const wl_all[] = {
     &wl_pphigs_ops,    &wl_dpscan_ops,    &wl_pixelmerge_ops,
-    &wl_sortfirst_ops, &wl_tokenring_ops, NULL,
+    &wl_sortfirst_ops, &wl_tokenring_ops, &wl_argus_ops, NULL,
 };
 
 const WlOps *wl_find(const char *name)

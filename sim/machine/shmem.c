@@ -1,0 +1,49 @@
+/* shmem.c — shared memory as a FIFO bandwidth server (shmem.h).
+ * O(1) per transfer.
+ */
+#include "sim/machine/shmem.h"
+#include <string.h>
+
+void mach_shmem_init_with(MachShmem *sh, double bandwidth, SimTime latency)
+{
+    memset(sh, 0, sizeof *sh);
+    sh->bandwidth = bandwidth;
+    sh->latency = latency;
+}
+
+gboolean mach_shmem_init(MachShmem *sh, const MachMachine *m, GError **err)
+{
+    const char *topo = mach_net_word(m, "topology");
+    double bw = 0;
+    SimTime lat = 0;
+    if (!topo || strcmp(topo, "bus") != 0 ||
+        !mach_net_bandwidth(m, "bandwidth", &bw) ||
+        !mach_net_time(m, "startup", &lat)) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "machine '%s': found a network without a shared memory, "
+                    "expected network {topology: bus, bandwidth, startup} "
+                    "(the memory's bandwidth and access latency)",
+                    mach_name(m));
+        return FALSE;
+    }
+    mach_shmem_init_with(sh, bw, lat);
+    return TRUE;
+}
+
+SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes)
+{
+    SimTime start = MAX(now, sh->free_at);
+    SimTime occ = sh->bandwidth > 0
+                      ? sim_time_for_bytes((double)bytes, sh->bandwidth)
+                      : 0;
+    sh->free_at = start + occ;
+    sh->busy += occ;
+    sh->bytes += bytes;
+    sh->transfers++;
+    return sh->free_at + sh->latency;
+}
+
+double mach_shmem_utilisation(const MachShmem *sh, SimTime elapsed)
+{
+    return elapsed ? (double)sh->busy / (double)elapsed : 0;
+}

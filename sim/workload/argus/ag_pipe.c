@@ -1,0 +1,488 @@
+/* ag_pipe.c — the Argus pipeline as per-thread state machines on a
+ * simulated shared-memory machine (ag_pipe.h).
+ *
+ * Invariants: a tile passes each context's blocks in sequence; a block is
+ * drawn at a tile only after its geometry is done and, at that tile,
+ * every P it carries has a matching V; a rasteriser draws one (tile,
+ * block) at a time.  The frame ends when every tile has passed every
+ * block.  O(blocks x tiles) bookkeeping per frame (empty blocks are
+ * skipped in bulk), O(triangles + pixels) real work.
+ */
+#include "sim/workload/argus/ag_pipe.h"
+#include <string.h>
+
+const char *const wl_ag_app_names[] = {"none", "nurbs", "march", NULL};
+const char *const wl_ag_cost_ops[] = {
+    "nurbs_vertex",  "march_voxel",  "march_triangle", "issue_vertex",
+    "issue_batch",   "geom_vertex",  "geom_triangle",  "geom_tile",
+    "rast_triangle", "rast_pixel",   "lock",           "sema",
+    NULL};
+
+typedef struct {
+    gboolean done;
+    guint n_tiles;
+    guint *tile_ids;   /* sorted */
+    guint *tile_start; /* n_tiles + 1 offsets into tris */
+    uint32_t *tris;
+} BlockState;
+
+struct AgPipe {
+    MachMachine *m;
+    SimEngine *eng;
+    AgSetup s;
+    AgCosts c;
+    const AgStreams *st;
+    AgFrame *f;
+    const SceneMesh *mesh;
+    const RastView *view;
+    MachShmem mem;
+    unsigned ph_app, ph_geom, ph_rast;
+    guint *ctx_off, nblocks;
+    BlockState *bs;
+    guint *app_next;
+    GQueue gq;
+    gboolean *g_busy;
+    guint *g_block;
+    guint ntiles, C;
+    guint *tnext;  /* ntiles x C */
+    int32_t *sem;  /* ntiles x sems */
+    guint *t_rr;   /* per tile: context to try first */
+    guint tiles_left;
+    gboolean *r_busy;
+    guint *r_cursor, *r_tile, *r_block;
+    AgFrameStats *out;
+};
+
+gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
+                                  GError **err)
+{
+    if (!mach_require_costs(m, "cpu", wl_ag_cost_ops, err))
+        return FALSE;
+    SimTime *dst[] = {&c->nurbs_vertex,  &c->march_voxel, &c->march_triangle,
+                      &c->issue_vertex,  &c->issue_batch, &c->geom_vertex,
+                      &c->geom_triangle, &c->geom_tile,   &c->rast_triangle,
+                      &c->rast_pixel,    &c->lock,        &c->sema};
+    for (guint i = 0; wl_ag_cost_ops[i]; i++)
+        *dst[i] = mach_cost(m, "cpu", wl_ag_cost_ops[i]);
+    return TRUE;
+}
+
+static MachProc *thread_proc(AgPipe *p, guint thread)
+{
+    return mach_proc(p->m, "cpu", thread % p->s.procs);
+}
+
+static const AgBlock *block_at(const AgPipe *p, guint b, guint *ctx)
+{
+    guint c = 0;
+    while (c + 1 < p->C && p->ctx_off[c + 1] <= b)
+        c++;
+    if (ctx)
+        *ctx = c;
+    return &g_array_index(wl_ag_ctx_blocks(p->st, c), AgBlock,
+                          b - p->ctx_off[c]);
+}
+
+static SimTime cost_n(SimTime c, uint64_t n)
+{
+    SimTime t;
+    return mach_cost_n(c, n, &t) ? t : SIM_TIME_MAX;
+}
+
+/* ---- application threads ---------------------------------------------- */
+
+static SimTime app_work(const AgPipe *p, const AgBlock *b)
+{
+    const AgBatch *x = &g_array_index(p->st->batches, AgBatch, b->batch);
+    if (!b->opens)
+        return 0;
+    if (p->s.app == WL_AG_APP_NURBS)
+        return cost_n(p->c.nurbs_vertex, x->distinct);
+    if (p->s.app == WL_AG_APP_MARCH)
+        return cost_n(p->c.march_voxel, p->s.voxels_per_batch) +
+               cost_n(p->c.march_triangle, x->n);
+    return 0;
+}
+
+static void app_issue(SimEngine *eng, void *ctx, void *arg);
+
+static void enqueue(SimEngine *eng, void *ctx, void *arg);
+
+static void app_done(SimEngine *eng, void *ctx, void *arg)
+{
+    AgPipe *p = ctx;
+    guint c = GPOINTER_TO_UINT(arg);
+    guint b = p->ctx_off[c] + p->app_next[c]++;
+    const AgBlock *k = block_at(p, b, NULL);
+    SimTime t = mach_shmem_transfer(&p->mem, sim_now(eng),
+                                    k->verts * p->s.vertex_bytes);
+    sim_schedule_at(eng, t, enqueue, p, GUINT_TO_POINTER(b));
+    app_issue(eng, p, arg);
+}
+
+static void app_issue(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    AgPipe *p = ctx;
+    guint c = GPOINTER_TO_UINT(arg);
+    GArray *blocks = wl_ag_ctx_blocks(p->st, c);
+    if (p->app_next[c] >= blocks->len)
+        return;
+    const AgBlock *b = &g_array_index(blocks, AgBlock, p->app_next[c]);
+    SimTime cost = app_work(p, b) + cost_n(p->c.issue_vertex, b->verts) +
+                   (b->opens ? p->c.issue_batch : 0) + p->c.lock;
+    p->out->app_busy += cost;
+    mach_proc_compute(thread_proc(p, c), cost, p->ph_app, app_done, p, arg);
+}
+
+/* ---- geometry threads --------------------------------------------------- */
+
+typedef struct {
+    GArray *pairs; /* (tile, tri) as two guint */
+    guint tri;
+} Bucket;
+
+static void add_pair(guint tile, void *ctx)
+{
+    Bucket *k = ctx;
+    guint pr[2] = {tile, k->tri};
+    g_array_append_vals(k->pairs, pr, 2);
+}
+
+static int cmp_pair(const void *a, const void *b)
+{
+    const guint *x = a, *y = b;
+    if (x[0] != y[0])
+        return x[0] < y[0] ? -1 : 1;
+    return x[1] < y[1] ? -1 : (x[1] > y[1]);
+}
+
+/* Sorts the block's triangles into per-tile lists; returns the pairs. */
+static guint bucket_block(AgPipe *p, const AgBlock *k, BlockState *s)
+{
+    Bucket bk = {g_array_new(FALSE, FALSE, sizeof(guint)), 0};
+    for (guint i = k->first; i < k->first + k->n; i++) {
+        bk.tri = i;
+        wl_ag_bucket(p->f, &p->view->view_proj, p->mesh, i, add_pair, &bk);
+    }
+    guint np = bk.pairs->len / 2;
+    guint *pr = (guint *)bk.pairs->data;
+    qsort(pr, np, 2 * sizeof(guint), cmp_pair);
+    s->tris = g_new(uint32_t, np ? np : 1);
+    s->tile_ids = g_new(guint, np ? np : 1);
+    s->tile_start = g_new(guint, np + 1);
+    s->n_tiles = 0;
+    for (guint i = 0; i < np; i++) {
+        if (i == 0 || pr[2 * i] != pr[2 * i - 2]) {
+            s->tile_ids[s->n_tiles] = pr[2 * i];
+            s->tile_start[s->n_tiles++] = i;
+        }
+        s->tris[i] = pr[2 * i + 1];
+    }
+    s->tile_start[s->n_tiles] = np;
+    g_array_free(bk.pairs, TRUE);
+    return np;
+}
+
+static void geom_kick(AgPipe *p);
+static void rast_kick(AgPipe *p, guint r);
+
+static void block_ready(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    AgPipe *p = ctx;
+    p->bs[GPOINTER_TO_UINT(arg)].done = TRUE;
+    for (guint r = 0; r < p->s.rasterisers; r++)
+        rast_kick(p, r);
+}
+
+static void geom_done(SimEngine *eng, void *ctx, void *arg)
+{
+    AgPipe *p = ctx;
+    guint g = GPOINTER_TO_UINT(arg), b = p->g_block[g];
+    BlockState *s = &p->bs[b];
+    SimTime t = mach_shmem_transfer(&p->mem, sim_now(eng),
+                                    (uint64_t)s->tile_start[s->n_tiles] *
+                                        p->s.triangle_bytes);
+    sim_schedule_at(eng, t, block_ready, p, GUINT_TO_POINTER(b));
+    p->g_busy[g] = FALSE;
+    geom_kick(p);
+}
+
+static void geom_start(AgPipe *p, guint g, guint b)
+{
+    const AgBlock *k = block_at(p, b, NULL);
+    guint pairs = bucket_block(p, k, &p->bs[b]);
+    p->out->bucketed += pairs;
+    p->out->triangles += k->n;
+    p->out->verts_issued += k->verts;
+    SimTime cost = p->c.lock + cost_n(p->c.geom_vertex, k->verts) +
+                   cost_n(p->c.geom_triangle, k->n) +
+                   cost_n(p->c.geom_tile, pairs);
+    p->out->geom_busy += cost;
+    p->g_busy[g] = TRUE;
+    p->g_block[g] = b;
+    mach_proc_compute(thread_proc(p, p->C + g), cost, p->ph_geom, geom_done, p,
+                      GUINT_TO_POINTER(g));
+}
+
+static void enqueue(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    AgPipe *p = ctx;
+    g_queue_push_tail(&p->gq, arg);
+    geom_kick(p);
+}
+
+static void geom_kick(AgPipe *p)
+{
+    for (guint g = 0; g < p->s.geometry && !g_queue_is_empty(&p->gq); g++)
+        if (!p->g_busy[g])
+            geom_start(p, g, GPOINTER_TO_UINT(g_queue_pop_head(&p->gq)));
+}
+
+/* ---- tiles and rasterisation threads ----------------------------------- */
+
+static guint *tnext(AgPipe *p, guint t, guint c)
+{
+    return &p->tnext[(gsize)t * p->C + c];
+}
+
+/* The triangles of block state s for tile t (n = 0 when none). */
+static const uint32_t *tile_tris(const BlockState *s, guint t, guint *n)
+{
+    guint lo = 0, hi = s->n_tiles;
+    while (lo < hi) {
+        guint mid = (lo + hi) / 2;
+        if (s->tile_ids[mid] < t)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    *n = 0;
+    if (lo == s->n_tiles || s->tile_ids[lo] != t)
+        return NULL;
+    *n = s->tile_start[lo + 1] - s->tile_start[lo];
+    return s->tris + s->tile_start[lo];
+}
+
+/* Skips, per context, done blocks with nothing for t; counts t finished
+ * when every context is through. */
+static void tile_advance(AgPipe *p, guint t)
+{
+    gboolean all = TRUE;
+    for (guint c = 0; c < p->C; c++) {
+        guint *nx = tnext(p, t, c);
+        GArray *blocks = wl_ag_ctx_blocks(p->st, c);
+        while (*nx < blocks->len) {
+            const AgBlock *k = &g_array_index(blocks, AgBlock, *nx);
+            const BlockState *s = &p->bs[p->ctx_off[c] + *nx];
+            guint n;
+            if (!s->done || k->n_pre || k->n_post || tile_tris(s, t, &n))
+                break;
+            (*nx)++;
+        }
+        all &= *nx == blocks->len;
+    }
+    if (all && *tnext(p, t, 0) != G_MAXUINT) {
+        *tnext(p, t, 0) = G_MAXUINT; /* finished marker */
+        if (--p->tiles_left == 0)
+            p->out->end = sim_now(p->eng);
+    }
+}
+
+static gboolean waits_met(const AgPipe *p, guint t, const AgBlock *k)
+{
+    for (guint i = 0; i < k->n_pre; i++)
+        if (k->pre[i].kind == WL_AG_SYNC_P &&
+            p->sem[(gsize)t * p->st->sems + k->pre[i].id] <= 0)
+            return FALSE;
+    return TRUE;
+}
+
+/* A ready block of tile t (global index), or G_MAXUINT. */
+static guint tile_pick(AgPipe *p, guint t)
+{
+    if (*tnext(p, t, 0) == G_MAXUINT)
+        return G_MAXUINT;
+    for (guint i = 0; i < p->C; i++) {
+        guint c = (p->t_rr[t] + i) % p->C;
+        GArray *blocks = wl_ag_ctx_blocks(p->st, c);
+        guint nx = *tnext(p, t, c);
+        if (nx >= blocks->len || !p->bs[p->ctx_off[c] + nx].done)
+            continue;
+        if (waits_met(p, t, &g_array_index(blocks, AgBlock, nx))) {
+            p->t_rr[t] = (c + 1) % p->C;
+            return p->ctx_off[c] + nx;
+        }
+    }
+    return G_MAXUINT;
+}
+
+static void sync_apply(AgPipe *p, guint t, const AgSync *s, guint n, int d)
+{
+    for (guint i = 0; i < n; i++)
+        if (s[i].kind != WL_AG_SYNC_BARRIER)
+            p->sem[(gsize)t * p->st->sems + s[i].id] += d;
+}
+
+static void rast_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    AgPipe *p = ctx;
+    guint r = GPOINTER_TO_UINT(arg), t = p->r_tile[r], c;
+    const AgBlock *k = block_at(p, p->r_block[r], &c);
+    sync_apply(p, t, k->post, k->n_post, +1);
+    (*tnext(p, t, c))++;
+    p->r_busy[r] = FALSE;
+    tile_advance(p, t);
+    rast_kick(p, r);
+}
+
+static void rast_start(AgPipe *p, guint r, guint t, guint b)
+{
+    const AgBlock *k = block_at(p, b, NULL);
+    guint n;
+    const uint32_t *tris = tile_tris(&p->bs[b], t, &n);
+    sync_apply(p, t, k->pre, k->n_pre, -1);
+    uint64_t px = wl_ag_draw(p->f, t, p->view, p->mesh, tris, n);
+    p->out->pixels += px;
+    p->out->syncs += k->n_pre + k->n_post;
+    SimTime cost = cost_n(p->c.rast_triangle, n) +
+                   (p->s.fill_infinite ? 0 : cost_n(p->c.rast_pixel, px)) +
+                   cost_n(p->c.sema, k->n_pre + k->n_post);
+    p->out->rast_busy += cost;
+    p->r_busy[r] = TRUE;
+    p->r_tile[r] = t;
+    p->r_block[r] = b;
+    guint thread = p->C + p->s.geometry + r;
+    mach_proc_compute(thread_proc(p, thread), cost, p->ph_rast, rast_done, p,
+                      GUINT_TO_POINTER(r));
+}
+
+static void rast_kick(AgPipe *p, guint r)
+{
+    guint R = p->s.rasterisers, mine = (p->ntiles - r + R - 1) / R;
+    if (p->r_busy[r] || mine == 0)
+        return;
+    for (guint i = 0; i < mine; i++) {
+        guint t = r + R * ((p->r_cursor[r] + i) % mine);
+        tile_advance(p, t);
+        guint b = tile_pick(p, t);
+        if (b != G_MAXUINT) {
+            p->r_cursor[r] = (p->r_cursor[r] + i + 1) % mine;
+            rast_start(p, r, t, b);
+            return;
+        }
+    }
+}
+
+/* ---- lifetime and frames ------------------------------------------------ */
+
+AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
+                       const AgStreams *st, AgFrame *f, const SceneMesh *mesh,
+                       const RastView *view)
+{
+    AgPipe *p = g_new0(AgPipe, 1);
+    p->m = m;
+    p->eng = mach_engine(m);
+    p->s = *s;
+    p->c = *c;
+    p->st = st;
+    p->f = f;
+    p->mesh = mesh;
+    p->view = view;
+    p->C = st->contexts;
+    mach_shmem_init_with(&p->mem, s->mem_bandwidth, s->mem_latency);
+    p->ph_app = sim_engine_phase(p->eng, "application");
+    p->ph_geom = sim_engine_phase(p->eng, "geometry");
+    p->ph_rast = sim_engine_phase(p->eng, "rasterisation");
+    p->ctx_off = g_new0(guint, p->C + 1);
+    for (guint k = 0; k < p->C; k++)
+        p->ctx_off[k + 1] = p->ctx_off[k] + wl_ag_ctx_blocks(st, k)->len;
+    p->nblocks = p->ctx_off[p->C];
+    p->bs = g_new0(BlockState, p->nblocks ? p->nblocks : 1);
+    p->app_next = g_new0(guint, p->C);
+    g_queue_init(&p->gq);
+    p->g_busy = g_new0(gboolean, s->geometry);
+    p->g_block = g_new0(guint, s->geometry);
+    p->ntiles = wl_ag_n_tiles(f);
+    p->tnext = g_new0(guint, (gsize)p->ntiles * p->C);
+    p->sem = g_new0(int32_t, (gsize)p->ntiles * (st->sems ? st->sems : 1));
+    p->t_rr = g_new0(guint, p->ntiles);
+    p->r_busy = g_new0(gboolean, s->rasterisers);
+    p->r_cursor = g_new0(guint, s->rasterisers);
+    p->r_tile = g_new0(guint, s->rasterisers);
+    p->r_block = g_new0(guint, s->rasterisers);
+    return p;
+}
+
+static void clear_blocks(AgPipe *p)
+{
+    for (guint b = 0; b < p->nblocks; b++) {
+        g_free(p->bs[b].tris);
+        g_free(p->bs[b].tile_ids);
+        g_free(p->bs[b].tile_start);
+        memset(&p->bs[b], 0, sizeof p->bs[b]);
+    }
+}
+
+void wl_ag_pipe_free(AgPipe *p)
+{
+    if (!p)
+        return;
+    clear_blocks(p);
+    g_free(p->bs);
+    g_free(p->ctx_off);
+    g_free(p->app_next);
+    g_queue_clear(&p->gq);
+    g_free(p->g_busy);
+    g_free(p->g_block);
+    g_free(p->tnext);
+    g_free(p->sem);
+    g_free(p->t_rr);
+    g_free(p->r_busy);
+    g_free(p->r_cursor);
+    g_free(p->r_tile);
+    g_free(p->r_block);
+    g_free(p);
+}
+
+static void reset(AgPipe *p)
+{
+    clear_blocks(p);
+    memset(p->app_next, 0, p->C * sizeof(guint));
+    memset(p->tnext, 0, (gsize)p->ntiles * p->C * sizeof(guint));
+    memset(p->sem, 0,
+           (gsize)p->ntiles * (p->st->sems ? p->st->sems : 1) * sizeof(int32_t));
+    memset(p->t_rr, 0, p->ntiles * sizeof(guint));
+    p->tiles_left = p->ntiles;
+    wl_ag_frame_clear(p->f);
+}
+
+gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,
+                          GError **err)
+{
+    memset(out, 0, sizeof *out);
+    p->out = out;
+    reset(p);
+    out->start = out->end = sim_now(p->eng);
+    out->blocks = p->nblocks;
+    uint64_t bytes0 = p->mem.bytes;
+    for (guint c = 0; c < p->C; c++)
+        app_issue(p->eng, p, GUINT_TO_POINTER(c));
+    for (guint t = 0; t < p->ntiles; t++)
+        tile_advance(p, t); /* a tile no context draws into */
+    if (!sim_engine_run(p->eng, until, err))
+        return FALSE;
+    out->shmem_bytes = p->mem.bytes - bytes0;
+    if (p->tiles_left) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "argus: %u of %u tiles left undrawn at %.3f ms: the "
+                    "streams' semaphores deadlock, or run.until ended the "
+                    "frame, expected every block drawn",
+                    p->tiles_left, p->ntiles, sim_time_to_ms(sim_now(p->eng)));
+        return FALSE;
+    }
+    return TRUE;
+}

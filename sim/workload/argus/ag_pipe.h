@@ -1,0 +1,89 @@
+/* ag_pipe.h — one frame of Argus on a simulated shared-memory machine:
+ * application threads issue their contexts' command blocks, geometry
+ * threads transform, shade and bucket them to tiles, rasterisation
+ * threads draw each tile's primitives in an order that honours the
+ * parallel API (seed 002, "Argus" slides and Figure 2 "The Argus
+ * Pipeline"; implementation: graphics.stanford.edu/projects/flashg/argus).
+ *
+ *   application thread c (one per context): per block, the batch's
+ *       application work when the block opens a batch (Nurbs: evaluate
+ *       each distinct patch vertex; March: visit the cell's voxels and
+ *       emit its triangles), the API issue cost of its vertices and
+ *       batch, one lock to append the block to the shared geometry queue
+ *       and the command bytes through shared memory.  Unbounded buffering
+ *       (assumption): issue never blocks.
+ *   geometry threads: pop blocks FIFO (one lock), transform and light
+ *       each vertex, set up and bucket each triangle, write it to each
+ *       overlapped tile's queue (bytes through shared memory).
+ *   rasterisation threads: tile t belongs to rasteriser t mod R.  A tile
+ *       keeps, per context, the next block it must pass; a block whose
+ *       geometry is done may be drawn at the tile when its waits are
+ *       satisfied there (per-tile semaphore counters: a P consumes one V
+ *       of the same cell signalled at this tile) — ordering "within the
+ *       pixel processors", one of the two schemes of the Argus page.
+ *       Blocks with nothing for the tile and no synchronisation are
+ *       skipped free (the reclaim pointer).  Drawing pays set-up per
+ *       triangle, fill per pixel (0 with fill_rate infinite: seed 002's
+ *       footnote), one semaphore operation per synchronisation command.
+ *
+ * Threads map to processors in that order (app 0..C-1, geometry, then
+ * raster), thread k on processor k mod P (FIFO: threads sharing a
+ * processor take turns at work granularity).  A uniprocessor run puts
+ * every thread on processor 0 and pays no lock, semaphore or memory
+ * transfer (a serial library has no queues).
+ * Events: O(blocks x (1 + tiles touched)) per frame.
+ */
+#ifndef PGSIM_WORKLOAD_ARGUS_AG_PIPE_H
+#define PGSIM_WORKLOAD_ARGUS_AG_PIPE_H
+
+#include "sim/machine/machine.h"
+#include "sim/machine/shmem.h"
+#include "sim/workload/argus/ag_stream.h"
+#include "sim/workload/argus/ag_tile.h"
+
+typedef enum { WL_AG_APP_NONE, WL_AG_APP_NURBS, WL_AG_APP_MARCH } AgApp;
+extern const char *const wl_ag_app_names[]; /* "none" "nurbs" "march" */
+
+/* Costs of the `cpu` node kind, cached (wl_ag_cost_ops lists them). */
+typedef struct {
+    SimTime nurbs_vertex, march_voxel, march_triangle;
+    SimTime issue_vertex, issue_batch;
+    SimTime geom_vertex, geom_triangle, geom_tile;
+    SimTime rast_triangle, rast_pixel;
+    SimTime lock, sema;
+} AgCosts;
+extern const char *const wl_ag_cost_ops[];
+
+typedef struct {
+    guint procs, contexts, geometry, rasterisers;
+    gboolean uniprocessor;
+    gboolean fill_infinite;
+    AgApp app;
+    uint64_t voxels_per_batch; /* March: cell voxels */
+    guint vertex_bytes, triangle_bytes;
+    double mem_bandwidth; /* bytes/s; 0: infinite */
+    SimTime mem_latency;
+} AgSetup;
+
+typedef struct {
+    SimTime start, end;
+    uint64_t triangles, verts_issued, bucketed, pixels, syncs, blocks;
+    SimTime app_busy, geom_busy, rast_busy; /* summed over threads */
+    uint64_t shmem_bytes;
+} AgFrameStats;
+
+typedef struct AgPipe AgPipe;
+
+/* Borrowed: machine, streams, frame, mesh, view (all outlive the pipe). */
+AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
+                       const AgStreams *st, AgFrame *f, const SceneMesh *mesh,
+                       const RastView *view);
+void wl_ag_pipe_free(AgPipe *p);
+/* Runs one frame from now to the last tile's last block; FALSE with *err
+ * on an engine error or a deadlock (blocks left undrawn). */
+gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,
+                          GError **err);
+gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
+                                  GError **err);
+
+#endif

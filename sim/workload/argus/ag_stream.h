@@ -1,0 +1,91 @@
+/* ag_stream.h — the command streams of the Argus workload: what each
+ * graphics context issues, in order, with the parallel API's
+ * synchronisation commands (seed 002; Igehy, Stoll and Hanrahan,
+ * "The Design of a Parallel Graphics Interface", SIGGRAPH 1998).
+ *
+ * A scene's triangles come in batches: maximal runs of consecutive
+ * polygons with one tag (a Nurbs patch, a March cell).  A context issues
+ * its batches in order; each batch is cut into blocks of at most
+ * `block_tris` triangles (Argus closes a command block "at fixed
+ * intervals", graphics.stanford.edu/projects/flashg/argus/implementation).
+ * Synchronisation commands sit at block boundaries: a block carries the
+ * waits issued before its first command (glpPSema) and the signals
+ * issued after its last one (glpVSema, the frame's glpBarrier).
+ *
+ * Orders (AgOrder):
+ *   FRAME   batches dealt to contexts cyclically, no ordering inside a
+ *           frame, one glpBarrier of all contexts at its end (Nurbs:
+ *           "synchronization done only on frame boundaries");
+ *   CELLS   the ordered marching-cubes loop of seed 002 Figure 3(c) in
+ *           three dimensions: batches are the cells of an n x n x n grid
+ *           (tag = x + n (y + n z)); context p takes, for every z, the
+ *           (y, x) cells whose index j = x + n y has j = p + z mod C; it
+ *           waits (P) on the cell behind it along each axis and signals
+ *           (V) once for each neighbour in front;
+ *   NONE    the same loop without semaphores (Figure 3(b)).
+ * With one context every order issues the batches serially, without
+ * synchronisation commands (Figure 3(a)).  O(triangles) to build.
+ */
+#ifndef PGSIM_WORKLOAD_ARGUS_AG_STREAM_H
+#define PGSIM_WORKLOAD_ARGUS_AG_STREAM_H
+
+#include "sim/scene/mesh.h"
+
+typedef enum { WL_AG_ORDER_FRAME, WL_AG_ORDER_CELLS, WL_AG_ORDER_NONE } AgOrder;
+extern const char *const wl_ag_order_names[]; /* "frame" "cells" "none" */
+
+typedef enum { WL_AG_PRIM_STRIPS, WL_AG_PRIM_TRIANGLES } AgPrim;
+extern const char *const wl_ag_prim_names[]; /* "strips" "triangles" */
+
+typedef enum { WL_AG_SYNC_P, WL_AG_SYNC_V, WL_AG_SYNC_BARRIER } AgSyncKind;
+
+typedef struct {
+    AgSyncKind kind;
+    guint id; /* semaphore (a cell) or barrier number */
+} AgSync;
+
+#define WL_AG_MAX_SYNC 4
+
+typedef struct {
+    guint ctx, seq;   /* seq-th block of context ctx */
+    guint batch;      /* index into the stream's batches */
+    guint first, n;   /* triangles [first, first + n) of the mesh */
+    gboolean opens;   /* first block of its batch (pays the app work) */
+    guint n_pre, n_post;
+    AgSync pre[WL_AG_MAX_SYNC], post[WL_AG_MAX_SYNC];
+    uint64_t verts;   /* vertices issued for the block's triangles */
+} AgBlock;
+
+typedef struct {
+    guint first, n;      /* triangles of the batch */
+    guint tag;
+    uint64_t verts;      /* vertices issued (strips share two) */
+    uint64_t distinct;   /* distinct mesh vertices (patch evaluations) */
+} AgBatch;
+
+typedef struct {
+    GArray *batches;   /* AgBatch, in mesh order */
+    GPtrArray *ctx;    /* per context: GArray of AgBlock, in issue order */
+    guint contexts;
+    guint sems;        /* semaphore ids are < sems */
+    guint barrier_parties;
+    uint64_t syncs;    /* synchronisation commands in all streams */
+} AgStreams;
+
+/* Builds the streams of `m` (triangles only) for `contexts` contexts.
+ * CELLS and NONE need batch tags that increase through the cell indices
+ * of an n x n x n grid (cells = n; 0: the least n that holds the last
+ * tag); cells without triangles become empty batches.  FALSE with *err
+ * otherwise.  Free with wl_ag_streams_free(). */
+AgStreams *wl_ag_streams_new(const SceneMesh *m, guint contexts, AgOrder ord,
+                             AgPrim prim, guint block_tris, guint cells,
+                             GError **err);
+void wl_ag_streams_free(AgStreams *s);
+static inline GArray *wl_ag_ctx_blocks(const AgStreams *s, guint c)
+{
+    return g_ptr_array_index(s->ctx, c);
+}
+/* Blocks over all contexts. */
+guint wl_ag_n_blocks(const AgStreams *s);
+
+#endif

@@ -1,0 +1,348 @@
+/* ag_workload.c — the `argus` workload: the parallel graphics API of
+ * Igehy, Stoll and Hanrahan (SIGGRAPH 1998, seed 002) on its Argus
+ * implementation, a sort-middle tiled renderer of application, geometry
+ * and rasterisation threads on a shared-memory multiprocessor.
+ *
+ *   workload:
+ *     type: argus
+ *     processors: 24        # P <= the machine's `cpu` count
+ *     contexts: 4           # graphics contexts = application threads
+ *     geometry: 10          # geometry threads (default (P - C) / 2)
+ *     rasterisers: 10       # rasterisation threads (default P - C - G)
+ *     uniprocessor: false   # everything on one processor, no queues
+ *     application: nurbs    # none | nurbs | march (application work)
+ *     voxels_per_cell: 4096 # march: voxels visited per cell (16^3)
+ *     cells: 4              # order cells/none: cells per axis (0: from
+ *                           # the last tag)
+ *     order: frame          # frame | cells | none (ag_stream.h)
+ *     primitives: strips    # strips | triangles (vertices issued)
+ *     pixels: opaque        # opaque (z-buffer) | blend (back to front)
+ *     alpha: 0.35           # blend opacity
+ *     fill_rate: infinite   # infinite (seed 002's footnote) | finite
+ *     tile: 128             # tile side in pixels
+ *     block: 64             # triangles per command block
+ *     bytes: {vertex: 32 B, triangle: 64 B}
+ *     width: 1200           # default: the scene's suggested viewport
+ *     height: 1000
+ *     check_image: true     # every frame equals the serial render
+ *
+ * The scene (`scene:`) gives the batches: runs of polygons with one tag
+ * (generator nurbs: patches; march: cells).  The machine needs a `cpu`
+ * node kind with the costs of ag_pipe.h and a bus network (the shared
+ * memory, sim/machine/shmem.h): models/origin2000.yaml.  Frames: the
+ * camera is fixed (seed 002 measures a static scene), frames repeat the
+ * whole pipeline; frame_hz is 1 / mean frame time.
+ */
+#include "sim/workload/argus/ag_workload.h"
+#include "sim/scene/scene_cfg.h"
+#include <string.h>
+
+static const char *const fills[] = {"infinite", "finite", NULL};
+
+static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
+{
+    int app = WL_AG_APP_NONE, ord = WL_AG_ORDER_FRAME, prim = 0, pix = 0;
+    int fill = 0;
+    gboolean ok =
+        cfg_get_enum(sec, "application", FALSE, wl_ag_app_names, &app, err) &&
+        cfg_get_enum(sec, "order", FALSE, wl_ag_order_names, &ord, err) &&
+        cfg_get_enum(sec, "primitives", FALSE, wl_ag_prim_names, &prim,
+                     err) &&
+        cfg_get_enum(sec, "pixels", FALSE, wl_ag_pixel_names, &pix, err) &&
+        cfg_get_enum(sec, "fill_rate", FALSE, fills, &fill, err);
+    p->setup.app = (AgApp)app;
+    p->order = (AgOrder)ord;
+    p->prim = (AgPrim)prim;
+    p->pixels = (AgPixelMode)pix;
+    p->setup.fill_infinite = fill == 0;
+    return ok;
+}
+
+static gboolean parse_bytes(const CfgNode *sec, WlAgParams *p, GError **err)
+{
+    uint64_t v = 32, t = 64;
+    const CfgNode *n;
+    if (!cfg_get_map(sec, "bytes", FALSE, "a map {vertex, triangle} of sizes",
+                     &n, err))
+        return FALSE;
+    if (n && (!cfg_get_size(n, "vertex", FALSE, &v, err) ||
+              !cfg_get_size(n, "triangle", FALSE, &t, err)))
+        return FALSE;
+    p->setup.vertex_bytes = (guint)MIN(v, 1u << 20);
+    p->setup.triangle_bytes = (guint)MIN(t, 1u << 20);
+    return TRUE;
+}
+
+/* contexts, geometry, rasterisers: defaults split P - C evenly. */
+static gboolean parse_threads(const CfgNode *sec, WlAgParams *p, GError **err)
+{
+    uint64_t P = 24, C = 1, G = 0, R = 0;
+    if (!cfg_get_count(sec, "processors", FALSE, 1, 4096, &P, err) ||
+        !cfg_get_count(sec, "contexts", FALSE, 1, 1024, &C, err) ||
+        !cfg_get_count(sec, "geometry", FALSE, 1, 1024, &G, err) ||
+        !cfg_get_count(sec, "rasterisers", FALSE, 1, 1024, &R, err))
+        return FALSE;
+    uint64_t rest = P > C ? P - C : 1;
+    if (!G)
+        G = MAX(1, rest / 2);
+    if (!R)
+        R = MAX(1, rest > G ? rest - G : 1);
+    p->setup.procs = (guint)P;
+    p->setup.contexts = (guint)C;
+    p->setup.geometry = (guint)G;
+    p->setup.rasterisers = (guint)R;
+    return TRUE;
+}
+
+static void *ag_parse(const CfgNode *sec, GError **err)
+{
+    WlAgParams *p = g_new0(WlAgParams, 1);
+    uint64_t vox = 4096, tile = 128, block = 64, w = 0, h = 0, cells = 0;
+    p->alpha = 0.35;
+    p->check_image = TRUE;
+    gboolean ok =
+        parse_words(sec, p, err) && parse_threads(sec, p, err) &&
+        parse_bytes(sec, p, err) &&
+        cfg_get_bool(sec, "uniprocessor", FALSE, &p->setup.uniprocessor,
+                     err) &&
+        cfg_get_count(sec, "voxels_per_cell", FALSE, 0, 1u << 30, &vox, err) &&
+        cfg_get_count(sec, "tile", FALSE, 8, 4096, &tile, err) &&
+        cfg_get_count(sec, "cells", FALSE, 0, 1024, &cells, err) &&
+        cfg_get_count(sec, "block", FALSE, 1, 1u << 20, &block, err) &&
+        cfg_get_double(sec, "alpha", FALSE, 0, 1, &p->alpha, err) &&
+        cfg_get_count(sec, "width", FALSE, 16, RAST_MAX_SIDE, &w, err) &&
+        cfg_get_count(sec, "height", FALSE, 16, RAST_MAX_SIDE, &h, err) &&
+        cfg_get_bool(sec, "check_image", FALSE, &p->check_image, err);
+    if (!ok) {
+        g_free(p);
+        return NULL;
+    }
+    p->setup.voxels_per_batch = vox;
+    p->tile = (guint)tile;
+    p->cells = (guint)cells;
+    p->block_tris = (guint)block;
+    p->width = (int)w;
+    p->height = (int)h;
+    if (p->setup.uniprocessor) {
+        p->setup.procs = 1;
+        p->setup.contexts = p->setup.geometry = p->setup.rasterisers = 1;
+    }
+    return p;
+}
+
+static void ag_free_params(void *params)
+{
+    g_free(params);
+}
+
+/* ---- running ------------------------------------------------------------ */
+
+typedef struct {
+    MachMachine *m;
+    Scene *scene;
+    SceneMesh *mesh; /* flattened, triangles only */
+    AgStreams *st;
+    AgFrame *f;
+    RastView view;
+    AgPipe *pipe;
+    GArray *stats; /* AgFrameStats */
+} Run;
+
+static void run_clear(Run *r)
+{
+    wl_ag_pipe_free(r->pipe);
+    wl_ag_frame_free(r->f);
+    wl_ag_streams_free(r->st);
+    scene_mesh_free(r->mesh);
+    scene_free(r->scene);
+    mach_free(r->m);
+    if (r->stats)
+        g_array_unref(r->stats);
+}
+
+static gboolean triangles_only(const SceneMesh *m, GError **err)
+{
+    for (guint i = 0; i < scene_mesh_n_polys(m); i++)
+        if (scene_mesh_poly_len(m, i) != 3) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "argus: found a polygon of %u vertices (polygon %u), "
+                        "expected triangles (generators nurbs, march)",
+                        scene_mesh_poly_len(m, i), i);
+            return FALSE;
+        }
+    return TRUE;
+}
+
+static gboolean check_machine(Run *r, WlAgParams *p, const CfgNode *root,
+                              GError **err)
+{
+    const MachKindInfo *k = mach_kind(r->m, "cpu");
+    if (!k || k->count < p->setup.procs) {
+        char *found = g_strdup_printf("%u processors", p->setup.procs);
+        char *exp = g_strdup_printf("at most the %u 'cpu' processors of "
+                                    "machine '%s'",
+                                    k ? k->count : 0, mach_name(r->m));
+        const CfgNode *at = cfg_path(root, "workload.processors");
+        cfg_error(err, at ? at : root, found, exp);
+        g_free(found);
+        g_free(exp);
+        return FALSE;
+    }
+    if (p->setup.uniprocessor)
+        return TRUE;
+    MachShmem sh;
+    if (!mach_shmem_init(&sh, r->m, err))
+        return FALSE;
+    p->setup.mem_bandwidth = sh.bandwidth;
+    p->setup.mem_latency = sh.latency;
+    return TRUE;
+}
+
+static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p,
+                      GError **err)
+{
+    AgCosts c;
+    r->scene = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
+    if (!r->scene)
+        return FALSE;
+    r->m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
+                             ctx->fidelity, err);
+    if (!r->m || !check_machine(r, p, ctx->root, err) ||
+        !wl_ag_costs_from_machine(r->m, &c, err))
+        return FALSE;
+    if (p->setup.uniprocessor)
+        c.lock = c.sema = 0;
+    r->mesh = scene_flatten(r->scene);
+    if (!triangles_only(r->mesh, err))
+        return FALSE;
+    r->st = wl_ag_streams_new(r->mesh, p->setup.contexts, p->order, p->prim,
+                              p->block_tris, p->cells, err);
+    if (!r->st)
+        return FALSE;
+    int w = p->width ? p->width : (r->scene->width ? (int)r->scene->width : 1200);
+    int h = p->height ? p->height
+                      : (r->scene->height ? (int)r->scene->height : 1000);
+    RastColor bg = {r->scene->background.r, r->scene->background.g,
+                    r->scene->background.b};
+    r->f = wl_ag_frame_new(w, h, (int)p->tile, p->pixels, (float)p->alpha, bg);
+    r->view = rast_view_for_camera(&r->scene->camera, w, h);
+    r->view.cull_back = FALSE;
+    r->pipe = wl_ag_pipe_new(r->m, &p->setup, &c, r->st, r->f, r->mesh,
+                             &r->view);
+    return TRUE;
+}
+
+/* Pixels that differ from the serial render (all batches in mesh order,
+ * one stream, the whole frame at once). */
+static uint64_t serial_diff(const Run *r, const WlAgParams *p, RastImage *img)
+{
+    AgFrame *ref = wl_ag_frame_new(r->f->width, r->f->height, (int)p->tile,
+                                   p->pixels, (float)p->alpha, r->f->bg);
+    guint n = scene_mesh_n_polys(r->mesh);
+    uint32_t *all = g_new(uint32_t, n ? n : 1);
+    for (guint i = 0; i < n; i++)
+        all[i] = i;
+    wl_ag_draw(ref, G_MAXUINT, &r->view, r->mesh, all, n);
+    RastImage *a = wl_ag_frame_image(ref);
+    uint64_t d = rast_image_diff(a, img);
+    rast_image_free(a);
+    g_free(all);
+    wl_ag_frame_free(ref);
+    return d;
+}
+
+static void set(SimResult *out, const char *name, double v, const char *unit)
+{
+    sim_result_set_metric(out, name, v, unit);
+}
+
+static void fill_metrics(SimResult *out, const Run *r, const WlAgParams *p)
+{
+    const AgSetup *s = &p->setup;
+    double n = r->stats->len, ms = 0, app = 0, geo = 0, ras = 0, px = 0;
+    const AgFrameStats *f0 = &g_array_index(r->stats, AgFrameStats, 0);
+    for (guint i = 0; i < r->stats->len; i++) {
+        const AgFrameStats *f = &g_array_index(r->stats, AgFrameStats, i);
+        ms += sim_time_to_ms(f->end - f->start);
+        app += sim_time_to_ms(f->app_busy);
+        geo += sim_time_to_ms(f->geom_busy);
+        ras += sim_time_to_ms(f->rast_busy);
+        px += (double)f->pixels;
+    }
+    set(out, "processors", s->procs, "");
+    set(out, "contexts", s->contexts, "");
+    set(out, "geometry_threads", s->geometry, "");
+    set(out, "rasterisers", s->rasterisers, "");
+    set(out, "tiles", wl_ag_n_tiles(r->f), "");
+    set(out, "frame_ms", ms / n, "ms");
+    set(out, "frame_hz", ms > 0 ? 1000.0 * n / ms : 0, "Hz");
+    set(out, "triangles", (double)f0->triangles, "");
+    set(out, "vertices_issued", (double)f0->verts_issued, "");
+    set(out, "batches", r->st->batches->len, "");
+    set(out, "blocks", (double)f0->blocks, "");
+    set(out, "sync_commands", (double)r->st->syncs, "");
+    set(out, "tile_syncs", (double)f0->syncs, "");
+    set(out, "bucketed_triangles", (double)f0->bucketed, "");
+    set(out, "pixels", px / n, "");
+    set(out, "application_ms", app / n, "ms");
+    set(out, "geometry_ms", geo / n, "ms");
+    set(out, "rasterisation_ms", ras / n, "ms");
+    set(out, "shared_memory_bytes", (double)f0->shmem_bytes, "B");
+}
+
+static gboolean finish_image(const WlContext *ctx, Run *r, WlAgParams *p,
+                             SimResult *out, GError **err)
+{
+    if (!p->check_image && !ctx->out_dir)
+        return TRUE;
+    RastImage *img = wl_ag_frame_image(r->f);
+    gboolean ok = TRUE;
+    if (p->check_image) {
+        uint64_t d = serial_diff(r, p, img);
+        set(out, "image_matches_serial", d == 0, "");
+        set(out, "pixels_differing", (double)d, "");
+    }
+    if (ctx->out_dir && g_mkdir_with_parents(ctx->out_dir, 0755) == 0) {
+        char *path = g_build_filename(ctx->out_dir, "argus.png", NULL);
+        ok = rast_image_write(img, path, err);
+        g_free(path);
+    }
+    rast_image_free(img);
+    return ok;
+}
+
+static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
+                       GError **err)
+{
+    WlAgParams *p = params;
+    Run r = {0};
+    gboolean ok = build(&r, ctx, p, err);
+    r.stats = g_array_new(FALSE, TRUE, sizeof(AgFrameStats));
+    for (int f = 0; ok && f < ctx->frames; f++) {
+        AgFrameStats fs;
+        ok = wl_ag_pipe_frame(r.pipe, wl_until(ctx), &fs, err);
+        if (ok) {
+            g_array_append_val(r.stats, fs);
+            sim_result_add_frame(out, fs.end - fs.start);
+        }
+    }
+    if (ok) {
+        mach_fill_result(r.m, out);
+        fill_metrics(out, &r, p);
+        ok = finish_image(ctx, &r, p, out, err);
+        out->elapsed = sim_now(ctx->eng);
+    }
+    run_clear(&r);
+    return ok;
+}
+
+const WlOps wl_argus_ops = {
+    .name = "argus",
+    .summary = "seed 002: the parallel graphics API (glpBarrier, glpPSema/"
+               "VSema) on Argus, a sort-middle tiled renderer of "
+               "application, geometry and rasterisation threads on a "
+               "shared-memory multiprocessor",
+    .parse = ag_parse,
+    .free_params = ag_free_params,
+    .run = ag_run,
+};
