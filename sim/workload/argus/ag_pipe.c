@@ -12,11 +12,19 @@
 #include <string.h>
 
 const char *const wl_ag_app_names[] = {"none", "nurbs", "march", NULL};
-const char *const wl_ag_cost_ops[] = {
-    "nurbs_vertex",  "march_voxel",  "march_triangle", "issue_vertex",
-    "issue_batch",   "geom_vertex",  "geom_triangle",  "geom_tile",
-    "rast_triangle", "rast_pixel",   "lock",           "sema",
-    NULL};
+const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
+                                      "march_voxel",
+                                      "march_triangle",
+                                      "issue_vertex",
+                                      "issue_batch",
+                                      "geom_vertex",
+                                      "geom_triangle",
+                                      "geom_tile",
+                                      "rast_triangle",
+                                      "rast_pixel",
+                                      "lock",
+                                      "sema",
+                                      NULL};
 
 typedef struct {
     gboolean done;
@@ -44,9 +52,9 @@ struct AgPipe {
     gboolean *g_busy;
     guint *g_block;
     guint ntiles, C;
-    guint *tnext;  /* ntiles x C */
-    int32_t *sem;  /* ntiles x sems */
-    guint *t_rr;   /* per tile: context to try first */
+    guint *tnext; /* ntiles x C */
+    int32_t *sem; /* ntiles x sems */
+    guint *t_rr;  /* per tile: context to try first */
     guint tiles_left;
     gboolean *r_busy;
     guint *r_cursor, *r_tile, *r_block;
@@ -454,7 +462,8 @@ static void reset(AgPipe *p)
     memset(p->app_next, 0, p->C * sizeof(guint));
     memset(p->tnext, 0, (gsize)p->ntiles * p->C * sizeof(guint));
     memset(p->sem, 0,
-           (gsize)p->ntiles * (p->st->sems ? p->st->sems : 1) * sizeof(int32_t));
+           (gsize)p->ntiles * (p->st->sems ? p->st->sems : 1) *
+               sizeof(int32_t));
     memset(p->t_rr, 0, p->ntiles * sizeof(guint));
     p->tiles_left = p->ntiles;
     wl_ag_frame_clear(p->f);

@@ -152,10 +152,10 @@ static gboolean build_cells(AgStreams *s, const SceneMesh *m, guint n,
                             GError **err)
 {
     if (n == 0) {
-        guint last = s->batches->len
-                         ? g_array_index(s->batches, AgBatch,
-                                         s->batches->len - 1).tag
-                         : 0;
+        guint last =
+            s->batches->len
+                ? g_array_index(s->batches, AgBatch, s->batches->len - 1).tag
+                : 0;
         n = (guint)ceil(cbrt((double)last + 1) - 1e-9);
     }
     if (!cell_batches(s, n)) {

@@ -47,29 +47,29 @@ typedef struct {
 #define WL_AG_MAX_SYNC 4
 
 typedef struct {
-    guint ctx, seq;   /* seq-th block of context ctx */
-    guint batch;      /* index into the stream's batches */
-    guint first, n;   /* triangles [first, first + n) of the mesh */
-    gboolean opens;   /* first block of its batch (pays the app work) */
+    guint ctx, seq; /* seq-th block of context ctx */
+    guint batch;    /* index into the stream's batches */
+    guint first, n; /* triangles [first, first + n) of the mesh */
+    gboolean opens; /* first block of its batch (pays the app work) */
     guint n_pre, n_post;
     AgSync pre[WL_AG_MAX_SYNC], post[WL_AG_MAX_SYNC];
-    uint64_t verts;   /* vertices issued for the block's triangles */
+    uint64_t verts; /* vertices issued for the block's triangles */
 } AgBlock;
 
 typedef struct {
-    guint first, n;      /* triangles of the batch */
+    guint first, n; /* triangles of the batch */
     guint tag;
-    uint64_t verts;      /* vertices issued (strips share two) */
-    uint64_t distinct;   /* distinct mesh vertices (patch evaluations) */
+    uint64_t verts;    /* vertices issued (strips share two) */
+    uint64_t distinct; /* distinct mesh vertices (patch evaluations) */
 } AgBatch;
 
 typedef struct {
-    GArray *batches;   /* AgBatch, in mesh order */
-    GPtrArray *ctx;    /* per context: GArray of AgBlock, in issue order */
+    GArray *batches; /* AgBatch, in mesh order */
+    GPtrArray *ctx;  /* per context: GArray of AgBlock, in issue order */
     guint contexts;
-    guint sems;        /* semaphore ids are < sems */
+    guint sems; /* semaphore ids are < sems */
     guint barrier_parties;
-    uint64_t syncs;    /* synchronisation commands in all streams */
+    uint64_t syncs; /* synchronisation commands in all streams */
 } AgStreams;
 
 /* Builds the streams of `m` (triangles only) for `contexts` contexts.

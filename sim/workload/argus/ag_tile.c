@@ -74,7 +74,8 @@ static void put_pixel(AgFrame *f, const RastSpan *s, int x, gsize i)
         return;
     }
     for (int k = 0; k < 3; k++)
-        f->rgb[3 * i + k] = f->alpha * c[k] + (1 - f->alpha) * f->rgb[3 * i + k];
+        f->rgb[3 * i + k] =
+            f->alpha * c[k] + (1 - f->alpha) * f->rgb[3 * i + k];
 }
 
 static void crop_span(void *ctx, const RastSpan *s, RastCounters *c)
@@ -90,8 +91,8 @@ static void crop_span(void *ctx, const RastSpan *s, RastCounters *c)
         k->pixels += (uint64_t)(b - a);
 }
 
-uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v,
-                    const SceneMesh *m, const uint32_t *tris, guint n)
+uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v, const SceneMesh *m,
+                    const uint32_t *tris, guint n)
 {
     Crop k = {f, 0, 0, f->width, f->height, 0};
     if (t != G_MAXUINT) {
@@ -103,8 +104,8 @@ uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v,
     RastCounters c = {0};
     RastSpanSink sink = {crop_span, &k};
     if (n)
-        rast_draw_mesh(v, m, mat4_identity(), scene_color(1, 1, 1), 0, tris,
-                       n, sink, &c);
+        rast_draw_mesh(v, m, mat4_identity(), scene_color(1, 1, 1), 0, tris, n,
+                       sink, &c);
     return k.pixels;
 }
 

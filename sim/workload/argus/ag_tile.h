@@ -47,14 +47,13 @@ static inline guint wl_ag_n_tiles(const AgFrame *f)
 
 /* Draws triangles `tris` (mesh polygon indices, in order) into tile t
  * (t == G_MAXUINT: the whole frame); returns pixels touched. */
-uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v,
-                    const SceneMesh *m, const uint32_t *tris, guint n);
+uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v, const SceneMesh *m,
+                    const uint32_t *tris, guint n);
 
 /* Calls fn(tile, ctx) for every tile the screen box of triangle i
  * overlaps; returns how many. */
-guint wl_ag_bucket(const AgFrame *f, const Mat4 *view_proj,
-                   const SceneMesh *m, guint i,
-                   void (*fn)(guint tile, void *ctx), void *ctx);
+guint wl_ag_bucket(const AgFrame *f, const Mat4 *view_proj, const SceneMesh *m,
+                   guint i, void (*fn)(guint tile, void *ctx), void *ctx);
 
 /* The frame as an 8-bit image (new; rast_image_free()). */
 RastImage *wl_ag_frame_image(const AgFrame *f);

@@ -46,8 +46,7 @@ static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
     gboolean ok =
         cfg_get_enum(sec, "application", FALSE, wl_ag_app_names, &app, err) &&
         cfg_get_enum(sec, "order", FALSE, wl_ag_order_names, &ord, err) &&
-        cfg_get_enum(sec, "primitives", FALSE, wl_ag_prim_names, &prim,
-                     err) &&
+        cfg_get_enum(sec, "primitives", FALSE, wl_ag_prim_names, &prim, err) &&
         cfg_get_enum(sec, "pixels", FALSE, wl_ag_pixel_names, &pix, err) &&
         cfg_get_enum(sec, "fill_rate", FALSE, fills, &fill, err);
     p->setup.app = (AgApp)app;
@@ -103,8 +102,7 @@ static void *ag_parse(const CfgNode *sec, GError **err)
     gboolean ok =
         parse_words(sec, p, err) && parse_threads(sec, p, err) &&
         parse_bytes(sec, p, err) &&
-        cfg_get_bool(sec, "uniprocessor", FALSE, &p->setup.uniprocessor,
-                     err) &&
+        cfg_get_bool(sec, "uniprocessor", FALSE, &p->setup.uniprocessor, err) &&
         cfg_get_count(sec, "voxels_per_cell", FALSE, 0, 1u << 30, &vox, err) &&
         cfg_get_count(sec, "tile", FALSE, 8, 4096, &tile, err) &&
         cfg_get_count(sec, "cells", FALSE, 0, 1024, &cells, err) &&
@@ -198,8 +196,7 @@ static gboolean check_machine(Run *r, WlAgParams *p, const CfgNode *root,
     return TRUE;
 }
 
-static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p,
-                      GError **err)
+static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p, GError **err)
 {
     AgCosts c;
     r->scene = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
@@ -219,7 +216,8 @@ static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p,
                               p->block_tris, p->cells, err);
     if (!r->st)
         return FALSE;
-    int w = p->width ? p->width : (r->scene->width ? (int)r->scene->width : 1200);
+    int w =
+        p->width ? p->width : (r->scene->width ? (int)r->scene->width : 1200);
     int h = p->height ? p->height
                       : (r->scene->height ? (int)r->scene->height : 1000);
     RastColor bg = {r->scene->background.r, r->scene->background.g,
@@ -227,8 +225,8 @@ static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p,
     r->f = wl_ag_frame_new(w, h, (int)p->tile, p->pixels, (float)p->alpha, bg);
     r->view = rast_view_for_camera(&r->scene->camera, w, h);
     r->view.cull_back = FALSE;
-    r->pipe = wl_ag_pipe_new(r->m, &p->setup, &c, r->st, r->f, r->mesh,
-                             &r->view);
+    r->pipe =
+        wl_ag_pipe_new(r->m, &p->setup, &c, r->st, r->f, r->mesh, &r->view);
     return TRUE;
 }
 
