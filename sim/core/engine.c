@@ -43,6 +43,8 @@ struct SimEngine {
     SimProgressFn progress_fn;
     void *progress_ctx;
     SimTrace *trace;
+    SimNodeNameFn namer;
+    void *namer_ctx;
 };
 
 SimEngine *sim_engine_new(uint64_t seed)
@@ -249,4 +251,15 @@ void sim_engine_set_trace(SimEngine *e, SimTrace *tr)
 SimTrace *sim_engine_trace(const SimEngine *e)
 {
     return e->trace;
+}
+
+void sim_engine_set_node_namer(SimEngine *e, SimNodeNameFn fn, void *ctx)
+{
+    e->namer = fn;
+    e->namer_ctx = fn ? ctx : NULL;
+}
+
+const char *sim_engine_node_name(const SimEngine *e, uint32_t node)
+{
+    return e->namer ? e->namer(e->namer_ctx, node) : NULL;
 }

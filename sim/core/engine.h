@@ -67,5 +67,11 @@ void sim_engine_set_progress(SimEngine *eng, uint64_t every, SimProgressFn fn,
 /* Optional trace sink (sim/core/trace.h); borrowed, may be NULL. */
 void sim_engine_set_trace(SimEngine *eng, SimTrace *tr);
 SimTrace *sim_engine_trace(const SimEngine *eng);
+/* Names of network endpoints for traces: whoever numbers the nodes (the
+ * machine) registers fn(ctx, id); sim_engine_node_name() returns its
+ * answer (borrowed) or NULL when no namer is set.  fn NULL clears it. */
+typedef const char *(*SimNodeNameFn)(void *ctx, uint32_t node);
+void sim_engine_set_node_namer(SimEngine *eng, SimNodeNameFn fn, void *ctx);
+const char *sim_engine_node_name(const SimEngine *eng, uint32_t node);
 
 #endif

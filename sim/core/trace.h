@@ -16,8 +16,11 @@ typedef struct {
     /* A processor was busy in a phase over [start, end). */
     void (*span)(SimTrace *tr, uint32_t node, const char *node_name,
                  const char *phase, SimTime start, SimTime end);
-    /* A message went from src to dst over [sent, arrived). */
-    void (*flow)(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t bytes,
+    /* A message went from src to dst over [sent, arrived).  Node ids are
+     * the same numbers spans use (processor ids on a machine); the names
+     * are the nodes' (NULL when nobody named them). */
+    void (*flow)(SimTrace *tr, uint32_t src, const char *src_name,
+                 uint32_t dst, const char *dst_name, uint64_t bytes,
                  SimTime sent, SimTime arrived);
     /* A named instant (frame boundary ...). */
     void (*mark)(SimTrace *tr, const char *name, SimTime t);
@@ -36,11 +39,13 @@ static inline void sim_trace_span(SimTrace *tr, uint32_t node,
         tr->ops->span(tr, node, node_name, phase, start, end);
 }
 
-static inline void sim_trace_flow(SimTrace *tr, uint32_t src, uint32_t dst,
-                                  uint64_t bytes, SimTime sent, SimTime arrived)
+static inline void sim_trace_flow(SimTrace *tr, uint32_t src,
+                                  const char *src_name, uint32_t dst,
+                                  const char *dst_name, uint64_t bytes,
+                                  SimTime sent, SimTime arrived)
 {
     if (tr && tr->ops->flow)
-        tr->ops->flow(tr, src, dst, bytes, sent, arrived);
+        tr->ops->flow(tr, src, src_name, dst, dst_name, bytes, sent, arrived);
 }
 
 static inline void sim_trace_mark(SimTrace *tr, const char *name, SimTime t)

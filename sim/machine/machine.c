@@ -242,6 +242,13 @@ static MachMachine *machine_alloc(SimEngine *eng, const char *fidelity)
     return m;
 }
 
+/* Traces name network endpoints as the processors with those ids. */
+static const char *node_name(void *ctx, uint32_t node)
+{
+    MachMachine *m = ctx;
+    return node < m->n_procs ? mach_proc_name(mach_proc_at(m, node)) : NULL;
+}
+
 static MachMachine *build(SimEngine *eng, CfgNode *tree, const char *model_file,
                           const char *fidelity, GError **err)
 {
@@ -260,6 +267,7 @@ static MachMachine *build(SimEngine *eng, CfgNode *tree, const char *model_file,
         mach_free(m);
         return NULL;
     }
+    sim_engine_set_node_namer(eng, node_name, m);
     return m;
 }
 
@@ -305,6 +313,8 @@ void mach_free(MachMachine *m)
 {
     if (!m)
         return;
+    if (m->name) /* built: it named the engine's nodes */
+        sim_engine_set_node_namer(m->eng, NULL, NULL);
     net_free(m->net);
     if (m->topo)
         net_topo_free(m->topo);

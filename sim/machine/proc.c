@@ -43,7 +43,7 @@ static void trace_span(MachProc *p, unsigned phase, SimTime start, SimTime end)
     SimTrace *tr = sim_engine_trace(eng);
     if (!tr)
         return;
-    sim_trace_span(tr, mach_proc_entity(p), mach_proc_name(p),
+    sim_trace_span(tr, mach_proc_id(p), mach_proc_name(p),
                    sim_engine_phase_name(eng, phase), start, end);
 }
 

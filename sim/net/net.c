@@ -226,8 +226,11 @@ void net_msg_deliver(NetNet *n, NetMsg *m)
                      m->sent, now,    m->hops};
     n->delivered++;
     n->mem -= sizeof *m + m->hops * sizeof(NetLink *);
-    sim_trace_flow(sim_engine_trace(n->eng), m->src, m->dst, m->bytes, m->sent,
-                   now);
+    SimTrace *tr = sim_engine_trace(n->eng);
+    if (tr)
+        sim_trace_flow(tr, m->src, sim_engine_node_name(n->eng, m->src),
+                       m->dst, sim_engine_node_name(n->eng, m->dst), m->bytes,
+                       m->sent, now);
     NetArriveFn cb = m->cb;
     void *ctx = m->ctx;
     g_free(m->path);

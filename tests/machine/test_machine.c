@@ -273,11 +273,12 @@ static void test_trace_spans(void **state)
     mach_proc_compute(p, 10 * SIM_US, ph, NULL, NULL, NULL);
     mach_proc_compute(p, 5 * SIM_US, 0, NULL, NULL, NULL);
     assert_true(sim_engine_run(f->eng, SIM_TIME_MAX, NULL));
-    uint32_t e = mach_proc_entity(p);
+    /* spans carry the processor id: the number flows use */
+    uint32_t e = mach_proc_id(p);
     char *want =
         g_strdup_printf("%u:cpu2:zbuf:0-10;%u:cpu2:compute:10-15;", e, e);
     assert_string_equal(l.text->str, want);
-    assert_string_equal(sim_entity_name(f->eng, e), "cpu2");
+    assert_string_equal(sim_engine_node_name(f->eng, e), "cpu2");
     g_free(want);
     g_string_free(l.text, TRUE);
     sim_engine_set_trace(f->eng, NULL);

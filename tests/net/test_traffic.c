@@ -26,9 +26,11 @@ typedef struct {
     GArray *by_src[N]; /* Sent, in delivery order */
 } Log;
 
-static void on_flow(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t b,
-                    SimTime sent, SimTime arrived)
+static void on_flow(SimTrace *tr, uint32_t src, const char *sn, uint32_t dst,
+                    const char *dn, uint64_t b, SimTime sent, SimTime arrived)
 {
+    (void)sn;
+    (void)dn;
     Log *lg = tr->state;
     Sent s = {dst, b, sent, arrived};
     g_array_append_val(lg->by_src[src], s);

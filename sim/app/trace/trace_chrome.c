@@ -1,8 +1,9 @@
 /* trace_chrome.c — Chrome Trace Event JSON (the "JSON Object Format" of
  * the Trace Event Format document; Perfetto and chrome://tracing read it).
  *
- * One process (pid 0, "pgsim"); one thread per node (tid = node id, named
- * with an "M" thread_name event on first sight).  A span is an "X"
+ * One process (pid 0, "pgsim"); one thread per node (tid = node id, the
+ * processor id on a machine, named with an "M" thread_name event and
+ * sorted by id with thread_sort_index on first sight).  A span is an "X"
  * complete event; a message is a flow: a zero-length "X" slice "send" on
  * the source with an "s" event, and "recv" on the destination with an "f"
  * event (binding point "e"), both carrying the same id; a mark is a
@@ -35,7 +36,10 @@ static void node_meta(TrcWriter *w, uint32_t node, const char *name)
             "\"tid\":%u,\"args\":{\"name\":",
             node);
     put_name(w->f, g_hash_table_lookup(w->nodes, GUINT_TO_POINTER(node + 1)));
-    fputs("}}", w->f);
+    fprintf(w->f,
+            "}},\n{\"name\":\"thread_sort_index\",\"ph\":\"M\",\"pid\":0,"
+            "\"tid\":%u,\"args\":{\"sort_index\":%u}}",
+            node, node);
 }
 
 static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
@@ -72,14 +76,15 @@ static void flow_end(TrcWriter *w, const char *ph, uint32_t node, SimTime t,
     fputc('}', w->f);
 }
 
-static void on_flow(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t bytes,
+static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
+                    uint32_t dst, const char *dst_name, uint64_t bytes,
                     SimTime sent, SimTime arrived)
 {
     TrcWriter *w = tr->state;
     if (!trc_admit(w, arrived))
         return;
-    node_meta(w, src, NULL);
-    node_meta(w, dst, NULL);
+    node_meta(w, src, src_name);
+    node_meta(w, dst, dst_name);
     uint64_t id = ++w->next_flow;
     flow_end(w, "s", src, sent, id, bytes);
     flow_end(w, "f", dst, arrived, id, bytes);

@@ -91,14 +91,15 @@ static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
     g_free(q);
 }
 
-static void on_flow(SimTrace *tr, uint32_t src, uint32_t dst, uint64_t bytes,
+static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
+                    uint32_t dst, const char *dst_name, uint64_t bytes,
                     SimTime sent, SimTime arrived)
 {
     TrcWriter *w = tr->state;
     if (!trc_admit(w, arrived))
         return;
-    see_node(w, src, NULL);
-    see_node(w, dst, NULL);
+    see_node(w, src, src_name);
+    see_node(w, dst, dst_name);
     uint64_t key = ++w->next_flow;
     add(w, 7, sent,
         g_strdup_printf("LT_Msg machine \"%" G_GUINT64_FORMAT

@@ -103,7 +103,8 @@ static void send(SimEngine *eng, void *ctx, void *arg)
     SimTrace *tr = sim_engine_trace(eng);
     sim_trace_span(tr, (uint32_t)i, node_at(s, i)->name, "send", now,
                    sim_time_add_sat(now, ser));
-    sim_trace_flow(tr, (uint32_t)i, (uint32_t)next, s->p->token, now,
+    sim_trace_flow(tr, (uint32_t)i, node_at(s, i)->name, (uint32_t)next,
+                   node_at(s, next)->name, s->p->token, now,
                    sim_time_add_sat(now, d));
     sim_schedule_in(eng, d, arrive, s, (void *)(uintptr_t)next);
 }

@@ -30,7 +30,7 @@ static void rm_path(char *p)
 static void emit(SimTrace *tr)
 {
     sim_trace_span(tr, 1, "gp1", "transform", 0, 3 * SIM_US);
-    sim_trace_flow(tr, 1, 0, 64, 3 * SIM_US, 5 * SIM_US + 250);
+    sim_trace_flow(tr, 1, "gp1", 0, NULL, 64, 3 * SIM_US, 5 * SIM_US + 250);
     sim_trace_span(tr, 0, "gp0", "merge", 5 * SIM_US + 250, 9 * SIM_US);
     sim_trace_mark(tr, "frame 0", 9 * SIM_US);
 }
