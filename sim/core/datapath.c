@@ -185,3 +185,18 @@ gboolean sim_file_read(const char *path, char **text, gsize *len,
         *len = size;
     return TRUE;
 }
+
+gboolean sim_file_write(const char *path, const void *data, gsize len,
+                        GError **err)
+{
+    GError *e = NULL;
+    if (g_file_set_contents_full(path, data, (gssize)len,
+                                 G_FILE_SET_CONTENTS_CONSISTENT |
+                                     G_FILE_SET_CONTENTS_DURABLE,
+                                 0666, &e))
+        return TRUE;
+    g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                "%s: found %s, expected a writable file", path, e->message);
+    g_error_free(e);
+    return FALSE;
+}

@@ -28,6 +28,15 @@ char *sim_data_path(const char *name);
 gboolean sim_file_read(const char *path, char **text, gsize *len,
                        GError **err);
 
+/* Writes len bytes to path as one whole file: GLib's
+ * g_file_set_contents_full() (temporary file beside it, fsync, rename), so
+ * a reader sees the old file or the complete new one.  The new file's
+ * mode is 0666 less the umask, like any file a program creates.  FALSE
+ * with *err (SIM_ERROR_IO, "path: found <reason>, expected a writable
+ * file") on failure; the target is then untouched. */
+gboolean sim_file_write(const char *path, const void *data, gsize len,
+                        GError **err);
+
 /* The size limit of input files in bytes: SIM_FILE_LIMIT_DEFAULT (1 GiB)
  * unless $PGSIM_MAX_INPUT (bytes, with an optional k/M/G suffix) or
  * sim_file_set_limit() (0 restores the default) says otherwise. */

@@ -6,7 +6,7 @@
  * min..max error bars around the mean.  O(rows * groups per series).
  */
 #include "sim/output/plot.h"
-#include "sim/output/atomic.h"
+#include "sim/core/datapath.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -351,7 +351,7 @@ static gboolean save(const char *dir, const char *name, const char *ext,
 {
     char *file = g_strconcat(name, ext, NULL);
     char *path = g_build_filename(dir, file, NULL);
-    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
+    gboolean ok = sim_file_write(path, s->str, s->len, err);
     g_free(path);
     g_free(file);
     return ok;
@@ -393,7 +393,7 @@ gboolean plot_render(const PlotSpec *p, const DataTable *t, const char *dir,
         return FALSE;
     }
     GString *dat = data_text(p, all), *gp = script_text(p, all, cat);
-    gboolean ok = g_mkdir_with_parents(dir, 0755) == 0 &&
+    gboolean ok = g_mkdir_with_parents(dir, 0777) == 0 &&
                   save(dir, p->name, ".dat", dat, err) &&
                   save(dir, p->name, ".gp", gp, err) &&
                   run_gnuplot(dir, p->name, err);

@@ -76,6 +76,11 @@ void rpt_progress_update(RptProgress *p, uint64_t done)
         draw(p, now);
 }
 
+uint64_t rpt_progress_done(const RptProgress *p)
+{
+    return p ? p->done : 0;
+}
+
 void rpt_progress_note(RptProgress *p, const char *note)
 {
     if (!p)

@@ -23,6 +23,8 @@ RptProgress *rpt_progress_new_full(uint64_t total, const char *label, FILE *out,
                                    gint64 (*clock_us)(void));
 /* Records `done` steps; redraws if 100 ms have passed since the last. */
 void rpt_progress_update(RptProgress *p, uint64_t done);
+/* Steps recorded so far (0 for NULL). */
+uint64_t rpt_progress_done(const RptProgress *p);
 /* Sets a short text shown after the count ("2 failed"); NULL clears it.
  * With a known total, an ETA (elapsed / done * remaining) follows. */
 void rpt_progress_note(RptProgress *p, const char *note);

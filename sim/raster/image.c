@@ -1,9 +1,8 @@
-/* image.c — RGB images; atomic PNG (libpng simplified API) and PPM I/O.
+/* image.c — RGB images; PNG (libpng simplified API) and PPM I/O.
  *
- * Atomic write: g_mkstemp() creates "<path>.XXXXXX" next to the target,
- * the encoder writes through stdio, the stream is flushed and closed, and
- * rename(2) replaces the target in one step; on any failure the
- * temporary file is removed and the target is untouched.
+ * Writes encode in memory and hand the bytes to sim_file_write()
+ * (g_file_set_contents_full: temporary file, fsync, rename; mode 0666
+ * less the umask), so a failure leaves the target untouched.
  * O(W H) per operation.
  */
 #include "sim/raster/image.h"
@@ -107,9 +106,8 @@ static gboolean io_error(GError **err, const char *path, const char *what)
     return FALSE;
 }
 
-typedef gboolean (*EncodeFn)(const RastImage *img, FILE *f);
-
-static gboolean encode_png(const RastImage *img, FILE *f)
+static gboolean encode_png(const RastImage *img, const char *path,
+                           GError **err)
 {
     png_image pi;
     memset(&pi, 0, sizeof pi);
@@ -117,54 +115,37 @@ static gboolean encode_png(const RastImage *img, FILE *f)
     pi.width = (png_uint_32)img->width;
     pi.height = (png_uint_32)img->height;
     pi.format = PNG_FORMAT_RGB;
-    int ok = png_image_write_to_stdio(&pi, f, 0, img->rgb, 0, NULL);
+    png_alloc_size_t size = 0;
+    gboolean ok = FALSE;
+    if (png_image_write_to_memory(&pi, NULL, &size, 0, img->rgb, 0, NULL)) {
+        void *buf = g_malloc(size);
+        ok = png_image_write_to_memory(&pi, buf, &size, 0, img->rgb, 0,
+                                       NULL) &&
+             sim_file_write(path, buf, size, err);
+        g_free(buf);
+    } else {
+        io_error(err, path, pi.message);
+    }
     png_image_free(&pi);
-    return ok != 0;
-}
-
-static gboolean encode_ppm(const RastImage *img, FILE *f)
-{
-    size_t n = (size_t)3 * img->width * img->height;
-    return fprintf(f, "P6\n%d %d\n255\n", img->width, img->height) > 0 &&
-           fwrite(img->rgb, 1, n, f) == n;
-}
-
-static gboolean write_atomic(const RastImage *img, const char *path,
-                             EncodeFn enc, GError **err)
-{
-    char *tmp = g_strdup_printf("%s.XXXXXX", path);
-    int fd = g_mkstemp(tmp);
-    if (fd < 0) {
-        g_free(tmp);
-        return io_error(err, path, g_strerror(errno));
-    }
-    FILE *f = fdopen(fd, "wb");
-    gboolean ok = f && enc(img, f);
-    ok = (f ? fflush(f) == 0 : FALSE) && ok;
-    if (f ? fclose(f) != 0 : close(fd) != 0)
-        ok = FALSE;
-    if (ok && rename(tmp, path) != 0)
-        ok = FALSE;
-    if (!ok) {
-        int e = errno;
-        unlink(tmp);
-        g_free(tmp);
-        return io_error(err, path, e ? g_strerror(e) : "write failed");
-    }
-    g_free(tmp);
-    return TRUE;
+    return ok;
 }
 
 gboolean rast_image_write_png(const RastImage *img, const char *path,
                               GError **err)
 {
-    return write_atomic(img, path, encode_png, err);
+    return encode_png(img, path, err);
 }
 
 gboolean rast_image_write_ppm(const RastImage *img, const char *path,
                               GError **err)
 {
-    return write_atomic(img, path, encode_ppm, err);
+    size_t n = (size_t)3 * img->width * img->height;
+    GString *s = g_string_sized_new(n + 32);
+    g_string_printf(s, "P6\n%d %d\n255\n", img->width, img->height);
+    g_string_append_len(s, (const char *)img->rgb, (gssize)n);
+    gboolean ok = sim_file_write(path, s->str, s->len, err);
+    g_string_free(s, TRUE);
+    return ok;
 }
 
 gboolean rast_image_write(const RastImage *img, const char *path, GError **err)

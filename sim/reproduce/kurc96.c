@@ -146,15 +146,18 @@ static const RpKurcRun *get_run(Kurc *k, int scene, guint n, guint procs,
     p.setup.balance = bal;
     p.setup.procs = procs;
     p.setup.resolution = n;
+    char *what = g_strdup_printf("%s N=%u P=%u %s-%s", rp_kurc96_scenes[scene],
+                                 n, procs, wl_pm_scheme_names[scheme],
+                                 wl_pm_balance_names[bal]);
+    rp_step(k->ctx, what);
+    g_free(what);
     run = g_new0(RpKurcRun, 1);
     if (!simulate(k, &p, scene, run, err)) {
         g_free(run);
         g_free(key);
         return NULL;
     }
-    if (!k->ctx->quiet)
-        g_printerr("kurc96: %s N=%u P=%u %s-%s\n", rp_kurc96_scenes[scene], n,
-                   procs, wl_pm_scheme_names[scheme], wl_pm_balance_names[bal]);
+
     g_hash_table_insert(k->cache, key, run);
     return run;
 }

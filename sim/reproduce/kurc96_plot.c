@@ -94,7 +94,7 @@ static void chart(const RpKurcPoint *pts, guint n, gboolean by_procs,
 void rp_kurc96_charts(const RpKurcFigs *f, const char *dir,
                       const char *fidelity)
 {
-    if (g_mkdir_with_parents(dir, 0755) != 0) {
+    if (g_mkdir_with_parents(dir, 0777) != 0) {
         g_printerr("kurc96: cannot create %s; no charts\n", dir);
         return;
     }

@@ -165,6 +165,9 @@ static gboolean scene_cells(OrRun *r, const char *key, GError **err)
         int w, h;
         if (!(ok = read_res(cfg_seq_at(res, i), &w, &h, err)))
             break;
+        char what[96];
+        g_snprintf(what, sizeof what, "%s at %dx%d", key, w, h);
+        rp_step(r->ctx, what);
         ok = render_tables(r, key, s, w, h, err);
     }
     scene_free(s);

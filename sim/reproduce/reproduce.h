@@ -20,6 +20,7 @@
 #ifndef PGSIM_REPRODUCE_REPRODUCE_H
 #define PGSIM_REPRODUCE_REPRODUCE_H
 
+#include "sim/output/progress.h"
 #include <glib.h>
 
 typedef struct {
@@ -35,7 +36,12 @@ typedef struct {
     const char *fidelity; /* network fidelity for this pass */
     const char *out_dir;  /* where charts may be written; NULL for none */
     gboolean quiet;       /* no progress output */
+    RptProgress *progress; /* the caller's progress line; NULL: none */
 } RpContext;
+
+/* A paper reports that it is about to simulate `what` ("2POT N=400
+ * P=16"): the progress line (a terminal only) counts it and shows it. */
+void rp_step(const RpContext *ctx, const char *what);
 
 typedef struct {
     const char *name;     /* "kurc96": also its folder configs/papers/<name> */

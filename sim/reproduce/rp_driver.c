@@ -76,3 +76,12 @@ GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
     }
     return out;
 }
+
+void rp_step(const RpContext *ctx, const char *what)
+{
+    if (!ctx || !ctx->progress)
+        return;
+    RptProgress *p = ctx->progress;
+    rpt_progress_note(p, what);
+    rpt_progress_update(p, rpt_progress_done(p) + 1);
+}

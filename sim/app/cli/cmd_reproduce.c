@@ -7,10 +7,12 @@
  * the chosen format on stdout.  With --out DIR each reproduction's table
  * is also written, atomically, as DIR/<name>.{txt,csv,json} (and, with
  * --fidelity all, the chart DIR/<name>-speed.png).  `all` also writes the
- * Markdown report --doc FILE (default docs/reproduction.md) with charts
- * in <its directory>/reproduction/.
+ * Markdown report when asked where: --doc FILE, or DIR/reproduction.md
+ * under --out DIR, with charts in <its directory>/reproduction/; never
+ * into the current directory unasked.  Progress (which simulation a
+ * paper is on, how long it has run) is one line on a terminal only.
  */
-#include "sim/output/atomic.h"
+#include "sim/core/datapath.h"
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
 #include "sim/reproduce/rp_doc.h"
@@ -57,7 +59,8 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
         {"papers", 0, 0, G_OPTION_ARG_FILENAME, &o->papers,
          "published values (default configs/papers)", "DIR"},
         {"doc", 0, 0, G_OPTION_ARG_FILENAME, &o->doc,
-         "with 'all': the Markdown report (default docs/reproduction.md)",
+         "with 'all': write the Markdown report to FILE (default with "
+         "--out: DIR/reproduction.md; else none)",
          "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
@@ -118,7 +121,7 @@ static gboolean write_file(const char *dir, const char *name, const char *ext,
 {
     char *file = g_strconcat(name, ".", ext, NULL);
     char *path = g_build_filename(dir, file, NULL);
-    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
+    gboolean ok = sim_file_write(path, s->str, s->len, err);
     g_free(path);
     g_free(file);
     return ok;
@@ -129,7 +132,7 @@ static gboolean write_outputs(const GPtrArray *passes, const char *dir,
 {
     static const char *const ext[] = {"txt", "csv", "json"};
     const RpTable *t = g_ptr_array_index(passes, 0);
-    if (g_mkdir_with_parents(dir, 0755) != 0) {
+    if (g_mkdir_with_parents(dir, 0777) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
         return FALSE;
     }
@@ -145,10 +148,12 @@ static gboolean write_outputs(const GPtrArray *passes, const char *dir,
 }
 
 static GPtrArray *run_passes(const RpPaperOps *rp, const RpOpts *o,
-                             GError **err)
+                             RptProgress *bar, GError **err)
 {
-    RpContext ctx = {
-        .fidelity = o->fidelity, .out_dir = o->out_dir, .quiet = o->quiet};
+    RpContext ctx = {.fidelity = o->fidelity,
+                     .out_dir = o->out_dir,
+                     .quiet = o->quiet || !bar,
+                     .progress = bar};
     if (strcmp(o->fidelity, "all") == 0)
         return rp_drive_fidelities(rp, o->papers, &ctx, err);
     RpTable *t = rp_drive(rp, o->papers, &ctx, err);
@@ -165,9 +170,12 @@ static GPtrArray *run_passes(const RpPaperOps *rp, const RpOpts *o,
 static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o,
                           gboolean first, GError **err)
 {
-    if (!o->quiet)
-        fprintf(stderr, "reproduce: %s (fidelity %s)\n", rp->name, o->fidelity);
-    GPtrArray *passes = run_passes(rp, o, err);
+    char *label = g_strdup_printf("reproduce %s (fidelity %s), runs", rp->name,
+                                  o->fidelity);
+    RptProgress *bar = o->quiet ? NULL : rpt_progress_new(0, label);
+    g_free(label);
+    GPtrArray *passes = run_passes(rp, o, bar, err);
+    rpt_progress_finish(bar);
     if (!passes)
         return NULL;
     GString *s = g_string_new(NULL);
@@ -200,7 +208,7 @@ static gboolean doc_paper(GString *md, const RpPaperOps *rp,
                           const char *chart_dir, GError **err)
 {
     const RpTable *fin = g_ptr_array_index(passes, passes->len - 1);
-    if (g_mkdir_with_parents(chart_dir, 0755) != 0) {
+    if (g_mkdir_with_parents(chart_dir, 0777) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create",
                     chart_dir);
         return FALSE;
@@ -215,32 +223,62 @@ static gboolean doc_paper(GString *md, const RpPaperOps *rp,
     return TRUE;
 }
 
-static gboolean run_all(const RpOpts *o, GError **err)
+/* Where `all` writes its report: --doc, else DIR/reproduction.md under
+ * --out, else nowhere (NULL). */
+static char *doc_path(const RpOpts *o)
 {
-    const char *doc = o->doc ? o->doc : "docs/reproduction.md";
+    if (o->doc)
+        return g_strdup(o->doc);
+    return o->out_dir ? g_build_filename(o->out_dir, "reproduction.md", NULL)
+                      : NULL;
+}
+
+/* Runs every paper; adds each to md under chart_dir when md is given. */
+static gboolean run_papers(const RpOpts *o, GString *md, const char *charts,
+                           GError **err)
+{
+    gboolean ok = TRUE;
+    for (int i = 0; ok && rp_all[i]; i++) {
+        GPtrArray *passes = run_one(rp_all[i], o, i == 0, err);
+        ok = passes &&
+             (!md || doc_paper(md, rp_all[i], passes, o, charts, err));
+        if (passes)
+            g_ptr_array_free(passes, TRUE);
+    }
+    return ok;
+}
+
+static gboolean write_report(const RpOpts *o, const char *doc, GError **err)
+{
     char *dir = g_path_get_dirname(doc);
     char *charts = g_build_filename(dir, "reproduction", NULL);
     GString *md = g_string_new(NULL);
     rp_doc_head(md, o->fidelity);
-    gboolean ok = TRUE;
-    for (int i = 0; ok && rp_all[i]; i++) {
-        GPtrArray *passes = run_one(rp_all[i], o, i == 0, err);
-        ok = passes && doc_paper(md, rp_all[i], passes, o, charts, err);
-        if (passes)
-            g_ptr_array_free(passes, TRUE);
-    }
+    gboolean ok = run_papers(o, md, charts, err);
     if (!rp_all[0])
         g_string_append(md, "No reproduction is registered yet.\n");
-    if (ok && g_mkdir_with_parents(dir, 0755) != 0) {
+    if (ok && g_mkdir_with_parents(dir, 0777) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
         ok = FALSE;
     }
-    ok = ok && rpt_write_atomic(doc, md->str, md->len, err);
+    ok = ok && sim_file_write(doc, md->str, md->len, err);
     if (ok && !o->quiet)
         fprintf(stderr, "reproduce: wrote %s\n", doc);
     g_string_free(md, TRUE);
     g_free(charts);
     g_free(dir);
+    return ok;
+}
+
+static gboolean run_all(const RpOpts *o, GError **err)
+{
+    char *doc = doc_path(o);
+    gboolean ok = doc ? write_report(o, doc, err)
+                      : run_papers(o, NULL, NULL, err);
+    if (ok && !doc && !o->quiet)
+        fprintf(stderr, "reproduce: no report written (--doc FILE or --out "
+                        "DIR writes the Markdown report)\n");
+    g_free(doc);
     return ok;
 }
 

@@ -8,7 +8,7 @@
  * The schema is docs/output.md.  Cost: O(frames + nodes * phases).
  */
 #include "sim/app/run/report.h"
-#include "sim/output/atomic.h"
+#include "sim/core/datapath.h"
 #include "sim/output/json.h"
 #include <errno.h>
 #include <string.h>
@@ -453,7 +453,7 @@ char *rpt_render(const SimResult *r, RptFormat f, gboolean timing)
 gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
                        GError **err)
 {
-    if (g_mkdir_with_parents(dir, 0755) != 0) {
+    if (g_mkdir_with_parents(dir, 0777) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
                     "%s: found %s, expected a "
                     "directory that can be created",
@@ -464,7 +464,7 @@ gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
     for (int f = RPT_TEXT; ok && f <= RPT_CSV; f++) {
         char *text = rpt_render(r, (RptFormat)f, timing);
         char *path = g_build_filename(dir, format_files[f], NULL);
-        ok = rpt_write_atomic(path, text, strlen(text), err);
+        ok = sim_file_write(path, text, strlen(text), err);
         g_free(path);
         g_free(text);
     }

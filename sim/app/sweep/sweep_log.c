@@ -8,7 +8,7 @@
  * log is O(bytes); finishing is O(points * columns).
  */
 #include "sim/app/sweep/sweep_log.h"
-#include "sim/output/atomic.h"
+#include "sim/core/datapath.h"
 #include "sim/output/json.h"
 #include <errno.h>
 #include <fcntl.h>
@@ -79,7 +79,7 @@ static gboolean check_fingerprint(const char *dir, const SweepSpec *spec,
         ok = FALSE;
     }
     char *text = g_strconcat(fp, "\n", NULL);
-    ok = ok && rpt_write_atomic(path, text, strlen(text), err);
+    ok = ok && sim_file_write(path, text, strlen(text), err);
     g_free(text);
     g_free(old);
     g_free(fp);
@@ -123,7 +123,7 @@ static gboolean load_existing(SweepLog *log, gboolean resume, GError **err)
 SweepLog *sweep_log_open(const char *dir, const SweepSpec *spec,
                          gboolean resume, GError **err)
 {
-    if (g_mkdir_with_parents(dir, 0755) != 0) {
+    if (g_mkdir_with_parents(dir, 0777) != 0) {
         io_error(err, dir, "create the directory");
         return NULL;
     }
@@ -137,7 +137,7 @@ SweepLog *sweep_log_open(const char *dir, const SweepSpec *spec,
         sweep_log_close(log);
         return NULL;
     }
-    log->fd = open(log->path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    log->fd = open(log->path, O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
     if (log->fd < 0) {
         io_error(err, log->path, "open");
         sweep_log_close(log);
@@ -250,7 +250,7 @@ static gboolean write_atomic(const char *dir, const char *name,
                              const GString *s, GError **err)
 {
     char *path = in_dir(dir, name);
-    gboolean ok = rpt_write_atomic(path, s->str, s->len, err);
+    gboolean ok = sim_file_write(path, s->str, s->len, err);
     g_free(path);
     return ok;
 }

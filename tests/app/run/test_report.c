@@ -9,9 +9,11 @@
 #include <glib/gstdio.h>
 #include <string.h>
 
-#include "sim/output/atomic.h"
+#include "sim/core/datapath.h"
 #include "sim/output/json.h"
 #include "sim/output/progress.h"
+#include "sim/raster/image.h"
+#include <sys/stat.h>
 #include "sim/app/run/report.h"
 
 /* A small hand-made result: 2 frames, 2 nodes, 2 phases, one metric. */
@@ -121,8 +123,8 @@ static void test_atomic(void **state)
     char *dir = g_dir_make_tmp("pgsim-atomic-XXXXXX", NULL);
     char *path = g_build_filename(dir, "out.json", NULL);
     GError *e = NULL;
-    assert_true(rpt_write_atomic(path, "old", 3, &e));
-    assert_true(rpt_write_atomic(path, "new!", 4, &e));
+    assert_true(sim_file_write(path, "old", 3, &e));
+    assert_true(sim_file_write(path, "new!", 4, &e));
     char *text = NULL;
     assert_true(g_file_get_contents(path, &text, NULL, NULL));
     assert_string_equal(text, "new!");
@@ -131,14 +133,14 @@ static void test_atomic(void **state)
     /* the rename fails (target is a directory): no temporary is left */
     char *sub = g_build_filename(dir, "sub", NULL);
     assert_int_equal(g_mkdir(sub, 0755), 0);
-    assert_false(rpt_write_atomic(sub, "x", 1, &e));
+    assert_false(sim_file_write(sub, "x", 1, &e));
     assert_int_equal(sim_error_exit_status(e), 2);
     assert_non_null(strstr(e->message, "expected a writable file"));
     g_clear_error(&e);
     assert_int_equal(dir_entries(dir), 2);
     /* a missing directory: nothing created anywhere */
     char *nodir = g_build_filename(dir, "none", "f.json", NULL);
-    assert_false(rpt_write_atomic(nodir, "x", 1, &e));
+    assert_false(sim_file_write(nodir, "x", 1, &e));
     g_clear_error(&e);
     assert_int_equal(dir_entries(dir), 2);
     /* rpt_write_dir writes the three files */
@@ -161,6 +163,55 @@ static void test_atomic(void **state)
     g_free(nodir);
     g_free(sub);
     g_free(path);
+    g_free(dir);
+}
+
+static unsigned mode_of(const char *path)
+{
+    GStatBuf st;
+    assert_int_equal(g_stat(path, &st), 0);
+    return st.st_mode & 0777;
+}
+
+/* Outputs are created with the user's umask (issue 18: PNGs were 0600,
+ * results forced to 0644): 027 gives 0640, 002 gives 0664. */
+static void test_file_modes(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-mode-XXXXXX", NULL);
+    char *outd = g_build_filename(dir, "o", NULL);
+    char *png = g_build_filename(dir, "f.png", NULL);
+    char *json = g_build_filename(outd, "result.json", NULL);
+    static const mode_t masks[] = {027, 002};
+    static const unsigned want[] = {0640, 0664};
+    SimResult *r = sample();
+    RastImage *img = rast_image_new(4, 3);
+    for (int i = 0; i < 2; i++) {
+        mode_t old = umask(masks[i]);
+        GError *e = NULL;
+        assert_true(rpt_write_dir(r, outd, FALSE, &e));
+        assert_true(rast_image_write_png(img, png, &e));
+        umask(old);
+        assert_int_equal(mode_of(json), want[i]);
+        assert_int_equal(mode_of(png), want[i]);
+        /* a rewrite takes the mode of the new file, not the old one */
+        const char *names[] = {"summary.txt", "result.json", "result.csv"};
+        for (int k = 0; k < 3; k++) {
+            char *p = g_build_filename(outd, names[k], NULL);
+            assert_int_equal(mode_of(p), want[i]);
+            if (i == 1)
+                g_remove(p);
+            g_free(p);
+        }
+    }
+    rast_image_free(img);
+    sim_result_free(r);
+    g_remove(png);
+    g_rmdir(outd);
+    assert_int_equal(g_rmdir(dir), 0);
+    g_free(json);
+    g_free(png);
+    g_free(outd);
     g_free(dir);
 }
 
@@ -222,6 +273,7 @@ int main(void)
         cmocka_unit_test(test_json),
         cmocka_unit_test(test_csv_and_text),
         cmocka_unit_test(test_atomic),
+        cmocka_unit_test(test_file_modes),
         cmocka_unit_test(test_progress),
         cmocka_unit_test(test_progress_note_eta),
     };
