@@ -12,6 +12,7 @@
  */
 #include "sim/workload/pphigs/pphigs_frame.h"
 #include "sim/scene/pphigs_db.h"
+#include "sim/workload/pphigs/pphigs_pixels.h"
 #include <string.h>
 
 #define NONE G_MAXUINT
@@ -20,11 +21,12 @@
 typedef struct {
     SimTime trav, xform, send; /* work before the message */
     guint region;              /* NONE: no batch */
-    guint count;               /* commands in the batch */
+    GArray *cmds;              /* the batch (WlPphigsCmd), owned */
 } Step;
 
 typedef struct {
-    guint gp, region, count;
+    guint gp, region;
+    GArray *cmds; /* the batch's commands, owned */
     gboolean end;
     guint msgs; /* end marker: batches this GP sent to the renderer */
 } Msg;
@@ -37,7 +39,7 @@ typedef struct {
     MachProc *p;
     GArray *steps; /* Step */
     guint next;
-    guint *buf;     /* per region: commands buffered */
+    GArray **buf;   /* per region: commands buffered (NULL: none) */
     guint *sent;    /* per renderer: batches sent */
     uint64_t edits; /* elements the host sends before this frame */
 } Gp;
@@ -48,8 +50,8 @@ typedef struct {
     MachProc *p;
     guint nreg;     /* its regions: id, id + R, id + 2R ... */
     guint cur;      /* local index of the region being rasterised */
-    guint *pending; /* per local region: commands not yet rasterised */
-    gboolean *begun;
+    GArray **pending; /* per local region: commands not yet rasterised */
+    WlPphigsRegion **reg; /* per local region: its pixels once begun */
     guint *got, *expect; /* per GP: batches received / announced */
     guint gps_done;
 } Rend;
@@ -60,7 +62,8 @@ struct WlPphigsFrame {
     NetNet *net;
     WlPphigsFrameSpec s;
     WlPphigsCosts c;
-    SimTime gp_send, rend_prim, rend_begin, rend_shade, fb_store, host_send;
+    SimTime gp_send, rend_expr, rend_cmp, rend_begin, rend_shade, fb_store,
+        host_send;
     guint ngp, nrend, nx, ny, nregions;
     Gp *gp;
     Rend *rend;
@@ -70,8 +73,10 @@ struct WlPphigsFrame {
     unsigned ph_trav, ph_xform, ph_send, ph_rast, ph_shade, ph_store, ph_edit;
     double *gp_us;  /* processor time of the frame just run */
     SimTime *busy0; /* traverse + transform busy at the frame's start */
-    uint64_t commands, offscreen, prims, host_elems;
+    uint64_t commands, offscreen, prims, host_elems, exprs;
     Mat4 vp;
+    RastImage *image; /* the frame buffer's pixels */
+    GArray *scratch;  /* one primitive's commands while planning */
 };
 
 /* ---- costs from the machine ------------------------------------------- */
@@ -93,7 +98,8 @@ static gboolean hw_costs(WlPphigsFrame *f, GError **err)
 {
     const MachMachine *m = f->m;
     return wl_pphigs_costs_from_machine(m, &f->c, &f->gp_send, err) &&
-           mach_cost_lookup(m, "renderer", "primitive", &f->rend_prim, err) &&
+           mach_cost_lookup(m, "renderer", "expression", &f->rend_expr, err) &&
+           mach_cost_lookup(m, "renderer", "compare", &f->rend_cmp, err) &&
            mach_cost_lookup(m, "renderer", "region_begin", &f->rend_begin,
                             err) &&
            mach_cost_lookup(m, "renderer", "region_shade", &f->rend_shade,
@@ -132,54 +138,38 @@ typedef struct {
     SimTime trav, xform, send; /* accumulated since the last step */
 } Plan;
 
-static void plan_step(Plan *pl, guint region, guint count)
+static void plan_step(Plan *pl, guint region, GArray *cmds)
 {
-    Step st = {pl->trav, pl->xform, pl->send, region, count};
+    Step st = {pl->trav, pl->xform, pl->send, region, cmds};
     g_array_append_val(pl->g->steps, st);
     pl->trav = pl->xform = pl->send = 0;
     if (region != NONE)
         pl->g->sent[region % pl->f->nrend]++;
 }
 
-static guint clampi(double v, guint hi)
-{
-    return v <= 0 ? 0 : v >= hi ? hi - 1 : (guint)v;
-}
-
-/* Screen box of a primitive that is not trivially rejected, in regions.
- * A vertex behind the eye makes the box the whole screen (conservative).*/
-static void prim_regions(const WlPphigsFrame *f, Mat4 m, const SceneElem *e,
-                         guint r[4])
-{
-    double x0 = 1, x1 = -1, y0 = 1, y1 = -1;
-    for (guint v = 0; v < e->nverts; v++) {
-        Vec4 q = mat4_apply_point(m, e->verts[v]);
-        if (q.w <= 0) {
-            x0 = y0 = -1;
-            x1 = y1 = 1;
-            break;
-        }
-        x0 = MIN(x0, q.x / q.w);
-        x1 = MAX(x1, q.x / q.w);
-        y0 = MIN(y0, q.y / q.w);
-        y1 = MAX(y1, q.y / q.w);
-    }
-    guint W = f->s.width, H = f->s.height, R = f->s.region;
-    r[0] = clampi((x0 + 1) / 2 * W, W) / R;
-    r[1] = clampi((x1 + 1) / 2 * W, W) / R;
-    r[2] = clampi((1 - y1) / 2 * H, H) / R;
-    r[3] = clampi((1 - y0) / 2 * H, H) / R;
-}
-
-static void plan_command(Plan *pl, guint region)
+static void plan_command(Plan *pl, guint region, const WlPphigsCmd *c)
 {
     WlPphigsFrame *f = pl->f;
+    GArray **b = &pl->g->buf[region];
     pl->send += f->gp_send;
     f->commands++;
-    if (++pl->g->buf[region] >= f->s.batch) {
-        plan_step(pl, region, pl->g->buf[region]);
-        pl->g->buf[region] = 0;
+    if (!*b)
+        *b = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    g_array_append_val(*b, *c);
+    if ((*b)->len >= f->s.batch) {
+        plan_step(pl, region, *b);
+        *b = NULL;
     }
+}
+
+/* Every region a command's pixel box touches gets the command. */
+static void plan_regions(Plan *pl, const WlPphigsCmd *c)
+{
+    WlPphigsFrame *f = pl->f;
+    guint R = f->s.region;
+    for (guint y = (guint)c->y0 / R; y <= (guint)c->y1 / R; y++)
+        for (guint x = (guint)c->x0 / R; x <= (guint)c->x1 / R; x++)
+            plan_command(pl, y * f->nx + x, c);
 }
 
 static void plan_prim(const ScenePrimInst *pi, void *ud)
@@ -194,11 +184,10 @@ static void plan_prim(const ScenePrimInst *pi, void *ud)
         f->offscreen++;
         return;
     }
-    guint r[4];
-    prim_regions(f, m, pi->el, r);
-    for (guint y = r[2]; y <= r[3]; y++)
-        for (guint x = r[0]; x <= r[1]; x++)
-            plan_command(pl, y * f->nx + x);
+    g_array_set_size(f->scratch, 0);
+    wl_pphigs_cmds(pi, f->vp, f->s.width, f->s.height, f->scratch);
+    for (guint i = 0; i < f->scratch->len; i++)
+        plan_regions(pl, &g_array_index(f->scratch, WlPphigsCmd, i));
 }
 
 static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
@@ -207,15 +196,15 @@ static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
     g->next = 0;
     memset(g->sent, 0, f->nrend * sizeof *g->sent);
     Plan pl = {f, g, wl_pphigs_nonprim_cost(db, &f->c), 0, 0};
-    plan_step(&pl, NONE, 0);
+    plan_step(&pl, NONE, NULL);
     scene_db_traverse(db, plan_prim, &pl);
     for (guint k = 0; k < f->nregions; k++)
         if (g->buf[k]) {
             plan_step(&pl, k, g->buf[k]);
-            g->buf[k] = 0;
+            g->buf[k] = NULL;
         }
     if (pl.trav || pl.xform || pl.send)
-        plan_step(&pl, NONE, 0);
+        plan_step(&pl, NONE, NULL);
 }
 
 /* ---- frame buffer ----------------------------------------------------- */
@@ -231,8 +220,9 @@ static void fb_done(SimEngine *eng, void *ctx, void *arg)
 static void fb_arrive(NetNet *net, const NetDelivery *d, void *ctx)
 {
     (void)net;
-    (void)d;
     WlPphigsFrame *f = ctx;
+    wl_pphigs_region_store(d->payload, f->image);
+    wl_pphigs_region_free(d->payload);
     mach_proc_compute(f->fb, f->fb_store, f->ph_store, fb_done, f, NULL);
 }
 
@@ -250,22 +240,43 @@ static void rend_region_done(SimEngine *eng, void *ctx, void *arg)
     (void)eng;
     Rend *r = ctx;
     WlPphigsFrame *f = r->f;
-    guint k = GPOINTER_TO_UINT(arg) * f->nrend + r->id;
+    guint j = GPOINTER_TO_UINT(arg), k = j * f->nrend + r->id;
+    WlPphigsRegion *pixels = r->reg[j];
+    r->reg[j] = NULL;
     net_send(f->net, mach_proc_id(r->p), mach_proc_id(f->fb),
-             region_bytes(f, k), NULL, fb_arrive, f);
+             region_bytes(f, k), pixels, fb_arrive, f);
 }
 
+static WlPphigsRegion *region_pixels(const WlPphigsFrame *f, guint k)
+{
+    guint R = f->s.region, x = k % f->nx * R, y = k / f->nx * R;
+    return wl_pphigs_region_new((int)x, (int)y, (int)MIN(R, f->s.width - x),
+                                (int)MIN(R, f->s.height - y), 0xff000000u);
+}
+
+/* Every pixel of the region evaluates each pending command's
+ * expressions: the renderer's time is the expressions it evaluated and
+ * one compare-and-store per command. */
 static void rend_raster(Rend *r, guint j)
 {
     WlPphigsFrame *f = r->f;
-    if (!r->begun[j]) {
-        r->begun[j] = TRUE;
+    if (!r->reg[j]) {
+        r->reg[j] = region_pixels(f, j * f->nrend + r->id);
         mach_proc_compute(r->p, f->rend_begin, f->ph_rast, NULL, NULL, NULL);
     }
-    if (r->pending[j])
-        mach_proc_compute(r->p, r->pending[j] * f->rend_prim, f->ph_rast, NULL,
-                          NULL, NULL);
-    r->pending[j] = 0;
+    GArray *cmds = r->pending[j];
+    if (!cmds || !cmds->len)
+        return;
+    uint64_t exprs = 0;
+    for (guint i = 0; i < cmds->len; i++) {
+        const WlPphigsCmd *c = &g_array_index(cmds, WlPphigsCmd, i);
+        wl_pphigs_region_draw(r->reg[j], c);
+        exprs += wl_pphigs_cmd_exprs(c);
+    }
+    f->exprs += exprs;
+    mach_proc_compute(r->p, exprs * f->rend_expr + cmds->len * f->rend_cmp,
+                      f->ph_rast, NULL, NULL, NULL);
+    g_array_set_size(cmds, 0);
 }
 
 /* Every GP is done with this renderer: complete its regions in order. */
@@ -295,7 +306,10 @@ static void rend_arrive(NetNet *net, const NetDelivery *d, void *ctx)
         r->expect[m->gp] = m->msgs;
     } else {
         guint j = m->region / f->nrend;
-        r->pending[j] += m->count;
+        if (!r->pending[j])
+            r->pending[j] = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+        g_array_append_vals(r->pending[j], m->cmds->data, m->cmds->len);
+        g_array_unref(m->cmds);
         r->got[m->gp]++;
         if (j == r->cur)
             rend_raster(r, j);
@@ -331,10 +345,10 @@ static void gp_step_done(SimEngine *eng, void *ctx, void *arg)
         Msg *m = g_new0(Msg, 1);
         m->gp = g->id;
         m->region = st->region;
-        m->count = st->count;
+        m->cmds = st->cmds;
         net_send(f->net, mach_proc_id(g->p),
                  mach_proc_id(f->rend[st->region % f->nrend].p),
-                 (uint64_t)st->count * f->s.cmd_bytes, m, rend_arrive, f);
+                 (uint64_t)st->cmds->len * f->s.cmd_bytes, m, rend_arrive, f);
     }
     g->next++;
     gp_next(g);
@@ -404,8 +418,8 @@ static void rend_init(WlPphigsFrame *f, Rend *r, guint id)
     r->p = mach_proc(f->m, "renderer", id);
     r->nreg =
         f->nregions > id ? (f->nregions - id + f->nrend - 1) / f->nrend : 0;
-    r->pending = g_new0(guint, MAX(r->nreg, 1));
-    r->begun = g_new0(gboolean, MAX(r->nreg, 1));
+    r->pending = g_new0(GArray *, MAX(r->nreg, 1));
+    r->reg = g_new0(WlPphigsRegion *, MAX(r->nreg, 1));
     r->got = g_new0(guint, f->ngp);
     r->expect = g_new0(guint, f->ngp);
 }
@@ -416,7 +430,7 @@ static void gp_init(WlPphigsFrame *f, Gp *g, guint id)
     g->id = id;
     g->p = mach_proc(f->m, "gp", id);
     g->steps = g_array_new(FALSE, FALSE, sizeof(Step));
-    g->buf = g_new0(guint, f->nregions);
+    g->buf = g_new0(GArray *, f->nregions);
     g->sent = g_new0(guint, f->nrend);
 }
 
@@ -460,6 +474,8 @@ WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
     f->nregions = f->nx * f->ny;
     intern_phases(f);
     f->fb = mach_proc(m, "frame_buffer", 0);
+    f->image = rast_image_new((int)spec->width, (int)spec->height);
+    f->scratch = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
     f->host = mach_proc(m, "host", 0);
     f->gp_us = g_new0(double, f->ngp);
     f->busy0 = g_new0(SimTime, f->ngp);
@@ -483,8 +499,13 @@ void wl_pphigs_frame_free(WlPphigsFrame *f)
     }
     for (guint r = 0; r < f->nrend; r++) {
         Rend *x = &f->rend[r];
+        for (guint j = 0; j < MAX(x->nreg, 1); j++) {
+            if (x->pending[j])
+                g_array_unref(x->pending[j]);
+            wl_pphigs_region_free(x->reg[j]);
+        }
         g_free(x->pending);
-        g_free(x->begun);
+        g_free(x->reg);
         g_free(x->got);
         g_free(x->expect);
     }
@@ -492,7 +513,14 @@ void wl_pphigs_frame_free(WlPphigsFrame *f)
     g_free(f->rend);
     g_free(f->gp_us);
     g_free(f->busy0);
+    rast_image_free(f->image);
+    g_array_unref(f->scratch);
     g_free(f);
+}
+
+const RastImage *wl_pphigs_frame_image(const WlPphigsFrame *f)
+{
+    return f->image;
 }
 
 guint wl_pphigs_frame_gps(const WlPphigsFrame *f)
@@ -520,8 +548,6 @@ static void frame_reset(WlPphigsFrame *f)
         Rend *x = &f->rend[r];
         x->cur = 0;
         x->gps_done = 0;
-        memset(x->pending, 0, MAX(x->nreg, 1) * sizeof *x->pending);
-        memset(x->begun, 0, MAX(x->nreg, 1) * sizeof *x->begun);
         memset(x->got, 0, f->ngp * sizeof *x->got);
         for (guint g = 0; g < f->ngp; g++)
             x->expect[g] = NONE;
@@ -529,7 +555,8 @@ static void frame_reset(WlPphigsFrame *f)
     for (guint g = 0; g < f->ngp; g++)
         f->busy0[g] = gp_busy(f, g);
     f->stored = 0;
-    f->commands = f->offscreen = f->prims = f->host_elems = 0;
+    f->commands = f->offscreen = f->prims = f->host_elems = f->exprs = 0;
+    rast_image_fill(f->image, (RastColor){0, 0, 0});
     f->start = f->end = sim_now(f->eng);
 }
 
@@ -556,6 +583,7 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
     out->offscreen = f->offscreen;
     out->primitives = f->prims;
     out->host_elements = f->host_elems;
+    out->expressions = f->exprs;
     return TRUE;
 }
 

@@ -19,14 +19,16 @@
  *             region's buffer is sent when it holds `batch` commands; at
  *             the end every partial buffer is sent, then one end marker
  *             per renderer carrying the number of messages sent.
- *   renderer  rasterises each arriving batch of its current region
- *             (`primitive` per command, `region_begin` when a region is
- *             begun; phase "rasterise"); batches for its other regions
+ *   renderer  draws each arriving batch of its current region into that
+ *             region's pixels (pphigs_pixels.h: `expression` per linear
+ *             expression evaluated, `compare` per command, `region_begin`
+ *             when a region is begun; phase "rasterise"); batches for its other regions
  *             wait.  When every GP has finished with it, it completes its
  *             regions in order: begin, rasterise, `region_shade` (phase
  *             "shade"), send the pixels to the frame buffer.
- *   frame buf `store_region` per region (phase "store"); the frame ends
- *             with the last region.
+ *   frame buf `store_region` per region (phase "store"), copying the
+ *             region's pixels into the frame; the frame ends with the
+ *             last region.
  *   host      before the frame, the elements edits and rebalancing sent
  *             to each GP: `send_element` each (phase "edit"), one ring
  *             message of element_bytes each per GP; a GP with such a
@@ -44,6 +46,7 @@
 
 #include "sim/core/result.h"
 #include "sim/machine/machine.h"
+#include "sim/raster/image.h"
 #include "sim/workload/pphigs/pphigs_metrics.h"
 
 /* The frame's own sizes (configs/pphigs/frame.yaml). */
@@ -67,6 +70,7 @@ typedef struct {
     uint64_t offscreen;     /* primitive instances trivially rejected */
     uint64_t primitives;    /* primitive instances traversed */
     uint64_t host_elements; /* elements the host sent before the frame */
+    uint64_t expressions;   /* linear expressions the renderers evaluated */
 } WlPphigsFrameStats;
 
 /* The GP cost table and the per-command send cost of machine m (its
@@ -98,5 +102,9 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
  * renderers. */
 void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,
                           double *gp_util, double *rend_util);
+
+/* The frame buffer's image after the last frame run (the regions the
+ * renderers drew and sent over the ring).  Borrowed. */
+const RastImage *wl_pphigs_frame_image(const WlPphigsFrame *f);
 
 #endif

@@ -26,11 +26,17 @@
  * 001 §6's distribution efficiency, processor utilisation and speed-up
  * of the last frame (GP processor times are its traverse + transform
  * busy times; T1 is the host list's traversal cost, metrics.h, which is
- * what a one-GP frame's busy time is, to the picosecond).
+ * what a one-GP frame's busy time is, to the picosecond); the renderers'
+ * linear expressions per frame, and image_matches_serial: the frame the
+ * renderers drew and the frame buffer assembled equals a serial render
+ * of the whole list (pphigs_pixels.h).  With --out the last frame is
+ * written as pphigs_frame.png.
  * Cost per frame: the frame's (pphigs_frame.h) plus O(host size) per edit.
  */
+#include "sim/workload/pphigs/pphigs_pixels.h"
 #include "sim/workload/pphigs/pphigs_run.h"
 #include "sim/workload/pphigs/pphigs_rebalance.h"
+#include <errno.h>
 #include "sim/machine/model.h"
 #include "sim/workload/workload.h"
 #include <string.h>
@@ -156,7 +162,8 @@ typedef struct {
     WlPphigsRebal *rb;
     SimRng *rng;
     guint ngp;
-    uint64_t edits, moves, commands, host_elems;
+    uint64_t edits, moves, commands, host_elems, exprs;
+    gboolean image_ok; /* the last frame equals the serial render */
     uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
     double imbalance;
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
@@ -238,6 +245,7 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     r->host_elems += st.host_elements;
     sim_result_add_frame(out, st.time);
     r->commands += st.commands;
+    r->exprs += st.expressions;
     r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);
     const WlPphigsCosts *c = wl_pphigs_frame_costs(r->frame);
     double t1 = sim_time_to_us(
@@ -279,6 +287,31 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "processor_utilisation_pct",
                           100 * r->paper.utilisation, "%");
     sim_result_set_metric(out, "speedup", r->paper.speedup, "");
+    sim_result_set_metric(out, "expressions_per_frame", r->exprs / n, "");
+    sim_result_set_metric(out, "image_matches_serial", r->image_ok, "");
+}
+
+/* The last frame against a serial render of the host's list, and the
+ * frame as <out_dir>/pphigs_frame.png under --out. */
+static gboolean check_image(Run *r, const WlContext *ctx, GError **err)
+{
+    const RastImage *img = wl_pphigs_frame_image(r->frame);
+    RastImage *ref = wl_pphigs_render_serial(
+        wl_pphigs_dist_host(r->d), scene_camera_view_proj(&r->db.camera),
+        (guint)img->width, (guint)img->height);
+    r->image_ok = rast_image_equal(img, ref);
+    rast_image_free(ref);
+    if (!ctx->out_dir)
+        return TRUE;
+    if (g_mkdir_with_parents(ctx->out_dir, 0755) != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create: %s",
+                    ctx->out_dir, g_strerror(errno));
+        return FALSE;
+    }
+    char *path = g_build_filename(ctx->out_dir, "pphigs_frame.png", NULL);
+    gboolean ok = rast_image_write_png(img, path, err);
+    g_free(path);
+    return ok;
 }
 
 static gboolean run(const WlContext *ctx, void *params, SimResult *out,
@@ -289,6 +322,7 @@ static gboolean run(const WlContext *ctx, void *params, SimResult *out,
     SimTime until = wl_until(ctx);
     for (int f = 0; ok && f < ctx->frames && sim_now(ctx->eng) < until; f++)
         ok = one_frame(&r, out, err);
+    ok = ok && check_image(&r, ctx, err);
     if (ok)
         fill(&r, ctx, out);
     run_clear(&r);

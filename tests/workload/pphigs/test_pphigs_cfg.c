@@ -172,7 +172,7 @@ static void test_frames_equal_analytic(void **st)
 
 typedef struct {
     GArray *frames;
-    double m[13];
+    double m[15];
     uint64_t bytes;
     guint gps;
 } Out;
@@ -198,8 +198,9 @@ static void run_flock(const char *const *sets, Out *o)
     assert_true(cfg_check_unused(cfg_get(root, "workload"), NULL));
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
-    assert_int_equal(r->metrics->len, 13);
-    for (guint i = 0; i < 13; i++)
+    assert_int_equal(r->metrics->len, 15);
+    assert_true(((SimMetric *)g_ptr_array_index(r->metrics, 14))->value == 1);
+    for (guint i = 0; i < 15; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
     o->bytes = r->comm_bytes;
     assert_int_equal(r->nodes->len, 1 + o->gps + 16 + 1);
