@@ -26,6 +26,7 @@ RastView rast_view_make(Mat4 view_proj, int width, int height)
     v.width = width;
     v.height = height;
     v.cull_back = TRUE;
+    v.span_rule = RAST_SPAN_EXACT;
     v.lighting = TRUE;
     v.shading = RAST_SHADE_GOURAUD;
     v.light_dir = vec3(0, 0, 1);
@@ -110,6 +111,11 @@ static void scan_polygon(const RastView *v, RastScreenVert *s, int m,
                          int64_t area, uint32_t prim, RastSpanSink sink,
                          RastCounters *c)
 {
+    if (v->span_rule != RAST_SPAN_EXACT) {
+        rast_scan_polygon(s, m, prim, v->width, v->height, v->span_rule, sink,
+                          c);
+        return;
+    }
     for (int i = 1; i + 1 < m; i++) {
         RastScreenVert t[3] = {s[0], s[i], s[i + 1]};
         int64_t a = rast_area2(&t[0], &t[1], &t[2]);

@@ -14,7 +14,9 @@
  *      drop zero-area polygons by the exact integer signed area;
  *   5. fan-triangulate the clipped polygon and scan-convert each triangle
  *      into spans (top-left rule) sent to a sink: a span list for the
- *      modified scanline z-buffer, or a full z-buffer directly.
+ *      modified scanline z-buffer, or a full z-buffer directly; or, with
+ *      span_rule RAST_SPAN_ENDPOINTS, scan the whole polygon at once, one
+ *      span per row including both end points (scan.h).
  *
  * Primitive ids are the polygon's index plus `id_base`; they decide depth
  * ties (scan.h), so give every polygon of a frame a distinct id (e.g. its
@@ -40,6 +42,7 @@ typedef struct {
     Mat4 view_proj;         /* world -> clip */
     int width, height;      /* viewport in pixels (<= RAST_MAX_SIDE) */
     gboolean cull_back;     /* drop back-facing polygons (default TRUE) */
+    RastSpanRule span_rule; /* default RAST_SPAN_EXACT (scan.h) */
     gboolean lighting;      /* FALSE: colours used as given (default TRUE) */
     RastShading shading;    /* default RAST_SHADE_GOURAUD */
     Vec3 light_dir;         /* world space, towards the light (unit) */

@@ -102,8 +102,11 @@ static void setup_planes(const RastScreenVert v[3], Planes *p)
 }
 
 /* Narrows [*lo, *hi) to the pixels of row centre py inside edge e;
- * returns FALSE if the row is empty. */
-static gboolean edge_bound(const Edge *e, int64_t py, int64_t *lo, int64_t *hi)
+ * returns FALSE if the row is empty.  RAST_SPAN_EXACT: pixel centres
+ * inside (top-left rule); RAST_SPAN_ENDPOINTS: every pixel from the one
+ * holding the left intersection to the one holding the right one. */
+static gboolean edge_bound(const Edge *e, int64_t py, RastSpanRule rule,
+                           int64_t *lo, int64_t *hi)
 {
     const int64_t half = RAST_SUBPIX / 2;
     if (e->dy == 0) {
@@ -111,13 +114,16 @@ static gboolean edge_bound(const Edge *e, int64_t py, int64_t *lo, int64_t *hi)
         return E > 0 || (E == 0 && e->dx > 0);
     }
     int64_t C = e->dx * (py - e->ay) + e->dy * e->ax;
-    if (e->dy < 0) { /* left edge: E >= 0 */
+    gboolean ends = rule == RAST_SPAN_ENDPOINTS;
+    if (e->dy < 0) { /* left edge: E >= 0, crossing at x = -C / k */
         int64_t k = -e->dy;
-        int64_t b = ceil_div(-C - half * k, RAST_SUBPIX * k);
+        int64_t b = ends ? floor_div(-C, RAST_SUBPIX * k)
+                         : ceil_div(-C - half * k, RAST_SUBPIX * k);
         if (b > *lo)
             *lo = b;
-    } else { /* right edge: E > 0 */
-        int64_t b = ceil_div(C - half * e->dy, RAST_SUBPIX * e->dy);
+    } else { /* right edge: E > 0, crossing at x = C / dy */
+        int64_t b = ends ? floor_div(C, RAST_SUBPIX * e->dy) + 1
+                         : ceil_div(C - half * e->dy, RAST_SUBPIX * e->dy);
         if (b < *hi)
             *hi = b;
     }
@@ -159,6 +165,41 @@ static void row_range(int64_t ymin, int64_t ymax, int height, int64_t *r0,
         *r1 = height;
 }
 
+/* Emits the rows of the convex polygon bounded by e[0..ne) (E > 0
+ * inside) between fixed-point heights ymin and ymax. */
+static uint64_t scan_rows(const Edge *e, int ne, const Planes *p, int64_t ymin,
+                          int64_t ymax, uint32_t prim, int width, int height,
+                          RastSpanRule rule, RastSpanSink sink,
+                          RastCounters *c)
+{
+    int64_t r0, r1;
+    row_range(ymin, ymax, height, &r0, &r1);
+    uint64_t n = 0;
+    for (int64_t y = r0; y < r1; y++) {
+        int64_t py = y * RAST_SUBPIX + RAST_SUBPIX / 2, lo = 0, hi = width;
+        gboolean in = TRUE;
+        for (int i = 0; in && i < ne; i++)
+            in = edge_bound(&e[i], py, rule, &lo, &hi);
+        if (in) {
+            emit_span(p, (int)y, lo, hi, prim, sink, c);
+            n++;
+        }
+    }
+    return n;
+}
+
+static void edges_of(const RastScreenVert *t, int n, Edge *e, int64_t *ymin,
+                     int64_t *ymax)
+{
+    *ymin = *ymax = t[0].y;
+    for (int i = 0; i < n; i++) {
+        const RastScreenVert *a = &t[i], *b = &t[(i + 1) % n];
+        e[i] = (Edge){a->x, a->y, b->x - a->x, b->y - a->y};
+        *ymin = MIN(*ymin, a->y);
+        *ymax = MAX(*ymax, a->y);
+    }
+}
+
 uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
                             int height, RastSpanSink sink, RastCounters *c)
 {
@@ -171,25 +212,55 @@ uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
         t[2] = v[1];
     }
     Edge e[3];
-    for (int i = 0; i < 3; i++) {
-        const RastScreenVert *a = &t[i], *b = &t[(i + 1) % 3];
-        e[i] = (Edge){a->x, a->y, b->x - a->x, b->y - a->y};
-    }
+    int64_t ymin, ymax;
+    edges_of(t, 3, e, &ymin, &ymax);
     Planes p;
     setup_planes(t, &p);
-    int64_t ymin = MIN(t[0].y, MIN(t[1].y, t[2].y));
-    int64_t ymax = MAX(t[0].y, MAX(t[1].y, t[2].y));
-    int64_t r0, r1;
-    row_range(ymin, ymax, height, &r0, &r1);
-    uint64_t n = 0;
-    for (int64_t y = r0; y < r1; y++) {
-        int64_t py = y * RAST_SUBPIX + RAST_SUBPIX / 2, lo = 0, hi = width;
-        if (edge_bound(&e[0], py, &lo, &hi) &&
-            edge_bound(&e[1], py, &lo, &hi) &&
-            edge_bound(&e[2], py, &lo, &hi)) {
-            emit_span(&p, (int)y, lo, hi, prim, sink, c);
-            n++;
+    return scan_rows(e, 3, &p, ymin, ymax, prim, width, height,
+                     RAST_SPAN_EXACT, sink, c);
+}
+
+/* Index i of the fan triangle (0, i, i+1) of largest |area|: the best
+ * conditioned vertices for the attribute planes. */
+static int widest_fan(const RastScreenVert *t, int n)
+{
+    int best = 1;
+    int64_t best_a = -1;
+    for (int i = 1; i + 1 < n; i++) {
+        int64_t a = rast_area2(&t[0], &t[i], &t[i + 1]);
+        a = a < 0 ? -a : a;
+        if (a > best_a) {
+            best_a = a;
+            best = i;
         }
     }
-    return n;
+    return best;
+}
+
+uint64_t rast_scan_polygon(const RastScreenVert *v, int n, uint32_t prim,
+                           int width, int height, RastSpanRule rule,
+                           RastSpanSink sink, RastCounters *c)
+{
+    g_assert(n >= 3 && n <= RAST_SCAN_MAX);
+    if (n == 3 && rule == RAST_SPAN_EXACT)
+        return rast_scan_triangle(v, prim, width, height, sink, c);
+    int64_t a2 = 0;
+    for (int i = 1; i + 1 < n; i++)
+        a2 += rast_area2(&v[0], &v[i], &v[i + 1]);
+    g_assert(a2 != 0);
+    RastScreenVert t[RAST_SCAN_MAX];
+    for (int i = 0; i < n; i++) /* reversed when counter-clockwise */
+        t[i] = a2 > 0 ? v[(n - i) % n] : v[i];
+    Edge e[RAST_SCAN_MAX];
+    int64_t ymin, ymax;
+    edges_of(t, n, e, &ymin, &ymax);
+    int k = widest_fan(t, n);
+    RastScreenVert tri[3] = {t[0], t[k], t[k + 1]};
+    Planes p;
+    setup_planes(tri, &p);
+    for (int i = 0; i < n; i++) {
+        p.zlo = fmin(p.zlo, t[i].z);
+        p.zhi = fmax(p.zhi, t[i].z);
+    }
+    return scan_rows(e, n, &p, ymin, ymax, prim, width, height, rule, sink, c);
 }

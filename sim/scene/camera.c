@@ -94,7 +94,7 @@ static void fit_near_far(SceneCamera *c, double dist, double r)
 
 void scene_camera_fit(SceneCamera *c, SceneBox box, double fill)
 {
-    g_assert(fill > 0 && fill <= 1);
+    g_assert(fill > 0 && fill <= SCENE_FILL_MAX);
     Vec3 ctr = scene_box_center(box);
     double r = fmax(scene_box_radius(box), 1e-9);
     Vec3 dir = vec3_norm(vec3_sub(c->eye, c->target));
@@ -170,7 +170,7 @@ static void fit_ortho(SceneCamera *c, const FitFrame *f, const Vec3 *pts,
 void scene_camera_fit_points(SceneCamera *c, const Vec3 *pts, guint n,
                              double fill)
 {
-    g_assert(fill > 0 && fill <= 1 && n > 0);
+    g_assert(fill > 0 && fill <= SCENE_FILL_MAX && n > 0);
     SceneBox b = scene_box_empty();
     for (guint i = 0; i < n; i++)
         b = scene_box_add_point(b, pts[i]);

@@ -38,11 +38,15 @@ Mat4 scene_camera_view(const SceneCamera *c);
 Mat4 scene_camera_projection(const SceneCamera *c);
 /* projection * view. */
 Mat4 scene_camera_view_proj(const SceneCamera *c);
+/* Largest `fill`: above 1 the fitted scene overflows the viewport by that
+ * factor and is clipped at its edges (a close-up). */
+#define SCENE_FILL_MAX 4.0
+
 /* The view rule used by the generators: keeps the viewing direction
  * (eye - target) and up, aims at the centre of `box` and moves the eye so
  * that the box's bounding sphere just fits the smaller of the vertical and
- * horizontal fields of view (scaled by 1/fill, fill in (0, 1]; fill = 1
- * touches the viewport edges); near/far bracket the sphere.  Orthographic
+ * horizontal fields of view (scaled by 1/fill, fill in (0, SCENE_FILL_MAX];
+ * fill = 1 touches the viewport edges); near/far bracket the sphere.  Orthographic
  * cameras get height = 2 r / fill (divided by aspect when aspect < 1). */
 void scene_camera_fit(SceneCamera *c, SceneBox box, double fill);
 /* Tighter: same direction and target (the box centre), but the eye is

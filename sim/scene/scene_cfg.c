@@ -162,6 +162,9 @@ static Scene *gen_teapots(const CfgNode *sec, GError **err)
         cfg_get_double(sec, "spacing", FALSE, 0, 1e3, &p.spacing, err) &&
         cfg_get_double(sec, "shift", FALSE, -1e3, 1e3, &p.shift, err) &&
         cfg_get_double(sec, "yaw_step", FALSE, -360, 360, &p.yaw_step, err) &&
+        cfg_get_double(sec, "yaw", FALSE, -360, 360, &p.yaw, err) &&
+        get_guint(sec, "columns", 1, 4096, &p.columns, err) &&
+        cfg_get_double(sec, "across", FALSE, 0, 1e3, &p.across, err) &&
         get_color(sec, "color", &p.color, err) &&
         cfg_get_bool(sec, "vary_color", FALSE, &p.vary_color, err) &&
         get_placements(sec, &p, pl, err)) {
@@ -445,7 +448,8 @@ static gboolean apply_view(Scene *s, const CfgNode *n, GError **err)
         !cfg_get_double(n, "elevation", FALSE, -90, 90, &v.elevation_deg,
                         err) ||
         !cfg_get_double(n, "fov", FALSE, 1, 170, &v.fov_deg, err) ||
-        !cfg_get_double(n, "fill", FALSE, 0.01, 1, &v.fill, err) ||
+        !cfg_get_double(n, "fill", FALSE, 0.01, SCENE_FILL_MAX, &v.fill,
+                        err) ||
         !cfg_get_double(n, "aspect", FALSE, 1e-3, 1e3, &v.aspect, err) ||
         !cfg_get_enum(n, "projection", FALSE, projections, &proj, err) ||
         !cfg_get_enum(n, "fit", FALSE, fits, &fit, err))

@@ -18,15 +18,22 @@ static const SceneColor palette[8] = {
 
 SceneTeapotsParams scene_teapots_defaults(void)
 {
-    SceneTeapotsParams p = {
-        3200, 1, SCENE_TEAPOTS_SPREAD, 1.1, 0.5, 0, NULL, 0, {1, 1, 1}, TRUE};
+    SceneTeapotsParams p = {.polygons_per_teapot = 3200,
+                            .count = 1,
+                            .layout = SCENE_TEAPOTS_SPREAD,
+                            .spacing = 1.1,
+                            .shift = 0.5,
+                            .color = {1, 1, 1},
+                            .vary_color = TRUE,
+                            .columns = 1,
+                            .across = 1.1};
     return p;
 }
 
 static SceneTeapotPlacement layout_at(const SceneTeapotsParams *p, guint i,
                                       Vec3 size)
 {
-    SceneTeapotPlacement pl = {{0, 0, 0}, i * p->yaw_step, 1.0};
+    SceneTeapotPlacement pl = {{0, 0, 0}, p->yaw + i * p->yaw_step, 1.0};
     if (p->layout == SCENE_TEAPOTS_SPREAD) {
         guint cols = (guint)ceil(sqrt((double)p->count));
         guint rows = (p->count + cols - 1) / cols;
@@ -36,9 +43,12 @@ static SceneTeapotPlacement layout_at(const SceneTeapotsParams *p, guint i,
         pl.at.x = (c - (in_row - 1) / 2.0) * p->spacing * size.x;
         pl.at.y = ((rows - 1) / 2.0 - r) * p->spacing * size.y;
     } else {
-        double mid = (p->count - 1) / 2.0;
-        pl.at.x = (i - mid) * p->shift * size.x;
-        pl.at.z = -(i - mid) * p->spacing * size.z;
+        guint cols = MIN(MAX(p->columns, 1u), p->count);
+        guint rows = (p->count + cols - 1) / cols;
+        double mid = (rows - 1) / 2.0, r = i / cols, c = i % cols;
+        pl.at.x = (c - (cols - 1) / 2.0) * p->across * size.x +
+                  (r - mid) * p->shift * size.x;
+        pl.at.z = -(r - mid) * p->spacing * size.z;
     }
     return pl;
 }

@@ -11,12 +11,15 @@
  *           ceil(sqrt(count))), centre distances `spacing` teapot widths
  *           and heights apart: with spacing >= 1 no two overlap on screen
  *           when seen from the front (arrangement "_1");
- *   depth   teapot i at x = i * shift teapot widths, z = -i * spacing
- *           teapot depths: a diagonal row receding from the viewer, which
- *           overlaps on screen when shift < 1 (arrangement "_2").
+ *   depth   `columns` rows receding from the viewer side by side, centres
+ *           `across` teapot widths apart; teapot i is in column
+ *           i mod columns, at depth step r = i / columns: z = -r * spacing
+ *           teapot depths, and each step moves `shift` teapot widths to
+ *           the side; a diagonal block that overlaps on screen when
+ *           shift < 1 (with columns 1: one diagonal row, arrangement "_2").
  *
- * Teapot i is turned by i * yaw_step degrees about its own vertical axis
- * before placement.  Explicit placements override the layout.  Every
+ * Teapot i is turned by yaw + i * yaw_step degrees about its own vertical
+ * axis before placement.  Explicit placements override the layout.  Every
  * teapot is one instance of one shared mesh (tag = teapot number); with
  * vary_color each gets a colour from a fixed 8-hue wheel.  Teapots are
  * centred on their bounding box, so a layout is symmetric about the
@@ -47,11 +50,14 @@ typedef struct {
     guint n_placements;                     /* == count when set */
     SceneColor color;
     gboolean vary_color;
+    guint columns; /* depth layout: rows side by side (>= 1) */
+    double across; /* depth layout: column spacing, teapot widths */
+    double yaw;    /* degrees, every teapot */
 } SceneTeapotsParams;
 
 /* Defaults: 3200 polygons (configs/scenes/ set the paper's 3751), 1
- * teapot, spread, spacing 1.1, shift 0.5, yaw_step 0, no placements,
- * white, vary_color TRUE. */
+ * teapot, spread, spacing 1.1, shift 0.5, yaw 0, yaw_step 0, no
+ * placements, white, vary_color TRUE, columns 1, across 1.1. */
 SceneTeapotsParams scene_teapots_defaults(void);
 /* A new scene named "teapots" (free with scene_free()); an input error
  * (naming `what`) for a polygon count the rule cannot meet. */

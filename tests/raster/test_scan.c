@@ -268,10 +268,124 @@ static void test_span_attributes(void **state)
     rast_spanlist_free(sl);
 }
 
+/* ---- the end-point span rule (RAST_SPAN_ENDPOINTS) ---------------------- */
+
+static void scan_poly(const double *xy, int n, RastSpanRule rule, int w,
+                      TuCoverage *cv, RastCounters *c)
+{
+    RastScreenVert v[RAST_SCAN_MAX];
+    for (int i = 0; i < n; i++)
+        v[i] = tu_sv(xy[2 * i], xy[2 * i + 1], 0.5);
+    rast_scan_polygon(v, n, 0, w, w, rule, tu_coverage_sink(cv), c);
+}
+
+/* A rectangle from x 2.6 to 5.4: exact coverage takes the centres 3.5
+ * and 4.5, the end-point rule every pixel from 2 (holding 2.6) to 5
+ * (holding 5.4); rows are the same (centres 1.5 .. 3.5). */
+static void test_endpoints_rectangle(void **state)
+{
+    (void)state;
+    const double r[] = {2.6, 1.2, 5.4, 1.2, 5.4, 3.9, 2.6, 3.9};
+    TuCoverage *ex = tu_coverage_new(8, 8), *ep = tu_coverage_new(8, 8);
+    RastCounters ce = {0}, cp = {0};
+    scan_poly(r, 4, RAST_SPAN_EXACT, 8, ex, &ce);
+    scan_poly(r, 4, RAST_SPAN_ENDPOINTS, 8, ep, &cp);
+    assert_int_equal(ce.spans, 3);
+    assert_int_equal(cp.spans, 3);
+    assert_int_equal(ce.pixels, 3 * 2);
+    assert_int_equal(cp.pixels, 3 * 4);
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) {
+            gboolean row = y >= 1 && y <= 3;
+            assert_int_equal(ex->count[y * 8 + x], row && x >= 3 && x <= 4);
+            assert_int_equal(ep->count[y * 8 + x], row && x >= 2 && x <= 5);
+        }
+    tu_coverage_free(ex);
+    tu_coverage_free(ep);
+}
+
+/* Random convex polygons: the end-point rule covers a superset of exact
+ * coverage, one span per row (never two for a quad, unlike fan
+ * triangles), and adds between 0 and 2 pixels per span, about 1 on
+ * average (each end adds half a pixel on average). */
+static void test_endpoints_superset(void **state)
+{
+    (void)state;
+    SimRng r;
+    sim_rng_init(&r, 11, 0);
+    uint64_t extra = 0, spans = 0;
+    for (int i = 0; i < 300; i++) {
+        double cx = 20 + sim_rng_uniform(&r) * 24, cy = 20 + sim_rng_uniform(&r) * 24;
+        double rad = 2 + sim_rng_uniform(&r) * 12, a0 = sim_rng_uniform(&r);
+        double xy[10];
+        int n = 3 + (int)sim_rng_below(&r, 3);
+        for (int k = 0; k < n; k++) {
+            double a = (a0 + k + 0.8 * sim_rng_uniform(&r)) * 2 * G_PI / n;
+            xy[2 * k] = cx + rad * cos(a);
+            xy[2 * k + 1] = cy + rad * sin(a);
+        }
+        TuCoverage *ex = tu_coverage_new(64, 64), *ep = tu_coverage_new(64, 64);
+        RastCounters ce = {0}, cp = {0};
+        scan_poly(xy, n, RAST_SPAN_EXACT, 64, ex, &ce);
+        scan_poly(xy, n, RAST_SPAN_ENDPOINTS, 64, ep, &cp);
+        assert_true(tu_coverage_max(ep) <= 1);
+        for (int p = 0; p < 64 * 64; p++)
+            assert_true(ep->count[p] >= ex->count[p]);
+        assert_true(cp.spans >= ce.spans);
+        assert_true(cp.pixels <= ce.pixels + 2 * cp.spans);
+        extra += cp.pixels - ce.pixels;
+        spans += cp.spans;
+        tu_coverage_free(ex);
+        tu_coverage_free(ep);
+    }
+    double per = (double)extra / (double)spans;
+    print_message("end-point rule: %.3f extra pixels per span\n", per);
+    assert_true(per > 0.85 && per < 1.15);
+}
+
+/* Two triangles sharing an edge: exact coverage owns each pixel once,
+ * the end-point rule generates the pixels on the shared edge twice. */
+static void test_endpoints_shared_edge(void **state)
+{
+    (void)state;
+    const double a[] = {1.3, 1.1, 30.7, 2.2, 9.9, 29.6};
+    const double b[] = {30.7, 2.2, 28.4, 30.3, 9.9, 29.6};
+    TuCoverage *ex = tu_coverage_new(32, 32), *ep = tu_coverage_new(32, 32);
+    RastCounters c = {0};
+    scan_poly(a, 3, RAST_SPAN_EXACT, 32, ex, &c);
+    scan_poly(b, 3, RAST_SPAN_EXACT, 32, ex, &c);
+    scan_poly(a, 3, RAST_SPAN_ENDPOINTS, 32, ep, &c);
+    scan_poly(b, 3, RAST_SPAN_ENDPOINTS, 32, ep, &c);
+    assert_int_equal(tu_coverage_max(ex), 1);
+    assert_int_equal(tu_coverage_max(ep), 2);
+    assert_true(tu_coverage_count(ep, 2) >= 25); /* about a pixel a row */
+    tu_coverage_free(ex);
+    tu_coverage_free(ep);
+}
+
+/* Exact rule through rast_scan_polygon on a triangle is the triangle
+ * scanner itself. */
+static void test_polygon_exact_is_triangle(void **state)
+{
+    (void)state;
+    const double t[] = {1.3, 2.7, 14.1, 5.5, 6.5, 13.5};
+    TuCoverage *a = tu_coverage_new(16, 16), *b = tu_coverage_new(16, 16);
+    RastCounters c = {0};
+    scan_poly(t, 3, RAST_SPAN_EXACT, 16, a, &c);
+    tu_scan(1.3, 2.7, 14.1, 5.5, 6.5, 13.5, 0, 16, 16, tu_coverage_sink(b), &c);
+    assert_memory_equal(a->count, b->count, 16 * 16 * sizeof(uint16_t));
+    tu_coverage_free(a);
+    tu_coverage_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_square_is_exact),
+        cmocka_unit_test(test_endpoints_rectangle),
+        cmocka_unit_test(test_endpoints_superset),
+        cmocka_unit_test(test_endpoints_shared_edge),
+        cmocka_unit_test(test_polygon_exact_is_triangle),
         cmocka_unit_test(test_top_left_rule),
         cmocka_unit_test(test_winding_independent),
         cmocka_unit_test(test_jittered_grid_watertight),

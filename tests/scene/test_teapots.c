@@ -111,6 +111,37 @@ static void test_placements(void **st)
     g_error_free(err);
 }
 
+/* Depth layout with two columns: teapots 2k and 2k + 1 side by side
+ * (`across` widths apart), rows `spacing` depths apart; `yaw` turns every
+ * teapot (a quarter turn swaps its box's x and z extents). */
+static void test_columns_and_yaw(void **st)
+{
+    (void)st;
+    SceneTeapotsParams p = scene_teapots_defaults();
+    p.polygons_per_teapot = 3751;
+    p.count = 4;
+    p.layout = SCENE_TEAPOTS_DEPTH;
+    p.columns = 2;
+    p.across = 1.5;
+    p.spacing = 2.0;
+    p.shift = 0;
+    Scene *s = scene_teapots_new(&p, "x", NULL);
+    Vec3 c[4], size = scene_box_size(scene_instance_bbox(s, 0));
+    for (guint i = 0; i < 4; i++)
+        c[i] = scene_box_center(scene_instance_bbox(s, i));
+    assert_true(fabs(c[1].x - c[0].x - 1.5 * size.x) < 1e-6);
+    assert_true(fabs(c[1].z - c[0].z) < 1e-6);
+    assert_true(fabs(c[0].z - c[2].z - 2.0 * size.z) < 1e-6);
+    assert_true(fabs(c[2].x - c[0].x) < 1e-6);
+    scene_free(s);
+    p.yaw = 90;
+    s = scene_teapots_new(&p, "x", NULL);
+    Vec3 turned = scene_box_size(scene_instance_bbox(s, 3));
+    assert_true(fabs(turned.x - size.z) < 1e-6);
+    assert_true(fabs(turned.z - size.x) < 1e-6);
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -118,6 +149,7 @@ int main(void)
         cmocka_unit_test(test_layouts),
         cmocka_unit_test(test_view_fits),
         cmocka_unit_test(test_placements),
+        cmocka_unit_test(test_columns_and_yaw),
     };
     return cmocka_run_group_tests_name("teapots", tests, NULL, NULL);
 }

@@ -45,6 +45,7 @@ double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
     SceneCamera cam = scene_camera_at(scene, 0);
     RastView v = rast_view_for_camera(&cam, resolution, resolution);
     v.cull_back = s->cull_back;
+    v.span_rule = s->span_rule;
     WlPmCounts k;
     WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
     SimTime t =
@@ -70,6 +71,7 @@ static void render_all(Local *l, const Scene *scene, guint frame,
     SceneCamera cam = scene_camera_at(scene, frame);
     l->view = rast_view_for_camera(&cam, N, N);
     l->view.cull_back = s->cull_back;
+    l->view.span_rule = s->span_rule;
     l->local = g_new0(WlPmWpa *, n);
     l->counts = g_new0(WlPmCounts, n);
     l->rows = g_new0(uint64_t, N);

@@ -31,6 +31,7 @@ typedef struct {
     WlPmFormat fmt;
     gboolean check_image; /* compare with the serial render */
     gboolean cull_back;   /* drop back-facing polygons before scanning */
+    RastSpanRule span_rule; /* exact coverage or both end points (scan.h) */
 } WlPmSetup;
 
 /* Node costs of the local phases, per counted operation. */

@@ -16,6 +16,7 @@
  *     bytes_per_count: 4      # global-sum element (RS, HBP)
  *     check_image: true       # compare with the serial render
  *     cull_back: false        # back-face culling before scan conversion
+ *     span_rule: exact        # exact | endpoints (sim/raster/scan.h)
  *     memory: {base: 1 MB, polygon: 200 B, span: 32 B, location: 8 B}
  *
  * The machine is the config's `machine` section (mach_new_from_cfg, so
@@ -38,6 +39,8 @@ const char *const wl_pm_cost_ops[] = {
 /* Scheme words: the library's names plus "zbuf_exc" (underscore). */
 static const char *const scheme_words[] = {"zbuf-exc", "pair", "aapc",
                                            "zbuf_exc", NULL};
+/* Indexed by RastSpanRule. */
+static const char *const span_rules[] = {"exact", "endpoints", NULL};
 
 gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
                                   WlPmCosts *c, GError **err)
@@ -107,7 +110,9 @@ static gboolean check_procs(const CfgNode *sec, uint64_t procs, GError **err)
 static gboolean parse_words(const CfgNode *sec, WlPmSetup *s, GError **err)
 {
     int scheme = WL_PM_PAIR, bal = WL_PM_BAL_RS, split = WL_PM_SPLIT_CYCLIC;
+    int rule = RAST_SPAN_EXACT;
     if (!cfg_get_enum(sec, "scheme", FALSE, scheme_words, &scheme, err) ||
+        !cfg_get_enum(sec, "span_rule", FALSE, span_rules, &rule, err) ||
         !cfg_get_enum(sec, "balance", FALSE, wl_pm_balance_names, &bal, err) ||
         !cfg_get_enum(sec, "polygon_split", FALSE, wl_pm_split_names, &split,
                       err))
@@ -115,6 +120,7 @@ static gboolean parse_words(const CfgNode *sec, WlPmSetup *s, GError **err)
     s->scheme = scheme == 3 ? WL_PM_ZBUF_EXC : (WlPmScheme)scheme;
     s->balance = bal;
     s->split = split;
+    s->span_rule = (RastSpanRule)rule;
     return TRUE;
 }
 
