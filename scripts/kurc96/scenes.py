@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Fits the layout of each teapot scene of configs/kurc96/setup.yaml to
+"""Fits the layout of each teapot scene of configs/papers/kurc96/setup.yaml to
 that scene's own two visible Table 1 cells (tpg_400, tpf_400 of
-configs/papers/kurc96.yaml), and nothing else.
+configs/papers/kurc96/published.yaml), and nothing else.
 
 Each scene has two fitted parameters (its `fit:` entry in setup.yaml):
 `fill` (size on screen: the share of the viewport its silhouette fills)
@@ -33,29 +33,19 @@ import yaml
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))))
 PGSIM = os.path.join(ROOT, "build", "pgsim")
-SETUP = os.path.join(ROOT, "configs", "kurc96", "setup.yaml")
-PAPER = os.path.join(ROOT, "configs", "papers", "kurc96.yaml")
+SETUP = os.path.join(ROOT, "configs", "papers", "kurc96", "setup.yaml")
+PAPER = os.path.join(ROOT, "configs", "papers", "kurc96", "published.yaml")
 # Search ranges of the arrangement parameters (degrees; teapot widths).
 FILL_STEP, FILL_MAX = 0.15, 2.5
 RANGES = {"yaw": (-90.0, 0.0), "shift": (0.0, 1.0), "spacing": (0.1, 2.5)}
 
 
 def setup_path():
-    for p in (os.path.join(ROOT, "configs", "papers", "kurc96", "setup.yaml"),
-              SETUP):
-        if os.path.exists(p):
-            return p
-    sys.exit("no kurc96 setup.yaml")
+    return SETUP
 
 
 def paper_path():
-    for p in (os.path.join(ROOT, "configs", "papers", "kurc96",
-                           "published.yaml"),
-              os.path.join(ROOT, "configs", "papers", "kurc96", "paper.yaml"),
-              PAPER):
-        if os.path.exists(p):
-            return p
-    sys.exit("no kurc96 published values")
+    return PAPER
 
 
 def counts(setup, scene, tmp, res=400):
