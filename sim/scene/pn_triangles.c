@@ -106,8 +106,8 @@ static int vec3_cmp(Vec3 a, Vec3 b)
 
 /* The point `sb` steps of `steps` from (pa, na) towards (pb, nb) on the
  * edge's cubic, and its normal: computed from the edge alone. */
-static void edge_eval(Vec3 pa, Vec3 na, Vec3 pb, Vec3 nb, guint sb,
-                      guint steps, ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
+static void edge_eval(Vec3 pa, Vec3 na, Vec3 pb, Vec3 nb, guint sb, guint steps,
+                      ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
 {
     int c = vec3_cmp(pa, pb);
     if (c > 0 || (c == 0 && vec3_cmp(na, nb) > 0)) {
@@ -163,8 +163,7 @@ static uint32_t grid_index(uint32_t base, guint steps, guint j, guint k)
 }
 
 static void tessellate_tri(SceneMesh *out, const ScenePnPatch *pt,
-                           const ScenePnParams *p, SceneColor col,
-                           uint32_t tag)
+                           const ScenePnParams *p, SceneColor col, uint32_t tag)
 {
     guint n = p->level + 1;
     uint32_t base = scene_mesh_n_vertices(out);

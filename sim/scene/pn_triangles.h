@@ -35,13 +35,13 @@
 typedef enum { SCENE_PN_LINEAR, SCENE_PN_QUADRATIC } ScenePnNormals;
 
 typedef struct {
-    guint level;           /* L >= 0; 0 leaves a triangle's shape flat */
+    guint level; /* L >= 0; 0 leaves a triangle's shape flat */
     ScenePnNormals normals;
 } ScenePnParams;
 
 /* The control net of one PN triangle. */
 typedef struct {
-    Vec3 p[3], n[3];       /* input corners (normals unit length) */
+    Vec3 p[3], n[3]; /* input corners (normals unit length) */
     Vec3 b210, b120, b021, b012, b102, b201, b111;
     Vec3 n110, n011, n101; /* quadratic normal mid-edge coefficients */
 } ScenePnPatch;

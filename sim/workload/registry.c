@@ -2,6 +2,7 @@
 #include "sim/workload/workload.h"
 #include "sim/workload/argus/ag_workload.h"
 #include "sim/workload/dpscan/dp_workload.h"
+#include "sim/workload/performer/pf_workload.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 #include "sim/workload/sortfirst/sf_workload.h"
 #include "sim/workload/tokenring/tokenring_workload.h"
@@ -11,7 +12,8 @@ extern const WlOps wl_pphigs_ops;
 
 const WlOps *const wl_all[] = {
     &wl_pphigs_ops,    &wl_dpscan_ops,    &wl_pixelmerge_ops,
-    &wl_sortfirst_ops, &wl_tokenring_ops, &wl_argus_ops, NULL,
+    &wl_sortfirst_ops, &wl_tokenring_ops, &wl_argus_ops,
+    &wl_pf_ops,        NULL,
 };
 
 const WlOps *wl_find(const char *name)
@@ -29,4 +31,26 @@ SimTime wl_until(const WlContext *ctx)
     if (!cfg_get_time(run, "until", FALSE, &t, NULL))
         t = SIM_TIME_MAX; /* cannot happen on a loaded config */
     return t;
+}
+
+char *wl_frame_log_path(const WlContext *ctx, const char *path,
+                        const char *name)
+{
+    if (path)
+        return g_strdup(path);
+    if (!ctx->out_dir || g_mkdir_with_parents(ctx->out_dir, 0755) != 0)
+        return NULL;
+    return g_build_filename(ctx->out_dir, name, NULL);
+}
+
+gboolean wl_frame_log_write(const char *path, const GString *text,
+                            const char *workload, GError **err)
+{
+    if (g_file_set_contents(path, text->str, (gssize)text->len, NULL))
+        return TRUE;
+    g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                "%s: found an unwritable frame_log '%s', expected a "
+                "writable path",
+                workload, path);
+    return FALSE;
 }

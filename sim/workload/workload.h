@@ -41,6 +41,16 @@ typedef struct {
  * the time to pass to sim_engine_run(); SIM_TIME_MAX when absent. */
 SimTime wl_until(const WlContext *ctx);
 
+/* The per-frame log's path: `path` (a workload's frame_log key) when
+ * set, else <out_dir>/<name> under `pgsim run --out DIR`, else NULL (no
+ * log).  A new string (g_free). */
+char *wl_frame_log_path(const WlContext *ctx, const char *path,
+                        const char *name);
+/* Writes `text` to path; FALSE with "<workload>: found an unwritable
+ * frame_log ..." in *err. */
+gboolean wl_frame_log_write(const char *path, const GString *text,
+                            const char *workload, GError **err);
+
 /* Looks a workload up by name; NULL if unknown. */
 const WlOps *wl_find(const char *name);
 /* NULL-terminated list of every workload, for help and errors. */

@@ -50,12 +50,12 @@ static void test_corners(void **st)
     scene_pn_patch(&pt, P, N);
     const double uv[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     for (int c = 0; c < 3; c++) {
-        assert_true(vec_near(scene_pn_point(&pt, uv[c][0], uv[c][1]), P[c],
-                             1e-12));
+        assert_true(
+            vec_near(scene_pn_point(&pt, uv[c][0], uv[c][1]), P[c], 1e-12));
         for (int k = 0; k < 2; k++)
-            assert_true(vec_near(scene_pn_normal(&pt, kinds[k], uv[c][0],
-                                                 uv[c][1]),
-                                 vec3_norm(N[c]), 1e-12));
+            assert_true(
+                vec_near(scene_pn_normal(&pt, kinds[k], uv[c][0], uv[c][1]),
+                         vec3_norm(N[c]), 1e-12));
     }
     /* the tessellated mesh holds the corners among its vertices */
     for (guint L = 0; L < 4; L++) {
@@ -80,7 +80,7 @@ static void edge_points(const SceneMesh *m, guint level, guint corner_a,
     for (guint s = 0; s <= n; s++) {
         guint j, k;
         if (corner_a == 0 && corner_b == 1)
-            j = s, k = 0;                 /* P1 -> P2 */
+            j = s, k = 0; /* P1 -> P2 */
         else
             g_assert_not_reached();
         guint idx = k * (n + 1) - k * (k - 1) / 2 + j;
@@ -155,9 +155,9 @@ static double off_plane(const SceneMesh *m, const Vec3 P[3], Vec3 *face)
     *face = vec3_norm(vec3_cross(vec3_sub(P[1], P[0]), vec3_sub(P[2], P[0])));
     double worst = 0;
     for (guint i = 0; i < scene_mesh_n_vertices(m); i++)
-        worst = fmax(worst, fabs(vec3_dot(vec3_sub(scene_mesh_vertex(m, i),
-                                                   P[0]),
-                                          *face)));
+        worst = fmax(
+            worst,
+            fabs(vec3_dot(vec3_sub(scene_mesh_vertex(m, i), P[0]), *face)));
     return worst;
 }
 
@@ -213,8 +213,8 @@ static void test_counts(void **st)
     (void)st;
     SceneMesh *m = scene_mesh_new();
     for (int i = 0; i < 5; i++)
-        scene_mesh_add_vertex(m, vec3(cos(i * 1.2566), sin(i * 1.2566),
-                                      0.1 * i));
+        scene_mesh_add_vertex(m,
+                              vec3(cos(i * 1.2566), sin(i * 1.2566), 0.1 * i));
     uint32_t pent[5] = {0, 1, 2, 3, 4};
     scene_mesh_add_poly(m, pent, 5, scene_color(1, 0, 0), 7);
     scene_mesh_add_tri(m, 0, 2, 4, scene_color(0, 1, 0), 8);

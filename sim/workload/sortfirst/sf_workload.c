@@ -196,24 +196,9 @@ static gboolean write_log(const char *path, const GArray *stats, GError **err)
             t->load_max, t->load_min, t->imbalance, t->utilisation,
             t->peak_memory);
     }
-    gboolean ok = g_file_set_contents(path, s->str, (gssize)s->len, NULL);
-    if (!ok)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
-                    "sortfirst: found an unwritable frame_log '%s', "
-                    "expected a writable path",
-                    path);
+    gboolean ok = wl_frame_log_write(path, s, "sortfirst", err);
     g_string_free(s, TRUE);
     return ok;
-}
-
-/* frame_log, else <out_dir>/sortfirst_frames.csv under --out, else NULL. */
-static char *log_path(const WlContext *ctx, const WlSfParams *p)
-{
-    if (p->frame_log)
-        return g_strdup(p->frame_log);
-    if (!ctx->out_dir || g_mkdir_with_parents(ctx->out_dir, 0755) != 0)
-        return NULL;
-    return g_build_filename(ctx->out_dir, "sortfirst_frames.csv", NULL);
 }
 
 /* ---- running --------------------------------------------------------------
@@ -279,7 +264,7 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
         wl_sf_fill_metrics(out, st, db, &p->setup);
         out->elapsed = sim_now(mach_engine(m));
     }
-    char *log = log_path(ctx, p);
+    char *log = wl_frame_log_path(ctx, p->frame_log, "sortfirst_frames.csv");
     if (ok && log)
         ok = write_log(log, st, err);
     g_free(log);

@@ -27,6 +27,8 @@ static const Scenario scenarios[] = {
     {"pphigs-flock", "configs/pphigs-flock.yaml"},
     {"sortfirst-vehicle", "configs/sortfirst-vehicle.yaml"},
     {"dpscan-cm200", "configs/dpscan-cm200.yaml"},
+    {"performer-town", "configs/performer-town.yaml"},
+    {"pn-onyx", "configs/pn-onyx.yaml"},
     {NULL, NULL},
 };
 

@@ -1,0 +1,245 @@
+/* pf_pipeline.c — the multiprocessed frame pipeline (see pf_pipeline.h).
+ *
+ * A small state machine: each stage has a "next frame" counter and a
+ * busy flag; try_cull() / try_draw() start a stage when its input is
+ * ready and its buffer is free; completions hand frames on.  The process
+ * that owns APP re-enters pfSync after the last stage it runs.  Stage
+ * work goes through mach_proc_compute(), so busy time is charged per
+ * phase; waiting is idle time.  Deterministic: no randomness.
+ */
+#include "sim/workload/performer/pf_pipeline.h"
+
+#include "sim/core/error.h"
+
+#include <string.h>
+
+const char *const wl_pf_mp_mode_names[] = {"appculldraw", "appcull_draw",
+                                           "app_cull_draw", NULL};
+
+enum { ST_APP, ST_CULL, ST_DRAW, ST_ISECT, ST_N };
+
+typedef struct {
+    SimEngine *eng;
+    MachProc *proc[ST_N];
+    unsigned phase[ST_N];
+    const WlPfPipeParams *p;
+    const WlPfStageFns *f;
+    void *ctx;
+    GArray *recs;
+    double stress;
+    guint app_done, cull_next, cull_done, draw_next, draw_done;
+    gboolean cull_busy, draw_busy, isect_busy, app_blocked;
+} Pipe;
+
+guint wl_pf_mp_procs(WlPfMpMode mode)
+{
+    return (guint)mode + 1;
+}
+
+static WlPfFrameRec *rec(Pipe *s, guint n)
+{
+    return &g_array_index(s->recs, WlPfFrameRec, n);
+}
+
+/* First multiple of `step` at or after t. */
+static SimTime ceil_to(SimTime t, SimTime step)
+{
+    return (t + step - 1) / step * step;
+}
+
+static SimTime frame_period(const Pipe *s)
+{
+    return s->p->video * s->p->per_frame;
+}
+
+static void app_start(SimEngine *eng, void *ctx, void *arg);
+static void try_cull(Pipe *s);
+static void try_draw(Pipe *s);
+
+/* pfSync: the APP process waits for the next frame boundary. */
+static void app_sync(Pipe *s, guint n)
+{
+    if (n + 1 >= s->p->frames)
+        return;
+    SimTime T = frame_period(s), now = sim_now(s->eng);
+    SimTime t = MAX(ceil_to(now, T), rec(s, n)->app_start + T);
+    sim_schedule_at(s->eng, t, app_start, s, GUINT_TO_POINTER(n + 1));
+}
+
+static void isect_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    ((Pipe *)ctx)->isect_busy = FALSE;
+}
+
+static void start_isect(Pipe *s, guint n)
+{
+    if (!s->f->isect || s->isect_busy)
+        return;
+    SimTime c = s->f->isect(s->ctx, n);
+    rec(s, n)->isect = c;
+    s->isect_busy = TRUE;
+    mach_proc_compute(s->proc[ST_ISECT], c, s->phase[ST_ISECT], isect_done, s,
+                      NULL);
+}
+
+static void app_done(SimEngine *eng, void *ctx, void *arg)
+{
+    Pipe *s = ctx;
+    guint n = GPOINTER_TO_UINT(arg);
+    rec(s, n)->app_end = sim_now(eng);
+    s->app_done = n + 1;
+    s->app_blocked = TRUE; /* pfFrame: until CULL takes frame n */
+    try_cull(s);
+}
+
+static void app_start(SimEngine *eng, void *ctx, void *arg)
+{
+    Pipe *s = ctx;
+    guint n = GPOINTER_TO_UINT(arg);
+    rec(s, n)->app_start = sim_now(eng);
+    start_isect(s, n);
+    mach_proc_compute(s->proc[ST_APP], s->f->app(s->ctx, n), s->phase[ST_APP],
+                      app_done, s, arg);
+}
+
+/* ---- CULL -------------------------------------------------------------- */
+
+static void cull_done(SimEngine *eng, void *ctx, void *arg)
+{
+    Pipe *s = ctx;
+    guint n = GPOINTER_TO_UINT(arg);
+    rec(s, n)->cull_end = sim_now(eng);
+    s->cull_done = n + 1;
+    s->cull_busy = FALSE;
+    if (s->proc[ST_CULL] == s->proc[ST_APP] &&
+        s->proc[ST_DRAW] != s->proc[ST_APP])
+        app_sync(s, n); /* APP+CULL process: pfSync after CULL */
+    try_draw(s);
+    try_cull(s);
+}
+
+static void try_cull(Pipe *s)
+{
+    guint n = s->cull_next;
+    if (s->cull_busy || n >= s->app_done || n >= s->p->frames ||
+        (n >= 2 && s->draw_done < n - 1))
+        return;
+    s->cull_busy = TRUE;
+    s->cull_next++;
+    rec(s, n)->cull_start = sim_now(s->eng);
+    rec(s, n)->stress = s->stress;
+    SimTime c = s->f->cull(s->ctx, n, s->stress);
+    mach_proc_compute(s->proc[ST_CULL], c, s->phase[ST_CULL], cull_done, s,
+                      GUINT_TO_POINTER(n));
+    if (s->app_blocked && s->proc[ST_CULL] != s->proc[ST_APP]) {
+        s->app_blocked = FALSE;
+        app_sync(s, n); /* APP process: pfSync after pfFrame returns */
+    }
+}
+
+/* ---- DRAW -------------------------------------------------------------- */
+
+static void update_stress(Pipe *s, const WlPfFrameRec *r)
+{
+    const WlPfPipeParams *p = s->p;
+    if (!p->stress)
+        return;
+    double load =
+        (double)(r->draw_end - r->draw_start) / (double)frame_period(s);
+    if (load > p->high || load < p->low)
+        s->stress += p->gain * (load - (p->low + p->high) / 2);
+    s->stress = CLAMP(s->stress, 1.0, p->max_stress);
+}
+
+static void draw_done(SimEngine *eng, void *ctx, void *arg)
+{
+    Pipe *s = ctx;
+    guint n = GPOINTER_TO_UINT(arg);
+    WlPfFrameRec *r = rec(s, n);
+    r->draw_end = sim_now(eng);
+    SimTime step = s->p->locked ? frame_period(s) : s->p->video;
+    r->swap = ceil_to(r->draw_end, step);
+    s->draw_done = n + 1;
+    s->draw_busy = FALSE;
+    update_stress(s, r);
+    if (s->proc[ST_DRAW] == s->proc[ST_APP])
+        app_sync(s, n); /* one process: pfSync after the whole frame */
+    try_cull(s);
+    try_draw(s);
+}
+
+static void draw_start(SimEngine *eng, void *ctx, void *arg)
+{
+    Pipe *s = ctx;
+    guint n = GPOINTER_TO_UINT(arg);
+    rec(s, n)->draw_start = sim_now(eng);
+    mach_proc_compute(s->proc[ST_DRAW], s->f->draw(s->ctx, n),
+                      s->phase[ST_DRAW], draw_done, s, arg);
+}
+
+static void try_draw(Pipe *s)
+{
+    guint n = s->draw_next;
+    if (s->draw_busy || n >= s->cull_done)
+        return;
+    s->draw_busy = TRUE;
+    s->draw_next++;
+    SimTime t = sim_now(s->eng);
+    if (n > 0)
+        t = MAX(t, rec(s, n - 1)->swap); /* double-buffered frame buffer */
+    if (s->p->locked)
+        t = ceil_to(t, frame_period(s));
+    sim_schedule_at(s->eng, t, draw_start, s, GUINT_TO_POINTER(n));
+}
+
+/* ---- run --------------------------------------------------------------- */
+
+static void map_procs(Pipe *s, MachProc *const *procs)
+{
+    guint np = wl_pf_mp_procs(s->p->mode);
+    s->proc[ST_APP] = procs[0];
+    s->proc[ST_CULL] =
+        s->p->mode == WL_PF_MP_APP_CULL_DRAW ? procs[1] : procs[0];
+    s->proc[ST_DRAW] = procs[np - 1];
+    s->proc[ST_ISECT] = s->f->isect ? procs[np] : NULL;
+}
+
+gboolean wl_pf_pipe_run(SimEngine *eng, MachProc *const *procs,
+                        const WlPfPipeParams *p, const WlPfStageFns *f,
+                        void *ctx, GArray *recs, SimTime until, GError **err)
+{
+    g_assert(p->frames > 0 && p->per_frame > 0 && p->video > 0);
+    Pipe s = {
+        .eng = eng, .p = p, .f = f, .ctx = ctx, .recs = recs, .stress = 1.0};
+    static const char *const names[ST_N] = {"app", "cull", "draw", "isect"};
+    for (int i = 0; i < ST_N; i++)
+        s.phase[i] = sim_engine_phase(eng, names[i]);
+    map_procs(&s, procs);
+    g_array_set_size(recs, p->frames);
+    memset(recs->data, 0, sizeof(WlPfFrameRec) * p->frames);
+    sim_schedule_at(eng, 0, app_start, &s, GUINT_TO_POINTER(0));
+    return sim_engine_run(eng, until, err);
+}
+
+double wl_pf_mean_interval_s(const GArray *recs, guint skip)
+{
+    guint n = recs->len;
+    if (n < skip + 2)
+        return 0;
+    const WlPfFrameRec *a = &g_array_index(recs, WlPfFrameRec, skip);
+    const WlPfFrameRec *b = &g_array_index(recs, WlPfFrameRec, n - 1);
+    return sim_time_to_s(b->swap - a->swap) / (n - 1 - skip);
+}
+
+double wl_pf_mean_latency_s(const GArray *recs, guint skip)
+{
+    double sum = 0;
+    guint c = 0;
+    for (guint i = skip; i < recs->len; i++, c++) {
+        const WlPfFrameRec *r = &g_array_index(recs, WlPfFrameRec, i);
+        sum += sim_time_to_s(r->swap - r->app_start);
+    }
+    return c ? sum / c : 0;
+}

@@ -1,0 +1,315 @@
+/* pf_pn.c — the PN-triangle geometry-compression measurement (see
+ * pf_pn.h).  Each frame is a few messages and computations whose
+ * completions are counted down; the frame ends when the count is zero.
+ * Costs are the model's; bytes are counted at the sender and moved by
+ * the machine's network.
+ */
+#include "sim/workload/performer/pf_pn.h"
+
+#include "sim/scene/scene_cfg.h"
+
+static const char *const normals[] = {"linear", "quadratic", NULL};
+static const char *const sends[] = {"coarse", "fine", NULL};
+
+WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
+{
+    WlPfPnParams *p = g_new0(WlPfPnParams, 1);
+    uint64_t level = 2;
+    int nk = 0, send = 0;
+    p->vertex_bytes = 32;
+    p->command_bytes = 100;
+    if (cfg_kind(pn) != CFG_MAP) {
+        cfg_error(err, pn, "a non-map", "pn: {level, normals, send}");
+    } else if (cfg_get_count(pn, "level", FALSE, 0, 32, &level, err) &&
+               cfg_get_enum(pn, "normals", FALSE, normals, &nk, err) &&
+               cfg_get_enum(pn, "send", FALSE, sends, &send, err) &&
+               cfg_get_size(pn, "vertex_bytes", FALSE, &p->vertex_bytes, err) &&
+               cfg_get_size(pn, "command_bytes", FALSE, &p->command_bytes,
+                            err)) {
+        p->pn = (ScenePnParams){(guint)level, (ScenePnNormals)nk};
+        p->send_fine = send == 1;
+        return p;
+    }
+    g_free(p);
+    return NULL;
+}
+
+void wl_pf_pn_params_free(WlPfPnParams *p)
+{
+    g_free(p);
+}
+
+/* ---- the mesh ---------------------------------------------------------- */
+
+typedef struct {
+    uint64_t coarse_tris, fine_tris, fine_points; /* per frame */
+} PnMesh;
+
+static gboolean pn_mesh(const CfgNode *root, const WlPfPnParams *p, PnMesh *out,
+                        GError **err)
+{
+    const CfgNode *sec = cfg_get(root, "scene");
+    if (sec && cfg_get(sec, "pn_triangles")) {
+        cfg_error(err, cfg_get(sec, "pn_triangles"), "a pre-tessellated scene",
+                  "the coarse scene (workload.pn tessellates it)");
+        return FALSE;
+    }
+    Scene *s = scene_from_cfg(sec, err);
+    if (!s)
+        return FALSE;
+    *out = (PnMesh){0};
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        SceneMesh *fine =
+            scene_pn_tessellate(scene_instance_mesh(s, i), &p->pn);
+        out->fine_tris += scene_mesh_n_triangles(fine);
+        out->fine_points += scene_mesh_n_vertices(fine);
+        scene_mesh_free(fine);
+    }
+    out->coarse_tris = scene_n_triangles(s);
+    scene_free(s);
+    return TRUE;
+}
+
+/* ---- one frame's countdown --------------------------------------------- */
+
+typedef struct {
+    const WlContext *ctx;
+    MachMachine *m;
+    const WlPfPnParams *p;
+    PnMesh mesh;
+    SimResult *out;
+    guint pending, frames_left;
+    SimTime frame_start;
+    uint64_t link_bytes;        /* to the tessellating processors */
+    uint64_t cmd_bytes;         /* Pixel-Planes 5: GPs to renderers */
+    SimTime cpu, bus, pipe, gp; /* stage times of the last frame */
+    void (*start)(void *run);
+} PnRun;
+
+static void frame_start(SimEngine *eng, void *ctx, void *arg);
+
+static void part_done(PnRun *r)
+{
+    g_assert(r->pending > 0);
+    if (--r->pending)
+        return;
+    SimEngine *eng = mach_engine(r->m);
+    sim_result_add_frame(r->out, sim_now(eng) - r->frame_start);
+    if (--r->frames_left)
+        sim_schedule_in(eng, 0, frame_start, r, NULL);
+}
+
+static void proc_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    part_done(ctx);
+}
+
+static void msg_done(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    (void)d;
+    part_done(ctx);
+}
+
+static SimTime times(SimTime c, uint64_t n)
+{
+    SimTime t;
+    return mach_cost_n(c, n, &t) ? t : SIM_TIME_MAX;
+}
+
+static uint64_t sent_tris(const PnRun *r)
+{
+    return r->p->send_fine ? r->mesh.fine_tris : r->mesh.coarse_tris;
+}
+
+/* ---- shared-memory machine: CPU -> bus -> pipe ------------------------- */
+
+static void smp_frame(void *run)
+{
+    PnRun *r = run;
+    MachMachine *m = r->m;
+    uint64_t verts = 3 * sent_tris(r), bytes = verts * r->p->vertex_bytes;
+    SimTime tess = r->p->send_fine ? 0
+                                   : times(mach_cost(m, "pipe", "pn_vertex"),
+                                           r->mesh.fine_points);
+    r->cpu = times(mach_cost(m, "cpu", "draw_vertex"), verts);
+    r->pipe = sim_time_add_sat(
+        tess, times(mach_cost(m, "pipe", "triangle"), r->mesh.fine_tris));
+    MachProc *cpu = mach_proc(m, "cpu", 0), *pipe = mach_proc(m, "pipe", 0);
+    r->pending = 3;
+    r->link_bytes += bytes;
+    mach_proc_compute(cpu, r->cpu, 0, proc_done, r, NULL);
+    mach_proc_compute(pipe, r->pipe, 0, proc_done, r, NULL);
+    net_send(mach_net(m), mach_proc_id(cpu), mach_proc_id(pipe), bytes, NULL,
+             msg_done, r);
+    r->bus = net_ideal_time(mach_net(m), mach_proc_id(cpu), mach_proc_id(pipe),
+                            bytes);
+}
+
+/* ---- Pixel-Planes 5: host -> ring -> GPs -> ring -> renderers ---------- */
+
+typedef struct {
+    PnRun *r;
+    guint gp;
+} GpJob;
+
+static uint64_t share(uint64_t total, guint i, guint n)
+{
+    return total / n + (i < total % n);
+}
+
+/* A renderer receives GP g's k-th share of renderer commands. */
+static void rd_arrived(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    PnRun *r = ctx;
+    MachMachine *m = r->m;
+    guint k = GPOINTER_TO_UINT(d->payload);
+    uint64_t cmds = d->bytes / r->p->command_bytes;
+    mach_proc_compute(mach_proc(m, "renderer", k),
+                      times(mach_cost(m, "renderer", "primitive"), cmds), 0,
+                      proc_done, r, NULL);
+}
+
+/* GP g has tessellated and transformed its share: it sends every
+ * renderer its part of the fine triangles as renderer commands. */
+static void gp_computed(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    PnRun *r = ctx;
+    MachMachine *m = r->m;
+    guint g = GPOINTER_TO_UINT(arg), ng = mach_kind(m, "gp")->count;
+    guint nr = mach_kind(m, "renderer")->count;
+    uint64_t mine = share(r->mesh.fine_tris, g, ng);
+    uint32_t src = mach_proc_id(mach_proc(m, "gp", g));
+    for (guint k = 0; k < nr; k++) {
+        uint64_t cmds = share(mine, k, nr);
+        if (!cmds)
+            continue;
+        r->pending++;
+        r->cmd_bytes += cmds * r->p->command_bytes;
+        net_send(mach_net(m), src, mach_proc_id(mach_proc(m, "renderer", k)),
+                 cmds * r->p->command_bytes, GUINT_TO_POINTER(k), rd_arrived,
+                 r);
+    }
+    part_done(r);
+}
+
+static void gp_arrived(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    PnRun *r = ctx;
+    MachMachine *m = r->m;
+    guint g = GPOINTER_TO_UINT(d->payload), ng = mach_kind(m, "gp")->count;
+    uint64_t fine = share(r->mesh.fine_tris, g, ng);
+    uint64_t pts = share(r->mesh.fine_points, g, ng);
+    SimTime t = times(sim_time_add_sat(mach_cost(m, "gp", "polygon"),
+                                       3 * mach_cost(m, "gp", "vertex")),
+                      fine);
+    t = sim_time_add_sat(t, times(mach_cost(m, "gp", "send_primitive"), fine));
+    if (!r->p->send_fine)
+        t = sim_time_add_sat(t, times(mach_cost(m, "gp", "pn_vertex"), pts));
+    r->gp = MAX(r->gp, t);
+    mach_proc_compute(mach_proc(m, "gp", g), t, 0, gp_computed, r,
+                      GUINT_TO_POINTER(g));
+}
+
+static void pp5_frame(void *run)
+{
+    PnRun *r = run;
+    MachMachine *m = r->m;
+    guint ng = mach_kind(m, "gp")->count;
+    uint32_t host = mach_proc_id(mach_proc(m, "host", 0));
+    r->pending = ng;
+    r->gp = 0;
+    for (guint g = 0; g < ng; g++) {
+        uint64_t bytes = 3 * share(sent_tris(r), g, ng) * r->p->vertex_bytes;
+        r->link_bytes += bytes;
+        net_send(mach_net(m), host, mach_proc_id(mach_proc(m, "gp", g)), bytes,
+                 GUINT_TO_POINTER(g), gp_arrived, r);
+    }
+}
+
+static void frame_start(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)arg;
+    PnRun *r = ctx;
+    r->frame_start = sim_now(eng);
+    r->start(r);
+}
+
+/* ---- run --------------------------------------------------------------- */
+
+static const char *const smp_ops[] = {"draw_vertex", NULL};
+static const char *const pipe_ops[] = {"triangle", "pn_vertex", NULL};
+static const char *const gp_ops[] = {"polygon", "vertex", "send_primitive",
+                                     "pn_vertex", NULL};
+static const char *const rd_ops[] = {"primitive", NULL};
+
+static gboolean pick_machine(PnRun *r, GError **err)
+{
+    MachMachine *m = r->m;
+    if (!mach_require_net(m, err))
+        return FALSE;
+    if (mach_kind(m, "cpu") && mach_kind(m, "pipe")) {
+        r->start = smp_frame;
+        return mach_require_costs(m, "cpu", smp_ops, err) &&
+               mach_require_costs(m, "pipe", pipe_ops, err);
+    }
+    if (mach_kind(m, "host") && mach_kind(m, "gp") &&
+        mach_kind(m, "renderer")) {
+        r->start = pp5_frame;
+        return mach_require_costs(m, "gp", gp_ops, err) &&
+               mach_require_costs(m, "renderer", rd_ops, err);
+    }
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "machine '%s': found no kinds cpu + pipe or host + gp + "
+                "renderer, expected a shared-memory machine with a pipe "
+                "(models/sgi-onyx.yaml) or Pixel-Planes 5",
+                mach_name(m));
+    return FALSE;
+}
+
+static void set_metrics(PnRun *r, SimResult *out)
+{
+    double frames = out->frame_times->len;
+    sim_result_set_metric(out, "level", r->p->pn.level, "");
+    sim_result_set_metric(out, "coarse_tris", r->mesh.coarse_tris, "");
+    sim_result_set_metric(out, "fine_tris", r->mesh.fine_tris, "");
+    sim_result_set_metric(out, "link_bytes_per_frame",
+                          frames ? r->link_bytes / frames : 0, "B");
+    sim_result_set_metric(out, "command_bytes_per_frame",
+                          frames ? r->cmd_bytes / frames : 0, "B");
+    const char *names[] = {"cpu_ms", "bus_ms", "pipe_ms", "gp_ms"};
+    SimTime v[] = {r->cpu, r->bus, r->pipe, r->gp};
+    for (guint i = 0; i < 4; i++)
+        if (v[i])
+            sim_result_set_metric(out, names[i], sim_time_to_s(v[i]) * 1e3,
+                                  "ms");
+    sim_result_set_metric(out, "frame_ms", sim_result_mean_frame_s(out) * 1e3,
+                          "ms");
+    sim_result_set_metric(out, "fine_tris_per_s",
+                          sim_result_mean_frame_s(out) > 0
+                              ? r->mesh.fine_tris / sim_result_mean_frame_s(out)
+                              : 0,
+                          "1/s");
+}
+
+gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
+                      const WlPfPnParams *p, SimResult *out, GError **err)
+{
+    PnRun r = {.ctx = ctx, .m = m, .p = p, .out = out};
+    if (!pick_machine(&r, err) || !pn_mesh(ctx->root, p, &r.mesh, err))
+        return FALSE;
+    r.frames_left = (guint)ctx->frames;
+    sim_schedule_at(ctx->eng, 0, frame_start, &r, NULL);
+    gboolean ok = sim_engine_run(ctx->eng, wl_until(ctx), err);
+    if (!ok)
+        return FALSE;
+    mach_fill_result(m, out);
+    out->elapsed = sim_now(ctx->eng);
+    set_metrics(&r, out);
+    return TRUE;
+}

@@ -1,0 +1,51 @@
+/* pf_pn.h — curved PN triangles as geometry compression (seed 002,
+ * slides "Hardware Performance": "if the graphics processor is
+ * sufficiently fast and the bus is busy, curved PN triangles render at
+ * the same speed as flat triangles").
+ *
+ * The `performer` workload with a `pn:` section runs this instead of the
+ * frame pipeline.  The config's scene is the coarse mesh; it is really
+ * tessellated at `level` (sim/scene/pn_triangles.h) and every frame
+ * moves either the coarse triangles (send: coarse; the receiving
+ * processors tessellate) or the fine ones (send: fine; the sender
+ * tessellated once, the link carries (L+1)^2 as many):
+ *
+ *   shared-memory machine (kinds cpu, pipe): the CPU running DRAW issues
+ *   the vertices (cpu draw_vertex each) and the bus carries them
+ *   (vertex_bytes each) to the pipe, which tessellates (pipe pn_vertex
+ *   per grid point) and draws (pipe triangle per fine triangle); the
+ *   three stream through FIFOs, so a frame lasts as long as the slowest.
+ *
+ *   Pixel-Planes 5 (kinds host, gp, renderer): the host sends each GP
+ *   its share of the triangles over the ring; a GP tessellates (gp
+ *   pn_vertex per point), transforms (gp polygon + 3 vertex per fine
+ *   triangle) and sends each renderer its share of renderer commands
+ *   (command_bytes each, gp send_primitive to pack); renderers draw (per
+ *   fine triangle: renderer primitive).  A frame ends when the last
+ *   renderer is done.
+ *
+ * The messages go through the machine's network (mach_net), so bytes
+ * and times are the transport's.  O(frames x processors) events.
+ */
+#ifndef PGSIM_WORKLOAD_PERFORMER_PF_PN_H
+#define PGSIM_WORKLOAD_PERFORMER_PF_PN_H
+
+#include "sim/machine/machine.h"
+#include "sim/scene/pn_triangles.h"
+#include "sim/workload/workload.h"
+
+typedef struct {
+    ScenePnParams pn;
+    gboolean send_fine;
+    uint64_t vertex_bytes;  /* per vertex over the link */
+    uint64_t command_bytes; /* Pixel-Planes 5 renderer command */
+} WlPfPnParams;
+
+/* Reads the `pn:` map; NULL with a located error. */
+WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err);
+void wl_pf_pn_params_free(WlPfPnParams *p);
+/* Runs ctx->frames frames on m (shared-memory or Pixel-Planes 5). */
+gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
+                      const WlPfPnParams *p, SimResult *out, GError **err);
+
+#endif

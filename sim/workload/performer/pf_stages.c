@@ -1,0 +1,149 @@
+/* pf_stages.c — the Performer stages on the town and their costs (see
+ * pf_stages.h).  Every cost is a count times a model cost; no timing is
+ * invented here.  O(traversal) per stage call.
+ */
+#include "sim/workload/performer/pf_stages.h"
+
+static gboolean cost(MachMachine *m, const char *kind, const char *op,
+                     SimTime *out, GError **err)
+{
+    return mach_cost_lookup(m, kind, op, out, err);
+}
+
+gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
+                          GError **err)
+{
+    *c = (WlPfCosts){.vertex_bytes = vertex_bytes};
+    if (!cost(m, "cpu", "app_frame", &c->app_frame, err) ||
+        !cost(m, "cpu", "app_dcs", &c->app_dcs, err) ||
+        !cost(m, "cpu", "cull_node", &c->cull_node, err) ||
+        !cost(m, "cpu", "cull_lod", &c->cull_lod, err) ||
+        !cost(m, "cpu", "cull_billboard", &c->cull_billboard, err) ||
+        !cost(m, "cpu", "cull_item", &c->cull_item, err) ||
+        !cost(m, "cpu", "draw_geoset", &c->draw_geoset, err) ||
+        !cost(m, "cpu", "draw_state", &c->draw_state, err) ||
+        !cost(m, "cpu", "draw_matrix", &c->draw_matrix, err) ||
+        !cost(m, "cpu", "draw_vertex", &c->draw_vertex, err) ||
+        !cost(m, "cpu", "isect_node", &c->isect_node, err) ||
+        !cost(m, "cpu", "isect_triangle", &c->isect_triangle, err) ||
+        !cost(m, "pipe", "triangle", &c->pipe_triangle, err) ||
+        !cost(m, "pipe", "state", &c->pipe_state, err))
+        return FALSE;
+    mach_net_time(m, "startup", &c->bus_startup);
+    if (!mach_net_bandwidth(m, "bandwidth", &c->bus_bandwidth) ||
+        c->bus_bandwidth <= 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "machine '%s': found no network bandwidth, expected "
+                    "network.bandwidth (the bus that feeds the pipe)",
+                    mach_name(m));
+        return FALSE;
+    }
+    return TRUE;
+}
+
+WlPfStages *wl_pf_stages_new(WlPfTown *town, const WlPfCosts *c, gboolean cull,
+                             gboolean lazy, gboolean isect, guint frames)
+{
+    WlPfStages *s = g_new0(WlPfStages, 1);
+    s->town = town;
+    s->c = *c;
+    s->cull = cull;
+    s->lazy = lazy;
+    s->isect = isect;
+    for (int i = 0; i < WL_PF_NBUF; i++)
+        s->dl[i] = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    s->frames = g_array_new(FALSE, TRUE, sizeof(WlPfFrameStats));
+    g_array_set_size(s->frames, frames);
+    s->ground = wl_pf_town_height(0, 0);
+    return s;
+}
+
+void wl_pf_stages_free(WlPfStages *s)
+{
+    if (!s)
+        return;
+    for (int i = 0; i < WL_PF_NBUF; i++)
+        g_array_free(s->dl[i], TRUE);
+    g_array_free(s->frames, TRUE);
+    g_free(s);
+}
+
+static SimTime times(SimTime c, uint64_t n)
+{
+    SimTime t;
+    return mach_cost_n(c, n, &t) ? t : SIM_TIME_MAX;
+}
+
+static SimTime sum(SimTime a, SimTime b)
+{
+    return sim_time_add_sat(a, b);
+}
+
+/* ---- the stages -------------------------------------------------------- */
+
+static SimTime app(void *ctx, guint n)
+{
+    WlPfStages *s = ctx;
+    guint moved = wl_pf_town_update(s->town, n);
+    wl_pf_frame_stats(s, n)->ground = s->ground;
+    return sum(s->c.app_frame, times(s->c.app_dcs, moved));
+}
+
+static SimTime cull(void *ctx, guint n, double stress)
+{
+    WlPfStages *s = ctx;
+    WlPfFrameStats *f = wl_pf_frame_stats(s, n);
+    SceneCamera cam = wl_pf_town_camera(s->town, n, f->ground);
+    WlPfView v = wl_pf_view(&cam, stress, s->cull);
+    GArray *dl = s->dl[n % WL_PF_NBUF];
+    g_array_set_size(dl, 0);
+    wl_pf_cull(s->town->g, &v, dl, &f->cull);
+    f->dl_items = dl->len;
+    const WlPfCosts *c = &s->c;
+    SimTime t = times(c->cull_node, f->cull.nodes_visited);
+    t = sum(t, times(c->cull_lod, f->cull.lods));
+    t = sum(t, times(c->cull_billboard, f->cull.billboards));
+    return sum(t, times(c->cull_item, dl->len));
+}
+
+SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
+                       gboolean lazy)
+{
+    uint64_t states = lazy ? st->state_changes : st->state_naive;
+    SimTime t = times(c->draw_geoset, st->geosets);
+    t = sum(t, times(c->draw_state, states));
+    t = sum(t, times(c->draw_matrix, st->matrix_ops));
+    return sum(t, times(c->draw_vertex, 3 * st->tris));
+}
+
+static SimTime draw(void *ctx, guint n)
+{
+    WlPfStages *s = ctx;
+    WlPfFrameStats *f = wl_pf_frame_stats(s, n);
+    const WlPfCosts *c = &s->c;
+    wl_pf_draw(s->town->g, s->dl[n % WL_PF_NBUF], &f->draw);
+    uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
+    f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
+    double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
+    f->bus = sum(c->bus_startup, sim_time_for_bytes(bytes, c->bus_bandwidth));
+    f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
+                  times(c->pipe_state, states));
+    return MAX(f->cpu, MAX(f->bus, f->pipe));
+}
+
+static SimTime isect(void *ctx, guint n)
+{
+    WlPfStages *s = ctx;
+    WlPfFrameStats *f = wl_pf_frame_stats(s, n);
+    SceneCamera cam = wl_pf_town_camera(s->town, n, 0);
+    wl_pf_isect(s->town->g, cam.eye.x, cam.eye.z, -100, 100, &f->isect);
+    if (f->isect.hit)
+        s->ground = f->isect.height; /* APP of a later frame reads it */
+    return sum(times(s->c.isect_node, f->isect.nodes_tested),
+               times(s->c.isect_triangle, f->isect.tris_tested));
+}
+
+WlPfStageFns wl_pf_stage_fns(gboolean with_isect)
+{
+    return (WlPfStageFns){app, cull, draw, with_isect ? isect : NULL};
+}

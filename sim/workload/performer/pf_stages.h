@@ -1,0 +1,79 @@
+/* pf_stages.h — what each Performer stage does to the town and what it
+ * costs on the machine (the WlPfStageFns the pipeline calls).
+ *
+ * APP moves the cars (DCS) and places the camera on the ground height
+ * the last finished ISECT found; CULL traverses the graph at the frame's
+ * camera and the stress it is given into a display list kept in one of
+ * WL_PF_NBUF buffers (multibuffering: frame n uses buffer n mod
+ * WL_PF_NBUF; the pipeline never has more frames between CULL and DRAW);
+ * DRAW replays that list; ISECT intersects a vertical segment under the
+ * eye with the graph.
+ *
+ * Costs are counted operations times the model's per-operation costs
+ * (models/sgi-onyx.yaml: cpu app_* cull_* draw_* isect_*, pipe triangle
+ * and state, network bandwidth and startup).  DRAW streams to the pipe
+ * through a FIFO, so its time is the slowest of three rates: the CPU
+ * issuing (geosets, state changes, matrix operations, vertices), the bus
+ * carrying 3 x vertex_bytes per triangle, and the pipe (triangles, state
+ * changes).  Each frame's counts are kept for the per-frame log.
+ */
+#ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
+#define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
+
+#include "sim/machine/machine.h"
+#include "sim/workload/performer/pf_cull.h"
+#include "sim/workload/performer/pf_pipeline.h"
+#include "sim/workload/performer/pf_town.h"
+
+#define WL_PF_NBUF 4
+
+typedef struct {
+    SimTime app_frame, app_dcs;
+    SimTime cull_node, cull_lod, cull_billboard, cull_item;
+    SimTime draw_geoset, draw_state, draw_matrix, draw_vertex;
+    SimTime isect_node, isect_triangle;
+    SimTime pipe_triangle, pipe_state;
+    SimTime bus_startup;
+    double bus_bandwidth; /* bytes/s */
+    uint64_t vertex_bytes;
+} WlPfCosts;
+
+typedef struct {
+    WlPfCullStats cull;
+    WlPfDrawStats draw;
+    WlPfIsectStats isect;
+    guint dl_items;
+    SimTime cpu, bus, pipe; /* DRAW's three times */
+    double ground;          /* the ground height APP used */
+} WlPfFrameStats;
+
+typedef struct {
+    WlPfTown *town;
+    WlPfCosts c;
+    gboolean cull, lazy; /* frustum culling; lazy pfGeoState */
+    GArray *dl[WL_PF_NBUF];
+    GArray *frames; /* WlPfFrameStats, one per frame */
+    double ground;  /* the latest ISECT result */
+    gboolean isect;
+} WlPfStages;
+
+/* Reads the costs from m (kinds cpu and pipe, the network bandwidth);
+ * FALSE with a located error naming what is missing. */
+gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
+                          GError **err);
+/* A new stage context over town (borrowed) for `frames` frames. */
+WlPfStages *wl_pf_stages_new(WlPfTown *town, const WlPfCosts *c, gboolean cull,
+                             gboolean lazy, gboolean isect, guint frames);
+void wl_pf_stages_free(WlPfStages *s);
+/* The stage functions (ctx: a WlPfStages). */
+WlPfStageFns wl_pf_stage_fns(gboolean isect);
+/* CPU time of DRAW's issuing work for the counts st (lazy or eager
+ * state changes). */
+SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
+                       gboolean lazy);
+static inline WlPfFrameStats *wl_pf_frame_stats(WlPfStages *s, guint n)
+{
+    return &g_array_index(s->frames, WlPfFrameStats, n);
+}
+
+#endif

@@ -1,0 +1,375 @@
+/* pf_workload.c — the `performer` workload: config, run, per-frame log
+ * and metrics (docs/workloads.md, section "performer").
+ *
+ *   workload:
+ *     type: performer
+ *     mode: app_cull_draw | appcull_draw | appculldraw
+ *     video_rate: 60          # Hz, retraces (assumption: a 60 Hz monitor)
+ *     frame_rate: 30          # Hz, fixed frame rate; divides video_rate
+ *     phase: locked | floating
+ *     stress: {gain: 0.5, low: 0.7, high: 0.9, max: 4}   # absent: off
+ *     cull: true  flatten: true  lazy_state: true  isect: true
+ *     app_work: 2 ms          # overrides the model's cpu app_frame
+ *     vertex_bytes: 32 B      # per vertex sent to the pipe
+ *     town: {blocks, houses, trees, cars, block, lod_ranges, speed,
+ *            eye_height, fov, seed}
+ *     frame_log: frames.csv   # else <out>/performer_frames.csv
+ *     pn: {...}               # the PN-triangle measurement (pf_pn.h)
+ *
+ * The machine needs node kinds `cpu` (one per process, plus one for
+ * ISECT) and `pipe`, and a network bandwidth (models/sgi-onyx.yaml).
+ */
+#include "sim/workload/performer/pf_workload.h"
+
+#include "sim/core/trace.h"
+#include "sim/workload/performer/pf_pn.h"
+#include "sim/workload/performer/pf_stages.h"
+
+#include <stdio.h>
+
+typedef struct {
+    WlPfPipeParams pipe;
+    double video_hz, frame_hz;
+    gboolean cull, flatten, lazy, isect, has_app_work;
+    SimTime app_work;
+    uint64_t vertex_bytes;
+    WlPfTownParams town;
+    const char *frame_log; /* borrowed from the config */
+    WlPfPnParams *pn;      /* NULL: the Performer pipeline */
+    const CfgNode *at;     /* the section, for errors */
+} PfParams;
+
+static const char *const phases[] = {"locked", "floating", NULL};
+
+static gboolean parse_town(const CfgNode *sec, WlPfTownParams *t, GError **err)
+{
+    const CfgNode *n = cfg_get(sec, "town");
+    uint64_t v[4] = {t->blocks, t->houses, t->trees, t->cars};
+    uint64_t seed = t->seed;
+    if (!n)
+        return TRUE;
+    if (!cfg_get_count(n, "blocks", FALSE, 1, 256, &v[0], err) ||
+        !cfg_get_count(n, "houses", FALSE, 0, 256, &v[1], err) ||
+        !cfg_get_count(n, "trees", FALSE, 0, 1024, &v[2], err) ||
+        !cfg_get_count(n, "cars", FALSE, 0, 4096, &v[3], err) ||
+        !cfg_get_double(n, "block", FALSE, 20, 1e4, &t->block, err) ||
+        !cfg_get_double(n, "speed", FALSE, 0, 1e3, &t->speed, err) ||
+        !cfg_get_double(n, "eye_height", FALSE, 0, 1e3, &t->eye_height, err) ||
+        !cfg_get_double(n, "fov", FALSE, 1, 170, &t->fov_deg, err) ||
+        !cfg_get_count(n, "seed", FALSE, 0, UINT64_MAX, &seed, err))
+        return FALSE;
+    const CfgNode *r = cfg_get(n, "lod_ranges");
+    if (r && (cfg_kind(r) != CFG_SEQ || cfg_seq_len(r) != 3)) {
+        cfg_error(err, r, "not a list of 3", "[d01, d12, d2off] in metres");
+        return FALSE;
+    }
+    for (guint i = 0; r && i < 3; i++) {
+        const char *s = cfg_scalar(cfg_seq_at(r, i));
+        char *end = NULL;
+        double d = s ? g_ascii_strtod(s, &end) : -1;
+        if (!s || *end || !(d > (i ? t->lod_ranges[i - 1] : 0))) {
+            cfg_error(err, cfg_seq_at(r, i), "a non-increasing range",
+                      "increasing positive distances");
+            return FALSE;
+        }
+        t->lod_ranges[i] = d;
+    }
+    t->blocks = v[0], t->houses = v[1], t->trees = v[2], t->cars = v[3];
+    t->seed = seed;
+    return TRUE;
+}
+
+static gboolean parse_stress(const CfgNode *sec, WlPfPipeParams *p,
+                             GError **err)
+{
+    const CfgNode *n = cfg_get(sec, "stress");
+    p->low = 0.7, p->high = 0.9, p->gain = 0.5, p->max_stress = 4;
+    if (!n)
+        return TRUE;
+    p->stress = TRUE;
+    if (!cfg_get_map(sec, "stress", FALSE, "a map {gain, low, high, max}", &n,
+                     err) ||
+        !cfg_get_double(n, "gain", FALSE, 0, 1e3, &p->gain, err) ||
+        !cfg_get_double(n, "low", FALSE, 0, 10, &p->low, err) ||
+        !cfg_get_double(n, "high", FALSE, 0, 10, &p->high, err) ||
+        !cfg_get_double(n, "max", FALSE, 1, 1e3, &p->max_stress, err))
+        return FALSE;
+    if (p->high >= p->low)
+        return TRUE;
+    cfg_error(err, n, "high < low", "a load band with low <= high");
+    return FALSE;
+}
+
+static gboolean parse_rates(const CfgNode *sec, PfParams *p, GError **err)
+{
+    if (!cfg_get_double(sec, "video_rate", FALSE, 1, 1000, &p->video_hz, err) ||
+        !cfg_get_double(sec, "frame_rate", FALSE, 0.1, 1000, &p->frame_hz, err))
+        return FALSE;
+    double k = p->video_hz / p->frame_hz;
+    if (fabs(k - round(k)) > 1e-9 || k < 1) {
+        cfg_error(err, cfg_get(sec, "frame_rate"),
+                  "a frame rate that does not divide the video rate",
+                  "video_rate / frame_rate a whole number >= 1");
+        return FALSE;
+    }
+    p->pipe.per_frame = (guint)round(k);
+    /* a whole number of picoseconds per retrace: frame boundaries are
+     * exact multiples of it */
+    return sim_time_from_s(1.0 / p->video_hz, &p->pipe.video);
+}
+
+static gboolean parse_flags(const CfgNode *sec, PfParams *p, GError **err)
+{
+    int mode = p->pipe.mode, phase = 0;
+    p->has_app_work = cfg_get(sec, "app_work") != NULL;
+    if (!cfg_get_enum(sec, "mode", FALSE, wl_pf_mp_mode_names, &mode, err) ||
+        !cfg_get_enum(sec, "phase", FALSE, phases, &phase, err))
+        return FALSE;
+    p->pipe.mode = (WlPfMpMode)mode;
+    p->pipe.locked = phase == 0;
+    return cfg_get_bool(sec, "cull", FALSE, &p->cull, err) &&
+           cfg_get_bool(sec, "flatten", FALSE, &p->flatten, err) &&
+           cfg_get_bool(sec, "lazy_state", FALSE, &p->lazy, err) &&
+           cfg_get_bool(sec, "isect", FALSE, &p->isect, err) &&
+           cfg_get_time(sec, "app_work", FALSE, &p->app_work, err) &&
+           cfg_get_size(sec, "vertex_bytes", FALSE, &p->vertex_bytes, err) &&
+           cfg_get_str(sec, "frame_log", FALSE, &p->frame_log, err);
+}
+
+static void pf_free(void *params)
+{
+    PfParams *p = params;
+    if (p)
+        wl_pf_pn_params_free(p->pn);
+    g_free(p);
+}
+
+static void *pf_parse(const CfgNode *sec, GError **err)
+{
+    PfParams *p = g_new0(PfParams, 1);
+    p->pipe.mode = WL_PF_MP_APP_CULL_DRAW;
+    p->video_hz = 60, p->frame_hz = 30;
+    p->cull = p->flatten = p->lazy = p->isect = TRUE;
+    p->vertex_bytes = 32;
+    p->town = wl_pf_town_defaults();
+    p->at = sec;
+    const CfgNode *pn = cfg_get(sec, "pn");
+    if ((pn && !(p->pn = wl_pf_pn_params_parse(pn, err))) ||
+        !parse_flags(sec, p, err) || !parse_rates(sec, p, err) ||
+        !parse_stress(sec, &p->pipe, err) || !parse_town(sec, &p->town, err)) {
+        pf_free(p);
+        return NULL;
+    }
+    return p;
+}
+
+/* ---- per-frame log ----------------------------------------------------- */
+
+static double ms(SimTime t)
+{
+    return sim_time_to_s(t) * 1e3;
+}
+
+static void log_row(GString *s, guint n, const WlPfFrameRec *r,
+                    const WlPfFrameRec *prev, const WlPfFrameStats *f)
+{
+    double lod = f->cull.lods ? (double)f->cull.lod_sum / f->cull.lods : 0;
+    g_string_append_printf(
+        s,
+        "%u,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.4f,"
+        "%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+        ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
+        ",%.6f,%.6f,%.6f\n",
+        n, ms(r->app_start), ms(r->app_end - r->app_start),
+        ms(r->cull_end - r->cull_start), ms(r->draw_end - r->draw_start),
+        ms(r->isect), ms(r->swap), ms(r->swap - r->app_start),
+        prev ? ms(r->swap - prev->swap) : 0, r->stress, lod, f->draw.tris,
+        f->draw.geosets, f->draw.state_changes,
+        f->draw.state_naive - f->draw.state_changes, f->draw.matrix_ops,
+        f->cull.tris_culled, ms(f->cpu), ms(f->bus), ms(f->pipe));
+}
+
+static gboolean write_log(const char *path, const GArray *recs, WlPfStages *st,
+                          GError **err)
+{
+    GString *s = g_string_new(
+        "frame,app_start_ms,app_ms,cull_ms,draw_ms,isect_ms,swap_ms,"
+        "latency_ms,interval_ms,stress,mean_lod,tris,geosets,state_changes,"
+        "state_saved,matrix_ops,tris_culled,draw_cpu_ms,draw_bus_ms,"
+        "draw_pipe_ms\n");
+    for (guint n = 0; n < recs->len; n++)
+        log_row(s, n, &g_array_index(recs, WlPfFrameRec, n),
+                n ? &g_array_index(recs, WlPfFrameRec, n - 1) : NULL,
+                wl_pf_frame_stats(st, n));
+    gboolean ok = wl_frame_log_write(path, s, "performer", err);
+    g_string_free(s, TRUE);
+    return ok;
+}
+
+/* ---- metrics ----------------------------------------------------------- */
+
+typedef struct {
+    double app, cull, draw, tris, states, saved, mats, culled, stress, lod;
+} Means;
+
+static Means means(const GArray *recs, WlPfStages *st, guint skip)
+{
+    Means m = {0};
+    guint c = 0;
+    for (guint n = skip; n < recs->len; n++, c++) {
+        const WlPfFrameRec *r = &g_array_index(recs, WlPfFrameRec, n);
+        const WlPfFrameStats *f = wl_pf_frame_stats(st, n);
+        m.app += ms(r->app_end - r->app_start);
+        m.cull += ms(r->cull_end - r->cull_start);
+        m.draw += ms(r->draw_end - r->draw_start);
+        m.tris += f->draw.tris;
+        m.states += f->draw.state_changes;
+        m.saved += f->draw.state_naive - f->draw.state_changes;
+        m.mats += f->draw.matrix_ops;
+        m.culled += f->cull.tris_culled;
+        m.stress += r->stress;
+        m.lod += f->cull.lods ? (double)f->cull.lod_sum / f->cull.lods : 0;
+    }
+    double *v = &m.app;
+    for (guint i = 0; c && i < sizeof m / sizeof *v; i++)
+        v[i] /= c;
+    return m;
+}
+
+static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
+                        WlPfStages *st, guint flattened)
+{
+    guint skip = MIN(4u, recs->len / 4);
+    double iv = wl_pf_mean_interval_s(recs, skip);
+    Means m = means(recs, st, skip);
+    uint64_t msaved = 0;
+    for (guint n = skip; n < recs->len; n++)
+        msaved += wl_pf_frame_stats(st, n)->cull.matrix_saved;
+    sim_result_set_metric(out, "target_rate_hz", p->frame_hz, "Hz");
+    sim_result_set_metric(out, "frame_rate_hz", iv > 0 ? 1 / iv : 0, "Hz");
+    sim_result_set_metric(out, "latency_ms",
+                          wl_pf_mean_latency_s(recs, skip) * 1e3, "ms");
+    sim_result_set_metric(out, "app_ms", m.app, "ms");
+    sim_result_set_metric(out, "cull_ms", m.cull, "ms");
+    sim_result_set_metric(out, "draw_ms", m.draw, "ms");
+    sim_result_set_metric(out, "tris_per_frame", m.tris, "");
+    sim_result_set_metric(out, "tris_culled_per_frame", m.culled, "");
+    sim_result_set_metric(out, "state_changes_per_frame", m.states, "");
+    sim_result_set_metric(out, "state_changes_saved_per_frame", m.saved, "");
+    sim_result_set_metric(out, "matrix_ops_per_frame", m.mats, "");
+    sim_result_set_metric(
+        out, "matrix_ops_saved_per_frame",
+        recs->len > skip ? (double)msaved / (recs->len - skip) : 0, "");
+    sim_result_set_metric(out, "scs_flattened", flattened, "");
+    sim_result_set_metric(out, "stress_mean", m.stress, "");
+    sim_result_set_metric(out, "lod_mean", m.lod, "");
+}
+
+/* ---- running ----------------------------------------------------------- */
+
+static gboolean get_procs(MachMachine *m, const PfParams *p, MachProc **procs,
+                          GError **err)
+{
+    guint need = wl_pf_mp_procs(p->pipe.mode) + (p->isect ? 1 : 0);
+    const MachKindInfo *k = mach_kind(m, "cpu");
+    if (!k || k->count < need || !mach_kind(m, "pipe")) {
+        char *found = g_strdup_printf("machine '%s' with %u cpu nodes%s",
+                                      mach_name(m), k ? k->count : 0,
+                                      mach_kind(m, "pipe") ? "" : ", no pipe");
+        char *exp = g_strdup_printf("%u cpus (mode %s%s) and a pipe", need,
+                                    wl_pf_mp_mode_names[p->pipe.mode],
+                                    p->isect ? " + isect" : "");
+        cfg_error(err, p->at, found, exp);
+        g_free(found);
+        g_free(exp);
+        return FALSE;
+    }
+    for (guint i = 0; i < need; i++)
+        procs[i] = mach_proc(m, "cpu", i);
+    return TRUE;
+}
+
+/* The pipe's busy time: DRAW's pipe share, charged after the run. */
+static void charge_pipe(MachMachine *m, WlPfStages *st, unsigned phase)
+{
+    MachProc *pipe = mach_proc(m, "pipe", 0);
+    for (guint n = 0; n < st->frames->len; n++)
+        mach_proc_compute(pipe, wl_pf_frame_stats(st, n)->pipe, phase, NULL,
+                          NULL, NULL);
+}
+
+static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
+                        WlPfStages *st)
+{
+    uint64_t bytes = 0;
+    for (guint n = 0; n < recs->len; n++) {
+        const WlPfFrameRec *r = &g_array_index(recs, WlPfFrameRec, n);
+        SimTime prev =
+            n ? g_array_index(recs, WlPfFrameRec, n - 1).swap : r->app_start;
+        sim_result_add_frame(out, r->swap - prev);
+        bytes += 3 * wl_pf_frame_stats(st, n)->draw.tris * st->c.vertex_bytes;
+    }
+    mach_fill_result(m, out);
+    out->comm_bytes = bytes;
+    out->comm_messages = recs->len;
+    out->elapsed = g_array_index(recs, WlPfFrameRec, recs->len - 1).swap;
+}
+
+static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
+                             SimResult *out, GError **err)
+{
+    MachProc *procs[4];
+    WlPfCosts c;
+    if (!get_procs(m, p, procs, err) ||
+        !wl_pf_costs_read(m, p->vertex_bytes, &c, err))
+        return FALSE;
+    if (p->has_app_work)
+        c.app_frame = p->app_work;
+    WlPfTown *town = wl_pf_town_new(&p->town);
+    guint flattened = p->flatten ? wl_pf_flatten(town->g) : 0;
+    p->pipe.frames = (guint)ctx->frames;
+    WlPfStages *st =
+        wl_pf_stages_new(town, &c, p->cull, p->lazy, p->isect, p->pipe.frames);
+    WlPfStageFns fns = wl_pf_stage_fns(p->isect);
+    GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
+    gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &p->pipe, &fns, st, recs,
+                                 wl_until(ctx), err);
+    if (ok) {
+        charge_pipe(m, st, sim_engine_phase(ctx->eng, "pipe"));
+        fill_result(out, m, recs, st);
+        sim_result_set_phases(out, ctx->eng);
+        set_metrics(out, p, recs, st, flattened);
+    }
+    char *log =
+        ok ? wl_frame_log_path(ctx, p->frame_log, "performer_frames.csv")
+           : NULL;
+    if (log)
+        ok = write_log(log, recs, st, err);
+    g_free(log);
+    g_array_free(recs, TRUE);
+    wl_pf_stages_free(st);
+    wl_pf_town_free(town);
+    return ok;
+}
+
+static gboolean pf_run(const WlContext *ctx, void *params, SimResult *out,
+                       GError **err)
+{
+    PfParams *p = params;
+    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
+                                       ctx->fidelity, err);
+    gboolean ok = m && (p->pn ? wl_pf_pn_run(ctx, m, p->pn, out, err)
+                              : run_pipeline(ctx, m, p, out, err));
+    mach_free(m);
+    return ok;
+}
+
+const WlOps wl_pf_ops = {
+    .name = "performer",
+    .summary = "IRIS Performer's multiprocessed frame pipeline (APP, CULL, "
+               "DRAW, ISECT) on a shared-memory machine with one graphics "
+               "pipe; with pn:, curved PN triangles as geometry compression",
+    .parse = pf_parse,
+    .free_params = pf_free,
+    .run = pf_run,
+};
