@@ -6,6 +6,7 @@
  */
 #include "sim/workload/performer/pf_pn.h"
 
+#include "sim/machine/shmem.h"
 #include "sim/scene/scene_cfg.h"
 
 static const char *const normals[] = {"linear", "quadratic", NULL};
@@ -83,6 +84,7 @@ typedef struct {
     uint64_t link_bytes;        /* to the tessellating processors */
     uint64_t cmd_bytes;         /* Pixel-Planes 5: GPs to renderers */
     SimTime cpu, bus, pipe, gp; /* stage times of the last frame */
+    MachShmem bus_mem;          /* shared-memory machine: CPU -> pipe */
     void (*start)(void *run);
 } PnRun;
 
@@ -103,13 +105,6 @@ static void proc_done(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     (void)arg;
-    part_done(ctx);
-}
-
-static void msg_done(NetNet *net, const NetDelivery *d, void *ctx)
-{
-    (void)net;
-    (void)d;
     part_done(ctx);
 }
 
@@ -142,10 +137,10 @@ static void smp_frame(void *run)
     r->link_bytes += bytes;
     mach_proc_compute(cpu, r->cpu, 0, proc_done, r, NULL);
     mach_proc_compute(pipe, r->pipe, 0, proc_done, r, NULL);
-    net_send(mach_net(m), mach_proc_id(cpu), mach_proc_id(pipe), bytes, NULL,
-             msg_done, r);
-    r->bus = net_ideal_time(mach_net(m), mach_proc_id(cpu), mach_proc_id(pipe),
-                            bytes);
+    SimTime now = sim_now(mach_engine(m));
+    SimTime end = mach_shmem_transfer(&r->bus_mem, now, bytes);
+    r->bus = end - now;
+    sim_schedule_at(mach_engine(m), end, proc_done, r, NULL);
 }
 
 /* ---- Pixel-Planes 5: host -> ring -> GPs -> ring -> renderers ---------- */
@@ -251,17 +246,17 @@ static const char *const rd_ops[] = {"primitive", NULL};
 static gboolean pick_machine(PnRun *r, GError **err)
 {
     MachMachine *m = r->m;
-    if (!mach_require_net(m, err))
-        return FALSE;
     if (mach_kind(m, "cpu") && mach_kind(m, "pipe")) {
         r->start = smp_frame;
-        return mach_require_costs(m, "cpu", smp_ops, err) &&
+        return mach_shmem_init(&r->bus_mem, m, err) &&
+               mach_require_costs(m, "cpu", smp_ops, err) &&
                mach_require_costs(m, "pipe", pipe_ops, err);
     }
     if (mach_kind(m, "host") && mach_kind(m, "gp") &&
         mach_kind(m, "renderer")) {
         r->start = pp5_frame;
-        return mach_require_costs(m, "gp", gp_ops, err) &&
+        return mach_require_net(m, err) &&
+               mach_require_costs(m, "gp", gp_ops, err) &&
                mach_require_costs(m, "renderer", rd_ops, err);
     }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
@@ -309,6 +304,10 @@ gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
     if (!ok)
         return FALSE;
     mach_fill_result(m, out);
+    if (r.start == smp_frame) {
+        out->comm_bytes = r.bus_mem.bytes;
+        out->comm_messages = r.bus_mem.transfers;
+    }
     out->elapsed = sim_now(ctx->eng);
     set_metrics(&r, out);
     return TRUE;

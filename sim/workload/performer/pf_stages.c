@@ -29,22 +29,19 @@ gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
         !cost(m, "pipe", "triangle", &c->pipe_triangle, err) ||
         !cost(m, "pipe", "state", &c->pipe_state, err))
         return FALSE;
-    mach_net_time(m, "startup", &c->bus_startup);
-    if (!mach_net_bandwidth(m, "bandwidth", &c->bus_bandwidth) ||
-        c->bus_bandwidth <= 0) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "machine '%s': found no network bandwidth, expected "
-                    "network.bandwidth (the bus that feeds the pipe)",
-                    mach_name(m));
-        return FALSE;
-    }
     return TRUE;
 }
 
-WlPfStages *wl_pf_stages_new(WlPfTown *town, const WlPfCosts *c, gboolean cull,
-                             gboolean lazy, gboolean isect, guint frames)
+WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town,
+                             const WlPfCosts *c, gboolean cull, gboolean lazy,
+                             gboolean isect, guint frames, GError **err)
 {
     WlPfStages *s = g_new0(WlPfStages, 1);
+    if (!mach_shmem_init(&s->bus, m, err)) {
+        g_free(s);
+        return NULL;
+    }
+    s->eng = mach_engine(m);
     s->town = town;
     s->c = *c;
     s->cull = cull;
@@ -125,7 +122,8 @@ static SimTime draw(void *ctx, guint n)
     uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
     f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
-    f->bus = sum(c->bus_startup, sim_time_for_bytes(bytes, c->bus_bandwidth));
+    SimTime now = sim_now(s->eng);
+    f->bus = mach_shmem_transfer(&s->bus, now, (uint64_t)bytes) - now;
     f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
                   times(c->pipe_state, states));
     return MAX(f->cpu, MAX(f->bus, f->pipe));

@@ -14,13 +14,14 @@
  * and state, network bandwidth and startup).  DRAW streams to the pipe
  * through a FIFO, so its time is the slowest of three rates: the CPU
  * issuing (geosets, state changes, matrix operations, vertices), the bus
- * carrying 3 x vertex_bytes per triangle, and the pipe (triangles, state
+ * carrying 3 x vertex_bytes per triangle (booked on the machine's shared
+ * memory, sim/machine/shmem.h, so it also queues), and the pipe (triangles, state
  * changes).  Each frame's counts are kept for the per-frame log.
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 
-#include "sim/machine/machine.h"
+#include "sim/machine/shmem.h"
 #include "sim/workload/performer/pf_cull.h"
 #include "sim/workload/performer/pf_pipeline.h"
 #include "sim/workload/performer/pf_town.h"
@@ -33,8 +34,6 @@ typedef struct {
     SimTime draw_geoset, draw_state, draw_matrix, draw_vertex;
     SimTime isect_node, isect_triangle;
     SimTime pipe_triangle, pipe_state;
-    SimTime bus_startup;
-    double bus_bandwidth; /* bytes/s */
     uint64_t vertex_bytes;
 } WlPfCosts;
 
@@ -50,6 +49,8 @@ typedef struct {
 typedef struct {
     WlPfTown *town;
     WlPfCosts c;
+    MachShmem bus;        /* the bus that feeds the pipe (sim/machine/shmem.h) */
+    SimEngine *eng;
     gboolean cull, lazy; /* frustum culling; lazy pfGeoState */
     GArray *dl[WL_PF_NBUF];
     GArray *frames; /* WlPfFrameStats, one per frame */
@@ -57,13 +58,16 @@ typedef struct {
     gboolean isect;
 } WlPfStages;
 
-/* Reads the costs from m (kinds cpu and pipe, the network bandwidth);
- * FALSE with a located error naming what is missing. */
+/* Reads the costs from m (kinds cpu and pipe); FALSE with a located
+ * error naming what is missing. */
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err);
-/* A new stage context over town (borrowed) for `frames` frames. */
-WlPfStages *wl_pf_stages_new(WlPfTown *town, const WlPfCosts *c, gboolean cull,
-                             gboolean lazy, gboolean isect, guint frames);
+/* A new stage context over town (borrowed) for `frames` frames; the bus
+ * is m's shared memory (network bandwidth and startup, mach_shmem_init);
+ * NULL with *err when m has none. */
+WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town,
+                             const WlPfCosts *c, gboolean cull, gboolean lazy,
+                             gboolean isect, guint frames, GError **err);
 void wl_pf_stages_free(WlPfStages *s);
 /* The stage functions (ctx: a WlPfStages). */
 WlPfStageFns wl_pf_stage_fns(gboolean isect);

@@ -315,21 +315,14 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
     out->elapsed = g_array_index(recs, WlPfFrameRec, recs->len - 1).swap;
 }
 
-static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
-                             SimResult *out, GError **err)
+/* Runs the frames over st and reports them. */
+static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
+                           WlPfStages *st, guint flattened, SimResult *out,
+                           GError **err)
 {
     MachProc *procs[4];
-    WlPfCosts c;
-    if (!get_procs(m, p, procs, err) ||
-        !wl_pf_costs_read(m, p->vertex_bytes, &c, err))
+    if (!get_procs(m, p, procs, err))
         return FALSE;
-    if (p->has_app_work)
-        c.app_frame = p->app_work;
-    WlPfTown *town = wl_pf_town_new(&p->town);
-    guint flattened = p->flatten ? wl_pf_flatten(town->g) : 0;
-    p->pipe.frames = (guint)ctx->frames;
-    WlPfStages *st =
-        wl_pf_stages_new(town, &c, p->cull, p->lazy, p->isect, p->pipe.frames);
     WlPfStageFns fns = wl_pf_stage_fns(p->isect);
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &p->pipe, &fns, st, recs,
@@ -347,6 +340,23 @@ static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
         ok = write_log(log, recs, st, err);
     g_free(log);
     g_array_free(recs, TRUE);
+    return ok;
+}
+
+static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
+                             SimResult *out, GError **err)
+{
+    WlPfCosts c;
+    if (!wl_pf_costs_read(m, p->vertex_bytes, &c, err))
+        return FALSE;
+    if (p->has_app_work)
+        c.app_frame = p->app_work;
+    WlPfTown *town = wl_pf_town_new(&p->town);
+    guint flattened = p->flatten ? wl_pf_flatten(town->g) : 0;
+    p->pipe.frames = (guint)ctx->frames;
+    WlPfStages *st = wl_pf_stages_new(m, town, &c, p->cull, p->lazy, p->isect,
+                                      p->pipe.frames, err);
+    gboolean ok = st && run_frames(ctx, m, p, st, flattened, out, err);
     wl_pf_stages_free(st);
     wl_pf_town_free(town);
     return ok;
