@@ -6,6 +6,7 @@
  */
 #include "sim/workload/performer/pf_pn.h"
 
+#include "sim/core/trace.h"
 #include "sim/machine/shmem.h"
 #include "sim/scene/scene_cfg.h"
 
@@ -140,6 +141,9 @@ static void smp_frame(void *run)
     SimTime now = sim_now(mach_engine(m));
     SimTime end = mach_shmem_transfer(&r->bus_mem, now, bytes);
     r->bus = end - now;
+    sim_trace_flow(sim_engine_trace(mach_engine(m)), mach_proc_id(cpu),
+                   mach_proc_name(cpu), mach_proc_id(pipe),
+                   mach_proc_name(pipe), bytes, now, end);
     sim_schedule_at(mach_engine(m), end, proc_done, r, NULL);
 }
 

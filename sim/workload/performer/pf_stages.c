@@ -4,6 +4,8 @@
  */
 #include "sim/workload/performer/pf_stages.h"
 
+#include "sim/core/trace.h"
+
 static gboolean cost(MachMachine *m, const char *kind, const char *op,
                      SimTime *out, GError **err)
 {
@@ -113,6 +115,16 @@ SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
     return sum(t, times(c->draw_vertex, 3 * st->tris));
 }
 
+/* The DRAW CPU's stream to the pipe as one traced message per frame. */
+static void trace_bus(WlPfStages *s, uint64_t bytes, SimTime from, SimTime to)
+{
+    MachMachine *m = mach_proc_machine(s->draw_cpu);
+    MachProc *pipe = mach_proc(m, "pipe", 0);
+    sim_trace_flow(sim_engine_trace(s->eng), mach_proc_id(s->draw_cpu),
+                   mach_proc_name(s->draw_cpu), mach_proc_id(pipe),
+                   mach_proc_name(pipe), bytes, from, to);
+}
+
 static SimTime draw(void *ctx, guint n)
 {
     WlPfStages *s = ctx;
@@ -124,6 +136,7 @@ static SimTime draw(void *ctx, guint n)
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
     SimTime now = sim_now(s->eng);
     f->bus = mach_shmem_transfer(&s->bus, now, (uint64_t)bytes) - now;
+    trace_bus(s, (uint64_t)bytes, now, now + f->bus);
     f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
                   times(c->pipe_state, states));
     return MAX(f->cpu, MAX(f->bus, f->pipe));

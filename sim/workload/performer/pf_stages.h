@@ -51,6 +51,7 @@ typedef struct {
     WlPfCosts c;
     MachShmem bus;        /* the bus that feeds the pipe (sim/machine/shmem.h) */
     SimEngine *eng;
+    MachProc *draw_cpu;   /* the process running DRAW (set by the caller) */
     gboolean cull, lazy; /* frustum culling; lazy pfGeoState */
     GArray *dl[WL_PF_NBUF];
     GArray *frames; /* WlPfFrameStats, one per frame */

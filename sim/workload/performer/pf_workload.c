@@ -324,6 +324,7 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
     if (!get_procs(m, p, procs, err))
         return FALSE;
     WlPfStageFns fns = wl_pf_stage_fns(p->isect);
+    st->draw_cpu = procs[wl_pf_mp_procs(p->pipe.mode) - 1];
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &p->pipe, &fns, st, recs,
                                  wl_until(ctx), err);
