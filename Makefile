@@ -6,6 +6,8 @@
 #   make check    the tests under ASan + UBSan (-fno-sanitize-recover=all)
 #   make bench    benchmarks that print figures (never part of make test)
 #   make golden   rewrite the scenario tests' golden results (review the diff)
+#   make coverage gcov line/branch summary per folder, unexecuted functions
+#   make mutate N=200 SEED=1   sampled mutation testing (scripts/mutate)
 #   make install PREFIX=/usr/local ; make format ; make clean
 
 PREFIX  ?= /usr/local
@@ -33,7 +35,8 @@ TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
 TESTLIB := $(shell find tests -name '*.c' ! -name 'test_*.c' | LC_ALL=C sort)
 TESTLOBJ := $(TESTLIB:%.c=$(BUILD)/obj/%.o)
 
-.PHONY: all deps run test check bench install format clean golden
+.PHONY: all deps run test check bench install format clean golden coverage \
+        mutate
 all: $(BUILD)/pgsim
 
 deps:
@@ -75,6 +78,18 @@ check: deps
 golden: all $(BUILD)/tests/app/run/test_scenarios
 	PGSIM_UPDATE_GOLDEN=1 ./$(BUILD)/tests/app/run/test_scenarios
 
+# Never part of make test: each takes minutes.
+coverage: deps
+	@$(MAKE) -s all
+	@$(MAKE) -s BUILD=build-cov OPT="-O0 -g" EXTRA_CFLAGS=--coverage \
+	  EXTRA_LDFLAGS=--coverage $(TESTBIN:$(BUILD)/%=build-cov/%)
+	@sh scripts/coverage.sh build-cov
+
+N    ?= 200
+SEED ?= 1
+mutate: deps
+	@sh scripts/mutate $(N) $(SEED)
+
 bench: deps
 	@$(MAKE) -s all
 	@sh scripts/bench.sh $(BUILD)
@@ -88,7 +103,7 @@ format:
 	clang-format -i $$(find sim tests -name '*.[ch]')
 
 clean:
-	rm -rf build build-san
+	rm -rf build build-san build-cov
 
 -include $(shell find $(BUILD) build-san -name '*.d' 2>/dev/null)
 .SECONDARY:

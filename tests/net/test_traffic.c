@@ -143,6 +143,10 @@ static void test_names_and_checks(void **state)
     assert_non_null(err);
     g_error_free(err);
     assert_false(net_traffic_check(NET_TRAFFIC_SHIFT, 1, NULL));
+    assert_true(net_traffic_check(NET_TRAFFIC_SHIFT, 2, NULL));
+    assert_true(net_traffic_check(NET_TRAFFIC_XOR, NET_TRAFFIC_MAX_NODES, NULL));
+    assert_false(
+        net_traffic_check(NET_TRAFFIC_RANDOM, NET_TRAFFIC_MAX_NODES + 1, NULL));
     assert_int_equal(net_traffic_messages(NET_TRAFFIC_PAIRWISE, 16), 64);
     assert_int_equal(net_traffic_messages(NET_TRAFFIC_HOTSPOT, 16), 240);
 }

@@ -316,6 +316,22 @@ static void test_shading(void **state)
     assert_true(g2 > 62 && g2 < 90);
     rast_image_free(flat);
     rast_image_free(gour);
+    /* per-vertex colours, unlit: Gouraud blends red, green and blue from
+     * the corners; flat uses the polygon's colour (white) */
+    SceneColor vc[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    g_array_append_vals(m->colors, vc, 3);
+    v.lighting = FALSE;
+    gour = render(&v, m, mat4_identity());
+    v.shading = RAST_SHADE_FLAT;
+    flat = render(&v, m, mat4_identity());
+    assert_int_equal(rast_image_get(flat, 2, 37), 0xffffffffu);
+    uint32_t c0 = rast_image_get(gour, 2, 37), c1 = rast_image_get(gour, 35, 37);
+    uint32_t c2 = rast_image_get(gour, 2, 3);
+    assert_true((c0 & 0xff) > 220 && (c0 >> 8 & 0xff) < 35);   /* red */
+    assert_true((c1 >> 8 & 0xff) > 220 && (c1 & 0xff) < 35);   /* green */
+    assert_true((c2 >> 16 & 0xff) > 220 && (c2 & 0xff) < 35);  /* blue */
+    rast_image_free(flat);
+    rast_image_free(gour);
     scene_mesh_free(m);
 }
 

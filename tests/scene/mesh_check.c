@@ -71,3 +71,11 @@ double mesh_check_volume(const SceneMesh *m)
     }
     return vol;
 }
+
+guint mesh_check_count_kind(const SceneDb *db, guint sid, SceneElemKind k)
+{
+    guint n = 0;
+    for (guint i = 0; i < scene_db_len(db, sid); i++)
+        n += scene_db_elem(db, sid, i)->kind == k;
+    return n;
+}

@@ -207,14 +207,21 @@ static void test_fit_points(void **st)
         c.eye = vec3(0, 3, 10);
         scene_camera_fit_points(&c, pts, 6, 0.8);
         Mat4 vp = scene_camera_view_proj(&c);
-        double m = 0;
+        double m = 0, lo[2] = {1, 1}, hi[2] = {-1, -1};
         for (int i = 0; i < 6; i++) {
             Vec3 q = project(vp, pts[i]);
             assert_true(fabs(q.x) <= 0.8 + 1e-9 && fabs(q.y) <= 0.8 + 1e-9);
             assert_true(q.z > -1 && q.z < 1);
             m = fmax(m, fmax(fabs(q.x), fabs(q.y)));
+            lo[0] = fmin(lo[0], q.x), hi[0] = fmax(hi[0], q.x);
+            lo[1] = fmin(lo[1], q.y), hi[1] = fmax(hi[1], q.y);
         }
         assert_true(m > 0.8 - 1e-6);
+        /* perspective: the extent is re-centred on both axes (to within
+         * the last distance step's shift, here 0.05 of the half-screen) */
+        if (!proj)
+            assert_true(fabs(lo[0] + hi[0]) < 0.15 &&
+                        fabs(lo[1] + hi[1]) < 0.15);
     }
     SceneBox b = {{-1, -1, -1}, {1, 2, 3}};
     SceneCamera c = scene_camera_default();
@@ -297,6 +304,19 @@ static void test_scene(void **st)
     scene_set_path(
         s, scene_path_new_orbit(&c, vec3(0, 0, 0), vec3(0, 1, 0), 0, 180, 2));
     NEAR(scene_camera_at(s, 1).eye.z, -5);
+    assert_int_equal(scene_n_vertices(s), 8);
+    /* looking straight down (and up): up turns to -z, the view stays
+     * finite and the scene inside it */
+    for (int sign = -1; sign <= 1; sign += 2) {
+        SceneView v = scene_view_default();
+        v.elevation_deg = 90 * sign;
+        scene_apply_view(s, &v);
+        NEAR(s->camera.up.z, -1);
+        Vec3 q = project(scene_camera_view_proj(&s->camera), vec3(6, 1, 0));
+        assert_true(fabs(q.x) <= 1 && fabs(q.y) <= 1 && fabs(q.z) <= 1);
+        NEAR(s->camera.eye.y - s->camera.target.y,
+             sign * vec3_len(vec3_sub(s->camera.eye, s->camera.target)));
+    }
     scene_free(s);
     scene_free(NULL);
 }

@@ -93,6 +93,7 @@ static void test_bigpoly(void **st)
         if (sz.x * sz.y >= 0.75 * 4) {
             huge++;
             assert_true(b.min.x >= -1 - 1e-9 && b.max.x <= 1 + 1e-9);
+            assert_true(b.min.y >= -1 - 1e-9 && b.max.y <= 1 + 1e-9);
         }
         assert_true(scene_mesh_poly_normal(m, i).z > 0.999);
     }

@@ -150,6 +150,56 @@ static void assert_same_mesh(const SceneMesh *a, const SceneMesh *b,
     }
 }
 
+/* A vertex and a face of 66 properties each: values past the 64th are
+ * read and dropped.  Then x as property 64 (the 65th): rejected, since
+ * roles must sit among the first 64. */
+static void test_ply_wide_elements(void **st)
+{
+    (void)st;
+    GString *h = g_string_new("ply\nformat ascii 1.0\nelement vertex 3\n");
+    for (int pass = 0; pass < 2; pass++) {
+        g_string_truncate(h, strlen("ply\nformat ascii 1.0\nelement vertex 3\n"));
+        if (!pass)
+            g_string_append(h, "property float x\nproperty float y\n"
+                               "property float z\n");
+        for (int i = 0; i < (pass ? 62 : 63); i++)
+            g_string_append_printf(h, "property float pad%d\n", i);
+        if (pass)
+            g_string_append(h, "property float y\nproperty float z\n"
+                               "property float x\n");
+        g_string_append(h, "element face 1\n"
+                           "property list uchar int vertex_indices\n");
+        for (int i = 0; i < 65; i++)
+            g_string_append_printf(h, "property float q%d\n", i);
+        g_string_append(h, "end_header\n");
+        for (int v = 0; v < 3; v++) {
+            g_string_append_printf(h, "%d %d %d", v, 2 * v, 3 * v);
+            for (int i = 0; i < 63; i++)
+                g_string_append(h, " 7");
+            g_string_append(h, "\n");
+        }
+        g_string_append(h, "3 0 1 2");
+        for (int i = 0; i < 65; i++)
+            g_string_append(h, " 5");
+        g_string_append(h, "\n");
+        GError *err = NULL;
+        SceneMesh *m =
+            scene_ply_parse((const guchar *)h->str, h->len, "w.ply", &err);
+        if (pass) {
+            assert_null(m);
+            assert_non_null(strstr(err->message, "among the first 64"));
+            g_error_free(err);
+            continue;
+        }
+        assert_non_null(m);
+        Vec3 v2 = scene_mesh_vertex(m, 2);
+        assert_true(v2.x == 2 && v2.y == 4 && v2.z == 6);
+        assert_int_equal(scene_mesh_n_polys(m), 1);
+        scene_mesh_free(m);
+    }
+    g_string_free(h, TRUE);
+}
+
 static void test_obj_roundtrip(void **st)
 {
     (void)st;
@@ -323,6 +373,7 @@ int main(void)
         cmocka_unit_test(test_obj_forms),
         cmocka_unit_test(test_ply_ascii),
         cmocka_unit_test(test_ply_binary_types),
+        cmocka_unit_test(test_ply_wide_elements),
         cmocka_unit_test(test_obj_roundtrip),
         cmocka_unit_test(test_ply_roundtrip),
         cmocka_unit_test(test_bad_files),

@@ -241,6 +241,30 @@ static void test_camera_and_path(void **st)
     scene_free(s);
 }
 
+/* teapots `placements:` put one teapot per entry at its spot, scaled. */
+static void test_teapot_placements(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    Scene *s = from_text("scene:\n"
+                         "  generator: teapots\n"
+                         "  placements:\n"
+                         "    - {at: [0, 0, 0]}\n"
+                         "    - {at: [40, 0, 0], yaw: 90, scale: 2}\n",
+                         &err);
+    assert_non_null(s);
+    assert_int_equal(scene_n_instances(s), 2);
+    SceneBox a = scene_instance_bbox(s, 0), b = scene_instance_bbox(s, 1);
+    Vec3 ca = scene_box_center(a), cb = scene_box_center(b);
+    Vec3 sa = scene_box_size(a), sb = scene_box_size(b);
+    assert_true(fabs(cb.x - ca.x - 40) < 0.25 * sb.x);
+    assert_true(fabs(sb.y - 2 * sa.y) < 1e-6 * sb.y); /* yaw keeps y (up) */
+    assert_true(fabs(sb.z - 2 * sa.x) < 1e-6 * sb.z); /* yaw 90 swaps x, z */
+    assert_int_equal(scene_n_vertices(s), 2 * scene_mesh_n_vertices(
+                                                  scene_instance_mesh(s, 0)));
+    scene_free(s);
+}
+
 /* `camera:` or `view:` on a generator with its own path (the vehicle's
  * orbit) moves the path: frame 0 is the camera asked for, and later
  * frames orbit from there. */
@@ -323,6 +347,11 @@ static const Bad bad[] = {
      "t.yaml:1:51: found '65', expected a count in [0, 64]"},
     {"scene: {generator: teapots, pn_triangles: {normals: cubic}}\n",
      "t.yaml:1:53: found 'cubic', expected one of: linear, quadratic"},
+    {"scene: {generator: vehicle, instances: 0}\n", "t.yaml:1:40: found '0', expected a count in [1, 1024]"},
+    {"scene: {generator: teapots, camera: {eye: [0, 0, 5], "
+     "target: [0, 0, 0], near: 2, far: 2}}\n",
+     "t.yaml:1:37: found a degenerate camera (near >= far"},
+    {"scene: {generator: teapots, placements: []}\n", "t.yaml:1:41: found not a list, expected a list of {at, yaw, scale}"},
     {"scene: {generator: teapots, pn_triangles: 2}\n",
      "t.yaml:1:43: found a non-map, expected a map {level: L"},
 };
@@ -350,6 +379,7 @@ int main(void)
         cmocka_unit_test(test_fit_vertices),
         cmocka_unit_test(test_other_configs),
         cmocka_unit_test(test_camera_and_path),
+        cmocka_unit_test(test_teapot_placements),
         cmocka_unit_test(test_pphigs_configs),
         cmocka_unit_test(test_camera_rebases_path),
         cmocka_unit_test(test_bad_sections),

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "tests/scene/mesh_check.h"
 #include "sim/core/rng.h"
 #include "sim/workload/pphigs/pphigs_distrib.h"
 #include <string.h>
@@ -217,14 +218,6 @@ static void test_scan_bound(void **st)
     scene_db_free(db);
 }
 
-static guint count_kind(const SceneDb *db, guint sid, SceneElemKind k)
-{
-    guint n = 0;
-    for (guint i = 0; i < scene_db_len(db, sid); i++)
-        n += scene_db_elem(db, sid, i)->kind == k;
-    return n;
-}
-
 static void test_attribute_copies(void **st)
 {
     (void)st;
@@ -235,9 +228,9 @@ static void test_attribute_copies(void **st)
     WlPphigsDist *c = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &wc);
     guint simple = 0, complex = 0, prims = 0;
     for (guint g = 0; g < 4; g++) {
-        simple += count_kind(wl_pphigs_dist_gp(s, g), 0, SCENE_EL_COLOR);
-        complex += count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_COLOR);
-        prims += count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_TRIANGLE);
+        simple += mesh_check_count_kind(wl_pphigs_dist_gp(s, g), 0, SCENE_EL_COLOR);
+        complex += mesh_check_count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_COLOR);
+        prims += mesh_check_count_kind(wl_pphigs_dist_gp(c, g), 0, SCENE_EL_TRIANGLE);
     }
     assert_int_equal(simple, 4 * 100); /* every colour on every GP */
     assert_true(complex < 2 * 100);    /* mostly on one or two GPs */
@@ -279,7 +272,7 @@ static void test_primitive_structure(void **st)
     for (guint g = 0; g < 4; g++) {
         const SceneDb *p = wl_pphigs_dist_gp(d, g);
         assert_int_equal(scene_db_len(p, boid), 10); /* broadcast whole */
-        guint e = count_kind(p, top, SCENE_EL_EXECUTE);
+        guint e = mesh_check_count_kind(p, top, SCENE_EL_EXECUTE);
         assert_int_equal(e, 10); /* instances dealt evenly */
         execs += e;
     }

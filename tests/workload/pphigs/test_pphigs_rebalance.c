@@ -139,12 +139,44 @@ static void test_invalidated_converges(void **s)
     fix_free(&x);
 }
 
+/* The first acting frame with a tight cap and a whole-gap budget moves
+ * exactly max_moves primitives: 3 single moves for an imperfect
+ * distribution, one exchange (2 moves) for invalidated weights. */
+static void test_cap_reached_exactly(void **s)
+{
+    (void)s;
+    for (int inval = 0; inval < 2; inval++) {
+        Fix x;
+        fix_new(&x, inval ? SCENE_PPHIGS_LOBBY : SCENE_PPHIGS_STATION,
+                inval ? 200 : 8);
+        if (!inval)
+            for (guint i = 0; i < scene_db_len(wl_pphigs_dist_host(x.d), 0);
+                 i++)
+                if (wl_pphigs_dist_owner(x.d, 0, i) > 0)
+                    assert_true(wl_pphigs_dist_move(x.d, 0, i, 0));
+        WlPphigsRebalParams p = P;
+        p.fraction = 1;
+        p.max_moves = inval ? 2 : 3;
+        WlPphigsRebal *rb = wl_pphigs_rebal_new(&p);
+        WlPphigsRebalStep st;
+        for (guint f = 0; f < p.frames; f++)
+            frame(&x, rb, &st);
+        assert_int_equal(st.cause, inval ? WL_PPHIGS_REBAL_INVALIDATED
+                                         : WL_PPHIGS_REBAL_IMPERFECT);
+        assert_int_equal(st.moves, p.max_moves);
+        assert_int_equal(st.total_moves, p.max_moves);
+        wl_pphigs_rebal_free(rb);
+        fix_free(&x);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_balanced_never_moves),
         cmocka_unit_test(test_imperfect_converges),
         cmocka_unit_test(test_invalidated_converges),
+        cmocka_unit_test(test_cap_reached_exactly),
     };
     return cmocka_run_group_tests_name("pphigs_rebalance", tests, NULL, NULL);
 }
