@@ -1,6 +1,7 @@
 /* rp_registry.c — the table of papers (one row each) and the rows they
  * fill.  A new paper adds one line here. */
 #include "sim/reproduce/ellsworth90.h"
+#include "sim/reproduce/igehy98.h"
 #include "sim/reproduce/kurc96.h"
 #include "sim/reproduce/ortega93.h"
 #include "sim/reproduce/reproduce.h"
@@ -11,6 +12,7 @@ const RpPaperOps *const rp_all[] = {
     &rp_ortega93,
     &rp_ellsworth90,
     &rp_kurc96,
+    &rp_igehy98,
     NULL,
 };
 

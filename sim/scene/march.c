@@ -16,6 +16,7 @@ SceneMarchParams scene_march_defaults(void)
     p.iso.iso = 1.67;
     p.iso.color = scene_color(0.95f, 0.90f, 0.80f);
     p.cell = 16;
+    p.fill = 0.95;
     return p;
 }
 
@@ -37,7 +38,8 @@ Scene *scene_march_new(const SceneMarchParams *p)
     v.azimuth_deg = 45;
     v.elevation_deg = atan(1 / sqrt(2.0)) * 180 / G_PI;
     v.aspect = 1.2;
-    v.fill = 0.95;
+    v.fill = p->fill;
+    v.fit_vertices = TRUE;
     scene_apply_view(s, &v);
     return s;
 }

@@ -23,6 +23,7 @@
 typedef struct {
     SceneIsoParams iso; /* field, grid, level, balls, seed, colour */
     guint cell;         /* cubes per cell side; divides iso.grid */
+    double fill;        /* view: fraction of the viewport the vertices fill */
 } SceneMarchParams;
 
 /* metaballs, 10 balls, seed 2, level 1.67, grid 64, cell 16: 53,340

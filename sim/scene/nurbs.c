@@ -160,7 +160,8 @@ Scene *scene_nurbs_new(const SceneNurbsParams *p)
     v.azimuth_deg = 20;
     v.elevation_deg = 35;
     v.aspect = 1.2;
-    v.fill = 0.9;
+    v.fill = 0.95;
+    v.fit_vertices = TRUE;
     scene_apply_view(s, &v);
     return s;
 }

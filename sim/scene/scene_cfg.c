@@ -245,7 +245,11 @@ static Scene *gen_march(const CfgNode *sec, GError **err)
 {
     SceneMarchParams p = scene_march_defaults();
     uint64_t seed = p.iso.seed;
-    if (!get_guint(sec, "grid", 2, 1024, &p.iso.grid, err) ||
+    int field = p.iso.field;
+    if (!cfg_get_enum(sec, "field", FALSE, fields, &field, err) ||
+        !cfg_get_double(sec, "periods", FALSE, 0, 1e3, &p.iso.periods, err) ||
+        !cfg_get_double(sec, "fill", FALSE, 0.05, 1, &p.fill, err) ||
+        !get_guint(sec, "grid", 2, 1024, &p.iso.grid, err) ||
         !get_guint(sec, "cell", 1, 1024, &p.cell, err) ||
         !cfg_get_double(sec, "iso", FALSE, -1e6, 1e6, &p.iso.iso, err) ||
         !get_guint(sec, "balls", 1, 4096, &p.iso.balls, err) ||
@@ -253,6 +257,7 @@ static Scene *gen_march(const CfgNode *sec, GError **err)
         !get_color(sec, "color", &p.iso.color, err))
         return NULL;
     p.iso.seed = seed;
+    p.iso.field = (SceneFieldKind)field;
     if (p.iso.grid % p.cell != 0) {
         cfg_error(err, cfg_get(sec, "cell") ? cfg_get(sec, "cell") : sec,
                   "a cell size that does not divide the grid",

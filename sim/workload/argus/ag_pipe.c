@@ -22,6 +22,7 @@ const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
                                       "geom_tile",
                                       "rast_triangle",
                                       "rast_pixel",
+                                      "rast_blend",
                                       "lock",
                                       "sema",
                                       NULL};
@@ -58,6 +59,7 @@ struct AgPipe {
     guint tiles_left;
     gboolean *r_busy;
     guint *r_cursor, *r_tile, *r_block;
+    GArray **r_tiles; /* tiles of each rasteriser, in row-major order */
     AgFrameStats *out;
 };
 
@@ -69,9 +71,14 @@ gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
     SimTime *dst[] = {&c->nurbs_vertex,  &c->march_voxel, &c->march_triangle,
                       &c->issue_vertex,  &c->issue_batch, &c->geom_vertex,
                       &c->geom_triangle, &c->geom_tile,   &c->rast_triangle,
-                      &c->rast_pixel,    &c->lock,        &c->sema};
-    for (guint i = 0; wl_ag_cost_ops[i]; i++)
+                      &c->rast_pixel,    &c->rast_blend,  &c->lock,
+                      &c->sema};
+    guint i = 0;
+    for (; wl_ag_cost_ops[i]; i++) {
+        g_assert(i < G_N_ELEMENTS(dst));
         *dst[i] = mach_cost(m, "cpu", wl_ag_cost_ops[i]);
+    }
+    g_assert(i == G_N_ELEMENTS(dst));
     return TRUE;
 }
 
@@ -355,9 +362,11 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
     sync_apply(p, t, k->pre, k->n_pre, -1);
     uint64_t px = wl_ag_draw(p->f, t, p->view, p->mesh, tris, n);
     p->out->pixels += px;
+    SimTime fill =
+        p->f->mode == WL_AG_BLEND ? p->c.rast_blend : p->c.rast_pixel;
     p->out->syncs += k->n_pre + k->n_post;
     SimTime cost = cost_n(p->c.rast_triangle, n) +
-                   (p->s.fill_infinite ? 0 : cost_n(p->c.rast_pixel, px)) +
+                   (p->s.fill_infinite ? 0 : cost_n(fill, px)) +
                    cost_n(p->c.sema, k->n_pre + k->n_post);
     p->out->rast_busy += cost;
     p->r_busy[r] = TRUE;
@@ -370,11 +379,12 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
 
 static void rast_kick(AgPipe *p, guint r)
 {
-    guint R = p->s.rasterisers, mine = (p->ntiles - r + R - 1) / R;
+    GArray *own = p->r_tiles[r];
+    guint mine = own->len;
     if (p->r_busy[r] || mine == 0)
         return;
     for (guint i = 0; i < mine; i++) {
-        guint t = r + R * ((p->r_cursor[r] + i) % mine);
+        guint t = g_array_index(own, guint, (p->r_cursor[r] + i) % mine);
         tile_advance(p, t);
         guint b = tile_pick(p, t);
         if (b != G_MAXUINT) {
@@ -422,6 +432,13 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
     p->r_cursor = g_new0(guint, s->rasterisers);
     p->r_tile = g_new0(guint, s->rasterisers);
     p->r_block = g_new0(guint, s->rasterisers);
+    p->r_tiles = g_new0(GArray *, s->rasterisers);
+    for (guint r = 0; r < s->rasterisers; r++)
+        p->r_tiles[r] = g_array_new(FALSE, FALSE, sizeof(guint));
+    for (guint t = 0; t < p->ntiles; t++) {
+        guint r = wl_ag_tile_owner(f, t, s->rasterisers);
+        g_array_append_val(p->r_tiles[r], t);
+    }
     return p;
 }
 
@@ -453,6 +470,9 @@ void wl_ag_pipe_free(AgPipe *p)
     g_free(p->r_cursor);
     g_free(p->r_tile);
     g_free(p->r_block);
+    for (guint r = 0; r < p->s.rasterisers; r++)
+        g_array_free(p->r_tiles[r], TRUE);
+    g_free(p->r_tiles);
     g_free(p);
 }
 

@@ -15,7 +15,8 @@
  *   geometry threads: pop blocks FIFO (one lock), transform and light
  *       each vertex, set up and bucket each triangle, write it to each
  *       overlapped tile's queue (bytes through shared memory).
- *   rasterisation threads: tile t belongs to rasteriser t mod R.  A tile
+ *   rasterisation threads: tile t belongs to rasteriser
+ *       wl_ag_tile_owner() (interleaved along rows and columns).  A tile
  *       keeps, per context, the next block it must pass; a block whose
  *       geometry is done may be drawn at the tile when its waits are
  *       satisfied there (per-tile semaphore counters: a P consumes one V
@@ -23,8 +24,9 @@
  *       pixel processors", one of the two schemes of the Argus page.
  *       Blocks with nothing for the tile and no synchronisation are
  *       skipped free (the reclaim pointer).  Drawing pays set-up per
- *       triangle, fill per pixel (0 with fill_rate infinite: seed 002's
- *       footnote), one semaphore operation per synchronisation command.
+ *       triangle, fill per fragment (z-tested or blended; 0 with fill_rate
+ *       infinite: seed 002's footnote), one semaphore operation per
+ *       synchronisation command.
  *
  * Threads map to processors in that order (app 0..C-1, geometry, then
  * raster), thread k on processor k mod P (FIFO: threads sharing a
@@ -49,7 +51,7 @@ typedef struct {
     SimTime nurbs_vertex, march_voxel, march_triangle;
     SimTime issue_vertex, issue_batch;
     SimTime geom_vertex, geom_triangle, geom_tile;
-    SimTime rast_triangle, rast_pixel;
+    SimTime rast_triangle, rast_pixel, rast_blend;
     SimTime lock, sema;
 } AgCosts;
 extern const char *const wl_ag_cost_ops[];

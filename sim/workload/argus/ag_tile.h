@@ -55,6 +55,15 @@ uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v, const SceneMesh *m,
 guint wl_ag_bucket(const AgFrame *f, const Mat4 *view_proj, const SceneMesh *m,
                    guint i, void (*fn)(guint tile, void *ctx), void *ctx);
 
+/* The rasteriser (of R) that owns tile t: (tx + ty) mod R, so that
+ * neighbouring tiles along a row and along a column have different
+ * owners (a screen-space object spreads over all rasterisers; t mod R
+ * would give each one a column of tiles when R divides tiles_x). */
+static inline guint wl_ag_tile_owner(const AgFrame *f, guint t, guint R)
+{
+    return (t % f->tiles_x + t / f->tiles_x) % R;
+}
+
 /* The frame as an 8-bit image (new; rast_image_free()). */
 RastImage *wl_ag_frame_image(const AgFrame *f);
 

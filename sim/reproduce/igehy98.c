@@ -1,0 +1,170 @@
+/* igehy98.c — seed 002's Argus table from the simulator (igehy98.h).
+ *
+ * Each cell is one run of the argus workload: an application's config
+ * with the row's overrides, frame rate times the row's factor.  Nothing
+ * is read from the published table here; the row's role (calibration or
+ * prediction) from setup.yaml becomes the row's note, so the printed
+ * table shows which errors are in-sample.  Cost: 10 runs, each
+ * O(triangles + pixels) (about 2 s each on one core).
+ */
+#include "sim/reproduce/igehy98.h"
+#include "sim/output/plot.h"
+#include "sim/workload/argus/ag_workload.h"
+#include <math.h>
+
+gboolean rp_igehy98_rate(const char *path, const char *const *sets,
+                         double *hz, GError **err)
+{
+    CfgNode *root = cfg_load_file(path, err);
+    gboolean ok = root != NULL;
+    for (guint i = 0; ok && sets && sets[i]; i++)
+        ok = cfg_set_override(root, sets[i], err);
+    void *p = ok ? wl_argus_ops.parse(cfg_get(root, "workload"), err) : NULL;
+    ok = p != NULL;
+    if (ok) {
+        SimEngine *eng = sim_engine_new(1);
+        WlContext ctx = {.eng = eng, .root = root, .seed = 1,
+                         .fidelity = "analytic", .frames = 1};
+        SimResult *r = sim_result_new("argus", "");
+        ok = wl_argus_ops.run(&ctx, p, r, err) &&
+             sim_result_get_metric(r, "frame_hz", hz);
+        sim_result_free(r);
+        sim_engine_free(eng);
+    }
+    if (p)
+        wl_argus_ops.free_params(p);
+    cfg_free(root);
+    return ok;
+}
+
+/* The row's overrides as a NULL-terminated vector (g_strfreev). */
+static char **row_sets(const CfgNode *row, GError **err)
+{
+    const CfgNode *set = cfg_get(row, "set");
+    if (set && cfg_kind(set) != CFG_SEQ) {
+        cfg_error(err, set, "a non-list set", "set: [key=value, ...]");
+        return NULL;
+    }
+    guint n = set ? cfg_seq_len(set) : 0;
+    char **v = g_new0(char *, n + 1);
+    for (guint i = 0; i < n; i++) {
+        const char *s = cfg_scalar(cfg_seq_at(set, i));
+        if (!s) {
+            cfg_error(err, cfg_seq_at(set, i), "a non-scalar override",
+                      "key=value");
+            g_strfreev(v);
+            return NULL;
+        }
+        v[i] = g_strdup(s);
+    }
+    return v;
+}
+
+static const char *const roles[] = {"calibration", "prediction", NULL};
+
+typedef struct {
+    char *dir;        /* of setup.yaml */
+    const CfgNode *apps;
+    GPtrArray *rows;  /* RpRow * */
+    DataTable *chart; /* row, hz, application */
+} IgRun;
+
+static gboolean app_cell(IgRun *r, const char *row, const char *app,
+                         char **sets, double factor, const char *note,
+                         GError **err)
+{
+    const char *rel = NULL;
+    if (!cfg_get_str(r->apps, app, TRUE, &rel, err))
+        return FALSE;
+    char *path = g_build_filename(r->dir, rel, NULL);
+    double hz = NAN;
+    gboolean ok = rp_igehy98_rate(path, (const char *const *)sets, &hz, err);
+    g_free(path);
+    if (!ok)
+        return FALSE;
+    char col[32], ys[40];
+    g_snprintf(col, sizeof col, "%s_hz", app);
+    g_ptr_array_add(r->rows, rp_row_new("1", row, col, factor * hz, note));
+    g_snprintf(ys, sizeof ys, "%.17g", factor * hz);
+    char *cells[] = {(char *)row, ys, (char *)app};
+    dt_add_row(r->chart, cells);
+    return TRUE;
+}
+
+static gboolean one_row(IgRun *r, const char *name, const CfgNode *row,
+                        GError **err)
+{
+    int role = 0;
+    double factor = 1;
+    if (!cfg_get_enum(row, "role", TRUE, roles, &role, err) ||
+        !cfg_get_double(row, "factor", FALSE, 0, 1e6, &factor, err))
+        return FALSE;
+    char **sets = row_sets(row, err);
+    if (!sets)
+        return FALSE;
+    const char *note = role == 0 ? "calibration (fitted)" : "prediction";
+    gboolean ok = TRUE;
+    for (guint a = 0; ok && a < cfg_map_len(r->apps); a++)
+        ok = app_cell(r, name, cfg_map_key(r->apps, a), sets, factor, note,
+                      err);
+    g_strfreev(sets);
+    return ok;
+}
+
+static void draw(const DataTable *t, const char *dir)
+{
+    if (!dir || g_mkdir_with_parents(dir, 0755) != 0)
+        return;
+    PlotSpec *p = plot_spec_new("igehy98-rates", "row", "hz");
+    p->series = g_strdup("application");
+    p->style = g_strdup("points");
+    p->title = g_strdup("Argus on a 24-processor Origin 2000 (simulated)");
+    p->ylabel = g_strdup("frames per second");
+    GError *e = NULL;
+    if (!plot_render(p, t, dir, &e)) {
+        g_printerr("igehy98: chart not drawn: %s\n", e->message);
+        g_clear_error(&e);
+    }
+    plot_spec_free(p);
+}
+
+static DataTable *chart_table(void)
+{
+    GPtrArray *cols = g_ptr_array_new();
+    g_ptr_array_add(cols, "row");
+    g_ptr_array_add(cols, "hz");
+    g_ptr_array_add(cols, "application");
+    DataTable *t = dt_new(cols);
+    g_ptr_array_free(cols, TRUE);
+    return t;
+}
+
+static gboolean igehy98_run(const RpContext *ctx, GPtrArray *rows,
+                            GError **err)
+{
+    CfgNode *root = cfg_load_file(ctx->setup, err);
+    if (!root)
+        return FALSE;
+    IgRun r = {g_path_get_dirname(ctx->setup), NULL, rows, chart_table()};
+    const CfgNode *rs = NULL;
+    gboolean ok = cfg_get_map(root, "applications", TRUE,
+                              "a map {nurbs: config, march: config}",
+                              &r.apps, err) &&
+                  cfg_get_map(root, "rows", TRUE, "a map of rows", &rs, err);
+    for (guint i = 0; ok && i < cfg_map_len(rs); i++)
+        ok = one_row(&r, cfg_map_key(rs, i), cfg_map_value(rs, i), err);
+    if (ok)
+        draw(r.chart, ctx->out_dir);
+    dt_free(r.chart);
+    g_free(r.dir);
+    cfg_free(root);
+    return ok;
+}
+
+const RpPaperOps rp_igehy98 = {
+    .name = "igehy98",
+    .citation = "seed 002: the parallel graphics API on Argus, a 24-processor "
+                "shared-memory machine (Performance of Argus)",
+    .setup = "setup.yaml",
+    .rows = igehy98_run,
+};
