@@ -270,6 +270,43 @@ static gboolean check_spec(const ScenePphigsSpec *s, GError **err)
     }
 }
 
+/* An order-dependent quad centred at c with half-sides a along u, b along
+ * v. */
+static void add_odp(Gen *g, guint sid, Vec3 c, Vec3 u, Vec3 v, double a,
+                    double b)
+{
+    Vec3 p[4] = {vec3_add(c, vec3_add(vec3_scale(u, -a), vec3_scale(v, -b))),
+                 vec3_add(c, vec3_add(vec3_scale(u, a), vec3_scale(v, -b))),
+                 vec3_add(c, vec3_add(vec3_scale(u, a), vec3_scale(v, b))),
+                 vec3_add(c, vec3_add(vec3_scale(u, -a), vec3_scale(v, b)))};
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON2D, p, 4);
+    e.tag = g->next_tag++;
+    add_el(g, sid, e);
+}
+
+/* The panel and labels, a quarter of the way from the eye to the target
+ * (and beyond the near plane), in the lower left of the view. */
+static void gen_overlay(Gen *g, const ScenePphigsSpec *s, const SceneCamera *c)
+{
+    guint sid = scene_db_add_struct(g->db, "overlay");
+    Vec3 f = vec3_sub(c->target, c->eye);
+    double d = MAX(vec3_len(f) / 4, c->near * 1.5);
+    double h = d * tan(c->fov_deg * G_PI / 360);
+    f = vec3_norm(f);
+    Vec3 r = vec3_norm(vec3_cross(f, c->up)), up = vec3_cross(r, f);
+    Vec3 centre = vec3_add(vec3_add(c->eye, vec3_scale(f, d)),
+                           vec3_add(vec3_scale(r, -h / 2), vec3_scale(up, -h / 2)));
+    add_color(g, sid);
+    add_odp(g, sid, centre, r, up, h * 0.4, h * 0.3);
+    for (guint i = 0; i < s->overlays; i++) {
+        add_color(g, sid);
+        Vec3 at = vec3_add(centre, vec3_add(vec3_scale(r, uni(g, -0.45, 0.45) * h),
+                                            vec3_scale(up, uni(g, -0.35, 0.35) * h)));
+        add_odp(g, sid, at, r, up, h * uni(g, 0.05, 0.12), h * uni(g, 0.02, 0.05));
+    }
+    scene_db_post(g->db, sid);
+}
+
 gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
                                GError **err)
 {
@@ -302,6 +339,8 @@ gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
                 b, scene_db_struct_bbox(g.db, scene_db_posted_at(g.db, i)));
         scene_camera_fit(&out->camera, b, 0.9);
     }
+    if (spec->overlays)
+        gen_overlay(&g, spec, &out->camera);
     return TRUE;
 }
 
@@ -332,7 +371,7 @@ typedef struct {
 
 gboolean scene_pphigs_prim_offscreen(Mat4 m, const SceneElem *e)
 {
-    guint mask = 0x3f;
+    guint mask = e->kind == SCENE_EL_POLYGON2D ? 0x0f : 0x3f;
     for (guint v = 0; v < e->nverts && mask; v++) {
         Vec4 q = mat4_apply_point(m, e->verts[v]);
         guint out = (q.x < -q.w) | (q.x > q.w) << 1 | (q.y < -q.w) << 2 |

@@ -42,6 +42,7 @@ typedef struct {
     guint figures;         /* humans: figures */
     guint structures;      /* humans: structures over all figures */
     guint levels;          /* humans: hierarchy depth (levels) */
+    guint overlays;        /* any kind: 2-D labels over a panel, 0: none */
 } ScenePphigsSpec;
 
 typedef struct {
@@ -55,7 +56,11 @@ const char *scene_pphigs_kind_name(ScenePphigsKind k);
 gboolean scene_pphigs_kind_parse(const char *s, ScenePphigsKind *out);
 
 /* Builds the database; FALSE with *err (SIM_ERROR_INPUT) when the spec
- * cannot be met (e.g. more attributes than polygons allow). */
+ * cannot be met (e.g. more attributes than polygons allow).  With
+ * overlays > 0 a last posted structure "overlay" holds order-dependent
+ * primitives (seed 001 §4): a panel, then `overlays` labels, each after
+ * its colour, on a plane between the eye and the model; labels overlap
+ * the panel and each other, so their order is visible. */
 gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
                                GError **err);
 void scene_pphigs_db_clear(ScenePphigsDb *d);
@@ -67,7 +72,9 @@ void scene_pphigs_db_clear(ScenePphigsDb *d);
 Scene *scene_pphigs_scene_new(const ScenePphigsSpec *spec, GError **err);
 
 /* TRUE when the primitive lies wholly outside one clip plane of `mvp`
- * (-w <= x, y, z <= w): trivially rejected, off-screen. */
+ * (-w <= x, y, z <= w): trivially rejected, off-screen.  An
+ * order-dependent (2-D) primitive is tested against x and y only: it is
+ * drawn by priority, whatever its depth. */
 gboolean scene_pphigs_prim_offscreen(Mat4 mvp, const SceneElem *e);
 
 /* Share of the max-set polygons that lie wholly outside the view

@@ -16,7 +16,8 @@ typedef struct {
 static const Field count_fields[] = {
     F(polygons),        F(attributes),  F(verts),        F(boids),
     F(boid_polygons),   F(boid_colors), F(well_structs), F(well_polygons),
-    F(well_attributes), F(figures),     F(structures),   F(levels)};
+    F(well_attributes), F(figures),     F(structures),   F(levels),
+    F(overlays)};
 #undef F
 
 static const char *const db_names =

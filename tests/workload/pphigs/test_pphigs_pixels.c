@@ -5,7 +5,11 @@
  * differ (the comparison has teeth); two triangles sharing an edge draw
  * each pixel once; the visibility key makes the result independent of
  * drawing order; ODPs win over 3D primitives and later priorities over
- * earlier ones; renderer time is the counted expressions.
+ * earlier ones; renderer time is the counted expressions.  Order-
+ * dependent primitives (seed 001 §4): a station with a panel and labels
+ * spread over the GPs draws as the serial painter's order, also after
+ * ODP inserts, deletes and modifies; reordering two overlapping labels
+ * changes the picture (the order is visible, so the test can fail).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -23,7 +27,7 @@ static const char *const MACHINE =
     "  gp: {count: %u}\n"
     "  renderer: {count: %u, costs: {expression: 1 us, compare: 3 us}}\n";
 
-static ScenePphigsDb make_db(ScenePphigsKind k)
+static ScenePphigsDb make_db_overlays(ScenePphigsKind k, guint overlays)
 {
     ScenePphigsSpec s = {.kind = k,
                          .seed = 3,
@@ -40,10 +44,16 @@ static ScenePphigsDb make_db(ScenePphigsKind k)
                          .well_attributes = 4,
                          .figures = 2,
                          .structures = 20,
-                         .levels = 5};
+                         .levels = 5,
+                         .overlays = overlays};
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     return db;
+}
+
+static ScenePphigsDb make_db(ScenePphigsKind k)
+{
+    return make_db_overlays(k, 0);
 }
 
 static WlPphigsFrameSpec spec(void)
@@ -64,9 +74,13 @@ typedef struct {
     SimTime rast_busy;
 } Frame;
 
-/* One frame of db on ngp GPs and nrend renderers. */
-static Frame run_frame(const ScenePphigsDb *db, guint ngp, guint nrend,
-                       WlPphigsAlgo a)
+typedef void (*EditFn)(WlPphigsDist *d);
+
+/* One frame of db on ngp GPs and nrend renderers, after `edit` (NULL:
+ * none) changed the distributed list; the serial reference is then the
+ * host's list, returned in *host_img when host_img is not NULL. */
+static Frame run_edited(const ScenePphigsDb *db, guint ngp, guint nrend,
+                        WlPphigsAlgo a, EditFn edit, RastImage **host_img)
 {
     SimEngine *eng = sim_engine_new(1);
     char *text = g_strdup_printf(MACHINE, ngp, nrend);
@@ -79,6 +93,12 @@ static Frame run_frame(const ScenePphigsDb *db, guint ngp, guint nrend,
     WlPphigsWeights w;
     wl_pphigs_weights_from_costs(wl_pphigs_frame_costs(f), 4, &w);
     WlPphigsDist *d = wl_pphigs_dist_new(db->db, ngp, a, &w);
+    if (edit)
+        edit(d);
+    if (host_img)
+        *host_img = wl_pphigs_render_serial(
+            wl_pphigs_dist_host(d), scene_camera_view_proj(&db->camera),
+            s.width, s.height);
     WlPphigsFrameStats st;
     assert_true(wl_pphigs_frame_run(f, d, scene_camera_view_proj(&db->camera),
                                     NULL, &st, NULL));
@@ -96,6 +116,12 @@ static Frame run_frame(const ScenePphigsDb *db, guint ngp, guint nrend,
     g_free(text);
     sim_engine_free(eng);
     return out;
+}
+
+static Frame run_frame(const ScenePphigsDb *db, guint ngp, guint nrend,
+                       WlPphigsAlgo a)
+{
+    return run_edited(db, ngp, nrend, a, NULL, NULL);
 }
 
 static uint64_t lit_pixels(const RastImage *img)
@@ -257,6 +283,103 @@ static void test_renderer_time_counted(void **st)
     scene_pphigs_db_clear(&db);
 }
 
+
+/* The overlay structure of a generated database and its ODP positions. */
+static guint overlay_sid(const SceneDb *db)
+{
+    guint sid;
+    assert_true(scene_db_find(db, "overlay", &sid));
+    return sid;
+}
+
+static void test_odp_frame_equals_serial(void **st)
+{
+    (void)st;
+    ScenePphigsDb db = make_db_overlays(SCENE_PPHIGS_STATION, 10);
+    WlPphigsFrameSpec s = spec();
+    RastImage *ref = wl_pphigs_render_serial(
+        db.db, scene_camera_view_proj(&db.camera), s.width, s.height);
+    static const guint gps[] = {1, 3, 4, 16};
+    for (guint i = 0; i < G_N_ELEMENTS(gps); i++)
+        for (int a = WL_PPHIGS_SIMPLE; a <= WL_PPHIGS_COMPLEX; a++) {
+            Frame fr = run_frame(&db, gps[i], 4, (WlPphigsAlgo)a);
+            assert_int_equal(rast_image_diff(fr.img, ref), 0);
+            rast_image_free(fr.img);
+        }
+    rast_image_free(ref);
+    scene_pphigs_db_clear(&db);
+}
+
+/* Moving the last label to just after the panel (drawn before the other
+ * labels) changes the picture: labels overlap, so priorities show. */
+static void test_odp_order_visible(void **st)
+{
+    (void)st;
+    ScenePphigsDb db = make_db_overlays(SCENE_PPHIGS_STATION, 10);
+    WlPphigsFrameSpec s = spec();
+    Mat4 vp = scene_camera_view_proj(&db.camera);
+    RastImage *ref = wl_pphigs_render_serial(db.db, vp, s.width, s.height);
+    guint sid = overlay_sid(db.db), n = scene_db_len(db.db, sid);
+    SceneDb *moved = scene_db_copy(db.db);
+    SceneElem e = *scene_db_elem(moved, sid, n - 1);
+    e.verts = g_memdup2(e.verts, e.nverts * sizeof *e.verts);
+    scene_db_delete(moved, sid, n - 1);
+    assert_true(scene_db_insert(moved, sid, 2, &e, NULL));
+    g_free(e.verts);
+    RastImage *img = wl_pphigs_render_serial(moved, vp, s.width, s.height);
+    assert_true(rast_image_diff(img, ref) > 0);
+    rast_image_free(img);
+    rast_image_free(ref);
+    scene_db_free(moved);
+    scene_pphigs_db_clear(&db);
+}
+
+/* ODP edits on the distributed list: insert a label between the panel
+ * and the first label, delete one, recolour one (modify a colour), and
+ * move the last label to the front (delete + insert). */
+static void odp_edits(WlPphigsDist *d)
+{
+    const SceneDb *h = wl_pphigs_dist_host(d);
+    guint sid = overlay_sid(h), n = scene_db_len(h, sid);
+    SceneElem big = *scene_db_elem(h, sid, 1); /* the panel */
+    Vec3 v[4];
+    for (int i = 0; i < 4; i++)
+        v[i] = vec3_scale(vec3_add(big.verts[i], big.verts[(i + 2) % 4]), 0.5),
+        v[i] = vec3_add(vec3_scale(big.verts[i], 0.3), vec3_scale(v[i], 0.7));
+    SceneElem label = scene_elem_prim(SCENE_EL_POLYGON2D, v, 4);
+    assert_true(wl_pphigs_dist_insert(d, sid, 2, &label, NULL));
+    wl_pphigs_dist_delete(d, sid, 5);
+    SceneElem col = scene_elem_color(vec3(1, 0.1, 0.1));
+    assert_true(wl_pphigs_dist_modify(d, sid, 0, &col, NULL));
+    n = scene_db_len(h, sid);
+    SceneElem last = *scene_db_elem(h, sid, n - 1);
+    last.verts = g_memdup2(last.verts, last.nverts * sizeof *last.verts);
+    wl_pphigs_dist_delete(d, sid, n - 1);
+    assert_true(wl_pphigs_dist_insert(d, sid, 3, &last, NULL));
+    g_free(last.verts);
+    wl_pphigs_dist_finish(d);
+}
+
+static void test_odp_edits_equal_serial(void **st)
+{
+    (void)st;
+    ScenePphigsDb db = make_db_overlays(SCENE_PPHIGS_STATION, 10);
+    static const guint gps[] = {1, 4, 16};
+    for (guint i = 0; i < G_N_ELEMENTS(gps); i++)
+        for (int a = WL_PPHIGS_SIMPLE; a <= WL_PPHIGS_COMPLEX; a++) {
+            RastImage *ref = NULL;
+            Frame fr =
+                run_edited(&db, gps[i], 4, (WlPphigsAlgo)a, odp_edits, &ref);
+            if (rast_image_diff(fr.img, ref))
+                fail_msg("%u GPs, algo %d: %llu pixels differ after edits",
+                         gps[i], a,
+                         (unsigned long long)rast_image_diff(fr.img, ref));
+            rast_image_free(fr.img);
+            rast_image_free(ref);
+        }
+    scene_pphigs_db_clear(&db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -265,6 +388,9 @@ int main(void)
         cmocka_unit_test(test_shared_edge_once),
         cmocka_unit_test(test_order_independent),
         cmocka_unit_test(test_renderer_time_counted),
+        cmocka_unit_test(test_odp_frame_equals_serial),
+        cmocka_unit_test(test_odp_order_visible),
+        cmocka_unit_test(test_odp_edits_equal_serial),
     };
     return cmocka_run_group_tests_name("pphigs_pixels", tests, NULL, NULL);
 }
