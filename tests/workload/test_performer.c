@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "sim/workload/performer/pf_stages.h"
+#include "sim/workload/performer/pf_workload.h"
 
 /* ---- the pipeline with synthetic stage costs --------------------------- */
 
@@ -359,6 +360,128 @@ static void test_isect_finds_ground(void **st)
     wl_pf_town_free(t);
 }
 
+/* ---- PN triangles as geometry compression ------------------------------ */
+
+/* Runs the performer workload's pn: mode on the Onyx model (pipe costs
+ * per triangle and per PN point optionally overridden); returns a metric. */
+static double pn_metric(const char *send, guint level, const char *tri,
+                        const char *pt, const char *metric)
+{
+    char *yaml = g_strdup_printf(
+        "schema_version: 1\n"
+        "machine:\n  model: sgi-onyx\n"
+        "  nodes: {pipe: {costs: {triangle: {value: %s, assumption: t},\n"
+        "          pn_vertex: {value: %s, assumption: t}}}}\n"
+        "scene: {generator: teapots, count: 1, polygons_per_teapot: 400}\n"
+        "workload: {type: performer, pn: {level: %u, send: %s}}\n",
+        tri, pt, level, send);
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(yaml, "pn.yaml", &err);
+    assert_non_null(root);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE};
+    void *params = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
+    assert_non_null(params);
+    SimResult *r = sim_result_new("performer", "sgi-onyx");
+    if (!wl_pf_ops.run(&ctx, params, r, &err))
+        fail_msg("%s", err->message);
+    double v = -1;
+    assert_true(sim_result_get_metric(r, metric, &v));
+    sim_result_free(r);
+    wl_pf_ops.free_params(params);
+    sim_engine_free(eng);
+    cfg_free(root);
+    g_free(yaml);
+    return v;
+}
+
+static void test_pn_compresses_the_bus(void **st)
+{
+    (void)st;
+    for (guint L = 1; L <= 4; L++) {
+        double c =
+            pn_metric("coarse", L, "1 us", "0.3 us", "link_bytes_per_frame");
+        double f =
+            pn_metric("fine", L, "1 us", "0.3 us", "link_bytes_per_frame");
+        assert_float_equal(f / c, (L + 1) * (L + 1), 1e-9);
+    }
+}
+
+/* The slides' claim: with the bus busy and the graphics processor fast
+ * enough, curved PN triangles (coarse over the bus, tessellated by the
+ * pipe) render at the speed of the flat mesh; with a RealityEngine2-
+ * class pipe (not fast enough) they do not. */
+static void test_pn_at_flat_speed_only_with_fast_pipe(void **st)
+{
+    (void)st;
+    const char *fast = "0.01 us", *fast_pt = "0.002 us";
+    double flat = pn_metric("fine", 0, fast, fast_pt, "frame_ms");
+    double pn = pn_metric("coarse", 3, fast, fast_pt, "frame_ms");
+    double sent_fine = pn_metric("fine", 3, fast, fast_pt, "frame_ms");
+    assert_float_equal(pn, flat, 1e-9); /* bus-bound either way */
+    assert_true(sent_fine > 10 * flat); /* the fine mesh fills the bus */
+    double re_flat = pn_metric("fine", 0, "1 us", "0.3 us", "frame_ms");
+    double re_pn = pn_metric("coarse", 3, "1 us", "0.3 us", "frame_ms");
+    assert_true(re_pn > 10 * re_flat); /* pipe-bound: 16x the triangles */
+}
+
+/* ---- bad input: located errors ---------------------------------------- */
+
+static const struct {
+    const char *yaml, *message;
+} bad[] = {
+    {"workload: {type: performer, frame_rate: 25}\n",
+     "b.yaml:1:41: found a frame rate that does not divide the video rate"},
+    {"workload: {type: performer, mode: four}\n",
+     "b.yaml:1:35: found 'four', expected one of: appculldraw"},
+    {"workload: {type: performer, stress: {low: 0.9, high: 0.5}}\n",
+     "b.yaml:1:37: found high < low"},
+    {"workload: {type: performer, town: {lod_ranges: [10, 5, 20]}}\n",
+     "b.yaml:1:53: found a non-increasing range"},
+    {"workload: {type: performer, pn: 3}\n",
+     "b.yaml:1:33: found a non-map, expected pn: {level"},
+    {"workload: {type: performer, pn: {send: both}}\n",
+     "b.yaml:1:40: found 'both', expected one of: coarse, fine"},
+};
+
+static void test_bad_config(void **st)
+{
+    (void)st;
+    for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
+        GError *err = NULL;
+        CfgNode *root = cfg_load_string(bad[i].yaml, "b.yaml", &err);
+        assert_non_null(root);
+        void *p = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
+        assert_null(p);
+        if (!g_str_has_prefix(err->message, bad[i].message))
+            fail_msg("case %u: got %s", i, err->message);
+        g_error_free(err);
+        cfg_free(root);
+    }
+}
+
+/* A machine without the kinds a run needs is named in the error. */
+static void test_bad_machine(void **st)
+{
+    (void)st;
+    const char *yaml = "schema_version: 1\nmachine: {model: pixel-planes-5}\n"
+                       "workload: {type: performer}\n";
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(yaml, "m.yaml", &err);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE};
+    void *params = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
+    SimResult *r = sim_result_new("performer", "x");
+    assert_false(wl_pf_ops.run(&ctx, params, r, &err));
+    if (!strstr(err->message, "found no node kind 'cpu'"))
+        fail_msg("got %s", err->message);
+    g_error_free(err);
+    sim_result_free(r);
+    wl_pf_ops.free_params(params);
+    sim_engine_free(eng);
+    cfg_free(root);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -372,6 +495,10 @@ int main(void)
         cmocka_unit_test(test_lazy_state_saves_what_it_counts),
         cmocka_unit_test(test_masks_and_switches),
         cmocka_unit_test(test_isect_finds_ground),
+        cmocka_unit_test(test_pn_compresses_the_bus),
+        cmocka_unit_test(test_pn_at_flat_speed_only_with_fast_pipe),
+        cmocka_unit_test(test_bad_config),
+        cmocka_unit_test(test_bad_machine),
     };
     return cmocka_run_group_tests_name("performer", tests, NULL, NULL);
 }

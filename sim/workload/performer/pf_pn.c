@@ -127,9 +127,10 @@ static void smp_frame(void *run)
     PnRun *r = run;
     MachMachine *m = r->m;
     uint64_t verts = 3 * sent_tris(r), bytes = verts * r->p->vertex_bytes;
-    SimTime tess = r->p->send_fine ? 0
-                                   : times(mach_cost(m, "pipe", "pn_vertex"),
-                                           r->mesh.fine_points);
+    SimTime tess =
+        r->p->send_fine || r->p->pn.level == 0
+            ? 0
+            : times(mach_cost(m, "pipe", "pn_vertex"), r->mesh.fine_points);
     r->cpu = times(mach_cost(m, "cpu", "draw_vertex"), verts);
     r->pipe = sim_time_add_sat(
         tess, times(mach_cost(m, "pipe", "triangle"), r->mesh.fine_tris));
@@ -208,7 +209,7 @@ static void gp_arrived(NetNet *net, const NetDelivery *d, void *ctx)
                                        3 * mach_cost(m, "gp", "vertex")),
                       fine);
     t = sim_time_add_sat(t, times(mach_cost(m, "gp", "send_primitive"), fine));
-    if (!r->p->send_fine)
+    if (!r->p->send_fine && r->p->pn.level > 0)
         t = sim_time_add_sat(t, times(mach_cost(m, "gp", "pn_vertex"), pts));
     r->gp = MAX(r->gp, t);
     mach_proc_compute(mach_proc(m, "gp", g), t, 0, gp_computed, r,

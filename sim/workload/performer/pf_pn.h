@@ -24,6 +24,7 @@
  *   fine triangle: renderer primitive).  A frame ends when the last
  *   renderer is done.
  *
+ * Level 0 is the flat mesh: nothing is tessellated, coarse = fine.
  * The messages go through the machine's network (mach_net), so bytes
  * and times are the transport's.  O(frames x processors) events.
  */

@@ -34,9 +34,9 @@ gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
     return TRUE;
 }
 
-WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town,
-                             const WlPfCosts *c, gboolean cull, gboolean lazy,
-                             gboolean isect, guint frames, GError **err)
+WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town, const WlPfCosts *c,
+                             gboolean cull, gboolean lazy, gboolean isect,
+                             guint frames, GError **err)
 {
     WlPfStages *s = g_new0(WlPfStages, 1);
     if (!mach_shmem_init(&s->bus, m, err)) {

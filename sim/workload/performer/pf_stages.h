@@ -15,8 +15,8 @@
  * through a FIFO, so its time is the slowest of three rates: the CPU
  * issuing (geosets, state changes, matrix operations, vertices), the bus
  * carrying 3 x vertex_bytes per triangle (booked on the machine's shared
- * memory, sim/machine/shmem.h, so it also queues), and the pipe (triangles, state
- * changes).  Each frame's counts are kept for the per-frame log.
+ * memory, sim/machine/shmem.h, so it also queues), and the pipe (triangles,
+ * state changes).  Each frame's counts are kept for the per-frame log.
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
@@ -49,9 +49,9 @@ typedef struct {
 typedef struct {
     WlPfTown *town;
     WlPfCosts c;
-    MachShmem bus;        /* the bus that feeds the pipe (sim/machine/shmem.h) */
+    MachShmem bus; /* the bus that feeds the pipe (sim/machine/shmem.h) */
     SimEngine *eng;
-    MachProc *draw_cpu;   /* the process running DRAW (set by the caller) */
+    MachProc *draw_cpu;  /* the process running DRAW (set by the caller) */
     gboolean cull, lazy; /* frustum culling; lazy pfGeoState */
     GArray *dl[WL_PF_NBUF];
     GArray *frames; /* WlPfFrameStats, one per frame */
@@ -66,9 +66,9 @@ gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
 /* A new stage context over town (borrowed) for `frames` frames; the bus
  * is m's shared memory (network bandwidth and startup, mach_shmem_init);
  * NULL with *err when m has none. */
-WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town,
-                             const WlPfCosts *c, gboolean cull, gboolean lazy,
-                             gboolean isect, guint frames, GError **err);
+WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town, const WlPfCosts *c,
+                             gboolean cull, gboolean lazy, gboolean isect,
+                             guint frames, GError **err);
 void wl_pf_stages_free(WlPfStages *s);
 /* The stage functions (ctx: a WlPfStages). */
 WlPfStageFns wl_pf_stage_fns(gboolean isect);

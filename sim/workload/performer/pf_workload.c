@@ -25,7 +25,7 @@
 #include "sim/workload/performer/pf_pn.h"
 #include "sim/workload/performer/pf_stages.h"
 
-#include <stdio.h>
+#include <string.h>
 
 typedef struct {
     WlPfPipeParams pipe;
@@ -206,6 +206,34 @@ static gboolean write_log(const char *path, const GArray *recs, WlPfStages *st,
     return ok;
 }
 
+/* Beside the log, <stem>_stages.csv: one row per frame and stage (app,
+ * cull, draw, isect, and the interval between swaps), the long form
+ * `pgsim plot --series=stage` draws as one chart. */
+static gboolean write_stages(const char *log, const GArray *recs, GError **err)
+{
+    GString *s = g_string_new("frame,stage,ms\n");
+    for (guint n = 0; n < recs->len; n++) {
+        const WlPfFrameRec *r = &g_array_index(recs, WlPfFrameRec, n);
+        SimTime prev =
+            n ? g_array_index(recs, WlPfFrameRec, n - 1).swap : r->app_start;
+        g_string_append_printf(
+            s,
+            "%u,app,%.6f\n%u,cull,%.6f\n%u,draw,%.6f\n%u,isect,%.6f\n"
+            "%u,frame,%.6f\n",
+            n, ms(r->app_end - r->app_start), n,
+            ms(r->cull_end - r->cull_start), n, ms(r->draw_end - r->draw_start),
+            n, ms(r->isect), n, ms(r->swap - prev));
+    }
+    char *stem = g_str_has_suffix(log, ".csv") ? g_strndup(log, strlen(log) - 4)
+                                               : g_strdup(log);
+    char *path = g_strconcat(stem, "_stages.csv", NULL);
+    gboolean ok = wl_frame_log_write(path, s, "performer", err);
+    g_free(stem);
+    g_free(path);
+    g_string_free(s, TRUE);
+    return ok;
+}
+
 /* ---- metrics ----------------------------------------------------------- */
 
 typedef struct {
@@ -338,7 +366,7 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
         ok ? wl_frame_log_path(ctx, p->frame_log, "performer_frames.csv")
            : NULL;
     if (log)
-        ok = write_log(log, recs, st, err);
+        ok = write_log(log, recs, st, err) && write_stages(log, recs, err);
     g_free(log);
     g_array_free(recs, TRUE);
     return ok;
