@@ -4,6 +4,7 @@
 #   make test     install missing packages, build, check include layers,
 #                 run every cmocka suite
 #   make check    the tests under ASan + UBSan (-fno-sanitize-recover=all)
+#   make fuzz SECONDS=N  each libFuzzer harness for N s (needs clang)
 #   make bench    benchmarks that print figures (never part of make test)
 #   make golden   rewrite the scenario tests' golden results (review the diff)
 #   make coverage gcov line/branch summary per folder, unexecuted functions
@@ -32,11 +33,18 @@ LIBSRC  := $(filter-out $(MAIN),$(shell find sim -name '*.c' | LC_ALL=C sort))
 LIBOBJ  := $(LIBSRC:%.c=$(BUILD)/obj/%.o)
 TESTSRC := $(shell find tests -name 'test_*.c' | LC_ALL=C sort)
 TESTBIN := $(TESTSRC:tests/%.c=$(BUILD)/tests/%)
-TESTLIB := $(shell find tests -name '*.c' ! -name 'test_*.c' | LC_ALL=C sort)
+TESTLIB := $(shell find tests -name '*.c' ! -name 'test_*.c' \
+                ! -path 'tests/fuzz/*' | LC_ALL=C sort)
 TESTLOBJ := $(TESTLIB:%.c=$(BUILD)/obj/%.o)
+# libFuzzer harnesses (tests/fuzz/fuzz_<name>.c).  make test runs each as
+# replay_<name>, a gcc build that replays its corpus and past crashes.
+FUZZERS := cfg model obj ply render
+FUZZBIN := $(FUZZERS:%=$(BUILD)/tests/fuzz/replay_%)
+SECONDS ?= 60
+SANITIZE := address,undefined,float-cast-overflow,pointer-overflow
 
 .PHONY: all deps run test check bench install format clean golden coverage \
-        mutate
+        mutate fuzz
 all: $(BUILD)/pgsim
 
 deps:
@@ -61,18 +69,40 @@ run: deps
 	@$(MAKE) -s all
 	./$(BUILD)/pgsim run configs/quickstart.yaml
 
+$(BUILD)/tests/fuzz/replay_%: $(BUILD)/obj/tests/fuzz/fuzz_%.o \
+                             $(BUILD)/obj/tests/fuzz/replay.o $(BUILD)/libpgsim.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) $^ -o $@ $(LDFLAGS) $(LDLIBS)
+
+# The clang/libFuzzer build of a harness (make fuzz only).
+$(BUILD)/fuzz/fuzz_%: $(BUILD)/obj/tests/fuzz/fuzz_%.o $(BUILD)/libpgsim.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fsanitize=fuzzer $^ -o $@ $(LDFLAGS) $(LDLIBS)
+
 test: deps
-	@$(MAKE) -s all $(TESTBIN)
+	@$(MAKE) -s all $(TESTBIN) $(FUZZBIN)
 	@sh scripts/check-layers.sh
-	@sh scripts/run-tests.sh $(BUILD) $(TESTBIN)
+	@sh scripts/run-tests.sh $(BUILD) $(TESTBIN) $(FUZZBIN)
 
 check: deps
 	@$(MAKE) -s BUILD=build-san OPT="-O1 -g -fno-omit-frame-pointer" \
-	  EXTRA_CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all" \
-	  EXTRA_LDFLAGS="-fsanitize=address,undefined" \
-	  build-san/pgsim $(TESTBIN:$(BUILD)/%=build-san/%)
+	  EXTRA_CFLAGS="-fsanitize=$(SANITIZE) -fno-sanitize-recover=all" \
+	  EXTRA_LDFLAGS="-fsanitize=$(SANITIZE)" \
+	  build-san/pgsim $(TESTBIN:$(BUILD)/%=build-san/%) \
+	  $(FUZZBIN:$(BUILD)/%=build-san/%)
 	@PGSIM_SANITIZE=1 sh scripts/run-tests.sh build-san \
-	  $(TESTBIN:$(BUILD)/%=build-san/%)
+	  $(TESTBIN:$(BUILD)/%=build-san/%) $(FUZZBIN:$(BUILD)/%=build-san/%)
+
+# libFuzzer (Debian clang): every harness for SECONDS seconds, one after
+# another; new inputs go to build-fuzz/corpus/<name>, crashes to
+# tests/fuzz/crashes/<name>/ (commit them: make test replays them).
+fuzz:
+	@sh scripts/deps.sh fuzz
+	@$(MAKE) -s BUILD=build-fuzz CC=clang OPT="-O1 -g -fno-omit-frame-pointer" \
+	  EXTRA_CFLAGS="-fsanitize=fuzzer-no-link,address,undefined" \
+	  EXTRA_LDFLAGS="-fsanitize=address,undefined" \
+	  $(FUZZERS:%=build-fuzz/fuzz/fuzz_%)
+	@sh scripts/fuzz.sh build-fuzz $(SECONDS) $(FUZZERS)
 
 # Rewrites tests/data/golden/*.json after a deliberate model change.
 golden: all $(BUILD)/tests/app/run/test_scenarios
@@ -103,7 +133,7 @@ format:
 	clang-format -i $$(find sim tests -name '*.[ch]')
 
 clean:
-	rm -rf build build-san build-cov
+	rm -rf build build-san build-cov build-fuzz
 
--include $(shell find $(BUILD) build-san -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD) build-san build-fuzz -name '*.d' 2>/dev/null)
 .SECONDARY:

@@ -1,9 +1,12 @@
 #!/bin/sh
 # Checks for the Debian packages pgsim needs and installs what is missing.
 # As root it runs apt-get; otherwise it prints the exact command and fails.
+# `deps.sh fuzz` checks what `make fuzz` needs instead (clang and its
+# libFuzzer runtime); make test never needs clang.
 set -u
 PKGS="build-essential pkg-config libglib2.0-dev libyaml-dev libcmocka-dev \
 libpng-dev gnuplot-nox libopenmpi-dev openmpi-bin"
+[ "${1:-}" = fuzz ] && PKGS="clang libclang-rt-14-dev"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" ||

@@ -283,13 +283,17 @@ static void big_polygon(SceneMesh *m, SimRng *r, const SceneBigPolyParams *p,
     scene_mesh_add_poly(m, v, n, c, i);
 }
 
-/* Triangles of a surface on a grid: about 28 x periods x grid^2 for the
- * gyroid (measured: 58,968 at grid 32, 2 periods; 930,980 at grid 64, 8
- * periods), taken as 30 x max(1, periods, balls) x grid^2 for both fields
- * and never more than the 12 per cell six tetrahedra can make. */
+/* Triangles of a surface on a grid, taken as 30 x k x grid^2 and never
+ * more than the 12 per cell six tetrahedra can make.  k = max(1,
+ * periods) for the gyroid (measured: 58,968 triangles at grid 32 and 2
+ * periods, 930,980 at grid 64 and 8 periods: 28 x periods x grid^2);
+ * k = max(1, balls / 12) for metaballs (98,106 at grid 64, 12 balls,
+ * iso 1: 24 x grid^2). */
 static double iso_triangles(const SceneIsoParams *p)
 {
-    double g = p->grid, k = MAX(1.0, MAX(p->periods, (double)p->balls));
+    double g = p->grid;
+    double k = p->field == SCENE_FIELD_GYROID ? MAX(1.0, p->periods)
+                                              : MAX(1.0, p->balls / 12.0);
     return MIN(12 * g * g * g, 30 * k * g * g);
 }
 
