@@ -19,6 +19,36 @@ static void metric_free(gpointer p)
     g_free(m);
 }
 
+static void idle_free(gpointer p)
+{
+    SimIdleResult *i = p;
+    g_free(i->kind);
+    g_free(i);
+}
+
+void sim_result_add_idle(SimResult *r, const char *kind, uint64_t n)
+{
+    for (guint i = 0; i < r->idle->len; i++) {
+        SimIdleResult *e = g_ptr_array_index(r->idle, i);
+        if (strcmp(e->kind, kind) == 0) {
+            e->count += n;
+            return;
+        }
+    }
+    SimIdleResult *e = g_new0(SimIdleResult, 1);
+    e->kind = g_strdup(kind);
+    e->count = n;
+    g_ptr_array_add(r->idle, e);
+}
+
+uint64_t sim_result_n_idle(const SimResult *r)
+{
+    uint64_t n = 0;
+    for (guint i = 0; i < r->idle->len; i++)
+        n += ((const SimIdleResult *)g_ptr_array_index(r->idle, i))->count;
+    return n;
+}
+
 SimResult *sim_result_new(const char *workload, const char *machine)
 {
     SimResult *r = g_new0(SimResult, 1);
@@ -28,6 +58,7 @@ SimResult *sim_result_new(const char *workload, const char *machine)
     r->frame_times = g_array_new(FALSE, FALSE, sizeof(SimTime));
     r->phases = g_ptr_array_new_with_free_func(g_free);
     r->nodes = g_ptr_array_new_with_free_func(node_free);
+    r->idle = g_ptr_array_new_with_free_func(idle_free);
     r->metrics = g_ptr_array_new_with_free_func(metric_free);
     return r;
 }
@@ -43,6 +74,7 @@ void sim_result_free(SimResult *r)
     g_array_free(r->frame_times, TRUE);
     g_ptr_array_free(r->phases, TRUE);
     g_ptr_array_free(r->nodes, TRUE);
+    g_ptr_array_free(r->idle, TRUE);
     g_ptr_array_free(r->metrics, TRUE);
     g_free(r);
 }

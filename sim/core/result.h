@@ -18,6 +18,14 @@ typedef struct {
     SimBusy busy; /* per_phase indexed like SimResult.phases */
 } SimNodeResult;
 
+/* Processors of one kind that did nothing (busy 0 in every phase): one
+ * entry per kind instead of one SimNodeResult each, so a result's size
+ * follows the work, not the machine. */
+typedef struct {
+    char *kind;
+    uint64_t count;
+} SimIdleResult;
+
 typedef struct {
     char *name;
     char *unit; /* "" when dimensionless */
@@ -32,7 +40,8 @@ typedef struct {
     GArray *frame_times; /* SimTime per frame */
     SimTime elapsed;     /* simulated time at the end of the run */
     GPtrArray *phases;   /* char *, phase names by id */
-    GPtrArray *nodes;    /* SimNodeResult * */
+    GPtrArray *nodes;    /* SimNodeResult *, processors that were busy */
+    GPtrArray *idle;     /* SimIdleResult *, by kind in first-seen order */
     uint64_t comm_bytes;
     uint64_t comm_messages;
     char *busiest_link; /* NULL when no message was sent */
@@ -50,6 +59,10 @@ void sim_result_add_frame(SimResult *r, SimTime t);
 /* Appends a node; returns it (borrowed) for filling busy times. */
 SimNodeResult *sim_result_add_node(SimResult *r, const char *name,
                                    const char *kind);
+/* Counts n more idle processors of `kind` (merged per kind). */
+void sim_result_add_idle(SimResult *r, const char *kind, uint64_t n);
+/* Idle processors over all kinds. */
+uint64_t sim_result_n_idle(const SimResult *r);
 /* Sets (or replaces) a named metric, keeping first-insertion order. */
 void sim_result_set_metric(SimResult *r, const char *name, double value,
                            const char *unit);

@@ -530,6 +530,37 @@ static void copy_busy(SimBusy *dst, const SimBusy *src)
     }
 }
 
+/* Busy processors of one kind as nodes, the others as one idle count;
+ * never-made pages (never-touched processors) are skipped whole, so this
+ * is O(processors touched + pages). */
+static void fill_kind(const MachMachine *m, const MachKindInfo *k,
+                      SimResult *r)
+{
+    uint64_t idle = 0;
+    guint end = k->first + k->count;
+    for (guint i = k->first; i < end;) {
+        const MachProc *pg = m->pages[i / PROC_PAGE];
+        guint stop = MIN(end, (i / PROC_PAGE + 1) * PROC_PAGE);
+        if (!pg) { /* never-touched processors were never busy */
+            idle += stop - i;
+            i = stop;
+            continue;
+        }
+        for (; i < stop; i++) {
+            const MachProc *p = &pg[i % PROC_PAGE];
+            if (p->busy.total == 0) {
+                idle++;
+                continue;
+            }
+            char *name = g_strdup_printf("%s%u", k->name, i - k->first);
+            copy_busy(&sim_result_add_node(r, name, k->name)->busy, &p->busy);
+            g_free(name);
+        }
+    }
+    if (idle)
+        sim_result_add_idle(r, k->name, idle);
+}
+
 void mach_fill_result(const MachMachine *m, SimResult *r)
 {
     g_free(r->machine);
@@ -537,15 +568,8 @@ void mach_fill_result(const MachMachine *m, SimResult *r)
     g_free(r->fidelity);
     r->fidelity = g_strdup(m->fidelity);
     sim_result_set_phases(r, m->eng);
-    for (guint i = 0; i < m->n_procs; i++) {
-        const MachProc *pg = m->pages[i / PROC_PAGE];
-        const MachKindInfo *k = mach_kind_at(m, kind_of(m, i));
-        char *name = g_strdup_printf("%s%u", k->name, i - k->first);
-        SimNodeResult *n = sim_result_add_node(r, name, k->name);
-        if (pg) /* never-touched processors were never busy */
-            copy_busy(&n->busy, &pg[i % PROC_PAGE].busy);
-        g_free(name);
-    }
+    for (guint k = 0; k < mach_kind_count(m); k++)
+        fill_kind(m, mach_kind_at(m, k), r);
     if (m->net)
         net_fill_result(m->net, r);
 }

@@ -153,6 +153,15 @@ static void json_nodes(GString *s, const SimResult *r)
         json_phases(s, r, n);
     }
     g_string_append(s, r->nodes->len ? "\n  ]" : "]");
+    g_string_append(s, ",\n  \"idle\": [");
+    for (guint i = 0; i < r->idle->len; i++) {
+        const SimIdleResult *e = g_ptr_array_index(r->idle, i);
+        g_string_append(s, i ? ", {\"kind\": " : "{\"kind\": ");
+        json_put_str(s, e->kind);
+        g_string_append_printf(s, ", \"count\": %" G_GUINT64_FORMAT "}",
+                               e->count);
+    }
+    g_string_append_c(s, ']');
 }
 
 static void json_comm(GString *s, const SimResult *r)
@@ -290,6 +299,12 @@ static void csv_nodes(GString *s, const SimResult *r)
             csv_num(s, "node", n->name, ph, "utilisation", util(r, b), NULL);
         }
     }
+    for (guint i = 0; i < r->idle->len; i++) {
+        const SimIdleResult *e = g_ptr_array_index(r->idle, i);
+        char buf[24];
+        g_snprintf(buf, sizeof buf, "%" G_GUINT64_FORMAT, e->count);
+        csv_row(s, "idle", e->kind, NULL, "count", buf, NULL);
+    }
 }
 
 static void csv_rest(GString *s, const SimResult *r, gboolean timing)
@@ -379,10 +394,22 @@ static void text_node(GString *s, const SimResult *r, const SimNodeResult *n)
     g_string_append_c(s, '\n');
 }
 
+/* One line per kind of processors that did nothing. */
+static void text_idle(GString *s, const SimResult *r)
+{
+    for (guint i = 0; i < r->idle->len; i++) {
+        const SimIdleResult *e = g_ptr_array_index(r->idle, i);
+        g_string_append_printf(s,
+                               "  %-12s %-10s %8s  (%" G_GUINT64_FORMAT
+                               " processors, all idle)\n",
+                               "idle", e->kind, "0.0%", e->count);
+    }
+}
+
 static void text_nodes(GString *s, const SimResult *r)
 {
     guint n = r->nodes->len, shown = n <= 32 ? n : 16;
-    if (!n)
+    if (!n && !r->idle->len)
         return;
     g_string_append_printf(s,
                            "utilisation   busy / simulated time, per "
@@ -397,6 +424,7 @@ static void text_nodes(GString *s, const SimResult *r)
     if (shown < n)
         g_string_append_printf(s, "  ... %u more nodes (all in JSON/CSV)\n",
                                n - shown);
+    text_idle(s, r);
 }
 
 static void text_rest(GString *s, const SimResult *r, gboolean timing)

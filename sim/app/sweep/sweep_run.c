@@ -65,10 +65,11 @@ static void put_metric(GString *o, const char *name, double v)
 
 static void put_result(GString *o, const SimResult *r)
 {
-    double umean = 0.0, umax = 0.0;
+    double umean = 0.0, umax = 0.0; /* idle processors count as 0 */
+    double all = (double)r->nodes->len + (double)sim_result_n_idle(r);
     for (guint n = 0; n < r->nodes->len; n++) {
         double u = sim_result_node_util(r, g_ptr_array_index(r->nodes, n));
-        umean += u / r->nodes->len;
+        umean += u / all;
         umax = MAX(umax, u);
     }
     put_metric(o, "frames", r->frame_times->len);

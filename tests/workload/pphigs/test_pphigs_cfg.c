@@ -203,7 +203,7 @@ static void run_flock(const char *const *sets, Out *o)
     for (guint i = 0; i < 15; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
     o->bytes = r->comm_bytes;
-    assert_int_equal(r->nodes->len, 1 + o->gps + 16 + 1);
+    assert_int_equal(r->nodes->len + sim_result_n_idle(r), 1 + o->gps + 16 + 1);
     sim_result_free(r);
     sim_engine_free(eng);
     ops->free_params(p);

@@ -77,7 +77,8 @@ static void check_result(MachMachine *m, guint ngp)
 {
     SimResult *r = sim_result_new("pphigs", "test");
     mach_fill_result(m, r);
-    assert_int_equal(r->nodes->len, 1 + ngp + RENDERERS + 1);
+    assert_int_equal(r->nodes->len + sim_result_n_idle(r),
+                     1 + ngp + RENDERERS + 1);
     static const char *const want[][3] = {{"gp", "transform", "send"},
                                           {"renderer", "rasterise", "shade"},
                                           {"frame_buffer", "store", "store"}};
