@@ -35,6 +35,7 @@ struct SimEngine {
     uint64_t seed;
     gboolean hole; /* heap root is the event being run */
     gboolean stopped;
+    gboolean dry; /* sim_engine_set_dry_run() */
     GError *error;
     GArray *entities; /* SimEntity */
     GPtrArray *phases;
@@ -156,8 +157,18 @@ void sim_engine_fail(SimEngine *e, GError *err)
     e->stopped = TRUE;
 }
 
+void sim_engine_set_dry_run(SimEngine *e, gboolean dry)
+{
+    e->dry = dry;
+}
+
 gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
 {
+    if (e->dry) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_DRY_RUN,
+                    "stopped before the first simulated event (dry run)");
+        return FALSE;
+    }
     uint64_t next_progress =
         e->progress_every ? e->events + e->progress_every : UINT64_MAX;
     e->stopped = FALSE;

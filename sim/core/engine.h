@@ -48,6 +48,11 @@ gboolean sim_schedule_at(SimEngine *eng, SimTime t, SimHandler fn, void *ctx,
  * error (overflow, or one a handler reported with sim_engine_fail()). */
 gboolean sim_engine_run(SimEngine *eng, SimTime until, GError **err);
 void sim_engine_stop(SimEngine *eng);
+/* Dry run (`pgsim validate`): sim_engine_run() runs no event and returns
+ * FALSE with SIM_ERROR_DRY_RUN, so a workload performs every check and
+ * allocation that precedes its first simulated event and then stops the
+ * way it stops on any engine error. */
+void sim_engine_set_dry_run(SimEngine *eng, gboolean dry);
 /* A handler reports an error: the engine stops; takes ownership of e. */
 void sim_engine_fail(SimEngine *eng, GError *e);
 

@@ -18,7 +18,8 @@ typedef enum {
     SIM_ERROR_INPUT,    /* bad config, model, scene file or CLI flag: exit 2 */
     SIM_ERROR_OVERFLOW, /* simulated time or a counter would overflow: 2 */
     SIM_ERROR_IO,       /* a file could not be read or written: exit 2 */
-    SIM_ERROR_INTERNAL  /* anything else that stopped a run: exit 1 */
+    SIM_ERROR_INTERNAL, /* anything else that stopped a run: exit 1 */
+    SIM_ERROR_DRY_RUN   /* a dry run reached its first event (validate) */
 } SimErrorCode;
 
 /* Exit status for an error (0 for NULL). */

@@ -307,6 +307,15 @@ gboolean cfg_units_double(const char *s, CfgUnitKind kind, double *out,
         *expected = overflow_text[kind];
         return FALSE;
     }
+    /* A rate is 0 (none) or at least 1 per second: below that one byte or
+     * one cycle already takes longer than a run can simulate sensibly,
+     * and 1e-300 B/s overflowed simulated time at run time, unlocated. */
+    if (v != 0 && v < 1.0 &&
+        (kind == CFG_UNIT_BANDWIDTH || kind == CFG_UNIT_FREQ)) {
+        *expected = kind == CFG_UNIT_BANDWIDTH ? "0 or at least 1 B/s"
+                                               : "0 or at least 1 Hz";
+        return FALSE;
+    }
     *out = v;
     return TRUE;
 }

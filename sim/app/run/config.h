@@ -51,6 +51,8 @@ typedef struct {
     gboolean quiet;      /* no progress display */
     gboolean progress;   /* show progress (when stderr is a terminal) */
     SimTrace *trace;     /* attached to the engine; NULL: none (borrowed) */
+    gboolean dry_run;    /* stop before the first event (sim_engine_set_dry_run):
+                            NULL with SIM_ERROR_DRY_RUN means "would run" */
 } CfgRunOpts;
 
 /* Runs the config's workload on a fresh engine seeded with run->seed and
