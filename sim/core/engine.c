@@ -10,6 +10,7 @@
  * less than the key being run.
  */
 #include "sim/core/engine.h"
+#include "sim/core/memlimit.h"
 #include "sim/core/evq.h"
 
 typedef struct {
@@ -98,23 +99,54 @@ size_t sim_engine_pending(const SimEngine *e)
     return sim_evq_len(e->q) - (e->hole ? 1 : 0);
 }
 
-static void grow_pool(SimEngine *e)
+/* Bytes per pending event: pool slot, free-list entry, heap entry and
+ * the queue's seq (sim/core/evq.c). */
+#define EVENT_BYTES (sizeof(SimEvent) + sizeof(uint32_t) + 16 + 8)
+
+/* Fails the run: the pool cannot double to `cap` events. */
+static gboolean pool_full(SimEngine *e, uint64_t cap)
 {
-    uint32_t old = e->pool_cap, cap = old ? old * 2 : 1024;
-    g_assert(cap > old); /* 2^32 pending events: out of slot numbers */
-    e->pool = g_renew(SimEvent, e->pool, cap);
-    e->free_slots = g_renew(uint32_t, e->free_slots, cap);
-    for (uint32_t s = cap; s > old; s--)
-        e->free_slots[e->n_free++] = s - 1;
-    e->pool_cap = cap;
+    char *need = g_format_size_full(cap * EVENT_BYTES, G_FORMAT_SIZE_IEC_UNITS);
+    char *have = g_format_size_full(sim_mem_limit(), G_FORMAT_SIZE_IEC_UNITS);
+    sim_engine_fail(e, g_error_new(SIM_ERROR, SIM_ERROR_INPUT,
+                                   "simulation: found %" G_GUINT64_FORMAT
+                                   " pending events needing about %s, "
+                                   "expected at most %s (--mem-limit; "
+                                   "docs/config.md, Limits)",
+                                   cap, need, have));
+    g_free(need);
+    g_free(have);
+    return FALSE;
+}
+
+/* Doubles the event pool; no ceiling but 2^32 slots and the memory limit,
+ * and a failed allocation is a run error, not an abort. */
+static gboolean grow_pool(SimEngine *e)
+{
+    uint32_t old = e->pool_cap;
+    uint64_t cap = old ? (uint64_t)old * 2 : 1024;
+    if (cap > G_MAXUINT32 ||
+        (double)cap * EVENT_BYTES > (double)sim_mem_limit())
+        return pool_full(e, cap);
+    SimEvent *pool = g_try_renew(SimEvent, e->pool, cap);
+    if (pool)
+        e->pool = pool;
+    uint32_t *slots = pool ? g_try_renew(uint32_t, e->free_slots, cap) : NULL;
+    if (!slots)
+        return pool_full(e, cap);
+    e->free_slots = slots;
+    for (uint64_t s = cap; s > old; s--)
+        e->free_slots[e->n_free++] = (uint32_t)(s - 1);
+    e->pool_cap = (uint32_t)cap;
+    return TRUE;
 }
 
 gboolean sim_schedule_at(SimEngine *e, SimTime t, SimHandler fn, void *ctx,
                          void *arg)
 {
     g_assert(t >= e->now);
-    if (G_UNLIKELY(e->n_free == 0))
-        grow_pool(e);
+    if (G_UNLIKELY(e->n_free == 0) && !grow_pool(e))
+        return FALSE; /* the run stops with the error */
     uint32_t slot = e->free_slots[--e->n_free];
     e->pool[slot] = (SimEvent){fn, ctx, arg};
     SimEvKey k = {t, e->seq++, slot};
@@ -164,9 +196,12 @@ void sim_engine_set_dry_run(SimEngine *e, gboolean dry)
 
 gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
 {
-    if (e->dry) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_DRY_RUN,
-                    "stopped before the first simulated event (dry run)");
+    if (e->dry) { /* an error from scheduling (event memory) comes first */
+        if (e->error)
+            g_propagate_error(err, g_steal_pointer(&e->error));
+        else
+            g_set_error(err, SIM_ERROR, SIM_ERROR_DRY_RUN,
+                        "stopped before the first simulated event (dry run)");
         return FALSE;
     }
     uint64_t next_progress =

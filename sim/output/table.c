@@ -192,12 +192,35 @@ DataTable *dt_parse_csv(const char *text, const char *name, GError **err)
     return t;
 }
 
+/* A CSV is UTF-8 text without NUL bytes: anything else (a binary file)
+ * is a located error that does not echo the bytes. */
+static gboolean check_text(const char *text, gsize len, const char *name,
+                           GError **err)
+{
+    const char *end = NULL;
+    if (memchr(text, '\0', len) == NULL && g_utf8_validate(text, len, &end))
+        return TRUE;
+    const char *bad = end ? end : memchr(text, '\0', len);
+    int line = 1, col = 1;
+    for (const char *p = text; p < bad; p++, col++)
+        if (*p == '\n')
+            line++, col = 0;
+    char found[48];
+    g_snprintf(found, sizeof found, "the byte 0x%02x",
+               (unsigned)(guchar)*bad);
+    sim_error_located(err, name, line, col, found, "UTF-8 text (a CSV file)");
+    return FALSE;
+}
+
 DataTable *dt_read_csv(const char *path, GError **err)
 {
     char *text = NULL;
-    if (!sim_file_read(path, &text, NULL, err))
+    gsize len = 0;
+    if (!sim_file_read(path, &text, &len, err))
         return NULL;
-    DataTable *t = dt_parse_csv(text, path, err);
+    DataTable *t = check_text(text, len, path, err)
+                       ? dt_parse_csv(text, path, err)
+                       : NULL;
     g_free(text);
     return t;
 }

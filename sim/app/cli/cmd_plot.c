@@ -16,6 +16,30 @@ typedef struct {
     gboolean logx, logy;
 } PlotOpts;
 
+/* -o names a .png in a directory that exists (nothing is created). */
+static gboolean check_out(const char *out)
+{
+    char *lower = g_ascii_strdown(out, -1);
+    gboolean png = g_str_has_suffix(lower, ".png");
+    g_free(lower);
+    if (!png) {
+        fprintf(stderr,
+                "pgsim plot: -o: found '%s', expected a file name ending "
+                "in .png\n",
+                out);
+        return FALSE;
+    }
+    char *dir = g_path_get_dirname(out);
+    gboolean ok = g_file_test(dir, G_FILE_TEST_IS_DIR);
+    if (!ok)
+        fprintf(stderr,
+                "pgsim plot: -o: found no directory '%s', expected an "
+                "existing directory for %s\n",
+                dir, out);
+    g_free(dir);
+    return ok;
+}
+
 /* FALSE when the caller should return *status (help, or a bad option). */
 static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
 {
@@ -43,7 +67,7 @@ static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
                 o->x ? "y" : "x");
         return FALSE;
     }
-    return TRUE;
+    return !o->out || check_out(o->out);
 }
 
 /* Splits -o FILE.png (or the default) into a directory and a stem. */
@@ -53,8 +77,7 @@ static void out_names(const PlotOpts *o, const char *csv, char **dir,
     if (o->out) {
         *dir = g_path_get_dirname(o->out);
         char *base = g_path_get_basename(o->out);
-        if (g_str_has_suffix(base, ".png"))
-            base[strlen(base) - 4] = '\0';
+        base[strlen(base) - 4] = '\0'; /* check_out: ends in .png */
         *stem = base;
     } else {
         *dir = g_path_get_dirname(csv);

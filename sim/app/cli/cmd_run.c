@@ -22,6 +22,8 @@ typedef struct {
     gboolean quiet, timing;
 } RunOpts;
 
+#define TRACE_CAP_UNSET G_MININT /* --trace-cap not given */
+
 static const char summary[] =
     "Runs a simulation described by a YAML config (docs/config.md) and "
     "prints its report (docs/output.md).";
@@ -36,6 +38,13 @@ static gboolean check_flags(const RunOpts *o, guint64 *seed, RptFormat *fmt)
                 "pgsim run: --seed: found '%s', expected a "
                 "non-negative integer\n",
                 o->seed);
+        return FALSE;
+    }
+    if (o->trace_cap != TRACE_CAP_UNSET && o->trace_cap < 1) {
+        fprintf(stderr,
+                "pgsim run: --trace-cap: found %d, expected a positive "
+                "number of events (default %d)\n",
+                o->trace_cap, TRC_DEFAULT_CAP);
         return FALSE;
     }
     if (o->format && !rpt_format_parse(o->format, fmt)) {
@@ -79,7 +88,11 @@ static int run(const char *path, const RunOpts *o)
     if (o->seed)
         r->seed = seed;
     SimTrace *tr = o->trace
-                       ? trc_open(o->trace, (uint64_t)MAX(o->trace_cap, 0), &e)
+                       ? trc_open(o->trace,
+                                  o->trace_cap == TRACE_CAP_UNSET
+                                      ? 0
+                                      : (uint64_t)o->trace_cap,
+                                  &e)
                        : NULL;
     if (o->trace && !tr) {
         cfg_run_free(r);
@@ -90,7 +103,7 @@ static int run(const char *path, const RunOpts *o)
     SimResult *res = cfg_run_exec(r, &ro, &e);
     cfg_run_free(r);
     if (!res) {
-        trc_close(tr, NULL);
+        trc_discard(tr); /* a failed run leaves no trace file */
         return cli_fail(e);
     }
     if (!trc_close(tr, &e)) {
@@ -104,7 +117,7 @@ static int run(const char *path, const RunOpts *o)
 
 int cmd_run(int argc, char **argv)
 {
-    RunOpts o = {0};
+    RunOpts o = {.trace_cap = TRACE_CAP_UNSET};
     const GOptionEntry entries[] = {
         {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o.sets,
          "override a config key (repeatable)", "KEY.PATH=VALUE"},

@@ -62,8 +62,8 @@ static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv, int *status)
         return FALSE;
     if (o->jobs < 0) {
         fprintf(stderr,
-                "pgsim sweep: -j: found %d, expected a positive "
-                "count\n",
+                "pgsim sweep: -j: found %d, expected 0 (one job per "
+                "core) or a positive count\n",
                 o->jobs);
         return FALSE;
     }

@@ -95,6 +95,8 @@ gboolean trc_truncated(const SimTrace *tr)
     return ((const TrcWriter *)tr->state)->truncated;
 }
 
+static void writer_free(TrcWriter *w);
+
 gboolean trc_close(SimTrace *tr, GError **err)
 {
     if (!tr)
@@ -110,6 +112,22 @@ gboolean trc_close(SimTrace *tr, GError **err)
                     w->path, g_strerror(errno));
         remove(w->tmp);
     }
+    writer_free(w);
+    return ok;
+}
+
+void trc_discard(SimTrace *tr)
+{
+    if (!tr)
+        return;
+    TrcWriter *w = tr->state;
+    fclose(w->f);
+    remove(w->tmp);
+    writer_free(w);
+}
+
+static void writer_free(TrcWriter *w)
+{
     g_hash_table_destroy(w->nodes);
     g_hash_table_destroy(w->default_named);
     if (w->buffer)
@@ -117,5 +135,4 @@ gboolean trc_close(SimTrace *tr, GError **err)
     g_free(w->path);
     g_free(w->tmp);
     g_free(w);
-    return ok;
 }

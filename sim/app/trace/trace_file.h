@@ -25,6 +25,9 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err);
 /* Finishes and closes the file; FALSE with *err on a write error.  NULL is
  * a no-op. */
 gboolean trc_close(SimTrace *tr, GError **err);
+/* Closes the file and removes it (a failed run leaves no trace file, as
+ * it leaves no --out files).  NULL is a no-op. */
+void trc_discard(SimTrace *tr);
 /* Events recorded so far, and whether the cap was hit. */
 uint64_t trc_events(const SimTrace *tr);
 gboolean trc_truncated(const SimTrace *tr);
