@@ -182,7 +182,8 @@ static guint bucket_block(AgPipe *p, const AgBlock *k, BlockState *s)
     }
     guint np = bk.pairs->len / 2;
     guint *pr = (guint *)bk.pairs->data;
-    qsort(pr, np, 2 * sizeof(guint), cmp_pair);
+    if (np > 1)
+        qsort(pr, np, 2 * sizeof(guint), cmp_pair);
     s->tris = g_new(uint32_t, np ? np : 1);
     s->tile_ids = g_new(guint, np ? np : 1);
     s->tile_start = g_new(guint, np + 1);
