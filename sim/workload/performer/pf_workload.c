@@ -238,6 +238,7 @@ static gboolean write_stages(const char *log, const GArray *recs, GError **err)
 
 typedef struct {
     double app, cull, draw, tris, states, saved, mats, culled, stress, lod;
+    double cpu, bus, pipe; /* DRAW's three rates */
 } Means;
 
 static Means means(const GArray *recs, WlPfStages *st, guint skip)
@@ -257,6 +258,9 @@ static Means means(const GArray *recs, WlPfStages *st, guint skip)
         m.culled += f->cull.tris_culled;
         m.stress += r->stress;
         m.lod += f->cull.lods ? (double)f->cull.lod_sum / f->cull.lods : 0;
+        m.cpu += ms(f->cpu);
+        m.bus += ms(f->bus);
+        m.pipe += ms(f->pipe);
     }
     double *v = &m.app;
     for (guint i = 0; c && i < sizeof m / sizeof *v; i++)
@@ -280,6 +284,9 @@ static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
     sim_result_set_metric(out, "app_ms", m.app, "ms");
     sim_result_set_metric(out, "cull_ms", m.cull, "ms");
     sim_result_set_metric(out, "draw_ms", m.draw, "ms");
+    sim_result_set_metric(out, "draw_cpu_ms", m.cpu, "ms");
+    sim_result_set_metric(out, "draw_bus_ms", m.bus, "ms");
+    sim_result_set_metric(out, "draw_pipe_ms", m.pipe, "ms");
     sim_result_set_metric(out, "tris_per_frame", m.tris, "");
     sim_result_set_metric(out, "tris_culled_per_frame", m.culled, "");
     sim_result_set_metric(out, "state_changes_per_frame", m.states, "");
