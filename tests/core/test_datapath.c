@@ -57,12 +57,58 @@ static void test_found_from_elsewhere(void **state)
     g_free(root);
 }
 
+/* Expects sim_file_read(path) to fail with a message containing want. */
+static void expect_unread(const char *path, const char *want)
+{
+    char *text = NULL;
+    GError *e = NULL;
+    assert_false(sim_file_read(path, &text, NULL, &e));
+    assert_null(text);
+    if (!strstr(e->message, want))
+        fail_msg("%s: got %s, want %s", path, e->message, want);
+    g_error_free(e);
+}
+
+/* Input files are regular files under the size limit, checked before
+ * reading: devices (which never end), directories and big files fail. */
+static void test_bounded_reads(void **state)
+{
+    (void)state;
+    expect_unread("/dev/zero", "/dev/zero:0:0: found a character device, "
+                               "expected a regular file");
+    expect_unread("/dev/urandom", "found a character device");
+    expect_unread("tests", "tests:0:0: found a directory");
+    expect_unread("no/such/file", "found an unreadable file (");
+    char *tmp = g_dir_make_tmp("pgsim-read-XXXXXX", NULL);
+    char *f = g_build_filename(tmp, "f.yaml", NULL);
+    g_file_set_contents(f, "0123456789abcdefghij", 20, NULL);
+    sim_file_set_limit(19);
+    expect_unread(f, "found 20 bytes, expected at most 19 bytes");
+    GError *e = NULL;
+    assert_null(cfg_load_file(f, &e)); /* the config loader too */
+    assert_non_null(strstr(e->message, "found 20 bytes"));
+    g_clear_error(&e);
+    sim_file_set_limit(20);
+    char *text = NULL;
+    gsize len = 0;
+    assert_true(sim_file_read(f, &text, &len, NULL));
+    assert_int_equal(len, 20);
+    assert_string_equal(text, "0123456789abcdefghij");
+    sim_file_set_limit(0);
+    g_free(text);
+    g_unlink(f);
+    g_rmdir(tmp);
+    g_free(f);
+    g_free(tmp);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_name_as_given_when_it_exists),
         cmocka_unit_test(test_unknown_name_comes_back_unchanged),
         cmocka_unit_test(test_found_from_elsewhere),
+        cmocka_unit_test(test_bounded_reads),
     };
     return cmocka_run_group_tests_name("datapath", tests, NULL, NULL);
 }
