@@ -5,15 +5,19 @@ squares on relative error.  Nothing else is fitted; Tables 3-4 (CM-5) are
 never read.
 
     PGSIM_DP_COEF=/tmp/coef.csv build/pgsim reproduce ortega93 >/dev/null
-    python3 scripts/fit-ortega93.py /tmp/coef.csv configs/papers/ortega93/published.yaml
+    python3 scripts/fit-ortega93.py /tmp/coef.csv \
+        configs/papers/ortega93/published.yaml --fix=op=2.3 --fix=step=10
 
 The frame time of a SIMD cell is linear in the costs (dp_cost.h):
 time = op * op_slices + step * steps + scan_slice * scan_slices
-     + send_setup * sends + send_slice * slices;
+     + send_setup * sends + send_slice * slices + send_vp * vp_slices
+     + news_slice * news_slices + send_msg * msg_slices;
 the coefficients come from the simulator (one CSV line per cell:
-table,row,op_slices,steps,scan_slices,sends,slices).  With --fix NAME=us
-a cost is held at a value (e.g. one taken from the literature) and the
-others are fitted.
+table,row, the eight sums in NAMES order, then scan_iters, pixel_iters,
+flushes, which the fit ignores).  With --fix NAME=us a cost is held at a
+value (e.g. one taken from the literature) and the others are fitted.
+Prints the in-sample errors and the leave-one-out errors (each cell
+predicted by a fit on the other 17).
 """
 import itertools
 import sys
@@ -21,7 +25,7 @@ import sys
 import yaml
 
 NAMES = ["op", "step", "scan_slice", "send_setup", "send_slice", "send_vp",
-         "news_slice"]
+         "news_slice", "send_msg"]
 
 
 def published(path):
@@ -100,6 +104,14 @@ def main():
     print(f"rms relative error {(err / len(rows)) ** 0.5 * 100:.1f} %, "
           f"mean |error| {sum(map(abs, errs)) / len(errs) * 100:.1f} %, "
           f"worst {max(map(abs, errs)) * 100:.1f} %")
+    loo = []
+    for i, (k, y) in enumerate(rows):
+        _, f = fit(rows[:i] + rows[i + 1:], fixed)
+        loo.append((sum(c * v for c, v in zip(k, f)) - y) / y)
+    print(f"leave-one-out: mean |error| "
+          f"{sum(map(abs, loo)) / len(loo) * 100:.1f} %, "
+          f"worst {max(map(abs, loo)) * 100:.1f} % "
+          f"({names[max(range(len(loo)), key=lambda j: abs(loo[j]))]})")
 
 
 main()

@@ -12,6 +12,7 @@
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/raster/scan.h"
 #include "sim/workload/dpscan/dp_model.h"
+#include <math.h>
 #include <stdio.h>
 
 #define MODELS_DIR "models"
@@ -22,6 +23,7 @@ typedef struct {
     char *dir;       /* directory of the sweep file */
     GPtrArray *rows; /* RpRow * */
     FILE *coef;      /* PGSIM_DP_COEF or NULL */
+    double buffer_factor; /* segment buffer slots per polygon */
 } OrRun;
 
 /* Loads the scene file named by scenes.<key>. */
@@ -80,20 +82,24 @@ static gboolean table_machines(const CfgNode *t, GArray *ms, GError **err)
 }
 
 static void cell_rows(OrRun *r, const char *table, const WlDpTarget *t,
-                      int w, int h, uint64_t n_polys)
+                      const WlDpImage *img, uint64_t n_polys)
 {
     char part[32], row[64];
     partition_name(t->m.procs, part, sizeof part);
-    g_snprintf(row, sizeof row, "%s/%dx%d", part, w, h);
+    g_snprintf(row, sizeof row, "%s/%dx%d", part, img->width, img->height);
     double s = sim_time_to_s(t->total);
     g_ptr_array_add(r->rows, rp_row_new(table, row, "time_s", s, NULL));
     g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
                                         (double)n_polys / s, NULL));
     const WlDpCoef *k = &t->coef;
     if (r->coef && t->m.arch == WL_DP_SIMD)
-        fprintf(r->coef, "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f\n", table,
-                row, k->op_slices, k->steps, k->scan_slices, k->sends,
-                k->slices, k->vp_slices, k->news_slices);
+        fprintf(r->coef,
+                "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%" G_GUINT64_FORMAT
+                ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT "\n",
+                table, row, k->op_slices, k->steps, k->scan_slices, k->sends,
+                k->slices, k->vp_slices, k->news_slices, k->msg_slices,
+                img->scan_iters,
+                img->pixel_iters, img->flushes);
 }
 
 /* Renders scene s once at w x h and costs it on every partition of
@@ -118,14 +124,15 @@ static gboolean render_tables(OrRun *r, const char *key, const Scene *s,
         float pal[WL_DP_COLORS][3];
         wl_dp_palette_default(pal);
         WlDpRenderOpts o = {.mode = WL_DP_MODE_GOURAUD,
-                            .buffer_factor = 1.0,
+                            .buffer_factor = r->buffer_factor,
                             .ops = wl_dp_ops_defaults()};
         WlDpPolys *p = wl_dp_polys_new(s, 0.0, w, h, o.mode, pal);
         WlDpVm *vm = wl_dp_vm_new((WlDpMachine *)ms->data, ms->len,
                                   (uint32_t)w, (uint32_t)h);
-        wl_dp_image_free(wl_dp_render(vm, p, w, h, &o));
+        WlDpImage *img = wl_dp_render(vm, p, w, h, &o);
         for (guint i = 0; i < ms->len; i++)
-            cell_rows(r, names->pdata[i], wl_dp_vm_target(vm, i), w, h, p->n);
+            cell_rows(r, names->pdata[i], wl_dp_vm_target(vm, i), img, p->n);
+        wl_dp_image_free(img);
         wl_dp_vm_free(vm);
         wl_dp_polys_free(p);
     }
@@ -174,6 +181,32 @@ static gboolean scene_cells(OrRun *r, const char *key, GError **err)
     return ok;
 }
 
+/* The fastest polygons_per_s of `table` over rows starting with
+ * `prefix` (NAN if none). */
+static double fastest(GPtrArray *rows, const char *table, const char *prefix)
+{
+    double best = NAN;
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = rows->pdata[i];
+        if (g_strcmp0(r->table, table) == 0 &&
+            g_str_has_prefix(r->row, prefix) &&
+            g_strcmp0(r->column, "polygons_per_s") == 0 &&
+            (isnan(best) || r->sim > best))
+            best = r->sim;
+    }
+    return best;
+}
+
+/* The two sentences of §6 (configs/papers/ortega93/published.yaml). */
+static void text_rows(GPtrArray *rows)
+{
+    double a = fastest(rows, "1", "64K/"), b = fastest(rows, "3", "512/");
+    g_ptr_array_add(rows, rp_row_new("text", "CM-200 64K small",
+                                     "polygons_per_s", a, NULL));
+    g_ptr_array_add(rows, rp_row_new("text", "CM-5 512 small",
+                                     "polygons_per_s", b, NULL));
+}
+
 static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
                              GError **err)
 {
@@ -183,12 +216,23 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
     OrRun r = {.ctx = ctx,
                .root = root,
                .dir = g_path_get_dirname(ctx->setup),
-               .rows = rows};
+               .rows = rows,
+               .buffer_factor = 1.0};
+    if (!cfg_get_double(root, "buffer_factor", FALSE, 1e-3, 1e3,
+                        &r.buffer_factor, err)) {
+        g_free(r.dir);
+        cfg_free(root);
+        return FALSE;
+    }
     const char *coef = g_getenv("PGSIM_DP_COEF");
     if (coef)
         r.coef = fopen(coef, "w");
     gboolean ok =
         scene_cells(&r, "small", err) && scene_cells(&r, "large", err);
+    if (ok)
+        text_rows(rows);
+    if (ok && ctx->out_dir)
+        rp_ortega93_charts(rows, ctx->out_dir);
     if (r.coef)
         fclose(r.coef);
     g_free(r.dir);

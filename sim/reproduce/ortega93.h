@@ -12,8 +12,12 @@
  * "<partition>/<width>x<height>" (e.g. "16K/1280x1024", "512/640x480");
  * columns `time_s` (frame time, seconds) and `polygons_per_s` (polygons
  * in the data set / frame time), as the paper's two halves of a table.
- * Geometry is measured once per (scene, resolution) and costed for every
- * partition: a few seconds in all.
+ * Each scene is rendered once per resolution by the data-parallel
+ * renderer (sim/workload/dpscan/dp_render.h) and that one execution is
+ * costed on every partition of every table at once (one array-layer
+ * target per partition); about 20 s in all.  Table "text" holds the two
+ * sentences of §6 (the fastest small-polygon rate of the 64K CM-200 and
+ * of the 512-node CM-5).  With --out, Figures 3 and 4 as charts.
  *
  * Setting PGSIM_DP_COEF=<file> also writes the linear coefficients of
  * every SIMD cell (dp_cost.h) as CSV, for scripts/fit-ortega93.py.
@@ -24,5 +28,10 @@
 #include "sim/reproduce/reproduce.h"
 
 extern const RpPaperOps rp_ortega93;
+
+/* Figures 3 and 4 (speed-up charts) from the rows into dir
+ * (ortega93_plot.c); a chart that cannot be drawn is reported on
+ * stderr, not an error. */
+void rp_ortega93_charts(GPtrArray *rows, const char *dir);
 
 #endif

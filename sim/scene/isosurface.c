@@ -13,6 +13,7 @@
 #include "sim/scene/scene_limits.h"
 
 #include "sim/core/rng.h"
+#include <string.h>
 
 static const int tets[6][4] = {{0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7},
                                {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7}};
@@ -240,18 +241,56 @@ SceneBigPolyParams scene_bigpoly_defaults(void)
     return p;
 }
 
-/* A square of half-side h in [0.87, 1] (it covers at least 0.87^2 =
- * 75.7 % of the screen), shifted by at most 1 - h so it stays inside. */
+/* Area of polygon pts[0..n) clipped to the square [-1, 1]^2
+ * (Sutherland-Hodgman against the four sides, then the shoelace). */
+static double area_in_square(const Vec3 *pts, guint n)
+{
+    Vec3 a[40], b[40];
+    guint na = n;
+    memcpy(a, pts, n * sizeof(Vec3));
+    for (int side = 0; side < 4; side++) {
+        int axis = side / 2;
+        double sgn = side % 2 ? -1.0 : 1.0; /* keep sgn * coord <= 1 */
+        guint nb = 0;
+        for (guint k = 0; k < na; k++) {
+            Vec3 p = a[k], q = a[(k + 1) % na];
+            double dp = 1 - sgn * (axis ? p.y : p.x);
+            double dq = 1 - sgn * (axis ? q.y : q.x);
+            if (dp >= 0)
+                b[nb++] = p;
+            if ((dp >= 0) != (dq >= 0)) {
+                double t = dp / (dp - dq);
+                b[nb++] = vec3_add(p, vec3_scale(vec3_sub(q, p), t));
+            }
+        }
+        na = nb;
+        memcpy(a, b, nb * sizeof(Vec3));
+    }
+    double area = 0;
+    for (guint k = 0; k < na; k++)
+        area += a[k].x * a[(k + 1) % na].y - a[(k + 1) % na].x * a[k].y;
+    return fabs(area) / 2;
+}
+
+/* A huge polygon: a randomly turned convex polygon of 4-8 corners about
+ * the screen centre, drawn again until it covers over 3/4 of the screen
+ * (seed 004 §6: "polygons which covered over 3/4 of the image"). */
 static guint huge_polygon(SimRng *r, Vec3 *pts)
 {
-    double h = 0.87 + 0.13 * sim_rng_uniform(r);
-    double cx = (1 - h) * (2 * sim_rng_uniform(r) - 1);
-    double cy = (1 - h) * (2 * sim_rng_uniform(r) - 1);
-    double z = -1 + 2 * sim_rng_uniform(r);
-    const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
-    for (int k = 0; k < 4; k++)
-        pts[k] = vec3(cx + h * sx[k], cy + h * sy[k], z);
-    return 4;
+    for (;;) {
+        guint n = 4 + (guint)sim_rng_below(r, 5);
+        double rad = 0.95 + 0.3 * sim_rng_uniform(r);
+        double rot = 2 * G_PI * sim_rng_uniform(r);
+        double cx = 0.2 * (2 * sim_rng_uniform(r) - 1);
+        double cy = 0.2 * (2 * sim_rng_uniform(r) - 1);
+        double z = -1 + 2 * sim_rng_uniform(r);
+        for (guint k = 0; k < n; k++) {
+            double a = rot + 2 * G_PI * k / n;
+            pts[k] = vec3(cx + rad * cos(a), cy + rad * sin(a), z);
+        }
+        if (area_in_square(pts, n) > 0.75 * 4.0)
+            return n;
+    }
 }
 
 /* A regular polygon of 3..max_sides corners, radius in [min, max]. */

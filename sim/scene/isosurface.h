@@ -24,9 +24,12 @@
  * memory.
  *
  * Large polygons: `count` random convex polygons facing an orthographic
- * camera that sees [-1, 1]^2; a fraction `huge_fraction` are squares of
- * half-side 0.87 to 1 inside the screen (each covers at least 75.7 % of
- * the image: "over 3/4"), the rest regular 3- to max_sides-gons of
+ * camera that sees [-1, 1]^2; a fraction `huge_fraction` are randomly
+ * turned regular 4- to 8-gons about the screen centre (radius 0.95 to
+ * 1.25, centre within 0.2), drawn again until the part inside the
+ * screen covers over 3/4 of it (seed 004: "polygons which covered over
+ * 3/4 of the image"; they may reach past the edges, which the renderer
+ * clips), the rest regular 3- to max_sides-gons of
  * radius uniform in [min_size, max_size] (fractions of the half-screen)
  * centred anywhere on screen.  Depths uniform in (-1, 1).  Seeded from
  * sim/core/rng.h.  O(count).

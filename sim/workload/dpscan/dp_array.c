@@ -195,16 +195,17 @@ static uint64_t target_load(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s)
 {
     uint64_t vs = wl_dp_vp_ratio(&t->m, s->n_src);
     uint64_t vd = wl_dp_vp_ratio(&t->m, s->n_dst), load = 0;
+    uint64_t g = MAX(t->m.router_procs, 1);
     for (uint64_t k = 0; k < s->count; k++) {
-        uint64_t sp = (s->src ? s->src[k] : k) / vs;
-        uint64_t dp = dst_proc(vm, t, s, vd, s->dst[k]);
+        uint64_t sp = (s->src ? s->src[k] : k) / vs / g;
+        uint64_t dp = dst_proc(vm, t, s, vd, s->dst[k]) / g;
         g_assert(sp < t->m.procs && dp < t->m.procs);
         uint32_t a = ++t->inj[sp], b = ++t->recv[dp];
         load = MAX(load, MAX(a, b));
     }
     for (uint64_t k = 0; k < s->count; k++) {
-        t->inj[(s->src ? s->src[k] : k) / vs] = 0;
-        t->recv[dst_proc(vm, t, s, vd, s->dst[k])] = 0;
+        t->inj[(s->src ? s->src[k] : k) / vs / g] = 0;
+        t->recv[dst_proc(vm, t, s, vd, s->dst[k]) / g] = 0;
     }
     return load;
 }

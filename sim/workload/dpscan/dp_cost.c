@@ -86,8 +86,10 @@ SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
     if (load == 0 || words == 0 || active == 0)
         return 0;
     /* Slices holding a message: the messages are spread over the array. */
-    uint64_t vps = MIN(wl_dp_vp_ratio(m, n), active);
+    uint64_t vps = wl_dp_vp_ratio(m, n);
+    uint64_t mean = active / m->procs + (active % m->procs != 0);
     if (k) {
+        k->msg_slices += (double)words * (double)mean;
         k->steps += words;
         k->sends += words;
         k->slices += (double)words * (double)load;
@@ -97,7 +99,9 @@ SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
     if (m->arch == WL_DP_SIMD) {
         one = add_time(
             add_time(m->step, m->send_setup),
-            add_time(mul_time(m->send_vp, vps), mul_time(m->send_slice, load)));
+            add_time(add_time(mul_time(m->send_vp, vps),
+                              mul_time(m->send_msg, mean)),
+                     mul_time(m->send_slice, load)));
     } else {
         SimTime soft = mul_time(m->msg_overhead, load);
         one = add_time(add_time(m->step, m->net_latency),

@@ -51,13 +51,15 @@ typedef struct {
     WlDpArch arch;
     uint64_t procs;     /* physical processors (SIMD lanes or nodes) */
     gboolean vp_pow2;   /* VP ratios are powers of two */
+    uint32_t router_procs; /* processors sharing one router node (0: 1) */
     SimTime op;         /* one element operation at VP ratio 1 */
     SimTime step;       /* issue overhead of one data-parallel step */
     SimTime scan_slice; /* parallel prefix, per VP slice */
     /* SIMD router */
     SimTime send_setup; /* per array sent */
     SimTime send_slice; /* per message per processor (load) */
-    SimTime send_vp;    /* per VP slice that holds a message */
+    SimTime send_vp;    /* per VP slice of the source array */
+    SimTime send_msg;   /* per message per processor on average */
     SimTime news_slice; /* NEWS grid move of one word, per VP slice */
     /* SPMD data network */
     SimTime net_latency;  /* per array sent (send phase) */
@@ -71,7 +73,7 @@ typedef struct {
 /* Linear coefficients of a SIMD frame time:
  * time = op * op_slices + step * steps + scan_slice * scan_slices
  *      + send_setup * sends + send_slice * slices + send_vp * vp_slices
- *      + news_slice * news_slices.
+ *      + news_slice * news_slices + send_msg * msg_slices.
  * Kept so that calibration is a linear least-squares fit and tests can
  * check sums. */
 typedef struct {
@@ -82,6 +84,7 @@ typedef struct {
     double slices;      /* sum over arrays sent of the load */
     double vp_slices;   /* sum over arrays sent of the VP slices used */
     double news_slices; /* sum over NEWS moves of v */
+    double msg_slices;  /* sum over arrays sent of ceil(messages / procs) */
 } WlDpCoef;
 
 /* Where a screen pixel lives: the z-buffer (width x height) in blocks

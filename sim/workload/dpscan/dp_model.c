@@ -136,6 +136,18 @@ static gboolean spmd_params(const CfgNode *sec, WlDpMachine *m, GError **err)
     return TRUE;
 }
 
+/* Optional router_procs: processors per router node (default 1). */
+static gboolean get_router_procs(const CfgNode *sec, WlDpMachine *m,
+                                 GError **err)
+{
+    uint64_t g = 1;
+    if (cfg_get(sec, "router_procs") &&
+        !get_count(sec, "router_procs", 1, 1024, &g, err))
+        return FALSE;
+    m->router_procs = (uint32_t)g;
+    return TRUE;
+}
+
 gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
                                 GError **err)
 {
@@ -156,13 +168,15 @@ gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
         !get_time(sec, "step", TRUE, &m->step, err) ||
         !get_time(sec, "scan_slice", TRUE, &m->scan_slice, err) ||
         !get_flag(sec, "vp_pow2", &m->vp_pow2, err) ||
-        !get_time(sec, "news_slice", FALSE, &m->news_slice, err))
+        !get_time(sec, "news_slice", FALSE, &m->news_slice, err) ||
+        !get_router_procs(sec, m, err))
         return FALSE;
     m->arch = kind == 0 ? WL_DP_SIMD : WL_DP_SPMD;
     if (m->arch == WL_DP_SIMD)
         return get_time(sec, "send_setup", TRUE, &m->send_setup, err) &&
                get_time(sec, "send_slice", TRUE, &m->send_slice, err) &&
-               get_time(sec, "send_vp", FALSE, &m->send_vp, err);
+               get_time(sec, "send_vp", FALSE, &m->send_vp, err) &&
+               get_time(sec, "send_msg", FALSE, &m->send_msg, err);
     return spmd_params(sec, m, err);
 }
 

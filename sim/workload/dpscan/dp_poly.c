@@ -160,20 +160,37 @@ void wl_dp_polys_free(WlDpPolys *p)
     g_free(p);
 }
 
+/* The polygon's vertical extent. */
+static void y_range(const WlDpPolys *p, uint64_t i, double *lo, double *hi)
+{
+    *lo = INFINITY, *hi = -INFINITY;
+    for (uint32_t v = p->start[i]; v < p->start[i + 1]; v++)
+        *lo = MIN(*lo, p->y[v]), *hi = MAX(*hi, p->y[v]);
+}
+
 uint32_t wl_dp_poly_rows(const WlDpPolys *p, uint64_t i, int32_t *y0)
 {
     *y0 = 0;
+    double lo, hi;
     if (!p->ok[i])
         return 0;
-    double lo = INFINITY, hi = -INFINITY;
-    for (uint32_t v = p->start[i]; v < p->start[i + 1]; v++)
-        lo = MIN(lo, p->y[v]), hi = MAX(hi, p->y[v]);
-    /* Rows whose centre y + 0.5 lies in [lo, hi). */
-    double first = ceil(lo - 0.5), end = ceil(hi - 0.5);
-    if (end <= first || first < -1e9 || end > 1e9)
-        return 0;
+    y_range(p, i, &lo, &hi);
+    if (!(hi > lo))
+        return 0; /* no area: no two crossings on any line */
+    /* Every row the polygon touches, end rows included. */
+    double first = floor(lo), last = floor(hi);
     *y0 = (int32_t)first;
-    return (uint32_t)(end - first);
+    return (uint32_t)(last - first) + 1;
+}
+
+/* The line row y is sampled on: its centre, moved inside the polygon's
+ * extent when the polygon starts or ends within the row. */
+static double sample_line(const WlDpPolys *p, uint64_t i, int32_t y)
+{
+    double lo, hi;
+    y_range(p, i, &lo, &hi);
+    double d = (hi - lo) * 1e-6;
+    return CLAMP(y + 0.5, lo + d, hi - d);
 }
 
 typedef struct {
@@ -183,7 +200,7 @@ typedef struct {
 /* Crossings of row y's centre with the polygon's edges, sorted. */
 static guint crossings(const WlDpPolys *p, uint64_t i, int32_t y, Cross *c)
 {
-    double yc = y + 0.5;
+    double yc = sample_line(p, i, y);
     uint32_t s = p->start[i], k = wl_dp_poly_len(p, i);
     guint n = 0;
     for (uint32_t e = 0; e < k; e++) {
@@ -212,9 +229,7 @@ guint wl_dp_poly_spans(const WlDpPolys *p, uint64_t i, int32_t y,
     Cross c[WL_DP_MAX_VERTS];
     guint n = crossings(p, i, y, c), m = 0;
     for (guint k = 0; k + 1 < n; k += 2) {
-        double first = ceil(c[k].x - 0.5), end = ceil(c[k + 1].x - 0.5);
-        if (end <= first)
-            continue;
+        double first = floor(c[k].x), end = floor(c[k + 1].x) + 1;
         out[m++] = (WlDpSpan){.xl = c[k].x,
                               .xr = c[k + 1].x,
                               .zl = c[k].z,

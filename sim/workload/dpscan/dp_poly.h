@@ -13,14 +13,22 @@
  * clipping is against the viewport only, after scan conversion (§4).
  *
  * The pixel rule (what both renderers must agree on):
- *   - scan line y samples the row's centre y + 0.5; an edge (a, b)
- *     crosses it iff min(ya, yb) <= y + 0.5 < max(ya, yb) (half-open,
- *     so a vertex on the line counts once);
+ *   - a polygon is scan converted on every row it touches, from
+ *     floor(ymin) to floor(ymax) (seed 004: each polygon is processed on
+ *     its scan lines, "there must be at least two intersections"); row
+ *     y is sampled on the line y + 0.5, moved just inside the polygon's
+ *     extent in its first and last row, so even a polygon smaller than
+ *     a pixel has its two crossings; an edge (a, b) crosses the line iff
+ *     min(ya, yb) <= line < max(ya, yb) (half-open: a vertex on the line
+ *     counts once);
  *   - the crossings are sorted by x and paired first-second,
  *     third-fourth ... (the even-odd rule, Foley et al. §3.6): any
  *     polygon, convex or not, self-overlapping or not;
- *   - a pair (xl, xr) covers the pixels whose centre x + 0.5 lies in
- *     [xl, xr); z and value are linear along the pair;
+ *   - a pair (xl, xr) covers pixels floor(xl) .. floor(xr), both ends
+ *     included (so every pair gives a pixel); z and value are linear
+ *     along the pair, sampled at pixel centres and clamped to it.
+ *     ASSUMPTION: the paper prints no rounding rule; inclusive ends are
+ *     what an integer loop over each segment's end pixels visits;
  *   - lines (wireframe, edges, points): pixel k of an edge is the
  *     rounded point k / n of the way, n = the larger pixel extent.
  *

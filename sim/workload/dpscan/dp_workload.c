@@ -42,7 +42,7 @@ static void *dp_parse(const CfgNode *sec, GError **err)
     p->procs = 16384;
     p->width = 1280;
     p->height = 1024;
-    p->ro.buffer_factor = 1.0;
+    p->ro.buffer_factor = 0.25; /* configs/papers/ortega93/setup.yaml */
     p->ro.ops = wl_dp_ops_defaults();
     if (!cfg_get_str(sec, "model", FALSE, &p->model, err) ||
         !cfg_get_count(sec, "processors", FALSE, 1, G_MAXUINT32, &p->procs,

@@ -6,13 +6,19 @@
  *     processors: 16384       # partition: lanes (SIMD) or nodes (SPMD)
  *     width: 1280
  *     height: 1024
- *     buffer_factor: 1.0      # segment buffer / polygons
+ *     buffer_factor: 0.25     # segment buffer slots / polygons
+ *     mode: gouraud           # flat | gouraud | wireframe | hidden_line
+ *                             # | contour | points | lines (seed 004 §5)
+ *     palette: [...]          # optional: 15 colours, [r, g, b] in 0..1
+ *                             # or "#rrggbb" (dp_color.h)
  *   scene: {...}              # sim/scene/scene_cfg.h
  *
- * Metrics per run (mean over frames): time per phase (transform_s,
- * scan_s, pixel_s, router_s, display_s), polygons_per_s, steps,
- * scan_iters, pixel_iters, flushes, pixels, collisions, messages and
- * comm bytes.  O(spans + segments) per frame.
+ * With `pgsim run --out DIR` each frame's image is written as
+ * DIR/dpscan.png (frame 0) or DIR/dpscan_NNNN.png, through the 8-bit
+ * colour table of §5.  Metrics per run (mean over frames): time per phase
+ * (transform_s, scan_s, pixel_s, router_s, display_s), polygons_per_s,
+ * steps, scan_iters, pixel_iters, flushes, segments, pixels, collisions,
+ * messages, max_load.  O(render) per frame (dp_render.h).
  */
 #ifndef PGSIM_WORKLOAD_DPSCAN_DP_WORKLOAD_H
 #define PGSIM_WORKLOAD_DPSCAN_DP_WORKLOAD_H

@@ -45,13 +45,16 @@ static void test_simd_costs(void **state)
     assert_int_equal(wl_dp_step_cost(&m, 10, 3, &k), 190);
     /* Scan: 100 + 3 * 20. */
     assert_int_equal(wl_dp_scan_cost(&m, 10, &k), 160);
-    /* Two arrays, load 5 from 10 elements (3 slices, 2 messages: 2
-     * slices hold one): 2 * (100 + 50 + 2 * 1 + 5 * 7). */
-    assert_int_equal(wl_dp_send_cost(&m, 2, 10, 2, 5, &k), 374);
+    /* Two arrays, load 5 from 10 elements (every one of the 3 VP slices
+     * goes through the router; 2 messages on 4 lanes: 1 per processor
+     * on average): 2 * (100 + 50 + 3 * 1 + 1 * 2 + 5 * 7). */
+    m.send_msg = 2;
+    assert_int_equal(wl_dp_send_cost(&m, 2, 10, 2, 5, &k), 380);
     assert_int_equal(wl_dp_send_cost(&m, 2, 10, 0, 0, &k), 0);
     assert_true(k.op_slices == 9.0 && k.steps == 4.0);
     assert_true(k.scan_slices == 3.0 && k.sends == 2.0);
-    assert_true(k.slices == 10.0 && k.vp_slices == 4.0);
+    assert_true(k.slices == 10.0 && k.vp_slices == 6.0);
+    assert_true(k.msg_slices == 2.0);
 }
 
 static void test_spmd_costs(void **state)
@@ -144,6 +147,14 @@ static void test_array_send_combiners(void **state)
     SimTime before = wl_dp_vm_target(vm, 1)->total;
     wl_dp_send(vm, &s);
     assert_int_equal(wl_dp_vm_target(vm, 1)->total - before, 100 + 50 + 7);
+    wl_dp_vm_free(vm);
+    /* Two processors per router node: processors 0 and 1 (elements 0, 1)
+     * share a node, which now receives 2 of the spread messages. */
+    ms[1].router_procs = 2;
+    vm = wl_dp_vm_new(ms, 2, 4, 2);
+    wl_dp_send(vm, &s);
+    assert_int_equal(wl_dp_vm_target(vm, 1)->max_load, 2);
+    assert_int_equal(wl_dp_vm_target(vm, 0)->max_load, 2);
     wl_dp_vm_free(vm);
 }
 
