@@ -41,12 +41,17 @@
 #include "sim/workload/workload.h"
 #include <string.h>
 
+/* Edit kinds a frame may carry (seed 001 §3), in the order they run. */
+enum { ED_MODIFY, ED_APPEND, ED_INSERT, ED_DELETE, ED_UNPOST, ED_POST, ED_N };
+static const char *const edit_names[ED_N] = {"modify", "append", "insert",
+                                             "delete", "unpost", "post"};
+
 typedef struct {
     int algo;
     int64_t gps; /* 0: the machine's count */
     ScenePphigsSpec spec;
     WlPphigsSetup setup;
-    int64_t edits;
+    uint64_t edits[ED_N]; /* per frame, of each kind */
     double edit_angle;
     gboolean rebalance;
     WlPphigsRebalParams rb;
@@ -87,6 +92,33 @@ static gboolean parse_files(const CfgNode *sec, Params *p, GError **err)
            wl_pphigs_setup_load(fr, &p->setup, err);
 }
 
+/* edits_per_frame (matrix modifies, the older key) or edits: {kind: n}. */
+static gboolean parse_edits(const CfgNode *sec, Params *p, GError **err)
+{
+    int64_t modifies = 0;
+    const CfgNode *e = NULL;
+    if (!cfg_get_int(sec, "edits_per_frame", FALSE, 0, 1000000, &modifies,
+                     err) ||
+        !cfg_get_map(sec, "edits", FALSE,
+                     "a map {modify, append, insert, delete, unpost, post} of counts",
+                     &e, err))
+        return FALSE;
+    p->edits[ED_MODIFY] = (uint64_t)modifies;
+    if (!e)
+        return TRUE;
+    if (cfg_get(sec, "edits_per_frame") && cfg_get(e, "modify")) {
+        cfg_error(err, cfg_get(e, "modify"),
+                  "both edits.modify and edits_per_frame",
+                  "one of them (edits_per_frame is edits.modify)");
+        return FALSE;
+    }
+    for (int k = 0; k < ED_N; k++)
+        if (!cfg_get_count(e, edit_names[k], FALSE, 0, 1000000, &p->edits[k],
+                           err))
+            return FALSE;
+    return cfg_check_unused(e, err);
+}
+
 static void *parse(const CfgNode *sec, GError **err)
 {
     static const char *const algos[] = {"simple", "complex", NULL};
@@ -96,8 +128,7 @@ static void *parse(const CfgNode *sec, GError **err)
     p->rb = (WlPphigsRebalParams){0.10, 3, 0.5, 16, 1};
     gboolean ok = cfg_get_enum(sec, "algorithm", FALSE, algos, &p->algo, err) &&
                   cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
-                  cfg_get_int(sec, "edits_per_frame", FALSE, 0, 1000000,
-                              &p->edits, err) &&
+                  parse_edits(sec, p, err) &&
                   cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                                  &p->edit_angle, err) &&
                   parse_rebalance(sec, p, err) && parse_files(sec, p, err);
@@ -162,7 +193,8 @@ typedef struct {
     WlPphigsRebal *rb;
     SimRng *rng;
     guint ngp;
-    uint64_t edits, moves, commands, host_elems, exprs;
+    uint64_t edits[ED_N], moves, commands, host_elems, exprs;
+    GArray *unposted; /* guint structure ids, unposted by edits */
     gboolean image_ok; /* the last frame equals the serial render */
     uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
     double imbalance;
@@ -186,6 +218,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
     rb.seed = ctx->seed;
     r->rb = r->p->rebalance ? wl_pphigs_rebal_new(&rb) : NULL;
     r->rng = sim_entity_rng(ctx->eng, sim_entity_add(ctx->eng, "host"));
+    r->unposted = g_array_new(FALSE, FALSE, sizeof(guint));
     return TRUE;
 }
 
@@ -195,31 +228,137 @@ static void run_clear(Run *r)
     wl_pphigs_frame_free(r->frame);
     mach_free(r->m);
     wl_pphigs_dist_free(r->d);
+    if (r->unposted)
+        g_array_unref(r->unposted);
     if (r->db.db)
         scene_pphigs_db_clear(&r->db);
 }
 
-/* One modify of a random matrix element of the host list (§3.1). */
-static void edit_one(Run *r)
+/* ---- edits (seed 001 §3) --------------------------------------------- */
+
+typedef gboolean (*ElemPred)(const SceneElem *e);
+
+static gboolean is_matrix(const SceneElem *e)
+{
+    return e->kind == SCENE_EL_MATRIX;
+}
+
+static gboolean is_prim(const SceneElem *e)
+{
+    return e->kind <= SCENE_EL_POLYGON2D;
+}
+
+/* A random element of the host list satisfying pred: FALSE if none. */
+static gboolean pick(Run *r, ElemPred pred, guint *sid, guint *pos)
 {
     const SceneDb *h = wl_pphigs_dist_host(r->d);
     GArray *at = g_array_new(FALSE, FALSE, sizeof(guint) * 2);
     for (guint s = 0; s < scene_db_struct_count(h); s++)
         for (guint i = 0; i < scene_db_len(h, s); i++)
-            if (scene_db_elem(h, s, i)->kind == SCENE_EL_MATRIX) {
+            if (pred(scene_db_elem(h, s, i))) {
                 guint sp[2] = {s, i};
                 g_array_append_val(at, sp);
             }
-    if (at->len) {
+    gboolean any = at->len > 0;
+    if (any) {
         guint *sp = (guint *)at->data + 2 * sim_rng_below(r->rng, at->len);
-        SceneElem e = *scene_db_elem(h, sp[0], sp[1]);
-        double a = r->p->edit_angle * G_PI / 180;
-        e.matrix = mat4_mul(e.matrix, mat4_rotate(vec3(0, 1, 0), a));
-        gboolean ok = wl_pphigs_dist_modify(r->d, sp[0], sp[1], &e, NULL);
-        g_assert(ok);
-        r->edits++;
+        *sid = sp[0], *pos = sp[1];
     }
     g_array_unref(at);
+    return any;
+}
+
+/* A modify of a random matrix element (§3.1: rotate it). */
+static gboolean edit_modify(Run *r)
+{
+    guint sid, pos;
+    if (!pick(r, is_matrix, &sid, &pos))
+        return FALSE;
+    SceneElem e = *scene_db_elem(wl_pphigs_dist_host(r->d), sid, pos);
+    double a = r->p->edit_angle * G_PI / 180;
+    e.matrix = mat4_mul(e.matrix, mat4_rotate(vec3(0, 1, 0), a));
+    gboolean ok = wl_pphigs_dist_modify(r->d, sid, pos, &e, NULL);
+    g_assert(ok);
+    return TRUE;
+}
+
+/* A copy of a random primitive, appended to its structure or inserted
+ * at a random position of it (§3.2). */
+static gboolean edit_add(Run *r, gboolean append)
+{
+    guint sid, pos;
+    if (!pick(r, is_prim, &sid, &pos))
+        return FALSE;
+    const SceneDb *h = wl_pphigs_dist_host(r->d);
+    SceneElem e = *scene_db_elem(h, sid, pos);
+    e.verts = g_memdup2(e.verts, e.nverts * sizeof *e.verts);
+    guint at = sim_rng_below(r->rng, scene_db_len(h, sid) + 1);
+    gboolean ok = append ? wl_pphigs_dist_append(r->d, sid, &e, NULL)
+                         : wl_pphigs_dist_insert(r->d, sid, at, &e, NULL);
+    g_assert(ok);
+    g_free(e.verts);
+    return TRUE;
+}
+
+static gboolean edit_delete(Run *r)
+{
+    guint sid, pos;
+    if (!pick(r, is_prim, &sid, &pos))
+        return FALSE;
+    wl_pphigs_dist_delete(r->d, sid, pos);
+    return TRUE;
+}
+
+/* Unposts a random posted structure; post re-posts the one unposted
+ * last (§3.3: posting and unposting whole structures). */
+static gboolean edit_post(Run *r, gboolean post)
+{
+    const SceneDb *h = wl_pphigs_dist_host(r->d);
+    if (post) {
+        if (!r->unposted->len)
+            return FALSE;
+        guint sid = g_array_index(r->unposted, guint, r->unposted->len - 1);
+        g_array_set_size(r->unposted, r->unposted->len - 1);
+        wl_pphigs_dist_post(r->d, sid);
+        return TRUE;
+    }
+    guint n = scene_db_posted_count(h);
+    if (!n)
+        return FALSE;
+    guint sid = scene_db_posted_at(h, sim_rng_below(r->rng, n));
+    wl_pphigs_dist_unpost(r->d, sid);
+    g_array_append_val(r->unposted, sid);
+    return TRUE;
+}
+
+static gboolean edit_kind(Run *r, int kind)
+{
+    switch (kind) {
+    case ED_MODIFY:
+        return edit_modify(r);
+    case ED_APPEND:
+    case ED_INSERT:
+        return edit_add(r, kind == ED_APPEND);
+    case ED_DELETE:
+        return edit_delete(r);
+    default:
+        return edit_post(r, kind == ED_POST);
+    }
+}
+
+/* The frame's edits, kind by kind; structural ones end with the
+ * distribution's second step and the ODP deltas (§3.2, §4). */
+static void edit_frame(Run *r)
+{
+    gboolean structural = FALSE;
+    for (int k = 0; k < ED_N; k++)
+        for (uint64_t i = 0; i < r->p->edits[k]; i++)
+            if (edit_kind(r, k)) {
+                r->edits[k]++;
+                structural = structural || k != ED_MODIFY;
+            }
+    if (structural)
+        wl_pphigs_dist_finish(r->d);
 }
 
 /* Elements sent to each GP since the last frame (edits, moves). */
@@ -234,8 +373,7 @@ static void host_elems(Run *r, uint64_t *out)
 
 static gboolean one_frame(Run *r, SimResult *out, GError **err)
 {
-    for (int64_t k = 0; k < r->p->edits; k++)
-        edit_one(r);
+    edit_frame(r);
     uint64_t elems[64];
     host_elems(r, elems);
     WlPphigsFrameStats st;
@@ -260,6 +398,24 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     return TRUE;
 }
 
+/* Edits of each kind (the structural kinds only when asked for, so runs
+ * without them report as before) and the host's edit time per frame. */
+static void fill_edits(Run *r, const WlContext *ctx, SimResult *out)
+{
+    double n = MAX(out->frame_times->len, 1);
+    for (int k = ED_APPEND; k < ED_N; k++)
+        if (r->p->edits[k]) {
+            char *name = g_strdup_printf("edits_%s", edit_names[k]);
+            sim_result_set_metric(out, name, (double)r->edits[k], "");
+            g_free(name);
+        }
+    MachProc *host = mach_proc(r->m, "host", 0);
+    unsigned ph = sim_engine_phase(ctx->eng, "edit");
+    sim_result_set_metric(out, "host_edit_ms_per_frame",
+                          sim_time_to_us(mach_proc_busy_phase(host, ph)) / 1e3 / n,
+                          "ms");
+}
+
 static void fill(Run *r, const WlContext *ctx, SimResult *out)
 {
     SimTime now = sim_now(ctx->eng);
@@ -278,7 +434,7 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "commands_per_frame", r->commands / n, "");
     sim_result_set_metric(out, "gps", r->ngp, "");
     sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance, "%");
-    sim_result_set_metric(out, "edits", (double)r->edits, "");
+    sim_result_set_metric(out, "edits", (double)r->edits[ED_MODIFY], "");
     sim_result_set_metric(out, "host_elements_per_frame",
                           (double)r->host_elems / n, "");
     sim_result_set_metric(out, "rebalance_moves", (double)r->moves, "");
@@ -289,6 +445,7 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "speedup", r->paper.speedup, "");
     sim_result_set_metric(out, "expressions_per_frame", r->exprs / n, "");
     sim_result_set_metric(out, "image_matches_serial", r->image_ok, "");
+    fill_edits(r, ctx, out);
 }
 
 /* The last frame against a serial render of the host's list, and the

@@ -198,7 +198,7 @@ static void run_flock(const char *const *sets, Out *o)
     assert_true(cfg_check_unused(cfg_get(root, "workload"), NULL));
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
-    assert_int_equal(r->metrics->len, 15);
+    assert_int_equal(r->metrics->len, 16);
     assert_true(((SimMetric *)g_ptr_array_index(r->metrics, 14))->value == 1);
     for (guint i = 0; i < 15; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
@@ -294,6 +294,42 @@ static void test_machine_overrides(void **st)
     g_clear_error(&err);
 }
 
+/* Every edit kind from the config (seed 001 §3): counted, its elements
+ * and host time reported, and the frame still equals the serial render
+ * of the edited list; an edit kind that cannot run (post with nothing
+ * unposted) is not counted; both edits.modify and edits_per_frame is a
+ * located error. */
+static void test_edit_kinds(void **st)
+{
+    (void)st;
+    const char *none[] = {"run.frames=3", "workload.edits_per_frame=0", NULL};
+    SimResult *a = app_run(none, NULL);
+    assert_non_null(a);
+    const char *all[] = {"run.frames=3", "workload.edits_per_frame=0",
+                         "workload.edits={append: 2, insert: 2, delete: 1, "
+                         "unpost: 1, post: 2}",
+                         "workload.database=space_station_panel", NULL};
+    SimResult *b = app_run(all, NULL);
+    assert_non_null(b);
+    assert_true(metric(b, "edits_append") == 6);
+    assert_true(metric(b, "edits_insert") == 6);
+    assert_true(metric(b, "edits_delete") == 3);
+    assert_true(metric(b, "edits_unpost") == 3);
+    assert_true(metric(b, "edits_post") == 3); /* 1 of 2 each frame */
+    assert_true(metric(b, "image_matches_serial") == 1);
+    assert_true(metric(b, "host_edit_ms_per_frame") > 0);
+    assert_true(metric(a, "host_edit_ms_per_frame") == 0);
+    assert_true(metric(b, "host_elements_per_frame") >
+                metric(a, "host_elements_per_frame"));
+    sim_result_free(a);
+    sim_result_free(b);
+    const char *both[] = {"workload.edits={modify: 1}", NULL};
+    GError *err = NULL;
+    assert_null(app_run(both, &err));
+    assert_non_null(strstr(err->message, "found both edits.modify"));
+    g_clear_error(&err);
+}
+
 /* `pgsim run` of one fresh frame reports the reproduction's cells. */
 static void test_run_matches_table(void **st)
 {
@@ -333,6 +369,7 @@ int main(void)
         cmocka_unit_test(test_frames_equal_analytic),
         cmocka_unit_test(test_workload_runs),
         cmocka_unit_test(test_machine_overrides),
+        cmocka_unit_test(test_edit_kinds),
         cmocka_unit_test(test_run_matches_table),
     };
     return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);
