@@ -35,6 +35,27 @@ static void db_rows(const ScenePphigsDb *db, const char *row, GPtrArray *rows)
                   db->db, scene_camera_view_proj(&db->camera)));
 }
 
+/* pgsim's own columns: §2.1's distribute-by-structure, which the paper
+ * describes and rejects but does not measure (no published cells). */
+static gboolean by_structure_rows(const ScenePphigsDb *db, const char *row,
+                                  guint p, const WlPphigsRig *rig,
+                                  GPtrArray *rows, GError **err)
+{
+    WlPphigsMetrics m;
+    if (!wl_pphigs_run_algo(db, p, WL_PPHIGS_BY_STRUCTURE, rig, &m, err))
+        return FALSE;
+    static const char *const what[] = {"eff", "util", "speedup"};
+    double v[] = {100 * m.efficiency, 100 * m.utilisation, m.speedup};
+    for (int i = 0; i < 3; i++) {
+        char col[40];
+        g_snprintf(col, sizeof col, "by_structure_%s_%u", what[i], p);
+        g_ptr_array_add(rows, rp_row_new("1", row, col, v[i],
+                                         "pgsim's own: §2.1, not measured "
+                                         "in the paper"));
+    }
+    return TRUE;
+}
+
 static gboolean cell_rows(const ScenePphigsDb *db, const char *row,
                           const guint *gp_counts, guint n_gp,
                           const WlPphigsRig *rig, GPtrArray *rows, GError **err)
@@ -53,6 +74,8 @@ static gboolean cell_rows(const ScenePphigsDb *db, const char *row,
         add(rows, "1", row, col, 100 * x.utilisation);
         g_snprintf(col, sizeof col, "speedup_%u", p);
         add(rows, "1", row, col, x.speedup);
+        if (!by_structure_rows(db, row, p, rig, rows, err))
+            return FALSE;
     }
     return TRUE;
 }

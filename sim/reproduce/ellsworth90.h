@@ -4,7 +4,9 @@
  * Rows (table "1"): one per database; columns simple_eff_P,
  * complex_eff_P, util_P, speedup_P for each P (efficiency and
  * utilisation in percent, of the complex algorithm for util and
- * speedup).  Table "db": the generated databases' depth, structures,
+ * speedup); by_structure_eff_P, by_structure_util_P and
+ * by_structure_speedup_P are pgsim's own (§2.1's rejected
+ * distribute-by-structure; the paper prints no such cells).  Table "db": the generated databases' depth, structures,
  * polys_per_structure, poly_attr_ratio, offscreen_pct.
  */
 #ifndef PGSIM_REPRODUCE_ELLSWORTH90_H

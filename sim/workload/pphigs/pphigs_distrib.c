@@ -376,6 +376,112 @@ static void refresh_deltas(WlPphigsDist *d)
 
 /* ---- lifecycle -------------------------------------------------------- */
 
+/* ---- distribute-by-structure (§2.1) ----------------------------------- */
+
+/* Nominal weight of a structure with everything it executes (max-set). */
+static double subtree_weight(const WlPphigsDist *d, guint sid, double *memo)
+{
+    if (memo[sid] >= 0)
+        return memo[sid];
+    double w = 0;
+    for (guint i = 0; i < scene_db_len(d->host, sid); i++) {
+        const SceneElem *e = hel(d, sid, i);
+        w += wl_pphigs_dist_weight(d, e);
+        if (e->kind == SCENE_EL_EXECUTE)
+            w += subtree_weight(d, e->child, memo);
+    }
+    return memo[sid] = w;
+}
+
+/* A structure and everything it executes, whole, to GP g. */
+static void put_whole(WlPphigsDist *d, guint sid, guint g)
+{
+    for (guint i = 0; i < scene_db_len(d->host, sid); i++) {
+        gp_put(d, sid, i, g);
+        if (hel(d, sid, i)->kind == SCENE_EL_EXECUTE)
+            put_whole(d, hel(d, sid, i)->child, g);
+    }
+}
+
+static guint least_global(const WlPphigsDist *d)
+{
+    guint best = 0;
+    for (guint g = 1; g < d->ngp; g++)
+        if (d->gload[g] < d->gload[best] - 1e-12)
+            best = g;
+    return best;
+}
+
+typedef struct {
+    double *memo;  /* subtree weights, -1 unknown */
+    guint *uses;   /* executes of each structure in the host list */
+    double share;  /* the whole list's weight / GPs */
+} ByStruct;
+
+/* Attributes to every GP; each primitive and each structure instance
+ * whole to the least-loaded GP; a structure instanced once whose weight
+ * exceeds one GP's share is broken up (§2.1: "the structures can be
+ * broken up"): its execute to every GP, its elements dealt in turn. */
+static void bystruct_walk(WlPphigsDist *d, guint sid, ByStruct *b)
+{
+    for (guint i = 0; i < scene_db_len(d->host, sid); i++) {
+        const SceneElem *e = hel(d, sid, i);
+        if (scene_elem_is_attr(e->kind)) {
+            gp_put_all(d, sid, i);
+            continue;
+        }
+        double w = wl_pphigs_dist_weight(d, e);
+        gboolean exec = e->kind == SCENE_EL_EXECUTE;
+        if (exec)
+            w += subtree_weight(d, e->child, b->memo);
+        if (exec && w > b->share && b->uses[e->child] == 1 &&
+            !scene_db_is_posted(d->host, e->child)) {
+            gp_put_all(d, sid, i);
+            bystruct_walk(d, e->child, b);
+            continue;
+        }
+        guint g = least_global(d);
+        add_load(d, sid, g, w);
+        gp_put(d, sid, i, g);
+        if (exec)
+            put_whole(d, e->child, g);
+    }
+}
+
+/* FALSE when a posted structure is also executed: its posted instance
+ * and the others would share one portion per GP, so it cannot be dealt
+ * by instance. */
+static gboolean bystruct_possible(const WlPphigsDist *d, const guint *uses)
+{
+    for (guint i = 0; i < scene_db_posted_count(d->host); i++)
+        if (uses[scene_db_posted_at(d->host, i)])
+            return FALSE;
+    return TRUE;
+}
+
+/* Distributes by structure; FALSE (nothing dealt) when the list cannot
+ * be, see bystruct_possible(). */
+static gboolean distribute_by_structure(WlPphigsDist *d)
+{
+    guint n = scene_db_struct_count(d->host);
+    ByStruct b = {g_new(double, n), g_new0(guint, n), 0};
+    for (guint s = 0; s < n; s++) {
+        b.memo[s] = -1;
+        for (guint i = 0; i < scene_db_len(d->host, s); i++)
+            if (hel(d, s, i)->kind == SCENE_EL_EXECUTE)
+                b.uses[hel(d, s, i)->child]++;
+    }
+    gboolean ok = bystruct_possible(d, b.uses);
+    for (guint i = 0; i < scene_db_posted_count(d->host); i++)
+        b.share += subtree_weight(d, scene_db_posted_at(d->host, i), b.memo);
+    b.share /= d->ngp;
+    for (guint i = 0; ok && i < scene_db_posted_count(d->host); i++)
+        bystruct_walk(d, scene_db_posted_at(d->host, i), &b);
+    g_free(b.memo);
+    g_free(b.uses);
+    return ok;
+}
+
 static StructMeta *meta_new(guint ngp, guint len)
 {
     StructMeta *m = g_new0(StructMeta, 1);
@@ -434,8 +540,11 @@ WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
     }
     for (guint s = 0; s < n; s++)
         g_ptr_array_add(d->meta, meta_new(ngp, scene_db_len(d->host, s)));
-    for (guint s = 0; s < n; s++)
-        step2(d, s, 0, (gint)scene_db_len(d->host, s) - 1);
+    if (algo == WL_PPHIGS_BY_STRUCTURE && !distribute_by_structure(d))
+        d->algo = WL_PPHIGS_SIMPLE; /* see bystruct_possible() */
+    if (d->algo != WL_PPHIGS_BY_STRUCTURE)
+        for (guint s = 0; s < n; s++)
+            step2(d, s, 0, (gint)scene_db_len(d->host, s) - 1);
     refresh_deltas(d);
     return d;
 }
@@ -451,6 +560,11 @@ void wl_pphigs_dist_free(WlPphigsDist *d)
     g_ptr_array_unref(d->meta);
     g_free(d->gload);
     g_free(d);
+}
+
+WlPphigsAlgo wl_pphigs_dist_algo(const WlPphigsDist *d)
+{
+    return d->algo;
 }
 
 guint wl_pphigs_dist_ngp(const WlPphigsDist *d)
@@ -510,6 +624,7 @@ static void step1_send(WlPphigsDist *d, guint sid, guint pos)
 gboolean wl_pphigs_dist_insert(WlPphigsDist *d, guint sid, guint pos,
                                const SceneElem *e, GError **err)
 {
+    g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     SceneElem c = *e;
     c.tag = d->next_id;
     if (!scene_db_insert(d->host, sid, pos, &c, err))
@@ -531,6 +646,7 @@ gboolean wl_pphigs_dist_insert(WlPphigsDist *d, guint sid, guint pos,
 
 void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos)
 {
+    g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     const SceneElem *e = hel(d, sid, pos);
     uint64_t msk = *mask_at(d, sid, pos);
     if (is_dealt(d, e) && !is_prim_struct(d, sid) && msk)
@@ -551,6 +667,7 @@ void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos)
 gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid, const SceneElem *e,
                                GError **err)
 {
+    g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     if (!wl_pphigs_dist_insert(d, sid, scene_db_len(d->host, sid), e, err))
         return FALSE;
     wl_pphigs_dist_finish(d);
@@ -560,6 +677,7 @@ gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid, const SceneElem *e,
 gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
                                const SceneElem *e, GError **err)
 {
+    g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     const SceneElem *old = hel(d, sid, pos);
     if (old->kind == e->kind && is_dealt(d, old) != is_dealt(d, e)) {
         /* an execute changing between ordinary and primitive structure */
@@ -609,6 +727,7 @@ void wl_pphigs_dist_finish(WlPphigsDist *d)
 
 void wl_pphigs_dist_post(WlPphigsDist *d, guint sid)
 {
+    g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     scene_db_post(d->host, sid);
     for (guint g = 0; g < d->ngp; g++)
         scene_db_post(d->gp[g], sid);
@@ -632,6 +751,7 @@ gint wl_pphigs_dist_owner(const WlPphigsDist *d, guint sid, guint pos)
 
 gboolean wl_pphigs_dist_move(WlPphigsDist *d, guint sid, guint pos, guint to)
 {
+    g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     gint from = wl_pphigs_dist_owner(d, sid, pos);
     if (from == NONE || (guint)from == to)
         return FALSE;

@@ -16,6 +16,17 @@
  *           structures broadcast whole, each instance dealt to one GP
  *           like a primitive (§2.3.3).
  *
+ *   BY_STRUCTURE (§2.1, rejected by the paper; pgsim's own row) every
+ *           attribute to every GP; each primitive and each structure
+ *           instance whole to the least-loaded GP (nominal weight of the
+ *           instance's subtree); a structure instanced once and heavier
+ *           than one GP's share is broken up (its execute to every GP,
+ *           its elements dealt the same way).  A list whose posted
+ *           structures are also executed elsewhere cannot be dealt by
+ *           instance (they share one portion per GP) and is dealt by
+ *           SIMPLE instead (wl_pphigs_dist_algo() says which).  No
+ *           editing or moves: §3's procedure is the by-primitive one.
+ *
  * Invariant (checked by the tests): at each of its primitives and at
  * each ordinary execute, every GP holds the host's current attribute
  * elements, so the union of the GPs' traversals is the host's traversal,
@@ -35,7 +46,11 @@
 
 #include "sim/scene/structdb.h"
 
-typedef enum { WL_PPHIGS_SIMPLE, WL_PPHIGS_COMPLEX } WlPphigsAlgo;
+typedef enum {
+    WL_PPHIGS_SIMPLE,
+    WL_PPHIGS_COMPLEX,
+    WL_PPHIGS_BY_STRUCTURE /* §2.1, the paper's rejected alternative */
+} WlPphigsAlgo;
 
 /* Nominal weights (§2.3.4), per element kind; a polygon's weight is
  * w[kind] + w_vertex * nverts.  cluster is the clustering factor c. */
@@ -64,6 +79,8 @@ WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
 void wl_pphigs_dist_free(WlPphigsDist *d);
 
 guint wl_pphigs_dist_ngp(const WlPphigsDist *d);
+/* The algorithm the list was dealt with. */
+WlPphigsAlgo wl_pphigs_dist_algo(const WlPphigsDist *d);
 /* Borrowed views; never edit them directly. */
 const SceneDb *wl_pphigs_dist_host(const WlPphigsDist *d);
 const SceneDb *wl_pphigs_dist_gp(const WlPphigsDist *d, guint g);

@@ -79,6 +79,15 @@ gboolean wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
            run_algo(db, ngp, WL_PPHIGS_COMPLEX, rig, t1, complex, err);
 }
 
+gboolean wl_pphigs_run_algo(const ScenePphigsDb *db, guint ngp,
+                            WlPphigsAlgo a, const WlPphigsRig *rig,
+                            WlPphigsMetrics *out, GError **err)
+{
+    double t1 = 0;
+    return frame_times(db, 1, WL_PPHIGS_SIMPLE, rig, &t1, err) &&
+           run_algo(db, ngp, a, rig, t1, out, err);
+}
+
 static void analytic_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
                           const WlPphigsCosts *c, double cs, WlPphigsMetrics *m)
 {

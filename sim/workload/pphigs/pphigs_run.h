@@ -31,6 +31,10 @@ MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model, guint ngp,
 gboolean wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
                           const WlPphigsRig *rig, WlPphigsMetrics *simple,
                           WlPphigsMetrics *complex, GError **err);
+/* One algorithm (any of the three) at one GP count, the same way. */
+gboolean wl_pphigs_run_algo(const ScenePphigsDb *db, guint ngp,
+                            WlPphigsAlgo a, const WlPphigsRig *rig,
+                            WlPphigsMetrics *out, GError **err);
 /* The same computed analytically (metrics.h) from a cost table: the
  * cross-check that frames add up to the traversal cost model. */
 void wl_pphigs_run_db_analytic(const ScenePphigsDb *db, guint ngp,

@@ -119,9 +119,32 @@ static gboolean parse_edits(const CfgNode *sec, Params *p, GError **err)
     return cfg_check_unused(e, err);
 }
 
+/* Distribute-by-structure has no editing procedure (§2.1 was rejected
+ * before §3 was designed): no edits, no rebalancing moves. */
+static gboolean check_by_structure(const CfgNode *sec, Params *p,
+                                   GError **err)
+{
+    if (p->algo != WL_PPHIGS_BY_STRUCTURE)
+        return TRUE;
+    uint64_t edits = 0;
+    for (int k = 0; k < ED_N; k++)
+        edits += p->edits[k];
+    const CfgNode *rb = cfg_get(sec, "rebalance");
+    if (edits || (rb && p->rebalance)) {
+        cfg_error(err, cfg_get(sec, "algorithm"),
+                  "by_structure with edits or rebalancing",
+                  "simple or complex for edits and rebalancing "
+                  "(distribute-by-structure has no editing procedure)");
+        return FALSE;
+    }
+    p->rebalance = FALSE;
+    return TRUE;
+}
+
 static void *parse(const CfgNode *sec, GError **err)
 {
-    static const char *const algos[] = {"simple", "complex", NULL};
+    static const char *const algos[] = {"simple", "complex", "by_structure",
+                                        NULL};
     Params *p = g_new0(Params, 1);
     p->algo = WL_PPHIGS_COMPLEX;
     p->rebalance = TRUE;
@@ -131,7 +154,8 @@ static void *parse(const CfgNode *sec, GError **err)
                   parse_edits(sec, p, err) &&
                   cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                                  &p->edit_angle, err) &&
-                  parse_rebalance(sec, p, err) && parse_files(sec, p, err);
+                  parse_rebalance(sec, p, err) && parse_files(sec, p, err) &&
+                  check_by_structure(sec, p, err);
     if (!ok) {
         params_free(p);
         return NULL;

@@ -181,6 +181,42 @@ static void test_complex_edits(void **st)
     run_random(WL_PPHIGS_COMPLEX);
 }
 
+/* Distribute-by-structure (§2.1): on random lists whose posted
+ * structures are not executed elsewhere, the GPs' traversals add up to
+ * the host's; whole instances go to one GP (an executed structure's
+ * primitives are all on the GPs that hold its instance); a list whose
+ * posted structure is also executed falls back to SIMPLE. */
+static void test_by_structure(void **st)
+{
+    (void)st;
+    static const guint gps[] = {1, 3, 4, 16};
+    for (guint t = 0; t < 4; t++) {
+        SimRng r;
+        sim_rng_init(&r, 7, t);
+        SceneDb *db = rnd_db(&r, 6, 40);
+        scene_db_unpost(db, 1); /* s1 may be executed by s0 */
+        WlPphigsDist *d = wl_pphigs_dist_new(db, gps[t], WL_PPHIGS_BY_STRUCTURE,
+                                             &W);
+        assert_int_equal(wl_pphigs_dist_algo(d), WL_PPHIGS_BY_STRUCTURE);
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+        scene_db_post(db, 1);
+        d = wl_pphigs_dist_new(db, gps[t], WL_PPHIGS_BY_STRUCTURE, &W);
+        gboolean executed = FALSE; /* is s1 executed anywhere? */
+        for (guint s = 0; s < 6; s++)
+            for (guint i = 0; i < scene_db_len(db, s); i++)
+                executed = executed ||
+                           (scene_db_elem(db, s, i)->kind == SCENE_EL_EXECUTE &&
+                            scene_db_elem(db, s, i)->child == 1);
+        assert_int_equal(wl_pphigs_dist_algo(d), executed
+                                                     ? WL_PPHIGS_SIMPLE
+                                                     : WL_PPHIGS_BY_STRUCTURE);
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+        scene_db_free(db);
+    }
+}
+
 /* One structure: a colour before every 4th triangle. */
 static SceneDb *long_db(guint prims)
 {
@@ -287,6 +323,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_simple_edits),
         cmocka_unit_test(test_complex_edits),
+        cmocka_unit_test(test_by_structure),
         cmocka_unit_test(test_scan_bound),
         cmocka_unit_test(test_attribute_copies),
         cmocka_unit_test(test_primitive_structure),
