@@ -174,7 +174,7 @@ static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
     gboolean ok = setup_load(&s, ctx->setup, err);
     if (ok) {
         WlPphigsRig rig = {
-            s.model, ctx->fidelity ? ctx->fidelity : "analytic", {{0}, 0}};
+            s.model, ctx->fidelity ? ctx->fidelity : "analytic", {{0}, 0, 0}};
         ok = wl_pphigs_setup_load(s.frame, &rig.setup, err) &&
              rp_ellsworth90_table1(s.specs, s.n_specs, s.gp_counts, s.n_gp,
                                    &rig, rows, err);

@@ -141,9 +141,14 @@ gboolean wl_pphigs_setup_from_cfg(const CfgNode *map, WlPphigsSetup *out,
         cfg_error(err, map, "a non-map", "a map of frame sizes");
         return FALSE;
     }
-    return frame_sizes(map, &out->frame, err) &&
-           cluster_scale(map, &out->cluster_scale, err) &&
-           cfg_check_unused(map, err);
+    uint64_t split = 0;
+    gboolean ok = frame_sizes(map, &out->frame, err) &&
+                  cluster_scale(map, &out->cluster_scale, err) &&
+                  cfg_get_count(map, "strip_split", FALSE, 0, 1u << 20, &split,
+                                err) &&
+                  cfg_check_unused(map, err);
+    out->strip_split = (guint)split;
+    return ok;
 }
 
 gboolean wl_pphigs_setup_load(const char *path, WlPphigsSetup *out,

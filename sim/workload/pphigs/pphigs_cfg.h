@@ -26,6 +26,8 @@ gboolean wl_pphigs_spec_load(const char *path, const char *name,
 typedef struct {
     WlPphigsFrameSpec frame;
     double cluster_scale; /* clustering factor c = max(1, scale / GPs) */
+    guint strip_split;    /* §2.3.2: strip pieces of at most this many
+                             triangles (0, the default: never split) */
 } WlPphigsSetup;
 
 gboolean wl_pphigs_setup_from_cfg(const CfgNode *map, WlPphigsSetup *out,

@@ -513,6 +513,38 @@ static void retag(WlPphigsDist *d)
         }
 }
 
+/* §2.3.2: strip (sid, pos) of n vertices as pieces of at most k
+ * triangles (k even), in place. */
+static void split_strip(SceneDb *db, guint sid, guint pos, guint k)
+{
+    SceneElem e = *scene_db_elem(db, sid, pos);
+    Vec3 *v = g_memdup2(e.verts, e.nverts * sizeof *v);
+    guint n = e.nverts, at = pos;
+    scene_db_delete(db, sid, pos);
+    for (guint j = 0; j + 2 < n; j += k) {
+        SceneElem piece = e;
+        piece.verts = v + j;
+        piece.nverts = MIN(k + 2, n - j);
+        gboolean ok = scene_db_insert(db, sid, at++, &piece, NULL);
+        g_assert(ok);
+    }
+    g_free(v);
+}
+
+static void split_strips(SceneDb *db, guint k)
+{
+    k += k & 1;
+    for (guint s = 0; s < scene_db_struct_count(db); s++)
+        for (guint i = 0; i < scene_db_len(db, s); i++) {
+            const SceneElem *e = scene_db_elem(db, s, i);
+            if (e->kind == SCENE_EL_TRISTRIP && e->nverts > k + 2) {
+                guint pieces = (e->nverts - 2 + k - 1) / k;
+                split_strip(db, s, i, k);
+                i += pieces - 1;
+            }
+        }
+}
+
 WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
                                  WlPphigsAlgo algo, const WlPphigsWeights *w)
 {
@@ -526,6 +558,8 @@ WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
     d->gload = g_new0(double, ngp);
     d->meta = g_ptr_array_new_with_free_func(meta_free);
     d->gp = g_new0(SceneDb *, ngp);
+    if (w->strip_split)
+        split_strips(d->host, w->strip_split);
     retag(d);
     guint n = scene_db_struct_count(d->host);
     for (guint g = 0; g < ngp; g++) {

@@ -27,6 +27,13 @@
  *           SIMPLE instead (wl_pphigs_dist_algo() says which).  No
  *           editing or moves: §3's procedure is the by-primitive one.
  *
+ * Long triangle strips (§2.3.2, "break up large primitives such as long
+ * triangle strips into smaller pieces"): with w.strip_split = k > 0 the
+ * host list's strips of more than k triangles are replaced, before
+ * dealing, by pieces of at most k triangles (k rounded up to even, so
+ * every piece keeps the strip's winding), each dealt on its own; a
+ * piece repeats the two vertices it shares with the previous one.
+ *
  * Invariant (checked by the tests): at each of its primitives and at
  * each ordinary execute, every GP holds the host's current attribute
  * elements, so the union of the GPs' traversals is the host's traversal,
@@ -58,6 +65,8 @@ typedef struct {
     double w[SCENE_EL_NKINDS];
     double w_vertex;
     double cluster;
+    guint strip_split; /* §2.3.2: strips of more triangles are split into
+                          pieces of at most this many; 0: never */
 } WlPphigsWeights;
 
 /* Host-to-GP traffic of the distribution and edits so far. */

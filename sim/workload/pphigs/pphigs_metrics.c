@@ -100,4 +100,5 @@ void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,
     w->w[SCENE_EL_EXECUTE] = sim_time_to_us(c->execute);
     w->w_vertex = sim_time_to_us(c->vertex);
     w->cluster = cluster;
+    w->strip_split = 0; /* the caller's choice (frame.yaml strip_split) */
 }

@@ -23,11 +23,12 @@ MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model, guint ngp,
 
 static WlPphigsDist *distribute(const ScenePphigsDb *db, guint ngp,
                                 WlPphigsAlgo a, const WlPphigsCosts *c,
-                                double cluster_scale)
+                                double cluster_scale, guint strip_split)
 {
     WlPphigsWeights w;
     wl_pphigs_weights_from_costs(
         c, wl_pphigs_cluster_factor(cluster_scale, ngp), &w);
+    w.strip_split = strip_split;
     return wl_pphigs_dist_new(db->db, ngp, a, &w);
 }
 
@@ -42,8 +43,9 @@ static gboolean frame_times(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
         m ? wl_pphigs_frame_new(m, &rig->setup.frame, err) : NULL;
     gboolean ok = f != NULL;
     if (ok) {
-        WlPphigsDist *d = distribute(db, ngp, a, wl_pphigs_frame_costs(f),
-                                     rig->setup.cluster_scale);
+        WlPphigsDist *d =
+            distribute(db, ngp, a, wl_pphigs_frame_costs(f),
+                       rig->setup.cluster_scale, rig->setup.strip_split);
         WlPphigsFrameStats st;
         ok = wl_pphigs_frame_run(f, d, scene_camera_view_proj(&db->camera),
                                  NULL, &st, err);
@@ -91,7 +93,7 @@ gboolean wl_pphigs_run_algo(const ScenePphigsDb *db, guint ngp,
 static void analytic_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
                           const WlPphigsCosts *c, double cs, WlPphigsMetrics *m)
 {
-    WlPphigsDist *d = distribute(db, ngp, a, c, cs);
+    WlPphigsDist *d = distribute(db, ngp, a, c, cs, 0);
     double *us = g_new(double, ngp);
     wl_pphigs_metrics(d, scene_camera_view_proj(&db->camera), c, us, m);
     g_free(us);

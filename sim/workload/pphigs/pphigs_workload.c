@@ -236,6 +236,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
     wl_pphigs_weights_from_costs(
         wl_pphigs_frame_costs(r->frame),
         wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
+    w.strip_split = r->p->setup.strip_split;
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
     memcpy(r->sent, wl_pphigs_dist_traffic(r->d)->sent_to, sizeof r->sent);
     WlPphigsRebalParams rb = r->p->rb;

@@ -127,7 +127,7 @@ static void test_bad_specs(void **st)
 static void test_frames_equal_analytic(void **st)
 {
     (void)st;
-    WlPphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0}};
+    WlPphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0, 0}};
     assert_true(
         wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
     SimEngine *eng = sim_engine_new(1);
@@ -342,7 +342,7 @@ static void test_run_matches_table(void **st)
                           NULL};
     SimResult *r = app_run(sets, NULL);
     assert_non_null(r);
-    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0}};
+    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0, 0}};
     assert_true(
         wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
     ScenePphigsSpec s;

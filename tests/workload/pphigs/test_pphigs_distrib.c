@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 
 #include "tests/scene/mesh_check.h"
 #include "sim/core/rng.h"
@@ -254,6 +255,90 @@ static void test_scan_bound(void **st)
     scene_db_free(db);
 }
 
+/* The step-back bound of §3.4 with unequal weights: triangles (weight
+ * 4 with w_vertex 1) and octagons (9), maxw/minw = 2.25;
+ * after an insert the backward scan examines at most
+ * c (maxw/minw) (n - 1) primitives plus the colours between them. */
+static void test_scan_bound_unequal(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint sid = scene_db_add_struct(db, "mixed");
+    Vec3 v[8];
+    for (int i = 0; i < 8; i++)
+        v[i] = vec3(cos(i * G_PI / 4), sin(i * G_PI / 4), 0);
+    for (guint i = 0; i < 3000; i++) {
+        SceneElem e = i % 4 == 0 ? scene_elem_color(vec3(i, 0, 0))
+                      : i % 3    ? scene_elem_prim(SCENE_EL_TRIANGLE, v, 3)
+                                 : scene_elem_prim(SCENE_EL_POLYGON, v, 8);
+        assert_true(scene_db_append(db, sid, &e, NULL));
+    }
+    scene_db_post(db, sid);
+    WlPphigsWeights w = W;
+    w.w_vertex = 1;
+    double maxw = w.w[SCENE_EL_POLYGON] + 8 * w.w_vertex;
+    double minw = w.w[SCENE_EL_TRIANGLE] + 3 * w.w_vertex;
+    assert_true(maxw / minw > 2);
+    for (guint n = 2; n <= 16; n *= 2) {
+        WlPphigsDist *d = wl_pphigs_dist_new(db, n, WL_PPHIGS_COMPLEX, &w);
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(wl_pphigs_dist_insert(d, 0, 2001, &e, NULL));
+        wl_pphigs_dist_finish(d);
+        double prims = w.cluster * (maxw / minw) * (n - 1) + 1;
+        uint64_t scan = wl_pphigs_dist_traffic(d)->last_scan;
+        assert_true(scan <= (uint64_t)(prims * 4.0 / 3.0 + 2));
+        assert_true(scan >= n - 1);
+        /* the weight ratio matters: beyond the equal-weight bound (62
+         * elements against 43 at 16 GPs) */
+        if (n == 16)
+            assert_true(scan > (w.cluster * (n - 1) + 1) * 4.0 / 3.0 + 2);
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+    }
+    scene_db_free(db);
+}
+
+/* §2.3.2: one 400-triangle strip lands on one GP unless split; split
+ * into pieces of 16 (even) triangles it spreads over the GPs, and the
+ * GPs still draw the same triangles (pieces repeat shared vertices). */
+static void test_strip_split(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint sid = scene_db_add_struct(db, "strip");
+    Vec3 v[402];
+    for (int i = 0; i < 402; i++)
+        v[i] = vec3(i / 2, i % 2, 0);
+    SceneElem e = scene_elem_prim(SCENE_EL_TRISTRIP, v, 402);
+    assert_true(scene_db_append(db, sid, &e, NULL));
+    scene_db_post(db, sid);
+    WlPphigsWeights w = W;
+    for (int split = 0; split <= 1; split++) {
+        w.strip_split = split ? 15 : 0; /* 15 rounds up to 16 */
+        WlPphigsDist *d = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &w);
+        const SceneDb *h = wl_pphigs_dist_host(d);
+        assert_int_equal(scene_db_len(h, sid), split ? 25 : 1);
+        double load[4];
+        wl_pphigs_dist_loads(d, load);
+        double mx = MAX(MAX(load[0], load[1]), MAX(load[2], load[3]));
+        double sum = load[0] + load[1] + load[2] + load[3];
+        if (split)
+            assert_true(mx < 0.3 * sum);
+        else
+            assert_true(mx == sum);
+        wl_pphigs_dist_free(d);
+    }
+    scene_db_free(db);
+}
+
+static guint count_kind(const SceneDb *db, guint sid, SceneElemKind k)
+{
+    guint n = 0;
+    for (guint i = 0; i < scene_db_len(db, sid); i++)
+        n += scene_db_elem(db, sid, i)->kind == k;
+    return n;
+}
+
 static void test_attribute_copies(void **st)
 {
     (void)st;
@@ -325,6 +410,8 @@ int main(void)
         cmocka_unit_test(test_complex_edits),
         cmocka_unit_test(test_by_structure),
         cmocka_unit_test(test_scan_bound),
+        cmocka_unit_test(test_scan_bound_unequal),
+        cmocka_unit_test(test_strip_split),
         cmocka_unit_test(test_attribute_copies),
         cmocka_unit_test(test_primitive_structure),
     };

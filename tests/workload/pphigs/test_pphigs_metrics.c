@@ -85,7 +85,7 @@ static void test_table_rows(void **st)
     s[1].kind = SCENE_PPHIGS_HUMANS;
     s[1].figures = 2, s[1].structures = 20, s[1].polygons = 200;
     s[1].levels = 5;
-    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 64}};
+    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 64, 0}};
     const guint gps[] = {4, 16};
     rig.setup.frame = (WlPphigsFrameSpec){100, 16, 16, 4, 640, 512, 128, 80};
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
