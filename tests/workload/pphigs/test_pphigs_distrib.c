@@ -331,14 +331,6 @@ static void test_strip_split(void **st)
     scene_db_free(db);
 }
 
-static guint count_kind(const SceneDb *db, guint sid, SceneElemKind k)
-{
-    guint n = 0;
-    for (guint i = 0; i < scene_db_len(db, sid); i++)
-        n += scene_db_elem(db, sid, i)->kind == k;
-    return n;
-}
-
 static void test_attribute_copies(void **st)
 {
     (void)st;
