@@ -1,5 +1,6 @@
 #!/bin/sh
-# Checks that includes point one way down the floors of sim/:
+# Checks that includes point one way down the floors of sim/, and that
+# files inside a workload folder follow one naming rule.  Floors:
 #   app -> reproduce -> workload -> machine, raster -> net, scene -> output, core
 # A file may include a header of its own folder or of a lower floor; an
 # include of a higher floor, or of another folder on the same floor, is
@@ -29,11 +30,24 @@ done > /tmp/pgsim-layers.$$
 grep -n '#include "sim/machine/machine.h"' sim/machine/proc.[ch] \
     | sed 's/$/: proc includes machine (proc is below machine)/' \
     >> /tmp/pgsim-layers.$$
+# One naming rule inside workload folders: sim/workload/<family>/ holds
+# <p>_workload.c (the WlOps table) and every other file is <p>_<concept>.
+for d in sim/workload/*/; do
+    w=$(ls "$d" | grep '_workload\.c$')
+    if [ "$(echo "$w" | wc -w)" -ne 1 ]; then
+        echo "$d: found '$w', expected one <prefix>_workload.c" >> /tmp/pgsim-layers.$$
+        continue
+    fi
+    p=${w%_workload.c}
+    ls "$d" | grep -v "^${p}_" | grep -v '^README' |
+        sed "s|^|$d|; s|\$|: not named ${p}_<concept> (the folder's prefix)|" \
+        >> /tmp/pgsim-layers.$$
+done
 if [ -s /tmp/pgsim-layers.$$ ]; then
     cat /tmp/pgsim-layers.$$
     bad=1
 fi
 rm -f /tmp/pgsim-layers.$$
 n=$(find sim -name '*.[ch]' | wc -l)
-if [ $bad -eq 0 ]; then echo "layers: $n files, includes point down"; fi
+if [ $bad -eq 0 ]; then echo "layers: $n files, includes point down, workload files named by prefix"; fi
 exit $bad
