@@ -174,13 +174,40 @@ static guint endpoint_count(const MachMachine *m, const char *topo,
     return wide->info.lanes > G_MAXUINT ? G_MAXUINT : (guint)wide->info.lanes;
 }
 
+/* "faithful": the model's network.fidelity (the transport that models
+ * its hardware); a model that names none keeps the analytic model.  The
+ * machine's fidelity becomes "<word> (faithful)". */
+static gboolean resolve_faithful(MachMachine *m, GError **err)
+{
+    if (strcmp(m->fidelity, MACH_FIDELITY_FAITHFUL) != 0)
+        return TRUE;
+    const char *w = mach_param_word(m->network, "fidelity");
+    NetFidelity fid;
+    if (w && !net_fidelity_parse(w, &fid)) {
+        char *found = g_strdup_printf("fidelity '%s'", w);
+        cfg_error(err, mach_param_node(m->network, "fidelity"), found,
+                  "analytic, flow or packet");
+        g_free(found);
+        return FALSE;
+    }
+    g_free(m->fidelity);
+    m->fidelity = g_strdup_printf("%s (faithful)", w ? w : "analytic");
+    return TRUE;
+}
+
 static gboolean build_net(MachMachine *m, GError **err)
 {
     NetParams par;
     NetFidelity fid;
-    if (!net_fidelity_parse(m->fidelity, &fid)) {
+    if (!resolve_faithful(m, err))
+        return FALSE;
+    char *word = g_strndup(m->fidelity, strcspn(m->fidelity, " "));
+    gboolean known = net_fidelity_parse(word, &fid);
+    g_free(word);
+    if (!known) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "found fidelity '%s', expected analytic, flow or packet",
+                    "found fidelity '%s', expected analytic, flow, packet "
+                    "or faithful",
                     m->fidelity);
         return FALSE;
     }
@@ -572,4 +599,6 @@ void mach_fill_result(const MachMachine *m, SimResult *r)
         fill_kind(m, mach_kind_at(m, k), r);
     if (m->net)
         net_fill_result(m->net, r);
+    g_free(r->fidelity); /* the machine's word says "(faithful)" */
+    r->fidelity = g_strdup(m->fidelity);
 }

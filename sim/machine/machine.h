@@ -32,7 +32,10 @@
 
 
 /* Builds a machine from a config's `machine` section (borrowed; copied).
- * `fidelity` is "analytic", "flow" or "packet".  Returns a new machine
+ * `fidelity` is "analytic", "flow", "packet" or MACH_FIDELITY_FAITHFUL:
+ * the model's own `network.fidelity` (the transport that models its
+ * hardware, e.g. circuit switching on the iPSC/2 = "packet"), reported
+ * by mach_fidelity() as "<word> (faithful)".  Returns a new machine
  * (mach_free) or NULL with *err set (unknown model, bad override ...). */
 MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
                                const char *fidelity, GError **err);
@@ -53,6 +56,8 @@ void mach_free(MachMachine *m);
 
 const char *mach_name(const MachMachine *m);
 const char *mach_fidelity(const MachMachine *m);
+/* The fidelity word that asks for the model's own (see above). */
+#define MACH_FIDELITY_FAITHFUL "faithful"
 SimEngine *mach_engine(const MachMachine *m);
 /* The merged, checked model tree (borrowed). */
 const CfgNode *mach_model_cfg(const MachMachine *m);

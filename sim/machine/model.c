@@ -35,6 +35,7 @@ static const MachKeyType net_keys[] = {
     {"topology", MACH_T_WORD},
     {"routing", MACH_T_WORD},
     {"switching", MACH_T_WORD},
+    {"fidelity", MACH_T_WORD},
     {"duplex", MACH_T_WORD},
     {"bandwidth", MACH_T_BANDWIDTH},
     {"total_bandwidth", MACH_T_BANDWIDTH},

@@ -120,6 +120,8 @@ static gboolean simulate(Kurc *k, const WlPmParams *p, int scene,
                                        k->ctx->fidelity, err);
     SimResult *r = sim_result_new("pixelmerge", "ipsc2");
     WlPmCosts c;
+    if (m)
+        rp_note_fidelity(k->ctx, mach_name(m), mach_fidelity(m));
     gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
                   wl_pm_run_frames(m, k->scenes[scene], p, &c, 1, r, err);
     if (ok)

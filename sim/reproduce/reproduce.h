@@ -11,7 +11,7 @@
  * withheld cell has no published value and the prediction is printed all
  * the same.  The driver
  * (`pgsim reproduce NAME|all [--format text|csv|json] [--out DIR]
- * [--fidelity analytic|flow|packet|all]`) prints the table with the
+ * [--fidelity faithful|analytic|flow|packet|all]`) prints the table with the
  * relative error (sim - published) / published, writes charts, and
  * reports wall time per fidelity.
  *
@@ -37,11 +37,17 @@ typedef struct {
     const char *out_dir;  /* where charts may be written; NULL for none */
     gboolean quiet;       /* no progress output */
     RptProgress *progress; /* the caller's progress line; NULL: none */
+    GString *fidelity_used; /* the driver's: see rp_note_fidelity() */
 } RpContext;
 
 /* A paper reports that it is about to simulate `what` ("2POT N=400
  * P=16"): the progress line (a terminal only) counts it and shows it. */
 void rp_step(const RpContext *ctx, const char *what);
+/* A paper reports the transport a machine of its runs used
+ * (mach_fidelity(), "packet (faithful)"): the table's fidelity then
+ * names it ("faithful: ipsc2 packet").  Once per (machine, word). */
+void rp_note_fidelity(const RpContext *ctx, const char *machine,
+                      const char *fidelity);
 
 typedef struct {
     const char *name;     /* "kurc96": also its folder configs/papers/<name> */

@@ -12,6 +12,8 @@ const char *const rp_fidelities[] = {"analytic", "flow", "packet", NULL};
 
 gboolean rp_fidelity_valid(const char *f)
 {
+    if (strcmp(f, RP_DEFAULT_FIDELITY) == 0)
+        return TRUE;
     for (int i = 0; rp_fidelities[i]; i++)
         if (strcmp(f, rp_fidelities[i]) == 0)
             return TRUE;
@@ -46,11 +48,19 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
                                 rp->name, rp->setup);
     if (!c.setup)
         c.setup = setup;
+    GString *used = g_string_new(NULL);
+    c.fidelity_used = used;
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
     gint64 t0 = g_get_monotonic_time();
     gboolean ok = rp->rows(&c, rows, err);
     double wall = (double)(g_get_monotonic_time() - t0) * 1e-6;
-    RpTable *t = ok ? rp_table_join(paper, rows, ctx->fidelity, wall) : NULL;
+    gboolean faithful = strcmp(ctx->fidelity, RP_DEFAULT_FIDELITY) == 0;
+    char *label = faithful && used->len ? g_strdup_printf("%s: %s", ctx->fidelity,
+                                              used->str)
+                            : g_strdup(ctx->fidelity);
+    RpTable *t = ok ? rp_table_join(paper, rows, label, wall) : NULL;
+    g_free(label);
+    g_string_free(used, TRUE);
     if (!ok)
         g_prefix_error(err, "%s (fidelity %s): ", rp->name, ctx->fidelity);
     g_ptr_array_free(rows, TRUE);
@@ -84,4 +94,18 @@ void rp_step(const RpContext *ctx, const char *what)
     RptProgress *p = ctx->progress;
     rpt_progress_note(p, what);
     rpt_progress_update(p, rpt_progress_done(p) + 1);
+}
+
+void rp_note_fidelity(const RpContext *ctx, const char *machine,
+                      const char *fidelity)
+{
+    if (!ctx || !ctx->fidelity_used)
+        return;
+    char *word = g_strndup(fidelity, strcspn(fidelity, " "));
+    char *item = g_strdup_printf("%s %s", machine, word);
+    if (!strstr(ctx->fidelity_used->str, item))
+        g_string_append_printf(ctx->fidelity_used, "%s%s",
+                               ctx->fidelity_used->len ? ", " : "", item);
+    g_free(item);
+    g_free(word);
 }

@@ -4,7 +4,9 @@
  * (<papers_dir>/<name>/setup.yaml unless ctx->setup names another),
  * times it, reads the paper's published values from
  * <papers_dir>/<name>/published.yaml and returns the joined table.  rp_drive_fidelities() does it once per network fidelity
- * (analytic, flow, packet) for `--fidelity all`.
+ * (analytic, flow, packet) for `--fidelity all`.  At "faithful" the
+ * table's fidelity reads "faithful: <what the paper noted>" (e.g.
+ * "faithful: ipsc2 packet"), from rp_note_fidelity().
  */
 #ifndef PGSIM_REPRODUCE_RP_DRIVER_H
 #define PGSIM_REPRODUCE_RP_DRIVER_H
@@ -12,10 +14,13 @@
 #include "sim/reproduce/rp_table.h"
 
 #define RP_PAPERS_DIR "configs/papers"
-#define RP_DEFAULT_FIDELITY "flow"
+/* Each machine at the transport its model names (machine.h). */
+#define RP_DEFAULT_FIDELITY "faithful"
 
-/* The fidelities in order, coarse to fine; NULL-terminated. */
+/* The fidelities in order, coarse to fine; NULL-terminated (the passes
+ * of --fidelity all). */
 extern const char *const rp_fidelities[];
+/* One of rp_fidelities or "faithful". */
 gboolean rp_fidelity_valid(const char *f);
 
 /* Runs rp with ctx (ctx->fidelity set) and joins; returns a new table

@@ -422,6 +422,40 @@ static void test_shipped_networks(void **state)
     sim_engine_free(eng);
 }
 
+/* "faithful" takes each model's network.fidelity: circuit switching
+ * (packet) on the iPSC/2, and says so; a bad word there is located. */
+static void test_faithful_fidelity(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"ipsc2", "pixel-planes-5", "cm200",
+                                        "cm5", "cluster-ib", NULL};
+    for (const char *const *n = names; *n; n++) {
+        SimEngine *eng = sim_engine_new(1);
+        MachMachine *m = mach_new_from_model(eng, *n, "faithful", NULL);
+        assert_non_null(m);
+        assert_string_equal(mach_fidelity(m), "packet (faithful)");
+        assert_int_equal(net_fidelity(mach_net(m)), NET_PACKET);
+        mach_free(m);
+        sim_engine_free(eng);
+    }
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *sec = cfg_load_string(
+        "machine: {model: ipsc2, network: {fidelity: {value: exact, "
+        "assumption: test}}}\n",
+        "t.yaml", NULL);
+    GError *err = NULL;
+    assert_null(mach_new_from_cfg(eng, cfg_get(sec, "machine"), "faithful",
+                                  &err));
+    assert_non_null(strstr(err->message, "fidelity 'exact'"));
+    g_error_free(err);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(sec, "machine"), "flow", NULL);
+    assert_string_equal(mach_fidelity(m), "flow"); /* asked: not the model's */
+    mach_free(m);
+    cfg_free(sec);
+    sim_engine_free(eng);
+}
+
 static void test_bad_fidelity(void **state)
 {
     (void)state;
@@ -438,6 +472,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_all_models_build),
+        cmocka_unit_test(test_faithful_fidelity),
         cmocka_unit_test(test_model_contents),
         cmocka_unit_test_setup_teardown(test_costs, setup_tiny, teardown),
         cmocka_unit_test_setup_teardown(test_fifo_serialisation, setup_tiny,

@@ -103,12 +103,12 @@ static void test_rows_complete(void **state)
     (void)state;
     char *path = small_setup();
     RpContext ctx = {
-        .setup = path, .fidelity = "packet", .out_dir = NULL, .quiet = TRUE};
+        .setup = path, .fidelity = "faithful", .out_dir = NULL, .quiet = TRUE};
     GError *err = NULL;
     RpTable *t = rp_drive(&rp_kurc96, RP_PAPERS_DIR, &ctx, &err);
     if (!t)
         fail_msg("%s", err->message);
-    assert_string_equal(t->fidelity, "packet");
+    assert_string_equal(t->fidelity, "faithful: ipsc2 packet");
     for (guint i = 0; i < t->cells->len; i++) {
         const RpJoined *j = g_ptr_array_index(t->cells, i);
         if (j->status == RP_MISSING)

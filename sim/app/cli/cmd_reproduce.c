@@ -1,5 +1,5 @@
 /* cmd_reproduce.c — `pgsim reproduce NAME|all [--format text|csv|json]
- * [--out DIR] [--fidelity analytic|flow|packet|all] [--papers DIR]
+ * [--out DIR] [--fidelity faithful|analytic|flow|packet|all] [--papers DIR]
  * [--quiet]`.
  *
  * Runs paper reproductions (sim/reproduce/reproduce.h), joins them to the
@@ -55,7 +55,9 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
         {"out", 0, 0, G_OPTION_ARG_FILENAME, &o->out_dir,
          "also write <name>.{txt,csv,json} and charts here", "DIR"},
         {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o->fidelity,
-         "analytic, flow (default), packet or all", "F"},
+         "faithful (default: each machine model's own transport), "
+         "analytic, flow, packet or all",
+         "F"},
         {"papers", 0, 0, G_OPTION_ARG_FILENAME, &o->papers,
          "published values (default configs/papers)", "DIR"},
         {"doc", 0, 0, G_OPTION_ARG_FILENAME, &o->doc,
@@ -81,8 +83,8 @@ static gboolean check_opts(RpOpts *o, GError **err)
         o->fidelity = g_strdup(RP_DEFAULT_FIDELITY);
     if (!rp_fidelity_valid(o->fidelity) && strcmp(o->fidelity, "all")) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "--fidelity: found '%s', expected analytic, flow, "
-                    "packet or all",
+                    "--fidelity: found '%s', expected faithful, analytic, "
+                    "flow, packet or all",
                     o->fidelity);
         return FALSE;
     }

@@ -1,4 +1,4 @@
-/* cmd_run.c — `pgsim run CONFIG [--set k=v]... [--seed N] [--out DIR]
+/* cmd_run.c — `pgsim run CONFIG [--set k=v]... [--fidelity F] [--seed N] [--out DIR]
  * [--format text|json|csv] [--timing] [--trace FILE] [--quiet]`.
  *
  * Loads and checks the config (config.h), runs it, prints the report on
@@ -17,7 +17,7 @@
 
 typedef struct {
     char **sets;
-    char *seed, *out, *format, *trace;
+    char *seed, *out, *format, *trace, *fidelity;
     int trace_cap;
     gboolean quiet, timing;
 } RunOpts;
@@ -82,7 +82,14 @@ static int run(const char *path, const RunOpts *o)
     if (!check_flags(o, &seed, &fmt))
         return 2;
     GError *e = NULL;
-    CfgRun *r = cfg_run_load(path, (const char *const *)o->sets, &e);
+    GPtrArray *sets = g_ptr_array_new_with_free_func(g_free);
+    for (char **k = o->sets; k && *k; k++)
+        g_ptr_array_add(sets, g_strdup(*k));
+    if (o->fidelity) /* --fidelity F is --set run.fidelity=F */
+        g_ptr_array_add(sets, g_strconcat("run.fidelity=", o->fidelity, NULL));
+    g_ptr_array_add(sets, NULL);
+    CfgRun *r = cfg_run_load(path, (const char *const *)sets->pdata, &e);
+    g_ptr_array_free(sets, TRUE);
     if (!r)
         return cli_fail(e);
     if (o->seed)
@@ -121,6 +128,10 @@ int cmd_run(int argc, char **argv)
     const GOptionEntry entries[] = {
         {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o.sets,
          "override a config key (repeatable)", "KEY.PATH=VALUE"},
+        {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o.fidelity,
+         "network model: faithful (default: the machine model's own), "
+         "analytic, flow or packet (overrides run.fidelity)",
+         "F"},
         {"seed", 0, 0, G_OPTION_ARG_STRING, &o.seed,
          "random seed (overrides run.seed)", "N"},
         {"out", 0, 0, G_OPTION_ARG_FILENAME, &o.out,
@@ -143,6 +154,7 @@ int cmd_run(int argc, char **argv)
                      ? run(argv[1], &o)
                      : 2;
     g_strfreev(o.sets);
+    g_free(o.fidelity);
     g_free(o.seed);
     g_free(o.out);
     g_free(o.format);

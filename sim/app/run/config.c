@@ -22,7 +22,9 @@
 #define PGSIM_PREFIX "/usr/local"
 #endif
 
-static const char *const fidelities[] = {"analytic", "flow", "packet", NULL};
+/* The first is the default: the machine model's own (machine.h). */
+static const char *const fidelities[] = {"faithful", "analytic", "flow",
+                                         "packet", NULL};
 
 /* Nearest ancestor directory of `path` that has a models/ folder. */
 static char *repo_models_dir(const char *path)

@@ -4,7 +4,7 @@
  *     machine: {model: ipsc2, ...}      # optional; sim/machine checks it
  *     workload: {type: tokenring, ...}  # required; the workload parses it
  *     scene: {...}                      # optional; sim/scene checks it
- *     run: {seed: 1, frames: 1, fidelity: analytic, until: 10 ms}
+ *     run: {seed: 1, frames: 1, fidelity: faithful, until: 10 ms}
  *
  * Loading applies --set overrides first, then reads every section with
  * its consumer (workload parse, mach_check_section, scene_from_cfg) and
@@ -30,7 +30,8 @@ typedef struct {
     void *wl_params;      /* owned (wl->free_params) */
     uint64_t seed;        /* run.seed, default 1 */
     int frames;           /* run.frames, default 1 */
-    const char *fidelity; /* run.fidelity, default "analytic" (static) */
+    const char *fidelity; /* run.fidelity, default "faithful": the machine
+                             model's network.fidelity (static) */
     SimTime until;        /* run.until; SIM_TIME_MAX when absent */
 } CfgRun;
 

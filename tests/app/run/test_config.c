@@ -34,7 +34,7 @@ static const BadCase bad[] = {
     {"overflow.yaml", "5:10: found '1e9 s', expected a time below 2^64 ps "
                       "(about 213 days)"},
     {"out_of_range.yaml", "4:11: found '1.5', expected a number in [0, 1]"},
-    {"bad_enum.yaml", "5:13: found 'exact', expected one of: analytic, "
+    {"bad_enum.yaml", "5:13: found 'exact', expected one of: faithful, analytic, "
                       "flow, packet"},
     {"missing_required.yaml", "3:3: found no key 'type' in this map, "
                               "expected 'type': a string"},
