@@ -32,7 +32,7 @@ import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__))))
-PGSIM = os.path.join(ROOT, "build", "pgsim")
+PGSIM = os.environ.get("PGSIM") or os.path.join(ROOT, "build", "pgsim")
 SETUP = os.path.join(ROOT, "configs", "papers", "kurc96", "setup.yaml")
 PAPER = os.path.join(ROOT, "configs", "papers", "kurc96", "published.yaml")
 # Search ranges of the arrangement parameters (degrees; teapot widths).

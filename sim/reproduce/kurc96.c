@@ -21,6 +21,7 @@
  * balance): about 90.  Charts: kurc96_plot.c.
  */
 #include "sim/reproduce/kurc96.h"
+#include "sim/reproduce/rp_driver.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 #include <math.h>
@@ -108,12 +109,31 @@ static void run_from_result(RpKurcRun *run, const SimResult *r,
     run->tpg = metric(r, "tpg");
     run->tpf = metric(r, "tpf");
     run->memory = metric(r, "peak_memory");
+    static const char *const part[5] = {"memory_base", "memory_polygons",
+                                        "memory_spans", "memory_zbuffer",
+                                        "memory_buffers"};
+    for (int i = 0; i < 5; i++)
+        run->mem_part[i] = metric(r, part[i]);
     const MachKindInfo *node = mach_kind(m, "node");
     run->node_memory = node ? (double)node->memory : 0;
 }
 
+/* Multiplies the fitted cost groups (RP_KURC_GROUPS) by scale[]. */
+static void scale_costs(WlPmCosts *c, const double *scale)
+{
+    SimTime *f[RP_KURC_GROUPS][2] = {
+        {&c->polygon, NULL},          {&c->span, NULL},
+        {&c->insert_step, NULL},      {&c->pixel, NULL},
+        {&c->zbuf_init, NULL},        {&c->merge.compare, NULL},
+        {&c->merge.scatter, &c->merge.gather}};
+    for (int g = 0; scale && g < RP_KURC_GROUPS; g++)
+        for (int k = 0; k < 2 && f[g][k]; k++)
+            *f[g][k] = (SimTime)llround((double)*f[g][k] * scale[g]);
+}
+
+/* One run; scale (NULL: none) multiplies the fitted cost groups. */
 static gboolean simulate(Kurc *k, const WlPmParams *p, int scene,
-                         RpKurcRun *run, GError **err)
+                         const double *scale, RpKurcRun *run, GError **err)
 {
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m = mach_new_from_cfg(eng, cfg_get(k->setup, "machine"),
@@ -122,8 +142,10 @@ static gboolean simulate(Kurc *k, const WlPmParams *p, int scene,
     WlPmCosts c;
     if (m)
         rp_note_fidelity(k->ctx, mach_name(m), mach_fidelity(m));
-    gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
-                  wl_pm_run_frames(m, k->scenes[scene], p, &c, 1, r, err);
+    gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err);
+    if (ok)
+        scale_costs(&c, scale);
+    ok = ok && wl_pm_run_frames(m, k->scenes[scene], p, &c, 1, r, err);
     if (ok)
         run_from_result(run, r, m);
     sim_result_free(r);
@@ -154,7 +176,7 @@ static const RpKurcRun *get_run(Kurc *k, int scene, guint n, guint procs,
     rp_step(k->ctx, what);
     g_free(what);
     run = g_new0(RpKurcRun, 1);
-    if (!simulate(k, &p, scene, run, err)) {
+    if (!simulate(k, &p, scene, NULL, run, err)) {
         g_free(run);
         g_free(key);
         return NULL;
@@ -185,31 +207,39 @@ static gboolean table1(Kurc *k, GPtrArray *rows, GError **err)
         add(rows, "1", s, "tpf_400", a->tpf, NULL);
         add(rows, "1", s, "tpg_640", b->tpg, NULL);
         add(rows, "1", s, "tpf_640", b->tpf, NULL);
+        /* Both end points: about a pixel more per span, and a span has
+         * fewer pixels at N=400 than at 640 (issue 11). */
+        add(rows, "1", s, "tpg_640_over_400", b->tpg / a->tpg,
+            "screen area ratio 640^2 / 400^2 = 2.56");
     }
     return TRUE;
 }
 
-/* The note of a ZBUF-EXC cell at P=8: the paper marks with "*" the
- * ZBUF-EXC runs that ran out of local memory, all in the withheld P=8
- * rows; we say what our memory model predicts. */
-static char *memory_note(const RpKurcRun *zx)
+/* The memory verdict of a run (pm_workload.h): "* out of memory: ..."
+ * when the node's peak exceeds its memory, else "fits: ...".  The paper
+ * marks with "*" the ZBUF-EXC runs that did not fit (all in the withheld
+ * P=8 rows: every P=16 run has times). */
+static char *memory_note(const RpKurcRun *r)
 {
-    return g_strdup_printf("paper: '*' (out of memory) on some P=8 "
-                           "ZBUF-EXC runs; model: %.2f of %.2f MB, %s",
-                           zx->memory / 1e6, zx->node_memory / 1e6,
-                           zx->memory > zx->node_memory ? "OUT OF MEMORY"
-                                                        : "fits");
+    WlPmMemUse u = {(uint64_t)r->mem_part[0], (uint64_t)r->mem_part[1],
+                    (uint64_t)r->mem_part[2], (uint64_t)r->mem_part[3],
+                    (uint64_t)r->mem_part[4], (uint64_t)r->memory};
+    return wl_pm_memory_verdict(&u, (uint64_t)r->node_memory);
 }
 
 static void table2_row(GPtrArray *rows, const char *row, const RpKurcRun *pr,
-                       const RpKurcRun *zx, const char *zx_note)
+                       const RpKurcRun *zx)
 {
-    add(rows, "2", row, "pair_rs_span_ms", pr->span_ms, NULL);
-    add(rows, "2", row, "pair_rs_zbuf_ms", pr->zbuf_ms, NULL);
-    add(rows, "2", row, "pair_rs_merge_ms", pr->merge_ms, NULL);
+    char *zx_note = memory_note(zx);
+    char *pr_note = pr->memory > pr->node_memory ? memory_note(pr) : NULL;
+    add(rows, "2", row, "pair_rs_span_ms", pr->span_ms, pr_note);
+    add(rows, "2", row, "pair_rs_zbuf_ms", pr->zbuf_ms, pr_note);
+    add(rows, "2", row, "pair_rs_merge_ms", pr->merge_ms, pr_note);
     add(rows, "2", row, "zbuf_exc_span_ms", zx->span_ms, zx_note);
     add(rows, "2", row, "zbuf_exc_zbuf_ms", zx->zbuf_ms, zx_note);
     add(rows, "2", row, "zbuf_exc_merge_ms", zx->merge_ms, zx_note);
+    g_free(zx_note);
+    g_free(pr_note);
 }
 
 static gboolean table2(Kurc *k, GPtrArray *rows, GError **err)
@@ -227,12 +257,122 @@ static gboolean table2(Kurc *k, GPtrArray *rows, GError **err)
                 return FALSE;
             char *row =
                 g_strdup_printf("P%u/%s", procs[j], rp_kurc96_scenes[i]);
-            char *note = procs[j] == 8 ? memory_note(zx) : NULL;
-            table2_row(rows, row, pr, zx, note);
-            g_free(note);
+            table2_row(rows, row, pr, zx);
             g_free(row);
         }
     return TRUE;
+}
+
+/* ---- leave-one-scene-out (kurc96_cv.c) --------------------------------- */
+
+#define CV_STEP 0.1 /* relative cost change of the finite differences */
+
+static double phase_ms(const RpKurcRun *r, int ph)
+{
+    return ph == 0 ? r->span_ms : ph == 1 ? r->zbuf_ms : r->merge_ms;
+}
+
+static const char *const cv_cols[6] = {
+    "pair_rs_span_ms",  "pair_rs_zbuf_ms",  "pair_rs_merge_ms",
+    "zbuf_exc_span_ms", "zbuf_exc_zbuf_ms", "zbuf_exc_merge_ms"};
+
+typedef struct {
+    int scene[N_SCENES * 6];
+    double pub[N_SCENES * 6], sim[N_SCENES * 6];
+    double jac[N_SCENES * 6 * RP_KURC_GROUPS];
+} CvCells;
+
+/* The six cells of scene s (PAIR-RS, ZBUF-EXC; P=16, N=400): values and
+ * the response to each cost group, by re-running with it CV_STEP up. */
+static gboolean cv_scene(Kurc *k, int s, const RpPaper *paper, CvCells *c,
+                         GError **err)
+{
+    char *row = g_strdup_printf("P16/%s", rp_kurc96_scenes[s]);
+    gboolean ok = TRUE;
+    for (int m = 0; ok && m < 2; m++) {
+        WlPmParams p = *k->base;
+        p.setup.scheme = m ? WL_PM_ZBUF_EXC : WL_PM_PAIR;
+        p.setup.balance = m ? WL_PM_BAL_STRIPS : WL_PM_BAL_RS;
+        p.setup.procs = 16;
+        p.setup.resolution = 400;
+        const RpKurcRun *b =
+            get_run(k, s, 400, 16, p.setup.scheme, p.setup.balance, err);
+        ok = b != NULL;
+        for (int g = 0; ok && g < RP_KURC_GROUPS; g++) {
+            double scale[RP_KURC_GROUPS];
+            for (int j = 0; j < RP_KURC_GROUPS; j++)
+                scale[j] = j == g ? 1 + CV_STEP : 1;
+            RpKurcRun r;
+            rp_step(k->ctx, "leave-one-scene-out responses");
+            ok = simulate(k, &p, s, scale, &r, err);
+            for (int ph = 0; ok && ph < 3; ph++) {
+                int i = (s * 2 + m) * 3 + ph;
+                c->jac[i * RP_KURC_GROUPS + g] =
+                    (phase_ms(&r, ph) - phase_ms(b, ph)) / CV_STEP;
+            }
+        }
+        for (int ph = 0; ok && ph < 3; ph++) {
+            int i = (s * 2 + m) * 3 + ph;
+            const RpCell *cell = rp_paper_cell(paper, "2", row, cv_cols[i % 6]);
+            c->scene[i] = s;
+            c->sim[i] = phase_ms(b, ph);
+            c->pub[i] = cell ? cell->value : NAN;
+            if (!cell || !isfinite(cell->value)) {
+                g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                            "kurc96: no published Table 2 %s %s", row,
+                            cv_cols[i % 6]);
+                ok = FALSE;
+            }
+        }
+    }
+    g_free(row);
+    return ok;
+}
+
+static void cv_rows(GPtrArray *rows, const CvCells *c, const double *loso,
+                    const RpKurcCv *cv)
+{
+    for (int i = 0; i < cv->n; i++) {
+        char *row = g_strdup_printf("P16/%s", rp_kurc96_scenes[c->scene[i]]);
+        char *note = g_strdup_printf(
+            "scene left out of the fit: %+.1f%% (in-sample %+.1f%%)",
+            100 * (loso[i] / c->pub[i] - 1), 100 * (c->sim[i] / c->pub[i] - 1));
+        add(rows, "cv", row, cv_cols[i % 6], loso[i], note);
+        g_free(note);
+        g_free(row);
+    }
+    double m[2], w[2];
+    rp_kurc96_cv_errors(cv, c->sim, &m[0], &w[0]);
+    rp_kurc96_cv_errors(cv, loso, &m[1], &w[1]);
+    const char *what = "% over the 36 P=16 cells of Table 2";
+    add(rows, "cv", "P16", "in_sample_mean_abs_pct", 100 * m[0], what);
+    add(rows, "cv", "P16", "in_sample_worst_abs_pct", 100 * w[0], what);
+    add(rows, "cv", "P16", "loso_mean_abs_pct", 100 * m[1], what);
+    add(rows, "cv", "P16", "loso_worst_abs_pct", 100 * w[1], what);
+}
+
+/* In-sample and leave-one-scene-out errors of the node-cost fit. */
+static gboolean cross_validate(Kurc *k, GPtrArray *rows, GError **err)
+{
+    char *path = rp_paper_path(RP_PAPERS_DIR, rp_kurc96.name);
+    RpPaper *paper = rp_paper_load(path, err);
+    g_free(path);
+    if (!paper)
+        return FALSE;
+    CvCells *c = g_new0(CvCells, 1);
+    gboolean ok = TRUE;
+    for (int s = 0; ok && s < N_SCENES; s++)
+        ok = cv_scene(k, s, paper, c, err);
+    if (ok) {
+        RpKurcCv cv = {N_SCENES * 6, RP_KURC_GROUPS, N_SCENES,
+                       c->scene,     c->pub,         c->sim,   c->jac};
+        double loso[N_SCENES * 6];
+        rp_kurc96_cv_run(&cv, loso);
+        cv_rows(rows, c, loso, &cv);
+    }
+    g_free(c);
+    rp_paper_free(paper);
+    return ok;
 }
 
 /* Fig. 1 and 2 values of one (scene, N, P) point: four volumes (PAIR and
@@ -283,7 +423,8 @@ static gboolean speedup(Kurc *k, GPtrArray *rows, GError **err)
     const RpKurcRun *r = get_run(k, 1, 640, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err);
     if (r)
         add(rows, "text", "P16/2POT/640", "aapc_hbp_speedup", r->speedup,
-            "serial = the local phases of the whole scene on one node");
+            "P=16; serial = the modified scanline z-buffer over all "
+            "polygons on one node, no merge (§5)");
     return r != NULL;
 }
 
@@ -292,7 +433,8 @@ static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows, GError **err)
     Kurc k = {0};
     RpKurcFigs figs = {0};
     gboolean ok = kurc_init(&k, ctx, err) && table1(&k, rows, err) &&
-                  table2(&k, rows, err) && figures(&k, rows, &figs, err) &&
+                  table2(&k, rows, err) && cross_validate(&k, rows, err) &&
+                  figures(&k, rows, &figs, err) &&
                   speedup(&k, rows, err);
     if (ok && ctx->out_dir)
         rp_kurc96_charts(&figs, ctx->out_dir, ctx->fidelity);

@@ -17,7 +17,29 @@ typedef struct {
     double span_ms, zbuf_ms, merge_ms, volume, imbalance, speedup;
     double polygons, tpg, tpf;
     double memory, node_memory; /* bytes per node: estimate, machine's */
+    double mem_part[5]; /* base, polygons, spans, z-buffer/WPA, buffers */
 } RpKurcRun;
+
+/* Node-cost groups fitted on Table 2 (scripts/kurc96/fit.py): polygon,
+ * span, insert_step, pixel, zbuf_init, compare, scatter = gather. */
+#define RP_KURC_GROUPS 7
+
+/* The linearised cells of the fit (kurc96_cv.c): cell i of scene
+ * scene[i] has published value pub[i], simulated sim[i] at the model's
+ * costs and jac[i * groups + j] = d sim / d (relative change of group j). */
+typedef struct {
+    int n, groups, scenes;
+    const int *scene;
+    const double *pub, *sim, *jac;
+} RpKurcCv;
+
+/* Leave-one-scene-out predictions of every cell into loso[n]. */
+void rp_kurc96_cv_run(const RpKurcCv *cv, double *loso);
+/* Cell i at relative cost changes x[groups]. */
+double rp_kurc96_cv_predict(const RpKurcCv *cv, int i, const double *x);
+/* Mean and largest |v / pub - 1| over the cells. */
+void rp_kurc96_cv_errors(const RpKurcCv *cv, const double *v, double *mean,
+                         double *worst);
 
 /* One point of Figs. 1-2: volumes of PAIR-RS, PAIR-HBP, AAPC-RS,
  * AAPC-HBP (bytes) and the RS, HBP imbalances of AAPC. */

@@ -64,8 +64,12 @@ static void check_tables(const RpTable *t)
             for (int c = 0; c < 6; c++) {
                 const RpJoined *j = cell(t, "2", row, t2[c]);
                 assert_true(j->sim > 0);
-                gboolean noted = j->note && strstr(j->note, "memory");
-                assert_int_equal(noted, p == 8 && c >= 3);
+                /* every ZBUF-EXC cell has the memory verdict in MiB;
+                 * every P=16 run fitted (the paper has its times) */
+                if (c >= 3)
+                    assert_non_null(j->note && strstr(j->note, "MiB"));
+                if (p == 16)
+                    assert_true(!j->note || g_str_has_prefix(j->note, "fits"));
             }
             g_free(row);
         }
@@ -94,7 +98,7 @@ static void check_figs(const RpTable *t)
                         cell(t, "fig2", row, "rs_imbalance")->sim + 1e-9);
         }
     const RpJoined *s = cell(t, "text", "P16/2POT/640", "aapc_hbp_speedup");
-    assert_true(s->sim > 1 && s->sim < 32);
+    assert_true(s->sim > 1 && s->sim <= 16); /* no speed-up above P */
     assert_int_equal(s->status, RP_WITHHELD);
 }
 
@@ -116,8 +120,12 @@ static void test_rows_complete(void **state)
     }
     check_tables(t);
     check_figs(t);
-    /* 6 x 5 + 12 x 6 + 16 x 6 (fig rows) + 1 */
-    assert_int_equal(t->cells->len, 30 + 72 + 96 + 1);
+    /* 6 x 6 + 12 x 6 + 36 + 4 (cross-validation) + 16 x 6 (fig rows) + 1 */
+    assert_int_equal(t->cells->len, 36 + 72 + 40 + 96 + 1);
+    for (int i = 0; rp_kurc96_scenes[i]; i++) /* end points: below 2.56 */
+        assert_true(cell(t, "1", rp_kurc96_scenes[i], "tpg_640_over_400")->sim <
+                    2.56);
+    assert_true(cell(t, "cv", "P16", "loso_mean_abs_pct")->sim >= 0);
     assert_int_equal(t->compared, 54);
     rp_table_free(t);
     g_unlink(path);

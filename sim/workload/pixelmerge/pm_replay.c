@@ -86,11 +86,13 @@ static guint global_sum_steps(RStep *out, guint n, WlPmBalance bal,
         }
     }
     rstep_init(&out[k], n, FALSE);
-    uint64_t ops = bal == WL_PM_BAL_HBP
-                       ? (uint64_t)height * MAX(1u, log2u(height))
-                       : (uint64_t)d * MAX(1u, log2u(height));
+    uint64_t lg = MAX(1u, log2u(height));
+    SimTime t = bal == WL_PM_BAL_HBP
+                    ? times(c->sort_elem, (uint64_t)height * lg, ovf) +
+                          times(c->assign_step, (uint64_t)height * n, ovf)
+                    : times(c->sort_elem, (uint64_t)d * lg, ovf);
     for (guint p = 0; p < n; p++)
-        out[k].post[p] = times(c->sort_elem, ops, ovf);
+        out[k].post[p] = t;
     return k + 1;
 }
 

@@ -12,8 +12,10 @@
  * With RS and HBP the merge starts with the global sum of the
  * per-scanline counts (seed 003 §4.1) by recursive doubling: d exchanges
  * of N counts with the neighbour over channel i, each followed by N
- * additions; HBP then sorts and assigns the N scanlines (§4.2), RS cuts
- * d levels by binary search (O(P log N) operations).
+ * additions; HBP then sorts the N counts (N log2 N comparison steps of
+ * sort_elem) and gives each scanline to the least loaded processor by a
+ * linear search (N P steps of assign_step) (§4.2); RS cuts d levels by
+ * binary search (d log2 N steps of sort_elem).
  * Cost: O(steps x P) memory and events.
  */
 #ifndef PGSIM_WORKLOAD_PIXELMERGE_PM_REPLAY_H
@@ -31,7 +33,8 @@ typedef struct {
     SimTime compare;      /* depth-test a received pixel */
     SimTime gather;       /* copy a pixel back into consecutive storage */
     SimTime sum_elem;     /* add one scanline count in the global sum */
-    SimTime sort_elem;    /* HBP: one scanline x log2 N of sort and assign */
+    SimTime sort_elem;    /* one comparison step of a sort or search */
+    SimTime assign_step;  /* HBP: one step of the least-loaded search */
     uint32_t count_bytes; /* bytes of one scanline count in a message */
 } WlPmMergeCosts;
 

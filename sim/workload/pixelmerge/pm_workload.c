@@ -17,7 +17,8 @@
  *     check_image: true       # compare with the serial render
  *     cull_back: false        # back-face culling before scan conversion
  *     span_rule: exact        # exact | endpoints (sim/raster/scan.h)
- *     memory: {base: 1 MB, polygon: 200 B, span: 32 B, location: 8 B}
+ *     memory: {base: 1 MB, polygon: 200 B, span: 32 B, location: 8 B,
+ *              pixel: 8 B, index: 4 B}
  *
  * The machine is the config's `machine` section (mach_new_from_cfg, so
  * `run.fidelity` picks the network model); node costs are the node kind
@@ -34,7 +35,7 @@
 const char *const wl_pm_cost_ops[] = {
     "polygon",  "span",      "insert_step", "pixel",   "zcompare",
     "scanline", "zbuf_init", "pack",        "scatter", "compare",
-    "gather",   "sum_elem",  "sort_elem",   NULL};
+    "gather",   "sum_elem",  "sort_elem",   "assign_step", NULL};
 
 /* Scheme words: the library's names plus "zbuf_exc" (underscore). */
 static const char *const scheme_words[] = {"zbuf-exc", "pair", "aapc",
@@ -51,21 +52,39 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
                       &c->pixel,          &c->zcompare,     &c->scanline,
                       &c->zbuf_init,      &c->merge.pack,   &c->merge.scatter,
                       &c->merge.compare,  &c->merge.gather, &c->merge.sum_elem,
-                      &c->merge.sort_elem};
+                      &c->merge.sort_elem, &c->merge.assign_step};
     for (guint i = 0; wl_pm_cost_ops[i]; i++)
         *dst[i] = mach_cost(m, "node", wl_pm_cost_ops[i]);
     c->merge.count_bytes = count_bytes;
     return TRUE;
 }
 
-uint64_t wl_pm_memory_bytes(const WlPmMemory *mem, const WlPmSetup *s,
+WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
                             uint64_t polygons, uint64_t spans, uint64_t active)
 {
-    uint64_t n2 = (uint64_t)s->resolution * s->resolution;
-    uint64_t b = mem->base + polygons * mem->polygon + spans * mem->span;
-    if (s->scheme == WL_PM_ZBUF_EXC)
-        return b + n2 * mem->location + n2 / 2 * s->fmt.bytes_per_location;
-    return b + 2 * active * s->fmt.bytes_per_pixel;
+    uint64_t n = s->resolution, n2 = n * n;
+    WlPmMemUse u = {mem->base, polygons * mem->polygon, spans * mem->span, 0,
+                    0, 0};
+    if (s->scheme == WL_PM_ZBUF_EXC) {
+        u.zbuffer = n2 * mem->location;
+        u.buffers = n2 * s->fmt.bytes_per_location;
+    } else {
+        u.zbuffer = active * mem->pixel + n * mem->index;
+        u.buffers = 2 * active * s->fmt.bytes_per_pixel;
+    }
+    u.total = u.base + u.polygons + u.spans + u.zbuffer + u.buffers;
+    return u;
+}
+
+char *wl_pm_memory_verdict(const WlPmMemUse *u, uint64_t memory)
+{
+    const double mb = 1048576.0; /* MiB */
+    return g_strdup_printf(
+        "%s %.2f of %.2f MiB (base %.2f, polygons %.2f, spans %.2f, "
+        "z-buffer/WPA %.2f, message buffers %.2f)",
+        u->total > memory ? "* out of memory:" : "fits:", u->total / mb,
+        memory / mb, u->base / mb, u->polygons / mb, u->spans / mb,
+        u->zbuffer / mb, u->buffers / mb);
 }
 
 static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
@@ -83,17 +102,21 @@ static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
 
 static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m, GError **err)
 {
-    *m = (WlPmMemory){1000000, 200, 32, 8};
+    *m = (WlPmMemory){1000000, 200, 32, 8, 8, 4};
     const CfgNode *n;
     if (!cfg_get_map(sec, "memory", FALSE,
-                     "a map {base, polygon, span, location} of sizes", &n, err))
+                     "a map {base, polygon, span, location, pixel, index} of "
+                     "sizes",
+                     &n, err))
         return FALSE;
     if (!n)
         return TRUE;
     return cfg_get_size(n, "base", FALSE, &m->base, err) &&
            cfg_get_size(n, "polygon", FALSE, &m->polygon, err) &&
            cfg_get_size(n, "span", FALSE, &m->span, err) &&
-           cfg_get_size(n, "location", FALSE, &m->location, err);
+           cfg_get_size(n, "location", FALSE, &m->location, err) &&
+           cfg_get_size(n, "pixel", FALSE, &m->pixel, err) &&
+           cfg_get_size(n, "index", FALSE, &m->index, err);
 }
 
 static gboolean check_procs(const CfgNode *sec, uint64_t procs, GError **err)
@@ -153,14 +176,17 @@ static void pm_free_params(void *p)
     g_free(p);
 }
 
-static uint64_t peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
-                            const WlPmSetup *s)
+static WlPmMemUse peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
+                              const WlPmSetup *s)
 {
-    uint64_t peak = 0;
-    for (guint q = 0; q < s->procs; q++)
-        peak = MAX(peak,
-                   wl_pm_memory_bytes(&p->mem, s, fo->counts[q].polygons,
-                                      fo->counts[q].rc.spans, fo->active[q]));
+    WlPmMemUse peak = {0};
+    for (guint q = 0; q < s->procs; q++) {
+        WlPmMemUse u =
+            wl_pm_memory_use(&p->mem, s, fo->counts[q].polygons,
+                             fo->counts[q].rc.spans, fo->active[q]);
+        if (u.total > peak.total)
+            peak = u;
+    }
     return peak;
 }
 
@@ -170,7 +196,8 @@ static void set(SimResult *out, const char *name, double v, const char *unit)
 }
 
 static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
-                         double serial_ms, const WlPmSetup *s, uint64_t memory)
+                         double serial_ms, const WlPmSetup *s,
+                         const WlPmMemUse *mem)
 {
     SimTime busy = 0;
     for (guint p = 0; p < s->procs; p++)
@@ -192,7 +219,13 @@ static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
     set(out, "polygons", (double)fo->polygons, "");
     set(out, "tpg", (double)fo->tpg, "");
     set(out, "tpf", (double)fo->tpf, "");
-    set(out, "peak_memory", (double)memory, "B");
+    static const char *const part[] = {"peak_memory",     "memory_base",
+                                       "memory_polygons", "memory_spans",
+                                       "memory_zbuffer",  "memory_buffers"};
+    const uint64_t bytes[] = {mem->total, mem->base,    mem->polygons,
+                              mem->spans, mem->zbuffer, mem->buffers};
+    for (guint i = 0; i < G_N_ELEMENTS(part); i++)
+        set(out, part[i], (double)bytes[i], "B");
     if (fo->image_checked)
         set(out, "image_matches_serial", fo->image_ok, "");
 }
@@ -272,8 +305,8 @@ gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
         ok = run_frame(m, procs, f, sc, &s, c, &fo, out, err);
     if (ok) {
         mach_fill_result(m, out);
-        fill_metrics(out, &fo, wl_pm_serial_ms(sc, &s, c), &s,
-                     peak_memory(&fo, p, &s));
+        WlPmMemUse mem = peak_memory(&fo, p, &s);
+        fill_metrics(out, &fo, wl_pm_serial_ms(sc, &s, c), &s, &mem);
         out->elapsed = sim_now(mach_engine(m));
     }
     wl_pm_frame_out_clear(&fo, s.procs);

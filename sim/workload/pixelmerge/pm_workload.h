@@ -15,13 +15,23 @@
 extern const WlOps wl_pixelmerge_ops;
 
 /* Per-node memory footprint, bytes per item (assumptions, set in the
- * workload section); see wl_pm_memory_bytes(). */
+ * workload section `memory:`); see wl_pm_memory_use(). */
 typedef struct {
-    uint64_t base;     /* program, OS and message buffers */
+    uint64_t base;     /* program, C library, NX/2, stack and system buffers */
     uint64_t polygon;  /* one local polygon (vertices, normals, colour) */
     uint64_t span;     /* one span record in a scanline list */
     uint64_t location; /* one entry of a full N x N z-buffer (ZBUF-EXC) */
+    uint64_t pixel;    /* one WPA entry (x, z, shade) */
+    uint64_t index;    /* one MSA entry (a WPA index) */
 } WlPmMemory;
+
+/* What one node holds at its peak, bytes, by part. */
+typedef struct {
+    uint64_t base, polygons, spans;
+    uint64_t zbuffer; /* ZBUF-EXC: N^2 locations; active: WPA + MSA */
+    uint64_t buffers; /* message buffers of the largest exchange */
+    uint64_t total;
+} WlPmMemUse;
 
 /* What wl_pixelmerge_ops.parse() returns (free with its free_params). */
 typedef struct {
@@ -39,12 +49,18 @@ extern const char *const wl_pm_cost_ops[];
 gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
                                   WlPmCosts *c, GError **err);
 
-/* Estimated peak bytes per node of a frame with these per-node counts:
- * base + polygons x polygon + spans x span, plus for ZBUF-EXC a full
- * z-buffer and a receive buffer of half of it, for the active schemes
- * twice the WPA (local pixels and a merge buffer) at bytes_per_pixel. */
-uint64_t wl_pm_memory_bytes(const WlPmMemory *mem, const WlPmSetup *s,
+/* The peak bytes of a node with these counts: base + polygons x
+ * polygon + spans x span (the span lists are complete before z-buffering
+ * starts), plus for ZBUF-EXC a full z-buffer (N^2 x location) and the
+ * send and receive buffers of the first halving (N^2 / 2 locations each
+ * at bytes_per_location), for the active schemes the WPA (active x
+ * pixel), the MSA (N x index) and two merge buffers (received pixels and
+ * the merged output, active x bytes_per_pixel each). */
+WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
                             uint64_t polygons, uint64_t spans, uint64_t active);
+/* "* out of memory: 4.21 of 4.00 MiB (base ..., z-buffer ...)" or
+ * "fits: ...": the verdict of use against `memory` bytes; g_free(). */
+char *wl_pm_memory_verdict(const WlPmMemUse *use, uint64_t memory);
 
 /* Runs `frames` frames of sc (frame f with the scene's camera of frame f)
  * with setup s on machine m (processors node0 .. node{P-1}, its network

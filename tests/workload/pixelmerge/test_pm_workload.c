@@ -143,6 +143,39 @@ static void expect_error(const char *override, const char *what)
     g_clear_error(&e);
 }
 
+/* Speed-up as seed 003 defines it (the modified scanline z-buffer over
+ * all polygons on one node, over the parallel frame).  The model has
+ * one super-linear cost, the sorted insertion into span lists
+ * (s (s - 1) / 4 steps for a row of s spans: P lists of s / P spans cost
+ * P times less in total); without it the speed-up never exceeds P.  Made
+ * 700 times dearer it drives the speed-up above P: the check can fail,
+ * and only for the cause the model names. */
+static void test_speedup_at_most_p(void **state)
+{
+    (void)state;
+    for (guint procs = 2; procs <= 8; procs *= 2) {
+        GString *text = g_string_new(small);
+        char *p = g_strdup_printf("processors: %u", procs);
+        g_string_replace(text, "processors: 8", p, 0);
+        SimResult *r = run_cfg(text->str, "analytic",
+                               "machine.nodes.node.costs.insert_step.value=0 us",
+                               NULL);
+        assert_non_null(r);
+        print_message("P=%u speed-up %.2f without sorted insertion\n", procs,
+                      metric(r, "speedup"));
+        assert_true(metric(r, "speedup") <= procs);
+        sim_result_free(r);
+        r = run_cfg(text->str, "analytic",
+                    "machine.nodes.node.costs.insert_step.value=5 ms", NULL);
+        assert_non_null(r);
+        print_message("  insertion x700: %.2f\n", metric(r, "speedup"));
+        assert_true(metric(r, "speedup") > procs);
+        sim_result_free(r);
+        g_free(p);
+        g_string_free(text, TRUE);
+    }
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -160,6 +193,7 @@ int main(void)
         cmocka_unit_test(test_metrics),
         cmocka_unit_test(test_fidelities_and_schemes),
         cmocka_unit_test(test_zbuf_exc_costs_more),
+        cmocka_unit_test(test_speedup_at_most_p),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("pm_workload", tests, NULL, NULL);
