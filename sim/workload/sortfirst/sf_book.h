@@ -49,6 +49,7 @@ typedef struct {
     uint64_t chunk;    /* per chunk: id, structure, box, first instance */
     uint64_t triangle; /* per polygon of a chunk's data */
     uint64_t instance; /* per instance pointer (max-set) */
+    uint64_t cell;     /* per cell of an adaptive work grid */
 } WlSfSizes;
 
 /* What one processor sends one other processor in a frame. */

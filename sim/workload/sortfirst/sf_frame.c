@@ -3,11 +3,13 @@
  * the chunks' bounding boxes, then the rendering pass).
  */
 #include "sim/workload/sortfirst/sf_frame.h"
+#include "sim/workload/sortfirst/sf_adapt.h"
 #include <math.h>
 #include <string.h>
 
 const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
-                                      "pixel_zbuffer", "chunk_pack", NULL};
+                                      "pixel_zbuffer",    "chunk_pack",
+                                      "grid_cell",        NULL};
 
 typedef struct {
     WlSfRun *run;
@@ -31,7 +33,9 @@ struct WlSfRun {
     const WlSfDb *db;
     WlSfSetup s;
     WlSfCosts c;
-    WlSfRegions regions;
+    WlSfRegions regions, next; /* this frame's; the next frame's */
+    WlSfAdapt *adapt;          /* NULL: static regions */
+    uint64_t split_cells;      /* cells the next split visits */
     WlSfBook *book;
     Proc *procs;
     RastView view;
@@ -42,7 +46,7 @@ struct WlSfRun {
     int frame, frames;
     guint done;
     SimTime start;
-    unsigned ph_sort, ph_pack, ph_unpack, ph_render;
+    unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
 };
 
 /* n x unit, saturating (a saturated time overflows the engine's clock). */
@@ -64,6 +68,7 @@ gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
     c->span_create = mach_cost(m, "node", "span_create");
     c->pixel_zbuffer = mach_cost(m, "node", "pixel_zbuffer");
     c->chunk_pack = mach_cost(m, "node", "chunk_pack");
+    c->grid_cell = mach_cost(m, "node", "grid_cell");
     return TRUE;
 }
 
@@ -153,6 +158,22 @@ static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
 
 static void render_done(SimEngine *eng, void *ctx, void *arg);
 
+/* Grid cells one processor handles after the exchange: the sum of the
+ * P grids, then the split. */
+static uint64_t partition_cells(const WlSfRun *r)
+{
+    uint64_t g2 = (uint64_t)r->adapt->grid * r->adapt->grid;
+    return (uint64_t)r->s.procs * g2 + r->split_cells;
+}
+
+/* Bytes of one processor's grid riding on each of its messages. */
+static uint64_t grid_bytes(const WlSfRun *r)
+{
+    if (!r->adapt)
+        return 0;
+    return (uint64_t)r->adapt->grid * r->adapt->grid * r->s.sizes.cell;
+}
+
 static void render(WlSfRun *r, Proc *pr)
 {
     g_array_set_size(r->render, 0);
@@ -164,7 +185,14 @@ static void render(WlSfRun *r, Proc *pr)
                        add(mul(r->c.span_create, pr->spans),
                            mul(r->c.pixel_zbuffer, pr->pixels)));
     mach_proc_compute(pr->proc, unpack, r->ph_unpack, NULL, NULL, NULL);
-    mach_proc_compute(pr->proc, draw, r->ph_render, render_done, r,
+    if (!r->adapt) {
+        mach_proc_compute(pr->proc, draw, r->ph_render, render_done, r,
+                          GUINT_TO_POINTER(pr->p));
+        return;
+    }
+    mach_proc_compute(pr->proc, draw, r->ph_render, NULL, NULL, NULL);
+    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r)),
+                      r->ph_partition, render_done, r,
                       GUINT_TO_POINTER(pr->p));
 }
 
@@ -196,7 +224,7 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
             continue;
         WlSfBatch *bt = &pr->out[q];
         net_send(r->net, mach_proc_id(pr->proc), mach_proc_id(r->procs[q].proc),
-                 bt->bytes, bt, arrive, r);
+                 bt->bytes + grid_bytes(r), bt, arrive, r);
     }
     pr->sorted = TRUE;
     maybe_render(r, pr);
@@ -212,6 +240,8 @@ static void sort(WlSfRun *r, Proc *pr)
     pr->busy0 = mach_proc_busy(pr->proc);
     wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
     SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes);
+    if (r->adapt)
+        t = add(t, mul(r->c.grid_cell, r->adapt->added[pr->p]));
     mach_proc_compute(pr->proc, t, r->ph_sort, NULL, NULL, NULL);
     mach_proc_compute(pr->proc, mul(r->c.chunk_pack, pr->w.sent_polys),
                       r->ph_pack, sort_done, r, GUINT_TO_POINTER(pr->p));
@@ -225,13 +255,45 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     r->done = 0;
     r->view = frame_view(r->scene, &r->s, (guint)r->frame);
     rast_zbuffer_clear(r->zb);
+    r->book->regions = r->regions; /* the bucket sorts use this frame's */
     wl_sf_book_need(r->book, r->view.view_proj);
+    if (r->adapt) {
+        wl_sf_adapt_estimate(r->adapt, r->db, &r->regions, r->view.view_proj);
+        r->next = r->regions;
+        r->split_cells = wl_sf_adapt_split(r->adapt, &r->next);
+    }
     for (guint p = 0; p < r->s.procs; p++)
         sort(r, &r->procs[p]);
 }
 
 /* ---- the frame's figures --------------------------------------------------
  */
+
+/* max / mean, 0 when the mean is 0. */
+static double max_over_mean(double max, double total, guint n)
+{
+    return total > 0 ? max * n / total : 0;
+}
+
+/* Work = each processor's busy time in the frame. */
+static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
+{
+    double total = 0, max = 0;
+    for (guint p = 0; p < r->s.procs; p++) {
+        const Proc *pr = &r->procs[p];
+        double busy = (double)(mach_proc_busy(pr->proc) - pr->busy0);
+        total += busy;
+        max = MAX(max, busy);
+    }
+    st->imbalance = max_over_mean(max, total, r->s.procs);
+    if (r->adapt) {
+        uint64_t sent = (uint64_t)r->s.procs * (r->s.procs - 1);
+        st->estimate_bytes = sent * grid_bytes(r);
+        st->estimate_cells = r->s.procs * partition_cells(r);
+        for (guint p = 0; p < r->s.procs; p++)
+            st->estimate_cells += r->adapt->added[p];
+    }
+}
 
 static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
 {
@@ -255,8 +317,9 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
     }
     st->messages = (uint64_t)r->s.procs * (r->s.procs - 1);
     st->polys_rendered = total;
-    double mean = (double)total / r->s.procs;
-    st->imbalance = mean > 0 ? (st->load_max - mean) / mean : 0;
+    st->poly_imbalance =
+        max_over_mean((double)st->load_max, (double)total, r->s.procs);
+    sum_busy(r, st);
 }
 
 static void overlap(const WlSfRun *r, WlSfFrameStats *st)
@@ -321,6 +384,8 @@ static void render_done(SimEngine *eng, void *ctx, void *arg)
         sim_engine_fail(eng, e);
         return;
     }
+    if (r->adapt)
+        r->regions = r->next;
     if (++r->frame < r->frames)
         sim_schedule_in(eng, 0, start_frame, r, NULL);
 }
@@ -341,6 +406,8 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->c = *c;
     wl_sf_regions_init(&r->regions, s->procs, s->resolution, s->resolution);
     r->book = wl_sf_book_new(db, &r->regions, s->bk, &s->sizes);
+    if (s->adaptive)
+        r->adapt = wl_sf_adapt_new(s->grid, s->procs);
     r->procs = g_new0(Proc, s->procs);
     for (guint p = 0; p < s->procs; p++) {
         Proc *pr = &r->procs[p];
@@ -361,6 +428,8 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->ph_pack = sim_engine_phase(r->eng, "pack");
     r->ph_unpack = sim_engine_phase(r->eng, "unpack");
     r->ph_render = sim_engine_phase(r->eng, "render");
+    if (s->adaptive)
+        r->ph_partition = sim_engine_phase(r->eng, "partition");
     return r;
 }
 
@@ -376,6 +445,7 @@ void wl_sf_run_free(WlSfRun *r)
     }
     g_free(r->procs);
     wl_sf_book_free(r->book);
+    wl_sf_adapt_free(r->adapt);
     rast_zbuffer_free(r->zb);
     rast_zbuffer_free(r->serial);
     g_array_unref(r->stats);
@@ -400,6 +470,11 @@ const GArray *wl_sf_run_stats(const WlSfRun *r)
 const WlSfBook *wl_sf_run_book(const WlSfRun *r)
 {
     return r->book;
+}
+
+const WlSfRegions *wl_sf_run_regions(const WlSfRun *r)
+{
+    return &r->regions;
 }
 
 const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r)

@@ -18,6 +18,15 @@
  *            region: transform_vertex per vertex, span_create per span,
  *            pixel_zbuffer per pixel inside the region.
  *
+ * With adaptive regions (WlSfSetup.adaptive, sf_adapt.h) the sort also
+ * adds each on-screen instance of p's master chunks to p's work grid
+ * (grid_cell per instance), every message carries the sender's grid
+ * (G^2 x bytes.cell, an all-gather riding on the exchange), and after
+ * rendering each processor sums the P grids and computes the k-d split
+ * (grid_cell per cell summed and per cell the split visits; phase
+ * `partition`), which gives the regions of the next frame.  Frame 0
+ * uses the static grid.
+ *
  * The frame ends when every processor has rendered (the frame-buffer
  * read-out is not modelled); the next frame then starts.  The regions'
  * pixels land in one frame z-buffer: with `check_image` it is compared
@@ -42,6 +51,7 @@ extern const char *const wl_sf_cost_ops[];
 
 typedef struct {
     SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;
+    SimTime grid_cell;
 } WlSfCosts;
 
 typedef struct {
@@ -50,6 +60,8 @@ typedef struct {
     WlSfBookkeeping bk;
     WlSfSizes sizes;
     gboolean cull_back, check_image;
+    gboolean adaptive; /* regions re-split each frame (sf_adapt.h) */
+    guint grid;        /* G of the adaptive work grid, <= resolution */
 } WlSfSetup;
 
 /* One frame's figures (sums over processors unless said). */
@@ -60,7 +72,10 @@ typedef struct {
     uint64_t master_boxes, slave_boxes, new_boxes, deleted_chunks;
     uint64_t polys_rendered;     /* polygons transformed for rendering */
     uint64_t load_max, load_min; /* polygons rendered per processor */
-    double imbalance;            /* (max - mean) / mean polygons */
+    double poly_imbalance;       /* max / mean polygons rendered */
+    double imbalance;            /* max / mean busy time (work) */
+    uint64_t estimate_bytes;     /* grid bytes sent (adaptive) */
+    uint64_t estimate_cells;     /* grid cells added, summed, visited */
     uint64_t onscreen_insts;     /* chunk instances in some region */
     uint64_t region_insts;       /* Σ regions over them */
     uint64_t pixels;             /* pixels z-buffered in the regions */
@@ -86,6 +101,8 @@ gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until, GError **err);
 const GArray *wl_sf_run_stats(const WlSfRun *r);
 /* The bookkeeping state (borrowed), for tests. */
 const WlSfBook *wl_sf_run_book(const WlSfRun *r);
+/* The regions the next frame will use (borrowed). */
+const WlSfRegions *wl_sf_run_regions(const WlSfRun *r);
 /* The last frame's image (borrowed; NULL before a frame). */
 const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r);
 

@@ -18,17 +18,20 @@ void wl_sf_regions_init(WlSfRegions *r, guint procs, int width, int height)
     r->width = width;
     r->height = height;
     g_assert(width >= (int)cols && height >= (int)r->rows);
+    for (guint p = 0; p < procs; p++) {
+        guint row = p / cols, col = p % cols;
+        WlSfRect *q = &r->rect[p];
+        q->x0 = (int)((int64_t)col * width / cols);
+        q->x1 = (int)((int64_t)(col + 1) * width / cols);
+        q->y0 = (int)((int64_t)row * height / r->rows);
+        q->y1 = (int)((int64_t)(row + 1) * height / r->rows);
+    }
 }
 
 WlSfRect wl_sf_region_rect(const WlSfRegions *r, guint p)
 {
-    guint row = p / r->cols, col = p % r->cols;
-    WlSfRect q;
-    q.x0 = (int)((int64_t)col * r->width / r->cols);
-    q.x1 = (int)((int64_t)(col + 1) * r->width / r->cols);
-    q.y0 = (int)((int64_t)row * r->height / r->rows);
-    q.y1 = (int)((int64_t)(row + 1) * r->height / r->rows);
-    return q;
+    g_assert(p < r->procs);
+    return r->rect[p];
 }
 
 /* Outcodes of one clip-space point: bit k for the k-th plane it is out. */
@@ -38,9 +41,8 @@ static unsigned outcode(Vec4 c)
            (c.y > c.w) << 3 | (c.z < -c.w) << 4 | (c.z > c.w) << 5;
 }
 
-/* Screen rectangle of the box in pixels (y down); FALSE when culled. */
-static gboolean screen_rect(const WlSfRegions *r, SceneBox b, Mat4 m,
-                            double *x0, double *y0, double *x1, double *y1)
+gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox b, Mat4 m,
+                          double *x0, double *y0, double *x1, double *y1)
 {
     unsigned all = 0x3f;
     gboolean behind = FALSE;
@@ -76,7 +78,7 @@ uint64_t wl_sf_box_regions(const WlSfRegions *r, SceneBox box,
 {
     double x0, y0, x1, y1;
     if (scene_box_is_empty(box) ||
-        !screen_rect(r, box, clip_from_obj, &x0, &y0, &x1, &y1))
+        !wl_sf_box_screen(r, box, clip_from_obj, &x0, &y0, &x1, &y1))
         return 0;
     x0 -= 1;
     y0 -= 1;

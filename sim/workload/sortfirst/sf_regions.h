@@ -6,7 +6,8 @@
  * of P nearest sqrt(P) from above, so 4 = 2x2, 8 = 2x4, 12 = 3x4,
  * 20 = 4x5), processor p owning region p in row-major order; pixel
  * columns are split as x0 = col W / cols (integers), rows likewise.
- * Adaptive partitioning (seed 000 §1.2, [12]) is not modelled.
+ * Adaptive regions (seed 000 §1.2, [12]) overwrite `rect` each frame
+ * (sf_adapt.h); everything below reads the regions through `rect`.
  *
  * The bucket sort (§4.1): "these bounding boxes are transformed into
  * screen space, and their bounding rectangles are computed.  These data
@@ -29,17 +30,23 @@
 #define WL_SF_MAX_PROCS 64
 
 typedef struct {
-    guint procs, rows, cols;
-    int width, height;
-} WlSfRegions;
-
-typedef struct {
     int x0, y0, x1, y1; /* pixels x0 <= x < x1, y0 <= y < y1 */
 } WlSfRect;
+
+typedef struct {
+    guint procs, rows, cols;
+    int width, height;
+    WlSfRect rect[WL_SF_MAX_PROCS]; /* region p; they tile the screen */
+} WlSfRegions;
 
 /* procs in 1 .. WL_SF_MAX_PROCS; width, height >= procs' grid. */
 void wl_sf_regions_init(WlSfRegions *r, guint procs, int width, int height);
 WlSfRect wl_sf_region_rect(const WlSfRegions *r, guint p);
+/* The box's screen rectangle in pixels (y down, not clamped; the whole
+ * plane when a corner is at or behind the eye); FALSE when culled. */
+gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox box,
+                          Mat4 clip_from_obj, double *x0, double *y0,
+                          double *x1, double *y1);
 /* The regions the box (object coordinates) overlaps under clip_from_obj
  * (view-projection x model), as a mask of bits 1 << p; 0 when culled. */
 uint64_t wl_sf_box_regions(const WlSfRegions *r, SceneBox box,

@@ -8,10 +8,13 @@
  *     granularity: 12        # primitives per chunk (§3.2; §4.1: 1 5 12 26)
  *     bookkeeping: maxset    # minset (§3.3) | maxset (§3.4)
  *     chunking: sorted       # sorted | unsorted (§4.1)
+ *     regions: static        # static grid | adaptive (sf_adapt.h)
+ *     grid: 32               # G x G work grid of adaptive regions
  *     resolution: 256        # N x N screen
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
- *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B}
+ *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B,
+ *             cell: 4 B}
  *     frame_log: frames.csv  # optional per-frame figures (default under
  *                            # `pgsim run --out DIR`: DIR/sortfirst_frames.csv)
  *
@@ -30,10 +33,10 @@
 
 static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 {
-    *z = (WlSfSizes){64, 40, 36, 8};
+    *z = (WlSfSizes){64, 40, 36, 8, 4};
     const CfgNode *n;
     if (!cfg_get_map(sec, "bytes", FALSE,
-                     "a map {message, chunk, triangle, instance} of sizes", &n,
+                     "a map {message, chunk, triangle, instance, cell} of sizes", &n,
                      err))
         return FALSE;
     if (!n)
@@ -41,19 +44,41 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
     return cfg_get_size(n, "message", FALSE, &z->message, err) &&
            cfg_get_size(n, "chunk", FALSE, &z->chunk, err) &&
            cfg_get_size(n, "triangle", FALSE, &z->triangle, err) &&
-           cfg_get_size(n, "instance", FALSE, &z->instance, err);
+           cfg_get_size(n, "instance", FALSE, &z->instance, err) &&
+           cfg_get_size(n, "cell", FALSE, &z->cell, err);
 }
+
+static const char *const region_names[] = {"static", "adaptive", NULL};
 
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
-    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED;
+    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0;
     if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
                       err) ||
-        !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch, err))
+        !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch,
+                      err) ||
+        !cfg_get_enum(sec, "regions", FALSE, region_names, &rg, err))
         return FALSE;
+    p->setup.adaptive = rg == 1;
     p->setup.bk = (WlSfBookkeeping)bk;
     p->chunking = (WlSfChunking)ch;
     return TRUE;
+}
+
+/* The grid's cells must be at least a pixel. */
+static gboolean check_grid(const CfgNode *sec, uint64_t grid, uint64_t res,
+                           GError **err)
+{
+    if (grid <= res)
+        return TRUE;
+    char *found = g_strdup_printf("grid %" G_GUINT64_FORMAT, grid);
+    char *exp = g_strdup_printf("at most the resolution (%" G_GUINT64_FORMAT
+                                ")",
+                                res);
+    cfg_error(err, cfg_get(sec, "grid"), found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
 }
 
 static void sf_free_params(void *params)
@@ -67,7 +92,7 @@ static void sf_free_params(void *params)
 static void *sf_parse(const CfgNode *sec, GError **err)
 {
     WlSfParams *p = g_new0(WlSfParams, 1);
-    uint64_t procs = 16, gran = 12, res = 256;
+    uint64_t procs = 16, gran = 12, res = 256, grid = 32;
     gboolean check = TRUE, cull = TRUE;
     const char *log = NULL;
     gboolean ok =
@@ -76,6 +101,8 @@ static void *sf_parse(const CfgNode *sec, GError **err)
                       err) &&
         cfg_get_count(sec, "granularity", FALSE, 1, 1u << 20, &gran, err) &&
         cfg_get_count(sec, "resolution", FALSE, 16, 4096, &res, err) &&
+        cfg_get_count(sec, "grid", FALSE, 8, 1024, &grid, err) &&
+        check_grid(sec, grid, res, err) &&
         cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
         cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
         cfg_get_str(sec, "frame_log", FALSE, &log, err) &&
@@ -86,6 +113,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
     }
     p->setup.procs = (guint)procs;
     p->setup.resolution = (int)res;
+    p->setup.grid = (guint)grid;
     p->setup.check_image = check;
     p->setup.cull_back = cull;
     p->granularity = (guint)gran;
@@ -97,7 +125,8 @@ static void *sf_parse(const CfgNode *sec, GError **err)
 
 typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
-    double imbalance, imbalance_max, util, frame_ms;
+    double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
+    double est_bytes;
     uint64_t onscreen, regions, peak;
     gboolean checked, image_ok;
 } Sums;
@@ -123,6 +152,8 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->rendered += s->polys_rendered;
         m->imbalance += s->imbalance;
         m->imbalance_max = MAX(m->imbalance_max, s->imbalance);
+        m->poly_imbalance += s->poly_imbalance;
+        m->est_bytes += s->estimate_bytes;
         m->util += s->utilisation;
         m->frame_ms += sim_time_to_ms(s->end - s->start);
         m->onscreen += s->onscreen_insts;
@@ -168,6 +199,9 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
         "");
     set(out, "load_imbalance", m.imbalance / n, "");
     set(out, "load_imbalance_max", m.imbalance_max, "");
+    set(out, "polygon_imbalance", m.poly_imbalance / n, "");
+    if (s->adaptive)
+        set(out, "estimate_bytes_per_frame", m.est_bytes / n, "B");
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
     if (m.checked)
@@ -180,7 +214,7 @@ static gboolean write_log(const char *path, const GArray *stats, GError **err)
         "frame,frame_ms,migrated_chunks,migrated_polygons,"
         "migrated_pointers,migrated_bytes,master_boxes,slave_boxes,"
         "new_boxes,polygons_rendered,load_max,load_min,imbalance,"
-        "utilisation,peak_memory\n");
+        "polygon_imbalance,utilisation,peak_memory,estimate_bytes\n");
     for (guint f = 0; f < stats->len; f++) {
         const WlSfFrameStats *t = &g_array_index(stats, WlSfFrameStats, f);
         g_string_append_printf(
@@ -189,12 +223,12 @@ static gboolean write_log(const char *path, const GArray *stats, GError **err)
             ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
             ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
             ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
-            ",%.6f,%.6f,%" G_GUINT64_FORMAT "\n",
+            ",%.6f,%.6f,%.6f,%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT "\n",
             f, sim_time_to_ms(t->end - t->start), t->migrated_chunks,
             t->migrated_polys, t->migrated_insts, t->migrated_bytes,
             t->master_boxes, t->slave_boxes, t->new_boxes, t->polys_rendered,
-            t->load_max, t->load_min, t->imbalance, t->utilisation,
-            t->peak_memory);
+            t->load_max, t->load_min, t->imbalance, t->poly_imbalance,
+            t->utilisation, t->peak_memory, t->estimate_bytes);
     }
     gboolean ok = wl_frame_log_write(path, s, "sortfirst", err);
     g_string_free(s, TRUE);

@@ -1,0 +1,53 @@
+/* sf_adapt.h — adaptive screen regions for sort-first (seed 000 §1.2:
+ * "Adaptive screen-space partitioning is a good load-balancing solution
+ * for SF, but it requires estimating the primitive work distribution
+ * over the screen [12]"; [12] Mueller, "The Sort-First Architecture for
+ * High-Performance Graphics", I3D 1995: the mesh-based median-cut
+ * hierarchical decomposition, MAHD).
+ *
+ * The estimate: a G x G grid of screen cells.  During its sort each
+ * master adds, for every on-screen instance of its chunks, the chunk's
+ * polygon count to the cell holding the centre of the instance's screen
+ * rectangle (clamped to the screen); the masters' grids are summed (the
+ * sum is what every processor holds after the exchange, sf_frame.h).
+ *
+ * The split: a k-d tree over the grid.  A node of k processors is cut
+ * into k/2 and k - k/2 processors at the cell boundary that minimises
+ * the larger of the two sides' weight per processor (the weighted
+ * median: left weight ~ W (k/2) / k), ties broken towards the cut
+ * proportional to area; each side keeps at least enough cells for its
+ * processors.  The cut runs across the node's longer side (in cells),
+ * the other side only when the longer cannot hold both halves.  Leaves are the P regions, cell
+ * boundaries mapped to pixels as i W / G.  Deterministic (integer
+ * weights, fixed order).  Work: O(instances) to estimate, O(G^2 log P)
+ * cells visited to split.
+ */
+#ifndef PGSIM_WORKLOAD_SORTFIRST_SF_ADAPT_H
+#define PGSIM_WORKLOAD_SORTFIRST_SF_ADAPT_H
+
+#include "sim/workload/sortfirst/sf_db.h"
+#include "sim/workload/sortfirst/sf_regions.h"
+
+typedef struct {
+    guint grid;       /* G */
+    guint procs;      /* P */
+    uint64_t *weight; /* G x G polygons per cell, row-major */
+    uint64_t *added;  /* per processor: instances its masters added */
+} WlSfAdapt;
+
+/* grid in 1 .. 1024 with grid^2 >= procs. */
+WlSfAdapt *wl_sf_adapt_new(guint grid, guint procs);
+void wl_sf_adapt_free(WlSfAdapt *a);
+/* Clears, then adds every on-screen chunk instance under view_proj
+ * (regions give the screen size). */
+void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
+                          const WlSfRegions *r, Mat4 view_proj);
+/* Splits the screen into r->procs regions (r->rect) of equal estimated
+ * weight; returns the cells visited. */
+uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r);
+/* The estimated weight inside pixel rectangle q (cells whose top-left
+ * corner lies in it), for tests and reports. */
+uint64_t wl_sf_adapt_weight_in(const WlSfAdapt *a, const WlSfRegions *r,
+                               WlSfRect q);
+
+#endif
