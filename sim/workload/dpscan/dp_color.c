@@ -52,8 +52,12 @@ gboolean wl_dp_palette_from_cfg(const CfgNode *seq,
                                 float pal[WL_DP_COLORS][3], GError **err)
 {
     if (cfg_kind(seq) != CFG_SEQ || cfg_seq_len(seq) != WL_DP_COLORS) {
-        cfg_error(err, seq, "not a list of 15 colours",
-                  "palette: [15 x [r, g, b] in 0..1 or \"#rrggbb\"]");
+        char *found = cfg_kind(seq) == CFG_SEQ
+                          ? g_strdup_printf("%u colours", cfg_seq_len(seq))
+                          : g_strdup("not a list");
+        cfg_error(err, seq, found,
+                  "15 colours, each [r, g, b] in 0..1 or \"#rrggbb\"");
+        g_free(found);
         return FALSE;
     }
     for (guint i = 0; i < WL_DP_COLORS; i++) {

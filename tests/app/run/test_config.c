@@ -54,6 +54,12 @@ static const BadCase bad[] = {
     {"yaml_syntax.yaml", "5:4: found YAML syntax error"},
     {"missing_model.yaml", "3:3: found no model 'no-such-machine', "
                            "expected models/no-such-machine.yaml"},
+    {"dpscan_bad_mode.yaml", "4:9: found 'shaded', expected one of: flat, "
+                             "gouraud, wireframe, hidden_line, contour, "
+                             "points, lines"},
+    {"dpscan_bad_palette.yaml", "4:12: found 2 colours, expected 15 "
+                                "colours, each [r, g, b] in 0..1 or "
+                                "\"#rrggbb\""},
 };
 
 static char *bad_path(const BadCase *c)
