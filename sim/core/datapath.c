@@ -7,53 +7,41 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static char *try_root(const char *root, const char *name)
+GPtrArray *sim_data_roots(void)
 {
-    char *p = g_build_filename(root, name, NULL);
-    if (g_file_test(p, G_FILE_TEST_EXISTS))
-        return p;
-    g_free(p);
-    return NULL;
-}
-
-static char *try_env(const char *name)
-{
+    GPtrArray *roots = g_ptr_array_new_with_free_func(g_free);
     const char *env = g_getenv("PGSIM_DATA");
-    if (!env || !*env)
-        return NULL;
-    char **roots = g_strsplit(env, ":", -1), *hit = NULL;
-    for (char **r = roots; *r && !hit; r++)
+    char **dirs = g_strsplit(env ? env : "", ":", -1);
+    for (char **r = dirs; *r; r++)
         if (**r)
-            hit = try_root(*r, name);
-    g_strfreev(roots);
-    return hit;
-}
-
-static char *try_exe(const char *name)
-{
+            g_ptr_array_add(roots, g_strdup(*r));
+    g_strfreev(dirs);
     char *exe = g_file_read_link("/proc/self/exe", NULL);
-    if (!exe)
-        return NULL;
-    char *bindir = g_path_get_dirname(exe);
-    char *up = g_build_filename(bindir, "..", NULL);
-    char *share = g_build_filename(bindir, "..", "share", "pgsim", NULL);
-    char *hit = try_root(up, name);
-    if (!hit)
-        hit = try_root(share, name);
-    g_free(share);
-    g_free(up);
-    g_free(bindir);
-    g_free(exe);
-    return hit;
+    if (exe) {
+        char *bindir = g_path_get_dirname(exe);
+        g_ptr_array_add(roots, g_build_filename(bindir, "..", NULL));
+        g_ptr_array_add(roots,
+                        g_build_filename(bindir, "..", "share", "pgsim", NULL));
+        g_free(bindir);
+        g_free(exe);
+    }
+    return roots;
 }
 
 char *sim_data_path(const char *name)
 {
     if (g_path_is_absolute(name) || g_file_test(name, G_FILE_TEST_EXISTS))
         return g_strdup(name);
-    char *hit = try_env(name);
-    if (!hit)
-        hit = try_exe(name);
+    GPtrArray *roots = sim_data_roots();
+    char *hit = NULL;
+    for (guint i = 0; !hit && i < roots->len; i++) {
+        char *p = g_build_filename(roots->pdata[i], name, NULL);
+        if (g_file_test(p, G_FILE_TEST_EXISTS))
+            hit = p;
+        else
+            g_free(p);
+    }
+    g_ptr_array_free(roots, TRUE);
     return hit ? hit : g_strdup(name);
 }
 

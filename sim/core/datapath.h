@@ -18,6 +18,9 @@
 
 /* Returns a newly allocated path (g_free). */
 char *sim_data_path(const char *name);
+/* The roots of steps 2-4 in order (a new array of strings; free with
+ * g_ptr_array_free(roots, TRUE)), for searches that want every hit. */
+GPtrArray *sim_data_roots(void);
 
 /* Reads a whole input file in one pass into *text (g_free;
  * NUL-terminated), its length into *len if not NULL.  The file must be a

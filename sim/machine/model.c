@@ -117,6 +117,54 @@ static char *try_dir(const char *dir, const char *name)
     return NULL;
 }
 
+/* Adds dir (owned) unless the same folder is already listed. */
+static void add_dir(GPtrArray *dirs, char *dir)
+{
+    char *c = g_canonicalize_filename(dir, NULL);
+    gboolean dup = FALSE;
+    for (guint i = 0; !dup && i < dirs->len; i++) {
+        char *o = g_canonicalize_filename(dirs->pdata[i], NULL);
+        dup = strcmp(o, c) == 0;
+        g_free(o);
+    }
+    g_free(c);
+    if (dup)
+        g_free(dir);
+    else
+        g_ptr_array_add(dirs, dir);
+}
+
+GPtrArray *mach_model_dirs(void)
+{
+    GPtrArray *dirs = g_ptr_array_new_with_free_func(g_free);
+    add_dir(dirs, g_strdup("models"));
+    const char *env = g_getenv("PGSIM_MODELS");
+    char **list = g_strsplit(env ? env : "", ":", -1);
+    for (char **d = list; *d; d++)
+        if (**d)
+            add_dir(dirs, g_strdup(*d));
+    g_strfreev(list);
+    GPtrArray *roots = sim_data_roots();
+    for (guint i = 0; i < roots->len; i++)
+        add_dir(dirs, g_build_filename(roots->pdata[i], "models", NULL));
+    g_ptr_array_free(roots, TRUE);
+    return dirs;
+}
+
+static void no_model(GError **err, const char *name, const GPtrArray *dirs)
+{
+    GString *s = g_string_new(NULL);
+    for (guint i = 0; i < dirs->len; i++)
+        if (g_file_test(dirs->pdata[i], G_FILE_TEST_IS_DIR))
+            g_string_append_printf(s, "%s%s", s->len ? ", " : "",
+                                   (const char *)dirs->pdata[i]);
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "found no model '%s', expected %s.yaml in one of the model "
+                "folders (%s; more with $PGSIM_MODELS)",
+                name, name, s->len ? s->str : "none exists");
+    g_string_free(s, TRUE);
+}
+
 char *mach_model_path(const char *name, GError **err)
 {
     if (!name_ok(name)) {
@@ -126,22 +174,13 @@ char *mach_model_path(const char *name, GError **err)
                     name ? name : "");
         return NULL;
     }
-    char *models = sim_data_path("models");
-    char *path = try_dir(models, name);
-    g_free(models);
-    const char *env = g_getenv("PGSIM_MODELS");
-    if (!path && env && *env) {
-        char **dirs = g_strsplit(env, ":", -1);
-        for (char **d = dirs; *d && !path; d++)
-            if (**d)
-                path = try_dir(*d, name);
-        g_strfreev(dirs);
-    }
+    GPtrArray *dirs = mach_model_dirs();
+    char *path = NULL;
+    for (guint i = 0; !path && i < dirs->len; i++)
+        path = try_dir(dirs->pdata[i], name);
     if (!path)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "found no model '%s', expected models/%s.yaml under "
-                    "the current directory or $PGSIM_MODELS (%s)",
-                    name, name, env && *env ? env : "unset");
+        no_model(err, name, dirs);
+    g_ptr_array_free(dirs, TRUE);
     return path;
 }
 

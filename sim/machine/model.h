@@ -41,9 +41,16 @@ typedef enum {
     MACH_T_COUNT_LIST /* sequence of counts (mesh extents) */
 } MachType;
 
-/* Finds models/<name>.yaml: first under ./models, then under each
- * directory of $PGSIM_MODELS (colon-separated).  Returns a newly
- * allocated path (g_free) or NULL with *err set. */
+/* The model search path, a union with the user's folders first: ./models,
+ * each directory of $PGSIM_MODELS (colon-separated; the run-config
+ * loader appends the config's project models/ and the install's), then
+ * models/ under every data root (sim_data_roots: $PGSIM_DATA, the build
+ * tree, share/pgsim).  A new array of strings (g_ptr_array_free(a, TRUE)).
+ * A folder holding a user's own model hides none of the shipped ones. */
+GPtrArray *mach_model_dirs(void);
+/* Finds <name>.yaml in the first folder of mach_model_dirs() that has it.
+ * Returns a newly allocated path (g_free) or NULL with *err set (the
+ * error lists the folders that exist). */
 char *mach_model_path(const char *name, GError **err);
 
 /* Loads and checks a model by name.  Returns a new tree (cfg_free) or

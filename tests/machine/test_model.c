@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <string.h>
+#include <glib/gstdio.h>
 
 #include "sim/machine/machine.h"
 #include "sim/machine/model.h"
@@ -124,6 +125,51 @@ static void test_models_path_from_env(void **state)
     g_unsetenv("PGSIM_MODELS");
     assert_null(mach_model_path("tiny", &err));
     g_error_free(err);
+}
+
+/* A ./models folder holding one user model adds to the shipped models
+ * (issue 18: it used to hide all of them), and a user model of the same
+ * name as a shipped one wins. */
+static void test_models_path_is_a_union(void **state)
+{
+    (void)state;
+    char *repo = g_get_current_dir();
+    char *tmp = g_dir_make_tmp("pgsim-models-XXXXXX", NULL);
+    char *mine = g_build_filename(tmp, "models", NULL);
+    assert_int_equal(g_mkdir(mine, 0777), 0);
+    char *f1 = g_build_filename(mine, "mine.yaml", NULL);
+    char *f2 = g_build_filename(mine, "ipsc2.yaml", NULL);
+    assert_true(g_file_set_contents(f1, "x", -1, NULL));
+    assert_true(g_file_set_contents(f2, "x", -1, NULL));
+    g_setenv("PGSIM_DATA", repo, TRUE);
+    assert_int_equal(g_chdir(tmp), 0);
+    GError *err = NULL;
+    char *p = mach_model_path("mine", &err);
+    assert_string_equal(p, "models/mine.yaml");
+    g_free(p);
+    p = mach_model_path("ipsc2", &err); /* the user's copy first */
+    assert_string_equal(p, "models/ipsc2.yaml");
+    g_free(p);
+    p = mach_model_path("cm5", &err); /* the shipped one, still found */
+    g_assert_no_error(err);
+    char *want = g_build_filename(repo, "models", "cm5.yaml", NULL);
+    assert_string_equal(p, want);
+    assert_null(mach_model_path("nothere", &err));
+    assert_non_null(strstr(err->message, "found no model 'nothere'"));
+    g_clear_error(&err);
+    assert_int_equal(g_chdir(repo), 0);
+    g_unsetenv("PGSIM_DATA");
+    g_remove(f1);
+    g_remove(f2);
+    g_rmdir(mine);
+    g_rmdir(tmp);
+    g_free(want);
+    g_free(p);
+    g_free(f1);
+    g_free(f2);
+    g_free(mine);
+    g_free(tmp);
+    g_free(repo);
 }
 
 static MachMachine *from_text(SimEngine *eng, const char *text, CfgNode **root,
@@ -249,6 +295,7 @@ int main(void)
         cmocka_unit_test(test_unknown_model_name),
         cmocka_unit_test(test_bad_models_rejected),
         cmocka_unit_test(test_models_path_from_env),
+        cmocka_unit_test(test_models_path_is_a_union),
         cmocka_unit_test(test_overrides_apply),
         cmocka_unit_test(test_bad_overrides_rejected),
         cmocka_unit_test(test_check_section_marks_read),
