@@ -23,6 +23,13 @@ typedef struct {
     gboolean quiet;       /* no progress output */
 } WlContext;
 
+/* Costs a workload asks a machine model for: operation names under
+ * nodes.<kind>.costs (sim/machine/model.h). */
+typedef struct {
+    const char *kind;
+    const char *const *ops; /* NULL-terminated */
+} WlNeed;
+
 typedef struct {
     const char *name;
     const char *summary;
@@ -35,6 +42,11 @@ typedef struct {
      * and, if left 0, elapsed: workloads need not. */
     gboolean (*run)(const WlContext *ctx, void *params, SimResult *out,
                     GError **err);
+    /* The machine costs run() looks up, per node kind, ended by a NULL
+     * kind; NULL when it needs no machine.  `pgsim help run` lists them,
+     * so a new model can be written against them (test_workload checks
+     * a shipped config's model has them). */
+    const WlNeed *needs;
 } WlOps;
 
 /* The run's `run.until` bound (already validated by the config loader):

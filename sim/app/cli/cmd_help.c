@@ -10,8 +10,13 @@ int cmd_help(int argc, char **argv)
         cli_usage(stdout);
         return 0;
     }
+    if (strcmp(argv[1], "help") == 0) {
+        printf("Usage: pgsim help [COMMAND]\n\nPrints the list of commands, "
+               "or COMMAND's options (the same as pgsim COMMAND --help).\n");
+        return 0;
+    }
     const CliCommand *c = cli_find_command(argv[1]);
-    if (!c || strcmp(argv[1], "help") == 0) {
+    if (!c) {
         fprintf(stderr, "pgsim help: found '%s', expected a command\n",
                 argv[1]);
         cli_usage(stderr);

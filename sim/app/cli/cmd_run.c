@@ -28,6 +28,28 @@ static const char summary[] =
     "Runs a simulation described by a YAML config (docs/config.md) and "
     "prints its report (docs/output.md).";
 
+/* The summary, then each workload (workload.type) with the costs it asks
+ * a machine model for (nodes.KIND.costs.OP). */
+static char *help_text(void)
+{
+    GString *s = g_string_new(summary);
+    g_string_append(s, "\n\nWorkloads (workload.type) and the costs each "
+                       "needs from a machine model (nodes.KIND.costs):");
+    for (guint i = 0; wl_all[i]; i++) {
+        const WlOps *w = wl_all[i];
+        g_string_append_printf(s, "\n  %-11s %s", w->name, w->summary);
+        if (!w->needs)
+            g_string_append(s, "\n      (declares none; docs/workloads.md)");
+        for (const WlNeed *n = w->needs; n && n->kind; n++) {
+            g_string_append_printf(s, "\n      %s:", n->kind);
+            for (guint k = 0; n->ops[k]; k++)
+                g_string_append_printf(s, "%s %s", k ? "," : "", n->ops[k]);
+        }
+    }
+    g_string_append(s, "\nKeys of each workload: docs/workloads.md.");
+    return g_string_free(s, FALSE);
+}
+
 /* Checks --seed and --format; prints the error and returns FALSE. */
 static gboolean check_flags(const RunOpts *o, guint64 *seed, RptFormat *fmt)
 {
@@ -149,7 +171,11 @@ int cmd_run(int argc, char **argv)
         G_OPTION_ENTRY_NULL,
     };
     int status;
-    if (cli_parse("run", "CONFIG", summary, entries, &argc, &argv, &status))
+    char *help = help_text();
+    gboolean go = cli_parse("run", "CONFIG", help, entries, &argc, &argv,
+                            &status);
+    g_free(help);
+    if (go)
         status = cli_want_args("run", "CONFIG", argc, argv, 1)
                      ? run(argv[1], &o)
                      : 2;

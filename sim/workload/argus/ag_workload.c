@@ -334,6 +334,8 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+static const WlNeed ag_needs[] = {{"cpu", wl_ag_cost_ops}, {NULL, NULL}};
+
 const WlOps wl_argus_ops = {
     .name = "argus",
     .summary = "seed 002: the parallel graphics API (glpBarrier, glpPSema/"
@@ -343,4 +345,5 @@ const WlOps wl_argus_ops = {
     .parse = ag_parse,
     .free_params = ag_free_params,
     .run = ag_run,
+    .needs = ag_needs,
 };

@@ -333,6 +333,8 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+static const WlNeed pm_needs[] = {{"node", wl_pm_cost_ops}, {NULL, NULL}};
+
 const WlOps wl_pixelmerge_ops = {
     .name = "pixelmerge",
     .summary = "seed 003: object-space parallel rendering with active "
@@ -340,4 +342,5 @@ const WlOps wl_pixelmerge_ops = {
     .parse = pm_parse,
     .free_params = pm_free_params,
     .run = pm_run,
+    .needs = pm_needs,
 };

@@ -511,6 +511,21 @@ static gboolean run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+/* The costs wl_pphigs_costs_from_machine() and hw_costs() look up
+ * (pphigs_frame.c). */
+static const char *const gp_ops[] = {
+    "polygon",       "vertex",  "reject_vertex",  "color", "matrix_replace",
+    "matrix_concat", "execute", "send_primitive", NULL};
+static const char *const renderer_ops[] = {"primitive", "region_begin",
+                                           "region_shade", NULL};
+static const char *const fb_ops[] = {"store_region", NULL};
+static const char *const host_ops[] = {"send_element", NULL};
+static const WlNeed pphigs_needs[] = {{"gp", gp_ops},
+                                      {"renderer", renderer_ops},
+                                      {"frame_buffer", fb_ops},
+                                      {"host", host_ops},
+                                      {NULL, NULL}};
+
 const WlOps wl_pphigs_ops = {
     .name = "pphigs",
     .summary = "PPHIGS display list distributed by primitive over the "
@@ -518,4 +533,5 @@ const WlOps wl_pphigs_ops = {
     .parse = parse,
     .free_params = params_free,
     .run = run,
+    .needs = pphigs_needs,
 };

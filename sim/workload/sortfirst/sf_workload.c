@@ -321,6 +321,8 @@ static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+static const WlNeed sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
+
 const WlOps wl_sortfirst_ops = {
     .name = "sortfirst",
     .summary = "seed 000: sort-first rendering of a hierarchical database "
@@ -329,4 +331,5 @@ const WlOps wl_sortfirst_ops = {
     .parse = sf_parse,
     .free_params = sf_free_params,
     .run = sf_run,
+    .needs = sf_needs,
 };

@@ -1,0 +1,122 @@
+/* test_cli.c — what a new user meets first (issue 18): `pgsim help run`
+ * lists every workload with the machine costs it needs, `pgsim help help`
+ * succeeds, and `pgsim validate` checks sweep files as sweeps (every
+ * point), so a sweep that validates runs, and one with a bad point does
+ * not validate.  Runs the built binary, like test_scenarios. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include <cmocka.h>
+#include <glib.h>
+#include <glib/gstdio.h>
+
+#include "sim/workload/workload.h"
+
+static const char *pgsim_bin(void)
+{
+    return g_getenv("PGSIM_SANITIZE") ? "build-san/pgsim" : "build/pgsim";
+}
+
+/* Runs pgsim with args; returns the exit status, stdout and stderr. */
+static int pgsim(const char *const *args, char **out, char **err)
+{
+    GPtrArray *argv = g_ptr_array_new();
+    g_ptr_array_add(argv, (gpointer)pgsim_bin());
+    for (guint i = 0; args[i]; i++)
+        g_ptr_array_add(argv, (gpointer)args[i]);
+    g_ptr_array_add(argv, NULL);
+    int status = 0;
+    assert_true(g_spawn_sync(NULL, (char **)argv->pdata, NULL,
+                             G_SPAWN_DEFAULT, NULL, NULL, out, err, &status,
+                             NULL));
+    g_ptr_array_free(argv, TRUE);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+static void test_help_lists_workloads_and_costs(void **state)
+{
+    (void)state;
+    const char *args[] = {"help", "run", NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(args, &out, &err), 0);
+    for (guint i = 0; wl_all[i]; i++) {
+        char *line = g_strdup_printf("\n  %-11s ", wl_all[i]->name);
+        if (!strstr(out, line))
+            fail_msg("pgsim help run does not list workload '%s'",
+                     wl_all[i]->name);
+        g_free(line);
+        for (const WlNeed *n = wl_all[i]->needs; n && n->kind; n++)
+            for (guint k = 0; n->ops[k]; k++)
+                assert_non_null(strstr(out, n->ops[k]));
+    }
+    g_free(out);
+    g_free(err);
+    const char *hh[] = {"help", "help", NULL};
+    assert_int_equal(pgsim(hh, &out, &err), 0);
+    assert_non_null(strstr(out, "pgsim help [COMMAND]"));
+    g_free(out);
+    g_free(err);
+}
+
+static void test_validate_sweeps(void **state)
+{
+    (void)state;
+    const char *ok[] = {"validate", "configs/sweep-tokenring.yaml", NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(ok, &out, &err), 0);
+    assert_non_null(strstr(out, "ok (sweep, "));
+    g_free(out);
+    g_free(err);
+    /* one bad point among good ones: validate refuses it, located */
+    char *dir = g_dir_make_tmp("pgsim-cli-XXXXXX", NULL);
+    char *base = g_build_filename(dir, "ring.yaml", NULL);
+    char *sweep = g_build_filename(dir, "s.yaml", NULL);
+    assert_true(g_file_set_contents(
+        base,
+        "schema_version: 1\nworkload: {type: tokenring, nodes: 4, token: 1 "
+        "KB, compute: 20 us, jitter: 0, link: {latency: 5 us, bandwidth: "
+        "20 MB/s}}\nrun: {frames: 2}\n",
+        -1, NULL));
+    assert_true(g_file_set_contents(
+        sweep,
+        "name: s\nbase: ring.yaml\nparameters:\n  workload.nodes: {values: "
+        "[4, 8, zero]}\n",
+        -1, NULL));
+    const char *bad[] = {"validate", sweep, NULL};
+    assert_int_equal(pgsim(bad, &out, &err), 2);
+    assert_non_null(strstr(err, "point 2"));
+    assert_non_null(strstr(err, "zero"));
+    g_free(out);
+    g_free(err);
+    /* the same sweep without the bad value validates and runs */
+    assert_true(g_file_set_contents(
+        sweep,
+        "name: s\nbase: ring.yaml\nparameters:\n  workload.nodes: {values: "
+        "[4, 8]}\n",
+        -1, NULL));
+    assert_int_equal(pgsim(bad, &out, &err), 0);
+    g_free(out);
+    g_free(err);
+    char *od = g_build_filename(dir, "o", NULL);
+    const char *run[] = {"sweep", sweep, "-q", "-j", "1", "--out", od, NULL};
+    assert_int_equal(pgsim(run, &out, &err), 0);
+    g_free(out);
+    g_free(err);
+    char *rm[] = {(char *)"rm", (char *)"-rf", dir, NULL};
+    assert_true(g_spawn_sync(NULL, rm, NULL, G_SPAWN_SEARCH_PATH, NULL, NULL,
+                             NULL, NULL, NULL, NULL));
+    g_free(od);
+    g_free(sweep);
+    g_free(base);
+    g_free(dir);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_help_lists_workloads_and_costs),
+        cmocka_unit_test(test_validate_sweeps),
+    };
+    return cmocka_run_group_tests_name("cli", tests, NULL, NULL);
+}
