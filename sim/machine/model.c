@@ -159,8 +159,8 @@ static void no_model(GError **err, const char *name, const GPtrArray *dirs)
             g_string_append_printf(s, "%s%s", s->len ? ", " : "",
                                    (const char *)dirs->pdata[i]);
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "found no model '%s', expected %s.yaml in one of the model "
-                "folders (%s; more with $PGSIM_MODELS)",
+                "found no model '%s', expected models/%s.yaml (model folders "
+                "searched: %s; more with $PGSIM_MODELS)",
                 name, name, s->len ? s->str : "none exists");
     g_string_free(s, TRUE);
 }
