@@ -67,7 +67,12 @@ $(BUILD)/tests/%: $(BUILD)/obj/tests/%.o $(TESTLOBJ) $(BUILD)/libpgsim.a
 
 run: deps
 	@$(MAKE) -s all
-	./$(BUILD)/pgsim run configs/quickstart.yaml
+	./$(BUILD)/pgsim run configs/quickstart.yaml --out out/quickstart
+	@echo
+	@echo "Next:  $(BUILD)/pgsim help run                       # workloads and what they need"
+	@echo "       $(BUILD)/pgsim run configs/quickstart.yaml --trace run.json   # open in ui.perfetto.dev"
+	@echo "       $(BUILD)/pgsim reproduce kurc96               # the paper's tables against the simulator"
+	@echo "       $(BUILD)/pgsim sweep configs/sweep-pixelmerge.yaml   # a sweep, with charts"
 
 $(BUILD)/tests/fuzz/replay_%: $(BUILD)/obj/tests/fuzz/fuzz_%.o \
                              $(BUILD)/obj/tests/fuzz/replay.o $(BUILD)/libpgsim.a

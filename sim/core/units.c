@@ -34,31 +34,34 @@ typedef enum { NUM_OK, NUM_NONE, NUM_NEG, NUM_DIGITS } NumStatus;
 static const Unit time_units[] = {
     {"ps", 0, 1, 1},        {"ns", 3, 1, 1},        {"us", 6, 1, 1},
     {"\xc2\xb5s", 6, 1, 1}, {"\xce\xbcs", 6, 1, 1}, /* micro, mu */
-    {"ms", 9, 1, 1},        {"s", 12, 1, 1},        {NULL, 0, 0, 0},
+    {"ms", 9, 1, 1},        {"s", 12, 1, 1},        {"sec", 12, 1, 1},
+    {"min", 12, 60, 1},     {"h", 12, 3600, 1},     {NULL, 0, 0, 0},
 };
 
+/* Bytes per second, SI (k = 1e3, as written in the papers: K too) and
+ * binary; bits per second (bit/s, b/s, bps); MBps spells MB/s. */
 static const Unit bw_units[] = {
-    {"B/s", 0, 1, 1},
-    {"KB/s", 3, 1, 1},
-    {"MB/s", 6, 1, 1},
-    {"GB/s", 9, 1, 1},
-    {"KiB/s", 0, 1024, 1},
-    {"MiB/s", 0, 1048576, 1},
-    {"GiB/s", 0, 1073741824, 1},
-    {"bit/s", 0, 1, 8},
-    {"Kbit/s", 3, 1, 8},
-    {"Mbit/s", 6, 1, 8},
-    {"Gbit/s", 9, 1, 8},
+    {"B/s", 0, 1, 1},       {"kB/s", 3, 1, 1},      {"KB/s", 3, 1, 1},
+    {"MB/s", 6, 1, 1},      {"GB/s", 9, 1, 1},      {"TB/s", 12, 1, 1},
+    {"Bps", 0, 1, 1},       {"kBps", 3, 1, 1},      {"KBps", 3, 1, 1},
+    {"MBps", 6, 1, 1},      {"GBps", 9, 1, 1},      {"KiB/s", 0, 1024, 1},
+    {"MiB/s", 0, 1048576, 1}, {"GiB/s", 0, 1073741824, 1},
+    {"bit/s", 0, 1, 8},     {"kbit/s", 3, 1, 8},    {"Kbit/s", 3, 1, 8},
+    {"Mbit/s", 6, 1, 8},    {"Gbit/s", 9, 1, 8},    {"b/s", 0, 1, 8},
+    {"kb/s", 3, 1, 8},      {"Kb/s", 3, 1, 8},      {"Mb/s", 6, 1, 8},
+    {"Gb/s", 9, 1, 8},      {"bps", 0, 1, 8},       {"kbps", 3, 1, 8},
+    {"Kbps", 3, 1, 8},      {"Mbps", 6, 1, 8},      {"Gbps", 9, 1, 8},
     {NULL, 0, 0, 0},
 };
 
 static const Unit freq_units[] = {
-    {"Hz", 0, 1, 1},  {"kHz", 3, 1, 1}, {"MHz", 6, 1, 1},
-    {"GHz", 9, 1, 1}, {NULL, 0, 0, 0},
+    {"Hz", 0, 1, 1},  {"kHz", 3, 1, 1}, {"KHz", 3, 1, 1},
+    {"MHz", 6, 1, 1}, {"GHz", 9, 1, 1}, {NULL, 0, 0, 0},
 };
 
 static const Unit size_units[] = {
     {"B", 0, 1, 1},
+    {"kB", 3, 1, 1},
     {"KB", 3, 1, 1},
     {"MB", 6, 1, 1},
     {"GB", 9, 1, 1},
@@ -85,14 +88,14 @@ static const Unit *const tables[] = {
 
 static const char *const expected_text[] = {
     [CFG_UNIT_TIME] = "a non-negative time with a unit (ps, ns, us, "
-                      "\xc2\xb5s, ms, s)",
+                      "\xc2\xb5s, ms, s, min, h)",
     [CFG_UNIT_BANDWIDTH] = "a non-negative bandwidth with a unit (B/s, "
-                           "KB/s, MB/s, GB/s, KiB/s, MiB/s, GiB/s, bit/s, "
-                           "Kbit/s, Mbit/s, Gbit/s)",
+                           "kB/s, MB/s, GB/s, MBps, KiB/s, MiB/s, GiB/s, "
+                           "bit/s, Mbit/s, Gbit/s, Mb/s, Gbps ...)",
     [CFG_UNIT_FREQ] = "a non-negative frequency with a unit (Hz, kHz, MHz, "
                       "GHz)",
-    [CFG_UNIT_SIZE] = "a non-negative size with a unit (B, KB, MB, GB, TB, "
-                      "KiB, MiB, GiB, TiB)",
+    [CFG_UNIT_SIZE] = "a non-negative size with a unit (B, kB, KB, MB, GB, "
+                      "TB, KiB, MiB, GiB, TiB)",
     [CFG_UNIT_COUNT] = "a non-negative integer, optionally with K (1e3) or "
                        "M (1e6)",
 };

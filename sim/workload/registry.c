@@ -6,6 +6,7 @@
 #include "sim/workload/pixelmerge/pm_workload.h"
 #include "sim/workload/sortfirst/sf_workload.h"
 #include "sim/workload/tokenring/tokenring_workload.h"
+#include "sim/core/error.h"
 #include <string.h>
 
 extern const WlOps wl_pphigs_ops;
@@ -53,4 +54,28 @@ gboolean wl_frame_log_write(const char *path, const GString *text,
                 "writable path",
                 workload, path);
     return FALSE;
+}
+
+gboolean wl_wants_frame(const WlContext *ctx, int frame)
+{
+    return ctx && ctx->out_dir &&
+           (ctx->all_frames || frame == ctx->frames - 1);
+}
+
+gboolean wl_emit_frame(const WlContext *ctx, int frame, const RastImage *img,
+                       GError **err)
+{
+    if (!wl_wants_frame(ctx, frame))
+        return TRUE;
+    char *name = ctx->all_frames ? g_strdup_printf("frame-%04d.png", frame)
+                                 : g_strdup("frame.png");
+    char *path = g_build_filename(ctx->out_dir, name, NULL);
+    gboolean ok = g_mkdir_with_parents(ctx->out_dir, 0777) == 0 &&
+                  rast_image_write_png(img, path, err);
+    if (!ok && err && !*err)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create",
+                    ctx->out_dir);
+    g_free(path);
+    g_free(name);
+    return ok;
 }

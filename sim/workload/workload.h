@@ -12,6 +12,7 @@
 #include "sim/core/cfg.h"
 #include "sim/core/engine.h"
 #include "sim/core/result.h"
+#include "sim/raster/image.h"
 
 typedef struct {
     SimEngine *eng;      /* fresh engine seeded with `seed`; borrowed */
@@ -21,7 +22,17 @@ typedef struct {
     int frames;           /* frames to simulate (>= 1) */
     const char *out_dir;  /* where images etc. may go; NULL: none */
     gboolean quiet;       /* no progress output */
+    gboolean all_frames;  /* with out_dir: an image of every frame */
 } WlContext;
+
+/* Frame images (pgsim run --out DIR): a workload that renders a picture
+ * asks wl_wants_frame() after each frame and, if TRUE, hands the image
+ * to wl_emit_frame(), which writes DIR/frame.png for the last frame, or
+ * DIR/frame-NNNN.png for every frame with --frames all.  No output
+ * directory: wl_wants_frame() is FALSE and nothing is built. */
+gboolean wl_wants_frame(const WlContext *ctx, int frame);
+gboolean wl_emit_frame(const WlContext *ctx, int frame, const RastImage *img,
+                       GError **err);
 
 /* Costs a workload asks a machine model for: operation names under
  * nodes.<kind>.costs (sim/machine/model.h). */

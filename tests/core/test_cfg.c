@@ -165,7 +165,7 @@ static void test_getter_errors(void **state)
                    "[1, 1024]");
     assert_false(cfg_get_time(m, "clock", TRUE, &t, &e));
     assert_err(&e, "t.yaml:7:10: found '1.5 GHz', expected a non-negative "
-                   "time with a unit (ps, ns, us, \xc2\xb5s, ms, s)");
+                   "time with a unit (ps, ns, us, \xc2\xb5s, ms, s, min, h)");
     assert_false(cfg_get_str(run, "nothing", TRUE, NULL, &e));
     assert_err(&e, "t.yaml:15:11: found an empty value, expected a string");
     assert_false(cfg_get_size(run, "seed", FALSE, &u, &e));

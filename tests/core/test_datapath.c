@@ -13,8 +13,8 @@
 static void test_name_as_given_when_it_exists(void **state)
 {
     (void)state;
-    char *p = sim_data_path("configs/quickstart.yaml"); /* run from root */
-    assert_string_equal(p, "configs/quickstart.yaml");
+    char *p = sim_data_path("configs/tokenring.yaml"); /* run from root */
+    assert_string_equal(p, "configs/tokenring.yaml");
     g_free(p);
 }
 
@@ -40,7 +40,7 @@ static void test_found_from_elsewhere(void **state)
     char *want = g_build_filename(root, "models/ipsc2.yaml", NULL);
     assert_string_equal(p, want);
     GError *err = NULL;
-    CfgNode *n = cfg_load_file("configs/quickstart.yaml", &err);
+    CfgNode *n = cfg_load_file("configs/tokenring.yaml", &err);
     assert_null(err);
     assert_non_null(n);
     cfg_free(n);

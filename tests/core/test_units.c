@@ -124,6 +124,32 @@ static void test_bad(void **state)
     assert_non_null(dbl_bad("0x10 Hz", CFG_UNIT_FREQ));
 }
 
+/* The common spellings a user types (issue 18): SI kB, bits per second
+ * as b/s and bps, bytes per second as MBps, minutes and hours; and the
+ * look-alikes that stay wrong (a unit of the wrong kind, wrong case). */
+static void test_common_spellings(void **state)
+{
+    (void)state;
+    assert_int_equal(u64_ok("10kB", CFG_UNIT_SIZE), 10000);
+    assert_int_equal(u64_ok("10 KB", CFG_UNIT_SIZE), 10000);
+    assert_int_equal(u64_ok("2min", CFG_UNIT_TIME), 120 * SIM_S);
+    assert_int_equal(u64_ok("1.5 h", CFG_UNIT_TIME), 5400 * SIM_S);
+    assert_int_equal(u64_ok("0.5 min", CFG_UNIT_TIME), 30 * SIM_S);
+    assert_true(dbl_ok("1 Gbps", CFG_UNIT_BANDWIDTH) == 125e6);
+    assert_true(dbl_ok("1 Gb/s", CFG_UNIT_BANDWIDTH) == 125e6);
+    assert_true(dbl_ok("8 Mbps", CFG_UNIT_BANDWIDTH) == 1e6);
+    assert_true(dbl_ok("2.8MBps", CFG_UNIT_BANDWIDTH) == 2.8e6);
+    assert_true(dbl_ok("2.8 MB/s", CFG_UNIT_BANDWIDTH) == 2.8e6);
+    assert_true(dbl_ok("10 kB/s", CFG_UNIT_BANDWIDTH) == 1e4);
+    assert_true(dbl_ok("20 KHz", CFG_UNIT_FREQ) == 2e4);
+    u64_bad("10 kb", CFG_UNIT_SIZE);   /* bits are not a size */
+    u64_bad("2 mins", CFG_UNIT_TIME);  /* not a unit */
+    u64_bad("2 m", CFG_UNIT_TIME);     /* metres or minutes: refused */
+    dbl_bad("1 GBit/s", CFG_UNIT_BANDWIDTH);
+    dbl_bad("1 Gbps/s", CFG_UNIT_BANDWIDTH);
+    assert_non_null(strstr(u64_bad("1 parsec", CFG_UNIT_TIME), "min"));
+}
+
 static void test_flag_parsers(void **state)
 {
     (void)state;
@@ -154,6 +180,7 @@ int main(void)
         cmocka_unit_test(test_sizes_counts),
         cmocka_unit_test(test_bandwidth_freq),
         cmocka_unit_test(test_bad),
+        cmocka_unit_test(test_common_spellings),
         cmocka_unit_test(test_flag_parsers),
     };
     return cmocka_run_group_tests_name("units", tests, NULL, NULL);

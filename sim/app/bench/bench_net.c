@@ -17,6 +17,8 @@
  */
 #include "sim/app/bench/bench_net.h"
 #include "sim/app/bench/bench.h"
+#include "sim/core/cfg.h"
+#include "sim/core/units.h"
 #include "sim/core/error.h"
 #include "sim/machine/machine.h"
 #include "sim/machine/model.h"
@@ -209,8 +211,11 @@ typedef struct {
     char *machine, *pattern, *fidelity;
     char **sets;
     int nodes, repeat;
-    gint64 bytes, seed;
-    double bw_mbs, startup_us, per_hop_us;
+    gint64 seed;
+    uint64_t bytes; /* from bytes_s, after check_opts */
+    /* Quantities as given, with units ("10KB", "2.8 MB/s", "350us"); a
+     * bare number keeps the old unit (bytes, MB/s, us).  NULL: not given. */
+    char *bytes_s, *bandwidth, *startup, *per_hop;
 } BenchNetOpts;
 
 static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
@@ -223,8 +228,9 @@ static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
          "partition size (default: the model's)", "N"},
         {"pattern", 0, 0, G_OPTION_ARG_STRING, &o->pattern,
          "all-to-all|shift|xor|pairwise|random|hotspot", "P"},
-        {"bytes", 0, 0, G_OPTION_ARG_INT64, &o->bytes, "bytes per message",
-         "B"},
+        {"bytes", 0, 0, G_OPTION_ARG_STRING, &o->bytes_s,
+         "size of a message, e.g. 10KB or 4 KiB (bare: bytes; default 1024)",
+         "SIZE"},
         {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o->fidelity,
          "all|analytic|flow|packet", "F"},
         {"seed", 0, 0, G_OPTION_ARG_INT64, &o->seed, "random seed", "S"},
@@ -232,12 +238,13 @@ static gboolean parse_opts(BenchNetOpts *o, int *argc, char ***argv,
          "runs per fidelity; the least wall time is shown (default 1)", "K"},
         {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o->sets,
          "override a model value (repeatable)", "machine.KEY=VALUE"},
-        {"bandwidth", 0, 0, G_OPTION_ARG_DOUBLE, &o->bw_mbs,
-         "override network.bandwidth, MB/s", "MBS"},
-        {"startup", 0, 0, G_OPTION_ARG_DOUBLE, &o->startup_us,
-         "override network.startup, us", "US"},
-        {"per-hop", 0, 0, G_OPTION_ARG_DOUBLE, &o->per_hop_us,
-         "override network.per_hop, us", "US"},
+        {"bandwidth", 0, 0, G_OPTION_ARG_STRING, &o->bandwidth,
+         "override network.bandwidth, e.g. 2.8MB/s or 1 Gbps (bare: MB/s)",
+         "BW"},
+        {"startup", 0, 0, G_OPTION_ARG_STRING, &o->startup,
+         "override network.startup, e.g. 350us (bare: us)", "TIME"},
+        {"per-hop", 0, 0, G_OPTION_ARG_STRING, &o->per_hop,
+         "override network.per_hop, e.g. 2 us (bare: us)", "TIME"},
         {NULL, 0, 0, 0, NULL, NULL, NULL},
     };
     return bench_parse_options("net", "- network speed against error", entries,
@@ -252,42 +259,75 @@ static gboolean input_error(GError **err, const char *found,
     return FALSE;
 }
 
+/* FALSE for a bare number ("350"), which takes the flag's old unit. */
+static gboolean with_unit(const char *v)
+{
+    size_t n = strlen(v);
+    while (n > 0 && g_ascii_isspace(v[n - 1]))
+        n--;
+    return n > 0 && !g_ascii_isdigit(v[n - 1]) && v[n - 1] != '.';
+}
+
+/* Checks a quantity flag in its unit (bare numbers in the old unit). */
+static gboolean check_quantity(const char *v, const char *flag,
+                               const char *bare, CfgUnitKind kind,
+                               GError **err)
+{
+    if (!v)
+        return TRUE;
+    char *full = with_unit(v) ? g_strdup(v) : g_strconcat(v, bare, NULL);
+    SimTime t;
+    double d;
+    gboolean ok = kind == CFG_UNIT_TIME
+                      ? cfg_parse_time(full, flag, &t, err)
+                      : cfg_parse_bandwidth(full, flag, &d, err);
+    g_free(full);
+    return ok;
+}
+
 /* The shorthand flags become --set overrides after the user's own. */
 static GPtrArray *all_sets(const BenchNetOpts *o)
 {
     GPtrArray *a = g_ptr_array_new_with_free_func(g_free);
     for (char **s = o->sets; s && *s; s++)
         g_ptr_array_add(a, g_strdup(*s));
-    if (o->bw_mbs > 0.0)
-        g_ptr_array_add(a, g_strdup_printf("machine.network.bandwidth="
-                                           "%.17g MB/s",
-                                           o->bw_mbs));
-    if (o->startup_us >= 0.0)
-        g_ptr_array_add(a, g_strdup_printf("machine.network.startup="
-                                           "%.17g us",
-                                           o->startup_us));
-    if (o->per_hop_us >= 0.0)
-        g_ptr_array_add(a, g_strdup_printf("machine.network.per_hop="
-                                           "%.17g us",
-                                           o->per_hop_us));
+    const char *keys[] = {"bandwidth", "startup", "per_hop"};
+    const char *vals[] = {o->bandwidth, o->startup, o->per_hop};
+    const char *bare[] = {"MB/s", "us", "us"};
+    for (int i = 0; i < 3; i++)
+        if (vals[i])
+            g_ptr_array_add(a, g_strdup_printf(
+                                   "machine.network.%s=%s%s", keys[i], vals[i],
+                                   with_unit(vals[i]) ? "" : bare[i]));
     g_ptr_array_add(a, NULL);
     return a;
 }
 
-static gboolean check_opts(const BenchNetOpts *o, BenchNetSpec *s, GError **err)
+static gboolean check_opts(BenchNetOpts *o, BenchNetSpec *s, GError **err)
 {
     if (!net_traffic_parse(o->pattern, &s->pattern))
         return input_error(err, o->pattern, net_traffic_words());
-    if (o->nodes < 0 || o->bytes < 0 || o->seed < 0 || o->repeat < 1)
+    if (o->nodes < 0 || o->seed < 0 || o->repeat < 1)
         return input_error(err,
-                           "a negative --nodes, --bytes or --seed, "
+                           "a negative --nodes or --seed, "
                            "or --repeat < 1",
                            "values >= 0 and --repeat >= 1");
-    if (o->bw_mbs < 0.0 || isnan(o->bw_mbs))
-        return input_error(err, "a negative --bandwidth", "MB/s > 0");
+    if (o->bytes_s) {
+        char *full = with_unit(o->bytes_s) ? g_strdup(o->bytes_s)
+                                            : g_strconcat(o->bytes_s, " B", NULL);
+        gboolean ok = cfg_parse_size(full, "--bytes", &o->bytes, err);
+        g_free(full);
+        if (!ok)
+            return FALSE;
+    }
+    if (!check_quantity(o->bandwidth, "--bandwidth", " MB/s",
+                        CFG_UNIT_BANDWIDTH, err) ||
+        !check_quantity(o->startup, "--startup", " us", CFG_UNIT_TIME, err) ||
+        !check_quantity(o->per_hop, "--per-hop", " us", CFG_UNIT_TIME, err))
+        return FALSE;
     s->machine = o->machine;
     s->nodes = (guint)o->nodes;
-    s->bytes = (uint64_t)o->bytes;
+    s->bytes = o->bytes;
     s->seed = (uint64_t)o->seed;
     return TRUE;
 }
@@ -330,7 +370,7 @@ static int run_all(const BenchNet *b, const BenchNetOpts *o)
         return bench_fail(err);
     }
     printf("bench net: %s\n", bench_net_describe(b));
-    printf("pattern %s, %" G_GINT64_FORMAT " B, %" G_GUINT64_FORMAT
+    printf("pattern %s, %" G_GUINT64_FORMAT " B, %" G_GUINT64_FORMAT
            " messages\n",
            o->pattern, o->bytes,
            net_traffic_messages(b->spec.pattern, bench_net_nodes(b)));
@@ -352,11 +392,7 @@ static int run_all(const BenchNet *b, const BenchNetOpts *o)
 
 int bench_net_main(int argc, char **argv)
 {
-    BenchNetOpts o = {.bytes = 1024,
-                      .seed = 1,
-                      .repeat = 1,
-                      .startup_us = -1,
-                      .per_hop_us = -1};
+    BenchNetOpts o = {.bytes = 1024, .seed = 1, .repeat = 1};
     BenchNetSpec s = {0};
     GError *err = NULL;
     BenchNet *b = NULL;
@@ -380,6 +416,10 @@ int bench_net_main(int argc, char **argv)
     g_free(o.machine);
     g_free(o.pattern);
     g_free(o.fidelity);
+    g_free(o.bytes_s);
+    g_free(o.bandwidth);
+    g_free(o.startup);
+    g_free(o.per_hop);
     g_strfreev(o.sets);
     return status;
 }

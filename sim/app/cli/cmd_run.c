@@ -17,7 +17,7 @@
 
 typedef struct {
     char **sets;
-    char *seed, *out, *format, *trace, *fidelity;
+    char *seed, *out, *format, *trace, *fidelity, *frames;
     int trace_cap;
     gboolean quiet, timing;
 } RunOpts;
@@ -76,8 +76,28 @@ static gboolean check_flags(const RunOpts *o, guint64 *seed, RptFormat *fmt)
                 o->format);
         return FALSE;
     }
+    if (o->frames && strcmp(o->frames, "all") && strcmp(o->frames, "last")) {
+        fprintf(stderr,
+                "pgsim run: --frames: found '%s', expected last or all\n",
+                o->frames);
+        return FALSE;
+    }
     g_clear_error(&e);
     return TRUE;
+}
+
+/* Names the frame images the workload wrote into dir, if any. */
+static const char *frame_note(const char *dir)
+{
+    char *last = g_build_filename(dir, "frame.png", NULL);
+    char *first = g_build_filename(dir, "frame-0000.png", NULL);
+    const char *note = g_file_test(last, G_FILE_TEST_EXISTS) ? " and frame.png"
+                       : g_file_test(first, G_FILE_TEST_EXISTS)
+                           ? " and frame-NNNN.png"
+                           : "";
+    g_free(last);
+    g_free(first);
+    return note;
 }
 
 static int report(const SimResult *res, const RunOpts *o, RptFormat fmt)
@@ -92,8 +112,8 @@ static int report(const SimResult *res, const RunOpts *o, RptFormat fmt)
     if (o->out && !o->quiet)
         fprintf(stderr,
                 "pgsim run: wrote %s/{summary.txt,result.json,"
-                "result.csv}\n",
-                o->out);
+                "result.csv}%s\n",
+                o->out, frame_note(o->out));
     return 0;
 }
 
@@ -127,8 +147,11 @@ static int run(const char *path, const RunOpts *o)
         cfg_run_free(r);
         return cli_fail(e);
     }
-    CfgRunOpts ro = {
-        .out_dir = o->out, .quiet = o->quiet, .progress = TRUE, .trace = tr};
+    CfgRunOpts ro = {.out_dir = o->out,
+                     .quiet = o->quiet,
+                     .progress = TRUE,
+                     .trace = tr,
+                     .all_frames = o->frames && !strcmp(o->frames, "all")};
     SimResult *res = cfg_run_exec(r, &ro, &e);
     cfg_run_free(r);
     if (!res) {
@@ -157,9 +180,14 @@ int cmd_run(int argc, char **argv)
         {"seed", 0, 0, G_OPTION_ARG_STRING, &o.seed,
          "random seed (overrides run.seed)", "N"},
         {"out", 0, 0, G_OPTION_ARG_FILENAME, &o.out,
-         "write summary.txt, result.json, result.csv into DIR", "DIR"},
+         "write summary.txt, result.json, result.csv and the final frame "
+         "(frame.png, for workloads that render one) into DIR",
+         "DIR"},
         {"format", 0, 0, G_OPTION_ARG_STRING, &o.format,
          "report on stdout: text (default), json or csv", "FMT"},
+        {"frames", 0, 0, G_OPTION_ARG_STRING, &o.frames,
+         "with --out: images of the last frame (default) or all frames",
+         "last|all"},
         {"timing", 0, 0, G_OPTION_ARG_NONE, &o.timing,
          "include wall-clock figures in JSON/CSV", NULL},
         {"trace", 0, 0, G_OPTION_ARG_FILENAME, &o.trace,
@@ -185,5 +213,6 @@ int cmd_run(int argc, char **argv)
     g_free(o.out);
     g_free(o.format);
     g_free(o.trace);
+    g_free(o.frames);
     return status;
 }

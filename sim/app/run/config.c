@@ -239,13 +239,14 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
     g_free(res->fidelity);
     res->fidelity = g_strdup(r->fidelity);
     res->seed = r->seed;
-    WlContext ctx = {eng,
-                     r->root,
-                     r->seed,
-                     r->fidelity,
-                     r->frames,
-                     opts ? opts->out_dir : NULL,
-                     opts ? opts->quiet : TRUE};
+    WlContext ctx = {.eng = eng,
+                     .root = r->root,
+                     .seed = r->seed,
+                     .fidelity = r->fidelity,
+                     .frames = r->frames,
+                     .out_dir = opts ? opts->out_dir : NULL,
+                     .quiet = opts ? opts->quiet : TRUE,
+                     .all_frames = opts && opts->all_frames};
     RptProgress *p = opts && opts->progress && !opts->quiet
                          ? rpt_progress_new(0, r->wl->name)
                          : NULL;

@@ -54,6 +54,7 @@ typedef struct {
     SimTrace *trace;     /* attached to the engine; NULL: none (borrowed) */
     gboolean dry_run;    /* stop before the first event (sim_engine_set_dry_run):
                             NULL with SIM_ERROR_DRY_RUN means "would run" */
+    gboolean all_frames; /* with out_dir: an image of every frame */
 } CfgRunOpts;
 
 /* Runs the config's workload on a fresh engine seeded with run->seed and

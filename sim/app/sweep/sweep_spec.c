@@ -1,7 +1,7 @@
 /* sweep_spec.c — reading and expanding sweep files.
  *
  *     name: tokenring-size          # optional; default: the file stem
- *     base: quickstart.yaml         # or an inline map
+ *     base: tokenring.yaml          # or an inline map
  *     parameters:
  *       machine.nodes: [2, 4, 8]
  *       workload.tokens: {from: 1, to: 4, step: 1}

@@ -92,6 +92,19 @@ static void local_clear(Local *l, guint n)
     scene_mesh_free(l->flat);
 }
 
+/* The merged frame as an RGB image (empty pixels black), row 0 on top. */
+static RastImage *frame_image(const WlPmFrame *f)
+{
+    RastImage *img = rast_image_new((int)f->width, (int)f->height);
+    for (guint i = 0; i < f->width * f->height; i++) {
+        uint32_t c = f->px[i].poly == WL_PM_EMPTY ? 0 : f->px[i].color;
+        img->rgb[3 * i] = (uint8_t)(c >> 16);
+        img->rgb[3 * i + 1] = (uint8_t)(c >> 8);
+        img->rgb[3 * i + 2] = (uint8_t)c;
+    }
+    return img;
+}
+
 static gboolean image_matches(const Local *l, const WlPmFrame *img)
 {
     WlPmCounts k;
@@ -181,6 +194,8 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
         out->image_checked = TRUE;
         out->image_ok = image_matches(&l, m->image);
     }
+    if (s->keep_image)
+        out->image = frame_image(m->image);
     SimTime base = sim_now(eng);
     SimTime barrier = add(base, local_phases(&l, s, c, eng, procs, out));
     SimTime *ready = g_new(SimTime, n);
@@ -214,4 +229,6 @@ void wl_pm_frame_out_clear(WlPmFrameOut *out, guint procs)
     out->counts = NULL;
     g_free(out->active);
     out->active = NULL;
+    rast_image_free(out->image);
+    out->image = NULL;
 }

@@ -18,6 +18,8 @@
 #ifndef PGSIM_WORKLOAD_PIXELMERGE_PM_FRAME_H
 #define PGSIM_WORKLOAD_PIXELMERGE_PM_FRAME_H
 
+#include "sim/raster/image.h"
+
 #include "sim/scene/scene.h"
 #include "sim/workload/pixelmerge/pm_render.h"
 #include "sim/workload/pixelmerge/pm_replay.h"
@@ -32,6 +34,7 @@ typedef struct {
     gboolean check_image; /* compare with the serial render */
     gboolean cull_back;   /* drop back-facing polygons before scanning */
     RastSpanRule span_rule; /* exact coverage or both end points (scan.h) */
+    gboolean keep_image;  /* return the merged image (WlPmFrameOut.image) */
 } WlPmSetup;
 
 /* Node costs of the local phases, per counted operation. */
@@ -57,6 +60,7 @@ typedef struct {
     SimBusy *busy;      /* per processor: phases "span", "zbuf", "merge" */
     WlPmCounts *counts; /* per processor: its local rendering counts */
     uint64_t *active;   /* per processor: its local foremost pixels */
+    RastImage *image;   /* the merged frame when keep_image, else NULL */
 } WlPmFrameOut;
 
 /* Renders and merges one frame of `scene` (its frame-0 camera) on `net`

@@ -256,12 +256,15 @@ static gboolean check_machine(MachMachine *m, const WlPmSetup *s,
 }
 
 static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
-                          const Scene *sc, const WlPmSetup *s,
-                          const WlPmCosts *c, WlPmFrameOut *fo, SimResult *out,
-                          GError **err)
+                          const Scene *sc, WlPmSetup *s, const WlPmCosts *c,
+                          const WlContext *ctx, WlPmFrameOut *fo,
+                          SimResult *out, GError **err)
 {
     wl_pm_frame_out_clear(fo, s->procs);
-    if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo, err))
+    s->keep_image = wl_wants_frame(ctx, f);
+    if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo,
+                               err) ||
+        (fo->image && !wl_emit_frame(ctx, f, fo->image, err)))
         return FALSE;
     SimTime t;
     if (!sim_time_from_s(fo->frame_ms * 1e-3, &t))
@@ -281,13 +284,14 @@ gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc, const WlPmParams *p,
                           const WlPmCosts *c, int frames, SimResult *out,
                           GError **err)
 {
-    return wl_pm_run_frames_at(m, sc, p, c, frames, NULL, out, err);
+    return wl_pm_run_frames_at(m, sc, p, c, frames, NULL, NULL, out, err);
 }
 
 gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
                              const WlPmParams *p, const WlPmCosts *c,
                              int frames, const CfgNode *procs_at,
-                             SimResult *out, GError **err)
+                             const WlContext *ctx, SimResult *out,
+                             GError **err)
 {
     WlPmSetup s = p->setup;
     if (s.procs == 0) {
@@ -302,7 +306,7 @@ gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
     WlPmFrameOut fo = {0};
     gboolean ok = TRUE;
     for (int f = 0; ok && f < frames; f++)
-        ok = run_frame(m, procs, f, sc, &s, c, &fo, out, err);
+        ok = run_frame(m, procs, f, sc, &s, c, ctx, &fo, out, err);
     if (ok) {
         mach_fill_result(m, out);
         WlPmMemUse mem = peak_memory(&fo, p, &s);
@@ -327,7 +331,8 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
     gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
                   wl_pm_run_frames_at(
                       m, sc, p, &c, ctx->frames,
-                      cfg_path(ctx->root, "workload.processors"), out, err);
+                      cfg_path(ctx->root, "workload.processors"), ctx, out,
+                      err);
     mach_free(m);
     scene_free(sc);
     return ok;

@@ -71,10 +71,13 @@ gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc, const WlPmParams *p,
                           const WlPmCosts *c, int frames, SimResult *out,
                           GError **err);
 /* The same; a processor count the machine cannot hold is reported at
- * procs_at (the config's processors key; NULL: not located). */
+ * procs_at (the config's processors key; NULL: not located); ctx, when
+ * not NULL, receives the merged frames the run wants as images
+ * (wl_emit_frame). */
 gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
                              const WlPmParams *p, const WlPmCosts *c,
                              int frames, const CfgNode *procs_at,
+                             const WlContext *ctx,
                              SimResult *out, GError **err);
 
 #endif

@@ -185,7 +185,7 @@ static gboolean tr_run(const WlContext *ctx, void *params, SimResult *out,
 
 const WlOps wl_tokenring_ops = {
     .name = "tokenring",
-    .summary = "a token passed around a ring of nodes (quickstart)",
+    .summary = "a token passed around a ring of nodes (a test of the engine)",
     .parse = tr_parse,
     .free_params = tr_free,
     .run = tr_run,

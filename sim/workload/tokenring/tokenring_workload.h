@@ -1,4 +1,4 @@
-/* tokenring_workload.h — the quickstart workload: a token passed around a ring.
+/* tokenring_workload.h — the token-ring test workload (configs/tokenring.yaml): a token passed around a ring.
  *
  *     workload:
  *       type: tokenring

@@ -112,11 +112,78 @@ static void test_validate_sweeps(void **state)
     g_free(dir);
 }
 
+/* make run's quickstart: pixel merging on a 16-node iPSC/2 prints its
+ * phase times, utilisation and communication, and writes the merged
+ * frame, which matches the serial render. */
+static void test_quickstart(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-qs-XXXXXX", NULL);
+    const char *args[] = {"run", "configs/quickstart.yaml", "--out", dir,
+                          NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(args, &out, &err), 0);
+    const char *want[] = {"pixelmerge on ipsc2", "utilisation", "span_ms",
+                          "zbuf_ms", "merge_ms", "communication",
+                          "image_matches_serial         1", "node15"};
+    for (guint i = 0; i < G_N_ELEMENTS(want); i++)
+        if (!strstr(out, want[i]))
+            fail_msg("quickstart report lacks '%s'", want[i]);
+    assert_non_null(strstr(err, "frame.png"));
+    char *png = g_build_filename(dir, "frame.png", NULL);
+    char *data = NULL;
+    gsize len = 0;
+    assert_true(g_file_get_contents(png, &data, &len, NULL));
+    assert_true(len > 1000 && memcmp(data, "\x89PNG", 4) == 0);
+    /* width and height in the IHDR chunk: 400 x 400 */
+    assert_int_equal(((guchar)data[18] << 8) | (guchar)data[19], 400);
+    assert_int_equal(((guchar)data[22] << 8) | (guchar)data[23], 400);
+    g_free(data);
+    g_free(out);
+    g_free(err);
+    char *rm[] = {(char *)"rm", (char *)"-rf", dir, NULL};
+    assert_true(g_spawn_sync(NULL, rm, NULL, G_SPAWN_SEARCH_PATH, NULL, NULL,
+                             NULL, NULL, NULL, NULL));
+    g_free(png);
+    g_free(dir);
+}
+
+/* Quantities on the command line take units (issue 18): bench net's
+ * flags and a --set value in micro-seconds with the micro sign. */
+static void test_units_on_the_command_line(void **state)
+{
+    (void)state;
+    const char *bench[] = {"bench",    "net",         "--nodes",   "4",
+                           "--bytes",  "10KB",        "--bandwidth", "2.8MB/s",
+                           "--startup", "350us",      "--fidelity", "analytic",
+                           NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(bench, &out, &err), 0);
+    assert_non_null(strstr(out, "10000 B"));
+    assert_non_null(strstr(out, "2.8 MB/s"));
+    assert_non_null(strstr(out, "start-up 350 us"));
+    g_free(out);
+    g_free(err);
+    const char *bad[] = {"bench", "net", "--bytes", "10 furlongs", NULL};
+    assert_int_equal(pgsim(bad, &out, &err), 2);
+    assert_non_null(strstr(err, "--bytes: found '10 furlongs'"));
+    g_free(out);
+    g_free(err);
+    const char *mu[] = {"run", "configs/tokenring.yaml", "-q", "--set",
+                        "workload.compute=350 \xc2\xb5s", NULL};
+    assert_int_equal(pgsim(mu, &out, &err), 0);
+    g_free(out);
+    g_free(err);
+}
+
 int main(void)
 {
+    g_setenv("LC_ALL", "C.UTF-8", TRUE); /* a UTF-8 terminal's locale */
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_help_lists_workloads_and_costs),
         cmocka_unit_test(test_validate_sweeps),
+        cmocka_unit_test(test_quickstart),
+        cmocka_unit_test(test_units_on_the_command_line),
     };
     return cmocka_run_group_tests_name("cli", tests, NULL, NULL);
 }

@@ -26,11 +26,11 @@ static const BadCase bad[] = {
     {"wrong_type.yaml", "4:10: found a sequence, expected a non-negative "
                         "integer, optionally with K (1e3) or M (1e6)"},
     {"bad_unit.yaml", "4:12: found '20 furlongs', expected a non-negative "
-                      "time with a unit (ps, ns, us, \xc2\xb5s, ms, s)"},
+                      "time with a unit (ps, ns, us, \xc2\xb5s, ms, s, min, h)"},
     {"missing_unit.yaml", "5:14: found '5', expected a non-negative time "
-                          "with a unit (ps, ns, us, \xc2\xb5s, ms, s)"},
+                          "with a unit (ps, ns, us, \xc2\xb5s, ms, s, min, h)"},
     {"negative.yaml", "4:10: found '-1 KB', expected a non-negative size "
-                      "with a unit (B, KB, MB, GB, TB, KiB, MiB, GiB, TiB)"},
+                      "with a unit (B, kB, KB, MB, GB, TB, KiB, MiB, GiB, TiB)"},
     {"overflow.yaml", "5:10: found '1e9 s', expected a time below 2^64 ps "
                       "(about 213 days)"},
     {"out_of_range.yaml", "4:11: found '1.5', expected a number in [0, 1]"},
@@ -134,20 +134,20 @@ static void test_cli_errors(void **state)
 {
     (void)state;
     char *out, *err;
-    const char *seed[] = {"run", "configs/quickstart.yaml", "--seed", "x",
+    const char *seed[] = {"run", "configs/tokenring.yaml", "--seed", "x",
                           NULL};
     assert_int_equal(run_pgsim(seed, &out, &err), 2);
     assert_string_equal(err, "pgsim run: --seed: found 'x', expected a "
                              "non-negative integer\n");
     g_free(out);
     g_free(err);
-    const char *fmt[] = {"run", "configs/quickstart.yaml", "--format=xml",
+    const char *fmt[] = {"run", "configs/tokenring.yaml", "--format=xml",
                          NULL};
     assert_int_equal(run_pgsim(fmt, &out, &err), 2);
     assert_non_null(strstr(err, "--format: found 'xml', expected one of"));
     g_free(out);
     g_free(err);
-    const char *unk[] = {"run", "--bogus", "configs/quickstart.yaml", NULL};
+    const char *unk[] = {"run", "--bogus", "configs/tokenring.yaml", NULL};
     assert_int_equal(run_pgsim(unk, &out, &err), 2);
     assert_non_null(strstr(err, "found unknown option '--bogus'"));
     g_free(out);
@@ -162,9 +162,9 @@ static void test_cli_errors(void **state)
                                 "unreadable file"));
     g_free(out);
     g_free(err);
-    const char *ok[] = {"validate", "configs/quickstart.yaml", NULL};
+    const char *ok[] = {"validate", "configs/tokenring.yaml", NULL};
     assert_int_equal(run_pgsim(ok, &out, &err), 0);
-    assert_string_equal(out, "configs/quickstart.yaml: ok\n");
+    assert_string_equal(out, "configs/tokenring.yaml: ok\n");
     g_free(out);
     g_free(err);
     const char *help[] = {"help", "run", NULL};
@@ -180,7 +180,7 @@ static void test_overrides(void **state)
     GError *e = NULL;
     const char *const ov[] = {"run.seed=9", "workload.nodes=3", "run.frames=2",
                               NULL};
-    CfgRun *r = cfg_run_load("configs/quickstart.yaml", ov, &e);
+    CfgRun *r = cfg_run_load("configs/tokenring.yaml", ov, &e);
     assert_non_null(r);
     assert_int_equal(r->seed, 9);
     assert_int_equal(r->frames, 2);
@@ -191,13 +191,13 @@ static void test_overrides(void **state)
     sim_result_free(res);
     cfg_run_free(r);
     const char *const typo[] = {"run.sede=9", NULL};
-    assert_null(cfg_run_load("configs/quickstart.yaml", typo, &e));
+    assert_null(cfg_run_load("configs/tokenring.yaml", typo, &e));
     assert_string_equal(e->message, "--set run.sede=9:1:1: found unknown "
                                     "key 'sede', expected one of: seed, "
                                     "frames, fidelity, until");
     g_clear_error(&e);
     const char *const bad_val[] = {"workload.jitter=2", NULL};
-    assert_null(cfg_run_load("configs/quickstart.yaml", bad_val, &e));
+    assert_null(cfg_run_load("configs/tokenring.yaml", bad_val, &e));
     assert_string_equal(e->message, "--set workload.jitter=2:1:1: found "
                                     "'2', expected a number in [0, 1]");
     g_clear_error(&e);
@@ -208,7 +208,7 @@ static char *quickstart(RptFormat f, const char *seed)
 {
     GError *e = NULL;
     const char *const ov[] = {seed, NULL};
-    CfgRun *r = cfg_run_load("configs/quickstart.yaml", ov, &e);
+    CfgRun *r = cfg_run_load("configs/tokenring.yaml", ov, &e);
     assert_non_null(r);
     SimResult *res = cfg_run_exec(r, NULL, &e);
     assert_non_null(res);
@@ -263,7 +263,7 @@ static void test_binary_determinism(void **state)
         d[i] = g_dir_make_tmp("pgsim-det-XXXXXX", NULL);
         char *out, *err;
         const char *args[] = {
-            "run", "configs/quickstart.yaml", "--quiet", "--out", d[i], NULL};
+            "run", "configs/tokenring.yaml", "--quiet", "--out", d[i], NULL};
         assert_int_equal(run_pgsim(args, &out, &err), 0);
         assert_non_null(strstr(out, "tokenring on ring-8"));
         g_free(out);

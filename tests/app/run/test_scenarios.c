@@ -23,6 +23,7 @@ typedef struct {
 
 static const Scenario scenarios[] = {
     {"quickstart", "configs/quickstart.yaml"},
+    {"tokenring", "configs/tokenring.yaml"},
     {"pixelmerge-2pot", "configs/pixelmerge-2pot.yaml"},
     {"pphigs-flock", "configs/pphigs-flock.yaml"},
     {"sortfirst-vehicle", "configs/sortfirst-vehicle.yaml"},
