@@ -96,7 +96,7 @@ static void test_bad_configs(void **state)
 static void test_good_configs(void **state)
 {
     (void)state;
-    const char *good[] = {"configs/quickstart.yaml",
+    const char *good[] = {"configs/tokenring.yaml",
                           "configs/pixelmerge-2pot.yaml"};
     for (guint i = 0; i < G_N_ELEMENTS(good); i++) {
         char *out = NULL, *err = NULL;
@@ -144,7 +144,7 @@ static void test_failed_run_writes_nothing(void **state)
     char *tmp = g_dir_make_tmp("pgsim-fail-XXXXXX", NULL);
     char *trace = g_build_filename(tmp, "t.json", NULL);
     char *out = g_build_filename(tmp, "out", NULL);
-    const char *args[] = {"run",     "configs/quickstart.yaml", "--mem-limit",
+    const char *args[] = {"run",     "configs/tokenring.yaml", "--mem-limit",
                           "10k",     "--trace",                 trace,
                           "--out",   out,                       NULL};
     expect_status(args, 2, "found 1024 pending events needing about 52.0");
@@ -152,7 +152,7 @@ static void test_failed_run_writes_nothing(void **state)
     char *tmp_trace = g_strconcat(trace, ".tmp", NULL);
     assert_false(g_file_test(tmp_trace, G_FILE_TEST_EXISTS));
     assert_false(g_file_test(out, G_FILE_TEST_EXISTS));
-    const char *ok[] = {"run", "configs/quickstart.yaml", "--trace", trace,
+    const char *ok[] = {"run", "configs/tokenring.yaml", "--trace", trace,
                         NULL};
     expect_status(ok, 0, ""); /* the same run with memory writes it */
     assert_true(g_file_test(trace, G_FILE_TEST_EXISTS));
@@ -167,15 +167,15 @@ static void test_failed_run_writes_nothing(void **state)
 static void test_bad_flags(void **state)
 {
     (void)state;
-    const char *cap0[] = {"run", "configs/quickstart.yaml", "--trace-cap",
+    const char *cap0[] = {"run", "configs/tokenring.yaml", "--trace-cap",
                           "0", "--trace", "never.json", NULL};
     expect_status(cap0, 2, "--trace-cap: found 0, expected a positive");
-    const char *capneg[] = {"run", "configs/quickstart.yaml", "--trace-cap",
+    const char *capneg[] = {"run", "configs/tokenring.yaml", "--trace-cap",
                             "-5", "--trace", "never.json", NULL};
     expect_status(capneg, 2, "--trace-cap: found -5, expected a positive");
     assert_false(g_file_test("never.json", G_FILE_TEST_EXISTS));
     const char *mem[] = {"validate", "--mem-limit", "12X",
-                         "configs/quickstart.yaml", NULL};
+                         "configs/tokenring.yaml", NULL};
     expect_status(mem, 2, "--mem-limit: found '12X'");
     char *tmp = g_dir_make_tmp("pgsim-plot-XXXXXX", NULL);
     char *csv = g_build_filename(tmp, "r.csv", NULL);
