@@ -1,10 +1,11 @@
 # mutate-sites.awk -- lists every mutation site of the C files it reads, for
 # scripts/mutate.  One site per output line, tab-separated:
-#     file  line  column  old  new  k  code
+#     file  line  column  old  new  k  code  function
 # where `old` is the exact text at line:column, `new` its replacement, k the
-# ordinal of `old` among the sites of that line that have the same old->new
-# (so "file + old->new #k + code" names a site without its line number) and
-# `code` the source line with runs of blanks squeezed.
+# ordinal of `old` among the sites of that line that have the same old->new,
+# `code` the source line with runs of blanks squeezed and `function` the
+# function (or file-level declaration) it is in; "file, function, old->new
+# #k, code" names a site without its line number.
 #
 # Operators (the classic single-token set of Offutt et al., 1996):
 #   relational  <  <=  >  >=  ==  !=   each flipped to its partner
@@ -21,7 +22,7 @@
 # Cost: linear in the size of the sources.
 BEGIN { FS = "\n" }
 
-FNR == 1 { incom = 0; cont = 0; adepth = 0; skipfile = 0 }
+FNR == 1 { incom = 0; cont = 0; adepth = 0; skipfile = 0; fn = "-" }
 FNR <= 3 && /GENERATED/ { skipfile = 1 }
 skipfile { next }
 
@@ -31,6 +32,11 @@ skipfile { next }
     m = mask(line)
     if (cont || m ~ /^ *#/) { cont = (line ~ /\\$/); next }
     if (adepth > 0) { adepth += balance(m, 1); next }
+    if (m ~ /^[A-Za-z_]/ && match(m, /[A-Za-z_][A-Za-z0-9_]* *\(/))
+        fn = substr(m, RSTART, RLENGTH)
+    else if (m ~ /^[A-Za-z_]/ && match(m, /[A-Za-z_][A-Za-z0-9_]*( *\[[^]]*\])* *=/))
+        fn = substr(m, RSTART, RLENGTH)
+    sub(/ *[(=\[].*$/, "", fn)
     if (match(m, /(g_assert|g_return_val_if_fail|g_return_if_fail|static_assert|_Static_assert|G_STATIC_ASSERT)/)) {
         adepth = balance(m, RSTART)
         next
@@ -80,7 +86,8 @@ function mask(s,    out, i, n, c, q) {
 function emit(f, ln, col, old, new, code,    key) {
     key = ln SUBSEP old SUBSEP new
     nth[key]++
-    printf "%s\t%d\t%d\t%s\t%s\t%d\t%s\n", f, ln, col, old, new, nth[key], code
+    printf "%s\t%d\t%d\t%s\t%s\t%d\t%s\t%s\n", f, ln, col, old, new, nth[key],
+        code, fn
 }
 
 # True when the + or - at i is the sign of a floating exponent (1e-5).

@@ -64,6 +64,22 @@ static void test_distribution_moments(void **state)
     assert_true(fabs(hits / (double)n - 0.25) < 0.004);
 }
 
+/* Small samples exactly: one value has variance 0 and is min and max;
+ * then 3, -1, 1: mean 1, sample variance 4, min -1, max 3. */
+static void test_moments_small(void **state)
+{
+    (void)state;
+    SimMoments m = {0};
+    assert_true(sim_moments_var(&m) == 0);
+    sim_moments_add(&m, 3);
+    assert_true(sim_moments_var(&m) == 0);
+    assert_true(m.min == 3 && m.max == 3 && m.mean == 3);
+    sim_moments_add(&m, -1);
+    sim_moments_add(&m, 1);
+    assert_true(m.n == 3 && m.mean == 1 && m.min == -1 && m.max == 3);
+    assert_true(fabs(sim_moments_var(&m) - 4) < 1e-12);
+}
+
 static void test_compensated_sum(void **state)
 {
     (void)state;
@@ -104,6 +120,7 @@ int main(void)
         cmocka_unit_test(test_known_first_values_are_stable),
         cmocka_unit_test(test_below_is_in_range_and_unbiased),
         cmocka_unit_test(test_distribution_moments),
+        cmocka_unit_test(test_moments_small),
         cmocka_unit_test(test_compensated_sum),
         cmocka_unit_test(test_busy_per_phase),
     };

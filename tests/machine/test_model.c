@@ -107,6 +107,8 @@ static void test_bad_models_rejected(void **state)
     expect_bad("bad-version.yaml", 2, "found");
     expect_bad("workload-no-provenance.yaml", 11, "without a provenance");
     expect_bad("extents-unit.yaml", 9, "4 MB");
+    expect_bad("workload-no-value.yaml", 11, "without a value");
+    expect_bad("costs-not-a-map.yaml", 7, "a non-map costs section");
 }
 
 static void test_models_path_from_env(void **state)

@@ -36,6 +36,84 @@ static NetParams params(SimTime startup, SimTime per_hop)
     return p;
 }
 
+/* A test topology: a line of 3 nodes whose links differ in speed.  Link
+ * 2i goes i -> i + 1, 2i + 1 the other way; link i's bandwidth is
+ * base * (1 + 3 * (i / 2)), so a path from node 0 starts on its slowest
+ * link and a path to node 0 ends on it. */
+static uint32_t line_nodes(const void *st)
+{
+    (void)st;
+    return 3;
+}
+
+static guint line_max_hops(const void *st)
+{
+    (void)st;
+    return 2;
+}
+
+static guint line_route(const void *st, uint32_t src, uint32_t dst,
+                        NetLinkId *out)
+{
+    (void)st;
+    guint h = 0;
+    for (uint32_t i = src; i != dst; i = src < dst ? i + 1 : i - 1)
+        out[h++] = src < dst ? 2 * i : 2 * (i - 1) + 1;
+    return h;
+}
+
+static void line_ends(const void *st, NetLinkId l, uint64_t *from,
+                      uint64_t *to)
+{
+    (void)st;
+    *from = l / 2 + (l & 1);
+    *to = l / 2 + !(l & 1);
+}
+
+static void line_name(const void *st, NetLinkId l, char *buf, size_t n)
+{
+    (void)st;
+    g_snprintf(buf, n, "l%u", (unsigned)l);
+}
+
+static double line_bw(const void *st, NetLinkId l, const NetParams *p)
+{
+    (void)st;
+    return p->bandwidth * (double)(1 + 3 * (l / 2));
+}
+
+static const NetTopologyOps line_ops = {.name = "line",
+                                        .nodes = line_nodes,
+                                        .max_hops = line_max_hops,
+                                        .route = line_route,
+                                        .link_ends = line_ends,
+                                        .link_name = line_name,
+                                        .link_bw = line_bw,
+                                        .free = g_free};
+
+/* A message runs at its slowest link's bandwidth wherever on the path
+ * that link lies: first (0 -> 2) or last (2 -> 0). */
+static void test_bottleneck_first_or_last(void **state)
+{
+    (void)state;
+    NetTopo *t = net_topo_wrap(&line_ops, g_new0(char, 1), 1);
+    NetParams p = params(0, 0);
+    for (int back = 0; back < 2; back++) {
+        SimEngine *eng = sim_engine_new(1);
+        NetNet *net = net_new(eng, t, &p, NET_ANALYTIC);
+        Log lg = {0};
+        uint32_t a = back ? 2 : 0, b = back ? 0 : 2;
+        assert_int_equal(net_ideal_time(net, a, b, 1000), 1000 * SIM_US);
+        net_send(net, a, b, 1000, NULL, log_arrival, &lg);
+        assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+        assert_int_equal(lg.n, 1);
+        assert_int_equal(lg.at[0], 1000 * SIM_US); /* 1 MB/s, not 4 */
+        net_free(net);
+        sim_engine_free(eng);
+    }
+    net_topo_free(t);
+}
+
 static void test_lone_message_all_fidelities(void **state)
 {
     (void)state;
@@ -280,6 +358,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lone_message_all_fidelities),
+        cmocka_unit_test(test_bottleneck_first_or_last),
         cmocka_unit_test(test_long_message_startup),
         cmocka_unit_test(test_store_and_forward),
         cmocka_unit_test(test_two_flows_share_link),

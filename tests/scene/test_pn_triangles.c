@@ -135,6 +135,31 @@ static guint n_mismatch(guint L, ScenePnNormals kind, Vec3 ny_b)
     return bad;
 }
 
+/* The patch does not depend on which vertex is called first: the patch
+ * of (P2, P3, P1) at barycentric (u, v) = (v0, 1 - u0 - v0) is the
+ * patch of (P1, P2, P3) at (u0, v0), positions and normals alike (every
+ * control point takes part). */
+static void test_rotation_invariant(void **st)
+{
+    (void)st;
+    Vec3 P[3] = {{0, 0, 0}, {2, 0.3, 0}, {0.4, 1.7, 0.2}};
+    Vec3 N[3] = {{-0.3, -0.2, 1}, {0.4, 0, 1}, {0, 0.5, 1}};
+    Vec3 Q[3] = {P[1], P[2], P[0]}, M[3] = {N[1], N[2], N[0]};
+    ScenePnPatch a, b;
+    scene_pn_patch(&a, P, N);
+    scene_pn_patch(&b, Q, M);
+    const double uv[4][2] = {{0.2, 0.3}, {0.5, 0}, {0, 0.5}, {0.5, 0.5}};
+    for (int i = 0; i < 4; i++) {
+        double u = uv[i][0], v = uv[i][1];
+        assert_true(vec_near(scene_pn_point(&a, u, v),
+                             scene_pn_point(&b, v, 1 - u - v), 1e-12));
+        for (int k = 0; k < 2; k++)
+            assert_true(vec_near(scene_pn_normal(&a, kinds[k], u, v),
+                                 scene_pn_normal(&b, kinds[k], v, 1 - u - v),
+                                 1e-12));
+    }
+}
+
 static void test_no_cracks(void **st)
 {
     (void)st;
@@ -265,6 +290,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_corners),
+        cmocka_unit_test(test_rotation_invariant),
         cmocka_unit_test(test_no_cracks),
         cmocka_unit_test(test_flat_stays_flat),
         cmocka_unit_test(test_quadratic_vs_linear),

@@ -265,6 +265,22 @@ static void test_teapot_placements(void **st)
     scene_free(s);
 }
 
+/* PPHIGS counts may be 0 where the shape allows it: a flock of no boids
+ * is the Old Well alone. */
+static void test_pphigs_zero_count(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    Scene *s = from_text("scene: {generator: flock_old_well, size: 10, "
+                         "boids: 0, boid_polygons: 5, boid_colors: 1, "
+                         "well_structs: 1, well_polygons: 4, "
+                         "well_attributes: 1}\n",
+                         &err);
+    assert_non_null(s);
+    assert_int_equal(scene_n_polys(s), 4);
+    scene_free(s);
+}
+
 /* `camera:` or `view:` on a generator with its own path (the vehicle's
  * orbit) moves the path: frame 0 is the camera asked for, and later
  * frames orbit from there. */
@@ -380,6 +396,7 @@ int main(void)
         cmocka_unit_test(test_other_configs),
         cmocka_unit_test(test_camera_and_path),
         cmocka_unit_test(test_teapot_placements),
+        cmocka_unit_test(test_pphigs_zero_count),
         cmocka_unit_test(test_pphigs_configs),
         cmocka_unit_test(test_camera_rebases_path),
         cmocka_unit_test(test_bad_sections),
