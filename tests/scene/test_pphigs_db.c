@@ -55,6 +55,11 @@ static void test_humans(void **st)
         polys += mesh_check_count_kind(d.db, sid, SCENE_EL_POLYGON);
     }
     assert_int_equal(polys, s.polygons);
+    for (guint f = 0; f < s.figures; f++) { /* figures side by side in x */
+        const SceneElem *m = scene_db_elem(d.db, scene_db_posted_at(d.db, f), 0);
+        Vec4 o = mat4_apply_point(m->matrix, vec3(0, 0, 0));
+        assert_true(o.x == f * s.size / 2 && o.y == 0 && o.z == 0);
+    }
     for (guint f = 0; f < s.figures; f++)
         assert_int_equal(scene_db_height(d.db, scene_db_posted_at(d.db, f)),
                          s.levels);
@@ -80,7 +85,20 @@ static void test_station(void **st)
     assert_int_equal(scene_db_elem(d.db, 0, 1)->kind, SCENE_EL_COLOR);
     assert_int_equal(mesh_check_count_kind(d.db, 0, SCENE_EL_COLOR), s.attributes - 1);
     assert_int_equal(mesh_check_count_kind(d.db, 0, SCENE_EL_POLYGON), s.polygons);
-    assert_int_equal(scene_db_elem(d.db, 0, 2)->nverts, s.verts);
+    /* every polygon is regular: its corners at the object radius
+     * (size / 80) from their centre */
+    for (guint i = 0; i < scene_db_len(d.db, 0); i++) {
+        const SceneElem *e = scene_db_elem(d.db, 0, i);
+        if (e->kind != SCENE_EL_POLYGON)
+            continue;
+        assert_int_equal(e->nverts, s.verts);
+        Vec3 c = vec3(0, 0, 0);
+        for (guint k = 0; k < e->nverts; k++)
+            c = vec3_add(c, vec3_scale(e->verts[k], 1.0 / e->nverts));
+        for (guint k = 0; k < e->nverts; k++)
+            assert_true(fabs(vec3_len(vec3_sub(e->verts[k], c)) -
+                             s.size / 80) < 1e-9);
+    }
     scene_pphigs_db_clear(&d);
 }
 

@@ -242,6 +242,15 @@ static void test_views(void **st)
         assert_int_equal(n[p->instance].sid, hand);
     }
     g_array_unref(a);
+    /* from one root: numbered from 0 like scene_db_maxset() of that root */
+    Rec rf = {g_array_new(FALSE, FALSE, sizeof(ScenePrimInst))};
+    int64_t pr = 0;
+    scene_db_traverse_from(db, arm, mat4_identity(), vec3(1, 1, 1), &pr,
+                           rec_fn, &rf);
+    assert_int_equal(rf.inst->len, 2);
+    assert_int_equal(g_array_index(rf.inst, ScenePrimInst, 0).instance, 1);
+    assert_int_equal(g_array_index(rf.inst, ScenePrimInst, 1).instance, 2);
+    g_array_unref(rf.inst);
     SceneDbStats s;
     scene_db_stats(db, &s);
     assert_int_equal(s.structures, 3);

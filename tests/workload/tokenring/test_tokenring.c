@@ -62,6 +62,28 @@ static void test_closed_form(void **state)
     sim_result_free(r);
 }
 
+/* jitter 0.5: each compute is drawn in [5, 15] us around 10 us, so a
+ * node's 3 computes sum to 15..45 us, and they are not all 10 us. */
+static void test_jitter_bounds(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    gchar **parts = g_strsplit(ring, "jitter: 0", 2);
+    char *t = g_strjoinv("jitter: 0.5", parts);
+    g_strfreev(parts);
+    SimResult *r = run_ring(t, 3, &e);
+    gboolean varied = FALSE;
+    for (guint i = 0; i < r->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        SimTime c = sim_busy_phase(&n->busy, 0);
+        assert_true(c >= 15 * SIM_US && c <= 45 * SIM_US);
+        varied |= c != 30 * SIM_US;
+    }
+    assert_true(varied);
+    sim_result_free(r);
+    g_free(t);
+}
+
 static void test_until(void **state)
 {
     (void)state;
@@ -99,6 +121,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_form),
+        cmocka_unit_test(test_jitter_bounds),
         cmocka_unit_test(test_until),
         cmocka_unit_test(test_parse_errors),
     };
