@@ -456,6 +456,19 @@ static void test_faithful_fidelity(void **state)
     sim_engine_free(eng);
 }
 
+/* Each kind is under 16M processors, the two together are not. */
+static void test_too_many_processors(void **state)
+{
+    (void)state;
+    g_setenv("PGSIM_MODELS", "tests/data/models", TRUE);
+    SimEngine *eng = sim_engine_new(1);
+    GError *err = NULL;
+    assert_null(mach_new_from_model(eng, "too-many", "analytic", &err));
+    assert_non_null(strstr(err->message, "more than 16M processors in all"));
+    g_error_free(err);
+    sim_engine_free(eng);
+}
+
 static void test_bad_fidelity(void **state)
 {
     (void)state;
@@ -473,6 +486,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_all_models_build),
         cmocka_unit_test(test_faithful_fidelity),
+        cmocka_unit_test(test_too_many_processors),
         cmocka_unit_test(test_model_contents),
         cmocka_unit_test_setup_teardown(test_costs, setup_tiny, teardown),
         cmocka_unit_test_setup_teardown(test_fifo_serialisation, setup_tiny,

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "sim/scene/march.h"
+#include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
 
 /* A small March: 16^3 lattice in 4^3-cube cells (64 cells), 240 x 200. */
@@ -71,6 +72,47 @@ static double run_metric(const char *order, int contexts, int voxels,
     double v = metric(r, name);
     sim_result_free(r);
     return v;
+}
+
+static void count_tile(guint tile, void *ctx)
+{
+    GArray *a = ctx;
+    g_array_append_val(a, tile);
+}
+
+/* Bucketing: a triangle in one corner tile lands in that tile only, a
+ * triangle whose box spans the screen in all 16 (64 x 64 pixels, 16-pixel
+ * tiles, identity view: clip = world). */
+static void test_bucket_corner_tiles(void **state)
+{
+    (void)state;
+    AgFrame *f =
+        wl_ag_frame_new(64, 64, 16, WL_AG_OPAQUE, 1, (RastColor){0, 0, 0});
+    SceneMesh *m = scene_mesh_new();
+    const double v[9][2] = {{-0.9, 0.9}, {-0.8, 0.9},  {-0.9, 0.8},
+                            {0.8, -0.8}, {0.9, -0.8},  {0.9, -0.9},
+                            {-0.9, 0.9}, {0.9, -0.9},  {0.9, 0.9}};
+    for (int i = 0; i < 9; i++)
+        scene_mesh_add_vertex(m, vec3(v[i][0], v[i][1], 0));
+    for (uint32_t t = 0; t < 3; t++)
+        scene_mesh_add_tri(m, 3 * t, 3 * t + 1, 3 * t + 2,
+                           scene_color(1, 1, 1), 0);
+    Mat4 id = mat4_identity();
+    const guint want[3] = {0, 15, G_MAXUINT};
+    for (guint t = 0; t < 3; t++) {
+        GArray *a = g_array_new(FALSE, FALSE, sizeof(guint));
+        guint n = wl_ag_bucket(f, &id, m, t, count_tile, a);
+        assert_int_equal(n, a->len);
+        if (want[t] == G_MAXUINT) {
+            assert_int_equal(n, 16); /* its screen box covers every tile */
+        } else {
+            assert_int_equal(n, 1);
+            assert_int_equal(g_array_index(a, guint, 0), want[t]);
+        }
+        g_array_free(a, TRUE);
+    }
+    scene_mesh_free(m);
+    wl_ag_frame_free(f);
 }
 
 static void test_semaphores_order_the_blend(void **state)
@@ -145,6 +187,7 @@ static void test_too_many_processors(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bucket_corner_tiles),
         cmocka_unit_test(test_semaphores_order_the_blend),
         cmocka_unit_test(test_streams_of_figure_3c),
         cmocka_unit_test(test_contexts_speed_up_issue),

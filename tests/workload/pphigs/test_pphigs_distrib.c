@@ -331,6 +331,34 @@ static void test_strip_split(void **st)
     scene_db_free(db);
 }
 
+/* §2.3.2: the complex algorithm fills a cluster of exactly c * maxw
+ * weight before it opens the next (unit triangles, c = 3: runs of 3). */
+static void test_cluster_runs(void **st)
+{
+    (void)st;
+    SceneDb *db = long_db(400);
+    WlPphigsWeights wc = W;
+    wc.cluster = 3;
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &wc);
+    gint cur = -1;
+    guint run = 0, runs = 0;
+    for (guint i = 1; i < 400; i++) {
+        if (i % 4 == 0)
+            continue; /* a colour */
+        gint o = wl_pphigs_dist_owner(d, 0, i);
+        if (o != cur && cur >= 0) {
+            assert_int_equal(run, 3);
+            runs++;
+            run = 0;
+        }
+        cur = o;
+        run++;
+    }
+    assert_int_equal(runs, 300 / 3 - 1);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 static void test_attribute_copies(void **st)
 {
     (void)st;
@@ -404,6 +432,7 @@ int main(void)
         cmocka_unit_test(test_scan_bound),
         cmocka_unit_test(test_scan_bound_unequal),
         cmocka_unit_test(test_strip_split),
+        cmocka_unit_test(test_cluster_runs),
         cmocka_unit_test(test_attribute_copies),
         cmocka_unit_test(test_primitive_structure),
     };
