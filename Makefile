@@ -117,7 +117,8 @@ golden: all $(BUILD)/tests/app/run/test_scenarios
 coverage: deps
 	@$(MAKE) -s all
 	@$(MAKE) -s BUILD=build-cov OPT="-O0 -g" EXTRA_CFLAGS=--coverage \
-	  EXTRA_LDFLAGS=--coverage $(TESTBIN:$(BUILD)/%=build-cov/%)
+	  EXTRA_LDFLAGS=--coverage build-cov/pgsim \
+	  $(TESTBIN:$(BUILD)/%=build-cov/%)
 	@sh scripts/coverage.sh build-cov
 
 N    ?= 200
