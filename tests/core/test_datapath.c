@@ -10,6 +10,31 @@
 #include <string.h>
 #include <unistd.h>
 
+/* The input size limit: a file one byte over it is refused (located, an
+ * I/O error), one at it is read; 0 restores the default. */
+static void test_file_limit(void **state)
+{
+    (void)state;
+    char *text;
+    gsize len;
+    GError *err = NULL;
+    const char *f = "configs/quickstart.yaml";
+    assert_true(sim_file_read(f, &text, &len, NULL));
+    g_free(text);
+    sim_file_set_limit(len);
+    assert_true(sim_file_limit() == len);
+    assert_true(sim_file_read(f, &text, &len, NULL));
+    g_free(text);
+    sim_file_set_limit(len - 1);
+    assert_false(sim_file_read(f, &text, &len, &err));
+    assert_true(g_str_has_prefix(err->message, "configs/quickstart.yaml:0:0: "
+                                               "found "));
+    g_error_free(err);
+    sim_file_set_limit(0);
+    assert_true(sim_file_limit() == SIM_FILE_LIMIT_DEFAULT ||
+                g_getenv("PGSIM_MAX_INPUT"));
+}
+
 static void test_name_as_given_when_it_exists(void **state)
 {
     (void)state;
@@ -105,6 +130,7 @@ static void test_bounded_reads(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_file_limit),
         cmocka_unit_test(test_name_as_given_when_it_exists),
         cmocka_unit_test(test_unknown_name_comes_back_unchanged),
         cmocka_unit_test(test_found_from_elsewhere),

@@ -214,6 +214,7 @@ static void test_entities_phases_and_rng_streams(void **state)
     assert_int_equal(sim_engine_phase(a, "merge"), p);
     assert_int_not_equal(sim_engine_phase(a, "zbuf"), p);
     assert_string_equal(sim_engine_phase_name(a, p), "merge");
+    assert_true(sim_engine_seed(a) == 99);
     sim_engine_free(a);
     sim_engine_free(b);
     sim_engine_free(NULL);

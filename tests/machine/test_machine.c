@@ -9,6 +9,7 @@
 
 #include "sim/core/trace.h"
 #include "sim/machine/machine.h"
+#include "sim/machine/shmem.h"
 
 typedef struct {
     SimEngine *eng;
@@ -140,6 +141,19 @@ static void test_costs(void **state)
     assert_int_equal(t, 3 * SIM_US);
     assert_false(mach_cost_n(SIM_TIME_MAX / 2, 3, &t));
     assert_int_equal(t, SIM_TIME_MAX);
+    /* the network section as checked, and entities registered once */
+    const CfgNode *net = mach_network_cfg(f->m);
+    assert_non_null(cfg_get(net, "bandwidth"));
+    MachProc *p = mach_proc_at(f->m, 2);
+    uint32_t e = mach_proc_entity(p);
+    assert_int_equal(mach_proc_entity(p), e);
+    assert_int_not_equal(mach_proc_entity(mach_proc_at(f->m, 3)), e);
+    /* shared memory: 100 bytes at 1 MB/s hold it 100 us of 400 */
+    MachShmem sh;
+    mach_shmem_init_with(&sh, 1e6, 0);
+    mach_shmem_transfer(&sh, 0, 100);
+    assert_true(fabs(mach_shmem_utilisation(&sh, 400 * SIM_US) - 0.25) < 1e-9);
+    assert_true(mach_shmem_utilisation(&sh, 0) == 0);
 }
 
 /* Three requests submitted at once run back to back, in order. */

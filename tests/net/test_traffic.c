@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include <cmocka.h>
+#include <string.h>
 
 #include "sim/core/trace.h"
 #include "sim/net/traffic.h"
@@ -137,6 +138,9 @@ static void test_names_and_checks(void **state)
     assert_int_equal(t, NET_TRAFFIC_HOTSPOT);
     assert_string_equal(net_traffic_name(NET_TRAFFIC_ALLTOALL), "all-to-all");
     assert_false(net_traffic_parse("all2all", &t));
+    for (int k = 0; k <= NET_TRAFFIC_HOTSPOT; k++) /* every name is listed */
+        assert_non_null(
+            strstr(net_traffic_words(), net_traffic_name((NetTraffic)k)));
     assert_true(net_traffic_check(NET_TRAFFIC_RANDOM, 34, NULL));
     GError *err = NULL;
     assert_false(net_traffic_check(NET_TRAFFIC_PAIRWISE, 34, &err));

@@ -112,6 +112,30 @@ static void test_full_equals_scanline(void **state)
         assert_true(cf.winners > 97 * 83 / 2);
         rast_image_free(f);
         rast_image_free(s);
+        /* a sorted span list z-buffered row by row covers the same
+         * pixels, and the scanline z-buffer keeps one active pixel per
+         * covered pixel; counters add field by field */
+        RastSpanList *sl = rast_spanlist_new(97, 83);
+        RastCounters c = {0}, sum = cf;
+        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
+                       0, rast_spanlist_sink(sl), &c);
+        rast_spanlist_sort(sl);
+        assert_int_equal(rast_spanlist_len(sl), c.spans);
+        RastZBuffer *zb = rast_zbuffer_new(97, 83);
+        rast_zbuffer_spans(zb, sl, &c);
+        assert_int_equal(rast_zbuffer_covered(zb), cf.winners);
+        RastActive *a = rast_active_new(97, 83);
+        rast_scanline_zbuffer(a, sl, &c);
+        size_t n = 0;
+        assert_non_null(rast_active_pixels(a, &n));
+        assert_int_equal(n, cf.winners);
+        assert_int_equal(rast_active_count(a), cf.winners);
+        rast_counters_add(&sum, &cs);
+        assert_int_equal(sum.pixels, cf.pixels + cs.pixels);
+        assert_int_equal(sum.zcompares, cf.zcompares + cs.zcompares);
+        rast_active_free(a);
+        rast_zbuffer_free(zb);
+        rast_spanlist_free(sl);
         scene_mesh_free(m);
     }
 }

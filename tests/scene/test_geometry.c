@@ -230,6 +230,21 @@ static void test_fit_points(void **st)
     assert_true(fabs(q.x) <= 1 + 1e-9 && fabs(q.y) <= 1 + 1e-9);
 }
 
+/* A fixed path gives its camera at every frame; its length can change. */
+static void test_fixed_path(void **st)
+{
+    (void)st;
+    SceneCamera c = scene_camera_default();
+    c.eye = vec3(1, 2, 3);
+    SceneCameraPath *p = scene_path_new_fixed(&c, 5);
+    assert_int_equal(scene_path_kind(p), SCENE_PATH_FIXED);
+    assert_int_equal(scene_path_n_frames(p), 5);
+    NEAR(scene_path_camera(p, 3.5).eye.z, 3);
+    scene_path_set_n_frames(p, 9);
+    assert_int_equal(scene_path_n_frames(p), 9);
+    scene_path_free(p);
+}
+
 static void test_orbit(void **st)
 {
     (void)st;
@@ -330,6 +345,7 @@ int main(void)
         cmocka_unit_test(test_perspective),
         cmocka_unit_test(test_fit),
         cmocka_unit_test(test_fit_points),
+        cmocka_unit_test(test_fixed_path),
         cmocka_unit_test(test_orbit),
         cmocka_unit_test(test_keyframes),
         cmocka_unit_test(test_scene),

@@ -245,6 +245,10 @@ static void test_camera_and_path(void **st)
 static void test_teapot_placements(void **st)
 {
     (void)st;
+    gboolean listed = FALSE; /* the generator names include this one */
+    for (const char *const *g = scene_generator_names(); *g; g++)
+        listed |= strcmp(*g, "teapots") == 0;
+    assert_true(listed);
     GError *err = NULL;
     Scene *s = from_text("scene:\n"
                          "  generator: teapots\n"

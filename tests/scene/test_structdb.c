@@ -332,6 +332,9 @@ static void test_priorities(void **st)
     g_array_unref(r);
     int64_t pr = 0;
     scene_db_set_end_delta(p, b, 5);
+    assert_true(scene_db_end_delta(p, b) == 5 && scene_db_end_delta(p, a) == 0);
+    assert_string_equal(scene_elem_kind_name(SCENE_EL_POLYGON2D), "polygon2d");
+    assert_string_equal(scene_elem_kind_name(SCENE_EL_EXECUTE), "execute");
     scene_db_traverse_from(p, b, mat4_identity(), vec3(1, 1, 1), &pr, NULL,
                            NULL);
     assert_int_equal(pr, 7);

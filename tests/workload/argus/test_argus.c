@@ -151,6 +151,7 @@ static void test_streams_of_figure_3c(void **state)
         }
     }
     assert_int_equal(seen, 64);
+    assert_int_equal(wl_ag_n_blocks(s), 64);
     AgStreams *none = wl_ag_streams_new(m, 3, WL_AG_ORDER_NONE,
                                         WL_AG_PRIM_TRIANGLES, 1u << 20, 4, &e);
     assert_int_equal(none->syncs, 0);

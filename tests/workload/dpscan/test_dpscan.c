@@ -12,6 +12,7 @@
 #include <glib/gstdio.h>
 #include <string.h>
 #include "sim/workload/dpscan/dp_model.h"
+#include "sim/workload/dpscan/dp_poly.h"
 #include "sim/workload/workload.h"
 
 static void test_vp_ratio(void **state)
@@ -116,6 +117,14 @@ static void test_array_send_combiners(void **state)
     (void)state;
     WlDpMachine ms[2] = {unit_simd(2), unit_simd(4)};
     WlDpVm *vm = wl_dp_vm_new(ms, 2, 4, 2);
+    assert_int_equal(wl_dp_vm_n_targets(vm), 2);
+    for (int k = WL_DP_MODE_FLAT; k <= WL_DP_MODE_CONTOUR; k++) {
+        WlDpMode back; /* every mode's name parses back to it */
+        assert_true(wl_dp_mode_parse(wl_dp_mode_name((WlDpMode)k), &back));
+        assert_int_equal(back, k);
+    }
+    WlDpMode none;
+    assert_false(wl_dp_mode_parse("phong", &none));
     /* 4 messages from a 4-element array into a 4-element array: 3 land
      * on element 1 (2 collisions). */
     uint64_t dst[] = {1, 1, 3, 1}, val[] = {5, 9, 2, 7}, out[4] = {0};

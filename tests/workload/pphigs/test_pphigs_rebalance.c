@@ -163,6 +163,8 @@ static void test_cap_reached_exactly(void **s)
             frame(&x, rb, &st);
         assert_int_equal(st.cause, inval ? WL_PPHIGS_REBAL_INVALIDATED
                                          : WL_PPHIGS_REBAL_IMPERFECT);
+        assert_string_equal(wl_pphigs_rebal_cause_name(st.cause),
+                            inval ? "invalidated" : "imperfect");
         assert_int_equal(st.moves, p.max_moves);
         assert_int_equal(st.total_moves, p.max_moves);
         wl_pphigs_rebal_free(rb);

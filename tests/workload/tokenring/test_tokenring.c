@@ -53,6 +53,7 @@ static void test_closed_form(void **state)
     assert_int_equal(r->nodes->len, 5);
     const SimNodeResult *n = g_ptr_array_index(r->nodes, 4);
     assert_int_equal(n->busy.total, 3 * 20 * SIM_US);
+    assert_true(fabs(sim_result_node_util(r, n) - 60.0 / 330) < 1e-12);
     assert_int_equal(sim_busy_phase(&n->busy, 0), 3 * 10 * SIM_US);
     assert_string_equal(g_ptr_array_index(r->phases, 1), "send");
     assert_string_equal(r->machine, "ring-5");
