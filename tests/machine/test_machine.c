@@ -153,6 +153,7 @@ static void test_costs(void **state)
     mach_shmem_init_with(&sh, 1e6, 0);
     mach_shmem_transfer(&sh, 0, 100);
     assert_true(fabs(mach_shmem_utilisation(&sh, 400 * SIM_US) - 0.25) < 1e-9);
+    assert_true(sh.bytes == 100 && sh.transfers == 1);
     assert_true(mach_shmem_utilisation(&sh, 0) == 0);
 }
 

@@ -274,6 +274,16 @@ static void test_bad_overrides_rejected(void **state)
                         "    node:\n      count: 12\n",
                         "power of two");
     expect_bad_override("machine:\n  model: not-a-model\n", "not-a-model");
+    expect_bad_override("machine:\n  model: cm5\n  network:\n    arity: 65\n",
+                        "an unusable fat-tree arity");
+    SimEngine *eng = sim_engine_new(1); /* 64 is the largest arity */
+    CfgNode *root;
+    MachMachine *m = from_text(
+        eng, "machine:\n  model: cm5\n  network:\n    arity: 64\n", &root, NULL);
+    assert_non_null(m);
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
 }
 
 static void test_check_section_marks_read(void **state)

@@ -207,6 +207,18 @@ static void test_obj_roundtrip(void **st)
     char *text = scene_obj_to_string(m);
     SceneMesh *r = obj(text);
     assert_same_mesh(m, r, FALSE);
+    /* without normals the faces are written as plain 1-based indices */
+    SceneMesh *bare = scene_mesh_new();
+    for (int i = 0; i < 4; i++)
+        scene_mesh_add_vertex(bare, vec3(i & 1, i >> 1, 0));
+    scene_mesh_add_quad(bare, 0, 1, 3, 2, scene_color(1, 1, 1), 0);
+    char *bt = scene_obj_to_string(bare);
+    assert_non_null(strstr(bt, "f 1 2 4 3\n"));
+    SceneMesh *br = obj(bt);
+    assert_int_equal(scene_mesh_poly(br, 0)[2], 3);
+    g_free(bt);
+    scene_mesh_free(br);
+    scene_mesh_free(bare);
     char *path = g_build_filename(g_get_tmp_dir(), "pgsim-rt.obj", NULL);
     assert_true(scene_obj_save(r, path, NULL));
     SceneMesh *r2 = scene_obj_load(path, NULL);

@@ -48,6 +48,8 @@ static void test_table1_configs(void **st)
     }
 }
 
+static Scene *from_text(const char *yaml, GError **err);
+
 /* fit: vertices puts the silhouette exactly at +-fill of the viewport. */
 static void test_fit_vertices(void **st)
 {
@@ -75,6 +77,25 @@ static void test_fit_vertices(void **st)
     assert_true(ext >= 0.8 - 1e-3); /* it touches: no slack */
     scene_free(s);
     cfg_free(root);
+    /* fit: box puts the instances' box corners there instead */
+    s = from_text("scene: {generator: teapots, count: 3, polygons_per_teapot: "
+                  "300,\n layout: depth, view: {azimuth: 0, elevation: 20, "
+                  "fill: 0.8, fit: box}}\n",
+                  &err);
+    assert_non_null(s);
+    vp = scene_camera_view_proj(&s->camera);
+    ext = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        SceneBox b = scene_instance_bbox(s, i);
+        for (int k = 0; k < 8; k++) {
+            Vec4 p = mat4_apply_point(
+                vp, vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
+                         k & 4 ? b.max.z : b.min.z));
+            ext = MAX(ext, MAX(fabs(p.x / p.w), fabs(p.y / p.w)));
+        }
+    }
+    assert_true(ext <= 0.8 + 1e-6 && ext >= 0.8 - 1e-3);
+    scene_free(s);
 }
 
 static void test_other_configs(void **st)
@@ -266,6 +287,16 @@ static void test_teapot_placements(void **st)
     assert_true(fabs(sb.z - 2 * sa.x) < 1e-6 * sb.z); /* yaw 90 swaps x, z */
     assert_int_equal(scene_n_vertices(s), 2 * scene_mesh_n_vertices(
                                                   scene_instance_mesh(s, 0)));
+    scene_free(s);
+    /* one colour for all: white unless given */
+    s = from_text("scene: {generator: teapots, vary_color: false}\n", &err);
+    assert_non_null(s);
+    SceneColor w = scene_instance(s, 0)->color;
+    assert_true(w.r == 1 && w.g == 1 && w.b == 1);
+    scene_free(s);
+    s = from_text("scene: {generator: nurbs, patches_u: 1, patches_v: 1}\n",
+                  &err);
+    assert_non_null(s); /* one patch is a surface */
     scene_free(s);
 }
 

@@ -171,6 +171,10 @@ static void test_cycles(void **st)
     e = scene_elem_execute(a);
     assert_false(scene_db_modify(db, b, 0, &e, &err));
     g_clear_error(&err);
+    e = scene_elem_execute(scene_db_struct_count(db)); /* one past the end */
+    assert_false(scene_db_append(db, a, &e, &err));
+    assert_non_null(strstr(err->message, "unknown structure"));
+    g_clear_error(&err);
     e = scene_elem_execute(99);
     assert_false(scene_db_append(db, a, &e, &err));
     assert_non_null(strstr(err->message, "unknown structure"));

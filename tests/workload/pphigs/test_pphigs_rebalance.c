@@ -165,6 +165,15 @@ static void test_cap_reached_exactly(void **s)
                                          : WL_PPHIGS_REBAL_IMPERFECT);
         assert_string_equal(wl_pphigs_rebal_cause_name(st.cause),
                             inval ? "invalidated" : "imperfect");
+        /* a budget next to nothing still makes the first move (or
+         * exchange), and only that */
+        WlPphigsRebalStep z;
+        p.fraction = 1e-9;
+        WlPphigsRebal *r0 = wl_pphigs_rebal_new(&p);
+        for (guint f = 0; f < p.frames; f++)
+            frame(&x, r0, &z);
+        assert_int_equal(z.moves, inval ? 2 : 1);
+        wl_pphigs_rebal_free(r0);
         assert_int_equal(st.moves, p.max_moves);
         assert_int_equal(st.total_moves, p.max_moves);
         wl_pphigs_rebal_free(rb);
