@@ -65,6 +65,9 @@ static Scene *mixed_scene(void)
         }
         }
     }
+    /* and one across the left edge of the screen (column 0) */
+    const double left[4][2] = {{-3, -0.3}, {-1, -0.3}, {-1, 0.3}, {-3, 0.3}};
+    add_poly(m, left, 4, 0.5, scene_color(0.9f, 0.2f, 0.2f));
     scene_mesh_compute_normals(m);
     Scene *s = scene_new("mixed");
     scene_add_instance(s, scene_add_mesh(s, m), mat4_identity(),
