@@ -298,6 +298,10 @@ static void test_teapot_placements(void **st)
                   &err);
     assert_non_null(s); /* one patch is a surface */
     scene_free(s);
+    s = from_text("scene: {generator: large_polygons, count: 10, seed: 0}\n",
+                  &err);
+    assert_non_null(s); /* seed 0 is a seed like any other */
+    scene_free(s);
 }
 
 /* PPHIGS counts may be 0 where the shape allows it: a flock of no boids
