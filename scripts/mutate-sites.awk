@@ -84,7 +84,7 @@ function mask(s,    out, i, n, c, q) {
 }
 
 function emit(f, ln, col, old, new, code,    key) {
-    key = ln SUBSEP old SUBSEP new
+    key = f SUBSEP ln SUBSEP old SUBSEP new
     nth[key]++
     printf "%s\t%d\t%d\t%s\t%s\t%d\t%s\t%s\n", f, ln, col, old, new, nth[key],
         code, fn
