@@ -69,7 +69,7 @@ static gboolean check_fingerprint(const char *dir, const SweepSpec *spec,
     char *path = in_dir(dir, FP_NAME), *old = NULL;
     char *fp = sweep_spec_fingerprint(spec);
     gboolean ok = TRUE;
-    if (resume && g_file_get_contents(path, &old, NULL, NULL) &&
+    if (resume && sim_file_read(path, &old, NULL, NULL) &&
         strcmp(g_strstrip(old), fp) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "%s: found the log of another sweep (the sweep file or "
@@ -91,7 +91,7 @@ static gboolean load_existing(SweepLog *log, gboolean resume, GError **err)
 {
     char *text = NULL;
     gsize len = 0, complete = 0;
-    if (!g_file_get_contents(log->path, &text, &len, NULL) || len == 0) {
+    if (!sim_file_read(log->path, &text, &len, NULL) || len == 0) {
         g_free(text);
         return TRUE;
     }
@@ -281,7 +281,7 @@ gboolean sweep_log_finish(const char *dir, const SweepSpec *spec,
 {
     char *path = in_dir(dir, LOG_NAME), *text = NULL;
     gsize len = 0, complete;
-    if (!g_file_get_contents(path, &text, &len, NULL)) {
+    if (!sim_file_read(path, &text, &len, NULL)) {
         g_free(path);
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot read", dir);
         return FALSE;
