@@ -54,6 +54,14 @@ $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -c $< -o $@
 
+# The build's version in every result (git describe at build time): the
+# stamp file changes only when the version does, so report.o rebuilds then.
+GIT_DESCRIBE := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
+VERSION_STAMP := $(BUILD)/version.stamp
+$(shell mkdir -p $(BUILD); echo '$(GIT_DESCRIBE)' | cmp -s - $(VERSION_STAMP) || echo '$(GIT_DESCRIBE)' > $(VERSION_STAMP))
+$(BUILD)/obj/sim/app/run/report.o: $(VERSION_STAMP)
+$(BUILD)/obj/sim/app/run/report.o: CFLAGS += -DPGSIM_GIT_VERSION='"$(GIT_DESCRIBE)"'
+
 $(BUILD)/libpgsim.a: $(LIBOBJ)
 	@rm -f $@
 	$(AR) rcs $@ $^

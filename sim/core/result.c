@@ -60,6 +60,7 @@ SimResult *sim_result_new(const char *workload, const char *machine)
     r->nodes = g_ptr_array_new_with_free_func(node_free);
     r->idle = g_ptr_array_new_with_free_func(idle_free);
     r->metrics = g_ptr_array_new_with_free_func(metric_free);
+    r->overrides = g_ptr_array_new_with_free_func(g_free);
     return r;
 }
 
@@ -76,6 +77,10 @@ void sim_result_free(SimResult *r)
     g_ptr_array_free(r->nodes, TRUE);
     g_ptr_array_free(r->idle, TRUE);
     g_ptr_array_free(r->metrics, TRUE);
+    g_ptr_array_free(r->overrides, TRUE);
+    g_free(r->config_path);
+    g_free(r->config_sha256);
+    g_free(r->config_effective);
     g_free(r);
 }
 

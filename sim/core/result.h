@@ -49,6 +49,13 @@ typedef struct {
     GPtrArray *metrics; /* SimMetric *, insertion order */
     uint64_t events;    /* engine events run */
     double wall_s;      /* wall-clock seconds of the run (not deterministic) */
+    /* Provenance, filled by the application (NULL when unknown): the
+     * config file as named, the SHA-256 of its bytes, the config after
+     * overrides as JSON text, and the overrides (char *) in order. */
+    char *config_path;
+    char *config_sha256;
+    char *config_effective;
+    GPtrArray *overrides;
 } SimResult;
 
 /* Returns a new empty result; free with sim_result_free(). */

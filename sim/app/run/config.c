@@ -13,6 +13,8 @@
  * share/pgsim/models (next to the executable, then PGSIM_PREFIX).
  */
 #include "sim/app/run/config.h"
+#include "sim/output/json.h"
+#include "sim/core/datapath.h"
 #include "sim/output/progress.h"
 #include "sim/machine/machine.h"
 #include "sim/scene/scene_cfg.h"
@@ -175,6 +177,32 @@ static gboolean read_scene(CfgRun *r, GError **err)
     return s != NULL;
 }
 
+/* The config tree as JSON (every scalar a string, as written). */
+static void tree_json(GString *s, const CfgNode *n)
+{
+    if (cfg_kind(n) == CFG_MAP) {
+        g_string_append_c(s, '{');
+        for (guint i = 0; i < cfg_map_len(n); i++) {
+            g_string_append(s, i ? ", " : "");
+            json_put_str(s, cfg_map_key(n, i));
+            g_string_append(s, ": ");
+            tree_json(s, cfg_map_value(n, i));
+        }
+        g_string_append_c(s, '}');
+    } else if (cfg_kind(n) == CFG_SEQ) {
+        g_string_append_c(s, '[');
+        for (guint i = 0; i < cfg_seq_len(n); i++) {
+            g_string_append(s, i ? ", " : "");
+            tree_json(s, cfg_seq_at(n, i));
+        }
+        g_string_append_c(s, ']');
+    } else if (cfg_kind(n) == CFG_SCALAR) {
+        json_put_str(s, cfg_scalar(n));
+    } else {
+        g_string_append(s, "null");
+    }
+}
+
 static gboolean apply_overrides(CfgNode *root, const char *const *ov,
                                 GError **err)
 {
@@ -189,6 +217,9 @@ CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
 {
     CfgRun *r = g_new0(CfgRun, 1);
     r->root = root;
+    r->overrides = g_ptr_array_new_with_free_func(g_free);
+    for (int i = 0; overrides && overrides[i]; i++)
+        g_ptr_array_add(r->overrides, g_strdup(overrides[i]));
     gboolean ok =
         check_root(root, err) && apply_overrides(root, overrides, err) &&
         check_schema(root, err) && read_run(r, err) && read_workload(r, err);
@@ -209,7 +240,21 @@ CfgRun *cfg_run_load(const char *path, const char *const *overrides,
     if (!root)
         return NULL;
     extend_model_path(path);
-    return cfg_run_from_tree(root, overrides, err);
+    char *bytes = NULL;
+    gsize len = 0;
+    char *sha = sim_file_read(path, &bytes, &len, NULL)
+                    ? g_compute_checksum_for_data(G_CHECKSUM_SHA256,
+                                                  (const guchar *)bytes, len)
+                    : NULL;
+    g_free(bytes);
+    CfgRun *r = cfg_run_from_tree(root, overrides, err);
+    if (r) {
+        r->path = g_strdup(path);
+        r->sha256 = sha;
+    } else {
+        g_free(sha);
+    }
+    return r;
 }
 
 void cfg_run_free(CfgRun *r)
@@ -219,6 +264,10 @@ void cfg_run_free(CfgRun *r)
     if (r->wl && r->wl_params)
         r->wl->free_params(r->wl_params);
     cfg_free(r->root);
+    g_free(r->path);
+    g_free(r->sha256);
+    if (r->overrides)
+        g_ptr_array_free(r->overrides, TRUE);
     g_free(r);
 }
 
@@ -226,6 +275,17 @@ static char *machine_name(const CfgRun *r)
 {
     const char *model = cfg_scalar(cfg_get(r->machine, "model"));
     return g_strdup(model ? model : r->machine ? "inline" : "none");
+}
+
+static void fill_provenance(SimResult *res, const CfgRun *r)
+{
+    res->config_path = g_strdup(r->path);
+    res->config_sha256 = g_strdup(r->sha256);
+    GString *s = g_string_new(NULL);
+    tree_json(s, r->root);
+    res->config_effective = g_string_free(s, FALSE);
+    for (guint i = 0; r->overrides && i < r->overrides->len; i++)
+        g_ptr_array_add(res->overrides, g_strdup(r->overrides->pdata[i]));
 }
 
 SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
@@ -239,6 +299,7 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
     g_free(res->fidelity);
     res->fidelity = g_strdup(r->fidelity);
     res->seed = r->seed;
+    fill_provenance(res, r);
     WlContext ctx = {.eng = eng,
                      .root = r->root,
                      .seed = r->seed,

@@ -33,6 +33,9 @@ typedef struct {
     const char *fidelity; /* run.fidelity, default "faithful": the machine
                              model's network.fidelity (static) */
     SimTime until;        /* run.until; SIM_TIME_MAX when absent */
+    char *path;           /* the config file as named; NULL for a tree */
+    char *sha256;         /* of the file's bytes; NULL for a tree */
+    GPtrArray *overrides; /* char *: the overrides applied, in order */
 } CfgRun;
 
 /* Loads and checks a run config; `overrides` is a NULL-terminated list of

@@ -94,6 +94,39 @@ static void json_key(GString *s, const char *indent, const char *key)
     g_string_append_printf(s, "%s\"%s\": ", indent, key);
 }
 
+#ifndef PGSIM_GIT_VERSION
+#define PGSIM_GIT_VERSION "unknown"
+#endif
+
+const char *rpt_version(void)
+{
+    return PGSIM_GIT_VERSION;
+}
+
+/* Where the result came from: the build, the config and its overrides. */
+static void json_provenance(GString *s, const SimResult *r)
+{
+    g_string_append(s, ",\n  \"provenance\": {\"pgsim_version\": ");
+    json_put_str(s, rpt_version());
+    g_string_append(s, ", \"config\": ");
+    r->config_path ? json_put_str(s, r->config_path)
+                   : (void)g_string_append(s, "null");
+    g_string_append(s, ", \"config_sha256\": ");
+    r->config_sha256 ? json_put_str(s, r->config_sha256)
+                     : (void)g_string_append(s, "null");
+    g_string_append(s, ", \"overrides\": [");
+    for (guint i = 0; i < r->overrides->len; i++) {
+        g_string_append(s, i ? ", " : "");
+        json_put_str(s, r->overrides->pdata[i]);
+    }
+    g_string_append_printf(s, "], \"seed\": %" G_GUINT64_FORMAT
+                              ", \"fidelity\": ",
+                           r->seed);
+    json_put_str(s, r->fidelity);
+    g_string_append_printf(s, ",\n    \"effective_config\": %s}",
+                           r->config_effective ? r->config_effective : "null");
+}
+
 static void json_run(GString *s, const SimResult *r)
 {
     g_string_append(s, "{\n  \"schema\": \"pgsim-result\",\n"
@@ -103,7 +136,9 @@ static void json_run(GString *s, const SimResult *r)
     kv_str(s, "machine", r->machine);
     kv_str(s, "fidelity", r->fidelity);
     g_string_append_printf(
-        s, ",\n  \"seed\": %" G_GUINT64_FORMAT ",\n  \"elapsed_s\": ", r->seed);
+        s, ",\n  \"seed\": %" G_GUINT64_FORMAT, r->seed);
+    json_provenance(s, r);
+    g_string_append(s, ",\n  \"elapsed_s\": ");
     put_time(s, r->elapsed);
 }
 
@@ -274,6 +309,18 @@ static void csv_run(GString *s, const SimResult *r)
     csv_row(s, "run", NULL, NULL, "machine", r->machine, NULL);
     csv_row(s, "run", NULL, NULL, "fidelity", r->fidelity, NULL);
     csv_u64(s, "run", "seed", r->seed, NULL);
+    csv_row(s, "provenance", NULL, NULL, "pgsim_version", rpt_version(), NULL);
+    csv_row(s, "provenance", NULL, NULL, "config", r->config_path, NULL);
+    csv_row(s, "provenance", NULL, NULL, "config_sha256", r->config_sha256,
+            NULL);
+    for (guint i = 0; i < r->overrides->len; i++) {
+        char idx[16];
+        g_snprintf(idx, sizeof idx, "%u", i);
+        csv_row(s, "provenance", idx, NULL, "override", r->overrides->pdata[i],
+                NULL);
+    }
+    csv_row(s, "provenance", NULL, NULL, "effective_config",
+            r->config_effective, NULL);
     csv_time(s, "run", NULL, NULL, "elapsed", r->elapsed);
     csv_u64(s, "frames", "count", r->frame_times->len, NULL);
     csv_num(s, "frames", NULL, NULL, "mean", sim_result_mean_frame_s(r), "s");

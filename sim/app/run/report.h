@@ -22,6 +22,8 @@ gboolean rpt_format_parse(const char *s, RptFormat *out);
 const char *rpt_format_file(RptFormat f);
 
 /* Returns the rendering as a new string (g_free). */
+/* The pgsim build (git describe at build time; "unknown" outside git). */
+const char *rpt_version(void);
 char *rpt_render(const SimResult *r, RptFormat f, gboolean timing);
 /* Writes all three renderings into dir (created if needed), atomically;
  * FALSE with *err on failure. */

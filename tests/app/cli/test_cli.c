@@ -11,6 +11,7 @@
 #include <glib.h>
 #include <glib/gstdio.h>
 
+#include "sim/output/json.h"
 #include "sim/workload/workload.h"
 
 static const char *pgsim_bin(void)
@@ -176,6 +177,61 @@ static void test_units_on_the_command_line(void **state)
     g_free(err);
 }
 
+/* result.json and result.csv say where they came from: the build, the
+ * config file and its SHA-256, the overrides and the config they made,
+ * the seed and the fidelity (issue 18, point 10). */
+static void test_provenance(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-prov-XXXXXX", NULL);
+    const char *args[] = {"run", "configs/tokenring.yaml", "-q", "--out", dir,
+                          "--set", "workload.nodes=16", "--seed", "9", NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(args, &out, &err), 0);
+    g_free(out);
+    g_free(err);
+    char *path = g_build_filename(dir, "result.json", NULL), *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    JsonVal *v = json_parse(text, -1, path, NULL);
+    assert_non_null(v);
+    const JsonVal *p = json_get(v, "provenance");
+    assert_non_null(p);
+    assert_true(strlen(json_get(p, "pgsim_version")->str) > 0);
+    assert_string_equal(json_get(p, "config")->str, "configs/tokenring.yaml");
+    char *bytes = NULL;
+    gsize len = 0;
+    assert_true(g_file_get_contents("configs/tokenring.yaml", &bytes, &len,
+                                    NULL));
+    char *sha = g_compute_checksum_for_data(G_CHECKSUM_SHA256,
+                                            (const guchar *)bytes, len);
+    assert_string_equal(json_get(p, "config_sha256")->str, sha);
+    const JsonVal *ov = json_get(p, "overrides");
+    assert_int_equal(json_len(ov), 1);
+    assert_string_equal(json_at(ov, 0)->str, "workload.nodes=16");
+    const JsonVal *eff = json_get(p, "effective_config");
+    assert_string_equal(json_get(json_get(eff, "workload"), "nodes")->str,
+                        "16");
+    assert_int_equal((int)json_get(p, "seed")->num, 9);
+    assert_string_equal(json_get(p, "fidelity")->str, "analytic");
+    json_free(v);
+    g_free(text);
+    g_free(path);
+    path = g_build_filename(dir, "result.csv", NULL);
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    char *row = g_strdup_printf("provenance,,,config_sha256,%s,", sha);
+    assert_non_null(strstr(text, row));
+    assert_non_null(strstr(text, "provenance,0,,override,workload.nodes=16,"));
+    g_free(row);
+    g_free(text);
+    g_free(path);
+    g_free(sha);
+    g_free(bytes);
+    char *rm[] = {(char *)"rm", (char *)"-rf", dir, NULL};
+    assert_true(g_spawn_sync(NULL, rm, NULL, G_SPAWN_SEARCH_PATH, NULL, NULL,
+                             NULL, NULL, NULL, NULL));
+    g_free(dir);
+}
+
 int main(void)
 {
     g_setenv("LC_ALL", "C.UTF-8", TRUE); /* a UTF-8 terminal's locale */
@@ -184,6 +240,7 @@ int main(void)
         cmocka_unit_test(test_validate_sweeps),
         cmocka_unit_test(test_quickstart),
         cmocka_unit_test(test_units_on_the_command_line),
+        cmocka_unit_test(test_provenance),
     };
     return cmocka_run_group_tests_name("cli", tests, NULL, NULL);
 }
