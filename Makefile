@@ -123,7 +123,6 @@ golden: all $(BUILD)/tests/app/run/test_scenarios
 
 # Never part of make test: each takes minutes.
 coverage: deps
-	@$(MAKE) -s all
 	@$(MAKE) -s BUILD=build-cov OPT="-O0 -g" EXTRA_CFLAGS=--coverage \
 	  EXTRA_LDFLAGS=--coverage build-cov/pgsim \
 	  $(TESTBIN:$(BUILD)/%=build-cov/%)
