@@ -378,6 +378,26 @@ static gboolean run_gnuplot(const char *dir, const char *name, GError **err)
     return ok;
 }
 
+DataTable *plot_xy_table_new(void)
+{
+    GPtrArray *cols = g_ptr_array_new();
+    g_ptr_array_add(cols, "x");
+    g_ptr_array_add(cols, "y");
+    g_ptr_array_add(cols, "series");
+    DataTable *t = dt_new(cols);
+    g_ptr_array_free(cols, TRUE);
+    return t;
+}
+
+void plot_xy_add(DataTable *t, double x, double y, const char *series)
+{
+    char xs[40], ys[40];
+    g_snprintf(xs, sizeof xs, "%.17g", x);
+    g_snprintf(ys, sizeof ys, "%.17g", y);
+    char *row[] = {xs, ys, (char *)series};
+    dt_add_row(t, row);
+}
+
 gboolean plot_render(const PlotSpec *p, const DataTable *t, const char *dir,
                      GError **err)
 {

@@ -33,6 +33,10 @@ gboolean plot_specs_read(GPtrArray *specs, const CfgNode *seq, GError **err);
  * and lists the columns. */
 gboolean plot_check_columns(const PlotSpec *p, const DataTable *t,
                             GError **err);
+/* A new table of columns x, y, series (dt_free), the shape most charts
+ * take, and one row of it (numbers written so they read back exactly). */
+DataTable *plot_xy_table_new(void);
+void plot_xy_add(DataTable *t, double x, double y, const char *series);
 /* Writes NAME.dat and NAME.gp in dir and runs gnuplot there.  Rows whose
  * x or y is empty or not a number are skipped (a categorical x, one that
  * is not numeric, is placed at 0, 1, 2 ... in first-seen order). */

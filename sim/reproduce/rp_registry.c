@@ -3,6 +3,7 @@
 #include "sim/reproduce/ellsworth90.h"
 #include "sim/reproduce/igehy98.h"
 #include "sim/reproduce/kurc96.h"
+#include "sim/reproduce/mueller97.h"
 #include "sim/reproduce/ortega93.h"
 #include "sim/reproduce/reproduce.h"
 #include <math.h>
@@ -13,6 +14,7 @@ const RpPaperOps *const rp_all[] = {
     &rp_ellsworth90,
     &rp_kurc96,
     &rp_igehy98,
+    &rp_mueller97,
     NULL,
 };
 

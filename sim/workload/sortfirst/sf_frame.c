@@ -322,6 +322,22 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
     sum_busy(r, st);
 }
 
+/* √ area of instance i's screen rectangle clipped to the screen, pixels
+ * (seed 000 §4.2, Chart 3: chunk box size against region size). */
+static double box_side(const WlSfRun *r, guint i)
+{
+    const WlSfInst *in = wl_sf_inst(r->db, i);
+    const WlSfChunk *ch = wl_sf_chunk(r->db, in->chunk);
+    double x0, y0, x1, y1;
+    if (!wl_sf_box_screen(&r->regions, ch->box,
+                          mat4_mul(r->view.view_proj, in->matrix), &x0, &y0,
+                          &x1, &y1))
+        return 0;
+    double w = MIN(x1, r->regions.width) - MAX(x0, 0);
+    double h = MIN(y1, r->regions.height) - MAX(y0, 0);
+    return w > 0 && h > 0 ? sqrt(w * h) : 0;
+}
+
 static void overlap(const WlSfRun *r, WlSfFrameStats *st)
 {
     for (guint i = 0; i < wl_sf_n_insts(r->db); i++) {
@@ -329,6 +345,7 @@ static void overlap(const WlSfRun *r, WlSfFrameStats *st)
         if (m) {
             st->onscreen_insts++;
             st->region_insts += (uint64_t)__builtin_popcountll(m);
+            st->box_side += box_side(r, i);
         }
     }
 }

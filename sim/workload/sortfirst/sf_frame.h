@@ -78,6 +78,7 @@ typedef struct {
     uint64_t estimate_cells;     /* grid cells added, summed, visited */
     uint64_t onscreen_insts;     /* chunk instances in some region */
     uint64_t region_insts;       /* Σ regions over them */
+    double box_side;             /* Σ over them: √ screen box area, px */
     uint64_t pixels;             /* pixels z-buffered in the regions */
     uint64_t peak_memory;        /* largest processor's store, bytes */
     double utilisation;          /* busy / (P x frame time) */

@@ -29,6 +29,7 @@
 #include "sim/workload/sortfirst/sf_workload.h"
 #include "sim/scene/scene_cfg.h"
 #include <glib/gstdio.h>
+#include <math.h>
 #include <stdio.h>
 
 static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
@@ -126,7 +127,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
 typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
     double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
-    double est_bytes;
+    double est_bytes, box_side;
     uint64_t onscreen, regions, peak;
     gboolean checked, image_ok;
 } Sums;
@@ -158,6 +159,7 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->frame_ms += sim_time_to_ms(s->end - s->start);
         m->onscreen += s->onscreen_insts;
         m->regions += s->region_insts;
+        m->box_side += s->box_side;
     }
 }
 
@@ -197,6 +199,10 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
         (m.master + m.slave + m.fresh + m.rendered) / n, "");
     set(out, "chunk_overlap", m.onscreen ? (double)m.regions / m.onscreen : 0,
         "");
+    /* mean box side over the mean region side √(W H / P) */
+    double region = sqrt((double)s->resolution * s->resolution / s->procs);
+    set(out, "box_region_ratio",
+        m.onscreen ? m.box_side / m.onscreen / region : 0, "");
     set(out, "load_imbalance", m.imbalance / n, "");
     set(out, "load_imbalance_max", m.imbalance_max, "");
     set(out, "polygon_imbalance", m.poly_imbalance / n, "");

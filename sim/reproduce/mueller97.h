@@ -1,0 +1,49 @@
+/* mueller97.h — `pgsim reproduce mueller97`: seed 000's Charts 1-5
+ * (Mueller, "Hierarchical graphics databases in sort-first", §4) from
+ * the sortfirst workload on the vehicle database, and the claims of
+ * §4.2 as computed rows.
+ *
+ * Tables (rows "P<p>/g<n>" unless said; every figure a mean over the
+ * frames after the first of the run, as the paper averaged "across the
+ * frames in the animation"):
+ *   "1"  Chart 1, chunking strategies at one P and bookkeeping: rows
+ *        "<strategy>/g<n>", columns box_region_ratio, chunk_overlap;
+ *   "2"  Chart 2, communication: bytes_minset, bytes_maxset per frame;
+ *   "3"  Chart 3, chunk overlap: chunk_overlap, box_region_ratio;
+ *   "4"  Chart 4, min-set transformations: transforms, master_boxes,
+ *        slave_boxes, new_boxes, polygons;
+ *   "5"  Chart 5, the same for max-set;
+ *   "claims"  one row per claim of §4.2 (mueller97_claims.c).
+ * The paper's charts carry no numbers in the seed's text, so
+ * configs/papers/mueller97/published.yaml lists captions only and every
+ * row is printed as a prediction.  With an output directory the hook
+ * draws the five charts (mueller97-chart<k>.{png,svg,gp,dat}).
+ */
+#ifndef PGSIM_REPRODUCE_MUELLER97_H
+#define PGSIM_REPRODUCE_MUELLER97_H
+
+#include "sim/reproduce/reproduce.h"
+
+/* One simulated case, the figures the charts and claims read. */
+typedef struct {
+    guint procs, granularity;
+    gboolean minset; /* bookkeeping: min-set (else max-set) */
+    gboolean sorted; /* chunking: sorted (else unsorted) */
+    guint instances; /* max-set instances of the database's root */
+    double bytes, overlap, ratio; /* per frame; overlap; box / region */
+    double master, slave, fresh, polys, transforms; /* per frame */
+} RpMuellerPoint;
+
+extern const RpPaperOps rp_mueller97;
+
+/* Appends the claim rows (table "claims") computed from the points. */
+void rp_mueller97_claims(const RpMuellerPoint *pts, guint n, GPtrArray *rows);
+/* Spearman's rank correlation of x and y (ties averaged); NaN when
+ * either is constant. */
+double rp_mueller97_spearman(const double *x, const double *y, guint n);
+/* Draws Charts 1-5 from the points into dir (errors are reported on
+ * stderr and leave the chart out). */
+void rp_mueller97_charts(const RpMuellerPoint *pts, guint n,
+                         guint chart1_procs, const char *dir);
+
+#endif

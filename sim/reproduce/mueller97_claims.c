@@ -1,0 +1,292 @@
+/* mueller97_claims.c — the claims of seed 000 §4.2 as computed rows
+ * (mueller97.h).  Each claim is a row of table "claims" whose columns
+ * are the figures behind it and `holds` (1 yes, 0 no, NaN when the runs
+ * cannot decide it); the claim's words are the row's note.  The tests of
+ * each claim, and where we chose a threshold:
+ *
+ *   C1 (Chart 2)  communication (bytes a frame, max-set, sorted) depends
+ *      more on P than on the chunk size: the mean over chunk sizes of
+ *      max/min over P exceeds the mean over P of max/min over chunk
+ *      sizes; and the chunk size matters more as P grows, read on the
+ *      chart's scale: the spread max - min in bytes over chunk sizes is
+ *      larger at the largest P than at the smallest (the relative spread
+ *      max/min at both is printed too; it is not what is tested).
+ *   C2 (Chart 3)  chunk overlap grows with the ratio of chunk box size to
+ *      region size: Spearman rank correlation over the (P, chunk size)
+ *      cases >= 0.9 ("fairly direct", "steadily"; our threshold).
+ *   C3 (Charts 4-5)  max-set does fewer transformations than min-set: in
+ *      every case with chunks larger than 1 (the charts omit size 1).
+ *   C4  min-set transforms about three times (the instance count) as
+ *      many slave chunk boxes as max-set: the mean ratio over those cases
+ *      within 15 % of the instance count (our tolerance for "about").
+ *   C5 (Chart 1)  sorted chunking gives smaller boxes and less overlap
+ *      than unsorted, at every chunk size above 1; partially sorted
+ *      (between them in the paper) is not simulated, so only the
+ *      sorted/unsorted part is decided.
+ * O(n^2) in the points (n is tens).
+ */
+#include "sim/reproduce/mueller97.h"
+#include <math.h>
+#include <string.h>
+
+typedef struct {
+    const RpMuellerPoint *pts;
+    guint n;
+} Pts;
+
+static const RpMuellerPoint *find(Pts a, guint procs, guint g, gboolean minset,
+                                  gboolean sorted)
+{
+    for (guint i = 0; i < a.n; i++)
+        if (a.pts[i].procs == procs && a.pts[i].granularity == g &&
+            a.pts[i].minset == minset && a.pts[i].sorted == sorted)
+            return &a.pts[i];
+    return NULL;
+}
+
+/* Distinct values of procs (by_procs) or granularity, ascending. */
+static guint distinct(Pts a, gboolean by_procs, guint *out, guint max)
+{
+    guint n = 0;
+    for (guint i = 0; i < a.n; i++) {
+        guint v = by_procs ? a.pts[i].procs : a.pts[i].granularity, k = 0;
+        while (k < n && out[k] != v)
+            k++;
+        if (k == n && n < max)
+            out[n++] = v;
+    }
+    for (guint i = 1; i < n; i++)
+        for (guint j = i; j > 0 && out[j - 1] > out[j]; j--) {
+            guint t = out[j];
+            out[j] = out[j - 1];
+            out[j - 1] = t;
+        }
+    return n;
+}
+
+/* The bookkeeping whose sorted cases C1 and C2 read: max-set when run
+ * (overlap is the same for both; the paper's communication chart). */
+static gboolean use_minset(Pts a)
+{
+    for (guint i = 0; i < a.n; i++)
+        if (a.pts[i].sorted && !a.pts[i].minset)
+            return FALSE;
+    return TRUE;
+}
+
+/* A figure of claim `id`; the claim's words go on its `holds` row. */
+static void row(GPtrArray *rows, const char *id, const char *col, double v,
+                const char *claim)
+{
+    gboolean holds = strcmp(col, "holds") == 0;
+    g_ptr_array_add(rows,
+                    rp_row_new("claims", id, col, v, holds ? claim : NULL));
+}
+
+/* ---- C1 ------------------------------------------------------------------ */
+
+/* max/min (relative) or max - min of the bytes along one line of the
+ * (P, g) grid; NaN if none. */
+static double spread_of(Pts a, gboolean minset, guint fixed,
+                        gboolean fix_procs, const guint *vals, guint nv,
+                        gboolean relative)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (guint k = 0; k < nv; k++) {
+        const RpMuellerPoint *p =
+            fix_procs ? find(a, fixed, vals[k], minset, TRUE)
+                      : find(a, vals[k], fixed, minset, TRUE);
+        if (p && p->bytes > 0) {
+            lo = MIN(lo, p->bytes);
+            hi = MAX(hi, p->bytes);
+        }
+    }
+    if (!(hi >= lo))
+        return NAN;
+    return relative ? hi / lo : hi - lo;
+}
+
+static double spread(Pts a, gboolean minset, guint fixed, gboolean fix_procs,
+                     const guint *vals, guint nv)
+{
+    return spread_of(a, minset, fixed, fix_procs, vals, nv, TRUE);
+}
+
+static void claim_comm(Pts a, GPtrArray *rows)
+{
+    const char *id = "C1_comm_procs_over_chunk";
+    const char *text = "Chart 2: communication depends more on the number of "
+                       "processors than on chunk size, and chunk size "
+                       "matters more as P grows";
+    guint ps[32], gs[32];
+    guint np = distinct(a, TRUE, ps, 32), ng = distinct(a, FALSE, gs, 32);
+    gboolean minset = use_minset(a);
+    double by_p = 0, by_g = 0;
+    for (guint g = 0; g < ng; g++)
+        by_p += spread(a, minset, gs[g], FALSE, ps, np) / ng;
+    for (guint p = 0; p < np; p++)
+        by_g += spread(a, minset, ps[p], TRUE, gs, ng) / np;
+    double g_small = spread(a, minset, ps[0], TRUE, gs, ng);
+    double g_large = spread(a, minset, ps[np - 1], TRUE, gs, ng);
+    double b_small = spread_of(a, minset, ps[0], TRUE, gs, ng, FALSE);
+    double b_large = spread_of(a, minset, ps[np - 1], TRUE, gs, ng, FALSE);
+    double holds = isnan(by_p + by_g + b_small + b_large) || np < 2 || ng < 2
+                       ? NAN
+                       : (by_p > by_g && b_large > b_small);
+    row(rows, id, "procs_effect", by_p, text);
+    row(rows, id, "chunk_effect", by_g, text);
+    row(rows, id, "chunk_bytes_spread_smallest_p", b_small, text);
+    row(rows, id, "chunk_bytes_spread_largest_p", b_large, text);
+    row(rows, id, "chunk_effect_smallest_p", g_small, text);
+    row(rows, id, "chunk_effect_largest_p", g_large, text);
+    row(rows, id, "holds", holds, text);
+}
+
+/* ---- C2 ------------------------------------------------------------------ */
+
+/* Ranks (1-based, ties averaged) of v[0 .. n-1] into r. */
+static void ranks(const double *v, guint n, double *r)
+{
+    for (guint i = 0; i < n; i++) {
+        guint below = 0, same = 0;
+        for (guint j = 0; j < n; j++) {
+            below += v[j] < v[i];
+            same += v[j] == v[i];
+        }
+        r[i] = below + (same + 1) / 2.0;
+    }
+}
+
+/* Spearman's rho: Pearson's correlation of the ranks. */
+double rp_mueller97_spearman(const double *x, const double *y, guint n)
+{
+    double *rx = g_new(double, n), *ry = g_new(double, n);
+    ranks(x, n, rx);
+    ranks(y, n, ry);
+    double mx = 0, my = 0, sxy = 0, sxx = 0, syy = 0;
+    for (guint i = 0; i < n; i++) {
+        mx += rx[i] / n;
+        my += ry[i] / n;
+    }
+    for (guint i = 0; i < n; i++) {
+        sxy += (rx[i] - mx) * (ry[i] - my);
+        sxx += (rx[i] - mx) * (rx[i] - mx);
+        syy += (ry[i] - my) * (ry[i] - my);
+    }
+    g_free(rx);
+    g_free(ry);
+    return sxx > 0 && syy > 0 ? sxy / sqrt(sxx * syy) : NAN;
+}
+
+static void claim_overlap(Pts a, GPtrArray *rows)
+{
+    const char *id = "C2_overlap_follows_box_ratio";
+    const char *text = "Chart 3: the chunk overlap factor grows with the "
+                       "ratio of chunk box size to region size";
+    double *x = g_new(double, a.n + 1), *y = g_new(double, a.n + 1);
+    guint n = 0;
+    gboolean minset = use_minset(a);
+    for (guint i = 0; i < a.n; i++)
+        if (a.pts[i].sorted && a.pts[i].minset == minset) {
+            x[n] = a.pts[i].ratio;
+            y[n++] = a.pts[i].overlap;
+        }
+    double rho = n >= 3 ? rp_mueller97_spearman(x, y, n) : NAN;
+    double rlo = INFINITY, rhi = -INFINITY;
+    for (guint i = 0; i < n; i++) {
+        rlo = MIN(rlo, x[i]);
+        rhi = MAX(rhi, x[i]);
+    }
+    row(rows, id, "cases", n, text);
+    row(rows, id, "spearman", rho, text);
+    row(rows, id, "ratio_min", n ? rlo : NAN, text);
+    row(rows, id, "ratio_max", n ? rhi : NAN, text);
+    row(rows, id, "holds", isnan(rho) ? NAN : rho >= 0.9, text);
+    g_free(x);
+    g_free(y);
+}
+
+/* ---- C3, C4 -------------------------------------------------------------- */
+
+static void claim_bookkeeping(Pts a, GPtrArray *rows)
+{
+    const char *id3 = "C3_maxset_fewer_transforms";
+    const char *t3 = "Charts 4-5: max-set performs fewer transformations "
+                     "than min-set";
+    const char *id4 = "C4_minset_slave_boxes_x_instances";
+    const char *t4 = "min-set transforms about three times as many slave "
+                     "chunk boxes as max-set with three instances";
+    guint cases = 0, fewer = 0, inst = 0;
+    double tr = 0, sl = 0, slo = INFINITY, shi = -INFINITY;
+    for (guint i = 0; i < a.n; i++) {
+        const RpMuellerPoint *mn = &a.pts[i];
+        if (!mn->minset || !mn->sorted || mn->granularity < 2)
+            continue;
+        const RpMuellerPoint *mx =
+            find(a, mn->procs, mn->granularity, FALSE, TRUE);
+        if (!mx || mx->slave <= 0 || mn->transforms <= 0)
+            continue;
+        cases++;
+        fewer += mx->transforms < mn->transforms;
+        tr += mx->transforms / mn->transforms;
+        double r = mn->slave / mx->slave;
+        sl += r;
+        slo = MIN(slo, r);
+        shi = MAX(shi, r);
+        inst = mn->instances;
+    }
+    double c = cases ? cases : NAN;
+    row(rows, id3, "cases", cases, t3);
+    row(rows, id3, "cases_maxset_fewer", fewer, t3);
+    row(rows, id3, "mean_maxset_over_minset", tr / c, t3);
+    row(rows, id3, "holds", cases ? fewer == cases : NAN, t3);
+    row(rows, id4, "instances", inst, t4);
+    row(rows, id4, "mean_slave_ratio", sl / c, t4);
+    row(rows, id4, "min_slave_ratio", cases ? slo : NAN, t4);
+    row(rows, id4, "max_slave_ratio", cases ? shi : NAN, t4);
+    row(rows, id4, "holds",
+        cases && inst ? fabs(sl / c / inst - 1) <= 0.15 : NAN, t4);
+}
+
+/* ---- C5 ------------------------------------------------------------------ */
+
+static void claim_chunking(Pts a, GPtrArray *rows)
+{
+    const char *id = "C5_sorted_smaller_boxes_less_overlap";
+    const char *text = "Chart 1: sorted chunking gives smaller boxes and less "
+                       "overlap than unsorted, partially sorted in between "
+                       "(partially sorted not simulated: only sorted against "
+                       "unsorted is decided)";
+    guint cases = 0, both = 0;
+    double box = 0, ovl = 0;
+    for (guint i = 0; i < a.n; i++) {
+        const RpMuellerPoint *u = &a.pts[i];
+        if (u->sorted || u->granularity < 2)
+            continue;
+        const RpMuellerPoint *s =
+            find(a, u->procs, u->granularity, u->minset, TRUE);
+        if (!s || u->ratio <= 0 || u->overlap <= 0)
+            continue;
+        cases++;
+        both += s->ratio < u->ratio && s->overlap < u->overlap;
+        box += s->ratio / u->ratio;
+        ovl += s->overlap / u->overlap;
+    }
+    double c = cases ? cases : NAN;
+    row(rows, id, "cases", cases, text);
+    row(rows, id, "cases_sorted_smaller", both, text);
+    row(rows, id, "mean_box_sorted_over_unsorted", box / c, text);
+    row(rows, id, "mean_overlap_sorted_over_unsorted", ovl / c, text);
+    row(rows, id, "holds", cases ? both == cases : NAN, text);
+}
+
+void rp_mueller97_claims(const RpMuellerPoint *pts, guint n, GPtrArray *rows)
+{
+    Pts a = {pts, n};
+    if (n == 0)
+        return;
+    claim_comm(a, rows);
+    claim_overlap(a, rows);
+    claim_bookkeeping(a, rows);
+    claim_chunking(a, rows);
+}

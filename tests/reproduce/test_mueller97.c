@@ -1,0 +1,235 @@
+/* test_mueller97.c — `pgsim reproduce mueller97`: each claim row of §4.2
+ * comes out "yes" on points where the claim holds and "no" on points
+ * made to break it (so no claim row is a constant); Spearman's rho on
+ * known data; a reduced run (small vehicle, two processor counts, two
+ * chunk sizes) fills Charts 1-5 and every claim row; a bad setup is a
+ * located error. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib/gstdio.h>
+#include <math.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sim/reproduce/mueller97.h"
+
+/* ---- synthetic points ------------------------------------------------- */
+
+enum { NP = 2, NG = 2 };
+static const guint procs[NP] = {4, 20}, grans[NG] = {5, 26};
+
+/* A grid where every claim holds: sorted x {minset, maxset} x P x g, and
+ * unsorted max-set at P = 4. */
+static guint make_points(RpMuellerPoint *pts)
+{
+    static const double bytes[NP][NG] = {{100, 80}, {600, 400}};
+    guint n = 0;
+    for (guint p = 0; p < NP; p++)
+        for (guint g = 0; g < NG; g++)
+            for (int minset = 0; minset < 2; minset++) {
+                double ratio = procs[p] * grans[g] / 100.0;
+                pts[n++] = (RpMuellerPoint){
+                    .procs = procs[p], .granularity = grans[g],
+                    .minset = minset, .sorted = TRUE, .instances = 3,
+                    .bytes = bytes[p][g], .ratio = ratio,
+                    .overlap = 1 + ratio, .slave = minset ? 300 : 100,
+                    .transforms = minset ? 1000 : 800};
+            }
+    for (guint g = 0; g < NG; g++) {
+        RpMuellerPoint u = pts[2 * g]; /* P = 4, max-set */
+        u.sorted = FALSE;
+        u.ratio *= 1.5;
+        u.overlap *= 1.2;
+        pts[n++] = u;
+    }
+    return n;
+}
+
+static double holds(const RpMuellerPoint *pts, guint n, const char *claim)
+{
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    rp_mueller97_claims(pts, n, rows);
+    double v = -1;
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = g_ptr_array_index(rows, i);
+        if (g_str_has_prefix(r->row, claim) && !strcmp(r->column, "holds"))
+            v = r->sim;
+    }
+    g_ptr_array_unref(rows);
+    return v;
+}
+
+static RpMuellerPoint *at(RpMuellerPoint *pts, guint n, guint p, guint g,
+                          gboolean minset, gboolean sorted)
+{
+    for (guint i = 0; i < n; i++)
+        if (pts[i].procs == p && pts[i].granularity == g &&
+            pts[i].minset == minset && pts[i].sorted == sorted)
+            return &pts[i];
+    fail();
+    return NULL;
+}
+
+static const char *const claims[] = {"C1", "C2", "C3", "C4", "C5"};
+
+/* Breaks claim k in pts. */
+static void breaks(RpMuellerPoint *pts, guint n, int k)
+{
+    switch (k) {
+    case 0: /* chunk size matters less at P = 20 than at P = 4 */
+        at(pts, n, 20, 26, FALSE, TRUE)->bytes = 595;
+        break;
+    case 1: /* overlap falls as the box ratio grows */
+        for (guint i = 0; i < n; i++)
+            pts[i].overlap = 2 - pts[i].ratio;
+        break;
+    case 2: /* one case where max-set transforms more */
+        at(pts, n, 20, 5, FALSE, TRUE)->transforms = 1200;
+        break;
+    case 3: /* min-set slave boxes only 1.5 times max-set's */
+        for (guint i = 0; i < n; i++)
+            if (pts[i].minset)
+                pts[i].slave = 150;
+        break;
+    case 4: /* unsorted boxes smaller than sorted ones */
+        for (guint i = 0; i < n; i++)
+            if (!pts[i].sorted)
+                pts[i].ratio /= 2;
+        break;
+    }
+}
+
+static void test_claims_can_fail(void **state)
+{
+    (void)state;
+    RpMuellerPoint pts[NP * NG * 2 + NG];
+    for (int k = 0; k < 5; k++) {
+        guint n = make_points(pts);
+        assert_true(holds(pts, n, claims[k]) == 1);
+        breaks(pts, n, k);
+        if (holds(pts, n, claims[k]) != 0)
+            fail_msg("claim %s did not come out no", claims[k]);
+        /* the other claims are untouched by this break (C2 excepted:
+         * overlaps feed C5 as well) */
+        for (int j = 0; j < 5; j++)
+            if (j != k && !(k == 1 && j == 4))
+                assert_true(holds(pts, n, claims[j]) == 1);
+    }
+    /* no unsorted case: C5 cannot be decided */
+    guint n = make_points(pts);
+    assert_true(isnan(holds(pts, n - NG, "C5")));
+}
+
+static void test_spearman(void **state)
+{
+    (void)state;
+    double x[] = {1, 2, 3, 4, 5}, up[] = {1, 4, 9, 16, 100},
+           down[] = {5, 4, 3, 2, 1}, flat[] = {2, 2, 2, 2, 2};
+    assert_true(fabs(rp_mueller97_spearman(x, up, 5) - 1) < 1e-12);
+    assert_true(fabs(rp_mueller97_spearman(x, down, 5) + 1) < 1e-12);
+    assert_true(isnan(rp_mueller97_spearman(x, flat, 5)));
+    double swap[] = {2, 1, 3, 4, 5}; /* one swap: rho = 1 - 6*2/120 */
+    assert_true(fabs(rp_mueller97_spearman(x, swap, 5) - 0.9) < 1e-12);
+}
+
+/* ---- a reduced run --------------------------------------------------- */
+
+static char *write_tmp(const char *name, const char *text)
+{
+    GError *e = NULL;
+    char *path = NULL;
+    int fd = g_file_open_tmp(name, &path, &e);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_true(g_file_set_contents(path, text, -1, &e));
+    return path;
+}
+
+static const char *scene =
+    "scene: {generator: vehicle, structures: 40, triangles: 3000,\n"
+    "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
+    "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
+
+static char *setup_text(const char *scene_path, const char *extra)
+{
+    return g_strdup_printf(
+        "model: cluster-ib\nscene: %s\nframes: 3\nresolution: 64\n"
+        "granularities: [1, 5]\nprocessors: [2, 4]\n"
+        "bookkeeping: [minset, maxset]\n"
+        "chart1: {processors: 4, bookkeeping: maxset,\n"
+        "         chunking: [sorted, unsorted]}\n"
+        "bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, "
+        "instance: 8 B}\n%s",
+        scene_path, extra);
+}
+
+static gboolean run(const char *setup, GPtrArray *rows, GError **err)
+{
+    RpContext ctx = {.setup = setup, .fidelity = "analytic", .quiet = TRUE};
+    return rp_mueller97.rows(&ctx, rows, err);
+}
+
+static guint count(GPtrArray *rows, const char *table, const char *col)
+{
+    guint n = 0;
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = g_ptr_array_index(rows, i);
+        n += !strcmp(r->table, table) && !strcmp(r->column, col) &&
+             isfinite(r->sim);
+    }
+    return n;
+}
+
+static void test_reduced_run(void **state)
+{
+    (void)state;
+    char *sc = write_tmp("mu-scene-XXXXXX.yaml", scene);
+    char *text = setup_text(sc, "");
+    char *setup = write_tmp("mu-setup-XXXXXX.yaml", text);
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    GError *e = NULL;
+    if (!run(setup, rows, &e))
+        fail_msg("%s", e->message);
+    assert_int_equal(count(rows, "1", "chunk_overlap"), 4);  /* 2 x 2 */
+    assert_int_equal(count(rows, "2", "bytes_maxset"), 4);   /* P x g */
+    assert_int_equal(count(rows, "3", "chunk_overlap"), 4);
+    assert_int_equal(count(rows, "4", "transforms"), 4);
+    assert_int_equal(count(rows, "5", "transforms"), 4);
+    /* every claim decided (C2..C5 read the chunk size 5 cases) */
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = g_ptr_array_index(rows, i);
+        if (!strcmp(r->table, "claims") && !strcmp(r->column, "holds"))
+            assert_true(r->sim == 0 || r->sim == 1);
+    }
+    assert_int_equal(count(rows, "claims", "holds"), 5);
+    g_ptr_array_unref(rows);
+    /* an unknown key is a located error */
+    g_free(text);
+    text = setup_text(sc, "frame: 3\n");
+    g_unlink(setup);
+    g_free(setup);
+    setup = write_tmp("mu-setup-XXXXXX.yaml", text);
+    rows = g_ptr_array_new_with_free_func(rp_row_free);
+    assert_false(run(setup, rows, &e));
+    assert_non_null(strstr(e->message, "frame"));
+    assert_int_equal(rows->len, 0);
+    g_clear_error(&e);
+    g_ptr_array_unref(rows);
+    g_unlink(setup);
+    g_unlink(sc);
+    g_free(setup);
+    g_free(sc);
+    g_free(text);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_claims_can_fail),
+        cmocka_unit_test(test_spearman),
+        cmocka_unit_test(test_reduced_run),
+    };
+    return cmocka_run_group_tests_name("mueller97", tests, NULL, NULL);
+}
