@@ -245,9 +245,12 @@ CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
     }
     if (!cfg_get_str(section, "model", FALSE, &model, err))
         return NULL;
-    if (!model) {
+    if (!model) { /* inline: the run config's schema_version covers it */
         *model_file = g_strdup(cfg_file(section));
-        return cfg_copy(section);
+        CfgNode *copy = cfg_copy(section);
+        if (!cfg_get(copy, "schema_version"))
+            cfg_set_override(copy, "schema_version=1", NULL);
+        return copy;
     }
     CfgNode *tree = mach_load_model(model, err);
     if (!tree) {

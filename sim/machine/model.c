@@ -297,6 +297,19 @@ static gboolean check_typed(const CfgNode *map, const char *key, MachType t,
     }
 }
 
+/* A user's model may declare `provenance: assumption`: its values
+ * without a source are then accepted and listed here, for one warning
+ * (mach_model_check).  NULL while checking a model without it. */
+static GPtrArray *assumed;
+
+static gboolean assume(const char *name)
+{
+    if (!assumed)
+        return FALSE;
+    g_ptr_array_add(assumed, g_strdup(name));
+    return TRUE;
+}
+
 static gboolean check_provenance(const CfgNode *p, const char *name,
                                  GError **err)
 {
@@ -311,10 +324,12 @@ static gboolean check_provenance(const CfgNode *p, const char *name,
         }
         found_any = found_any || s;
     }
-    if (found_any)
+    if (found_any || assume(name))
         return TRUE;
     char *found = g_strdup_printf("parameter '%s' without a provenance", name);
-    cfg_error(err, p, found, "one of source:, calibrated: or assumption:");
+    cfg_error(err, p, found,
+              "one of source:, calibrated: or assumption: (or, in your own "
+              "model, provenance: assumption at the top)");
     g_free(found);
     return FALSE;
 }
@@ -345,10 +360,11 @@ static gboolean check_param(const CfgNode *map, const char *key, MachType t,
     if (cfg_kind(p) == CFG_MAP)
         return check_param_map(p, key, t, err);
     gboolean override = model_file && g_strcmp0(cfg_file(p), model_file);
-    if (!override) {
+    if (!override && !assume(key)) {
         char *found = g_strdup_printf("bare value for '%s'", key);
         cfg_error(err, p, found,
-                  "{value: ..., source|calibrated|assumption: ...}");
+                  "{value: ..., source|calibrated|assumption: ...} (or "
+                  "provenance: assumption at the top of your own model)");
         g_free(found);
         return FALSE;
     }
@@ -531,7 +547,8 @@ static gboolean check_workload_section(const CfgNode *sec, GError **err)
 
 static const char *const top_keys[] = {"schema_version", "name",  "description",
                                        "references",     "nodes", "network",
-                                       "model",          NULL};
+                                       "model",          "provenance",
+                                       NULL};
 
 static gboolean is_top_key(const char *k)
 {
@@ -569,11 +586,95 @@ static gboolean check_header(const CfgNode *root, GError **err)
     return !refs || check_references(refs, err);
 }
 
+/* TRUE when path lies in a shipped models/ folder (under a data root). */
+static gboolean shipped(const char *path)
+{
+    if (!path)
+        return FALSE;
+    char *dir = g_path_get_dirname(path);
+    char *c = g_canonicalize_filename(dir, NULL);
+    GPtrArray *roots = sim_data_roots();
+    gboolean yes = FALSE;
+    for (guint i = 0; !yes && i < roots->len; i++) {
+        char *m = g_build_filename(roots->pdata[i], "models", NULL);
+        char *cm = g_canonicalize_filename(m, NULL);
+        yes = strcmp(cm, c) == 0;
+        g_free(cm);
+        g_free(m);
+    }
+    g_ptr_array_free(roots, TRUE);
+    g_free(c);
+    g_free(dir);
+    return yes;
+}
+
+/* `provenance: assumption` at the top of a user's model; FALSE with *err
+ * for another word or in a shipped model. */
+static gboolean read_default(const CfgNode *root, const char *model_file,
+                             gboolean *on, GError **err)
+{
+    const CfgNode *v = cfg_get(root, "provenance");
+    *on = v != NULL;
+    if (!v)
+        return TRUE;
+    if (g_strcmp0(cfg_scalar(v), "assumption") != 0) {
+        cfg_error(err, v, "a provenance default other than 'assumption'",
+                  "provenance: assumption");
+        return FALSE;
+    }
+    if (shipped(model_file)) {
+        cfg_error(err, v, "provenance: assumption in a shipped model",
+                  "a source, calibration or assumption on every value");
+        return FALSE;
+    }
+    return TRUE;
+}
+
+/* One warning per model file listing the values taken without a source. */
+static void warn_assumed(const char *model_file)
+{
+    static GHashTable *warned;
+    if (!assumed->len)
+        return;
+    if (!warned)
+        warned = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, NULL);
+    const char *f = model_file ? model_file : "<inline machine>";
+    if (!g_hash_table_add(warned, g_strdup(f)))
+        return;
+    GString *s = g_string_new(NULL);
+    for (guint i = 0; i < assumed->len; i++)
+        g_string_append_printf(s, "%s%s", i ? ", " : "",
+                               (const char *)assumed->pdata[i]);
+    g_printerr("pgsim: warning: %s: %u values without a source, taken as "
+               "assumptions (provenance: assumption): %s\n",
+               f, assumed->len, s->str);
+    g_string_free(s, TRUE);
+}
+
+static gboolean check_body(const CfgNode *root, const char *model_file,
+                           GError **err);
+
 gboolean mach_model_check(const CfgNode *root, const char *model_file,
                           GError **err)
 {
-    if (!check_header(root, err))
+    gboolean on = FALSE;
+    if (!check_header(root, err) || !read_default(root, model_file, &on, err))
         return FALSE;
+    if (on)
+        assumed = g_ptr_array_new_with_free_func(g_free);
+    gboolean ok = check_body(root, model_file, err);
+    if (on) {
+        if (ok)
+            warn_assumed(model_file);
+        g_ptr_array_free(assumed, TRUE);
+        assumed = NULL;
+    }
+    return ok;
+}
+
+static gboolean check_body(const CfgNode *root, const char *model_file,
+                           GError **err)
+{
     const CfgNode *nodes = cfg_get(root, "nodes");
     const CfgNode *net = cfg_get(root, "network");
     if (!nodes || !net) {

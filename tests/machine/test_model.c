@@ -174,6 +174,48 @@ static void test_models_path_is_a_union(void **state)
     g_free(repo);
 }
 
+/* A user's what-if model: `provenance: assumption` lets values go
+ * without a source (bare or as {value}); without it, the same text is
+ * refused; a shipped model may not declare it (issue 18, point 7). */
+static void test_provenance_default(void **state)
+{
+    (void)state;
+    const char *body = "schema_version: 1\nname: whatif\nnodes:\n  cpu:\n"
+                       "    count: 4\n    costs:\n      work: 10 us\n"
+                       "      op: {value: 2 us}\nnetwork:\n"
+                       "  topology: hypercube\n  bandwidth: 1 MB/s\n";
+    GError *err = NULL;
+    char *text = g_strconcat("provenance: assumption\n", body, NULL);
+    CfgNode *root = cfg_load_string(text, "mine.yaml", &err);
+    assert_true(mach_model_check(root, "mine.yaml", &err));
+    g_assert_no_error(err);
+    cfg_free(root);
+    root = cfg_load_string(body, "mine.yaml", &err);
+    assert_false(mach_model_check(root, "mine.yaml", &err));
+    assert_non_null(strstr(err->message, "provenance: assumption"));
+    g_clear_error(&err);
+    cfg_free(root);
+    g_free(text);
+    text = g_strconcat("provenance: guess\n", body, NULL);
+    root = cfg_load_string(text, "mine.yaml", &err);
+    assert_false(mach_model_check(root, "mine.yaml", &err));
+    g_clear_error(&err);
+    cfg_free(root);
+    g_free(text);
+    /* the project's own models/ (a data root's) */
+    char *repo = g_get_current_dir();
+    g_setenv("PGSIM_DATA", repo, TRUE);
+    text = g_strconcat("provenance: assumption\n", body, NULL);
+    root = cfg_load_string(text, "models/whatif.yaml", &err);
+    assert_false(mach_model_check(root, "models/whatif.yaml", &err));
+    assert_non_null(strstr(err->message, "shipped model"));
+    g_clear_error(&err);
+    g_unsetenv("PGSIM_DATA");
+    g_free(repo);
+    cfg_free(root);
+    g_free(text);
+}
+
 static MachMachine *from_text(SimEngine *eng, const char *text, CfgNode **root,
                               GError **err)
 {
@@ -308,6 +350,7 @@ int main(void)
         cmocka_unit_test(test_bad_models_rejected),
         cmocka_unit_test(test_models_path_from_env),
         cmocka_unit_test(test_models_path_is_a_union),
+        cmocka_unit_test(test_provenance_default),
         cmocka_unit_test(test_overrides_apply),
         cmocka_unit_test(test_bad_overrides_rejected),
         cmocka_unit_test(test_check_section_marks_read),
