@@ -185,6 +185,12 @@ static uint64_t poly_regions(const Fixture *f, const RastView *v,
 static void check_holdings(const Fixture *f, guint frame)
 {
     const WlSfBook *b = wl_sf_run_book(f->run);
+    const WlSfRegions *rg = wl_sf_run_regions(f->run); /* tile the screen */
+    int64_t area = 0;
+    for (guint p = 0; p < rg->procs; p++)
+        area += (int64_t)(rg->rect[p].x1 - rg->rect[p].x0) *
+                (rg->rect[p].y1 - rg->rect[p].y0);
+    assert_true(rg->procs >= 1 && area == (int64_t)rg->width * rg->height);
     SceneCamera cam = scene_camera_at(f->scene, frame);
     RastView v = rast_view_for_camera(&cam, 64, 64);
     guint checked = 0;
