@@ -397,6 +397,40 @@ static const char *dur(char buf[40], double s)
     return buf;
 }
 
+/* Bytes with an SI prefix like the header's times ("5.4 MB"). */
+static const char *bytes(char buf[48], double b)
+{
+    static const char *const units[] = {"B", "kB", "MB", "GB", "TB"};
+    int u = 0;
+    while (u < 4 && fabs(b) >= 1000.0) {
+        b /= 1e3;
+        u++;
+    }
+    char num[32];
+    g_ascii_formatd(num, sizeof num, u ? "%.3g" : "%.0f", b);
+    g_snprintf(buf, 48, "%s %s", num, units[u]);
+    return buf;
+}
+
+/* A metric for people: times and sizes scaled to a readable unit
+ * (74.8 us, not 7.47891e-05 s); other units as %.6g.  JSON and CSV keep
+ * the exact value in the metric's own unit. */
+static const char *human(char buf[48], const SimMetric *m)
+{
+    if (strcmp(m->unit, "s") == 0 || strcmp(m->unit, "ms") == 0) {
+        char d[40];
+        double sec = m->value * (m->unit[0] == 'm' ? 1e-3 : 1.0);
+        g_strlcpy(buf, isfinite(sec) ? dur(d, sec) : "nan", 48);
+        return buf;
+    }
+    if (strcmp(m->unit, "B") == 0 && isfinite(m->value))
+        return bytes(buf, m->value);
+    char num[32];
+    g_ascii_formatd(num, sizeof num, "%.6g", m->value);
+    g_snprintf(buf, 48, "%s%s%s", num, *m->unit ? " " : "", m->unit);
+    return buf;
+}
+
 static const char *pct(char buf[32], double x)
 {
     g_ascii_formatd(buf, 32, "%.1f", 100.0 * x);
@@ -490,9 +524,8 @@ static void text_rest(GString *s, const SimResult *r, gboolean timing)
         g_string_append(s, "metrics\n");
     for (guint i = 0; i < r->metrics->len; i++) {
         const SimMetric *m = g_ptr_array_index(r->metrics, i);
-        g_string_append_printf(s, "  %-28s %s%s%s\n", m->name,
-                               g_ascii_formatd(a, sizeof a, "%.6g", m->value),
-                               *m->unit ? " " : "", m->unit);
+        char h[48];
+        g_string_append_printf(s, "  %-28s %s\n", m->name, human(h, m));
     }
     g_string_append_printf(s, "simulator     %" G_GUINT64_FORMAT " events",
                            r->events);

@@ -166,6 +166,29 @@ static void test_atomic(void **state)
     g_free(dir);
 }
 
+/* Text reports scale times and sizes like the header (issue 18, point
+ * 11); JSON keeps the exact value. */
+static void test_human_metrics(void **state)
+{
+    (void)state;
+    SimResult *r = sample();
+    sim_result_set_metric(r, "latency", 7.47891e-05, "s");
+    sim_result_set_metric(r, "volume", 5.4e6, "B");
+    sim_result_set_metric(r, "small", 512, "B");
+    sim_result_set_metric(r, "phase_ms", 1500, "ms");
+    char *t = rpt_render(r, RPT_TEXT, FALSE);
+    assert_non_null(strstr(t, "latency                      74.789 us\n"));
+    assert_non_null(strstr(t, "volume                       5.4 MB\n"));
+    assert_non_null(strstr(t, "small                        512 B\n"));
+    assert_non_null(strstr(t, "phase_ms                     1.500 s\n"));
+    assert_null(strstr(t, "e-05"));
+    char *j = rpt_render(r, RPT_JSON, FALSE);
+    assert_non_null(strstr(j, "7.47891e-05"));
+    g_free(j);
+    g_free(t);
+    sim_result_free(r);
+}
+
 static unsigned mode_of(const char *path)
 {
     GStatBuf st;
@@ -274,6 +297,7 @@ int main(void)
         cmocka_unit_test(test_csv_and_text),
         cmocka_unit_test(test_atomic),
         cmocka_unit_test(test_file_modes),
+        cmocka_unit_test(test_human_metrics),
         cmocka_unit_test(test_progress),
         cmocka_unit_test(test_progress_note_eta),
     };
