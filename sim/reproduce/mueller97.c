@@ -22,7 +22,7 @@ typedef struct {
     gboolean bk[2];            /* bookkeeping run: [minset, maxset] */
     guint c1_procs;            /* Chart 1's processor count */
     int c1_bk;                 /* Chart 1's bookkeeping */
-    gboolean chunking[2];      /* Chart 1's strategies: [sorted, unsorted] */
+    gboolean chunking[3];      /* Chart 1's strategies, by WlSfChunking */
     WlSfSizes sizes;
 } MuSetup;
 
@@ -157,9 +157,7 @@ static gboolean run_on(MachMachine *m, const Scene *sc, const MuSetup *s,
     if (!wl_sf_costs_from_machine(m, &c, err))
         return FALSE;
     WlSfDb *db = wl_sf_db_new(sc->db, pt->procs, pt->granularity,
-                              pt->sorted ? WL_SF_CHUNK_SORTED
-                                         : WL_SF_CHUNK_UNSORTED,
-                              err);
+                              pt->chunking, err);
     if (!db)
         return FALSE;
     WlSfSetup st = {.procs = pt->procs,
@@ -186,7 +184,7 @@ static gboolean run_case(const RpContext *ctx, const Scene *sc,
                          const MuSetup *s, RpMuellerPoint *pt, GError **err)
 {
     char *what = g_strdup_printf("%s %s g=%u P=%u",
-                                 pt->sorted ? "sorted" : "unsorted",
+                                 wl_sf_chunking_names[pt->chunking],
                                  pt->minset ? "minset" : "maxset",
                                  pt->granularity, pt->procs);
     rp_step(ctx, what);
@@ -209,16 +207,17 @@ static gboolean run_case(const RpContext *ctx, const Scene *sc,
 static GArray *cases(const MuSetup *s)
 {
     GArray *pts = g_array_new(FALSE, TRUE, sizeof(RpMuellerPoint));
-    for (int sorted = 1; sorted >= 0; sorted--)
+    for (int ch = 0; ch < 3; ch++)
         for (guint g = 0; g < s->n_gran; g++)
             for (guint p = 0; p < s->n_procs; p++)
                 for (int bk = 0; bk < 2; bk++) {
                     RpMuellerPoint pt = {.procs = s->procs[p],
                                          .granularity = s->gran[g],
                                          .minset = bk == WL_SF_MINSET,
-                                         .sorted = sorted};
+                                         .chunking = (WlSfChunking)ch};
+                    gboolean sorted = ch == WL_SF_CHUNK_SORTED;
                     gboolean grid = sorted && s->bk[bk];
-                    gboolean c1 = !sorted && s->chunking[WL_SF_CHUNK_UNSORTED] &&
+                    gboolean c1 = !sorted && s->chunking[ch] &&
                                   pt.procs == s->c1_procs && bk == s->c1_bk;
                     if (grid || c1)
                         g_array_append_val(pts, pt);
@@ -242,12 +241,12 @@ static void chart_rows(const RpMuellerPoint *pt, const MuSetup *s,
     g_snprintf(row, sizeof row, "P%u/g%u", pt->procs, pt->granularity);
     if (pt->procs == s->c1_procs && (int)!pt->minset == s->c1_bk) {
         char r1[64];
-        g_snprintf(r1, sizeof r1, "%s/g%u", pt->sorted ? "sorted" : "unsorted",
-                   pt->granularity);
+        g_snprintf(r1, sizeof r1, "%s/g%u",
+                   wl_sf_chunking_names[pt->chunking], pt->granularity);
         add(rows, "1", r1, "box_region_ratio", pt->ratio);
         add(rows, "1", r1, "chunk_overlap", pt->overlap);
     }
-    if (!pt->sorted)
+    if (pt->chunking != WL_SF_CHUNK_SORTED)
         return;
     add(rows, "2", row, pt->minset ? "bytes_minset" : "bytes_maxset",
         pt->bytes);

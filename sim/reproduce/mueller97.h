@@ -23,12 +23,13 @@
 #define PGSIM_REPRODUCE_MUELLER97_H
 
 #include "sim/reproduce/reproduce.h"
+#include "sim/workload/sortfirst/sf_db.h"
 
 /* One simulated case, the figures the charts and claims read. */
 typedef struct {
     guint procs, granularity;
     gboolean minset; /* bookkeeping: min-set (else max-set) */
-    gboolean sorted; /* chunking: sorted (else unsorted) */
+    WlSfChunking chunking;
     guint instances; /* max-set instances of the database's root */
     double bytes, overlap, ratio; /* per frame; overlap; box / region */
     double master, slave, fresh, polys, transforms; /* per frame */

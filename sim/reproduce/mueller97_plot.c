@@ -20,20 +20,21 @@ static gboolean point_of(Chart c, const RpMuellerPoint *p, guint c1_procs,
     *x = p->granularity;
     switch (c) {
     case C1:
-        g_snprintf(series, len, "%s", p->sorted ? "sorted" : "unsorted");
+        g_snprintf(series, len, "%s", wl_sf_chunking_names[p->chunking]);
         *y = p->overlap;
         return p->procs == c1_procs && !p->minset;
     case C2:
         *y = p->bytes;
-        return p->sorted && !p->minset;
+        return p->chunking == WL_SF_CHUNK_SORTED && !p->minset;
     case C3:
         *x = p->ratio;
         *y = p->overlap;
-        return p->sorted && !p->minset;
+        return p->chunking == WL_SF_CHUNK_SORTED && !p->minset;
     case C4:
     case C5:
         *y = p->transforms;
-        return p->sorted && p->minset == (c == C4) && p->granularity > 1;
+        return p->chunking == WL_SF_CHUNK_SORTED && p->minset == (c == C4) &&
+               p->granularity > 1;
     }
     return FALSE;
 }

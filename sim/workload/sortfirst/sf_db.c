@@ -1,13 +1,15 @@
 /* sf_db.c — chunks, chunk instances and the flattened network (sf_db.h).
  *
  * Seed 000 §3.2 (chunks of a maximum size), §3.3.1 (a bounding volume
- * per chunk), §3.3.2.1 (fixed mastership), §4.1 (the unsorted and the
- * sorted chunking strategies).
+ * per chunk), §3.3.2.1 (fixed mastership), §4.1 (the unsorted, partially
+ * sorted and sorted chunking strategies).
  */
 #include "sim/workload/sortfirst/sf_db.h"
+#include <stdlib.h>
 #include <string.h>
 
-const char *const wl_sf_chunking_names[] = {"sorted", "unsorted", NULL};
+const char *const wl_sf_chunking_names[] = {"sorted", "unsorted",
+                                            "partially_sorted", NULL};
 
 /* Polygons scene_db_flatten() makes of one primitive element. */
 static uint32_t elem_polys(const SceneElem *e)
@@ -79,6 +81,7 @@ static void walk_clear(Walk *w)
 typedef struct {
     guint pos;
     Vec3 centroid;
+    uint32_t cell; /* octree cell (partially sorted) */
 } Prim;
 
 static Vec3 centroid(const SceneElem *e)
@@ -151,6 +154,41 @@ static void split_sorted(Builder *b, Prim *p, guint n)
     split_sorted(b, p + left, n - left);
 }
 
+uint32_t wl_sf_octree_cell(SceneBox box, Vec3 c)
+{
+    Vec3 size = scene_box_size(box);
+    guint side = 1u << WL_SF_OCTREE_DEPTH, q[3];
+    for (int a = 0; a < 3; a++) {
+        double ext = axis_of(size, a);
+        double t = ext > 0 ? (axis_of(c, a) - axis_of(box.min, a)) / ext : 0;
+        q[a] = MIN((guint)(t * side), side - 1);
+    }
+    uint32_t code = 0;
+    for (int l = WL_SF_OCTREE_DEPTH - 1; l >= 0; l--)
+        for (int a = 2; a >= 0; a--)
+            code = code << 1 | ((q[a] >> l) & 1);
+    return code;
+}
+
+static gint cmp_cell(gconstpointer a, gconstpointer b)
+{
+    const Prim *p = a, *q = b;
+    if (p->cell != q->cell)
+        return p->cell < q->cell ? -1 : 1;
+    return p->pos < q->pos ? -1 : (p->pos > q->pos);
+}
+
+/* §4.1 "partially sorted": octree order, file order inside a cell. */
+static void octree_sort(Prim *p, guint n)
+{
+    SceneBox box = scene_box_empty();
+    for (guint i = 0; i < n; i++)
+        box = scene_box_add_point(box, p[i].centroid);
+    for (guint i = 0; i < n; i++)
+        p[i].cell = wl_sf_octree_cell(box, p[i].centroid);
+    qsort(p, n, sizeof *p, cmp_cell);
+}
+
 static void chunk_struct(Builder *b)
 {
     GArray *ps = g_array_new(FALSE, FALSE, sizeof(Prim));
@@ -158,7 +196,7 @@ static void chunk_struct(Builder *b)
         const SceneElem *e = scene_db_elem(b->db, b->sid, pos);
         if (!scene_elem_is_prim(e->kind) || elem_polys(e) == 0)
             continue;
-        Prim p = {pos, centroid(e)};
+        Prim p = {pos, centroid(e), 0};
         g_array_append_val(ps, p);
     }
     Prim *p = (Prim *)(void *)ps->data;
@@ -166,6 +204,8 @@ static void chunk_struct(Builder *b)
         if (ps->len)
             split_sorted(b, p, ps->len);
     } else {
+        if (b->d->chunking == WL_SF_CHUNK_PARTIAL)
+            octree_sort(p, ps->len);
         for (guint i = 0; i < ps->len; i += b->d->granularity)
             emit_chunk(b, p + i, MIN(b->d->granularity, ps->len - i));
     }

@@ -4,9 +4,16 @@
  * processor and migrates only primitives, grouped into chunks of at most
  * N primitives of one structure, each chunk with a 3-D bounding box
  * (§3.2, §3.3.1).  Chunks are formed when the database is loaded, by one
- * of the two strategies of §4.1:
+ * of the three strategies of §4.1:
  *
  *   unsorted  every N consecutive primitives of a structure;
+ *   partially_sorted  "presort the primitives ... by performing an
+ *             octree-based sort over each structure's primitives, then
+ *             proceed as with the first strategy": primitives ordered by
+ *             the octree cell of their centroid (Morton order of a
+ *             depth-WL_SF_OCTREE_DEPTH octree over the structure's
+ *             centroid box; the depth is our assumption, the paper does
+ *             not give it), file order kept inside a cell, then every N;
  *   sorted    a simple 3-D spatial subdivision of the structure's
  *             primitives: split at the median centroid along the longest
  *             axis of the centroids' box (split sizes kept multiples of
@@ -35,9 +42,16 @@
 #include "sim/core/error.h"
 #include "sim/scene/structdb.h"
 
-typedef enum { WL_SF_CHUNK_SORTED, WL_SF_CHUNK_UNSORTED } WlSfChunking;
+typedef enum {
+    WL_SF_CHUNK_SORTED,
+    WL_SF_CHUNK_UNSORTED,
+    WL_SF_CHUNK_PARTIAL
+} WlSfChunking;
 
-extern const char *const wl_sf_chunking_names[]; /* "sorted", "unsorted" */
+/* "sorted", "unsorted", "partially_sorted" */
+extern const char *const wl_sf_chunking_names[];
+
+#define WL_SF_OCTREE_DEPTH 3 /* levels of the partial sort's octree */
 
 typedef struct {
     guint sid;                 /* structure holding the primitives */
@@ -72,6 +86,9 @@ typedef struct {
 WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
                      WlSfChunking chunking, GError **err);
 void wl_sf_db_free(WlSfDb *d);
+/* The partial sort's key: the Morton code of point c's cell in the
+ * depth-WL_SF_OCTREE_DEPTH octree over box (depth-first visit order). */
+uint32_t wl_sf_octree_cell(SceneBox box, Vec3 c);
 
 static inline const WlSfChunk *wl_sf_chunk(const WlSfDb *d, guint c)
 {

@@ -7,7 +7,7 @@
  *     processors: 16         # P <= 64 and <= the machine's `node` count
  *     granularity: 12        # primitives per chunk (§3.2; §4.1: 1 5 12 26)
  *     bookkeeping: maxset    # minset (§3.3) | maxset (§3.4)
- *     chunking: sorted       # sorted | unsorted (§4.1)
+ *     chunking: sorted       # sorted | unsorted | partially_sorted (§4.1)
  *     regions: static        # static grid | adaptive (sf_adapt.h)
  *     grid: 32               # G x G work grid of adaptive regions
  *     resolution: 256        # N x N screen

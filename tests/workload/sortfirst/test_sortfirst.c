@@ -143,6 +143,75 @@ static void test_chunks_partition(void **state)
     fixture_clear(&f);
 }
 
+static Vec3 elem_centroid(const SceneElem *e)
+{
+    Vec3 s = vec3(0, 0, 0);
+    for (guint k = 0; k < e->nverts; k++)
+        s = vec3_add(s, e->verts[k]);
+    return vec3_scale(s, 1.0 / e->nverts);
+}
+
+/* Partially sorted (§4.1): within each structure the chunks, read in
+ * order, visit the primitives in octree order (file order inside a
+ * cell), every primitive once; and the run renders the serial image. */
+static void test_partial_chunking(void **state)
+{
+    (void)state;
+    Fixture f;
+    fixture_init(&f, 4, WL_SF_MAXSET, 5);
+    GError *e = NULL;
+    WlSfDb *d =
+        wl_sf_db_new(f.scene->db, 4, 5, WL_SF_CHUNK_PARTIAL, &e);
+    assert_non_null(d);
+    assert_int_equal(d->min_prims, f.db->min_prims);
+    assert_int_equal(d->prims->len, f.db->prims->len);
+    gboolean moved = FALSE;
+    /* the order inside each structure's run of chunks */
+    guint prev_sid = G_MAXUINT, prev_pos = 0;
+    uint32_t prev_cell = 0;
+    SceneBox box = scene_box_empty();
+    for (guint k = 0; k < d->prims->len; k++) {
+        guint c = 0;
+        while (!(k >= wl_sf_chunk(d, c)->prim_first &&
+                 k < wl_sf_chunk(d, c)->prim_first + wl_sf_chunk(d, c)->n_prims))
+            c++;
+        guint sid = wl_sf_chunk(d, c)->sid;
+        guint pos = g_array_index(d->prims, guint, k);
+        if (sid != prev_sid) {
+            box = scene_box_empty();
+            for (guint j = k; j < d->prims->len; j++) {
+                guint cj = c;
+                while (j >= wl_sf_chunk(d, cj)->prim_first +
+                                wl_sf_chunk(d, cj)->n_prims)
+                    cj++;
+                if (wl_sf_chunk(d, cj)->sid != sid)
+                    break;
+                box = scene_box_add_point(
+                    box, elem_centroid(scene_db_elem(
+                             f.scene->db, sid,
+                             g_array_index(d->prims, guint, j))));
+            }
+        }
+        uint32_t cell = wl_sf_octree_cell(
+            box, elem_centroid(scene_db_elem(f.scene->db, sid, pos)));
+        if (sid == prev_sid) {
+            assert_true(cell > prev_cell ||
+                        (cell == prev_cell && pos > prev_pos));
+            moved |= pos < prev_pos;
+        }
+        prev_sid = sid;
+        prev_pos = pos;
+        prev_cell = cell;
+    }
+    assert_true(moved); /* the sort changed the file order somewhere */
+    wl_sf_db_free(d);
+    fixture_clear(&f);
+    SimResult *r = run_cfg(small, "workload.chunking=partially_sorted", 2, &e);
+    assert_non_null(r);
+    assert_true(metric(r, "image_matches_serial") == 1);
+    sim_result_free(r);
+}
+
 /* Regions whose pixel centres the screen rectangle of one world-space
  * polygon's projected vertices reaches (no margin): culled when every
  * vertex is outside one clip plane, everywhere when a vertex is at or
@@ -467,6 +536,7 @@ int main(void)
         cmocka_unit_test(test_minset_equals_maxset),
         cmocka_unit_test(test_workload_metrics),
         cmocka_unit_test(test_frame_log),
+        cmocka_unit_test(test_partial_chunking),
         cmocka_unit_test(test_adaptive_split),
         cmocka_unit_test(test_adaptive_beats_static),
         cmocka_unit_test(test_errors),
