@@ -129,16 +129,26 @@ static void test_mpi_equals_local(void **state)
     sweep_test_rm_out(dm);
 }
 
-/* The pgsim binary next to this test (BUILD/tests/app/ -> BUILD/pgsim). */
+/* The pgsim binary of this test's build: BUILD/pgsim, found by climbing
+ * from BUILD/tests/app/sweep/ (so a deeper or shallower test folder does
+ * not silently turn the test into a skip). */
 static char *pgsim_path(void)
 {
-    char *d1 = g_path_get_dirname(self), *d2 = g_path_get_dirname(d1);
-    char *d3 = g_path_get_dirname(d2);
-    char *p = g_build_filename(d3, "pgsim", NULL);
-    g_free(d1);
-    g_free(d2);
-    g_free(d3);
-    return p;
+    char *dir = g_path_get_dirname(self);
+    for (int up = 0; up < 6; up++) {
+        char *p = g_build_filename(dir, "pgsim", NULL);
+        if (g_file_test(p, G_FILE_TEST_IS_EXECUTABLE) &&
+            !g_file_test(p, G_FILE_TEST_IS_DIR)) {
+            g_free(dir);
+            return p;
+        }
+        g_free(p);
+        char *parent = g_path_get_dirname(dir);
+        g_free(dir);
+        dir = parent;
+    }
+    g_free(dir);
+    return NULL;
 }
 
 static void rm_charts(const char *dir)
@@ -158,8 +168,11 @@ static void test_cli_mpi_equals_local(void **state)
 {
     (void)state;
     char *mpirun = mpirun_path(), *pgsim = pgsim_path();
-    if (!mpirun || !g_file_test(pgsim, G_FILE_TEST_IS_EXECUTABLE))
+    if (!mpirun || !pgsim) {
+        g_free(mpirun);
+        g_free(pgsim);
         skip();
+    }
     char *dl = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
     char *dm = g_dir_make_tmp("pgsim-mpi-XXXXXX", NULL);
     char *local[] = {"timeout", "120", pgsim, "sweep",
