@@ -13,6 +13,9 @@ WlSfAdapt *wl_sf_adapt_new(guint grid, guint procs)
     a->procs = procs;
     a->weight = g_new0(uint64_t, (gsize)grid * grid);
     a->added = g_new0(uint64_t, procs);
+    a->factor = g_new(double, (gsize)grid * grid);
+    for (guint i = 0; i < grid * grid; i++)
+        a->factor[i] = 1;
     return a;
 }
 
@@ -22,6 +25,7 @@ void wl_sf_adapt_free(WlSfAdapt *a)
         return;
     g_free(a->weight);
     g_free(a->added);
+    g_free(a->factor);
     g_free(a);
 }
 
@@ -69,6 +73,7 @@ typedef struct {
     WlSfRegions *r;
     uint64_t visited;
     uint64_t *marg; /* scratch, G */
+    uint64_t *w;    /* weight x factor per cell */
 } Split;
 
 /* Weight per line across the node along `axis` (0: columns, 1: rows). */
@@ -80,7 +85,7 @@ static uint64_t marginal(Split *s, Cells c, int axis)
         s->marg[i] = 0;
     for (guint y = c.y0; y < c.y1; y++)
         for (guint x = c.x0; x < c.x1; x++) {
-            uint64_t w = s->a->weight[(gsize)y * g + x];
+            uint64_t w = s->w[(gsize)y * g + x];
             s->marg[axis ? y : x] += w;
             total += w;
         }
@@ -171,10 +176,42 @@ static void split(Split *s, Cells c, guint first, guint k)
 uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r)
 {
     g_assert(r->procs == a->procs);
-    Split s = {a, r, 0, g_new0(uint64_t, a->grid)};
+    gsize n = (gsize)a->grid * a->grid;
+    Split s = {a, r, 0, g_new0(uint64_t, a->grid), g_new(uint64_t, n)};
+    for (gsize i = 0; i < n; i++)
+        s.w[i] = (uint64_t)llround((double)a->weight[i] * a->factor[i]);
     split(&s, (Cells){0, 0, a->grid, a->grid}, 0, r->procs);
     g_free(s.marg);
+    g_free(s.w);
     return s.visited;
+}
+
+void wl_sf_adapt_calibrate(WlSfAdapt *a, const WlSfRegions *r,
+                           const double *work)
+{
+    double k[WL_SF_MAX_PROCS], mean = 0;
+    guint n = 0;
+    for (guint p = 0; p < r->procs; p++) {
+        uint64_t w = wl_sf_adapt_weight_in(a, r, r->rect[p]);
+        k[p] = w ? work[p] / (double)w : -1;
+        if (w) {
+            mean += k[p];
+            n++;
+        }
+    }
+    mean = n ? mean / n : 1;
+    guint g = a->grid;
+    for (guint y = 0; y < g; y++)
+        for (guint x = 0; x < g; x++) {
+            int px = (int)((int64_t)x * r->width / g);
+            int py = (int)((int64_t)y * r->height / g);
+            for (guint p = 0; p < r->procs; p++) {
+                WlSfRect q = r->rect[p];
+                if (px >= q.x0 && px < q.x1 && py >= q.y0 && py < q.y1)
+                    a->factor[(gsize)y * g + x] = k[p] >= 0 ? k[p] : mean;
+            }
+        }
+    a->calibrated = TRUE;
 }
 
 uint64_t wl_sf_adapt_weight_in(const WlSfAdapt *a, const WlSfRegions *r,

@@ -33,6 +33,8 @@ typedef struct {
     guint procs;      /* P */
     uint64_t *weight; /* G x G polygons per cell, row-major */
     uint64_t *added;  /* per processor: instances its masters added */
+    double *factor;   /* G x G cost per polygon (calibrated), else 1 */
+    gboolean calibrated;
 } WlSfAdapt;
 
 /* grid in 1 .. 1024 with grid^2 >= procs. */
@@ -45,6 +47,12 @@ void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
 /* Splits the screen into r->procs regions (r->rect) of equal estimated
  * weight; returns the cells visited. */
 uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r);
+/* Measured correction: work[p] is processor p's region work in the
+ * frame whose regions are r and whose estimate is the grid now held;
+ * each cell's factor becomes its owner's work per estimated polygon
+ * (the mean over processors for a region with no polygons). */
+void wl_sf_adapt_calibrate(WlSfAdapt *a, const WlSfRegions *r,
+                           const double *work);
 /* The estimated weight inside pixel rectangle q (cells whose top-left
  * corner lies in it), for tests and reports. */
 uint64_t wl_sf_adapt_weight_in(const WlSfAdapt *a, const WlSfRegions *r,

@@ -23,6 +23,10 @@ typedef struct {
     RastCounters rc; /* raster work (vertices, primitives ...) */
     uint64_t spans, pixels, polys;
     SimTime busy0; /* busy time at the frame's start */
+    SimTime region_work; /* unpack + render: the work its region sets */
+    guint grids;         /* estimate: grids received (current) */
+    gboolean estimated;  /* estimate: own grid done (current) */
+    uint64_t own_boxes;  /* instances of its master chunks */
 } Proc;
 
 struct WlSfRun {
@@ -47,6 +51,7 @@ struct WlSfRun {
     guint done;
     SimTime start;
     unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
+    unsigned ph_estimate;
 };
 
 /* n x unit, saturating (a saturated time overflows the engine's clock). */
@@ -174,6 +179,15 @@ static uint64_t grid_bytes(const WlSfRun *r)
     return (uint64_t)r->adapt->grid * r->adapt->grid * r->s.sizes.cell;
 }
 
+/* Bytes riding on each exchange message: the grid (previous-frame
+ * estimate) and the sender's region work (feedback, 8 B). */
+static uint64_t ride_bytes(const WlSfRun *r)
+{
+    if (!r->adapt)
+        return 0;
+    return r->s.current ? 0 : grid_bytes(r) + (r->s.feedback ? 8 : 0);
+}
+
 static void render(WlSfRun *r, Proc *pr)
 {
     g_array_set_size(r->render, 0);
@@ -184,8 +198,9 @@ static void render(WlSfRun *r, Proc *pr)
     SimTime draw = add(mul(r->c.transform_vertex, pr->rc.verts),
                        add(mul(r->c.span_create, pr->spans),
                            mul(r->c.pixel_zbuffer, pr->pixels)));
+    pr->region_work = add(unpack, draw);
     mach_proc_compute(pr->proc, unpack, r->ph_unpack, NULL, NULL, NULL);
-    if (!r->adapt) {
+    if (!r->adapt || r->s.current) {
         mach_proc_compute(pr->proc, draw, r->ph_render, render_done, r,
                           GUINT_TO_POINTER(pr->p));
         return;
@@ -224,7 +239,7 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
             continue;
         WlSfBatch *bt = &pr->out[q];
         net_send(r->net, mach_proc_id(pr->proc), mach_proc_id(r->procs[q].proc),
-                 bt->bytes + grid_bytes(r), bt, arrive, r);
+                 bt->bytes + ride_bytes(r), bt, arrive, r);
     }
     pr->sorted = TRUE;
     maybe_render(r, pr);
@@ -237,14 +252,80 @@ static void sort(WlSfRun *r, Proc *pr)
     g_array_set_size(pr->fresh, 0);
     pr->received = 0;
     pr->sorted = FALSE;
-    pr->busy0 = mach_proc_busy(pr->proc);
     wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
     SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes);
-    if (r->adapt)
+    if (r->adapt && r->s.current) /* master boxes done by the estimate */
+        t = box_cost(r, pr->w.slave_boxes);
+    else if (r->adapt)
         t = add(t, mul(r->c.grid_cell, r->adapt->added[pr->p]));
     mach_proc_compute(pr->proc, t, r->ph_sort, NULL, NULL, NULL);
     mach_proc_compute(pr->proc, mul(r->c.chunk_pack, pr->w.sent_polys),
                       r->ph_pack, sort_done, r, GUINT_TO_POINTER(pr->p));
+}
+
+/* ---- the current-frame estimate (estimate: current) ---------------------
+ * Each processor transforms its master boxes and fills its grid, sends
+ * the grid to every other, and when it holds all P grids sums them,
+ * splits, and sorts into the regions just made. */
+
+static void split_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    WlSfRun *r = ctx;
+    sort(r, &r->procs[GPOINTER_TO_UINT(arg)]);
+}
+
+static void maybe_split(WlSfRun *r, Proc *pr)
+{
+    if (!pr->estimated || pr->grids + 1 < r->s.procs)
+        return;
+    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r)),
+                      r->ph_partition, split_done, r,
+                      GUINT_TO_POINTER(pr->p));
+}
+
+static void grid_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    Proc *pr = d->payload;
+    pr->grids++;
+    maybe_split(ctx, pr);
+}
+
+static void estimate_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    WlSfRun *r = ctx;
+    Proc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
+    for (guint q = 0; q < r->s.procs; q++)
+        if (q != pr->p)
+            net_send(r->net, mach_proc_id(pr->proc),
+                     mach_proc_id(r->procs[q].proc),
+                     grid_bytes(r) + (r->s.feedback ? 8 : 0), &r->procs[q],
+                     grid_arrive, r);
+    pr->estimated = TRUE;
+    maybe_split(r, pr);
+}
+
+static void estimate(WlSfRun *r, Proc *pr)
+{
+    pr->grids = 0;
+    pr->estimated = FALSE;
+    SimTime t = add(box_cost(r, pr->own_boxes),
+                    mul(r->c.grid_cell, r->adapt->added[pr->p]));
+    mach_proc_compute(pr->proc, t, r->ph_estimate, estimate_done, r,
+                      GUINT_TO_POINTER(pr->p));
+}
+
+/* The regions of this frame and the next (the split of this frame's
+ * estimate: this frame's own with estimate: current, else the next's). */
+static void plan_regions(WlSfRun *r)
+{
+    wl_sf_adapt_estimate(r->adapt, r->db, &r->regions, r->view.view_proj);
+    r->next = r->regions;
+    r->split_cells = wl_sf_adapt_split(r->adapt, &r->next);
+    if (r->s.current)
+        r->regions = r->next;
 }
 
 static void start_frame(SimEngine *eng, void *ctx, void *arg)
@@ -255,15 +336,17 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     r->done = 0;
     r->view = frame_view(r->scene, &r->s, (guint)r->frame);
     rast_zbuffer_clear(r->zb);
+    if (r->adapt)
+        plan_regions(r);
     r->book->regions = r->regions; /* the bucket sorts use this frame's */
     wl_sf_book_need(r->book, r->view.view_proj);
-    if (r->adapt) {
-        wl_sf_adapt_estimate(r->adapt, r->db, &r->regions, r->view.view_proj);
-        r->next = r->regions;
-        r->split_cells = wl_sf_adapt_split(r->adapt, &r->next);
+    for (guint p = 0; p < r->s.procs; p++) {
+        r->procs[p].busy0 = mach_proc_busy(r->procs[p].proc);
+        if (r->adapt && r->s.current)
+            estimate(r, &r->procs[p]);
+        else
+            sort(r, &r->procs[p]);
     }
-    for (guint p = 0; p < r->s.procs; p++)
-        sort(r, &r->procs[p]);
 }
 
 /* ---- the frame's figures --------------------------------------------------
@@ -288,7 +371,7 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
     st->imbalance = max_over_mean(max, total, r->s.procs);
     if (r->adapt) {
         uint64_t sent = (uint64_t)r->s.procs * (r->s.procs - 1);
-        st->estimate_bytes = sent * grid_bytes(r);
+        st->estimate_bytes = sent * (grid_bytes(r) + (r->s.feedback ? 8 : 0));
         st->estimate_cells = r->s.procs * partition_cells(r);
         for (guint p = 0; p < r->s.procs; p++)
             st->estimate_cells += r->adapt->added[p];
@@ -384,6 +467,19 @@ static gboolean check_frame(WlSfRun *r, WlSfFrameStats *st, GError **err)
     return st->image_ok;
 }
 
+/* Cost feedback: this frame's region work (unpack + render) per
+ * estimated polygon of each region weights the cells of the splits to
+ * come.  Each processor's figure (8 B) rides on its next frame's grid
+ * messages (the exchange's with the previous-frame estimate, the
+ * estimate's own with current), so it reaches the next split made. */
+static void calibrate(WlSfRun *r)
+{
+    double work[WL_SF_MAX_PROCS];
+    for (guint p = 0; p < r->s.procs; p++)
+        work[p] = (double)r->procs[p].region_work;
+    wl_sf_adapt_calibrate(r->adapt, &r->regions, work);
+}
+
 static void render_done(SimEngine *eng, void *ctx, void *arg)
 {
     (void)arg;
@@ -401,8 +497,11 @@ static void render_done(SimEngine *eng, void *ctx, void *arg)
         sim_engine_fail(eng, e);
         return;
     }
-    if (r->adapt)
+    if (r->adapt) {
+        if (r->s.feedback)
+            calibrate(r);
         r->regions = r->next;
+    }
     if (++r->frame < r->frames)
         sim_schedule_in(eng, 0, start_frame, r, NULL);
 }
@@ -435,6 +534,9 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
         for (guint q = 0; q < s->procs; q++)
             wl_sf_batch_init(&pr->out[q]);
         pr->fresh = g_array_new(FALSE, FALSE, sizeof(guint));
+        for (guint c = 0; c < wl_sf_n_chunks(db); c++)
+            if (wl_sf_chunk(db, c)->master == p)
+                pr->own_boxes += wl_sf_chunk(db, c)->n_inst;
     }
     r->zb = rast_zbuffer_new(s->resolution, s->resolution);
     r->serial = rast_zbuffer_new(s->resolution, s->resolution);
@@ -445,6 +547,8 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->ph_pack = sim_engine_phase(r->eng, "pack");
     r->ph_unpack = sim_engine_phase(r->eng, "unpack");
     r->ph_render = sim_engine_phase(r->eng, "render");
+    if (s->adaptive && s->current)
+        r->ph_estimate = sim_engine_phase(r->eng, "estimate");
     if (s->adaptive)
         r->ph_partition = sim_engine_phase(r->eng, "partition");
     return r;

@@ -25,7 +25,15 @@
  * rendering each processor sums the P grids and computes the k-d split
  * (grid_cell per cell summed and per cell the split visits; phase
  * `partition`), which gives the regions of the next frame.  Frame 0
- * uses the static grid.
+ * uses the static grid.  With `current` (WlSfSetup.current) the
+ * estimate is an extra pass before the sort instead: each processor
+ * transforms its master boxes and fills its grid (phase `estimate`),
+ * sends the grid to every other processor, and on holding all P sums
+ * them and splits (phase `partition`), then bucket-sorts into the
+ * regions just made (its master boxes are not transformed again).
+ * `feedback` scales each cell by the measured region work per estimated
+ * polygon of the processor that owned it (sf_adapt.h), the figures
+ * riding 8 B a message.
  *
  * The frame ends when every processor has rendered (the frame-buffer
  * read-out is not modelled); the next frame then starts.  The regions'
@@ -62,6 +70,9 @@ typedef struct {
     gboolean cull_back, check_image;
     gboolean adaptive; /* regions re-split each frame (sf_adapt.h) */
     guint grid;        /* G of the adaptive work grid, <= resolution */
+    gboolean current;  /* estimate from this frame (an extra pass and
+                          exchange before the sort), else the previous */
+    gboolean feedback; /* weight cells by measured work per polygon */
 } WlSfSetup;
 
 /* One frame's figures (sums over processors unless said). */

@@ -10,6 +10,8 @@
  *     chunking: sorted       # sorted | unsorted | partially_sorted (§4.1)
  *     regions: static        # static grid | adaptive (sf_adapt.h)
  *     grid: 32               # G x G work grid of adaptive regions
+ *     estimate: previous     # previous frame's rectangles | current
+ *     feedback: false        # weight cells by measured work / polygon
  *     resolution: 256        # N x N screen
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
@@ -50,16 +52,20 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 }
 
 static const char *const region_names[] = {"static", "adaptive", NULL};
+static const char *const estimate_names[] = {"previous", "current", NULL};
 
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
-    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0;
+    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0, est = 0;
     if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
                       err) ||
         !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch,
                       err) ||
-        !cfg_get_enum(sec, "regions", FALSE, region_names, &rg, err))
+        !cfg_get_enum(sec, "regions", FALSE, region_names, &rg, err) ||
+        !cfg_get_enum(sec, "estimate", FALSE, estimate_names, &est, err) ||
+        !cfg_get_bool(sec, "feedback", FALSE, &p->setup.feedback, err))
         return FALSE;
+    p->setup.current = est == 1;
     p->setup.adaptive = rg == 1;
     p->setup.bk = (WlSfBookkeeping)bk;
     p->chunking = (WlSfChunking)ch;

@@ -498,6 +498,16 @@ static void test_adaptive_beats_static(void **state)
     assert_true(metric(a, "polygon_imbalance") <
                 metric(s, "polygon_imbalance"));
     assert_true(metric(a, "estimate_bytes_per_frame") > 0);
+    /* this frame's estimate with cost feedback: still the serial image */
+    SimResult *c = run_cfg(
+        small, "workload={type: sortfirst, processors: 4, granularity: 5, "
+               "resolution: 64, regions: adaptive, estimate: current, "
+               "feedback: true}",
+        6, &e);
+    assert_non_null(c);
+    assert_true(metric(c, "image_matches_serial") == 1);
+    assert_true(metric(c, "load_imbalance") < metric(s, "load_imbalance"));
+    sim_result_free(c);
     sim_result_free(a);
     sim_result_free(s);
 }
@@ -522,6 +532,7 @@ static void test_errors(void **state)
     expect_error("machine.nodes.node.count=2", "at most the 2 nodes");
     expect_error("workload.granularity=0", "granularity");
     expect_error("workload.regions=dynamic", "adaptive");
+    expect_error("workload.estimate=next", "current");
     expect_error("workload.grid=128", "at most the resolution");
     expect_error("scene={generator: teapots, count: 1}",
                  "without a structure database");
