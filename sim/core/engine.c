@@ -1,23 +1,15 @@
 /* engine.c — the event loop.
  *
- * Pool: events live in a growable array of records recycled through a
- * free list of slot numbers; the heap holds only (time, seq, slot) keys.
- * Hot path: the event being run is not popped before its handler runs.
- * Its heap root is left as a "hole"; the first event the handler schedules
- * fills the hole with one sift-down (replace-top) instead of a pop plus a
- * push.  If the handler schedules nothing, the root is popped afterwards.
- * Order is unchanged: the hole holds the least key, and a new key is never
- * less than the key being run.
+ * Events (time, seq, handler, ctx, arg) live in the queue itself
+ * (evq.h).  Hot path: the event being run is copied out but not popped
+ * before its handler runs; the first event the handler schedules takes
+ * its place in one replace-top.  If the handler schedules nothing, the
+ * top is popped afterwards.  Order is unchanged: the top is the least
+ * event, and a new event is never less than the one being run.
  */
 #include "sim/core/engine.h"
 #include "sim/core/memlimit.h"
 #include "sim/core/evq.h"
-
-typedef struct {
-    SimHandler fn;
-    void *ctx;
-    void *arg;
-} SimEvent;
 
 typedef struct {
     char *name;
@@ -26,10 +18,7 @@ typedef struct {
 
 struct SimEngine {
     SimEvq *q;
-    SimEvent *pool;
-    uint32_t pool_cap;
-    uint32_t *free_slots;
-    uint32_t n_free;
+    uint64_t cap; /* pending events allowed before the next memory check */
     SimTime now;
     uint64_t seq;
     uint64_t events;
@@ -66,8 +55,6 @@ void sim_engine_free(SimEngine *e)
     if (!e)
         return;
     sim_evq_free(e->q);
-    g_free(e->pool);
-    g_free(e->free_slots);
     for (guint i = 0; i < e->entities->len; i++) {
         SimEntity *en = &g_array_index(e->entities, SimEntity, i);
         g_free(en->name);
@@ -99,12 +86,12 @@ size_t sim_engine_pending(const SimEngine *e)
     return sim_evq_len(e->q) - (e->hole ? 1 : 0);
 }
 
-/* Bytes per pending event: pool slot, free-list entry, heap entry and
- * the queue's seq (sim/core/evq.c). */
-#define EVENT_BYTES (sizeof(SimEvent) + sizeof(uint32_t) + 16 + 8)
+/* Bytes per pending event: its record in a queue bucket, with the
+ * bucket arrays' doubling slack (sim/core/evq.c). */
+#define EVENT_BYTES (2 * sizeof(SimEvKey))
 
-/* Fails the run: the pool cannot double to `cap` events. */
-static gboolean pool_full(SimEngine *e, uint64_t cap)
+/* Fails the run: the queue cannot double to `cap` pending events. */
+static gboolean queue_full(SimEngine *e, uint64_t cap)
 {
     char *need = g_format_size_full(cap * EVENT_BYTES, G_FORMAT_SIZE_IEC_UNITS);
     char *have = g_format_size_full(sim_mem_limit(), G_FORMAT_SIZE_IEC_UNITS);
@@ -119,25 +106,16 @@ static gboolean pool_full(SimEngine *e, uint64_t cap)
     return FALSE;
 }
 
-/* Doubles the event pool; no ceiling but 2^32 slots and the memory limit,
- * and a failed allocation is a run error, not an abort. */
-static gboolean grow_pool(SimEngine *e)
+/* Pending events may double past e->cap only within the memory limit,
+ * so an overflowing model is a run error, not an abort. */
+static gboolean room_for_one(SimEngine *e)
 {
-    uint32_t old = e->pool_cap;
-    uint64_t cap = old ? (uint64_t)old * 2 : 1024;
-    if (cap > G_MAXUINT32 ||
-        (double)cap * EVENT_BYTES > (double)sim_mem_limit())
-        return pool_full(e, cap);
-    SimEvent *pool = g_try_renew(SimEvent, e->pool, cap);
-    if (pool)
-        e->pool = pool;
-    uint32_t *slots = pool ? g_try_renew(uint32_t, e->free_slots, cap) : NULL;
-    if (!slots)
-        return pool_full(e, cap);
-    e->free_slots = slots;
-    for (uint64_t s = cap; s > old; s--)
-        e->free_slots[e->n_free++] = (uint32_t)(s - 1);
-    e->pool_cap = (uint32_t)cap;
+    if (G_LIKELY(sim_evq_len(e->q) < e->cap))
+        return TRUE;
+    uint64_t cap = e->cap ? 2 * e->cap : 1024;
+    if ((double)cap * EVENT_BYTES > (double)sim_mem_limit())
+        return queue_full(e, cap);
+    e->cap = cap;
     return TRUE;
 }
 
@@ -145,11 +123,9 @@ gboolean sim_schedule_at(SimEngine *e, SimTime t, SimHandler fn, void *ctx,
                          void *arg)
 {
     g_assert(t >= e->now);
-    if (G_UNLIKELY(e->n_free == 0) && !grow_pool(e))
+    if (G_UNLIKELY(!room_for_one(e)))
         return FALSE; /* the run stops with the error */
-    uint32_t slot = e->free_slots[--e->n_free];
-    e->pool[slot] = (SimEvent){fn, ctx, arg};
-    SimEvKey k = {t, e->seq++, slot};
+    SimEvKey k = {t, e->seq++, fn, ctx, arg};
     if (e->hole) {
         e->hole = FALSE;
         sim_evq_replace_top(e->q, k);
@@ -208,12 +184,10 @@ gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
         e->progress_every ? e->events + e->progress_every : UINT64_MAX;
     e->stopped = FALSE;
     while (!e->stopped && sim_evq_len(e->q) > 0) {
-        SimEvKey k = sim_evq_top(e->q);
-        if (k.time > until)
+        SimEvKey ev = *sim_evq_top(e->q);
+        if (ev.time > until)
             break;
-        SimEvent ev = e->pool[k.slot];
-        e->free_slots[e->n_free++] = k.slot;
-        e->now = k.time;
+        e->now = ev.time;
         e->hole = TRUE;
         ev.fn(e, ev.ctx, ev.arg);
         if (e->hole) {
@@ -226,7 +200,7 @@ gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
         }
     }
     if (until != SIM_TIME_MAX && !e->stopped && until > e->now &&
-        (sim_evq_len(e->q) == 0 || sim_evq_top(e->q).time > until))
+        (sim_evq_len(e->q) == 0 || sim_evq_top(e->q)->time > until))
         e->now = until;
     if (e->error) {
         g_propagate_error(err, e->error);

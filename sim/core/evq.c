@@ -1,169 +1,139 @@
-/* evq.c — implicit 4-ary min-heap of event entries.
+/* evq.c — radix heap of event records (evq.h).
  *
- * Invariant: for every i > 0, !less(h[i], h[(i-1)/4]).  A 4-ary heap is
- * shallower than a binary one (log4 n levels), and with 16-byte entries
- * stored from element 3 of a 64-byte aligned block, the children 4i+1 ..
- * 4i+4 of node i lie in one cache line.  Sift-down moves a hole instead
- * of swapping.  Ties on time are broken by seq, read from the side array
- * only then.  Measured against alternatives in docs/engine.md.
+ * Invariants: every event of bucket b > 0 has a time t > last whose
+ * highest bit differing from last is bit b - 1; bucket 0 (from `head`)
+ * holds the events at time `last` in seq order.  When top() finds bucket
+ * 0 empty it settles: the lowest non-empty bucket (a bit scan of `used`)
+ * gives its least time to `last` and its events move to lower buckets,
+ * so an event moves at most 64 times and in practice a few.  Settling is
+ * lazy (pops never settle), so pushes before the first top() — an
+ * engine's set-up — may come in any time order; a push below `last`
+ * afterwards (only after a run stopped at a time limit) re-buckets every
+ * event once.  Equal times reaching bucket 0 together are put in seq
+ * order there (insertion; a direct push lands at the end, its seq being
+ * the largest).
+ *
+ * Chosen by measurement over the cache-aligned 4-ary heap of (time, slot)
+ * keys with a pool of records it replaces (docs/engine.md): at 262,144
+ * and 1,048,576 pending the heap's sift touched a random cache line per
+ * level and the pool one more per event; here pushes append and settles
+ * scan, both sequential, and the record travels with its key.
  */
 #include "sim/core/evq.h"
-#include <stdlib.h>
 #include <string.h>
-
-#define EVQ_PAD 3 /* entries before h[0], so that h[1] is line-aligned */
-
-static inline gboolean entry_less(const SimEvq *q, SimEvEntry a, SimEvEntry b)
-{
-    return a.time < b.time ||
-           (a.time == b.time && q->seqs[a.slot] < q->seqs[b.slot]);
-}
-
-static void grow_heap(SimEvq *q, size_t cap)
-{
-    size_t bytes = (cap + EVQ_PAD + 1) * sizeof(SimEvEntry);
-    bytes = (bytes + 63) & ~(size_t)63;
-    void *mem = aligned_alloc(64, bytes);
-    if (!mem)
-        g_error("evq: out of memory for %zu pending events", cap);
-    SimEvEntry *h = (SimEvEntry *)mem + EVQ_PAD;
-    if (q->n)
-        memcpy(h, q->h, q->n * sizeof(SimEvEntry));
-    free(q->mem);
-    q->mem = mem;
-    q->h = h;
-    q->cap = cap;
-}
 
 SimEvq *sim_evq_new(void)
 {
-    SimEvq *q = g_new0(SimEvq, 1);
-    grow_heap(q, 64);
-    return q;
+    return g_new0(SimEvq, 1);
 }
 
 void sim_evq_free(SimEvq *q)
 {
     if (!q)
         return;
-    free(q->mem);
-    g_free(q->seqs);
+    for (int b = 0; b < SIM_EVQ_BUCKETS; b++)
+        g_free(q->b[b].a);
     g_free(q);
 }
 
-static void note_seq(SimEvq *q, SimEvKey k)
+static inline unsigned bucket_of(SimTime last, SimTime t)
 {
-    if (k.slot >= q->seq_cap) {
-        size_t cap = q->seq_cap ? q->seq_cap : 64;
-        while (cap <= k.slot)
-            cap *= 2;
-        q->seqs = g_renew(uint64_t, q->seqs, cap);
-        q->seq_cap = cap;
+    return t == last ? 0 : 64 - (unsigned)__builtin_clzll(t ^ last);
+}
+
+static inline void append(SimEvBucket *bk, const SimEvKey *e)
+{
+    if (G_UNLIKELY(bk->n == bk->cap)) {
+        bk->cap = bk->cap ? 2 * bk->cap : 64;
+        bk->a = g_renew(SimEvKey, bk->a, bk->cap);
     }
-    q->seqs[k.slot] = k.seq;
+    bk->a[bk->n++] = *e;
 }
 
-/* Places e at the hole i and moves it up past greater parents. */
-static inline void sift_up(SimEvq *q, size_t i, SimEvEntry e)
+/* Appends e to bucket 0 and moves it before later-seq events; drops the
+ * consumed prefix when it is most of the array (many events at one time). */
+static void append_zero(SimEvq *q, const SimEvKey *e)
 {
-    SimEvEntry *h = q->h;
-    while (i > 0) {
-        size_t p = (i - 1) >> 2;
-        if (!entry_less(q, e, h[p]))
-            break;
-        h[i] = h[p];
-        i = p;
+    SimEvBucket *z = &q->b[0];
+    if (G_UNLIKELY(q->head >= 4096 && 2 * q->head >= z->n)) {
+        memmove(z->a, z->a + q->head, (z->n - q->head) * sizeof *z->a);
+        z->n -= q->head;
+        q->head = 0;
     }
-    h[i] = e;
+    append(z, e);
+    size_t i = z->n - 1;
+    while (i > q->head && z->a[i - 1].seq > e->seq) {
+        z->a[i] = z->a[i - 1];
+        i--;
+    }
+    z->a[i] = *e;
 }
 
-/* The lesser of h[a] and h[b].  Equal times are rare in most models and
- * take the predictable branch to the seq side array; otherwise the choice
- * compiles to a conditional move, not a branch the CPU must guess. */
-static inline size_t lesser(const SimEvq *q, const SimEvEntry *h, size_t a,
-                            size_t b)
+static inline void place(SimEvq *q, const SimEvKey *e)
 {
-    SimTime ta = h[a].time, tb = h[b].time;
-    if (G_UNLIKELY(ta == tb))
-        return q->seqs[h[b].slot] < q->seqs[h[a].slot] ? b : a;
-    size_t take_b = -(size_t)(tb < ta); /* all ones or zero: no branch */
-    return a ^ ((a ^ b) & take_b);
+    unsigned b = bucket_of(q->last, e->time);
+    if (b == 0) {
+        append_zero(q, e);
+        return;
+    }
+    SimEvBucket *bk = &q->b[b];
+    if (bk->n == 0 || e->time < bk->min)
+        bk->min = e->time;
+    append(bk, e);
+    q->used |= (uint64_t)1 << (b - 1);
 }
 
-/* The least of the children c .. c+3 of heap h (those below n): a
- * three-comparison, branch-free tournament when all four exist (the
- * common case).  Choosing the least child is a coin toss for a branch
- * predictor; callgrind's branch simulation counted 6.8 mispredictions per
- * PHOLD event with a compare loop, 1.4 with the tournament. */
-static inline size_t least_child(const SimEvq *q, const SimEvEntry *h, size_t n,
-                                 size_t c)
+/* k.time < last: every event is re-bucketed against the new last. */
+static void lower_last(SimEvq *q, SimTime t)
 {
-    if (G_LIKELY(c + 4 <= n))
-        return lesser(q, h, lesser(q, h, c, c + 1), lesser(q, h, c + 2, c + 3));
-    size_t m = c;
-    for (size_t j = c + 1; j < n; j++)
-        m = lesser(q, h, m, j);
-    return m;
+    GArray *all = g_array_new(FALSE, FALSE, sizeof(SimEvKey));
+    for (int b = 0; b < SIM_EVQ_BUCKETS; b++) {
+        size_t from = b == 0 ? q->head : 0;
+        g_array_append_vals(all, q->b[b].a + from, q->b[b].n - from);
+        q->b[b].n = 0;
+    }
+    q->head = 0;
+    q->used = 0;
+    q->last = t;
+    for (guint i = 0; i < all->len; i++)
+        place(q, &g_array_index(all, SimEvKey, i));
+    g_array_free(all, TRUE);
 }
 
 void sim_evq_push(SimEvq *q, SimEvKey k)
 {
-    if (q->n == q->cap)
-        grow_heap(q, q->cap * 2);
-    note_seq(q, k);
-    sift_up(q, q->n++, (SimEvEntry){k.time, k.slot});
+    if (G_UNLIKELY(k.time < q->last))
+        lower_last(q, k.time);
+    q->n++;
+    place(q, &k);
 }
 
-/* Places e at the hole i and sifts it down to its place. */
-static void sift_down(SimEvq *q, size_t i, SimEvEntry e)
+void sim_evq_settle(SimEvq *q)
 {
-    SimEvEntry *h = q->h;
-    size_t n = q->n;
-    for (;;) {
-        size_t c = 4 * i + 1;
-        if (c >= n)
-            break;
-        size_t m = least_child(q, h, n, c);
-        if (!entry_less(q, h[m], e))
-            break;
-        h[i] = h[m];
-        i = m;
-    }
-    h[i] = e;
+    g_assert(q->n > 0 && q->used != 0);
+    q->b[0].n = 0;
+    q->head = 0;
+    unsigned b = (unsigned)__builtin_ctzll(q->used) + 1;
+    SimEvBucket *bk = &q->b[b];
+    q->last = bk->min;
+    size_t n = bk->n;
+    bk->n = 0;
+    q->used &= ~((uint64_t)1 << (b - 1));
+    for (size_t i = 0; i < n; i++)
+        place(q, &bk->a[i]);
 }
 
 SimEvKey sim_evq_pop(SimEvq *q)
 {
-    SimEvKey top = sim_evq_top(q);
-    SimEvEntry last = q->h[--q->n];
-    if (q->n > 0)
-        sift_down(q, 0, last);
+    SimEvKey top = *sim_evq_top(q);
+    q->n--;
+    q->head++;
     return top;
-}
-
-/* Bottom-up replace (Wegener's bottom-up heapsort idea): walk the hole
- * down the path of least children to a leaf without comparing against e,
- * then sift e up from there.  A new event is usually later than most
- * pending ones, so it settles near the leaves and the walk up is short:
- * 3 comparisons a level instead of 4. */
-static void sift_bottom_up(SimEvq *q, SimEvEntry e)
-{
-    SimEvEntry *h = q->h;
-    size_t n = q->n, i = 0;
-    for (;;) {
-        size_t c = 4 * i + 1;
-        if (c >= n)
-            break;
-        size_t m = least_child(q, h, n, c);
-        h[i] = h[m];
-        i = m;
-    }
-    sift_up(q, i, e);
 }
 
 void sim_evq_replace_top(SimEvq *q, SimEvKey k)
 {
-    g_assert(q->n > 0);
-    note_seq(q, k);
-    sift_bottom_up(q, (SimEvEntry){k.time, k.slot});
+    g_assert(q->n > 0 && q->head < q->b[0].n && k.time >= q->last);
+    place(q, &k);
+    q->head++;
 }

@@ -51,6 +51,18 @@ static const NetTransportOps *pick_transport(const NetParams *p,
     }
 }
 
+/* Link ids are topology-packed (node, dimension or level fields), which
+ * g_int64_hash folds into few distinct values (4,096-node hypercube:
+ * long probe chains); a 64-bit finaliser spreads them (Stafford's mix13,
+ * the splitmix64 finaliser). */
+static guint link_hash(gconstpointer p)
+{
+    uint64_t x = *(const uint64_t *)p;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return (guint)(x ^ (x >> 31));
+}
+
 static void link_free(gpointer p)
 {
     NetLink *l = p;
@@ -76,7 +88,7 @@ NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
     n->fid = fid;
     n->tp = pick_transport(&n->par, fid);
     n->links =
-        g_hash_table_new_full(g_int64_hash, g_int64_equal, NULL, link_free);
+        g_hash_table_new_full(link_hash, g_int64_equal, NULL, link_free);
     n->route = g_new(NetLinkId, topo->ops->max_hops(topo->state));
     return n;
 }

@@ -1,5 +1,7 @@
-/* test_evq.c — the 4-ary heap against a sorted reference.
- * Slots are unique among pending keys, as the engine's pool makes them. */
+/* test_evq.c — the radix heap against a sorted reference.
+ * Seqs grow with pushes, as the engine's do;
+ * pushed times are never below the least pending time, as the engine's
+ * are (it never schedules into the past). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -7,6 +9,11 @@
 
 #include "sim/core/evq.h"
 #include "sim/core/rng.h"
+
+static SimEvKey key(SimTime t, uint64_t seq)
+{
+    return (SimEvKey){.time = t, .seq = seq};
+}
 
 /* Inserts k into the sorted reference, keeping it sorted. */
 static void ref_insert(GArray *ref, SimEvKey k)
@@ -22,8 +29,9 @@ static void ref_insert(GArray *ref, SimEvKey k)
     g_array_insert_val(ref, lo, k);
 }
 
-/* Random pushes (many equal times), pops and replace_tops; after every
- * operation the heap's least key must equal the reference's least key. */
+/* Random pushes (many equal times, spans from 0 to 2^40), pops and
+ * replace_tops; after every operation the queue's least key must equal
+ * the reference's least key. */
 static void test_heap_matches_sorted_reference(void **state)
 {
     (void)state;
@@ -34,8 +42,10 @@ static void test_heap_matches_sorted_reference(void **state)
     uint64_t seq = 0;
     for (int op = 0; op < 200000; op++) {
         uint64_t c = sim_rng_below(&r, 10);
+        SimTime now = ref->len ? g_array_index(ref, SimEvKey, 0).time : 0;
+        uint64_t span = (uint64_t)1 << (sim_rng_below(&r, 5) * 10);
         if (ref->len == 0 || c < 5) {
-            SimEvKey k = {sim_rng_below(&r, 64), seq, (uint32_t)seq};
+            SimEvKey k = key(now + sim_rng_below(&r, 64) * (span / 64 + 1), seq);
             seq++;
             sim_evq_push(q, k);
             ref_insert(ref, k);
@@ -46,16 +56,16 @@ static void test_heap_matches_sorted_reference(void **state)
             assert_int_equal(got.seq, want.seq);
         } else {
             SimEvKey top = g_array_index(ref, SimEvKey, 0);
-            SimEvKey k = {top.time + sim_rng_below(&r, 8), seq, (uint32_t)seq};
+            SimEvKey k = key(top.time + sim_rng_below(&r, 8), seq);
             seq++;
-            assert_int_equal(sim_evq_top(q).seq, top.seq);
+            assert_int_equal(sim_evq_top(q)->seq, top.seq);
             sim_evq_replace_top(q, k);
             g_array_remove_index(ref, 0);
             ref_insert(ref, k);
         }
         assert_int_equal(sim_evq_len(q), ref->len);
         if (ref->len) {
-            assert_int_equal(sim_evq_top(q).seq,
+            assert_int_equal(sim_evq_top(q)->seq,
                              g_array_index(ref, SimEvKey, 0).seq);
         }
         if (op % 1000 == 999) { /* keep the O(n log n) reference cheap */
@@ -74,7 +84,7 @@ static void test_equal_times_pop_in_seq_order(void **state)
     (void)state;
     SimEvq *q = sim_evq_new();
     for (uint64_t s = 0; s < 1000; s++)
-        sim_evq_push(q, (SimEvKey){5, 999 - s, (uint32_t)s}); /* reversed */
+        sim_evq_push(q, key(5, 999 - s)); /* reversed */
     for (uint64_t s = 0; s < 1000; s++)
         assert_int_equal(sim_evq_pop(q).seq, s);
     assert_int_equal(sim_evq_len(q), 0);
@@ -86,7 +96,7 @@ static void test_grows_past_initial_capacity(void **state)
     (void)state;
     SimEvq *q = sim_evq_new();
     for (uint64_t i = 0; i < 100000; i++)
-        sim_evq_push(q, (SimEvKey){(i * 7919) % 100000, i, (uint32_t)i});
+        sim_evq_push(q, key((i * 7919) % 100000, i));
     SimTime last = 0;
     for (int i = 0; i < 100000; i++) {
         SimEvKey k = sim_evq_pop(q);
@@ -96,12 +106,40 @@ static void test_grows_past_initial_capacity(void **state)
     sim_evq_free(q);
 }
 
+/* A push below the least pending time after top() (the engine's case
+ * after a run stopped at a time limit) re-buckets and still pops in
+ * (time, seq) order; so do many events at one time (bucket 0 compaction). */
+static void test_push_below_settled_and_same_time(void **state)
+{
+    (void)state;
+    SimEvq *q = sim_evq_new();
+    sim_evq_push(q, key(100, 0));
+    sim_evq_push(q, key(300, 1));
+    assert_int_equal(sim_evq_top(q)->time, 100);
+    sim_evq_push(q, key(50, 2));
+    sim_evq_push(q, key(100, 3));
+    uint64_t want[] = {2, 0, 3, 1};
+    for (int i = 0; i < 4; i++)
+        assert_int_equal(sim_evq_pop(q).seq, want[i]);
+    uint64_t seq = 10;
+    sim_evq_push(q, key(7, seq));
+    for (uint32_t i = 0; i < 20000; i++) { /* one time, a long chain */
+        SimEvKey top = *sim_evq_top(q);
+        assert_int_equal(top.seq, seq);
+        sim_evq_replace_top(q, key(7, ++seq));
+    }
+    assert_int_equal(sim_evq_len(q), 1);
+    assert_true(q->b[0].cap < 20000);
+    sim_evq_free(q);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_heap_matches_sorted_reference),
         cmocka_unit_test(test_equal_times_pop_in_seq_order),
         cmocka_unit_test(test_grows_past_initial_capacity),
+        cmocka_unit_test(test_push_below_settled_and_same_time),
     };
     return cmocka_run_group_tests_name("evq", tests, NULL, NULL);
 }

@@ -8,11 +8,16 @@
  * The population of pending events stays N x M, so the run measures the
  * engine's steady-state cost per event at that queue size.  Each LP draws
  * from its own stream (sim_entity_rng semantics, kept in the LP record).
+ * Then the same hold loop with nothing but a bare implicit 4-ary min-heap
+ * of times (the near-limit of a heap-based engine: no pool, no tie order,
+ * no handler call; the same random draws per event) runs for as many
+ * events, and the ratio engine / bare heap is printed.
  * Prints `events_per_s: <number>` as its last line.
  */
 #include "sim/app/bench/bench.h"
 #include "sim/core/cfg.h"
 #include "sim/core/engine.h"
+#include "sim/core/rng.h"
 #include <stdio.h>
 
 typedef struct {
@@ -54,6 +59,55 @@ static void phold_seed(SimEngine *e, Phold *ph, uint64_t per_lp)
             sim_schedule_at(e, t, phold_event, ph, &ph->lps[i]);
         }
     }
+}
+
+/* ---- the bare 4-ary heap hold loop ---- */
+
+static void bare_sift_down(SimTime *h, size_t n, SimTime e)
+{
+    size_t i = 0;
+    for (;;) {
+        size_t c = 4 * i + 1, m = c;
+        if (c >= n)
+            break;
+        for (size_t j = c + 1; j < c + 4 && j < n; j++)
+            m = h[j] < h[m] ? j : m;
+        if (h[m] >= e)
+            break;
+        h[i] = h[m];
+        i = m;
+    }
+    h[i] = e;
+}
+
+static void bare_push(SimTime *h, size_t i, SimTime e)
+{
+    while (i > 0 && h[(i - 1) / 4] > e) {
+        h[i] = h[(i - 1) / 4];
+        i = (i - 1) / 4;
+    }
+    h[i] = e;
+}
+
+/* Events per second of the bare loop: pending times, `events` holds. */
+static double bare_heap_rate(const Phold *ph, uint64_t pending, uint64_t seed)
+{
+    SimTime *h = g_new(SimTime, pending);
+    SimRng rng;
+    sim_rng_init(&rng, seed, 0);
+    for (uint64_t i = 0; i < pending; i++)
+        bare_push(h, i, (SimTime)sim_rng_exp(&rng, ph->mean_ps));
+    volatile uint64_t sink = 0;
+    gint64 t0 = g_get_monotonic_time();
+    for (uint64_t k = 0; k < ph->target; k++) {
+        if (sim_rng_uniform(&rng) < ph->remote)
+            sink += sim_rng_below(&rng, ph->n_lps);
+        SimTime d = ph->lookahead + (SimTime)sim_rng_exp(&rng, ph->mean_ps);
+        bare_sift_down(h, pending, h[0] + d);
+    }
+    double wall = (double)(g_get_monotonic_time() - t0) * 1e-6;
+    g_free(h);
+    return (double)ph->target / wall;
 }
 
 typedef struct {
@@ -134,7 +188,11 @@ int bench_phold_main(int argc, char **argv)
         printf("events: %" G_GUINT64_FORMAT "\n", sim_engine_events(e));
         printf("sim_time_s: %.9g\n", sim_time_to_s(sim_now(e)));
         printf("wall_s: %.4f\n", wall);
-        printf("events_per_s: %.0f\n", (double)sim_engine_events(e) / wall);
+        double rate = (double)sim_engine_events(e) / wall;
+        double bare = bare_heap_rate(&ph, ph.n_lps * per_lp, (uint64_t)a.seed);
+        printf("bare_4ary_heap_events_per_s: %.0f\n", bare);
+        printf("engine_over_bare_heap: %.2f\n", rate / bare);
+        printf("events_per_s: %.0f\n", rate);
     }
     sim_engine_free(e);
     g_free(ph.lps);
