@@ -233,15 +233,53 @@ static void order_by_bound(PtrVec *flows)
     }
 }
 
-static void maxmin(FlowNet *fn)
+/* Floyd's bottom-up heap construction over lh[0 .. lh_n): O(L). */
+static void lh_heapify(FlowNet *fn)
 {
+    HeapEnt *a = fn->lh;
+    guint n = fn->lh_n;
+    for (guint k = n / 2; k-- > 0;) {
+        HeapEnt e = a[k];
+        guint i = k;
+        for (;;) {
+            guint c = 2 * i + 1;
+            if (c >= n)
+                break;
+            if (c + 1 < n && a[c + 1].share < a[c].share)
+                c++;
+            if (a[c].share >= e.share)
+                break;
+            a[i] = a[c];
+            i = c;
+        }
+        a[i] = e;
+    }
+}
+
+/* The component's links start at full capacity.  A link with no more
+ * flows than channels is never a bottleneck: its share starts at >= bw,
+ * the bound of every flow crossing it, and shares only rise; so it is
+ * left out of the heap (fix_flow still charges it). */
+static void maxmin_links(FlowNet *fn)
+{
+    if (fn->lh_cap < fn->clinks.n) {
+        fn->lh_cap = fn->clinks.n;
+        fn->lh = g_renew(HeapEnt, fn->lh, fn->lh_cap);
+    }
     fn->lh_n = 0;
     for (guint i = 0; i < fn->clinks.n; i++) {
         NetLink *l = fn->clinks.a[i];
         l->rem = l->bw * l->channels;
         l->unfixed = l->n_flows;
-        lh_push(fn, l->rem / l->unfixed, l);
+        if (l->n_flows > l->channels)
+            fn->lh[fn->lh_n++] = (HeapEnt){l->rem / l->unfixed, l};
     }
+    lh_heapify(fn);
+}
+
+static void maxmin(FlowNet *fn)
+{
+    maxmin_links(fn);
     order_by_bound(&fn->cflows);
     NetFlow **flows = (NetFlow **)fn->cflows.a;
     guint nf = fn->cflows.n;

@@ -11,6 +11,14 @@
  * under --out DIR, with charts in <its directory>/reproduction/; never
  * into the current directory unasked.  Progress (which simulation a
  * paper is on, how long it has run) is one line on a terminal only.
+ *
+ * `all -j N` (default: the number of cores) runs up to N papers at once,
+ * each in a forked child (like the sweep's local pool), without progress
+ * lines: the child writes its stdout text and its report section to a
+ * private temporary file, and the parent, once every child has ended,
+ * prints and joins them in the registry's order, so the output is the one
+ * of -j 1 (wall-time figures aside).  A child that fails, or dies, fails
+ * the command with the first such paper's error in registry order.
  */
 #include "sim/core/datapath.h"
 #include "sim/app/cli/cli.h"
@@ -18,8 +26,11 @@
 #include "sim/reproduce/rp_doc.h"
 #include "sim/reproduce/rp_driver.h"
 #include "sim/reproduce/rp_speed.h"
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 typedef enum { FMT_TEXT, FMT_CSV, FMT_JSON } RpFormat;
 
@@ -30,6 +41,7 @@ typedef struct {
     char *papers;
     char *doc;
     gboolean quiet;
+    int jobs;
     RpFormat fmt;
 } RpOpts;
 
@@ -65,6 +77,8 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
          "--out: DIR/reproduction.md; else none)",
          "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
+        {"jobs", 'j', 0, G_OPTION_ARG_INT, &o->jobs,
+         "with 'all': papers run at once (default: the cores)", "N"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
     if (!cli_parse("reproduce", "NAME|all",
                    "Reruns a paper's tables and compares them with the "
@@ -81,6 +95,13 @@ static gboolean check_opts(RpOpts *o, GError **err)
         o->format = g_strdup("text");
     if (!o->fidelity)
         o->fidelity = g_strdup(RP_DEFAULT_FIDELITY);
+    if (o->jobs < 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "--jobs: found %d, expected a count >= 1", o->jobs);
+        return FALSE;
+    }
+    if (o->jobs == 0)
+        o->jobs = (int)g_get_num_processors();
     if (!rp_fidelity_valid(o->fidelity) && strcmp(o->fidelity, "all")) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "--fidelity: found '%s', expected faithful, analytic, "
@@ -167,10 +188,10 @@ static GPtrArray *run_passes(const RpPaperOps *rp, const RpOpts *o,
     return passes;
 }
 
-/* Runs one reproduction, prints it and writes --out files; returns its
- * passes (the caller frees them) or NULL with *err. */
-static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o,
-                          gboolean first, GError **err)
+/* Runs one reproduction, formats it into text and writes --out files;
+ * returns its passes (the caller frees them) or NULL with *err. */
+static GPtrArray *run_one_into(const RpPaperOps *rp, const RpOpts *o,
+                               gboolean first, GString *text, GError **err)
 {
     char *label = g_strdup_printf("reproduce %s (fidelity %s), runs", rp->name,
                                   o->fidelity);
@@ -180,15 +201,23 @@ static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o,
     rpt_progress_finish(bar);
     if (!passes)
         return NULL;
-    GString *s = g_string_new(NULL);
-    format_passes(passes, o->fmt, first, s);
-    fputs(s->str, stdout);
-    fflush(stdout);
-    g_string_free(s, TRUE);
+    format_passes(passes, o->fmt, first, text);
     if (o->out_dir && !write_outputs(passes, o->out_dir, err)) {
         g_ptr_array_free(passes, TRUE);
         return NULL;
     }
+    return passes;
+}
+
+/* The same, printed on stdout. */
+static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o,
+                          gboolean first, GError **err)
+{
+    GString *s = g_string_new(NULL);
+    GPtrArray *passes = run_one_into(rp, o, first, s, err);
+    fputs(s->str, stdout);
+    fflush(stdout);
+    g_string_free(s, TRUE);
     return passes;
 }
 
@@ -235,10 +264,143 @@ static char *doc_path(const RpOpts *o)
                       : NULL;
 }
 
+/* Paper i of `all`: its stdout text into text and, when md is given, its
+ * section (charts written on the way). */
+static gboolean paper_all(int i, const RpOpts *o, const char *charts,
+                          GString *text, GString *md, GError **err)
+{
+    GPtrArray *passes = run_one_into(rp_all[i], o, i == 0, text, err);
+    gboolean ok =
+        passes && (!md || doc_paper(md, rp_all[i], passes, o, charts, err));
+    if (passes)
+        g_ptr_array_free(passes, TRUE);
+    return ok;
+}
+
+/* ---- -j: one forked child per paper -------------------------------- */
+
+/* The child's file: "O<text length>\n<text><md>" or "E<code>\n<msg>". */
+static G_NORETURN void paper_child(int i, const RpOpts *o, const char *charts,
+                                   gboolean want_md, const char *path)
+{
+    RpOpts quiet = *o;
+    quiet.quiet = TRUE; /* progress lines of parallel papers would mix */
+    GString *text = g_string_new(NULL), *md = g_string_new(NULL);
+    GString *out = g_string_new(NULL);
+    GError *e = NULL;
+    if (paper_all(i, &quiet, charts, text, want_md ? md : NULL, &e))
+        g_string_printf(out, "O%zu\n%s%s", text->len, text->str, md->str);
+    else
+        g_string_printf(out, "E%d\n%s", e->code, e->message);
+    _exit(g_file_set_contents(path, out->str, (gssize)out->len, NULL) ? 0
+                                                                       : 3);
+}
+
+typedef struct {
+    pid_t pid;
+    char *path; /* the child's result file */
+    int status;
+} RpKid;
+
+static gboolean spawn_paper(RpKid *k, int i, const RpOpts *o,
+                            const char *charts, gboolean want_md, GError **err)
+{
+    int fd = g_file_open_tmp("pgsim-reproduce-XXXXXX", &k->path, err);
+    if (fd < 0)
+        return FALSE;
+    close(fd);
+    fflush(stdout);
+    fflush(stderr);
+    k->pid = fork();
+    if (k->pid == 0)
+        paper_child(i, o, charts, want_md, k->path);
+    if (k->pid > 0)
+        return TRUE;
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                "reproduce: cannot fork a worker: %s", g_strerror(errno));
+    return FALSE;
+}
+
+/* Waits for any child of kids[0 .. n) and records its status. */
+static void reap_one(RpKid *kids, int n)
+{
+    int status = 0;
+    pid_t p;
+    while ((p = waitpid(-1, &status, 0)) < 0 && errno == EINTR)
+        ;
+    for (int i = 0; p > 0 && i < n; i++)
+        if (kids[i].pid == p) {
+            kids[i].status = status;
+            kids[i].pid = 0;
+        }
+}
+
+/* Prints paper i's text and appends its section, from its child's file. */
+static gboolean join_paper(const RpKid *k, const char *name, GString *md,
+                           GError **err)
+{
+    char *buf = NULL, *end = NULL;
+    gsize len = 0;
+    gboolean read = WIFEXITED(k->status) && WEXITSTATUS(k->status) == 0 &&
+                    g_file_get_contents(k->path, &buf, &len, NULL);
+    guint64 n = read && len > 1 ? g_ascii_strtoull(buf + 1, &end, 10) : 0;
+    gboolean ok = read && buf[0] == 'O' && end && *end == '\n' &&
+                  n <= len - (gsize)(end + 1 - buf);
+    if (ok) {
+        fwrite(end + 1, 1, n, stdout);
+        if (md)
+            g_string_append(md, end + 1 + n);
+    } else if (read && buf[0] == 'E' && len > 1) {
+        int code = (int)g_ascii_strtoll(buf + 1, &end, 10);
+        g_set_error(err, SIM_ERROR, code, "%s", end + 1);
+    } else {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                    "reproduce %s: the worker ended without a result "
+                    "(status %d)",
+                    name, k->status);
+    }
+    g_free(buf);
+    return ok;
+}
+
+/* Runs every paper, up to o->jobs at once, then joins them in order. */
+static gboolean papers_forked(const RpOpts *o, GString *md, const char *charts,
+                              GError **err)
+{
+    int n = 0, next = 0, running = 0;
+    while (rp_all[n])
+        n++;
+    if (!o->quiet)
+        fprintf(stderr, "reproduce: %d papers, %d at once\n", n, o->jobs);
+    RpKid *kids = g_new0(RpKid, n);
+    gboolean ok = TRUE;
+    while (next < n || running > 0) {
+        if (ok && next < n && running < o->jobs) {
+            ok = spawn_paper(&kids[next], next, o, charts, md != NULL, err);
+            running += ok;
+            next += ok ? 1 : n;
+            continue;
+        }
+        reap_one(kids, n);
+        running--;
+    }
+    for (int i = 0; i < n; i++) {
+        ok = ok && join_paper(&kids[i], rp_all[i]->name, md, err);
+        if (kids[i].path)
+            unlink(kids[i].path);
+        g_free(kids[i].path);
+    }
+    fflush(stdout);
+    g_free(kids);
+    return ok;
+}
+
 /* Runs every paper; adds each to md under chart_dir when md is given. */
 static gboolean run_papers(const RpOpts *o, GString *md, const char *charts,
                            GError **err)
 {
+    if (o->jobs > 1 && rp_all[0] && rp_all[1])
+        return papers_forked(o, md, charts, err);
     gboolean ok = TRUE;
     for (int i = 0; ok && rp_all[i]; i++) {
         GPtrArray *passes = run_one(rp_all[i], o, i == 0, err);
