@@ -70,6 +70,8 @@ static unsigned log2_ceil(uint32_t n)
     return d;
 }
 
+static void coll_discard(gpointer p);
+
 static NetColl *coll_new(NetNet *net, guint steps, CollPlan plan,
                          gboolean receipts, NetCollDone done, void *ctx)
 {
@@ -89,11 +91,14 @@ static NetColl *coll_new(NetNet *net, guint steps, CollPlan plan,
     c->nodes_left = c->n;
     c->done = done;
     c->ctx = ctx;
+    net_own(net, c, coll_discard);
     return c;
 }
 
-static void coll_free(NetColl *c)
+/* Frees c whatever its state (a collective left unfinished). */
+static void coll_discard(gpointer p)
 {
+    NetColl *c = p;
     g_free(c->table);
     g_free(c->dst);
     g_free(c->off);
@@ -102,10 +107,22 @@ static void coll_free(NetColl *c)
     g_free(c->state);
     g_free(c->recvd);
     if (c->early) {
-        g_assert(g_hash_table_size(c->early) == 0);
+        GHashTableIter it;
+        gpointer key;
+        g_hash_table_iter_init(&it, c->early); /* keys are heap uint64 */
+        while (g_hash_table_iter_next(&it, &key, NULL))
+            g_free(key);
         g_hash_table_destroy(c->early);
     }
     g_free(c);
+}
+
+/* A finished collective: every early receipt was matched. */
+static void coll_free(NetColl *c)
+{
+    g_assert(!c->early || g_hash_table_size(c->early) == 0);
+    net_disown(c->net, c);
+    coll_discard(c);
 }
 
 static void maybe_finish(NetColl *c)

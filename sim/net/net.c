@@ -31,6 +31,8 @@ struct NetNet {
     uint64_t seq;
     uint64_t bytes, messages, delivered;
     gssize mem; /* bytes held by links and messages in flight */
+    NetMsg *live;      /* messages in flight, a doubly linked list */
+    GHashTable *owned; /* objects freed with the net (net_own) */
 };
 
 static const NetTransportOps *pick_transport(const NetParams *p,
@@ -78,6 +80,7 @@ NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
     g_assert(eng && topo && params);
     g_assert(params->bandwidth > 0.0);
     NetNet *n = g_new0(NetNet, 1);
+    n->owned = g_hash_table_new(g_direct_hash, g_direct_equal);
     n->eng = eng;
     n->topo = topo;
     n->par = *params;
@@ -93,12 +96,57 @@ NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
     return n;
 }
 
+static void live_unlink(NetNet *n, NetMsg *m)
+{
+    if (m->live_prev)
+        m->live_prev->live_next = m->live_next;
+    else
+        n->live = m->live_next;
+    if (m->live_next)
+        m->live_next->live_prev = m->live_prev;
+}
+
+static void msg_free(NetMsg *m)
+{
+    g_free(m->path);
+    g_free(m->chan);
+    g_free(m);
+}
+
+void net_own(NetNet *n, void *obj, GDestroyNotify free_fn)
+{
+    g_hash_table_insert(n->owned, obj, free_fn);
+}
+
+void net_disown(NetNet *n, void *obj)
+{
+    g_hash_table_remove(n->owned, obj);
+}
+
+/* A run stopped early (run.until, a failed run) leaves messages in
+ * flight and collectives unfinished; the net frees them. */
+static void free_in_flight(NetNet *n)
+{
+    while (n->live) {
+        NetMsg *m = n->live;
+        live_unlink(n, m);
+        msg_free(m);
+    }
+    GHashTableIter it;
+    gpointer obj, fn;
+    g_hash_table_iter_init(&it, n->owned);
+    while (g_hash_table_iter_next(&it, &obj, &fn))
+        ((GDestroyNotify)fn)(obj);
+    g_hash_table_destroy(n->owned);
+}
+
 void net_free(NetNet *n)
 {
     if (!n)
         return;
     if (n->tp->free)
         n->tp->free(n);
+    free_in_flight(n);
     g_hash_table_destroy(n->links);
     g_free(n->route);
     g_free(n);
@@ -217,6 +265,10 @@ void net_send(NetNet *n, uint32_t src, uint32_t dst, uint64_t bytes,
                   .cb = cb,
                   .ctx = ctx,
                   .sent = sim_now(n->eng)};
+    m->live_next = n->live;
+    if (n->live)
+        n->live->live_prev = m;
+    n->live = m;
     m->hops = route(n, src, dst);
     m->path = g_new(NetLink *, m->hops ? m->hops : 1);
     m->bw = n->par.bandwidth;
@@ -245,9 +297,8 @@ void net_msg_deliver(NetNet *n, NetMsg *m)
                        m->sent, now);
     NetArriveFn cb = m->cb;
     void *ctx = m->ctx;
-    g_free(m->path);
-    g_free(m->chan);
-    g_free(m);
+    live_unlink(n, m);
+    msg_free(m);
     if (cb)
         cb(n, &d, ctx);
 }

@@ -54,6 +54,11 @@ typedef void (*NetArriveFn)(NetNet *net, const NetDelivery *d, void *ctx);
 NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
                 NetFidelity fid);
 void net_free(NetNet *net);
+/* obj is freed by free_fn when the net is freed, unless net_disown()
+ * took it back first: for objects (collectives) that a run stopped early
+ * leaves unfinished.  Messages in flight are freed by the net itself. */
+void net_own(NetNet *net, void *obj, GDestroyNotify free_fn);
+void net_disown(NetNet *net, void *obj);
 
 /* Sends `bytes` from src to dst; cb(net, delivery, ctx) runs at arrival.
  * src == dst delivers after the start-up only.  cb may be NULL. */

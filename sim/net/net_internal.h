@@ -52,6 +52,7 @@ struct NetMsg {
     guint step;     /* transport progress (links held, packets left) */
     uint32_t *chan; /* ring slots: channel held on each hop */
     void *tp;       /* transport-private state */
+    NetMsg *live_prev, *live_next; /* messages in flight (net_free) */
 };
 
 /* A transport: started once per message after route lookup. */
