@@ -181,6 +181,8 @@ static gint cmp_cell(gconstpointer a, gconstpointer b)
 /* §4.1 "partially sorted": octree order, file order inside a cell. */
 static void octree_sort(Prim *p, guint n)
 {
+    if (n < 2) /* nothing to order (and qsort takes no NULL) */
+        return;
     SceneBox box = scene_box_empty();
     for (guint i = 0; i < n; i++)
         box = scene_box_add_point(box, p[i].centroid);
