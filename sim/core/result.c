@@ -1,5 +1,6 @@
 /* result.c — the run result that workloads fill and writers print. */
 #include "sim/core/result.h"
+#include <math.h>
 #include <string.h>
 
 static void node_free(gpointer p)
@@ -131,6 +132,13 @@ gboolean sim_result_get_metric(const SimResult *r, const char *name,
     if (m && value)
         *value = m->value;
     return m != NULL;
+}
+
+double sim_result_metric(const SimResult *r, const char *name)
+{
+    double v = NAN;
+    sim_result_get_metric(r, name, &v);
+    return v;
 }
 
 void sim_result_set_phases(SimResult *r, const SimEngine *eng)

@@ -76,6 +76,8 @@ void sim_result_set_metric(SimResult *r, const char *name, double value,
 /* Looks a metric up; returns FALSE if absent. */
 gboolean sim_result_get_metric(const SimResult *r, const char *name,
                                double *value);
+/* A metric's value, NAN when absent (for tables that mark it missing). */
+double sim_result_metric(const SimResult *r, const char *name);
 /* Copies phase names from the engine so node busy ids resolve. */
 void sim_result_set_phases(SimResult *r, const SimEngine *eng);
 double sim_result_mean_frame_s(const SimResult *r);

@@ -89,31 +89,24 @@ static void kurc_clear(Kurc *k)
     g_hash_table_destroy(k->cache);
 }
 
-static double metric(const SimResult *r, const char *name)
-{
-    double v = NAN;
-    sim_result_get_metric(r, name, &v);
-    return v;
-}
-
 static void run_from_result(RpKurcRun *run, const SimResult *r,
                             const MachMachine *m)
 {
-    run->span_ms = metric(r, "span_ms");
-    run->zbuf_ms = metric(r, "zbuf_ms");
-    run->merge_ms = metric(r, "merge_ms");
-    run->volume = metric(r, "concurrent_volume");
-    run->imbalance = metric(r, "load_imbalance");
-    run->speedup = metric(r, "speedup");
-    run->polygons = metric(r, "polygons");
-    run->tpg = metric(r, "tpg");
-    run->tpf = metric(r, "tpf");
-    run->memory = metric(r, "peak_memory");
+    run->span_ms = sim_result_metric(r, "span_ms");
+    run->zbuf_ms = sim_result_metric(r, "zbuf_ms");
+    run->merge_ms = sim_result_metric(r, "merge_ms");
+    run->volume = sim_result_metric(r, "concurrent_volume");
+    run->imbalance = sim_result_metric(r, "load_imbalance");
+    run->speedup = sim_result_metric(r, "speedup");
+    run->polygons = sim_result_metric(r, "polygons");
+    run->tpg = sim_result_metric(r, "tpg");
+    run->tpf = sim_result_metric(r, "tpf");
+    run->memory = sim_result_metric(r, "peak_memory");
     static const char *const part[5] = {"memory_base", "memory_polygons",
                                         "memory_spans", "memory_zbuffer",
                                         "memory_buffers"};
     for (int i = 0; i < 5; i++)
-        run->mem_part[i] = metric(r, part[i]);
+        run->mem_part[i] = sim_result_metric(r, part[i]);
     const MachKindInfo *node = mach_kind(m, "node");
     run->node_memory = node ? (double)node->memory : 0;
 }

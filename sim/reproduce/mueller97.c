@@ -131,23 +131,16 @@ static gboolean setup_load(MuSetup *s, const char *path, GError **err)
 /* ---- one case ------------------------------------------------------------
  */
 
-static double metric(const SimResult *r, const char *name)
-{
-    double v = NAN;
-    sim_result_get_metric(r, name, &v);
-    return v;
-}
-
 static void point_from(RpMuellerPoint *pt, const SimResult *r)
 {
-    pt->bytes = metric(r, "migrated_bytes_per_frame");
-    pt->overlap = metric(r, "chunk_overlap");
-    pt->ratio = metric(r, "box_region_ratio");
-    pt->master = metric(r, "master_boxes_per_frame");
-    pt->slave = metric(r, "slave_boxes_per_frame");
-    pt->fresh = metric(r, "new_boxes_per_frame");
-    pt->polys = metric(r, "polygons_rendered_per_frame");
-    pt->transforms = metric(r, "transforms_per_frame");
+    pt->bytes = sim_result_metric(r, "migrated_bytes_per_frame");
+    pt->overlap = sim_result_metric(r, "chunk_overlap");
+    pt->ratio = sim_result_metric(r, "box_region_ratio");
+    pt->master = sim_result_metric(r, "master_boxes_per_frame");
+    pt->slave = sim_result_metric(r, "slave_boxes_per_frame");
+    pt->fresh = sim_result_metric(r, "new_boxes_per_frame");
+    pt->polys = sim_result_metric(r, "polygons_rendered_per_frame");
+    pt->transforms = sim_result_metric(r, "transforms_per_frame");
 }
 
 static gboolean run_on(MachMachine *m, const Scene *sc, const MuSetup *s,
