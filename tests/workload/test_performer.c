@@ -379,7 +379,7 @@ static double pn_metric(const char *send, guint level, const char *tri,
     CfgNode *root = cfg_load_string(yaml, "pn.yaml", &err);
     assert_non_null(root);
     SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE};
+    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE, FALSE};
     void *params = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
     assert_non_null(params);
     SimResult *r = sim_result_new("performer", "sgi-onyx");
@@ -469,7 +469,7 @@ static void test_bad_machine(void **st)
     GError *err = NULL;
     CfgNode *root = cfg_load_string(yaml, "m.yaml", &err);
     SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE};
+    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE, FALSE};
     void *params = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
     SimResult *r = sim_result_new("performer", "x");
     assert_false(wl_pf_ops.run(&ctx, params, r, &err));

@@ -79,7 +79,9 @@ static void test_images_match_serial(void **state)
                                (n & 2) ? WL_PM_SPLIT_BLOCK : WL_PM_SPLIT_CYCLIC,
                                {8, 4, 2},
                                TRUE,
-                               n == 4};
+                               n == 4,
+                               RAST_SPAN_EXACT,
+                               FALSE};
                 WlPmFrameOut out;
                 run(sc, &s, &out);
                 assert_true(out.image_checked);
@@ -102,7 +104,8 @@ static void test_zbuf_exc_costs_more(void **state)
     (void)state;
     Scene *sc = two_teapots();
     WlPmSetup s = {WL_PM_PAIR,         WL_PM_BAL_RS, 8,     N,
-                   WL_PM_SPLIT_CYCLIC, {8, 4, 2},    FALSE, TRUE};
+                   WL_PM_SPLIT_CYCLIC, {8, 4, 2},    FALSE, TRUE,
+                   RAST_SPAN_EXACT,    FALSE};
     WlPmFrameOut pair, full;
     run(sc, &s, &pair);
     s.scheme = WL_PM_ZBUF_EXC;

@@ -192,7 +192,7 @@ static void run_flock(const char *const *sets, Out *o)
     void *p = ops->parse(cfg_get(root, "workload"), &err);
     assert_non_null(p);
     SimEngine *eng = sim_engine_new(3);
-    WlContext ctx = {eng, root, 3, "packet", 3, NULL, TRUE};
+    WlContext ctx = {eng, root, 3, "packet", 3, NULL, TRUE, FALSE};
     SimResult *r = sim_result_new("pphigs", "pixel-planes-5");
     assert_true(ops->run(&ctx, p, r, &err));
     assert_true(cfg_check_unused(cfg_get(root, "workload"), NULL));
