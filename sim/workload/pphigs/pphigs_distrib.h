@@ -47,6 +47,10 @@
  * the structure; O(c maxw/minw n) elements, §3.5) and then walks forward
  * sending the attributes GPs need, past the last edited point until every
  * GP has been checked once.  Deltas are then recomputed (§4).
+ *
+ * Files: pphigs_distrib.c (dealing, deltas, lifecycle), pphigs_edit.c
+ * (§3), pphigs_attrstate.c (§3.4-3.5), pphigs_bystruct.c (§2.1); they
+ * share pphigs_dist_internal.h.
  */
 #ifndef PGSIM_WORKLOAD_PPHIGS_PPHIGS_DISTRIB_H
 #define PGSIM_WORKLOAD_PPHIGS_PPHIGS_DISTRIB_H
