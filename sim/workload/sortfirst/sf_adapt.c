@@ -26,6 +26,9 @@ void wl_sf_adapt_free(WlSfAdapt *a)
     g_free(a->weight);
     g_free(a->added);
     g_free(a->factor);
+    g_free(a->last_x);
+    g_free(a->last_y);
+    g_free(a->last_ok);
     g_free(a);
 }
 
@@ -38,23 +41,57 @@ static guint cell_of(const WlSfAdapt *a, double v, int size)
     return c >= a->grid ? a->grid - 1 : (guint)c;
 }
 
+void wl_sf_adapt_predict(WlSfAdapt *a, guint n_insts)
+{
+    g_assert(!a->last_x);
+    a->n_insts = n_insts;
+    a->last_x = g_new0(float, MAX(n_insts, 1));
+    a->last_y = g_new0(float, MAX(n_insts, 1));
+    a->last_ok = g_new0(guint8, MAX(n_insts, 1));
+}
+
+/* With prediction: remembers instance i's centre (cx, cy) and moves it
+ * to 2 c - c_last when it had one, clamped to [0, size). */
+static void extrapolate(WlSfAdapt *a, const WlSfRegions *r, guint i,
+                        double *cx, double *cy)
+{
+    if (!a->last_x)
+        return;
+    double lx = a->last_x[i], ly = a->last_y[i];
+    gboolean had = a->last_ok[i];
+    a->last_x[i] = (float)*cx;
+    a->last_y[i] = (float)*cy;
+    a->last_ok[i] = 1;
+    if (!had)
+        return;
+    *cx = CLAMP(2 * *cx - lx, 0, r->width - 1e-9);
+    *cy = CLAMP(2 * *cy - ly, 0, r->height - 1e-9);
+    a->predicted++;
+}
+
 void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
                           const WlSfRegions *r, Mat4 view_proj)
 {
     memset(a->weight, 0, sizeof(uint64_t) * a->grid * a->grid);
     memset(a->added, 0, sizeof(uint64_t) * a->procs);
+    g_assert(!a->last_x || a->n_insts == wl_sf_n_insts(db));
+    a->predicted = 0;
     for (guint i = 0; i < wl_sf_n_insts(db); i++) {
         const WlSfInst *in = wl_sf_inst(db, i);
         const WlSfChunk *ch = wl_sf_chunk(db, in->chunk);
         double x0, y0, x1, y1;
         if (scene_box_is_empty(ch->box) ||
             !wl_sf_box_screen(r, ch->box, mat4_mul(view_proj, in->matrix), &x0,
-                              &y0, &x1, &y1))
+                              &y0, &x1, &y1)) {
+            if (a->last_x)
+                a->last_ok[i] = 0;
             continue;
+        }
         double cx = isfinite(x0) ? (MAX(x0, 0) + MIN(x1, r->width)) / 2
                                  : r->width / 2.0;
         double cy = isfinite(y0) ? (MAX(y0, 0) + MIN(y1, r->height)) / 2
                                  : r->height / 2.0;
+        extrapolate(a, r, i, &cx, &cy);
         guint gx = cell_of(a, cx, r->width), gy = cell_of(a, cy, r->height);
         a->weight[(gsize)gy * a->grid + gx] += ch->polys;
         a->added[ch->master % a->procs]++;

@@ -35,6 +35,12 @@ typedef struct {
     uint64_t *added;  /* per processor: instances its masters added */
     double *factor;   /* G x G cost per polygon (calibrated), else 1 */
     gboolean calibrated;
+    /* Motion prediction (wl_sf_adapt_predict): per chunk instance its
+     * screen centre in the last estimate, pixels; NULL when off. */
+    float *last_x, *last_y;
+    guint8 *last_ok; /* 1: on screen in the last estimate */
+    guint n_insts;
+    uint64_t predicted; /* instances placed by extrapolation, last call */
 } WlSfAdapt;
 
 /* grid in 1 .. 1024 with grid^2 >= procs. */
@@ -44,6 +50,15 @@ void wl_sf_adapt_free(WlSfAdapt *a);
  * (regions give the screen size). */
 void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
                           const WlSfRegions *r, Mat4 view_proj);
+/* Turns on motion prediction for a database of n_insts chunk
+ * instances: from then on each estimate places an instance that was on
+ * screen in the previous estimate too at its linear extrapolation one
+ * frame ahead, 2 c_now - c_last (clamped to the screen), so the split
+ * made from frame f's sort estimates frame f + 1, the frame it serves.
+ * Exact for constant screen velocity; the camera's revolution makes
+ * screen motion curve, so the error grows with its second derivative.
+ * Costs each master 2 floats and a flag per instance it estimates. */
+void wl_sf_adapt_predict(WlSfAdapt *a, guint n_insts);
 /* Splits the screen into r->procs regions (r->rect) of equal estimated
  * weight; returns the cells visited. */
 uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r);

@@ -39,6 +39,7 @@ struct WlSfRun {
     WlSfCosts c;
     WlSfRegions regions, next; /* this frame's; the next frame's */
     WlSfAdapt *adapt;          /* NULL: static regions */
+    double split_imbalance;    /* of the last split, over its estimate */
     uint64_t split_cells;      /* cells the next split visits */
     WlSfBook *book;
     Proc *procs;
@@ -155,6 +156,7 @@ static void render_region(WlSfRun *r, Proc *pr)
  */
 
 static void start_frame(SimEngine *eng, void *ctx, void *arg);
+static double max_over_mean(double max, double total, guint n);
 
 static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
 {
@@ -256,8 +258,9 @@ static void sort(WlSfRun *r, Proc *pr)
     SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes);
     if (r->adapt && r->s.current) /* master boxes done by the estimate */
         t = box_cost(r, pr->w.slave_boxes);
-    else if (r->adapt)
-        t = add(t, mul(r->c.grid_cell, r->adapt->added[pr->p]));
+    else if (r->adapt) /* an extrapolation: one more cell's work */
+        t = add(t, mul(r->c.grid_cell, r->adapt->added[pr->p] *
+                                           (r->s.predict ? 2 : 1)));
     mach_proc_compute(pr->proc, t, r->ph_sort, NULL, NULL, NULL);
     mach_proc_compute(pr->proc, mul(r->c.chunk_pack, pr->w.sent_polys),
                       r->ph_pack, sort_done, r, GUINT_TO_POINTER(pr->p));
@@ -324,6 +327,14 @@ static void plan_regions(WlSfRun *r)
     wl_sf_adapt_estimate(r->adapt, r->db, &r->regions, r->view.view_proj);
     r->next = r->regions;
     r->split_cells = wl_sf_adapt_split(r->adapt, &r->next);
+    double total = 0, max = 0;
+    for (guint p = 0; p < r->s.procs; p++) {
+        double w = (double)wl_sf_adapt_weight_in(r->adapt, &r->next,
+                                                 r->next.rect[p]);
+        total += w;
+        max = MAX(max, w);
+    }
+    r->split_imbalance = max_over_mean(max, total, r->s.procs);
     if (r->s.current)
         r->regions = r->next;
 }
@@ -373,6 +384,7 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
         uint64_t sent = (uint64_t)r->s.procs * (r->s.procs - 1);
         st->estimate_bytes = sent * (grid_bytes(r) + (r->s.feedback ? 8 : 0));
         st->estimate_cells = r->s.procs * partition_cells(r);
+        st->split_imbalance = r->split_imbalance;
         for (guint p = 0; p < r->s.procs; p++)
             st->estimate_cells += r->adapt->added[p];
     }
@@ -524,6 +536,8 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->book = wl_sf_book_new(db, &r->regions, s->bk, &s->sizes);
     if (s->adaptive)
         r->adapt = wl_sf_adapt_new(s->grid, s->procs);
+    if (s->adaptive && s->predict && !s->current)
+        wl_sf_adapt_predict(r->adapt, wl_sf_n_insts(db));
     r->procs = g_new0(Proc, s->procs);
     for (guint p = 0; p < s->procs; p++) {
         Proc *pr = &r->procs[p];

@@ -72,6 +72,8 @@ typedef struct {
     guint grid;        /* G of the adaptive work grid, <= resolution */
     gboolean current;  /* estimate from this frame (an extra pass and
                           exchange before the sort), else the previous */
+    gboolean predict;  /* previous-frame estimate, each instance moved
+                          to its extrapolation one frame ahead */
     gboolean feedback; /* weight cells by measured work per polygon */
 } WlSfSetup;
 
@@ -87,6 +89,8 @@ typedef struct {
     double imbalance;            /* max / mean busy time (work) */
     uint64_t estimate_bytes;     /* grid bytes sent (adaptive) */
     uint64_t estimate_cells;     /* grid cells added, summed, visited */
+    double split_imbalance;      /* max / mean estimated weight over the
+                                    regions the split made (adaptive) */
     uint64_t onscreen_insts;     /* chunk instances in some region */
     uint64_t region_insts;       /* Σ regions over them */
     double box_side;             /* Σ over them: √ screen box area, px */

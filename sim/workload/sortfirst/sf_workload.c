@@ -10,7 +10,8 @@
  *     chunking: sorted       # sorted | unsorted | partially_sorted (§4.1)
  *     regions: static        # static grid | adaptive (sf_adapt.h)
  *     grid: 32               # G x G work grid of adaptive regions
- *     estimate: previous     # previous frame's rectangles | current
+ *     estimate: previous     # previous frame's rectangles | current |
+ *                            # predicted (previous, extrapolated a frame)
  *     feedback: false        # weight cells by measured work / polygon
  *     resolution: 256        # N x N screen
  *     check_image: true      # each frame equals the serial render
@@ -52,7 +53,8 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 }
 
 static const char *const region_names[] = {"static", "adaptive", NULL};
-static const char *const estimate_names[] = {"previous", "current", NULL};
+static const char *const estimate_names[] = {"previous", "current",
+                                             "predicted", NULL};
 
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
@@ -66,6 +68,7 @@ static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
         !cfg_get_bool(sec, "feedback", FALSE, &p->setup.feedback, err))
         return FALSE;
     p->setup.current = est == 1;
+    p->setup.predict = est == 2;
     p->setup.adaptive = rg == 1;
     p->setup.bk = (WlSfBookkeeping)bk;
     p->chunking = (WlSfChunking)ch;
@@ -133,7 +136,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
 typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
     double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
-    double est_bytes, box_side;
+    double est_bytes, box_side, split_imbalance;
     uint64_t onscreen, regions, peak;
     gboolean checked, image_ok;
 } Sums;
@@ -161,6 +164,7 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->imbalance_max = MAX(m->imbalance_max, s->imbalance);
         m->poly_imbalance += s->poly_imbalance;
         m->est_bytes += s->estimate_bytes;
+        m->split_imbalance += s->split_imbalance;
         m->util += s->utilisation;
         m->frame_ms += sim_time_to_ms(s->end - s->start);
         m->onscreen += s->onscreen_insts;
@@ -212,8 +216,10 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
     set(out, "load_imbalance", m.imbalance / n, "");
     set(out, "load_imbalance_max", m.imbalance_max, "");
     set(out, "polygon_imbalance", m.poly_imbalance / n, "");
-    if (s->adaptive)
+    if (s->adaptive) {
         set(out, "estimate_bytes_per_frame", m.est_bytes / n, "B");
+        set(out, "split_imbalance", m.split_imbalance / n, "");
+    }
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
     if (m.checked)

@@ -484,6 +484,59 @@ static void test_adaptive_split(void **state)
     }
 }
 
+/* Σ |a - b| over the cells of two G x G grids. */
+static uint64_t grid_distance(const uint64_t *a, const uint64_t *b, guint g)
+{
+    uint64_t d = 0;
+    for (guint i = 0; i < g * g; i++)
+        d += a[i] > b[i] ? a[i] - b[i] : b[i] - a[i];
+    return d;
+}
+
+static Mat4 view_at(const Fixture *f, guint frame)
+{
+    SceneCamera cam = scene_camera_at(f->scene, frame);
+    return rast_view_for_camera(&cam, 64, 64).view_proj;
+}
+
+/* An estimate with prediction after frames a then b, against the plain
+ * estimate of frame c: the L1 distance of the two grids. */
+static uint64_t predicted_error(const Fixture *f, guint a, guint b, guint c,
+                                gboolean predict)
+{
+    WlSfAdapt *p = wl_sf_adapt_new(16, 4), *t = wl_sf_adapt_new(16, 4);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 4, 64, 64);
+    if (predict)
+        wl_sf_adapt_predict(p, wl_sf_n_insts(f->db));
+    wl_sf_adapt_estimate(p, f->db, &r, view_at(f, a));
+    assert_int_equal(p->predicted, 0); /* nothing to extrapolate from */
+    wl_sf_adapt_estimate(p, f->db, &r, view_at(f, b));
+    assert_true(!predict || p->predicted > 0);
+    wl_sf_adapt_estimate(t, f->db, &r, view_at(f, c));
+    uint64_t d = grid_distance(p->weight, t->weight, 16);
+    wl_sf_adapt_free(p);
+    wl_sf_adapt_free(t);
+    return d;
+}
+
+/* Motion prediction: frames 3 and 4 extrapolated estimate frame 5
+ * better than frame 4's own estimate does; when the camera turns back
+ * (the next frame is 3 again) the extrapolation is the worse guess. */
+static void test_adaptive_predict(void **state)
+{
+    (void)state;
+    Fixture f;
+    fixture_init(&f, 4, WL_SF_MAXSET, 5);
+    uint64_t last = predicted_error(&f, 3, 4, 5, FALSE);
+    uint64_t pred = predicted_error(&f, 3, 4, 5, TRUE);
+    assert_true(pred < last);
+    uint64_t back_last = predicted_error(&f, 3, 4, 3, FALSE);
+    uint64_t back_pred = predicted_error(&f, 3, 4, 3, TRUE);
+    assert_true(back_pred > back_last);
+    fixture_clear(&f);
+}
+
 static void test_adaptive_beats_static(void **state)
 {
     (void)state;
@@ -504,6 +557,15 @@ static void test_adaptive_beats_static(void **state)
                "resolution: 64, regions: adaptive, estimate: current, "
                "feedback: true}",
         6, &e);
+    assert_non_null(c);
+    assert_true(metric(c, "image_matches_serial") == 1);
+    assert_true(metric(c, "load_imbalance") < metric(s, "load_imbalance"));
+    sim_result_free(c);
+    /* the previous frame's estimate extrapolated: the serial image */
+    c = run_cfg(small, "workload={type: sortfirst, processors: 4, "
+                       "granularity: 5, resolution: 64, regions: adaptive, "
+                       "estimate: predicted}",
+                6, &e);
     assert_non_null(c);
     assert_true(metric(c, "image_matches_serial") == 1);
     assert_true(metric(c, "load_imbalance") < metric(s, "load_imbalance"));
@@ -549,6 +611,7 @@ int main(void)
         cmocka_unit_test(test_frame_log),
         cmocka_unit_test(test_partial_chunking),
         cmocka_unit_test(test_adaptive_split),
+        cmocka_unit_test(test_adaptive_predict),
         cmocka_unit_test(test_adaptive_beats_static),
         cmocka_unit_test(test_errors),
     };
