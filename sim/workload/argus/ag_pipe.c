@@ -23,12 +23,14 @@ const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
                                       "rast_triangle",
                                       "rast_pixel",
                                       "rast_blend",
+                                      "rast_clear",
                                       "lock",
                                       "sema",
                                       NULL};
 
 typedef struct {
     gboolean done;
+    guint wait_upto; /* glpWaitContext: the context's blocks issued then */
     guint n_tiles;
     guint *tile_ids;   /* sorted */
     guint *tile_start; /* n_tiles + 1 offsets into tris */
@@ -49,12 +51,17 @@ struct AgPipe {
     guint *ctx_off, nblocks;
     BlockState *bs;
     guint *app_next;
+    guint *app_bar;        /* per application barrier: threads arrived */
+    gboolean *app_arrived; /* per context: at its barrier's head block */
+    gboolean *app_parked;  /* per context: waiting there */
     GQueue gq;
     gboolean *g_busy;
     guint *g_block;
     guint ntiles, C;
     guint *tnext; /* ntiles x C */
-    int32_t *sem; /* ntiles x sems */
+    int32_t *sem; /* ntiles x (sems + barriers): semaphore counts, then
+                   * glpBarrier arrivals */
+    guint nsem;   /* sems + barriers */
     guint *t_rr;  /* per tile: context to try first */
     guint tiles_left;
     gboolean *r_busy;
@@ -71,8 +78,8 @@ gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
     SimTime *dst[] = {&c->nurbs_vertex,  &c->march_voxel, &c->march_triangle,
                       &c->issue_vertex,  &c->issue_batch, &c->geom_vertex,
                       &c->geom_triangle, &c->geom_tile,   &c->rast_triangle,
-                      &c->rast_pixel,    &c->rast_blend,  &c->lock,
-                      &c->sema};
+                      &c->rast_pixel,    &c->rast_blend,  &c->rast_clear,
+                      &c->lock,          &c->sema};
     guint i = 0;
     for (; wl_ag_cost_ops[i]; i++) {
         g_assert(i < G_N_ELEMENTS(dst));
@@ -108,9 +115,9 @@ static SimTime cost_n(SimTime c, uint64_t n)
 
 static SimTime app_work(const AgPipe *p, const AgBlock *b)
 {
-    const AgBatch *x = &g_array_index(p->st->batches, AgBatch, b->batch);
     if (!b->opens)
         return 0;
+    const AgBatch *x = &g_array_index(p->st->batches, AgBatch, b->batch);
     if (p->s.app == WL_AG_APP_NURBS)
         return cost_n(p->c.nurbs_vertex, x->distinct);
     if (p->s.app == WL_AG_APP_MARCH)
@@ -135,6 +142,44 @@ static void app_done(SimEngine *eng, void *ctx, void *arg)
     app_issue(eng, p, arg);
 }
 
+/* The application barrier before block b of context c (appBarrier of
+ * Figure 2): TRUE when c may go on, FALSE when it parks until the last
+ * thread arrives, which wakes the others. */
+static gboolean app_barrier(AgPipe *p, guint c, const AgBlock *b)
+{
+    for (guint i = 0; i < b->n_pre; i++) {
+        if (b->pre[i].kind != WL_AG_SYNC_APP_BARRIER)
+            continue;
+        guint id = b->pre[i].id;
+        if (!p->app_arrived[c]) {
+            p->app_arrived[c] = TRUE;
+            p->app_bar[id]++;
+        }
+        if (p->app_bar[id] < p->C) {
+            p->app_parked[c] = TRUE;
+            return FALSE;
+        }
+        for (guint o = 0; o < p->C; o++)
+            if (p->app_parked[o] && o != c) {
+                p->app_parked[o] = FALSE;
+                sim_schedule_at(p->eng, sim_now(p->eng), app_issue, p,
+                                GUINT_TO_POINTER(o));
+            }
+    }
+    p->app_arrived[c] = p->app_parked[c] = FALSE;
+    return TRUE;
+}
+
+/* glpWaitContext(m) in block b: the point of m's stream it waits for is
+ * what m has issued now (the paper's semantics: commands issued by m
+ * before the call). */
+static void resolve_waits(AgPipe *p, guint gb, const AgBlock *b)
+{
+    for (guint i = 0; i < b->n_pre; i++)
+        if (b->pre[i].kind == WL_AG_SYNC_WAIT_CONTEXT)
+            p->bs[gb].wait_upto = p->app_next[b->pre[i].id];
+}
+
 static void app_issue(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
@@ -144,6 +189,9 @@ static void app_issue(SimEngine *eng, void *ctx, void *arg)
     if (p->app_next[c] >= blocks->len)
         return;
     const AgBlock *b = &g_array_index(blocks, AgBlock, p->app_next[c]);
+    if (!app_barrier(p, c, b))
+        return;
+    resolve_waits(p, p->ctx_off[c] + p->app_next[c], b);
     SimTime cost = app_work(p, b) + cost_n(p->c.issue_vertex, b->verts) +
                    (b->opens ? p->c.issue_batch : 0) + p->c.lock;
     p->out->app_busy += cost;
@@ -294,7 +342,8 @@ static void tile_advance(AgPipe *p, guint t)
             const AgBlock *k = &g_array_index(blocks, AgBlock, *nx);
             const BlockState *s = &p->bs[p->ctx_off[c] + *nx];
             guint n;
-            if (!s->done || k->n_pre || k->n_post || tile_tris(s, t, &n))
+            if (!s->done || k->n_pre || k->n_post || k->clear || k->swap ||
+                tile_tris(s, t, &n))
                 break;
             (*nx)++;
         }
@@ -307,12 +356,31 @@ static void tile_advance(AgPipe *p, guint t)
     }
 }
 
-static gboolean waits_met(const AgPipe *p, guint t, const AgBlock *k)
+static int32_t *sem_at(AgPipe *p, guint t, const AgSync *s)
 {
-    for (guint i = 0; i < k->n_pre; i++)
-        if (k->pre[i].kind == WL_AG_SYNC_P &&
-            p->sem[(gsize)t * p->st->sems + k->pre[i].id] <= 0)
+    guint i = s->id + (s->kind == WL_AG_SYNC_P || s->kind == WL_AG_SYNC_V
+                           ? 0
+                           : p->st->sems);
+    g_assert(i < p->nsem);
+    return &p->sem[(gsize)t * p->nsem + i];
+}
+
+/* Whether block gb (k) may be drawn at tile t now: every glpPSema has a
+ * glpVSema there, every party of a glpBarrier has arrived there, and
+ * the tile has passed the blocks a glpWaitContext names. */
+static gboolean waits_met(AgPipe *p, guint t, guint gb, const AgBlock *k)
+{
+    for (guint i = 0; i < k->n_pre; i++) {
+        const AgSync *s = &k->pre[i];
+        if (s->kind == WL_AG_SYNC_P && *sem_at(p, t, s) <= 0)
             return FALSE;
+        if (s->kind == WL_AG_SYNC_BARRIER_WAIT &&
+            *sem_at(p, t, s) < (int32_t)p->st->barrier_parties)
+            return FALSE;
+        if (s->kind == WL_AG_SYNC_WAIT_CONTEXT &&
+            *tnext(p, t, s->id) < p->bs[gb].wait_upto)
+            return FALSE;
+    }
     return TRUE;
 }
 
@@ -327,7 +395,8 @@ static guint tile_pick(AgPipe *p, guint t)
         guint nx = *tnext(p, t, c);
         if (nx >= blocks->len || !p->bs[p->ctx_off[c] + nx].done)
             continue;
-        if (waits_met(p, t, &g_array_index(blocks, AgBlock, nx))) {
+        if (waits_met(p, t, p->ctx_off[c] + nx,
+                      &g_array_index(blocks, AgBlock, nx))) {
             p->t_rr[t] = (c + 1) % p->C;
             return p->ctx_off[c] + nx;
         }
@@ -335,11 +404,16 @@ static guint tile_pick(AgPipe *p, guint t)
     return G_MAXUINT;
 }
 
-static void sync_apply(AgPipe *p, guint t, const AgSync *s, guint n, int d)
+/* At tile t: a glpPSema consumes a signal, a glpVSema or a glpBarrier
+ * arrival adds one. */
+static void sync_apply(AgPipe *p, guint t, const AgSync *s, guint n)
 {
-    for (guint i = 0; i < n; i++)
-        if (s[i].kind != WL_AG_SYNC_BARRIER)
-            p->sem[(gsize)t * p->st->sems + s[i].id] += d;
+    for (guint i = 0; i < n; i++) {
+        if (s[i].kind == WL_AG_SYNC_P)
+            (*sem_at(p, t, &s[i]))--;
+        if (s[i].kind == WL_AG_SYNC_V || s[i].kind == WL_AG_SYNC_BARRIER)
+            (*sem_at(p, t, &s[i]))++;
+    }
 }
 
 static void rast_done(SimEngine *eng, void *ctx, void *arg)
@@ -348,7 +422,7 @@ static void rast_done(SimEngine *eng, void *ctx, void *arg)
     AgPipe *p = ctx;
     guint r = GPOINTER_TO_UINT(arg), t = p->r_tile[r], c;
     const AgBlock *k = block_at(p, p->r_block[r], &c);
-    sync_apply(p, t, k->post, k->n_post, +1);
+    sync_apply(p, t, k->post, k->n_post);
     (*tnext(p, t, c))++;
     p->r_busy[r] = FALSE;
     tile_advance(p, t);
@@ -360,14 +434,19 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
     const AgBlock *k = block_at(p, b, NULL);
     guint n;
     const uint32_t *tris = tile_tris(&p->bs[b], t, &n);
-    sync_apply(p, t, k->pre, k->n_pre, -1);
+    sync_apply(p, t, k->pre, k->n_pre);
+    uint64_t cleared = k->clear ? wl_ag_frame_clear_tile(p->f, t) : 0;
     uint64_t px = wl_ag_draw(p->f, t, p->view, p->mesh, tris, n);
+    if (k->swap)
+        wl_ag_frame_present_tile(p->f, t);
     p->out->pixels += px;
     SimTime fill =
         p->f->mode == WL_AG_BLEND ? p->c.rast_blend : p->c.rast_pixel;
     p->out->syncs += k->n_pre + k->n_post;
     SimTime cost = cost_n(p->c.rast_triangle, n) +
-                   (p->s.fill_infinite ? 0 : cost_n(fill, px)) +
+                   (p->s.fill_infinite
+                        ? 0
+                        : cost_n(fill, px) + cost_n(p->c.rast_clear, cleared)) +
                    cost_n(p->c.sema, k->n_pre + k->n_post);
     p->out->rast_busy += cost;
     p->r_busy[r] = TRUE;
@@ -422,12 +501,16 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
     p->nblocks = p->ctx_off[p->C];
     p->bs = g_new0(BlockState, p->nblocks ? p->nblocks : 1);
     p->app_next = g_new0(guint, p->C);
+    p->app_bar = g_new0(guint, st->barriers ? st->barriers : 1);
+    p->app_arrived = g_new0(gboolean, p->C);
+    p->app_parked = g_new0(gboolean, p->C);
     g_queue_init(&p->gq);
     p->g_busy = g_new0(gboolean, s->geometry);
     p->g_block = g_new0(guint, s->geometry);
     p->ntiles = wl_ag_n_tiles(f);
     p->tnext = g_new0(guint, (gsize)p->ntiles * p->C);
-    p->sem = g_new0(int32_t, (gsize)p->ntiles * (st->sems ? st->sems : 1));
+    p->nsem = st->sems + st->barriers;
+    p->sem = g_new0(int32_t, (gsize)p->ntiles * (p->nsem ? p->nsem : 1));
     p->t_rr = g_new0(guint, p->ntiles);
     p->r_busy = g_new0(gboolean, s->rasterisers);
     p->r_cursor = g_new0(guint, s->rasterisers);
@@ -461,6 +544,9 @@ void wl_ag_pipe_free(AgPipe *p)
     g_free(p->bs);
     g_free(p->ctx_off);
     g_free(p->app_next);
+    g_free(p->app_bar);
+    g_free(p->app_arrived);
+    g_free(p->app_parked);
     g_queue_clear(&p->gq);
     g_free(p->g_busy);
     g_free(p->g_block);
@@ -483,11 +569,13 @@ static void reset(AgPipe *p)
     memset(p->app_next, 0, p->C * sizeof(guint));
     memset(p->tnext, 0, (gsize)p->ntiles * p->C * sizeof(guint));
     memset(p->sem, 0,
-           (gsize)p->ntiles * (p->st->sems ? p->st->sems : 1) *
-               sizeof(int32_t));
+           (gsize)p->ntiles * (p->nsem ? p->nsem : 1) * sizeof(int32_t));
     memset(p->t_rr, 0, p->ntiles * sizeof(guint));
+    memset(p->app_bar, 0,
+           (p->st->barriers ? p->st->barriers : 1) * sizeof(guint));
+    memset(p->app_arrived, 0, p->C * sizeof(gboolean));
+    memset(p->app_parked, 0, p->C * sizeof(gboolean));
     p->tiles_left = p->ntiles;
-    wl_ag_frame_clear(p->f);
 }
 
 gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,

@@ -11,7 +11,7 @@
  *       emit its triangles), the API issue cost of its vertices and
  *       batch, one lock to append the block to the shared geometry queue
  *       and the command bytes through shared memory.  Unbounded buffering
- *       (assumption): issue never blocks.
+ *       (assumption): issue never blocks on the graphics streams.
  *   geometry threads: pop blocks FIFO (one lock), transform and light
  *       each vertex, set up and bucket each triangle, write it to each
  *       overlapped tile's queue (bytes through shared memory).
@@ -19,14 +19,21 @@
  *       wl_ag_tile_owner() (interleaved along rows and columns).  A tile
  *       keeps, per context, the next block it must pass; a block whose
  *       geometry is done may be drawn at the tile when its waits are
- *       satisfied there (per-tile semaphore counters: a P consumes one V
- *       of the same cell signalled at this tile) — ordering "within the
- *       pixel processors", one of the two schemes of the Argus page.
- *       Blocks with nothing for the tile and no synchronisation are
- *       skipped free (the reclaim pointer).  Drawing pays set-up per
- *       triangle, fill per fragment (z-tested or blended; 0 with fill_rate
- *       infinite: seed 002's footnote), one semaphore operation per
- *       synchronisation command.
+ *       satisfied there — ordering "within the pixel processors", one of
+ *       the two schemes of the Argus page.  Per-tile counters: a P
+ *       consumes one V of the same cell signalled at this tile; a
+ *       glpBarrier wait needs every party's arrival (the post of its
+ *       last block before the barrier) drawn at this tile; a
+ *       glpWaitContext(m) needs the tile past the blocks m had issued
+ *       when the waiting block was issued.  Blocks with nothing for the
+ *       tile and no synchronisation, clear or swap are skipped free (the
+ *       reclaim pointer).  Drawing pays set-up per triangle, fill per
+ *       fragment (z-tested or blended) and per cleared pixel (0 with
+ *       fill_rate infinite: seed 002's footnote), one semaphore
+ *       operation per synchronisation command.
+ *   application barrier (Figure 2's appBarrier): an application thread
+ *       reaching it parks until every context's thread has; the last
+ *       one wakes the others.
  *
  * Threads map to processors in that order (app 0..C-1, geometry, then
  * raster), thread k on processor k mod P (FIFO: threads sharing a
@@ -51,7 +58,7 @@ typedef struct {
     SimTime nurbs_vertex, march_voxel, march_triangle;
     SimTime issue_vertex, issue_batch;
     SimTime geom_vertex, geom_triangle, geom_tile;
-    SimTime rast_triangle, rast_pixel, rast_blend;
+    SimTime rast_triangle, rast_pixel, rast_blend, rast_clear;
     SimTime lock, sema;
 } AgCosts;
 extern const char *const wl_ag_cost_ops[];

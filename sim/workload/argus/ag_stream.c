@@ -90,7 +90,6 @@ static void emit_batch(AgStreams *s, const SceneMesh *m, guint c, guint bi,
             for (guint i = 0; i < sync->n_post; i++)
                 add_sync(x.post, &x.n_post, sync->post[i].kind,
                          sync->post[i].id);
-        s->syncs += x.n_pre + x.n_post;
         g_array_append_val(out, x);
     }
 }
@@ -99,16 +98,60 @@ static void build_frame(AgStreams *s, const SceneMesh *m, guint block,
                         AgPrim prim)
 {
     guint nb = s->batches->len;
+    for (guint c = 0; c < s->contexts; c++)
+        for (guint bi = c; bi < nb; bi += s->contexts)
+            emit_batch(s, m, c, bi, &(AgBlock){0}, block, prim);
+}
+
+/* An empty block (no triangles) appended to, or inserted at the head
+ * of, context c's stream. */
+static AgBlock *empty_block(AgStreams *s, guint c, gboolean head)
+{
+    GArray *out = wl_ag_ctx_blocks(s, c);
+    AgBlock x = {.ctx = c, .batch = G_MAXUINT};
+    if (head)
+        g_array_prepend_val(out, x);
+    else
+        g_array_append_val(out, x);
+    return &g_array_index(out, AgBlock, head ? 0 : out->len - 1);
+}
+
+/* Figure 2's loop around context c's drawing (ag_stream.h). */
+static void frame_loop(AgStreams *s, guint c)
+{
+    GArray *out = wl_ag_ctx_blocks(s, c);
+    gboolean par = s->contexts > 1;
+    if (par && out->len == 0)
+        empty_block(s, c, FALSE); /* a context with nothing to draw */
+    if (par) {
+        AgBlock *first = &g_array_index(out, AgBlock, 0);
+        add_sync(first->pre, &first->n_pre, WL_AG_SYNC_APP_BARRIER, 0);
+        if (c > 0)
+            add_sync(first->pre, &first->n_pre, WL_AG_SYNC_WAIT_CONTEXT, 0);
+        AgBlock *last = &g_array_index(out, AgBlock, out->len - 1);
+        add_sync(last->post, &last->n_post, WL_AG_SYNC_BARRIER, 0);
+    }
+    if (c == 0) {
+        empty_block(s, c, TRUE)->clear = TRUE;
+        AgBlock *swap = empty_block(s, c, FALSE);
+        swap->swap = TRUE;
+        if (par)
+            add_sync(swap->pre, &swap->n_pre, WL_AG_SYNC_BARRIER_WAIT, 0);
+    }
+    for (guint i = 0; i < out->len; i++)
+        g_array_index(out, AgBlock, i).seq = i;
+}
+
+static void count_syncs(AgStreams *s)
+{
+    s->syncs = 0;
     for (guint c = 0; c < s->contexts; c++) {
-        for (guint bi = c; bi < nb; bi += s->contexts) {
-            AgBlock sy = {0};
-            gboolean last = bi + s->contexts >= nb;
-            if (last && s->contexts > 1)
-                add_sync(sy.post, &sy.n_post, WL_AG_SYNC_BARRIER, 0);
-            emit_batch(s, m, c, bi, &sy, block, prim);
+        GArray *out = wl_ag_ctx_blocks(s, c);
+        for (guint i = 0; i < out->len; i++) {
+            const AgBlock *k = &g_array_index(out, AgBlock, i);
+            s->syncs += k->n_pre + k->n_post;
         }
     }
-    s->barrier_parties = s->contexts > 1 ? s->contexts : 0;
 }
 
 /* The waits and signals of cell (x, y, z) of an n^3 grid. */
@@ -200,6 +243,11 @@ AgStreams *wl_ag_streams_new(const SceneMesh *m, guint contexts, AgOrder ord,
         wl_ag_streams_free(s);
         return NULL;
     }
+    for (guint c = 0; c < contexts; c++)
+        frame_loop(s, c);
+    s->barriers = 1;
+    s->barrier_parties = contexts;
+    count_syncs(s);
     return s;
 }
 
@@ -217,5 +265,43 @@ guint wl_ag_n_blocks(const AgStreams *s)
     guint n = 0;
     for (guint c = 0; c < s->contexts; c++)
         n += wl_ag_ctx_blocks(s, c)->len;
+    return n;
+}
+
+static guint drop_from(AgSync *list, guint n, AgSyncKind k)
+{
+    guint j = 0;
+    for (guint i = 0; i < n; i++)
+        if (list[i].kind != k)
+            list[j++] = list[i];
+    return j;
+}
+
+void wl_ag_streams_drop(AgStreams *s, AgSyncKind k)
+{
+    for (guint c = 0; c < s->contexts; c++) {
+        GArray *out = wl_ag_ctx_blocks(s, c);
+        for (guint i = 0; i < out->len; i++) {
+            AgBlock *b = &g_array_index(out, AgBlock, i);
+            b->n_pre = drop_from(b->pre, b->n_pre, k);
+            b->n_post = drop_from(b->post, b->n_post, k);
+        }
+    }
+    count_syncs(s);
+}
+
+guint64 wl_ag_count_syncs(const AgStreams *s, AgSyncKind k)
+{
+    guint64 n = 0;
+    for (guint c = 0; c < s->contexts; c++) {
+        GArray *out = wl_ag_ctx_blocks(s, c);
+        for (guint i = 0; i < out->len; i++) {
+            const AgBlock *b = &g_array_index(out, AgBlock, i);
+            for (guint j = 0; j < b->n_pre; j++)
+                n += b->pre[j].kind == k;
+            for (guint j = 0; j < b->n_post; j++)
+                n += b->post[j].kind == k;
+        }
+    }
     return n;
 }

@@ -9,8 +9,23 @@
  * `block_tris` triangles (Argus closes a command block "at fixed
  * intervals", graphics.stanford.edu/projects/flashg/argus/implementation).
  * Synchronisation commands sit at block boundaries: a block carries the
- * waits issued before its first command (glpPSema) and the signals
- * issued after its last one (glpVSema, the frame's glpBarrier).
+ * waits issued before its first command (glpPSema, glpWaitContext, the
+ * wait half of glpBarrier, the application's own barrier) and the
+ * signals issued after its last one (glpVSema, the arrival half of
+ * glpBarrier).
+ *
+ * Every order issues a frame as the interactive loop of seed 002's
+ * Figure 2 (Igehy, Stoll and Hanrahan 1998, section 3): the master
+ * (context 0) issues glClear (a block that clears every tile), meets
+ * the slaves at an application barrier (appBarrier: application
+ * threads wait, not graphics streams), and draws; each slave, after
+ * the application barrier, issues glpWaitContext(master) — its later
+ * commands are ordered after every command the master had issued at
+ * that moment, the clear included — and draws; every context ends its
+ * drawing with glpBarrier(0) — no context's commands after the barrier
+ * are executed before every context's commands before it — and the
+ * master then issues glXSwapBuffers (a block that presents every tile).
+ * With one context: clear, drawing, swap, and no synchronisation.
  *
  * Orders (AgOrder):
  *   FRAME   batches dealt to contexts cyclically, no ordering inside a
@@ -37,20 +52,31 @@ extern const char *const wl_ag_order_names[]; /* "frame" "cells" "none" */
 typedef enum { WL_AG_PRIM_STRIPS, WL_AG_PRIM_TRIANGLES } AgPrim;
 extern const char *const wl_ag_prim_names[]; /* "strips" "triangles" */
 
-typedef enum { WL_AG_SYNC_P, WL_AG_SYNC_V, WL_AG_SYNC_BARRIER } AgSyncKind;
+/* Pre (before the block): P, BARRIER_WAIT, WAIT_CONTEXT, APP_BARRIER;
+ * post (after it): V, BARRIER (arrival). */
+typedef enum {
+    WL_AG_SYNC_P,            /* glpPSema(id) */
+    WL_AG_SYNC_V,            /* glpVSema(id) */
+    WL_AG_SYNC_BARRIER,      /* glpBarrier(id): this context has arrived */
+    WL_AG_SYNC_BARRIER_WAIT, /* glpBarrier(id): wait for every party */
+    WL_AG_SYNC_WAIT_CONTEXT, /* glpWaitContext(context id) */
+    WL_AG_SYNC_APP_BARRIER,  /* the application threads' barrier id */
+    WL_AG_SYNC_KINDS
+} AgSyncKind;
 
 typedef struct {
     AgSyncKind kind;
-    guint id; /* semaphore (a cell) or barrier number */
+    guint id; /* semaphore (a cell), barrier number or context */
 } AgSync;
 
-#define WL_AG_MAX_SYNC 4
+#define WL_AG_MAX_SYNC 6
 
 typedef struct {
     guint ctx, seq; /* seq-th block of context ctx */
     guint batch;    /* index into the stream's batches */
     guint first, n; /* triangles [first, first + n) of the mesh */
     gboolean opens; /* first block of its batch (pays the app work) */
+    gboolean clear, swap; /* glClear / glXSwapBuffers (no triangles) */
     guint n_pre, n_post;
     AgSync pre[WL_AG_MAX_SYNC], post[WL_AG_MAX_SYNC];
     uint64_t verts; /* vertices issued for the block's triangles */
@@ -67,7 +93,8 @@ typedef struct {
     GArray *batches; /* AgBatch, in mesh order */
     GPtrArray *ctx;  /* per context: GArray of AgBlock, in issue order */
     guint contexts;
-    guint sems; /* semaphore ids are < sems */
+    guint sems;     /* semaphore ids are < sems */
+    guint barriers; /* glpBarrier ids are < barriers */
     guint barrier_parties;
     uint64_t syncs; /* synchronisation commands in all streams */
 } AgStreams;
@@ -87,5 +114,10 @@ static inline GArray *wl_ag_ctx_blocks(const AgStreams *s, guint c)
 }
 /* Blocks over all contexts. */
 guint wl_ag_n_blocks(const AgStreams *s);
+/* Synchronisation commands of kind k in all streams. */
+guint64 wl_ag_count_syncs(const AgStreams *s, AgSyncKind k);
+/* Removes every command of kind k (the same program issued without it:
+ * what the ordering tests compare against). */
+void wl_ag_streams_drop(AgStreams *s, AgSyncKind k);
 
 #endif

@@ -24,7 +24,9 @@ AgFrame *wl_ag_frame_new(int width, int height, int tile, AgPixelMode mode,
     f->rgb = g_new(float, 3 * n);
     f->depth = g_new(double, n);
     f->prim = g_new(uint32_t, n);
+    f->front = g_new(float, 3 * n);
     wl_ag_frame_clear(f);
+    memcpy(f->front, f->rgb, 3 * n * sizeof(float));
     return f;
 }
 
@@ -35,18 +37,58 @@ void wl_ag_frame_free(AgFrame *f)
     g_free(f->rgb);
     g_free(f->depth);
     g_free(f->prim);
+    g_free(f->front);
     g_free(f);
+}
+
+static void clear_pixel(AgFrame *f, gsize i)
+{
+    f->rgb[3 * i] = f->bg.r;
+    f->rgb[3 * i + 1] = f->bg.g;
+    f->rgb[3 * i + 2] = f->bg.b;
+    f->depth[i] = INFINITY;
+    f->prim[i] = RAST_NO_PRIM;
 }
 
 void wl_ag_frame_clear(AgFrame *f)
 {
     gsize n = (gsize)f->width * f->height;
-    for (gsize i = 0; i < n; i++) {
-        f->rgb[3 * i] = f->bg.r;
-        f->rgb[3 * i + 1] = f->bg.g;
-        f->rgb[3 * i + 2] = f->bg.b;
-        f->depth[i] = INFINITY;
-        f->prim[i] = RAST_NO_PRIM;
+    for (gsize i = 0; i < n; i++)
+        clear_pixel(f, i);
+}
+
+/* The pixel rectangle [x0, x1) x [y0, y1) of tile t (the whole frame for
+ * G_MAXUINT). */
+static void tile_rect(const AgFrame *f, guint t, int r[4])
+{
+    r[0] = r[1] = 0;
+    r[2] = f->width;
+    r[3] = f->height;
+    if (t == G_MAXUINT)
+        return;
+    r[0] = (int)(t % f->tiles_x) * f->tile;
+    r[1] = (int)(t / f->tiles_x) * f->tile;
+    r[2] = MIN(r[0] + f->tile, f->width);
+    r[3] = MIN(r[1] + f->tile, f->height);
+}
+
+uint64_t wl_ag_frame_clear_tile(AgFrame *f, guint t)
+{
+    int r[4];
+    tile_rect(f, t, r);
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2]; x++)
+            clear_pixel(f, (gsize)y * f->width + x);
+    return (uint64_t)(r[2] - r[0]) * (uint64_t)(r[3] - r[1]);
+}
+
+void wl_ag_frame_present_tile(AgFrame *f, guint t)
+{
+    int r[4];
+    tile_rect(f, t, r);
+    for (int y = r[1]; y < r[3]; y++) {
+        gsize i = 3 * ((gsize)y * f->width + r[0]);
+        memcpy(&f->front[i], &f->rgb[i], 3 * sizeof(float) * (gsize)(r[2] - r[0]));
     }
 }
 
@@ -94,13 +136,9 @@ static void crop_span(void *ctx, const RastSpan *s, RastCounters *c)
 uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v, const SceneMesh *m,
                     const uint32_t *tris, guint n)
 {
-    Crop k = {f, 0, 0, f->width, f->height, 0};
-    if (t != G_MAXUINT) {
-        k.x0 = (int)(t % f->tiles_x) * f->tile;
-        k.y0 = (int)(t / f->tiles_x) * f->tile;
-        k.x1 = MIN(k.x0 + f->tile, f->width);
-        k.y1 = MIN(k.y0 + f->tile, f->height);
-    }
+    int r[4];
+    tile_rect(f, t, r);
+    Crop k = {f, r[0], r[1], r[2], r[3], 0};
     RastCounters c = {0};
     RastSpanSink sink = {crop_span, &k};
     if (n)
@@ -142,15 +180,25 @@ guint wl_ag_bucket(const AgFrame *f, const Mat4 *vp, const SceneMesh *m,
     return n;
 }
 
-RastImage *wl_ag_frame_image(const AgFrame *f)
+static RastImage *image_of(const AgFrame *f, const float *rgb)
 {
     RastImage *img = rast_image_new(f->width, f->height);
     for (int y = 0; y < f->height; y++)
         for (int x = 0; x < f->width; x++) {
-            const float *c = &f->rgb[3 * ((gsize)y * f->width + x)];
+            const float *c = &rgb[3 * ((gsize)y * f->width + x)];
             uint32_t rgba = rast_channel(c[0]) | rast_channel(c[1]) << 8 |
                             rast_channel(c[2]) << 16 | 0xff000000u;
             rast_image_set(img, x, y, rgba);
         }
     return img;
+}
+
+RastImage *wl_ag_frame_image(const AgFrame *f)
+{
+    return image_of(f, f->rgb);
+}
+
+RastImage *wl_ag_frame_front_image(const AgFrame *f)
+{
+    return image_of(f, f->front);
 }

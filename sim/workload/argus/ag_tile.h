@@ -2,7 +2,11 @@
  * pixel work of its rasterisation threads (seed 002: "Sort-Middle tiled
  * parallel graphics system"; each rasteriser owns a set of tiles).
  *
- * The frame buffer holds float RGB, depth and primitive id per pixel.
+ * The frame buffer holds float RGB, depth and primitive id per pixel
+ * (the back buffer the threads draw into) and a front buffer of RGB:
+ * glClear clears one tile of the back buffer, glXSwapBuffers presents
+ * one tile (copies it to the front), so a frame's picture is what each
+ * tile held when its swap command reached it.
  * Two pixel modes: OPAQUE z-buffers (smaller depth wins, ties by
  * primitive id: order-independent, Nurbs) and BLEND composites
  * c = alpha src + (1 - alpha) c without a depth test (the transparent,
@@ -32,6 +36,7 @@ typedef struct {
     float *rgb;     /* 3 per pixel */
     double *depth;  /* +inf when empty */
     uint32_t *prim; /* RAST_NO_PRIM when empty */
+    float *front;   /* 3 per pixel: the presented picture */
     RastColor bg;
 } AgFrame;
 
@@ -40,6 +45,10 @@ AgFrame *wl_ag_frame_new(int width, int height, int tile, AgPixelMode mode,
                          float alpha, RastColor bg);
 void wl_ag_frame_free(AgFrame *f);
 void wl_ag_frame_clear(AgFrame *f);
+/* glClear at tile t (G_MAXUINT: the whole frame): returns its pixels. */
+uint64_t wl_ag_frame_clear_tile(AgFrame *f, guint t);
+/* glXSwapBuffers at tile t: the tile's back buffer becomes its front. */
+void wl_ag_frame_present_tile(AgFrame *f, guint t);
 static inline guint wl_ag_n_tiles(const AgFrame *f)
 {
     return f->tiles_x * f->tiles_y;
@@ -64,7 +73,9 @@ static inline guint wl_ag_tile_owner(const AgFrame *f, guint t, guint R)
     return (t % f->tiles_x + t / f->tiles_x) % R;
 }
 
-/* The frame as an 8-bit image (new; rast_image_free()). */
+/* The back buffer, or the presented front buffer, as an 8-bit image
+ * (new; rast_image_free()). */
 RastImage *wl_ag_frame_image(const AgFrame *f);
+RastImage *wl_ag_frame_front_image(const AgFrame *f);
 
 #endif

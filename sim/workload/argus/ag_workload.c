@@ -288,23 +288,27 @@ static void fill_metrics(SimResult *out, const Run *r, const WlAgParams *p)
     set(out, "shared_memory_bytes", (double)f0->shmem_bytes, "B");
 }
 
-static gboolean finish_image(const WlContext *ctx, Run *r, WlAgParams *p,
-                             SimResult *out, GError **err)
+/* The serial-render check of the last frame (check_image). */
+static void check_image(Run *r, WlAgParams *p, SimResult *out)
 {
-    if (!p->check_image && !ctx->out_dir)
+    if (!p->check_image)
+        return;
+    RastImage *img = wl_ag_frame_front_image(r->f);
+    uint64_t d = serial_diff(r, p, img);
+    set(out, "image_matches_serial", d == 0, "");
+    set(out, "pixels_differing", (double)d, "");
+    rast_image_free(img);
+}
+
+/* The frame hook (pgsim run --out DIR): DIR/frame.png, or every frame's
+ * image with --frames all. */
+static gboolean emit_frame(const WlContext *ctx, const Run *r, int f,
+                           GError **err)
+{
+    if (!wl_wants_frame(ctx, f))
         return TRUE;
-    RastImage *img = wl_ag_frame_image(r->f);
-    gboolean ok = TRUE;
-    if (p->check_image) {
-        uint64_t d = serial_diff(r, p, img);
-        set(out, "image_matches_serial", d == 0, "");
-        set(out, "pixels_differing", (double)d, "");
-    }
-    if (ctx->out_dir && g_mkdir_with_parents(ctx->out_dir, 0755) == 0) {
-        char *path = g_build_filename(ctx->out_dir, "argus.png", NULL);
-        ok = rast_image_write(img, path, err);
-        g_free(path);
-    }
+    RastImage *img = wl_ag_frame_front_image(r->f);
+    gboolean ok = wl_emit_frame(ctx, f, img, err);
     rast_image_free(img);
     return ok;
 }
@@ -322,12 +326,13 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
         if (ok) {
             g_array_append_val(r.stats, fs);
             sim_result_add_frame(out, fs.end - fs.start);
+            ok = emit_frame(ctx, &r, f, err);
         }
     }
     if (ok) {
         mach_fill_result(r.m, out);
         fill_metrics(out, &r, p);
-        ok = finish_image(ctx, &r, p, out, err);
+        check_image(&r, p, out);
         out->elapsed = sim_now(ctx->eng);
     }
     run_clear(&r);

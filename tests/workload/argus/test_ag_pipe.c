@@ -1,0 +1,241 @@
+/* test_ag_pipe.c — the parallel API's synchronisation in the Argus
+ * pipeline (sim/workload/argus/ag_pipe.c): glpBarrier and glpWaitContext
+ * make a context's later commands wait at every tile, so a blended
+ * (order-dependent) frame equals the serial render with them and
+ * differs from it when the same streams are issued without them; the
+ * application barrier holds application threads; the streams of every
+ * order carry Figure 2's loop (clear, appBarrier, glpWaitContext,
+ * glpBarrier, swap).
+ *
+ * The hand-built streams: context 0 or 1 issues a slow block A (40
+ * full-screen triangles), the other a fast block Y (one full-screen
+ * triangle) ordered after A by the command under test; mesh order is
+ * A then Y, so the serial render is "A then Y" at every pixel.  Without
+ * the command, Y's geometry finishes first and the tiles draw it first.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/scene/march.h"
+#include "sim/workload/argus/ag_pipe.h"
+
+#define SIDE 64
+#define A_TRIS 40
+
+typedef struct {
+    SimEngine *eng;
+    CfgNode *root;
+    MachMachine *m;
+    SceneMesh *mesh;
+    AgFrame *f;
+    RastView view;
+    AgStreams *st;
+} Rig;
+
+/* Two triangles covering the screen (identity view: clip = world). */
+static void add_quad(SceneMesh *m, SceneColor c)
+{
+    uint32_t b = scene_mesh_n_vertices(m);
+    const double v[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int i = 0; i < 4; i++)
+        scene_mesh_add_vertex(m, vec3(v[i][0], v[i][1], 0));
+    scene_mesh_add_tri(m, b, b + 1, b + 2, c, 0);
+    scene_mesh_add_tri(m, b, b + 2, b + 3, c, 0);
+}
+
+static void rig_init(Rig *r)
+{
+    memset(r, 0, sizeof *r);
+    GError *e = NULL;
+    r->eng = sim_engine_new(1);
+    r->root = cfg_load_string("machine: {model: origin2000}\n", "t.yaml", &e);
+    assert_non_null(r->root);
+    r->m = mach_new_from_cfg(r->eng, cfg_get(r->root, "machine"), "analytic",
+                             &e);
+    assert_non_null(r->m);
+    r->mesh = scene_mesh_new();
+    for (int q = 0; q < A_TRIS / 2; q++)
+        add_quad(r->mesh, scene_color(0.9, 0.1 + 0.02 * q, 0.1));
+    add_quad(r->mesh, scene_color(0.1, 0.2, 0.9)); /* Y: 2 triangles */
+    r->f = wl_ag_frame_new(SIDE, SIDE, 16, WL_AG_BLEND, 0.5f,
+                           (RastColor){0, 0, 0});
+    r->view = rast_view_make(mat4_identity(), SIDE, SIDE);
+    r->view.cull_back = FALSE;
+    r->st = g_new0(AgStreams, 1);
+    r->st->contexts = 2;
+    r->st->batches = g_array_new(FALSE, TRUE, sizeof(AgBatch));
+    r->st->ctx = g_ptr_array_new_with_free_func((GDestroyNotify)g_array_unref);
+    for (int c = 0; c < 2; c++)
+        g_ptr_array_add(r->st->ctx, g_array_new(FALSE, TRUE, sizeof(AgBlock)));
+    r->st->barriers = 1;
+    r->st->barrier_parties = 2;
+}
+
+static void rig_free(Rig *r)
+{
+    wl_ag_streams_free(r->st);
+    wl_ag_frame_free(r->f);
+    scene_mesh_free(r->mesh);
+    mach_free(r->m);
+    cfg_free(r->root);
+    sim_engine_free(r->eng);
+}
+
+/* Appends a block of triangles [first, first + n) to context c. */
+static AgBlock *block(Rig *r, guint c, guint first, guint n)
+{
+    GArray *a = wl_ag_ctx_blocks(r->st, c);
+    AgBlock x = {.ctx = c, .seq = a->len, .batch = G_MAXUINT,
+                 .first = first, .n = n, .verts = 3 * (uint64_t)n};
+    g_array_append_val(a, x);
+    return &g_array_index(a, AgBlock, a->len - 1);
+}
+
+static void pre(AgBlock *b, AgSyncKind k, guint id)
+{
+    b->pre[b->n_pre++] = (AgSync){k, id};
+}
+
+static void post(AgBlock *b, AgSyncKind k, guint id)
+{
+    b->post[b->n_post++] = (AgSync){k, id};
+}
+
+/* Runs one frame; returns the pixels differing from the serial render
+ * (mesh order) and the frame time in *ms. */
+static uint64_t run_frame(Rig *r, double *ms)
+{
+    GError *e = NULL;
+    AgCosts c;
+    assert_true(wl_ag_costs_from_machine(r->m, &c, &e));
+    AgSetup s = {.procs = 24, .contexts = 2, .geometry = 4,
+                 .rasterisers = 4, .app = WL_AG_APP_NONE,
+                 .vertex_bytes = 32, .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r->m, &s, &c, r->st, r->f, r->mesh, &r->view);
+    AgFrameStats fs;
+    gboolean ok = wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e);
+    if (!ok)
+        fail_msg("%s", e->message);
+    *ms = sim_time_to_ms(fs.end - fs.start);
+    AgFrame *ref = wl_ag_frame_new(SIDE, SIDE, 16, WL_AG_BLEND, 0.5f,
+                                   (RastColor){0, 0, 0});
+    guint n = scene_mesh_n_polys(r->mesh);
+    uint32_t all[A_TRIS + 2];
+    for (guint i = 0; i < n; i++)
+        all[i] = i;
+    wl_ag_draw(ref, G_MAXUINT, &r->view, r->mesh, all, n);
+    RastImage *a = wl_ag_frame_image(ref), *b = wl_ag_frame_image(r->f);
+    uint64_t d = rast_image_diff(a, b);
+    rast_image_free(a);
+    rast_image_free(b);
+    wl_ag_frame_free(ref);
+    wl_ag_pipe_free(p);
+    return d;
+}
+
+/* Context 1 draws A, then arrives; context 0 arrives at once (an empty
+ * block), then draws Y after glpBarrier(0). */
+static uint64_t barrier_frame(gboolean with_barrier, double *ms)
+{
+    Rig r;
+    rig_init(&r);
+    post(block(&r, 0, 0, 0), WL_AG_SYNC_BARRIER, 0);
+    AgBlock *y = block(&r, 0, A_TRIS, 2);
+    post(block(&r, 1, 0, A_TRIS), WL_AG_SYNC_BARRIER, 0);
+    pre(y, WL_AG_SYNC_BARRIER_WAIT, 0);
+    if (!with_barrier)
+        wl_ag_streams_drop(r.st, WL_AG_SYNC_BARRIER_WAIT);
+    uint64_t d = run_frame(&r, ms);
+    rig_free(&r);
+    return d;
+}
+
+static void test_barrier_blocks(void **state)
+{
+    (void)state;
+    double with_ms, without_ms;
+    assert_int_equal(barrier_frame(TRUE, &with_ms), 0);
+    /* the same streams without the wait: Y overtakes A at the tiles */
+    assert_true(barrier_frame(FALSE, &without_ms) > 0);
+    assert_true(with_ms >= without_ms);
+}
+
+/* Context 0 issues A and meets context 1 at the application barrier;
+ * context 1 then issues glpWaitContext(0) and Y. */
+static uint64_t wait_frame(gboolean with_wait, gboolean with_app, double *ms)
+{
+    Rig r;
+    rig_init(&r);
+    block(&r, 0, 0, A_TRIS);
+    pre(block(&r, 0, 0, 0), WL_AG_SYNC_APP_BARRIER, 0);
+    AgBlock *y = block(&r, 1, A_TRIS, 2);
+    pre(y, WL_AG_SYNC_APP_BARRIER, 0);
+    pre(y, WL_AG_SYNC_WAIT_CONTEXT, 0);
+    if (!with_wait)
+        wl_ag_streams_drop(r.st, WL_AG_SYNC_WAIT_CONTEXT);
+    if (!with_app)
+        wl_ag_streams_drop(r.st, WL_AG_SYNC_APP_BARRIER);
+    uint64_t d = run_frame(&r, ms);
+    rig_free(&r);
+    return d;
+}
+
+static void test_wait_context_orders(void **state)
+{
+    (void)state;
+    double ms;
+    assert_int_equal(wait_frame(TRUE, TRUE, &ms), 0);
+    assert_true(wait_frame(FALSE, TRUE, &ms) > 0);
+    /* glpWaitContext covers what context 0 had issued at the call: with
+     * no application barrier, context 1 calls it before A is issued and
+     * it orders nothing (the reason for appBarrier in Figure 2) */
+    assert_true(wait_frame(TRUE, FALSE, &ms) > 0);
+}
+
+static guint kind_count(const AgStreams *s, AgSyncKind k)
+{
+    return (guint)wl_ag_count_syncs(s, k);
+}
+
+/* Figure 2 around every order's drawing (ag_stream.h). */
+static void test_streams_carry_the_frame_loop(void **state)
+{
+    (void)state;
+    SceneMarchParams mp = scene_march_defaults();
+    mp.iso.grid = 16;
+    mp.cell = 4;
+    SceneMesh *m = scene_iso_mesh_cells(&mp.iso, mp.cell);
+    for (AgOrder o = WL_AG_ORDER_FRAME; o <= WL_AG_ORDER_NONE; o++) {
+        GError *e = NULL;
+        AgStreams *s =
+            wl_ag_streams_new(m, 3, o, WL_AG_PRIM_TRIANGLES, 8, 4, &e);
+        assert_non_null(s);
+        assert_int_equal(kind_count(s, WL_AG_SYNC_APP_BARRIER), 3);
+        assert_int_equal(kind_count(s, WL_AG_SYNC_WAIT_CONTEXT), 2);
+        assert_int_equal(kind_count(s, WL_AG_SYNC_BARRIER), 3);
+        assert_int_equal(kind_count(s, WL_AG_SYNC_BARRIER_WAIT), 1);
+        GArray *b0 = wl_ag_ctx_blocks(s, 0);
+        assert_true(g_array_index(b0, AgBlock, 0).clear);
+        assert_true(g_array_index(b0, AgBlock, b0->len - 1).swap);
+        wl_ag_streams_free(s);
+        /* one context: clear, drawing, swap, nothing to synchronise */
+        s = wl_ag_streams_new(m, 1, o, WL_AG_PRIM_TRIANGLES, 8, 4, &e);
+        assert_non_null(s);
+        assert_int_equal(s->syncs, 0);
+        wl_ag_streams_free(s);
+    }
+    scene_mesh_free(m);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_barrier_blocks),
+        cmocka_unit_test(test_wait_context_orders),
+        cmocka_unit_test(test_streams_carry_the_frame_loop),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
