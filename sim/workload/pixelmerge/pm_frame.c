@@ -38,7 +38,7 @@ static SimTime zbuf_time(const WlPmCounts *k, const WlPmCosts *c, guint n,
 }
 
 double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
-                       const WlPmCosts *c)
+                       const WlPmCosts *c, double *insert_ms)
 {
     guint resolution = s->resolution;
     SceneMesh *flat = scene_flatten(scene);
@@ -50,6 +50,8 @@ double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
     WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
     SimTime t =
         add(span_time(&k, c, TRUE), zbuf_time(&k, c, resolution, FALSE));
+    if (insert_ms)
+        *insert_ms = sim_time_to_ms(mul(c->insert_step, k.insert_steps));
     wl_pm_wpa_free(w);
     scene_mesh_free(flat);
     return sim_time_to_ms(t);

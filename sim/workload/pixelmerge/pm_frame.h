@@ -80,8 +80,12 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
 void wl_pm_frame_out_clear(WlPmFrameOut *out, guint procs);
 
 /* Time of the local phases of the whole scene on one processor (the
- * sequential renderer of the speed-up), in ms. */
+ * sequential renderer of the speed-up), in ms.  *insert_ms (may be NULL)
+ * gets the part of it spent inserting spans into the sorted row lists:
+ * s (s - 1) / 4 steps for s spans on a row, the one cost that falls
+ * faster than 1/P when P nodes share the polygons, and so the modelled
+ * cause of a speed-up above P. */
 double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
-                       const WlPmCosts *c);
+                       const WlPmCosts *c, double *insert_ms);
 
 #endif

@@ -310,7 +310,10 @@ gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
     if (ok) {
         mach_fill_result(m, out);
         WlPmMemUse mem = peak_memory(&fo, p, &s);
-        fill_metrics(out, &fo, wl_pm_serial_ms(sc, &s, c), &s, &mem);
+        double insert_ms = 0;
+        double serial_ms = wl_pm_serial_ms(sc, &s, c, &insert_ms);
+        fill_metrics(out, &fo, serial_ms, &s, &mem);
+        set(out, "serial_insert_ms", insert_ms, "ms");
         out->elapsed = sim_now(mach_engine(m));
     }
     wl_pm_frame_out_clear(&fo, s.procs);
