@@ -10,6 +10,22 @@
  * dealt to it, §3.5), an ordinary execute (every GP was flushed before
  * it) or the start of the structure: at most c (maxw/minw) (n-1)
  * elements for n GPs, §3.5.
+ *
+ * The cache (§3.4: "save attribute states every n primitives"): with
+ * w.attr_cache = N > 0 (complex, ordinary structures) the host keeps
+ * its full attribute state after every N-th dealt element.  The scan
+ * also stops at the nearest checkpoint behind the edit and completes
+ * what it collected with the checkpoint's state.  That sends the same
+ * elements as the scan alone (a GP's copies, its mask, already say
+ * which of the state's elements it holds; ensure() sends the rest), so
+ * the cache moves where the scan stops, not the distribution.  Each
+ * GP's state at a checkpoint is the checkpoint's state restricted to
+ * the GP's mask.  Invariant: a checkpoint's state is the host state
+ * before its position.  An edit at pos moves the checkpoints after pos
+ * (a primitive or execute inserted or deleted) or drops them (an
+ * attribute inserted or deleted, a matrix changing mode), and the walk
+ * that places them resumes at the last one kept, lazily, when a scan
+ * needs one.  Memory: one state per N dealt elements.
  */
 #include "sim/workload/pphigs/pphigs_dist_internal.h"
 
@@ -62,14 +78,170 @@ void wl_pphigs_attr_ensure_matrices(WlPphigsDist *d, guint sid,
     }
 }
 
+/* ---- the attribute-state cache (§3.4) --------------------------------- */
+
+/* The host state before element pos; front is where the walk that
+ * places checkpoints stopped, dealt the elements it counted since the
+ * last checkpoint. */
+typedef struct {
+    guint pos;
+    AttrState st;
+} AttrCk;
+
+struct WlPphigsAttrCache {
+    GArray *ck; /* AttrCk, by increasing pos */
+    AttrCk front;
+    guint dealt;
+};
+
+static void ck_copy(AttrCk *to, const AttrCk *from)
+{
+    to->pos = from->pos;
+    to->st.colour = from->st.colour;
+    to->st.replace = from->st.replace;
+    g_array_set_size(to->st.concats, 0);
+    g_array_append_vals(to->st.concats, from->st.concats->data,
+                        from->st.concats->len);
+}
+
+static void ck_clear(gpointer p)
+{
+    wl_pphigs_attr_clear(&((AttrCk *)p)->st);
+}
+
+/* Walks the host list from the front up to `upto`, placing a checkpoint
+ * after every n-th dealt element (host work only; counted). */
+static void cache_extend(WlPphigsDist *d, guint sid, WlPphigsAttrCache *c,
+                         guint upto)
+{
+    for (guint i = c->front.pos; i < upto; i++) {
+        const SceneElem *e = dist_hel(d, sid, i);
+        d->traffic.cache_walk++;
+        wl_pphigs_attr_step(&c->front.st, e, (gint)i);
+        c->front.pos = i + 1;
+        if (dist_is_dealt(d, e) && ++c->dealt == d->w.attr_cache) {
+            AttrCk k = {0};
+            wl_pphigs_attr_init(&k.st);
+            ck_copy(&k, &c->front);
+            g_array_append_val(c->ck, k);
+            c->dealt = 0;
+        }
+    }
+}
+
+WlPphigsAttrCache *wl_pphigs_attr_cache_new(WlPphigsDist *d, guint sid)
+{
+    WlPphigsAttrCache *c = g_new0(WlPphigsAttrCache, 1);
+    c->ck = g_array_new(FALSE, FALSE, sizeof(AttrCk));
+    g_array_set_clear_func(c->ck, ck_clear);
+    wl_pphigs_attr_init(&c->front.st);
+    cache_extend(d, sid, c, scene_db_len(d->host, sid));
+    return c;
+}
+
+void wl_pphigs_attr_cache_free(WlPphigsAttrCache *c)
+{
+    if (!c)
+        return;
+    g_array_unref(c->ck);
+    wl_pphigs_attr_clear(&c->front.st);
+    g_free(c);
+}
+
+/* The last checkpoint at or before `first` (extending the cache to it),
+ * or NULL. */
+static const AttrCk *cache_at(WlPphigsDist *d, guint sid, guint first)
+{
+    WlPphigsAttrCache *c = dist_meta(d, sid)->cache;
+    if (!c)
+        return NULL;
+    cache_extend(d, sid, c, first);
+    for (guint k = c->ck->len; k-- > 0;)
+        if (g_array_index(c->ck, AttrCk, k).pos <= first)
+            return &g_array_index(c->ck, AttrCk, k);
+    return NULL;
+}
+
+/* Positions at or after `pos` (insert, delta +1) or after it (delete,
+ * delta -1) move by delta. */
+static void shift(gint *p, guint pos, int delta)
+{
+    if (*p != NONE && (delta > 0 ? *p >= (gint)pos : *p > (gint)pos))
+        *p += delta;
+}
+
+static void ck_shift(AttrCk *k, guint pos, int delta)
+{
+    k->pos += delta;
+    shift(&k->st.colour, pos, delta);
+    shift(&k->st.replace, pos, delta);
+    for (guint j = 0; j < k->st.concats->len; j++)
+        shift(&g_array_index(k->st.concats, gint, j), pos, delta);
+}
+
+/* Drops every checkpoint after pos; the front restarts at the last one
+ * kept (or at the start of the structure). */
+static void cache_truncate(WlPphigsAttrCache *c, guint pos)
+{
+    guint keep = 0;
+    while (keep < c->ck->len && g_array_index(c->ck, AttrCk, keep).pos <= pos)
+        keep++;
+    g_array_set_size(c->ck, keep);
+    if (c->front.pos <= pos)
+        return;
+    c->dealt = 0;
+    if (keep) {
+        ck_copy(&c->front, &g_array_index(c->ck, AttrCk, keep - 1));
+        return;
+    }
+    c->front.pos = 0;
+    c->front.st.colour = c->front.st.replace = NONE;
+    g_array_set_size(c->front.st.concats, 0);
+}
+
+void wl_pphigs_attr_cache_edit(WlPphigsDist *d, guint sid, guint pos, int delta,
+                               gboolean attr)
+{
+    WlPphigsAttrCache *c = dist_meta(d, sid)->cache;
+    if (!c)
+        return;
+    if (attr) { /* the state after pos changed */
+        cache_truncate(c, pos);
+        return;
+    }
+    for (guint k = 0; k < c->ck->len; k++)
+        if (g_array_index(c->ck, AttrCk, k).pos > pos)
+            ck_shift(&g_array_index(c->ck, AttrCk, k), pos, delta);
+    if (c->front.pos > pos)
+        ck_shift(&c->front, pos, delta);
+}
+
+/* ---- the backward scan (§3.4-3.5) ------------------------------------- */
+
+/* Completes s with a checkpoint's state: what the scan did not find
+ * between the checkpoint and its start. */
+static void merge(AttrState *s, const AttrCk *k, gboolean replace_found)
+{
+    if (s->colour == NONE)
+        s->colour = k->st.colour;
+    if (replace_found)
+        return;
+    s->replace = k->st.replace;
+    g_array_prepend_vals(s->concats, k->st.concats->data, k->st.concats->len);
+}
+
 /* §3.4-3.5: steps back from `first` collecting the host's current
- * attributes until every GP is known current. */
+ * attributes until every GP is known current, an ordinary execute
+ * (every GP was flushed before it) or a checkpoint of the cache (whose
+ * state completes the collection). */
 void wl_pphigs_attr_backward(WlPphigsDist *d, guint sid, guint first,
                              AttrState *s)
 {
+    const AttrCk *ck = cache_at(d, sid, first);
+    gint stop = ck ? (gint)ck->pos : 0, j = (gint)first - 1;
     uint64_t cur = 0, examined = 0;
-    gboolean replace_found = FALSE;
-    for (gint j = (gint)first - 1; j >= 0 && cur != dist_all_mask(d); j--) {
+    gboolean replace_found = FALSE, flushed = FALSE;
+    for (; j >= stop && cur != dist_all_mask(d) && !flushed; j--) {
         const SceneElem *e = dist_hel(d, sid, (guint)j);
         examined++;
         if (e->kind == SCENE_EL_COLOR) {
@@ -85,11 +257,14 @@ void wl_pphigs_attr_backward(WlPphigsDist *d, guint sid, guint first,
                 g_array_prepend_val(s->concats, j);
             }
         } else if (!dist_is_dealt(d, e)) {
-            break; /* every GP was flushed before this execute */
+            flushed = TRUE; /* every GP was flushed before this execute */
         } else {
             cur |= *dist_mask_at(d, sid, (guint)j);
         }
     }
+    if (ck && j < stop && cur != dist_all_mask(d) && !flushed)
+        merge(s, ck, replace_found);
     d->traffic.last_scan = examined;
+    d->traffic.total_scan += examined;
     d->traffic.max_scan = MAX(d->traffic.max_scan, examined);
 }

@@ -19,12 +19,18 @@
 
 #define NONE (-1)
 
+/* §3.4's attribute states saved every n dealt elements of a structure
+ * (pphigs_attrstate.c). */
+typedef struct WlPphigsAttrCache WlPphigsAttrCache;
+
 typedef struct {
-    GArray *mask;     /* uint64_t per host element */
-    double *load;     /* ngp nominal loads of this structure */
-    gint cur;         /* open cluster's GP, NONE */
-    double run;       /* nominal weight in the open cluster */
-    gint first, last; /* pending edit region, NONE */
+    GArray *mask;             /* uint64_t per host element */
+    double *load;             /* ngp nominal loads of this structure */
+    gint cur;                 /* open cluster's GP, NONE */
+    double run;               /* nominal weight in the open cluster */
+    gint first, last;         /* pending edit region, NONE */
+    WlPphigsAttrCache *cache; /* NULL: no cache (simple, primitive
+                                 structures, w.attr_cache 0) */
 } StructMeta;
 
 struct WlPphigsDist {
@@ -103,6 +109,15 @@ void wl_pphigs_attr_ensure_matrices(WlPphigsDist *d, guint sid,
                                     const AttrState *s);
 void wl_pphigs_attr_backward(WlPphigsDist *d, guint sid, guint first,
                              AttrState *s);
+/* A cache of structure sid's host list, checkpoints placed (complex,
+ * w.attr_cache > 0); free with wl_pphigs_attr_cache_free(). */
+WlPphigsAttrCache *wl_pphigs_attr_cache_new(WlPphigsDist *d, guint sid);
+void wl_pphigs_attr_cache_free(WlPphigsAttrCache *c);
+/* The host list of sid changed at pos: an element inserted (delta +1)
+ * or deleted (-1) there; attr: the attribute state after pos changed
+ * (checkpoints after pos are dropped), else they shift. */
+void wl_pphigs_attr_cache_edit(WlPphigsDist *d, guint sid, guint pos, int delta,
+                               gboolean attr);
 
 /* pphigs_bystruct.c: FALSE (nothing dealt) when the list cannot be. */
 gboolean wl_pphigs_dist_by_structure(WlPphigsDist *d);

@@ -255,6 +255,7 @@ static void meta_free(gpointer p)
 {
     StructMeta *m = p;
     g_array_unref(m->mask);
+    wl_pphigs_attr_cache_free(m->cache);
     g_free(m->load);
     g_free(m);
 }
@@ -333,6 +334,9 @@ WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
     }
     for (guint s = 0; s < n; s++)
         g_ptr_array_add(d->meta, meta_new(ngp, scene_db_len(d->host, s)));
+    for (guint s = 0; s < n && algo == WL_PPHIGS_COMPLEX && w->attr_cache; s++)
+        if (!dist_is_prim_struct(d, s))
+            dist_meta(d, s)->cache = wl_pphigs_attr_cache_new(d, s);
     if (algo == WL_PPHIGS_BY_STRUCTURE && !wl_pphigs_dist_by_structure(d))
         d->algo = WL_PPHIGS_SIMPLE; /* see bystruct_possible() */
     if (d->algo != WL_PPHIGS_BY_STRUCTURE)

@@ -71,6 +71,8 @@ typedef struct {
     double cluster;
     guint strip_split; /* §2.3.2: strips of more triangles are split into
                           pieces of at most this many; 0: never */
+    guint attr_cache;  /* §3.4: attribute states saved every this many
+                          dealt elements (complex); 0: no cache */
 } WlPphigsWeights;
 
 /* Host-to-GP traffic of the distribution and edits so far. */
@@ -79,8 +81,11 @@ typedef struct {
                                by modify, replaced) */
     uint64_t sent_to[64];   /* the same per GP */
     uint64_t elements_removed;
-    uint64_t last_scan; /* elements examined by the last backward scan */
-    uint64_t max_scan;  /* the largest such scan */
+    uint64_t last_scan;  /* elements examined by the last backward scan */
+    uint64_t max_scan;   /* the largest such scan */
+    uint64_t total_scan; /* elements examined by all backward scans */
+    uint64_t cache_walk; /* host elements walked to place checkpoints of
+                            the attribute-state cache (§3.4) */
 } WlPphigsTraffic;
 
 typedef struct WlPphigsDist WlPphigsDist;

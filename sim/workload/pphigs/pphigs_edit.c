@@ -49,6 +49,7 @@ gboolean wl_pphigs_dist_insert(WlPphigsDist *d, guint sid, guint pos,
     c.tag = d->next_id;
     if (!scene_db_insert(d->host, sid, pos, &c, err))
         return FALSE;
+    wl_pphigs_attr_cache_edit(d, sid, pos, 1, scene_elem_is_attr(c.kind));
     d->next_id++;
     if (scene_elem_is_prim(c.kind))
         d->maxw = MAX(d->maxw, wl_pphigs_dist_weight(d, &c));
@@ -74,6 +75,7 @@ void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos)
                                 -wl_pphigs_dist_weight(d, e));
     for (guint g = 0; g < d->ngp; g++)
         wl_pphigs_dist_drop(d, sid, pos, g);
+    wl_pphigs_attr_cache_edit(d, sid, pos, -1, scene_elem_is_attr(e->kind));
     scene_db_delete(d->host, sid, pos);
     StructMeta *m = dist_meta(d, sid);
     g_array_remove_index(m->mask, pos);
@@ -112,8 +114,11 @@ gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
     double dw = dist_is_dealt(d, old) ? wl_pphigs_dist_weight(d, &c) -
                                             wl_pphigs_dist_weight(d, old)
                                       : 0;
+    gboolean remode = old->kind == SCENE_EL_MATRIX && old->mode != c.mode;
     if (!scene_db_modify(d->host, sid, pos, &c, err))
         return FALSE;
+    if (remode) /* the attribute state after pos changed (§3.4 cache) */
+        wl_pphigs_attr_cache_edit(d, sid, pos, 0, TRUE);
     c = *dist_hel(d, sid, pos); /* e's vertices may have been the old host's */
     uint64_t m = *dist_mask_at(d, sid, pos);
     for (guint g = 0; g < d->ngp; g++)

@@ -14,6 +14,9 @@
  *   edits_per_frame: matrix modifies per frame (default 0)
  *   edit_angle_deg: rotation each edit applies (default 0)
  *   rebalance: {enabled, threshold, frames, fraction, max_moves}
+ *   attr_cache_every: §3.4's attribute states saved every N dealt
+ *                     elements of a structure (complex; default 0: no
+ *                     cache, the step back stops only as §3.5 says)
  * Relative paths are found as project data files (sim/core/datapath.h)
  * and read when the config is loaded.  The machine is the run
  * config's `machine` section (default: model pixel-planes-5), built by
@@ -52,6 +55,7 @@ typedef struct {
     ScenePphigsSpec spec;
     WlPphigsSetup setup;
     uint64_t edits[ED_N]; /* per frame, of each kind */
+    uint64_t attr_cache;  /* §3.4 checkpoint interval, 0: none */
     double edit_angle;
     gboolean rebalance;
     WlPphigsRebalParams rb;
@@ -154,6 +158,8 @@ static void *parse(const CfgNode *sec, GError **err)
                   parse_edits(sec, p, err) &&
                   cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                                  &p->edit_angle, err) &&
+                  cfg_get_count(sec, "attr_cache_every", FALSE, 0, 1000000,
+                                &p->attr_cache, err) &&
                   parse_rebalance(sec, p, err) && parse_files(sec, p, err) &&
                   check_by_structure(sec, p, err);
     if (!ok) {
@@ -221,6 +227,7 @@ typedef struct {
     GArray *unposted; /* guint structure ids, unposted by edits */
     gboolean image_ok; /* the last frame equals the serial render */
     uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
+    WlPphigsTraffic scan0; /* after the distribution */
     double imbalance;
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
 } Run;
@@ -237,7 +244,9 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
         wl_pphigs_frame_costs(r->frame),
         wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
     w.strip_split = r->p->setup.strip_split;
+    w.attr_cache = (guint)r->p->attr_cache;
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
+    r->scan0 = *wl_pphigs_dist_traffic(r->d);
     memcpy(r->sent, wl_pphigs_dist_traffic(r->d)->sent_to, sizeof r->sent);
     WlPphigsRebalParams rb = r->p->rb;
     rb.seed = ctx->seed;
@@ -423,17 +432,38 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     return TRUE;
 }
 
+/* §3.4-3.5's step back per frame: elements the backward scans examined
+ * and the host elements walked to place cache checkpoints (after the
+ * initial distribution). */
+static void fill_step_back(Run *r, SimResult *out, double n)
+{
+    const WlPphigsTraffic *t = wl_pphigs_dist_traffic(r->d);
+    sim_result_set_metric(out, "step_back_elements_per_frame",
+                          (double)(t->total_scan - r->scan0.total_scan) / n,
+                          "");
+    sim_result_set_metric(out, "step_back_max_elements", (double)t->max_scan,
+                          "");
+    sim_result_set_metric(out, "attr_cache_walk_per_frame",
+                          (double)(t->cache_walk - r->scan0.cache_walk) / n,
+                          "");
+}
+
 /* Edits of each kind (the structural kinds only when asked for, so runs
- * without them report as before) and the host's edit time per frame. */
+ * without them report as before), the step back (the same) and the
+ * host's edit time per frame. */
 static void fill_edits(Run *r, const WlContext *ctx, SimResult *out)
 {
     double n = MAX(out->frame_times->len, 1);
+    gboolean structural = r->p->attr_cache > 0;
     for (int k = ED_APPEND; k < ED_N; k++)
         if (r->p->edits[k]) {
             char *name = g_strdup_printf("edits_%s", edit_names[k]);
             sim_result_set_metric(out, name, (double)r->edits[k], "");
             g_free(name);
+            structural = TRUE;
         }
+    if (structural)
+        fill_step_back(r, out, n);
     MachProc *host = mach_proc(r->m, "host", 0);
     unsigned ph = sim_engine_phase(ctx->eng, "edit");
     sim_result_set_metric(out, "host_edit_ms_per_frame",

@@ -330,6 +330,36 @@ static void test_edit_kinds(void **st)
     g_clear_error(&err);
 }
 
+/* workload.attr_cache_every (§3.4): the same edits send the same
+ * elements and draw the same frame; the backward scans examine fewer
+ * elements; a negative interval is a located error. */
+static void test_attr_cache_knob(void **st)
+{
+    (void)st;
+    const char *off[] = {"run.frames=2", "run.fidelity=analytic",
+                         "workload.edits={insert: 4, delete: 4}", NULL};
+    const char *on[] = {"run.frames=2", "run.fidelity=analytic",
+                        "workload.edits={insert: 4, delete: 4}",
+                        "workload.attr_cache_every=2", NULL};
+    SimResult *a = app_run(off, NULL), *b = app_run(on, NULL);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(metric(b, "image_matches_serial") == 1);
+    assert_true(metric(a, "frame_ms") == metric(b, "frame_ms"));
+    assert_true(metric(a, "host_elements_per_frame") ==
+                metric(b, "host_elements_per_frame"));
+    assert_true(metric(b, "step_back_elements_per_frame") <
+                metric(a, "step_back_elements_per_frame"));
+    sim_result_free(a);
+    sim_result_free(b);
+    const char *bad[] = {"workload.attr_cache_every=-1", NULL};
+    GError *err = NULL;
+    assert_null(app_run(bad, &err));
+    assert_non_null(strstr(err->message, "--set workload.attr_cache_every=-1"
+                                         ":1:1: "));
+    g_clear_error(&err);
+}
+
 /* `pgsim run` of one fresh frame reports the reproduction's cells. */
 static void test_run_matches_table(void **st)
 {
@@ -370,6 +400,7 @@ int main(void)
         cmocka_unit_test(test_workload_runs),
         cmocka_unit_test(test_machine_overrides),
         cmocka_unit_test(test_edit_kinds),
+        cmocka_unit_test(test_attr_cache_knob),
         cmocka_unit_test(test_run_matches_table),
     };
     return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);

@@ -423,6 +423,125 @@ static void test_primitive_structure(void **st)
     scene_db_free(db);
 }
 
+/* ---- §3.4: the attribute-state cache --------------------------------- */
+
+/* GP g of a and of b hold the same list (same traversal, in order). */
+static void assert_same_gps(const WlPphigsDist *a, const WlPphigsDist *b)
+{
+    for (guint g = 0; g < wl_pphigs_dist_ngp(a); g++) {
+        GArray *x = g_array_new(FALSE, FALSE, sizeof(Rend));
+        GArray *y = g_array_new(FALSE, FALSE, sizeof(Rend));
+        scene_db_traverse(wl_pphigs_dist_gp(a, g), rend_fn, x);
+        scene_db_traverse(wl_pphigs_dist_gp(b, g), rend_fn, y);
+        assert_int_equal(x->len, y->len);
+        assert_memory_equal(x->data, y->data, x->len * sizeof(Rend));
+        g_array_unref(x);
+        g_array_unref(y);
+    }
+}
+
+/* With a cache every 1, 2 or 5 dealt elements, the same random edits
+ * leave every GP with the same list as without it (the cache changes
+ * where the scan stops, not what is sent), and the scans examine no
+ * more elements. */
+static void test_attr_cache_same(void **st)
+{
+    (void)st;
+    static const guint gps[] = {3, 4, 16}, every[] = {1, 2, 5};
+    for (guint t = 0; t < 3; t++) {
+        SimRng r0, r1;
+        sim_rng_init(&r0, 11, t);
+        SceneDb *db = rnd_db(&r0, 6, 60);
+        r1 = r0;
+        WlPphigsWeights wc = W;
+        wc.attr_cache = every[t];
+        WlPphigsDist *a = wl_pphigs_dist_new(db, gps[t], WL_PPHIGS_COMPLEX, &W);
+        WlPphigsDist *b = wl_pphigs_dist_new(db, gps[t], WL_PPHIGS_COMPLEX, &wc);
+        for (int round = 0; round < 6; round++) {
+            edit_some(a, &r0, 12);
+            edit_some(b, &r1, 12);
+            assert_same_render(b);
+            assert_same_gps(a, b);
+        }
+        const WlPphigsTraffic *ta = wl_pphigs_dist_traffic(a);
+        const WlPphigsTraffic *tb = wl_pphigs_dist_traffic(b);
+        assert_int_equal(ta->elements_sent, tb->elements_sent);
+        assert_true(tb->total_scan < ta->total_scan);
+        assert_int_equal(ta->cache_walk, 0);
+        assert_true(tb->cache_walk > 0);
+        wl_pphigs_dist_free(a);
+        wl_pphigs_dist_free(b);
+        scene_db_free(db);
+    }
+}
+
+/* One structure: colour A, 40 triangles, colour B, 60 triangles. */
+static SceneDb *two_colour_db(void)
+{
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "two");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint i = 0; i < 102; i++) {
+        SceneElem e = i == 0 || i == 41
+                          ? scene_elem_color(vec3(i, 1, 0))
+                          : scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(scene_db_append(db, s, &e, NULL));
+    }
+    scene_db_post(db, s);
+    return db;
+}
+
+/* Deleting colour B (before the checkpoints after it) must drop them:
+ * their state names B's position, which now holds a triangle of some
+ * GP; a triangle inserted after them would take that triangle along to
+ * its GP as if it were the colour (a second copy, a wrong colour). */
+static void test_attr_cache_invalidated(void **st)
+{
+    (void)st;
+    SceneDb *db = two_colour_db();
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(2, 0, 0), vec3(0, 2, 0)};
+    WlPphigsWeights wc = W;
+    wc.attr_cache = 2;
+    for (guint at = 50; at <= 90; at += 10) {
+        WlPphigsDist *d = wl_pphigs_dist_new(db, 16, WL_PPHIGS_COMPLEX, &wc);
+        wl_pphigs_dist_delete(d, 0, 41);
+        wl_pphigs_dist_finish(d);
+        assert_same_render(d);
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(wl_pphigs_dist_insert(d, 0, at, &e, NULL));
+        wl_pphigs_dist_finish(d);
+        assert_true(wl_pphigs_dist_traffic(d)->last_scan <= 4);
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+    }
+    scene_db_free(db);
+}
+
+/* The step-back cost: on a long list at 16 GPs a cache every 2 dealt
+ * elements stops the scan at the checkpoint behind the insert, instead
+ * of after a primitive of each of the 16 GPs (§3.5's bound). */
+static void test_attr_cache_scan(void **st)
+{
+    (void)st;
+    SceneDb *db = long_db(4000);
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    uint64_t scan[2];
+    for (guint every = 0; every <= 2; every += 2) {
+        WlPphigsWeights wc = W;
+        wc.attr_cache = every;
+        WlPphigsDist *d = wl_pphigs_dist_new(db, 16, WL_PPHIGS_COMPLEX, &wc);
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(wl_pphigs_dist_insert(d, 0, 3001, &e, NULL));
+        wl_pphigs_dist_finish(d);
+        scan[every / 2] = wl_pphigs_dist_traffic(d)->last_scan;
+        assert_same_render(d);
+        wl_pphigs_dist_free(d);
+    }
+    assert_true(scan[0] >= 15);           /* a primitive of each other GP */
+    assert_true(scan[1] <= 2 * 4 / 3 + 2); /* 2 triangles and a colour */
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -435,6 +554,9 @@ int main(void)
         cmocka_unit_test(test_cluster_runs),
         cmocka_unit_test(test_attribute_copies),
         cmocka_unit_test(test_primitive_structure),
+        cmocka_unit_test(test_attr_cache_same),
+        cmocka_unit_test(test_attr_cache_invalidated),
+        cmocka_unit_test(test_attr_cache_scan),
     };
     return cmocka_run_group_tests_name("pphigs_distrib", tests, NULL, NULL);
 }
