@@ -58,6 +58,15 @@ typedef struct {
      * so a new model can be written against them (test_workload checks
      * a shipped config's model has them). */
     const WlNeed *needs;
+    /* Optional: the bytes run() will allocate for the workload's own state
+     * (frame buffers, per-processor tables, geometry it generates),
+     * estimated from the parsed params alone; appends to `what` the sizes
+     * it used ("64 processors, 4096 x 4096 pixels").  The config loader
+     * (cfg_run_from_tree: validate, run and every sweep point) refuses a
+     * config whose estimate exceeds sim_mem_limit() before run()
+     * allocates anything.  NULL: nothing beyond the scene, image and
+     * event pool, which their owners check. */
+    double (*mem_bytes)(const void *params, GString *what);
 } WlOps;
 
 /* The run's `run.until` bound (already validated by the config loader):

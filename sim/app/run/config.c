@@ -15,6 +15,7 @@
 #include "sim/app/run/config.h"
 #include "sim/output/json.h"
 #include "sim/core/datapath.h"
+#include "sim/core/memlimit.h"
 #include "sim/output/progress.h"
 #include "sim/machine/machine.h"
 #include "sim/scene/scene_cfg.h"
@@ -167,6 +168,24 @@ static gboolean read_workload(CfgRun *r, GError **err)
     return r->wl_params != NULL;
 }
 
+/* The workload's own memory estimate (WlOps.mem_bytes) against the limit,
+ * located at the workload section. */
+static gboolean check_workload_memory(const CfgRun *r, GError **err)
+{
+    if (!r->wl->mem_bytes)
+        return TRUE;
+    GString *what = g_string_new(NULL);
+    g_string_printf(what, "workload %s's own state (", r->wl->name);
+    double bytes = r->wl->mem_bytes(r->wl_params, what);
+    g_string_append_c(what, ')');
+    char *where = g_strdup_printf("%s:%d:%d", cfg_file(r->workload),
+                                  cfg_line(r->workload), cfg_col(r->workload));
+    gboolean ok = sim_mem_check(bytes, where, what->str, err);
+    g_free(where);
+    g_string_free(what, TRUE);
+    return ok;
+}
+
 static gboolean read_scene(CfgRun *r, GError **err)
 {
     r->scene = cfg_get(r->root, "scene");
@@ -222,7 +241,8 @@ CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
         g_ptr_array_add(r->overrides, g_strdup(overrides[i]));
     gboolean ok =
         check_root(root, err) && apply_overrides(root, overrides, err) &&
-        check_schema(root, err) && read_run(r, err) && read_workload(r, err);
+        check_schema(root, err) && read_run(r, err) &&
+        read_workload(r, err) && check_workload_memory(r, err);
     r->machine = ok ? cfg_get(root, "machine") : NULL;
     ok = ok && (!r->machine || mach_check_section(r->machine, err)) &&
          read_scene(r, err) && cfg_check_unused(root, err);

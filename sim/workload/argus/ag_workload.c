@@ -133,6 +133,23 @@ static void ag_free_params(void *params)
     g_free(params);
 }
 
+/* Own memory (WlOps.mem_bytes): the tiled frame (rgb floats, depth, prim
+ * id: 24 B a pixel; twice with check_image, for the serial reference),
+ * the output image (3 B a pixel) and the per-tile tables (a cursor per
+ * context, a semaphore, a round-robin slot).  Width or height 0 (the
+ * scene's viewport) counts as the 1200 used without a scene size. */
+static double ag_mem_bytes(const void *params, GString *what)
+{
+    const WlAgParams *p = params;
+    double w = p->width ? p->width : 1200, h = p->height ? p->height : 1200;
+    double tiles = (double)(((guint)w + p->tile - 1) / p->tile) *
+                   (double)(((guint)h + p->tile - 1) / p->tile);
+    g_string_append_printf(what, "%.0f x %.0f pixels, %u contexts", w, h,
+                           p->setup.contexts);
+    return w * h * (24.0 * (p->check_image ? 2 : 1) + 3) +
+           tiles * 4.0 * (p->setup.contexts + 2);
+}
+
 /* ---- running ------------------------------------------------------------ */
 
 typedef struct {
@@ -350,5 +367,6 @@ const WlOps wl_argus_ops = {
     .parse = ag_parse,
     .free_params = ag_free_params,
     .run = ag_run,
+    .mem_bytes = ag_mem_bytes,
     .needs = ag_needs,
 };

@@ -63,6 +63,18 @@ static void dp_free_params(void *p)
     g_free(p);
 }
 
+/* Own memory (WlOps.mem_bytes): the z-buffer and colour index (9 B a
+ * pixel), the output image (3 B), and per virtual processor a span
+ * count and the router's injection and receive counters (12 B). */
+static double dp_mem_bytes(const void *params, GString *what)
+{
+    const DpParams *p = params;
+    g_string_append_printf(what, "%" G_GUINT64_FORMAT " processors, %"
+                           G_GINT64_FORMAT " x %" G_GINT64_FORMAT " pixels",
+                           p->procs, p->width, p->height);
+    return (double)p->width * (double)p->height * 12.0 + (double)p->procs * 12.0;
+}
+
 static void add_metrics(SimResult *out, const WlDpTarget *t,
                         const WlDpImage *img, const WlDpVmCounts *c,
                         uint64_t n_polys)
@@ -213,4 +225,5 @@ const WlOps wl_dpscan_ops = {
     .parse = dp_parse,
     .free_params = dp_free_params,
     .run = dp_run,
+    .mem_bytes = dp_mem_bytes,
 };

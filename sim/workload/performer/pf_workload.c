@@ -144,6 +144,30 @@ static void pf_free(void *params)
     g_free(p);
 }
 
+/* Own memory (WlOps.mem_bytes): the town's geometry, three Vec3 a
+ * triangle (pf_town.h: a house's LODs hold 12 (16 + 4 + 1) triangles, a
+ * block's terrain 128, a tree's billboard 2, a car 12), plus 512 B of
+ * nodes and arrays per object (an assumption); flatten copies the
+ * geometry under each SCS once more.  The pn pipeline builds no town:
+ * its mesh is the scene's, checked with the scene. */
+static double pf_mem_bytes(const void *params, GString *what)
+{
+    const PfParams *p = params;
+    const WlPfTownParams *t = &p->town;
+    if (p->pn) {
+        g_string_append(what, "pn: no town");
+        return 0;
+    }
+    double tri = 3 * sizeof(Vec3), blocks = (double)t->blocks * t->blocks;
+    double geo = blocks * (128 + t->houses * 252.0 + t->trees * 2.0) * tri +
+                 t->cars * 12.0 * tri;
+    g_string_append_printf(what, "a town of %u x %u blocks, %u houses and "
+                           "%u trees a block", t->blocks, t->blocks, t->houses,
+                           t->trees);
+    return geo * (p->flatten ? 2 : 1) +
+           (blocks * (1.0 + t->houses + t->trees) + t->cars) * 512.0;
+}
+
 static void *pf_parse(const CfgNode *sec, GError **err)
 {
     PfParams *p = g_new0(PfParams, 1);
@@ -418,4 +442,5 @@ const WlOps wl_pf_ops = {
     .parse = pf_parse,
     .free_params = pf_free,
     .run = pf_run,
+    .mem_bytes = pf_mem_bytes,
 };

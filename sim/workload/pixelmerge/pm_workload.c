@@ -176,6 +176,23 @@ static void pm_free_params(void *p)
     g_free(p);
 }
 
+/* Own memory (WlOps.mem_bytes): a WlPmPixel a screen pixel for the
+ * merged frame, one more for the processors' active-pixel arrays
+ * together and one for the serial reference (check_image), the output
+ * image (3 B), each processor's row offsets and the P x P message counts.
+ * Processors 0 (the machine's count) counts as 1: a lower bound.  The
+ * quickstart at 1600 x 1600 peaked at 156 MB RSS (estimate 183 MiB). */
+static double pm_mem_bytes(const void *params, GString *what)
+{
+    const WlPmParams *p = params;
+    double n = p->setup.resolution, procs = MAX(p->setup.procs, 1u);
+    g_string_append_printf(what, "%u processors, %.0f x %.0f pixels",
+                           p->setup.procs, n, n);
+    double copies = p->setup.check_image ? 3 : 2;
+    return n * n * (copies * sizeof(WlPmPixel) + 3.0) + procs * (n + 1) * 4.0 +
+           procs * procs * 8.0;
+}
+
 static WlPmMemUse peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
                               const WlPmSetup *s)
 {
@@ -350,5 +367,6 @@ const WlOps wl_pixelmerge_ops = {
     .parse = pm_parse,
     .free_params = pm_free_params,
     .run = pm_run,
+    .mem_bytes = pm_mem_bytes,
     .needs = pm_needs,
 };

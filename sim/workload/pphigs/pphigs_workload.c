@@ -41,6 +41,7 @@
 #include "sim/workload/pphigs/pphigs_rebalance.h"
 #include <errno.h>
 #include "sim/machine/model.h"
+#include "sim/scene/scene_limits.h"
 #include "sim/workload/workload.h"
 #include <string.h>
 
@@ -64,6 +65,20 @@ typedef struct {
 static void params_free(void *p)
 {
     g_free(p);
+}
+
+/* Own memory (WlOps.mem_bytes): the PPHIGS database the workload
+ * generates from its spec (not a `scene:` section, so not checked as
+ * one): every polygon, boids and well included, at SCENE_POLY_BYTES per
+ * triangle of its fan. */
+static double mem_bytes(const void *params, GString *what)
+{
+    const ScenePphigsSpec *s = &((const Params *)params)->spec;
+    double polys = (double)s->polygons + (double)s->boids * s->boid_polygons +
+                   s->well_polygons + s->overlays;
+    g_string_append_printf(what, "a database of %.0f polygons of %u vertices",
+                           polys, s->verts);
+    return polys * SCENE_POLY_BYTES * MAX(1.0, s->verts - 2.0);
 }
 
 static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
@@ -563,5 +578,6 @@ const WlOps wl_pphigs_ops = {
     .parse = parse,
     .free_params = params_free,
     .run = run,
+    .mem_bytes = mem_bytes,
     .needs = pphigs_needs,
 };

@@ -99,6 +99,21 @@ static void sf_free_params(void *params)
     g_free(p);
 }
 
+/* Own memory (WlOps.mem_bytes): the screen's z-buffer (depth, prim, rgba:
+ * 16 B a pixel; a second one for the serial reference with check_image),
+ * the adaptive work grid (a weight and a factor a cell) and each
+ * processor's outgoing batches to every other (P x P, 64 B each; an
+ * assumption). */
+static double sf_mem_bytes(const void *params, GString *what)
+{
+    const WlSfParams *p = params;
+    double n = p->setup.resolution, g = p->setup.grid, procs = p->setup.procs;
+    g_string_append_printf(what, "%u processors, %.0f x %.0f pixels, grid %.0f",
+                           p->setup.procs, n, n, g);
+    return n * n * 16.0 * (p->setup.check_image ? 2 : 1) + g * g * 16.0 +
+           procs * procs * 64.0;
+}
+
 static void *sf_parse(const CfgNode *sec, GError **err)
 {
     WlSfParams *p = g_new0(WlSfParams, 1);
@@ -349,5 +364,6 @@ const WlOps wl_sortfirst_ops = {
     .parse = sf_parse,
     .free_params = sf_free_params,
     .run = sf_run,
+    .mem_bytes = sf_mem_bytes,
     .needs = sf_needs,
 };
