@@ -14,7 +14,7 @@
 PREFIX  ?= /usr/local
 BUILD   ?= build
 CC      ?= cc
-PKGS    := glib-2.0 yaml-0.1 libpng
+PKGS    := glib-2.0 gio-2.0 yaml-0.1 libpng
 HAVE_MPI := $(shell pkg-config --exists ompi-c 2>/dev/null && echo 1)
 ifeq ($(HAVE_MPI),1)
 PKGS    += ompi-c

@@ -34,6 +34,7 @@ struct SimEngine {
     SimProgressFn progress_fn;
     void *progress_ctx;
     SimTrace *trace;
+    SimRecorder *recorder;
     SimNodeNameFn namer;
     void *namer_ctx;
 };
@@ -271,6 +272,15 @@ void sim_engine_set_trace(SimEngine *e, SimTrace *tr)
 SimTrace *sim_engine_trace(const SimEngine *e)
 {
     return e->trace;
+}
+
+void sim_engine_set_recorder(SimEngine *e, SimRecorder *r)
+{
+    e->recorder = r;
+}
+SimRecorder *sim_engine_recorder(const SimEngine *e)
+{
+    return e->recorder;
 }
 
 void sim_engine_set_node_namer(SimEngine *e, SimNodeNameFn fn, void *ctx)

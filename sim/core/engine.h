@@ -22,6 +22,7 @@
 
 typedef struct SimEngine SimEngine;
 typedef struct SimTrace SimTrace;
+typedef struct SimRecorder SimRecorder;
 
 typedef void (*SimHandler)(SimEngine *eng, void *ctx, void *arg);
 /* Progress: called every `every` events with the current time. */
@@ -72,6 +73,9 @@ void sim_engine_set_progress(SimEngine *eng, uint64_t every, SimProgressFn fn,
 /* Optional trace sink (sim/core/trace.h); borrowed, may be NULL. */
 void sim_engine_set_trace(SimEngine *eng, SimTrace *tr);
 SimTrace *sim_engine_trace(const SimEngine *eng);
+/* Optional recorder (sim/core/record.h, `pgsim run --record`); borrowed. */
+void sim_engine_set_recorder(SimEngine *eng, SimRecorder *r);
+SimRecorder *sim_engine_recorder(const SimEngine *eng);
 /* Names of network endpoints for traces: whoever numbers the nodes (the
  * machine) registers fn(ctx, id); sim_engine_node_name() returns its
  * answer (borrowed) or NULL when no namer is set.  fn NULL clears it. */

@@ -8,6 +8,7 @@
  * costs, charged on submission.  Cost: O(1) + one event per request.
  */
 #include "sim/machine/proc.h"
+#include "sim/core/record.h"
 #include "sim/core/trace.h"
 
 void mach_proc_init(MachProc *p, MachMachine *m, SimEngine *eng,
@@ -75,6 +76,11 @@ gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
     p->free_at = end;
     p->requests++;
     trace_span(p, phase, start, end);
+    SimRecorder *rec = sim_engine_recorder(eng);
+    if (rec) /* `pgsim run --record`: the trace hears of it (record.h) */
+        return sim_record_schedule_done(
+            eng, rec, rec->ops->compute(rec, now, p->id, phase, cost, done != NULL),
+            end, done, ctx, arg);
     return done ? sim_schedule_at(eng, end, done, ctx, arg) : TRUE;
 }
 

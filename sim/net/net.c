@@ -16,6 +16,7 @@
  * memory O(links touched + messages in flight).
  */
 #include "sim/net/net_internal.h"
+#include "sim/core/record.h"
 #include "sim/core/trace.h"
 #include <string.h>
 
@@ -265,6 +266,9 @@ void net_send(NetNet *n, uint32_t src, uint32_t dst, uint64_t bytes,
                   .cb = cb,
                   .ctx = ctx,
                   .sent = sim_now(n->eng)};
+    SimRecorder *rec = sim_engine_recorder(n->eng);
+    if (rec)
+        m->rec_id = rec->ops->send(rec, m->sent, src, dst, bytes, cb != NULL);
     m->live_next = n->live;
     if (n->live)
         n->live->live_prev = m;
@@ -297,10 +301,16 @@ void net_msg_deliver(NetNet *n, NetMsg *m)
                        m->sent, now);
     NetArriveFn cb = m->cb;
     void *ctx = m->ctx;
+    uint64_t rec_id = m->rec_id;
     live_unlink(n, m);
     msg_free(m);
+    SimRecorder *rec = sim_engine_recorder(n->eng);
+    if (rec)
+        rec->ops->begin(rec, rec_id, now);
     if (cb)
         cb(n, &d, ctx);
+    if (rec)
+        rec->ops->end(rec, rec_id);
 }
 
 /* ---- analytic transport ---- */

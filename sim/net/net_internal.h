@@ -40,6 +40,7 @@ typedef struct {
 struct NetMsg {
     NetNet *net;
     uint64_t seq;
+    uint64_t rec_id; /* the recorder's id (sim/core/record.h), if any */
     uint32_t src, dst;
     uint64_t bytes;
     void *payload;

@@ -1,5 +1,5 @@
 /* cmd_run.c — `pgsim run CONFIG [--set k=v]... [--fidelity F] [--seed N] [--out DIR]
- * [--format text|json|csv] [--timing] [--trace FILE] [--quiet]`.
+ * [--format text|json|csv] [--timing] [--trace FILE] [--record FILE] [--quiet]`.
  *
  * Loads and checks the config (config.h), runs it, prints the report on
  * stdout in the chosen format and, with --out, writes summary.txt,
@@ -10,6 +10,7 @@
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
 #include "sim/app/run/config.h"
+#include "sim/app/replay/rpl_record.h"
 #include "sim/app/run/report.h"
 #include "sim/app/trace/trace_file.h"
 #include "sim/core/error.h"
@@ -17,7 +18,7 @@
 
 typedef struct {
     char **sets;
-    char *seed, *out, *format, *trace, *fidelity, *frames;
+    char *seed, *out, *format, *trace, *fidelity, *frames, *record;
     int trace_cap;
     gboolean quiet, timing;
 } RunOpts;
@@ -152,7 +153,12 @@ static int run(const char *path, const RunOpts *o)
                      .progress = TRUE,
                      .trace = tr,
                      .all_frames = o->frames && !strcmp(o->frames, "all")};
+    RplRecorder *rec = o->record ? rpl_recorder_new() : NULL;
+    ro.recorder = rec ? rpl_recorder_hook(rec) : NULL;
     SimResult *res = cfg_run_exec(r, &ro, &e);
+    if (res && rec && !rpl_record_finish(rec, o->record, r, res, o->quiet, &e))
+        g_clear_pointer(&res, sim_result_free);
+    rpl_recorder_free(rec);
     cfg_run_free(r);
     if (!res) {
         trc_discard(tr); /* a failed run leaves no trace file */
@@ -194,6 +200,10 @@ int cmd_run(int argc, char **argv)
          "write a trace: FILE.json (Perfetto) or FILE.paje (ViTE)", "FILE"},
         {"trace-cap", 0, 0, G_OPTION_ARG_INT, &o.trace_cap,
          "stop tracing after N events (default 1000000)", "N"},
+        {"record", 0, 0, G_OPTION_ARG_FILENAME, &o.record,
+         "record a time-independent trace for `pgsim replay` "
+         "(docs/traces.md; gzip if FILE ends in .gz)",
+         "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o.quiet,
          "no progress display or notes on stderr", NULL},
         G_OPTION_ENTRY_NULL,
@@ -214,5 +224,6 @@ int cmd_run(int argc, char **argv)
     g_free(o.format);
     g_free(o.trace);
     g_free(o.frames);
+    g_free(o.record);
     return status;
 }

@@ -11,6 +11,8 @@ const CliCommand cli_commands[] = {
      "rerun a paper's tables and compare with the published values"},
     {"sweep", cmd_sweep,
      "run a parameter sweep (locally or under mpirun) with charts"},
+    {"replay", cmd_replay,
+     "replay a recorded trace on any machine model (docs/traces.md)"},
     {"plot", cmd_plot, "chart two columns of a results CSV with gnuplot"},
     {"help", cmd_help, "list the commands, or show one's options"},
     {NULL, NULL, NULL},

@@ -29,5 +29,6 @@ const CliCommand *cli_find_command(const char *name);
 int cmd_reproduce(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
+int cmd_replay(int argc, char **argv);
 
 #endif

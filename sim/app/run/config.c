@@ -312,6 +312,7 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
 {
     SimEngine *eng = sim_engine_new(r->seed);
     sim_engine_set_trace(eng, opts ? opts->trace : NULL);
+    sim_engine_set_recorder(eng, opts ? opts->recorder : NULL);
     sim_engine_set_dry_run(eng, opts && opts->dry_run);
     char *mname = machine_name(r);
     SimResult *res = sim_result_new(r->wl->name, mname);

@@ -18,6 +18,7 @@
 #define PGSIM_APP_RUN_CONFIG_H
 
 #include "sim/core/cfg.h"
+#include "sim/core/record.h"
 #include "sim/core/result.h"
 #include "sim/workload/workload.h"
 
@@ -58,6 +59,7 @@ typedef struct {
     gboolean dry_run;    /* stop before the first event (sim_engine_set_dry_run):
                             NULL with SIM_ERROR_DRY_RUN means "would run" */
     gboolean all_frames; /* with out_dir: an image of every frame */
+    SimRecorder *recorder; /* --record (sim/core/record.h); NULL: none */
 } CfgRunOpts;
 
 /* Runs the config's workload on a fresh engine seeded with run->seed and

@@ -1,0 +1,390 @@
+/* rpl_format.c — reading and writing version-1 traces (rpl_format.h).
+ *
+ * The reader is a loop over lines: header keywords until the first group
+ * or action, then body items.  State: the header, the number of actions
+ * read, whether a group is open, and the set of `+` actions still
+ * awaiting their `on` group.  Cost: O(length of the line) per item.
+ */
+#include "sim/app/replay/rpl_format.h"
+#include "sim/core/error.h"
+#include <inttypes.h>
+#include <string.h>
+
+struct RplReader {
+    RplLines *l;
+    RplHeader h;
+    uint64_t actions;   /* actions read so far */
+    gboolean in_group;  /* a group line has been read */
+    GHashTable *await;  /* uint64 id -> itself: `+` without `on` yet */
+    gboolean pending;   /* the current line is a body line not yet used */
+};
+
+static gboolean fail(RplReader *r, int i, const char *what, GError **err)
+{
+    g_propagate_error(err, rpl_lines_error(r->l, i, what));
+    return FALSE;
+}
+
+void rpl_header_clear(RplHeader *h)
+{
+    g_free(h->machine);
+    g_free(h->fidelity);
+    if (h->phases)
+        g_ptr_array_free(h->phases, TRUE);
+    for (guint i = 0; h->kinds && i < h->kinds->len; i++)
+        g_free(g_array_index(h->kinds, RplKind, i).name);
+    if (h->kinds)
+        g_array_free(h->kinds, TRUE);
+    memset(h, 0, sizeof *h);
+}
+
+const RplKind *rpl_header_kind_of(const RplHeader *h, guint p)
+{
+    for (guint i = 0; i < h->kinds->len; i++) {
+        const RplKind *k = &g_array_index(h->kinds, RplKind, i);
+        if (p >= k->first && p - k->first < k->count)
+            return k;
+    }
+    return NULL;
+}
+
+static gboolean header_kind(RplReader *r, GError **err)
+{
+    uint64_t first, count;
+    double hz;
+    char *end;
+    const char *w4 = rpl_lines_word(r->l, 4);
+    if (rpl_lines_count(r->l) != 5)
+        return fail(r, MIN(rpl_lines_count(r->l), 5),
+                    "kind NAME FIRST COUNT CLOCK_HZ", err);
+    if (!rpl_lines_u64(r->l, 2, G_MAXUINT32, &first, "a first processor id",
+                       err) ||
+        !rpl_lines_u64(r->l, 3, G_MAXUINT32, &count, "a processor count",
+                       err))
+        return FALSE;
+    hz = g_ascii_strtod(w4, &end);
+    if (*end || end == w4 || !(hz >= 0) || hz > 1e15)
+        return fail(r, 4, "a clock in Hz (0: none)", err);
+    RplKind k = {g_strdup(rpl_lines_word(r->l, 1)), (guint)first,
+                 (guint)count, hz};
+    g_array_append_val(r->h.kinds, k);
+    return TRUE;
+}
+
+/* One header line; *body set when the line starts the body instead. */
+static gboolean header_line(RplReader *r, gboolean *body, GError **err)
+{
+    const char *k = rpl_lines_word(r->l, 0);
+    int n = rpl_lines_count(r->l);
+    uint64_t v;
+    *body = FALSE;
+    if (!strcmp(k, "kind"))
+        return header_kind(r, err);
+    if (strcmp(k, "machine") && strcmp(k, "fidelity") && strcmp(k, "procs") &&
+        strcmp(k, "phase")) {
+        *body = TRUE;
+        return TRUE;
+    }
+    if (n != 2)
+        return fail(r, MIN(n, 2), "one word after the keyword", err);
+    const char *a = rpl_lines_word(r->l, 1);
+    if (!strcmp(k, "machine"))
+        g_free(r->h.machine), r->h.machine = g_strdup(a);
+    else if (!strcmp(k, "fidelity"))
+        g_free(r->h.fidelity), r->h.fidelity = g_strdup(a);
+    else if (!strcmp(k, "phase"))
+        g_ptr_array_add(r->h.phases, g_strdup(a));
+    else if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "a processor count",
+                            err))
+        return FALSE;
+    else
+        r->h.procs = (guint)v;
+    return TRUE;
+}
+
+static gboolean read_header(RplReader *r, GError **err)
+{
+    int n = rpl_lines_next(r->l, err);
+    uint64_t v;
+    if (n < 0)
+        return FALSE;
+    if (n == 0 || strcmp(rpl_lines_word(r->l, 0), "pgsim-trace"))
+        return fail(r, 0, "'pgsim-trace 1' on the first line", err);
+    if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "trace format version 1",
+                       err))
+        return FALSE;
+    if (v != RPL_VERSION || n != 2)
+        return fail(r, v != RPL_VERSION ? 1 : 2,
+                    "trace format version 1 alone", err);
+    for (;;) {
+        gboolean body;
+        n = rpl_lines_next(r->l, err);
+        if (n <= 0)
+            return n == 0;
+        if (!header_line(r, &body, err))
+            return FALSE;
+        if (body) {
+            r->pending = TRUE;
+            return TRUE;
+        }
+    }
+}
+
+RplReader *rpl_reader_open(const char *path, GError **err)
+{
+    RplLines *l = rpl_lines_open(path, err);
+    if (!l)
+        return NULL;
+    RplReader *r = g_new0(RplReader, 1);
+    r->l = l;
+    r->h.phases = g_ptr_array_new_with_free_func(g_free);
+    r->h.kinds = g_array_new(FALSE, FALSE, sizeof(RplKind));
+    r->await = g_hash_table_new(g_int64_hash, g_int64_equal);
+    if (!read_header(r, err)) {
+        rpl_reader_free(r);
+        return NULL;
+    }
+    if (r->h.phases->len == 0)
+        g_ptr_array_add(r->h.phases, g_strdup("compute"));
+    return r;
+}
+
+void rpl_reader_free(RplReader *r)
+{
+    if (!r)
+        return;
+    rpl_lines_free(r->l);
+    rpl_header_clear(&r->h);
+    GHashTableIter it;
+    gpointer key;
+    g_hash_table_iter_init(&it, r->await);
+    while (g_hash_table_iter_next(&it, &key, NULL))
+        g_free(key);
+    g_hash_table_destroy(r->await);
+    g_free(r);
+}
+
+const RplHeader *rpl_reader_header(const RplReader *r)
+{
+    return &r->h;
+}
+
+const char *rpl_reader_path(const RplReader *r)
+{
+    return rpl_lines_path(r->l);
+}
+
+guint rpl_reader_awaited(const RplReader *r)
+{
+    return g_hash_table_size(r->await);
+}
+
+/* Trailing `+` and `frame` from word i on. */
+static gboolean flags(RplReader *r, int i, RplItem *it, GError **err)
+{
+    for (; i < rpl_lines_count(r->l); i++) {
+        const char *w = rpl_lines_word(r->l, i);
+        if (!strcmp(w, "+") && !it->handled)
+            it->handled = TRUE;
+        else if (!strcmp(w, "frame") && !it->frame)
+            it->frame = TRUE;
+        else
+            return fail(r, i, "'+', 'frame' or the end of the line", err);
+    }
+    return TRUE;
+}
+
+static gboolean proc_word(RplReader *r, int i, uint32_t *out, GError **err)
+{
+    uint64_t v;
+    if (!r->h.procs)
+        return fail(r, i, "a processor, after a 'procs N' header line", err);
+    char *what = g_strdup_printf("a processor id below %u", r->h.procs);
+    gboolean ok = rpl_lines_u64(r->l, i, r->h.procs - 1, &v, what, err);
+    g_free(what);
+    *out = (uint32_t)v;
+    return ok;
+}
+
+static gboolean phase_word(RplReader *r, int i, unsigned *out, GError **err)
+{
+    uint64_t v;
+    char *what =
+        g_strdup_printf("a phase id below %u (phase lines)", r->h.phases->len);
+    gboolean ok = rpl_lines_u64(r->l, i, r->h.phases->len - 1, &v, what, err);
+    g_free(what);
+    *out = (unsigned)v;
+    return ok;
+}
+
+/* op=count words of a `c` line, from word 3 up to the flags. */
+static gboolean ops(RplReader *r, RplItem *it, GError **err)
+{
+    int i = 3, n = rpl_lines_count(r->l);
+    for (; i < n; i++) {
+        char *w = (char *)rpl_lines_word(r->l, i), *eq = strchr(w, '=');
+        if (!eq)
+            break;
+        guint64 v;
+        if (eq == w || it->n_ops == RPL_MAX_OPS ||
+            !g_ascii_string_to_unsigned(eq + 1, 10, 0, G_MAXUINT64, &v, NULL))
+            return fail(r, i, "OP=COUNT (at most 30 a line)", err);
+        *eq = 0; /* the line buffer is ours until the next line */
+        it->op_col[it->n_ops] = rpl_lines_col(r->l, i);
+        it->op[it->n_ops] = w;
+        it->count[it->n_ops++] = v;
+    }
+    if (it->n_ops == 0)
+        return fail(r, 3, "OP=COUNT", err);
+    return flags(r, i, it, err);
+}
+
+static gboolean action(RplReader *r, RplItem *it, GError **err)
+{
+    const char *k = rpl_lines_word(r->l, 0);
+    if (!r->in_group)
+        return fail(r, 0, "'at TIME' or 'on ID' before the first action",
+                    err);
+    it->type = !strcmp(k, "c")   ? RPL_COMPUTE
+               : !strcmp(k, "w") ? RPL_WORK
+                                 : RPL_SEND;
+    it->id = r->actions;
+    if (!proc_word(r, 1, &it->proc, err))
+        return FALSE;
+    gboolean ok =
+        it->type == RPL_SEND
+            ? proc_word(r, 2, &it->peer, err) &&
+                  rpl_lines_u64(r->l, 3, G_MAXUINT64, &it->value,
+                                "a byte count", err) &&
+                  flags(r, 4, it, err)
+        : !phase_word(r, 2, &it->phase, err) ? FALSE
+        : it->type == RPL_WORK
+            ? rpl_lines_u64(r->l, 3, G_MAXUINT64, &it->value,
+                            "a time in picoseconds", err) &&
+                  flags(r, 4, it, err)
+            : ops(r, it, err);
+    if (!ok)
+        return FALSE;
+    if (it->handled) {
+        uint64_t *key = g_new(uint64_t, 1);
+        *key = it->id;
+        g_hash_table_add(r->await, key);
+    }
+    r->actions++;
+    return TRUE;
+}
+
+static gboolean group(RplReader *r, RplItem *it, GError **err)
+{
+    gboolean on = !strcmp(rpl_lines_word(r->l, 0), "on");
+    if (rpl_lines_count(r->l) > 2)
+        return fail(r, 2, "the end of the line", err);
+    it->type = on ? RPL_ON : RPL_AT;
+    if (!on)
+        return rpl_lines_u64(r->l, 1, G_MAXUINT64, &it->at,
+                             "a time in picoseconds", err) &&
+               (r->in_group = TRUE);
+    if (!rpl_lines_u64(r->l, 1, G_MAXUINT64, &it->id, "an action id", err))
+        return FALSE;
+    gpointer key = NULL;
+    if (!g_hash_table_steal_extended(r->await, &it->id, &key, NULL))
+        return fail(r, 1,
+                    "an earlier action marked '+' whose group has not "
+                    "been given yet",
+                    err);
+    g_free(key);
+    r->in_group = TRUE;
+    return TRUE;
+}
+
+static gboolean at_end(RplReader *r, GError **err)
+{
+    if (g_hash_table_size(r->await) == 0)
+        return FALSE;
+    GHashTableIter i;
+    gpointer key;
+    uint64_t first = G_MAXUINT64;
+    g_hash_table_iter_init(&i, r->await);
+    while (g_hash_table_iter_next(&i, &key, NULL))
+        first = MIN(first, *(uint64_t *)key);
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "%s:%u:1: found the end of the trace, expected 'on %" PRIu64
+                "' (action %" PRIu64 " is marked '+'; %u such groups missing)",
+                rpl_lines_path(r->l), rpl_lines_number(r->l) + 1, first,
+                first, g_hash_table_size(r->await));
+    return FALSE;
+}
+
+gboolean rpl_reader_next(RplReader *r, RplItem *it, GError **err)
+{
+    if (!r->pending) {
+        int n = rpl_lines_next(r->l, err);
+        if (n < 0)
+            return FALSE;
+        if (n == 0)
+            return at_end(r, err);
+    }
+    r->pending = FALSE;
+    memset(it, 0, offsetof(RplItem, op));
+    it->line = rpl_lines_number(r->l);
+    const char *k = rpl_lines_word(r->l, 0);
+    if (!strcmp(k, "at") || !strcmp(k, "on"))
+        return group(r, it, err);
+    if (!strcmp(k, "c") || !strcmp(k, "w") || !strcmp(k, "s"))
+        return action(r, it, err);
+    return fail(r, 0,
+                "at, on, c, w or s (header lines come before the first "
+                "group)",
+                err);
+}
+
+/* ---- writing ---- */
+
+void rpl_write_header(RplWriter *w, const RplHeader *h)
+{
+    rpl_writer_printf(w, "pgsim-trace %d\n", RPL_VERSION);
+    if (h->machine)
+        rpl_writer_printf(w, "machine %s\n", h->machine);
+    if (h->fidelity)
+        rpl_writer_printf(w, "fidelity %s\n", h->fidelity);
+    rpl_writer_printf(w, "procs %u\n", h->procs);
+    for (guint i = 0; h->kinds && i < h->kinds->len; i++) {
+        const RplKind *k = &g_array_index(h->kinds, RplKind, i);
+        char hz[G_ASCII_DTOSTR_BUF_SIZE];
+        g_ascii_formatd(hz, sizeof hz, "%.17g", k->clock_hz);
+        rpl_writer_printf(w, "kind %s %u %u %s\n", k->name, k->first, k->count,
+                          hz);
+    }
+    for (guint i = 0; i < h->phases->len; i++)
+        rpl_writer_printf(w, "phase %s\n", (char *)h->phases->pdata[i]);
+}
+
+void rpl_write_item(RplWriter *w, const RplItem *it)
+{
+    char buf[RPL_LINE_MAX];
+    int n = 0;
+    switch (it->type) {
+    case RPL_AT:
+        rpl_writer_printf(w, "at %" PRIu64 "\n", it->at);
+        return;
+    case RPL_ON:
+        rpl_writer_printf(w, "on %" PRIu64 "\n", it->id);
+        return;
+    case RPL_COMPUTE:
+        n = g_snprintf(buf, sizeof buf, "c %u %u", it->proc, it->phase);
+        for (guint i = 0; i < it->n_ops && n < (int)sizeof buf; i++)
+            n += g_snprintf(buf + n, sizeof buf - n, " %s=%" PRIu64, it->op[i],
+                            it->count[i]);
+        break;
+    case RPL_WORK:
+        n = g_snprintf(buf, sizeof buf, "w %u %u %" PRIu64, it->proc,
+                       it->phase, it->value);
+        break;
+    case RPL_SEND:
+        n = g_snprintf(buf, sizeof buf, "s %u %u %" PRIu64, it->proc, it->peer,
+                       it->value);
+        break;
+    }
+    rpl_writer_printf(w, "%s%s%s\n", buf, it->handled ? " +" : "",
+                      it->frame ? " frame" : "");
+}

@@ -1,0 +1,93 @@
+/* rpl_format.h — pgsim's time-independent trace format, version 1
+ * (docs/traces.md).
+ *
+ * A trace is text, one item per line, '#' starts a comment:
+ *
+ *     pgsim-trace 1                       first line: the version
+ *     machine ipsc2                       recording machine (a model name)
+ *     fidelity packet                     its transport when recorded
+ *     procs 17                            processors 0 .. 16
+ *     kind node 0 16 16000000             recording kinds: name, first id,
+ *                                         count, clock in Hz (0: none)
+ *     phase compute                       phase names, ids 0, 1, ... in order
+ *     at 0                                a group: issued at time 0 (ps)
+ *     on 12                               a group: issued when action 12
+ *                                         completes (work done / delivered)
+ *     c 3 1 span=1240 zcmp=5310 [+] [frame]   work on processor 3, phase 1,
+ *                                         priced from the machine's costs
+ *     w 3 1 125000 [+] [frame]            work that took 125000 ps on the
+ *                                         recording kind (scaled by clocks)
+ *     s 3 5 1024 [+] [frame]              3 sends 1024 bytes to 5
+ *
+ * Actions (c, w, s) are numbered 0, 1, ... in file order; `+` says an
+ * `on ID` group for this action follows later; `frame` says a frame ends
+ * when it completes.  Every action belongs to the group above it.
+ *
+ * The reader checks everything a replay relies on (ranges, that `on`
+ * names an earlier action marked `+`, once) with located errors, and
+ * keeps O(1) state per line apart from one bit per action marked `+`
+ * that is still awaited (hash set).
+ */
+#ifndef PGSIM_APP_REPLAY_RPL_FORMAT_H
+#define PGSIM_APP_REPLAY_RPL_FORMAT_H
+
+#include "sim/app/replay/rpl_lines.h"
+#include "sim/core/time.h"
+
+#define RPL_VERSION 1
+#define RPL_MAX_OPS 30
+
+typedef struct {
+    char *name;
+    guint first, count;
+    double clock_hz; /* 0: not given */
+} RplKind;
+
+typedef struct {
+    char *machine;    /* NULL when absent */
+    char *fidelity;   /* NULL when absent */
+    guint procs;
+    GPtrArray *phases; /* char * */
+    GArray *kinds;     /* RplKind */
+} RplHeader;
+
+typedef enum { RPL_AT, RPL_ON, RPL_COMPUTE, RPL_WORK, RPL_SEND } RplItemType;
+
+typedef struct {
+    RplItemType type;
+    guint line;
+    uint64_t id;    /* actions: their number; RPL_ON: the cause */
+    SimTime at;     /* RPL_AT */
+    uint32_t proc;  /* actions: the processor (sender) */
+    uint32_t peer;  /* RPL_SEND: the receiver */
+    unsigned phase; /* RPL_COMPUTE, RPL_WORK */
+    uint64_t value; /* RPL_WORK: ps; RPL_SEND: bytes */
+    gboolean handled, frame;
+    guint n_ops; /* RPL_COMPUTE: op names (borrowed until the next item) */
+    const char *op[RPL_MAX_OPS];
+    uint64_t count[RPL_MAX_OPS];
+    int op_col[RPL_MAX_OPS]; /* where each op=count word starts */
+} RplItem;
+
+typedef struct RplReader RplReader;
+
+/* Opens a trace and reads its header; NULL with a located *err. */
+RplReader *rpl_reader_open(const char *path, GError **err);
+void rpl_reader_free(RplReader *r);
+const RplHeader *rpl_reader_header(const RplReader *r);
+const char *rpl_reader_path(const RplReader *r);
+/* The next body item: TRUE and *it, or FALSE at the end (*err NULL) or
+ * on an error (*err set, located). */
+gboolean rpl_reader_next(RplReader *r, RplItem *it, GError **err);
+/* Actions marked `+` whose `on` group has not been read yet. */
+guint rpl_reader_awaited(const RplReader *r);
+
+/* The kind (borrowed) that holds recording processor p, or NULL. */
+const RplKind *rpl_header_kind_of(const RplHeader *h, guint p);
+void rpl_header_clear(RplHeader *h);
+
+/* Writing: the header lines, then items, with the same syntax. */
+void rpl_write_header(RplWriter *w, const RplHeader *h);
+void rpl_write_item(RplWriter *w, const RplItem *it);
+
+#endif

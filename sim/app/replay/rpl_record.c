@@ -1,0 +1,268 @@
+/* rpl_record.c — the trace recorder (rpl_record.h).
+ *
+ * Actions and groups are appended to two arrays in issue order; ids are
+ * indices into the action array, which is also the order the writer puts
+ * them in, so `on ID` always follows action ID.  Cost: O(1) per hook
+ * call; writing is O(actions + groups + frames).
+ */
+#include "sim/app/replay/rpl_record.h"
+#include "sim/app/replay/rpl_format.h"
+#include "sim/core/error.h"
+#include "sim/machine/machine.h"
+#include <inttypes.h>
+#include <stdio.h>
+#include <string.h>
+
+#define NO_ACTION G_MAXUINT64
+
+typedef struct {
+    uint64_t value; /* ps of work, or bytes */
+    SimTime done;   /* completion time (SIM_TIME_MAX: never completed) */
+    uint32_t proc, peer;
+    uint16_t phase;
+    uint8_t type; /* RPL_WORK or RPL_SEND */
+    uint8_t handled : 1, frame : 1;
+} RecAct;
+
+typedef struct {
+    uint64_t first; /* its first action */
+    uint64_t cause; /* NO_ACTION: an `at` group */
+    SimTime at;
+} RecGroup;
+
+struct RplRecorder {
+    SimRecorder hook;
+    GArray *acts;   /* RecAct */
+    GArray *groups; /* RecGroup */
+    uint64_t cur;   /* the action whose handler runs, or NO_ACTION */
+};
+
+/* Opens a group for an action issued now if the last one does not fit. */
+static void group_for(RplRecorder *r, SimTime now)
+{
+    RecGroup *last = r->groups->len
+                         ? &g_array_index(r->groups, RecGroup,
+                                          r->groups->len - 1)
+                         : NULL;
+    if (last && last->cause == r->cur &&
+        (r->cur != NO_ACTION || last->at == now))
+        return;
+    RecGroup g = {r->acts->len, r->cur, now};
+    g_array_append_val(r->groups, g);
+    if (r->cur != NO_ACTION)
+        g_array_index(r->acts, RecAct, r->cur).handled = 1;
+}
+
+static uint64_t add(RplRecorder *r, SimTime now, RecAct a)
+{
+    group_for(r, now);
+    a.done = SIM_TIME_MAX;
+    g_array_append_val(r->acts, a);
+    return r->acts->len - 1;
+}
+
+static uint64_t on_compute(SimRecorder *h, SimTime now, uint32_t node,
+                           unsigned phase, SimTime cost, gboolean handled)
+{
+    (void)handled;
+    g_assert(phase <= G_MAXUINT16);
+    return add(h->state, now,
+               (RecAct){.value = cost, .proc = node, .phase = (uint16_t)phase,
+                        .type = RPL_WORK});
+}
+
+static uint64_t on_send(SimRecorder *h, SimTime now, uint32_t src,
+                        uint32_t dst, uint64_t bytes, gboolean handled)
+{
+    (void)handled;
+    return add(h->state, now,
+               (RecAct){.value = bytes, .proc = src, .peer = dst,
+                        .type = RPL_SEND});
+}
+
+static void on_begin(SimRecorder *h, uint64_t id, SimTime t)
+{
+    RplRecorder *r = h->state;
+    g_array_index(r->acts, RecAct, id).done = t;
+    r->cur = id;
+}
+
+static void on_end(SimRecorder *h, uint64_t id)
+{
+    (void)id;
+    ((RplRecorder *)h->state)->cur = NO_ACTION;
+}
+
+static const SimRecorderOps rec_ops = {on_compute, on_send, on_begin, on_end};
+
+RplRecorder *rpl_recorder_new(void)
+{
+    RplRecorder *r = g_new0(RplRecorder, 1);
+    r->hook = (SimRecorder){&rec_ops, r};
+    r->acts = g_array_new(FALSE, FALSE, sizeof(RecAct));
+    r->groups = g_array_new(FALSE, FALSE, sizeof(RecGroup));
+    r->cur = NO_ACTION;
+    return r;
+}
+
+void rpl_recorder_free(RplRecorder *r)
+{
+    if (!r)
+        return;
+    g_array_free(r->acts, TRUE);
+    g_array_free(r->groups, TRUE);
+    g_free(r);
+}
+
+SimRecorder *rpl_recorder_hook(RplRecorder *r)
+{
+    return &r->hook;
+}
+
+uint64_t rpl_recorder_actions(const RplRecorder *r)
+{
+    return r->acts->len;
+}
+
+/* The recording machine's kinds, clocks and resolved fidelity. */
+static gboolean machine_header(const CfgRun *run, RplHeader *h, GError **err)
+{
+    if (!run->machine)
+        return TRUE;
+    SimEngine *eng = sim_engine_new(0);
+    MachMachine *m = mach_new_from_cfg(eng, run->machine, run->fidelity, err);
+    if (!m) {
+        sim_engine_free(eng);
+        return FALSE;
+    }
+    for (guint i = 0; i < mach_kind_count(m); i++) {
+        const MachKindInfo *k = mach_kind_at(m, i);
+        RplKind rk = {g_strdup(k->name), k->first, k->count, k->clock_hz};
+        g_array_append_val(h->kinds, rk);
+    }
+    h->procs = mach_proc_total(m);
+    h->fidelity = g_strndup(mach_fidelity(m), strcspn(mach_fidelity(m), " "));
+    mach_free(m);
+    sim_engine_free(eng);
+    return TRUE;
+}
+
+/* Marks the action ending each frame; returns how many found none. */
+static guint place_frames(RplRecorder *r, const SimResult *res)
+{
+    GHashTable *last = g_hash_table_new(g_int64_hash, g_int64_equal);
+    for (guint i = 0; i < r->acts->len; i++) {
+        RecAct *a = &g_array_index(r->acts, RecAct, i);
+        if (a->done != SIM_TIME_MAX)
+            g_hash_table_insert(last, &a->done, a);
+    }
+    guint missed = 0;
+    SimTime end = 0;
+    for (guint k = 0; k < res->frame_times->len; k++) {
+        end += g_array_index(res->frame_times, SimTime, k);
+        RecAct *a = g_hash_table_lookup(last, &end);
+        if (a)
+            a->frame = 1;
+        else
+            missed++;
+    }
+    g_hash_table_destroy(last);
+    return missed;
+}
+
+static RplItem act_item(const RecAct *a, uint64_t id)
+{
+    return (RplItem){.type = a->type,
+                     .id = id,
+                     .proc = a->proc,
+                     .peer = a->peer,
+                     .phase = a->phase,
+                     .value = a->value,
+                     .handled = a->handled,
+                     .frame = a->frame};
+}
+
+static void write_body(RplRecorder *r, RplWriter *w)
+{
+    for (guint g = 0; g < r->groups->len; g++) {
+        const RecGroup *gr = &g_array_index(r->groups, RecGroup, g);
+        uint64_t stop = g + 1 < r->groups->len
+                            ? g_array_index(r->groups, RecGroup, g + 1).first
+                            : r->acts->len;
+        RplItem it = {.type = gr->cause == NO_ACTION ? RPL_AT : RPL_ON,
+                      .id = gr->cause,
+                      .at = gr->at};
+        rpl_write_item(w, &it);
+        for (uint64_t i = gr->first; i < stop; i++) {
+            it = act_item(&g_array_index(r->acts, RecAct, i), i);
+            rpl_write_item(w, &it);
+        }
+    }
+}
+
+/* The header: machine, kinds, procs (at least every id used), phases. */
+static gboolean fill_header(RplRecorder *r, const CfgRun *run,
+                            const SimResult *res, RplHeader *h, GError **err)
+{
+    h->phases = g_ptr_array_new_with_free_func(g_free);
+    h->kinds = g_array_new(FALSE, FALSE, sizeof(RplKind));
+    h->machine = g_strdup(res->machine);
+    if (!machine_header(run, h, err))
+        return FALSE;
+    for (guint i = 0; i < res->phases->len; i++)
+        g_ptr_array_add(h->phases, g_strdup(res->phases->pdata[i]));
+    for (guint i = 0; i < r->acts->len; i++) {
+        const RecAct *a = &g_array_index(r->acts, RecAct, i);
+        h->procs = MAX(h->procs, MAX(a->proc, a->peer) + 1);
+        if (a->type == RPL_WORK && a->phase >= h->phases->len) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                        "recording: phase %u of action %u is not among the "
+                        "result's %u phases",
+                        a->phase, i, h->phases->len);
+            return FALSE;
+        }
+    }
+    return TRUE;
+}
+
+gboolean rpl_recorder_write(RplRecorder *r, const char *path,
+                            const CfgRun *run, const SimResult *res,
+                            guint *unplaced, GError **err)
+{
+    RplHeader h = {0};
+    if (!fill_header(r, run, res, &h, err)) {
+        rpl_header_clear(&h);
+        return FALSE;
+    }
+    guint missed = place_frames(r, res);
+    if (unplaced)
+        *unplaced = missed;
+    RplWriter *w = rpl_writer_open(path, err);
+    if (!w) {
+        rpl_header_clear(&h);
+        return FALSE;
+    }
+    rpl_write_header(w, &h);
+    rpl_header_clear(&h);
+    write_body(r, w);
+    return rpl_writer_close(w, err);
+}
+
+gboolean rpl_record_finish(RplRecorder *r, const char *path,
+                           const CfgRun *run, const SimResult *res,
+                           gboolean quiet, GError **err)
+{
+    guint missed = 0;
+    if (!rpl_recorder_write(r, path, run, res, &missed, err))
+        return FALSE;
+    if (!quiet)
+        fprintf(stderr, "pgsim run: recorded %" PRIu64 " actions in %s\n",
+                rpl_recorder_actions(r), path);
+    if (missed)
+        fprintf(stderr,
+                "pgsim run: %u of %u frames end when no recorded action "
+                "completes; a replay reports no frame times for them "
+                "(docs/traces.md)\n",
+                missed, res->frame_times->len);
+    return TRUE;
+}

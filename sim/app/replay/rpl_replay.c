@@ -1,0 +1,303 @@
+/* rpl_replay.c — the replay loop (rpl_replay.h).
+ *
+ * The reader runs just ahead of the simulation.  A group is read whole
+ * (its actions up to the next group line, which stays as lookahead) and
+ * then: an `at T` group is issued at T (at once if T is now); an `on X`
+ * group is attached to X and issued when X completes.  Reading stops
+ * after a group whose cause is still in flight: everything after it in
+ * the file was issued after that cause completed when it was recorded.
+ * When an awaited action completes and its group has not been read yet,
+ * the reader reads on to it, attaching the groups it passes.
+ *
+ * Flights: one record per action marked `+` or `frame`, from when it is
+ * read until it completes; other actions are issued and forgotten.
+ * Cost: O(1) per action plus one engine event per awaited action.
+ */
+#include "sim/app/replay/rpl_replay.h"
+#include "sim/app/replay/rpl_target.h"
+#include "sim/core/error.h"
+#include <inttypes.h>
+#include <string.h>
+
+typedef struct {
+    uint8_t type;
+    gboolean handled, frame;
+    uint32_t proc, peer; /* target processors */
+    unsigned phase;      /* engine phase id */
+    uint64_t id;
+    uint64_t value; /* cost (ps) or bytes */
+} Act;
+
+typedef struct Group {
+    GArray *acts; /* Act */
+} Group;
+
+typedef struct {
+    uint64_t id;
+    Group *group; /* attached `on id` group, or NULL */
+    gboolean handled, frame;
+} Flight;
+
+typedef struct {
+    RplTarget *t;
+    RplReader *r;
+    RplItem look;      /* the next group line */
+    gboolean have_look, eof;
+    GHashTable *flights; /* id -> Flight * */
+    GArray *marks;       /* SimTime: frame ends */
+    uint64_t actions, late;
+    guint waiting; /* groups attached to a flight, not yet issued */
+    GError *error;
+} Replay;
+
+static void issue_group(Replay *rp, Group *g);
+
+static void group_free(Group *g)
+{
+    g_array_free(g->acts, TRUE);
+    g_free(g);
+}
+
+static void stop(Replay *rp, GError *e)
+{
+    if (!rp->error)
+        rp->error = e;
+    else
+        g_error_free(e);
+    sim_engine_stop(rp->t->eng);
+}
+
+/* Reads one line into rp->look (FALSE at the end or on an error). */
+static gboolean next_item(Replay *rp)
+{
+    GError *e = NULL;
+    if (rpl_reader_next(rp->r, &rp->look, &e))
+        return TRUE;
+    rp->eof = TRUE;
+    if (e)
+        stop(rp, e);
+    return FALSE;
+}
+
+static Flight *flight_for(Replay *rp, uint64_t id)
+{
+    return g_hash_table_lookup(rp->flights, &id);
+}
+
+static void add_act(Replay *rp, Group *g, const RplItem *it)
+{
+    RplTarget *t = rp->t;
+    Act a = {.type = it->type,
+             .handled = it->handled,
+             .frame = it->frame,
+             .proc = t->map[it->proc],
+             .peer = it->type == RPL_SEND ? t->map[it->peer] : 0,
+             .phase = it->type == RPL_SEND ? 0 : t->phase[it->phase],
+             .id = it->id,
+             .value = it->type == RPL_SEND ? it->value
+                                           : rpl_target_price(t, it)};
+    g_array_append_val(g->acts, a);
+    if (a.handled || a.frame) {
+        Flight *f = g_new0(Flight, 1);
+        f->id = a.id;
+        f->handled = a.handled;
+        f->frame = a.frame;
+        g_hash_table_insert(rp->flights, &f->id, f);
+    }
+}
+
+/* Reads the group whose header is in rp->look; leaves the next header
+ * (or the end) in rp->look. */
+static Group *read_group(Replay *rp)
+{
+    Group *g = g_new0(Group, 1);
+    g->acts = g_array_new(FALSE, FALSE, sizeof(Act));
+    rp->have_look = FALSE;
+    while (next_item(rp)) {
+        if (rp->look.type == RPL_AT || rp->look.type == RPL_ON) {
+            rp->have_look = TRUE;
+            break;
+        }
+        add_act(rp, g, &rp->look);
+    }
+    return g;
+}
+
+static void timer_fired(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    issue_group(ctx, arg);
+}
+
+/* Reads the group in rp->look and places it.  Returns the flight it was
+ * attached to (NULL for an `at` group). */
+static Flight *place_group(Replay *rp)
+{
+    RplItem head = rp->look;
+    Group *g = read_group(rp);
+    SimEngine *eng = rp->t->eng;
+    if (head.type == RPL_AT) {
+        SimTime now = sim_now(eng);
+        if (head.at < now)
+            rp->late++;
+        if (head.at <= now && rp->waiting == 0)
+            issue_group(rp, g);
+        else
+            sim_schedule_at(eng, MAX(head.at, now), timer_fired, rp, g);
+        return NULL;
+    }
+    Flight *f = flight_for(rp, head.id);
+    g_assert(f && !f->group); /* the reader checked `+` and once */
+    f->group = g;
+    rp->waiting++;
+    return f;
+}
+
+/* Reads on while no group waits for its cause (in the recording,
+ * everything after such a group came after its cause completed). */
+static void pump(Replay *rp)
+{
+    while (!rp->error && rp->have_look && rp->waiting == 0)
+        place_group(rp);
+}
+
+/* Reads on until the group of flight f is attached (or the end). */
+static void seek(Replay *rp, Flight *f)
+{
+    while (!rp->error && rp->have_look && !f->group)
+        place_group(rp);
+}
+
+static void completed(Replay *rp, Flight *f)
+{
+    SimEngine *eng = rp->t->eng;
+    if (f->frame) {
+        SimTime now = sim_now(eng);
+        g_array_append_val(rp->marks, now);
+    }
+    if (f->handled)
+        seek(rp, f);
+    g_hash_table_steal(rp->flights, &f->id);
+    Group *g = f->group;
+    g_free(f);
+    if (g) {
+        rp->waiting--;
+        issue_group(rp, g);
+    }
+    pump(rp);
+}
+
+static void work_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    completed(ctx, arg);
+}
+
+static void delivered(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    completed(ctx, d->payload);
+}
+
+static void issue(Replay *rp, const Act *a)
+{
+    MachMachine *m = rp->t->m;
+    Flight *f = a->handled || a->frame ? flight_for(rp, a->id) : NULL;
+    rp->actions++;
+    if (a->type == RPL_SEND)
+        net_send(mach_net(m), a->proc, a->peer, a->value, f,
+                 f ? delivered : NULL, rp);
+    else
+        mach_proc_compute(mach_proc_at(m, a->proc), a->value, a->phase,
+                          f ? work_done : NULL, rp, f);
+}
+
+static void issue_group(Replay *rp, Group *g)
+{
+    for (guint i = 0; i < g->acts->len; i++)
+        issue(rp, &g_array_index(g->acts, Act, i));
+    group_free(g);
+}
+
+static gint cmp_time(gconstpointer a, gconstpointer b)
+{
+    SimTime x = *(const SimTime *)a, y = *(const SimTime *)b;
+    return x < y ? -1 : x > y;
+}
+
+static SimResult *result(Replay *rp, const RplReplayOpts *o)
+{
+    RplTarget *t = rp->t;
+    SimResult *res = sim_result_new("replay", o->machine);
+    g_free(res->fidelity);
+    res->fidelity = g_strdup(mach_fidelity(t->m));
+    res->seed = 1;
+    mach_fill_result(t->m, res);
+    g_array_sort(rp->marks, cmp_time);
+    SimTime prev = 0;
+    for (guint i = 0; i < rp->marks->len; i++) {
+        SimTime m = g_array_index(rp->marks, SimTime, i);
+        sim_result_add_frame(res, m - prev);
+        prev = m;
+    }
+    res->elapsed = sim_now(t->eng);
+    res->events = sim_engine_events(t->eng);
+    res->config_path = g_strdup(o->trace);
+    sim_result_set_metric(res, "actions", (double)rp->actions, "");
+    if (rp->late)
+        sim_result_set_metric(res, "late_timer_groups", (double)rp->late, "");
+    return res;
+}
+
+/* Runs the replay of an opened, checked trace. */
+static gboolean run(Replay *rp, GError **err)
+{
+    if (next_item(rp)) {
+        rp->have_look = TRUE;
+        pump(rp);
+    }
+    GError *e = NULL;
+    if (!sim_engine_run(rp->t->eng, SIM_TIME_MAX, &e) && !rp->error)
+        rp->error = e;
+    else if (e)
+        g_error_free(e);
+    if (!rp->error && (rp->have_look || g_hash_table_size(rp->flights)))
+        rp->error = g_error_new(SIM_ERROR, SIM_ERROR_INTERNAL,
+                                "%s: the replay stopped with %u actions "
+                                "awaited and the trace not finished",
+                                rpl_reader_path(rp->r),
+                                g_hash_table_size(rp->flights));
+    if (rp->error) {
+        g_propagate_error(err, rp->error);
+        rp->error = NULL;
+        return FALSE;
+    }
+    return TRUE;
+}
+
+SimResult *rpl_replay(const RplReplayOpts *o, GError **err)
+{
+    RplReader *r = rpl_reader_open(o->trace, err);
+    if (!r)
+        return NULL;
+    RplTarget *t = rpl_target_new(o, rpl_reader_header(r), err);
+    if (!t || !rpl_target_check(t, o->trace, err)) {
+        rpl_target_free(t);
+        rpl_reader_free(r);
+        return NULL;
+    }
+    Replay rp = {.t = t,
+                 .r = r,
+                 .flights = g_hash_table_new_full(g_int64_hash, g_int64_equal,
+                                                  NULL, g_free),
+                 .marks = g_array_new(FALSE, FALSE, sizeof(SimTime))};
+    gint64 t0 = g_get_monotonic_time();
+    SimResult *res = run(&rp, err) ? result(&rp, o) : NULL;
+    if (res)
+        res->wall_s = (double)(g_get_monotonic_time() - t0) * 1e-6;
+    g_hash_table_destroy(rp.flights);
+    g_array_free(rp.marks, TRUE);
+    rpl_target_free(t);
+    rpl_reader_free(r);
+    return res;
+}

@@ -1,0 +1,243 @@
+/* rpl_target.c — building the replay machine, mapping, pricing
+ * (rpl_target.h).  Cost: O(model) to build, O(trace processors) for the
+ * map, O(1) per priced action (one hash lookup per operation name).
+ */
+#include "sim/app/replay/rpl_target.h"
+#include "sim/core/error.h"
+#include "sim/machine/model.h"
+#include "sim/machine/partition.h"
+#include <math.h>
+#include <string.h>
+
+guint rpl_map_block(guint p, guint n, guint t)
+{
+    guint per = (n + t - 1) / t;
+    return p / MAX(per, 1);
+}
+
+guint rpl_map_cyclic(guint p, guint n, guint t)
+{
+    (void)n;
+    return p % t;
+}
+
+static gboolean apply_sets(CfgNode *root, const char *const *sets,
+                           GError **err)
+{
+    for (; sets && *sets; sets++) {
+        if (!g_str_has_prefix(*sets, "machine.")) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "replay: found --set %s, expected --set "
+                        "machine.KEY=VALUE",
+                        *sets);
+            return FALSE;
+        }
+        if (!cfg_set_override(root, *sets, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static MachMachine *build(RplTarget *t, const RplReplayOpts *o, GError **err)
+{
+    CfgNode *root = cfg_load_string("machine: {}\n", "replay", err);
+    char *model = g_strdup_printf("machine.model=%s", o->machine);
+    char *path = root ? mach_model_path(o->machine, err) : NULL;
+    gboolean ok = path && cfg_set_override(root, model, err) &&
+                  apply_sets(root, o->sets, err) &&
+                  (!o->nodes || mach_partition(root, o->nodes, &t->desc, err));
+    MachMachine *m =
+        ok ? mach_new_from_cfg(t->eng, cfg_get(root, "machine"),
+                               o->fidelity ? o->fidelity
+                                           : MACH_FIDELITY_FAITHFUL,
+                               err)
+           : NULL;
+    g_free(model);
+    g_free(path);
+    cfg_free(root);
+    return m;
+}
+
+/* The map file: lines "TRACE_PROC TARGET_PROC" ('#' comments). */
+static gboolean map_file(RplTarget *t, const char *path, GError **err)
+{
+    RplLines *l = rpl_lines_open(path, err);
+    guint total = mach_proc_total(t->m);
+    int n;
+    for (guint i = 0; i < t->n_trace; i++)
+        t->map[i] = G_MAXUINT;
+    while (l && (n = rpl_lines_next(l, err)) > 0) {
+        uint64_t p, q;
+        char *what = g_strdup_printf("a target processor below %u", total);
+        gboolean ok =
+            rpl_lines_u64(l, 0, t->n_trace - 1, &p,
+                          "a trace processor id", err) &&
+            rpl_lines_u64(l, 1, total - 1, &q, what, err);
+        g_free(what);
+        if (ok && n > 2)
+            g_propagate_error(err, rpl_lines_error(l, 2, "the end of the line"));
+        if (!ok || n > 2)
+            break;
+        t->map[p] = (guint)q;
+    }
+    for (guint i = 0; l && !(err && *err) && i < t->n_trace; i++)
+        if (t->map[i] == G_MAXUINT)
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "%s: found no line for trace processor %u, expected "
+                        "one 'TRACE_PROC TARGET_PROC' line per processor",
+                        path, i);
+    gboolean ok = l && !(err && *err);
+    rpl_lines_free(l);
+    return ok;
+}
+
+static gboolean make_map(RplTarget *t, const char *map, GError **err)
+{
+    guint total = mach_proc_total(t->m);
+    t->map = g_new(guint, MAX(t->n_trace, 1));
+    if (map && strcmp(map, "block") && strcmp(map, "cyclic"))
+        return map_file(t, map, err);
+    for (guint p = 0; p < t->n_trace; p++)
+        t->map[p] = map && !strcmp(map, "cyclic")
+                        ? rpl_map_cyclic(p, t->n_trace, total)
+                        : rpl_map_block(p, t->n_trace, total);
+    return TRUE;
+}
+
+/* Recording-clock / target-clock for trace processor p; 1 on the
+ * recording machine's own kinds; NAN when a clock is missing. */
+static double clock_ratio(const RplTarget *t, const RplHeader *h,
+                          const char *machine, guint p)
+{
+    const RplKind *rk = rpl_header_kind_of(h, p);
+    MachProc *q = mach_proc_at(t->m, t->map[p]);
+    const MachKindInfo *tk = mach_kind(t->m, mach_proc_kind(q));
+    if (rk && rk->clock_hz > 0 && tk->clock_hz > 0)
+        return rk->clock_hz == tk->clock_hz ? 1 : rk->clock_hz / tk->clock_hz;
+    gboolean same = h->machine && !strcmp(h->machine, machine) &&
+                    (!rk || !strcmp(rk->name, tk->name));
+    return same ? 1 : NAN;
+}
+
+RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
+                          GError **err)
+{
+    RplTarget *t = g_new0(RplTarget, 1);
+    t->eng = sim_engine_new(1);
+    t->n_trace = h->procs;
+    t->costs = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
+    t->m = build(t, o, err);
+    if (!t->m || !make_map(t, o->map, err)) {
+        rpl_target_free(t);
+        return NULL;
+    }
+    t->scale = g_new(double, MAX(t->n_trace, 1));
+    for (guint p = 0; p < t->n_trace; p++)
+        t->scale[p] = clock_ratio(t, h, o->machine, p);
+    t->phase = g_new(unsigned, h->phases->len);
+    for (guint i = 0; i < h->phases->len; i++)
+        t->phase[i] = sim_engine_phase(t->eng, h->phases->pdata[i]);
+    return t;
+}
+
+void rpl_target_free(RplTarget *t)
+{
+    if (!t)
+        return;
+    mach_free(t->m);
+    sim_engine_free(t->eng);
+    g_hash_table_destroy(t->costs);
+    g_free(t->desc);
+    g_free(t->map);
+    g_free(t->scale);
+    g_free(t->phase);
+    g_free(t);
+}
+
+/* The cost of op on trace processor p's target kind; NULL if missing.
+ * *fresh says whether this is the first time the pair was asked. */
+static const SimTime *op_cost(RplTarget *t, guint p, const char *op,
+                              gboolean *fresh)
+{
+    const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
+    char *key = g_strconcat(kind, "\t", op, NULL);
+    gpointer v;
+    *fresh = !g_hash_table_lookup_extended(t->costs, key, NULL, &v);
+    if (!*fresh) {
+        g_free(key);
+        return v;
+    }
+    SimTime c, *cp = NULL;
+    if (mach_cost_lookup(t->m, kind, op, &c, NULL))
+        cp = g_memdup2(&c, sizeof c);
+    g_hash_table_insert(t->costs, key, cp);
+    return cp;
+}
+
+/* Adds the problems of one item to `bad` (one line each, first seen). */
+static void check_item(RplTarget *t, const RplItem *it, const char *path,
+                       GString *bad, gboolean *net_missing)
+{
+    gboolean fresh;
+    const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[it->proc]));
+    if (it->type == RPL_COMPUTE)
+        for (guint i = 0; i < it->n_ops; i++)
+            if (!op_cost(t, it->proc, it->op[i], &fresh) && fresh)
+                g_string_append_printf(bad, "\n  %s:%u:%d: nodes.%s.costs.%s",
+                                       path, it->line, it->op_col[i], kind,
+                                       it->op[i]);
+    if (it->type == RPL_WORK && isnan(t->scale[it->proc])) {
+        g_string_append_printf(bad,
+                               "\n  %s:%u:1: nodes.%s.clock (to scale "
+                               "work recorded on processor %u)",
+                               path, it->line, kind, it->proc);
+        t->scale[it->proc] = INFINITY; /* reported once */
+    }
+    if (it->type == RPL_SEND && !mach_net(t->m) && !*net_missing) {
+        *net_missing = TRUE;
+        g_string_append_printf(bad, "\n  %s:%u:1: a network (this trace sends)",
+                               path, it->line);
+    }
+}
+
+gboolean rpl_target_check(RplTarget *t, const char *path, GError **err)
+{
+    RplReader *r = rpl_reader_open(path, err);
+    if (!r)
+        return FALSE;
+    GString *bad = g_string_new(NULL);
+    gboolean net_missing = FALSE;
+    RplItem it;
+    while (rpl_reader_next(r, &it, err))
+        check_item(t, &it, path, bad, &net_missing);
+    gboolean ok = !(err && *err) && bad->len == 0;
+    if (!(err && *err) && bad->len)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s: found work the machine '%s' cannot price, expected "
+                    "these in its model (first use shown):%s",
+                    path, mach_name(t->m), bad->str);
+    g_string_free(bad, TRUE);
+    rpl_reader_free(r);
+    return ok;
+}
+
+SimTime rpl_target_price(RplTarget *t, const RplItem *it)
+{
+    if (it->type == RPL_WORK) {
+        double s = t->scale[it->proc];
+        if (s == 1)
+            return it->value;
+        double v = round((double)it->value * s);
+        return v >= (double)SIM_TIME_MAX ? SIM_TIME_MAX : (SimTime)v;
+    }
+    SimTime sum = 0, c;
+    gboolean fresh;
+    for (guint i = 0; i < it->n_ops; i++) {
+        const SimTime *cp = op_cost(t, it->proc, it->op[i], &fresh);
+        g_assert(cp); /* rpl_target_check() passed */
+        if (!mach_cost_n(*cp, it->count[i], &c))
+            return SIM_TIME_MAX;
+        sum = sim_time_add_sat(sum, c);
+    }
+    return sum;
+}

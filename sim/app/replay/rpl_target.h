@@ -1,0 +1,37 @@
+/* rpl_target.h — the machine a trace is replayed on: built from a model
+ * with overrides and a size, the map of trace processors onto it, and
+ * the price of each action there.
+ *
+ * rpl_target_check() reads a whole trace once (streaming) before the
+ * replay and collects every problem a replay would meet part way:
+ * costs the target lacks (all of them, one error), work that cannot be
+ * scaled (no clock), sends on a machine without a network.
+ */
+#ifndef PGSIM_APP_REPLAY_RPL_TARGET_H
+#define PGSIM_APP_REPLAY_RPL_TARGET_H
+
+#include "sim/app/replay/rpl_format.h"
+#include "sim/app/replay/rpl_replay.h"
+#include "sim/machine/machine.h"
+
+typedef struct {
+    SimEngine *eng;
+    MachMachine *m;
+    char *desc;     /* the partition ("node 16"), NULL at the model's size */
+    guint n_trace;  /* trace processors */
+    guint *map;     /* trace processor -> target processor id */
+    double *scale;  /* trace processor -> clock ratio for `w` work */
+    unsigned *phase; /* header phase index -> engine phase id */
+    GHashTable *costs; /* "kind\top" -> SimTime * (NULL: missing) */
+} RplTarget;
+
+/* Builds the target for a trace whose header is h. */
+RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
+                          GError **err);
+void rpl_target_free(RplTarget *t);
+/* Reads the trace at path to its end and checks it against the target. */
+gboolean rpl_target_check(RplTarget *t, const char *path, GError **err);
+/* The cost of a checked `c` or `w` item on its target processor. */
+SimTime rpl_target_price(RplTarget *t, const RplItem *it);
+
+#endif

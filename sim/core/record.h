@@ -1,0 +1,49 @@
+/* record.h — hooks for recording what a run does, time-independently.
+ *
+ * A SimRecorder (attached with sim_engine_set_recorder) hears of every
+ * piece of work a processor is given and every message a network is
+ * asked to carry, and of the handler that runs when each completes.  The
+ * model layers call the sim_record_* helpers below, which cost one NULL
+ * test when no recorder is attached.  The trace writer that implements
+ * the table lives in sim/app/replay/ (docs/traces.md).
+ *
+ * Causality: every action gets an id from the recorder; while the
+ * handler of action X's completion runs, the recorder is told (begin X
+ * ... end X), so whatever is issued inside it is caused by X.  Work
+ * issued outside any such handler (setup, a workload's own timer) has
+ * no recorded cause.
+ */
+#ifndef PGSIM_CORE_RECORD_H
+#define PGSIM_CORE_RECORD_H
+
+#include "sim/core/engine.h"
+
+typedef struct SimRecorder SimRecorder;
+
+typedef struct {
+    /* `node` was given `cost` in `phase`; `handled`: a handler runs when
+     * it completes.  Returns the action's id. */
+    uint64_t (*compute)(SimRecorder *r, SimTime now, uint32_t node,
+                        unsigned phase, SimTime cost, gboolean handled);
+    /* A message of `bytes` from src to dst was sent. */
+    uint64_t (*send)(SimRecorder *r, SimTime now, uint32_t src, uint32_t dst,
+                     uint64_t bytes, gboolean handled);
+    /* Action `id` completed at `t` (work done / message delivered); for a
+     * handled action, its handler runs between begin and end. */
+    void (*begin)(SimRecorder *r, uint64_t id, SimTime t);
+    void (*end)(SimRecorder *r, uint64_t id);
+} SimRecorderOps;
+
+struct SimRecorder {
+    const SimRecorderOps *ops;
+    void *state;
+};
+
+/* Schedules done(eng, ctx, arg) at `t` for recorded action `id`, telling
+ * the recorder when it begins and ends (done may be NULL: the recorder
+ * still hears of the completion).  Returns FALSE on overflow. */
+gboolean sim_record_schedule_done(SimEngine *eng, SimRecorder *r, uint64_t id,
+                                  SimTime t, SimHandler done, void *ctx,
+                                  void *arg);
+
+#endif

@@ -1,0 +1,176 @@
+/* test_roundtrip.c — `pgsim run --record` then `pgsim replay` on the same
+ * machine gives the run's frame times, busy times (so utilisation) and
+ * communication volume exactly, for each workload that uses the machine
+ * layer's processors and network (shipped configs, made small with
+ * overrides); and the comparison fails when the target differs. */
+#include "sim/app/replay/rpl_format.h"
+#include "sim/app/replay/rpl_record.h"
+#include "sim/app/replay/rpl_replay.h"
+#include <glib/gstdio.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <string.h>
+#include <cmocka.h>
+
+typedef struct {
+    const char *config;
+    const char *sets[6];
+} Case;
+
+/* Runs a config with a recorder; writes the trace to path. */
+static SimResult *record(const Case *c, const char *path, char **machine,
+                         char **fidelity)
+{
+    GError *e = NULL;
+    CfgRun *r = cfg_run_load(c->config, c->sets, &e);
+    g_assert_no_error(e);
+    RplRecorder *rec = rpl_recorder_new();
+    CfgRunOpts o = {.quiet = TRUE, .recorder = rpl_recorder_hook(rec)};
+    SimResult *res = cfg_run_exec(r, &o, &e);
+    g_assert_no_error(e);
+    assert_true(rpl_recorder_write(rec, path, r, res, NULL, &e));
+    g_assert_no_error(e);
+    rpl_recorder_free(rec);
+    cfg_run_free(r);
+    RplReader *rd = rpl_reader_open(path, &e);
+    g_assert_no_error(e);
+    *machine = g_strdup(rpl_reader_header(rd)->machine);
+    *fidelity = g_strdup(rpl_reader_header(rd)->fidelity);
+    rpl_reader_free(rd);
+    return res;
+}
+
+/* TRUE when frame times, elapsed time, every node's busy time (total
+ * and per phase) and the communication volume are equal. */
+static gboolean same(const SimResult *a, const SimResult *b)
+{
+    gboolean ok = a->frame_times->len == b->frame_times->len &&
+                  a->elapsed == b->elapsed && a->comm_bytes == b->comm_bytes &&
+                  a->comm_messages == b->comm_messages &&
+                  a->nodes->len == b->nodes->len &&
+                  a->phases->len == b->phases->len;
+    for (guint i = 0; ok && i < a->frame_times->len; i++)
+        ok = g_array_index(a->frame_times, SimTime, i) ==
+             g_array_index(b->frame_times, SimTime, i);
+    for (guint i = 0; ok && i < a->nodes->len; i++) {
+        const SimNodeResult *x = a->nodes->pdata[i], *y = b->nodes->pdata[i];
+        ok = !strcmp(x->name, y->name) && x->busy.total == y->busy.total;
+        for (guint k = 0; ok && k < a->phases->len; k++)
+            ok = sim_busy_phase(&x->busy, k) == sim_busy_phase(&y->busy, k);
+    }
+    return ok;
+}
+
+static SimResult *replay(const char *path, const char *machine,
+                         const char *fidelity, const char *const *sets)
+{
+    RplReplayOpts o = {.trace = path,
+                       .machine = machine,
+                       .fidelity = fidelity,
+                       .sets = sets};
+    GError *e = NULL;
+    SimResult *res = rpl_replay(&o, &e);
+    g_assert_no_error(e);
+    return res;
+}
+
+static void round_trip(const Case *c, gboolean gz)
+{
+    char *dir = g_dir_make_tmp("pgsim-rt-XXXXXX", NULL);
+    char *path = g_build_filename(dir, gz ? "t.pgt.gz" : "t.pgt", NULL);
+    char *machine, *fidelity;
+    SimResult *orig = record(c, path, &machine, &fidelity);
+    assert_true(orig->frame_times->len > 0);
+    SimResult *rep = replay(path, machine, fidelity, NULL);
+    if (!same(orig, rep))
+        fail_msg("%s: the replay differs from the run", c->config);
+    sim_result_free(rep);
+    sim_result_free(orig);
+    g_remove(path);
+    g_rmdir(dir);
+    g_free(path);
+    g_free(dir);
+    g_free(machine);
+    g_free(fidelity);
+}
+
+static const Case pixelmerge = {"configs/pixelmerge-2pot.yaml", {NULL}};
+static const Case quickstart = {"configs/quickstart.yaml", {NULL}};
+static const Case pphigs = {"configs/pphigs-flock.yaml",
+                            {"run.frames=2", NULL}};
+static const Case sortfirst = {"configs/sortfirst-vehicle.yaml",
+                               {"run.frames=2", "scene.triangles=8000",
+                                "scene.structures=60", NULL}};
+static const Case dpscan = {"configs/dpscan-cm200.yaml",
+                            {"scene.grid=16", "workload.width=256",
+                             "workload.height=256", NULL}};
+static const Case argus = {"configs/argus-nurbs.yaml", {NULL}};
+
+static void test_pixelmerge(void **s)
+{
+    (void)s;
+    round_trip(&pixelmerge, FALSE);
+    round_trip(&quickstart, TRUE); /* gzip, analytic network */
+}
+
+static void test_pphigs(void **s)
+{
+    (void)s;
+    round_trip(&pphigs, FALSE);
+}
+
+static void test_sortfirst(void **s)
+{
+    (void)s;
+    round_trip(&sortfirst, FALSE);
+}
+
+static void test_dpscan(void **s)
+{
+    (void)s;
+    round_trip(&dpscan, FALSE);
+}
+
+static void test_argus(void **s)
+{
+    (void)s;
+    round_trip(&argus, FALSE);
+}
+
+/* The comparison can fail: the same trace on a slower network (or at
+ * another fidelity) gives other frame times. */
+static void test_other_machine_differs(void **s)
+{
+    (void)s;
+    char *dir = g_dir_make_tmp("pgsim-rt-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "t.pgt", NULL);
+    char *machine, *fidelity;
+    SimResult *orig = record(&pixelmerge, path, &machine, &fidelity);
+    const char *slow[] = {"machine.network.bandwidth=0.5 MB/s", NULL};
+    SimResult *rep = replay(path, machine, fidelity, slow);
+    assert_false(same(orig, rep));
+    assert_int_equal(orig->comm_bytes, rep->comm_bytes);
+    assert_true(sim_result_mean_frame_s(rep) > sim_result_mean_frame_s(orig));
+    sim_result_free(rep);
+    sim_result_free(orig);
+    g_remove(path);
+    g_rmdir(dir);
+    g_free(path);
+    g_free(dir);
+    g_free(machine);
+    g_free(fidelity);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pixelmerge),
+        cmocka_unit_test(test_pphigs),
+        cmocka_unit_test(test_sortfirst),
+        cmocka_unit_test(test_dpscan),
+        cmocka_unit_test(test_argus),
+        cmocka_unit_test(test_other_machine_differs),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
