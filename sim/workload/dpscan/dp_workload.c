@@ -149,24 +149,17 @@ static gboolean play(SimEngine *eng, MachMachine *mach, const WlDpTarget *t,
     return sim_engine_run(eng, SIM_TIME_MAX, err);
 }
 
+/* The frame's image through the generic hook (DIR/frame.png, or
+ * DIR/frame-NNNN.png with --frames all); nothing is built without --out. */
 static gboolean write_image(const WlContext *ctx, const DpParams *p,
                             const WlDpImage *img, int frame, GError **err)
 {
-    if (!ctx->out_dir)
+    if (!wl_wants_frame(ctx, frame))
         return TRUE;
     WlDpColorTable t;
     wl_dp_color_table(p->pal, &t);
     RastImage *rgb = wl_dp_color_image(img->index, img->width, img->height, &t);
-    char *name = frame == 0 ? g_strdup("dpscan.png")
-                            : g_strdup_printf("dpscan_%04d.png", frame);
-    char *path = g_build_filename(ctx->out_dir, name, NULL);
-    gboolean ok = g_mkdir_with_parents(ctx->out_dir, 0755) == 0 &&
-                  rast_image_write_png(rgb, path, err);
-    if (!ok && err && !*err)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create",
-                    ctx->out_dir);
-    g_free(path);
-    g_free(name);
+    gboolean ok = wl_emit_frame(ctx, frame, rgb, err);
     rast_image_free(rgb);
     return ok;
 }

@@ -13,9 +13,10 @@
  *                             # or "#rrggbb" (dp_color.h)
  *   scene: {...}              # sim/scene/scene_cfg.h
  *
- * With `pgsim run --out DIR` each frame's image is written as
- * DIR/dpscan.png (frame 0) or DIR/dpscan_NNNN.png, through the 8-bit
- * colour table of §5.  Metrics per run (mean over frames): time per phase
+ * With `pgsim run --out DIR` the last frame's image is written as
+ * DIR/frame.png (`--frames all`: DIR/frame-NNNN.png for every frame)
+ * through the generic hook wl_emit_frame(), in the 8-bit colour table of
+ * §5.  Metrics per run (mean over frames): time per phase
  * (transform_s, scan_s, pixel_s, router_s, display_s), polygons_per_s,
  * steps, scan_iters, pixel_iters, flushes, segments, pixels, collisions,
  * messages, max_load.  O(render) per frame (dp_render.h).
