@@ -229,8 +229,10 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
         r.coef = fopen(coef, "w");
     gboolean ok =
         scene_cells(&r, "small", err) && scene_cells(&r, "large", err);
-    if (ok)
+    if (ok) {
         text_rows(rows);
+        rp_ortega93_claims(rows);
+    }
     if (ok && ctx->out_dir)
         rp_ortega93_charts(rows, ctx->out_dir);
     if (r.coef)

@@ -17,7 +17,8 @@
  * costed on every partition of every table at once (one array-layer
  * target per partition); about 20 s in all.  Table "text" holds the two
  * sentences of §6 (the fastest small-polygon rate of the 64K CM-200 and
- * of the 512-node CM-5).  With --out, Figures 3 and 4 as charts.
+ * of the 512-node CM-5); table "claims" decides §6's other sentences
+ * from the simulated cells.  With --out, Figures 3 and 4 as charts.
  *
  * Setting PGSIM_DP_COEF=<file> also writes the linear coefficients of
  * every SIMD cell (dp_cost.h) as CSV, for scripts/fit-ortega93.py.
@@ -33,5 +34,11 @@ extern const RpPaperOps rp_ortega93;
  * (ortega93_plot.c); a chart that cannot be drawn is reported on
  * stderr, not an error. */
 void rp_ortega93_charts(GPtrArray *rows, const char *dir);
+
+/* The three other sentences of §6 as computed rows of table "claims"
+ * (ortega93_claims.c: over 600,000 on the 64K CM-200; large polygons an
+ * order of magnitude slower; the large set's worse speed-up), appended
+ * to rows from the simulated cells already in it. */
+void rp_ortega93_claims(GPtrArray *rows);
 
 #endif
