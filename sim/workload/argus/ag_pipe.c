@@ -65,6 +65,9 @@ struct AgPipe {
     guint *t_rr;  /* per tile: context to try first */
     guint tiles_left;
     gboolean *r_busy;
+    guint nw;          /* workers of the pool (workers: pool), else 0 */
+    gboolean *t_busy;  /* pool: a worker is drawing the tile */
+    guint pool_cursor; /* pool: the tile to try first */
     guint *r_cursor, *r_tile, *r_block;
     GArray **r_tiles; /* tiles of each rasteriser, in row-major order */
     AgFrameStats *out;
@@ -250,12 +253,25 @@ static guint bucket_block(AgPipe *p, const AgBlock *k, BlockState *s)
 
 static void geom_kick(AgPipe *p);
 static void rast_kick(AgPipe *p, guint r);
+static void pool_kick(AgPipe *p);
+
+/* The thread of geometry thread or pool worker g (role 0) or of
+ * rasteriser or pool worker r (role 1). */
+static MachProc *worker_proc(AgPipe *p, int role, guint i)
+{
+    guint base = p->C + (role == 1 && !p->nw ? p->s.geometry : 0);
+    return thread_proc(p, base + i);
+}
 
 static void block_ready(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     AgPipe *p = ctx;
     p->bs[GPOINTER_TO_UINT(arg)].done = TRUE;
+    if (p->nw) {
+        pool_kick(p);
+        return;
+    }
     for (guint r = 0; r < p->s.rasterisers; r++)
         rast_kick(p, r);
 }
@@ -286,7 +302,7 @@ static void geom_start(AgPipe *p, guint g, guint b)
     p->out->geom_busy += cost;
     p->g_busy[g] = TRUE;
     p->g_block[g] = b;
-    mach_proc_compute(thread_proc(p, p->C + g), cost, p->ph_geom, geom_done, p,
+    mach_proc_compute(worker_proc(p, 0, g), cost, p->ph_geom, geom_done, p,
                       GUINT_TO_POINTER(g));
 }
 
@@ -300,6 +316,10 @@ static void enqueue(SimEngine *eng, void *ctx, void *arg)
 
 static void geom_kick(AgPipe *p)
 {
+    if (p->nw) {
+        pool_kick(p);
+        return;
+    }
     for (guint g = 0; g < p->s.geometry && !g_queue_is_empty(&p->gq); g++)
         if (!p->g_busy[g])
             geom_start(p, g, GPOINTER_TO_UINT(g_queue_pop_head(&p->gq)));
@@ -425,6 +445,8 @@ static void rast_done(SimEngine *eng, void *ctx, void *arg)
     sync_apply(p, t, k->post, k->n_post);
     (*tnext(p, t, c))++;
     p->r_busy[r] = FALSE;
+    if (p->nw)
+        p->t_busy[t] = FALSE;
     tile_advance(p, t);
     rast_kick(p, r);
 }
@@ -452,13 +474,18 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
     p->r_busy[r] = TRUE;
     p->r_tile[r] = t;
     p->r_block[r] = b;
-    guint thread = p->C + p->s.geometry + r;
-    mach_proc_compute(thread_proc(p, thread), cost, p->ph_rast, rast_done, p,
+    if (p->nw)
+        p->t_busy[t] = TRUE;
+    mach_proc_compute(worker_proc(p, 1, r), cost, p->ph_rast, rast_done, p,
                       GUINT_TO_POINTER(r));
 }
 
 static void rast_kick(AgPipe *p, guint r)
 {
+    if (p->nw) {
+        pool_kick(p);
+        return;
+    }
     GArray *own = p->r_tiles[r];
     guint mine = own->len;
     if (p->r_busy[r] || mine == 0)
@@ -472,6 +499,50 @@ static void rast_kick(AgPipe *p, guint r)
             rast_start(p, r, t, b);
             return;
         }
+    }
+}
+
+/* ---- the worker pool (workers: pool) ------------------------------------ */
+
+static gboolean worker_idle(const AgPipe *p, guint w)
+{
+    return !p->g_busy[w] && !p->r_busy[w];
+}
+
+/* A tile no worker is drawing with a block ready for it, from the
+ * cursor on (round robin). */
+static gboolean pool_tile(AgPipe *p, guint *t, guint *b)
+{
+    for (guint i = 0; i < p->ntiles; i++) {
+        guint x = (p->pool_cursor + i) % p->ntiles;
+        if (p->t_busy[x])
+            continue;
+        tile_advance(p, x);
+        guint k = tile_pick(p, x);
+        if (k != G_MAXUINT) {
+            p->pool_cursor = (x + 1) % p->ntiles;
+            *t = x;
+            *b = k;
+            return TRUE;
+        }
+    }
+    return FALSE;
+}
+
+/* Gives every idle worker work: a block from the geometry queue first,
+ * else a ready (tile, block). */
+static void pool_kick(AgPipe *p)
+{
+    for (guint w = 0; w < p->nw; w++) {
+        if (!worker_idle(p, w))
+            continue;
+        guint t, b;
+        if (!g_queue_is_empty(&p->gq))
+            geom_start(p, w, GPOINTER_TO_UINT(g_queue_pop_head(&p->gq)));
+        else if (pool_tile(p, &t, &b))
+            rast_start(p, w, t, b);
+        else
+            return;
     }
 }
 
@@ -505,17 +576,20 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
     p->app_arrived = g_new0(gboolean, p->C);
     p->app_parked = g_new0(gboolean, p->C);
     g_queue_init(&p->gq);
-    p->g_busy = g_new0(gboolean, s->geometry);
-    p->g_block = g_new0(guint, s->geometry);
+    p->nw = s->pool ? s->geometry + s->rasterisers : 0;
+    guint ng = MAX(s->geometry, p->nw), nr = MAX(s->rasterisers, p->nw);
+    p->g_busy = g_new0(gboolean, ng);
+    p->g_block = g_new0(guint, ng);
     p->ntiles = wl_ag_n_tiles(f);
     p->tnext = g_new0(guint, (gsize)p->ntiles * p->C);
     p->nsem = st->sems + st->barriers;
     p->sem = g_new0(int32_t, (gsize)p->ntiles * (p->nsem ? p->nsem : 1));
     p->t_rr = g_new0(guint, p->ntiles);
-    p->r_busy = g_new0(gboolean, s->rasterisers);
-    p->r_cursor = g_new0(guint, s->rasterisers);
-    p->r_tile = g_new0(guint, s->rasterisers);
-    p->r_block = g_new0(guint, s->rasterisers);
+    p->r_busy = g_new0(gboolean, nr);
+    p->r_cursor = g_new0(guint, nr);
+    p->r_tile = g_new0(guint, nr);
+    p->r_block = g_new0(guint, nr);
+    p->t_busy = g_new0(gboolean, p->ntiles);
     p->r_tiles = g_new0(GArray *, s->rasterisers);
     for (guint r = 0; r < s->rasterisers; r++)
         p->r_tiles[r] = g_array_new(FALSE, FALSE, sizeof(guint));
@@ -554,6 +628,7 @@ void wl_ag_pipe_free(AgPipe *p)
     g_free(p->sem);
     g_free(p->t_rr);
     g_free(p->r_busy);
+    g_free(p->t_busy);
     g_free(p->r_cursor);
     g_free(p->r_tile);
     g_free(p->r_block);
@@ -571,6 +646,7 @@ static void reset(AgPipe *p)
     memset(p->sem, 0,
            (gsize)p->ntiles * (p->nsem ? p->nsem : 1) * sizeof(int32_t));
     memset(p->t_rr, 0, p->ntiles * sizeof(guint));
+    p->pool_cursor = 0;
     memset(p->app_bar, 0,
            (p->st->barriers ? p->st->barriers : 1) * sizeof(guint));
     memset(p->app_arrived, 0, p->C * sizeof(gboolean));

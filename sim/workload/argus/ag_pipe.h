@@ -67,6 +67,7 @@ typedef struct {
     guint procs, contexts, geometry, rasterisers;
     gboolean uniprocessor;
     gboolean fill_infinite;
+    gboolean pool; /* workers: pool (below) */
     AgApp app;
     uint64_t voxels_per_batch; /* March: cell voxels */
     guint vertex_bytes, triangle_bytes;

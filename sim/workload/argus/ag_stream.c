@@ -74,9 +74,9 @@ static void emit_batch(AgStreams *s, const SceneMesh *m, guint c, guint bi,
 {
     const AgBatch *b = &g_array_index(s->batches, AgBatch, bi);
     GArray *out = wl_ag_ctx_blocks(s, c);
+    /* an empty batch (a March cell without surface) is still one block:
+     * the application visits the cell's voxels whatever it finds */
     guint pieces = b->n ? (b->n + block_tris - 1) / block_tris : 1;
-    if (b->n == 0 && sync->n_pre + sync->n_post == 0)
-        pieces = 0;
     for (guint k = 0; k < pieces; k++) {
         AgBlock x = {.ctx = c, .seq = out->len, .batch = bi};
         x.first = b->first + k * block_tris;

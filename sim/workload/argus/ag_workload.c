@@ -9,6 +9,10 @@
  *     contexts: 4           # graphics contexts = application threads
  *     geometry: 10          # geometry threads (default (P - C) / 2)
  *     rasterisers: 10       # rasterisation threads (default P - C - G)
+ *     workers: split        # split: G geometry threads and R rasterisers
+ *                           # owning tiles statically; pool: G + R
+ *                           # workers, each taking geometry work first,
+ *                           # else any ready tile (ag_pipe.h)
  *     uniprocessor: false   # everything on one processor, no queues
  *     application: nurbs    # none | nurbs | march (application work)
  *     voxels_per_cell: 4096 # march: voxels visited per cell (16^3)
@@ -38,22 +42,25 @@
 #include <string.h>
 
 static const char *const fills[] = {"infinite", "finite", NULL};
+static const char *const workers[] = {"split", "pool", NULL};
 
 static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
 {
     int app = WL_AG_APP_NONE, ord = WL_AG_ORDER_FRAME, prim = 0, pix = 0;
-    int fill = 0;
+    int fill = 0, work = 0;
     gboolean ok =
         cfg_get_enum(sec, "application", FALSE, wl_ag_app_names, &app, err) &&
         cfg_get_enum(sec, "order", FALSE, wl_ag_order_names, &ord, err) &&
         cfg_get_enum(sec, "primitives", FALSE, wl_ag_prim_names, &prim, err) &&
         cfg_get_enum(sec, "pixels", FALSE, wl_ag_pixel_names, &pix, err) &&
-        cfg_get_enum(sec, "fill_rate", FALSE, fills, &fill, err);
+        cfg_get_enum(sec, "fill_rate", FALSE, fills, &fill, err) &&
+        cfg_get_enum(sec, "workers", FALSE, workers, &work, err);
     p->setup.app = (AgApp)app;
     p->order = (AgOrder)ord;
     p->prim = (AgPrim)prim;
     p->pixels = (AgPixelMode)pix;
     p->setup.fill_infinite = fill == 0;
+    p->setup.pool = work == 1;
     return ok;
 }
 

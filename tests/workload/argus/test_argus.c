@@ -15,6 +15,8 @@
 #include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
 
+static const char *workers = "split";
+
 /* A small March: 16^3 lattice in 4^3-cube cells (64 cells), 240 x 200. */
 static char *config(const char *order, int contexts, int voxels)
 {
@@ -23,10 +25,11 @@ static char *config(const char *order, int contexts, int voxels)
         "workload: {type: argus, processors: 24, contexts: %d,\n"
         "  application: march, voxels_per_cell: %d, cells: 4,\n"
         "  order: %s, primitives: triangles, pixels: blend, alpha: 0.4,\n"
-        "  tile: 32, block: 8, width: 240, height: 200}\n"
+        "  tile: 32, block: 8, width: 240, height: 200, workers: %s,\n"
+        "  fill_rate: finite}\n"
         "scene: {generator: march, grid: 16, cell: 4, iso: 1.67}\n"
         "run: {frames: 1}\n",
-        contexts, voxels, order);
+        contexts, voxels, order, workers);
 }
 
 static SimResult *run_text(const char *text, GError **err)
@@ -125,6 +128,27 @@ static void test_semaphores_order_the_blend(void **state)
     assert_true(run_metric("none", 1, 64, "image_matches_serial") == 1);
 }
 
+/* The pool (workers: pool) keeps the order, and balances better than
+ * tiles owned statically when the rasterisers bound the frame (no
+ * application work): never slower, and no faster than all the work
+ * spread over every worker allows. */
+static void test_pool_orders_and_balances(void **state)
+{
+    (void)state;
+    workers = "pool";
+    double ok = run_metric("cells", 4, 64, "image_matches_serial");
+    double bad = run_metric("none", 4, 64, "pixels_differing");
+    double pool = run_metric("cells", 4, 0, "frame_ms");
+    double busy = run_metric("cells", 4, 0, "geometry_ms") +
+                  run_metric("cells", 4, 0, "rasterisation_ms");
+    workers = "split";
+    double split = run_metric("cells", 4, 0, "frame_ms");
+    assert_true(ok == 1);
+    assert_true(bad > 0);
+    assert_true(pool < split);
+    assert_true(pool >= busy / 20 * 0.999); /* 20 workers */
+}
+
 static void test_streams_of_figure_3c(void **state)
 {
     (void)state;
@@ -195,6 +219,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bucket_corner_tiles),
         cmocka_unit_test(test_semaphores_order_the_blend),
+        cmocka_unit_test(test_pool_orders_and_balances),
         cmocka_unit_test(test_streams_of_figure_3c),
         cmocka_unit_test(test_contexts_speed_up_issue),
         cmocka_unit_test(test_too_many_processors),
