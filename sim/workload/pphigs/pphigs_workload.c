@@ -32,14 +32,14 @@
  * what a one-GP frame's busy time is, to the picosecond); the renderers'
  * linear expressions per frame, and image_matches_serial: the frame the
  * renderers drew and the frame buffer assembled equals a serial render
- * of the whole list (pphigs_pixels.h).  With --out the last frame is
- * written as pphigs_frame.png.
+ * of the whole list (pphigs_pixels.h).  With --out DIR the frames go
+ * through wl_emit_frame() (DIR/frame.png, or every frame with --frames
+ * all).
  * Cost per frame: the frame's (pphigs_frame.h) plus O(host size) per edit.
  */
 #include "sim/workload/pphigs/pphigs_pixels.h"
 #include "sim/workload/pphigs/pphigs_run.h"
 #include "sim/workload/pphigs/pphigs_rebalance.h"
-#include <errno.h>
 #include "sim/machine/model.h"
 #include "sim/scene/scene_limits.h"
 #include "sim/workload/workload.h"
@@ -518,9 +518,8 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     fill_edits(r, ctx, out);
 }
 
-/* The last frame against a serial render of the host's list, and the
- * frame as <out_dir>/pphigs_frame.png under --out. */
-static gboolean check_image(Run *r, const WlContext *ctx, GError **err)
+/* The last frame against a serial render of the host's list. */
+static void check_image(Run *r)
 {
     const RastImage *img = wl_pphigs_frame_image(r->frame);
     RastImage *ref = wl_pphigs_render_serial(
@@ -528,17 +527,6 @@ static gboolean check_image(Run *r, const WlContext *ctx, GError **err)
         (guint)img->width, (guint)img->height);
     r->image_ok = rast_image_equal(img, ref);
     rast_image_free(ref);
-    if (!ctx->out_dir)
-        return TRUE;
-    if (g_mkdir_with_parents(ctx->out_dir, 0755) != 0) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create: %s",
-                    ctx->out_dir, g_strerror(errno));
-        return FALSE;
-    }
-    char *path = g_build_filename(ctx->out_dir, "pphigs_frame.png", NULL);
-    gboolean ok = rast_image_write_png(img, path, err);
-    g_free(path);
-    return ok;
 }
 
 static gboolean run(const WlContext *ctx, void *params, SimResult *out,
@@ -548,10 +536,12 @@ static gboolean run(const WlContext *ctx, void *params, SimResult *out,
     gboolean ok = build(&r, ctx, err);
     SimTime until = wl_until(ctx);
     for (int f = 0; ok && f < ctx->frames && sim_now(ctx->eng) < until; f++)
-        ok = one_frame(&r, out, err);
-    ok = ok && check_image(&r, ctx, err);
-    if (ok)
+        ok = one_frame(&r, out, err) &&
+             wl_emit_frame(ctx, f, wl_pphigs_frame_image(r.frame), err);
+    if (ok) {
+        check_image(&r);
         fill(&r, ctx, out);
+    }
     run_clear(&r);
     return ok;
 }

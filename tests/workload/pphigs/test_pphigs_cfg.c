@@ -15,6 +15,7 @@
 #include "sim/app/run/config.h"
 #include "sim/workload/pphigs/pphigs_run.h"
 #include "sim/workload/workload.h"
+#include <glib/gstdio.h>
 #include <string.h>
 
 static const char *const names[] = {"space_station", "building_lobby",
@@ -360,6 +361,47 @@ static void test_attr_cache_knob(void **st)
     g_clear_error(&err);
 }
 
+/* A PNG of the 1280 x 1024 frame at dir/name. */
+static void assert_png(const char *dir, const char *name)
+{
+    char *png = g_build_filename(dir, name, NULL);
+    char *data = NULL;
+    gsize len = 0;
+    assert_true(g_file_get_contents(png, &data, &len, NULL));
+    assert_true(len > 100 && memcmp(data, "\x89PNG", 4) == 0);
+    assert_int_equal(((guchar)data[18] << 8) | (guchar)data[19], 1280);
+    assert_int_equal(((guchar)data[22] << 8) | (guchar)data[23], 1024);
+    g_free(data);
+    assert_int_equal(g_remove(png), 0);
+    g_free(png);
+}
+
+/* --out DIR: the frames go through the generic hook, DIR/frame.png (the
+ * last) or DIR/frame-NNNN.png (--frames all), as for other workloads. */
+static void test_frame_out(void **st)
+{
+    (void)st;
+    const char *sets[] = {"run.frames=2", "run.fidelity=analytic", NULL};
+    CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, NULL);
+    assert_non_null(r);
+    for (int all = 0; all <= 1; all++) {
+        char *dir = g_dir_make_tmp("pgsim-pphigs-XXXXXX", NULL);
+        CfgRunOpts o = {.out_dir = dir, .quiet = TRUE, .all_frames = all};
+        SimResult *res = cfg_run_exec(r, &o, NULL);
+        assert_non_null(res);
+        if (all) {
+            assert_png(dir, "frame-0000.png");
+            assert_png(dir, "frame-0001.png");
+        } else {
+            assert_png(dir, "frame.png");
+        }
+        assert_int_equal(g_rmdir(dir), 0); /* nothing else was written */
+        sim_result_free(res);
+        g_free(dir);
+    }
+    cfg_run_free(r);
+}
+
 /* `pgsim run` of one fresh frame reports the reproduction's cells. */
 static void test_run_matches_table(void **st)
 {
@@ -401,6 +443,7 @@ int main(void)
         cmocka_unit_test(test_machine_overrides),
         cmocka_unit_test(test_edit_kinds),
         cmocka_unit_test(test_attr_cache_knob),
+        cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_run_matches_table),
     };
     return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);
