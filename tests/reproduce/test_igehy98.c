@@ -1,7 +1,8 @@
 /* test_igehy98.c — the Argus reproduction's runner: one run of a config
  * with `--set` overrides gives a frame rate, overrides reach the run
  * (one context issuing with no application work is faster than with
- * it), and a bad override or file is an error, not a number. */
+ * it; a dearer patch vertex, as the leave-one-out rows set, slower),
+ * and a bad override or file is an error, not a number. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -41,6 +42,11 @@ static void test_rate_and_overrides(void **state)
     assert_true(rp_igehy98_rate(path, none, &issue_only, &e));
     assert_true(with_app > 0 && isfinite(with_app));
     assert_true(issue_only > with_app);
+    /* the leave-one-out rows' override: a cost of the model, per cell */
+    const char *slow[] = {"machine.nodes.cpu.costs.nurbs_vertex=5us", NULL};
+    double slower = 0;
+    assert_true(rp_igehy98_rate(path, slow, &slower, &e));
+    assert_true(slower < 0.8 * with_app);
     const char *bad[] = {"workload.contexts=zero", NULL};
     double hz = -1;
     assert_false(rp_igehy98_rate(path, bad, &hz, &e));
