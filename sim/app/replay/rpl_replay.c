@@ -14,6 +14,8 @@
  * Cost: O(1) per action plus one engine event per awaited action.
  */
 #include "sim/app/replay/rpl_replay.h"
+#include "sim/app/replay/rpl_sgparse.h"
+#include "sim/app/replay/rpl_simgrid.h"
 #include "sim/app/replay/rpl_target.h"
 #include "sim/core/error.h"
 #include <inttypes.h>
@@ -275,8 +277,19 @@ static gboolean run(Replay *rp, GError **err)
     return TRUE;
 }
 
+/* TRUE when the trace's first line is a SimGrid action. */
+static gboolean is_simgrid(const char *path)
+{
+    RplLines *l = rpl_lines_open(path, NULL);
+    gboolean sg = l && rpl_lines_next(l, NULL) > 0 && rpl_sg_is_action(l);
+    rpl_lines_free(l);
+    return sg;
+}
+
 SimResult *rpl_replay(const RplReplayOpts *o, GError **err)
 {
+    if (is_simgrid(o->trace))
+        return rpl_replay_simgrid(o, err);
     RplReader *r = rpl_reader_open(o->trace, err);
     if (!r)
         return NULL;

@@ -154,9 +154,7 @@ void rpl_target_free(RplTarget *t)
     g_free(t);
 }
 
-/* The cost of op on trace processor p's target kind; NULL if missing.
- * *fresh says whether this is the first time the pair was asked. */
-static const SimTime *op_cost(RplTarget *t, guint p, const char *op,
+const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                               gboolean *fresh)
 {
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
@@ -182,7 +180,7 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[it->proc]));
     if (it->type == RPL_COMPUTE)
         for (guint i = 0; i < it->n_ops; i++)
-            if (!op_cost(t, it->proc, it->op[i], &fresh) && fresh)
+            if (!rpl_target_op_cost(t, it->proc, it->op[i], &fresh) && fresh)
                 g_string_append_printf(bad, "\n  %s:%u:%d: nodes.%s.costs.%s",
                                        path, it->line, it->op_col[i], kind,
                                        it->op[i]);
@@ -233,7 +231,7 @@ SimTime rpl_target_price(RplTarget *t, const RplItem *it)
     SimTime sum = 0, c;
     gboolean fresh;
     for (guint i = 0; i < it->n_ops; i++) {
-        const SimTime *cp = op_cost(t, it->proc, it->op[i], &fresh);
+        const SimTime *cp = rpl_target_op_cost(t, it->proc, it->op[i], &fresh);
         g_assert(cp); /* rpl_target_check() passed */
         if (!mach_cost_n(*cp, it->count[i], &c))
             return SIM_TIME_MAX;

@@ -31,6 +31,10 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
 void rpl_target_free(RplTarget *t);
 /* Reads the trace at path to its end and checks it against the target. */
 gboolean rpl_target_check(RplTarget *t, const char *path, GError **err);
+/* The cost of one `op` on trace processor p's target kind, or NULL when
+ * the model lacks it; *fresh: first time this kind and op were asked. */
+const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
+                                  gboolean *fresh);
 /* The cost of a checked `c` or `w` item on its target processor. */
 SimTime rpl_target_price(RplTarget *t, const RplItem *it);
 
