@@ -21,8 +21,10 @@
  *
  * Incremental: a start or an end marks the links it touches dirty and asks
  * for one recomputation at the current instant (so all starts and ends at
- * the same time are batched).  The recomputation visits only the connected
- * component of links and flows reachable from dirty links; flows elsewhere
+ * the same time are batched).  The recomputation visits only the flows
+ * on dirty links and those joined to them through links that can bind (more
+ * flows than channels): a link whose capacity covers all its flows' bounds
+ * constrains nobody, so it does not couple their rates.  Flows elsewhere
  * keep their rates and predicted ends.  Predicted ends live in a private
  * min-heap of flows (by end time, then send sequence) and one engine timer
  * is armed for the earliest: a rate change moves a flow in that heap
@@ -40,9 +42,14 @@
 #include "sim/net/net_internal.h"
 #include <stdlib.h>
 
+/* The fields the recomputation reads are copied from the message (path,
+ * hops, bound, sequence) so that it touches one record per flow. */
 struct NetFlow {
-    NetNet *net;
     NetMsg *m;
+    NetLink **path; /* m->path */
+    guint hops;     /* m->hops */
+    double bw;      /* m->bw: the flow's bound */
+    uint64_t seq;   /* m->seq */
     double remaining; /* bytes still to move */
     double rate;      /* B/s; 0 until first computed */
     double prev;      /* rate before the current recomputation */
@@ -51,7 +58,7 @@ struct NetFlow {
     guint hidx;       /* index in the end heap; G_MAXUINT if not in it */
     gboolean fixed;   /* max-min scratch */
     uint64_t mark;    /* component-search epoch */
-    guint *pos;       /* index of this flow in each path link's array */
+    guint pos[];      /* index of this flow in each path link's array */
 };
 
 typedef struct {
@@ -104,7 +111,6 @@ static void flow_free_net(NetNet *n)
     if (!fn)
         return;
     for (guint i = 0; i < fn->eh_n; i++) { /* flows still in flight */
-        g_free(fn->eh[i]->pos);
         g_free(fn->eh[i]);
     }
     g_free(fn->dirty.a);
@@ -116,6 +122,15 @@ static void flow_free_net(NetNet *n)
 }
 
 /* ---- link membership ---- */
+
+/* A link with no more flows than channels cannot constrain any of its
+ * flows (its capacity covers every flow's bound), so it does not join
+ * their rates: the search expands only through links that can. */
+static gboolean can_bind(const NetLink *l)
+{
+    return l->n_flows > l->channels;
+}
+
 
 static void link_add_flow(NetNet *n, NetLink *l, NetFlow *f, guint hop)
 {
@@ -205,8 +220,10 @@ static void fix_flow(NetFlow *f, double rate)
 {
     f->fixed = TRUE;
     f->rate = rate;
-    for (guint i = 0; i < f->m->hops; i++) {
-        NetLink *l = f->m->path[i];
+    for (guint i = 0; i < f->hops; i++) {
+        NetLink *l = f->path[i];
+        if (!can_bind(l))
+            continue;
         l->rem = l->rem > rate ? l->rem - rate : 0.0;
         l->unfixed--;
     }
@@ -215,9 +232,9 @@ static void fix_flow(NetFlow *f, double rate)
 static int by_bound(const void *a, const void *b)
 {
     const NetFlow *x = *(NetFlow *const *)a, *y = *(NetFlow *const *)b;
-    if (x->m->bw != y->m->bw)
-        return x->m->bw < y->m->bw ? -1 : 1;
-    return x->m->seq < y->m->seq ? -1 : (x->m->seq > y->m->seq);
+    if (x->bw != y->bw)
+        return x->bw < y->bw ? -1 : 1;
+    return x->seq < y->seq ? -1 : (x->seq > y->seq);
 }
 
 /* Flows in order of their bound (a flow's path channel bandwidth); with
@@ -226,7 +243,7 @@ static void order_by_bound(PtrVec *flows)
 {
     NetFlow **f = (NetFlow **)flows->a;
     for (guint i = 1; i < flows->n; i++) {
-        if (f[0]->m->bw != f[i]->m->bw) {
+        if (f[0]->bw != f[i]->bw) {
             qsort(f, flows->n, sizeof *f, by_bound);
             return;
         }
@@ -256,10 +273,10 @@ static void lh_heapify(FlowNet *fn)
     }
 }
 
-/* The component's links start at full capacity.  A link with no more
- * flows than channels is never a bottleneck: its share starts at >= bw,
- * the bound of every flow crossing it, and shares only rise; so it is
- * left out of the heap (fix_flow still charges it). */
+/* The component's links start at full capacity.  Only links that can
+ * bind are in the component (a link with no more flows than channels has
+ * a share >= bw, the bound of every flow crossing it, and shares only
+ * rise); fix_flow charges only those. */
 static void maxmin_links(FlowNet *fn)
 {
     if (fn->lh_cap < fn->clinks.n) {
@@ -271,8 +288,7 @@ static void maxmin_links(FlowNet *fn)
         NetLink *l = fn->clinks.a[i];
         l->rem = l->bw * l->channels;
         l->unfixed = l->n_flows;
-        if (l->n_flows > l->channels)
-            fn->lh[fn->lh_n++] = (HeapEnt){l->rem / l->unfixed, l};
+        fn->lh[fn->lh_n++] = (HeapEnt){l->rem / l->unfixed, l};
     }
     lh_heapify(fn);
 }
@@ -293,8 +309,8 @@ static void maxmin(FlowNet *fn)
         }
         double share = 0.0;
         NetLink *l = lh_min(fn, &share);
-        if (!l || bf->m->bw <= share) {
-            fix_flow(bf, bf->m->bw);
+        if (!l || bf->bw <= share) {
+            fix_flow(bf, bf->bw);
             continue;
         }
         lh_pop(fn);
@@ -308,31 +324,41 @@ static void maxmin(FlowNet *fn)
 
 static void visit_link(FlowNet *fn, NetLink *l)
 {
-    if (l->mark == fn->epoch || l->n_flows == 0)
+    if (l->mark == fn->epoch || !can_bind(l))
         return;
     l->mark = fn->epoch;
     vec_push(&fn->clinks, l);
 }
 
+static void visit_flow(FlowNet *fn, NetFlow *f)
+{
+    if (f->mark == fn->epoch)
+        return;
+    f->mark = fn->epoch;
+    vec_push(&fn->cflows, f);
+    for (guint k = 0; k < f->hops; k++)
+        visit_link(fn, f->path[k]);
+}
+
+/* The flows whose rate can change: every flow on a dirty link (a link
+ * that stopped binding frees them) and everything joined to them through
+ * links that can bind.  Elsewhere the constraints are unchanged, and a
+ * max-min allocation splits over independent constraint sets. */
 static void collect_component(FlowNet *fn)
 {
     fn->epoch++;
     fn->clinks.n = 0;
     fn->cflows.n = 0;
-    for (guint i = 0; i < fn->dirty.n; i++)
-        visit_link(fn, fn->dirty.a[i]);
+    for (guint i = 0; i < fn->dirty.n; i++) {
+        NetLink *l = fn->dirty.a[i];
+        for (guint j = 0; j < l->n_flows; j++)
+            visit_flow(fn, l->flows[j].f);
+    }
     fn->dirty.n = 0;
     for (guint i = 0; i < fn->clinks.n; i++) {
         NetLink *l = fn->clinks.a[i];
-        for (guint j = 0; j < l->n_flows; j++) {
-            NetFlow *f = l->flows[j].f;
-            if (f->mark == fn->epoch)
-                continue;
-            f->mark = fn->epoch;
-            vec_push(&fn->cflows, f);
-            for (guint k = 0; k < f->m->hops; k++)
-                visit_link(fn, f->m->path[k]);
-        }
+        for (guint j = 0; j < l->n_flows; j++)
+            visit_flow(fn, l->flows[j].f);
     }
 }
 
@@ -340,7 +366,7 @@ static void collect_component(FlowNet *fn)
 
 static gboolean ends_before(const NetFlow *a, const NetFlow *b)
 {
-    return a->end < b->end || (a->end == b->end && a->m->seq < b->m->seq);
+    return a->end < b->end || (a->end == b->end && a->seq < b->seq);
 }
 
 static void eh_set(FlowNet *fn, guint i, NetFlow *f)
@@ -432,7 +458,6 @@ static void flow_finish(NetNet *n, FlowNet *fn, NetFlow *f)
     }
     request_recompute(n, fn);
     net_account(n, -(gssize)(sizeof *f + m->hops * sizeof(guint)));
-    g_free(f->pos);
     g_free(f);
     net_msg_deliver(n, m);
 }
@@ -503,13 +528,15 @@ static void flow_begin(SimEngine *eng, void *ctx, void *arg)
         return;
     }
     FlowNet *fn = flow_net(n);
-    NetFlow *f = g_new0(NetFlow, 1);
-    f->net = n;
+    NetFlow *f = g_malloc0(sizeof *f + m->hops * sizeof(guint));
     f->m = m;
+    f->path = m->path;
+    f->hops = m->hops;
+    f->bw = m->bw;
+    f->seq = m->seq;
     f->remaining = (double)m->bytes;
     f->last = sim_now(eng);
     f->hidx = G_MAXUINT;
-    f->pos = g_new(guint, m->hops);
     net_account(n, (gssize)(sizeof *f + m->hops * sizeof(guint)));
     for (guint i = 0; i < m->hops; i++) {
         link_add_flow(n, m->path[i], f, i);
