@@ -20,6 +20,11 @@
 #include "sim/core/trace.h"
 #include <string.h>
 
+typedef struct {
+    NetLinkId id;
+    NetLink *l; /* NULL: empty slot */
+} LinkSlot;
+
 struct NetNet {
     SimEngine *eng;
     const NetTopo *topo;
@@ -27,7 +32,8 @@ struct NetNet {
     NetFidelity fid;
     const NetTransportOps *tp;
     void *tp_state;
-    GHashTable *links; /* NetLinkId * -> NetLink * (owned) */
+    LinkSlot *links; /* open addressing by link id, NetLink * owned */
+    guint links_n, links_cap; /* links_cap a power of two, load <= 1/2 */
     NetLinkId *route;  /* scratch, max_hops entries */
     uint64_t seq;
     uint64_t bytes, messages, delivered;
@@ -54,21 +60,54 @@ static const NetTransportOps *pick_transport(const NetParams *p,
     }
 }
 
-/* Link ids are topology-packed (node, dimension or level fields), which
- * g_int64_hash folds into few distinct values (4,096-node hypercube:
- * long probe chains); a 64-bit finaliser spreads them (Stafford's mix13,
- * the splitmix64 finaliser). */
-static guint link_hash(gconstpointer p)
+/* The link table: open addressing with linear probing, ids inline (one
+ * cache line per lookup in the common case, no comparison callback).
+ * Link ids are topology-packed (node, dimension or level fields); a
+ * 64-bit finaliser spreads them (Stafford's mix13, the splitmix64
+ * finaliser). */
+static uint64_t link_hash(uint64_t x)
 {
-    uint64_t x = *(const uint64_t *)p;
     x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-    return (guint)(x ^ (x >> 31));
+    return x ^ (x >> 31);
 }
 
-static void link_free(gpointer p)
+static NetLink *links_find(const NetNet *n, NetLinkId id)
 {
-    NetLink *l = p;
+    guint mask = n->links_cap - 1;
+    for (guint i = (guint)link_hash(id) & mask;; i = (i + 1) & mask) {
+        const LinkSlot *s = &n->links[i];
+        if (!s->l || s->id == id)
+            return s->l;
+    }
+}
+
+static void links_put(LinkSlot *tab, guint cap, NetLink *l)
+{
+    guint i = (guint)link_hash(l->id) & (cap - 1);
+    while (tab[i].l)
+        i = (i + 1) & (cap - 1);
+    tab[i] = (LinkSlot){l->id, l};
+}
+
+/* Doubles the table when it would pass half full. */
+static void links_grow(NetNet *n)
+{
+    if (2 * (n->links_n + 1) <= n->links_cap)
+        return;
+    guint cap = 2 * n->links_cap;
+    LinkSlot *tab = g_new0(LinkSlot, cap);
+    for (guint i = 0; i < n->links_cap; i++)
+        if (n->links[i].l)
+            links_put(tab, cap, n->links[i].l);
+    g_free(n->links);
+    n->mem += (gssize)((cap - n->links_cap) * sizeof *tab);
+    n->links = tab;
+    n->links_cap = cap;
+}
+
+static void link_free(NetLink *l)
+{
     g_free(l->flows);
     g_free(l->holder);
     g_queue_clear(&l->wait);
@@ -91,8 +130,9 @@ NetNet *net_new(SimEngine *eng, const NetTopo *topo, const NetParams *params,
         n->par.packet_bytes = 1024;
     n->fid = fid;
     n->tp = pick_transport(&n->par, fid);
-    n->links =
-        g_hash_table_new_full(link_hash, g_int64_equal, NULL, link_free);
+    n->links_cap = 16;
+    n->links = g_new0(LinkSlot, n->links_cap);
+    n->mem += (gssize)(n->links_cap * sizeof(LinkSlot));
     n->route = g_new(NetLinkId, topo->ops->max_hops(topo->state));
     return n;
 }
@@ -148,7 +188,10 @@ void net_free(NetNet *n)
     if (n->tp->free)
         n->tp->free(n);
     free_in_flight(n);
-    g_hash_table_destroy(n->links);
+    for (guint i = 0; i < n->links_cap; i++)
+        if (n->links[i].l)
+            link_free(n->links[i].l);
+    g_free(n->links);
     g_free(n->route);
     g_free(n);
 }
@@ -193,17 +236,19 @@ uint32_t net_nodes(const NetNet *n)
 
 static NetLink *link_get(NetNet *n, NetLinkId id)
 {
-    NetLink *l = g_hash_table_lookup(n->links, &id);
+    NetLink *l = links_find(n, id);
     if (l)
         return l;
+    links_grow(n);
     l = g_new0(NetLink, 1);
     l->id = id;
     l->bw = n->topo->ops->link_bw(n->topo->state, id, &n->par);
     l->channels = n->par.channels;
     g_assert(l->bw > 0.0);
     g_queue_init(&l->wait);
-    g_hash_table_insert(n->links, &l->id, l);
-    n->mem += sizeof *l + 3 * sizeof(void *); /* plus the table slot */
+    links_put(n->links, n->links_cap, l);
+    n->links_n++;
+    n->mem += sizeof *l;
     return l;
 }
 
@@ -358,13 +403,13 @@ gboolean net_fidelity_parse(const char *s, NetFidelity *out)
 
 const SimLinkStats *net_link_stats(const NetNet *n, NetLinkId id)
 {
-    NetLink *l = g_hash_table_lookup(n->links, &id);
+    NetLink *l = links_find(n, id);
     return l ? &l->st : NULL;
 }
 
 guint net_links_touched(const NetNet *n)
 {
-    return g_hash_table_size(n->links);
+    return n->links_n;
 }
 
 uint64_t net_total_bytes(const NetNet *n)
@@ -382,14 +427,11 @@ uint64_t net_delivered(const NetNet *n)
 
 gboolean net_busiest_link(const NetNet *n, NetLinkId *out)
 {
-    GHashTableIter it;
-    gpointer k, v;
     gboolean found = FALSE;
     uint64_t best = 0;
-    g_hash_table_iter_init(&it, n->links);
-    while (g_hash_table_iter_next(&it, &k, &v)) {
-        NetLink *l = v;
-        if (l->st.bytes == 0 && l->st.messages == 0)
+    for (guint i = 0; i < n->links_cap; i++) {
+        NetLink *l = n->links[i].l;
+        if (!l || (l->st.bytes == 0 && l->st.messages == 0))
             continue;
         if (!found || l->st.bytes > best ||
             (l->st.bytes == best && l->id < *out)) {
