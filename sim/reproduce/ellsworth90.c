@@ -189,4 +189,5 @@ const RpPaperOps rp_ellsworth90 = {
                 "(PPHIGS on Pixel-Planes 5), 4 and 16 GPs",
     .setup = "setup.yaml",
     .rows = ellsworth90_rows,
+    .cost_s = 1.1, /* measured: user time of `pgsim reproduce ellsworth90` */
 };

@@ -202,4 +202,5 @@ const RpPaperOps rp_igehy98 = {
                 "shared-memory machine (Performance of Argus)",
     .setup = "setup.yaml",
     .rows = igehy98_run,
+    .cost_s = 2.5, /* measured: user time of `pgsim reproduce igehy98` */
 };

@@ -442,4 +442,5 @@ const RpPaperOps rp_kurc96 = {
                "hypercube (seed 003): Tables 1-2, Figs. 1-2, speed-up",
     .setup = "setup.yaml",
     .rows = kurc96_run,
+    .cost_s = 12, /* measured: user time of `pgsim reproduce kurc96` */
 };

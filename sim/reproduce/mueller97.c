@@ -293,4 +293,5 @@ const RpPaperOps rp_mueller97 = {
                 "instanced three times",
     .setup = "setup.yaml",
     .rows = mueller97_rows,
+    .cost_s = 37, /* measured: user time of `pgsim reproduce mueller97` */
 };

@@ -248,4 +248,5 @@ const RpPaperOps rp_ortega93 = {
                "CM-5 (Tables 1-4)",
     .setup = "setup.yaml",
     .rows = ortega93_run,
+    .cost_s = 8, /* measured: user time of `pgsim reproduce ortega93` */
 };

@@ -56,6 +56,10 @@ typedef struct {
     /* Runs the simulations described by ctx->setup; appends RpRow * (made
      * with rp_row_new) to rows.  FALSE with *err on failure. */
     gboolean (*rows)(const RpContext *ctx, GPtrArray *rows, GError **err);
+    /* CPU seconds of one faithful pass on the 2-core development machine,
+     * a hint only: `reproduce all -j` starts the costliest papers first
+     * (0: cheap or unknown).  Never changes a result. */
+    double cost_s;
 } RpPaperOps;
 
 /* Returns a new row (copies strings); the array's free func is

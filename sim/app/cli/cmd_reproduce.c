@@ -12,7 +12,9 @@
  * into the current directory unasked.  Progress (which simulation a
  * paper is on, how long it has run) is one line on a terminal only.
  *
- * `all -j N` (default: the number of cores) runs up to N papers at once,
+ * `all -j N` (default: the number of cores) runs up to N papers at once
+ * (costliest first by RpPaperOps.cost_s; NAME,NAME... runs a list like
+ * `all`),
  * each in a forked child (like the sweep's local pool), without progress
  * lines: the child writes its stdout text and its report section to a
  * private temporary file, and the parent, once every child has ended,
@@ -43,6 +45,8 @@ typedef struct {
     gboolean quiet;
     int jobs;
     RpFormat fmt;
+    const RpPaperOps **list; /* `all` or NAME,NAME...: the papers, in order */
+    int n_list;
 } RpOpts;
 
 static gboolean parse_format(RpOpts *o, GError **err)
@@ -78,15 +82,16 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
          "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
         {"jobs", 'j', 0, G_OPTION_ARG_INT, &o->jobs,
-         "with 'all': papers run at once (default: the cores)", "N"},
+         "with 'all' or a list: papers run at once (default: the cores)", "N"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
-    if (!cli_parse("reproduce", "NAME|all",
+    if (!cli_parse("reproduce", "NAME|all|NAME,NAME...",
                    "Reruns a paper's tables and compares them with the "
                    "published values (docs/reproduction-format.md).",
                    entries, argc, argv, status))
         return FALSE;
     *status = 2;
-    return cli_want_args("reproduce", "NAME|all", *argc, *argv, 1);
+    return cli_want_args("reproduce", "NAME|all|NAME,NAME...", *argc, *argv,
+                         1);
 }
 
 static gboolean check_opts(RpOpts *o, GError **err)
@@ -269,9 +274,9 @@ static char *doc_path(const RpOpts *o)
 static gboolean paper_all(int i, const RpOpts *o, const char *charts,
                           GString *text, GString *md, GError **err)
 {
-    GPtrArray *passes = run_one_into(rp_all[i], o, i == 0, text, err);
-    gboolean ok =
-        passes && (!md || doc_paper(md, rp_all[i], passes, o, charts, err));
+    const RpPaperOps *rp = o->list[i];
+    GPtrArray *passes = run_one_into(rp, o, i == 0, text, err);
+    gboolean ok = passes && (!md || doc_paper(md, rp, passes, o, charts, err));
     if (passes)
         g_ptr_array_free(passes, TRUE);
     return ok;
@@ -363,20 +368,35 @@ static gboolean join_paper(const RpKid *k, const char *name, GString *md,
     return ok;
 }
 
+/* The order in which -j starts the papers: costliest first (by their
+ * cost_s hint; ties in list order), so that a long paper does not start
+ * last and run alone (longest processing time first, Graham 1969). */
+static int *spawn_order(const RpOpts *o)
+{
+    int *ord = g_new(int, o->n_list);
+    for (int i = 0; i < o->n_list; i++) {
+        int j = i;
+        for (; j > 0 && o->list[ord[j - 1]]->cost_s < o->list[i]->cost_s; j--)
+            ord[j] = ord[j - 1];
+        ord[j] = i;
+    }
+    return ord;
+}
+
 /* Runs every paper, up to o->jobs at once, then joins them in order. */
 static gboolean papers_forked(const RpOpts *o, GString *md, const char *charts,
                               GError **err)
 {
-    int n = 0, next = 0, running = 0;
-    while (rp_all[n])
-        n++;
+    int n = o->n_list, next = 0, running = 0;
     if (!o->quiet)
         fprintf(stderr, "reproduce: %d papers, %d at once\n", n, o->jobs);
     RpKid *kids = g_new0(RpKid, n);
+    int *ord = spawn_order(o);
     gboolean ok = TRUE;
     while (next < n || running > 0) {
         if (ok && next < n && running < o->jobs) {
-            ok = spawn_paper(&kids[next], next, o, charts, md != NULL, err);
+            int k = ord[next];
+            ok = spawn_paper(&kids[k], k, o, charts, md != NULL, err);
             running += ok;
             next += ok ? 1 : n;
             continue;
@@ -385,12 +405,13 @@ static gboolean papers_forked(const RpOpts *o, GString *md, const char *charts,
         running--;
     }
     for (int i = 0; i < n; i++) {
-        ok = ok && join_paper(&kids[i], rp_all[i]->name, md, err);
+        ok = ok && join_paper(&kids[i], o->list[i]->name, md, err);
         if (kids[i].path)
             unlink(kids[i].path);
         g_free(kids[i].path);
     }
     fflush(stdout);
+    g_free(ord);
     g_free(kids);
     return ok;
 }
@@ -399,13 +420,13 @@ static gboolean papers_forked(const RpOpts *o, GString *md, const char *charts,
 static gboolean run_papers(const RpOpts *o, GString *md, const char *charts,
                            GError **err)
 {
-    if (o->jobs > 1 && rp_all[0] && rp_all[1])
+    if (o->jobs > 1 && o->n_list > 1)
         return papers_forked(o, md, charts, err);
     gboolean ok = TRUE;
-    for (int i = 0; ok && rp_all[i]; i++) {
-        GPtrArray *passes = run_one(rp_all[i], o, i == 0, err);
-        ok = passes &&
-             (!md || doc_paper(md, rp_all[i], passes, o, charts, err));
+    for (int i = 0; ok && i < o->n_list; i++) {
+        const RpPaperOps *rp = o->list[i];
+        GPtrArray *passes = run_one(rp, o, i == 0, err);
+        ok = passes && (!md || doc_paper(md, rp, passes, o, charts, err));
         if (passes)
             g_ptr_array_free(passes, TRUE);
     }
@@ -419,7 +440,7 @@ static gboolean write_report(const RpOpts *o, const char *doc, GError **err)
     GString *md = g_string_new(NULL);
     rp_doc_head(md, o->fidelity);
     gboolean ok = run_papers(o, md, charts, err);
-    if (!rp_all[0])
+    if (o->n_list == 0)
         g_string_append(md, "No reproduction is registered yet.\n");
     if (ok && g_mkdir_with_parents(dir, 0777) != 0) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
@@ -446,22 +467,61 @@ static gboolean run_all(const RpOpts *o, GError **err)
     return ok;
 }
 
-static gboolean run_named(const char *name, const RpOpts *o, GError **err)
+static void unknown_paper(const char *name, GError **err)
 {
-    if (strcmp(name, "all") == 0)
-        return run_all(o, err);
-    const RpPaperOps *rp = rp_find(name);
-    if (!rp) {
-        GString *known = g_string_new("all");
-        for (int i = 0; rp_all[i]; i++)
-            g_string_append_printf(known, ", %s", rp_all[i]->name);
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "reproduce: found '%s', expected one of: %s", name,
-                    known->str);
-        g_string_free(known, TRUE);
-        return FALSE;
+    GString *known = g_string_new("all");
+    for (int i = 0; rp_all[i]; i++)
+        g_string_append_printf(known, ", %s", rp_all[i]->name);
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "reproduce: found '%s', expected one of: %s (or several "
+                "names joined by commas)",
+                name, known->str);
+    g_string_free(known, TRUE);
+}
+
+/* `all`, or NAME[,NAME...] (each once): the papers a run covers. */
+static gboolean pick_papers(const char *arg, RpOpts *o, GError **err)
+{
+    int n = 0;
+    while (rp_all[n])
+        n++;
+    o->list = g_new0(const RpPaperOps *, n + 1);
+    if (strcmp(arg, "all") == 0) {
+        memcpy(o->list, rp_all, (size_t)n * sizeof *o->list);
+        o->n_list = n;
+        return TRUE;
     }
-    GPtrArray *passes = run_one(rp, o, TRUE, err);
+    char **names = g_strsplit(arg, ",", -1);
+    gboolean ok = TRUE;
+    for (int i = 0; ok && names[i]; i++) {
+        const RpPaperOps *rp = rp_find(names[i]);
+        gboolean twice = FALSE;
+        for (int j = 0; rp && j < o->n_list; j++)
+            twice = twice || o->list[j] == rp;
+        ok = rp && !twice;
+        if (ok)
+            o->list[o->n_list++] = rp;
+        else if (twice)
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "reproduce: found '%s' twice, expected each paper "
+                        "once",
+                        names[i]);
+        else
+            unknown_paper(names[i], err);
+    }
+    g_strfreev(names);
+    return ok;
+}
+
+/* One name runs that paper alone; `all` or a list of names runs them as
+ * `all` does (report, -j). */
+static gboolean run_named(const char *arg, RpOpts *o, GError **err)
+{
+    if (!pick_papers(arg, o, err))
+        return FALSE;
+    if (strcmp(arg, "all") == 0 || strchr(arg, ','))
+        return run_all(o, err);
+    GPtrArray *passes = run_one(o->list[0], o, TRUE, err);
     if (passes)
         g_ptr_array_free(passes, TRUE);
     return passes != NULL;
@@ -482,5 +542,6 @@ int cmd_reproduce(int argc, char **argv)
     g_free(o.fidelity);
     g_free(o.papers);
     g_free(o.doc);
+    g_free(o.list);
     return status;
 }

@@ -14,33 +14,14 @@
 #include "sim/output/json.h"
 #include "sim/workload/workload.h"
 
-static const char *pgsim_bin(void)
-{
-    return g_getenv("PGSIM_SANITIZE") ? "build-san/pgsim" : "build/pgsim";
-}
-
-/* Runs pgsim with args; returns the exit status, stdout and stderr. */
-static int pgsim(const char *const *args, char **out, char **err)
-{
-    GPtrArray *argv = g_ptr_array_new();
-    g_ptr_array_add(argv, (gpointer)pgsim_bin());
-    for (guint i = 0; args[i]; i++)
-        g_ptr_array_add(argv, (gpointer)args[i]);
-    g_ptr_array_add(argv, NULL);
-    int status = 0;
-    assert_true(g_spawn_sync(NULL, (char **)argv->pdata, NULL,
-                             G_SPAWN_DEFAULT, NULL, NULL, out, err, &status,
-                             NULL));
-    g_ptr_array_free(argv, TRUE);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+#include "tests/app/cli/pgsim_spawn.h"
 
 static void test_help_lists_workloads_and_costs(void **state)
 {
     (void)state;
     const char *args[] = {"help", "run", NULL};
     char *out, *err;
-    assert_int_equal(pgsim(args, &out, &err), 0);
+    assert_int_equal(test_pgsim(args, &out, &err), 0);
     for (guint i = 0; wl_all[i]; i++) {
         char *line = g_strdup_printf("\n  %-11s ", wl_all[i]->name);
         if (!strstr(out, line))
@@ -54,7 +35,7 @@ static void test_help_lists_workloads_and_costs(void **state)
     g_free(out);
     g_free(err);
     const char *hh[] = {"help", "help", NULL};
-    assert_int_equal(pgsim(hh, &out, &err), 0);
+    assert_int_equal(test_pgsim(hh, &out, &err), 0);
     assert_non_null(strstr(out, "pgsim help [COMMAND]"));
     g_free(out);
     g_free(err);
@@ -65,7 +46,7 @@ static void test_validate_sweeps(void **state)
     (void)state;
     const char *ok[] = {"validate", "configs/sweep-tokenring.yaml", NULL};
     char *out, *err;
-    assert_int_equal(pgsim(ok, &out, &err), 0);
+    assert_int_equal(test_pgsim(ok, &out, &err), 0);
     assert_non_null(strstr(out, "ok (sweep, "));
     g_free(out);
     g_free(err);
@@ -85,7 +66,7 @@ static void test_validate_sweeps(void **state)
         "[4, 8, zero]}\n",
         -1, NULL));
     const char *bad[] = {"validate", sweep, NULL};
-    assert_int_equal(pgsim(bad, &out, &err), 2);
+    assert_int_equal(test_pgsim(bad, &out, &err), 2);
     assert_non_null(strstr(err, "point 2"));
     assert_non_null(strstr(err, "zero"));
     g_free(out);
@@ -96,12 +77,12 @@ static void test_validate_sweeps(void **state)
         "name: s\nbase: ring.yaml\nparameters:\n  workload.nodes: {values: "
         "[4, 8]}\n",
         -1, NULL));
-    assert_int_equal(pgsim(bad, &out, &err), 0);
+    assert_int_equal(test_pgsim(bad, &out, &err), 0);
     g_free(out);
     g_free(err);
     char *od = g_build_filename(dir, "o", NULL);
     const char *run[] = {"sweep", sweep, "-q", "-j", "1", "--out", od, NULL};
-    assert_int_equal(pgsim(run, &out, &err), 0);
+    assert_int_equal(test_pgsim(run, &out, &err), 0);
     g_free(out);
     g_free(err);
     char *rm[] = {(char *)"rm", (char *)"-rf", dir, NULL};
@@ -123,7 +104,7 @@ static void test_quickstart(void **state)
     const char *args[] = {"run", "configs/quickstart.yaml", "--out", dir,
                           NULL};
     char *out, *err;
-    assert_int_equal(pgsim(args, &out, &err), 0);
+    assert_int_equal(test_pgsim(args, &out, &err), 0);
     const char *want[] = {"pixelmerge on ipsc2", "utilisation", "span_ms",
                           "zbuf_ms", "merge_ms", "communication",
                           "image_matches_serial         1", "node15"};
@@ -159,20 +140,20 @@ static void test_units_on_the_command_line(void **state)
                            "--startup", "350us",      "--fidelity", "analytic",
                            NULL};
     char *out, *err;
-    assert_int_equal(pgsim(bench, &out, &err), 0);
+    assert_int_equal(test_pgsim(bench, &out, &err), 0);
     assert_non_null(strstr(out, "10000 B"));
     assert_non_null(strstr(out, "2.8 MB/s"));
     assert_non_null(strstr(out, "start-up 350 us"));
     g_free(out);
     g_free(err);
     const char *bad[] = {"bench", "net", "--bytes", "10 furlongs", NULL};
-    assert_int_equal(pgsim(bad, &out, &err), 2);
+    assert_int_equal(test_pgsim(bad, &out, &err), 2);
     assert_non_null(strstr(err, "--bytes: found '10 furlongs'"));
     g_free(out);
     g_free(err);
     const char *mu[] = {"run", "configs/tokenring.yaml", "-q", "--set",
                         "workload.compute=350 \xc2\xb5s", NULL};
-    assert_int_equal(pgsim(mu, &out, &err), 0);
+    assert_int_equal(test_pgsim(mu, &out, &err), 0);
     g_free(out);
     g_free(err);
 }
@@ -187,7 +168,7 @@ static void test_provenance(void **state)
     const char *args[] = {"run", "configs/tokenring.yaml", "-q", "--out", dir,
                           "--set", "workload.nodes=16", "--seed", "9", NULL};
     char *out, *err;
-    assert_int_equal(pgsim(args, &out, &err), 0);
+    assert_int_equal(test_pgsim(args, &out, &err), 0);
     g_free(out);
     g_free(err);
     char *path = g_build_filename(dir, "result.json", NULL), *text = NULL;

@@ -1,0 +1,29 @@
+/* pgsim_spawn.c — run the built pgsim from a test (pgsim_spawn.h). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib.h>
+#include <sys/wait.h>
+
+#include "tests/app/cli/pgsim_spawn.h"
+
+const char *test_pgsim_bin(void)
+{
+    return g_getenv("PGSIM_SANITIZE") ? "build-san/pgsim" : "build/pgsim";
+}
+
+int test_pgsim(const char *const *args, char **out, char **err)
+{
+    GPtrArray *argv = g_ptr_array_new();
+    g_ptr_array_add(argv, (gpointer)test_pgsim_bin());
+    for (guint i = 0; args[i]; i++)
+        g_ptr_array_add(argv, (gpointer)args[i]);
+    g_ptr_array_add(argv, NULL);
+    int status = 0;
+    assert_true(g_spawn_sync(NULL, (char **)argv->pdata, NULL,
+                             G_SPAWN_DEFAULT, NULL, NULL, out, err, &status,
+                             NULL));
+    g_ptr_array_free(argv, TRUE);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}

@@ -1,0 +1,12 @@
+/* pgsim_spawn.h — tests that run the built binary (build/pgsim, or
+ * build-san/pgsim under PGSIM_SANITIZE) and look at what it printed. */
+#ifndef PGSIM_TESTS_APP_CLI_PGSIM_SPAWN_H
+#define PGSIM_TESTS_APP_CLI_PGSIM_SPAWN_H
+
+/* Path of the binary under test. */
+const char *test_pgsim_bin(void);
+/* Runs pgsim with the NULL-terminated args; returns the exit status (-1
+ * when it did not exit) and sets *out and *err to its output (g_free). */
+int test_pgsim(const char *const *args, char **out, char **err);
+
+#endif
