@@ -13,6 +13,8 @@ WlSfAdapt *wl_sf_adapt_new(guint grid, guint procs)
     a->procs = procs;
     a->weight = g_new0(uint64_t, (gsize)grid * grid);
     a->added = g_new0(uint64_t, procs);
+    a->nz = g_new0(uint64_t, procs);
+    a->mark = g_new0(guint8, ((gsize)grid * grid * procs + 7) / 8);
     a->factor = g_new(double, (gsize)grid * grid);
     for (guint i = 0; i < grid * grid; i++)
         a->factor[i] = 1;
@@ -25,6 +27,8 @@ void wl_sf_adapt_free(WlSfAdapt *a)
         return;
     g_free(a->weight);
     g_free(a->added);
+    g_free(a->nz);
+    g_free(a->mark);
     g_free(a->factor);
     g_free(a->last_x);
     g_free(a->last_y);
@@ -69,11 +73,25 @@ static void extrapolate(WlSfAdapt *a, const WlSfRegions *r, guint i,
     a->predicted++;
 }
 
+/* Processor p's master added to cell: counts it once in nz[p]. */
+static void count_cell(WlSfAdapt *a, guint p, gsize cell)
+{
+    gsize bit = (gsize)p * a->grid * a->grid + cell;
+    guint8 m = (guint8)(1u << (bit & 7));
+    a->added[p]++;
+    if (!(a->mark[bit >> 3] & m)) {
+        a->mark[bit >> 3] |= m;
+        a->nz[p]++;
+    }
+}
+
 void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
                           const WlSfRegions *r, Mat4 view_proj)
 {
     memset(a->weight, 0, sizeof(uint64_t) * a->grid * a->grid);
     memset(a->added, 0, sizeof(uint64_t) * a->procs);
+    memset(a->nz, 0, sizeof(uint64_t) * a->procs);
+    memset(a->mark, 0, ((gsize)a->grid * a->grid * a->procs + 7) / 8);
     g_assert(!a->last_x || a->n_insts == wl_sf_n_insts(db));
     a->predicted = 0;
     for (guint i = 0; i < wl_sf_n_insts(db); i++) {
@@ -93,8 +111,9 @@ void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
                                  : r->height / 2.0;
         extrapolate(a, r, i, &cx, &cy);
         guint gx = cell_of(a, cx, r->width), gy = cell_of(a, cy, r->height);
-        a->weight[(gsize)gy * a->grid + gx] += ch->polys;
-        a->added[ch->master % a->procs]++;
+        gsize cell = (gsize)gy * a->grid + gx;
+        a->weight[cell] += ch->polys;
+        count_cell(a, ch->master % a->procs, cell);
     }
 }
 
@@ -110,24 +129,43 @@ typedef struct {
     WlSfRegions *r;
     uint64_t visited;
     uint64_t *marg; /* scratch, G */
-    uint64_t *w;    /* weight x factor per cell */
+    uint64_t *sat;  /* (G+1)^2 summed-area table of weight x factor */
 } Split;
+
+/* Σ of the weights of cells [x0, x1) x [y0, y1). */
+static uint64_t sat_sum(const Split *s, guint x0, guint y0, guint x1, guint y1)
+{
+    gsize g1 = s->a->grid + 1;
+    const uint64_t *t = s->sat;
+    return t[y1 * g1 + x1] - t[y0 * g1 + x1] - t[y1 * g1 + x0] +
+           t[y0 * g1 + x0];
+}
 
 /* Weight per line across the node along `axis` (0: columns, 1: rows). */
 static uint64_t marginal(Split *s, Cells c, int axis)
 {
-    guint g = s->a->grid, lo = axis ? c.y0 : c.x0, hi = axis ? c.y1 : c.x1;
-    uint64_t total = 0;
+    guint lo = axis ? c.y0 : c.x0, hi = axis ? c.y1 : c.x1;
     for (guint i = lo; i < hi; i++)
-        s->marg[i] = 0;
-    for (guint y = c.y0; y < c.y1; y++)
-        for (guint x = c.x0; x < c.x1; x++) {
-            uint64_t w = s->w[(gsize)y * g + x];
-            s->marg[axis ? y : x] += w;
-            total += w;
+        s->marg[i] = axis ? sat_sum(s, c.x0, i, c.x1, i + 1)
+                          : sat_sum(s, i, c.y0, i + 1, c.y1);
+    s->visited += 2 * (uint64_t)(hi - lo);
+    return sat_sum(s, c.x0, c.y0, c.x1, c.y1);
+}
+
+/* The summed-area table of weight x factor: G^2 cells visited. */
+static void build_sat(Split *s)
+{
+    guint g = s->a->grid;
+    gsize g1 = g + 1;
+    for (guint y = 0; y < g; y++) {
+        uint64_t row = 0;
+        for (guint x = 0; x < g; x++) {
+            gsize i = (gsize)y * g + x;
+            row += (uint64_t)llround((double)s->a->weight[i] * s->a->factor[i]);
+            s->sat[(y + 1) * g1 + x + 1] = s->sat[y * g1 + x + 1] + row;
         }
-    s->visited += (uint64_t)(c.x1 - c.x0) * (c.y1 - c.y0);
-    return total;
+    }
+    s->visited += (uint64_t)g * g;
 }
 
 typedef struct {
@@ -213,13 +251,12 @@ static void split(Split *s, Cells c, guint first, guint k)
 uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r)
 {
     g_assert(r->procs == a->procs);
-    gsize n = (gsize)a->grid * a->grid;
-    Split s = {a, r, 0, g_new0(uint64_t, a->grid), g_new(uint64_t, n)};
-    for (gsize i = 0; i < n; i++)
-        s.w[i] = (uint64_t)llround((double)a->weight[i] * a->factor[i]);
+    gsize g1 = (gsize)a->grid + 1;
+    Split s = {a, r, 0, g_new0(uint64_t, a->grid), g_new0(uint64_t, g1 * g1)};
+    build_sat(&s);
     split(&s, (Cells){0, 0, a->grid, a->grid}, 0, r->procs);
     g_free(s.marg);
-    g_free(s.w);
+    g_free(s.sat);
     return s.visited;
 }
 

@@ -11,6 +11,10 @@
  * rectangle (clamped to the screen); the masters' grids are summed (the
  * sum is what every processor holds after the exchange, sf_frame.h).
  *
+ * Each master's grid is sent dense (G^2 counts) or sparse (a list of
+ * (cell, count) pairs for its non-zero cells), whichever is smaller:
+ * `nz` holds, per processor, the distinct cells its masters added to.
+ *
  * The split: a k-d tree over the grid.  A node of k processors is cut
  * into k/2 and k - k/2 processors at the cell boundary that minimises
  * the larger of the two sides' weight per processor (the weighted
@@ -19,8 +23,10 @@
  * processors.  The cut runs across the node's longer side (in cells),
  * the other side only when the longer cannot hold both halves.  Leaves are the P regions, cell
  * boundaries mapped to pixels as i W / G.  Deterministic (integer
- * weights, fixed order).  Work: O(instances) to estimate, O(G^2 log P)
- * cells visited to split.
+ * weights, fixed order).  The split reads a node's line weights from a
+ * summed-area table of the grid (built once, G^2 cells) in four loads a
+ * line, counted as two cell visits.  Work: O(instances) to estimate,
+ * O(G^2 + G P) cells visited to split.
  */
 #ifndef PGSIM_WORKLOAD_SORTFIRST_SF_ADAPT_H
 #define PGSIM_WORKLOAD_SORTFIRST_SF_ADAPT_H
@@ -33,6 +39,8 @@ typedef struct {
     guint procs;      /* P */
     uint64_t *weight; /* G x G polygons per cell, row-major */
     uint64_t *added;  /* per processor: instances its masters added */
+    uint64_t *nz;     /* per processor: distinct cells its masters added to */
+    guint8 *mark;     /* P x G^2 bits: cell touched by processor p */
     double *factor;   /* G x G cost per polygon (calibrated), else 1 */
     gboolean calibrated;
     /* Motion prediction (wl_sf_adapt_predict): per chunk instance its

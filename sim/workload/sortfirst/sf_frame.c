@@ -165,29 +165,43 @@ static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
 
 static void render_done(SimEngine *eng, void *ctx, void *arg);
 
-/* Grid cells one processor handles after the exchange: the sum of the
- * P grids, then the split. */
-static uint64_t partition_cells(const WlSfRun *r)
+/* Processor q's grid as sent: dense (G^2 counts) unless the sparse
+ * list of its non-zero cells, (index, count) pairs of bytes.cell each,
+ * is smaller; *entries: the cells a receiver adds. */
+static uint64_t grid_bytes(const WlSfRun *r, guint q, uint64_t *entries)
 {
     uint64_t g2 = (uint64_t)r->adapt->grid * r->adapt->grid;
-    return (uint64_t)r->s.procs * g2 + r->split_cells;
+    uint64_t nz = r->adapt->nz[q];
+    gboolean sparse = 2 * nz < g2;
+    if (entries)
+        *entries = sparse ? nz : g2;
+    return (sparse ? 2 * nz : g2) * r->s.sizes.cell;
 }
 
-/* Bytes of one processor's grid riding on each of its messages. */
-static uint64_t grid_bytes(const WlSfRun *r)
+/* Grid cells processor p handles after the exchange: its own grid, the
+ * P - 1 received ones added in, then the split. */
+static uint64_t partition_cells(const WlSfRun *r, guint p)
 {
-    if (!r->adapt)
-        return 0;
-    return (uint64_t)r->adapt->grid * r->adapt->grid * r->s.sizes.cell;
+    uint64_t n = (uint64_t)r->adapt->grid * r->adapt->grid, e;
+    for (guint q = 0; q < r->s.procs; q++)
+        if (q != p) {
+            grid_bytes(r, q, &e);
+            n += e;
+        }
+    return n + r->split_cells;
 }
 
-/* Bytes riding on each exchange message: the grid (previous-frame
- * estimate) and the sender's region work (feedback, 8 B). */
-static uint64_t ride_bytes(const WlSfRun *r)
+/* Bytes processor p's grid and region work (feedback, 8 B) add to each
+ * message it sends. */
+static uint64_t estimate_bytes(const WlSfRun *r, guint p)
 {
-    if (!r->adapt)
-        return 0;
-    return r->s.current ? 0 : grid_bytes(r) + (r->s.feedback ? 8 : 0);
+    return grid_bytes(r, p, NULL) + (r->s.feedback ? 8 : 0);
+}
+
+/* Bytes riding on p's exchange messages (previous-frame estimate). */
+static uint64_t ride_bytes(const WlSfRun *r, guint p)
+{
+    return !r->adapt || r->s.current ? 0 : estimate_bytes(r, p);
 }
 
 static void render(WlSfRun *r, Proc *pr)
@@ -208,7 +222,7 @@ static void render(WlSfRun *r, Proc *pr)
         return;
     }
     mach_proc_compute(pr->proc, draw, r->ph_render, NULL, NULL, NULL);
-    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r)),
+    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r, pr->p)),
                       r->ph_partition, render_done, r,
                       GUINT_TO_POINTER(pr->p));
 }
@@ -241,7 +255,7 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
             continue;
         WlSfBatch *bt = &pr->out[q];
         net_send(r->net, mach_proc_id(pr->proc), mach_proc_id(r->procs[q].proc),
-                 bt->bytes + ride_bytes(r), bt, arrive, r);
+                 bt->bytes + ride_bytes(r, pr->p), bt, arrive, r);
     }
     pr->sorted = TRUE;
     maybe_render(r, pr);
@@ -282,7 +296,7 @@ static void maybe_split(WlSfRun *r, Proc *pr)
 {
     if (!pr->estimated || pr->grids + 1 < r->s.procs)
         return;
-    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r)),
+    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r, pr->p)),
                       r->ph_partition, split_done, r,
                       GUINT_TO_POINTER(pr->p));
 }
@@ -304,7 +318,7 @@ static void estimate_done(SimEngine *eng, void *ctx, void *arg)
         if (q != pr->p)
             net_send(r->net, mach_proc_id(pr->proc),
                      mach_proc_id(r->procs[q].proc),
-                     grid_bytes(r) + (r->s.feedback ? 8 : 0), &r->procs[q],
+                     estimate_bytes(r, pr->p), &r->procs[q],
                      grid_arrive, r);
     pr->estimated = TRUE;
     maybe_split(r, pr);
@@ -381,9 +395,10 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
     }
     st->imbalance = max_over_mean(max, total, r->s.procs);
     if (r->adapt) {
-        uint64_t sent = (uint64_t)r->s.procs * (r->s.procs - 1);
-        st->estimate_bytes = sent * (grid_bytes(r) + (r->s.feedback ? 8 : 0));
-        st->estimate_cells = r->s.procs * partition_cells(r);
+        for (guint p = 0; p < r->s.procs; p++) {
+            st->estimate_bytes += (r->s.procs - 1) * estimate_bytes(r, p);
+            st->estimate_cells += partition_cells(r, p);
+        }
         st->split_imbalance = r->split_imbalance;
         for (guint p = 0; p < r->s.procs; p++)
             st->estimate_cells += r->adapt->added[p];

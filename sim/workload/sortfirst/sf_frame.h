@@ -21,10 +21,14 @@
  * With adaptive regions (WlSfSetup.adaptive, sf_adapt.h) the sort also
  * adds each on-screen instance of p's master chunks to p's work grid
  * (grid_cell per instance), every message carries the sender's grid
- * (G^2 x bytes.cell, an all-gather riding on the exchange), and after
- * rendering each processor sums the P grids and computes the k-d split
- * (grid_cell per cell summed and per cell the split visits; phase
- * `partition`), which gives the regions of the next frame.  Frame 0
+ * (an all-gather riding on the exchange: G^2 x bytes.cell dense, or
+ * 2 x bytes.cell per non-zero cell sparse, whichever is smaller), and
+ * after rendering each processor adds the P - 1 received grids to its
+ * own and computes the k-d split (grid_cell per cell of its own grid,
+ * per entry added and per cell the split visits; phase `partition`),
+ * which gives the regions of the next frame.  With `predict` the
+ * previous frame's estimate places each instance at its one-frame
+ * extrapolation (sf_adapt.h; one more grid_cell per instance).  Frame 0
  * uses the static grid.  With `current` (WlSfSetup.current) the
  * estimate is an extra pass before the sort instead: each processor
  * transforms its master boxes and fills its grid (phase `estimate`),

@@ -528,6 +528,21 @@ static void test_adaptive_predict(void **state)
     (void)state;
     Fixture f;
     fixture_init(&f, 4, WL_SF_MAXSET, 5);
+    /* the sparse count: each master's distinct cells, at most its
+     * instances, together covering every non-zero cell */
+    WlSfAdapt *a = wl_sf_adapt_new(16, 4);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 4, 64, 64);
+    wl_sf_adapt_estimate(a, f.db, &r, view_at(&f, 3));
+    uint64_t nz = 0, cells = 0;
+    for (guint p = 0; p < 4; p++) {
+        assert_true(a->nz[p] > 0 && a->nz[p] <= a->added[p]);
+        nz += a->nz[p];
+    }
+    for (guint i = 0; i < 16 * 16; i++)
+        cells += a->weight[i] > 0;
+    assert_true(nz >= cells && cells > 0);
+    wl_sf_adapt_free(a);
     uint64_t last = predicted_error(&f, 3, 4, 5, FALSE);
     uint64_t pred = predicted_error(&f, 3, 4, 5, TRUE);
     assert_true(pred < last);
