@@ -207,6 +207,21 @@ static void text_rows(GPtrArray *rows)
                                      "polygons_per_s", b, NULL));
 }
 
+/* The table's label names the transport: every machine's sends are
+ * priced by the cost formulas of dp_cost.h (the CM-200's fitted router,
+ * the CM-5's analytic fat tree), not by a network at the pass's fidelity
+ * (`pgsim run` does that for the CM-5: dp_workload.h). */
+static void note_transports(OrRun *r)
+{
+    const CfgNode *tabs = cfg_get(r->root, "tables");
+    for (guint t = 0; t < cfg_map_len(tabs); t++) {
+        const char *m = NULL;
+        if (cfg_get_str(cfg_map_value(tabs, t), "machine", FALSE, &m, NULL) &&
+            m)
+            rp_note_fidelity(r->ctx, m, "formula");
+    }
+}
+
 static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
                              GError **err)
 {
@@ -227,6 +242,7 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
     const char *coef = g_getenv("PGSIM_DP_COEF");
     if (coef)
         r.coef = fopen(coef, "w");
+    note_transports(&r);
     gboolean ok =
         scene_cells(&r, "small", err) && scene_cells(&r, "large", err);
     if (ok) {

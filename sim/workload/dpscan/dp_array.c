@@ -210,6 +210,65 @@ static uint64_t target_load(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s)
     return load;
 }
 
+void wl_dp_vm_set_wire(WlDpVm *vm, guint i, WlDpWireFn fn, void *ctx)
+{
+    g_assert(i < vm->nt && vm->t[i].m.arch == WL_DP_SPMD);
+    vm->t[i].wire = fn;
+    vm->t[i].wire_ctx = ctx;
+}
+
+/* The node pairs of this send on target t, priced by t->wire. */
+static SimTime wire_time(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s)
+{
+    uint64_t vs = wl_dp_vp_ratio(&t->m, s->n_src);
+    uint64_t vd = wl_dp_vp_ratio(&t->m, s->n_dst);
+    GHashTable *at = g_hash_table_new(g_int64_hash, g_int64_equal);
+    GArray *keys = g_array_new(FALSE, FALSE, sizeof(gint64));
+    GArray *src = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    GArray *dst = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    GArray *msgs = g_array_new(FALSE, FALSE, sizeof(uint64_t));
+    g_array_set_size(keys, s->count); /* stable addresses for the keys */
+    for (uint64_t k = 0; k < s->count; k++) {
+        uint32_t a = (uint32_t)((s->src ? s->src[k] : k) / vs);
+        uint32_t b = (uint32_t)dst_proc(vm, t, s, vd, s->dst[k]);
+        gint64 *key = &g_array_index(keys, gint64, k);
+        *key = (gint64)a * (gint64)t->m.procs + b;
+        gpointer v = g_hash_table_lookup(at, key);
+        if (v) {
+            g_array_index(msgs, uint64_t, GPOINTER_TO_SIZE(v) - 1)++;
+            continue;
+        }
+        uint64_t one = 1;
+        g_array_append_val(src, a);
+        g_array_append_val(dst, b);
+        g_array_append_val(msgs, one);
+        g_hash_table_insert(at, key, GSIZE_TO_POINTER(msgs->len));
+    }
+    WlDpTraffic tr = {(const uint32_t *)src->data, (const uint32_t *)dst->data,
+                      (const uint64_t *)msgs->data, msgs->len};
+    SimTime w = t->wire(t->wire_ctx, &tr);
+    g_hash_table_destroy(at);
+    g_array_free(keys, TRUE);
+    g_array_free(src, TRUE);
+    g_array_free(dst, TRUE);
+    g_array_free(msgs, TRUE);
+    return w;
+}
+
+/* The cost of this send on target t, by the formula or its network. */
+static SimTime target_send_cost(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s,
+                                uint64_t load)
+{
+    if (t->m.arch != WL_DP_SPMD)
+        return wl_dp_send_cost(&t->m, s->words, s->n_src, s->count, load,
+                               &t->coef);
+    SimTime w = t->wire ? wire_time(vm, t, s) : wl_dp_fattree_wire(&t->m, load);
+    t->wire_total += w * s->words;
+    t->soft_total += t->m.msg_overhead * load * s->words;
+    return wl_dp_send_cost_wired(&t->m, s->words, s->n_src, s->count, load, w,
+                                 &t->coef);
+}
+
 uint64_t wl_dp_send(WlDpVm *vm, const WlDpSend *s)
 {
     g_assert(s->words > 0 && s->n_src > 0 && s->n_dst > 0);
@@ -226,8 +285,7 @@ uint64_t wl_dp_send(WlDpVm *vm, const WlDpSend *s)
         WlDpTarget *t = &vm->t[i];
         uint64_t load = target_load(vm, t, s);
         t->max_load = MAX(t->max_load, load);
-        charge(t, s->phase, wl_dp_send_cost(&t->m, s->words, s->n_src,
-                                            s->count, load, &t->coef));
+        charge(t, s->phase, target_send_cost(vm, t, s, load));
     }
     return coll;
 }

@@ -62,15 +62,34 @@ typedef enum {
 /* Where the elements of a destination array live. */
 typedef enum { WL_DP_LAYOUT_LINEAR, WL_DP_LAYOUT_SCREEN } WlDpLayoutKind;
 
+/* The node-to-node traffic of one array sent (SPMD): pair k carries
+ * msgs[k] messages from node src[k] to node dst[k]; pairs are distinct,
+ * in order of their first message. */
+typedef struct {
+    const uint32_t *src, *dst;
+    const uint64_t *msgs;
+    size_t n;
+} WlDpTraffic;
+
+/* Prices a send's traffic on a network (the data network's time from the
+ * first injection to the last delivery); see wl_dp_vm_set_wire(). */
+typedef SimTime (*WlDpWireFn)(void *ctx, const WlDpTraffic *t);
+
 /* One machine at one partition size, and what it was charged. */
 typedef struct {
     WlDpMachine m;
+    WlDpWireFn wire;    /* NULL: the analytic fat-tree formula */
+    void *wire_ctx;
     WlDpLayout *screen; /* NULL until the first screen-sized operation */
     uint32_t *inj, *recv; /* per processor, zero between sends */
     SimTime phase[WL_DP_N_PHASES];
     SimTime total;
     WlDpCoef coef;
     uint64_t max_load; /* largest load of any send */
+    /* SPMD sends: the data network's time (measured by `wire` or the
+     * analytic fat tree) and the per-message software time, summed over
+     * arrays sent; a send costs the larger of the two. */
+    SimTime wire_total, soft_total;
 } WlDpTarget;
 
 typedef struct {
@@ -96,6 +115,12 @@ const WlDpTarget *wl_dp_vm_target(const WlDpVm *vm, guint i);
 const WlDpVmCounts *wl_dp_vm_counts(const WlDpVm *vm);
 uint64_t wl_dp_vm_screen_elems(const WlDpVm *vm);
 const char *wl_dp_phase_name(WlDpPhase ph);
+
+/* Target i (SPMD) prices the wire time of its sends with fn(ctx, traffic)
+ * instead of dp_cost.h's analytic fat tree: the workload hands them to
+ * the machine's network at the run's fidelity.  O(messages) per send
+ * plus what fn costs. */
+void wl_dp_vm_set_wire(WlDpVm *vm, guint i, WlDpWireFn fn, void *ctx);
 
 /* An elementwise statement of `ops` operations per element over an
  * array of n elements of which `active` are selected by the context

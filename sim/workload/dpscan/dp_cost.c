@@ -66,8 +66,7 @@ double wl_dp_fattree_escape(unsigned arity, uint64_t p, unsigned level)
     return sub >= (double)p ? 0.0 : 1.0 - sub / (double)p;
 }
 
-/* Wire time of one node's `load` messages through the fat tree. */
-static SimTime fattree_wire(const WlDpMachine *m, uint64_t load)
+SimTime wl_dp_fattree_wire(const WlDpMachine *m, uint64_t load)
 {
     double bytes = (double)load * (double)m->msg_bytes, worst = 0.0;
     g_assert(m->levels > 0);
@@ -80,34 +79,56 @@ static SimTime fattree_wire(const WlDpMachine *m, uint64_t load)
     return sim_time_for_bytes(worst, 1.0);
 }
 
+/* Counts a send into k (either wire model). */
+static void count_send(const WlDpMachine *m, uint32_t words, uint64_t n,
+                       uint64_t active, uint64_t load, WlDpCoef *k)
+{
+    if (!k)
+        return;
+    uint64_t mean = active / m->procs + (active % m->procs != 0);
+    k->msg_slices += (double)words * (double)mean;
+    k->steps += words;
+    k->sends += words;
+    k->slices += (double)words * (double)load;
+    k->vp_slices += (double)words * (double)wl_dp_vp_ratio(m, n);
+}
+
+/* One SPMD array sent: issue, the send phase's latency, then the slower
+ * of the per-message software and the wire. */
+static SimTime spmd_one(const WlDpMachine *m, uint64_t load, SimTime wire)
+{
+    SimTime soft = mul_time(m->msg_overhead, load);
+    return add_time(add_time(m->step, m->net_latency), MAX(soft, wire));
+}
+
 SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
                         uint64_t active, uint64_t load, WlDpCoef *k)
 {
     if (load == 0 || words == 0 || active == 0)
         return 0;
+    count_send(m, words, n, active, load, k);
+    if (m->arch == WL_DP_SPMD)
+        return mul_time(spmd_one(m, load, wl_dp_fattree_wire(m, load)), words);
     /* Slices holding a message: the messages are spread over the array. */
     uint64_t vps = wl_dp_vp_ratio(m, n);
     uint64_t mean = active / m->procs + (active % m->procs != 0);
-    if (k) {
-        k->msg_slices += (double)words * (double)mean;
-        k->steps += words;
-        k->sends += words;
-        k->slices += (double)words * (double)load;
-        k->vp_slices += (double)words * (double)vps;
-    }
-    SimTime one;
-    if (m->arch == WL_DP_SIMD) {
-        one = add_time(
-            add_time(m->step, m->send_setup),
-            add_time(add_time(mul_time(m->send_vp, vps),
-                              mul_time(m->send_msg, mean)),
-                     mul_time(m->send_slice, load)));
-    } else {
-        SimTime soft = mul_time(m->msg_overhead, load);
-        one = add_time(add_time(m->step, m->net_latency),
-                       MAX(soft, fattree_wire(m, load)));
-    }
+    SimTime one = add_time(
+        add_time(m->step, m->send_setup),
+        add_time(add_time(mul_time(m->send_vp, vps),
+                          mul_time(m->send_msg, mean)),
+                 mul_time(m->send_slice, load)));
     return mul_time(one, words);
+}
+
+SimTime wl_dp_send_cost_wired(const WlDpMachine *m, uint32_t words,
+                              uint64_t n, uint64_t active, uint64_t load,
+                              SimTime wire, WlDpCoef *k)
+{
+    g_assert(m->arch == WL_DP_SPMD);
+    if (load == 0 || words == 0 || active == 0)
+        return 0;
+    count_send(m, words, n, active, load, k);
+    return mul_time(spmd_one(m, load, wire), words);
 }
 
 static unsigned log2u(uint64_t v)

@@ -110,6 +110,17 @@ SimTime wl_dp_scan_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k);
 SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
                         uint64_t active, uint64_t load, WlDpCoef *k);
 
+/* The same send with the data network's time `wire` measured elsewhere
+ * (the machine's network at the run's fidelity, dp_array.h) in place of
+ * the analytic fat-tree formula; SPMD only. */
+SimTime wl_dp_send_cost_wired(const WlDpMachine *m, uint32_t words,
+                              uint64_t n, uint64_t active, uint64_t load,
+                              SimTime wire, WlDpCoef *k);
+
+/* The analytic fat-tree wire time of one node's `load` messages (the
+ * busiest level's share of them over its per-node bandwidth). */
+SimTime wl_dp_fattree_wire(const WlDpMachine *m, uint64_t load);
+
 /* The fraction of uniformly spread destinations that leave a level-l
  * subtree of an arity-ary fat tree over p nodes (0 when the subtree
  * holds them all). */

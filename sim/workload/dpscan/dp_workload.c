@@ -19,6 +19,7 @@ typedef struct {
     int64_t width, height;
     WlDpRenderOpts ro;
     float pal[WL_DP_COLORS][3];
+    gboolean formula; /* wire: formula (SPMD sends priced by dp_cost.h) */
 } DpParams;
 
 static gboolean parse_mode(const CfgNode *sec, DpParams *p, GError **err)
@@ -30,6 +31,11 @@ static gboolean parse_mode(const CfgNode *sec, DpParams *p, GError **err)
     if (!cfg_get_enum(sec, "mode", FALSE, names, &mode, err))
         return FALSE;
     p->ro.mode = (WlDpMode)mode;
+    static const char *const wires[] = {"network", "formula", NULL};
+    int wire = 0;
+    if (!cfg_get_enum(sec, "wire", FALSE, wires, &wire, err))
+        return FALSE;
+    p->formula = wire == 1;
     const CfgNode *pal = cfg_get(sec, "palette");
     wl_dp_palette_default(p->pal);
     return !pal || wl_dp_palette_from_cfg(pal, p->pal, err);
@@ -95,6 +101,12 @@ static void add_metrics(SimResult *out, const WlDpTarget *t,
     sim_result_set_metric(out, "collisions", (double)c->collisions, "");
     sim_result_set_metric(out, "messages", (double)c->messages, "");
     sim_result_set_metric(out, "max_load", (double)t->max_load, "");
+    if (t->m.arch == WL_DP_SPMD) {
+        sim_result_set_metric(out, "router_wire_s",
+                              sim_time_to_s(t->wire_total), "s");
+        sim_result_set_metric(out, "router_soft_s",
+                              sim_time_to_s(t->soft_total), "s");
+    }
 }
 
 /* A new machine for the dpscan model: the array (SIMD) or p nodes. */
@@ -117,6 +129,64 @@ static MachMachine *dp_machine(SimEngine *eng, const char *model,
     MachMachine *mach = sec ? mach_new_from_cfg(eng, sec, fidelity, err) : NULL;
     cfg_free(sec);
     return mach;
+}
+
+/* The machine's data network at the run's fidelity, on a private engine:
+ * each send's node pairs are injected at once (one message per pair of
+ * msgs x msg_bytes) and the time to the last delivery, less the network's
+ * message start-up (already in the model's net_latency), is the send's
+ * wire time (dp_array.h WlDpWireFn).  The frame's
+ * clock is not moved by it: the workload plays the counted phase times on
+ * the machine afterwards. */
+typedef struct {
+    SimEngine *eng;
+    NetNet *net;
+    uint32_t first;     /* endpoint of node 0 */
+    uint32_t msg_bytes; /* bytes of one message on the wire */
+    GError *err;        /* the first failure, if any */
+} DpWire;
+
+static SimTime dp_wire(void *ctx, const WlDpTraffic *t)
+{
+    DpWire *w = ctx;
+    if (w->err)
+        return 0;
+    SimTime t0 = sim_now(w->eng);
+    for (size_t k = 0; k < t->n; k++)
+        net_send(w->net, w->first + t->src[k], w->first + t->dst[k],
+                 t->msgs[k] * w->msg_bytes, NULL, NULL, NULL);
+    if (!sim_engine_run(w->eng, SIM_TIME_MAX, &w->err))
+        return 0;
+    /* The message start-up is the model's net_latency, charged apart. */
+    SimTime d = sim_now(w->eng) - t0, st = net_params(w->net)->startup;
+    return d > st ? d - st : 0;
+}
+
+/* A DpWire over mach's network, or NULL (SIMD: the router is the fitted
+ * send_slice of the model, docs/validation.md; or no network built). */
+static DpWire *dp_wire_new(MachMachine *mach, const WlDpMachine *m)
+{
+    NetNet *net = mach_net(mach);
+    const MachKindInfo *k = mach_kind(mach, "node");
+    if (m->arch != WL_DP_SPMD || !net || !k)
+        return NULL;
+    DpWire *w = g_new0(DpWire, 1);
+    w->eng = sim_engine_new(1);
+    w->net = net_new(w->eng, net_topo(net), net_params(net),
+                     net_fidelity(net));
+    w->first = k->first;
+    w->msg_bytes = m->msg_bytes;
+    return w;
+}
+
+static void dp_wire_free(DpWire *w)
+{
+    if (!w)
+        return;
+    net_free(w->net);
+    sim_engine_free(w->eng);
+    g_clear_error(&w->err);
+    g_free(w);
 }
 
 static void frame_done(SimEngine *eng, void *ctx, void *arg)
@@ -166,15 +236,24 @@ static gboolean write_image(const WlContext *ctx, const DpParams *p,
 
 static gboolean one_frame(const WlContext *ctx, const DpParams *p,
                           const WlDpMachine *m, MachMachine *mach,
-                          const Scene *s, int fr, SimResult *out, GError **err)
+                          DpWire *wire, const Scene *s, int fr, SimResult *out,
+                          GError **err)
 {
     int w = (int)p->width, h = (int)p->height;
     WlDpPolys *poly = wl_dp_polys_new(s, fr, w, h, p->ro.mode, p->pal);
     WlDpVm *vm = wl_dp_vm_new(m, 1, (uint32_t)w, (uint32_t)h);
+    if (wire)
+        wl_dp_vm_set_wire(vm, 0, dp_wire, wire);
     WlDpImage *img = wl_dp_render(vm, poly, w, h, &p->ro);
     const WlDpTarget *t = wl_dp_vm_target(vm, 0);
-    gboolean ok = play(ctx->eng, mach, t, err) &&
-                  write_image(ctx, p, img, fr, err);
+    gboolean ok = TRUE;
+    if (wire && wire->err) {
+        g_propagate_error(err, wire->err);
+        wire->err = NULL;
+        ok = FALSE;
+    }
+    ok = ok && play(ctx->eng, mach, t, err) &&
+         write_image(ctx, p, img, fr, err);
     if (ok) {
         sim_result_add_frame(out, t->total);
         add_metrics(out, t, img, wl_dp_vm_counts(vm), poly->n);
@@ -198,14 +277,18 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
         return FALSE;
     MachMachine *mach = dp_machine(ctx->eng, p->model, &m, ctx->fidelity, err);
     gboolean ok = mach != NULL;
+    DpWire *wire = ok && !p->formula ? dp_wire_new(mach, &m) : NULL;
     for (int fr = 0; ok && fr < ctx->frames; fr++)
-        ok = one_frame(ctx, p, &m, mach, s, fr, out, err);
+        ok = one_frame(ctx, p, &m, mach, wire, s, fr, out, err);
     if (ok) {
         mach_fill_result(mach, out);
         out->elapsed = sim_now(ctx->eng);
         out->comm_bytes = 0;
         out->comm_messages = 0;
+        if (wire)
+            net_fill_result(wire->net, out);
     }
+    dp_wire_free(wire);
     mach_free(mach);
     scene_free(s);
     return ok;

@@ -9,6 +9,7 @@
  *     buffer_factor: 0.25     # segment buffer slots / polygons
  *     mode: gouraud           # flat | gouraud | wireframe | hidden_line
  *                             # | contour | points | lines (seed 004 §5)
+ *     wire: network           # SPMD sends: network | formula (below)
  *     palette: [...]          # optional: 15 colours, [r, g, b] in 0..1
  *                             # or "#rrggbb" (dp_color.h)
  *   scene: {...}              # sim/scene/scene_cfg.h
@@ -19,7 +20,20 @@
  * §5.  Metrics per run (mean over frames): time per phase
  * (transform_s, scan_s, pixel_s, router_s, display_s), polygons_per_s,
  * steps, scan_iters, pixel_iters, flushes, segments, pixels, collisions,
- * messages, max_load.  O(render) per frame (dp_render.h).
+ * messages, max_load; on an SPMD machine also router_wire_s and
+ * router_soft_s (the data network's and the per-message software's time
+ * of the sends, summed: each send costs the larger).
+ *
+ * The wire (SPMD, the CM-5): with `wire: network` (the default) each
+ * array sent is handed to the machine's own network at the run's
+ * fidelity (`run.fidelity`: analytic, flow or packet), one message per
+ * node pair of its real sources and destinations, on a private engine;
+ * the time to the last delivery, less the network's start-up (in the
+ * model's net_latency), is the send's wire time.  `wire: formula` uses
+ * the analytic fat tree of dp_cost.h instead (what `reproduce ortega93`
+ * uses to cost fifteen partitions at once).  The SIMD router (CM-200) is
+ * the fitted per-router-node cost of the model at every fidelity.
+ * O(render) per frame (dp_render.h) plus the network's events.
  */
 #ifndef PGSIM_WORKLOAD_DPSCAN_DP_WORKLOAD_H
 #define PGSIM_WORKLOAD_DPSCAN_DP_WORKLOAD_H

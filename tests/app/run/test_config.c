@@ -57,6 +57,8 @@ static const BadCase bad[] = {
     {"dpscan_bad_mode.yaml", "4:9: found 'shaded', expected one of: flat, "
                              "gouraud, wireframe, hidden_line, contour, "
                              "points, lines"},
+    {"dpscan_bad_wire.yaml", "4:9: found 'cable', expected one of: "
+                             "network, formula"},
     {"dpscan_bad_palette.yaml", "4:12: found 2 colours, expected 15 "
                                 "colours, each [r, g, b] in 0..1 or "
                                 "\"#rrggbb\""},

@@ -1,0 +1,126 @@
+/* test_dp_wire.c — dpscan's SPMD sends priced on a network (dp_array.h
+ * WlDpWireFn): the hook gets each send's node pairs with their message
+ * counts, its time replaces the analytic fat tree only when it is the
+ * slower of wire and software, and the workload hands the pairs to the
+ * machine's network at the run's fidelity (flow sharing makes the same
+ * sends slower on the wire than contention-free analytic messages). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib/gstdio.h>
+
+#include "sim/workload/dpscan/dp_array.h"
+#include "sim/workload/workload.h"
+
+typedef struct {
+    guint calls;
+    size_t pairs;
+    uint64_t msgs, self;
+    SimTime answer;
+} Seen;
+
+static SimTime fake_wire(void *ctx, const WlDpTraffic *t)
+{
+    Seen *s = ctx;
+    s->calls++;
+    s->pairs = t->n;
+    s->msgs = 0;
+    for (size_t k = 0; k < t->n; k++) {
+        s->msgs += t->msgs[k];
+        s->self += t->src[k] == t->dst[k] ? t->msgs[k] : 0;
+    }
+    return s->answer;
+}
+
+static WlDpMachine spmd4(void)
+{
+    return (WlDpMachine){.arch = WL_DP_SPMD,
+                         .procs = 4,
+                         .op = 1,
+                         .step = 10,
+                         .net_latency = 100,
+                         .msg_overhead = 1000,
+                         .msg_bytes = 20,
+                         .arity = 4,
+                         .levels = 1,
+                         .level_bw = {20e6}};
+}
+
+static void test_hook_gets_pairs_and_prices(void **state)
+{
+    (void)state;
+    WlDpMachine m = spmd4();
+    WlDpVm *vm = wl_dp_vm_new(&m, 1, 4, 2);
+    Seen seen = {.answer = 7 * SIM_US};
+    wl_dp_vm_set_wire(vm, 0, fake_wire, &seen);
+    /* 8 source elements on 4 nodes (2 each) to 8 destinations (2 each):
+     * elements 0,1 -> node 3 twice; 2 -> 0; 3 -> 1; 4..7 -> their own
+     * node.  Pairs: (0,3) x2, (1,0), (1,1), (2,2) x2, (3,3) x2. */
+    uint64_t dst[] = {6, 7, 0, 2, 4, 5, 6, 7};
+    WlDpSend s = {.phase = WL_DP_PH_ROUTER, .n_src = 8, .n_dst = 8,
+                  .lay = WL_DP_LAYOUT_LINEAR, .dst = dst, .count = 8,
+                  .words = 2, .comb = WL_DP_COMBINE_OVERWRITE};
+    wl_dp_send(vm, &s);
+    const WlDpTarget *t = wl_dp_vm_target(vm, 0);
+    assert_int_equal(seen.calls, 1);
+    assert_int_equal(seen.pairs, 5);
+    assert_int_equal(seen.msgs, 8);
+    assert_int_equal(seen.self, 5);
+    /* Load 4 (node 3 receives 4): software 4 ns < 7 us of wire. */
+    assert_int_equal(t->total, 2 * (10 + 100 + 7 * SIM_US));
+    assert_int_equal(t->wire_total, 2 * 7 * SIM_US);
+    assert_int_equal(t->soft_total, 2 * 4 * 1000);
+    /* A fast wire: the software bounds the send. */
+    seen.answer = 1;
+    SimTime before = t->total;
+    wl_dp_send(vm, &s);
+    assert_int_equal(t->total - before, 2 * (10 + 100 + 4 * 1000));
+    wl_dp_vm_free(vm);
+}
+
+/* router_wire_s of a small dpscan frame on a 16-node CM-5 at `fid`. */
+static double wire_s(const char *fid, double *frame)
+{
+    const char *yml = "workload: {type: dpscan, model: cm5, "
+                      "processors: 16, width: 96, height: 64}\n"
+                      "scene: {generator: isosurface, grid: 8}\n";
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(yml, "run.yaml", &err);
+    const WlOps *ops = wl_find("dpscan");
+    void *p = ops->parse(cfg_get(root, "workload"), &err);
+    assert_non_null(p);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {.eng = eng, .root = root, .frames = 1, .fidelity = fid};
+    SimResult *r = sim_result_new("dpscan", "cm5");
+    assert_true(ops->run(&ctx, p, r, &err));
+    double w = 0;
+    assert_true(sim_result_get_metric(r, "router_wire_s", &w));
+    *frame = sim_time_to_s(r->elapsed);
+    assert_true(r->comm_messages > 0);
+    sim_result_free(r);
+    sim_engine_free(eng);
+    ops->free_params(p);
+    cfg_free(root);
+    return w;
+}
+
+static void test_workload_uses_fidelity(void **state)
+{
+    (void)state;
+    double fa, ff;
+    double a = wire_s("analytic", &fa), f = wire_s("flow", &ff);
+    assert_true(a > 0);
+    /* Sharing the leaf links makes the same traffic slower on the wire. */
+    assert_true(f > a);
+    assert_true(ff >= fa);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hook_gets_pairs_and_prices),
+        cmocka_unit_test(test_workload_uses_fidelity),
+    };
+    return cmocka_run_group_tests_name("dp_wire", tests, NULL, NULL);
+}
