@@ -1,0 +1,170 @@
+/* test_core_mutants.c — claims of sim/core that mutation testing (make
+ * mutate, docs/testing.md) found unchecked: the value of every unit each
+ * unit table accepts, a cleared busy record, and the real-valued getters
+ * failing (not only setting an error) on a missing or malformed value. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/core/cfg.h"
+#include "sim/core/datapath.h"
+#include "sim/core/stats.h"
+#include "sim/core/units.h"
+
+typedef struct {
+    const char *text;
+    double value; /* base units: ps, B/s, Hz, B */
+} UnitCase;
+
+/* Written from the unit names, not copied from sim/core/units.c. */
+static const UnitCase times[] = {
+    {"1 ps", 1},      {"1 ns", 1e3},   {"1 us", 1e6},    {"1 \xc2\xb5s", 1e6},
+    {"1 \xce\xbcs", 1e6}, {"1 ms", 1e9}, {"1 s", 1e12},  {"1 sec", 1e12},
+    {"1 min", 60e12}, {"1 h", 3600e12}, {"2 h", 7200e12},
+};
+static const UnitCase bandwidths[] = {
+    {"1 B/s", 1},      {"1 kB/s", 1e3},   {"1 KB/s", 1e3},   {"1 MB/s", 1e6},
+    {"1 GB/s", 1e9},   {"1 TB/s", 1e12},  {"1 Bps", 1},      {"1 kBps", 1e3},
+    {"1 KBps", 1e3},   {"1 MBps", 1e6},   {"1 GBps", 1e9},   {"1 KiB/s", 1024},
+    {"1 MiB/s", 1048576}, {"1 GiB/s", 1073741824.0},         {"8 bit/s", 1},
+    {"8 kbit/s", 1e3}, {"8 Kbit/s", 1e3}, {"8 Mbit/s", 1e6}, {"8 Gbit/s", 1e9},
+    {"8 b/s", 1},      {"8 kb/s", 1e3},   {"8 Kb/s", 1e3},   {"8 Mb/s", 1e6},
+    {"8 Gb/s", 1e9},   {"8 bps", 1},      {"8 kbps", 1e3},   {"8 Kbps", 1e3},
+    {"8 Mbps", 1e6},   {"8 Gbps", 1e9},   {"3 KiB/s", 3072},
+};
+static const UnitCase freqs[] = {
+    {"1 Hz", 1}, {"1 kHz", 1e3}, {"1 KHz", 1e3}, {"1 MHz", 1e6}, {"1 GHz", 1e9},
+};
+static const UnitCase sizes[] = {
+    {"1 B", 1},       {"1 kB", 1e3},         {"1 KB", 1e3},
+    {"1 MB", 1e6},    {"1 GB", 1e9},         {"1 TB", 1e12},
+    {"1 KiB", 1024},  {"1 MiB", 1048576},    {"1 GiB", 1073741824.0},
+    {"1 TiB", 1099511627776.0},              {"3 KiB", 3072},
+};
+
+static void check_table(const UnitCase *c, size_t n, CfgUnitKind kind,
+                        gboolean integer)
+{
+    for (size_t i = 0; i < n; i++) {
+        const char *exp = NULL;
+        double got = -1;
+        uint64_t u = 0;
+        gboolean ok = integer ? cfg_units_u64(c[i].text, kind, &u, &exp)
+                              : cfg_units_double(c[i].text, kind, &got, &exp);
+        if (integer)
+            got = (double)u;
+        if (!ok)
+            fail_msg("'%s' rejected: expected %s", c[i].text, exp);
+        if (got != c[i].value)
+            fail_msg("'%s' = %.17g, expected %.17g", c[i].text, got,
+                     c[i].value);
+    }
+}
+
+static void test_every_unit(void **state)
+{
+    (void)state;
+    check_table(times, G_N_ELEMENTS(times), CFG_UNIT_TIME, TRUE);
+    check_table(bandwidths, G_N_ELEMENTS(bandwidths), CFG_UNIT_BANDWIDTH,
+                FALSE);
+    check_table(freqs, G_N_ELEMENTS(freqs), CFG_UNIT_FREQ, FALSE);
+    check_table(sizes, G_N_ELEMENTS(sizes), CFG_UNIT_SIZE, TRUE);
+}
+
+static void test_busy_clear(void **state)
+{
+    (void)state;
+    SimBusy b;
+    sim_busy_init(&b);
+    assert_true(sim_busy_add(&b, 2, 5));
+    assert_int_equal(b.total, 5);
+    sim_busy_clear(&b);
+    assert_int_equal(b.total, 0);
+    assert_null(b.per_phase);
+}
+
+/* A real-valued getter that sets an error must also return FALSE, so that
+ * a chain `a && b && c` stops at the first error. */
+static void test_real_getters_fail(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *map = cfg_load_string("bw: fast\nf: 3 parsecs\n", "t.yaml", &err);
+    assert_non_null(map);
+    double v = 7;
+    assert_false(cfg_get_bandwidth(map, "bw", FALSE, &v, &err));
+    assert_non_null(strstr(err->message, "t.yaml:1:5: found 'fast'"));
+    g_clear_error(&err);
+    assert_false(cfg_get_freq(map, "f", FALSE, &v, &err));
+    assert_non_null(strstr(err->message, "t.yaml:2:4: found '3 parsecs'"));
+    g_clear_error(&err);
+    assert_false(cfg_get_bandwidth(map, "missing", TRUE, &v, &err));
+    assert_non_null(err);
+    g_clear_error(&err);
+    assert_false(cfg_get_freq(map, "missing", TRUE, &v, &err));
+    assert_non_null(err);
+    g_clear_error(&err);
+    assert_true(v == 7); /* untouched on failure */
+    cfg_free(map);
+}
+
+/* $PGSIM_MAX_INPUT: bytes with an optional k, M or G (powers of 1024);
+ * anything else means the default. */
+static void test_input_limit_env(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *text;
+        guint64 bytes;
+    } cases[] = {
+        {"5000", 5000},        {"3k", 3072},  {"3M", 3u << 20},
+        {"3G", 3ull << 30},    {"3T", 0},     {"3kB", 0},
+        {"x", 0},              {"", 0},
+    };
+    sim_file_set_limit(0);
+    for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
+        g_setenv("PGSIM_MAX_INPUT", cases[i].text, TRUE);
+        guint64 want = cases[i].bytes ? cases[i].bytes : SIM_FILE_LIMIT_DEFAULT;
+        if (sim_file_limit() != want)
+            fail_msg("PGSIM_MAX_INPUT=%s: %" G_GUINT64_FORMAT ", expected %"
+                     G_GUINT64_FORMAT, cases[i].text, sim_file_limit(), want);
+    }
+    g_unsetenv("PGSIM_MAX_INPUT");
+    assert_true(sim_file_limit() == SIM_FILE_LIMIT_DEFAULT);
+}
+
+/* Zero is exact at any exponent: "0e-30 B" is 0 bytes, not a fraction of
+ * a byte (sizes must be whole); a true fraction is still refused. */
+static void test_zero_any_exponent(void **state)
+{
+    (void)state;
+    const char *exp = NULL;
+    uint64_t v = 9;
+    assert_true(cfg_units_u64("0e-30 B", CFG_UNIT_SIZE, &v, &exp));
+    assert_int_equal(v, 0);
+    v = 9;
+    assert_true(cfg_units_u64("0.000e-25 KB", CFG_UNIT_SIZE, &v, &exp));
+    assert_int_equal(v, 0);
+    assert_false(cfg_units_u64("1e-30 B", CFG_UNIT_SIZE, &v, &exp));
+    assert_false(cfg_units_u64("5e-50 B", CFG_UNIT_SIZE, &v, &exp));
+    /* far below a picosecond: 1.8e19 x 1e-40 s = 1.8e-9 ps rounds to 0
+     * (a divisor of 10^28 does not fit 64 bits: no wrapped division) */
+    v = 9;
+    assert_true(cfg_units_u64("18446744073709551615e-40 s", CFG_UNIT_TIME, &v,
+                              &exp));
+    assert_int_equal(v, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_every_unit),
+        cmocka_unit_test(test_busy_clear),
+        cmocka_unit_test(test_real_getters_fail),
+        cmocka_unit_test(test_input_limit_env),
+        cmocka_unit_test(test_zero_any_exponent),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,147 @@
+/* test_scene_mutants.c — claims of sim/scene that mutation testing (make
+ * mutate, docs/testing.md) found unchecked: an instance's projective
+ * transform divides by w when flattened, seed 004's huge polygons are
+ * centred about the screen centre, and the PPHIGS scene keeps the
+ * database's colours (a white instance). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+
+#include "sim/scene/isosurface.h"
+#include "sim/scene/pphigs_db.h"
+#include "sim/scene/scene.h"
+#include "sim/scene/teapots.h"
+
+/* One triangle under `xf`, flattened: its first vertex. */
+static Vec3 flatten_first(Mat4 xf)
+{
+    Scene *s = scene_new("t");
+    SceneMesh *m = scene_mesh_new();
+    uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(2, 4, 6)),
+                     scene_mesh_add_vertex(m, vec3(8, 4, 6)),
+                     scene_mesh_add_vertex(m, vec3(2, 10, 6))};
+    scene_mesh_add_poly(m, v, 3, scene_color(1, 1, 1), 0);
+    scene_add_instance(s, scene_add_mesh(s, m), xf, scene_color(1, 1, 1), 0);
+    SceneMesh *f = scene_flatten(s);
+    Vec3 p = scene_mesh_vertex(f, 0);
+    scene_mesh_free(f);
+    scene_free(s);
+    return p;
+}
+
+static void test_projective_instance(void **state)
+{
+    (void)state;
+    Mat4 xf = mat4_identity();
+    xf.m[3][3] = 2; /* w = 2: the point is (x, y, z) / 2 */
+    Vec3 p = flatten_first(xf);
+    assert_true(p.x == 1 && p.y == 2 && p.z == 3);
+    xf.m[3][3] = 0; /* w = 0 (a point at infinity): left as it is */
+    p = flatten_first(xf);
+    assert_true(p.x == 2 && p.y == 4 && p.z == 6);
+}
+
+/* Seed 004 §6's huge polygons: regular polygons whose centres are drawn
+ * in [-0.2, 0.2]^2 about the screen centre (isosurface.c huge_polygon);
+ * a polygon's vertex mean is its centre. */
+static void test_huge_polygons_centred(void **state)
+{
+    (void)state;
+    SceneBigPolyParams p = scene_bigpoly_defaults();
+    p.count = 600;
+    p.huge_fraction = 0.5;
+    Scene *s = scene_bigpoly_new(&p);
+    const SceneMesh *m = g_ptr_array_index(s->meshes, 0);
+    double sx = 0, sy = 0;
+    guint huge = 0;
+    for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
+        const uint32_t *v = scene_mesh_poly(m, i);
+        guint n = scene_mesh_poly_len(m, i);
+        Vec3 c = vec3(0, 0, 0), lo = vec3(1e9, 1e9, 0), hi = vec3(-1e9, -1e9, 0);
+        for (guint k = 0; k < n; k++) {
+            Vec3 q = scene_mesh_vertex(m, v[k]);
+            c = vec3_add(c, q);
+            lo = vec3(MIN(lo.x, q.x), MIN(lo.y, q.y), 0);
+            hi = vec3(MAX(hi.x, q.x), MAX(hi.y, q.y), 0);
+        }
+        if ((hi.x - lo.x) * (hi.y - lo.y) < 3) /* not a huge one */
+            continue;
+        c = vec3_scale(c, 1.0 / n);
+        assert_true(fabs(c.x) <= 0.2 + 1e-9 && fabs(c.y) <= 0.2 + 1e-9);
+        sx += c.x;
+        sy += c.y;
+        huge++;
+    }
+    assert_true(huge > 200);
+    /* uniform on [-0.2, 0.2]: the mean is 0 within 5 standard errors */
+    assert_true(fabs(sx / huge) < 0.04 && fabs(sy / huge) < 0.04);
+    scene_free(s);
+}
+
+/* The PPHIGS scene is the database flattened under one white instance:
+ * every polygon keeps the colour the database gave it. */
+static void test_pphigs_scene_white(void **state)
+{
+    (void)state;
+    ScenePphigsSpec sp = {0};
+    sp.kind = SCENE_PPHIGS_STATION;
+    sp.seed = 7;
+    sp.verts = 4;
+    sp.size = 100;
+    sp.polygons = 40;
+    sp.attributes = 6;
+    GError *err = NULL;
+    Scene *s = scene_pphigs_scene_new(&sp, &err);
+    assert_non_null(s);
+    assert_int_equal(s->instances->len, 1);
+    const SceneInstance *in = scene_instance(s, 0);
+    assert_true(in->color.r == 1 && in->color.g == 1 && in->color.b == 1);
+    scene_free(s);
+}
+
+/* Both teapot layouts centre a full grid on the origin (teapots.h): the
+ * teapots' box centres average to 0 on every axis. */
+static void check_centred(SceneTeapotLayout layout, guint count, guint columns)
+{
+    SceneTeapotsParams p = scene_teapots_defaults();
+    p.layout = layout;
+    p.count = count;
+    p.columns = columns;
+    GError *err = NULL;
+    Scene *s = scene_teapots_new(&p, "t", &err);
+    assert_non_null(s);
+    Vec3 sum = vec3(0, 0, 0);
+    for (guint i = 0; i < s->instances->len; i++) {
+        SceneBox b = scene_instance_bbox(s, i);
+        sum = vec3_add(sum, vec3_scale(vec3_add(b.min, b.max), 0.5));
+    }
+    sum = vec3_scale(sum, 1.0 / count);
+    if (fabs(sum.x) > 1e-6 || fabs(sum.y) > 1e-6 || fabs(sum.z) > 1e-6)
+        fail_msg("layout %d, %u teapots, %u columns: centre (%g, %g, %g)",
+                 layout, count, columns, sum.x, sum.y, sum.z);
+    scene_free(s);
+}
+
+static void test_teapot_layouts_centred(void **state)
+{
+    (void)state;
+    check_centred(SCENE_TEAPOTS_SPREAD, 4, 1);
+    check_centred(SCENE_TEAPOTS_SPREAD, 6, 1);
+    check_centred(SCENE_TEAPOTS_SPREAD, 9, 1);
+    check_centred(SCENE_TEAPOTS_DEPTH, 4, 2);
+    check_centred(SCENE_TEAPOTS_DEPTH, 6, 3);
+    check_centred(SCENE_TEAPOTS_DEPTH, 3, 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_projective_instance),
+        cmocka_unit_test(test_huge_polygons_centred),
+        cmocka_unit_test(test_pphigs_scene_white),
+        cmocka_unit_test(test_teapot_layouts_centred),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,78 @@
+/* test_performer_mutants.c — claims of the Performer town (pf_town.h) that
+ * mutation testing (make mutate, docs/testing.md) found unchecked: each
+ * block's terrain covers the block exactly, and cars drive in two lanes
+ * 1.5 m either side of their street, on the terrain. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+
+#include "sim/workload/performer/pf_town.h"
+
+/* Area of the triangle's projection on the ground plane (x, z). */
+static double ground_area(const Vec3 *t)
+{
+    return fabs((t[1].x - t[0].x) * (t[2].z - t[0].z) -
+                (t[2].x - t[0].x) * (t[1].z - t[0].z)) / 2;
+}
+
+/* A block's terrain: one geoset of 8 x 8 quads (128 triangles), none
+ * degenerate, covering block x block metres of ground. */
+static void test_terrain_covers_blocks(void **state)
+{
+    (void)state;
+    WlPfTownParams p = wl_pf_town_defaults();
+    p.blocks = 2;
+    WlPfTown *t = wl_pf_town_new(&p);
+    guint terrains = 0;
+    for (guint i = 0; i < t->g->geosets->len; i++) {
+        const WlPfGeoSet *gs = g_ptr_array_index(t->g->geosets, i);
+        const Vec3 *v = (const Vec3 *)gs->verts->data;
+        guint n = gs->verts->len / 3;
+        gboolean on_ground = n == 128;
+        for (guint k = 0; on_ground && k < gs->verts->len; k++)
+            on_ground = fabs(v[k].y - wl_pf_town_height(v[k].x, v[k].z)) < 1e-9;
+        if (!on_ground)
+            continue;
+        double area = 0;
+        for (guint k = 0; k < n; k++) {
+            assert_true(ground_area(v + 3 * k) > 0);
+            area += ground_area(v + 3 * k);
+        }
+        assert_true(fabs(area - p.block * p.block) < 1e-6);
+        terrains++;
+    }
+    assert_int_equal(terrains, p.blocks * p.blocks);
+    wl_pf_town_free(t);
+}
+
+/* Car c drives on street c mod blocks, odd cars 1.5 m on one side, even
+ * cars 1.5 m on the other, at the terrain's height. */
+static void test_car_lanes(void **state)
+{
+    (void)state;
+    WlPfTownParams p = wl_pf_town_defaults();
+    WlPfTown *t = wl_pf_town_new(&p);
+    assert_int_equal(t->cars->len, p.cars);
+    for (guint frame = 0; frame < 3; frame++) {
+        wl_pf_town_update(t, frame);
+        for (guint c = 0; c < t->cars->len; c++) {
+            Mat4 xf = wl_pf_node(t->g, g_array_index(t->cars, guint, c))->xf;
+            double x = xf.m[0][3], y = xf.m[1][3], z = xf.m[2][3];
+            double street = (c % p.blocks) * p.block;
+            assert_true(fabs(z - street - (c % 2 ? 1.5 : -1.5)) < 1e-9);
+            assert_true(fabs(y - wl_pf_town_height(x, z)) < 1e-9);
+        }
+    }
+    wl_pf_town_free(t);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_terrain_covers_blocks),
+        cmocka_unit_test(test_car_lanes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
