@@ -135,6 +135,32 @@ static void test_teapot_layouts_centred(void **state)
     check_centred(SCENE_TEAPOTS_DEPTH, 3, 1);
 }
 
+static void keep_first(const ScenePrimInst *pi, void *ud)
+{
+    ScenePrimInst *first = ud;
+    if (!first->el)
+        *first = *pi;
+}
+
+/* A posted structure's primitives before any colour element inherit the
+ * default colour (1, 1, 1) at depth 1 (structdb.h, ScenePrimInst). */
+static void test_traverse_defaults(void **state)
+{
+    (void)state;
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    assert_true(scene_db_append(db, root, &e, NULL));
+    scene_db_post(db, root);
+    ScenePrimInst first = {0};
+    scene_db_traverse(db, keep_first, &first);
+    assert_non_null(first.el);
+    assert_true(first.color.x == 1 && first.color.y == 1 && first.color.z == 1);
+    assert_int_equal(first.depth, 1);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -142,6 +168,7 @@ int main(void)
         cmocka_unit_test(test_huge_polygons_centred),
         cmocka_unit_test(test_pphigs_scene_white),
         cmocka_unit_test(test_teapot_layouts_centred),
+        cmocka_unit_test(test_traverse_defaults),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
