@@ -157,6 +157,39 @@ static void test_zero_any_exponent(void **state)
     assert_int_equal(v, 0);
 }
 
+/* Keys an override creates (the leaf and every map on its path) are
+ * located at the override itself, line 1 column 1 of "--set ...". */
+static void check_created_key(const char *assignment, const char *want)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string("a: {k: 1}\n", "t.yaml", &err);
+    assert_non_null(cfg_get(root, "a"));
+    assert_non_null(cfg_get(cfg_get(root, "a"), "k"));
+    assert_true(cfg_set_override(root, assignment, &err));
+    assert_false(cfg_check_unused(root, &err));
+    if (!g_str_has_prefix(err->message, want))
+        fail_msg("%s: got '%s', want '%s...'", assignment, err->message, want);
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
+static void test_override_locations(void **state)
+{
+    (void)state;
+    check_created_key("a.b.c=1", "--set a.b.c=1:1:1: found unknown key 'b'");
+    check_created_key("a.z=1", "--set a.z=1:1:1: found unknown key 'z'");
+    /* the map created on the path is located there too */
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string("a: {k: 1}\n", "t.yaml", &err);
+    assert_true(cfg_set_override(root, "a.n.x=1", &err));
+    int64_t v = 0;
+    assert_false(cfg_get_int(cfg_get(root, "a"), "n", FALSE, 0, 9, &v, &err));
+    if (!g_str_has_prefix(err->message, "--set a.n.x=1:1:1: found a map"))
+        fail_msg("got '%s'", err->message);
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -165,6 +198,7 @@ int main(void)
         cmocka_unit_test(test_real_getters_fail),
         cmocka_unit_test(test_input_limit_env),
         cmocka_unit_test(test_zero_any_exponent),
+        cmocka_unit_test(test_override_locations),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
