@@ -3,7 +3,8 @@
 #     file  line  column  old  new  k  code  function
 # where `old` is the exact text at line:column, `new` its replacement, k the
 # ordinal of `old` among the sites of that line that have the same old->new,
-# `code` the source line with runs of blanks squeezed and `function` the
+# `code` the source line with runs of blanks squeezed (followed by " [n]"
+# on the n-th line of its function that reads the same) and `function` the
 # function (or file-level declaration) it is in; "file, function, old->new
 # #k, code" names a site without its line number.
 #
@@ -102,6 +103,9 @@ function exponent(m, i,    j, p) {
 function scan(f, ln, line, m,    code, n, i, c, p, x, tok, semi, ind) {
     code = line
     gsub(/  +/, " ", code); sub(/^ /, "", code); sub(/ $/, "", code)
+    # the n-th line of a function that reads like an earlier one is named
+    # "code [n]", so that equal lines (the 0, of a table) stay apart
+    if (++same[f, fn, code] > 1) code = code " [" same[f, fn, code] "]"
     n = length(m)
     match(m, /^ */); ind = RLENGTH
     for (i = 1; i <= n; i++) {
