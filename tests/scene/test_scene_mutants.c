@@ -8,10 +8,12 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <math.h>
+#include <string.h>
 
 #include "sim/scene/isosurface.h"
 #include "sim/scene/pphigs_db.h"
 #include "sim/scene/scene.h"
+#include "sim/scene/scene_cfg.h"
 #include "sim/scene/teapots.h"
 
 /* One triangle under `xf`, flattened: its first vertex. */
@@ -161,6 +163,53 @@ static void test_traverse_defaults(void **state)
     scene_db_free(db);
 }
 
+/* An instance's exact box holds every vertex, the first one included. */
+static void test_instance_bbox_first_vertex(void **state)
+{
+    (void)state;
+    Scene *s = scene_new("t");
+    SceneMesh *m = scene_mesh_new();
+    uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(-5, -6, -7)),
+                     scene_mesh_add_vertex(m, vec3(1, 0, 0)),
+                     scene_mesh_add_vertex(m, vec3(0, 1, 0))};
+    scene_mesh_add_poly(m, v, 3, scene_color(1, 1, 1), 0);
+    scene_add_instance(s, scene_add_mesh(s, m), mat4_translate(1, 1, 1),
+                       scene_color(1, 1, 1), 0);
+    SceneBox b = scene_instance_bbox(s, 0);
+    assert_true(b.min.x == -4 && b.min.y == -5 && b.min.z == -6);
+    assert_true(b.max.x == 2 && b.max.y == 2 && b.max.z == 1);
+    scene_free(s);
+}
+
+/* A camera one unit from its target is a camera like any other; only
+ * eye = target is degenerate. */
+static Scene *with_camera(const char *eye, GError **err)
+{
+    char *y = g_strdup_printf("{generator: teapots, count: 1, polygons_per_"
+                              "teapot: 300, camera: {eye: %s, target: [0, 0, "
+                              "0], near: 0.1, far: 50}}\n",
+                              eye);
+    CfgNode *n = cfg_load_string(y, "c.yaml", err);
+    g_free(y);
+    assert_non_null(n);
+    Scene *s = scene_from_cfg(n, err);
+    cfg_free(n);
+    return s;
+}
+
+static void test_camera_unit_distance(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    Scene *s = with_camera("[0, 0, 1]", &err);
+    if (!s)
+        fail_msg("%s", err->message);
+    scene_free(s);
+    assert_null(with_camera("[0, 0, 0]", &err));
+    assert_non_null(strstr(err->message, "a degenerate camera"));
+    g_clear_error(&err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -169,6 +218,8 @@ int main(void)
         cmocka_unit_test(test_pphigs_scene_white),
         cmocka_unit_test(test_teapot_layouts_centred),
         cmocka_unit_test(test_traverse_defaults),
+        cmocka_unit_test(test_instance_bbox_first_vertex),
+        cmocka_unit_test(test_camera_unit_distance),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
