@@ -8,6 +8,7 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include "sim/workload/performer/pf_stages.h"
 #include "sim/workload/performer/pf_town.h"
 
 /* Area of the triangle's projection on the ground plane (x, z). */
@@ -68,11 +69,29 @@ static void test_car_lanes(void **state)
     wl_pf_town_free(t);
 }
 
+/* A machine without the Performer costs (the iPSC/2 has no cpu kind's
+ * app_frame) is refused: FALSE, with the error. */
+static void test_costs_missing(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m = mach_new_from_model(eng, "ipsc2", "analytic", &err);
+    assert_non_null(m);
+    WlPfCosts c;
+    assert_false(wl_pf_costs_read(m, 32, &c, &err));
+    assert_non_null(err);
+    g_clear_error(&err);
+    mach_free(m);
+    sim_engine_free(eng);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_terrain_covers_blocks),
         cmocka_unit_test(test_car_lanes),
+        cmocka_unit_test(test_costs_missing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

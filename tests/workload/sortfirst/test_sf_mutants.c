@@ -1,0 +1,40 @@
+/* test_sf_mutants.c — claims of the sort-first adaptive grid (sf_adapt.h)
+ * that mutation testing (make mutate, docs/testing.md) found unchecked:
+ * calibration sets each cell's factor to its owner's work per estimated
+ * polygon, the mean of those for a region without polygons, and leaves
+ * the factor at 1 when no region has any. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/workload/sortfirst/sf_adapt.h"
+
+static void test_calibrate(void **state)
+{
+    (void)state;
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 64, 64);
+    WlSfAdapt *a = wl_sf_adapt_new(8, 2);
+    double work[2] = {50, 7};
+    wl_sf_adapt_calibrate(a, &r, work); /* no polygons anywhere */
+    for (guint i = 0; i < 64; i++)
+        assert_true(a->factor[i] == 1);
+    /* 10 polygons in region 0's first cell: 50 / 10 = 5 there; region 1
+     * has none and takes the mean over regions with polygons, 5 */
+    a->weight[0] = 10;
+    assert_int_equal(wl_sf_adapt_weight_in(a, &r, r.rect[0]), 10);
+    assert_int_equal(wl_sf_adapt_weight_in(a, &r, r.rect[1]), 0);
+    wl_sf_adapt_calibrate(a, &r, work);
+    for (guint i = 0; i < 64; i++)
+        assert_true(a->factor[i] == 5);
+    wl_sf_adapt_free(a);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_calibrate),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
