@@ -116,6 +116,27 @@ section "raster: gyroid isosurface, 1024x1024, full z-buffer"
 $bin bench raster --scene isosurface --grid 80 --size 1024 --frames 5 \
     --zbuffer full
 
+# ---- trace replay (sim/app/replay, docs/traces.md) ----
+section "replay: a 1,000,000-action trace on the iPSC/2 (scripts/gen-trace.awk)"
+tr=$(mktemp -d)
+awk -v N=1000000 -f scripts/gen-trace.awk > "$tr/m.pgt"
+t0=$(now)
+/usr/bin/time -f "peak_rss_kb: %M" $bin replay "$tr/m.pgt" --machine ipsc2 \
+    > "$tr/out" 2> "$tr/err"
+w=$(since "$t0")
+tail -4 "$tr/out"; cat "$tr/err"
+echo "wall_s: $w"
+goal "replay: 1,000,000-action trace, wall" "$w" "<=" 10 s
+rss=$(awk '/peak_rss_kb/ { printf "%.1f", $2 / 1024 }' "$tr/err")
+awk -v N=4000000 -f scripts/gen-trace.awk > "$tr/m4.pgt"
+/usr/bin/time -f "peak_rss_kb: %M" $bin replay "$tr/m4.pgt" --machine ipsc2 \
+    > /dev/null 2> "$tr/err4"
+rss4=$(awk '/peak_rss_kb/ { printf "%.1f", $2 / 1024 }' "$tr/err4")
+echo "peak RSS: $rss MB at 1 M actions, $rss4 MB at 4 M actions"
+goal "replay: peak RSS, 4 M actions / 1 M (streaming)" \
+    "$(awk -v a="$rss4" -v b="$rss" 'BEGIN { printf "%.2f", a / b }')" "<=" 1.2 x
+rm -rf "$tr"
+
 section "issue 17 goals: figure of this run, goal, met"
 cat "$goals"
 rm -f "$goals"

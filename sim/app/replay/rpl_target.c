@@ -186,10 +186,15 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
                                        it->op[i]);
     if (it->type == RPL_WORK && isnan(t->scale[it->proc])) {
         g_string_append_printf(bad,
-                               "\n  %s:%u:1: nodes.%s.clock (to scale "
-                               "work recorded on processor %u)",
-                               path, it->line, kind, it->proc);
-        t->scale[it->proc] = INFINITY; /* reported once */
+                               "\n  %s:%u:1: a clock to scale `w` work of "
+                               "processor %u: a 'kind' header line with its "
+                               "recording clock and nodes.%s.clock (or a "
+                               "'machine %s' header: recorded here)",
+                               path, it->line, it->proc, kind,
+                               mach_name(t->m));
+        for (guint p = 0; p < t->n_trace; p++) /* reported once */
+            if (isnan(t->scale[p]))
+                t->scale[p] = INFINITY;
     }
     if (it->type == RPL_SEND && !mach_net(t->m) && !*net_missing) {
         *net_missing = TRUE;
