@@ -63,7 +63,7 @@ struct WlPphigsFrame {
     WlPphigsFrameSpec s;
     WlPphigsCosts c;
     SimTime gp_send, rend_expr, rend_cmp, rend_begin, rend_shade, fb_store,
-        host_send;
+        host_send, host_scan;
     guint ngp, nrend, nx, ny, nregions;
     Gp *gp;
     Rend *rend;
@@ -74,6 +74,7 @@ struct WlPphigsFrame {
     double *gp_us;  /* processor time of the frame just run */
     SimTime *busy0; /* traverse + transform busy at the frame's start */
     uint64_t commands, offscreen, prims, host_elems, exprs;
+    uint64_t scan_pending; /* host elements examined for the next frame */
     Mat4 vp;
     RastImage *image; /* the frame buffer's pixels */
     GArray *scratch;  /* one primitive's commands while planning */
@@ -106,7 +107,8 @@ static gboolean hw_costs(WlPphigsFrame *f, GError **err)
                             err) &&
            mach_cost_lookup(m, "frame_buffer", "store_region", &f->fb_store,
                             err) &&
-           mach_cost_lookup(m, "host", "send_element", &f->host_send, err);
+           mach_cost_lookup(m, "host", "send_element", &f->host_send, err) &&
+           mach_cost_lookup(m, "host", "scan_element", &f->host_scan, err);
 }
 
 /* The kind's processor count, checked against [lo, hi]. */
@@ -395,6 +397,23 @@ static void host_packed(SimEngine *eng, void *ctx, void *arg)
              g->edits * f->s.element_bytes, NULL, gp_edits_arrive, g);
 }
 
+void wl_pphigs_frame_host_scan(WlPphigsFrame *f, uint64_t elements)
+{
+    f->scan_pending += elements;
+}
+
+/* The host's step back (§3.4-3.5) before it packs anything. */
+static void host_scan(WlPphigsFrame *f)
+{
+    SimTime cost;
+    if (!f->scan_pending)
+        return;
+    if (!mach_cost_n(f->host_scan, f->scan_pending, &cost))
+        cost = SIM_TIME_MAX; /* mach_proc_compute reports the overflow */
+    mach_proc_compute(f->host, cost, f->ph_edit, NULL, NULL, NULL);
+    f->scan_pending = 0;
+}
+
 /* A GP with edits starts when they arrive; the others at once. */
 static void gp_launch(WlPphigsFrame *f, Gp *g)
 {
@@ -567,6 +586,7 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
     g_assert(wl_pphigs_dist_ngp(d) == f->ngp);
     frame_reset(f);
     f->vp = vp;
+    host_scan(f);
     for (guint g = 0; g < f->ngp; g++) {
         plan_gp(f, &f->gp[g], wl_pphigs_dist_gp(d, g));
         f->gp[g].edits = host_elems ? host_elems[g] : 0;

@@ -98,6 +98,13 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
                              const uint64_t *host_elems,
                              WlPphigsFrameStats *out, GError **err);
 
+/* Host elements examined since the last frame by step 2's backward
+ * scans and the attribute-state cache's walks (§3.4-3.5,
+ * WlPphigsTraffic total_scan + cache_walk deltas): the next frame
+ * charges the host `scan_element` each (phase "edit") before it packs
+ * the elements it sends. */
+void wl_pphigs_frame_host_scan(WlPphigsFrame *f, uint64_t elements);
+
 /* Utilisation over `elapsed`: mean of busy / elapsed over GPs and over
  * renderers. */
 void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,

@@ -243,6 +243,7 @@ typedef struct {
     gboolean image_ok; /* the last frame equals the serial render */
     uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
     WlPphigsTraffic scan0; /* after the distribution */
+    uint64_t scanned;      /* total_scan + cache_walk charged so far */
     double imbalance;
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
 } Run;
@@ -262,6 +263,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
     w.attr_cache = (guint)r->p->attr_cache;
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
     r->scan0 = *wl_pphigs_dist_traffic(r->d);
+    r->scanned = r->scan0.total_scan + r->scan0.cache_walk;
     memcpy(r->sent, wl_pphigs_dist_traffic(r->d)->sent_to, sizeof r->sent);
     WlPphigsRebalParams rb = r->p->rb;
     rb.seed = ctx->seed;
@@ -410,9 +412,14 @@ static void edit_frame(Run *r)
         wl_pphigs_dist_finish(r->d);
 }
 
-/* Elements sent to each GP since the last frame (edits, moves). */
+/* Elements sent to each GP since the last frame (edits, moves), and
+ * the elements the host examined to send them (§3.4-3.5). */
 static void host_elems(Run *r, uint64_t *out)
 {
+    const WlPphigsTraffic *t = wl_pphigs_dist_traffic(r->d);
+    uint64_t scanned = t->total_scan + t->cache_walk;
+    wl_pphigs_frame_host_scan(r->frame, scanned - r->scanned);
+    r->scanned = scanned;
     const uint64_t *now = wl_pphigs_dist_traffic(r->d)->sent_to;
     for (guint g = 0; g < r->ngp; g++) {
         out[g] = now[g] - r->sent[g];
@@ -554,7 +561,8 @@ static const char *const gp_ops[] = {
 static const char *const renderer_ops[] = {"primitive", "region_begin",
                                            "region_shade", NULL};
 static const char *const fb_ops[] = {"store_region", NULL};
-static const char *const host_ops[] = {"send_element", NULL};
+static const char *const host_ops[] = {"send_element", "scan_element",
+                                       NULL};
 static const WlNeed pphigs_needs[] = {{"gp", gp_ops},
                                       {"renderer", renderer_ops},
                                       {"frame_buffer", fb_ops},

@@ -28,7 +28,7 @@ static const char *const MACHINE =
     "  renderer: {count: 4, costs: {primitive: 8 us, region_begin: 50 us,\n"
     "             region_shade: 200 us}}\n"
     "  frame_buffer: {costs: {store_region: 10 us}}\n"
-    "  host: {costs: {send_element: 20 us}}\n";
+    "  host: {costs: {send_element: 20 us, scan_element: 2 us}}\n";
 
 static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
                                 .vertex = 100 * SIM_NS,
@@ -243,7 +243,8 @@ static void test_offscreen_sends_nothing(void **st)
 }
 
 /* Elements the host sends before a frame: packed on the host (phase
- * "edit"), carried by the ring, and the GP that gets them starts late. */
+ * "edit") after its step back over the elements it examined, carried by
+ * the ring, and the GP that gets them starts late. */
 static void test_host_edits(void **st)
 {
     (void)st;
@@ -260,6 +261,8 @@ static void test_host_edits(void **st)
         WlPphigsDist *d = wl_pphigs_dist_new(db.db, 4, WL_PPHIGS_COMPLEX, &w);
         uint64_t elems[4] = {0, 500, 0, 0};
         WlPphigsFrameStats fs;
+        if (k)
+            wl_pphigs_frame_host_scan(f, 300);
         assert_true(wl_pphigs_frame_run(f, d,
                                         scene_camera_view_proj(&db.camera),
                                         k ? elems : NULL, &fs, NULL));
@@ -269,14 +272,14 @@ static void test_host_edits(void **st)
         MachProc *host = mach_proc(m, "host", 0);
         unsigned edit = sim_engine_phase(eng, "edit");
         assert_int_equal(mach_proc_busy_phase(host, edit),
-                         k ? 500 * 20 * SIM_US : 0);
+                         k ? (500 * 20 + 300 * 2) * SIM_US : 0);
         wl_pphigs_dist_free(d);
         wl_pphigs_frame_free(f);
         mach_free(m);
         sim_engine_free(eng);
     }
     assert_int_equal(bytes[1] - bytes[0], 500 * s.element_bytes);
-    assert_true(t[1] >= t[0] + 500 * 20 * SIM_US); /* gp1 waited */
+    assert_true(t[1] >= t[0] + (500 * 20 + 300 * 2) * SIM_US); /* gp1 waited */
     scene_pphigs_db_clear(&db);
 }
 
