@@ -14,7 +14,7 @@
 PREFIX  ?= /usr/local
 BUILD   ?= build
 CC      ?= cc
-PKGS    := glib-2.0 gio-2.0 yaml-0.1 libpng
+PKGS    := glib-2.0 gio-2.0 json-glib-1.0 yaml-0.1 libpng
 HAVE_MPI := $(shell pkg-config --exists ompi-c 2>/dev/null && echo 1)
 ifeq ($(HAVE_MPI),1)
 PKGS    += ompi-c
@@ -55,12 +55,13 @@ $(BUILD)/obj/%.o: %.c
 	$(CC) $(CFLAGS) -c $< -o $@
 
 # The build's version in every result (git describe at build time): the
-# stamp file changes only when the version does, so report.o rebuilds then.
+# stamp file changes only when the version does, so provenance.o rebuilds
+# then.
 GIT_DESCRIBE := $(shell git describe --always --dirty 2>/dev/null || echo unknown)
 VERSION_STAMP := $(BUILD)/version.stamp
 $(shell mkdir -p $(BUILD); echo '$(GIT_DESCRIBE)' | cmp -s - $(VERSION_STAMP) || echo '$(GIT_DESCRIBE)' > $(VERSION_STAMP))
-$(BUILD)/obj/sim/app/run/report.o: $(VERSION_STAMP)
-$(BUILD)/obj/sim/app/run/report.o: CFLAGS += -DPGSIM_GIT_VERSION='"$(GIT_DESCRIBE)"'
+$(BUILD)/obj/sim/output/provenance.o: $(VERSION_STAMP)
+$(BUILD)/obj/sim/output/provenance.o: CFLAGS += -DPGSIM_GIT_VERSION='"$(GIT_DESCRIBE)"'
 
 $(BUILD)/libpgsim.a: $(LIBOBJ)
 	@rm -f $@

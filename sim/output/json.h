@@ -1,52 +1,61 @@
-/* json.h — a small JSON writer and reader for pgsim's own files.
+/* json.h — pgsim's JSON through json-glib: building, text, reading.
  *
- * Writing: string escaping and numbers that read back to the same double
- * (shortest of %.15g/%.17g; NaN and infinities become null).  Reading: a
- * strict RFC 8259 parser into a tree of JsonVal, enough to read back sweep
- * logs (JSON Lines) and to check trace files in tests.  Object members keep
- * their order.  Parsing is O(n) in the text; depth is limited to 64.
+ * Writing: a JsonBuilder with the few value kinds pgsim writes; numbers
+ * go in as integers when whole (|x| < 9.2e18) and as doubles otherwise
+ * (json-glib prints 17 significant digits, which read back to the same
+ * double; see printable() in json.c for the one exception); NaN and
+ * infinities become null.  Text is json-glib's
+ * generator, pretty (two-space indent, newline-terminated) or on one
+ * line, so output is a pure function of the tree: deterministic.
+ * Reading: json-glib's parser; errors are "<name>:line:column: ...".
+ * Object members keep their insertion (or file) order.
  */
 #ifndef PGSIM_OUTPUT_JSON_H
 #define PGSIM_OUTPUT_JSON_H
 
 #include <glib.h>
+#include <json-glib/json-glib.h>
 
-typedef enum {
-    JSON_NULL,
-    JSON_BOOL,
-    JSON_NUMBER,
-    JSON_STRING,
-    JSON_ARRAY,
-    JSON_OBJECT
-} JsonKind;
+/* Values into the builder (array item, or after a member name). */
+void js_add_num(JsonBuilder *b, double x);
+void js_add_str(JsonBuilder *b, const char *s); /* NULL adds null */
+/* "key": value members of the object being built. */
+void js_set_num(JsonBuilder *b, const char *key, double x);
+void js_set_int(JsonBuilder *b, const char *key, gint64 x);
+void js_set_str(JsonBuilder *b, const char *key, const char *s);
+void js_set_bool(JsonBuilder *b, const char *key, gboolean v);
+/* Adds a copy of node (NULL adds null) as member key. */
+void js_set_node(JsonBuilder *b, const char *key, JsonNode *node);
 
-typedef struct JsonVal JsonVal;
-struct JsonVal {
-    JsonKind kind;
-    gboolean b;
-    double num;
-    char *str;        /* JSON_STRING: the decoded text */
-    char *raw;        /* JSON_NUMBER: the text as written */
-    GPtrArray *keys;  /* JSON_OBJECT: char *, in order */
-    GPtrArray *items; /* JSON_ARRAY items / JSON_OBJECT values: JsonVal * */
-};
+/* The builder's tree as text (g_free); frees b. */
+char *js_finish(JsonBuilder *b, gboolean pretty);
+/* node as text (g_free). */
+char *js_text(JsonNode *node, gboolean pretty);
 
-/* Appends s as a quoted JSON string (NULL appends null). */
-void json_put_str(GString *out, const char *s);
-/* Appends a number that reads back exactly; null when not finite. */
-void json_put_num(GString *out, double x);
-/* Formats a double the same way into buf (>= 32 bytes); "" if not finite. */
-const char *json_fmt_num(char buf[32], double x);
+/* Parses one JSON text (len -1: NUL-terminated); returns the root (free
+ * with json_node_unref) or NULL with *err set (SIM_ERROR_INPUT,
+ * "<name>:line:column: ..."). */
+JsonNode *js_parse(const char *text, gssize len, const char *name,
+                   GError **err);
+/* Member key of an object node; NULL when absent or not an object. */
+JsonNode *js_get(JsonNode *obj, const char *key);
+/* Items of an array node (0 when not an array) and item i. */
+guint js_len(JsonNode *arr);
+JsonNode *js_at(JsonNode *arr, guint i);
+/* A string node's text, else NULL; a number node's value, else NAN. */
+const char *js_str(JsonNode *n);
+double js_num(JsonNode *n);
+/* TRUE for a null node (not for an absent member: NULL). */
+gboolean js_is_null(JsonNode *n);
+/* TRUE for an integer or double value node. */
+gboolean js_is_num(JsonNode *n);
+/* A value node as cell text: a string as is, a number shortest-exact,
+ * true/false, "" for null, an object or an array (g_free). */
+char *js_cell(JsonNode *n);
 
-/* Parses one JSON text (len may be -1 for NUL-terminated); returns a new
- * tree (free with json_free()) or NULL with *err set ("<name>: offset N:
- * found <what>, expected <what>"). */
-JsonVal *json_parse(const char *text, gssize len, const char *name,
-                    GError **err);
-void json_free(JsonVal *v);
-/* Object member by key (first match); NULL when absent or not an object. */
-const JsonVal *json_get(const JsonVal *obj, const char *key);
-guint json_len(const JsonVal *v); /* items of an array or object */
-const JsonVal *json_at(const JsonVal *v, guint i);
+/* Shortest text of x that reads back exactly (%.15g, else %.17g), whole
+ * numbers without a point, locale-free, into buf (>= 32 bytes); "" when
+ * not finite.  For CSV and text cells. */
+const char *js_fmt_num(char buf[32], double x);
 
 #endif

@@ -52,6 +52,8 @@ const char *dt_cell(const DataTable *t, guint row, int col)
 
 void dt_csv_field(GString *out, const char *s)
 {
+    if (!s)
+        return;
     if (!strpbrk(s, ",\"\n\r")) {
         g_string_append(out, s);
         return;

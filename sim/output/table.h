@@ -29,7 +29,7 @@ const char *dt_cell(const DataTable *t, guint row, int col);
 DataTable *dt_read_csv(const char *path, GError **err);
 DataTable *dt_parse_csv(const char *text, const char *name, GError **err);
 void dt_write_csv(const DataTable *t, GString *out);
-/* Appends one CSV field, quoted when needed. */
+/* Appends one CSV field, quoted when needed (NULL: an empty field). */
 void dt_csv_field(GString *out, const char *s);
 
 #endif

@@ -27,8 +27,8 @@ gboolean rp_igehy98_rate(const char *path, const char *const *sets,
     void *p = ok ? wl_argus_ops.parse(cfg_get(root, "workload"), err) : NULL;
     ok = p != NULL;
     if (ok) {
-        SimEngine *eng = sim_engine_new(1);
-        WlContext ctx = {.eng = eng, .root = root, .seed = 1,
+        SimEngine *eng = sim_engine_new(RP_SEED);
+        WlContext ctx = {.eng = eng, .root = root, .seed = RP_SEED,
                          .fidelity = "analytic", .frames = 1};
         SimResult *r = sim_result_new("argus", "");
         ok = wl_argus_ops.run(&ctx, p, r, err) &&

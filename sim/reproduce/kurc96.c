@@ -128,7 +128,7 @@ static void scale_costs(WlPmCosts *c, const double *scale)
 static gboolean simulate(Kurc *k, const WlPmParams *p, int scene,
                          const double *scale, RpKurcRun *run, GError **err)
 {
-    SimEngine *eng = sim_engine_new(1);
+    SimEngine *eng = sim_engine_new(RP_SEED);
     MachMachine *m = mach_new_from_cfg(eng, cfg_get(k->setup, "machine"),
                                        k->ctx->fidelity, err);
     SimResult *r = sim_result_new("pixelmerge", "ipsc2");

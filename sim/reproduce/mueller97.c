@@ -182,7 +182,7 @@ static gboolean run_case(const RpContext *ctx, const Scene *sc,
                                  pt->granularity, pt->procs);
     rp_step(ctx, what);
     g_free(what);
-    SimEngine *eng = sim_engine_new(1);
+    SimEngine *eng = sim_engine_new(RP_SEED);
     const char *fid = ctx->fidelity ? ctx->fidelity : "analytic";
     MachMachine *m = mach_new_from_model(eng, s->model, fid, err);
     gboolean ok = m != NULL;

@@ -23,6 +23,10 @@
 #include "sim/output/progress.h"
 #include <glib.h>
 
+/* The seed of every engine a reproduction starts (recorded in the
+ * provenance of its outputs). */
+#define RP_SEED 1
+
 typedef struct {
     char *table;  /* "1", "2", "fig1", "text" ... */
     char *row;    /* "2POT", "P16/2POT" ... */

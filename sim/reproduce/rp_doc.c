@@ -37,8 +37,8 @@ static DataTable *scatter_table(const RpTable *t)
         if (j->status != RP_COMPARED || !(j->published > 0) || !(j->sim > 0))
             continue;
         char a[32], b[32];
-        char *row[] = {(char *)json_fmt_num(a, j->published),
-                       (char *)json_fmt_num(b, j->sim), j->table};
+        char *row[] = {(char *)js_fmt_num(a, j->published),
+                       (char *)js_fmt_num(b, j->sim), j->table};
         dt_add_row(d, row);
     }
     return d;

@@ -6,6 +6,7 @@
  * pass, which is negligible next to the simulation.  O(rows + cells).
  */
 #include "sim/reproduce/rp_driver.h"
+#include "sim/output/provenance.h"
 #include <string.h>
 
 const char *const rp_fidelities[] = {"analytic", "flow", "packet", NULL};
@@ -36,6 +37,16 @@ static RpPaper *load_paper(const RpPaperOps *rp, const char *dir,
     return p;
 }
 
+/* The setup file's path, SHA-256 and tree into t's provenance. */
+static void note_setup(RpTable *t, const char *setup)
+{
+    t->setup = g_strdup(setup);
+    t->setup_sha256 = prov_file_sha256(setup);
+    CfgNode *root = cfg_load_file(setup, NULL);
+    t->setup_json = root ? prov_cfg_json(root) : NULL;
+    cfg_free(root);
+}
+
 RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
                   const RpContext *ctx, GError **err)
 {
@@ -59,6 +70,8 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
                                               used->str)
                             : g_strdup(ctx->fidelity);
     RpTable *t = ok ? rp_table_join(paper, rows, label, wall) : NULL;
+    if (t)
+        note_setup(t, c.setup);
     g_free(label);
     g_string_free(used, TRUE);
     if (!ok)

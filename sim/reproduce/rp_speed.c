@@ -89,8 +89,8 @@ void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out)
         for (guint i = 0; i < t->cells->len; i++) {
             double e = rp_speed_vs_ref(g_ptr_array_index(t->cells, i), ref);
             g_string_append_printf(out, "%s,%s,", lines[i], t->fidelity);
-            g_string_append_printf(out, "%s,", json_fmt_num(buf, t->wall_s));
-            g_string_append_printf(out, "%s\n", json_fmt_num(buf, e));
+            g_string_append_printf(out, "%s,", js_fmt_num(buf, t->wall_s));
+            g_string_append_printf(out, "%s\n", js_fmt_num(buf, e));
         }
         g_strfreev(lines);
         g_string_free(one, TRUE);
@@ -100,21 +100,25 @@ void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out)
 void rp_speed_json(const GPtrArray *passes, GString *out)
 {
     const RpTable *ref = ref_of(passes);
-    g_string_append(out, "{\"paper\":");
-    json_put_str(out, ref->paper);
-    g_string_append(out, ",\"reference\":");
-    json_put_str(out, ref->fidelity);
-    g_string_append(out, ",\"passes\":[");
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "paper", ref->paper);
+    js_set_str(b, "reference", ref->fidelity);
+    json_builder_set_member_name(b, "passes");
+    json_builder_begin_array(b);
     for (guint p = 0; p < passes->len; p++) {
         const RpTable *t = g_ptr_array_index(passes, p);
-        g_string_append(out, p ? ",{\"mean_abs_vs_reference\":"
-                               : "{\"mean_abs_vs_reference\":");
-        json_put_num(out, rp_speed_mean_vs_ref(t, ref));
-        g_string_append(out, ",\"table\":");
-        rp_table_json(t, out);
-        g_string_append_c(out, '}');
+        json_builder_begin_object(b);
+        js_set_num(b, "mean_abs_vs_reference", rp_speed_mean_vs_ref(t, ref));
+        json_builder_set_member_name(b, "table");
+        json_builder_add_value(b, rp_table_node(t));
+        json_builder_end_object(b);
     }
-    g_string_append(out, "]}");
+    json_builder_end_array(b);
+    json_builder_end_object(b);
+    char *text = js_finish(b, FALSE);
+    g_string_append(out, text);
+    g_free(text);
 }
 
 static DataTable *speed_table(const GPtrArray *passes)
@@ -130,11 +134,11 @@ static DataTable *speed_table(const GPtrArray *passes)
         const RpTable *t = g_ptr_array_index(passes, p);
         char w[32], e1[32], e2[32];
         /* the clock ticks in microseconds: keep x > 0 on the log axis */
-        json_fmt_num(w, MAX(t->wall_s, 1e-6));
-        char *r1[] = {t->fidelity, w, (char *)json_fmt_num(e1, t->mean_abs),
+        js_fmt_num(w, MAX(t->wall_s, 1e-6));
+        char *r1[] = {t->fidelity, w, (char *)js_fmt_num(e1, t->mean_abs),
                       "paper"};
         char *r2[] = {t->fidelity, w,
-                      (char *)json_fmt_num(e2, rp_speed_mean_vs_ref(t, ref)),
+                      (char *)js_fmt_num(e2, rp_speed_mean_vs_ref(t, ref)),
                       ref->fidelity};
         dt_add_row(d, r1);
         dt_add_row(d, r2);

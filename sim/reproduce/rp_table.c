@@ -6,7 +6,7 @@
  * Join: O(rows + cells) with the paper's hash index.
  */
 #include "sim/reproduce/rp_table.h"
-#include "sim/output/json.h"
+#include "sim/output/provenance.h"
 #include "sim/output/table.h"
 #include <math.h>
 #include <string.h>
@@ -29,6 +29,9 @@ void rp_table_free(RpTable *t)
     g_free(t->paper);
     g_free(t->citation);
     g_free(t->fidelity);
+    g_free(t->setup);
+    g_free(t->setup_sha256);
+    g_free(t->setup_json);
     g_ptr_array_free(t->cells, TRUE);
     g_free(t);
 }
@@ -272,57 +275,65 @@ void rp_table_csv(const RpTable *t, gboolean header, GString *out)
             dt_csv_field(out, f[k]);
             g_string_append_c(out, ',');
         }
-        g_string_append_printf(out, "%s,", json_fmt_num(buf, j->sim));
-        g_string_append_printf(out, "%s,", json_fmt_num(buf, j->published));
-        g_string_append_printf(out, "%s\n", json_fmt_num(buf, j->rel_error));
+        g_string_append_printf(out, "%s,", js_fmt_num(buf, j->sim));
+        g_string_append_printf(out, "%s,", js_fmt_num(buf, j->published));
+        g_string_append_printf(out, "%s\n", js_fmt_num(buf, j->rel_error));
     }
 }
 
-static void json_cell(GString *out, const RpJoined *j)
+static void json_cell(JsonBuilder *b, const RpJoined *j)
 {
-    g_string_append(out, "{\"table\":");
-    json_put_str(out, j->table);
-    g_string_append(out, ",\"row\":");
-    json_put_str(out, j->row);
-    g_string_append(out, ",\"column\":");
-    json_put_str(out, j->column);
-    g_string_append(out, ",\"unit\":");
-    json_put_str(out, j->unit);
-    g_string_append(out, ",\"sim\":");
-    json_put_num(out, j->sim);
-    g_string_append(out, ",\"published\":");
-    json_put_num(out, j->published);
-    g_string_append(out, ",\"rel_error\":");
-    json_put_num(out, j->rel_error);
-    g_string_append(out, ",\"status\":");
-    json_put_str(out, rp_status_name(j->status));
-    g_string_append(out, ",\"note\":");
-    json_put_str(out, j->note);
-    g_string_append_c(out, '}');
+    json_builder_begin_object(b);
+    js_set_str(b, "table", j->table);
+    js_set_str(b, "row", j->row);
+    js_set_str(b, "column", j->column);
+    js_set_str(b, "unit", j->unit);
+    js_set_num(b, "sim", j->sim);
+    js_set_num(b, "published", j->published);
+    js_set_num(b, "rel_error", j->rel_error);
+    js_set_str(b, "status", rp_status_name(j->status));
+    js_set_str(b, "note", j->note);
+    json_builder_end_object(b);
+}
+
+static void json_summary(JsonBuilder *b, const RpTable *t)
+{
+    json_builder_set_member_name(b, "summary");
+    json_builder_begin_object(b);
+    js_set_int(b, "compared", t->compared);
+    js_set_num(b, "mean_abs_rel_error", t->mean_abs);
+    js_set_num(b, "worst_abs_rel_error", t->worst_abs);
+    json_builder_end_object(b);
+}
+
+JsonNode *rp_table_node(const RpTable *t)
+{
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "paper", t->paper);
+    js_set_str(b, "citation", t->citation);
+    js_set_str(b, "fidelity", t->fidelity);
+    js_set_num(b, "wall_s", t->wall_s);
+    SimProvenance p = {t->setup, t->setup_sha256, NULL,
+                       RP_SEED,  t->fidelity,     t->setup_json};
+    prov_json(b, &p);
+    json_builder_set_member_name(b, "cells");
+    json_builder_begin_array(b);
+    for (guint i = 0; i < t->cells->len; i++)
+        json_cell(b, g_ptr_array_index(t->cells, i));
+    json_builder_end_array(b);
+    json_summary(b, t);
+    json_builder_end_object(b);
+    JsonNode *root = json_builder_get_root(b);
+    g_object_unref(b);
+    return root;
 }
 
 void rp_table_json(const RpTable *t, GString *out)
 {
-    g_string_append(out, "{\"paper\":");
-    json_put_str(out, t->paper);
-    g_string_append(out, ",\"citation\":");
-    json_put_str(out, t->citation);
-    g_string_append(out, ",\"fidelity\":");
-    json_put_str(out, t->fidelity);
-    g_string_append(out, ",\"wall_s\":");
-    json_put_num(out, t->wall_s);
-    g_string_append(out, ",\"cells\":[");
-    for (guint i = 0; i < t->cells->len; i++) {
-        if (i)
-            g_string_append_c(out, ',');
-        json_cell(out, g_ptr_array_index(t->cells, i));
-    }
-    g_string_append_printf(out,
-                           "],\"summary\":{\"compared\":%u,"
-                           "\"mean_abs_rel_error\":",
-                           t->compared);
-    json_put_num(out, t->mean_abs);
-    g_string_append(out, ",\"worst_abs_rel_error\":");
-    json_put_num(out, t->worst_abs);
-    g_string_append(out, "}}");
+    JsonNode *root = rp_table_node(t);
+    char *text = js_text(root, FALSE);
+    g_string_append(out, text);
+    g_free(text);
+    json_node_unref(root);
 }

@@ -17,6 +17,7 @@
 #include "sim/reproduce/rp_papers.h"
 #include "sim/reproduce/reproduce.h"
 #include "sim/core/error.h"
+#include "sim/output/json.h"
 
 typedef enum {
     RP_COMPARED, /* sim and published both known */
@@ -45,6 +46,9 @@ typedef struct {
     double mean_abs;  /* mean |rel_error| over them; NAN when none */
     double worst_abs; /* max |rel_error|; NAN when none */
     int worst;        /* index into cells of the worst; -1 when none */
+    /* provenance (rp_driver.c): the setup file, its SHA-256 and its tree
+     * as JSON text; NULL when the table was joined without a setup */
+    char *setup, *setup_sha256, *setup_json;
 } RpTable;
 
 /* Joins rows (RpRow *, borrowed) to the paper; returns a new table (free
@@ -60,7 +64,10 @@ const char *rp_status_name(RpStatus s);
 void rp_table_text(const RpTable *t, GString *out);
 /* header: also write the column header line first. */
 void rp_table_csv(const RpTable *t, gboolean header, GString *out);
+/* JSON (json-glib): paper, citation, fidelity, wall_s, provenance,
+ * cells, summary; rp_table_node() is the same tree (json_node_unref). */
 void rp_table_json(const RpTable *t, GString *out);
+JsonNode *rp_table_node(const RpTable *t);
 /* "mean |rel_error| 4.2% over 12 cells, worst 9.9% (table 2, 2POT,
  * tpg_400)" — the summary line (no newline). */
 void rp_table_summary(const RpTable *t, GString *out);

@@ -58,12 +58,18 @@ static char *tmpdir_with(const char *name, const char *text)
     char *path = rp_paper_path(dir, name);
     g_assert_true(g_file_set_contents(path, text, -1, NULL));
     g_free(path);
+    path = rp_paper_file(dir, name, "setup.yaml");
+    g_assert_true(g_file_set_contents(path, "setup: {n: 1}\n", -1, NULL));
+    g_free(path);
     return dir;
 }
 
 static void rm_dir(char *dir, const char *name)
 {
     char *path = rp_paper_path(dir, name);
+    g_remove(path);
+    g_free(path);
+    path = rp_paper_file(dir, name, "setup.yaml");
     g_remove(path);
     g_free(path);
     char *sub = g_build_filename(dir, name, NULL);
@@ -159,18 +165,24 @@ static void test_json(void **state)
     GString *s = g_string_new(NULL);
     rp_table_json(t, s);
     GError *err = NULL;
-    JsonVal *v = json_parse(s->str, (gssize)s->len, "rp.json", &err);
+    JsonNode *v = js_parse(s->str, (gssize)s->len, "rp.json", &err);
     g_assert_no_error(err);
-    assert_string_equal(json_get(v, "paper")->str, "fake");
-    assert_string_equal(json_get(v, "fidelity")->str, "flow");
-    const JsonVal *cells = json_get(v, "cells");
-    assert_int_equal(json_len(cells), 5);
-    const JsonVal *a = json_at(cells, 0);
-    assert_true(fabs(json_get(a, "sim")->num - 12.1) < 1e-12);
-    assert_int_equal(json_get(json_at(cells, 2), "published")->kind, JSON_NULL);
-    const JsonVal *sum = json_get(v, "summary");
-    assert_int_equal((int)json_get(sum, "compared")->num, 2);
-    json_free(v);
+    assert_string_equal(js_str(js_get(v, "paper")), "fake");
+    assert_string_equal(js_str(js_get(v, "fidelity")), "flow");
+    JsonNode *cells = js_get(v, "cells");
+    assert_int_equal(js_len(cells), 5);
+    JsonNode *a = js_at(cells, 0);
+    assert_true(fabs(js_num(js_get(a, "sim")) - 12.1) < 1e-12);
+    assert_true(js_is_null(js_get(js_at(cells, 2), "published")));
+    JsonNode *sum = js_get(v, "summary");
+    assert_int_equal((int)js_num(js_get(sum, "compared")), 2);
+    JsonNode *prov = js_get(v, "provenance");
+    assert_true(g_str_has_suffix(js_str(js_get(prov, "config")), "setup.yaml"));
+    assert_int_equal(strlen(js_str(js_get(prov, "config_sha256"))), 64);
+    assert_int_equal((int)js_num(js_get(prov, "seed")), RP_SEED);
+    assert_string_equal(js_str(js_get(prov, "fidelity")), "flow");
+    assert_non_null(js_get(js_get(prov, "effective_config"), "setup"));
+    json_node_unref(v);
     g_string_free(s, TRUE);
     rp_table_free(t);
     rm_dir(dir, "fake");

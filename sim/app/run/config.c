@@ -13,7 +13,7 @@
  * share/pgsim/models (next to the executable, then PGSIM_PREFIX).
  */
 #include "sim/app/run/config.h"
-#include "sim/output/json.h"
+#include "sim/output/provenance.h"
 #include "sim/core/datapath.h"
 #include "sim/core/memlimit.h"
 #include "sim/output/progress.h"
@@ -196,32 +196,6 @@ static gboolean read_scene(CfgRun *r, GError **err)
     return s != NULL;
 }
 
-/* The config tree as JSON (every scalar a string, as written). */
-static void tree_json(GString *s, const CfgNode *n)
-{
-    if (cfg_kind(n) == CFG_MAP) {
-        g_string_append_c(s, '{');
-        for (guint i = 0; i < cfg_map_len(n); i++) {
-            g_string_append(s, i ? ", " : "");
-            json_put_str(s, cfg_map_key(n, i));
-            g_string_append(s, ": ");
-            tree_json(s, cfg_map_value(n, i));
-        }
-        g_string_append_c(s, '}');
-    } else if (cfg_kind(n) == CFG_SEQ) {
-        g_string_append_c(s, '[');
-        for (guint i = 0; i < cfg_seq_len(n); i++) {
-            g_string_append(s, i ? ", " : "");
-            tree_json(s, cfg_seq_at(n, i));
-        }
-        g_string_append_c(s, ']');
-    } else if (cfg_kind(n) == CFG_SCALAR) {
-        json_put_str(s, cfg_scalar(n));
-    } else {
-        g_string_append(s, "null");
-    }
-}
-
 static gboolean apply_overrides(CfgNode *root, const char *const *ov,
                                 GError **err)
 {
@@ -260,13 +234,7 @@ CfgRun *cfg_run_load(const char *path, const char *const *overrides,
     if (!root)
         return NULL;
     extend_model_path(path);
-    char *bytes = NULL;
-    gsize len = 0;
-    char *sha = sim_file_read(path, &bytes, &len, NULL)
-                    ? g_compute_checksum_for_data(G_CHECKSUM_SHA256,
-                                                  (const guchar *)bytes, len)
-                    : NULL;
-    g_free(bytes);
+    char *sha = prov_file_sha256(path);
     CfgRun *r = cfg_run_from_tree(root, overrides, err);
     if (r) {
         r->path = g_strdup(path);
@@ -301,9 +269,7 @@ static void fill_provenance(SimResult *res, const CfgRun *r)
 {
     res->config_path = g_strdup(r->path);
     res->config_sha256 = g_strdup(r->sha256);
-    GString *s = g_string_new(NULL);
-    tree_json(s, r->root);
-    res->config_effective = g_string_free(s, FALSE);
+    res->config_effective = prov_cfg_json(r->root);
     for (guint i = 0; r->overrides && i < r->overrides->len; i++)
         g_ptr_array_add(res->overrides, g_strdup(r->overrides->pdata[i]));
 }

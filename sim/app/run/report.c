@@ -4,12 +4,13 @@
  * nodes, communication, metrics, simulator), so output is a pure
  * function of the result.  Simulated times are integer picoseconds
  * printed as exact decimal seconds; other numbers go through
- * json_fmt_num (shortest text that reads back exactly, locale-free).
+ * js_fmt_num (shortest text that reads back exactly, locale-free).
  * The schema is docs/output.md.  Cost: O(frames + nodes * phases).
  */
 #include "sim/app/run/report.h"
 #include "sim/core/datapath.h"
-#include "sim/output/json.h"
+#include "sim/output/provenance.h"
+#include "sim/output/table.h"
 #include <errno.h>
 #include <string.h>
 
@@ -46,13 +47,6 @@ static void put_time(GString *s, SimTime t)
     g_string_append_printf(s, ".%s", buf);
 }
 
-static void put_num(GString *s, double x)
-{
-    char buf[32];
-    const char *t = json_fmt_num(buf, x);
-    g_string_append(s, *t ? t : "null");
-}
-
 static double util(const SimResult *r, SimTime busy)
 {
     return r->elapsed ? (double)busy / (double)r->elapsed : 0.0;
@@ -70,198 +64,148 @@ static SimTime frame_at(const SimResult *r, guint i)
 
 /* ---- JSON ------------------------------------------------------------- */
 
-/* ", "key": <value>" members of an object already opened. */
-static void kv_str(GString *s, const char *key, const char *v)
+/* Seconds as the double nearest the exact picosecond time (a division,
+ * correctly rounded, not sim_time_to_s's multiplication). */
+static double exact_s(SimTime t)
 {
-    g_string_append_printf(s, ", \"%s\": ", key);
-    json_put_str(s, v);
+    return (double)t / (double)SIM_S;
 }
 
-static void kv_time(GString *s, const char *key, SimTime t)
+static void set_time(JsonBuilder *b, const char *key, SimTime t)
 {
-    g_string_append_printf(s, ", \"%s\": ", key);
-    put_time(s, t);
+    js_set_num(b, key, exact_s(t));
 }
 
-static void kv_num(GString *s, const char *key, double x)
+static SimProvenance provenance_of(const SimResult *r)
 {
-    g_string_append_printf(s, ", \"%s\": ", key);
-    put_num(s, x);
+    SimProvenance p = {r->config_path, r->config_sha256, r->overrides,
+                       r->seed,        r->fidelity,     r->config_effective};
+    return p;
 }
 
-static void json_key(GString *s, const char *indent, const char *key)
+static void json_run(JsonBuilder *b, const SimResult *r)
 {
-    g_string_append_printf(s, "%s\"%s\": ", indent, key);
+    js_set_str(b, "schema", "pgsim-result");
+    js_set_int(b, "schema_version", 1);
+    js_set_str(b, "workload", r->workload);
+    js_set_str(b, "machine", r->machine);
+    js_set_str(b, "fidelity", r->fidelity);
+    js_set_int(b, "seed", (gint64)r->seed);
+    SimProvenance p = provenance_of(r);
+    prov_json(b, &p);
+    set_time(b, "elapsed_s", r->elapsed);
 }
 
-#ifndef PGSIM_GIT_VERSION
-#define PGSIM_GIT_VERSION "unknown"
-#endif
-
-const char *rpt_version(void)
+static void json_frames(JsonBuilder *b, const SimResult *r)
 {
-    return PGSIM_GIT_VERSION;
+    json_builder_set_member_name(b, "frames");
+    json_builder_begin_object(b);
+    js_set_int(b, "count", r->frame_times->len);
+    js_set_num(b, "mean_s", sim_result_mean_frame_s(r));
+    json_builder_set_member_name(b, "times_s");
+    json_builder_begin_array(b);
+    for (guint i = 0; i < r->frame_times->len; i++)
+        js_add_num(b, exact_s(frame_at(r, i)));
+    json_builder_end_array(b);
+    json_builder_end_object(b);
 }
 
-/* Where the result came from: the build, the config and its overrides. */
-static void json_provenance(GString *s, const SimResult *r)
+static void json_phases(JsonBuilder *b, const SimResult *r,
+                        const SimNodeResult *n)
 {
-    g_string_append(s, ",\n  \"provenance\": {\"pgsim_version\": ");
-    json_put_str(s, rpt_version());
-    g_string_append(s, ", \"config\": ");
-    r->config_path ? json_put_str(s, r->config_path)
-                   : (void)g_string_append(s, "null");
-    g_string_append(s, ", \"config_sha256\": ");
-    r->config_sha256 ? json_put_str(s, r->config_sha256)
-                     : (void)g_string_append(s, "null");
-    g_string_append(s, ", \"overrides\": [");
-    for (guint i = 0; i < r->overrides->len; i++) {
-        g_string_append(s, i ? ", " : "");
-        json_put_str(s, r->overrides->pdata[i]);
-    }
-    g_string_append_printf(s, "], \"seed\": %" G_GUINT64_FORMAT
-                              ", \"fidelity\": ",
-                           r->seed);
-    json_put_str(s, r->fidelity);
-    g_string_append_printf(s, ",\n    \"effective_config\": %s}",
-                           r->config_effective ? r->config_effective : "null");
-}
-
-static void json_run(GString *s, const SimResult *r)
-{
-    g_string_append(s, "{\n  \"schema\": \"pgsim-result\",\n"
-                       "  \"schema_version\": 1,\n");
-    json_key(s, "  ", "workload");
-    json_put_str(s, r->workload);
-    kv_str(s, "machine", r->machine);
-    kv_str(s, "fidelity", r->fidelity);
-    g_string_append_printf(
-        s, ",\n  \"seed\": %" G_GUINT64_FORMAT, r->seed);
-    json_provenance(s, r);
-    g_string_append(s, ",\n  \"elapsed_s\": ");
-    put_time(s, r->elapsed);
-}
-
-static void json_frames(GString *s, const SimResult *r)
-{
-    g_string_append_printf(s, ",\n  \"frames\": {\"count\": %u, \"mean_s\": ",
-                           r->frame_times->len);
-    put_num(s, sim_result_mean_frame_s(r));
-    g_string_append(s, ", \"times_s\": [");
-    for (guint i = 0; i < r->frame_times->len; i++) {
-        g_string_append(s, i ? ", " : "");
-        put_time(s, frame_at(r, i));
-    }
-    g_string_append(s, "]}");
-}
-
-static void json_phases(GString *s, const SimResult *r, const SimNodeResult *n)
-{
-    g_string_append(s, ", \"phases\": {");
+    json_builder_set_member_name(b, "phases");
+    json_builder_begin_object(b);
     for (guint p = 0; p < r->phases->len; p++) {
-        SimTime b = sim_busy_phase(&n->busy, p);
-        g_string_append(s, p ? ", " : "");
-        json_put_str(s, g_ptr_array_index(r->phases, p));
-        g_string_append(s, ": {\"busy_s\": ");
-        put_time(s, b);
-        kv_num(s, "utilisation", util(r, b));
-        g_string_append(s, "}");
+        SimTime busy = sim_busy_phase(&n->busy, p);
+        json_builder_set_member_name(b, g_ptr_array_index(r->phases, p));
+        json_builder_begin_object(b);
+        set_time(b, "busy_s", busy);
+        js_set_num(b, "utilisation", util(r, busy));
+        json_builder_end_object(b);
     }
-    g_string_append(s, "}}");
+    json_builder_end_object(b);
 }
 
-static void json_nodes(GString *s, const SimResult *r)
+static void json_nodes(JsonBuilder *b, const SimResult *r)
 {
-    g_string_append(s, ",\n  \"phases\": [");
-    for (guint p = 0; p < r->phases->len; p++) {
-        g_string_append(s, p ? ", " : "");
-        json_put_str(s, g_ptr_array_index(r->phases, p));
-    }
-    g_string_append(s, "],\n  \"nodes\": [");
+    json_builder_set_member_name(b, "phases");
+    json_builder_begin_array(b);
+    for (guint p = 0; p < r->phases->len; p++)
+        js_add_str(b, g_ptr_array_index(r->phases, p));
+    json_builder_end_array(b);
+    json_builder_set_member_name(b, "nodes");
+    json_builder_begin_array(b);
     for (guint i = 0; i < r->nodes->len; i++) {
         const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
-        g_string_append(s, i ? ",\n    {\"name\": " : "\n    {\"name\": ");
-        json_put_str(s, n->name);
-        kv_str(s, "kind", n->kind);
-        kv_time(s, "busy_s", n->busy.total);
-        kv_num(s, "utilisation", util(r, n->busy.total));
-        json_phases(s, r, n);
+        json_builder_begin_object(b);
+        js_set_str(b, "name", n->name);
+        js_set_str(b, "kind", n->kind);
+        set_time(b, "busy_s", n->busy.total);
+        js_set_num(b, "utilisation", util(r, n->busy.total));
+        json_phases(b, r, n);
+        json_builder_end_object(b);
     }
-    g_string_append(s, r->nodes->len ? "\n  ]" : "]");
-    g_string_append(s, ",\n  \"idle\": [");
+    json_builder_end_array(b);
+    json_builder_set_member_name(b, "idle");
+    json_builder_begin_array(b);
     for (guint i = 0; i < r->idle->len; i++) {
         const SimIdleResult *e = g_ptr_array_index(r->idle, i);
-        g_string_append(s, i ? ", {\"kind\": " : "{\"kind\": ");
-        json_put_str(s, e->kind);
-        g_string_append_printf(s, ", \"count\": %" G_GUINT64_FORMAT "}",
-                               e->count);
+        json_builder_begin_object(b);
+        js_set_str(b, "kind", e->kind);
+        js_set_int(b, "count", (gint64)e->count);
+        json_builder_end_object(b);
     }
-    g_string_append_c(s, ']');
+    json_builder_end_array(b);
 }
 
-static void json_comm(GString *s, const SimResult *r)
+static void json_comm(JsonBuilder *b, const SimResult *r)
 {
-    g_string_append_printf(s,
-                           ",\n  \"comm\": {\"bytes\": %" G_GUINT64_FORMAT
-                           ", \"messages\": %" G_GUINT64_FORMAT
-                           ", \"busiest_link\": ",
-                           r->comm_bytes, r->comm_messages);
-    json_put_str(s, r->busiest_link);
-    g_string_append_printf(s,
-                           ", \"busiest_link_bytes\": %" G_GUINT64_FORMAT "}",
-                           r->busiest_link_bytes);
+    json_builder_set_member_name(b, "comm");
+    json_builder_begin_object(b);
+    js_set_int(b, "bytes", (gint64)r->comm_bytes);
+    js_set_int(b, "messages", (gint64)r->comm_messages);
+    js_set_str(b, "busiest_link", r->busiest_link);
+    js_set_int(b, "busiest_link_bytes", (gint64)r->busiest_link_bytes);
+    json_builder_end_object(b);
 }
 
-static void json_metrics(GString *s, const SimResult *r, gboolean timing)
+static void json_metrics(JsonBuilder *b, const SimResult *r, gboolean timing)
 {
-    g_string_append(s, ",\n  \"metrics\": [");
+    json_builder_set_member_name(b, "metrics");
+    json_builder_begin_array(b);
     for (guint i = 0; i < r->metrics->len; i++) {
         const SimMetric *m = g_ptr_array_index(r->metrics, i);
-        g_string_append(s, i ? ",\n    {\"name\": " : "\n    {\"name\": ");
-        json_put_str(s, m->name);
-        kv_num(s, "value", m->value);
-        kv_str(s, "unit", m->unit);
-        g_string_append(s, "}");
+        json_builder_begin_object(b);
+        js_set_str(b, "name", m->name);
+        js_set_num(b, "value", m->value);
+        js_set_str(b, "unit", m->unit);
+        json_builder_end_object(b);
     }
-    g_string_append(s, r->metrics->len ? "\n  ]" : "]");
-    g_string_append_printf(s, ",\n  \"sim\": {\"events\": %" G_GUINT64_FORMAT,
-                           r->events);
+    json_builder_end_array(b);
+    json_builder_set_member_name(b, "sim");
+    json_builder_begin_object(b);
+    js_set_int(b, "events", (gint64)r->events);
     if (timing) {
-        kv_num(s, "wall_s", r->wall_s);
-        kv_num(s, "events_per_s", events_per_s(r));
+        js_set_num(b, "wall_s", r->wall_s);
+        js_set_num(b, "events_per_s", events_per_s(r));
     }
-    g_string_append(s, "}\n}\n");
+    json_builder_end_object(b);
 }
 
 static char *render_json(const SimResult *r, gboolean timing)
 {
-    GString *s = g_string_new(NULL);
-    json_run(s, r);
-    json_frames(s, r);
-    json_nodes(s, r);
-    json_comm(s, r);
-    json_metrics(s, r, timing);
-    return g_string_free(s, FALSE);
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    json_run(b, r);
+    json_frames(b, r);
+    json_nodes(b, r);
+    json_comm(b, r);
+    json_metrics(b, r, timing);
+    json_builder_end_object(b);
+    return js_finish(b, TRUE);
 }
 
 /* ---- CSV -------------------------------------------------------------- */
-
-static void csv_field(GString *s, const char *f)
-{
-    if (!f)
-        return;
-    if (!strpbrk(f, ",\"\r\n")) {
-        g_string_append(s, f);
-        return;
-    }
-    g_string_append_c(s, '"');
-    for (; *f; f++) {
-        if (*f == '"')
-            g_string_append_c(s, '"');
-        g_string_append_c(s, *f);
-    }
-    g_string_append_c(s, '"');
-}
 
 /* One row: section,name,phase,field,<value>,unit; value is preformatted. */
 static void csv_row(GString *s, const char *section, const char *name,
@@ -272,7 +216,7 @@ static void csv_row(GString *s, const char *section, const char *name,
     for (int i = 0; i < 6; i++) {
         if (i)
             g_string_append_c(s, ',');
-        csv_field(s, f[i]);
+        dt_csv_field(s, f[i]);
     }
     g_string_append_c(s, '\n');
 }
@@ -291,7 +235,7 @@ static void csv_num(GString *s, const char *section, const char *name,
                     const char *unit)
 {
     char buf[32];
-    csv_row(s, section, name, phase, field, json_fmt_num(buf, x), unit);
+    csv_row(s, section, name, phase, field, js_fmt_num(buf, x), unit);
 }
 
 static void csv_u64(GString *s, const char *section, const char *field,
@@ -309,18 +253,8 @@ static void csv_run(GString *s, const SimResult *r)
     csv_row(s, "run", NULL, NULL, "machine", r->machine, NULL);
     csv_row(s, "run", NULL, NULL, "fidelity", r->fidelity, NULL);
     csv_u64(s, "run", "seed", r->seed, NULL);
-    csv_row(s, "provenance", NULL, NULL, "pgsim_version", rpt_version(), NULL);
-    csv_row(s, "provenance", NULL, NULL, "config", r->config_path, NULL);
-    csv_row(s, "provenance", NULL, NULL, "config_sha256", r->config_sha256,
-            NULL);
-    for (guint i = 0; i < r->overrides->len; i++) {
-        char idx[16];
-        g_snprintf(idx, sizeof idx, "%u", i);
-        csv_row(s, "provenance", idx, NULL, "override", r->overrides->pdata[i],
-                NULL);
-    }
-    csv_row(s, "provenance", NULL, NULL, "effective_config",
-            r->config_effective, NULL);
+    SimProvenance p = provenance_of(r);
+    prov_csv_rows(s, &p);
     csv_time(s, "run", NULL, NULL, "elapsed", r->elapsed);
     csv_u64(s, "frames", "count", r->frame_times->len, NULL);
     csv_num(s, "frames", NULL, NULL, "mean", sim_result_mean_frame_s(r), "s");

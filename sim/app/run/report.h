@@ -3,10 +3,12 @@
  * Text is for people; JSON and CSV are for programs and are byte-for-byte
  * deterministic for a given result unless `timing` is set: wall-clock
  * figures (wall seconds, events per second) are the only
- * non-deterministic numbers and appear only with timing.  Numbers are
- * printed locale-independently: simulated times as exact decimal
- * seconds from integer picoseconds, other doubles so that they read back
- * exactly (json_fmt_num).
+ * non-deterministic numbers and appear only with timing.  JSON is
+ * json-glib's (sim/output/json.h: whole numbers as integers, others with
+ * 17 significant digits, reading back exactly); CSV prints simulated
+ * times as exact decimal seconds from integer picoseconds and other
+ * doubles as the shortest text that reads back exactly (js_fmt_num).
+ * Both carry the provenance block (sim/output/provenance.h).
  */
 #ifndef PGSIM_APP_RUN_REPORT_H
 #define PGSIM_APP_RUN_REPORT_H
@@ -22,8 +24,6 @@ gboolean rpt_format_parse(const char *s, RptFormat *out);
 const char *rpt_format_file(RptFormat f);
 
 /* Returns the rendering as a new string (g_free). */
-/* The pgsim build (git describe at build time; "unknown" outside git). */
-const char *rpt_version(void);
 char *rpt_render(const SimResult *r, RptFormat f, gboolean timing);
 /* Writes all three renderings into dir (created if needed), atomically;
  * FALSE with *err on failure. */

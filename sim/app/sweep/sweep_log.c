@@ -9,7 +9,7 @@
  */
 #include "sim/app/sweep/sweep_log.h"
 #include "sim/core/datapath.h"
-#include "sim/output/json.h"
+#include "sim/output/provenance.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <string.h>
@@ -51,15 +51,17 @@ static char **complete_lines(const char *text, gsize len, gsize *complete)
 
 static gboolean line_point(const char *line, guint n, guint *idx, gboolean *ok)
 {
-    JsonVal *v = json_parse(line, -1, LOG_NAME, NULL);
-    const JsonVal *p = json_get(v, "point"), *s = json_get(v, "status");
-    gboolean good = p && p->kind == JSON_NUMBER && p->num >= 0 && p->num < n &&
-                    s && s->kind == JSON_STRING;
+    JsonNode *v = js_parse(line, -1, LOG_NAME, NULL);
+    JsonNode *p = js_get(v, "point"), *s = js_get(v, "status");
+    double pt = js_is_num(p) ? json_node_get_double(p) : -1.0;
+    gboolean good = pt >= 0 && pt < n && pt == (guint)pt && s &&
+                    json_node_get_value_type(s) == G_TYPE_STRING;
     if (good) {
-        *idx = (guint)p->num;
-        *ok = strcmp(s->str, "ok") == 0;
+        *idx = (guint)pt;
+        *ok = strcmp(json_node_get_string(s), "ok") == 0;
     }
-    json_free(v);
+    if (v)
+        json_node_unref(v);
     return good;
 }
 
@@ -208,35 +210,29 @@ static gboolean has_col(const GPtrArray *cols, const char *k)
     return FALSE;
 }
 
-static char *cell_text(const JsonVal *v)
+/* Adds the members of row that cols lacks, in the row's order. */
+static void add_columns(GPtrArray *cols, JsonNode *row)
 {
-    if (!v || v->kind == JSON_NULL)
-        return g_strdup("");
-    if (v->kind == JSON_STRING)
-        return g_strdup(v->str);
-    if (v->kind == JSON_NUMBER)
-        return g_strdup(v->raw);
-    if (v->kind == JSON_BOOL)
-        return g_strdup(v->b ? "true" : "false");
-    return g_strdup("");
+    GList *keys = json_object_get_members(json_node_get_object(row));
+    for (GList *k = keys; k; k = k->next)
+        if (!has_col(cols, k->data))
+            g_ptr_array_add(cols, g_strdup(k->data));
+    g_list_free(keys);
 }
 
-static DataTable *build_table(const SweepSpec *spec, JsonVal **rows, guint n)
+static DataTable *build_table(const SweepSpec *spec, JsonNode **rows, guint n)
 {
     GPtrArray *cols = base_columns(spec);
     for (guint i = 0; i < n; i++)
-        for (guint k = 0; rows[i] && k < rows[i]->keys->len; k++) {
-            const char *key = g_ptr_array_index(rows[i]->keys, k);
-            if (!has_col(cols, key))
-                g_ptr_array_add(cols, g_strdup(key));
-        }
+        if (rows[i])
+            add_columns(cols, rows[i]);
     DataTable *t = dt_new(cols);
     char **cells = g_new0(char *, cols->len + 1);
     for (guint i = 0; i < n; i++) {
         if (!rows[i])
             continue;
         for (guint c = 0; c < cols->len; c++)
-            cells[c] = cell_text(json_get(rows[i], cols->pdata[c]));
+            cells[c] = js_cell(js_get(rows[i], cols->pdata[c]));
         dt_add_row(t, cells);
         for (guint c = 0; c < cols->len; c++)
             g_free(cells[c]);
@@ -255,8 +251,38 @@ static gboolean write_atomic(const char *dir, const char *name,
     return ok;
 }
 
+/* DIR/provenance.json: the sweep file, its SHA-256, the base seed and
+ * fidelity, and the expanded base config (each point's line adds its
+ * parameter values and seed).  Works on a copy: reading the tree marks
+ * its keys used. */
+static gboolean write_provenance(const char *dir, const SweepSpec *spec,
+                                 GError **err)
+{
+    CfgNode *base = cfg_copy(spec->base);
+    const char *fid = cfg_scalar(cfg_get(cfg_get(base, "run"), "fidelity"));
+    char *sha = prov_file_sha256(spec->path);
+    char *eff = prov_cfg_json(base);
+    SimProvenance p = {spec->path, sha, NULL, spec->seed, fid, eff};
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "schema", "pgsim-sweep-provenance");
+    js_set_str(b, "sweep", spec->name);
+    js_set_int(b, "points", sweep_spec_points(spec));
+    prov_json(b, &p);
+    json_builder_end_object(b);
+    char *text = js_finish(b, TRUE);
+    GString *g = g_string_new(text);
+    gboolean ok = write_atomic(dir, "provenance.json", g, err);
+    g_string_free(g, TRUE);
+    g_free(text);
+    g_free(eff);
+    g_free(sha);
+    cfg_free(base);
+    return ok;
+}
+
 static gboolean write_outputs(const char *dir, const SweepSpec *spec,
-                              char **lines, JsonVal **rows, guint n,
+                              char **lines, JsonNode **rows, guint n,
                               DataTable **table_out, GError **err)
 {
     GString *jl = g_string_new(NULL), *csv = g_string_new(NULL);
@@ -266,7 +292,8 @@ static gboolean write_outputs(const char *dir, const SweepSpec *spec,
     DataTable *t = build_table(spec, rows, n);
     dt_write_csv(t, csv);
     gboolean ok = write_atomic(dir, LOG_NAME, jl, err) &&
-                  write_atomic(dir, "results.csv", csv, err);
+                  write_atomic(dir, "results.csv", csv, err) &&
+                  write_provenance(dir, spec, err);
     if (ok && table_out)
         *table_out = t;
     else
@@ -289,19 +316,21 @@ gboolean sweep_log_finish(const char *dir, const SweepSpec *spec,
     guint n = sweep_spec_points(spec);
     char **lines = complete_lines(text, len, &complete);
     char **last = g_new0(char *, n);
-    JsonVal **rows = g_new0(JsonVal *, n);
+    JsonNode **rows = g_new0(JsonNode *, n);
     for (char **l = lines; *l; l++) {
         guint idx;
         gboolean ok;
         if (!**l || !line_point(*l, n, &idx, &ok))
             continue;
-        json_free(rows[idx]);
-        rows[idx] = json_parse(*l, -1, LOG_NAME, NULL);
+        if (rows[idx])
+            json_node_unref(rows[idx]);
+        rows[idx] = js_parse(*l, -1, LOG_NAME, NULL);
         last[idx] = *l;
     }
     gboolean ok = write_outputs(dir, spec, last, rows, n, table_out, err);
     for (guint i = 0; i < n; i++)
-        json_free(rows[i]);
+        if (rows[i])
+            json_node_unref(rows[i]);
     g_free(rows);
     g_free(last);
     g_strfreev(lines);

@@ -19,51 +19,54 @@
 
 /* ---- lines ----------------------------------------------------------- */
 
-static void put_value(GString *o, const char *text)
+/* A parameter value: a JSON number when its text is one, else a string. */
+static void add_value(JsonBuilder *b, const char *text)
 {
-    JsonVal *v = json_parse(text, -1, NULL, NULL);
-    if (v && v->kind == JSON_NUMBER)
-        g_string_append(o, text);
+    JsonNode *v = js_parse(text, -1, NULL, NULL);
+    if (js_is_num(v))
+        json_builder_add_value(b, json_node_copy(v));
     else
-        json_put_str(o, text);
-    json_free(v);
+        js_add_str(b, text);
+    if (v)
+        json_node_unref(v);
 }
 
-static GString *line_head(const SweepSpec *s, guint i)
+/* Opens the point's object: point, repetition, seed, parameter values. */
+static JsonBuilder *line_head(const SweepSpec *s, guint i)
 {
     SweepPoint pt = sweep_spec_point(s, i);
-    GString *o = g_string_new(NULL);
-    g_string_append_printf(
-        o, "{\"point\":%u,\"repetition\":%u,\"seed\":%" G_GUINT64_FORMAT,
-        pt.index, pt.rep, pt.seed);
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_int(b, "point", pt.index);
+    js_set_int(b, "repetition", pt.rep);
+    js_set_int(b, "seed", (gint64)pt.seed);
     for (guint p = 0; p < s->params->len; p++) {
         const SweepParam *sp = g_ptr_array_index(s->params, p);
-        g_string_append_c(o, ',');
-        json_put_str(o, sp->key);
-        g_string_append_c(o, ':');
-        put_value(o, sweep_spec_value(s, &pt, p));
+        json_builder_set_member_name(b, sp->key);
+        add_value(b, sweep_spec_value(s, &pt, p));
     }
-    return o;
+    return b;
+}
+
+/* Closes the object and returns it as one line ending in '\n'. */
+static char *line_finish(JsonBuilder *b)
+{
+    json_builder_end_object(b);
+    char *one = js_finish(b, FALSE);
+    char *line = g_strconcat(one, "\n", NULL);
+    g_free(one);
+    return line;
 }
 
 char *sweep_point_error_line(const SweepSpec *s, guint i, const char *msg)
 {
-    GString *o = line_head(s, i);
-    g_string_append(o, ",\"status\":\"error\",\"error\":");
-    json_put_str(o, msg);
-    g_string_append(o, "}\n");
-    return g_string_free(o, FALSE);
+    JsonBuilder *b = line_head(s, i);
+    js_set_str(b, "status", "error");
+    js_set_str(b, "error", msg);
+    return line_finish(b);
 }
 
-static void put_metric(GString *o, const char *name, double v)
-{
-    g_string_append_c(o, ',');
-    json_put_str(o, name);
-    g_string_append_c(o, ':');
-    json_put_num(o, v);
-}
-
-static void put_result(GString *o, const SimResult *r)
+static void put_result(JsonBuilder *b, const SimResult *r)
 {
     double umean = 0.0, umax = 0.0; /* idle processors count as 0 */
     double all = (double)r->nodes->len + (double)sim_result_n_idle(r);
@@ -72,17 +75,17 @@ static void put_result(GString *o, const SimResult *r)
         umean += u / all;
         umax = MAX(umax, u);
     }
-    put_metric(o, "frames", r->frame_times->len);
-    put_metric(o, "mean_frame_s", sim_result_mean_frame_s(r));
-    put_metric(o, "elapsed_s", sim_time_to_s(r->elapsed));
-    put_metric(o, "events", (double)r->events);
-    put_metric(o, "comm_bytes", (double)r->comm_bytes);
-    put_metric(o, "comm_messages", (double)r->comm_messages);
-    put_metric(o, "util_mean", umean);
-    put_metric(o, "util_max", umax);
+    js_set_num(b, "frames", r->frame_times->len);
+    js_set_num(b, "mean_frame_s", sim_result_mean_frame_s(r));
+    js_set_num(b, "elapsed_s", sim_time_to_s(r->elapsed));
+    js_set_num(b, "events", (double)r->events);
+    js_set_num(b, "comm_bytes", (double)r->comm_bytes);
+    js_set_num(b, "comm_messages", (double)r->comm_messages);
+    js_set_num(b, "util_mean", umean);
+    js_set_num(b, "util_max", umax);
     for (guint m = 0; m < r->metrics->len; m++) {
         const SimMetric *sm = g_ptr_array_index(r->metrics, m);
-        put_metric(o, sm->name, sm->value);
+        js_set_num(b, sm->name, sm->value);
     }
 }
 
@@ -101,12 +104,12 @@ char *sweep_point_line(const SweepSpec *s, guint i, SweepRunFn fn)
         sim_result_free(r);
         return line;
     }
-    GString *o = line_head(s, i);
-    g_string_append(o, ",\"status\":\"ok\",\"error\":null");
-    put_result(o, r);
-    g_string_append(o, "}\n");
+    JsonBuilder *b = line_head(s, i);
+    js_set_str(b, "status", "ok");
+    js_set_str(b, "error", NULL);
+    put_result(b, r);
     sim_result_free(r);
-    return g_string_free(o, FALSE);
+    return line_finish(b);
 }
 
 /* ---- children -------------------------------------------------------- */
@@ -228,10 +231,20 @@ gboolean sweep_job_next(SweepJob *j, guint *i)
     return TRUE;
 }
 
+static gboolean line_failed(const char *line)
+{
+    JsonNode *v = js_parse(line, -1, NULL, NULL);
+    const char *status = js_str(js_get(v, "status"));
+    gboolean failed = status && strcmp(status, "error") == 0;
+    if (v)
+        json_node_unref(v);
+    return failed;
+}
+
 gboolean sweep_job_finish(SweepJob *j, const char *line, GError **err)
 {
     j->finished++;
-    if (strstr(line, ",\"status\":\"error\",")) {
+    if (line_failed(line)) {
         j->failed++;
         char note[32];
         g_snprintf(note, sizeof note, "%u failed", j->failed);

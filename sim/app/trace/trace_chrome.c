@@ -7,39 +7,65 @@
  * complete event; a message is a flow: a zero-length "X" slice "send" on
  * the source with an "s" event, and "recv" on the destination with an "f"
  * event (binding point "e"), both carrying the same id; a mark is a
- * global instant "i".  Timestamps are microseconds with picosecond
- * digits.  Events are written as they come (the format needs no order).
+ * global instant "i".  Timestamps are microseconds (doubles).  Events
+ * are written as they come (the format needs no order), each one built
+ * and printed by json-glib; only the fixed envelope around the event
+ * array is literal text.
  */
 #include "sim/output/json.h"
 #include "sim/app/trace/trace_impl.h"
 
-static void put_us(FILE *f, const char *key, SimTime t)
+static void set_us(JsonBuilder *b, const char *key, SimTime t)
 {
-    fprintf(f, ",\"%s\":%" G_GUINT64_FORMAT ".%06u", key, t / SIM_US,
-            (unsigned)(t % SIM_US));
+    js_set_num(b, key, (double)t / (double)SIM_US);
 }
 
-static void put_name(FILE *f, const char *name)
+/* Opens an event object with its name, category, phase and thread. */
+static JsonBuilder *event(const char *name, const char *cat, const char *ph,
+                          uint32_t tid)
 {
-    GString *s = g_string_new(NULL);
-    json_put_str(s, name);
-    fputs(s->str, f);
-    g_string_free(s, TRUE);
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "name", name);
+    if (cat)
+        js_set_str(b, "cat", cat);
+    js_set_str(b, "ph", ph);
+    js_set_int(b, "pid", 0);
+    js_set_int(b, "tid", tid);
+    return b;
+}
+
+/* Closes the event and appends it to the array in the file. */
+static void emit(TrcWriter *w, JsonBuilder *b)
+{
+    json_builder_end_object(b);
+    char *text = js_finish(b, FALSE);
+    fprintf(w->f, ",\n%s", text);
+    g_free(text);
+}
+
+/* A metadata event: args {key: string value} or {key: int value}. */
+static void meta(TrcWriter *w, const char *what, uint32_t tid,
+                 const char *key, const char *s, gint64 i)
+{
+    JsonBuilder *b = event(what, NULL, "M", tid);
+    json_builder_set_member_name(b, "args");
+    json_builder_begin_object(b);
+    if (s)
+        js_set_str(b, key, s);
+    else
+        js_set_int(b, key, i);
+    json_builder_end_object(b);
+    emit(w, b);
 }
 
 static void node_meta(TrcWriter *w, uint32_t node, const char *name)
 {
     if (!trc_new_node(w, node, name))
         return;
-    fprintf(w->f,
-            ",\n{\"name\":\"thread_name\",\"ph\":\"M\",\"pid\":0,"
-            "\"tid\":%u,\"args\":{\"name\":",
-            node);
-    put_name(w->f, g_hash_table_lookup(w->nodes, GUINT_TO_POINTER(node + 1)));
-    fprintf(w->f,
-            "}},\n{\"name\":\"thread_sort_index\",\"ph\":\"M\",\"pid\":0,"
-            "\"tid\":%u,\"args\":{\"sort_index\":%u}}",
-            node, node);
+    meta(w, "thread_name", node, "name",
+         g_hash_table_lookup(w->nodes, GUINT_TO_POINTER(node + 1)), 0);
+    meta(w, "thread_sort_index", node, "sort_index", NULL, node);
 }
 
 static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
@@ -49,31 +75,30 @@ static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
     if (!trc_admit(w, end))
         return;
     node_meta(w, node, node_name);
-    fputs(",\n{\"name\":", w->f);
-    put_name(w->f, phase);
-    fprintf(w->f, ",\"cat\":\"phase\",\"ph\":\"X\",\"pid\":0,\"tid\":%u", node);
-    put_us(w->f, "ts", start);
-    put_us(w->f, "dur", end - start);
-    fputc('}', w->f);
+    JsonBuilder *b = event(phase, "phase", "X", node);
+    set_us(b, "ts", start);
+    set_us(b, "dur", end - start);
+    emit(w, b);
 }
 
 static void flow_end(TrcWriter *w, const char *ph, uint32_t node, SimTime t,
                      uint64_t id, uint64_t bytes)
 {
     gboolean send = ph[0] == 's';
-    fprintf(w->f,
-            ",\n{\"name\":\"%s\",\"cat\":\"msg\",\"ph\":\"X\","
-            "\"pid\":0,\"tid\":%u",
-            send ? "send" : "recv", node);
-    put_us(w->f, "ts", t);
-    fprintf(w->f, ",\"dur\":0,\"args\":{\"bytes\":%" G_GUINT64_FORMAT "}}",
-            bytes);
-    fprintf(w->f,
-            ",\n{\"name\":\"message\",\"cat\":\"msg\",\"ph\":\"%s\","
-            "\"pid\":0,\"tid\":%u,\"id\":%" G_GUINT64_FORMAT "%s",
-            ph, node, id, send ? "" : ",\"bp\":\"e\"");
-    put_us(w->f, "ts", t);
-    fputc('}', w->f);
+    JsonBuilder *b = event(send ? "send" : "recv", "msg", "X", node);
+    set_us(b, "ts", t);
+    js_set_int(b, "dur", 0);
+    json_builder_set_member_name(b, "args");
+    json_builder_begin_object(b);
+    js_set_int(b, "bytes", (gint64)bytes);
+    json_builder_end_object(b);
+    emit(w, b);
+    b = event("message", "msg", ph, node);
+    js_set_int(b, "id", (gint64)id);
+    if (!send)
+        js_set_str(b, "bp", "e");
+    set_us(b, "ts", t);
+    emit(w, b);
 }
 
 static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
@@ -92,12 +117,10 @@ static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
 
 static void instant(TrcWriter *w, const char *name, SimTime t)
 {
-    fputs(",\n{\"name\":", w->f);
-    put_name(w->f, name);
-    fputs(",\"cat\":\"mark\",\"ph\":\"i\",\"s\":\"g\",\"pid\":0,\"tid\":0",
-          w->f);
-    put_us(w->f, "ts", t);
-    fputc('}', w->f);
+    JsonBuilder *b = event(name, "mark", "i", 0);
+    js_set_str(b, "s", "g");
+    set_us(b, "ts", t);
+    emit(w, b);
 }
 
 static void on_mark(SimTrace *tr, const char *name, SimTime t)
@@ -109,9 +132,19 @@ static void on_mark(SimTrace *tr, const char *name, SimTime t)
 
 static void begin(TrcWriter *w)
 {
-    fputs("{\"traceEvents\":[\n{\"name\":\"process_name\",\"ph\":\"M\","
-          "\"pid\":0,\"args\":{\"name\":\"pgsim\"}}",
-          w->f);
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "name", "process_name");
+    js_set_str(b, "ph", "M");
+    js_set_int(b, "pid", 0);
+    json_builder_set_member_name(b, "args");
+    json_builder_begin_object(b);
+    js_set_str(b, "name", "pgsim");
+    json_builder_end_object(b);
+    json_builder_end_object(b);
+    char *text = js_finish(b, FALSE);
+    fprintf(w->f, "{\"traceEvents\":[\n%s", text);
+    g_free(text);
 }
 
 static void cap_note(TrcWriter *w, SimTime t)
@@ -126,11 +159,17 @@ static void cap_note(TrcWriter *w, SimTime t)
 
 static void end(TrcWriter *w)
 {
-    fprintf(w->f,
-            "\n],\"displayTimeUnit\":\"ns\",\"otherData\":{"
-            "\"generator\":\"pgsim\",\"events\":%" G_GUINT64_FORMAT
-            ",\"cap\":%" G_GUINT64_FORMAT ",\"truncated\":%s}}\n",
-            w->events, w->cap, w->truncated ? "true" : "false");
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "generator", "pgsim");
+    js_set_int(b, "events", (gint64)w->events);
+    js_set_int(b, "cap", (gint64)w->cap);
+    js_set_bool(b, "truncated", w->truncated);
+    json_builder_end_object(b);
+    char *other = js_finish(b, FALSE);
+    fprintf(w->f, "\n],\"displayTimeUnit\":\"ns\",\"otherData\":%s}\n",
+            other);
+    g_free(other);
 }
 
 static const SimTraceOps chrome_ops = {on_span, on_flow, on_mark};

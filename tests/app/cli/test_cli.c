@@ -173,28 +173,28 @@ static void test_provenance(void **state)
     g_free(err);
     char *path = g_build_filename(dir, "result.json", NULL), *text = NULL;
     assert_true(g_file_get_contents(path, &text, NULL, NULL));
-    JsonVal *v = json_parse(text, -1, path, NULL);
+    JsonNode *v = js_parse(text, -1, path, NULL);
     assert_non_null(v);
-    const JsonVal *p = json_get(v, "provenance");
+    JsonNode *p = js_get(v, "provenance");
     assert_non_null(p);
-    assert_true(strlen(json_get(p, "pgsim_version")->str) > 0);
-    assert_string_equal(json_get(p, "config")->str, "configs/tokenring.yaml");
+    assert_true(strlen(js_str(js_get(p, "pgsim_version"))) > 0);
+    assert_string_equal(js_str(js_get(p, "config")), "configs/tokenring.yaml");
     char *bytes = NULL;
     gsize len = 0;
     assert_true(g_file_get_contents("configs/tokenring.yaml", &bytes, &len,
                                     NULL));
     char *sha = g_compute_checksum_for_data(G_CHECKSUM_SHA256,
                                             (const guchar *)bytes, len);
-    assert_string_equal(json_get(p, "config_sha256")->str, sha);
-    const JsonVal *ov = json_get(p, "overrides");
-    assert_int_equal(json_len(ov), 1);
-    assert_string_equal(json_at(ov, 0)->str, "workload.nodes=16");
-    const JsonVal *eff = json_get(p, "effective_config");
-    assert_string_equal(json_get(json_get(eff, "workload"), "nodes")->str,
+    assert_string_equal(js_str(js_get(p, "config_sha256")), sha);
+    JsonNode *ov = js_get(p, "overrides");
+    assert_int_equal(js_len(ov), 1);
+    assert_string_equal(js_str(js_at(ov, 0)), "workload.nodes=16");
+    JsonNode *eff = js_get(p, "effective_config");
+    assert_string_equal(js_str(js_get(js_get(eff, "workload"), "nodes")),
                         "16");
-    assert_int_equal((int)json_get(p, "seed")->num, 9);
-    assert_string_equal(json_get(p, "fidelity")->str, "analytic");
-    json_free(v);
+    assert_int_equal((int)js_num(js_get(p, "seed")), 9);
+    assert_string_equal(js_str(js_get(p, "fidelity")), "analytic");
+    json_node_unref(v);
     g_free(text);
     g_free(path);
     path = g_build_filename(dir, "result.csv", NULL);

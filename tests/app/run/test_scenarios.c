@@ -59,9 +59,10 @@ static char *run_json(const char *config)
  * "X" in its place (the rest of the provenance is compared). */
 static char *without_version(char *json)
 {
-    GRegex *re = g_regex_new("\"pgsim_version\": \"[^\"]*\"", 0, 0, NULL);
+    GRegex *re =
+        g_regex_new("\"pgsim_version\" : \"[^\"]*\"", 0, 0, NULL);
     char *out = g_regex_replace_literal(re, json, -1, 0,
-                                        "\"pgsim_version\": \"X\"", 0, NULL);
+                                        "\"pgsim_version\" : \"X\"", 0, NULL);
     g_regex_unref(re);
     g_free(json);
     return out;

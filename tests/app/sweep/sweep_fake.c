@@ -29,8 +29,9 @@ gboolean sweep_fake_run(const CfgNode *cfg, uint64_t seed, SimResult **out,
 
 void sweep_test_rm_out(char *dir)
 {
-    const char *files[] = {"results.csv", "results.jsonl", "sweep.fingerprint"};
-    for (int i = 0; i < 3; i++) {
+    const char *files[] = {"results.csv", "results.jsonl", "sweep.fingerprint",
+                           "provenance.json"};
+    for (int i = 0; i < 4; i++) {
         char *p = g_build_filename(dir, files[i], NULL);
         g_remove(p);
         g_free(p);

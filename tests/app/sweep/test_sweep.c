@@ -3,6 +3,7 @@
 #include "sim/app/sweep/sweep_run.h"
 #include "tests/app/sweep/sweep_fake.h"
 #include "sim/core/rng.h"
+#include "sim/output/json.h"
 #include <glib/gstdio.h>
 #include <math.h>
 #include <setjmp.h>
@@ -171,6 +172,26 @@ static guint count_lines(const char *s)
     return n;
 }
 
+/* DIR/provenance.json names the build, the sweep's seed and its base. */
+static void check_provenance(const char *dir)
+{
+    char *path = g_build_filename(dir, "provenance.json", NULL), *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    GError *err = NULL;
+    JsonNode *v = js_parse(text, -1, path, &err);
+    g_assert_no_error(err);
+    assert_int_equal((int)js_num(js_get(v, "points")), 30);
+    JsonNode *p = js_get(v, "provenance");
+    assert_true(strlen(js_str(js_get(p, "pgsim_version"))) > 0);
+    assert_string_equal(js_str(js_get(p, "config")), "/tmp/t.yaml");
+    assert_int_equal((int)js_num(js_get(p, "seed")), 11);
+    JsonNode *eff = js_get(p, "effective_config");
+    assert_string_equal(js_str(js_get(js_get(eff, "run"), "seed")), "11");
+    json_node_unref(v);
+    g_free(text);
+    g_free(path);
+}
+
 static void test_jobs_same_rows(void **state)
 {
     (void)state;
@@ -184,6 +205,7 @@ static void test_jobs_same_rows(void **state)
                                      "error,frames,mean_frame_s,"));
     assert_non_null(strstr(c1, "\n5,1,"));
     assert_non_null(strstr(c1, ",score,seedbits\n0,0,11,1,0,ok,,1,"));
+    check_provenance(d1);
     g_free(c1);
     g_free(c4);
     sweep_test_rm_out(d1);

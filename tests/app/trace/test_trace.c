@@ -1,6 +1,7 @@
 /* test_trace.c — trace files: Chrome JSON parses and holds the spans,
  * flows and marks; Paje is time-ordered; the cap truncates with a note. */
 #include "sim/output/json.h"
+#include <math.h>
 #include "sim/app/trace/trace_file.h"
 #include <glib/gstdio.h>
 #include <setjmp.h>
@@ -35,26 +36,26 @@ static void emit(SimTrace *tr)
     sim_trace_mark(tr, "frame 0", 9 * SIM_US);
 }
 
-static JsonVal *load_json(const char *path)
+static JsonNode *load_json(const char *path)
 {
     char *text = NULL;
     assert_true(g_file_get_contents(path, &text, NULL, NULL));
     GError *err = NULL;
-    JsonVal *v = json_parse(text, -1, path, &err);
+    JsonNode *v = js_parse(text, -1, path, &err);
     g_assert_no_error(err);
     g_free(text);
     return v;
 }
 
-static const JsonVal *find_ev(const JsonVal *evs, const char *ph,
+static JsonNode *find_ev(JsonNode *evs, const char *ph,
                               const char *name, guint *count)
 {
-    const JsonVal *hit = NULL;
+    JsonNode *hit = NULL;
     *count = 0;
-    for (guint i = 0; i < json_len(evs); i++) {
-        const JsonVal *e = json_at(evs, i);
-        if (strcmp(json_get(e, "ph")->str, ph) == 0 &&
-            (!name || strcmp(json_get(e, "name")->str, name) == 0)) {
+    for (guint i = 0; i < js_len(evs); i++) {
+        JsonNode *e = js_at(evs, i);
+        if (strcmp(js_str(js_get(e, "ph")), ph) == 0 &&
+            (!name || strcmp(js_str(js_get(e, "name")), name) == 0)) {
             hit = hit ? hit : e;
             ++*count;
         }
@@ -72,38 +73,39 @@ static void test_chrome(void **state)
     emit(tr);
     assert_int_equal(trc_events(tr), 4);
     assert_true(trc_close(tr, &err));
-    JsonVal *v = load_json(path);
-    const JsonVal *evs = json_get(v, "traceEvents");
+    JsonNode *v = load_json(path);
+    JsonNode *evs = js_get(v, "traceEvents");
     guint n;
-    const JsonVal *x = find_ev(evs, "X", "merge", &n);
+    JsonNode *x = find_ev(evs, "X", "merge", &n);
     assert_int_equal(n, 1);
-    assert_int_equal((int)json_get(x, "tid")->num, 0);
-    assert_string_equal(json_get(x, "ts")->raw, "5.000250");
-    assert_string_equal(json_get(x, "dur")->raw, "3.999750");
-    const JsonVal *s = find_ev(evs, "s", NULL, &n);
+    assert_int_equal((int)js_num(js_get(x, "tid")), 0);
+    assert_true(fabs(js_num(js_get(x, "ts")) - 5.000250) < 1e-12);
+    assert_true(fabs(js_num(js_get(x, "dur")) - 3.999750) < 1e-12);
+    JsonNode *s = find_ev(evs, "s", NULL, &n);
     assert_int_equal(n, 1);
-    const JsonVal *f = find_ev(evs, "f", NULL, &n);
+    JsonNode *f = find_ev(evs, "f", NULL, &n);
     assert_int_equal(n, 1);
-    assert_true(json_get(s, "id")->num == json_get(f, "id")->num);
-    assert_int_equal((int)json_get(s, "tid")->num, 1);
-    assert_int_equal((int)json_get(f, "tid")->num, 0);
-    assert_string_equal(json_get(f, "bp")->str, "e");
+    assert_true(js_num(js_get(s, "id")) == js_num(js_get(f, "id")));
+    assert_int_equal((int)js_num(js_get(s, "tid")), 1);
+    assert_int_equal((int)js_num(js_get(f, "tid")), 0);
+    assert_string_equal(js_str(js_get(f, "bp")), "e");
     /* node 0 is first seen in the flow ("node0"), then named by its span;
      * the later thread_name wins in Perfetto */
     find_ev(evs, "M", "thread_name", &n);
     assert_int_equal(n, 3);
-    const JsonVal *last = json_at(evs, 0);
-    for (guint i = 0; i < json_len(evs); i++) {
-        const JsonVal *e = json_at(evs, i);
-        if (!strcmp(json_get(e, "name")->str, "thread_name") &&
-            json_get(e, "tid")->num == 0)
+    JsonNode *last = js_at(evs, 0);
+    for (guint i = 0; i < js_len(evs); i++) {
+        JsonNode *e = js_at(evs, i);
+        if (!strcmp(js_str(js_get(e, "name")), "thread_name") &&
+            js_num(js_get(e, "tid")) == 0)
             last = e;
     }
-    assert_string_equal(json_get(json_get(last, "args"), "name")->str, "gp0");
+    assert_string_equal(js_str(js_get(js_get(last, "args"), "name")), "gp0");
     find_ev(evs, "i", "frame 0", &n);
     assert_int_equal(n, 1);
-    assert_false(json_get(json_get(v, "otherData"), "truncated")->b);
-    json_free(v);
+    assert_false(
+        json_node_get_boolean(js_get(js_get(v, "otherData"), "truncated")));
+    json_node_unref(v);
     rm_path(path);
 }
 
@@ -117,9 +119,9 @@ static void test_cap(void **state)
     assert_int_equal(trc_events(tr), 2);
     assert_true(trc_truncated(tr));
     assert_true(trc_close(tr, NULL));
-    JsonVal *v = load_json(path);
+    JsonNode *v = load_json(path);
     guint n;
-    const JsonVal *evs = json_get(v, "traceEvents");
+    JsonNode *evs = js_get(v, "traceEvents");
     find_ev(evs, "i",
             "trace truncated: cap of 2 events reached; later "
             "events are not recorded",
@@ -127,8 +129,9 @@ static void test_cap(void **state)
     assert_int_equal(n, 1);
     find_ev(evs, "X", "merge", &n);
     assert_int_equal(n, 0);
-    assert_true(json_get(json_get(v, "otherData"), "truncated")->b);
-    json_free(v);
+    assert_true(
+        json_node_get_boolean(js_get(js_get(v, "otherData"), "truncated")));
+    json_node_unref(v);
     rm_path(path);
 }
 
