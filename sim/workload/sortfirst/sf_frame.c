@@ -50,6 +50,8 @@ struct WlSfRun {
     GArray *subset; /* scratch: polygons */
     int frame, frames;
     guint done;
+    WlSfFrameHook hook; /* NULL: none */
+    void *hook_ctx;
     SimTime start;
     unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
     unsigned ph_estimate;
@@ -518,7 +520,8 @@ static void render_done(SimEngine *eng, void *ctx, void *arg)
     overlap(r, &st);
     st.utilisation = utilisation(r, st.end - st.start);
     GError *e = NULL;
-    gboolean ok = check_frame(r, &st, &e);
+    gboolean ok = check_frame(r, &st, &e) &&
+                  (!r->hook || r->hook(r->hook_ctx, r->frame, r->zb, &e));
     g_array_append_val(r->stats, st);
     if (!ok) {
         sim_engine_fail(eng, e);
@@ -610,6 +613,12 @@ gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until, GError **err)
     r->frames = r->frame + frames;
     sim_schedule_in(r->eng, 0, start_frame, r, NULL); /* failure: in run */
     return sim_engine_run(r->eng, until, err);
+}
+
+void wl_sf_run_set_hook(WlSfRun *r, WlSfFrameHook hook, void *ctx)
+{
+    r->hook = hook;
+    r->hook_ctx = ctx;
 }
 
 const GArray *wl_sf_run_stats(const WlSfRun *r)

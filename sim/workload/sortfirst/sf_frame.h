@@ -126,6 +126,12 @@ const WlSfRegions *wl_sf_run_regions(const WlSfRun *r);
 /* The last frame's image (borrowed; NULL before a frame). */
 const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r);
 
+/* Called after each frame's checks with the frame's assembled image
+ * (the regions' pixels, borrowed); FALSE with *err stops the run. */
+typedef gboolean (*WlSfFrameHook)(void *ctx, int frame,
+                                  const RastZBuffer *zb, GError **err);
+void wl_sf_run_set_hook(WlSfRun *r, WlSfFrameHook hook, void *ctx);
+
 /* Renders the whole network serially for frame f into zb (cleared). */
 void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
                          const WlSfSetup *s, guint frame, RastZBuffer *zb);

@@ -21,6 +21,11 @@
  *     frame_log: frames.csv  # optional per-frame figures (default under
  *                            # `pgsim run --out DIR`: DIR/sortfirst_frames.csv)
  *
+ * With `pgsim run --out DIR` the assembled frame (the regions' pixels,
+ * equal to the serial render when checked) goes through the generic
+ * frame hook wl_emit_frame(): DIR/frame.png, or DIR/frame-NNNN.png for
+ * every frame with --frames all.
+ *
  * The scene is the config's `scene:` section and must carry a structure
  * database (the `vehicle` generator: configs/scenes/bronco.yaml); the
  * camera of frame f is the scene path's (camera speed: the scene's
@@ -306,6 +311,27 @@ static Scene *load_scene(const CfgNode *root, GError **err)
     return NULL;
 }
 
+typedef struct {
+    const WlContext *ctx;
+    const Scene *scene;
+} FrameOut;
+
+/* The frame hook: the assembled regions' image through the generic
+ * frame output (DIR/frame.png, or every frame with --frames all). */
+static gboolean emit_frame(void *ctx, int frame, const RastZBuffer *zb,
+                           GError **err)
+{
+    const FrameOut *o = ctx;
+    if (!wl_wants_frame(o->ctx, frame))
+        return TRUE;
+    SceneColor c = o->scene->background;
+    RastImage *img = rast_image_new(zb->width, zb->height);
+    rast_image_from_zbuffer(img, zb, (RastColor){c.r, c.g, c.b});
+    gboolean ok = wl_emit_frame(o->ctx, frame, img, err);
+    rast_image_free(img);
+    return ok;
+}
+
 static gboolean run_frames(const WlContext *ctx, MachMachine *m,
                            const Scene *sc, const WlSfParams *p, SimResult *out,
                            GError **err)
@@ -320,6 +346,8 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
     if (!db)
         return FALSE;
     WlSfRun *r = wl_sf_run_new(m, sc, db, &p->setup, &c);
+    FrameOut fo = {ctx, sc};
+    wl_sf_run_set_hook(r, emit_frame, &fo);
     gboolean ok = wl_sf_run_frames(r, ctx->frames, wl_until(ctx), err);
     const GArray *st = wl_sf_run_stats(r);
     for (guint f = 0; ok && f < st->len; f++) {

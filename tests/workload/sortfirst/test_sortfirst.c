@@ -31,8 +31,19 @@ static const char *small =
     "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
     "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
 
+static SimResult *run_cfg_out(const char *text, const char *override,
+                              int frames, const char *out_dir, gboolean all,
+                              GError **err);
+
 static SimResult *run_cfg(const char *text, const char *override, int frames,
                           GError **err)
+{
+    return run_cfg_out(text, override, frames, NULL, FALSE, err);
+}
+
+static SimResult *run_cfg_out(const char *text, const char *override,
+                              int frames, const char *out_dir, gboolean all,
+                              GError **err)
 {
     CfgNode *root = cfg_load_string(text, "sf.yaml", err);
     assert_non_null(root);
@@ -46,7 +57,10 @@ static SimResult *run_cfg(const char *text, const char *override, int frames,
                          .root = root,
                          .seed = 1,
                          .fidelity = "analytic",
-                         .frames = frames};
+                         .frames = frames,
+                         .out_dir = out_dir,
+                         .quiet = TRUE,
+                         .all_frames = all};
         r = sim_result_new("sortfirst", "");
         if (!wl_sortfirst_ops.run(&ctx, p, r, err)) {
             sim_result_free(r);
@@ -589,6 +603,50 @@ static void test_adaptive_beats_static(void **state)
     sim_result_free(s);
 }
 
+/* A 64 x 64 PNG at dir/name (the image's pixels equal the serial render,
+ * check_image); removed after. */
+static void assert_frame_png(const char *dir, const char *name)
+{
+    char *png = g_build_filename(dir, name, NULL);
+    char *data = NULL;
+    gsize len = 0;
+    assert_true(g_file_get_contents(png, &data, &len, NULL));
+    assert_true(len > 100 && memcmp(data, "\x89PNG", 4) == 0);
+    assert_int_equal(((guchar)data[18] << 8) | (guchar)data[19], 64);
+    assert_int_equal(((guchar)data[22] << 8) | (guchar)data[23], 64);
+    g_free(data);
+    assert_int_equal(g_remove(png), 0);
+    g_free(png);
+}
+
+/* --out DIR: the assembled frame through the generic hook, DIR/frame.png
+ * (the last frame) or DIR/frame-NNNN.png (all frames); nothing else. */
+static void test_frame_out(void **state)
+{
+    (void)state;
+    for (int all = 0; all <= 1; all++) {
+        GError *e = NULL;
+        char *dir = g_dir_make_tmp("pgsim-sf-XXXXXX", NULL);
+        SimResult *r = run_cfg_out(small, "workload.frame_log=/dev/null", 2,
+                                   dir, all, &e);
+        assert_non_null(r);
+        if (all) {
+            assert_frame_png(dir, "frame-0000.png");
+            assert_frame_png(dir, "frame-0001.png");
+        } else {
+            assert_frame_png(dir, "frame.png");
+        }
+        assert_int_equal(g_rmdir(dir), 0);
+        sim_result_free(r);
+        g_free(dir);
+    }
+    /* an output folder that cannot be made fails the run */
+    GError *e = NULL;
+    assert_null(run_cfg_out(small, NULL, 1, "/dev/null/x", FALSE, &e));
+    assert_non_null(e);
+    g_clear_error(&e);
+}
+
 static void expect_error(const char *override, const char *what)
 {
     GError *e = NULL;
@@ -628,6 +686,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_split),
         cmocka_unit_test(test_adaptive_predict),
         cmocka_unit_test(test_adaptive_beats_static),
+        cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
