@@ -21,10 +21,11 @@
 typedef struct SimRecorder SimRecorder;
 
 typedef struct {
-    /* `node` was given `cost` in `phase`; `handled`: a handler runs when
-     * it completes.  Returns the action's id. */
+    /* `node` was given `cost` in `phase`, to end at `end`; `handled`: a
+     * handler runs when it completes.  Returns the action's id. */
     uint64_t (*compute)(SimRecorder *r, SimTime now, uint32_t node,
-                        unsigned phase, SimTime cost, gboolean handled);
+                        unsigned phase, SimTime cost, SimTime end,
+                        gboolean handled);
     /* A message of `bytes` from src to dst was sent. */
     uint64_t (*send)(SimRecorder *r, SimTime now, uint32_t src, uint32_t dst,
                      uint64_t bytes, gboolean handled);

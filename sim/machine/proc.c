@@ -79,7 +79,8 @@ gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
     SimRecorder *rec = sim_engine_recorder(eng);
     if (rec) /* `pgsim run --record`: the trace hears of it (record.h) */
         return sim_record_schedule_done(
-            eng, rec, rec->ops->compute(rec, now, p->id, phase, cost, done != NULL),
+            eng, rec, rec->ops->compute(rec, now, p->id, phase, cost, end,
+                              done != NULL),
             end, done, ctx, arg);
     return done ? sim_schedule_at(eng, end, done, ctx, arg) : TRUE;
 }

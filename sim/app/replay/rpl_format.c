@@ -243,7 +243,8 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
 {
     const char *k = rpl_lines_word(r->l, 0);
     if (!r->in_group)
-        return fail(r, 0, "'at TIME' or 'on ID' before the first action",
+        return fail(r, 0, "'at TIME', 'sync TIME' or 'on ID' before the "
+                          "first action",
                     err);
     it->type = !strcmp(k, "c")   ? RPL_COMPUTE
                : !strcmp(k, "w") ? RPL_WORK
@@ -276,10 +277,11 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
 
 static gboolean group(RplReader *r, RplItem *it, GError **err)
 {
-    gboolean on = !strcmp(rpl_lines_word(r->l, 0), "on");
+    const char *k = rpl_lines_word(r->l, 0);
+    gboolean on = !strcmp(k, "on");
     if (rpl_lines_count(r->l) > 2)
         return fail(r, 2, "the end of the line", err);
-    it->type = on ? RPL_ON : RPL_AT;
+    it->type = on ? RPL_ON : !strcmp(k, "sync") ? RPL_SYNC : RPL_AT;
     if (!on)
         return rpl_lines_u64(r->l, 1, G_MAXUINT64, &it->at,
                              "a time in picoseconds", err) &&
@@ -328,13 +330,13 @@ gboolean rpl_reader_next(RplReader *r, RplItem *it, GError **err)
     memset(it, 0, offsetof(RplItem, op));
     it->line = rpl_lines_number(r->l);
     const char *k = rpl_lines_word(r->l, 0);
-    if (!strcmp(k, "at") || !strcmp(k, "on"))
+    if (!strcmp(k, "at") || !strcmp(k, "on") || !strcmp(k, "sync"))
         return group(r, it, err);
     if (!strcmp(k, "c") || !strcmp(k, "w") || !strcmp(k, "s"))
         return action(r, it, err);
     return fail(r, 0,
-                "at, on, c, w or s (header lines come before the first "
-                "group)",
+                "at, sync, on, c, w or s (header lines come before the "
+                "first group)",
                 err);
 }
 
@@ -369,6 +371,9 @@ void rpl_write_item(RplWriter *w, const RplItem *it)
         return;
     case RPL_ON:
         rpl_writer_printf(w, "on %" PRIu64 "\n", it->id);
+        return;
+    case RPL_SYNC:
+        rpl_writer_printf(w, "sync %" PRIu64 "\n", it->at);
         return;
     case RPL_COMPUTE:
         n = g_snprintf(buf, sizeof buf, "c %u %u", it->proc, it->phase);

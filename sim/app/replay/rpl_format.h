@@ -11,6 +11,8 @@
  *                                         count, clock in Hz (0: none)
  *     phase compute                       phase names, ids 0, 1, ... in order
  *     at 0                                a group: issued at time 0 (ps)
+ *     sync 8000                           a group: issued when all earlier
+ *                                         work is done (recorded at 8000 ps)
  *     on 12                               a group: issued when action 12
  *                                         completes (work done / delivered)
  *     c 3 1 span=1240 zcmp=5310 [+] [frame]   work on processor 3, phase 1,
@@ -51,13 +53,20 @@ typedef struct {
     GArray *kinds;     /* RplKind */
 } RplHeader;
 
-typedef enum { RPL_AT, RPL_ON, RPL_COMPUTE, RPL_WORK, RPL_SEND } RplItemType;
+typedef enum {
+    RPL_AT,
+    RPL_ON,
+    RPL_COMPUTE,
+    RPL_WORK,
+    RPL_SEND,
+    RPL_SYNC
+} RplItemType;
 
 typedef struct {
     RplItemType type;
     guint line;
     uint64_t id;    /* actions: their number; RPL_ON: the cause */
-    SimTime at;     /* RPL_AT */
+    SimTime at;     /* RPL_AT, RPL_SYNC (the recorded time) */
     uint32_t proc;  /* actions: the processor (sender) */
     uint32_t peer;  /* RPL_SEND: the receiver */
     unsigned phase; /* RPL_COMPUTE, RPL_WORK */

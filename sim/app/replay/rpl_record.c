@@ -26,8 +26,9 @@ typedef struct {
 
 typedef struct {
     uint64_t first; /* its first action */
-    uint64_t cause; /* NO_ACTION: an `at` group */
+    uint64_t cause; /* NO_ACTION: an `at` or `sync` group */
     SimTime at;
+    gboolean sync;  /* issued when all earlier work had just completed */
 } RecGroup;
 
 struct RplRecorder {
@@ -35,6 +36,8 @@ struct RplRecorder {
     GArray *acts;   /* RecAct */
     GArray *groups; /* RecGroup */
     uint64_t cur;   /* the action whose handler runs, or NO_ACTION */
+    SimTime max_end;   /* latest end of the work given so far */
+    uint64_t inflight; /* messages sent, not yet delivered */
 };
 
 /* Opens a group for an action issued now if the last one does not fit. */
@@ -47,7 +50,11 @@ static void group_for(RplRecorder *r, SimTime now)
     if (last && last->cause == r->cur &&
         (r->cur != NO_ACTION || last->at == now))
         return;
-    RecGroup g = {r->acts->len, r->cur, now};
+    /* A workload's timer that fires just as the last of all earlier work
+     * ends (and no message is in flight) waited for that work. */
+    gboolean sync = r->cur == NO_ACTION && now > 0 && r->inflight == 0 &&
+                    r->max_end == now;
+    RecGroup g = {r->acts->len, r->cur, now, sync};
     g_array_append_val(r->groups, g);
     if (r->cur != NO_ACTION)
         g_array_index(r->acts, RecAct, r->cur).handled = 1;
@@ -62,20 +69,26 @@ static uint64_t add(RplRecorder *r, SimTime now, RecAct a)
 }
 
 static uint64_t on_compute(SimRecorder *h, SimTime now, uint32_t node,
-                           unsigned phase, SimTime cost, gboolean handled)
+                           unsigned phase, SimTime cost, SimTime end,
+                           gboolean handled)
 {
     (void)handled;
     g_assert(phase <= G_MAXUINT16);
-    return add(h->state, now,
+    RplRecorder *r = h->state;
+    uint64_t id = add(r, now,
                (RecAct){.value = cost, .proc = node, .phase = (uint16_t)phase,
                         .type = RPL_WORK});
+    r->max_end = MAX(r->max_end, end);
+    return id;
 }
 
 static uint64_t on_send(SimRecorder *h, SimTime now, uint32_t src,
                         uint32_t dst, uint64_t bytes, gboolean handled)
 {
     (void)handled;
-    return add(h->state, now,
+    RplRecorder *r = h->state;
+    r->inflight++;
+    return add(r, now,
                (RecAct){.value = bytes, .proc = src, .peer = dst,
                         .type = RPL_SEND});
 }
@@ -83,7 +96,10 @@ static uint64_t on_send(SimRecorder *h, SimTime now, uint32_t src,
 static void on_begin(SimRecorder *h, uint64_t id, SimTime t)
 {
     RplRecorder *r = h->state;
-    g_array_index(r->acts, RecAct, id).done = t;
+    RecAct *a = &g_array_index(r->acts, RecAct, id);
+    a->done = t;
+    if (a->type == RPL_SEND)
+        r->inflight--;
     r->cur = id;
 }
 
@@ -189,7 +205,9 @@ static void write_body(RplRecorder *r, RplWriter *w)
         uint64_t stop = g + 1 < r->groups->len
                             ? g_array_index(r->groups, RecGroup, g + 1).first
                             : r->acts->len;
-        RplItem it = {.type = gr->cause == NO_ACTION ? RPL_AT : RPL_ON,
+        RplItem it = {.type = gr->cause != NO_ACTION ? RPL_ON
+                              : gr->sync               ? RPL_SYNC
+                                                       : RPL_AT,
                       .id = gr->cause,
                       .at = gr->at};
         rpl_write_item(w, &it);

@@ -19,6 +19,7 @@
 #include "sim/app/replay/rpl_target.h"
 #include "sim/core/error.h"
 #include <inttypes.h>
+#include <stdio.h>
 #include <string.h>
 
 typedef struct {
@@ -49,10 +50,15 @@ typedef struct {
     GArray *marks;       /* SimTime: frame ends */
     uint64_t actions, late;
     guint waiting; /* groups attached to a flight, not yet issued */
+    guint timers;  /* groups scheduled at a time, not yet issued */
+    uint64_t sending; /* messages sent, not yet delivered */
+    SimTime max_end;  /* latest end of the work given so far */
+    GQueue syncs;     /* Group *: `sync` groups read, not yet scheduled */
     GError *error;
 } Replay;
 
 static void issue_group(Replay *rp, Group *g);
+static void progress(Replay *rp);
 
 static void group_free(Group *g)
 {
@@ -116,7 +122,8 @@ static Group *read_group(Replay *rp)
     g->acts = g_array_new(FALSE, FALSE, sizeof(Act));
     rp->have_look = FALSE;
     while (next_item(rp)) {
-        if (rp->look.type == RPL_AT || rp->look.type == RPL_ON) {
+        if (rp->look.type == RPL_AT || rp->look.type == RPL_ON ||
+            rp->look.type == RPL_SYNC) {
             rp->have_look = TRUE;
             break;
         }
@@ -128,7 +135,28 @@ static Group *read_group(Replay *rp)
 static void timer_fired(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
-    issue_group(ctx, arg);
+    Replay *rp = ctx;
+    rp->timers--;
+    issue_group(rp, arg);
+    progress(rp);
+}
+
+static void schedule_group(Replay *rp, SimTime t, Group *g)
+{
+    rp->timers++;
+    sim_schedule_at(rp->t->eng, t, timer_fired, rp, g);
+}
+
+/* A `sync` group goes when everything before it has been issued and
+ * done: no group waiting or scheduled, no message in flight; then at
+ * the end of the latest work. */
+static void try_sync(Replay *rp)
+{
+    if (g_queue_is_empty(&rp->syncs) || rp->waiting || rp->timers ||
+        rp->sending)
+        return;
+    SimTime now = sim_now(rp->t->eng);
+    schedule_group(rp, MAX(rp->max_end, now), g_queue_pop_head(&rp->syncs));
 }
 
 /* Reads the group in rp->look and places it.  Returns the flight it was
@@ -138,6 +166,10 @@ static Flight *place_group(Replay *rp)
     RplItem head = rp->look;
     Group *g = read_group(rp);
     SimEngine *eng = rp->t->eng;
+    if (head.type == RPL_SYNC) {
+        g_queue_push_tail(&rp->syncs, g);
+        return NULL;
+    }
     if (head.type == RPL_AT) {
         SimTime now = sim_now(eng);
         if (head.at < now)
@@ -145,7 +177,7 @@ static Flight *place_group(Replay *rp)
         if (head.at <= now && rp->waiting == 0)
             issue_group(rp, g);
         else
-            sim_schedule_at(eng, MAX(head.at, now), timer_fired, rp, g);
+            schedule_group(rp, MAX(head.at, now), g);
         return NULL;
     }
     Flight *f = flight_for(rp, head.id);
@@ -159,8 +191,16 @@ static Flight *place_group(Replay *rp)
  * everything after such a group came after its cause completed). */
 static void pump(Replay *rp)
 {
-    while (!rp->error && rp->have_look && rp->waiting == 0)
+    while (!rp->error && rp->have_look && rp->waiting == 0 &&
+           g_queue_is_empty(&rp->syncs))
         place_group(rp);
+}
+
+static void progress(Replay *rp)
+{
+    try_sync(rp);
+    pump(rp);
+    try_sync(rp);
 }
 
 /* Reads on until the group of flight f is attached (or the end). */
@@ -186,7 +226,7 @@ static void completed(Replay *rp, Flight *f)
         rp->waiting--;
         issue_group(rp, g);
     }
-    pump(rp);
+    progress(rp);
 }
 
 static void work_done(SimEngine *eng, void *ctx, void *arg)
@@ -198,7 +238,12 @@ static void work_done(SimEngine *eng, void *ctx, void *arg)
 static void delivered(NetNet *net, const NetDelivery *d, void *ctx)
 {
     (void)net;
-    completed(ctx, d->payload);
+    Replay *rp = ctx;
+    rp->sending--;
+    if (d->payload)
+        completed(rp, d->payload);
+    else
+        progress(rp);
 }
 
 static void issue(Replay *rp, const Act *a)
@@ -206,12 +251,14 @@ static void issue(Replay *rp, const Act *a)
     MachMachine *m = rp->t->m;
     Flight *f = a->handled || a->frame ? flight_for(rp, a->id) : NULL;
     rp->actions++;
-    if (a->type == RPL_SEND)
-        net_send(mach_net(m), a->proc, a->peer, a->value, f,
-                 f ? delivered : NULL, rp);
-    else
-        mach_proc_compute(mach_proc_at(m, a->proc), a->value, a->phase,
-                          f ? work_done : NULL, rp, f);
+    if (a->type == RPL_SEND) {
+        rp->sending++;
+        net_send(mach_net(m), a->proc, a->peer, a->value, f, delivered, rp);
+        return;
+    }
+    MachProc *p = mach_proc_at(m, a->proc);
+    mach_proc_compute(p, a->value, a->phase, f ? work_done : NULL, rp, f);
+    rp->max_end = MAX(rp->max_end, mach_proc_free_at(p));
 }
 
 static void issue_group(Replay *rp, Group *g)
@@ -256,14 +303,15 @@ static gboolean run(Replay *rp, GError **err)
 {
     if (next_item(rp)) {
         rp->have_look = TRUE;
-        pump(rp);
+        progress(rp);
     }
     GError *e = NULL;
     if (!sim_engine_run(rp->t->eng, SIM_TIME_MAX, &e) && !rp->error)
         rp->error = e;
     else if (e)
         g_error_free(e);
-    if (!rp->error && (rp->have_look || g_hash_table_size(rp->flights)))
+    if (!rp->error && (rp->have_look || g_hash_table_size(rp->flights) ||
+                       !g_queue_is_empty(&rp->syncs)))
         rp->error = g_error_new(SIM_ERROR, SIM_ERROR_INTERNAL,
                                 "%s: the replay stopped with %u actions "
                                 "awaited and the trace not finished",

@@ -171,6 +171,31 @@ static void test_missing_costs(void **s)
     g_free(p);
 }
 
+/* A `sync` group waits for the work before it, wherever that ends: at
+ * twice the clock it comes at half the recorded time (an `at` group
+ * would stay at 5000 ps). */
+static void test_sync_follows_work(void **s)
+{
+    (void)s;
+    char *p = put("sync.pgt", "pgsim-trace 1\nmachine ipsc2\nprocs 3\n"
+                              "kind node 0 3 16000000\nat 0\nw 0 0 1000\n"
+                              "w 1 0 5000\nsync 5000\nw 2 0 10 frame\n");
+    const char *fast[] = {"machine.nodes.node.clock=32 MHz", NULL};
+    for (int k = 0; k < 2; k++) {
+        RplReplayOpts o = {.trace = p, .machine = "ipsc2",
+                           .sets = k ? fast : NULL};
+        GError *e = NULL;
+        SimResult *r = rpl_replay(&o, &e);
+        g_assert_no_error(e);
+        assert_int_equal(r->elapsed, k ? 2505 : 5010);
+        assert_int_equal(g_array_index(r->frame_times, SimTime, 0),
+                         k ? 2505 : 5010);
+        sim_result_free(r);
+    }
+    g_remove(p);
+    g_free(p);
+}
+
 int main(void)
 {
     dir = g_dir_make_tmp("pgsim-fmt-XXXXXX", NULL);
@@ -179,6 +204,7 @@ int main(void)
         cmocka_unit_test(test_located_errors),
         cmocka_unit_test(test_long_line),
         cmocka_unit_test(test_missing_costs),
+        cmocka_unit_test(test_sync_follows_work),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     g_rmdir(dir);
