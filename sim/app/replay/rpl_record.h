@@ -5,7 +5,9 @@
  * network carries (net_send, collectives included, as their messages)
  * becomes an action; whatever is issued while the handler of an action's
  * completion runs forms the group `on ID` of that action; the rest (set
- * up, a workload's own timers) forms `at TIME` groups.  Frame marks are
+ * up, a workload's own timers) forms `at TIME` groups, or `sync TIME`
+ * when the timer fired just as all earlier work ended (no message in
+ * flight): the workload waited for that work.  Frame marks are
  * placed after the run: frame k ends at the sum of the first k+1 frame
  * times, on the last action that completes then (docs/traces.md).
  *
