@@ -444,6 +444,11 @@ const CfgNode *cfg_get(const CfgNode *map, const char *key)
     return e->value;
 }
 
+gboolean cfg_has(const CfgNode *map, const char *key)
+{
+    return map && map->kind == CFG_MAP && cfg_map_find(map, key);
+}
+
 guint cfg_map_len(const CfgNode *map)
 {
     return map && map->kind == CFG_MAP ? map->items->len : 0;

@@ -44,6 +44,9 @@ const char *cfg_scalar(const CfgNode *n);
 
 /* Map access.  cfg_get() marks the key as read; NULL when absent. */
 const CfgNode *cfg_get(const CfgNode *map, const char *key);
+/* TRUE when map has key; marks nothing and notes nothing (for checks
+ * that must not change what counts as read or expected). */
+gboolean cfg_has(const CfgNode *map, const char *key);
 guint cfg_map_len(const CfgNode *map);
 const char *cfg_map_key(const CfgNode *map, guint i); /* marks it read */
 const CfgNode *cfg_map_value(const CfgNode *map, guint i);

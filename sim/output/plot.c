@@ -278,23 +278,73 @@ static GString *data_text(const PlotSpec *p, const GPtrArray *all)
     return o;
 }
 
+/* Unit suffixes of pgsim's column names ("mean_frame_s", "comm_bytes"). */
+static const struct {
+    const char *suffix, *unit;
+} col_units[] = {/* longer suffixes first: "_per_s" before "_s" */
+                 {"_per_s", "1/s"}, {"_bytes", "B"}, {"_fps", "frames/s"},
+                 {"_pct", "%"},     {"_ms", "ms"},   {"_us", "us"},
+                 {"_ns", "ns"},     {"_kb", "kB"},   {"_mb", "MB"},
+                 {"_hz", "Hz"},     {"_s", "s"}};
+
+char *plot_label(const char *col)
+{
+    for (guint i = 0; i < G_N_ELEMENTS(col_units); i++) {
+        const char *suf = col_units[i].suffix;
+        gsize n = strlen(col), k = strlen(suf);
+        if (n <= k || strcmp(col + n - k, suf) != 0)
+            continue;
+        char *stem = g_strndup(col, n - (suf[0] == '_' ? k : 0));
+        g_strdelimit(stem, "_", ' ');
+        char *label = g_strdup_printf("%s (%s)", stem, col_units[i].unit);
+        g_free(stem);
+        return label;
+    }
+    char *label = g_strdup(col);
+    g_strdelimit(label, "_", ' ');
+    return label;
+}
+
+/* Title: the spec's, else "<y> against <x>[, by <series>]" from the
+ * labels (never the file stem). */
+static char *chart_title(const PlotSpec *p, const char *xl, const char *yl)
+{
+    if (p->title)
+        return g_strdup(p->title);
+    if (!p->series)
+        return g_strdup_printf("%s against %s", yl, xl);
+    char *sl = plot_label(p->series);
+    char *t = g_strdup_printf("%s against %s, by %s", yl, xl, sl);
+    g_free(sl);
+    return t;
+}
+
 static void script_head(GString *o, const PlotSpec *p, gboolean cat)
 {
+    char *xl = p->xlabel ? g_strdup(p->xlabel) : plot_label(p->x);
+    char *yl = p->ylabel ? g_strdup(p->ylabel) : plot_label(p->y);
+    char *title = chart_title(p, xl, yl);
     g_string_append(o, "# pgsim chart: edit and rerun `gnuplot ");
     g_string_append_printf(o, "%s.gp`\nset title ", p->name);
-    put_quoted(o, p->title ? p->title : p->name);
+    put_quoted(o, title);
     g_string_append(o, "\nset xlabel ");
-    put_quoted(o, p->xlabel ? p->xlabel : p->x);
+    put_quoted(o, xl);
     g_string_append(o, "\nset ylabel ");
-    put_quoted(o, p->ylabel ? p->ylabel : p->y);
+    put_quoted(o, yl);
     g_string_append(o, "\nset grid\nset key top left\n"
                        "set datafile separator \"\\t\"\n");
+    /* log axes end at the data, not at the enclosing decades */
     if (p->logx && !cat)
-        g_string_append(o, "set logscale x\n");
+        g_string_append(o, "set logscale x\nset autoscale xfix\n"
+                           "set offsets graph 0.02, graph 0.02, 0, 0\n");
     if (p->logy)
-        g_string_append(o, "set logscale y\n");
+        g_string_append(o, "set logscale y\nset autoscale yfix\n");
     if (cat)
-        g_string_append(o, "set offsets 0.5, 0.5, 0, 0\n");
+        g_string_append(o, "set offsets 0.5, 0.5, 0, 0\n"
+                           "set xtics rotate by -30 nomirror\n");
+    g_free(title);
+    g_free(xl);
+    g_free(yl);
 }
 
 static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
@@ -309,13 +359,15 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
             g_string_append(o, ":3:4");
         if (cat)
             g_string_append(o, ":xtic(5)");
-        const char *with = !bars                             ? p->style
-                           : strcmp(p->style, "points") == 0 ? "yerrorbars"
-                                                             : "yerrorlines";
+        /* categories are not a continuum: points, never joining lines */
+        gboolean pts = cat || strcmp(p->style, "points") == 0;
+        const char *with = bars  ? pts ? "yerrorbars" : "yerrorlines"
+                           : pts ? "points"
+                                 : p->style;
         g_string_append_printf(o, " with %s", with);
         g_string_append(o, " title ");
         char *t = p->series ? g_strdup_printf("%s=%s", p->series, s->name)
-                            : g_strdup(p->y);
+                            : plot_label(p->y);
         put_quoted(o, t);
         g_free(t);
     }

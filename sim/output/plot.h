@@ -18,10 +18,16 @@ typedef struct {
     char *x, *y;  /* column names */
     char *series; /* column name; NULL: one series */
     gboolean logx, logy;
-    char *title, *xlabel, *ylabel; /* NULL: defaults (column names) */
+    char *title, *xlabel, *ylabel; /* NULL: from the columns (plot_label) */
     char *style;       /* "linespoints" (default), "points", "lines" */
     gboolean diagonal; /* also draw y = x (simulated against published) */
 } PlotSpec;
+
+/* An axis label from a column name: underscores as spaces and a known
+ * unit suffix as "(unit)": "mean_frame_s" -> "mean frame (s)",
+ * "comm_bytes" -> "comm (B)" (g_free).  Default labels and titles come
+ * from it. */
+char *plot_label(const char *col);
 
 /* Returns a new spec with x and y set; free with plot_spec_free(). */
 PlotSpec *plot_spec_new(const char *name, const char *x, const char *y);

@@ -1,6 +1,8 @@
 /* cmd_plot.c — `pgsim plot RESULTS.csv --x K --y K [--series K] [--logx]
- * [--logy] [--title T] [-o FILE.png]`: an ad hoc chart of two columns of
- * a CSV file (a sweep's results.csv, a reproduction's table ...).
+ * [--logy] [--title T] [--where K=V ...] [-o FILE.png]`: an ad hoc chart
+ * of two columns of a CSV file (a sweep's results.csv, a reproduction's
+ * table ...).  Each --where keeps only the rows whose column K reads
+ * exactly V (all of them must hold).
  *
  * Writes FILE.png, FILE.svg, FILE.gp and FILE.dat (default: <y>-vs-<x>
  * next to the CSV) through plot_render().
@@ -13,6 +15,7 @@
 
 typedef struct {
     char *x, *y, *series, *title, *out;
+    char **where; /* "K=V" items */
     gboolean logx, logy;
 } PlotOpts;
 
@@ -51,6 +54,8 @@ static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
         {"logx", 0, 0, G_OPTION_ARG_NONE, &o->logx, "log x axis", NULL},
         {"logy", 0, 0, G_OPTION_ARG_NONE, &o->logy, "log y axis", NULL},
         {"title", 0, 0, G_OPTION_ARG_STRING, &o->title, "chart title", "T"},
+        {"where", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o->where,
+         "keep the rows whose column K is V (repeatable)", "K=V"},
         {"output", 'o', 0, G_OPTION_ARG_FILENAME, &o->out,
          "PNG to write (an SVG, .gp and .dat go beside it)", "FILE.png"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
@@ -85,9 +90,67 @@ static void out_names(const PlotOpts *o, const char *csv, char **dir,
     }
 }
 
-static gboolean plot_csv(const PlotOpts *o, const char *csv, GError **err)
+/* Equal text, or equal numbers ("4" and "4.0"). */
+static gboolean same_value(const char *cell, const char *want)
+{
+    char *e1 = NULL, *e2 = NULL;
+    if (strcmp(cell, want) == 0)
+        return TRUE;
+    double a = g_ascii_strtod(cell, &e1), b = g_ascii_strtod(want, &e2);
+    return *cell && *want && !*e1 && !*e2 && a == b;
+}
+
+/* Keeps the rows of *t that satisfy one "K=V"; FALSE with *err when the
+ * item or the column is bad. */
+static gboolean keep_where(DataTable **t, const char *item, GError **err)
+{
+    const char *eq = strchr(item, '=');
+    char *key = eq ? g_strndup(item, (gsize)(eq - item)) : NULL;
+    int c = key && *key ? dt_col(*t, key) : -1;
+    if (c < 0) {
+        char *cols = g_strjoinv(", ", (char **)(*t)->cols->pdata);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "--where %s: found %s '%s', expected COLUMN=VALUE with "
+                    "a column of: %s",
+                    item, eq ? "no column" : "no '=' in", eq ? key : item,
+                    cols);
+        g_free(cols);
+        g_free(key);
+        return FALSE;
+    }
+    DataTable *kept = dt_new((*t)->cols);
+    for (guint r = 0; r < (*t)->rows->len; r++)
+        if (same_value(dt_cell(*t, r, c), eq + 1))
+            dt_add_row(kept, g_ptr_array_index((*t)->rows, r));
+    dt_free(*t);
+    *t = kept;
+    g_free(key);
+    return TRUE;
+}
+
+static DataTable *read_rows(const PlotOpts *o, const char *csv, GError **err)
 {
     DataTable *t = dt_read_csv(csv, err);
+    for (int i = 0; t && o->where && o->where[i]; i++)
+        if (!keep_where(&t, o->where[i], err)) {
+            dt_free(t);
+            return NULL;
+        }
+    if (t && o->where && t->rows->len == 0) {
+        char *w = g_strjoinv(" ", o->where);
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "--where %s: found no row of %s, expected at least one",
+                    w, csv);
+        g_free(w);
+        dt_free(t);
+        return NULL;
+    }
+    return t;
+}
+
+static gboolean plot_csv(const PlotOpts *o, const char *csv, GError **err)
+{
+    DataTable *t = read_rows(o, csv, err);
     if (!t)
         return FALSE;
     char *dir, *stem;
@@ -122,5 +185,6 @@ int cmd_plot(int argc, char **argv)
     g_free(o.series);
     g_free(o.title);
     g_free(o.out);
+    g_strfreev(o.where);
     return st;
 }

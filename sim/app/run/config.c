@@ -196,13 +196,32 @@ static gboolean read_scene(CfgRun *r, GError **err)
     return s != NULL;
 }
 
+/* A machine that --set made from nothing must name a model (or be a
+ * whole inline machine with a name): otherwise the machine layer would
+ * report a missing 'name' that the user never meant to write. */
+static gboolean check_made_machine(const CfgNode *root, GError **err)
+{
+    if (!cfg_has(root, "machine"))
+        return TRUE;
+    const CfgNode *m = cfg_get(root, "machine");
+    if (cfg_kind(m) != CFG_MAP || cfg_has(m, "model") || cfg_has(m, "name"))
+        return TRUE;
+    cfg_error(err, m,
+              "a machine made by --set alone, with no model (the config has "
+              "no machine: section)",
+              "--set machine.model=NAME too (a model in models/, "
+              "docs/models.md), or a machine: section in the config");
+    return FALSE;
+}
+
 static gboolean apply_overrides(CfgNode *root, const char *const *ov,
                                 GError **err)
 {
+    gboolean had_machine = cfg_has(root, "machine");
     for (int i = 0; ov && ov[i]; i++)
         if (!cfg_set_override(root, ov[i], err))
             return FALSE;
-    return TRUE;
+    return had_machine || check_made_machine(root, err);
 }
 
 CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,

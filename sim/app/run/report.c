@@ -421,38 +421,106 @@ static void text_idle(GString *s, const SimResult *r)
     }
 }
 
+/* Up to this many processors the table lists each; above, one summary
+ * per kind. */
+#define TEXT_MAX_LISTED 32
+
+/* One statistic ("min", "mean", "max") of busy and of each phase's
+ * utilisation over the listed processors of one kind. */
+static void text_kind_stat(GString *s, const SimResult *r, const char *kind,
+                           guint count, int stat)
+{
+    static const char *const names[] = {"min", "mean", "max"};
+    guint cols = r->phases->len + 1;
+    double *v = g_new(double, cols);
+    for (guint c = 0; c < cols; c++)
+        v[c] = stat == 0 ? INFINITY : stat == 2 ? -INFINITY : 0.0;
+    for (guint i = 0; i < r->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        if (strcmp(n->kind, kind) != 0)
+            continue;
+        for (guint c = 0; c < cols; c++) {
+            SimTime b = c ? sim_busy_phase(&n->busy, c - 1) : n->busy.total;
+            double u = util(r, b);
+            v[c] = stat == 0 ? MIN(v[c], u) : stat == 2 ? MAX(v[c], u)
+                                                          : v[c] + u / count;
+        }
+    }
+    char label[32], a[32];
+    g_snprintf(label, sizeof label, "%s of %u", names[stat], count);
+    g_string_append_printf(s, "  %-12s %-10s %8s", label, kind, pct(a, v[0]));
+    for (guint c = 1; c < cols; c++)
+        g_string_append_printf(s, " %10s", pct(a, v[c]));
+    g_string_append_c(s, '\n');
+    g_free(v);
+}
+
+/* Above TEXT_MAX_LISTED: min, mean and max per kind, kinds in order of
+ * first appearance.  O(kinds * nodes * phases). */
+static void text_kinds(GString *s, const SimResult *r)
+{
+    GPtrArray *kinds = g_ptr_array_new();
+    GArray *counts = g_array_new(FALSE, TRUE, sizeof(guint));
+    for (guint i = 0; i < r->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        guint k = 0;
+        while (k < kinds->len && strcmp(kinds->pdata[k], n->kind) != 0)
+            k++;
+        if (k == kinds->len) {
+            g_ptr_array_add(kinds, n->kind);
+            guint zero = 0;
+            g_array_append_val(counts, zero);
+        }
+        g_array_index(counts, guint, k)++;
+    }
+    for (guint k = 0; k < kinds->len; k++) {
+        guint count = g_array_index(counts, guint, k);
+        for (guint i = 0; count == 1 && i < r->nodes->len; i++) {
+            const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+            if (strcmp(n->kind, kinds->pdata[k]) == 0)
+                text_node(s, r, n); /* a kind of one: the processor */
+        }
+        for (int stat = 0; count > 1 && stat < 3; stat++)
+            text_kind_stat(s, r, kinds->pdata[k], count, stat);
+    }
+    g_string_append_printf(s, "  (%u busy processors summarised per kind; "
+                              "each one in JSON/CSV)\n",
+                           r->nodes->len);
+    g_array_free(counts, TRUE);
+    g_ptr_array_free(kinds, TRUE);
+}
+
 static void text_nodes(GString *s, const SimResult *r)
 {
-    guint n = r->nodes->len, shown = n <= 32 ? n : 16;
+    guint n = r->nodes->len;
     if (!n && !r->idle->len)
         return;
     g_string_append_printf(s,
                            "utilisation   busy / simulated time, per "
                            "phase\n  %-12s %-10s %8s",
-                           "node", "kind", "busy");
+                           n <= TEXT_MAX_LISTED ? "node" : "node / stat",
+                           "kind", "busy");
     for (guint p = 0; p < r->phases->len; p++)
         g_string_append_printf(s, " %10.10s",
                                (const char *)g_ptr_array_index(r->phases, p));
     g_string_append_c(s, '\n');
-    for (guint i = 0; i < shown; i++)
-        text_node(s, r, g_ptr_array_index(r->nodes, i));
-    if (shown < n)
-        g_string_append_printf(s, "  ... %u more nodes (all in JSON/CSV)\n",
-                               n - shown);
+    if (n <= TEXT_MAX_LISTED)
+        for (guint i = 0; i < n; i++)
+            text_node(s, r, g_ptr_array_index(r->nodes, i));
+    else
+        text_kinds(s, r);
     text_idle(s, r);
 }
 
 static void text_rest(GString *s, const SimResult *r, gboolean timing)
 {
-    char a[32];
+    char a[32], b[48];
     g_string_append_printf(s,
-                           "communication %" G_GUINT64_FORMAT " messages, "
-                           "%" G_GUINT64_FORMAT " bytes",
-                           r->comm_messages, r->comm_bytes);
+                           "communication %" G_GUINT64_FORMAT " messages, %s",
+                           r->comm_messages, bytes(b, (double)r->comm_bytes));
     if (r->busiest_link)
-        g_string_append_printf(
-            s, "; busiest link %s (%" G_GUINT64_FORMAT " bytes)",
-            r->busiest_link, r->busiest_link_bytes);
+        g_string_append_printf(s, "; busiest link %s (%s)", r->busiest_link,
+                               bytes(b, (double)r->busiest_link_bytes));
     g_string_append_c(s, '\n');
     if (r->metrics->len)
         g_string_append(s, "metrics\n");

@@ -175,6 +175,13 @@ static gboolean tr_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
     const TrParams *p = params;
+    const CfgNode *m = cfg_get(ctx->root, "machine");
+    if (m) { /* it would be ignored: say so instead */
+        cfg_error(err, m, "a machine section",
+                  "none: tokenring simulates its own ring (workload.nodes, "
+                  "workload.link)");
+        return FALSE;
+    }
     TrState s = {.p = p, .res = out, .frames_left = ctx->frames};
     s.links = g_new0(SimLinkStats, p->nodes);
     s.send_phase = sim_engine_phase(ctx->eng, "send");

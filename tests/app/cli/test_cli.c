@@ -158,6 +158,68 @@ static void test_units_on_the_command_line(void **state)
     g_free(err);
 }
 
+static char *read_text(const char *dir, const char *name)
+{
+    char *path = g_build_filename(dir, name, NULL), *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    g_remove(path);
+    g_free(path);
+    return text;
+}
+
+/* plot --where keeps the matching rows; labels come from the columns
+ * with their units; a categorical x gets points, not joining lines. */
+static void test_plot_where_and_labels(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-plot-XXXXXX", NULL);
+    char *csv = g_build_filename(dir, "r.csv", NULL);
+    char *png = g_build_filename(dir, "c.png", NULL);
+    assert_true(g_file_set_contents(
+        csv, "n,frame_s,scene\n1,2,a\n2,3,a\n1,5,b\n2,7.0,b\n", -1, NULL));
+    const char *args[] = {"plot",  csv,       "--x", "n", "--y", "frame_s",
+                          "--where", "scene=b", "-o", png, NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(args, &out, &err), 0);
+    g_free(out);
+    g_free(err);
+    char *dat = read_text(dir, "c.dat"), *gp = read_text(dir, "c.gp");
+    assert_non_null(strstr(dat, "\n1\t5\t5\t5\t"));
+    assert_non_null(strstr(dat, "\n2\t7\t7\t7\t"));
+    assert_null(strstr(dat, "\n1\t2\t"));
+    assert_non_null(strstr(gp, "set title \"frame (s) against n\""));
+    assert_non_null(strstr(gp, "set ylabel \"frame (s)\""));
+    g_free(dat);
+    g_free(gp);
+    const char *cat[] = {"plot", csv, "--x", "scene", "--y", "frame_s",
+                         "--where", "n=2.0", "-o", png, NULL};
+    assert_int_equal(pgsim(cat, &out, &err), 0);
+    g_free(out);
+    g_free(err);
+    dat = read_text(dir, "c.dat");
+    gp = read_text(dir, "c.gp");
+    assert_non_null(strstr(gp, ":xtic(5) with points"));
+    g_free(dat);
+    g_free(gp);
+    const char *bad[] = {"plot", csv, "--x", "n", "--y", "frame_s",
+                         "--where", "colour=red", "-o", png, NULL};
+    assert_int_equal(pgsim(bad, &out, &err), 2);
+    assert_non_null(strstr(err, "--where colour=red: found no column "
+                                "'colour'"));
+    g_free(out);
+    g_free(err);
+    const char *files[] = {"c.png", "c.svg", "r.csv"};
+    for (int i = 0; i < 3; i++) {
+        char *p = g_build_filename(dir, files[i], NULL);
+        g_remove(p);
+        g_free(p);
+    }
+    g_rmdir(dir);
+    g_free(png);
+    g_free(csv);
+    g_free(dir);
+}
+
 /* result.json and result.csv say where they came from: the build, the
  * config file and its SHA-256, the overrides and the config they made,
  * the seed and the fidelity (issue 18, point 10). */
@@ -222,6 +284,7 @@ int main(void)
         cmocka_unit_test(test_quickstart),
         cmocka_unit_test(test_units_on_the_command_line),
         cmocka_unit_test(test_provenance),
+        cmocka_unit_test(test_plot_where_and_labels),
     };
     return cmocka_run_group_tests_name("cli", tests, NULL, NULL);
 }

@@ -193,6 +193,36 @@ static void test_human_metrics(void **state)
     sim_result_free(r);
 }
 
+/* Above 32 processors the text gives min / mean / max per kind: 30 "gp"
+ * busy 1..30 ms of 40 ms, 10 "rd" busy 2 ms each. */
+static void test_kind_summary(void **state)
+{
+    (void)state;
+    SimResult *r = sim_result_new("demo", "m");
+    r->elapsed = 40 * SIM_MS;
+    g_ptr_array_add(r->phases, g_strdup("work"));
+    for (int i = 0; i < 40; i++) {
+        char name[16];
+        g_snprintf(name, sizeof name, "p%d", i);
+        SimNodeResult *n = sim_result_add_node(r, name, i < 30 ? "gp" : "rd");
+        sim_busy_add(&n->busy, 0, (i < 30 ? i + 1 : 2) * SIM_MS);
+    }
+    char *t = rpt_render(r, RPT_TEXT, FALSE);
+    assert_non_null(strstr(t, "  min of 30    gp             2.5%       2.5%\n"));
+    assert_non_null(strstr(t, "  mean of 30   gp            38.8%      38.8%\n"));
+    assert_non_null(strstr(t, "  max of 30    gp            75.0%      75.0%\n"));
+    assert_non_null(strstr(t, "  mean of 10   rd             5.0%       5.0%\n"));
+    assert_null(strstr(t, "p31"));
+    g_free(t);
+    /* 32 or fewer: every processor by name */
+    g_ptr_array_set_size(r->nodes, 32);
+    t = rpt_render(r, RPT_TEXT, FALSE);
+    assert_non_null(strstr(t, "  p31 "));
+    assert_null(strstr(t, "mean of"));
+    g_free(t);
+    sim_result_free(r);
+}
+
 static unsigned mode_of(const char *path)
 {
     GStatBuf st;
@@ -302,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_atomic),
         cmocka_unit_test(test_file_modes),
         cmocka_unit_test(test_human_metrics),
+        cmocka_unit_test(test_kind_summary),
         cmocka_unit_test(test_progress),
         cmocka_unit_test(test_progress_note_eta),
     };
