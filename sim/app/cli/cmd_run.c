@@ -87,15 +87,19 @@ static gboolean check_flags(const RunOpts *o, guint64 *seed, RptFormat *fmt)
     return TRUE;
 }
 
-/* Names the frame images the workload wrote into dir, if any. */
-static const char *frame_note(const char *dir)
+/* Names the frame images the workload wrote into dir, or says that it
+ * wrote none (tokenring and performer model no pixels; others may not
+ * draw in a given run) (g_free). */
+static char *frame_note(const char *dir, const char *workload)
 {
     char *last = g_build_filename(dir, "frame.png", NULL);
     char *first = g_build_filename(dir, "frame-0000.png", NULL);
-    const char *note = g_file_test(last, G_FILE_TEST_EXISTS) ? " and frame.png"
-                       : g_file_test(first, G_FILE_TEST_EXISTS)
-                           ? " and frame-NNNN.png"
-                           : "";
+    char *note = g_file_test(last, G_FILE_TEST_EXISTS) ? g_strdup(" and frame.png")
+                 : g_file_test(first, G_FILE_TEST_EXISTS)
+                     ? g_strdup(" and frame-NNNN.png")
+                     : g_strdup_printf("; no frame image (this %s run "
+                                       "drew no pixels)",
+                                       workload);
     g_free(last);
     g_free(first);
     return note;
@@ -110,11 +114,14 @@ static int report(const SimResult *res, const RunOpts *o, RptFormat fmt)
     GError *e = NULL;
     if (o->out && !rpt_write_dir(res, o->out, o->timing, &e))
         return cli_fail(e);
-    if (o->out && !o->quiet)
+    if (o->out && !o->quiet) {
+        char *note = frame_note(o->out, res->workload);
         fprintf(stderr,
                 "pgsim run: wrote %s/{summary.txt,result.json,"
                 "result.csv}%s\n",
-                o->out, frame_note(o->out));
+                o->out, note);
+        g_free(note);
+    }
     return 0;
 }
 

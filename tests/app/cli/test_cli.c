@@ -158,6 +158,29 @@ static void test_units_on_the_command_line(void **state)
     g_free(err);
 }
 
+/* --out says when a workload drew no pixels instead of writing no image
+ * silently (issue 18, point 9). */
+static void test_out_without_pixels(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-out-XXXXXX", NULL);
+    const char *args[] = {"run", "configs/tokenring.yaml", "--out", dir, NULL};
+    char *out, *err;
+    assert_int_equal(pgsim(args, &out, &err), 0);
+    assert_non_null(strstr(err, "; no frame image (this tokenring run drew "
+                                "no pixels)"));
+    g_free(out);
+    g_free(err);
+    const char *files[] = {"summary.txt", "result.json", "result.csv"};
+    for (int i = 0; i < 3; i++) {
+        char *p = g_build_filename(dir, files[i], NULL);
+        assert_int_equal(g_remove(p), 0);
+        g_free(p);
+    }
+    assert_int_equal(g_rmdir(dir), 0); /* nothing else was written */
+    g_free(dir);
+}
+
 static char *read_text(const char *dir, const char *name)
 {
     char *path = g_build_filename(dir, name, NULL), *text = NULL;
@@ -285,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_units_on_the_command_line),
         cmocka_unit_test(test_provenance),
         cmocka_unit_test(test_plot_where_and_labels),
+        cmocka_unit_test(test_out_without_pixels),
     };
     return cmocka_run_group_tests_name("cli", tests, NULL, NULL);
 }
