@@ -7,6 +7,7 @@
 #include "sim/workload/sortfirst/sf_workload.h"
 #include "sim/workload/tokenring/tokenring_workload.h"
 #include "sim/core/error.h"
+#include "sim/core/trace.h"
 #include <string.h>
 
 extern const WlOps wl_pphigs_ops;
@@ -78,4 +79,14 @@ gboolean wl_emit_frame(const WlContext *ctx, int frame, const RastImage *img,
     g_free(path);
     g_free(name);
     return ok;
+}
+
+void wl_mark_frame(SimEngine *eng, guint frame, SimTime end)
+{
+    SimTrace *tr = sim_engine_trace(eng);
+    if (!tr)
+        return;
+    char name[32];
+    g_snprintf(name, sizeof name, "frame %u", frame);
+    sim_trace_mark(tr, name, end);
 }

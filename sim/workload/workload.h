@@ -33,6 +33,9 @@ typedef struct {
 gboolean wl_wants_frame(const WlContext *ctx, int frame);
 gboolean wl_emit_frame(const WlContext *ctx, int frame, const RastImage *img,
                        GError **err);
+/* Frame boundaries in the trace (docs/traces.md): an instant "frame N"
+ * at the simulated time frame N ended.  No trace: nothing. */
+void wl_mark_frame(SimEngine *eng, guint frame, SimTime end);
 
 /* Costs a workload asks a machine model for: operation names under
  * nodes.<kind>.costs (sim/machine/model.h). */

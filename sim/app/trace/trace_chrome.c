@@ -6,8 +6,10 @@
  * sorted by id with thread_sort_index on first sight).  A span is an "X"
  * complete event; a message is a flow: a zero-length "X" slice "send" on
  * the source with an "s" event, and "recv" on the destination with an "f"
- * event (binding point "e"), both carrying the same id; a mark is a
- * global instant "i".  Timestamps are microseconds (doubles).  Events
+ * event (binding point "e"), both carrying the same id; a mark (frame
+ * boundary) is a global instant "i"; the counters derived from flows
+ * ("messages in flight", "bytes in flight") are "C" counter tracks.
+ * Timestamps are microseconds (doubles).  Events
  * are written as they come (the format needs no order), each one built
  * and printed by json-glib; only the fixed envelope around the event
  * array is literal text.
@@ -59,22 +61,16 @@ static void meta(TrcWriter *w, const char *what, uint32_t tid,
     emit(w, b);
 }
 
-static void node_meta(TrcWriter *w, uint32_t node, const char *name)
+static void on_node(TrcWriter *w, uint32_t node)
 {
-    if (!trc_new_node(w, node, name))
-        return;
     meta(w, "thread_name", node, "name",
          g_hash_table_lookup(w->nodes, GUINT_TO_POINTER(node + 1)), 0);
     meta(w, "thread_sort_index", node, "sort_index", NULL, node);
 }
 
-static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
-                    const char *phase, SimTime start, SimTime end)
+static void on_span(TrcWriter *w, uint32_t node, const char *phase,
+                    SimTime start, SimTime end)
 {
-    TrcWriter *w = tr->state;
-    if (!trc_admit(w, end))
-        return;
-    node_meta(w, node, node_name);
     JsonBuilder *b = event(phase, "phase", "X", node);
     set_us(b, "ts", start);
     set_us(b, "dur", end - start);
@@ -101,21 +97,14 @@ static void flow_end(TrcWriter *w, const char *ph, uint32_t node, SimTime t,
     emit(w, b);
 }
 
-static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
-                    uint32_t dst, const char *dst_name, uint64_t bytes,
-                    SimTime sent, SimTime arrived)
+static void on_flow(TrcWriter *w, uint32_t src, uint32_t dst, uint64_t bytes,
+                    SimTime sent, SimTime arrived, uint64_t id)
 {
-    TrcWriter *w = tr->state;
-    if (!trc_admit(w, arrived))
-        return;
-    node_meta(w, src, src_name);
-    node_meta(w, dst, dst_name);
-    uint64_t id = ++w->next_flow;
     flow_end(w, "s", src, sent, id, bytes);
     flow_end(w, "f", dst, arrived, id, bytes);
 }
 
-static void instant(TrcWriter *w, const char *name, SimTime t)
+static void on_mark(TrcWriter *w, const char *name, SimTime t)
 {
     JsonBuilder *b = event(name, "mark", "i", 0);
     js_set_str(b, "s", "g");
@@ -123,11 +112,20 @@ static void instant(TrcWriter *w, const char *name, SimTime t)
     emit(w, b);
 }
 
-static void on_mark(SimTrace *tr, const char *name, SimTime t)
+/* A "C" event: the track is the counter's name, the series its unit. */
+static void on_counter(TrcWriter *w, int which, SimTime t, double value)
 {
-    TrcWriter *w = tr->state;
-    if (trc_admit(w, t))
-        instant(w, name, t);
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "name", trc_counter_names[which]);
+    js_set_str(b, "ph", "C");
+    js_set_int(b, "pid", 0);
+    set_us(b, "ts", t);
+    json_builder_set_member_name(b, "args");
+    json_builder_begin_object(b);
+    js_set_num(b, trc_counter_units[which], value);
+    json_builder_end_object(b);
+    emit(w, b);
 }
 
 static void begin(TrcWriter *w)
@@ -147,16 +145,6 @@ static void begin(TrcWriter *w)
     g_free(text);
 }
 
-static void cap_note(TrcWriter *w, SimTime t)
-{
-    char *msg = g_strdup_printf("trace truncated: cap of %" G_GUINT64_FORMAT
-                                " events reached; later events are not "
-                                "recorded",
-                                w->cap);
-    instant(w, msg, t);
-    g_free(msg);
-}
-
 static void end(TrcWriter *w)
 {
     JsonBuilder *b = json_builder_new();
@@ -172,6 +160,5 @@ static void end(TrcWriter *w)
     g_free(other);
 }
 
-static const SimTraceOps chrome_ops = {on_span, on_flow, on_mark};
-
-const TrcFormat trc_chrome = {begin, cap_note, end, &chrome_ops};
+const TrcFormat trc_chrome = {begin,   on_node,    on_span, on_flow,
+                              on_mark, on_counter, end};

@@ -1,9 +1,12 @@
-/* trace_file.c — opening, capping and closing trace files.
+/* trace_file.c — opening, capping and closing trace files, and the one
+ * SimTraceOps every format shares.
  *
  * Invariants: at most `cap` events are recorded; after the cap the note
  * is written exactly once and every hook is a no-op.  The file is written
  * as <path>.tmp and renamed to <path> on a successful close, so a reader
- * never sees half a trace under the final name.  O(1) per event.
+ * never sees half a trace under the final name.  O(1) per event; the
+ * counters derived from flows (messages and bytes in flight) are sorted
+ * on close: O(f log f) for f recorded flows.
  */
 #include "sim/app/trace/trace_impl.h"
 #include <errno.h>
@@ -18,6 +21,14 @@ static const TrcFormat *format_for(const char *path)
         return &trc_paje;
     return NULL;
 }
+
+typedef struct {
+    SimTime t;
+    uint64_t seq;
+    int64_t bytes; /* +bytes at a send, -bytes at an arrival */
+} TrcDelta;
+
+static const SimTraceOps trc_ops; /* below: the hooks every format shares */
 
 SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
 {
@@ -44,13 +55,20 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
     w->cap = max_events ? max_events : TRC_DEFAULT_CAP;
     w->nodes = g_hash_table_new_full(NULL, NULL, NULL, g_free);
     w->default_named = g_hash_table_new(NULL, NULL);
-    w->trace.ops = fmt->ops;
+    w->deltas = g_array_new(FALSE, FALSE, sizeof(TrcDelta));
+    w->trace.ops = &trc_ops;
     w->trace.state = w;
     fmt->begin(w);
     return &w->trace;
 }
 
-gboolean trc_admit(TrcWriter *w, SimTime t)
+const char *const trc_counter_names[TRC_N_COUNTERS] = {"messages in flight",
+                                                       "bytes in flight"};
+const char *const trc_counter_units[TRC_N_COUNTERS] = {"messages", "B"};
+
+/* Counts one event; FALSE once the cap is reached (then the note is
+ * written once). */
+static gboolean trc_admit(TrcWriter *w, SimTime t)
 {
     if (w->truncated)
         return FALSE;
@@ -59,7 +77,12 @@ gboolean trc_admit(TrcWriter *w, SimTime t)
         return TRUE;
     }
     w->truncated = TRUE;
-    w->fmt->cap_note(w, t);
+    char *msg = g_strdup_printf("trace truncated: cap of %" G_GUINT64_FORMAT
+                                " events reached; later events are not "
+                                "recorded",
+                                w->cap);
+    w->fmt->mark(w, msg, t);
+    g_free(msg);
     fprintf(stderr,
             "pgsim: trace %s: cap of %" G_GUINT64_FORMAT
             " events reached at %.6f ms; later events are not "
@@ -68,7 +91,9 @@ gboolean trc_admit(TrcWriter *w, SimTime t)
     return FALSE;
 }
 
-gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name)
+/* TRUE the first time a node id is seen, and when a node first seen
+ * without a name (NULL: "node<id>") gets one; the name is remembered. */
+static gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name)
 {
     gpointer key = GUINT_TO_POINTER(node + 1);
     const char *old = g_hash_table_lookup(w->nodes, key);
@@ -83,6 +108,81 @@ gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name)
     else
         g_hash_table_add(w->default_named, key);
     return TRUE;
+}
+
+static void see_node(TrcWriter *w, uint32_t node, const char *name)
+{
+    if (trc_new_node(w, node, name))
+        w->fmt->node(w, node);
+}
+
+static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
+                    const char *phase, SimTime start, SimTime end)
+{
+    TrcWriter *w = tr->state;
+    if (!trc_admit(w, end))
+        return;
+    see_node(w, node, node_name);
+    w->fmt->span(w, node, phase, start, end);
+}
+
+static void add_delta(TrcWriter *w, SimTime t, int64_t bytes)
+{
+    TrcDelta d = {t, w->deltas->len, bytes};
+    g_array_append_val(w->deltas, d);
+}
+
+static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
+                    uint32_t dst, const char *dst_name, uint64_t bytes,
+                    SimTime sent, SimTime arrived)
+{
+    TrcWriter *w = tr->state;
+    if (!trc_admit(w, arrived))
+        return;
+    see_node(w, src, src_name);
+    see_node(w, dst, dst_name);
+    w->fmt->flow(w, src, dst, bytes, sent, arrived, ++w->next_flow);
+    add_delta(w, sent, (int64_t)bytes);
+    add_delta(w, arrived, -(int64_t)bytes);
+}
+
+static void on_mark(SimTrace *tr, const char *name, SimTime t)
+{
+    TrcWriter *w = tr->state;
+    if (trc_admit(w, t))
+        w->fmt->mark(w, name, t);
+}
+
+static const SimTraceOps trc_ops = {on_span, on_flow, on_mark};
+
+static gint by_time(gconstpointer a, gconstpointer b)
+{
+    const TrcDelta *x = a, *y = b;
+    if (x->t != y->t)
+        return x->t < y->t ? -1 : 1;
+    return x->seq < y->seq ? -1 : x->seq > y->seq;
+}
+
+/* One sample per counter at every time the flows change them (after all
+ * the changes at that time), starting from 0 at time 0. */
+static void write_counters(TrcWriter *w)
+{
+    if (!w->deltas->len)
+        return;
+    g_array_sort(w->deltas, by_time);
+    for (int c = 0; c < TRC_N_COUNTERS; c++)
+        w->fmt->counter(w, c, 0, 0.0);
+    int64_t msgs = 0, bytes = 0;
+    for (guint i = 0; i < w->deltas->len; i++) {
+        const TrcDelta *d = &g_array_index(w->deltas, TrcDelta, i);
+        msgs += d->bytes >= 0 ? 1 : -1;
+        bytes += d->bytes;
+        if (i + 1 < w->deltas->len &&
+            g_array_index(w->deltas, TrcDelta, i + 1).t == d->t)
+            continue;
+        w->fmt->counter(w, TRC_MSGS_IN_FLIGHT, d->t, (double)msgs);
+        w->fmt->counter(w, TRC_BYTES_IN_FLIGHT, d->t, (double)bytes);
+    }
 }
 
 uint64_t trc_events(const SimTrace *tr)
@@ -102,6 +202,7 @@ gboolean trc_close(SimTrace *tr, GError **err)
     if (!tr)
         return TRUE;
     TrcWriter *w = tr->state;
+    write_counters(w);
     w->fmt->end(w);
     gboolean ok = !ferror(w->f);
     ok = fclose(w->f) == 0 && ok;
@@ -130,6 +231,7 @@ static void writer_free(TrcWriter *w)
 {
     g_hash_table_destroy(w->nodes);
     g_hash_table_destroy(w->default_named);
+    g_array_free(w->deltas, TRUE);
     if (w->buffer)
         g_ptr_array_free(w->buffer, TRUE);
     g_free(w->path);

@@ -1,5 +1,10 @@
 /* trace_impl.h — shared state of the trace writers (trace_file.c,
- * trace_chrome.c, trace_paje.c); not for other modules. */
+ * trace_chrome.c, trace_paje.c); not for other modules.
+ *
+ * trace_file.c owns everything the formats share: the SimTraceOps (one
+ * table for every format), the event cap and its note, node names, flow
+ * ids, and the counters derived from flows.  A TrcFormat only writes.
+ */
 #ifndef PGSIM_APP_TRACE_TRACE_IMPL_H
 #define PGSIM_APP_TRACE_TRACE_IMPL_H
 
@@ -10,11 +15,27 @@ typedef struct TrcWriter TrcWriter;
 
 typedef struct {
     void (*begin)(TrcWriter *w);
-    /* Writes the note that the cap was reached, at simulated time t. */
-    void (*cap_note)(TrcWriter *w, SimTime t);
+    /* A node was first seen, or a node first seen without a name (flows
+     * know only ids: "node<id>") got one; its name is in w->nodes. */
+    void (*node)(TrcWriter *w, uint32_t node);
+    void (*span)(TrcWriter *w, uint32_t node, const char *phase,
+                 SimTime start, SimTime end);
+    /* A message with a per-file id (1, 2, ...). */
+    void (*flow)(TrcWriter *w, uint32_t src, uint32_t dst, uint64_t bytes,
+                 SimTime sent, SimTime arrived, uint64_t id);
+    /* A named instant: frame boundaries, the cap note. */
+    void (*mark)(TrcWriter *w, const char *name, SimTime t);
+    /* One sample of a machine-wide counter track (trc_counters()), in
+     * time order per counter. */
+    void (*counter)(TrcWriter *w, int which, SimTime t, double value);
     void (*end)(TrcWriter *w);
-    const SimTraceOps *ops;
 } TrcFormat;
+
+/* The counters derived from flows: a message is in flight from its send
+ * to its arrival. */
+enum { TRC_MSGS_IN_FLIGHT, TRC_BYTES_IN_FLIGHT, TRC_N_COUNTERS };
+extern const char *const trc_counter_names[TRC_N_COUNTERS];
+extern const char *const trc_counter_units[TRC_N_COUNTERS];
 
 struct TrcWriter {
     SimTrace trace; /* first: a SimTrace * is a TrcWriter * */
@@ -25,15 +46,9 @@ struct TrcWriter {
     gboolean truncated;
     GHashTable *nodes;         /* node id + 1 -> name (seen nodes) */
     GHashTable *default_named; /* node id + 1 of nodes named "node<id>" */
+    GArray *deltas;            /* TrcDelta: flow starts and ends */
     GPtrArray *buffer;         /* Paje: lines waiting to be sorted by time */
 };
-
-/* Counts one event; FALSE once the cap is reached (then the note is
- * written once).  Every hook calls it first. */
-gboolean trc_admit(TrcWriter *w, SimTime t);
-/* TRUE the first time a node id is seen, and when a node first seen
- * without a name (NULL: "node<id>") gets one; the name is remembered. */
-gboolean trc_new_node(TrcWriter *w, uint32_t node, const char *name);
 
 extern const TrcFormat trc_chrome;
 extern const TrcFormat trc_paje;

@@ -4,7 +4,9 @@
  * Containers: one "machine" holding one container per node.  A span sets
  * the node's state to the phase at its start and back to "idle" at its
  * end; a message is a link (StartLink on the source, EndLink on the
- * destination, sharing a key); a mark is a PajeNewEvent on the machine.
+ * destination, sharing a key); a mark (frame boundary) is a PajeNewEvent
+ * on the machine; the counters derived from flows ("messages in flight",
+ * "bytes in flight") are variables of the machine (PajeSetVariable).
  * Paje needs events in time order, but spans are reported when they end,
  * so lines are buffered with (time, seq) and sorted on close: O(n log n)
  * for n events, memory bounded by the event cap.
@@ -43,11 +45,17 @@ static const char header[] =
     "% Key string\n%EndEventDef\n"
     "%EventDef PajeNewEvent 9\n% Time date\n% Type string\n"
     "% Container string\n% Value string\n%EndEventDef\n"
+    "%EventDef PajeDefineVariableType 10\n% Alias string\n% Type string\n"
+    "% Name string\n%EndEventDef\n"
+    "%EventDef PajeSetVariable 11\n% Time date\n% Type string\n"
+    "% Container string\n% Value double\n%EndEventDef\n"
     "0 CT_Machine 0 \"Machine\"\n"
     "0 CT_Node CT_Machine \"Node\"\n"
     "1 ST_Phase CT_Node \"Phase\"\n"
     "2 LT_Msg CT_Machine CT_Node CT_Node \"Message\"\n"
     "3 ET_Mark CT_Machine \"Mark\"\n"
+    "10 VT_0 CT_Machine \"messages in flight\"\n"
+    "10 VT_1 CT_Machine \"bytes in flight (B)\"\n"
     "4 0.000000000000 machine CT_Machine 0 \"machine\"\n";
 
 static void line_free(gpointer p)
@@ -73,34 +81,24 @@ static void add(TrcWriter *w, int code, SimTime t, char *rest)
 }
 
 /* Containers are created in end(), with the last name learnt. */
-static void see_node(TrcWriter *w, uint32_t node, const char *name)
+static void on_node(TrcWriter *w, uint32_t node)
 {
-    trc_new_node(w, node, name);
+    (void)w;
+    (void)node;
 }
 
-static void on_span(SimTrace *tr, uint32_t node, const char *node_name,
-                    const char *phase, SimTime start, SimTime end)
+static void on_span(TrcWriter *w, uint32_t node, const char *phase,
+                    SimTime start, SimTime end)
 {
-    TrcWriter *w = tr->state;
-    if (!trc_admit(w, end))
-        return;
-    see_node(w, node, node_name);
     char *q = quoted(phase);
     add(w, 6, start, g_strdup_printf("ST_Phase n%u \"%s\"", node, q));
     add(w, 6, end, g_strdup_printf("ST_Phase n%u \"idle\"", node));
     g_free(q);
 }
 
-static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
-                    uint32_t dst, const char *dst_name, uint64_t bytes,
-                    SimTime sent, SimTime arrived)
+static void on_flow(TrcWriter *w, uint32_t src, uint32_t dst, uint64_t bytes,
+                    SimTime sent, SimTime arrived, uint64_t key)
 {
-    TrcWriter *w = tr->state;
-    if (!trc_admit(w, arrived))
-        return;
-    see_node(w, src, src_name);
-    see_node(w, dst, dst_name);
-    uint64_t key = ++w->next_flow;
     add(w, 7, sent,
         g_strdup_printf("LT_Msg machine \"%" G_GUINT64_FORMAT
                         " B\" n%u m%" G_GUINT64_FORMAT,
@@ -111,18 +109,18 @@ static void on_flow(SimTrace *tr, uint32_t src, const char *src_name,
                         bytes, dst, key));
 }
 
-static void mark(TrcWriter *w, const char *name, SimTime t)
+static void on_mark(TrcWriter *w, const char *name, SimTime t)
 {
     char *q = quoted(name);
     add(w, 9, t, g_strdup_printf("ET_Mark machine \"%s\"", q));
     g_free(q);
 }
 
-static void on_mark(SimTrace *tr, const char *name, SimTime t)
+static void on_counter(TrcWriter *w, int which, SimTime t, double value)
 {
-    TrcWriter *w = tr->state;
-    if (trc_admit(w, t))
-        mark(w, name, t);
+    char num[G_ASCII_DTOSTR_BUF_SIZE];
+    g_ascii_formatd(num, sizeof num, "%.17g", value);
+    add(w, 11, t, g_strdup_printf("VT_%d machine %s", which, num));
 }
 
 static void begin(TrcWriter *w)
@@ -130,15 +128,6 @@ static void begin(TrcWriter *w)
     w->buffer = g_ptr_array_new_with_free_func(line_free);
     fputs("# pgsim trace in Paje format (open with ViTE)\n", w->f);
     fputs(header, w->f);
-}
-
-static void cap_note(TrcWriter *w, SimTime t)
-{
-    char *msg = g_strdup_printf(
-        "trace truncated: cap of %" G_GUINT64_FORMAT " events reached", w->cap);
-    mark(w, msg, t);
-    fprintf(w->f, "# %s; later events are not recorded\n", msg);
-    g_free(msg);
 }
 
 static gint by_time(gconstpointer a, gconstpointer b)
@@ -199,6 +188,5 @@ static void end(TrcWriter *w)
             last / SIM_S, last % SIM_S);
 }
 
-static const SimTraceOps paje_ops = {on_span, on_flow, on_mark};
-
-const TrcFormat trc_paje = {begin, cap_note, end, &paje_ops};
+const TrcFormat trc_paje = {begin,   on_node,    on_span, on_flow,
+                            on_mark, on_counter, end};

@@ -98,6 +98,7 @@ static void part_done(PnRun *r)
         return;
     SimEngine *eng = mach_engine(r->m);
     sim_result_add_frame(r->out, sim_now(eng) - r->frame_start);
+    wl_mark_frame(eng, r->out->frame_times->len - 1, sim_now(eng));
     if (--r->frames_left)
         sim_schedule_in(eng, 0, frame_start, r, NULL);
 }

@@ -366,6 +366,7 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
         SimTime prev =
             n ? g_array_index(recs, WlPfFrameRec, n - 1).swap : r->app_start;
         sim_result_add_frame(out, r->swap - prev);
+        wl_mark_frame(mach_engine(m), n, r->swap);
         bytes += 3 * wl_pf_frame_stats(st, n)->draw.tris * st->c.vertex_bytes;
     }
     mach_fill_result(m, out);

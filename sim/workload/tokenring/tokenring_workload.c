@@ -125,6 +125,7 @@ static gboolean round_done(SimEngine *eng, TrState *s)
 {
     SimTime now = sim_now(eng);
     sim_result_add_frame(s->res, now - s->frame_start);
+    wl_mark_frame(eng, s->res->frame_times->len - 1, now);
     s->frame_start = now;
     return --s->frames_left <= 0;
 }

@@ -158,6 +158,21 @@ static void test_units_on_the_command_line(void **state)
     g_free(err);
 }
 
+/* Removes dir/files[i] for i < n and dir; FALSE if any was missing or
+ * dir is not empty then. */
+static gboolean rm_files(char *dir, const char *const *files, int n)
+{
+    gboolean ok = TRUE;
+    for (int i = 0; i < n; i++) {
+        char *p = g_build_filename(dir, files[i], NULL);
+        ok = g_remove(p) == 0 && ok;
+        g_free(p);
+    }
+    ok = g_rmdir(dir) == 0 && ok;
+    g_free(dir);
+    return ok;
+}
+
 /* --out says when a workload drew no pixels instead of writing no image
  * silently (issue 18, point 9). */
 static void test_out_without_pixels(void **state)
@@ -172,13 +187,7 @@ static void test_out_without_pixels(void **state)
     g_free(out);
     g_free(err);
     const char *files[] = {"summary.txt", "result.json", "result.csv"};
-    for (int i = 0; i < 3; i++) {
-        char *p = g_build_filename(dir, files[i], NULL);
-        assert_int_equal(g_remove(p), 0);
-        g_free(p);
-    }
-    assert_int_equal(g_rmdir(dir), 0); /* nothing else was written */
-    g_free(dir);
+    assert_true(rm_files(dir, files, 3)); /* nothing else was written */
 }
 
 static char *read_text(const char *dir, const char *name)
@@ -232,15 +241,9 @@ static void test_plot_where_and_labels(void **state)
     g_free(out);
     g_free(err);
     const char *files[] = {"c.png", "c.svg", "r.csv"};
-    for (int i = 0; i < 3; i++) {
-        char *p = g_build_filename(dir, files[i], NULL);
-        g_remove(p);
-        g_free(p);
-    }
-    g_rmdir(dir);
+    assert_true(rm_files(dir, files, 3));
     g_free(png);
     g_free(csv);
-    g_free(dir);
 }
 
 /* result.json and result.csv say where they came from: the build, the

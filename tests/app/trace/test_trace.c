@@ -1,6 +1,8 @@
 /* test_trace.c — trace files: Chrome JSON parses and holds the spans,
- * flows and marks; Paje is time-ordered; the cap truncates with a note. */
+ * flows, marks and counters; Paje is time-ordered; the cap truncates
+ * with a note; a workload's frames are marks. */
 #include "sim/output/json.h"
+#include "sim/app/run/config.h"
 #include <math.h>
 #include "sim/app/trace/trace_file.h"
 #include <glib/gstdio.h>
@@ -109,6 +111,81 @@ static void test_chrome(void **state)
     rm_path(path);
 }
 
+/* The counter tracks derived from flows: one 64 B message in flight over
+ * [3 us, 5.00025 us). */
+static void test_counters(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".json");
+    SimTrace *tr = trc_open(path, 0, NULL);
+    emit(tr);
+    assert_true(trc_close(tr, NULL));
+    JsonNode *v = load_json(path);
+    JsonNode *evs = js_get(v, "traceEvents");
+    const double want_t[] = {0, 3, 5.00025}, want_m[] = {0, 1, 0},
+                 want_b[] = {0, 64, 0};
+    guint nm = 0, nb = 0;
+    for (guint i = 0; i < js_len(evs); i++) {
+        JsonNode *e = js_at(evs, i);
+        if (strcmp(js_str(js_get(e, "ph")), "C") != 0)
+            continue;
+        gboolean msgs = !strcmp(js_str(js_get(e, "name")), "messages in flight");
+        guint k = msgs ? nm++ : nb++;
+        assert_true(k < 3);
+        assert_true(fabs(js_num(js_get(e, "ts")) - want_t[k]) < 1e-9);
+        double val = js_num(js_get(js_get(e, "args"), msgs ? "messages" : "B"));
+        assert_true(val == (msgs ? want_m[k] : want_b[k]));
+    }
+    assert_int_equal(nm, 3);
+    assert_int_equal(nb, 3);
+    json_node_unref(v);
+    rm_path(path);
+    path = tmp_path(".paje");
+    tr = trc_open(path, 0, NULL);
+    emit(tr);
+    assert_true(trc_close(tr, NULL));
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    assert_non_null(strstr(text, "%EventDef PajeSetVariable 11\n"));
+    assert_non_null(strstr(text, "11 0.000003000000 VT_0 machine 1\n"));
+    assert_non_null(strstr(text, "11 0.000003000000 VT_1 machine 64\n"));
+    assert_non_null(strstr(text, "11 0.000005000250 VT_1 machine 0\n"));
+    g_free(text);
+    rm_path(path);
+}
+
+/* tokenring marks each frame's end: "frame 0" .. "frame 2". */
+static void test_frame_marks(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".json");
+    GError *err = NULL;
+    const char *const ov[] = {"run.frames=3", NULL};
+    CfgRun *r = cfg_run_load("configs/tokenring.yaml", ov, &err);
+    g_assert_no_error(err);
+    CfgRunOpts o = {.trace = trc_open(path, 0, NULL), .quiet = TRUE};
+    SimResult *res = cfg_run_exec(r, &o, &err);
+    g_assert_no_error(err);
+    assert_true(trc_close(o.trace, NULL));
+    JsonNode *v = load_json(path);
+    JsonNode *evs = js_get(v, "traceEvents");
+    SimTime end = 0;
+    for (guint f = 0; f < 3; f++) {
+        char name[16];
+        g_snprintf(name, sizeof name, "frame %u", f);
+        guint n;
+        JsonNode *m = find_ev(evs, "i", name, &n);
+        assert_int_equal(n, 1);
+        end += g_array_index(res->frame_times, SimTime, f);
+        assert_true(fabs(js_num(js_get(m, "ts")) - (double)end / SIM_US) <
+                    1e-6);
+    }
+    json_node_unref(v);
+    sim_result_free(res);
+    cfg_run_free(r);
+    rm_path(path);
+}
+
 static void test_cap(void **state)
 {
     (void)state;
@@ -187,6 +264,8 @@ int main(void)
         cmocka_unit_test(test_chrome),
         cmocka_unit_test(test_cap),
         cmocka_unit_test(test_paje),
+        cmocka_unit_test(test_counters),
+        cmocka_unit_test(test_frame_marks),
         cmocka_unit_test(test_bad_name),
     };
     return cmocka_run_group_tests_name("trace", tests, NULL, NULL);
