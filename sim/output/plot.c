@@ -362,7 +362,7 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
         /* categories are not a continuum: points, never joining lines */
         gboolean pts = cat || strcmp(p->style, "points") == 0;
         const char *with = bars  ? pts ? "yerrorbars" : "yerrorlines"
-                           : pts ? "points"
+                           : pts ? "points pointtype 7 pointsize 1.2"
                                  : p->style;
         g_string_append_printf(o, " with %s", with);
         g_string_append(o, " title ");

@@ -230,7 +230,7 @@ static void test_plot_where_and_labels(void **state)
     g_free(err);
     dat = read_text(dir, "c.dat");
     gp = read_text(dir, "c.gp");
-    assert_non_null(strstr(gp, ":xtic(5) with points"));
+    assert_non_null(strstr(gp, ":xtic(5) with points pointtype 7"));
     g_free(dat);
     g_free(gp);
     const char *bad[] = {"plot", csv, "--x", "n", "--y", "frame_s",
