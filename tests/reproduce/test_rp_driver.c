@@ -44,9 +44,14 @@ static gboolean failing_run(const RpContext *ctx, GPtrArray *rows, GError **err)
     return FALSE;
 }
 
-static const RpPaperOps fake = {"fake", "test only", "setup.yaml", fake_run};
-static const RpPaperOps failing = {"fake", "test only", "setup.yaml",
-                                    failing_run};
+static const RpPaperOps fake = {.name = "fake",
+                                .citation = "test only",
+                                .setup = "setup.yaml",
+                                .rows = fake_run};
+static const RpPaperOps failing = {.name = "fake",
+                                   .citation = "test only",
+                                   .setup = "setup.yaml",
+                                   .rows = failing_run};
 
 static char *tmpdir_with(const char *name, const char *text)
 {

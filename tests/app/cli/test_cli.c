@@ -181,7 +181,7 @@ static void test_out_without_pixels(void **state)
     char *dir = g_dir_make_tmp("pgsim-out-XXXXXX", NULL);
     const char *args[] = {"run", "configs/tokenring.yaml", "--out", dir, NULL};
     char *out, *err;
-    assert_int_equal(pgsim(args, &out, &err), 0);
+    assert_int_equal(test_pgsim(args, &out, &err), 0);
     assert_non_null(strstr(err, "; no frame image (this tokenring run drew "
                                 "no pixels)"));
     g_free(out);
@@ -212,7 +212,7 @@ static void test_plot_where_and_labels(void **state)
     const char *args[] = {"plot",  csv,       "--x", "n", "--y", "frame_s",
                           "--where", "scene=b", "-o", png, NULL};
     char *out, *err;
-    assert_int_equal(pgsim(args, &out, &err), 0);
+    assert_int_equal(test_pgsim(args, &out, &err), 0);
     g_free(out);
     g_free(err);
     char *dat = read_text(dir, "c.dat"), *gp = read_text(dir, "c.gp");
@@ -225,7 +225,7 @@ static void test_plot_where_and_labels(void **state)
     g_free(gp);
     const char *cat[] = {"plot", csv, "--x", "scene", "--y", "frame_s",
                          "--where", "n=2.0", "-o", png, NULL};
-    assert_int_equal(pgsim(cat, &out, &err), 0);
+    assert_int_equal(test_pgsim(cat, &out, &err), 0);
     g_free(out);
     g_free(err);
     dat = read_text(dir, "c.dat");
@@ -235,7 +235,7 @@ static void test_plot_where_and_labels(void **state)
     g_free(gp);
     const char *bad[] = {"plot", csv, "--x", "n", "--y", "frame_s",
                          "--where", "colour=red", "-o", png, NULL};
-    assert_int_equal(pgsim(bad, &out, &err), 2);
+    assert_int_equal(test_pgsim(bad, &out, &err), 2);
     assert_non_null(strstr(err, "--where colour=red: found no column "
                                 "'colour'"));
     g_free(out);
