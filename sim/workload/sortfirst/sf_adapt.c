@@ -113,7 +113,8 @@ void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
         guint gx = cell_of(a, cx, r->width), gy = cell_of(a, cy, r->height);
         gsize cell = (gsize)gy * a->grid + gx;
         a->weight[cell] += ch->polys;
-        count_cell(a, ch->master % a->procs, cell);
+        guint m = a->master ? a->master[in->chunk] : ch->master;
+        count_cell(a, m % a->procs, cell);
     }
 }
 

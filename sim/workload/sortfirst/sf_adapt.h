@@ -40,6 +40,8 @@ typedef struct {
     uint64_t *weight; /* G x G polygons per cell, row-major */
     uint64_t *added;  /* per processor: instances its masters added */
     uint64_t *nz;     /* per processor: distinct cells its masters added to */
+    const guint *master; /* per chunk: its master now (borrowed); NULL:
+                            the database's fixed masters */
     guint8 *mark;     /* P x G^2 bits: cell touched by processor p */
     double *factor;   /* G x G cost per polygon (calibrated), else 1 */
     gboolean calibrated;

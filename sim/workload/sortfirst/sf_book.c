@@ -6,12 +6,15 @@
 #include <string.h>
 
 const char *const wl_sf_bookkeeping_names[] = {"minset", "maxset", NULL};
+const char *const wl_sf_migration_names[] = {"push", "pull", NULL};
+const char *const wl_sf_mastership_names[] = {"fixed", "dynamic", NULL};
 
 void wl_sf_batch_init(WlSfBatch *bt)
 {
     memset(bt, 0, sizeof *bt);
     bt->chunks = g_array_new(FALSE, FALSE, sizeof(guint));
     bt->insts = g_array_new(FALSE, FALSE, sizeof(guint));
+    bt->masters = g_array_new(FALSE, FALSE, sizeof(guint));
 }
 
 void wl_sf_batch_clear(WlSfBatch *bt)
@@ -20,6 +23,8 @@ void wl_sf_batch_clear(WlSfBatch *bt)
         g_array_unref(bt->chunks);
     if (bt->insts)
         g_array_unref(bt->insts);
+    if (bt->masters)
+        g_array_unref(bt->masters);
     memset(bt, 0, sizeof *bt);
 }
 
@@ -27,6 +32,7 @@ static void batch_reset(WlSfBatch *bt, guint src, guint dst, const WlSfSizes *s)
 {
     g_array_set_size(bt->chunks, 0);
     g_array_set_size(bt->insts, 0);
+    g_array_set_size(bt->masters, 0);
     bt->src = src;
     bt->dst = dst;
     bt->polys = 0;
@@ -47,8 +53,10 @@ WlSfBook *wl_sf_book_new(const WlSfDb *db, const WlSfRegions *regions,
     b->master_inst = g_new0(uint64_t, ni + 1);
     b->held_data = g_new0(uint64_t, nc + 1);
     b->master_data = g_new0(uint64_t, nc + 1);
+    b->master = g_new0(guint, nc + 1);
     for (guint c = 0; c < nc; c++) {
         const WlSfChunk *ch = wl_sf_chunk(db, c);
+        b->master[c] = ch->master;
         uint64_t m = wl_sf_bit(ch->master);
         b->held_data[c] = b->master_data[c] = m;
         for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
@@ -66,7 +74,15 @@ void wl_sf_book_free(WlSfBook *b)
     g_free(b->master_inst);
     g_free(b->held_data);
     g_free(b->master_data);
+    g_free(b->master);
     g_free(b);
+}
+
+void wl_sf_book_set_policy(WlSfBook *b, WlSfMigration mig, WlSfMastership ms)
+{
+    g_assert(mig == WL_SF_PUSH || (b->bk == WL_SF_MINSET && ms == WL_SF_FIXED));
+    b->mig = mig;
+    b->ms = ms;
 }
 
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj)
@@ -111,6 +127,31 @@ static guint first_in(const WlSfBook *b, const WlSfChunk *ch, guint q)
     return 0;
 }
 
+/* Dynamic mastership: chunk c's master p needs none of its instances
+ * (uni: the regions that do, held: processors holding a copy before
+ * this frame's sends); mastership goes to the lowest-numbered holder
+ * needing it, else the lowest needing it, and p deletes its copy. */
+static gboolean hand_over(WlSfBook *b, guint p, guint c, uint64_t uni,
+                          uint64_t held, WlSfBatch *out, WlSfBookWork *w)
+{
+    if (b->ms != WL_SF_DYNAMIC || !uni || (uni & wl_sf_bit(p)))
+        return FALSE;
+    const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+    uint64_t pick = (uni & held) ? uni & held : uni;
+    WlSfBatch *bt = &out[__builtin_ctzll(pick)];
+    uint64_t vec = (b->regions.procs + 7) / 8;
+    g_array_append_val(bt->masters, c);
+    bt->bytes += b->sizes.mastership;
+    if (b->bk == WL_SF_MAXSET)
+        bt->bytes += ch->n_inst * (b->sizes.instance + vec);
+    b->held_data[c] &= ~wl_sf_bit(p);
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+        b->held_inst[i] &= ~wl_sf_bit(p);
+    w->handed++;
+    w->deleted_chunks++;
+    return TRUE;
+}
+
 static void master_minset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
                           WlSfBookWork *w)
 {
@@ -119,18 +160,21 @@ static void master_minset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
     for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
         uni |= b->need[i];
     w->master_boxes += ch->n_inst;
-    uint64_t fresh = uni & ~b->master_data[c] & ~wl_sf_bit(p);
+    uint64_t held = b->master_data[c];
+    uint64_t fresh = uni & ~held & ~wl_sf_bit(p);
     for (guint q = 0; fresh; q++, fresh >>= 1)
         if (fresh & 1)
             send_chunk(b, &out[q], c, first_in(b, ch, q), w);
     b->master_data[c] = uni | wl_sf_bit(p);
+    if (hand_over(b, p, c, uni, held, out, w))
+        b->master_data[c] = uni;
 }
 
 static void master_maxset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
                           WlSfBookWork *w)
 {
     const WlSfChunk *ch = wl_sf_chunk(b->db, c);
-    uint64_t uni = 0, me = wl_sf_bit(p);
+    uint64_t uni = 0, me = wl_sf_bit(p), held = b->master_data[c];
     for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
         uint64_t fresh = b->need[i] & ~b->master_inst[i] & ~me;
         uni |= b->need[i];
@@ -147,6 +191,11 @@ static void master_maxset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
     }
     w->master_boxes += ch->n_inst;
     b->master_data[c] = uni | me;
+    if (!hand_over(b, p, c, uni, held, out, w))
+        return;
+    b->master_data[c] = uni;
+    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+        b->master_inst[i] &= ~me;
 }
 
 static void slave_minset(WlSfBook *b, guint p, guint c, WlSfBookWork *w)
@@ -181,11 +230,10 @@ void wl_sf_book_sort(WlSfBook *b, guint p, WlSfBatch *out, WlSfBookWork *w)
     for (guint q = 0; q < b->regions.procs; q++)
         batch_reset(&out[q], p, q, &b->sizes);
     for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
-        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
         gboolean minset = b->bk == WL_SF_MINSET;
-        if (ch->master == p && minset)
+        if (b->master[c] == p && minset)
             master_minset(b, p, c, out, w);
-        else if (ch->master == p)
+        else if (b->master[c] == p)
             master_maxset(b, p, c, out, w);
         else if (minset && (b->held_data[c] & wl_sf_bit(p)))
             slave_minset(b, p, c, w);
@@ -195,6 +243,57 @@ void wl_sf_book_sort(WlSfBook *b, guint p, WlSfBatch *out, WlSfBookWork *w)
     for (guint q = 0; q < b->regions.procs; q++)
         if (q != p)
             w->sent_bytes += out[q].bytes;
+}
+
+/* ---- pull (§3.3.2.2) ------------------------------------------------------ */
+
+void wl_sf_book_pull_sort(WlSfBook *b, guint p, WlSfBatch *out,
+                          WlSfBookWork *w)
+{
+    g_assert(b->mig == WL_SF_PULL);
+    uint64_t me = wl_sf_bit(p);
+    for (guint q = 0; q < b->regions.procs; q++)
+        batch_reset(&out[q], p, q, &b->sizes);
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        uint64_t any = 0;
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+            any |= b->need[i] & me;
+        gboolean held = (b->held_data[c] & me) != 0;
+        if (b->master[c] == p)
+            w->master_boxes += ch->n_inst;
+        else if (held)
+            w->slave_boxes += ch->n_inst;
+        else
+            w->probe_boxes += ch->n_inst;
+        if (b->master[c] == p)
+            continue;
+        if (held && !any) {
+            b->held_data[c] &= ~me;
+            w->deleted_chunks++;
+        } else if (!held && any) {
+            WlSfBatch *bt = &out[b->master[c]];
+            g_array_append_val(bt->chunks, c);
+            bt->bytes += b->sizes.request;
+            w->requested++;
+        }
+    }
+    for (guint q = 0; q < b->regions.procs; q++)
+        if (q != p && out[q].chunks->len)
+            w->sent_bytes += out[q].bytes;
+}
+
+void wl_sf_book_serve(WlSfBook *b, const WlSfBatch *req, WlSfBatch *reply,
+                      WlSfBookWork *w)
+{
+    batch_reset(reply, req->dst, req->src, &b->sizes);
+    for (guint k = 0; k < req->chunks->len; k++) {
+        guint c = g_array_index(req->chunks, guint, k);
+        g_assert(b->master[c] == req->dst);
+        send_chunk(b, reply, c, first_in(b, wl_sf_chunk(b->db, c), req->src),
+                   w);
+    }
+    w->sent_bytes += reply->bytes;
 }
 
 /* ---- receiving and rendering --------------------------------------------- */
@@ -208,6 +307,19 @@ void wl_sf_book_receive(WlSfBook *b, const WlSfBatch *in, WlSfBookWork *w)
         b->held_data[c] |= me;
         w->recv_chunks++;
         w->recv_polys += wl_sf_chunk(b->db, c)->polys;
+    }
+    for (guint k = 0; k < in->masters->len; k++) {
+        guint c = g_array_index(in->masters, guint, k);
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        g_assert(b->held_data[c] & me);
+        b->master[c] = in->dst;
+        b->master_data[c] |= me;
+        for (guint i = ch->inst_first;
+             b->bk == WL_SF_MAXSET && i < ch->inst_first + ch->n_inst; i++)
+        {
+            b->held_inst[i] |= me; /* the master holds every pointer */
+            b->master_inst[i] |= me;
+        }
     }
     if (b->bk == WL_SF_MINSET)
         return;
@@ -255,7 +367,7 @@ void wl_sf_book_render_set(WlSfBook *b, guint p, const GArray *fresh,
         const WlSfChunk *ch = wl_sf_chunk(b->db, c);
         if (!(b->held_data[c] & me))
             continue;
-        if (maxset && ch->master != p && !any_pointer(b, ch, me)) {
+        if (maxset && b->master[c] != p && !any_pointer(b, ch, me)) {
             b->held_data[c] &= ~me; /* reference count 0 (§3.4.3) */
             w->deleted_chunks++;
             continue;
@@ -274,7 +386,7 @@ uint64_t wl_sf_book_memory(const WlSfBook *b, guint p)
     gboolean maxset = b->bk == WL_SF_MAXSET;
     for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
         const WlSfChunk *ch = wl_sf_chunk(b->db, c);
-        if (ch->master == p)
+        if (b->master[c] == p)
             bytes += vec * (1 + (maxset ? ch->n_inst : 0));
         if (!(b->held_data[c] & me))
             continue;

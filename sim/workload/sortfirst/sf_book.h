@@ -29,6 +29,24 @@
  * box overlaps the region (need).  Invariant after the arrivals of a
  * frame: need[i] bit q => q holds chunk(i) (and, max-set, pointer i).
  *
+ * Pull (§3.3.2.2, `migration: pull`; min-set with fixed masters only,
+ * as the paper describes it): no bit vectors; every processor
+ * transforms the box of every instance of every chunk (held or not) and
+ * cull-tests it against its own region, drops slave copies no instance
+ * needs, and sends each master a request naming the chunks it needs and
+ * lacks; the master answers with the chunks (first instance in the
+ * requester's region).
+ *
+ * Dynamic mastership (§3.3.2.1, `mastership: dynamic`; push): when no
+ * instance of a chunk falls in its master's region but some falls in
+ * another's, mastership passes, with the copy vector (and, max-set, all
+ * instance pointers and their vectors), to the lowest-numbered processor
+ * already holding a copy that needs it (else the lowest needing it),
+ * and the old master deletes its copy: one copy where the chunk is
+ * rendered instead of two.  A chunk that leaves the screen stays with
+ * its last master: the off-screen accumulation the paper warns of.
+ * The new master takes over on arrival (its next frame's sort).
+ *
  * Work is counted, not timed: box transforms of master, slave and newly
  * received chunks (the counts of seed 000 Charts 4 and 5), items sent,
  * received and deleted.  Cost per frame O(P x chunk instances).
@@ -40,8 +58,12 @@
 #include "sim/workload/sortfirst/sf_regions.h"
 
 typedef enum { WL_SF_MINSET, WL_SF_MAXSET } WlSfBookkeeping;
+typedef enum { WL_SF_PUSH, WL_SF_PULL } WlSfMigration;
+typedef enum { WL_SF_FIXED, WL_SF_DYNAMIC } WlSfMastership;
 
 extern const char *const wl_sf_bookkeeping_names[]; /* minset, maxset */
+extern const char *const wl_sf_migration_names[];   /* push, pull */
+extern const char *const wl_sf_mastership_names[];  /* fixed, dynamic */
 
 /* Message sizes in bytes (workload YAML). */
 typedef struct {
@@ -50,6 +72,8 @@ typedef struct {
     uint64_t triangle; /* per polygon of a chunk's data */
     uint64_t instance; /* per instance pointer (max-set) */
     uint64_t cell;     /* per cell of an adaptive work grid */
+    uint64_t request;  /* per chunk id in a pull request */
+    uint64_t mastership; /* per chunk handed over: id, copy vector */
 } WlSfSizes;
 
 /* What one processor sends one other processor in a frame. */
@@ -58,6 +82,7 @@ typedef struct {
     GArray *chunks; /* guint: chunk data */
     GArray *insts;  /* guint: max-set instance pointers; min-set: the
                        first instance of each chunk in dst's region */
+    GArray *masters; /* guint: chunks whose mastership passes to dst */
     uint64_t polys; /* polygons of the chunks' data */
     uint64_t bytes;
 } WlSfBatch;
@@ -68,6 +93,9 @@ typedef struct {
     uint64_t sent_chunks, sent_polys, sent_insts, sent_bytes;
     uint64_t recv_chunks, recv_polys, recv_insts;
     uint64_t deleted_chunks;
+    uint64_t probe_boxes; /* pull: boxes of chunks not held */
+    uint64_t requested;   /* pull: chunks asked for */
+    uint64_t handed;      /* dynamic: masterships passed on */
     uint64_t held_chunks, held_polys, held_insts; /* after the frame */
 } WlSfBookWork;
 
@@ -76,6 +104,9 @@ typedef struct {
     WlSfRegions regions;
     WlSfBookkeeping bk;
     WlSfSizes sizes;
+    WlSfMigration mig;
+    WlSfMastership ms;
+    guint *master;         /* per chunk: its master now */
     uint64_t *need;        /* per instance: regions overlapped (frame) */
     uint64_t *held_data;   /* per chunk */
     uint64_t *held_inst;   /* per instance (max-set) */
@@ -88,6 +119,14 @@ typedef struct {
 WlSfBook *wl_sf_book_new(const WlSfDb *db, const WlSfRegions *regions,
                          WlSfBookkeeping bk, const WlSfSizes *sizes);
 void wl_sf_book_free(WlSfBook *b);
+/* Pull or push, fixed or dynamic masters (push and fixed by default);
+ * pull needs min-set and fixed masters. */
+void wl_sf_book_set_policy(WlSfBook *b, WlSfMigration mig,
+                           WlSfMastership ms);
+static inline guint wl_sf_book_master(const WlSfBook *b, guint c)
+{
+    return b->master[c];
+}
 
 /* need[] for a frame's view-projection (what the bucket sorts compute). */
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj);
@@ -95,6 +134,14 @@ void wl_sf_book_need(WlSfBook *b, Mat4 view_proj);
  * deletions; fills out[q] (an array of P batches, each cleared first)
  * with what p sends q; work into *w. */
 void wl_sf_book_sort(WlSfBook *b, guint p, WlSfBatch *out, WlSfBookWork *w);
+/* Processor p's pull pass: cull tests of every chunk instance against
+ * p's region, deletions; fills out[m] with the requests to master m. */
+void wl_sf_book_pull_sort(WlSfBook *b, guint p, WlSfBatch *out,
+                          WlSfBookWork *w);
+/* A master answers request `req`: reply (reset first) carries the
+ * chunks; the master's work into *w. */
+void wl_sf_book_serve(WlSfBook *b, const WlSfBatch *req, WlSfBatch *reply,
+                      WlSfBookWork *w);
 /* A batch arrives at its destination. */
 void wl_sf_book_receive(WlSfBook *b, const WlSfBatch *in, WlSfBookWork *w);
 /* Processor p after its arrivals: max-set drops unreferenced copies;

@@ -19,6 +19,8 @@ typedef struct {
     WlSfBookWork w;
     GArray *fresh; /* chunks received this frame */
     guint received;
+    guint expect; /* pull: answers awaited (masters asked) */
+    WlSfBatch *reply; /* pull: P batches, its answers to each */
     gboolean sorted;
     RastCounters rc; /* raster work (vertices, primitives ...) */
     uint64_t spans, pixels, polys;
@@ -26,7 +28,6 @@ typedef struct {
     SimTime region_work; /* unpack + render: the work its region sets */
     guint grids;         /* estimate: grids received (current) */
     gboolean estimated;  /* estimate: own grid done (current) */
-    uint64_t own_boxes;  /* instances of its master chunks */
 } Proc;
 
 struct WlSfRun {
@@ -231,7 +232,8 @@ static void render(WlSfRun *r, Proc *pr)
 
 static void maybe_render(WlSfRun *r, Proc *pr)
 {
-    if (pr->sorted && pr->received + 1 == r->s.procs)
+    guint want = r->s.mig == WL_SF_PULL ? pr->expect : r->s.procs - 1;
+    if (pr->sorted && pr->received == want)
         render(r, pr);
 }
 
@@ -247,11 +249,54 @@ static void arrive(NetNet *net, const NetDelivery *d, void *ctx)
     maybe_render(r, pr);
 }
 
+/* ---- pull: requests and answers (sf_book.h) ------------------------------ */
+
+static void serve_done(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    WlSfRun *r = ctx;
+    WlSfBatch *reply = arg;
+    net_send(r->net, mach_proc_id(r->procs[reply->src].proc),
+             mach_proc_id(r->procs[reply->dst].proc), reply->bytes, reply,
+             arrive, r);
+}
+
+/* A request reaches its master, which packs the answer when free. */
+static void request_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    WlSfRun *r = ctx;
+    const WlSfBatch *req = d->payload;
+    Proc *m = &r->procs[req->dst];
+    WlSfBatch *reply = &m->reply[req->src];
+    wl_sf_book_serve(r->book, req, reply, &m->w);
+    mach_proc_compute(m->proc, mul(r->c.chunk_pack, reply->polys), r->ph_pack,
+                      serve_done, r, reply);
+}
+
+static void pull_requests(WlSfRun *r, Proc *pr)
+{
+    for (guint q = 0; q < r->s.procs; q++) {
+        WlSfBatch *bt = &pr->out[q];
+        if (q == pr->p || !bt->chunks->len)
+            continue;
+        pr->expect++;
+        net_send(r->net, mach_proc_id(pr->proc), mach_proc_id(r->procs[q].proc),
+                 bt->bytes, bt, request_arrive, r);
+    }
+}
+
 static void sort_done(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     WlSfRun *r = ctx;
     Proc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
+    if (r->s.mig == WL_SF_PULL) {
+        pull_requests(r, pr);
+        pr->sorted = TRUE;
+        maybe_render(r, pr);
+        return;
+    }
     for (guint q = 0; q < r->s.procs; q++) {
         if (q == pr->p)
             continue;
@@ -268,10 +313,14 @@ static void sort(WlSfRun *r, Proc *pr)
     memset(&pr->w, 0, sizeof pr->w);
     memset(&pr->rc, 0, sizeof pr->rc);
     g_array_set_size(pr->fresh, 0);
-    pr->received = 0;
+    pr->received = pr->expect = 0;
     pr->sorted = FALSE;
-    wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
-    SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes);
+    if (r->s.mig == WL_SF_PULL)
+        wl_sf_book_pull_sort(r->book, pr->p, pr->out, &pr->w);
+    else
+        wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
+    SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes +
+                                pr->w.probe_boxes);
     if (r->adapt && r->s.current) /* master boxes done by the estimate */
         t = box_cost(r, pr->w.slave_boxes);
     else if (r->adapt) /* an extrapolation: one more cell's work */
@@ -326,11 +375,21 @@ static void estimate_done(SimEngine *eng, void *ctx, void *arg)
     maybe_split(r, pr);
 }
 
+/* Instances of the chunks p masters now. */
+static uint64_t own_boxes(const WlSfRun *r, guint p)
+{
+    uint64_t n = 0;
+    for (guint c = 0; c < wl_sf_n_chunks(r->db); c++)
+        if (wl_sf_book_master(r->book, c) == p)
+            n += wl_sf_chunk(r->db, c)->n_inst;
+    return n;
+}
+
 static void estimate(WlSfRun *r, Proc *pr)
 {
     pr->grids = 0;
     pr->estimated = FALSE;
-    SimTime t = add(box_cost(r, pr->own_boxes),
+    SimTime t = add(box_cost(r, own_boxes(r, pr->p)),
                     mul(r->c.grid_cell, r->adapt->added[pr->p]));
     mach_proc_compute(pr->proc, t, r->ph_estimate, estimate_done, r,
                       GUINT_TO_POINTER(pr->p));
@@ -407,6 +466,31 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
     }
 }
 
+/* Where the master copies are: per processor its master polygons and
+ * those with no instance in any region (off-screen, seed 000 §3.3.2.1). */
+static void masters(const WlSfRun *r, WlSfFrameStats *st)
+{
+    uint64_t poly[WL_SF_MAX_PROCS] = {0}, off[WL_SF_MAX_PROCS] = {0};
+    double total = 0, max = 0;
+    for (guint c = 0; c < wl_sf_n_chunks(r->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(r->db, c);
+        guint m = wl_sf_book_master(r->book, c);
+        uint64_t any = 0;
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
+            any |= r->book->need[i];
+        poly[m] += ch->polys;
+        off[m] += any ? 0 : ch->polys;
+    }
+    for (guint p = 0; p < r->s.procs; p++) {
+        total += (double)poly[p];
+        max = MAX(max, (double)poly[p]);
+        st->offscreen_max = MAX(st->offscreen_max, off[p]);
+        st->offscreen_total += off[p];
+        st->held_polys += r->procs[p].w.held_polys;
+    }
+    st->master_imbalance = max_over_mean(max, total, r->s.procs);
+}
+
 static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
 {
     uint64_t total = 0;
@@ -420,7 +504,10 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
         st->master_boxes += pr->w.master_boxes;
         st->slave_boxes += pr->w.slave_boxes;
         st->new_boxes += pr->w.new_boxes;
+        st->probe_boxes += pr->w.probe_boxes;
         st->deleted_chunks += pr->w.deleted_chunks;
+        st->requests += pr->w.requested;
+        st->handovers += pr->w.handed;
         st->pixels += pr->pixels;
         st->load_max = MAX(st->load_max, pr->polys);
         st->load_min = MIN(st->load_min, pr->polys);
@@ -428,6 +515,12 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
         total += pr->polys;
     }
     st->messages = (uint64_t)r->s.procs * (r->s.procs - 1);
+    if (r->s.mig == WL_SF_PULL) {
+        st->messages = 0;
+        for (guint p = 0; p < r->s.procs; p++)
+            st->messages += 2 * r->procs[p].expect;
+    }
+    masters(r, st);
     st->polys_rendered = total;
     st->poly_imbalance =
         max_over_mean((double)st->load_max, (double)total, r->s.procs);
@@ -552,8 +645,12 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->c = *c;
     wl_sf_regions_init(&r->regions, s->procs, s->resolution, s->resolution);
     r->book = wl_sf_book_new(db, &r->regions, s->bk, &s->sizes);
-    if (s->adaptive)
+    wl_sf_book_set_policy(r->book, s->mig, s->ms);
+    g_assert(!s->adaptive || s->mig == WL_SF_PUSH);
+    if (s->adaptive) {
         r->adapt = wl_sf_adapt_new(s->grid, s->procs);
+        r->adapt->master = r->book->master;
+    }
     if (s->adaptive && s->predict && !s->current)
         wl_sf_adapt_predict(r->adapt, wl_sf_n_insts(db));
     r->procs = g_new0(Proc, s->procs);
@@ -566,9 +663,9 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
         for (guint q = 0; q < s->procs; q++)
             wl_sf_batch_init(&pr->out[q]);
         pr->fresh = g_array_new(FALSE, FALSE, sizeof(guint));
-        for (guint c = 0; c < wl_sf_n_chunks(db); c++)
-            if (wl_sf_chunk(db, c)->master == p)
-                pr->own_boxes += wl_sf_chunk(db, c)->n_inst;
+        pr->reply = g_new0(WlSfBatch, s->procs);
+        for (guint q = 0; q < s->procs; q++)
+            wl_sf_batch_init(&pr->reply[q]);
     }
     r->zb = rast_zbuffer_new(s->resolution, s->resolution);
     r->serial = rast_zbuffer_new(s->resolution, s->resolution);
@@ -591,9 +688,12 @@ void wl_sf_run_free(WlSfRun *r)
     if (!r)
         return;
     for (guint p = 0; p < r->s.procs; p++) {
-        for (guint q = 0; q < r->s.procs; q++)
+        for (guint q = 0; q < r->s.procs; q++) {
             wl_sf_batch_clear(&r->procs[p].out[q]);
+            wl_sf_batch_clear(&r->procs[p].reply[q]);
+        }
         g_free(r->procs[p].out);
+        g_free(r->procs[p].reply);
         g_array_unref(r->procs[p].fresh);
     }
     g_free(r->procs);

@@ -39,6 +39,16 @@
  * polygon of the processor that owned it (sf_adapt.h), the figures
  * riding 8 B a message.
  *
+ * With pull migration (WlSfSetup.mig, sf_book.h) the sort pass is the
+ * pull pass (8 x transform_vertex per box of every chunk instance, held
+ * or not); then each processor sends a request only to the masters it
+ * needs chunks from (bytes.request per chunk) and renders when every
+ * answer is in; a master serves a request when it arrives, behind the
+ * work it has already queued (no interrupt is modelled: FIFO), packing
+ * the chunks (chunk_pack per polygon, phase `pack`) before the answer
+ * goes out.  Dynamic mastership (WlSfSetup.ms) rides on the push
+ * exchange (bytes.mastership per chunk handed over).
+ *
  * The frame ends when every processor has rendered (the frame-buffer
  * read-out is not modelled); the next frame then starts.  The regions'
  * pixels land in one frame z-buffer: with `check_image` it is compared
@@ -70,6 +80,8 @@ typedef struct {
     guint procs;
     int resolution; /* N x N screen */
     WlSfBookkeeping bk;
+    WlSfMigration mig;  /* push | pull (pull: min-set, fixed, static) */
+    WlSfMastership ms;  /* fixed | dynamic (push only) */
     WlSfSizes sizes;
     gboolean cull_back, check_image;
     gboolean adaptive; /* regions re-split each frame (sf_adapt.h) */
@@ -87,6 +99,7 @@ typedef struct {
     uint64_t migrated_chunks, migrated_polys, migrated_insts;
     uint64_t migrated_bytes, messages;
     uint64_t master_boxes, slave_boxes, new_boxes, deleted_chunks;
+    uint64_t probe_boxes; /* pull: boxes of chunks not held */
     uint64_t polys_rendered;     /* polygons transformed for rendering */
     uint64_t load_max, load_min; /* polygons rendered per processor */
     double poly_imbalance;       /* max / mean polygons rendered */
@@ -100,6 +113,14 @@ typedef struct {
     double box_side;             /* Σ over them: √ screen box area, px */
     uint64_t pixels;             /* pixels z-buffered in the regions */
     uint64_t peak_memory;        /* largest processor's store, bytes */
+    uint64_t requests;           /* pull: chunks requested */
+    uint64_t handovers;          /* dynamic: masterships passed on */
+    uint64_t held_polys;         /* Σ over processors of polygons held */
+    double master_imbalance;     /* max / mean master polygons */
+    uint64_t offscreen_max;      /* most off-screen master polygons on
+                                    one processor (no instance in any
+                                    region) */
+    uint64_t offscreen_total;    /* off-screen master polygons, all */
     double utilisation;          /* busy / (P x frame time) */
     gboolean image_checked, image_ok;
 } WlSfFrameStats;

@@ -7,6 +7,8 @@
  *     processors: 16         # P <= 64 and <= the machine's `node` count
  *     granularity: 12        # primitives per chunk (§3.2; §4.1: 1 5 12 26)
  *     bookkeeping: maxset    # minset (§3.3) | maxset (§3.4)
+ *     migration: push        # push (§3.3.2.1) | pull (§3.3.2.2, minset)
+ *     mastership: fixed      # fixed | dynamic (§3.3.2.1, push)
  *     chunking: sorted       # sorted | unsorted | partially_sorted (§4.1)
  *     regions: static        # static grid | adaptive (sf_adapt.h)
  *     grid: 32               # G x G work grid of adaptive regions
@@ -17,7 +19,7 @@
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
  *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B,
- *             cell: 4 B}
+ *             cell: 4 B, request: 8 B, mastership: 16 B}
  *     frame_log: frames.csv  # optional per-frame figures (default under
  *                            # `pgsim run --out DIR`: DIR/sortfirst_frames.csv)
  *
@@ -42,10 +44,12 @@
 
 static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 {
-    *z = (WlSfSizes){64, 40, 36, 8, 4};
+    *z = (WlSfSizes){64, 40, 36, 8, 4, 8, 16};
     const CfgNode *n;
     if (!cfg_get_map(sec, "bytes", FALSE,
-                     "a map {message, chunk, triangle, instance, cell} of sizes", &n,
+                     "a map {message, chunk, triangle, instance, cell, "
+                     "request, mastership} of sizes",
+                     &n,
                      err))
         return FALSE;
     if (!n)
@@ -54,12 +58,49 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
            cfg_get_size(n, "chunk", FALSE, &z->chunk, err) &&
            cfg_get_size(n, "triangle", FALSE, &z->triangle, err) &&
            cfg_get_size(n, "instance", FALSE, &z->instance, err) &&
-           cfg_get_size(n, "cell", FALSE, &z->cell, err);
+           cfg_get_size(n, "cell", FALSE, &z->cell, err) &&
+           cfg_get_size(n, "request", FALSE, &z->request, err) &&
+           cfg_get_size(n, "mastership", FALSE, &z->mastership, err);
 }
 
 static const char *const region_names[] = {"static", "adaptive", NULL};
 static const char *const estimate_names[] = {"previous", "current",
                                              "predicted", NULL};
+
+/* Pull asks a known master for what it lacks (seed 000 §3.3.2.2): the
+ * paper describes it for the min-set with fixed masters, and the
+ * adaptive estimate rides on push's all-to-all exchange. */
+static gboolean check_pull(const CfgNode *sec, const WlSfSetup *s,
+                           GError **err)
+{
+    const char *exp = NULL;
+    if (s->mig != WL_SF_PULL)
+        return TRUE;
+    if (s->bk != WL_SF_MINSET)
+        exp = "bookkeeping: minset (seed 000 §3.3.2.2 pulls min-set chunks)";
+    else if (s->ms != WL_SF_FIXED)
+        exp = "mastership: fixed (a pull asks a known, fixed master)";
+    else if (s->adaptive)
+        exp = "regions: static (the adaptive estimate rides on the push "
+              "exchange)";
+    if (!exp)
+        return TRUE;
+    cfg_error(err, cfg_get(sec, "migration"), "migration: pull", exp);
+    return FALSE;
+}
+
+static gboolean parse_policy(const CfgNode *sec, WlSfSetup *s, GError **err)
+{
+    int mig = WL_SF_PUSH, ms = WL_SF_FIXED;
+    if (!cfg_get_enum(sec, "migration", FALSE, wl_sf_migration_names, &mig,
+                      err) ||
+        !cfg_get_enum(sec, "mastership", FALSE, wl_sf_mastership_names, &ms,
+                      err))
+        return FALSE;
+    s->mig = (WlSfMigration)mig;
+    s->ms = (WlSfMastership)ms;
+    return check_pull(sec, s, err);
+}
 
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
@@ -77,7 +118,7 @@ static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
     p->setup.adaptive = rg == 1;
     p->setup.bk = (WlSfBookkeeping)bk;
     p->chunking = (WlSfChunking)ch;
-    return TRUE;
+    return parse_policy(sec, &p->setup, err);
 }
 
 /* The grid's cells must be at least a pixel. */
@@ -157,6 +198,7 @@ typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
     double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
     double est_bytes, box_side, split_imbalance;
+    double probe, messages, requests, handovers, held, master_imb, off_max, off_total;
     uint64_t onscreen, regions, peak;
     gboolean checked, image_ok;
 } Sums;
@@ -185,6 +227,14 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->poly_imbalance += s->poly_imbalance;
         m->est_bytes += s->estimate_bytes;
         m->split_imbalance += s->split_imbalance;
+        m->requests += s->requests;
+        m->probe += s->probe_boxes;
+        m->messages += s->messages;
+        m->handovers += s->handovers;
+        m->held += s->held_polys;
+        m->master_imb += s->master_imbalance;
+        m->off_max += s->offscreen_max;
+        m->off_total += s->offscreen_total;
         m->util += s->utilisation;
         m->frame_ms += sim_time_to_ms(s->end - s->start);
         m->onscreen += s->onscreen_insts;
@@ -225,8 +275,11 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
     set(out, "slave_boxes_per_frame", m.slave / n, "");
     set(out, "new_boxes_per_frame", m.fresh / n, "");
     set(out, "polygons_rendered_per_frame", m.rendered / n, "");
+    if (s->mig == WL_SF_PULL)
+        set(out, "probe_boxes_per_frame", m.probe / n, "");
     set(out, "transforms_per_frame",
-        (m.master + m.slave + m.fresh + m.rendered) / n, "");
+        (m.master + m.slave + m.fresh + m.probe + m.rendered) / n, "");
+    set(out, "messages_per_frame", m.messages / n, "");
     set(out, "chunk_overlap", m.onscreen ? (double)m.regions / m.onscreen : 0,
         "");
     /* mean box side over the mean region side √(W H / P) */
@@ -240,6 +293,16 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
         set(out, "estimate_bytes_per_frame", m.est_bytes / n, "B");
         set(out, "split_imbalance", m.split_imbalance / n, "");
     }
+    if (s->mig == WL_SF_PULL)
+        set(out, "requests_per_frame", m.requests / n, "");
+    if (s->ms == WL_SF_DYNAMIC)
+        set(out, "handovers_per_frame", m.handovers / n, "");
+    /* copies: polygons held over the min-set's (seed 000 §3.3.2.1: two
+     * with fixed masters, about one with dynamic) */
+    set(out, "copies", m.held / n / (double)db->min_prims, "");
+    set(out, "master_polygon_imbalance", m.master_imb / n, "");
+    set(out, "offscreen_master_polygons_max", m.off_max / n, "");
+    set(out, "offscreen_master_polygons", m.off_total / n, "");
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
     if (m.checked)

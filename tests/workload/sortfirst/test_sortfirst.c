@@ -31,24 +31,33 @@ static const char *small =
     "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
     "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
 
-static SimResult *run_cfg_out(const char *text, const char *override,
+/* Runs `text` with the NULL-terminated overrides (may be NULL). */
+static SimResult *run_cfg_out(const char *text, const char *const *overrides,
                               int frames, const char *out_dir, gboolean all,
                               GError **err);
 
 static SimResult *run_cfg(const char *text, const char *override, int frames,
                           GError **err)
 {
-    return run_cfg_out(text, override, frames, NULL, FALSE, err);
+    const char *const o[] = {override, NULL};
+    return run_cfg_out(text, o, frames, NULL, FALSE, err);
 }
 
-static SimResult *run_cfg_out(const char *text, const char *override,
+/* `small`, 6 frames, with two overrides. */
+static SimResult *run_cfg_set2(const char *a, const char *b, GError **err)
+{
+    const char *const o[] = {a, b, NULL};
+    return run_cfg_out(small, o, 6, NULL, FALSE, err);
+}
+
+static SimResult *run_cfg_out(const char *text, const char *const *overrides,
                               int frames, const char *out_dir, gboolean all,
                               GError **err)
 {
     CfgNode *root = cfg_load_string(text, "sf.yaml", err);
     assert_non_null(root);
-    if (override)
-        assert_true(cfg_set_override(root, override, err));
+    for (guint k = 0; overrides && overrides[k]; k++)
+        assert_true(cfg_set_override(root, overrides[k], err));
     void *p = wl_sortfirst_ops.parse(cfg_get(root, "workload"), err);
     SimResult *r = NULL;
     if (p) {
@@ -111,7 +120,7 @@ static void fixture_init(Fixture *f, guint procs, WlSfBookkeeping bk,
     f->s = (WlSfSetup){.procs = procs,
                        .resolution = 64,
                        .bk = bk,
-                       .sizes = {64, 40, 36, 8, 4},
+                       .sizes = {64, 40, 36, 8, 4, 8, 16},
                        .cull_back = TRUE};
     f->run = wl_sf_run_new(f->m, f->scene, f->db, &f->s, &c);
 }
@@ -627,8 +636,8 @@ static void test_frame_out(void **state)
     for (int all = 0; all <= 1; all++) {
         GError *e = NULL;
         char *dir = g_dir_make_tmp("pgsim-sf-XXXXXX", NULL);
-        SimResult *r = run_cfg_out(small, "workload.frame_log=/dev/null", 2,
-                                   dir, all, &e);
+        const char *const o[] = {"workload.frame_log=/dev/null", NULL};
+        SimResult *r = run_cfg_out(small, o, 2, dir, all, &e);
         assert_non_null(r);
         if (all) {
             assert_frame_png(dir, "frame-0000.png");
@@ -645,6 +654,65 @@ static void test_frame_out(void **state)
     assert_null(run_cfg_out(small, NULL, 1, "/dev/null/x", FALSE, &e));
     assert_non_null(e);
     g_clear_error(&e);
+}
+
+/* Pull (min-set) and dynamic mastership keep the image and the
+ * migration invariant (check_image every frame); pull transforms every
+ * box and asks only the masters it needs; dynamic mastership leaves
+ * about one copy and, on a narrow view where chunks leave the screen,
+ * piles off-screen masters on fewer processors than fixed masters do. */
+static void test_pull_and_dynamic(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    const char *base = "workload={type: sortfirst, processors: 4, "
+                       "granularity: 5, resolution: 64, bookkeeping: minset";
+    char *push = g_strdup_printf("%s}", base);
+    char *pull = g_strdup_printf("%s, migration: pull}", base);
+    SimResult *a = run_cfg(small, push, 6, &e), *b = run_cfg(small, pull, 6, &e);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(metric(b, "image_matches_serial") == 1);
+    assert_true(metric(b, "probe_boxes_per_frame") > 0);
+    assert_true(metric(b, "transforms_per_frame") >
+                metric(a, "transforms_per_frame"));
+    assert_true(metric(b, "requests_per_frame") > 0);
+    assert_true(metric(b, "messages_per_frame") <= 2 * 4 * 3);
+    assert_true(metric(b, "copies") == metric(a, "copies"));
+    sim_result_free(b);
+    for (int narrow = 0; narrow <= 1; narrow++) {
+        const char *scene =
+            narrow ? "scene.fov=8" : "scene.degrees_per_frame=12";
+        for (int bk = 0; bk <= 1; bk++) {
+            char *dyn = g_strdup_printf(
+                "workload={type: sortfirst, processors: 4, granularity: 5, "
+                "resolution: 64, bookkeeping: %s, mastership: dynamic}",
+                bk ? "maxset" : "minset");
+            char *fix = g_strdup_printf(
+                "workload={type: sortfirst, processors: 4, granularity: 5, "
+                "resolution: 64, bookkeeping: %s}",
+                bk ? "maxset" : "minset");
+            SimResult *d = run_cfg_set2(dyn, scene, &e);
+            SimResult *f = run_cfg_set2(fix, scene, &e);
+            assert_non_null(d);
+            assert_non_null(f);
+            assert_true(metric(d, "image_matches_serial") == 1);
+            assert_true(metric(d, "handovers_per_frame") > 0);
+            assert_true(metric(d, "copies") < metric(f, "copies"));
+            assert_true(metric(d, "master_polygon_imbalance") >
+                        metric(f, "master_polygon_imbalance"));
+            if (narrow)
+                assert_true(metric(d, "offscreen_master_polygons_max") >
+                            metric(f, "offscreen_master_polygons_max"));
+            sim_result_free(d);
+            sim_result_free(f);
+            g_free(dyn);
+            g_free(fix);
+        }
+    }
+    sim_result_free(a);
+    g_free(push);
+    g_free(pull);
 }
 
 static void expect_error(const char *override, const char *what)
@@ -669,6 +737,15 @@ static void test_errors(void **state)
     expect_error("workload.regions=dynamic", "adaptive");
     expect_error("workload.estimate=next", "current");
     expect_error("workload.grid=128", "at most the resolution");
+    expect_error("workload.migration=poll", "pull");
+    expect_error("workload.mastership=moving", "dynamic");
+    expect_error("workload.migration=pull", "bookkeeping: minset");
+    expect_error("workload={type: sortfirst, bookkeeping: minset, "
+                 "migration: pull, mastership: dynamic}",
+                 "mastership: fixed");
+    expect_error("workload={type: sortfirst, bookkeeping: minset, "
+                 "migration: pull, regions: adaptive}",
+                 "regions: static");
     expect_error("scene={generator: teapots, count: 1}",
                  "without a structure database");
 }
@@ -687,6 +764,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_predict),
         cmocka_unit_test(test_adaptive_beats_static),
         cmocka_unit_test(test_frame_out),
+        cmocka_unit_test(test_pull_and_dynamic),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
