@@ -5,7 +5,7 @@
 # libFuzzer runtime); make test never needs clang.
 set -u
 PKGS="build-essential pkg-config libglib2.0-dev libyaml-dev libcmocka-dev \
-libpng-dev libjson-glib-dev gnuplot-nox libopenmpi-dev openmpi-bin"
+libpng-dev libjson-glib-dev gnuplot-nox libopenmpi-dev openmpi-bin time"
 [ "${1:-}" = fuzz ] && PKGS="clang libclang-rt-14-dev"
 missing=""
 for p in $PKGS; do

@@ -7,8 +7,9 @@
  * past), which lets it be a radix heap (Ahuja, Mehlhorn, Orlin & Tarjan,
  * "Faster algorithms for the shortest path problem", J. ACM 37(2), 1990):
  * 65 buckets of whole event records, bucket b > 0 holding the events
- * whose time first differs from `last` in bit b - 1, bucket 0 the events
- * at time `last`, in seq order.  Records are stored in the buckets (no
+ * whose time first differs from `last` in bit b - 1, bucket 0 the run:
+ * the least events in (time, seq) order (a small bucket sorted whole, or
+ * the events at time `last`).  Records are stored in the buckets (no
  * pool, no side array), so every access is sequential.
  * push O(1); pop O(1) plus amortised O(log of the time span) record moves.
  */
@@ -64,7 +65,7 @@ static inline size_t sim_evq_len(const SimEvq *q)
  * a time below the least pending one after top() has been asked costs
  * O(n) once (the engine does it only after a run stopped at a limit). */
 void sim_evq_push(SimEvq *q, SimEvKey k);
-/* Bucket 0 is empty: moves the least events into it (evq.c). */
+/* The run (bucket 0) is empty: moves the least events into it (evq.c). */
 void sim_evq_settle(SimEvq *q);
 /* The least event (borrowed until the next call); the queue must not be
  * empty. */

@@ -41,25 +41,36 @@
  */
 #include "sim/net/net_internal.h"
 #include <stdlib.h>
+#include <string.h>
+
 
 /* The fields the recomputation reads are copied from the message (path,
- * hops, bound, sequence) so that it touches one record per flow. */
+ * hops, bound, sequence), the path into the flow's own block, so that it
+ * touches one record per flow; the search's fields come first. */
 struct NetFlow {
-    NetMsg *m;
-    NetLink **path; /* m->path */
+    uint64_t mark;  /* component-search epoch */
+    NetLink **path; /* its links: a copy of m->path after pos[] */
     guint hops;     /* m->hops */
+    gboolean fixed; /* max-min scratch */
     double bw;      /* m->bw: the flow's bound */
+    double rate;    /* B/s; 0 until first computed */
     uint64_t seq;   /* m->seq */
+    NetMsg *m;
     double remaining; /* bytes still to move */
-    double rate;      /* B/s; 0 until first computed */
     double prev;      /* rate before the current recomputation */
     SimTime last;     /* when remaining was last brought up to date */
     SimTime end;      /* predicted completion at the current rate */
     guint hidx;       /* index in the end heap; G_MAXUINT if not in it */
-    gboolean fixed;   /* max-min scratch */
-    uint64_t mark;    /* component-search epoch */
-    guint pos[];      /* index of this flow in each path link's array */
+    guint pos[];      /* index of this flow in each path link's array;
+                         then the path copy */
 };
+
+/* Bytes of a flow's block: the record, pos[] (padded to 8) and the path. */
+static size_t flow_bytes(guint hops)
+{
+    return sizeof(NetFlow) + ((hops * sizeof(guint) + 7) & ~(size_t)7) +
+           hops * sizeof(NetLink *);
+}
 
 typedef struct {
     double share;
@@ -457,7 +468,7 @@ static void flow_finish(NetNet *n, FlowNet *fn, NetFlow *f)
         vec_push(&fn->dirty, m->path[i]);
     }
     request_recompute(n, fn);
-    net_account(n, -(gssize)(sizeof *f + m->hops * sizeof(guint)));
+    net_account(n, -(gssize)flow_bytes(m->hops));
     g_free(f);
     net_msg_deliver(n, m);
 }
@@ -528,16 +539,18 @@ static void flow_begin(SimEngine *eng, void *ctx, void *arg)
         return;
     }
     FlowNet *fn = flow_net(n);
-    NetFlow *f = g_malloc0(sizeof *f + m->hops * sizeof(guint));
+    size_t bytes = flow_bytes(m->hops);
+    NetFlow *f = g_malloc0(bytes);
     f->m = m;
-    f->path = m->path;
+    f->path = (NetLink **)((char *)f + bytes - m->hops * sizeof(NetLink *));
+    memcpy(f->path, m->path, m->hops * sizeof(NetLink *));
     f->hops = m->hops;
     f->bw = m->bw;
     f->seq = m->seq;
     f->remaining = (double)m->bytes;
     f->last = sim_now(eng);
     f->hidx = G_MAXUINT;
-    net_account(n, (gssize)(sizeof *f + m->hops * sizeof(guint)));
+    net_account(n, (gssize)bytes);
     for (guint i = 0; i < m->hops; i++) {
         link_add_flow(n, m->path[i], f, i);
         vec_push(&fn->dirty, m->path[i]);
