@@ -8,6 +8,7 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include "sim/workload/performer/pf_cull.h"
 #include "sim/workload/performer/pf_stages.h"
 #include "sim/workload/performer/pf_town.h"
 
@@ -86,12 +87,50 @@ static void test_costs_missing(void **state)
     sim_engine_free(eng);
 }
 
+/* An LOD node with three children for ranges [0, 10), [10, 20), [20, 30)
+ * about the origin, seen from distance d: the chosen child's index adds
+ * to lod_sum, and a node out of every range adds its child count. */
+static uint64_t lod_sum_at(double d)
+{
+    WlPfGraph *g = wl_pf_graph_new();
+    guint lod = wl_pf_add_node(g, g->root, WL_PF_LOD);
+    double r[4] = {0, 10, 20, 30};
+    g_array_append_vals(wl_pf_node(g, lod)->ranges, r, 4);
+    Vec3 tri[3] = {vec3(-1, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    guint gs = wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    for (int k = 0; k < 3; k++)
+        wl_pf_add_geoset(g, wl_pf_add_node(g, lod, WL_PF_GEODE), tri, 1, gs);
+    wl_pf_update_bounds(g, g->root);
+    SceneCamera c = scene_camera_default();
+    c.eye = vec3(0, 0.5, d);
+    c.target = vec3(0, 0.5, 0);
+    c.far = 1000;
+    WlPfView v = wl_pf_view(&c, 1, FALSE);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfCullStats st = {0};
+    wl_pf_cull(g, &v, dl, &st);
+    assert_int_equal(st.lods, 1);
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(g);
+    return st.lod_sum;
+}
+
+static void test_lod_sum(void **state)
+{
+    (void)state;
+    assert_int_equal(lod_sum_at(5), 0);
+    assert_int_equal(lod_sum_at(15), 1);
+    assert_int_equal(lod_sum_at(25), 2);
+    assert_int_equal(lod_sum_at(50), 3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_terrain_covers_blocks),
         cmocka_unit_test(test_car_lanes),
         cmocka_unit_test(test_costs_missing),
+        cmocka_unit_test(test_lod_sum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
