@@ -67,6 +67,9 @@ static void test_every_unit(void **state)
 {
     (void)state;
     check_table(times, G_N_ELEMENTS(times), CFG_UNIT_TIME, TRUE);
+    /* cfg_units_double reads any kind (units.h): the same values */
+    check_table(times, G_N_ELEMENTS(times), CFG_UNIT_TIME, FALSE);
+    check_table(sizes, G_N_ELEMENTS(sizes), CFG_UNIT_SIZE, FALSE);
     check_table(bandwidths, G_N_ELEMENTS(bandwidths), CFG_UNIT_BANDWIDTH,
                 FALSE);
     check_table(freqs, G_N_ELEMENTS(freqs), CFG_UNIT_FREQ, FALSE);
