@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "sim/scene/isosurface.h"
+#include "sim/scene/nurbs.h"
 #include "sim/scene/pphigs_db.h"
 #include "sim/scene/scene.h"
 #include "sim/scene/scene_cfg.h"
@@ -210,6 +211,44 @@ static void test_camera_unit_distance(void **state)
     g_clear_error(&err);
 }
 
+/* The Nurbs torus's tube radius is 0.45 modulated by a sum of sinusoids
+ * (nurbs.h): over the whole control grid the modulation averages to 0,
+ * and one sinusoid keeps the radius within 0.45 (1 +- amplitude). */
+static double tube_radius(const SceneNurbsParams *p, guint i, guint j)
+{
+    Vec3 q = scene_nurbs_control(p, i, j);
+    double ph = atan2(q.z, q.x);
+    return vec3_len(vec3_sub(q, vec3(cos(ph), 0, sin(ph))));
+}
+
+static void test_nurbs_bumps_zero_mean(void **state)
+{
+    (void)state;
+    SceneNurbsParams p = scene_nurbs_defaults();
+    guint nu = 0, nv = 0;
+    /* the grid repeats: find its size from the control points */
+    Vec3 q0 = scene_nurbs_control(&p, 0, 0);
+    for (nu = 1; nu < 1000; nu++)
+        if (vec3_len(vec3_sub(scene_nurbs_control(&p, nu, 0), q0)) < 1e-12)
+            break;
+    for (nv = 1; nv < 1000; nv++)
+        if (vec3_len(vec3_sub(scene_nurbs_control(&p, 0, nv), q0)) < 1e-12)
+            break;
+    assert_true(nu > 4 && nu < 1000 && nv > 4 && nv < 1000);
+    double sum = 0;
+    for (guint i = 0; i < nu; i++)
+        for (guint j = 0; j < nv; j++)
+            sum += tube_radius(&p, i, j);
+    assert_true(fabs(sum / (nu * nv) - 0.45) < 1e-9);
+    p.bumps = 1;
+    for (guint i = 0; i < nu; i++)
+        for (guint j = 0; j < nv; j++) {
+            double r = tube_radius(&p, i, j);
+            assert_true(r >= 0.45 * (1 - p.amplitude) - 1e-12 &&
+                        r <= 0.45 * (1 + p.amplitude) + 1e-12);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -220,6 +259,7 @@ int main(void)
         cmocka_unit_test(test_traverse_defaults),
         cmocka_unit_test(test_instance_bbox_first_vertex),
         cmocka_unit_test(test_camera_unit_distance),
+        cmocka_unit_test(test_nurbs_bumps_zero_mean),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
