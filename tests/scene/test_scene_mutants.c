@@ -176,6 +176,8 @@ static void test_instance_bbox_first_vertex(void **state)
     scene_mesh_add_poly(m, v, 3, scene_color(1, 1, 1), 0);
     scene_add_instance(s, scene_add_mesh(s, m), mat4_translate(1, 1, 1),
                        scene_color(1, 1, 1), 0);
+    Vec3 e = scene_box_center(scene_box_empty()); /* empty: the origin */
+    assert_true(e.x == 0 && e.y == 0 && e.z == 0);
     SceneBox b = scene_instance_bbox(s, 0);
     assert_true(b.min.x == -4 && b.min.y == -5 && b.min.z == -6);
     assert_true(b.max.x == 2 && b.max.y == 2 && b.max.z == 1);

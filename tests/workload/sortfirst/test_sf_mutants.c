@@ -31,10 +31,28 @@ static void test_calibrate(void **state)
     wl_sf_adapt_free(a);
 }
 
+/* The static regions are the squarest grid: cols the least divisor of P
+ * that is at least sqrt(P), so a square P gets sqrt(P) x sqrt(P). */
+static void test_regions_grid(void **state)
+{
+    (void)state;
+    static const guint cases[][3] = {{1, 1, 1}, {4, 2, 2},  {8, 4, 2},
+                                     {9, 3, 3}, {16, 4, 4}, {12, 4, 3},
+                                     {7, 7, 1}, {64, 8, 8}};
+    for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
+        WlSfRegions r;
+        wl_sf_regions_init(&r, cases[i][0], 256, 256);
+        if (r.cols != cases[i][1] || r.rows != cases[i][2])
+            fail_msg("P = %u: %u x %u, expected %u x %u", cases[i][0], r.cols,
+                     r.rows, cases[i][1], cases[i][2]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_calibrate),
+        cmocka_unit_test(test_regions_grid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
