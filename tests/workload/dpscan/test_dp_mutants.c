@@ -11,6 +11,8 @@
 
 #include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_cost.h"
+#include "sim/workload/dpscan/dp_render.h"
+#include "sim/scene/teapots.h"
 
 static void test_hex_palette(void **state)
 {
@@ -51,11 +53,50 @@ static void test_news_cost_sum(void **state)
     }
 }
 
+/* The segment buffer's size changes when it is flushed, not what is
+ * drawn: every segment reaches the z-buffer once, so a buffer a hundredth
+ * of the polygons (several flushes) sends as many pixels as one that holds
+ * them all, and the z-buffers agree. */
+static WlDpImage *render(const Scene *s, double factor)
+{
+    float pal[WL_DP_COLORS][3];
+    wl_dp_palette_default(pal);
+    WlDpPolys *p = wl_dp_polys_new(s, 0, 64, 64, WL_DP_MODE_FLAT, pal);
+    WlDpRenderOpts o = {.mode = WL_DP_MODE_FLAT, .buffer_factor = factor,
+                        .ops = wl_dp_ops_defaults()};
+    WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 16};
+    WlDpVm *vm = wl_dp_vm_new(&mc, 1, 64, 64);
+    WlDpImage *img = wl_dp_render(vm, p, 64, 64, &o);
+    wl_dp_vm_free(vm);
+    wl_dp_polys_free(p);
+    return img;
+}
+
+static void test_flushes_send_each_segment_once(void **state)
+{
+    (void)state;
+    SceneTeapotsParams tp = scene_teapots_defaults();
+    tp.count = 2;
+    tp.polygons_per_teapot = 300;
+    GError *err = NULL;
+    Scene *s = scene_teapots_new(&tp, "t", &err);
+    assert_non_null(s);
+    WlDpImage *many = render(s, 0.01), *one = render(s, 100);
+    assert_true(many->flushes > 2 && one->flushes < many->flushes);
+    assert_int_equal(many->segments, one->segments);
+    assert_int_equal(many->pixels, one->pixels);
+    assert_memory_equal(many->zbuf, one->zbuf, 64 * 64 * sizeof(uint64_t));
+    wl_dp_image_free(many);
+    wl_dp_image_free(one);
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hex_palette),
         cmocka_unit_test(test_news_cost_sum),
+        cmocka_unit_test(test_flushes_send_each_segment_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
