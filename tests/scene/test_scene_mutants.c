@@ -251,6 +251,20 @@ static void test_nurbs_bumps_zero_mean(void **state)
         }
 }
 
+/* camera.h: "A perspective camera at (0, 0, 5) looking at the origin, +y
+ * up, 45°, near 0.1, far 100, aspect 1." */
+static void test_default_camera(void **state)
+{
+    (void)state;
+    SceneCamera c = scene_camera_default();
+    assert_int_equal(c.proj, SCENE_PERSPECTIVE);
+    assert_true(c.eye.x == 0 && c.eye.y == 0 && c.eye.z == 5);
+    assert_true(c.target.x == 0 && c.target.y == 0 && c.target.z == 0);
+    assert_true(c.up.x == 0 && c.up.y == 1 && c.up.z == 0);
+    assert_true(c.fov_deg == 45 && c.near == 0.1 && c.far == 100);
+    assert_true(c.aspect == 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -262,6 +276,7 @@ int main(void)
         cmocka_unit_test(test_instance_bbox_first_vertex),
         cmocka_unit_test(test_camera_unit_distance),
         cmocka_unit_test(test_nurbs_bumps_zero_mean),
+        cmocka_unit_test(test_default_camera),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
