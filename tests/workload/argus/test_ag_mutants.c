@@ -1,13 +1,15 @@
-/* test_ag_mutants.c — claims of the Argus command streams (ag_stream.h)
- * that mutation testing (make mutate, docs/testing.md) found unchecked:
- * every triangle of the scene is issued exactly once, batches of a
- * single triangle included. */
+/* test_ag_mutants.c — claims of the Argus workload that mutation testing
+ * (make mutate, docs/testing.md) found unchecked: every triangle of the
+ * scene is issued exactly once, batches of a single triangle included
+ * (ag_stream.h); per-frame metrics are means over the frames, so a static
+ * scene reports the same pixels a frame over one frame or three. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
 #include "sim/workload/argus/ag_stream.h"
+#include "sim/workload/argus/ag_workload.h"
 
 /* n separate triangles, triangle i tagged tags[i]. */
 static SceneMesh *tagged_mesh(const guint *tags, guint n)
@@ -58,10 +60,47 @@ static void test_every_triangle_once(void **state)
     check_each_once(mixed, 7, 3, 2);
 }
 
+static double pixels_per_frame(int frames)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "machine: {model: origin2000}\n"
+        "workload: {type: argus, processors: 8, contexts: 2,\n"
+        "  application: march, cells: 2, order: cells, tile: 32, block: 8,\n"
+        "  width: 96, height: 80}\n"
+        "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n",
+        "a.yaml", &err);
+    assert_non_null(root);
+    void *p = wl_argus_ops.parse(cfg_get(root, "workload"), &err);
+    assert_non_null(p);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
+                     .fidelity = "analytic", .frames = frames};
+    SimResult *r = sim_result_new("argus", "");
+    if (!wl_argus_ops.run(&ctx, p, r, &err))
+        fail_msg("%s", err->message);
+    double px = -1;
+    assert_true(sim_result_get_metric(r, "pixels", &px));
+    sim_result_free(r);
+    sim_engine_free(eng);
+    wl_argus_ops.free_params(p);
+    cfg_free(root);
+    return px;
+}
+
+static void test_pixels_mean_over_frames(void **state)
+{
+    (void)state;
+    double one = pixels_per_frame(1);
+    assert_true(one > 100);
+    assert_true(pixels_per_frame(3) == one);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_triangle_once),
+        cmocka_unit_test(test_pixels_mean_over_frames),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
