@@ -178,6 +178,17 @@ static void test_instance_bbox_first_vertex(void **state)
                        scene_color(1, 1, 1), 0);
     Vec3 e = scene_box_center(scene_box_empty()); /* empty: the origin */
     assert_true(e.x == 0 && e.y == 0 && e.z == 0);
+    /* boxes are closed: sharing a face on any axis is overlapping */
+    SceneBox u = {vec3(0, 0, 0), vec3(1, 1, 1)};
+    for (int ax = 0; ax < 3; ax++) {
+        SceneBox w = u;
+        double *lo = ax == 0 ? &w.min.x : ax == 1 ? &w.min.y : &w.min.z;
+        double *hi = ax == 0 ? &w.max.x : ax == 1 ? &w.max.y : &w.max.z;
+        *lo = 1, *hi = 2; /* touches u at its max face */
+        assert_true(scene_box_overlaps(u, w) && scene_box_overlaps(w, u));
+        *lo = 1.5; /* a gap */
+        assert_false(scene_box_overlaps(u, w) || scene_box_overlaps(w, u));
+    }
     SceneBox b = scene_instance_bbox(s, 0);
     assert_true(b.min.x == -4 && b.min.y == -5 && b.min.z == -6);
     assert_true(b.max.x == 2 && b.max.y == 2 && b.max.z == 1);

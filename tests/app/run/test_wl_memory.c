@@ -15,6 +15,8 @@
 #include "sim/app/run/config.h"
 #include "sim/core/error.h"
 #include "sim/core/memlimit.h"
+#include "sim/workload/pixelmerge/pm_pixels.h"
+#include "sim/workload/workload.h"
 
 typedef struct {
     const char *config;  /* under configs/ */
@@ -148,12 +150,54 @@ static void test_binary(void **state)
     g_free(dir);
 }
 
+/* The estimate of a workload section (YAML flow map), via its op. */
+static double estimate(const char *section)
+{
+    GError *err = NULL;
+    CfgNode *n = cfg_load_string(section, "w.yaml", &err);
+    assert_non_null(n);
+    const WlOps *w = wl_find(cfg_scalar(cfg_get(n, "type")));
+    assert_non_null(w);
+    void *p = w->parse(n, &err);
+    if (!p)
+        fail_msg("%s: %s", section, err->message);
+    GString *what = g_string_new(NULL);
+    double b = w->mem_bytes(p, what);
+    g_string_free(what, TRUE);
+    w->free_params(p);
+    cfg_free(n);
+    return b;
+}
+
+/* The documented terms (docs/config.md, Limits): the serial reference of
+ * check_image costs one more frame, flatten one more copy of the town,
+ * and a token-ring node a fixed record. */
+static void test_estimate_terms(void **state)
+{
+    (void)state;
+    double on = estimate("{type: pixelmerge, resolution: 512, processors: 4}");
+    double off = estimate("{type: pixelmerge, resolution: 512, processors: 4, "
+                          "check_image: false}");
+    assert_true(on - off == 512.0 * 512 * sizeof(WlPmPixel));
+    assert_true(off > 512.0 * 512 * (2 * sizeof(WlPmPixel) + 3));
+    on = estimate("{type: sortfirst, resolution: 512}");
+    off = estimate("{type: sortfirst, resolution: 512, check_image: false}");
+    assert_true(on - off == 512.0 * 512 * 16);
+    double t1 = estimate("{type: tokenring, nodes: 1000}");
+    double t2 = estimate("{type: tokenring, nodes: 2000}");
+    assert_true(t2 == 2 * t1 && t1 > 1000 * 256.0);
+    double f1 = estimate("{type: performer, flatten: false, town: {blocks: 4}}");
+    double f2 = estimate("{type: performer, flatten: true, town: {blocks: 4}}");
+    assert_true(f2 > f1 && f2 < 2 * f1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_oversized_refused),
         cmocka_unit_test(test_pphigs_database),
         cmocka_unit_test(test_binary),
+        cmocka_unit_test(test_estimate_terms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
