@@ -8,6 +8,8 @@
 #include <cmocka.h>
 
 #include "sim/workload/pphigs/pphigs_metrics.h"
+#include "sim/workload/pphigs/pphigs_pixels.h"
+#include <math.h>
 
 static void add(SceneDb *db, guint sid, SceneElem e)
 {
@@ -38,10 +40,46 @@ static void test_nonprim_cost(void **state)
     scene_db_free(db);
 }
 
+/* pphigs_pixels.h: "the inherited colour, flat, times 0.3 + 0.7 |n_z| of
+ * the polygon's normal in normalised device coordinates". */
+static uint32_t shaded(const Vec3 *v)
+{
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 0.5, 0.25), .depth = 1};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 100, 80, out), 1);
+    uint32_t rgba = g_array_index(out, WlPphigsCmd, 0).rgba;
+    g_array_free(out, TRUE);
+    /* e borrows v (scene_elem_prim does not copy) */
+    return rgba;
+}
+
+static uint32_t rgba_of(double s)
+{
+    return 0xff000000u | (uint32_t)lrint(255 * s) |
+           (uint32_t)lrint(255 * 0.5 * s) << 8 |
+           (uint32_t)lrint(255 * 0.25 * s) << 16;
+}
+
+static void test_shading(void **state)
+{
+    (void)state;
+    Vec3 flat[3] = {vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, 0), vec3(0, 0.5, 0)};
+    assert_int_equal(shaded(flat), rgba_of(1)); /* facing the eye: n_z = 1 */
+    /* u = (1, 0, 0), v = (0.5, 1, 0.5): n = (0, -0.5, 1), n_z = 1/sqrt 1.25 */
+    Vec3 tilt[3] = {vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, 0), vec3(0, 0.5, 0.5)};
+    assert_int_equal(shaded(tilt), rgba_of(0.3 + 0.7 / sqrt(1.25)));
+    /* u = (1, 0, 0.5), v = (0.5, 1, 0): n = (-0.5, 0.25, 1) */
+    Vec3 tilt2[3] = {vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, 0.5), vec3(0, 0.5, 0)};
+    assert_int_equal(shaded(tilt2), rgba_of(0.3 + 0.7 / sqrt(1.3125)));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nonprim_cost),
+        cmocka_unit_test(test_shading),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
