@@ -78,6 +78,28 @@ static void test_huge_polygons_centred(void **state)
         huge++;
     }
     assert_true(huge > 200);
+    /* the small ones are centred anywhere on the screen: uniform on
+     * [-1, 1]^2, so their vertex means average to about 0 */
+    double ux = 0, uy = 0;
+    guint small = 0;
+    for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
+        const uint32_t *v = scene_mesh_poly(m, i);
+        guint n = scene_mesh_poly_len(m, i);
+        Vec3 c = vec3(0, 0, 0);
+        double w = 0;
+        for (guint k = 0; k < n; k++) {
+            Vec3 q = scene_mesh_vertex(m, v[k]);
+            c = vec3_add(c, q);
+            w = MAX(w, fabs(q.x - scene_mesh_vertex(m, v[0]).x));
+        }
+        if (w > 1.2) /* a huge one */
+            continue;
+        ux += c.x / n;
+        uy += c.y / n;
+        small++;
+    }
+    assert_true(small > 200);
+    assert_true(fabs(ux / small) < 0.15 && fabs(uy / small) < 0.15);
     /* uniform on [-0.2, 0.2]: the mean is 0 within 5 standard errors */
     assert_true(fabs(sx / huge) < 0.04 && fabs(sy / huge) < 0.04);
     scene_free(s);
@@ -276,6 +298,20 @@ static void test_default_camera(void **state)
     assert_true(c.aspect == 1);
 }
 
+/* The march generator's fill is any fraction in [0.05, 1]. */
+static void test_march_fill(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *n = cfg_load_string("{generator: march, grid: 8, cell: 4, "
+                                 "fill: 0.5}\n", "m.yaml", &err);
+    Scene *s = scene_from_cfg(n, &err);
+    if (!s)
+        fail_msg("%s", err->message);
+    scene_free(s);
+    cfg_free(n);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -288,6 +324,7 @@ int main(void)
         cmocka_unit_test(test_camera_unit_distance),
         cmocka_unit_test(test_nurbs_bumps_zero_mean),
         cmocka_unit_test(test_default_camera),
+        cmocka_unit_test(test_march_fill),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
