@@ -9,6 +9,7 @@
 
 #include "sim/machine/machine.h"
 #include "sim/machine/partition.h"
+#include <string.h>
 
 static void test_one_node_hypercube(void **state)
 {
@@ -33,10 +34,32 @@ static void test_one_node_hypercube(void **state)
     g_free(desc);
 }
 
+/* An unknown key of a machine's network section lists the known ones as
+ * "one of: a, b, c": comma-separated, no comma first or last. */
+static void test_unknown_key_list(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "machine: {model: ipsc2, network: {bogus: 1}}\n", "run.yaml", &err);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "flow", &err);
+    assert_null(m);
+    const char *l = strstr(err->message, "one of: ");
+    if (!l || l[8] == ',' || strstr(l, ", ,") || strstr(l, ",,"))
+        fail_msg("'%s'", err->message);
+    assert_non_null(strstr(l, ", ")); /* several keys, separated */
+    g_clear_error(&err);
+    sim_engine_free(eng);
+    cfg_free(root);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_node_hypercube),
+        cmocka_unit_test(test_unknown_key_list),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -85,11 +85,43 @@ static void test_empty_message_one_packet(void **state)
     }
 }
 
+static void count_arrival(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    (void)d;
+    (*(guint *)ctx)++;
+}
+
+/* Flow fidelity with hundreds of flows coupled through shared links:
+ * every message of three overlapping shifts on a 7-cube arrives, the
+ * last later than a lone message would. */
+static void test_flow_many_links(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(7);
+    NetParams p = params(NET_SW_CUT_THROUGH);
+    p.per_hop = 0; /* every flow starts at once, after the startup */
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_FLOW);
+    guint got = 0;
+    for (uint32_t i = 0; i < 128; i++)
+        for (uint32_t k = 1; k <= 5; k += 2)
+            net_send(net, i, (i + k) % 128, 1000, NULL, count_arrival, &got);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(got, 3 * 128);
+    /* shared links: the last arrival is later than a lone message's */
+    assert_true(sim_now(eng) > 50 * SIM_US + 1000 * SIM_US);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_circuit_flow_no_hop_events),
         cmocka_unit_test(test_empty_message_one_packet),
+        cmocka_unit_test(test_flow_many_links),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
