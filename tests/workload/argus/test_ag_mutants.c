@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 
 #include "sim/workload/argus/ag_stream.h"
 #include "sim/workload/argus/ag_workload.h"
@@ -60,7 +61,7 @@ static void test_every_triangle_once(void **state)
     check_each_once(mixed, 7, 3, 2);
 }
 
-static double pixels_per_frame(int frames)
+static double metric_at(int frames, const char *name)
 {
     GError *err = NULL;
     CfgNode *root = cfg_load_string(
@@ -80,7 +81,7 @@ static double pixels_per_frame(int frames)
     if (!wl_argus_ops.run(&ctx, p, r, &err))
         fail_msg("%s", err->message);
     double px = -1;
-    assert_true(sim_result_get_metric(r, "pixels", &px));
+    assert_true(sim_result_get_metric(r, name, &px));
     sim_result_free(r);
     sim_engine_free(eng);
     wl_argus_ops.free_params(p);
@@ -91,9 +92,12 @@ static double pixels_per_frame(int frames)
 static void test_pixels_mean_over_frames(void **state)
 {
     (void)state;
-    double one = pixels_per_frame(1);
+    double one = metric_at(1, "pixels");
     assert_true(one > 100);
-    assert_true(pixels_per_frame(3) == one);
+    assert_true(metric_at(3, "pixels") == one);
+    /* frames last about as long: a frame's time is its end - its start */
+    double ms1 = metric_at(1, "frame_ms"), ms3 = metric_at(3, "frame_ms");
+    assert_true(ms1 > 0 && fabs(ms3 - ms1) < 0.2 * ms1);
 }
 
 int main(void)
