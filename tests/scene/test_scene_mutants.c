@@ -12,6 +12,7 @@
 
 #include "sim/scene/isosurface.h"
 #include "sim/scene/nurbs.h"
+#include "sim/scene/pn_triangles.h"
 #include "sim/scene/pphigs_db.h"
 #include "sim/scene/scene.h"
 #include "sim/scene/scene_cfg.h"
@@ -312,6 +313,20 @@ static void test_march_fill(void **state)
     cfg_free(n);
 }
 
+/* A PN triangle whose corner normals are the face normal is the flat
+ * triangle: its centre control point b111 = E + (E - V) / 2 is the
+ * centroid, E (the mean of the six edge points) being the centroid too. */
+static void test_pn_flat_centre(void **state)
+{
+    (void)state;
+    Vec3 P[3] = {vec3(1, 2, 3), vec3(4, 2, 3), vec3(1, 6, 3)};
+    Vec3 N[3] = {vec3(0, 0, 1), vec3(0, 0, 1), vec3(0, 0, 1)};
+    ScenePnPatch pt;
+    scene_pn_patch(&pt, P, N);
+    assert_true(fabs(pt.b111.x - 2) < 1e-12 && fabs(pt.b111.y - 10.0 / 3) < 1e-12 &&
+                fabs(pt.b111.z - 3) < 1e-12);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -325,6 +340,7 @@ int main(void)
         cmocka_unit_test(test_nurbs_bumps_zero_mean),
         cmocka_unit_test(test_default_camera),
         cmocka_unit_test(test_march_fill),
+        cmocka_unit_test(test_pn_flat_centre),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
