@@ -11,6 +11,7 @@
 
 #include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_cost.h"
+#include "sim/workload/dpscan/dp_model.h"
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/scene/teapots.h"
 
@@ -91,12 +92,28 @@ static void test_flushes_send_each_segment_once(void **state)
     scene_free(s);
 }
 
+/* router_procs is optional, default 1 (dp_model.c): the CM-5 model has
+ * none, the CM-200's sets its own. */
+static void test_router_procs_default(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    WlDpMachine m = {0};
+    if (!wl_dp_machine_load("models", "cm5", &m, &err))
+        fail_msg("%s", err->message);
+    assert_int_equal(m.router_procs, 1);
+    WlDpMachine c = {0};
+    assert_true(wl_dp_machine_load("models", "cm200", &c, &err));
+    assert_true(c.router_procs > 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hex_palette),
         cmocka_unit_test(test_news_cost_sum),
         cmocka_unit_test(test_flushes_send_each_segment_once),
+        cmocka_unit_test(test_router_procs_default),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
