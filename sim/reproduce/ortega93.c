@@ -23,6 +23,7 @@ typedef struct {
     char *dir;       /* directory of the sweep file */
     GPtrArray *rows; /* RpRow * */
     FILE *coef;      /* PGSIM_DP_COEF or NULL */
+    GArray *simd;    /* RpOrCell of every SIMD cell, for table "cv" */
     double buffer_factor; /* segment buffer slots per polygon */
 } OrRun;
 
@@ -92,6 +93,13 @@ static void cell_rows(OrRun *r, const char *table, const WlDpTarget *t,
     g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
                                         (double)n_polys / s, NULL));
     const WlDpCoef *k = &t->coef;
+    if (t->m.arch == WL_DP_SIMD) {
+        RpOrCell c = {.b = k->slices, .s = sim_time_to_s(t->m.send_slice)};
+        g_strlcpy(c.table, table, sizeof c.table);
+        g_strlcpy(c.row, row, sizeof c.row);
+        c.a = s - c.s * c.b;
+        g_array_append_val(r->simd, c);
+    }
     if (r->coef && t->m.arch == WL_DP_SIMD)
         fprintf(r->coef,
                 "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%" G_GUINT64_FORMAT
@@ -232,9 +240,11 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
                .root = root,
                .dir = g_path_get_dirname(ctx->setup),
                .rows = rows,
+               .simd = g_array_new(FALSE, FALSE, sizeof(RpOrCell)),
                .buffer_factor = 1.0};
     if (!cfg_get_double(root, "buffer_factor", FALSE, 1e-3, 1e3,
                         &r.buffer_factor, err)) {
+        g_array_free(r.simd, TRUE);
         g_free(r.dir);
         cfg_free(root);
         return FALSE;
@@ -248,11 +258,13 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
     if (ok) {
         text_rows(rows);
         rp_ortega93_claims(rows);
+        ok = rp_ortega93_cv(r.simd, rows, err);
     }
     if (ok && ctx->out_dir)
         rp_ortega93_charts(rows, ctx->out_dir);
     if (r.coef)
         fclose(r.coef);
+    g_array_free(r.simd, TRUE);
     g_free(r.dir);
     cfg_free(root);
     return ok;

@@ -18,7 +18,8 @@
  * target per partition); about 20 s in all.  Table "text" holds the two
  * sentences of §6 (the fastest small-polygon rate of the 64K CM-200 and
  * of the 512-node CM-5); table "claims" decides §6's other sentences
- * from the simulated cells.  With --out, Figures 3 and 4 as charts.
+ * from the simulated cells; table "cv" gives the CM-200 fit's in-sample
+ * and leave-one-out errors.  With --out, Figures 3 and 4 as charts.
  *
  * Setting PGSIM_DP_COEF=<file> also writes the linear coefficients of
  * every SIMD cell (dp_cost.h) as CSV, for scripts/fit-ortega93.py.
@@ -40,5 +41,19 @@ void rp_ortega93_charts(GPtrArray *rows, const char *dir);
  * order of magnitude slower; the large set's worse speed-up), appended
  * to rows from the simulated cells already in it. */
 void rp_ortega93_claims(GPtrArray *rows);
+
+/* One CM-200 time cell as a line in send_slice s (ortega93_cv.c): the
+ * simulated time is a + s * b exactly (dp_cost.h), pub its published
+ * time (filled by rp_ortega93_cv). */
+typedef struct {
+    char table[8], row[48];
+    double a, b, s, pub;
+} RpOrCell;
+
+/* Table "cv": the in-sample and leave-one-out error of the CM-200's
+ * fitted send_slice over the cells (published times joined from
+ * configs/papers/ortega93/published.yaml); FALSE with *err if a cell
+ * has no published time. */
+gboolean rp_ortega93_cv(GArray *cells, GPtrArray *rows, GError **err);
 
 #endif
