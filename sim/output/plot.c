@@ -118,7 +118,7 @@ static gboolean need_col(const char *what, const char *name, const DataTable *t,
 {
     if (!name || dt_col(t, name) >= 0)
         return TRUE;
-    char *cols = g_strjoinv(", ", (char **)t->cols->pdata);
+    char *cols = dt_col_names(t);
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "plot %s: found column '%s', expected one of: %s", what, name,
                 cols);

@@ -19,6 +19,15 @@ DataTable *dt_new(const GPtrArray *cols)
     return t;
 }
 
+char *dt_col_names(const DataTable *t)
+{
+    GString *s = g_string_new(NULL);
+    for (guint i = 0; i < t->cols->len; i++)
+        g_string_append_printf(s, "%s%s", i ? ", " : "",
+                               (const char *)g_ptr_array_index(t->cols, i));
+    return g_string_free(s, FALSE);
+}
+
 void dt_free(DataTable *t)
 {
     if (!t)

@@ -20,6 +20,8 @@ DataTable *dt_new(const GPtrArray *cols);
 void dt_free(DataTable *t);
 /* Appends a row of cols->len strings (copied). */
 void dt_add_row(DataTable *t, char *const *cells);
+/* The column names joined with ", " for messages (g_free). */
+char *dt_col_names(const DataTable *t);
 /* Column index, or -1. */
 int dt_col(const DataTable *t, const char *name);
 const char *dt_cell(const DataTable *t, guint row, int col);

@@ -108,7 +108,7 @@ static gboolean keep_where(DataTable **t, const char *item, GError **err)
     char *key = eq ? g_strndup(item, (gsize)(eq - item)) : NULL;
     int c = key && *key ? dt_col(*t, key) : -1;
     if (c < 0) {
-        char *cols = g_strjoinv(", ", (char **)(*t)->cols->pdata);
+        char *cols = dt_col_names(*t);
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "--where %s: found %s '%s', expected COLUMN=VALUE with "
                     "a column of: %s",
