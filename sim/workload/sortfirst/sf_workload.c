@@ -20,6 +20,10 @@
  *     cull_back: true
  *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B,
  *             cell: 4 B, request: 8 B, mastership: 16 B}
+ *     database: my-db.yaml   # optional: a structure database file
+ *                            # (structdb_file.h) rendered instead of the
+ *                            # scene's; the scene gives the camera
+ *     dump_db: db.yaml       # optional: write the database rendered
  *     frame_log: frames.csv  # optional per-frame figures (default under
  *                            # `pgsim run --out DIR`: DIR/sortfirst_frames.csv)
  *
@@ -38,6 +42,7 @@
  */
 #include "sim/workload/sortfirst/sf_workload.h"
 #include "sim/scene/scene_cfg.h"
+#include "sim/scene/structdb_file.h"
 #include <glib/gstdio.h>
 #include <math.h>
 #include <stdio.h>
@@ -140,8 +145,11 @@ static gboolean check_grid(const CfgNode *sec, uint64_t grid, uint64_t res,
 static void sf_free_params(void *params)
 {
     WlSfParams *p = params;
-    if (p)
+    if (p) {
         g_free(p->frame_log);
+        g_free(p->database);
+        g_free(p->dump_db);
+    }
     g_free(p);
 }
 
@@ -165,7 +173,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
     WlSfParams *p = g_new0(WlSfParams, 1);
     uint64_t procs = 16, gran = 12, res = 256, grid = 32;
     gboolean check = TRUE, cull = TRUE;
-    const char *log = NULL;
+    const char *log = NULL, *dbf = NULL, *dump = NULL;
     gboolean ok =
         parse_words(sec, p, err) &&
         cfg_get_count(sec, "processors", FALSE, 1, WL_SF_MAX_PROCS, &procs,
@@ -177,6 +185,8 @@ static void *sf_parse(const CfgNode *sec, GError **err)
         cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
         cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
         cfg_get_str(sec, "frame_log", FALSE, &log, err) &&
+        cfg_get_str(sec, "database", FALSE, &dbf, err) &&
+        cfg_get_str(sec, "dump_db", FALSE, &dump, err) &&
         parse_bytes(sec, &p->setup.sizes, err);
     if (!ok) {
         sf_free_params(p);
@@ -189,6 +199,8 @@ static void *sf_parse(const CfgNode *sec, GError **err)
     p->setup.cull_back = cull;
     p->granularity = (guint)gran;
     p->frame_log = g_strdup(log);
+    p->database = g_strdup(dbf);
+    p->dump_db = g_strdup(dump);
     return p;
 }
 
@@ -362,14 +374,30 @@ static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
     return FALSE;
 }
 
-static Scene *load_scene(const CfgNode *root, GError **err)
+/* The scene (its camera) and the database rendered: the scene's, or the
+ * `database` file's in its place; written to `dump_db` when asked. */
+static Scene *load_scene(const CfgNode *root, const WlSfParams *p,
+                         GError **err)
 {
     const CfgNode *sec = cfg_get(root, "scene");
     Scene *sc = scene_from_cfg(sec, err);
+    if (sc && p->database) {
+        SceneDb *db = scene_db_load(p->database, err);
+        if (!db) {
+            scene_free(sc);
+            return NULL;
+        }
+        scene_set_db(sc, db);
+    }
+    if (sc && sc->db && p->dump_db && !scene_db_save(sc->db, p->dump_db, err)) {
+        scene_free(sc);
+        return NULL;
+    }
     if (!sc || sc->db)
         return sc;
     cfg_error(err, sec ? sec : root, "a scene without a structure database",
-              "a hierarchical scene (e.g. generator: vehicle)");
+              "a hierarchical scene (e.g. generator: vehicle) or "
+              "workload.database: a structure database file");
     scene_free(sc);
     return NULL;
 }
@@ -434,7 +462,7 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
 static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
-    Scene *sc = load_scene(ctx->root, err);
+    Scene *sc = load_scene(ctx->root, params, err);
     if (!sc)
         return FALSE;
     MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),

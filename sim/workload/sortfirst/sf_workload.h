@@ -12,6 +12,9 @@ typedef struct {
     guint granularity;
     WlSfChunking chunking;
     char *frame_log; /* CSV of per-frame figures, or NULL */
+    char *database;  /* structure database file rendered instead of the
+                        scene's (structdb_file.h), or NULL */
+    char *dump_db;   /* where to write the database rendered, or NULL */
 } WlSfParams;
 
 extern const WlOps wl_sortfirst_ops;

@@ -715,6 +715,43 @@ static void test_pull_and_dynamic(void **state)
     g_free(pull);
 }
 
+/* The scene's database written (dump_db) and rendered from the file
+ * (database) gives the same run; a bad file is refused where it is bad. */
+static void test_database_file(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    char *dir = g_dir_make_tmp("pgsim-sfdb-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "db.yaml", NULL);
+    char *dump = g_strdup_printf("workload.dump_db=%s", path);
+    char *use = g_strdup_printf("workload.database=%s", path);
+    SimResult *a = run_cfg(small, dump, 3, &e);
+    assert_non_null(a);
+    SimResult *b = run_cfg(small, use, 3, &e);
+    assert_non_null(b);
+    assert_true(metric(b, "image_matches_serial") == 1);
+    assert_true(metric(a, "frame_ms") == metric(b, "frame_ms"));
+    assert_true(metric(a, "chunks") == metric(b, "chunks"));
+    assert_true(metric(a, "max_set_polygons") ==
+                metric(b, "max_set_polygons"));
+    sim_result_free(a);
+    sim_result_free(b);
+    assert_true(g_file_set_contents(
+        path, "structure_database: 1\nstructures:\n  - name: a\n"
+              "    elements: [{execute: b}]\n",
+        -1, NULL));
+    assert_null(run_cfg(small, use, 1, &e));
+    assert_non_null(e);
+    assert_non_null(strstr(e->message, "db.yaml:4:26: found 'b'"));
+    g_clear_error(&e);
+    assert_int_equal(g_remove(path), 0);
+    assert_int_equal(g_rmdir(dir), 0);
+    g_free(use);
+    g_free(dump);
+    g_free(path);
+    g_free(dir);
+}
+
 static void expect_error(const char *override, const char *what)
 {
     GError *e = NULL;
@@ -765,6 +802,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_beats_static),
         cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_pull_and_dynamic),
+        cmocka_unit_test(test_database_file),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
