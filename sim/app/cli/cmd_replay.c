@@ -1,5 +1,6 @@
 /* cmd_replay.c — `pgsim replay TRACE --machine MODEL [--nodes N]
  * [--map block|cyclic|FILE] [--fidelity F] [--set machine.K=V]...
+ * [--clock KIND=HZ]...
  * [--format text|json|csv] [--out DIR]`.
  *
  * Plays a trace (docs/traces.md) on a machine model and prints the same
@@ -12,7 +13,7 @@
 #include <string.h>
 
 typedef struct {
-    char **sets;
+    char **sets, **clocks;
     char *machine, *map, *fidelity, *format, *out;
     int nodes;
 } ReplayOpts;
@@ -45,7 +46,8 @@ static int replay(const char *trace, const ReplayOpts *o)
                         .nodes = (guint)o->nodes,
                         .map = o->map,
                         .fidelity = o->fidelity,
-                        .sets = (const char *const *)o->sets};
+                        .sets = (const char *const *)o->sets,
+                        .clocks = (const char *const *)o->clocks};
     GError *e = NULL;
     SimResult *res = rpl_replay(&ro, &e);
     if (!res)
@@ -77,6 +79,10 @@ int cmd_replay(int argc, char **argv)
          "network model: faithful (default), analytic, flow or packet", "F"},
         {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o.sets,
          "override a machine key (repeatable)", "machine.KEY=VALUE"},
+        {"clock", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o.clocks,
+         "assume the trace's KIND ran at this clock when recorded (for kinds "
+         "the trace gives none; repeatable)",
+         "KIND=HZ"},
         {"format", 0, 0, G_OPTION_ARG_STRING, &o.format,
          "report on stdout: text (default), json or csv", "FMT"},
         {"out", 0, 0, G_OPTION_ARG_FILENAME, &o.out,
@@ -90,6 +96,7 @@ int cmd_replay(int argc, char **argv)
                      ? replay(argv[1], &o)
                      : 2;
     g_strfreev(o.sets);
+    g_strfreev(o.clocks);
     g_free(o.machine);
     g_free(o.map);
     g_free(o.fidelity);

@@ -163,13 +163,18 @@ static gboolean machine_header(const CfgRun *run, RplHeader *h, GError **err)
     return TRUE;
 }
 
-/* Marks the action ending each frame; returns how many found none. */
+/* Marks the action ending each frame: frame k ends at the sum of the
+ * first k+1 frame times, T, on the last action that completes at T and
+ * after every action before it (a replay ends the frame when all actions
+ * up to the mark are done).  Returns how many frames found none. */
 static guint place_frames(RplRecorder *r, const SimResult *res)
 {
     GHashTable *last = g_hash_table_new(g_int64_hash, g_int64_equal);
+    SimTime upto = 0; /* latest completion of actions 0 .. i */
     for (guint i = 0; i < r->acts->len; i++) {
         RecAct *a = &g_array_index(r->acts, RecAct, i);
-        if (a->done != SIM_TIME_MAX)
+        upto = a->done == SIM_TIME_MAX ? SIM_TIME_MAX : MAX(upto, a->done);
+        if (a->done != SIM_TIME_MAX && a->done == upto)
             g_hash_table_insert(last, &a->done, a);
     }
     guint missed = 0;

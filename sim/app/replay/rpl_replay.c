@@ -9,8 +9,13 @@
  * When an awaited action completes and its group has not been read yet,
  * the reader reads on to it, attaching the groups it passes.
  *
- * Flights: one record per action marked `+` or `frame`, from when it is
- * read until it completes; other actions are issued and forgotten.
+ * Flights: one record per action marked `+`, from when it is read until
+ * it completes; other actions are issued and forgotten.
+ *
+ * Frames: frame k ends when every action up to its mark (in file order)
+ * has completed.  Marks are read in order; each completion time goes to
+ * the first mark at or after its action (or to the tail, past the last
+ * mark read so far), and frame k ends at the largest time of marks 0..k.
  * Cost: O(1) per action plus one engine event per awaited action.
  */
 #include "sim/app/replay/rpl_replay.h"
@@ -38,7 +43,7 @@ typedef struct Group {
 typedef struct {
     uint64_t id;
     Group *group; /* attached `on id` group, or NULL */
-    gboolean handled, frame;
+    gboolean handled;
 } Flight;
 
 typedef struct {
@@ -47,7 +52,9 @@ typedef struct {
     RplItem look;      /* the next group line */
     gboolean have_look, eof;
     GHashTable *flights; /* id -> Flight * */
-    GArray *marks;       /* SimTime: frame ends */
+    GArray *marks;       /* uint64_t: ids of the frame marks read */
+    GArray *ends;        /* SimTime: latest completion per mark */
+    SimTime tail;        /* latest completion past the last mark */
     uint64_t actions, late;
     guint waiting; /* groups attached to a flight, not yet issued */
     guint timers;  /* groups scheduled at a time, not yet issued */
@@ -105,11 +112,15 @@ static void add_act(Replay *rp, Group *g, const RplItem *it)
              .value = it->type == RPL_SEND ? it->value
                                            : rpl_target_price(t, it)};
     g_array_append_val(g->acts, a);
-    if (a.handled || a.frame) {
+    if (a.frame) {
+        g_array_append_val(rp->marks, a.id);
+        g_array_append_val(rp->ends, rp->tail);
+        rp->tail = 0;
+    }
+    if (a.handled) {
         Flight *f = g_new0(Flight, 1);
         f->id = a.id;
         f->handled = a.handled;
-        f->frame = a.frame;
         g_hash_table_insert(rp->flights, &f->id, f);
     }
 }
@@ -212,11 +223,6 @@ static void seek(Replay *rp, Flight *f)
 
 static void completed(Replay *rp, Flight *f)
 {
-    SimEngine *eng = rp->t->eng;
-    if (f->frame) {
-        SimTime now = sim_now(eng);
-        g_array_append_val(rp->marks, now);
-    }
     if (f->handled)
         seek(rp, f);
     g_hash_table_steal(rp->flights, &f->id);
@@ -235,13 +241,36 @@ static void work_done(SimEngine *eng, void *ctx, void *arg)
     completed(ctx, arg);
 }
 
+/* Action id completes at t: the frame whose mark is the first at or
+ * after id ends no earlier. */
+static void note_done(Replay *rp, uint64_t id, SimTime t)
+{
+    guint lo = 0, hi = rp->marks->len;
+    if (hi == 0 || id > g_array_index(rp->marks, uint64_t, hi - 1)) {
+        rp->tail = MAX(rp->tail, t);
+        return;
+    }
+    while (lo < hi) { /* first mark >= id */
+        guint mid = (lo + hi) / 2;
+        if (g_array_index(rp->marks, uint64_t, mid) < id)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    SimTime *e = &g_array_index(rp->ends, SimTime, lo);
+    *e = MAX(*e, t);
+}
+
 static void delivered(NetNet *net, const NetDelivery *d, void *ctx)
 {
     (void)net;
     Replay *rp = ctx;
+    uint64_t id = (uintptr_t)d->payload;
     rp->sending--;
-    if (d->payload)
-        completed(rp, d->payload);
+    note_done(rp, id, d->arrived);
+    Flight *f = flight_for(rp, id);
+    if (f)
+        completed(rp, f);
     else
         progress(rp);
 }
@@ -249,16 +278,18 @@ static void delivered(NetNet *net, const NetDelivery *d, void *ctx)
 static void issue(Replay *rp, const Act *a)
 {
     MachMachine *m = rp->t->m;
-    Flight *f = a->handled || a->frame ? flight_for(rp, a->id) : NULL;
+    Flight *f = a->handled ? flight_for(rp, a->id) : NULL;
     rp->actions++;
     if (a->type == RPL_SEND) {
         rp->sending++;
-        net_send(mach_net(m), a->proc, a->peer, a->value, f, delivered, rp);
+        net_send(mach_net(m), a->proc, a->peer, a->value,
+                 (void *)(uintptr_t)a->id, delivered, rp);
         return;
     }
     MachProc *p = mach_proc_at(m, a->proc);
     mach_proc_compute(p, a->value, a->phase, f ? work_done : NULL, rp, f);
     rp->max_end = MAX(rp->max_end, mach_proc_free_at(p));
+    note_done(rp, a->id, mach_proc_free_at(p));
 }
 
 static void issue_group(Replay *rp, Group *g)
@@ -266,12 +297,6 @@ static void issue_group(Replay *rp, Group *g)
     for (guint i = 0; i < g->acts->len; i++)
         issue(rp, &g_array_index(g->acts, Act, i));
     group_free(g);
-}
-
-static gint cmp_time(gconstpointer a, gconstpointer b)
-{
-    SimTime x = *(const SimTime *)a, y = *(const SimTime *)b;
-    return x < y ? -1 : x > y;
 }
 
 static SimResult *result(Replay *rp, const RplReplayOpts *o)
@@ -282,14 +307,15 @@ static SimResult *result(Replay *rp, const RplReplayOpts *o)
     res->fidelity = g_strdup(mach_fidelity(t->m));
     res->seed = 1;
     mach_fill_result(t->m, res);
-    g_array_sort(rp->marks, cmp_time);
-    SimTime prev = 0;
-    for (guint i = 0; i < rp->marks->len; i++) {
-        SimTime m = g_array_index(rp->marks, SimTime, i);
-        sim_result_add_frame(res, m - prev);
-        prev = m;
+    SimTime prev = 0, end = 0;
+    for (guint i = 0; i < rp->ends->len; i++) {
+        end = MAX(end, g_array_index(rp->ends, SimTime, i));
+        sim_result_add_frame(res, end - prev);
+        prev = end;
     }
-    res->elapsed = sim_now(t->eng);
+    /* the end of the last event or of the last work, whichever is later
+     * (work with no handler has no event at its end) */
+    res->elapsed = MAX(sim_now(t->eng), rp->max_end);
     res->events = sim_engine_events(t->eng);
     res->config_path = g_strdup(o->trace);
     sim_result_set_metric(res, "actions", (double)rp->actions, "");
@@ -351,13 +377,15 @@ SimResult *rpl_replay(const RplReplayOpts *o, GError **err)
                  .r = r,
                  .flights = g_hash_table_new_full(g_int64_hash, g_int64_equal,
                                                   NULL, g_free),
-                 .marks = g_array_new(FALSE, FALSE, sizeof(SimTime))};
+                 .marks = g_array_new(FALSE, FALSE, sizeof(uint64_t)),
+                 .ends = g_array_new(FALSE, FALSE, sizeof(SimTime))};
     gint64 t0 = g_get_monotonic_time();
     SimResult *res = run(&rp, err) ? result(&rp, o) : NULL;
     if (res)
         res->wall_s = (double)(g_get_monotonic_time() - t0) * 1e-6;
     g_hash_table_destroy(rp.flights);
     g_array_free(rp.marks, TRUE);
+    g_array_free(rp.ends, TRUE);
     rpl_target_free(t);
     rpl_reader_free(r);
     return res;

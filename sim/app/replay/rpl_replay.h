@@ -28,6 +28,9 @@ typedef struct {
     const char *map;         /* "block" (NULL), "cyclic" or a map file */
     const char *fidelity;    /* NULL: faithful */
     const char *const *sets; /* machine.KEY=VALUE overrides, NULL-ended */
+    /* KIND=HZ: the recording clock of a trace kind that has none (an
+     * assumption the user states), NULL-ended; may be NULL */
+    const char *const *clocks;
 } RplReplayOpts;
 
 /* Replays a trace; a new result (sim_result_free), or NULL with a

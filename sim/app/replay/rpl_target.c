@@ -104,6 +104,46 @@ static gboolean make_map(RplTarget *t, const char *map, GError **err)
     return TRUE;
 }
 
+/* --clock KIND=HZ (HZ, kHz, MHz or GHz) into *hz; FALSE with *err. */
+static gboolean parse_clock(const char *s, char **kind, double *hz,
+                            GError **err)
+{
+    static const struct {
+        const char *unit;
+        double scale;
+    } units[] = {{"", 1}, {"Hz", 1}, {"kHz", 1e3}, {"MHz", 1e6}, {"GHz", 1e9}};
+    const char *eq = strchr(s, '=');
+    char *end;
+    double v = eq ? g_ascii_strtod(eq + 1, &end) : 0;
+    while (eq && *end == ' ')
+        end++;
+    for (guint i = 0; eq && eq > s && v > 0 && i < G_N_ELEMENTS(units); i++)
+        if (!strcmp(end, units[i].unit)) {
+            *kind = g_strndup(s, eq - s);
+            *hz = v * units[i].scale;
+            return TRUE;
+        }
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "replay: --clock: found '%s', expected KIND=FREQUENCY "
+                "(40MHz, 2.5 GHz ...)",
+                s);
+    return FALSE;
+}
+
+static gboolean parse_clocks(RplTarget *t, const char *const *clocks,
+                             GError **err)
+{
+    t->clocks = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
+    for (; clocks && *clocks; clocks++) {
+        char *kind;
+        double hz;
+        if (!parse_clock(*clocks, &kind, &hz, err))
+            return FALSE;
+        g_hash_table_insert(t->clocks, kind, g_memdup2(&hz, sizeof hz));
+    }
+    return TRUE;
+}
+
 /* Recording-clock / target-clock for trace processor p; 1 on the
  * recording machine's own kinds; NAN when a clock is missing. */
 static double clock_ratio(const RplTarget *t, const RplHeader *h,
@@ -112,8 +152,10 @@ static double clock_ratio(const RplTarget *t, const RplHeader *h,
     const RplKind *rk = rpl_header_kind_of(h, p);
     MachProc *q = mach_proc_at(t->m, t->map[p]);
     const MachKindInfo *tk = mach_kind(t->m, mach_proc_kind(q));
-    if (rk && rk->clock_hz > 0 && tk->clock_hz > 0)
-        return rk->clock_hz == tk->clock_hz ? 1 : rk->clock_hz / tk->clock_hz;
+    const double *given = rk ? g_hash_table_lookup(t->clocks, rk->name) : NULL;
+    double rhz = given ? *given : rk ? rk->clock_hz : 0;
+    if (rhz > 0 && tk->clock_hz > 0)
+        return rhz == tk->clock_hz ? 1 : rhz / tk->clock_hz;
     gboolean same = h->machine && !strcmp(h->machine, machine) &&
                     (!rk || !strcmp(rk->name, tk->name));
     return same ? 1 : NAN;
@@ -127,7 +169,8 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
     t->n_trace = h->procs;
     t->costs = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
     t->m = build(t, o, err);
-    if (!t->m || !make_map(t, o->map, err)) {
+    if (!t->m || !make_map(t, o->map, err) ||
+        !parse_clocks(t, o->clocks, err)) {
         rpl_target_free(t);
         return NULL;
     }
@@ -147,6 +190,8 @@ void rpl_target_free(RplTarget *t)
     mach_free(t->m);
     sim_engine_free(t->eng);
     g_hash_table_destroy(t->costs);
+    if (t->clocks)
+        g_hash_table_destroy(t->clocks);
     g_free(t->desc);
     g_free(t->map);
     g_free(t->scale);
@@ -177,6 +222,9 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
                        GString *bad, gboolean *net_missing)
 {
     gboolean fresh;
+    if (it->type != RPL_COMPUTE && it->type != RPL_WORK &&
+        it->type != RPL_SEND)
+        return; /* group lines: nothing to price */
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[it->proc]));
     if (it->type == RPL_COMPUTE)
         for (guint i = 0; i < it->n_ops; i++)
@@ -187,9 +235,10 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
     if (it->type == RPL_WORK && isnan(t->scale[it->proc])) {
         g_string_append_printf(bad,
                                "\n  %s:%u:1: a clock to scale `w` work of "
-                               "processor %u: a 'kind' header line with its "
-                               "recording clock and nodes.%s.clock (or a "
-                               "'machine %s' header: recorded here)",
+                               "processor %u: its recording clock (a 'kind' "
+                               "header line, or --clock KIND=HZ) and "
+                               "nodes.%s.clock (or a 'machine %s' header: "
+                               "recorded here)",
                                path, it->line, it->proc, kind,
                                mach_name(t->m));
         for (guint p = 0; p < t->n_trace; p++) /* reported once */

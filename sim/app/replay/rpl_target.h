@@ -23,6 +23,7 @@ typedef struct {
     double *scale;  /* trace processor -> clock ratio for `w` work */
     unsigned *phase; /* header phase index -> engine phase id */
     GHashTable *costs; /* "kind\top" -> SimTime * (NULL: missing) */
+    GHashTable *clocks; /* --clock: trace kind -> double Hz */
 } RplTarget;
 
 /* Builds the target for a trace whose header is h. */

@@ -18,18 +18,29 @@ typedef struct {
     const char *sets[6];
 } Case;
 
-/* Runs a config with a recorder; writes the trace to path. */
+static gboolean same(const SimResult *a, const SimResult *b);
+
+/* Runs a config with a recorder and writes the trace to path; returns
+ * the result of the same config run without one (recording must not
+ * change it: checked). */
 static SimResult *record(const Case *c, const char *path, char **machine,
                          char **fidelity)
 {
     GError *e = NULL;
     CfgRun *r = cfg_run_load(c->config, c->sets, &e);
     g_assert_no_error(e);
+    CfgRunOpts plain = {.quiet = TRUE};
+    SimResult *ref = cfg_run_exec(r, &plain, &e);
+    g_assert_no_error(e);
     RplRecorder *rec = rpl_recorder_new();
     CfgRunOpts o = {.quiet = TRUE, .recorder = rpl_recorder_hook(rec)};
     SimResult *res = cfg_run_exec(r, &o, &e);
     g_assert_no_error(e);
+    if (!same(ref, res))
+        fail_msg("%s: recording changed the run", c->config);
     assert_true(rpl_recorder_write(rec, path, r, res, NULL, &e));
+    sim_result_free(res);
+    res = ref;
     g_assert_no_error(e);
     rpl_recorder_free(rec);
     cfg_run_free(r);
@@ -162,6 +173,40 @@ static void test_other_machine_differs(void **s)
     g_free(fidelity);
 }
 
+/* Every trace shipped in traces/ reads and replays on its own machine
+ * and has actions. */
+static void test_shipped_traces(void **s)
+{
+    (void)s;
+    GDir *d = g_dir_open("traces", 0, NULL);
+    assert_non_null(d);
+    const char *f;
+    guint n = 0;
+    while ((f = g_dir_read_name(d))) {
+        if (!g_str_has_suffix(f, ".pgt") && !g_str_has_suffix(f, ".pgt.gz"))
+            continue;
+        char *path = g_build_filename("traces", f, NULL);
+        GError *e = NULL;
+        RplReader *r = rpl_reader_open(path, &e);
+        g_assert_no_error(e);
+        char *machine = g_strdup(rpl_reader_header(r)->machine);
+        char *fid = g_strdup(rpl_reader_header(r)->fidelity);
+        rpl_reader_free(r);
+        SimResult *res = replay(path, machine, fid, NULL);
+        double actions = 0;
+        assert_true(sim_result_get_metric(res, "actions", &actions));
+        if (actions < 1)
+            fail_msg("%s: no actions", path);
+        sim_result_free(res);
+        g_free(machine);
+        g_free(fid);
+        g_free(path);
+        n++;
+    }
+    g_dir_close(d);
+    assert_true(n >= 8);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -171,6 +216,7 @@ int main(void)
         cmocka_unit_test(test_dpscan),
         cmocka_unit_test(test_argus),
         cmocka_unit_test(test_other_machine_differs),
+        cmocka_unit_test(test_shipped_traces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
