@@ -402,7 +402,7 @@ static void box_free(gpointer p)
 {
     SgBox *b = p;
     g_queue_clear(&b->arrived);
-    g_queue_clear_full(&b->posted, g_free);
+    g_queue_clear(&b->posted); /* owned by their ranks (sg_clear) */
     g_free(b);
 }
 
@@ -449,6 +449,9 @@ static gboolean sg_run(Sg *sg, GError **err)
 static void sg_clear(Sg *sg)
 {
     for (guint i = 0; sg->ranks && i < sg->n; i++) {
+        SgRank *r = &sg->ranks[i];
+        if (r->wait && !g_queue_find(&r->reqs, r->wait))
+            g_free(r->wait); /* a blocking send or receive */
         g_queue_clear_full(&sg->ranks[i].q, g_free);
         g_queue_clear_full(&sg->ranks[i].reqs, g_free);
     }
