@@ -196,6 +196,38 @@ static void test_sync_follows_work(void **s)
     g_free(p);
 }
 
+/* Block keeps consecutive processors together, cyclic deals them out;
+ * a map file puts them where it says, and a bad line is located. */
+static void test_maps(void **s)
+{
+    (void)s;
+    assert_int_equal(rpl_map_block(5, 8, 4), 2);
+    assert_int_equal(rpl_map_cyclic(5, 8, 4), 1);
+    assert_int_equal(rpl_map_block(3, 4, 16), 3);
+    char *t = put("m.pgt", "pgsim-trace 1\nmachine ipsc2\nprocs 2\n"
+                           "kind node 0 2 16000000\nat 0\nw 0 0 1000\n"
+                           "w 1 0 3000\n");
+    char *map = put("m.map", "# trace target\n0 5\n1 5\n");
+    RplReplayOpts o = {.trace = t, .machine = "ipsc2", .map = map};
+    GError *e = NULL;
+    SimResult *r = rpl_replay(&o, &e);
+    g_assert_no_error(e);
+    assert_int_equal(r->nodes->len, 1); /* both on node5, one after the other */
+    assert_string_equal(((SimNodeResult *)r->nodes->pdata[0])->name, "node5");
+    assert_int_equal(r->elapsed, 4000);
+    sim_result_free(r);
+    g_free(map);
+    map = put("m.map", "0 5\n1 99\n");
+    o.map = map;
+    assert_null(rpl_replay(&o, &e));
+    assert_non_null(strstr(e->message, "m.map:2:3: found '99'"));
+    g_clear_error(&e);
+    g_remove(map);
+    g_remove(t);
+    g_free(map);
+    g_free(t);
+}
+
 int main(void)
 {
     dir = g_dir_make_tmp("pgsim-fmt-XXXXXX", NULL);
@@ -205,6 +237,7 @@ int main(void)
         cmocka_unit_test(test_long_line),
         cmocka_unit_test(test_missing_costs),
         cmocka_unit_test(test_sync_follows_work),
+        cmocka_unit_test(test_maps),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     g_rmdir(dir);
