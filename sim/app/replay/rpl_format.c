@@ -7,6 +7,7 @@
  */
 #include "sim/app/replay/rpl_format.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
 #include <inttypes.h>
 #include <string.h>
 
@@ -71,6 +72,19 @@ static gboolean header_kind(RplReader *r, GError **err)
     return TRUE;
 }
 
+/* A replay keeps a map entry and a clock ratio per trace processor
+ * (16 bytes): a huge `procs` is an input error, not an allocation. */
+static gboolean procs_fit(RplReader *r, uint64_t n, GError **err)
+{
+    char *where = g_strdup_printf("%s:%u:7", rpl_lines_path(r->l),
+                                  rpl_lines_number(r->l));
+    char *what = g_strdup_printf("procs %" PRIu64, n);
+    gboolean ok = sim_mem_check((double)n * 16, where, what, err);
+    g_free(where);
+    g_free(what);
+    return ok;
+}
+
 /* One header line; *body set when the line starts the body instead. */
 static gboolean header_line(RplReader *r, gboolean *body, GError **err)
 {
@@ -96,6 +110,8 @@ static gboolean header_line(RplReader *r, gboolean *body, GError **err)
         g_ptr_array_add(r->h.phases, g_strdup(a));
     else if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "a processor count",
                             err))
+        return FALSE;
+    else if (!procs_fit(r, v, err))
         return FALSE;
     else
         r->h.procs = (guint)v;
