@@ -294,6 +294,8 @@ WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
     d->flat = scene_db_flatten(db);
     g_assert(scene_mesh_n_polys(d->flat) == w.next_poly);
     build(d, db, &w);
+    d->nodes = g_array_ref(w.nodes);
+    d->n_structs = scene_db_struct_count(db);
     walk_clear(&w);
     return d;
 }
@@ -307,5 +309,6 @@ void wl_sf_db_free(WlSfDb *d)
     g_array_unref(d->prims);
     g_array_unref(d->inst_polys);
     scene_mesh_free(d->flat);
+    g_array_unref(d->nodes);
     g_free(d);
 }

@@ -78,6 +78,8 @@ typedef struct {
     GArray *inst_polys; /* uint32_t polygon indices of `flat` */
     SceneMesh *flat;    /* the posted network in world space (owned) */
     uint64_t min_prims; /* primitives stored once (min-set) */
+    GArray *nodes;      /* SceneMaxNode: the max-set tree (pre-order) */
+    guint n_structs;    /* structures of the database */
 } WlSfDb;
 
 /* Builds the chunk database of db's posted network for `procs` masters

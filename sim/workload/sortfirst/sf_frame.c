@@ -51,6 +51,7 @@ struct WlSfRun {
     GArray *subset; /* scratch: polygons */
     int frame, frames;
     guint done;
+    WlSfTrav trav;      /* this frame's §3.5 counts (sf_trav.h) */
     WlSfFrameHook hook; /* NULL: none */
     void *hook_ctx;
     SimTime start;
@@ -426,6 +427,9 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
         plan_regions(r);
     r->book->regions = r->regions; /* the bucket sorts use this frame's */
     wl_sf_book_need(r->book, r->view.view_proj);
+    memset(&r->trav, 0, sizeof r->trav);
+    for (guint p = 0; p < r->s.procs; p++)
+        wl_sf_trav_count(r->book, p, &r->trav);
     for (guint p = 0; p < r->s.procs; p++) {
         r->procs[p].busy0 = mach_proc_busy(r->procs[p].proc);
         if (r->adapt && r->s.current)
@@ -608,7 +612,8 @@ static void render_done(SimEngine *eng, void *ctx, void *arg)
     WlSfRun *r = ctx;
     if (++r->done < r->s.procs)
         return;
-    WlSfFrameStats st = {.start = r->start, .end = sim_now(eng)};
+    WlSfFrameStats st = {.start = r->start, .end = sim_now(eng),
+                         .trav = r->trav};
     sum_work(r, &st);
     overlap(r, &st);
     st.utilisation = utilisation(r, st.end - st.start);

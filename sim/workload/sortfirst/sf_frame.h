@@ -67,6 +67,7 @@
 #include "sim/raster/pipeline.h"
 #include "sim/scene/scene.h"
 #include "sim/workload/sortfirst/sf_book.h"
+#include "sim/workload/sortfirst/sf_trav.h"
 
 /* Cost operations of the `node` kind (NULL-terminated). */
 extern const char *const wl_sf_cost_ops[];
@@ -121,6 +122,7 @@ typedef struct {
                                     one processor (no instance in any
                                     region) */
     uint64_t offscreen_total;    /* off-screen master polygons, all */
+    WlSfTrav trav;               /* §3.5 counts, all processors */
     double utilisation;          /* busy / (P x frame time) */
     gboolean image_checked, image_ok;
 } WlSfFrameStats;

@@ -210,6 +210,7 @@ typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
     double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
     double est_bytes, box_side, split_imbalance;
+    WlSfTrav trav;
     double probe, messages, requests, handovers, held, master_imb, off_max, off_total;
     uint64_t onscreen, regions, peak;
     gboolean checked, image_ok;
@@ -241,6 +242,11 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->split_imbalance += s->split_imbalance;
         m->requests += s->requests;
         m->probe += s->probe_boxes;
+        m->trav.plain += s->trav.plain;
+        m->trav.flags += s->trav.flags;
+        m->trav.culled += s->trav.culled;
+        m->trav.both += s->trav.both;
+        m->trav.boxes_culled += s->trav.boxes_culled;
         m->messages += s->messages;
         m->handovers += s->handovers;
         m->held += s->held_polys;
@@ -315,6 +321,12 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
     set(out, "master_polygon_imbalance", m.master_imb / n, "");
     set(out, "offscreen_master_polygons_max", m.off_max / n, "");
     set(out, "offscreen_master_polygons", m.off_total / n, "");
+    /* §3.5 (sf_trav.h): structure instances scanned, all processors */
+    set(out, "traversal_nodes_per_frame", m.trav.plain / n, "");
+    set(out, "traversal_nodes_flags", m.trav.flags / n, "");
+    set(out, "traversal_nodes_culled", m.trav.culled / n, "");
+    set(out, "traversal_nodes_flags_culled", m.trav.both / n, "");
+    set(out, "boxes_culled_per_frame", m.trav.boxes_culled / n, "");
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
     if (m.checked)

@@ -752,6 +752,41 @@ static void test_database_file(void **state)
     g_free(dir);
 }
 
+/* §3.5 counts: empty flags and culling each scan fewer structure
+ * instances than the plain traversal, both together fewer than either,
+ * and a narrow view culls more than the wide one; the time is not
+ * changed (counts only). */
+static void test_traversal_counts(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    for (int bk = 0; bk <= 1; bk++) {
+        /* 26-primitive chunks: ~3 per structure, fewer than the 4
+         * processors, so some structures are locally empty (§3.5) */
+        const char *b =
+            bk ? "workload={type: sortfirst, processors: 4, granularity: 26, "
+                 "resolution: 64, bookkeeping: maxset}"
+               : "workload={type: sortfirst, processors: 4, granularity: 26, "
+                 "resolution: 64, bookkeeping: minset}";
+        SimResult *w = run_cfg_set2(b, "scene.fov=30", &e);
+        SimResult *n = run_cfg_set2(b, "scene.fov=8", &e);
+        assert_non_null(w);
+        assert_non_null(n);
+        double plain = metric(w, "traversal_nodes_per_frame");
+        double flags = metric(w, "traversal_nodes_flags");
+        double culled = metric(w, "traversal_nodes_culled");
+        double both = metric(w, "traversal_nodes_flags_culled");
+        assert_true(flags < plain && culled <= plain);
+        assert_true(both <= flags && both <= culled);
+        assert_true(plain == metric(n, "traversal_nodes_per_frame"));
+        assert_true(metric(n, "traversal_nodes_culled") < culled);
+        assert_true(metric(n, "boxes_culled_per_frame") >
+                    metric(w, "boxes_culled_per_frame"));
+        sim_result_free(w);
+        sim_result_free(n);
+    }
+}
+
 static void expect_error(const char *override, const char *what)
 {
     GError *e = NULL;
@@ -803,6 +838,7 @@ int main(void)
         cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_pull_and_dynamic),
         cmocka_unit_test(test_database_file),
+        cmocka_unit_test(test_traversal_counts),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
