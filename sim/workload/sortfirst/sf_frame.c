@@ -428,8 +428,7 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     r->book->regions = r->regions; /* the bucket sorts use this frame's */
     wl_sf_book_need(r->book, r->view.view_proj);
     memset(&r->trav, 0, sizeof r->trav);
-    for (guint p = 0; p < r->s.procs; p++)
-        wl_sf_trav_count(r->book, p, &r->trav);
+    wl_sf_trav_count(r->book, &r->trav);
     for (guint p = 0; p < r->s.procs; p++) {
         r->procs[p].busy0 = mach_proc_busy(r->procs[p].proc);
         if (r->adapt && r->s.current)

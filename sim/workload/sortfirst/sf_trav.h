@@ -22,8 +22,8 @@
  *
  * Chunk boxes not transformed because their node's subtree was culled
  * are counted as `boxes_culled` (p's master and held chunks).  Counts
- * only: the frame's time is not changed.  Cost O(chunk instances +
- * nodes) per processor.
+ * only: the frame's time is not changed.  One pass for all processors
+ * (bit masks, P <= 64): O(chunk instances + nodes).
  */
 #ifndef PGSIM_WORKLOAD_SORTFIRST_SF_TRAV_H
 #define PGSIM_WORKLOAD_SORTFIRST_SF_TRAV_H
@@ -35,7 +35,7 @@ typedef struct {
     uint64_t boxes_culled;               /* chunk boxes skipped */
 } WlSfTrav;
 
-/* Adds processor p's counts for the frame whose need[] b holds. */
-void wl_sf_trav_count(const WlSfBook *b, guint p, WlSfTrav *t);
+/* Adds every processor's counts for the frame whose need[] b holds. */
+void wl_sf_trav_count(const WlSfBook *b, WlSfTrav *t);
 
 #endif
