@@ -42,17 +42,22 @@ static void test_nonprim_cost(void **state)
 
 /* pphigs_pixels.h: "the inherited colour, flat, times 0.3 + 0.7 |n_z| of
  * the polygon's normal in normalised device coordinates". */
-static uint32_t shaded(const Vec3 *v)
+static WlPphigsCmd command(const Vec3 *v)
 {
     SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
     ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
                         .color = vec3(1, 0.5, 0.25), .depth = 1};
     GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
     assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 100, 80, out), 1);
-    uint32_t rgba = g_array_index(out, WlPphigsCmd, 0).rgba;
+    WlPphigsCmd c = g_array_index(out, WlPphigsCmd, 0);
     g_array_free(out, TRUE);
     /* e borrows v (scene_elem_prim does not copy) */
-    return rgba;
+    return c;
+}
+
+static uint32_t shaded(const Vec3 *v)
+{
+    return command(v).rgba;
 }
 
 static uint32_t rgba_of(double s)
@@ -75,11 +80,26 @@ static void test_shading(void **state)
     assert_int_equal(shaded(tilt2), rgba_of(0.3 + 0.7 / sqrt(1.3125)));
 }
 
+/* A polygon over the whole screen (and past it) draws from pixel (0, 0)
+ * to (width - 1, height - 1): its box is clamped to the screen, not
+ * inside it. */
+static void test_box_clamped_to_screen(void **state)
+{
+    (void)state;
+    Vec3 big[3] = {vec3(-3, -3, 0), vec3(3, -3, 0), vec3(0, 3, 0)};
+    WlPphigsCmd c = command(big);
+    assert_int_equal(c.x0, 0);
+    assert_int_equal(c.y0, 0);
+    assert_int_equal(c.x1, 99);
+    assert_int_equal(c.y1, 79);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nonprim_cost),
         cmocka_unit_test(test_shading),
+        cmocka_unit_test(test_box_clamped_to_screen),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
