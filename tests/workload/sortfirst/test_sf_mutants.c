@@ -9,6 +9,7 @@
 #include <cmocka.h>
 
 #include "sim/workload/sortfirst/sf_adapt.h"
+#include "sim/workload/sortfirst/sf_db.h"
 
 static void test_calibrate(void **state)
 {
@@ -48,11 +49,39 @@ static void test_regions_grid(void **state)
     }
 }
 
+/* Sorted chunking splits at the median along the longest axis of the
+ * centroids' box (sf_db.h): 16 triangles stacked along z, stored in a
+ * scrambled order, make chunks of 4 consecutive depths. */
+static void test_sorted_chunks_longest_axis(void **state)
+{
+    (void)state;
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    for (guint i = 0; i < 16; i++) {
+        double z = (7 * i) % 16;
+        Vec3 v[3] = {vec3(0, 0, z), vec3(1, 0, z), vec3(0, 1, z)};
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(scene_db_append(db, root, &e, NULL));
+    }
+    scene_db_post(db, root);
+    GError *err = NULL;
+    WlSfDb *d = wl_sf_db_new(db, 4, 4, WL_SF_CHUNK_SORTED, &err);
+    assert_non_null(d);
+    assert_int_equal(wl_sf_n_chunks(d), 4);
+    for (guint c = 0; c < 4; c++) {
+        SceneBox b = wl_sf_chunk(d, c)->box;
+        assert_true(b.max.z - b.min.z == 3);
+    }
+    wl_sf_db_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_calibrate),
         cmocka_unit_test(test_regions_grid),
+        cmocka_unit_test(test_sorted_chunks_longest_axis),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
