@@ -327,6 +327,48 @@ static void test_pn_flat_centre(void **state)
                 fabs(pt.b111.z - 3) < 1e-12);
 }
 
+/* The Old Well's objects sit on a ring of columns at heights spread over
+ * a quarter of the half-size (pphigs_db.c gen_well): with 20 objects of
+ * a size-100 model their polygons' centres span more than 6 units in y
+ * (the polygons themselves reach only about 1 + 1.25 from their object's
+ * centre). */
+static void test_old_well_heights(void **state)
+{
+    (void)state;
+    ScenePphigsSpec sp = {0};
+    sp.kind = SCENE_PPHIGS_FLOCK;
+    sp.seed = 7;
+    sp.verts = 4;
+    sp.size = 100;
+    sp.boids = 2;
+    sp.boid_polygons = 3;
+    sp.boid_colors = 1;
+    sp.well_structs = 2;
+    sp.well_polygons = 40;
+    sp.well_attributes = 20;
+    ScenePphigsDb d;
+    GError *err = NULL;
+    assert_true(scene_pphigs_generate(&sp, &d, &err));
+    double lo = 1e9, hi = -1e9;
+    for (guint k = 0; k < 2; k++) {
+        char name[16];
+        guint sid;
+        g_snprintf(name, sizeof name, "well_%u", k);
+        assert_true(scene_db_find(d.db, name, &sid));
+        for (guint i = 0; i < scene_db_len(d.db, sid); i++) {
+            const SceneElem *e = scene_db_elem(d.db, sid, i);
+            if (!e->nverts)
+                continue;
+            double y = 0;
+            for (guint v = 0; v < e->nverts; v++)
+                y += e->verts[v].y / e->nverts;
+            lo = MIN(lo, y), hi = MAX(hi, y);
+        }
+    }
+    assert_true(hi - lo > 6);
+    scene_pphigs_db_clear(&d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -341,6 +383,7 @@ int main(void)
         cmocka_unit_test(test_default_camera),
         cmocka_unit_test(test_march_fill),
         cmocka_unit_test(test_pn_flat_centre),
+        cmocka_unit_test(test_old_well_heights),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
