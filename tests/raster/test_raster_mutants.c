@@ -24,15 +24,20 @@ static RastScreenVert at(int x, int y, double z)
     return v;
 }
 
-/* A quad whose corners 0, 1, 2 span a wide triangle at depth 0 and whose
- * corner 3 sits near the 0-2 diagonal at depth 0.5: the planes are those
- * of the wide triangle, so every span has depth 0 and slope 0. */
+/* A quad with three corners at depth 0 spanning a wide triangle and a
+ * fourth near their diagonal at depth 0.5: the planes are those of the
+ * wide triangle, so every span has depth 0 and slope 0. */
 static void test_widest_fan_planes(void **state)
 {
     (void)state;
-    RastScreenVert q[4] = {at(2, 2, 0), at(60, 2, 0), at(60, 60, 0),
-                           at(28, 34, 0.5)};
-    for (int wind = 0; wind < 2; wind++) {
+    /* the deep corner near the diagonal last, then second: the widest
+     * fan triangle is the first, then the last one of the fan */
+    RastScreenVert quads[2][4] = {
+        {at(2, 2, 0), at(60, 2, 0), at(60, 60, 0), at(28, 34, 0.5)},
+        {at(2, 2, 0), at(34, 28, 0.5), at(60, 60, 0), at(2, 60, 0)}};
+    for (int k = 0; k < 4; k++) {
+        const RastScreenVert *q = quads[k / 2];
+        int wind = k % 2;
         RastScreenVert v[4];
         for (int i = 0; i < 4; i++)
             v[i] = wind ? q[(4 - i) % 4] : q[i];
@@ -42,7 +47,8 @@ static void test_widest_fan_planes(void **state)
         assert_true(rast_scan_polygon(v, 4, 1, 64, 64, RAST_SPAN_EXACT, sink,
                                       &c) > 0);
         if (w > 1e-12)
-            fail_msg("winding %d: a span at depth or slope %g", wind, w);
+            fail_msg("quad %d winding %d: a span at depth or slope %g", k / 2, wind,
+                     w);
     }
 }
 
