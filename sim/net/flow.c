@@ -21,11 +21,13 @@
  *
  * Incremental: a start or an end marks the links it touches dirty and asks
  * for one recomputation at the current instant (so all starts and ends at
- * the same time are batched).  The recomputation visits only the flows
- * on dirty links and those joined to them through links that can bind (more
- * flows than channels): a link whose capacity covers all its flows' bounds
- * constrains nobody, so it does not couple their rates.  Flows elsewhere
- * keep their rates and predicted ends.  Predicted ends live in a private
+ * the same time are batched).  Flows whose rate is below the batch's
+ * level keep it (collect_component says why); the recomputation visits
+ * only the other flows on dirty links and those joined to them, by such
+ * flows, through links that can bind (more flows than channels): a link
+ * whose capacity covers all its flows' bounds constrains nobody, so it
+ * does not couple their rates.  Flows elsewhere keep their rates and
+ * predicted ends.  Predicted ends live in a private
  * min-heap of flows (by end time, then send sequence) and one engine timer
  * is armed for the earliest: a rate change moves a flow in that heap
  * instead of scheduling an engine event (the engine cannot cancel events;
@@ -105,6 +107,9 @@ typedef struct {
     uint32_t timer_gen; /* generation of the armed timer */
     gboolean armed;
     SimTime timer_at;
+    /* Lower bound on the level of this batch's changes: the least rate of
+     * an ended flow, bound of a new one (see collect_component). */
+    double level;
 } FlowNet;
 
 static FlowNet *flow_net(NetNet *n)
@@ -112,6 +117,7 @@ static FlowNet *flow_net(NetNet *n)
     void **slot = net_tp_slot(n);
     if (!*slot) {
         *slot = g_new0(FlowNet, 1);
+        ((FlowNet *)*slot)->level = G_MAXDOUBLE;
     }
     return *slot;
 }
@@ -284,9 +290,10 @@ static void lh_heapify(FlowNet *fn)
     }
 }
 
-/* The component's links start at full capacity.  Only links that can
- * bind are in the component (a link with no more flows than channels has
- * a share >= bw, the bound of every flow crossing it, and shares only
+/* The component's links start at their capacity less the rates of their
+ * frozen flows (marked fixed by the search).  Only links that can bind
+ * are in the component (a link with no more flows than channels has a
+ * share >= bw, the bound of every flow crossing it, and shares only
  * rise); fix_flow charges only those. */
 static void maxmin_links(FlowNet *fn)
 {
@@ -297,21 +304,29 @@ static void maxmin_links(FlowNet *fn)
     fn->lh_n = 0;
     for (guint i = 0; i < fn->clinks.n; i++) {
         NetLink *l = fn->clinks.a[i];
-        l->rem = l->bw * l->channels;
-        l->unfixed = l->n_flows;
-        fn->lh[fn->lh_n++] = (HeapEnt){l->rem / l->unfixed, l};
+        double rem = l->bw * l->channels;
+        guint unfixed = 0;
+        for (guint j = 0; j < l->n_flows; j++) {
+            const NetFlow *f = l->flows[j].f;
+            if (f->fixed)
+                rem -= f->rate;
+            else
+                unfixed++;
+        }
+        l->rem = rem > 0.0 ? rem : 0.0;
+        l->unfixed = unfixed;
+        if (unfixed > 0)
+            fn->lh[fn->lh_n++] = (HeapEnt){l->rem / unfixed, l};
     }
     lh_heapify(fn);
 }
 
 static void maxmin(FlowNet *fn)
 {
-    maxmin_links(fn);
+    maxmin_links(fn); /* the search left collected flows unfixed */
     order_by_bound(&fn->cflows);
     NetFlow **flows = (NetFlow **)fn->cflows.a;
     guint nf = fn->cflows.n;
-    for (guint i = 0; i < nf; i++)
-        flows[i]->fixed = FALSE;
     for (guint next = 0; next < nf;) {
         NetFlow *bf = flows[next];
         if (bf->fixed) {
@@ -341,35 +356,68 @@ static void visit_link(FlowNet *fn, NetLink *l)
     vec_push(&fn->clinks, l);
 }
 
-static void visit_flow(FlowNet *fn, NetFlow *f)
+/* A flow whose rate is below the batch's level keeps it (with a margin
+ * so that rounding can only make a flow unfrozen); a new flow has rate 0
+ * and is never frozen. */
+static gboolean frozen(const NetFlow *f, double level)
+{
+    return f->rate > 0.0 && f->rate < level * (1.0 - 1e-9);
+}
+
+static void visit_flow(FlowNet *fn, NetFlow *f, double level)
 {
     if (f->mark == fn->epoch)
         return;
     f->mark = fn->epoch;
+    f->fixed = frozen(f, level);
+    if (f->fixed)
+        return;
     vec_push(&fn->cflows, f);
     for (guint k = 0; k < f->hops; k++)
         visit_link(fn, f->path[k]);
 }
 
-/* The flows whose rate can change: every flow on a dirty link (a link
- * that stopped binding frees them) and everything joined to them through
- * links that can bind.  Elsewhere the constraints are unchanged, and a
- * max-min allocation splits over independent constraint sets. */
+/* The batch's level: at most the least rate of an ended flow, the least
+ * bound of a new one, and capacity / flows on every dirty link. */
+static double batch_level(FlowNet *fn)
+{
+    double level = fn->level;
+    fn->level = G_MAXDOUBLE;
+    for (guint i = 0; i < fn->dirty.n; i++) {
+        const NetLink *l = fn->dirty.a[i];
+        if (l->n_flows > 0 && l->bw * l->channels / l->n_flows < level)
+            level = l->bw * l->channels / l->n_flows;
+    }
+    return level;
+}
+
+/* The flows whose rate can change.  Progressive filling runs identically
+ * below the batch's level L in the old and the new problem: an ended flow
+ * was unfixed below its rate, so no link of it saturated there; a new
+ * flow's links carry at most n * t < capacity at a level t < L (L <=
+ * capacity / n after the batch), so none saturates there, and in the old
+ * problem those links carried less.  So a flow with a rate below L keeps
+ * it (frozen: not collected, its rate taken off its links' capacity).
+ * The rest: the unfrozen flows on dirty links (a link that stopped
+ * binding frees them) and everything joined to them by unfrozen flows
+ * through links that can bind; elsewhere the constraints are unchanged,
+ * and a max-min allocation splits over independent constraint sets. */
 static void collect_component(FlowNet *fn)
 {
+    double level = batch_level(fn);
     fn->epoch++;
     fn->clinks.n = 0;
     fn->cflows.n = 0;
     for (guint i = 0; i < fn->dirty.n; i++) {
         NetLink *l = fn->dirty.a[i];
         for (guint j = 0; j < l->n_flows; j++)
-            visit_flow(fn, l->flows[j].f);
+            visit_flow(fn, l->flows[j].f, level);
     }
     fn->dirty.n = 0;
     for (guint i = 0; i < fn->clinks.n; i++) {
         NetLink *l = fn->clinks.a[i];
         for (guint j = 0; j < l->n_flows; j++)
-            visit_flow(fn, l->flows[j].f);
+            visit_flow(fn, l->flows[j].f, level);
     }
 }
 
@@ -463,6 +511,7 @@ static void arm_timer(NetNet *n, FlowNet *fn)
 static void flow_finish(NetNet *n, FlowNet *fn, NetFlow *f)
 {
     NetMsg *m = f->m;
+    fn->level = f->rate < fn->level ? f->rate : fn->level;
     for (guint i = 0; i < m->hops; i++) {
         link_remove_flow(m->path[i], f, i);
         vec_push(&fn->dirty, m->path[i]);
@@ -550,6 +599,7 @@ static void flow_begin(SimEngine *eng, void *ctx, void *arg)
     f->remaining = (double)m->bytes;
     f->last = sim_now(eng);
     f->hidx = G_MAXUINT;
+    fn->level = f->bw < fn->level ? f->bw : fn->level;
     net_account(n, (gssize)bytes);
     for (guint i = 0; i < m->hops; i++) {
         link_add_flow(n, m->path[i], f, i);
