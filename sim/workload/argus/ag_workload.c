@@ -350,6 +350,7 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
         if (ok) {
             g_array_append_val(r.stats, fs);
             sim_result_add_frame(out, fs.end - fs.start);
+            wl_mark_frame(ctx->eng, (guint)f, fs.end);
             ok = emit_frame(ctx, &r, f, err);
         }
     }

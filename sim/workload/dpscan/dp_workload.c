@@ -256,6 +256,7 @@ static gboolean one_frame(const WlContext *ctx, const DpParams *p,
          write_image(ctx, p, img, fr, err);
     if (ok) {
         sim_result_add_frame(out, t->total);
+        wl_mark_frame(ctx->eng, (guint)fr, sim_now(ctx->eng));
         add_metrics(out, t, img, wl_dp_vm_counts(vm), poly->n);
     }
     wl_dp_image_free(img);

@@ -287,6 +287,7 @@ static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
     if (!sim_time_from_s(fo->frame_ms * 1e-3, &t))
         t = SIM_TIME_MAX;
     sim_result_add_frame(out, t);
+    wl_mark_frame(mach_engine(m), (guint)f, sim_now(mach_engine(m)));
     if (fo->image_checked && !fo->image_ok) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
                     "pixelmerge: the merged image of frame %d differs "

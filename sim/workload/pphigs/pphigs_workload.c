@@ -438,6 +438,8 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
         return FALSE;
     r->host_elems += st.host_elements;
     sim_result_add_frame(out, st.time);
+    wl_mark_frame(mach_engine(r->m), out->frame_times->len - 1,
+                  sim_now(mach_engine(r->m)));
     r->commands += st.commands;
     r->exprs += st.expressions;
     r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);

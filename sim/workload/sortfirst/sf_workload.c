@@ -456,6 +456,7 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
     for (guint f = 0; ok && f < st->len; f++) {
         const WlSfFrameStats *t = &g_array_index(st, WlSfFrameStats, f);
         sim_result_add_frame(out, t->end - t->start);
+        wl_mark_frame(mach_engine(m), f, t->end);
     }
     if (ok && st->len) {
         mach_fill_result(m, out);

@@ -1,5 +1,6 @@
 /* test_trace_ends.c — on every registered workload, a trace's messages
- * start and end on the processors that sent and received them.
+ * start and end on the processors that sent and received them; on every
+ * shipped config, each frame writes one mark "frame N" at its end.
  *
  * Each workload runs one frame of its example config (configs/NAME.yaml
  * whose workload.type names it) with a recording trace.  Spans name the
@@ -14,6 +15,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 #include <cmocka.h>
 
@@ -60,6 +62,24 @@ static void on_flow(SimTrace *tr, uint32_t src, const char *sn, uint32_t dst,
 }
 
 static const SimTraceOps ops = {.span = on_span, .flow = on_flow};
+
+/* Marks: "frame N" at index N holds its time (-1: not seen). */
+static void on_mark(SimTrace *tr, const char *name, SimTime t)
+{
+    GArray *marks = tr->state;
+    guint n;
+    if (sscanf(name, "frame %u", &n) != 1)
+        return;
+    assert_true(n < 64);
+    if (n >= marks->len)
+        g_array_set_size(marks, n + 1);
+    SimTime *at = &g_array_index(marks, SimTime, n);
+    if (*at)
+        fail_msg("'%s' marked twice", name);
+    *at = t + 1; /* 0: not marked */
+}
+
+static const SimTraceOps mark_ops = {.mark = on_mark};
 
 /* The first top-level example config running workload `name`. */
 static char *config_for(const char *name)
@@ -119,10 +139,82 @@ static void test_every_workload(void **state)
         check_workload(wl_all[i]);
 }
 
+/* Frame k's mark is at least frame k's time after frame k-1's mark (equal
+ * when frames run back to back, later when work comes between them, as
+ * PPHIGS's edits) and no later than the run's end. */
+static void check_marks(const char *path, const GArray *marks,
+                        const SimResult *res)
+{
+    if (marks->len != res->frame_times->len)
+        fail_msg("%s: %u frame marks for %u frames", path, marks->len,
+                 res->frame_times->len);
+    SimTime prev = 0;
+    for (guint f = 0; f < marks->len; f++) {
+        SimTime at = g_array_index(marks, SimTime, f);
+        if (!at)
+            fail_msg("%s: frame %u has no mark", path, f);
+        at--;
+        SimTime ft = g_array_index(res->frame_times, SimTime, f);
+        if (at < prev || at - prev + 1 < ft || at > res->elapsed)
+            fail_msg("%s: frame %u marked at %.3f us after %.3f us, frame "
+                     "time %.3f us, run end %.3f us",
+                     path, f, sim_time_to_us(at), sim_time_to_us(prev),
+                     sim_time_to_us(ft), sim_time_to_us(res->elapsed));
+        prev = at;
+    }
+}
+
+/* Two frames of every top-level run config; sizes cut where a frame
+ * takes long (keys a config lacks are refused, so only dpscan's). */
+static void check_config_marks(const char *path)
+{
+    const char *small[] = {"run.frames=2", NULL, NULL, NULL};
+    if (strstr(path, "dpscan")) {
+        small[1] = "workload.width=320";
+        small[2] = "workload.height=256";
+    }
+    GError *err = NULL;
+    CfgRun *r = cfg_run_load(path, small, &err);
+    g_assert_no_error(err);
+    GArray *marks = g_array_new(FALSE, TRUE, sizeof(SimTime));
+    SimTrace tr = {&mark_ops, marks};
+    CfgRunOpts o = {.quiet = TRUE, .trace = &tr};
+    SimResult *res = cfg_run_exec(r, &o, &err);
+    g_assert_no_error(err);
+    assert_int_equal(res->frame_times->len, 2);
+    check_marks(path, marks, res);
+    g_array_free(marks, TRUE);
+    sim_result_free(res);
+    cfg_run_free(r);
+}
+
+static void test_frame_marks(void **state)
+{
+    (void)state;
+    GDir *d = g_dir_open("configs", 0, NULL);
+    assert_non_null(d);
+    guint runs = 0;
+    for (const char *f; (f = g_dir_read_name(d));) {
+        char *path = g_build_filename("configs", f, NULL);
+        CfgNode *root =
+            g_str_has_suffix(f, ".yaml") ? cfg_load_file(path, NULL) : NULL;
+        if (root && cfg_get(root, "schema_version") &&
+            cfg_get(cfg_get(root, "workload"), "type")) {
+            check_config_marks(path);
+            runs++;
+        }
+        cfg_free(root);
+        g_free(path);
+    }
+    g_dir_close(d);
+    assert_true(runs >= 9); /* each workload's example at least */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_workload),
+        cmocka_unit_test(test_frame_marks),
     };
     return cmocka_run_group_tests_name("trace_ends", tests, NULL, NULL);
 }
