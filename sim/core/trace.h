@@ -24,6 +24,11 @@ typedef struct {
                  SimTime sent, SimTime arrived);
     /* A named instant (frame boundary ...). */
     void (*mark)(SimTrace *tr, const char *name, SimTime t);
+    /* A message of `bytes` crossed a network link on its route while in
+     * flight over [sent, arrived): one call per link of the route, after
+     * its flow.  link is the network's link id, link_name its name. */
+    void (*link)(SimTrace *tr, uint64_t link, const char *link_name,
+                 uint64_t bytes, SimTime sent, SimTime arrived);
 } SimTraceOps;
 
 struct SimTrace {
@@ -52,6 +57,19 @@ static inline void sim_trace_mark(SimTrace *tr, const char *name, SimTime t)
 {
     if (tr && tr->ops->mark)
         tr->ops->mark(tr, name, t);
+}
+
+static inline gboolean sim_trace_wants_links(const SimTrace *tr)
+{
+    return tr && tr->ops->link;
+}
+
+static inline void sim_trace_link(SimTrace *tr, uint64_t link,
+                                  const char *link_name, uint64_t bytes,
+                                  SimTime sent, SimTime arrived)
+{
+    if (tr && tr->ops->link)
+        tr->ops->link(tr, link, link_name, bytes, sent, arrived);
 }
 
 #endif

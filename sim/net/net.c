@@ -332,6 +332,20 @@ void net_send(NetNet *n, uint32_t src, uint32_t dst, uint64_t bytes,
     n->tp->start(n, m);
 }
 
+/* The trace's per-link view: the message on every link of its route
+ * from its send to now (names are built only when a trace asks). */
+static void trace_links(NetNet *n, SimTrace *tr, const NetMsg *m,
+                        SimTime now)
+{
+    if (!sim_trace_wants_links(tr))
+        return;
+    char name[64];
+    for (guint i = 0; i < m->hops; i++) {
+        net_link_name(n, m->path[i]->id, name, sizeof name);
+        sim_trace_link(tr, m->path[i]->id, name, m->bytes, m->sent, now);
+    }
+}
+
 void net_msg_deliver(NetNet *n, NetMsg *m)
 {
     SimTime now = sim_now(n->eng);
@@ -344,6 +358,7 @@ void net_msg_deliver(NetNet *n, NetMsg *m)
         sim_trace_flow(tr, m->src, sim_engine_node_name(n->eng, m->src),
                        m->dst, sim_engine_node_name(n->eng, m->dst), m->bytes,
                        m->sent, now);
+    trace_links(n, tr, m, now);
     NetArriveFn cb = m->cb;
     void *ctx = m->ctx;
     uint64_t rec_id = m->rec_id;

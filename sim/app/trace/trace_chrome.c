@@ -8,7 +8,10 @@
  * the source with an "s" event, and "recv" on the destination with an "f"
  * event (binding point "e"), both carrying the same id; a mark (frame
  * boundary) is a global instant "i"; the counters derived from flows
- * ("messages in flight", "bytes in flight") are "C" counter tracks.
+ * ("messages in flight", "bytes in flight") are "C" counter tracks; each
+ * network link that carried a message is a counter track "link NAME"
+ * (series "B/s": its bandwidth use) of a second process, "network links"
+ * (pid 1).
  * Timestamps are microseconds (doubles).  Events
  * are written as they come (the format needs no order), each one built
  * and printed by json-glib; only the fixed envelope around the event
@@ -128,19 +131,48 @@ static void on_counter(TrcWriter *w, int which, SimTime t, double value)
     emit(w, b);
 }
 
-static void begin(TrcWriter *w)
+/* The process_name metadata event of process pid. */
+static char *process_name(int pid, const char *name)
 {
     JsonBuilder *b = json_builder_new();
     json_builder_begin_object(b);
     js_set_str(b, "name", "process_name");
     js_set_str(b, "ph", "M");
-    js_set_int(b, "pid", 0);
+    js_set_int(b, "pid", pid);
     json_builder_set_member_name(b, "args");
     json_builder_begin_object(b);
-    js_set_str(b, "name", "pgsim");
+    js_set_str(b, "name", name);
     json_builder_end_object(b);
     json_builder_end_object(b);
-    char *text = js_finish(b, FALSE);
+    return js_finish(b, FALSE);
+}
+
+static void on_link_counter(TrcWriter *w, guint link, SimTime t, double bps)
+{
+    if (!w->links_begun) {
+        char *text = process_name(1, "network links");
+        fprintf(w->f, ",\n%s", text);
+        g_free(text);
+        w->links_begun = TRUE;
+    }
+    char *name = g_strconcat("link ", w->link_names->pdata[link], NULL);
+    JsonBuilder *b = json_builder_new();
+    json_builder_begin_object(b);
+    js_set_str(b, "name", name);
+    js_set_str(b, "ph", "C");
+    js_set_int(b, "pid", 1);
+    set_us(b, "ts", t);
+    json_builder_set_member_name(b, "args");
+    json_builder_begin_object(b);
+    js_set_num(b, "B/s", bps);
+    json_builder_end_object(b);
+    emit(w, b);
+    g_free(name);
+}
+
+static void begin(TrcWriter *w)
+{
+    char *text = process_name(0, "pgsim");
     fprintf(w->f, "{\"traceEvents\":[\n%s", text);
     g_free(text);
 }
@@ -160,5 +192,5 @@ static void end(TrcWriter *w)
     g_free(other);
 }
 
-const TrcFormat trc_chrome = {begin,   on_node,    on_span, on_flow,
-                              on_mark, on_counter, end};
+const TrcFormat trc_chrome = {begin,   on_node,    on_span,         on_flow,
+                              on_mark, on_counter, on_link_counter, end};

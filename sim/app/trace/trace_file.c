@@ -6,7 +6,11 @@
  * as <path>.tmp and renamed to <path> on a successful close, so a reader
  * never sees half a trace under the final name.  O(1) per event; the
  * counters derived from flows (messages and bytes in flight) are sorted
- * on close: O(f log f) for f recorded flows.
+ * on close: O(f log f) for f recorded flows.  Link load: a message adds
+ * its mean rate, bytes / (arrival - send), to every link of its route
+ * while in flight (SimGrid's "bandwidth_used" for a flow at a constant
+ * rate); links are recorded only for messages within the cap, so memory
+ * stays within cap x route length; sorted on close per link.
  */
 #include "sim/app/trace/trace_impl.h"
 #include <errno.h>
@@ -27,6 +31,14 @@ typedef struct {
     uint64_t seq;
     int64_t bytes; /* +bytes at a send, -bytes at an arrival */
 } TrcDelta;
+
+typedef struct {
+    SimTime t;
+    uint64_t seq;
+    guint link;
+    int sign; /* +1 at the send, -1 at the arrival */
+    double rate;
+} TrcLinkDelta;
 
 static const SimTraceOps trc_ops; /* below: the hooks every format shares */
 
@@ -56,6 +68,10 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
     w->nodes = g_hash_table_new_full(NULL, NULL, NULL, g_free);
     w->default_named = g_hash_table_new(NULL, NULL);
     w->deltas = g_array_new(FALSE, FALSE, sizeof(TrcDelta));
+    w->link_index = g_hash_table_new_full(g_int64_hash, g_int64_equal,
+                                          g_free, NULL);
+    w->link_names = g_ptr_array_new_with_free_func(g_free);
+    w->link_deltas = g_array_new(FALSE, FALSE, sizeof(TrcLinkDelta));
     w->trace.ops = &trc_ops;
     w->trace.state = w;
     fmt->begin(w);
@@ -153,7 +169,41 @@ static void on_mark(SimTrace *tr, const char *name, SimTime t)
         w->fmt->mark(w, name, t);
 }
 
-static const SimTraceOps trc_ops = {on_span, on_flow, on_mark};
+/* The link's index, given on first sight. */
+static guint link_index(TrcWriter *w, uint64_t id, const char *name)
+{
+    gpointer v = g_hash_table_lookup(w->link_index, &id);
+    if (v)
+        return GPOINTER_TO_UINT(v) - 1;
+    guint i = w->link_names->len;
+    uint64_t *key = g_new(uint64_t, 1);
+    *key = id;
+    g_hash_table_insert(w->link_index, key, GUINT_TO_POINTER(i + 1));
+    g_ptr_array_add(w->link_names, g_strdup(name));
+    return i;
+}
+
+static void add_link_delta(TrcWriter *w, SimTime t, guint link, int sign,
+                           double rate)
+{
+    TrcLinkDelta d = {t, w->link_deltas->len, link, sign, rate};
+    g_array_append_val(w->link_deltas, d);
+}
+
+/* Not an event of its own: kept while its message was (before the cap). */
+static void on_link(SimTrace *tr, uint64_t link, const char *name,
+                    uint64_t bytes, SimTime sent, SimTime arrived)
+{
+    TrcWriter *w = tr->state;
+    if (w->truncated || arrived <= sent)
+        return;
+    double rate = (double)bytes / sim_time_to_s(arrived - sent);
+    guint i = link_index(w, link, name);
+    add_link_delta(w, sent, i, 1, rate);
+    add_link_delta(w, arrived, i, -1, rate);
+}
+
+static const SimTraceOps trc_ops = {on_span, on_flow, on_mark, on_link};
 
 static gint by_time(gconstpointer a, gconstpointer b)
 {
@@ -185,6 +235,39 @@ static void write_counters(TrcWriter *w)
     }
 }
 
+static gint by_link_time(gconstpointer a, gconstpointer b)
+{
+    const TrcLinkDelta *x = a, *y = b;
+    if (x->link != y->link)
+        return x->link < y->link ? -1 : 1;
+    if (x->t != y->t)
+        return x->t < y->t ? -1 : 1;
+    return x->seq < y->seq ? -1 : x->seq > y->seq;
+}
+
+/* Per link: 0 at time 0, then one sample at every time its messages
+ * change its use (exactly 0 when none is in flight, free of rounding). */
+static void write_link_counters(TrcWriter *w)
+{
+    GArray *d = w->link_deltas;
+    g_array_sort(d, by_link_time);
+    double sum = 0;
+    int n = 0;
+    for (guint i = 0; i < d->len; i++) {
+        const TrcLinkDelta *x = &g_array_index(d, TrcLinkDelta, i);
+        if (i == 0 || x[-1].link != x->link) {
+            sum = 0;
+            n = 0;
+            w->fmt->link_counter(w, x->link, 0, 0.0);
+        }
+        sum += x->sign * x->rate;
+        n += x->sign;
+        if (i + 1 < d->len && x[1].link == x->link && x[1].t == x->t)
+            continue;
+        w->fmt->link_counter(w, x->link, x->t, n ? sum : 0.0);
+    }
+}
+
 uint64_t trc_events(const SimTrace *tr)
 {
     return ((const TrcWriter *)tr->state)->events;
@@ -203,6 +286,7 @@ gboolean trc_close(SimTrace *tr, GError **err)
         return TRUE;
     TrcWriter *w = tr->state;
     write_counters(w);
+    write_link_counters(w);
     w->fmt->end(w);
     gboolean ok = !ferror(w->f);
     ok = fclose(w->f) == 0 && ok;
@@ -232,6 +316,9 @@ static void writer_free(TrcWriter *w)
     g_hash_table_destroy(w->nodes);
     g_hash_table_destroy(w->default_named);
     g_array_free(w->deltas, TRUE);
+    g_hash_table_destroy(w->link_index);
+    g_ptr_array_free(w->link_names, TRUE);
+    g_array_free(w->link_deltas, TRUE);
     if (w->buffer)
         g_ptr_array_free(w->buffer, TRUE);
     g_free(w->path);

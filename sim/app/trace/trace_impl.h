@@ -3,7 +3,8 @@
  *
  * trace_file.c owns everything the formats share: the SimTraceOps (one
  * table for every format), the event cap and its note, node names, flow
- * ids, and the counters derived from flows.  A TrcFormat only writes.
+ * ids, the counters derived from flows, and the per-link bandwidth use
+ * derived from messages' routes.  A TrcFormat only writes.
  */
 #ifndef PGSIM_APP_TRACE_TRACE_IMPL_H
 #define PGSIM_APP_TRACE_TRACE_IMPL_H
@@ -28,6 +29,9 @@ typedef struct {
     /* One sample of a machine-wide counter track (trc_counters()), in
      * time order per counter. */
     void (*counter)(TrcWriter *w, int which, SimTime t, double value);
+    /* One sample of a network link's bandwidth use (B/s), in time order
+     * per link; the link's name is w->link_names[link]. */
+    void (*link_counter)(TrcWriter *w, guint link, SimTime t, double bps);
     void (*end)(TrcWriter *w);
 } TrcFormat;
 
@@ -47,6 +51,10 @@ struct TrcWriter {
     GHashTable *nodes;         /* node id + 1 -> name (seen nodes) */
     GHashTable *default_named; /* node id + 1 of nodes named "node<id>" */
     GArray *deltas;            /* TrcDelta: flow starts and ends */
+    GHashTable *link_index;    /* NetLinkId -> index + 1 (links seen) */
+    GPtrArray *link_names;     /* index -> name */
+    GArray *link_deltas;       /* TrcLinkDelta: rate changes per link */
+    gboolean links_begun;      /* Chrome: the links' process is named */
     GPtrArray *buffer;         /* Paje: lines waiting to be sorted by time */
 };
 

@@ -7,6 +7,9 @@
  * destination, sharing a key); a mark (frame boundary) is a PajeNewEvent
  * on the machine; the counters derived from flows ("messages in flight",
  * "bytes in flight") are variables of the machine (PajeSetVariable).
+ * As SimGrid writes them, each network link that carried a message is a
+ * container of type "LINK" in the machine with a variable
+ * "bandwidth_used" (B/s).
  * Paje needs events in time order, but spans are reported when they end,
  * so lines are buffered with (time, seq) and sorted on close: O(n log n)
  * for n events, memory bounded by the event cap.
@@ -56,6 +59,8 @@ static const char header[] =
     "3 ET_Mark CT_Machine \"Mark\"\n"
     "10 VT_0 CT_Machine \"messages in flight\"\n"
     "10 VT_1 CT_Machine \"bytes in flight (B)\"\n"
+    "0 CT_Link CT_Machine \"LINK\"\n"
+    "10 VT_bw CT_Link \"bandwidth_used\"\n"
     "4 0.000000000000 machine CT_Machine 0 \"machine\"\n";
 
 static void line_free(gpointer p)
@@ -123,6 +128,13 @@ static void on_counter(TrcWriter *w, int which, SimTime t, double value)
     add(w, 11, t, g_strdup_printf("VT_%d machine %s", which, num));
 }
 
+static void on_link_counter(TrcWriter *w, guint link, SimTime t, double bps)
+{
+    char num[G_ASCII_DTOSTR_BUF_SIZE];
+    g_ascii_formatd(num, sizeof num, "%.17g", bps);
+    add(w, 11, t, g_strdup_printf("VT_bw l%u %s", link, num));
+}
+
 static void begin(TrcWriter *w)
 {
     w->buffer = g_ptr_array_new_with_free_func(line_free);
@@ -168,6 +180,11 @@ static void end(TrcWriter *w)
         fprintf(w->f, "4 0.000000000000 n%u CT_Node machine \"%s\"\n", id, q);
         g_free(q);
     }
+    for (guint i = 0; i < w->link_names->len; i++) {
+        char *q = quoted(w->link_names->pdata[i]);
+        fprintf(w->f, "4 0.000000000000 l%u CT_Link machine \"%s\"\n", i, q);
+        g_free(q);
+    }
     g_ptr_array_sort(w->buffer, by_time);
     SimTime last = 0;
     for (guint i = 0; i < w->buffer->len; i++) {
@@ -182,11 +199,16 @@ static void end(TrcWriter *w)
                 " CT_Node n%u\n",
                 last / SIM_S, last % SIM_S, g_array_index(ids, guint, i));
     g_array_free(ids, TRUE);
+    for (guint i = 0; i < w->link_names->len; i++)
+        fprintf(w->f,
+                "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
+                " CT_Link l%u\n",
+                last / SIM_S, last % SIM_S, i);
     fprintf(w->f,
             "5 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
             " CT_Machine machine\n",
             last / SIM_S, last % SIM_S);
 }
 
-const TrcFormat trc_paje = {begin,   on_node,    on_span, on_flow,
-                            on_mark, on_counter, end};
+const TrcFormat trc_paje = {begin,   on_node,    on_span,         on_flow,
+                            on_mark, on_counter, on_link_counter, end};

@@ -1,10 +1,12 @@
 /* test_trace.c — trace files: Chrome JSON parses and holds the spans,
  * flows, marks and counters; Paje is time-ordered; the cap truncates
- * with a note; a workload's frames are marks. */
+ * with a note; a workload's frames are marks; a network's messages give
+ * the links of their routes bandwidth-use tracks. */
 #include "sim/output/json.h"
 #include "sim/app/run/config.h"
 #include <math.h>
 #include "sim/app/trace/trace_file.h"
+#include "sim/net/net.h"
 #include <glib/gstdio.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -249,6 +251,126 @@ static void test_paje(void **state)
     rm_path(path);
 }
 
+typedef struct {
+    int n;
+    SimTime sent[2], arrived[2];
+    uint64_t bytes[2];
+} Sent;
+
+static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    Sent *s = ctx;
+    s->sent[s->n] = d->sent;
+    s->arrived[s->n] = d->arrived;
+    s->bytes[s->n++] = d->bytes;
+}
+
+/* Messages 0 -> 1 on a 2-node hypercube (one link), `count` of them sent
+ * at time 0 (1,000 and 3,000 B), at the flow fidelity: they share the
+ * link.  The trace goes to path. */
+static void send_pair(const char *path, int count, Sent *s)
+{
+    NetTopo *topo = net_hypercube_new(1);
+    NetParams p = {.bandwidth = 2.8e6, .channels = 1,
+                   .startup = 350 * SIM_US, .per_hop = 10 * SIM_US,
+                   .switching = NET_SW_CIRCUIT};
+    SimEngine *eng = sim_engine_new(1);
+    SimTrace *tr = trc_open(path, 0, NULL);
+    sim_engine_set_trace(eng, tr);
+    NetNet *net = net_new(eng, topo, &p, NET_FLOW);
+    for (int i = 0; i < count; i++)
+        net_send(net, 0, 1, 1000 + 2000 * (uint64_t)i, NULL, arrived, s);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(s->n, count);
+    assert_true(trc_close(tr, NULL));
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(topo);
+}
+
+/* The use the messages put on their link at time t (their mean rates
+ * while in flight), B/s. */
+static double expected_use(const Sent *s, SimTime t)
+{
+    double sum = 0;
+    for (int i = 0; i < s->n; i++)
+        if (s->sent[i] <= t && t < s->arrived[i])
+            sum += (double)s->bytes[i] /
+                   sim_time_to_s(s->arrived[i] - s->sent[i]);
+    return sum;
+}
+
+static void check_link_track(int count)
+{
+    char *path = tmp_path(".json");
+    Sent s = {0};
+    send_pair(path, count, &s);
+    assert_true(s.arrived[0] > s.sent[0]);
+    JsonNode *v = load_json(path);
+    JsonNode *evs = js_get(v, "traceEvents");
+    guint n;
+    find_ev(evs, "C", "link n1->n0", &n);
+    assert_int_equal(n, 0); /* no traffic, no track */
+    find_ev(evs, "C", "link n0->n1", &n);
+    assert_true(n >= 3);
+    double peak = 0, last_t = -1, last_v = -1;
+    for (guint i = 0; i < js_len(evs); i++) {
+        JsonNode *e = js_at(evs, i);
+        if (strcmp(js_str(js_get(e, "name")), "link n0->n1") != 0)
+            continue;
+        assert_true(js_num(js_get(e, "pid")) == 1);
+        double ts = js_num(js_get(e, "ts"));
+        double val = js_num(js_get(js_get(e, "args"), "B/s"));
+        assert_true(ts >= last_t);
+        if (ts > last_t && last_v >= 0) /* the value held before ts */
+            assert_true(fabs(last_v - expected_use(&s, (SimTime)(last_t *
+                        SIM_US) + 1)) <= 1e-6 * (last_v + 1));
+        peak = MAX(peak, val);
+        last_t = ts;
+        last_v = val;
+    }
+    assert_true(peak > 0);
+    assert_true(last_v == 0.0); /* back to 0 when the last one arrived */
+    assert_true(fabs(last_t - sim_time_to_us(s.arrived[count - 1])) < 1e-6);
+    json_node_unref(v);
+    rm_path(path);
+}
+
+static void test_link_load(void **state)
+{
+    (void)state;
+    check_link_track(1);
+    check_link_track(2);
+}
+
+static void test_link_paje(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".paje");
+    Sent s = {0};
+    send_pair(path, 1, &s);
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    assert_non_null(strstr(text, "0 CT_Link CT_Machine \"LINK\"\n"));
+    assert_non_null(strstr(text, "10 VT_bw CT_Link \"bandwidth_used\"\n"));
+    assert_non_null(strstr(text, "4 0.000000000000 l0 CT_Link machine "
+                                 "\"n0->n1\"\n"));
+    assert_null(strstr(text, "\"n1->n0\""));
+    char *rise = g_strdup_printf(
+        "11 0.000000000000 VT_bw l0 %.17g\n",
+        1000.0 / sim_time_to_s(s.arrived[0] - s.sent[0]));
+    assert_non_null(strstr(text, rise));
+    char *fall = g_strdup_printf(
+        "11 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT " VT_bw l0 0\n",
+        s.arrived[0] / SIM_S, s.arrived[0] % SIM_S);
+    assert_non_null(strstr(text, fall));
+    g_free(rise);
+    g_free(fall);
+    g_free(text);
+    rm_path(path);
+}
+
 static void test_bad_name(void **state)
 {
     (void)state;
@@ -266,6 +388,8 @@ int main(void)
         cmocka_unit_test(test_paje),
         cmocka_unit_test(test_counters),
         cmocka_unit_test(test_frame_marks),
+        cmocka_unit_test(test_link_load),
+        cmocka_unit_test(test_link_paje),
         cmocka_unit_test(test_bad_name),
     };
     return cmocka_run_group_tests_name("trace", tests, NULL, NULL);
