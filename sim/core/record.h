@@ -20,12 +20,21 @@
 
 typedef struct SimRecorder SimRecorder;
 
+/* A named operation and how many of it (a processor's work as counts:
+ * mach_proc_compute_ops); the name is borrowed, a static string. */
+typedef struct {
+    const char *name;
+    uint64_t count;
+} SimOp;
+
 typedef struct {
     /* `node` was given `cost` in `phase`, to end at `end`; `handled`: a
-     * handler runs when it completes.  Returns the action's id. */
+     * handler runs when it completes.  ops[0 .. n_ops-1]: the named counts
+     * that cost is priced from (n_ops 0: a time only).  Returns the
+     * action's id. */
     uint64_t (*compute)(SimRecorder *r, SimTime now, uint32_t node,
                         unsigned phase, SimTime cost, SimTime end,
-                        gboolean handled);
+                        const SimOp *ops, unsigned n_ops, gboolean handled);
     /* A message of `bytes` from src to dst was sent. */
     uint64_t (*send)(SimRecorder *r, SimTime now, uint32_t src, uint32_t dst,
                      uint64_t bytes, gboolean handled);

@@ -9,6 +9,7 @@
  */
 #include "sim/machine/proc.h"
 #include "sim/core/record.h"
+#include "sim/machine/machine.h"
 #include "sim/core/trace.h"
 
 void mach_proc_init(MachProc *p, MachMachine *m, SimEngine *eng,
@@ -56,8 +57,10 @@ static void fail_overflow(SimEngine *eng, MachProc *p, const char *what)
                                      what, mach_proc_name(p)));
 }
 
-gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
-                           SimHandler done, void *ctx, void *arg)
+/* Submits `cost`; ops (n_ops of them, or none) go to a recorder. */
+static gboolean submit(MachProc *p, SimTime cost, const MachOp *ops,
+                       guint n_ops, unsigned phase, SimHandler done, void *ctx,
+                       void *arg)
 {
     SimEngine *eng = p->eng;
     g_assert(phase < sim_engine_phase_count(eng));
@@ -78,11 +81,32 @@ gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
     trace_span(p, phase, start, end);
     SimRecorder *rec = sim_engine_recorder(eng);
     if (rec) /* `pgsim run --record`: the trace hears of it (record.h) */
-        return sim_record_schedule_done(
-            eng, rec, rec->ops->compute(rec, now, p->id, phase, cost, end,
-                              done != NULL),
-            end, done, ctx, arg);
+        return sim_record_schedule_done(eng, rec,
+                                        rec->ops->compute(rec, now, p->id,
+                                                          phase, cost, end, ops,
+                                                          n_ops, done != NULL),
+                                        end, done, ctx, arg);
     return done ? sim_schedule_at(eng, end, done, ctx, arg) : TRUE;
+}
+
+gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
+                           SimHandler done, void *ctx, void *arg)
+{
+    return submit(p, cost, NULL, 0, phase, done, ctx, arg);
+}
+
+gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
+                               unsigned phase, SimHandler done, void *ctx,
+                               void *arg)
+{
+    SimTime cost = 0, c;
+    g_assert(n_ops > 0); /* none: a time, mach_proc_compute() */
+    for (guint i = 0; i < n_ops; i++) {
+        SimTime unit = mach_cost(p->m, mach_proc_kind(p), ops[i].name);
+        (void)mach_cost_n(unit, ops[i].count, &c); /* saturates */
+        cost = sim_time_add_sat(cost, c);
+    }
+    return submit(p, cost, ops, n_ops, phase, done, ctx, arg);
 }
 
 SimTime mach_proc_free_at(const MachProc *p)

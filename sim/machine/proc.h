@@ -18,6 +18,7 @@
 #define PGSIM_MACHINE_PROC_H
 
 #include "sim/core/engine.h"
+#include "sim/core/record.h"
 #include "sim/core/stats.h"
 
 typedef struct MachMachine MachMachine;
@@ -40,6 +41,20 @@ typedef struct {
  * then stopped with SIM_ERROR_OVERFLOW). */
 gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
                            SimHandler done, void *ctx, void *arg);
+
+/* A named operation count, {name, count}: the name is a cost of the
+ * processor's kind (`nodes.KIND.costs.NAME`). */
+typedef SimOp MachOp;
+
+/* The same work given as n_ops >= 1 counts: cost = sum of count x mach_cost()
+ * of each name on the processor's kind (asserted to exist: check with
+ * mach_require_costs() first), saturating.  Same time, busy time and
+ * events as mach_proc_compute() of that cost; a recording (`--record`)
+ * writes the names and counts (a `c` line, docs/traces.md) instead of
+ * the time, so a replay prices them from its target's cost table. */
+gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
+                               unsigned phase, SimHandler done, void *ctx,
+                               void *arg);
 
 /* The time at which all work submitted so far completes (<= now: idle). */
 SimTime mach_proc_free_at(const MachProc *p);
@@ -64,9 +79,9 @@ MachMachine *mach_proc_machine(const MachProc *p);
 /* ---- for machine.c only ------------------------------------------------ */
 
 struct MachProc {
-    MachMachine *m;            /* opaque here: only handed back */
-    SimEngine *eng;            /* the machine's engine */
-    const MachKindInfo *info;  /* its kind (the machine's, stable) */
+    MachMachine *m;           /* opaque here: only handed back */
+    SimEngine *eng;           /* the machine's engine */
+    const MachKindInfo *info; /* its kind (the machine's, stable) */
     SimTime free_at;
     SimBusy busy; /* per_phase NULL until first used */
     uint64_t requests;

@@ -16,11 +16,12 @@
 #define NO_ACTION G_MAXUINT64
 
 typedef struct {
-    uint64_t value; /* ps of work, or bytes */
+    uint64_t value; /* ps of work, or bytes; RPL_COMPUTE: first in ops */
     SimTime done;   /* completion time (SIM_TIME_MAX: never completed) */
     uint32_t proc, peer;
     uint16_t phase;
-    uint8_t type; /* RPL_WORK or RPL_SEND */
+    uint8_t type;  /* RPL_WORK, RPL_COMPUTE or RPL_SEND */
+    uint8_t n_ops; /* RPL_COMPUTE: its counts, ops[value ..] */
     uint8_t handled : 1, frame : 1;
 } RecAct;
 
@@ -28,14 +29,15 @@ typedef struct {
     uint64_t first; /* its first action */
     uint64_t cause; /* NO_ACTION: an `at` or `sync` group */
     SimTime at;
-    gboolean sync;  /* issued when all earlier work had just completed */
+    gboolean sync; /* issued when all earlier work had just completed */
 } RecGroup;
 
 struct RplRecorder {
     SimRecorder hook;
-    GArray *acts;   /* RecAct */
-    GArray *groups; /* RecGroup */
-    uint64_t cur;   /* the action whose handler runs, or NO_ACTION */
+    GArray *acts;      /* RecAct */
+    GArray *groups;    /* RecGroup */
+    GArray *ops;       /* SimOp of RPL_COMPUTE actions, names interned */
+    uint64_t cur;      /* the action whose handler runs, or NO_ACTION */
     SimTime max_end;   /* latest end of the work given so far */
     uint64_t inflight; /* messages sent, not yet delivered */
 };
@@ -43,17 +45,16 @@ struct RplRecorder {
 /* Opens a group for an action issued now if the last one does not fit. */
 static void group_for(RplRecorder *r, SimTime now)
 {
-    RecGroup *last = r->groups->len
-                         ? &g_array_index(r->groups, RecGroup,
-                                          r->groups->len - 1)
-                         : NULL;
+    RecGroup *last =
+        r->groups->len ? &g_array_index(r->groups, RecGroup, r->groups->len - 1)
+                       : NULL;
     if (last && last->cause == r->cur &&
         (r->cur != NO_ACTION || last->at == now))
         return;
     /* A workload's timer that fires just as the last of all earlier work
      * ends (and no message is in flight) waited for that work. */
-    gboolean sync = r->cur == NO_ACTION && now > 0 && r->inflight == 0 &&
-                    r->max_end == now;
+    gboolean sync =
+        r->cur == NO_ACTION && now > 0 && r->inflight == 0 && r->max_end == now;
     RecGroup g = {r->acts->len, r->cur, now, sync};
     g_array_append_val(r->groups, g);
     if (r->cur != NO_ACTION)
@@ -68,29 +69,47 @@ static uint64_t add(RplRecorder *r, SimTime now, RecAct a)
     return r->acts->len - 1;
 }
 
+/* Keeps the non-zero counts (the last one if all are zero: a `c` line
+ * names at least one); returns the action's RPL_COMPUTE fields. */
+static RecAct keep_ops(RplRecorder *r, const SimOp *ops, unsigned n_ops)
+{
+    g_assert(n_ops <= RPL_MAX_OPS);
+    RecAct a = {.value = r->ops->len, .type = RPL_COMPUTE};
+    for (unsigned i = 0; i < n_ops; i++) {
+        if (ops[i].count == 0 && (a.n_ops > 0 || i + 1 < n_ops))
+            continue;
+        SimOp o = {g_intern_string(ops[i].name), ops[i].count};
+        g_array_append_val(r->ops, o);
+        a.n_ops++;
+    }
+    return a;
+}
+
 static uint64_t on_compute(SimRecorder *h, SimTime now, uint32_t node,
                            unsigned phase, SimTime cost, SimTime end,
-                           gboolean handled)
+                           const SimOp *ops, unsigned n_ops, gboolean handled)
 {
     (void)handled;
     g_assert(phase <= G_MAXUINT16);
     RplRecorder *r = h->state;
-    uint64_t id = add(r, now,
-               (RecAct){.value = cost, .proc = node, .phase = (uint16_t)phase,
-                        .type = RPL_WORK});
+    RecAct a = n_ops ? keep_ops(r, ops, n_ops)
+                     : (RecAct){.value = cost, .type = RPL_WORK};
+    a.proc = node;
+    a.phase = (uint16_t)phase;
+    uint64_t id = add(r, now, a);
     r->max_end = MAX(r->max_end, end);
     return id;
 }
 
-static uint64_t on_send(SimRecorder *h, SimTime now, uint32_t src,
-                        uint32_t dst, uint64_t bytes, gboolean handled)
+static uint64_t on_send(SimRecorder *h, SimTime now, uint32_t src, uint32_t dst,
+                        uint64_t bytes, gboolean handled)
 {
     (void)handled;
     RplRecorder *r = h->state;
     r->inflight++;
-    return add(r, now,
-               (RecAct){.value = bytes, .proc = src, .peer = dst,
-                        .type = RPL_SEND});
+    return add(
+        r, now,
+        (RecAct){.value = bytes, .proc = src, .peer = dst, .type = RPL_SEND});
 }
 
 static void on_begin(SimRecorder *h, uint64_t id, SimTime t)
@@ -117,6 +136,7 @@ RplRecorder *rpl_recorder_new(void)
     r->hook = (SimRecorder){&rec_ops, r};
     r->acts = g_array_new(FALSE, FALSE, sizeof(RecAct));
     r->groups = g_array_new(FALSE, FALSE, sizeof(RecGroup));
+    r->ops = g_array_new(FALSE, FALSE, sizeof(SimOp));
     r->cur = NO_ACTION;
     return r;
 }
@@ -127,6 +147,7 @@ void rpl_recorder_free(RplRecorder *r)
         return;
     g_array_free(r->acts, TRUE);
     g_array_free(r->groups, TRUE);
+    g_array_free(r->ops, TRUE);
     g_free(r);
 }
 
@@ -191,16 +212,25 @@ static guint place_frames(RplRecorder *r, const SimResult *res)
     return missed;
 }
 
-static RplItem act_item(const RecAct *a, uint64_t id)
+static RplItem act_item(const RplRecorder *r, const RecAct *a, uint64_t id)
 {
-    return (RplItem){.type = a->type,
-                     .id = id,
-                     .proc = a->proc,
-                     .peer = a->peer,
-                     .phase = a->phase,
-                     .value = a->value,
-                     .handled = a->handled,
-                     .frame = a->frame};
+    RplItem it = {.type = a->type,
+                  .id = id,
+                  .proc = a->proc,
+                  .peer = a->peer,
+                  .phase = a->phase,
+                  .value = a->value,
+                  .handled = a->handled,
+                  .frame = a->frame};
+    if (a->type != RPL_COMPUTE)
+        return it;
+    it.n_ops = a->n_ops;
+    for (guint i = 0; i < a->n_ops; i++) {
+        const SimOp *o = &g_array_index(r->ops, SimOp, a->value + i);
+        it.op[i] = o->name;
+        it.count[i] = o->count;
+    }
+    return it;
 }
 
 static void write_body(RplRecorder *r, RplWriter *w)
@@ -211,13 +241,13 @@ static void write_body(RplRecorder *r, RplWriter *w)
                             ? g_array_index(r->groups, RecGroup, g + 1).first
                             : r->acts->len;
         RplItem it = {.type = gr->cause != NO_ACTION ? RPL_ON
-                              : gr->sync               ? RPL_SYNC
-                                                       : RPL_AT,
+                              : gr->sync             ? RPL_SYNC
+                                                     : RPL_AT,
                       .id = gr->cause,
                       .at = gr->at};
         rpl_write_item(w, &it);
         for (uint64_t i = gr->first; i < stop; i++) {
-            it = act_item(&g_array_index(r->acts, RecAct, i), i);
+            it = act_item(r, &g_array_index(r->acts, RecAct, i), i);
             rpl_write_item(w, &it);
         }
     }
@@ -237,7 +267,7 @@ static gboolean fill_header(RplRecorder *r, const CfgRun *run,
     for (guint i = 0; i < r->acts->len; i++) {
         const RecAct *a = &g_array_index(r->acts, RecAct, i);
         h->procs = MAX(h->procs, MAX(a->proc, a->peer) + 1);
-        if (a->type == RPL_WORK && a->phase >= h->phases->len) {
+        if (a->type != RPL_SEND && a->phase >= h->phases->len) {
             g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
                         "recording: phase %u of action %u is not among the "
                         "result's %u phases",
@@ -248,9 +278,8 @@ static gboolean fill_header(RplRecorder *r, const CfgRun *run,
     return TRUE;
 }
 
-gboolean rpl_recorder_write(RplRecorder *r, const char *path,
-                            const CfgRun *run, const SimResult *res,
-                            guint *unplaced, GError **err)
+gboolean rpl_recorder_write(RplRecorder *r, const char *path, const CfgRun *run,
+                            const SimResult *res, guint *unplaced, GError **err)
 {
     RplHeader h = {0};
     if (!fill_header(r, run, res, &h, err)) {
@@ -271,9 +300,8 @@ gboolean rpl_recorder_write(RplRecorder *r, const char *path,
     return rpl_writer_close(w, err);
 }
 
-gboolean rpl_record_finish(RplRecorder *r, const char *path,
-                           const CfgRun *run, const SimResult *res,
-                           gboolean quiet, GError **err)
+gboolean rpl_record_finish(RplRecorder *r, const char *path, const CfgRun *run,
+                           const SimResult *res, gboolean quiet, GError **err)
 {
     guint missed = 0;
     if (!rpl_recorder_write(r, path, run, res, &missed, err))

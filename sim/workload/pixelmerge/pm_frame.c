@@ -120,6 +120,35 @@ static gboolean image_matches(const Local *l, const WlPmFrame *img)
     return ok;
 }
 
+/* The counts of span_time() / zbuf_time(), named as wl_pm_cost_ops. */
+static guint span_ops(const WlPmCounts *k, gboolean sorted, MachOp *o)
+{
+    o[0] = (MachOp){"polygon", k->polygons};
+    o[1] = (MachOp){"span", k->rc.spans};
+    o[2] = (MachOp){"insert_step", k->insert_steps};
+    return sorted ? 3 : 2;
+}
+
+static guint zbuf_ops(const WlPmCounts *k, guint n, gboolean full, MachOp *o)
+{
+    o[0] = (MachOp){"pixel", k->rc.pixels};
+    o[1] = (MachOp){"scanline", n};
+    o[2] = (MachOp){"zcompare", full ? k->rc.pixels : k->rc.zcompares};
+    o[3] = (MachOp){"zbuf_init", (uint64_t)n * n};
+    return full ? 4 : 3;
+}
+
+/* Gives processor p its local phases as named counts (the same times). */
+static void local_compute(MachProc *proc, const WlPmCounts *k, guint n,
+                          gboolean full, unsigned ph_span, unsigned ph_zbuf)
+{
+    MachOp o[4];
+    mach_proc_compute_ops(proc, o, span_ops(k, !full, o), ph_span, NULL, NULL,
+                          NULL);
+    mach_proc_compute_ops(proc, o, zbuf_ops(k, n, full, o), ph_zbuf, NULL, NULL,
+                          NULL);
+}
+
 /* Local phases into busy[]; returns the barrier time (slowest node). */
 static SimTime local_phases(const Local *l, const WlPmSetup *s,
                             const WlPmCosts *c, SimEngine *eng,
@@ -134,10 +163,9 @@ static SimTime local_phases(const Local *l, const WlPmSetup *s,
         SimTime tz = zbuf_time(&l->counts[p], c, s->resolution, full);
         sim_busy_add(&out->busy[p], ph_span, ts);
         sim_busy_add(&out->busy[p], ph_zbuf, tz);
-        if (procs) {
-            mach_proc_compute(procs[p], ts, ph_span, NULL, NULL, NULL);
-            mach_proc_compute(procs[p], tz, ph_zbuf, NULL, NULL, NULL);
-        }
+        if (procs)
+            local_compute(procs[p], &l->counts[p], s->resolution, full, ph_span,
+                          ph_zbuf);
         span_max = MAX(span_max, ts);
         zbuf_max = MAX(zbuf_max, tz);
         barrier = MAX(barrier, add(ts, tz));

@@ -11,11 +11,18 @@
 #include "sim/workload/pixelmerge/pm_replay.h"
 #include <math.h>
 
+/* A compute as named counts (wl_pm_cost_ops), for mach_proc_compute_ops. */
+typedef struct {
+    MachOp op[3];
+    guint n;
+} OpList;
+
 typedef struct {
     gboolean exchange;
     uint32_t *dst;
     uint64_t *bytes;
     SimTime *pre, *post;
+    OpList *pre_ops, *post_ops; /* the counts priced into pre / post */
 } RStep;
 
 typedef struct {
@@ -49,6 +56,8 @@ static void rstep_init(RStep *s, guint n, gboolean exchange)
     s->bytes = g_new0(uint64_t, n);
     s->pre = g_new0(SimTime, n);
     s->post = g_new0(SimTime, n);
+    s->pre_ops = g_new0(OpList, n);
+    s->post_ops = g_new0(OpList, n);
 }
 
 static void rstep_clear(RStep *s)
@@ -57,6 +66,8 @@ static void rstep_clear(RStep *s)
     g_free(s->bytes);
     g_free(s->pre);
     g_free(s->post);
+    g_free(s->pre_ops);
+    g_free(s->post_ops);
 }
 
 static guint log2u(guint n)
@@ -83,6 +94,8 @@ static guint global_sum_steps(RStep *out, guint n, WlPmBalance bal,
             out[k].dst[p] = p ^ (1u << k);
             out[k].bytes[p] = (uint64_t)height * c->count_bytes;
             out[k].post[p] = add;
+            out[k].pre_ops[p] = (OpList){{{"sum_elem", 0}}, 1}; /* none */
+            out[k].post_ops[p] = (OpList){{{"sum_elem", height}}, 1};
         }
     }
     rstep_init(&out[k], n, FALSE);
@@ -91,8 +104,16 @@ static guint global_sum_steps(RStep *out, guint n, WlPmBalance bal,
                     ? times(c->sort_elem, (uint64_t)height * lg, ovf) +
                           times(c->assign_step, (uint64_t)height * n, ovf)
                     : times(c->sort_elem, (uint64_t)d * lg, ovf);
-    for (guint p = 0; p < n; p++)
+    OpList o = bal == WL_PM_BAL_HBP
+                   ? (OpList){{{"sort_elem", (uint64_t)height * lg},
+                               {"assign_step", (uint64_t)height * n}},
+                              2}
+                   : (OpList){{{"sort_elem", (uint64_t)d * lg}}, 1};
+    for (guint p = 0; p < n; p++) {
         out[k].post[p] = t;
+        out[k].pre_ops[p] = (OpList){{{"sort_elem", 0}}, 1}; /* none */
+        out[k].post_ops[p] = o;
+    }
     return k + 1;
 }
 
@@ -108,18 +129,26 @@ static void merge_step(RStep *r, const WlPmStep *st, guint n,
         r->post[p] = times(c->scatter, w->scatter, ovf) +
                      times(c->compare, w->compare, ovf) +
                      times(c->gather, w->gather, ovf);
+        r->pre_ops[p] = (OpList){{{"pack", w->pack}}, 1};
+        r->post_ops[p] = (OpList){{{"scatter", w->scatter},
+                                   {"compare", w->compare},
+                                   {"gather", w->gather}},
+                                  3};
     }
 }
 
 static void proc_step(SimEngine *eng, void *ctx, void *arg);
 
-static void compute_then(Replay *r, guint p, SimTime cost, SimHandler next)
+/* `cost` is the price of `ops`: a machine processor is given the counts
+ * (a recording names them), plain engine events the time. */
+static void compute_then(Replay *r, guint p, SimTime cost, const OpList *ops,
+                         SimHandler next)
 {
     if (!sim_busy_add(&r->busy[p], r->phase, cost))
         r->overflow = TRUE;
     if (r->procs) {
-        if (!mach_proc_compute(r->procs[p], cost, r->phase, next, r,
-                               GUINT_TO_POINTER(p)))
+        if (!mach_proc_compute_ops(r->procs[p], ops->op, ops->n, r->phase, next,
+                                   r, GUINT_TO_POINTER(p)))
             r->overflow = TRUE;
     } else
         sim_schedule_in(r->eng, cost, next, r, GUINT_TO_POINTER(p));
@@ -136,7 +165,8 @@ static void proc_post_done(SimEngine *eng, void *ctx, void *arg)
 static void proc_post(Replay *r, guint p)
 {
     r->waiting[p] = FALSE;
-    compute_then(r, p, r->steps[r->cur[p]].post[p], proc_post_done);
+    const RStep *st = &r->steps[r->cur[p]];
+    compute_then(r, p, st->post[p], &st->post_ops[p], proc_post_done);
 }
 
 static void on_arrive(NetNet *net, const NetDelivery *d, void *ctx)
@@ -175,7 +205,8 @@ static void proc_step(SimEngine *eng, void *ctx, void *arg)
         r->done[p] = sim_now(eng);
         return;
     }
-    compute_then(r, p, r->steps[r->cur[p]].pre[p], proc_send);
+    const RStep *st = &r->steps[r->cur[p]];
+    compute_then(r, p, st->pre[p], &st->pre_ops[p], proc_send);
 }
 
 static void build_steps(Replay *r, const WlPmMerge *m, WlPmBalance bal,

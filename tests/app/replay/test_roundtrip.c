@@ -76,14 +76,23 @@ static gboolean same(const SimResult *a, const SimResult *b)
 static SimResult *replay(const char *path, const char *machine,
                          const char *fidelity, const char *const *sets)
 {
-    RplReplayOpts o = {.trace = path,
-                       .machine = machine,
-                       .fidelity = fidelity,
-                       .sets = sets};
+    RplReplayOpts o = {
+        .trace = path, .machine = machine, .fidelity = fidelity, .sets = sets};
     GError *e = NULL;
     SimResult *res = rpl_replay(&o, &e);
     g_assert_no_error(e);
     return res;
+}
+
+/* Removes the temporary trace and its directory; frees the names. */
+static void tmp_clear(char *dir, char *path, char *machine, char *fidelity)
+{
+    g_remove(path);
+    g_rmdir(dir);
+    g_free(path);
+    g_free(dir);
+    g_free(machine);
+    g_free(fidelity);
 }
 
 static void round_trip(const Case *c, gboolean gz)
@@ -98,24 +107,19 @@ static void round_trip(const Case *c, gboolean gz)
         fail_msg("%s: the replay differs from the run", c->config);
     sim_result_free(rep);
     sim_result_free(orig);
-    g_remove(path);
-    g_rmdir(dir);
-    g_free(path);
-    g_free(dir);
-    g_free(machine);
-    g_free(fidelity);
+    tmp_clear(dir, path, machine, fidelity);
 }
 
 static const Case pixelmerge = {"configs/pixelmerge-2pot.yaml", {NULL}};
 static const Case quickstart = {"configs/quickstart.yaml", {NULL}};
 static const Case pphigs = {"configs/pphigs-flock.yaml",
                             {"run.frames=2", NULL}};
-static const Case sortfirst = {"configs/sortfirst-vehicle.yaml",
-                               {"run.frames=2", "scene.triangles=8000",
-                                "scene.structures=60", NULL}};
-static const Case dpscan = {"configs/dpscan-cm200.yaml",
-                            {"scene.grid=16", "workload.width=256",
-                             "workload.height=256", NULL}};
+static const Case sortfirst = {
+    "configs/sortfirst-vehicle.yaml",
+    {"run.frames=2", "scene.triangles=8000", "scene.structures=60", NULL}};
+static const Case dpscan = {
+    "configs/dpscan-cm200.yaml",
+    {"scene.grid=16", "workload.width=256", "workload.height=256", NULL}};
 static const Case argus = {"configs/argus-nurbs.yaml", {NULL}};
 
 static void test_pixelmerge(void **s)
@@ -165,12 +169,73 @@ static void test_other_machine_differs(void **s)
     assert_true(sim_result_mean_frame_s(rep) > sim_result_mean_frame_s(orig));
     sim_result_free(rep);
     sim_result_free(orig);
-    g_remove(path);
-    g_rmdir(dir);
-    g_free(path);
-    g_free(dir);
-    g_free(machine);
-    g_free(fidelity);
+    tmp_clear(dir, path, machine, fidelity);
+}
+
+/* Work is recorded as named counts: per processor, the `span` counts of
+ * its `c` lines in phase "span" (a trace of `w` times has none). */
+static uint64_t *span_counts(const char *path, guint *n, unsigned *phase)
+{
+    GError *e = NULL;
+    RplReader *r = rpl_reader_open(path, &e);
+    g_assert_no_error(e);
+    const RplHeader *h = rpl_reader_header(r);
+    *n = h->procs;
+    *phase = G_MAXUINT;
+    for (guint i = 0; i < h->phases->len; i++)
+        if (!strcmp(h->phases->pdata[i], "span"))
+            *phase = i;
+    uint64_t *k = g_new0(uint64_t, *n);
+    RplItem it;
+    while (rpl_reader_next(r, &it, &e))
+        for (guint i = 0; it.type == RPL_COMPUTE && i < it.n_ops; i++)
+            if (it.phase == *phase && !strcmp(it.op[i], "span"))
+                k[it.proc] += it.count[i];
+    g_assert_no_error(e);
+    rpl_reader_free(r);
+    return k;
+}
+
+static SimTime busy_in(const SimResult *res, guint node, const char *phase)
+{
+    for (guint k = 0; k < res->phases->len; k++)
+        if (!strcmp(res->phases->pdata[k], phase))
+            return sim_busy_phase(
+                &((const SimNodeResult *)res->nodes->pdata[node])->busy, k);
+    fail_msg("no phase %s", phase);
+    return 0;
+}
+
+/* Doubling the target's `span` cost (100 -> 200 us) adds, on every
+ * processor, exactly its recorded span count x 100 us to the span phase
+ * and nothing to the zbuf phase; the frame grows. */
+static void test_pixelmerge_counts_repriced(void **s)
+{
+    (void)s;
+    char *dir = g_dir_make_tmp("pgsim-rt-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "t.pgt", NULL);
+    char *machine, *fidelity;
+    sim_result_free(record(&pixelmerge, path, &machine, &fidelity));
+    guint n;
+    unsigned ph;
+    uint64_t *k = span_counts(path, &n, &ph);
+    const char *one[] = {"machine.nodes.node.costs.span=100 us", NULL};
+    const char *two[] = {"machine.nodes.node.costs.span=200 us", NULL};
+    SimResult *a = replay(path, machine, fidelity, one);
+    SimResult *b = replay(path, machine, fidelity, two);
+    uint64_t total = 0;
+    for (guint p = 0; p < n; p++) {
+        SimTime da = busy_in(a, p, "span"), db = busy_in(b, p, "span");
+        assert_int_equal(db - da, k[p] * 100 * SIM_US);
+        assert_int_equal(busy_in(a, p, "zbuf"), busy_in(b, p, "zbuf"));
+        total += k[p];
+    }
+    assert_true(total > 0); /* a `w` trace has no counts: fails here */
+    assert_true(sim_result_mean_frame_s(b) > sim_result_mean_frame_s(a));
+    sim_result_free(a);
+    sim_result_free(b);
+    g_free(k);
+    tmp_clear(dir, path, machine, fidelity);
 }
 
 /* Every trace shipped in traces/ reads and replays on its own machine
@@ -216,6 +281,7 @@ int main(void)
         cmocka_unit_test(test_dpscan),
         cmocka_unit_test(test_argus),
         cmocka_unit_test(test_other_machine_differs),
+        cmocka_unit_test(test_pixelmerge_counts_repriced),
         cmocka_unit_test(test_shipped_traces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
