@@ -51,6 +51,7 @@ struct MachMachine {
 static gboolean read_costs(MachKind *k, const CfgNode *kind, GError **err)
 {
     k->costs = g_hash_table_new_full(g_str_hash, g_str_equal, NULL, g_free);
+    k->info.costs = k->costs; /* for mach_proc_compute_ops() */
     k->costs_at = cfg_get(kind, "costs");
     const CfgNode *costs = k->costs_at;
     for (guint i = 0; costs && i < cfg_map_len(costs); i++) {

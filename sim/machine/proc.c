@@ -9,7 +9,6 @@
  */
 #include "sim/machine/proc.h"
 #include "sim/core/record.h"
-#include "sim/machine/machine.h"
 #include "sim/core/trace.h"
 
 void mach_proc_init(MachProc *p, MachMachine *m, SimEngine *eng,
@@ -95,17 +94,24 @@ gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
     return submit(p, cost, NULL, 0, phase, done, ctx, arg);
 }
 
+/* count x the kind's cost of op, saturating. */
+static SimTime op_cost(const MachProc *p, const MachOp *op)
+{
+    const SimTime *unit =
+        p->info->costs ? g_hash_table_lookup(p->info->costs, op->name) : NULL;
+    g_assert(unit); /* the workload checked with mach_require_costs() */
+    return op->count && *unit > SIM_TIME_MAX / op->count ? SIM_TIME_MAX
+                                                         : *unit * op->count;
+}
+
 gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
                                unsigned phase, SimHandler done, void *ctx,
                                void *arg)
 {
-    SimTime cost = 0, c;
+    SimTime cost = 0;
     g_assert(n_ops > 0); /* none: a time, mach_proc_compute() */
-    for (guint i = 0; i < n_ops; i++) {
-        SimTime unit = mach_cost(p->m, mach_proc_kind(p), ops[i].name);
-        (void)mach_cost_n(unit, ops[i].count, &c); /* saturates */
-        cost = sim_time_add_sat(cost, c);
-    }
+    for (guint i = 0; i < n_ops; i++)
+        cost = sim_time_add_sat(cost, op_cost(p, &ops[i]));
     return submit(p, cost, ops, n_ops, phase, done, ctx, arg);
 }
 

@@ -33,6 +33,7 @@ typedef struct {
     uint64_t memory;      /* bytes per node, 0 when not given */
     uint64_t lanes;       /* SIMD lanes per processor, 1 if not SIMD */
     uint64_t lane_memory; /* bytes per lane, 0 when not given */
+    GHashTable *costs;    /* op name -> SimTime *: its cost table */
 } MachKindInfo;
 
 /* Submits `cost` of work in `phase`; done(eng, ctx, arg) runs when it
