@@ -1,6 +1,6 @@
 /* cmd_replay.c — `pgsim replay TRACE --machine MODEL [--nodes N]
  * [--map block|cyclic|FILE] [--fidelity F] [--set machine.K=V]...
- * [--clock KIND=HZ]...
+ * [--clock KIND=HZ]... [--costs-from MODEL]
  * [--format text|json|csv] [--out DIR]`.
  *
  * Plays a trace (docs/traces.md) on a machine model and prints the same
@@ -14,7 +14,7 @@
 
 typedef struct {
     char **sets, **clocks;
-    char *machine, *map, *fidelity, *format, *out;
+    char *machine, *map, *fidelity, *format, *out, *costs_from;
     int nodes;
 } ReplayOpts;
 
@@ -47,7 +47,8 @@ static int replay(const char *trace, const ReplayOpts *o)
                         .map = o->map,
                         .fidelity = o->fidelity,
                         .sets = (const char *const *)o->sets,
-                        .clocks = (const char *const *)o->clocks};
+                        .clocks = (const char *const *)o->clocks,
+                        .costs_from = o->costs_from};
     GError *e = NULL;
     SimResult *res = rpl_replay(&ro, &e);
     if (!res)
@@ -83,6 +84,10 @@ int cmd_replay(int argc, char **argv)
          "assume the trace's KIND ran at this clock when recorded (for kinds "
          "the trace gives none; repeatable)",
          "KIND=HZ"},
+        {"costs-from", 0, 0, G_OPTION_ARG_STRING, &o.costs_from,
+         "price operations the target's cost table lacks from this model's, "
+         "scaled by its clock / the target's (an assumption)",
+         "MODEL"},
         {"format", 0, 0, G_OPTION_ARG_STRING, &o.format,
          "report on stdout: text (default), json or csv", "FMT"},
         {"out", 0, 0, G_OPTION_ARG_FILENAME, &o.out,
@@ -102,5 +107,6 @@ int cmd_replay(int argc, char **argv)
     g_free(o.fidelity);
     g_free(o.format);
     g_free(o.out);
+    g_free(o.costs_from);
     return status;
 }

@@ -31,6 +31,10 @@ typedef struct {
     /* KIND=HZ: the recording clock of a trace kind that has none (an
      * assumption the user states), NULL-ended; may be NULL */
     const char *const *clocks;
+    /* A model whose cost table prices the `c` operations the target's
+     * lacks, scaled by its clock / the target's (same kind name); NULL:
+     * none (a missing cost is an error) */
+    const char *costs_from;
 } RplReplayOpts;
 
 /* Replays a trace; a new result (sim_result_free), or NULL with a

@@ -38,16 +38,18 @@ static gboolean apply_sets(CfgNode *root, const char *const *sets,
     return TRUE;
 }
 
-static MachMachine *build(RplTarget *t, const RplReplayOpts *o, GError **err)
+/* The model o->machine, sized to o->nodes (its partition into *desc). */
+static MachMachine *build(SimEngine *eng, char **desc, const RplReplayOpts *o,
+                          GError **err)
 {
     CfgNode *root = cfg_load_string("machine: {}\n", "replay", err);
     char *model = g_strdup_printf("machine.model=%s", o->machine);
     char *path = root ? mach_model_path(o->machine, err) : NULL;
     gboolean ok = path && cfg_set_override(root, model, err) &&
                   apply_sets(root, o->sets, err) &&
-                  (!o->nodes || mach_partition(root, o->nodes, &t->desc, err));
+                  (!o->nodes || mach_partition(root, o->nodes, desc, err));
     MachMachine *m =
-        ok ? mach_new_from_cfg(t->eng, cfg_get(root, "machine"),
+        ok ? mach_new_from_cfg(eng, cfg_get(root, "machine"),
                                o->fidelity ? o->fidelity
                                            : MACH_FIDELITY_FAITHFUL,
                                err)
@@ -168,8 +170,13 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
     t->eng = sim_engine_new(1);
     t->n_trace = h->procs;
     t->costs = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
-    t->m = build(t, o, err);
-    if (!t->m || !make_map(t, o->map, err) ||
+    t->m = build(t->eng, &t->desc, o, err);
+    RplReplayOpts from = {.machine = o->costs_from};
+    if (o->costs_from) {
+        t->from_eng = sim_engine_new(1);
+        t->from = t->m ? build(t->from_eng, NULL, &from, err) : NULL;
+    }
+    if (!t->m || (o->costs_from && !t->from) || !make_map(t, o->map, err) ||
         !parse_clocks(t, o->clocks, err)) {
         rpl_target_free(t);
         return NULL;
@@ -189,6 +196,10 @@ void rpl_target_free(RplTarget *t)
         return;
     mach_free(t->m);
     sim_engine_free(t->eng);
+    if (t->from_eng) {
+        mach_free(t->from);
+        sim_engine_free(t->from_eng);
+    }
     g_hash_table_destroy(t->costs);
     if (t->clocks)
         g_hash_table_destroy(t->clocks);
@@ -197,6 +208,23 @@ void rpl_target_free(RplTarget *t)
     g_free(t->scale);
     g_free(t->phase);
     g_free(t);
+}
+
+/* --costs-from: the cost of op on the same kind of that model, scaled by
+ * its clock / the target's (an assumption: the operation's time scales
+ * with clock); NULL when that model or either clock lacks it. */
+static SimTime *borrowed_cost(const RplTarget *t, const char *kind,
+                              const char *op)
+{
+    const MachKindInfo *fk = mach_kind(t->from, kind);
+    const MachKindInfo *tk = mach_kind(t->m, kind);
+    SimTime c;
+    if (!fk || fk->clock_hz <= 0 || tk->clock_hz <= 0 ||
+        !mach_cost_lookup(t->from, kind, op, &c, NULL))
+        return NULL;
+    double v = round((double)c * (fk->clock_hz / tk->clock_hz));
+    c = v >= (double)SIM_TIME_MAX ? SIM_TIME_MAX : (SimTime)v;
+    return g_memdup2(&c, sizeof c);
 }
 
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
@@ -213,6 +241,8 @@ const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
     SimTime c, *cp = NULL;
     if (mach_cost_lookup(t->m, kind, op, &c, NULL))
         cp = g_memdup2(&c, sizeof c);
+    else if (t->from)
+        cp = borrowed_cost(t, kind, op);
     g_hash_table_insert(t->costs, key, cp);
     return cp;
 }

@@ -24,6 +24,8 @@ typedef struct {
     unsigned *phase; /* header phase index -> engine phase id */
     GHashTable *costs; /* "kind\top" -> SimTime * (NULL: missing) */
     GHashTable *clocks; /* --clock: trace kind -> double Hz */
+    SimEngine *from_eng; /* --costs-from: its model, or NULL */
+    MachMachine *from;
 } RplTarget;
 
 /* Builds the target for a trace whose header is h. */
@@ -32,7 +34,8 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
 void rpl_target_free(RplTarget *t);
 /* Reads the trace at path to its end and checks it against the target. */
 gboolean rpl_target_check(RplTarget *t, const char *path, GError **err);
-/* The cost of one `op` on trace processor p's target kind, or NULL when
+/* The cost of one `op` on trace processor p's target kind (else, with
+ * --costs-from, the other model's cost scaled by clocks), or NULL when
  * the model lacks it; *fresh: first time this kind and op were asked. */
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                                   gboolean *fresh);

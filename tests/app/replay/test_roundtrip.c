@@ -7,6 +7,7 @@
 #include "sim/app/replay/rpl_record.h"
 #include "sim/app/replay/rpl_replay.h"
 #include <glib/gstdio.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -238,6 +239,41 @@ static void test_pixelmerge_counts_repriced(void **s)
     tmp_clear(dir, path, machine, fidelity);
 }
 
+/* A target without pixel-merging costs (the CM-5) is a located error
+ * naming them; with --costs-from ipsc2 each operation costs the iPSC/2's
+ * scaled by the clocks, so every processor's busy time in every phase
+ * is the run's times one ratio (< 1: a faster clock), to rounding. */
+static void test_costs_from(void **s)
+{
+    (void)s;
+    char *dir = g_dir_make_tmp("pgsim-rt-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "t.pgt", NULL);
+    char *machine, *fidelity;
+    SimResult *orig = record(&pixelmerge, path, &machine, &fidelity);
+    RplReplayOpts o = {.trace = path, .machine = "cm5", .nodes = 16};
+    GError *e = NULL;
+    assert_null(rpl_replay(&o, &e));
+    assert_non_null(e);
+    assert_non_null(strstr(e->message, "nodes.node.costs.span"));
+    g_clear_error(&e);
+    o.costs_from = "ipsc2";
+    SimResult *rep = rpl_replay(&o, &e);
+    g_assert_no_error(e);
+    const char *ph[] = {"span", "zbuf", "merge"};
+    double ratio = 0;
+    for (guint p = 0; p < 16; p++)
+        for (guint k = 0; k < G_N_ELEMENTS(ph); k++) {
+            double r = (double)busy_in(rep, p, ph[k]) /
+                       (double)busy_in(orig, p, ph[k]);
+            ratio = ratio ? ratio : r;
+            assert_true(fabs(r - ratio) < 1e-6 * ratio);
+        }
+    assert_true(ratio > 0 && ratio < 1);
+    sim_result_free(rep);
+    sim_result_free(orig);
+    tmp_clear(dir, path, machine, fidelity);
+}
+
 /* Every trace shipped in traces/ reads and replays on its own machine
  * and has actions. */
 static void test_shipped_traces(void **s)
@@ -282,6 +318,7 @@ int main(void)
         cmocka_unit_test(test_argus),
         cmocka_unit_test(test_other_machine_differs),
         cmocka_unit_test(test_pixelmerge_counts_repriced),
+        cmocka_unit_test(test_costs_from),
         cmocka_unit_test(test_shipped_traces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
