@@ -315,14 +315,19 @@ static void put_matrix(GString *s, const SceneElem *e)
     g_string_append_printf(s, "], mode: %s", modes[e->mode]);
 }
 
-/* A YAML scalar for a name: quoted, with " and \ escaped. */
+/* A YAML scalar for a name: double-quoted, with " and \ escaped and
+ * every control byte written as \xHH (a raw line break inside double
+ * quotes would fold to a space when read back). */
 static void put_name(GString *s, const char *name)
 {
     g_string_append_c(s, '"');
-    for (const char *c = name; *c; c++) {
-        if (*c == '"' || *c == '\\')
-            g_string_append_c(s, '\\');
-        g_string_append_c(s, *c);
+    for (const unsigned char *c = (const unsigned char *)name; *c; c++) {
+        if (*c < 0x20 || *c == 0x7f)
+            g_string_append_printf(s, "\\x%02x", *c);
+        else if (*c == '"' || *c == '\\')
+            g_string_append_printf(s, "\\%c", *c);
+        else
+            g_string_append_c(s, (char)*c);
     }
     g_string_append_c(s, '"');
 }
