@@ -3,7 +3,7 @@
  * [--quiet]`.
  *
  * Runs paper reproductions (sim/reproduce/reproduce.h), joins them to the
- * published values in configs/papers/<name>.yaml and prints the tables in
+ * published values in configs/papers/<name>/published.yaml and prints the tables in
  * the chosen format on stdout.  With --out DIR each reproduction's table
  * is also written, atomically, as DIR/<name>.{txt,csv,json} (and, with
  * --fidelity all, the chart DIR/<name>-speed.png).  `all` also writes the
