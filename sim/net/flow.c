@@ -189,23 +189,28 @@ static void lh_push(FlowNet *fn, double share, NetLink *l)
     a[i] = e;
 }
 
-static void lh_pop(FlowNet *fn)
+/* Places e at hole i of the heap a[0 .. n), moving smaller children up. */
+static void lh_sift_down(HeapEnt *a, guint n, guint i, HeapEnt e)
 {
-    HeapEnt *a = fn->lh, last = a[--fn->lh_n];
-    guint i = 0, n = fn->lh_n;
     for (;;) {
         guint c = 2 * i + 1;
         if (c >= n)
             break;
         if (c + 1 < n && a[c + 1].share < a[c].share)
             c++;
-        if (a[c].share >= last.share)
+        if (a[c].share >= e.share)
             break;
         a[i] = a[c];
         i = c;
     }
-    if (n > 0)
-        a[i] = last;
+    a[i] = e;
+}
+
+static void lh_pop(FlowNet *fn)
+{
+    HeapEnt last = fn->lh[--fn->lh_n];
+    if (fn->lh_n > 0)
+        lh_sift_down(fn->lh, fn->lh_n, 0, last);
 }
 
 /* The link with the least current share, or NULL when every link is
@@ -272,22 +277,8 @@ static void lh_heapify(FlowNet *fn)
 {
     HeapEnt *a = fn->lh;
     guint n = fn->lh_n;
-    for (guint k = n / 2; k-- > 0;) {
-        HeapEnt e = a[k];
-        guint i = k;
-        for (;;) {
-            guint c = 2 * i + 1;
-            if (c >= n)
-                break;
-            if (c + 1 < n && a[c + 1].share < a[c].share)
-                c++;
-            if (a[c].share >= e.share)
-                break;
-            a[i] = a[c];
-            i = c;
-        }
-        a[i] = e;
-    }
+    for (guint k = n / 2; k-- > 0;)
+        lh_sift_down(a, n, k, a[k]);
 }
 
 /* The component's links start at their capacity less the rates of their
