@@ -29,6 +29,18 @@ typedef struct {
      * its flow.  link is the network's link id, link_name its name. */
     void (*link)(SimTrace *tr, uint64_t link, const char *link_name,
                  uint64_t bytes, SimTime sent, SimTime arrived);
+    /* Packet rung: the link is taken at `start` and released at `end`
+     * while it carries `bytes` of one packet.  A transport reports each
+     * hold when it reserves the link (so possibly ahead of `start`);
+     * holds of one link come in time order and never overlap.  A link
+     * that reports holds is not also given the per-message `link`
+     * average by a writer. */
+    void (*hold)(SimTrace *tr, uint64_t link, const char *link_name,
+                 uint64_t bytes, SimTime start, SimTime end);
+    /* Packet rung: a message's head waited for the link over [from, to)
+     * (the link was held by others); reported with its hold. */
+    void (*wait)(SimTrace *tr, uint64_t link, const char *link_name,
+                 SimTime from, SimTime to);
 } SimTraceOps;
 
 struct SimTrace {
@@ -70,6 +82,29 @@ static inline void sim_trace_link(SimTrace *tr, uint64_t link,
 {
     if (tr && tr->ops->link)
         tr->ops->link(tr, link, link_name, bytes, sent, arrived);
+}
+
+/* TRUE when the trace listens to packet holds (then a transport builds
+ * link names for them). */
+static inline gboolean sim_trace_wants_holds(const SimTrace *tr)
+{
+    return tr && (tr->ops->hold || tr->ops->wait);
+}
+
+static inline void sim_trace_hold(SimTrace *tr, uint64_t link,
+                                  const char *link_name, uint64_t bytes,
+                                  SimTime start, SimTime end)
+{
+    if (tr && tr->ops->hold)
+        tr->ops->hold(tr, link, link_name, bytes, start, end);
+}
+
+static inline void sim_trace_wait(SimTrace *tr, uint64_t link,
+                                  const char *link_name, SimTime from,
+                                  SimTime to)
+{
+    if (tr && tr->ops->wait)
+        tr->ops->wait(tr, link, link_name, from, to);
 }
 
 #endif

@@ -22,8 +22,16 @@
  * the event queue one after another as they leave the first link rather
  * than all at injection (a 10 KB message in 20-byte CM-5 packets is 512
  * packets).
+ *
+ * Trace hook (sim/core/trace.h): when the engine's trace listens, each
+ * reservation reports the link's hold [start, end) by that packet, and a
+ * message's head packet that finds the link busy reports its wait [now,
+ * start), so the trace layer draws each hop's real occupancy and queue
+ * (docs/traces.md).  Reporting adds no events: a run with and without a
+ * trace makes the same events.
  */
 #include "sim/net/net_internal.h"
+#include "sim/core/trace.h"
 
 typedef struct NetPkt NetPkt;
 struct NetPkt {
@@ -33,10 +41,26 @@ struct NetPkt {
     SimTime prev_end; /* when the packet's tail left the previous link */
     SimTime due;      /* its first event after injection */
     NetPkt *chain;    /* the message's next packet, not yet scheduled */
+    gboolean head;    /* the message's first packet */
 };
 
 static void pkt_hop(SimEngine *eng, void *ctx, void *arg);
 static void pkt_arrive(SimEngine *eng, void *ctx, void *arg);
+
+/* Tells the trace that p holds l over [start, end), and that a head
+ * packet reaching it at `now` waited until `start`. */
+static void pkt_trace(NetNet *n, const NetPkt *p, const NetLink *l,
+                      SimTime now, SimTime start, SimTime end)
+{
+    SimTrace *tr = sim_engine_trace(net_eng(n));
+    if (!sim_trace_wants_holds(tr))
+        return;
+    char name[64];
+    net_link_name(n, l->id, name, sizeof name);
+    if (p->head && start > now)
+        sim_trace_wait(tr, l->id, name, now, start);
+    sim_trace_hold(tr, l->id, name, p->bytes, start, end);
+}
 
 /* p crosses link p->hop, entering at `now`: reserves it in FIFO order and
  * returns when p's next event is due (the next hop, or its arrival). */
@@ -49,6 +73,7 @@ static SimTime pkt_cross(NetNet *n, NetPkt *p, SimTime now)
     gboolean cut = par->switching != NET_SW_STORE_FORWARD;
     if (cut && end < p->prev_end)
         end = p->prev_end;
+    pkt_trace(n, p, l, now, start, end);
     l->free_at = end;
     p->prev_end = end;
     if (++p->hop == p->m->hops)
@@ -106,6 +131,7 @@ static void pkt_inject(SimEngine *eng, void *ctx, void *arg)
     for (uint64_t i = 0; i < np; i++) {
         NetPkt *p = g_new0(NetPkt, 1);
         p->m = m;
+        p->head = i == 0;
         p->bytes = (uint32_t)(i + 1 < np ? pb : m->bytes - i * pb);
         net_account(n, (gssize)sizeof *p);
         p->due = pkt_cross(n, p, sim_now(eng));

@@ -11,7 +11,8 @@
  * ("messages in flight", "bytes in flight") are "C" counter tracks; each
  * network link that carried a message is a counter track "link NAME"
  * (series "B/s": its bandwidth use) of a second process, "network links"
- * (pid 1).
+ * (pid 1), and a link a message waited for at the packet rung also has
+ * a track "queue NAME" (series "messages": messages waiting for it).
  * Timestamps are microseconds (doubles).  Events
  * are written as they come (the format needs no order), each one built
  * and printed by json-glib; only the fixed envelope around the event
@@ -147,15 +148,18 @@ static char *process_name(int pid, const char *name)
     return js_finish(b, FALSE);
 }
 
-static void on_link_counter(TrcWriter *w, guint link, SimTime t, double bps)
+static void on_link_counter(TrcWriter *w, guint link, int which, SimTime t,
+                            double value)
 {
+    gboolean bw = which == TRC_LINK_BW;
     if (!w->links_begun) {
         char *text = process_name(1, "network links");
         fprintf(w->f, ",\n%s", text);
         g_free(text);
         w->links_begun = TRUE;
     }
-    char *name = g_strconcat("link ", w->link_names->pdata[link], NULL);
+    char *name = g_strconcat(bw ? "link " : "queue ",
+                             w->link_names->pdata[link], NULL);
     JsonBuilder *b = json_builder_new();
     json_builder_begin_object(b);
     js_set_str(b, "name", name);
@@ -164,7 +168,7 @@ static void on_link_counter(TrcWriter *w, guint link, SimTime t, double bps)
     set_us(b, "ts", t);
     json_builder_set_member_name(b, "args");
     json_builder_begin_object(b);
-    js_set_num(b, "B/s", bps);
+    js_set_num(b, bw ? "B/s" : "messages", value);
     json_builder_end_object(b);
     emit(w, b);
     g_free(name);

@@ -10,7 +10,15 @@
  * its mean rate, bytes / (arrival - send), to every link of its route
  * while in flight (SimGrid's "bandwidth_used" for a flow at a constant
  * rate); links are recorded only for messages within the cap, so memory
- * stays within cap x route length; sorted on close per link.
+ * stays within cap x route length; sorted on close per link.  At the
+ * packet rung the transport reports each hop's holds instead (each
+ * packet's [take, release) on a link, sim/core/trace.h): a link that
+ * reports holds gets its use from them, bytes / (release - take) while
+ * held, and ignores the route average; contiguous holds at one rate are
+ * merged as they come (holds of a link arrive in time order), so a long
+ * message costs one step per link, not one per packet.  Queue depth: a
+ * message whose head waits for a link counts 1 on the link's queue track
+ * over the wait.
  */
 #include "sim/app/trace/trace_impl.h"
 #include <errno.h>
@@ -36,8 +44,9 @@ typedef struct {
     SimTime t;
     uint64_t seq;
     guint link;
-    int sign; /* +1 at the send, -1 at the arrival */
-    double rate;
+    int which; /* TRC_LINK_BW or TRC_LINK_QUEUE */
+    int sign;  /* +1 when it starts, -1 when it ends */
+    double rate; /* B/s (TRC_LINK_BW) */
 } TrcLinkDelta;
 
 static const SimTraceOps trc_ops; /* below: the hooks every format shares */
@@ -72,6 +81,7 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
                                           g_free, NULL);
     w->link_names = g_ptr_array_new_with_free_func(g_free);
     w->link_deltas = g_array_new(FALSE, FALSE, sizeof(TrcLinkDelta));
+    w->link_holds = g_array_new(FALSE, TRUE, sizeof(TrcHold));
     w->trace.ops = &trc_ops;
     w->trace.state = w;
     fmt->begin(w);
@@ -180,30 +190,94 @@ static guint link_index(TrcWriter *w, uint64_t id, const char *name)
     *key = id;
     g_hash_table_insert(w->link_index, key, GUINT_TO_POINTER(i + 1));
     g_ptr_array_add(w->link_names, g_strdup(name));
+    g_array_set_size(w->link_holds, i + 1);
     return i;
 }
 
-static void add_link_delta(TrcWriter *w, SimTime t, guint link, int sign,
-                           double rate)
+static void add_link_delta(TrcWriter *w, SimTime t, guint link, int which,
+                           int sign, double rate)
 {
-    TrcLinkDelta d = {t, w->link_deltas->len, link, sign, rate};
+    TrcLinkDelta d = {t, w->link_deltas->len, link, which, sign, rate};
     g_array_append_val(w->link_deltas, d);
 }
 
-/* Not an event of its own: kept while its message was (before the cap). */
+/* Adds a use of `rate` over [from, to) to the link's bandwidth track. */
+static void add_use(TrcWriter *w, guint link, SimTime from, SimTime to,
+                    double rate)
+{
+    add_link_delta(w, from, link, TRC_LINK_BW, 1, rate);
+    add_link_delta(w, to, link, TRC_LINK_BW, -1, rate);
+}
+
+static TrcHold *hold_of(TrcWriter *w, guint link)
+{
+    return &g_array_index(w->link_holds, TrcHold, link);
+}
+
+/* Turns the link's open hold, if any, into deltas. */
+static void flush_hold(TrcWriter *w, guint link)
+{
+    TrcHold *h = hold_of(w, link);
+    if (h->end > h->start)
+        add_use(w, link, h->start, h->end, h->rate);
+    h->start = h->end = 0;
+}
+
+/* The index of a link seen over [from, to), FALSE for an empty interval
+ * or past the cap: link reports are not events of their own, kept while
+ * their messages are. */
+static gboolean link_at(TrcWriter *w, uint64_t link, const char *name,
+                        SimTime from, SimTime to, guint *i)
+{
+    if (w->truncated || to <= from)
+        return FALSE;
+    *i = link_index(w, link, name);
+    return TRUE;
+}
+
 static void on_link(SimTrace *tr, uint64_t link, const char *name,
                     uint64_t bytes, SimTime sent, SimTime arrived)
 {
+    guint i;
     TrcWriter *w = tr->state;
-    if (w->truncated || arrived <= sent)
-        return;
-    double rate = (double)bytes / sim_time_to_s(arrived - sent);
-    guint i = link_index(w, link, name);
-    add_link_delta(w, sent, i, 1, rate);
-    add_link_delta(w, arrived, i, -1, rate);
+    if (!link_at(w, link, name, sent, arrived, &i) || hold_of(w, i)->held)
+        return; /* its holds tell the truth */
+    add_use(w, i, sent, arrived, (double)bytes / sim_time_to_s(arrived - sent));
 }
 
-static const SimTraceOps trc_ops = {on_span, on_flow, on_mark, on_link};
+/* A packet holds the link over [start, end): merged with the open hold
+ * when it continues it at the same rate. */
+static void on_hold(SimTrace *tr, uint64_t link, const char *name,
+                    uint64_t bytes, SimTime start, SimTime end)
+{
+    guint i;
+    TrcWriter *w = tr->state;
+    if (!link_at(w, link, name, start, end, &i))
+        return;
+    TrcHold *h = hold_of(w, i);
+    double rate = (double)bytes / sim_time_to_s(end - start);
+    h->held = TRUE;
+    if (h->end > h->start && h->end == start && h->rate == rate) {
+        h->end = end;
+        return;
+    }
+    flush_hold(w, i);
+    *h = (TrcHold){start, end, rate, TRUE};
+}
+
+static void on_wait(SimTrace *tr, uint64_t link, const char *name,
+                    SimTime from, SimTime to)
+{
+    guint i;
+    TrcWriter *w = tr->state;
+    if (!link_at(w, link, name, from, to, &i))
+        return;
+    add_link_delta(w, from, i, TRC_LINK_QUEUE, 1, 0.0);
+    add_link_delta(w, to, i, TRC_LINK_QUEUE, -1, 0.0);
+}
+
+static const SimTraceOps trc_ops = {on_span, on_flow, on_mark,
+                                    on_link, on_hold, on_wait};
 
 static gint by_time(gconstpointer a, gconstpointer b)
 {
@@ -240,31 +314,42 @@ static gint by_link_time(gconstpointer a, gconstpointer b)
     const TrcLinkDelta *x = a, *y = b;
     if (x->link != y->link)
         return x->link < y->link ? -1 : 1;
+    if (x->which != y->which)
+        return x->which < y->which ? -1 : 1;
     if (x->t != y->t)
         return x->t < y->t ? -1 : 1;
     return x->seq < y->seq ? -1 : x->seq > y->seq;
 }
 
-/* Per link: 0 at time 0, then one sample at every time its messages
- * change its use (exactly 0 when none is in flight, free of rounding). */
+static gboolean same_track(const TrcLinkDelta *x, const TrcLinkDelta *y)
+{
+    return x->link == y->link && x->which == y->which;
+}
+
+/* Per link and track: 0 at time 0, then one sample at every time its
+ * messages change it (the use is exactly 0 when nothing holds the link,
+ * free of rounding; the queue is a count of waiting messages). */
 static void write_link_counters(TrcWriter *w)
 {
     GArray *d = w->link_deltas;
+    for (guint l = 0; l < w->link_holds->len; l++)
+        flush_hold(w, l);
     g_array_sort(d, by_link_time);
     double sum = 0;
     int n = 0;
     for (guint i = 0; i < d->len; i++) {
         const TrcLinkDelta *x = &g_array_index(d, TrcLinkDelta, i);
-        if (i == 0 || x[-1].link != x->link) {
+        if (i == 0 || !same_track(x - 1, x)) {
             sum = 0;
             n = 0;
-            w->fmt->link_counter(w, x->link, 0, 0.0);
+            w->fmt->link_counter(w, x->link, x->which, 0, 0.0);
         }
         sum += x->sign * x->rate;
         n += x->sign;
-        if (i + 1 < d->len && x[1].link == x->link && x[1].t == x->t)
+        if (i + 1 < d->len && same_track(x + 1, x) && x[1].t == x->t)
             continue;
-        w->fmt->link_counter(w, x->link, x->t, n ? sum : 0.0);
+        double v = x->which == TRC_LINK_QUEUE ? n : n ? sum : 0.0;
+        w->fmt->link_counter(w, x->link, x->which, x->t, v);
     }
 }
 
@@ -319,6 +404,7 @@ static void writer_free(TrcWriter *w)
     g_hash_table_destroy(w->link_index);
     g_ptr_array_free(w->link_names, TRUE);
     g_array_free(w->link_deltas, TRUE);
+    g_array_free(w->link_holds, TRUE);
     if (w->buffer)
         g_ptr_array_free(w->buffer, TRUE);
     g_free(w->path);

@@ -3,8 +3,10 @@
  *
  * trace_file.c owns everything the formats share: the SimTraceOps (one
  * table for every format), the event cap and its note, node names, flow
- * ids, the counters derived from flows, and the per-link bandwidth use
- * derived from messages' routes.  A TrcFormat only writes.
+ * ids, the counters derived from flows, and the per-link tracks: the
+ * bandwidth use (from the packet rung's holds where a link reports them,
+ * else from messages' routes) and the queue depth (messages waiting, from
+ * the packet rung's waits).  A TrcFormat only writes.
  */
 #ifndef PGSIM_APP_TRACE_TRACE_IMPL_H
 #define PGSIM_APP_TRACE_TRACE_IMPL_H
@@ -13,6 +15,14 @@
 #include <stdio.h>
 
 typedef struct TrcWriter TrcWriter;
+
+/* A link's latest hold not yet turned into deltas: contiguous holds at
+ * the same rate are merged, so back-to-back packets make one step. */
+typedef struct {
+    SimTime start, end;
+    double rate;
+    gboolean held; /* the link reported holds: ignore route averages */
+} TrcHold;
 
 typedef struct {
     void (*begin)(TrcWriter *w);
@@ -29,9 +39,12 @@ typedef struct {
     /* One sample of a machine-wide counter track (trc_counters()), in
      * time order per counter. */
     void (*counter)(TrcWriter *w, int which, SimTime t, double value);
-    /* One sample of a network link's bandwidth use (B/s), in time order
-     * per link; the link's name is w->link_names[link]. */
-    void (*link_counter)(TrcWriter *w, guint link, SimTime t, double bps);
+    /* One sample of a network link's track `which` (TRC_LINK_BW: its
+     * bandwidth use in B/s; TRC_LINK_QUEUE: messages waiting for it), in
+     * time order per link and track; the link's name is
+     * w->link_names[link]. */
+    void (*link_counter)(TrcWriter *w, guint link, int which, SimTime t,
+                         double value);
     void (*end)(TrcWriter *w);
 } TrcFormat;
 
@@ -40,6 +53,9 @@ typedef struct {
 enum { TRC_MSGS_IN_FLIGHT, TRC_BYTES_IN_FLIGHT, TRC_N_COUNTERS };
 extern const char *const trc_counter_names[TRC_N_COUNTERS];
 extern const char *const trc_counter_units[TRC_N_COUNTERS];
+
+/* The per-link tracks. */
+enum { TRC_LINK_BW, TRC_LINK_QUEUE, TRC_N_LINK_TRACKS };
 
 struct TrcWriter {
     SimTrace trace; /* first: a SimTrace * is a TrcWriter * */
@@ -53,7 +69,8 @@ struct TrcWriter {
     GArray *deltas;            /* TrcDelta: flow starts and ends */
     GHashTable *link_index;    /* NetLinkId -> index + 1 (links seen) */
     GPtrArray *link_names;     /* index -> name */
-    GArray *link_deltas;       /* TrcLinkDelta: rate changes per link */
+    GArray *link_deltas;       /* TrcLinkDelta: track changes per link */
+    GArray *link_holds;        /* TrcHold per link index: the open hold */
     gboolean links_begun;      /* Chrome: the links' process is named */
     GPtrArray *buffer;         /* Paje: lines waiting to be sorted by time */
 };

@@ -9,7 +9,8 @@
  * "bytes in flight") are variables of the machine (PajeSetVariable).
  * As SimGrid writes them, each network link that carried a message is a
  * container of type "LINK" in the machine with a variable
- * "bandwidth_used" (B/s).
+ * "bandwidth_used" (B/s); a link a message waited for at the packet rung
+ * also has a variable "messages_waiting" (its queue depth).
  * Paje needs events in time order, but spans are reported when they end,
  * so lines are buffered with (time, seq) and sorted on close: O(n log n)
  * for n events, memory bounded by the event cap.
@@ -61,6 +62,7 @@ static const char header[] =
     "10 VT_1 CT_Machine \"bytes in flight (B)\"\n"
     "0 CT_Link CT_Machine \"LINK\"\n"
     "10 VT_bw CT_Link \"bandwidth_used\"\n"
+    "10 VT_q CT_Link \"messages_waiting\"\n"
     "4 0.000000000000 machine CT_Machine 0 \"machine\"\n";
 
 static void line_free(gpointer p)
@@ -128,11 +130,14 @@ static void on_counter(TrcWriter *w, int which, SimTime t, double value)
     add(w, 11, t, g_strdup_printf("VT_%d machine %s", which, num));
 }
 
-static void on_link_counter(TrcWriter *w, guint link, SimTime t, double bps)
+static void on_link_counter(TrcWriter *w, guint link, int which, SimTime t,
+                            double value)
 {
     char num[G_ASCII_DTOSTR_BUF_SIZE];
-    g_ascii_formatd(num, sizeof num, "%.17g", bps);
-    add(w, 11, t, g_strdup_printf("VT_bw l%u %s", link, num));
+    g_ascii_formatd(num, sizeof num, "%.17g", value);
+    add(w, 11, t,
+        g_strdup_printf("%s l%u %s", which == TRC_LINK_BW ? "VT_bw" : "VT_q",
+                        link, num));
 }
 
 static void begin(TrcWriter *w)

@@ -1,7 +1,8 @@
 /* test_trace.c — trace files: Chrome JSON parses and holds the spans,
  * flows, marks and counters; Paje is time-ordered; the cap truncates
  * with a note; a workload's frames are marks; a network's messages give
- * the links of their routes bandwidth-use tracks. */
+ * the links of their routes bandwidth-use tracks, and at the packet rung
+ * each hop's holds and queue. */
 #include "sim/output/json.h"
 #include "sim/app/run/config.h"
 #include <math.h>
@@ -371,6 +372,169 @@ static void test_link_paje(void **state)
     rm_path(path);
 }
 
+/* Per-hop link load and queue depth at the packet
+ * rung: two one-packet messages, 0 -> 3 (route n0->n1->n3) and 1 -> 3
+ * (n1->n3), sent at time 0 on a 4-node cut-through hypercube.  Message
+ * 1 -> 3 takes n1->n3 at injection; 0 -> 3's head reaches it one per-hop
+ * later and waits until it is free, then holds it for one packet time.
+ * So n1->n3 is in use from injection for two packet times (one step),
+ * n0->n1 for one, and n1->n3's queue is 1 over the wait.  Every expected
+ * time is computed from the parameters; a checker that compares a track
+ * with a list of samples is also shown to reject wrong times. */
+#define BYTES 1000
+
+static const NetParams par = {.bandwidth = 1e6,
+                              .channels = 1,
+                              .startup = 10 * SIM_US,
+                              .per_hop = 1 * SIM_US,
+                              .packet_bytes = BYTES,
+                              .switching = NET_SW_CUT_THROUGH};
+
+typedef struct {
+    double t_us, value;
+} Sample;
+
+static void count_arrival(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    SimTime *last = ctx;
+    *last = MAX(*last, d->arrived);
+}
+
+/* Runs the pattern, tracing to path (NULL: no trace); returns the last
+ * arrival and the engine's event count in *events. */
+static SimTime run_pattern(const char *path, uint64_t *events)
+{
+    NetTopo *topo = net_hypercube_new(2);
+    SimEngine *eng = sim_engine_new(1);
+    SimTrace *tr = path ? trc_open(path, 0, NULL) : NULL;
+    sim_engine_set_trace(eng, tr);
+    NetNet *net = net_new(eng, topo, &par, NET_PACKET);
+    SimTime last = 0;
+    net_send(net, 0, 3, BYTES, NULL, count_arrival, &last);
+    net_send(net, 1, 3, BYTES, NULL, count_arrival, &last);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    *events = sim_engine_events(eng);
+    if (tr)
+        assert_true(trc_close(tr, NULL));
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(topo);
+    return last;
+}
+
+/* TRUE when the counter track `name` (series `series`) is exactly the n
+ * samples of want, in order (times within 1 ps); says why not on stderr. */
+static gboolean track_is(JsonNode *evs, const char *name, const char *series,
+                         const Sample *want, int n)
+{
+    int k = 0;
+    for (guint i = 0; i < js_len(evs); i++) {
+        JsonNode *e = js_at(evs, i);
+        if (strcmp(js_str(js_get(e, "ph")), "C") != 0 ||
+            strcmp(js_str(js_get(e, "name")), name) != 0)
+            continue;
+        double ts = js_num(js_get(e, "ts"));
+        double v = js_num(js_get(js_get(e, "args"), series));
+        if (k >= n || fabs(ts - want[k].t_us) > 1e-6 ||
+            fabs(v - want[k].value) > 1e-9 * (1 + fabs(want[k].value))) {
+            fprintf(stderr, "# %s sample %d: found (%.6f us, %g), expected "
+                            "(%.6f us, %g)\n",
+                    name, k, ts, v, k < n ? want[k].t_us : -1.0,
+                    k < n ? want[k].value : -1.0);
+            return FALSE;
+        }
+        k++;
+    }
+    if (k != n)
+        fprintf(stderr, "# %s: %d samples, expected %d\n", name, k, n);
+    return k == n;
+}
+
+/* The times of the pattern, from the parameters. */
+typedef struct {
+    double inj, hop, pkt, rate; /* us, us, us, B/s */
+} Times;
+
+static Times times(void)
+{
+    SimTime pkt = sim_time_for_bytes(BYTES, par.bandwidth);
+    return (Times){sim_time_to_us(net_startup(&par, BYTES) + par.per_hop),
+                   sim_time_to_us(par.per_hop), sim_time_to_us(pkt),
+                   BYTES / sim_time_to_s(pkt)};
+}
+
+static void test_hops_and_queue(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".json");
+    uint64_t ev_traced, ev_plain;
+    SimTime last = run_pattern(path, &ev_traced);
+    /* tracing adds no events and moves nothing */
+    assert_true(run_pattern(NULL, &ev_plain) == last);
+    assert_true(ev_traced == ev_plain);
+    Times x = times();
+    assert_true(fabs(sim_time_to_us(last) - (x.inj + 2 * x.pkt)) < 1e-6);
+    JsonNode *v = load_json(path);
+    JsonNode *evs = js_get(v, "traceEvents");
+    const Sample first[] = {{0, 0}, {x.inj, x.rate}, {x.inj + x.pkt, 0}};
+    const Sample shared[] = {{0, 0}, {x.inj, x.rate}, {x.inj + 2 * x.pkt, 0}};
+    const Sample queue[] = {{0, 0}, {x.inj + x.hop, 1}, {x.inj + x.pkt, 0}};
+    assert_true(track_is(evs, "link n0->n1", "B/s", first, 3));
+    assert_true(track_is(evs, "link n1->n3", "B/s", shared, 3));
+    assert_true(track_is(evs, "queue n1->n3", "messages", queue, 3));
+    assert_true(track_is(evs, "queue n0->n1", "messages", NULL, 0));
+    json_node_unref(v);
+    rm_path(path);
+}
+
+/* The checker rejects a track that is wrong by a hop's latency, the old
+ * per-message average over the whole path, and an empty queue. */
+static void test_wrong_times_detected(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".json");
+    uint64_t ev;
+    SimTime last = run_pattern(path, &ev);
+    Times x = times();
+    JsonNode *v = load_json(path);
+    JsonNode *evs = js_get(v, "traceEvents");
+    const Sample late[] = {{0, 0}, {x.inj + x.hop, x.rate},
+                           {x.inj + 2 * x.pkt, 0}};
+    double mean = BYTES / sim_time_to_s(last); /* about each message's */
+    const Sample average[] = {{0, 0}, {0, 2 * mean}, {x.inj + x.pkt, mean},
+                              {sim_time_to_us(last), 0}};
+    const Sample no_queue[] = {{0, 0}};
+    assert_false(track_is(evs, "link n1->n3", "B/s", late, 3));
+    assert_false(track_is(evs, "link n1->n3", "B/s", average, 4));
+    assert_false(track_is(evs, "queue n1->n3", "messages", no_queue, 1));
+    json_node_unref(v);
+    rm_path(path);
+}
+
+/* Paje: the queue is variable "messages_waiting" of the link container. */
+static void test_paje_queue(void **state)
+{
+    (void)state;
+    char *path = tmp_path(".paje");
+    uint64_t ev;
+    run_pattern(path, &ev);
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    assert_non_null(strstr(text, "10 VT_q CT_Link \"messages_waiting\"\n"));
+    assert_non_null(strstr(text, "4 0.000000000000 l1 CT_Link machine "
+                                 "\"n1->n3\"\n"));
+    SimTime wait = net_startup(&par, BYTES) + 2 * par.per_hop;
+    char *rise = g_strdup_printf("11 %" G_GUINT64_FORMAT ".%012" G_GUINT64_FORMAT
+                                 " VT_q l1 1\n",
+                                 wait / SIM_S, wait % SIM_S);
+    assert_non_null(strstr(text, rise));
+    assert_null(strstr(text, "VT_q l0"));
+    g_free(rise);
+    g_free(text);
+    rm_path(path);
+}
+
 static void test_bad_name(void **state)
 {
     (void)state;
@@ -390,6 +554,9 @@ int main(void)
         cmocka_unit_test(test_frame_marks),
         cmocka_unit_test(test_link_load),
         cmocka_unit_test(test_link_paje),
+        cmocka_unit_test(test_hops_and_queue),
+        cmocka_unit_test(test_wrong_times_detected),
+        cmocka_unit_test(test_paje_queue),
         cmocka_unit_test(test_bad_name),
     };
     return cmocka_run_group_tests_name("trace", tests, NULL, NULL);
