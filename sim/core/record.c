@@ -1,4 +1,5 @@
-/* record.c — the completion trampoline of recorded work (record.h).
+/* record.c — the completion trampoline of recorded work, and waits for
+ * a display refresh (record.h).
  *
  * One small record per recorded completion, freed when it runs; nothing
  * is allocated when no recorder is attached.
@@ -33,4 +34,23 @@ gboolean sim_record_schedule_done(SimEngine *eng, SimRecorder *r, uint64_t id,
         return TRUE;
     g_free(d);
     return FALSE;
+}
+
+SimTime sim_refresh_at(SimTime t, SimTime period)
+{
+    g_assert(period > 0);
+    SimTime q = t / period + (t % period != 0);
+    return q > SIM_TIME_MAX / period ? SIM_TIME_MAX : q * period;
+}
+
+gboolean sim_wait_refresh(SimEngine *eng, uint32_t node, SimTime period,
+                          SimHandler done, void *ctx, void *arg)
+{
+    SimTime now = sim_now(eng), t = sim_refresh_at(now, period);
+    SimRecorder *rec = sim_engine_recorder(eng);
+    if (rec)
+        return sim_record_schedule_done(
+            eng, rec, rec->ops->refresh(rec, now, node, period), t, done, ctx,
+            arg);
+    return done ? sim_schedule_at(eng, t, done, ctx, arg) : TRUE;
 }

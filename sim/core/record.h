@@ -38,6 +38,14 @@ typedef struct {
     /* A message of `bytes` from src to dst was sent. */
     uint64_t (*send)(SimRecorder *r, SimTime now, uint32_t src, uint32_t dst,
                      uint64_t bytes, gboolean handled);
+    /* `bytes` moved from src to dst through the shared memory
+     * (sim/machine/shmem.h), to complete at `end`. */
+    uint64_t (*transfer)(SimRecorder *r, SimTime now, uint32_t src,
+                         uint32_t dst, uint64_t bytes, SimTime end);
+    /* `node` waits for the first multiple of `period` at or after now
+     * (a display refresh: sim_wait_refresh). */
+    uint64_t (*refresh)(SimRecorder *r, SimTime now, uint32_t node,
+                        SimTime period);
     /* Action `id` completed at `t` (work done / message delivered); for a
      * handled action, its handler runs between begin and end. */
     void (*begin)(SimRecorder *r, uint64_t id, SimTime t);
@@ -55,5 +63,14 @@ struct SimRecorder {
 gboolean sim_record_schedule_done(SimEngine *eng, SimRecorder *r, uint64_t id,
                                   SimTime t, SimHandler done, void *ctx,
                                   void *arg);
+
+/* A wait for a display refresh: done(eng, ctx, arg) runs at the first
+ * multiple of `period` (>= 1 ps) at or after now, for `node` (a
+ * processor id: whose wait it is, for a recording's `v` action; it
+ * occupies nothing).  Returns FALSE on overflow. */
+gboolean sim_wait_refresh(SimEngine *eng, uint32_t node, SimTime period,
+                          SimHandler done, void *ctx, void *arg);
+/* The first multiple of period at or after t (SIM_TIME_MAX on overflow). */
+SimTime sim_refresh_at(SimTime t, SimTime period);
 
 #endif

@@ -10,6 +10,7 @@
 #include "sim/machine/proc.h"
 #include "sim/core/record.h"
 #include "sim/core/trace.h"
+#include <string.h>
 
 void mach_proc_init(MachProc *p, MachMachine *m, SimEngine *eng,
                     const MachKindInfo *info, guint id, guint16 kind)
@@ -104,15 +105,44 @@ static SimTime op_cost(const MachProc *p, const MachOp *op)
                                                          : *unit * op->count;
 }
 
+static SimTime ops_cost(const MachProc *p, const MachOp *ops, guint n_ops)
+{
+    SimTime cost = 0;
+    for (guint i = 0; i < n_ops; i++)
+        cost = sim_time_add_sat(cost, op_cost(p, &ops[i]));
+    return cost;
+}
+
 gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
                                unsigned phase, SimHandler done, void *ctx,
                                void *arg)
 {
-    SimTime cost = 0;
     g_assert(n_ops > 0); /* none: a time, mach_proc_compute() */
-    for (guint i = 0; i < n_ops; i++)
-        cost = sim_time_add_sat(cost, op_cost(p, &ops[i]));
-    return submit(p, cost, ops, n_ops, phase, done, ctx, arg);
+    return submit(p, ops_cost(p, ops, n_ops), ops, n_ops, phase, done, ctx,
+                  arg);
+}
+
+void mach_ops_add(MachOps *o, const char *name, uint64_t count)
+{
+    for (guint i = 0; i < o->n; i++)
+        if (o->op[i].name == name || !strcmp(o->op[i].name, name)) {
+            o->op[i].count += count;
+            return;
+        }
+    g_assert(o->n < MACH_OPS_MAX);
+    o->op[o->n++] = (MachOp){name, count};
+}
+
+SimTime mach_proc_ops_cost(const MachProc *p, const MachOps *o)
+{
+    return ops_cost(p, o->op, o->n);
+}
+
+gboolean mach_proc_compute_list(MachProc *p, const MachOps *o, unsigned phase,
+                                SimHandler done, void *ctx, void *arg)
+{
+    return o->n ? mach_proc_compute_ops(p, o->op, o->n, phase, done, ctx, arg)
+                : mach_proc_compute(p, 0, phase, done, ctx, arg);
 }
 
 SimTime mach_proc_free_at(const MachProc *p)

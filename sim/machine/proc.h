@@ -57,6 +57,21 @@ gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
                                unsigned phase, SimHandler done, void *ctx,
                                void *arg);
 
+/* Named counts gathered for one piece of work: mach_ops_add() adds to
+ * the entry of that name (a static string) or appends one. */
+#define MACH_OPS_MAX 16
+typedef struct {
+    MachOp op[MACH_OPS_MAX];
+    guint n;
+} MachOps;
+
+void mach_ops_add(MachOps *o, const char *name, uint64_t count);
+/* o's time on p's kind: what mach_proc_compute_ops() charges for it. */
+SimTime mach_proc_ops_cost(const MachProc *p, const MachOps *o);
+/* mach_proc_compute_ops() of o; an empty o is a time of 0. */
+gboolean mach_proc_compute_list(MachProc *p, const MachOps *o, unsigned phase,
+                                SimHandler done, void *ctx, void *arg);
+
 /* The time at which all work submitted so far completes (<= now: idle). */
 SimTime mach_proc_free_at(const MachProc *p);
 gboolean mach_proc_idle(const MachProc *p);

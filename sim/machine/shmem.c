@@ -2,6 +2,7 @@
  * O(1) per transfer.
  */
 #include "sim/machine/shmem.h"
+#include "sim/core/record.h"
 #include <string.h>
 
 void mach_shmem_init_with(MachShmem *sh, double bandwidth, SimTime latency)
@@ -41,6 +42,21 @@ SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes)
     sh->bytes += bytes;
     sh->transfers++;
     return sh->free_at + sh->latency;
+}
+
+gboolean mach_shmem_send(MachShmem *sh, SimEngine *eng, uint32_t src,
+                         uint32_t dst, uint64_t bytes, SimHandler done,
+                         void *ctx, void *arg, SimTime *end)
+{
+    SimTime now = sim_now(eng), t = mach_shmem_transfer(sh, now, bytes);
+    if (end)
+        *end = t;
+    SimRecorder *rec = sim_engine_recorder(eng);
+    if (rec)
+        return sim_record_schedule_done(
+            eng, rec, rec->ops->transfer(rec, now, src, dst, bytes, t), t,
+            done, ctx, arg);
+    return done ? sim_schedule_at(eng, t, done, ctx, arg) : TRUE;
 }
 
 double mach_shmem_utilisation(const MachShmem *sh, SimTime elapsed)

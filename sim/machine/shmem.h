@@ -37,6 +37,14 @@ void mach_shmem_init_with(MachShmem *sh, double bandwidth, SimTime latency);
 /* Books a transfer of `bytes` requested at `now`; returns its completion
  * time.  bandwidth <= 0 means infinite (only the latency). */
 SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes);
+/* mach_shmem_transfer() of `bytes` from processor src to dst (global
+ * ids) requested now, then done(eng, ctx, arg) at its completion (done
+ * may be NULL); a recording (`--record`) writes it as a `b` action
+ * (docs/traces.md).  *end (may be NULL) gets the completion time.
+ * FALSE if it overflows SimTime (the engine is then stopped). */
+gboolean mach_shmem_send(MachShmem *sh, SimEngine *eng, uint32_t src,
+                         uint32_t dst, uint64_t bytes, SimHandler done,
+                         void *ctx, void *arg, SimTime *end);
 /* Occupied fraction of [0, elapsed] (0 when elapsed is 0). */
 double mach_shmem_utilisation(const MachShmem *sh, SimTime elapsed);
 

@@ -1,4 +1,4 @@
-/* rpl_format.c — reading and writing version-1 traces (rpl_format.h).
+/* rpl_format.c — reading and writing version-1 and -2 traces (rpl_format.h).
  *
  * The reader is a loop over lines: header keywords until the first group
  * or action, then body items.  State: the header, the number of actions
@@ -18,6 +18,8 @@ struct RplReader {
     gboolean in_group;  /* a group line has been read */
     GHashTable *await;  /* uint64 id -> itself: `+` without `on` yet */
     gboolean pending;   /* the current line is a body line not yet used */
+    uint64_t version;   /* 1 or 2 (b, v and swap) */
+    gboolean framed, swapped; /* a `frame` / `swap` flag was read */
 };
 
 static gboolean fail(RplReader *r, int i, const char *what, GError **err)
@@ -126,12 +128,13 @@ static gboolean read_header(RplReader *r, GError **err)
         return FALSE;
     if (n == 0 || strcmp(rpl_lines_word(r->l, 0), "pgsim-trace"))
         return fail(r, 0, "'pgsim-trace 1' on the first line", err);
-    if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "trace format version 1",
-                       err))
+    if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v,
+                       "trace format version 1 or 2", err))
         return FALSE;
-    if (v != RPL_VERSION || n != 2)
-        return fail(r, v != RPL_VERSION ? 1 : 2,
-                    "trace format version 1 alone", err);
+    if (v < 1 || v > RPL_VERSION || n != 2)
+        return fail(r, v < 1 || v > RPL_VERSION ? 1 : 2,
+                    "trace format version 1 or 2 alone", err);
+    r->version = v;
     for (;;) {
         gboolean body;
         n = rpl_lines_next(r->l, err);
@@ -195,17 +198,36 @@ guint rpl_reader_awaited(const RplReader *r)
     return g_hash_table_size(r->await);
 }
 
-/* Trailing `+` and `frame` from word i on. */
+/* `swap` (version 2): on a `v` action, in a trace without `frame`. */
+static gboolean swap_flag(RplReader *r, int i, RplItem *it, GError **err)
+{
+    if (r->version < 2 || it->type != RPL_REFRESH || r->framed)
+        return fail(r, i,
+                    "'+', 'frame' or the end of the line ('swap' ends only "
+                    "a `v` action, in a version-2 trace without 'frame')",
+                    err);
+    it->swap = r->swapped = TRUE;
+    return TRUE;
+}
+
+/* Trailing `+`, `frame` and `swap` from word i on. */
 static gboolean flags(RplReader *r, int i, RplItem *it, GError **err)
 {
     for (; i < rpl_lines_count(r->l); i++) {
         const char *w = rpl_lines_word(r->l, i);
         if (!strcmp(w, "+") && !it->handled)
             it->handled = TRUE;
-        else if (!strcmp(w, "frame") && !it->frame)
-            it->frame = TRUE;
-        else
-            return fail(r, i, "'+', 'frame' or the end of the line", err);
+        else if (!strcmp(w, "frame") && !it->frame && !r->swapped)
+            it->frame = r->framed = TRUE;
+        else if (!strcmp(w, "swap") && !it->swap) {
+            if (!swap_flag(r, i, it, err))
+                return FALSE;
+        } else
+            return fail(r, i,
+                        r->swapped ? "'+', 'swap' or the end of the line "
+                                     "(a trace with 'swap' has no 'frame')"
+                                   : "'+', 'frame' or the end of the line",
+                        err);
     }
     return TRUE;
 }
@@ -264,16 +286,25 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
                     err);
     it->type = !strcmp(k, "c")   ? RPL_COMPUTE
                : !strcmp(k, "w") ? RPL_WORK
+               : !strcmp(k, "b") ? RPL_BUS
+               : !strcmp(k, "v") ? RPL_REFRESH
                                  : RPL_SEND;
     it->id = r->actions;
+    if (r->version < 2 && (it->type == RPL_BUS || it->type == RPL_REFRESH))
+        return fail(r, 0, "c, w or s (b and v need 'pgsim-trace 2')", err);
     if (!proc_word(r, 1, &it->proc, err))
         return FALSE;
     gboolean ok =
-        it->type == RPL_SEND
+        it->type == RPL_SEND || it->type == RPL_BUS
             ? proc_word(r, 2, &it->peer, err) &&
                   rpl_lines_u64(r->l, 3, G_MAXUINT64, &it->value,
                                 "a byte count", err) &&
                   flags(r, 4, it, err)
+        : it->type == RPL_REFRESH
+            ? rpl_lines_u64(r->l, 2, G_MAXUINT64, &it->value,
+                            "a refresh period in picoseconds", err) &&
+                  (it->value > 0 || fail(r, 2, "a period above 0", err)) &&
+                  flags(r, 3, it, err)
         : !phase_word(r, 2, &it->phase, err) ? FALSE
         : it->type == RPL_WORK
             ? rpl_lines_u64(r->l, 3, G_MAXUINT64, &it->value,
@@ -348,11 +379,12 @@ gboolean rpl_reader_next(RplReader *r, RplItem *it, GError **err)
     const char *k = rpl_lines_word(r->l, 0);
     if (!strcmp(k, "at") || !strcmp(k, "on") || !strcmp(k, "sync"))
         return group(r, it, err);
-    if (!strcmp(k, "c") || !strcmp(k, "w") || !strcmp(k, "s"))
+    if (!strcmp(k, "c") || !strcmp(k, "w") || !strcmp(k, "s") ||
+        !strcmp(k, "b") || !strcmp(k, "v"))
         return action(r, it, err);
     return fail(r, 0,
-                "at, sync, on, c, w or s (header lines come before the "
-                "first group)",
+                "at, sync, on, c, w, s, b or v (header lines come before "
+                "the first group)",
                 err);
 }
 
@@ -402,10 +434,15 @@ void rpl_write_item(RplWriter *w, const RplItem *it)
                        it->phase, it->value);
         break;
     case RPL_SEND:
-        n = g_snprintf(buf, sizeof buf, "s %u %u %" PRIu64, it->proc, it->peer,
+    case RPL_BUS:
+        n = g_snprintf(buf, sizeof buf, "%s %u %u %" PRIu64,
+                       it->type == RPL_SEND ? "s" : "b", it->proc, it->peer,
                        it->value);
         break;
+    case RPL_REFRESH:
+        n = g_snprintf(buf, sizeof buf, "v %u %" PRIu64, it->proc, it->value);
+        break;
     }
-    rpl_writer_printf(w, "%s%s%s\n", buf, it->handled ? " +" : "",
-                      it->frame ? " frame" : "");
+    rpl_writer_printf(w, "%s%s%s%s\n", buf, it->handled ? " +" : "",
+                      it->frame ? " frame" : "", it->swap ? " swap" : "");
 }

@@ -1,9 +1,9 @@
-/* rpl_format.h — pgsim's time-independent trace format, version 1
- * (docs/traces.md).
+/* rpl_format.h — pgsim's time-independent trace format, version 2
+ * (docs/traces.md; version 1 is version 2 without b, v and swap).
  *
  * A trace is text, one item per line, '#' starts a comment:
  *
- *     pgsim-trace 1                       first line: the version
+ *     pgsim-trace 2                       first line: the version
  *     machine ipsc2                       recording machine (a model name)
  *     fidelity packet                     its transport when recorded
  *     procs 17                            processors 0 .. 16
@@ -20,6 +20,11 @@
  *     w 3 1 125000 [+] [frame]            work that took 125000 ps on the
  *                                         recording kind (scaled by clocks)
  *     s 3 5 1024 [+] [frame]              3 sends 1024 bytes to 5
+ *     b 3 4 1024 [+] [frame]              3 moves 1024 bytes to 4 through
+ *                                         the shared memory
+ *     v 2 33333333334 [+] [swap]          processor 2 waits for the first
+ *                                         multiple of this period (a display
+ *                                         refresh); `swap`: a frame ends then
  *
  * Actions (c, w, s) are numbered 0, 1, ... in file order; `+` says an
  * `on ID` group for this action follows later; `frame` says a frame ends
@@ -36,7 +41,7 @@
 #include "sim/app/replay/rpl_lines.h"
 #include "sim/core/time.h"
 
-#define RPL_VERSION 1
+#define RPL_VERSION 2
 #define RPL_MAX_OPS 30
 
 typedef struct {
@@ -59,7 +64,9 @@ typedef enum {
     RPL_COMPUTE,
     RPL_WORK,
     RPL_SEND,
-    RPL_SYNC
+    RPL_SYNC,
+    RPL_BUS,    /* b: a shared-memory transfer (version 2) */
+    RPL_REFRESH /* v: a wait for a refresh (version 2) */
 } RplItemType;
 
 typedef struct {
@@ -70,8 +77,9 @@ typedef struct {
     uint32_t proc;  /* actions: the processor (sender) */
     uint32_t peer;  /* RPL_SEND: the receiver */
     unsigned phase; /* RPL_COMPUTE, RPL_WORK */
-    uint64_t value; /* RPL_WORK: ps; RPL_SEND: bytes */
-    gboolean handled, frame;
+    uint64_t value; /* RPL_WORK: ps; RPL_SEND, RPL_BUS: bytes;
+                       RPL_REFRESH: the period (ps) */
+    gboolean handled, frame, swap;
     guint n_ops; /* RPL_COMPUTE: op names (borrowed until the next item) */
     const char *op[RPL_MAX_OPS];
     uint64_t count[RPL_MAX_OPS];

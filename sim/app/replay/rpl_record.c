@@ -16,13 +16,14 @@
 #define NO_ACTION G_MAXUINT64
 
 typedef struct {
-    uint64_t value; /* ps of work, or bytes; RPL_COMPUTE: first in ops */
+    uint64_t value; /* ps of work, bytes or a period; RPL_COMPUTE: first in
+                       ops */
     SimTime done;   /* completion time (SIM_TIME_MAX: never completed) */
     uint32_t proc, peer;
     uint16_t phase;
-    uint8_t type;  /* RPL_WORK, RPL_COMPUTE or RPL_SEND */
+    uint8_t type;  /* RPL_WORK, RPL_COMPUTE, RPL_SEND, RPL_BUS, RPL_REFRESH */
     uint8_t n_ops; /* RPL_COMPUTE: its counts, ops[value ..] */
-    uint8_t handled : 1, frame : 1;
+    uint8_t handled : 1, frame : 1, swap : 1;
 } RecAct;
 
 typedef struct {
@@ -39,7 +40,7 @@ struct RplRecorder {
     GArray *ops;       /* SimOp of RPL_COMPUTE actions, names interned */
     uint64_t cur;      /* the action whose handler runs, or NO_ACTION */
     SimTime max_end;   /* latest end of the work given so far */
-    uint64_t inflight; /* messages sent, not yet delivered */
+    uint64_t inflight; /* messages and transfers not yet delivered */
 };
 
 /* Opens a group for an action issued now if the last one does not fit. */
@@ -112,12 +113,32 @@ static uint64_t on_send(SimRecorder *h, SimTime now, uint32_t src, uint32_t dst,
         (RecAct){.value = bytes, .proc = src, .peer = dst, .type = RPL_SEND});
 }
 
+/* A shared-memory transfer: a message whose end counts as work's. */
+static uint64_t on_transfer(SimRecorder *h, SimTime now, uint32_t src,
+                            uint32_t dst, uint64_t bytes, SimTime end)
+{
+    RplRecorder *r = h->state;
+    uint64_t id = add(
+        r, now,
+        (RecAct){.value = bytes, .proc = src, .peer = dst, .type = RPL_BUS});
+    r->inflight++;
+    r->max_end = MAX(r->max_end, end);
+    return id;
+}
+
+static uint64_t on_refresh(SimRecorder *h, SimTime now, uint32_t node,
+                           SimTime period)
+{
+    return add(h->state, now,
+               (RecAct){.value = period, .proc = node, .type = RPL_REFRESH});
+}
+
 static void on_begin(SimRecorder *h, uint64_t id, SimTime t)
 {
     RplRecorder *r = h->state;
     RecAct *a = &g_array_index(r->acts, RecAct, id);
     a->done = t;
-    if (a->type == RPL_SEND)
+    if (a->type == RPL_SEND || a->type == RPL_BUS)
         r->inflight--;
     r->cur = id;
 }
@@ -128,7 +149,8 @@ static void on_end(SimRecorder *h, uint64_t id)
     ((RplRecorder *)h->state)->cur = NO_ACTION;
 }
 
-static const SimRecorderOps rec_ops = {on_compute, on_send, on_begin, on_end};
+static const SimRecorderOps rec_ops = {
+    on_compute, on_send, on_transfer, on_refresh, on_begin, on_end};
 
 RplRecorder *rpl_recorder_new(void)
 {
@@ -184,16 +206,74 @@ static gboolean machine_header(const CfgRun *run, RplHeader *h, GError **err)
     return TRUE;
 }
 
+static guint place_ends(RplRecorder *r, const SimResult *res);
+
+/* Frames that end at a display refresh (frames overlap: pipelined):
+ * frame k ends at T on the last refresh wait (`v`) that completes at T,
+ * marked `swap` (a replay ends the frame when that wait completes).
+ * Returns how many frames found none. */
+static guint place_swaps(RplRecorder *r, const SimResult *res)
+{
+    GHashTable *last = g_hash_table_new(g_int64_hash, g_int64_equal);
+    for (guint i = 0; i < r->acts->len; i++) {
+        RecAct *a = &g_array_index(r->acts, RecAct, i);
+        a->frame = 0;
+        if (a->type == RPL_REFRESH && a->done != SIM_TIME_MAX)
+            g_hash_table_insert(last, &a->done, a);
+    }
+    guint missed = 0;
+    SimTime end = 0;
+    const RecAct *prev = NULL; /* a replay takes swaps in file order */
+    for (guint k = 0; k < res->frame_times->len; k++) {
+        end += g_array_index(res->frame_times, SimTime, k);
+        RecAct *a = g_hash_table_lookup(last, &end);
+        if (a && a > prev) {
+            a->swap = 1;
+            prev = a;
+        } else
+            missed++;
+    }
+    g_hash_table_destroy(last);
+    return missed;
+}
+
 /* Marks the action ending each frame: frame k ends at the sum of the
  * first k+1 frame times, T, on the last action that completes at T and
  * after every action before it (a replay ends the frame when all actions
- * up to the mark are done).  Returns how many frames found none. */
+ * up to the mark are done); if that misses frames, place_swaps().
+ * Returns how many frames found none. */
 static guint place_frames(RplRecorder *r, const SimResult *res)
+{
+    guint missed = place_ends(r, res);
+    if (missed == 0)
+        return 0;
+    guint swaps = place_swaps(r, res);
+    if (swaps < missed)
+        return swaps;
+    for (guint i = 0; i < r->acts->len; i++)
+        g_array_index(r->acts, RecAct, i).swap = 0;
+    return place_ends(r, res);
+}
+
+/* The mark moves past the actions after a that were done by `end` too
+ * (a transfer issued with the frame's last work), so that a replay
+ * waits for them as well. */
+static RecAct *mark_past(RplRecorder *r, RecAct *a, SimTime end)
+{
+    RecAct *stop = &g_array_index(r->acts, RecAct, r->acts->len);
+    while (a + 1 < stop && a[1].done <= end)
+        a++;
+    return a;
+}
+
+/* The rule of place_frames(). */
+static guint place_ends(RplRecorder *r, const SimResult *res)
 {
     GHashTable *last = g_hash_table_new(g_int64_hash, g_int64_equal);
     SimTime upto = 0; /* latest completion of actions 0 .. i */
     for (guint i = 0; i < r->acts->len; i++) {
         RecAct *a = &g_array_index(r->acts, RecAct, i);
+        a->frame = 0;
         upto = a->done == SIM_TIME_MAX ? SIM_TIME_MAX : MAX(upto, a->done);
         if (a->done != SIM_TIME_MAX && a->done == upto)
             g_hash_table_insert(last, &a->done, a);
@@ -204,7 +284,7 @@ static guint place_frames(RplRecorder *r, const SimResult *res)
         end += g_array_index(res->frame_times, SimTime, k);
         RecAct *a = g_hash_table_lookup(last, &end);
         if (a)
-            a->frame = 1;
+            mark_past(r, a, end)->frame = 1;
         else
             missed++;
     }
@@ -221,7 +301,8 @@ static RplItem act_item(const RplRecorder *r, const RecAct *a, uint64_t id)
                   .phase = a->phase,
                   .value = a->value,
                   .handled = a->handled,
-                  .frame = a->frame};
+                  .frame = a->frame,
+                  .swap = a->swap};
     if (a->type != RPL_COMPUTE)
         return it;
     it.n_ops = a->n_ops;
@@ -267,7 +348,8 @@ static gboolean fill_header(RplRecorder *r, const CfgRun *run,
     for (guint i = 0; i < r->acts->len; i++) {
         const RecAct *a = &g_array_index(r->acts, RecAct, i);
         h->procs = MAX(h->procs, MAX(a->proc, a->peer) + 1);
-        if (a->type != RPL_SEND && a->phase >= h->phases->len) {
+        if ((a->type == RPL_WORK || a->type == RPL_COMPUTE) &&
+            a->phase >= h->phases->len) {
             g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
                         "recording: phase %u of action %u is not among the "
                         "result's %u phases",

@@ -13,7 +13,8 @@
  * it completes; other actions are issued and forgotten.
  *
  * Frames: frame k ends when every action up to its mark (in file order)
- * has completed.  Marks are read in order; each completion time goes to
+ * has completed; in a trace whose frames end at refreshes, when its
+ * `swap` wait completes (each swap has its slot in `ends`).  Marks are read in order; each completion time goes to
  * the first mark at or after its action (or to the tail, past the last
  * mark read so far), and frame k ends at the largest time of marks 0..k.
  * Cost: O(1) per action plus one engine event per awaited action.
@@ -32,8 +33,9 @@ typedef struct {
     gboolean handled, frame;
     uint32_t proc, peer; /* target processors */
     unsigned phase;      /* engine phase id */
+    guint slot;          /* a `swap` wait: its frame's slot in ends, +1 */
     uint64_t id;
-    uint64_t value; /* cost (ps) or bytes */
+    uint64_t value; /* cost (ps), bytes or a refresh period */
 } Act;
 
 typedef struct Group {
@@ -102,15 +104,22 @@ static Flight *flight_for(Replay *rp, uint64_t id)
 static void add_act(Replay *rp, Group *g, const RplItem *it)
 {
     RplTarget *t = rp->t;
+    gboolean work = it->type == RPL_WORK || it->type == RPL_COMPUTE;
     Act a = {.type = it->type,
              .handled = it->handled,
              .frame = it->frame,
              .proc = t->map[it->proc],
-             .peer = it->type == RPL_SEND ? t->map[it->peer] : 0,
-             .phase = it->type == RPL_SEND ? 0 : t->phase[it->phase],
+             .peer = it->type == RPL_SEND || it->type == RPL_BUS
+                         ? t->map[it->peer]
+                         : 0,
+             .phase = work ? t->phase[it->phase] : 0,
              .id = it->id,
-             .value = it->type == RPL_SEND ? it->value
-                                           : rpl_target_price(t, it)};
+             .value = work ? rpl_target_price(t, it) : it->value};
+    if (it->swap) {
+        SimTime none = 0;
+        g_array_append_val(rp->ends, none);
+        a.slot = rp->ends->len;
+    }
     g_array_append_val(g->acts, a);
     if (a.frame) {
         g_array_append_val(rp->marks, a.id);
@@ -261,18 +270,55 @@ static void note_done(Replay *rp, uint64_t id, SimTime t)
     *e = MAX(*e, t);
 }
 
-static void delivered(NetNet *net, const NetDelivery *d, void *ctx)
+/* Message or transfer id arrived at t. */
+static void arrived(Replay *rp, uint64_t id, SimTime t)
 {
-    (void)net;
-    Replay *rp = ctx;
-    uint64_t id = (uintptr_t)d->payload;
     rp->sending--;
-    note_done(rp, id, d->arrived);
+    note_done(rp, id, t);
     Flight *f = flight_for(rp, id);
     if (f)
         completed(rp, f);
     else
         progress(rp);
+}
+
+static void delivered(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    arrived(ctx, (uintptr_t)d->payload, d->arrived);
+}
+
+static void transferred(SimEngine *eng, void *ctx, void *arg)
+{
+    Replay *rp = ctx;
+    rp->max_end = MAX(rp->max_end, sim_now(eng)); /* as the recorder */
+    arrived(rp, (uintptr_t)arg, sim_now(eng));
+}
+
+/* A `b` transfer: through the target's shared memory if it has one,
+ * else the network, as a message. */
+static void transfer(Replay *rp, const Act *a)
+{
+    RplTarget *t = rp->t;
+    rp->sending++;
+    if (t->has_shm)
+        mach_shmem_send(&t->shm, t->eng, a->proc, a->peer, a->value,
+                        transferred, rp, (void *)(uintptr_t)a->id, NULL);
+    else
+        net_send(mach_net(t->m), a->proc, a->peer, a->value,
+                 (void *)(uintptr_t)a->id, delivered, rp);
+}
+
+/* A `v` wait: done at the next refresh; a `swap` ends its frame then. */
+static void refresh(Replay *rp, const Act *a, Flight *f)
+{
+    SimEngine *eng = rp->t->eng;
+    SimTime t = sim_refresh_at(sim_now(eng), a->value);
+    if (a->slot)
+        g_array_index(rp->ends, SimTime, a->slot - 1) = t;
+    note_done(rp, a->id, t);
+    if (f)
+        sim_wait_refresh(eng, a->proc, a->value, work_done, rp, f);
 }
 
 static void issue(Replay *rp, const Act *a)
@@ -284,6 +330,14 @@ static void issue(Replay *rp, const Act *a)
         rp->sending++;
         net_send(mach_net(m), a->proc, a->peer, a->value,
                  (void *)(uintptr_t)a->id, delivered, rp);
+        return;
+    }
+    if (a->type == RPL_BUS) {
+        transfer(rp, a);
+        return;
+    }
+    if (a->type == RPL_REFRESH) {
+        refresh(rp, a, f);
         return;
     }
     MachProc *p = mach_proc_at(m, a->proc);
@@ -307,6 +361,8 @@ static SimResult *result(Replay *rp, const RplReplayOpts *o)
     res->fidelity = g_strdup(mach_fidelity(t->m));
     res->seed = 1;
     mach_fill_result(t->m, res);
+    res->comm_bytes += t->shm.bytes; /* `b` transfers, as `pgsim run` */
+    res->comm_messages += t->shm.transfers;
     SimTime prev = 0, end = 0;
     for (guint i = 0; i < rp->ends->len; i++) {
         end = MAX(end, g_array_index(rp->ends, SimTime, i));

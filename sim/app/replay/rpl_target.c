@@ -187,6 +187,7 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
     t->phase = g_new(unsigned, h->phases->len);
     for (guint i = 0; i < h->phases->len; i++)
         t->phase[i] = sim_engine_phase(t->eng, h->phases->pdata[i]);
+    t->has_shm = mach_shmem_init(&t->shm, t->m, NULL);
     return t;
 }
 
@@ -253,8 +254,8 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
 {
     gboolean fresh;
     if (it->type != RPL_COMPUTE && it->type != RPL_WORK &&
-        it->type != RPL_SEND)
-        return; /* group lines: nothing to price */
+        it->type != RPL_SEND && it->type != RPL_BUS)
+        return; /* group lines and waits: nothing to price */
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[it->proc]));
     if (it->type == RPL_COMPUTE)
         for (guint i = 0; i < it->n_ops; i++)
@@ -275,7 +276,8 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
             if (isnan(t->scale[p]))
                 t->scale[p] = INFINITY;
     }
-    if (it->type == RPL_SEND && !mach_net(t->m) && !*net_missing) {
+    if ((it->type == RPL_SEND || (it->type == RPL_BUS && !t->has_shm)) &&
+        !mach_net(t->m) && !*net_missing) {
         *net_missing = TRUE;
         g_string_append_printf(bad, "\n  %s:%u:1: a network (this trace sends)",
                                path, it->line);

@@ -5,7 +5,8 @@
  * rpl_target_check() reads a whole trace once (streaming) before the
  * replay and collects every problem a replay would meet part way:
  * costs the target lacks (all of them, one error), work that cannot be
- * scaled (no clock), sends on a machine without a network.
+ * scaled (no clock), sends on a machine without a network (`b`
+ * transfers: without a shared memory or a network).
  */
 #ifndef PGSIM_APP_REPLAY_RPL_TARGET_H
 #define PGSIM_APP_REPLAY_RPL_TARGET_H
@@ -13,6 +14,7 @@
 #include "sim/app/replay/rpl_format.h"
 #include "sim/app/replay/rpl_replay.h"
 #include "sim/machine/machine.h"
+#include "sim/machine/shmem.h"
 
 typedef struct {
     SimEngine *eng;
@@ -26,6 +28,8 @@ typedef struct {
     GHashTable *clocks; /* --clock: trace kind -> double Hz */
     SimEngine *from_eng; /* --costs-from: its model, or NULL */
     MachMachine *from;
+    gboolean has_shm; /* a bus model: `b` transfers use its memory */
+    MachShmem shm;    /* else they go through the network as messages */
 } RplTarget;
 
 /* Builds the target for a trace whose header is h. */

@@ -110,12 +110,6 @@ static void proc_done(SimEngine *eng, void *ctx, void *arg)
     part_done(ctx);
 }
 
-static SimTime times(SimTime c, uint64_t n)
-{
-    SimTime t;
-    return mach_cost_n(c, n, &t) ? t : SIM_TIME_MAX;
-}
-
 static uint64_t sent_tris(const PnRun *r)
 {
     return r->p->send_fine ? r->mesh.fine_tris : r->mesh.coarse_tris;
@@ -128,25 +122,26 @@ static void smp_frame(void *run)
     PnRun *r = run;
     MachMachine *m = r->m;
     uint64_t verts = 3 * sent_tris(r), bytes = verts * r->p->vertex_bytes;
-    SimTime tess =
-        r->p->send_fine || r->p->pn.level == 0
-            ? 0
-            : times(mach_cost(m, "pipe", "pn_vertex"), r->mesh.fine_points);
-    r->cpu = times(mach_cost(m, "cpu", "draw_vertex"), verts);
-    r->pipe = sim_time_add_sat(
-        tess, times(mach_cost(m, "pipe", "triangle"), r->mesh.fine_tris));
+    gboolean tess = !r->p->send_fine && r->p->pn.level > 0;
     MachProc *cpu = mach_proc(m, "cpu", 0), *pipe = mach_proc(m, "pipe", 0);
+    MachOps oc = {0}, op = {0}; /* named counts, for a recording */
+    mach_ops_add(&oc, "draw_vertex", verts);
+    mach_ops_add(&op, "pn_vertex", tess ? r->mesh.fine_points : 0);
+    mach_ops_add(&op, "triangle", r->mesh.fine_tris);
+    r->cpu = mach_proc_ops_cost(cpu, &oc);
+    r->pipe = mach_proc_ops_cost(pipe, &op);
     r->pending = 3;
     r->link_bytes += bytes;
-    mach_proc_compute(cpu, r->cpu, 0, proc_done, r, NULL);
-    mach_proc_compute(pipe, r->pipe, 0, proc_done, r, NULL);
-    SimTime now = sim_now(mach_engine(m));
-    SimTime end = mach_shmem_transfer(&r->bus_mem, now, bytes);
+    mach_proc_compute_list(cpu, &oc, 0, proc_done, r, NULL);
+    mach_proc_compute_list(pipe, &op, 0, proc_done, r, NULL);
+    SimEngine *eng = mach_engine(m);
+    SimTime now = sim_now(eng), end;
+    mach_shmem_send(&r->bus_mem, eng, mach_proc_id(cpu), mach_proc_id(pipe),
+                    bytes, proc_done, r, NULL, &end);
     r->bus = end - now;
-    sim_trace_flow(sim_engine_trace(mach_engine(m)), mach_proc_id(cpu),
+    sim_trace_flow(sim_engine_trace(eng), mach_proc_id(cpu),
                    mach_proc_name(cpu), mach_proc_id(pipe),
                    mach_proc_name(pipe), bytes, now, end);
-    sim_schedule_at(mach_engine(m), end, proc_done, r, NULL);
 }
 
 /* ---- Pixel-Planes 5: host -> ring -> GPs -> ring -> renderers ---------- */
@@ -168,10 +163,9 @@ static void rd_arrived(NetNet *net, const NetDelivery *d, void *ctx)
     PnRun *r = ctx;
     MachMachine *m = r->m;
     guint k = GPOINTER_TO_UINT(d->payload);
-    uint64_t cmds = d->bytes / r->p->command_bytes;
-    mach_proc_compute(mach_proc(m, "renderer", k),
-                      times(mach_cost(m, "renderer", "primitive"), cmds), 0,
-                      proc_done, r, NULL);
+    MachOp op = {"primitive", d->bytes / r->p->command_bytes};
+    mach_proc_compute_ops(mach_proc(m, "renderer", k), &op, 1, 0, proc_done, r,
+                          NULL);
 }
 
 /* GP g has tessellated and transformed its share: it sends every
@@ -205,16 +199,16 @@ static void gp_arrived(NetNet *net, const NetDelivery *d, void *ctx)
     MachMachine *m = r->m;
     guint g = GPOINTER_TO_UINT(d->payload), ng = mach_kind(m, "gp")->count;
     uint64_t fine = share(r->mesh.fine_tris, g, ng);
-    uint64_t pts = share(r->mesh.fine_points, g, ng);
-    SimTime t = times(sim_time_add_sat(mach_cost(m, "gp", "polygon"),
-                                       3 * mach_cost(m, "gp", "vertex")),
-                      fine);
-    t = sim_time_add_sat(t, times(mach_cost(m, "gp", "send_primitive"), fine));
-    if (!r->p->send_fine && r->p->pn.level > 0)
-        t = sim_time_add_sat(t, times(mach_cost(m, "gp", "pn_vertex"), pts));
-    r->gp = MAX(r->gp, t);
-    mach_proc_compute(mach_proc(m, "gp", g), t, 0, gp_computed, r,
-                      GUINT_TO_POINTER(g));
+    gboolean tess = !r->p->send_fine && r->p->pn.level > 0;
+    MachProc *gp = mach_proc(m, "gp", g);
+    MachOps o = {0}; /* named counts, for a recording */
+    mach_ops_add(&o, "polygon", fine);
+    mach_ops_add(&o, "vertex", 3 * fine);
+    mach_ops_add(&o, "send_primitive", fine);
+    mach_ops_add(&o, "pn_vertex",
+                 tess ? share(r->mesh.fine_points, g, ng) : 0);
+    r->gp = MAX(r->gp, mach_proc_ops_cost(gp, &o));
+    mach_proc_compute_list(gp, &o, 0, gp_computed, r, GUINT_TO_POINTER(g));
 }
 
 static void pp5_frame(void *run)

@@ -99,7 +99,19 @@ typedef struct {
 } Bad;
 
 static const Bad bads[] = {
-    {"pgsim-trace 2\n", "t.pgt:1:13:", "found '2'"},
+    {"pgsim-trace 3\n", "t.pgt:1:13:", "found '3'"},
+    /* version 2's actions: b and v not in version 1; swap only on v, and
+     * not with frame */
+    {"pgsim-trace 1\nprocs 2\nat 0\nb 0 1 5\n", "t.pgt:4:1:",
+     "'pgsim-trace 2'"},
+    {"pgsim-trace 2\nprocs 2\nat 0\nv 0 0\n", "t.pgt:4:5:",
+     "a period above 0"},
+    {"pgsim-trace 2\nprocs 2\nat 0\nb 0 1 5 swap\n", "t.pgt:4:9:",
+     "'swap' ends only a `v`"},
+    {"pgsim-trace 2\nprocs 2\nat 0\nw 0 0 5 frame\nv 1 7 swap\n",
+     "t.pgt:5:7:", "without 'frame'"},
+    {"pgsim-trace 2\nprocs 2\nat 0\nv 1 7 swap\nw 0 0 5 frame\n",
+     "t.pgt:5:9:", "has no 'frame'"},
     {"hello\n", "t.pgt:1:1:", "found 'hello'"},
     {"pgsim-trace 1\nprocs 2\nc 0 0 a=1\n", "t.pgt:3:1:", "'at TIME'"},
     {"pgsim-trace 1\nprocs 2\nat 0\nw 2 0 5\n", "t.pgt:4:3:", "below 2"},

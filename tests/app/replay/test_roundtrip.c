@@ -7,6 +7,7 @@
 #include "sim/app/replay/rpl_record.h"
 #include "sim/app/replay/rpl_replay.h"
 #include <glib/gstdio.h>
+#include <inttypes.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -122,6 +123,7 @@ static const Case dpscan = {
     "configs/dpscan-cm200.yaml",
     {"scene.grid=16", "workload.width=256", "workload.height=256", NULL}};
 static const Case argus = {"configs/argus-nurbs.yaml", {NULL}};
+static const Case pn = {"configs/pn-onyx.yaml", {NULL}};
 
 static void test_pixelmerge(void **s)
 {
@@ -154,6 +156,14 @@ static void test_argus(void **s)
     round_trip(&argus, FALSE);
 }
 
+/* PN triangles on the Onyx: the CPU -> pipe stream is a shared-memory
+ * transfer (`b`), in the volume. */
+static void test_pn(void **s)
+{
+    (void)s;
+    round_trip(&pn, FALSE);
+}
+
 /* The comparison can fail: the same trace on a slower network (or at
  * another fidelity) gives other frame times. */
 static void test_other_machine_differs(void **s)
@@ -171,6 +181,89 @@ static void test_other_machine_differs(void **s)
     sim_result_free(rep);
     sim_result_free(orig);
     tmp_clear(dir, path, machine, fidelity);
+}
+
+/* Per processor, the counts of `op` on its `c` lines in any phase;
+ * names[p] gets its name on the recording machine ("gp3"). */
+static uint64_t *op_counts(const char *path, const char *op, guint *n,
+                           GPtrArray *names)
+{
+    GError *e = NULL;
+    RplReader *r = rpl_reader_open(path, &e);
+    g_assert_no_error(e);
+    const RplHeader *h = rpl_reader_header(r);
+    *n = h->procs;
+    for (guint p = 0; p < *n; p++) {
+        const RplKind *kd = rpl_header_kind_of(h, p);
+        g_ptr_array_add(names, kd ? g_strdup_printf("%s%u", kd->name,
+                                                    p - kd->first)
+                                  : g_strdup("?"));
+    }
+    uint64_t *k = g_new0(uint64_t, *n);
+    RplItem it;
+    while (rpl_reader_next(r, &it, &e))
+        for (guint i = 0; it.type == RPL_COMPUTE && i < it.n_ops; i++)
+            if (!strcmp(it.op[i], op))
+                k[it.proc] += it.count[i];
+    g_assert_no_error(e);
+    rpl_reader_free(r);
+    return k;
+}
+
+/* The busy time of the node named `name` (0 if it did nothing). */
+static SimTime busy_of(const SimResult *res, const char *name)
+{
+    for (guint i = 0; i < res->nodes->len; i++) {
+        const SimNodeResult *x = res->nodes->pdata[i];
+        if (!strcmp(x->name, name))
+            return x->busy.total;
+    }
+    return 0;
+}
+
+/* The workload records `op` (a cost of `kind`) as a named count: a
+ * replay with that cost 1 us and then 2 us gives every processor
+ * exactly its recorded count x 1 us more busy time (a `w` trace has no
+ * counts: fails), and nothing else moves the volume. */
+static void counts_repriced(const Case *c, const char *kind, const char *op)
+{
+    char *dir = g_dir_make_tmp("pgsim-rt-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "t.pgt", NULL);
+    char *machine, *fidelity;
+    sim_result_free(record(c, path, &machine, &fidelity));
+    guint n;
+    GPtrArray *names = g_ptr_array_new_with_free_func(g_free);
+    uint64_t *k = op_counts(path, op, &n, names), total = 0;
+    char *one = g_strdup_printf("machine.nodes.%s.costs.%s=1 us", kind, op);
+    char *two = g_strdup_printf("machine.nodes.%s.costs.%s=2 us", kind, op);
+    const char *s1[] = {one, NULL}, *s2[] = {two, NULL};
+    SimResult *a = replay(path, machine, fidelity, s1);
+    SimResult *b = replay(path, machine, fidelity, s2);
+    for (guint p = 0; p < n; p++) {
+        SimTime d = busy_of(b, names->pdata[p]) - busy_of(a, names->pdata[p]);
+        if (d != k[p] * SIM_US)
+            fail_msg("%s: processor %u: %s busy moved by %" PRIu64
+                     " ps, expected %" PRIu64 " x 1 us",
+                     c->config, p, op, d, k[p]);
+        total += k[p];
+    }
+    g_ptr_array_unref(names);
+    if (total == 0)
+        fail_msg("%s: no %s counts recorded", c->config, op);
+    assert_int_equal(a->comm_bytes, b->comm_bytes);
+    sim_result_free(a);
+    sim_result_free(b);
+    g_free(one);
+    g_free(two);
+    g_free(k);
+    tmp_clear(dir, path, machine, fidelity);
+}
+
+static void test_counts_repriced(void **s)
+{
+    (void)s;
+    counts_repriced(&pn, "pipe", "triangle");
+    counts_repriced(&pn, "cpu", "draw_vertex");
 }
 
 /* Work is recorded as named counts: per processor, the `span` counts of
@@ -316,6 +409,8 @@ int main(void)
         cmocka_unit_test(test_sortfirst),
         cmocka_unit_test(test_dpscan),
         cmocka_unit_test(test_argus),
+        cmocka_unit_test(test_pn),
+        cmocka_unit_test(test_counts_repriced),
         cmocka_unit_test(test_other_machine_differs),
         cmocka_unit_test(test_pixelmerge_counts_repriced),
         cmocka_unit_test(test_costs_from),
