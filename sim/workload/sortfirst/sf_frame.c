@@ -9,7 +9,8 @@
 
 const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "pixel_zbuffer",    "chunk_pack",
-                                      "grid_cell",        NULL};
+                                      "grid_cell",        "node_visit",
+                                      NULL};
 
 typedef struct {
     WlSfRun *run;
@@ -52,11 +53,12 @@ struct WlSfRun {
     int frame, frames;
     guint done;
     WlSfTrav trav;      /* this frame's §3.5 counts (sf_trav.h) */
+    WlSfTravProc *tp;   /* per processor: its traversal work */
     WlSfFrameHook hook; /* NULL: none */
     void *hook_ctx;
     SimTime start;
     unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
-    unsigned ph_estimate;
+    unsigned ph_estimate, ph_traverse;
 };
 
 /* n x unit, saturating (a saturated time overflows the engine's clock). */
@@ -79,6 +81,7 @@ gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
     c->pixel_zbuffer = mach_cost(m, "node", "pixel_zbuffer");
     c->chunk_pack = mach_cost(m, "node", "chunk_pack");
     c->grid_cell = mach_cost(m, "node", "grid_cell");
+    c->node_visit = mach_cost(m, "node", "node_visit");
     return TRUE;
 }
 
@@ -165,6 +168,15 @@ static double max_over_mean(double max, double total, guint n);
 static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
 {
     return mul(mul(r->c.transform_vertex, 8), boxes);
+}
+
+/* Processor p's traversal of the hierarchy, the first thing its first
+ * pass does (sf_trav.h): charged in phase `traverse`. */
+static void traverse(WlSfRun *r, Proc *pr)
+{
+    const WlSfTravProc *tp = &r->tp[pr->p];
+    SimTime t = add(mul(r->c.node_visit, tp->nodes), box_cost(r, tp->tests));
+    mach_proc_compute(pr->proc, t, r->ph_traverse, NULL, NULL, NULL);
 }
 
 static void render_done(SimEngine *eng, void *ctx, void *arg);
@@ -320,10 +332,16 @@ static void sort(WlSfRun *r, Proc *pr)
         wl_sf_book_pull_sort(r->book, pr->p, pr->out, &pr->w);
     else
         wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
+    const WlSfTravProc *tp = &r->tp[pr->p];
+    g_assert(tp->master_culled <= pr->w.master_boxes &&
+             tp->slave_culled <= pr->w.slave_boxes);
     SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes +
-                                pr->w.probe_boxes);
+                                pr->w.probe_boxes - tp->master_culled -
+                                tp->slave_culled);
+    if (!(r->adapt && r->s.current)) /* else the estimate traversed */
+        traverse(r, pr);
     if (r->adapt && r->s.current) /* master boxes done by the estimate */
-        t = box_cost(r, pr->w.slave_boxes);
+        t = box_cost(r, pr->w.slave_boxes - tp->slave_culled);
     else if (r->adapt) /* an extrapolation: one more cell's work */
         t = add(t, mul(r->c.grid_cell, r->adapt->added[pr->p] *
                                            (r->s.predict ? 2 : 1)));
@@ -390,7 +408,9 @@ static void estimate(WlSfRun *r, Proc *pr)
 {
     pr->grids = 0;
     pr->estimated = FALSE;
-    SimTime t = add(box_cost(r, own_boxes(r, pr->p)),
+    traverse(r, pr);
+    SimTime t = add(box_cost(r, own_boxes(r, pr->p) -
+                                    r->tp[pr->p].master_culled),
                     mul(r->c.grid_cell, r->adapt->added[pr->p]));
     mach_proc_compute(pr->proc, t, r->ph_estimate, estimate_done, r,
                       GUINT_TO_POINTER(pr->p));
@@ -428,7 +448,7 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     r->book->regions = r->regions; /* the bucket sorts use this frame's */
     wl_sf_book_need(r->book, r->view.view_proj);
     memset(&r->trav, 0, sizeof r->trav);
-    wl_sf_trav_count(r->book, &r->trav);
+    wl_sf_trav_count(r->book, r->s.trav, &r->trav, r->tp);
     for (guint p = 0; p < r->s.procs; p++) {
         r->procs[p].busy0 = mach_proc_busy(r->procs[p].proc);
         if (r->adapt && r->s.current)
@@ -458,6 +478,10 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
         max = MAX(max, busy);
     }
     st->imbalance = max_over_mean(max, total, r->s.procs);
+    for (guint p = 0; p < r->s.procs; p++)
+        st->traverse_busy = add(
+            st->traverse_busy,
+            add(mul(r->c.node_visit, r->tp[p].nodes), box_cost(r, r->tp[p].tests)));
     if (r->adapt) {
         for (guint p = 0; p < r->s.procs; p++) {
             st->estimate_bytes += (r->s.procs - 1) * estimate_bytes(r, p);
@@ -651,6 +675,7 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->book = wl_sf_book_new(db, &r->regions, s->bk, &s->sizes);
     wl_sf_book_set_policy(r->book, s->mig, s->ms);
     g_assert(!s->adaptive || s->mig == WL_SF_PUSH);
+    g_assert(s->mig == WL_SF_PUSH || s->trav == WL_SF_TRAV_PLAIN);
     if (s->adaptive) {
         r->adapt = wl_sf_adapt_new(s->grid, s->procs);
         r->adapt->master = r->book->master;
@@ -658,6 +683,7 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     if (s->adaptive && s->predict && !s->current)
         wl_sf_adapt_predict(r->adapt, wl_sf_n_insts(db));
     r->procs = g_new0(Proc, s->procs);
+    r->tp = g_new0(WlSfTravProc, s->procs);
     for (guint p = 0; p < s->procs; p++) {
         Proc *pr = &r->procs[p];
         pr->run = r;
@@ -676,6 +702,7 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->stats = g_array_new(FALSE, TRUE, sizeof(WlSfFrameStats));
     r->render = g_array_new(FALSE, FALSE, sizeof(guint));
     r->subset = g_array_new(FALSE, FALSE, sizeof(uint32_t));
+    r->ph_traverse = sim_engine_phase(r->eng, "traverse");
     r->ph_sort = sim_engine_phase(r->eng, "sort");
     r->ph_pack = sim_engine_phase(r->eng, "pack");
     r->ph_unpack = sim_engine_phase(r->eng, "unpack");
@@ -701,6 +728,7 @@ void wl_sf_run_free(WlSfRun *r)
         g_array_unref(r->procs[p].fresh);
     }
     g_free(r->procs);
+    g_free(r->tp);
     wl_sf_book_free(r->book);
     wl_sf_adapt_free(r->adapt);
     rast_zbuffer_free(r->zb);

@@ -49,6 +49,13 @@
  * goes out.  Dynamic mastership (WlSfSetup.ms) rides on the push
  * exchange (bytes.mastership per chunk handed over).
  *
+ * Traversal (sf_trav.h, WlSfSetup.trav): the first pass of the frame
+ * (the sort, or the estimate with `current`) starts with the
+ * processor's traversal of the replicated hierarchy, phase `traverse`:
+ * node_visit per structure instance scanned plus 8 x transform_vertex
+ * per volume test; the chunk boxes in culled subtrees are not
+ * transformed by the sort.
+ *
  * The frame ends when every processor has rendered (the frame-buffer
  * read-out is not modelled); the next frame then starts.  The regions'
  * pixels land in one frame z-buffer: with `check_image` it is compared
@@ -74,7 +81,7 @@ extern const char *const wl_sf_cost_ops[];
 
 typedef struct {
     SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;
-    SimTime grid_cell;
+    SimTime grid_cell, node_visit;
 } WlSfCosts;
 
 typedef struct {
@@ -92,6 +99,7 @@ typedef struct {
     gboolean predict;  /* previous-frame estimate, each instance moved
                           to its extrapolation one frame ahead */
     gboolean feedback; /* weight cells by measured work per polygon */
+    WlSfTravMode trav; /* §3.5 traversal (sf_trav.h); plain for pull */
 } WlSfSetup;
 
 /* One frame's figures (sums over processors unless said). */
@@ -123,6 +131,8 @@ typedef struct {
                                     region) */
     uint64_t offscreen_total;    /* off-screen master polygons, all */
     WlSfTrav trav;               /* §3.5 counts, all processors */
+    SimTime traverse_busy;       /* Σ over processors: traversal time
+                                    charged (nodes, volume tests) */
     double utilisation;          /* busy / (P x frame time) */
     gboolean image_checked, image_ok;
 } WlSfFrameStats;

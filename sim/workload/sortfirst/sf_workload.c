@@ -15,6 +15,8 @@
  *     estimate: previous     # previous frame's rectangles | current |
  *                            # predicted (previous, extrapolated a frame)
  *     feedback: false        # weight cells by measured work / polygon
+ *     traversal: plain       # plain | flags | culled | flags_culled
+ *                            # (§3.5, sf_trav.h; pull: plain)
  *     resolution: 256        # N x N screen
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
@@ -88,6 +90,9 @@ static gboolean check_pull(const CfgNode *sec, const WlSfSetup *s,
     else if (s->adaptive)
         exp = "regions: static (the adaptive estimate rides on the push "
               "exchange)";
+    else if (s->trav != WL_SF_TRAV_PLAIN)
+        exp = "traversal: plain (seed 000 §3.3.2.2: with pull no portion "
+              "of the hierarchy can be skipped over)";
     if (!exp)
         return TRUE;
     cfg_error(err, cfg_get(sec, "migration"), "migration: pull", exp);
@@ -109,15 +114,17 @@ static gboolean parse_policy(const CfgNode *sec, WlSfSetup *s, GError **err)
 
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
-    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0, est = 0;
+    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0, est = 0, tr = 0;
     if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
                       err) ||
         !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch,
                       err) ||
         !cfg_get_enum(sec, "regions", FALSE, region_names, &rg, err) ||
         !cfg_get_enum(sec, "estimate", FALSE, estimate_names, &est, err) ||
-        !cfg_get_bool(sec, "feedback", FALSE, &p->setup.feedback, err))
+        !cfg_get_bool(sec, "feedback", FALSE, &p->setup.feedback, err) ||
+        !cfg_get_enum(sec, "traversal", FALSE, wl_sf_trav_names, &tr, err))
         return FALSE;
+    p->setup.trav = (WlSfTravMode)tr;
     p->setup.current = est == 1;
     p->setup.predict = est == 2;
     p->setup.adaptive = rg == 1;
@@ -209,7 +216,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
 typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
     double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
-    double est_bytes, box_side, split_imbalance;
+    double est_bytes, box_side, split_imbalance, trav_ms, tests;
     WlSfTrav trav;
     double probe, messages, requests, handovers, held, master_imb, off_max, off_total;
     uint64_t onscreen, regions, peak;
@@ -247,6 +254,8 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->trav.culled += s->trav.culled;
         m->trav.both += s->trav.both;
         m->trav.boxes_culled += s->trav.boxes_culled;
+        m->tests += s->trav.tests;
+        m->trav_ms += sim_time_to_ms(s->traverse_busy);
         m->messages += s->messages;
         m->handovers += s->handovers;
         m->held += s->held_polys;
@@ -327,6 +336,9 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
     set(out, "traversal_nodes_culled", m.trav.culled / n, "");
     set(out, "traversal_nodes_flags_culled", m.trav.both / n, "");
     set(out, "boxes_culled_per_frame", m.trav.boxes_culled / n, "");
+    /* what the run's `traversal` mode charged: mean per processor */
+    set(out, "volume_tests_per_frame", m.tests / n, "");
+    set(out, "traversal_ms", m.trav_ms / n / s->procs, "ms");
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
     if (m.checked)

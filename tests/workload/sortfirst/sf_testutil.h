@@ -1,0 +1,19 @@
+/* sf_testutil.h — running the `sortfirst` workload from a config text in
+ * the sort-first tests (shared by test_sortfirst.c, test_sf_trav.c and
+ * test_sf_edit.c). */
+#ifndef PGSIM_TESTS_SF_TESTUTIL_H
+#define PGSIM_TESTS_SF_TESTUTIL_H
+
+#include "sim/workload/sortfirst/sf_workload.h"
+
+/* Runs `text` with the NULL-terminated overrides (may be NULL) for
+ * `frames` frames, seed 1, analytic; frames to out_dir (NULL: none),
+ * every frame when `all`.  A new result, or NULL with *err set.  Fails
+ * the test on an unreadable config or override. */
+SimResult *sf_test_run(const char *text, const char *const *overrides,
+                       int frames, const char *out_dir, gboolean all,
+                       GError **err);
+/* Metric `name` of r; fails the test when absent. */
+double sf_test_metric(const SimResult *r, const char *name);
+
+#endif
