@@ -19,9 +19,10 @@
 #define MAX_GPS 64 /* one bit per GP in the distribution's masks */
 
 typedef struct {
-    SimTime trav, xform, send; /* work before the message */
-    guint region;              /* NONE: no batch */
-    GArray *cmds;              /* the batch (WlPphigsCmd), owned */
+    MachOps trav, xform; /* work before the message, as named counts */
+    uint64_t send;       /* commands sent (send_primitive each) */
+    guint region;        /* NONE: no batch */
+    GArray *cmds;        /* the batch (WlPphigsCmd), owned */
 } Step;
 
 typedef struct {
@@ -137,14 +138,16 @@ static gboolean kind_count(const MachMachine *m, const char *kind, guint lo,
 typedef struct {
     WlPphigsFrame *f;
     Gp *g;
-    SimTime trav, xform, send; /* accumulated since the last step */
+    MachOps trav, xform; /* accumulated since the last step */
+    uint64_t send;
 } Plan;
 
 static void plan_step(Plan *pl, guint region, GArray *cmds)
 {
     Step st = {pl->trav, pl->xform, pl->send, region, cmds};
     g_array_append_val(pl->g->steps, st);
-    pl->trav = pl->xform = pl->send = 0;
+    pl->trav.n = pl->xform.n = 0;
+    pl->send = 0;
     if (region != NONE)
         pl->g->sent[region % pl->f->nrend]++;
 }
@@ -153,7 +156,7 @@ static void plan_command(Plan *pl, guint region, const WlPphigsCmd *c)
 {
     WlPphigsFrame *f = pl->f;
     GArray **b = &pl->g->buf[region];
-    pl->send += f->gp_send;
+    pl->send++;
     f->commands++;
     if (!*b)
         *b = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
@@ -181,7 +184,7 @@ static void plan_prim(const ScenePrimInst *pi, void *ud)
     Mat4 m = mat4_mul(f->vp, pi->matrix);
     gboolean off = scene_pphigs_prim_offscreen(m, pi->el);
     f->prims++;
-    pl->xform += wl_pphigs_prim_cost(&f->c, pi->el, off);
+    wl_pphigs_prim_ops(pi->el, off, &pl->xform);
     if (off) {
         f->offscreen++;
         return;
@@ -197,7 +200,8 @@ static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
     g_array_set_size(g->steps, 0);
     g->next = 0;
     memset(g->sent, 0, f->nrend * sizeof *g->sent);
-    Plan pl = {f, g, wl_pphigs_nonprim_cost(db, &f->c), 0, 0};
+    Plan pl = {.f = f, .g = g};
+    wl_pphigs_nonprim_ops(db, &pl.trav);
     plan_step(&pl, NONE, NULL);
     scene_db_traverse(db, plan_prim, &pl);
     for (guint k = 0; k < f->nregions; k++)
@@ -205,7 +209,8 @@ static void plan_gp(WlPphigsFrame *f, Gp *g, const SceneDb *db)
             plan_step(&pl, k, g->buf[k]);
             g->buf[k] = NULL;
         }
-    if (pl.trav || pl.xform || pl.send)
+    if (mach_proc_ops_cost(g->p, &pl.trav) ||
+        mach_proc_ops_cost(g->p, &pl.xform) || (pl.send && f->gp_send))
         plan_step(&pl, NONE, NULL);
 }
 
@@ -225,7 +230,8 @@ static void fb_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     WlPphigsFrame *f = ctx;
     wl_pphigs_region_store(d->payload, f->image);
     wl_pphigs_region_free(d->payload);
-    mach_proc_compute(f->fb, f->fb_store, f->ph_store, fb_done, f, NULL);
+    static const MachOp store = {"store_region", 1};
+    mach_proc_compute_ops(f->fb, &store, 1, f->ph_store, fb_done, f, NULL);
 }
 
 /* ---- renderers -------------------------------------------------------- */
@@ -264,7 +270,8 @@ static void rend_raster(Rend *r, guint j)
     WlPphigsFrame *f = r->f;
     if (!r->reg[j]) {
         r->reg[j] = region_pixels(f, j * f->nrend + r->id);
-        mach_proc_compute(r->p, f->rend_begin, f->ph_rast, NULL, NULL, NULL);
+        static const MachOp begin = {"region_begin", 1};
+        mach_proc_compute_ops(r->p, &begin, 1, f->ph_rast, NULL, NULL, NULL);
     }
     GArray *cmds = r->pending[j];
     if (!cmds || !cmds->len)
@@ -276,8 +283,8 @@ static void rend_raster(Rend *r, guint j)
         exprs += wl_pphigs_cmd_exprs(c);
     }
     f->exprs += exprs;
-    mach_proc_compute(r->p, exprs * f->rend_expr + cmds->len * f->rend_cmp,
-                      f->ph_rast, NULL, NULL, NULL);
+    MachOp o[] = {{"expression", exprs}, {"compare", cmds->len}};
+    mach_proc_compute_ops(r->p, o, 2, f->ph_rast, NULL, NULL, NULL);
     g_array_set_size(cmds, 0);
 }
 
@@ -287,8 +294,9 @@ static void rend_finish(Rend *r)
     WlPphigsFrame *f = r->f;
     for (; r->cur < r->nreg; r->cur++) {
         rend_raster(r, r->cur);
-        mach_proc_compute(r->p, f->rend_shade, f->ph_shade, rend_region_done, r,
-                          GUINT_TO_POINTER(r->cur));
+        static const MachOp shade = {"region_shade", 1};
+        mach_proc_compute_ops(r->p, &shade, 1, f->ph_shade, rend_region_done,
+                              r, GUINT_TO_POINTER(r->cur));
     }
 }
 
@@ -364,11 +372,13 @@ static void gp_next(Gp *g)
         return;
     }
     const Step *st = &g_array_index(g->steps, Step, g->next);
-    if (st->trav)
-        mach_proc_compute(g->p, st->trav, f->ph_trav, NULL, NULL, NULL);
-    if (st->xform)
-        mach_proc_compute(g->p, st->xform, f->ph_xform, NULL, NULL, NULL);
-    mach_proc_compute(g->p, st->send, f->ph_send, gp_step_done, g, NULL);
+    if (mach_proc_ops_cost(g->p, &st->trav))
+        mach_proc_compute_list(g->p, &st->trav, f->ph_trav, NULL, NULL, NULL);
+    if (mach_proc_ops_cost(g->p, &st->xform))
+        mach_proc_compute_list(g->p, &st->xform, f->ph_xform, NULL, NULL,
+                               NULL);
+    MachOp send = {"send_primitive", st->send};
+    mach_proc_compute_ops(g->p, &send, 1, f->ph_send, gp_step_done, g, NULL);
 }
 
 static void gp_start(SimEngine *eng, void *ctx, void *arg)
@@ -405,12 +415,10 @@ void wl_pphigs_frame_host_scan(WlPphigsFrame *f, uint64_t elements)
 /* The host's step back (§3.4-3.5) before it packs anything. */
 static void host_scan(WlPphigsFrame *f)
 {
-    SimTime cost;
     if (!f->scan_pending)
         return;
-    if (!mach_cost_n(f->host_scan, f->scan_pending, &cost))
-        cost = SIM_TIME_MAX; /* mach_proc_compute reports the overflow */
-    mach_proc_compute(f->host, cost, f->ph_edit, NULL, NULL, NULL);
+    MachOp scan = {"scan_element", f->scan_pending};
+    mach_proc_compute_ops(f->host, &scan, 1, f->ph_edit, NULL, NULL, NULL);
     f->scan_pending = 0;
 }
 
@@ -421,10 +429,8 @@ static void gp_launch(WlPphigsFrame *f, Gp *g)
         sim_schedule_in(f->eng, 0, gp_start, g, NULL);
         return;
     }
-    SimTime cost;
-    if (!mach_cost_n(f->host_send, g->edits, &cost))
-        cost = SIM_TIME_MAX; /* mach_proc_compute reports the overflow */
-    mach_proc_compute(f->host, cost, f->ph_edit, host_packed, g, NULL);
+    MachOp send = {"send_element", g->edits};
+    mach_proc_compute_ops(f->host, &send, 1, f->ph_edit, host_packed, g, NULL);
     f->host_elems += g->edits;
 }
 

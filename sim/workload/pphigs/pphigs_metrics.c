@@ -26,6 +26,49 @@ SimTime wl_pphigs_elem_cost(const WlPphigsCosts *c, const SceneElem *e)
     }
 }
 
+void wl_pphigs_elem_ops(const SceneElem *e, MachOps *o)
+{
+    switch (e->kind) {
+    case SCENE_EL_COLOR:
+        mach_ops_add(o, "color", 1);
+        return;
+    case SCENE_EL_MATRIX:
+        mach_ops_add(o,
+                     e->mode == SCENE_MAT_REPLACE ? "matrix_replace"
+                                                  : "matrix_concat",
+                     1);
+        return;
+    case SCENE_EL_EXECUTE:
+        mach_ops_add(o, "execute", 1);
+        return;
+    default:
+        mach_ops_add(o, "polygon", 1);
+        mach_ops_add(o, "vertex", e->nverts);
+    }
+}
+
+void wl_pphigs_prim_ops(const SceneElem *e, gboolean offscreen, MachOps *o)
+{
+    if (offscreen)
+        mach_ops_add(o, "reject_vertex", e->nverts);
+    else
+        wl_pphigs_elem_ops(e, o);
+}
+
+void wl_pphigs_nonprim_ops(const SceneDb *db, MachOps *o)
+{
+    GArray *mx = scene_db_maxset(db);
+    for (guint k = 0; k < mx->len; k++) {
+        guint sid = g_array_index(mx, SceneMaxNode, k).sid;
+        for (guint i = 0; i < scene_db_len(db, sid); i++) {
+            const SceneElem *e = scene_db_elem(db, sid, i);
+            if (!scene_elem_is_prim(e->kind))
+                wl_pphigs_elem_ops(e, o);
+        }
+    }
+    g_array_unref(mx);
+}
+
 SimTime wl_pphigs_prim_cost(const WlPphigsCosts *c, const SceneElem *e,
                             gboolean offscreen)
 {

@@ -19,6 +19,7 @@
 #define PGSIM_WORKLOAD_PPHIGS_PPHIGS_METRICS_H
 
 #include "sim/core/time.h"
+#include "sim/machine/proc.h"
 #include "sim/workload/pphigs/pphigs_distrib.h"
 
 typedef struct {
@@ -32,6 +33,14 @@ typedef struct {
     double sum, max;                         /* over the GPs (us) */
     double efficiency, utilisation, speedup; /* fractions, factor */
 } WlPphigsMetrics;
+
+/* The operations wl_pphigs_elem_cost() / wl_pphigs_prim_cost() /
+ * wl_pphigs_nonprim_cost() price, as named counts of the GP's costs
+ * (polygon, vertex, reject_vertex, color, matrix_replace, matrix_concat,
+ * execute) added to o: the same time on a machine whose GP costs are c. */
+void wl_pphigs_elem_ops(const SceneElem *e, MachOps *o);
+void wl_pphigs_prim_ops(const SceneElem *e, gboolean offscreen, MachOps *o);
+void wl_pphigs_nonprim_ops(const SceneDb *db, MachOps *o);
 
 /* Nominal (on-screen) cost of one element: poly + vertex * nverts for a
  * primitive, else the attribute's or execute's cost. */

@@ -264,6 +264,9 @@ static void test_counts_repriced(void **s)
     (void)s;
     counts_repriced(&pn, "pipe", "triangle");
     counts_repriced(&pn, "cpu", "draw_vertex");
+    counts_repriced(&pphigs, "gp", "vertex");
+    counts_repriced(&pphigs, "renderer", "expression");
+    counts_repriced(&pphigs, "frame_buffer", "store_region");
 }
 
 /* Work is recorded as named counts: per processor, the `span` counts of
