@@ -108,3 +108,61 @@ void prov_csv_rows(GString *out, const SimProvenance *p)
     csv_row(out, NULL, "fidelity", p->fidelity);
     csv_row(out, NULL, "effective_config", p->effective_config);
 }
+
+/* Appends s with line breaks escaped ("\n", "\r"); NULL as "-". */
+static void one_line(GString *out, const char *s)
+{
+    if (!s) {
+        g_string_append_c(out, '-');
+        return;
+    }
+    for (; *s; s++) {
+        if (*s == '\n')
+            g_string_append(out, "\\n");
+        else if (*s == '\r')
+            g_string_append(out, "\\r");
+        else
+            g_string_append_c(out, *s);
+    }
+}
+
+static void comment(GString *out, const char *field, const char *value)
+{
+    g_string_append_printf(out, "# %s: ", field);
+    one_line(out, value);
+    g_string_append_c(out, '\n');
+}
+
+void prov_comment_lines(GString *out, const SimProvenance *p)
+{
+    comment(out, "pgsim_version", prov_version());
+    comment(out, "config", p->config);
+    comment(out, "config_sha256", p->config_sha256);
+    for (guint i = 0; p->overrides && i < p->overrides->len; i++)
+        comment(out, "override", g_ptr_array_index(p->overrides, i));
+    char seed[24];
+    g_snprintf(seed, sizeof seed, "%" G_GUINT64_FORMAT, p->seed);
+    comment(out, "seed", seed);
+    comment(out, "fidelity", p->fidelity);
+    comment(out, "effective_config", p->effective_config);
+}
+
+void prov_text_line(GString *out, const SimProvenance *p)
+{
+    g_string_append_printf(out, "provenance: pgsim %s; config ",
+                           prov_version());
+    one_line(out, p->config);
+    g_string_append(out, " (sha256 ");
+    one_line(out, p->config_sha256);
+    g_string_append(out, "); overrides ");
+    for (guint i = 0; p->overrides && i < p->overrides->len; i++) {
+        if (i)
+            g_string_append(out, ", ");
+        one_line(out, g_ptr_array_index(p->overrides, i));
+    }
+    if (!p->overrides || !p->overrides->len)
+        g_string_append(out, "none");
+    g_string_append_printf(out, "; seed %" G_GUINT64_FORMAT "; fidelity ",
+                           p->seed);
+    one_line(out, p->fidelity);
+}

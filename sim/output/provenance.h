@@ -1,6 +1,8 @@
 /* provenance.h — where an output came from, in the same words for every
- * output: `run` (result.json, result.csv), sweeps (sweep.json) and
- * reproductions (<paper>.json, <paper>.csv).
+ * output: `run` (result.json, result.csv rows), sweeps (provenance.json,
+ * results.csv comment lines) and reproductions (<paper>.json; comment
+ * lines in <paper>.csv; a line in <paper>.txt and in the Markdown
+ * report).
  *
  * The fields: pgsim_version (git describe at build time), config (the
  * input file's path), config_sha256 (of its bytes), overrides (the --set
@@ -34,4 +36,15 @@ void prov_json(JsonBuilder *b, const SimProvenance *p);
 /* The same as CSV rows "<section>,<name>,,<field>,<value>," for
  * report-style CSV (section "provenance"); fields quoted as needed. */
 void prov_csv_rows(GString *out, const SimProvenance *p);
+/* The same as comment lines "# <field>: <value>", one per field and one
+ * "# override: ..." per --set item, for tabular CSV whose columns are
+ * not name/value (sweep results, reproduction tables): readers skip
+ * lines starting with '#' (dt_parse_csv, pgsim plot, pandas with
+ * comment='#', R's read.csv with comment.char='#').  A line break inside
+ * a value is written as "\n", so each field stays one line. */
+void prov_comment_lines(GString *out, const SimProvenance *p);
+/* The same as one line for text reports (no newline):
+ * "provenance: pgsim V; config PATH (sha256 H); overrides A, B; seed N;
+ * fidelity F" (no effective config: the JSON outputs hold it). */
+void prov_text_line(GString *out, const SimProvenance *p);
 #endif

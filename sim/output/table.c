@@ -2,8 +2,11 @@
  *
  * The reader is a small state machine over the text: fields end at ',',
  * records at LF or CRLF; a quoted field may hold commas, newlines and
- * doubled quotes.  Invariant: every row has exactly cols->len cells (a
- * record with another count is an error naming its line).  O(n).
+ * doubled quotes.  A line starting with '#' where a record would start
+ * is a comment and is skipped (provenance headers, provenance.h); the
+ * writer quotes a field starting with '#', so no record reads as one.
+ * Invariant: every row has exactly cols->len cells (a record with
+ * another count is an error naming its line).  O(n).
  */
 #include "sim/output/table.h"
 #include "sim/core/datapath.h"
@@ -63,7 +66,7 @@ void dt_csv_field(GString *out, const char *s)
 {
     if (!s)
         return;
-    if (!strpbrk(s, ",\"\n\r")) {
+    if (*s != '#' && !strpbrk(s, ",\"\n\r")) {
         g_string_append(out, s);
         return;
     }
@@ -179,15 +182,27 @@ static gboolean add_record(DataTable *t, GPtrArray *cells, CsvReader *r,
     return TRUE;
 }
 
+/* Skips comment lines (a '#' where a record starts). */
+static void skip_comments(CsvReader *r)
+{
+    while (r->s[r->pos] == '#') {
+        while (r->s[r->pos] && r->s[r->pos] != '\n')
+            advance(r);
+        if (r->s[r->pos])
+            advance(r);
+    }
+}
+
 DataTable *dt_parse_csv(const char *text, const char *name, GError **err)
 {
     CsvReader r = {text, 0, 1, 1, name};
+    skip_comments(&r);
     GPtrArray *head = read_record(&r, err);
     if (!head)
         return NULL;
     DataTable *t = dt_new(head);
     g_ptr_array_free(head, TRUE);
-    while (r.s[r.pos]) {
+    for (skip_comments(&r); r.s[r.pos]; skip_comments(&r)) {
         int line = r.line;
         GPtrArray *cells = read_record(&r, err);
         gboolean ok = cells != NULL;

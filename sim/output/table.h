@@ -26,12 +26,15 @@ char *dt_col_names(const DataTable *t);
 int dt_col(const DataTable *t, const char *name);
 const char *dt_cell(const DataTable *t, guint row, int col);
 
-/* Reads a CSV file whose first line is the header; NULL with *err
+/* Reads a CSV file whose first line that is not a comment ('#' at the
+ * start of a line, skipped anywhere a record may start) is the header;
+ * NULL with *err
  * ("file:line:column: found ..., expected ...") on a bad file. */
 DataTable *dt_read_csv(const char *path, GError **err);
 DataTable *dt_parse_csv(const char *text, const char *name, GError **err);
 void dt_write_csv(const DataTable *t, GString *out);
-/* Appends one CSV field, quoted when needed (NULL: an empty field). */
+/* Appends one CSV field, quoted when needed (NULL: an empty field; a
+ * field starting with '#' is quoted, so it never reads as a comment). */
 void dt_csv_field(GString *out, const char *s);
 
 #endif

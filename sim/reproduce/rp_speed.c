@@ -77,14 +77,16 @@ void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out)
 {
     const RpTable *ref = ref_of(passes);
     char buf[32];
-    if (header)
-        g_string_append(out, "paper,table,row,column,sim,published,"
-                             "rel_error,fidelity,wall_s,"
-                             "rel_error_vs_packet\n");
     for (guint p = 0; p < passes->len; p++) {
         const RpTable *t = g_ptr_array_index(passes, p);
+        SimProvenance pv = rp_table_provenance(t);
+        prov_comment_lines(out, &pv);
+        if (header && p == 0)
+            g_string_append(out, "paper,table,row,column,sim,published,"
+                                 "rel_error,fidelity,wall_s,"
+                                 "rel_error_vs_packet\n");
         GString *one = g_string_new(NULL);
-        rp_table_csv(t, FALSE, one);
+        rp_table_csv_rows(t, one);
         char **lines = g_strsplit(one->str, "\n", -1);
         for (guint i = 0; i < t->cells->len; i++) {
             double e = rp_speed_vs_ref(g_ptr_array_index(t->cells, i), ref);

@@ -6,7 +6,6 @@
  * Join: O(rows + cells) with the paper's hash index.
  */
 #include "sim/reproduce/rp_table.h"
-#include "sim/output/provenance.h"
 #include "sim/output/table.h"
 #include <math.h>
 #include <string.h>
@@ -235,6 +234,12 @@ void rp_table_summary(const RpTable *t, GString *out)
                            100.0 * t->worst_abs, w->table, w->row, w->column);
 }
 
+SimProvenance rp_table_provenance(const RpTable *t)
+{
+    return (SimProvenance){t->setup, t->setup_sha256, NULL,
+                           RP_SEED,  t->fidelity,     t->setup_json};
+}
+
 void rp_table_text(const RpTable *t, GString *out)
 {
     static char *const head[] = {"table", "row",   "column", "published",
@@ -252,6 +257,9 @@ void rp_table_text(const RpTable *t, GString *out)
     }
     g_string_append_printf(out, "%s (fidelity %s)%s%s\n", t->paper, t->fidelity,
                            *t->citation ? ": " : "", t->citation);
+    SimProvenance p = rp_table_provenance(t);
+    prov_text_line(out, &p);
+    g_string_append_c(out, '\n');
     text_line(out, head, w);
     for (guint i = 0; i < lines->len; i++)
         text_line(out, g_ptr_array_index(lines, i), w);
@@ -264,10 +272,17 @@ void rp_table_text(const RpTable *t, GString *out)
 
 void rp_table_csv(const RpTable *t, gboolean header, GString *out)
 {
-    char buf[32];
+    SimProvenance p = rp_table_provenance(t);
+    prov_comment_lines(out, &p);
     if (header)
         g_string_append(out, "paper,table,row,column,sim,published,"
                              "rel_error\n");
+    rp_table_csv_rows(t, out);
+}
+
+void rp_table_csv_rows(const RpTable *t, GString *out)
+{
+    char buf[32];
     for (guint i = 0; i < t->cells->len; i++) {
         const RpJoined *j = g_ptr_array_index(t->cells, i);
         const char *f[] = {t->paper, j->table, j->row, j->column};
@@ -314,8 +329,7 @@ JsonNode *rp_table_node(const RpTable *t)
     js_set_str(b, "citation", t->citation);
     js_set_str(b, "fidelity", t->fidelity);
     js_set_num(b, "wall_s", t->wall_s);
-    SimProvenance p = {t->setup, t->setup_sha256, NULL,
-                       RP_SEED,  t->fidelity,     t->setup_json};
+    SimProvenance p = rp_table_provenance(t);
     prov_json(b, &p);
     json_builder_set_member_name(b, "cells");
     json_builder_begin_array(b);

@@ -10,6 +10,9 @@
  * Writers append to a GString: text for people, CSV
  * (paper,table,row,column,sim,published,rel_error; published and
  * rel_error empty where withheld or unknown) and JSON for programs.
+ * Each carries the table's provenance (provenance.h): a line under the
+ * text's title, "# " comment lines before the CSV rows, an object in
+ * the JSON.
  */
 #ifndef PGSIM_REPRODUCE_RP_TABLE_H
 #define PGSIM_REPRODUCE_RP_TABLE_H
@@ -18,6 +21,7 @@
 #include "sim/reproduce/reproduce.h"
 #include "sim/core/error.h"
 #include "sim/output/json.h"
+#include "sim/output/provenance.h"
 
 typedef enum {
     RP_COMPARED, /* sim and published both known */
@@ -61,9 +65,14 @@ const RpJoined *rp_table_find(const RpTable *t, const char *table,
                               const char *row, const char *column);
 const char *rp_status_name(RpStatus s);
 
+/* The table's provenance: its setup file as the config, its SHA-256 and
+ * tree, RP_SEED and its fidelity (pointers borrowed from t). */
+SimProvenance rp_table_provenance(const RpTable *t);
 void rp_table_text(const RpTable *t, GString *out);
-/* header: also write the column header line first. */
+/* The provenance comment lines, then (header) the column header line,
+ * then the rows; rp_table_csv_rows() writes the rows alone. */
 void rp_table_csv(const RpTable *t, gboolean header, GString *out);
+void rp_table_csv_rows(const RpTable *t, GString *out);
 /* JSON (json-glib): paper, citation, fidelity, wall_s, provenance,
  * cells, summary; rp_table_node() is the same tree (json_node_unref). */
 void rp_table_json(const RpTable *t, GString *out);

@@ -1,5 +1,6 @@
 /* test_rp_driver.c — the reproduction driver: paper files, the join,
- * relative errors, the summary, CSV/JSON output and located errors.
+ * relative errors, the summary, CSV/JSON output, the provenance each
+ * output carries, and located errors.
  * Uses a fake reproduction that is not registered in rp_all. */
 #include "sim/output/json.h"
 #include <glib/gstdio.h>
@@ -135,12 +136,40 @@ static void test_summary(void **state)
                                 "worst 25.0% (table 1, b, t_ms)");
     g_string_truncate(s, 0);
     rp_table_text(t, s);
+    char *setup = rp_paper_file(dir, "fake", "setup.yaml");
+    char *sha = g_compute_checksum_for_string(G_CHECKSUM_SHA256,
+                                              "setup: {n: 1}\n", -1);
+    char *line = g_strdup_printf("\nprovenance: pgsim %s; config %s (sha256 "
+                                 "%s); overrides none; seed %d; fidelity "
+                                 "packet\n",
+                                 prov_version(), setup, sha, RP_SEED);
+    assert_non_null(strstr(s->str, line));
+    g_free(line);
+    g_free(sha);
+    g_free(setup);
     assert_non_null(strstr(s->str, "withheld"));
     assert_non_null(strstr(s->str, "+10.0%"));
     assert_non_null(strstr(s->str, "not simulated"));
     g_string_free(s, TRUE);
     rp_table_free(t);
     rm_dir(dir, "fake");
+}
+
+/* The provenance comment lines of the fake paper's CSV at a fidelity:
+ * the setup file written by tmpdir_with() and the SHA-256 of its bytes. */
+static char *prov_comments(const char *dir, const char *fidelity)
+{
+    char *setup = rp_paper_file(dir, "fake", "setup.yaml");
+    char *sha = g_compute_checksum_for_string(G_CHECKSUM_SHA256,
+                                              "setup: {n: 1}\n", -1);
+    char *c = g_strdup_printf(
+        "# pgsim_version: %s\n# config: %s\n# config_sha256: %s\n"
+        "# seed: %d\n# fidelity: %s\n"
+        "# effective_config: {\"setup\":{\"n\":\"1\"}}\n",
+        prov_version(), setup, sha, RP_SEED, fidelity);
+    g_free(sha);
+    g_free(setup);
+    return c;
 }
 
 static void test_csv(void **state)
@@ -150,6 +179,10 @@ static void test_csv(void **state)
     RpTable *t = drive("packet", &dir);
     GString *s = g_string_new(NULL);
     rp_table_csv(t, TRUE, s);
+    char *prov = prov_comments(dir, "packet");
+    assert_true(g_str_has_prefix(s->str, prov));
+    g_string_erase(s, 0, (gssize)strlen(prov));
+    g_free(prov);
     assert_string_equal(s->str,
                         "paper,table,row,column,sim,published,rel_error\n"
                         "fake,1,a,t_ms,11,10,0.1\n"
@@ -212,6 +245,19 @@ static void test_fidelities(void **state)
     assert_true(rp_speed_mean_vs_ref(pk, pk) == 0.0);
     GString *s = g_string_new(NULL);
     rp_speed_csv(passes, TRUE, s);
+    /* each pass's rows follow its provenance; the header comes once,
+     * after the first pass's */
+    const char *fids[] = {"analytic", "flow", "packet"};
+    for (int f = 0; f < 3; f++) {
+        char *prov = prov_comments(dir, fids[f]);
+        const char *at = strstr(s->str, prov);
+        assert_non_null(at);
+        if (f == 0) {
+            assert_ptr_equal(at, s->str);
+            g_string_erase(s, 0, (gssize)strlen(prov));
+        }
+        g_free(prov);
+    }
     assert_true(g_str_has_prefix(s->str, "paper,table,row,column,sim,"
                                          "published,rel_error,fidelity,"
                                          "wall_s,rel_error_vs_packet\n"
@@ -338,6 +384,19 @@ static void test_doc(void **state)
     GString *md = g_string_new(NULL);
     rp_doc_paper(md, passes, caps, cdir, "reproduction");
     assert_non_null(strstr(md->str, "## fake\n"));
+    char *setup = rp_paper_file(dir, "fake", "setup.yaml");
+    char *want = g_strdup_printf("\n\nprovenance: pgsim %s; config %s (sha256 ",
+                                 prov_version(), setup);
+    assert_non_null(strstr(md->str, want));
+    g_free(want);
+    g_free(setup);
+    GString *head = g_string_new(NULL);
+    rp_doc_head(head, "packet");
+    want = g_strdup_printf("`pgsim reproduce all --fidelity packet` (pgsim %s)",
+                           prov_version());
+    assert_non_null(strstr(head->str, want));
+    g_string_free(head, TRUE);
+    g_free(want);
     assert_non_null(strstr(md->str, "### Table 1\n\nTable 1. Times.\n"));
     assert_non_null(strstr(md->str, "| a | t_ms [ms] | 10 | 11 | +10.0% |"));
     assert_non_null(strstr(md->str, "| c | t_ms | *withheld* | 5 | |"));

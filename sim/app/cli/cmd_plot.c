@@ -60,7 +60,8 @@ static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
          "PNG to write (an SVG, .gp and .dat go beside it)", "FILE.png"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
     if (!cli_parse("plot", "RESULTS.csv",
-                   "Charts two columns of a CSV file with gnuplot "
+                   "Charts two columns of a CSV file with gnuplot; lines "
+                   "starting with '#' (the provenance header) are skipped "
                    "(docs/sweeps.md).",
                    entries, argc, argv, status))
         return FALSE;

@@ -251,33 +251,49 @@ static gboolean write_atomic(const char *dir, const char *name,
     return ok;
 }
 
-/* DIR/provenance.json: the sweep file, its SHA-256, the base seed and
- * fidelity, and the expanded base config (each point's line adds its
- * parameter values and seed).  Works on a copy: reading the tree marks
- * its keys used. */
-static gboolean write_provenance(const char *dir, const SweepSpec *spec,
-                                 GError **err)
+/* A sweep's provenance: the sweep file, its SHA-256, the base seed and
+ * fidelity, and the expanded base config (each point adds its parameter
+ * values, the columns of results.csv, and its seed).  Works on a copy:
+ * reading the tree marks its keys used. */
+typedef struct {
+    SimProvenance p;
+    CfgNode *base;
+    char *sha, *eff;
+} SweepProv;
+
+static void sweep_prov_init(SweepProv *s, const SweepSpec *spec)
 {
-    CfgNode *base = cfg_copy(spec->base);
-    const char *fid = cfg_scalar(cfg_get(cfg_get(base, "run"), "fidelity"));
-    char *sha = prov_file_sha256(spec->path);
-    char *eff = prov_cfg_json(base);
-    SimProvenance p = {spec->path, sha, NULL, spec->seed, fid, eff};
+    s->base = cfg_copy(spec->base);
+    s->sha = prov_file_sha256(spec->path);
+    s->eff = prov_cfg_json(s->base);
+    const char *fid =
+        cfg_scalar(cfg_get(cfg_get(s->base, "run"), "fidelity"));
+    s->p = (SimProvenance){spec->path, s->sha, NULL, spec->seed, fid, s->eff};
+}
+
+static void sweep_prov_clear(SweepProv *s)
+{
+    g_free(s->eff);
+    g_free(s->sha);
+    cfg_free(s->base);
+}
+
+/* DIR/provenance.json: the sweep's provenance, its name and size. */
+static gboolean write_provenance(const char *dir, const SweepSpec *spec,
+                                 const SimProvenance *p, GError **err)
+{
     JsonBuilder *b = json_builder_new();
     json_builder_begin_object(b);
     js_set_str(b, "schema", "pgsim-sweep-provenance");
     js_set_str(b, "sweep", spec->name);
     js_set_int(b, "points", sweep_spec_points(spec));
-    prov_json(b, &p);
+    prov_json(b, p);
     json_builder_end_object(b);
     char *text = js_finish(b, TRUE);
     GString *g = g_string_new(text);
     gboolean ok = write_atomic(dir, "provenance.json", g, err);
     g_string_free(g, TRUE);
     g_free(text);
-    g_free(eff);
-    g_free(sha);
-    cfg_free(base);
     return ok;
 }
 
@@ -290,10 +306,14 @@ static gboolean write_outputs(const char *dir, const SweepSpec *spec,
         if (lines[i])
             g_string_append_printf(jl, "%s\n", lines[i]);
     DataTable *t = build_table(spec, rows, n);
+    SweepProv prov;
+    sweep_prov_init(&prov, spec);
+    prov_comment_lines(csv, &prov.p);
     dt_write_csv(t, csv);
     gboolean ok = write_atomic(dir, LOG_NAME, jl, err) &&
                   write_atomic(dir, "results.csv", csv, err) &&
-                  write_provenance(dir, spec, err);
+                  write_provenance(dir, spec, &prov.p, err);
+    sweep_prov_clear(&prov);
     if (ok && table_out)
         *table_out = t;
     else

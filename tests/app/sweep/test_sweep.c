@@ -4,6 +4,8 @@
 #include "tests/app/sweep/sweep_fake.h"
 #include "sim/core/rng.h"
 #include "sim/output/json.h"
+#include "sim/output/provenance.h"
+#include "sim/output/table.h"
 #include <glib/gstdio.h>
 #include <math.h>
 #include <setjmp.h>
@@ -144,10 +146,26 @@ static const char run_yaml[] = "base: {run: {seed: 11}, a: 0, b: 0}\n"
                                "  b: {from: 0, to: 4, step: 1}\n"
                                "repetitions: 2\n";
 
-static char *run_sweep(const char *yaml, int jobs, gboolean resume, char *dir)
+/* The text after a results.csv's leading comment lines (its provenance,
+ * checked by test_results_provenance). */
+static char *after_comments(char *csv)
 {
-    SweepSpec *s = parse_ok(yaml);
+    const char *p = csv;
+    while (*p == '#')
+        p = strchr(p, '\n') + 1;
+    char *rows = g_strdup(p);
+    g_free(csv);
+    return rows;
+}
+
+/* Runs a sweep parsed from yaml as if read from `path` into dir; returns
+ * results.csv. */
+static char *run_sweep_at(const char *yaml, const char *path, int jobs,
+                          gboolean resume, char *dir)
+{
     GError *err = NULL;
+    SweepSpec *s = sweep_spec_parse(yaml, path, &err);
+    g_assert_no_error(err);
     SweepLog *log = sweep_log_open(dir, s, resume, &err);
     g_assert_no_error(err);
     SweepJob j;
@@ -158,10 +176,16 @@ static char *run_sweep(const char *yaml, int jobs, gboolean resume, char *dir)
     sweep_log_close(log);
     assert_true(sweep_log_finish(dir, s, NULL, &err));
     sweep_spec_free(s);
-    char *path = g_build_filename(dir, "results.csv", NULL), *csv = NULL;
-    assert_true(g_file_get_contents(path, &csv, NULL, NULL));
-    g_free(path);
+    char *file = g_build_filename(dir, "results.csv", NULL), *csv = NULL;
+    assert_true(g_file_get_contents(file, &csv, NULL, NULL));
+    g_free(file);
     return csv;
+}
+
+/* results.csv without its provenance comment lines. */
+static char *run_sweep(const char *yaml, int jobs, gboolean resume, char *dir)
+{
+    return after_comments(run_sweep_at(yaml, "/tmp/t.yaml", jobs, resume, dir));
 }
 
 static guint count_lines(const char *s)
@@ -210,6 +234,44 @@ static void test_jobs_same_rows(void **state)
     g_free(c4);
     sweep_test_rm_out(d1);
     sweep_test_rm_out(d4);
+}
+
+/* results.csv opens with the sweep's provenance as comment lines: the
+ * build, the sweep file and the SHA-256 of its bytes, the base seed and
+ * fidelity, the base config; a CSV reader skips them and finds 6 rows. */
+static void test_results_provenance(void **state)
+{
+    (void)state;
+    static const char yaml[] = "base: {run: {seed: 5, fidelity: flow}, a: 0}\n"
+                               "parameters: {a: [1, 2, 3]}\n"
+                               "repetitions: 2\n";
+    char *d = g_dir_make_tmp("pgsim-sw-XXXXXX", NULL);
+    char *file = g_build_filename(d, "s.yaml", NULL);
+    assert_true(g_file_set_contents(file, yaml, -1, NULL));
+    char *csv = run_sweep_at(yaml, file, 1, FALSE, d);
+    char *sha = g_compute_checksum_for_string(G_CHECKSUM_SHA256, yaml, -1);
+    char *want = g_strdup_printf(
+        "# pgsim_version: %s\n# config: %s\n# config_sha256: %s\n"
+        "# seed: 5\n# fidelity: flow\n# effective_config: "
+        "{\"run\":{\"seed\":\"5\",\"fidelity\":\"flow\"},\"a\":\"0\"}\n"
+        "point,",
+        prov_version(), file, sha);
+    if (!g_str_has_prefix(csv, want))
+        fail_msg("results.csv begins\n%.400s\nexpected\n%s", csv, want);
+    char *res = g_build_filename(d, "results.csv", NULL);
+    GError *err = NULL;
+    DataTable *t = dt_read_csv(res, &err);
+    g_assert_no_error(err);
+    assert_int_equal(t->rows->len, 6);
+    assert_string_equal(g_ptr_array_index(t->cols, 0), "point");
+    dt_free(t);
+    g_remove(file);
+    g_free(res);
+    g_free(file);
+    g_free(want);
+    g_free(sha);
+    g_free(csv);
+    sweep_test_rm_out(d);
 }
 
 static void test_failures_recorded(void **state)
@@ -284,6 +346,7 @@ int main(void)
         cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_bad_data_files),
         cmocka_unit_test(test_jobs_same_rows),
+        cmocka_unit_test(test_results_provenance),
         cmocka_unit_test(test_failures_recorded),
         cmocka_unit_test(test_resume),
     };

@@ -197,7 +197,8 @@ static void test_cli_mpi_equals_local(void **state)
     char *a = results(dl), *b = results(dm);
     assert_non_null(a);
     assert_string_equal(a, b);
-    assert_true(g_str_has_prefix(a, "point,repetition,seed,workload.nodes,"
+    assert_true(g_str_has_prefix(a, "# pgsim_version: "));
+    assert_true(g_str_has_prefix(strstr(a, "\npoint,") + 1, "point,repetition,seed,workload.nodes,"
                                     "workload.link.bandwidth,status,"));
     g_free(a);
     g_free(b);
