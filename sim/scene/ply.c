@@ -501,15 +501,21 @@ static gboolean read_face(Ply *p, const PElem *e, const Roles *r, SceneMesh *m,
     return TRUE;
 }
 
+/* Whether the three property indices are all present or all absent. */
+static gboolean all_or_none(int a, int b, int c)
+{
+    return (a >= 0) == (b >= 0) && (b >= 0) == (c >= 0);
+}
+
 static gboolean check_roles(Ply *p, const PElem *e, const Roles *r,
                             gboolean face, gboolean seen_vertex)
 {
     const char *what = NULL;
     if (!face && (r->x < 0 || r->y < 0 || r->z < 0))
         what = "vertex properties x, y and z";
-    else if (!face && (r->nx >= 0) != (r->ny >= 0 && r->nz >= 0))
+    else if (!face && !all_or_none(r->nx, r->ny, r->nz))
         what = "all of nx, ny, nz or none";
-    else if ((r->r >= 0) != (r->g >= 0 && r->b >= 0))
+    else if (!all_or_none(r->r, r->g, r->b))
         what = "all of red, green, blue or none";
     else if (face &&
              (r->list < 0 || !g_array_index(e->props, PProp, r->list).list))
