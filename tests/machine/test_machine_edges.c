@@ -1,0 +1,568 @@
+/* test_machine_edges.c — the error paths and boundaries of sim/machine
+ * that mutation testing (make mutate, docs/testing.md) showed no test
+ * reached: every located rejection of model.c's checker (message and
+ * line:column checked), the network builder's refusals (mnet.c), model
+ * names, partitions of a SIMD machine whose widest kind comes first, and
+ * the idle count of processors never touched (machine.c fill_kind). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/machine/machine.h"
+#include "sim/machine/mnet.h"
+#include "sim/machine/model.h"
+#include "sim/machine/partition.h"
+
+/* A model's lines after the header; "m.yaml" is its file name. */
+#define HEAD "schema_version: 1\nname: t\n"
+#define NODES "nodes: {cpu: {count: {value: 4, source: s}}}\n"
+#define NET_OK "network: {topology: {value: ring, source: s}}\n"
+
+static void fail_unless(const char *msg, const char *prefix, const char *needle)
+{
+    if (!g_str_has_prefix(msg, prefix) || !strstr(msg, needle))
+        fail_msg("got '%s', want prefix '%s' and '%s'", msg, prefix, needle);
+}
+
+/* The model text is refused at line:col with a message holding needle. */
+static void bad(const char *text, int line, int col, const char *needle)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    if (!root)
+        fail_msg("not YAML: %s", err->message);
+    gboolean ok = mach_model_check(root, "m.yaml", &err);
+    if (ok)
+        fail_msg("accepted: %s (err %s)", text, err ? err->message : "none");
+    assert_non_null(err);
+    char *loc = g_strdup_printf("m.yaml:%d:%d: found ", line, col);
+    fail_unless(err->message, loc, needle);
+    g_free(loc);
+    g_error_free(err);
+    cfg_free(root);
+}
+
+static void good(const char *text)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    assert_non_null(root);
+    if (!mach_model_check(root, "m.yaml", &err))
+        fail_msg("refused: %s", err->message);
+    assert_null(err);
+    cfg_free(root);
+}
+
+/* Every value type's error names its own example. */
+static void test_type_examples(void **state)
+{
+    (void)state;
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: 5, source: s}}\n",
+        5, 20, "'5' without a unit, expected a time with its unit");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  bandwidth: {value: 5, source: s}}\n",
+        5, 22, "expected a bandwidth with its unit");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s},\n"
+             "  clock: {value: 16, source: s}}}\n" NET_OK,
+        4, 18, "expected a frequency with its unit");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s},\n"
+             "  memory: {value: 4, source: s}}}\n" NET_OK,
+        4, 19, "expected a size with its unit, e.g. '4 MB'");
+    bad(HEAD NODES "network: {topology: {value: fat-tree, source: s},\n"
+                   "  level_bandwidth: {value: 2 MB/s, source: s}}\n",
+        5, 28, "found a non-list value, expected a list of bandwidths");
+    bad(HEAD NODES "network: {topology: {value: mesh, source: s},\n"
+                   "  extents: {value: 4, source: s}}\n",
+        5, 20, "found a non-list value, expected a list of counts");
+    bad(HEAD NODES "network: {topology: {value: mesh, source: s},\n"
+                   "  extents: {value: [], source: s}}\n",
+        5, 20, "a list of counts");
+    bad(HEAD NODES "network: {topology: {value: fat-tree, source: s},\n"
+                   "  level_bandwidth: {value: [2 MB/s, 3], source: s}}\n",
+        5, 37, "'3' without a unit, expected a bandwidth");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: [1 us], source: s}}\n",
+        5, 20, "a non-scalar value, expected a time");
+}
+
+/* A unit is the last non-blank character not being a digit or '.'. */
+static void test_units_required(void **state)
+{
+    (void)state;
+    good(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                    "  startup: {value: 5us, source: s}}\n");
+    good(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                    "  startup: {value: 5 s, source: s}}\n");
+    good(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                    "  startup: {value: \"5 us  \", source: s}}\n");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: \"5.\", source: s}}\n",
+        5, 20, "'5.' without a unit");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: \"5  \", source: s}}\n",
+        5, 20, "without a unit");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: \"\", source: s}}\n",
+        5, 20, "without a unit");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: \"  \", source: s}}\n",
+        5, 20, "without a unit");
+    /* the unit is there but does not parse as a time */
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: 5 MB, source: s}}\n",
+        5, 20, "5 MB");
+}
+
+/* Each check of the tree refuses at the node at fault. */
+static void test_sections_refused(void **state)
+{
+    (void)state;
+    bad("- a\n- b\n", 1, 1, "a non-map document");
+    bad(HEAD NET_OK, 1, 1, "no nodes section, expected both nodes:");
+    bad(HEAD NODES, 1, 1, "no network section");
+    bad(HEAD "nodes: []\n" NET_OK, 3, 8, "an empty or non-map nodes section");
+    bad(HEAD "nodes: {}\n" NET_OK, 3, 8, "an empty or non-map nodes");
+    bad(HEAD "nodes: {cpu: 3}\n" NET_OK, 3, 14, "a non-map node kind");
+    bad(HEAD "nodes: {cpu: {clock: {value: 1 MHz, source: s}}}\n" NET_OK, 3,
+        14, "a node kind without count");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}, hue: 3}}\n" NET_OK,
+        3, 50, "unknown key 'hue', expected one of: count, processor");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}, hue: 3}}\n" NET_OK,
+        3, 50, "peak_flops, costs");
+    bad(HEAD "nodes: {cpu: {count: {value: 4}}}\n" NET_OK, 3, 22,
+        "parameter 'count' without a provenance");
+    bad(HEAD "nodes: {cpu: {count: {source: s}}}\n" NET_OK, 3, 22,
+        "parameter 'count' without a value");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, calibrated: \"\"}}}\n" NET_OK,
+        3, 45, "an empty provenance");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, assumption: [a]}}}\n" NET_OK,
+        3, 45, "an empty provenance");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s},\n"
+             "  costs: {op: {value: 1 us, source: s}, op2: 3 us}}}\n" NET_OK,
+        4, 46, "bare value for 'op2'");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s},\n"
+             "  costs: {op: {value: 1, source: s}}}}\n" NET_OK,
+        4, 23, "'1' without a unit");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}},\n"
+             "  gpu: {count: {value: x, source: s}}}\n" NET_OK,
+        4, 24, "x");
+    bad(HEAD NODES "network: [1]\n", 4, 10, "a network section without "
+                                           "topology");
+    bad(HEAD NODES "network: {bandwidth: {value: 1 MB/s, source: s}}\n", 4, 10,
+        "a network section without topology");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s}, hops: 1}\n",
+        4, 53, "unknown key 'hops', expected one of: topology, routing");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  channels: 2}\n",
+        5, 13, "bare value for 'channels'");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  channels: {value: 2}}\n",
+        5, 13, "parameter 'channels' without a provenance");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  channels: {value: two, source: s}}\n",
+        5, 21, "two");
+    bad(HEAD NODES NET_OK "extra: 3\n", 5, 8, "a non-map top-level section");
+    bad(HEAD NODES NET_OK "wl: {k: 3}\n", 5, 9,
+        "workload parameter 'k' without a value");
+    bad(HEAD NODES NET_OK "wl: {k: {value: 1, source: []}}\n", 5, 28,
+        "an empty provenance, expected a citation, an explanation");
+    bad(HEAD NODES NET_OK "wl: {k: {value: 1, note: n}}\n", 5, 9,
+        "parameter 'k' without a provenance");
+    bad(HEAD NODES NET_OK "wl: {a: {value: 1, source: s}, k: {value: 1}}\n", 5,
+        35, "parameter 'k' without a provenance");
+    good(HEAD NODES NET_OK "wl: {a: {value: 1, source: s}, k: {value: 1, "
+                           "assumption: [x]}}\n");
+    bad(HEAD "references: [a]\n" NODES NET_OK, 3, 13,
+        "a non-map references section");
+    bad(HEAD "references: {a: x, b: [1]}\n" NODES NET_OK, 3, 23, "found");
+    good(HEAD "references: {a: x, b: y}\ndescription: d\nmodel: m\n" NODES
+             NET_OK);
+    bad(HEAD "description: [d]\n" NODES NET_OK, 3, 14, "found");
+    bad("schema_version: 1\n" NODES NET_OK, 1, 1, "'name'");
+    bad("schema_version: 2\nname: t\n" NODES NET_OK, 1, 17, "found");
+}
+
+/* A later error after an accepted key still fails the whole check. */
+static void test_later_keys_checked(void **state)
+{
+    (void)state;
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}},\n"
+             "  gpu: {count: {value: 4, source: s}, clock: 3}}\n" NET_OK,
+        4, 46, "bare value for 'clock'");
+    bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}},\n"
+             "  gpu: [1]}\n" NET_OK,
+        4, 8, "a non-map node kind");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: 1 us, source: s},\n"
+                   "  per_hop: {value: 1, source: s}}\n",
+        6, 20, "'1' without a unit");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: 1 us, source: s}, bogus: 1}\n",
+        5, 45, "unknown key 'bogus'");
+    bad(HEAD NODES NET_OK "wl: {a: {value: 1, source: s}}\nwm: 4\n", 6, 5,
+        "a non-map top-level section");
+    bad(HEAD NODES NET_OK "stray: {a: {value: 1, source: s}}\n"
+                          "wl: {k: {value: 1, source: \"\"}}\n",
+        6, 28, "an empty provenance");
+}
+
+/* Plain names pass the name check (then are not found); others fail it. */
+static void expect_name(const char *name, gboolean plain)
+{
+    GError *err = NULL;
+    char *p = mach_model_path(name, &err);
+    assert_null(p);
+    assert_non_null(err);
+    const char *want = plain ? "found no model" : "expected a plain name";
+    if (!strstr(err->message, want))
+        fail_msg("'%s': got '%s', want '%s'", name, err->message, want);
+    g_error_free(err);
+}
+
+static void test_model_names(void **state)
+{
+    (void)state;
+    expect_name("no_such", TRUE);
+    expect_name("no-such", TRUE);
+    expect_name("no.such", TRUE);
+    expect_name("No9", TRUE);
+    expect_name("x", TRUE);
+    expect_name("_x", TRUE);
+    expect_name("", FALSE);
+    expect_name(NULL, FALSE);
+    expect_name(".x", FALSE);
+    expect_name("a/b", FALSE);
+    expect_name("a b", FALSE);
+    expect_name("ab!", FALSE);
+    expect_name("+", FALSE);
+}
+
+/* An inline machine (no model:) of the given sections, built. */
+static MachMachine *inline_machine(SimEngine *eng, const char *body,
+                                   CfgNode **root, GError **err)
+{
+    char *text = g_strconcat("machine:\n  provenance: assumption\n  name: t\n", body, NULL);
+    *root = cfg_load_string(text, "run.yaml", err);
+    g_free(text);
+    assert_non_null(*root);
+    return mach_new_from_cfg(eng, cfg_get(*root, "machine"), "analytic", err);
+}
+
+/* The machine refuses the network at the node at fault (run.yaml). */
+static void bad_net(const char *body, int line, int col, const char *needle)
+{
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    MachMachine *m = inline_machine(eng, body, &root, &err);
+    if (m)
+        fail_msg("built: %s", body);
+    assert_non_null(err);
+    char *loc = g_strdup_printf("run.yaml:%d:%d: found ", line, col);
+    fail_unless(err->message, loc, needle);
+    g_free(loc);
+    g_error_free(err);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+/* Builds, and the network has n nodes; returns its params' channels. */
+static void good_net(const char *body, guint n, NetParams *par)
+{
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    MachMachine *m = inline_machine(eng, body, &root, &err);
+    if (!m)
+        fail_msg("%s: %s", body, err->message);
+    assert_non_null(mach_net(m));
+    assert_int_equal(net_nodes(mach_net(m)), n);
+    if (par)
+        *par = *net_params(mach_net(m));
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+#define CPU4 "  nodes: {cpu: {count: 4}}\n"
+
+static void test_net_params_refused(void **state)
+{
+    (void)state;
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                 "channels: 0}\n",
+            5, 12, "found zero channels, expected channels >= 1");
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                 "channels: 4294967296}\n",
+            5, 12, "an oversized channel/packet");
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                 "packet_size: 4294967296 B}\n",
+            5, 12, "an oversized channel/packet");
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                 "switching: wormhole}\n",
+            5, 59, "switching 'wormhole', expected circuit, cut-through");
+    bad_net(CPU4 "  network: {topology: ring}\n", 5, 12,
+            "a network without a usable bandwidth");
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 0 MB/s}\n", 5, 12,
+            "a network without a usable bandwidth");
+    bad_net(CPU4 "  network: {topology: fat-tree, arity: 2, level_bandwidth: "
+                 "[1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, "
+                 "1 MB/s, 1 MB/s]}\n",
+            5, 60, "more levels than sim/net supports");
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                 "startup_long: 1 ms}\n",
+            5, 62, "startup_long without long_threshold");
+    bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                 "long_threshold: 1 KB}\n",
+            5, 64, "long_threshold without startup_long");
+}
+
+/* Bandwidth preference, switching defaults and what channels divide. */
+static void test_net_params_read(void **state)
+{
+    (void)state;
+    NetParams p;
+    good_net(CPU4 "  network: {topology: ring, total_bandwidth: 8 MB/s, "
+                  "channels: 4}\n",
+             4, &p);
+    assert_int_equal(p.channels, 4);
+    assert_true(p.bandwidth == 2e6);
+    assert_int_equal(p.switching, NET_SW_RING_SLOTS);
+    good_net(CPU4 "  network: {topology: ring, total_bandwidth: 8 MB/s, "
+                  "channels: 1, bandwidth: 3 MB/s}\n",
+             4, &p);
+    assert_true(p.bandwidth == 3e6);
+    good_net(CPU4 "  network: {topology: fat-tree, arity: 2, "
+                  "level_bandwidth: [5 MB/s, 7 MB/s]}\n",
+             4, &p);
+    assert_true(p.bandwidth == 5e6);
+    assert_true(p.level_bw[0] == 5e6 && p.level_bw[1] == 7e6);
+    assert_int_equal(p.switching, NET_SW_CUT_THROUGH);
+    good_net(CPU4 "  network: {topology: fat-tree, arity: 2, level_bandwidth: "
+                  "[1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, "
+                  "8 MB/s]}\n",
+             4, &p);
+    assert_true(p.level_bw[7] == 8e6);
+    static const char *const sw[] = {"circuit", "cut-through",
+                                     "store-and-forward", "ring-slots"};
+    static const NetSwitching want[] = {NET_SW_CIRCUIT, NET_SW_CUT_THROUGH,
+                                        NET_SW_STORE_FORWARD,
+                                        NET_SW_RING_SLOTS};
+    for (guint i = 0; i < G_N_ELEMENTS(sw); i++) {
+        char *b = g_strdup_printf(CPU4 "  network: {topology: hypercube, "
+                                       "bandwidth: 1 MB/s, switching: %s, "
+                                       "packet_size: 1 KB, channels: "
+                                       "4294967295}\n",
+                                  sw[i]);
+        good_net(b, 4, &p);
+        assert_int_equal(p.switching, want[i]);
+        assert_int_equal(p.packet_bytes, 1000);
+        assert_int_equal(p.channels, 4294967295u);
+        g_free(b);
+    }
+    good_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
+                  "startup: 2 us, per_hop: 3 us, startup_long: 9 us, "
+                  "long_threshold: 2 KB}\n",
+             4, &p);
+    assert_int_equal(p.startup, 2 * SIM_US);
+    assert_int_equal(p.per_hop, 3 * SIM_US);
+    assert_int_equal(p.startup_long, 9 * SIM_US);
+    assert_int_equal(p.long_threshold, 2000);
+}
+
+/* The topology builders' refusals, each at the count or the key. */
+static void test_topologies_refused(void **state)
+{
+    (void)state;
+    bad_net("  nodes: {cpu: {count: 6}}\n  network: {topology: hypercube, "
+            "bandwidth: 1 MB/s}\n",
+            4, 24, "6 processors on a hypercube, expected a power of two");
+    bad_net(CPU4 "  network: {topology: hypercube, bandwidth: 1 MB/s, "
+                 "dimension: 3}\n",
+            4, 24, "4 processors on a hypercube");
+    good_net(CPU4 "  network: {topology: hypercube, bandwidth: 1 MB/s, "
+                  "dimension: 2}\n",
+             4, NULL);
+    bad_net("  nodes: {cpu: {count: 0}}\n  network: {topology: hypercube, "
+            "bandwidth: 1 MB/s}\n",
+            4, 24, "0 processors on a hypercube");
+    good_net("  nodes: {cpu: {count: 1}}\n  network: {topology: hypercube, "
+             "bandwidth: 1 MB/s}\n",
+             1, NULL);
+    bad_net("  nodes: {cpu: {count: 1}}\n  network: {topology: ring, "
+            "bandwidth: 1 MB/s}\n",
+            4, 24, "fewer than 2 stations on a ring");
+    good_net("  nodes: {cpu: {count: 2}}\n  network: {topology: ring, "
+             "bandwidth: 1 MB/s}\n",
+             2, NULL);
+    bad_net(CPU4 "  network: {topology: fat-tree, bandwidth: 1 MB/s}\n", 5,
+            12, "no parameter 'arity'");
+    bad_net(CPU4 "  network: {topology: fat-tree, bandwidth: 1 MB/s, "
+                 "arity: 1}\n",
+            5, 59, "an unusable fat-tree arity");
+    good_net(CPU4 "  network: {topology: fat-tree, bandwidth: 1 MB/s, "
+                  "arity: 2}\n",
+             4, NULL);
+    bad_net("  nodes: {cpu: {count: 1}}\n  network: {topology: fat-tree, "
+            "bandwidth: 1 MB/s, arity: 4}\n",
+            4, 24, "fewer than 2 leaves");
+    good_net("  nodes: {cpu: {count: 2}}\n  network: {topology: fat-tree, "
+             "bandwidth: 1 MB/s, arity: 4}\n",
+             2, NULL);
+    bad_net(CPU4 "  network: {topology: mesh, bandwidth: 1 MB/s, "
+                 "extents: [2, 3]}\n",
+            4, 24, "4 processors on a mesh of 6 nodes, expected the product");
+    bad_net(CPU4 "  network: {topology: mesh, bandwidth: 1 MB/s, "
+                 "extents: [1, 1, 2, 2]}\n",
+            5, 57, "unusable mesh extents, expected 1 to 3 extents");
+    bad_net(CPU4 "  network: {topology: torus, bandwidth: 1 MB/s, "
+                 "extents: [4, 0]}\n",
+            5, 58, "unusable mesh extents");
+    bad_net("  nodes: {cpu: {count: 16777217}}\n  network: {topology: mesh, "
+            "bandwidth: 1 MB/s, extents: [16777217]}\n",
+            4, 24, "more than 16M processors");
+    good_net(CPU4 "  network: {topology: torus, bandwidth: 1 MB/s, "
+                  "extents: [1, 4, 1]}\n",
+             4, NULL);
+    good_net(CPU4 "  network: {topology: mesh, bandwidth: 1 MB/s, "
+                  "extents: [4]}\n",
+             4, NULL);
+    good_net(CPU4 "  network: {topology: crossbar, bandwidth: 1 MB/s}\n", 4,
+             NULL);
+    good_net(CPU4 "  network: {topology: bus, bandwidth: 1 MB/s}\n", 4, NULL);
+}
+
+#define SIMD(lanes, group, routers)                                            \
+    "  nodes: {array: {count: 1, lanes: " lanes "}, fe: {count: 1}}\n"          \
+    "  network: {topology: cm-router, bandwidth: 1 MB/s, "                     \
+    "procs_per_router: " group routers "}\n"
+
+static void test_cm_router(void **state)
+{
+    (void)state;
+    good_net(SIMD("64", "16", ", router_nodes: 4"), 64, NULL);
+    good_net(SIMD("16", "16", ""), 16, NULL);
+    bad_net(SIMD("64", "16", ", router_nodes: 8"), 4, 36,
+            "64 lanes for router_nodes x procs_per_router");
+    bad_net(SIMD("64", "0", ""), 4, 36, "64 lanes for router_nodes");
+    bad_net(SIMD("48", "16", ""), 4, 36, "48 lanes");
+    bad_net(SIMD("40", "8", ""), 4, 36, "40 lanes");
+    bad_net(SIMD("0", "16", ""), 4, 36, "zero lanes");
+    bad_net("  nodes: {array: {count: 1, lanes: 64}}\n  network: {topology: "
+            "cm-router, bandwidth: 1 MB/s}\n",
+            5, 12, "no parameter 'procs_per_router'");
+}
+
+/* The partition of a SIMD machine resizes its widest kind, even when
+ * that kind comes first in the model. */
+static void test_partition_lanes_first_kind(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "machine:\n  provenance: assumption\n  name: t\n" SIMD("64", "16", ", "
+                                                               "router_nodes: "
+                                                               "4"),
+        "run.yaml", &err);
+    char *desc = NULL;
+    if (!mach_partition(root, 32, &desc, &err))
+        fail_msg("%s", err->message);
+    assert_string_equal(desc, "array lanes 32 = 2 routers x 16");
+    assert_string_equal(cfg_scalar(cfg_path(root, "machine.nodes.array.lanes")),
+                        "32");
+    assert_string_equal(
+        cfg_scalar(cfg_path(root, "machine.network.router_nodes")), "2");
+    g_free(desc);
+    desc = NULL;
+    assert_false(mach_partition(root, 48, &desc, &err));
+    assert_null(desc);
+    assert_string_equal(err->message, "found 48 lanes for a cm-router of 16 "
+                                      "per router, expected procs_per_router "
+                                      "x a power of two");
+    g_clear_error(&err);
+    assert_false(mach_partition(root, 8, NULL, &err));
+    assert_non_null(strstr(err->message, "8 lanes"));
+    g_clear_error(&err);
+    assert_true(mach_partition(root, 16, NULL, &err));
+    assert_string_equal(
+        cfg_scalar(cfg_path(root, "machine.network.router_nodes")), "1");
+    cfg_free(root);
+    root = cfg_load_string("other: 1\n", "run.yaml", &err);
+    assert_false(mach_partition(root, 4, &desc, &err));
+    assert_string_equal(err->message, "found a config without machine:, "
+                                      "expected machine: {model: NAME}");
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
+static void count_idle(const MachMachine *m, const char *kind, uint64_t *n)
+{
+    SimResult *r = sim_result_new("w", "m");
+    mach_fill_result(m, r);
+    *n = 0;
+    for (guint i = 0; i < r->idle->len; i++) {
+        const SimIdleResult *e = g_ptr_array_index(r->idle, i);
+        if (strcmp(e->kind, kind) == 0)
+            *n = e->count;
+    }
+    assert_int_equal(sim_result_n_idle(r) + r->nodes->len,
+                     mach_proc_total(m));
+    sim_result_free(r);
+}
+
+/* Idle processors are counted whether their page was ever made or not:
+ * 3 + 200 processors, the page of 64 holding processor 100 made. */
+static void test_idle_counts(void **state)
+{
+    (void)state;
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    MachMachine *m = inline_machine(
+        eng, "  nodes: {host: {count: 3}, cpu: {count: 200}}\n"
+             "  network: {topology: bus, bandwidth: 1 MB/s}\n",
+        &root, &err);
+    assert_non_null(m);
+    uint64_t n;
+    count_idle(m, "cpu", &n);
+    assert_int_equal(n, 200);
+    mach_proc_compute(mach_proc(m, "cpu", 100), SIM_US, 0, NULL, NULL, NULL);
+    mach_proc_compute(mach_proc(m, "cpu", 199), SIM_US, 0, NULL, NULL, NULL);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    count_idle(m, "cpu", &n);
+    assert_int_equal(n, 198);
+    count_idle(m, "host", &n);
+    assert_int_equal(n, 3);
+    SimResult *r = sim_result_new("w", "m");
+    mach_fill_result(m, r);
+    assert_int_equal(r->nodes->len, 2);
+    const SimNodeResult *a = g_ptr_array_index(r->nodes, 0);
+    const SimNodeResult *b = g_ptr_array_index(r->nodes, 1);
+    assert_string_equal(a->name, "cpu100");
+    assert_string_equal(b->name, "cpu199");
+    sim_result_free(r);
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_type_examples),
+        cmocka_unit_test(test_units_required),
+        cmocka_unit_test(test_sections_refused),
+        cmocka_unit_test(test_later_keys_checked),
+        cmocka_unit_test(test_model_names),
+        cmocka_unit_test(test_net_params_refused),
+        cmocka_unit_test(test_net_params_read),
+        cmocka_unit_test(test_topologies_refused),
+        cmocka_unit_test(test_cm_router),
+        cmocka_unit_test(test_partition_lanes_first_kind),
+        cmocka_unit_test(test_idle_counts),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,373 @@
+/* test_net_edges.c — boundaries of sim/net that mutation testing (make
+ * mutate, docs/testing.md) showed unchecked: every route of every
+ * topology (small and odd shapes, both directions) is a walk from src to
+ * dst of the documented hop count over distinct links; the contention-
+ * free time of a message to itself, of 0 and 1 bytes; fat-tree levels
+ * past the last configured one; the hotspot pattern's skew; traffic
+ * checks at their limits. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/net/net.h"
+#include "sim/net/traffic.h"
+
+static guint popcount(uint32_t x)
+{
+    guint n = 0;
+    for (; x; x &= x - 1)
+        n++;
+    return n;
+}
+
+/* Checks the route src -> dst: h hops (want, unless want < 0) within
+ * max_hops, a walk over distinct links with a name and a bandwidth. */
+static void check_route(const NetTopo *t, uint32_t src, uint32_t dst, int want)
+{
+    NetLinkId r[64];
+    guint max = t->ops->max_hops(t->state);
+    assert_true(max <= G_N_ELEMENTS(r));
+    guint h = t->ops->route(t->state, src, dst, r);
+    if (want >= 0 && h != (guint)want)
+        fail_msg("%s %u -> %u: %u hops, want %d", t->ops->name, src, dst, h,
+                 want);
+    assert_true(h >= 1 && h <= max);
+    NetParams p = {0};
+    p.bandwidth = 1e6;
+    uint64_t at = src, a, b;
+    for (guint i = 0; i < h; i++) {
+        t->ops->link_ends(t->state, r[i], &a, &b);
+        if (a != at)
+            fail_msg("%s %u -> %u: hop %u leaves %" G_GUINT64_FORMAT
+                     ", not %" G_GUINT64_FORMAT,
+                     t->ops->name, src, dst, i, a, at);
+        assert_true(a != b);
+        at = b;
+        for (guint j = 0; j < i; j++)
+            assert_true(r[j] != r[i]);
+        char name[64] = "";
+        t->ops->link_name(t->state, r[i], name, sizeof name);
+        assert_true(name[0] != '\0');
+        assert_true(t->ops->link_bw(t->state, r[i], &p) > 0.0);
+    }
+    if (at != dst)
+        fail_msg("%s %u -> %u ends at %" G_GUINT64_FORMAT, t->ops->name, src,
+                 dst, at);
+}
+
+/* Distance along one mesh dimension, a -> b of extent e. */
+static guint steps(uint32_t a, uint32_t b, uint32_t e, gboolean wrap)
+{
+    guint fwd = (b + e - a) % e, back = (a + e - b) % e;
+    if (!wrap)
+        return a <= b ? b - a : a - b;
+    return MIN(fwd, back);
+}
+
+static void check_mesh(guint nd, const uint32_t *e, gboolean wrap)
+{
+    NetTopo *t = net_mesh_new(nd, e, wrap);
+    uint32_t n = net_topo_nodes(t);
+    uint32_t want_n = 1;
+    for (guint k = 0; k < nd; k++)
+        want_n *= e[k];
+    assert_int_equal(n, want_n);
+    for (uint32_t s = 0; s < n; s++)
+        for (uint32_t d = 0; d < n; d++) {
+            if (s == d)
+                continue;
+            guint want = 0, stride = 1;
+            for (guint k = 0; k < nd; k++) {
+                want += steps(s / stride % e[k], d / stride % e[k], e[k], wrap);
+                stride *= e[k];
+            }
+            check_route(t, s, d, (int)want);
+        }
+    net_topo_free(t);
+}
+
+static void test_mesh_routes(void **state)
+{
+    (void)state;
+    static const uint32_t shapes[][3] = {
+        {2, 1, 1}, {5, 1, 1}, {4, 3, 1}, {1, 4, 1}, {3, 2, 2}, {2, 1, 3},
+    };
+    static const guint dims[] = {1, 1, 2, 2, 3, 3};
+    for (guint i = 0; i < G_N_ELEMENTS(dims); i++) {
+        check_mesh(dims[i], shapes[i], FALSE);
+        check_mesh(dims[i], shapes[i], TRUE);
+    }
+}
+
+static void test_hypercube_ring_routes(void **state)
+{
+    (void)state;
+    for (unsigned d = 1; d <= 4; d++) {
+        NetTopo *t = net_hypercube_new(d);
+        assert_int_equal(net_topo_nodes(t), 1u << d);
+        assert_int_equal(t->ops->max_hops(t->state), d);
+        for (uint32_t s = 0; s < (1u << d); s++)
+            for (uint32_t x = 1; x < (1u << d); x++)
+                check_route(t, s, s ^ x, (int)popcount(x));
+        net_topo_free(t);
+    }
+    for (uint32_t n = 2; n <= 5; n++) {
+        NetTopo *t = net_ring_new(n);
+        assert_int_equal(net_topo_nodes(t), n);
+        assert_int_equal(t->ops->max_hops(t->state), n - 1);
+        for (uint32_t s = 0; s < n; s++)
+            for (uint32_t d = 0; d < n; d++)
+                if (s != d)
+                    check_route(t, s, d, (int)((d + n - s) % n));
+        net_topo_free(t);
+    }
+}
+
+/* Fat trees whose leaf count is and is not a power of the arity. */
+static void test_fattree_routes(void **state)
+{
+    (void)state;
+    static const uint32_t nodes[] = {2, 3, 4, 5, 9, 10, 17};
+    static const unsigned arity[] = {2, 2, 2, 2, 3, 3, 4};
+    for (guint i = 0; i < G_N_ELEMENTS(nodes); i++) {
+        NetTopo *t = net_fattree_new(nodes[i], arity[i]);
+        guint levels = 0;
+        for (uint64_t span = 1; span < nodes[i]; span *= arity[i])
+            levels++;
+        assert_int_equal(t->ops->max_hops(t->state), 2 * levels);
+        for (uint32_t s = 0; s < nodes[i]; s++)
+            for (uint32_t d = 0; d < nodes[i]; d++) {
+                if (s == d)
+                    continue;
+                int m = 0;
+                for (uint64_t span = 1; s / span != d / span; span *= arity[i])
+                    m++;
+                check_route(t, s, d, 2 * m);
+            }
+        net_topo_free(t);
+    }
+}
+
+static void test_crossbar_bus_cm200_routes(void **state)
+{
+    (void)state;
+    NetTopo *x = net_crossbar_new(2), *b = net_bus_new(3);
+    check_route(x, 0, 1, 2);
+    check_route(x, 1, 0, 2);
+    /* the bus is one shared link, vertex n to itself */
+    NetLinkId r[1];
+    uint64_t from, to;
+    assert_int_equal(b->ops->max_hops(b->state), 1);
+    assert_int_equal(b->ops->route(b->state, 2, 0, r), 1);
+    assert_int_equal(r[0], 0);
+    b->ops->link_ends(b->state, r[0], &from, &to);
+    assert_int_equal(from, 3);
+    assert_int_equal(to, 3);
+    net_topo_free(x);
+    net_topo_free(b);
+    /* 2 routers x 4 = 8 processors on a 4 x 2 NEWS grid; 8 x 4 = 32 on
+     * 8 x 4 */
+    NetTopo *c = net_cm200_new(1, 4, 4, 2);
+    assert_int_equal(net_topo_nodes(c), 8);
+    for (uint32_t s = 0; s < 8; s++)
+        for (uint32_t d = 0; d < 8; d++)
+            if (s != d)
+                check_route(c, s, d, -1);
+    net_topo_free(c);
+    c = net_cm200_new(3, 4, 8, 4);
+    assert_int_equal(net_topo_nodes(c), 32);
+    for (uint32_t s = 0; s < 32; s++)
+        for (uint32_t d = 0; d < 32; d++)
+            if (s != d)
+                check_route(c, s, d, -1);
+    net_topo_free(c);
+}
+
+static NetParams params(void)
+{
+    NetParams p = {0};
+    p.bandwidth = 1e6; /* 1 us a byte */
+    p.channels = 1;
+    p.startup = 50 * SIM_US;
+    p.per_hop = 7 * SIM_US;
+    p.packet_bytes = 100;
+    p.switching = NET_SW_CUT_THROUGH;
+    return p;
+}
+
+typedef struct {
+    SimTime at; /* arrival - sending */
+    guint hops;
+    guint n;
+} Got;
+
+static void got(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    Got *g = ctx;
+    g->at = d->arrived - d->sent;
+    g->hops = d->hops;
+    g->n++;
+}
+
+/* A message to itself costs the start-up only, whatever the topology
+ * (a crossbar or bus route would otherwise take hops), at every
+ * fidelity; a 1-byte message pays its byte, a 0-byte one none. */
+static void test_self_and_tiny_messages(void **state)
+{
+    (void)state;
+    NetTopo *topos[] = {net_crossbar_new(4), net_bus_new(4),
+                        net_fattree_new(4, 2), net_cm200_new(1, 2, 2, 2),
+                        net_hypercube_new(2), net_ring_new(4)};
+    NetParams p = params();
+    for (guint i = 0; i < G_N_ELEMENTS(topos); i++) {
+        for (NetFidelity f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+            SimEngine *eng = sim_engine_new(1);
+            NetNet *net = net_new(eng, topos[i], &p, f);
+            assert_int_equal(net_ideal_time(net, 2, 2, 1000), 50 * SIM_US);
+            Got g = {0};
+            net_send(net, 2, 2, 1000, NULL, got, &g);
+            assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+            assert_int_equal(g.n, 1);
+            assert_int_equal(g.at, 50 * SIM_US);
+            assert_int_equal(g.hops, 0);
+            NetLinkId r[16];
+            guint h = topos[i]->ops->route(topos[i]->state, 0, 3, r);
+            SimTime base = 50 * SIM_US + h * 7 * SIM_US;
+            assert_int_equal(net_ideal_time(net, 0, 3, 0), base);
+            double bw = topos[i]->ops->link_bw(topos[i]->state, r[0], &p);
+            for (guint k = 1; k < h; k++)
+                bw = MIN(bw, topos[i]->ops->link_bw(topos[i]->state, r[k], &p));
+            assert_int_equal(net_ideal_time(net, 0, 3, 1),
+                             base + sim_time_for_bytes(1.0, bw));
+            assert_true(net_ideal_time(net, 0, 3, 1) > base);
+            g = (Got){0};
+            net_send(net, 0, 3, 1, NULL, got, &g);
+            assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+            assert_int_equal(g.at, base + sim_time_for_bytes(1.0, bw));
+            assert_int_equal(g.hops, h);
+            net_free(net);
+            sim_engine_free(eng);
+        }
+        net_topo_free(topos[i]);
+    }
+}
+
+/* Levels at and past NET_MAX_LEVELS take the last configured level's
+ * per-node bandwidth (times arity^level), or the base bandwidth when
+ * that is 0.  A binary tree of 1,024 leaves has 10 levels. */
+static void test_fattree_deep_levels(void **state)
+{
+    (void)state;
+    NetTopo *t = net_fattree_new(1024, 2);
+    NetParams p = params();
+    for (guint l = 0; l < NET_MAX_LEVELS; l++)
+        p.level_bw[l] = 1000.0 * (l + 1);
+    NetLinkId r[32];
+    guint h = t->ops->route(t->state, 0, 1023, r);
+    assert_int_equal(h, 20);
+    for (guint l = 0; l < 10; l++) { /* up links are r[0 .. 9] */
+        double want = (l < NET_MAX_LEVELS ? 1000.0 * (l + 1) : 8000.0) *
+                      (double)(1u << l);
+        assert_true(t->ops->link_bw(t->state, r[l], &p) == want);
+        assert_true(t->ops->link_bw(t->state, r[19 - l], &p) == want);
+    }
+    p.level_bw[NET_MAX_LEVELS - 1] = 0.0;
+    assert_true(t->ops->link_bw(t->state, r[9], &p) == 1e6 * 512);
+    assert_true(t->ops->link_bw(t->state, r[7], &p) == 1e6 * 128);
+    assert_true(t->ops->link_bw(t->state, r[6], &p) == 7000.0 * 64);
+    net_topo_free(t);
+}
+
+/* Messages delivered to node d on a crossbar: its output port's count. */
+static uint64_t received(const NetNet *net, uint32_t d)
+{
+    const SimLinkStats *s = net_link_stats(net, 2 * (NetLinkId)d + 1);
+    return s ? s->messages : 0;
+}
+
+static void run_lists(NetTraffic t, uint64_t *to0, uint64_t *max_other)
+{
+    NetTopo *x = net_crossbar_new(16);
+    NetParams p = params();
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, x, &p, NET_ANALYTIC);
+    net_traffic_start(net, t, 10, 7, NULL, NULL);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(net_delivered(net), 16 * 15);
+    *to0 = received(net, 0);
+    *max_other = 0;
+    for (uint32_t d = 1; d < 16; d++)
+        *max_other = MAX(*max_other, received(net, d));
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(x);
+}
+
+/* Hotspot sends about a quarter of the messages to node 0 (15 x 15 x
+ * 0.3, about 67); random spreads them (about 15 a node). */
+static void test_hotspot_skew(void **state)
+{
+    (void)state;
+    uint64_t hot0, hot_max, rnd0, rnd_max;
+    run_lists(NET_TRAFFIC_HOTSPOT, &hot0, &hot_max);
+    run_lists(NET_TRAFFIC_RANDOM, &rnd0, &rnd_max);
+    assert_true(hot0 > 45 && hot0 > 2 * hot_max);
+    assert_true(rnd0 < 30 && rnd_max < 30);
+}
+
+static void test_traffic_limits(void **state)
+{
+    (void)state;
+    for (int t = 0; t <= NET_TRAFFIC_HOTSPOT; t++) {
+        NetTraffic k = (NetTraffic)t, back;
+        gboolean pow2 = k == NET_TRAFFIC_XOR || k == NET_TRAFFIC_PAIRWISE;
+        assert_true(net_traffic_parse(net_traffic_name(k), &back));
+        assert_int_equal(back, k);
+        assert_false(net_traffic_check(k, 0, NULL));
+        assert_false(net_traffic_check(k, 1, NULL));
+        assert_true(net_traffic_check(k, 2, NULL));
+        assert_int_equal(net_traffic_check(k, 3, NULL), !pow2);
+        assert_true(net_traffic_check(k, 4, NULL));
+        assert_true(net_traffic_check(k, NET_TRAFFIC_MAX_NODES, NULL));
+        assert_int_equal(net_traffic_check(k, NET_TRAFFIC_MAX_NODES - 1, NULL),
+                         !pow2);
+        GError *err = NULL;
+        assert_false(net_traffic_check(k, NET_TRAFFIC_MAX_NODES + 1, &err));
+        char *want = g_strdup_printf(
+            "found pattern %s on 65537 nodes, expected %s from 2 to 65536 "
+            "nodes",
+            net_traffic_name(k), pow2 ? "a power of two" : "a node count");
+        assert_string_equal(err->message, want);
+        g_free(want);
+        g_error_free(err);
+    }
+    NetTraffic out = NET_TRAFFIC_SHIFT;
+    assert_false(net_traffic_parse(NULL, &out));
+    assert_false(net_traffic_parse("", &out));
+    assert_false(net_traffic_parse("hotspots", &out));
+    assert_int_equal(out, NET_TRAFFIC_SHIFT);
+    assert_int_equal(net_traffic_messages(NET_TRAFFIC_PAIRWISE, 2), 2);
+    assert_int_equal(net_traffic_messages(NET_TRAFFIC_PAIRWISE, 65536),
+                     65536ull * 16);
+    assert_int_equal(net_traffic_messages(NET_TRAFFIC_SHIFT, 2), 2);
+    assert_int_equal(net_traffic_messages(NET_TRAFFIC_ALLTOALL, 65536),
+                     65536ull * 65535);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_mesh_routes),
+        cmocka_unit_test(test_hypercube_ring_routes),
+        cmocka_unit_test(test_fattree_routes),
+        cmocka_unit_test(test_crossbar_bus_cm200_routes),
+        cmocka_unit_test(test_self_and_tiny_messages),
+        cmocka_unit_test(test_fattree_deep_levels),
+        cmocka_unit_test(test_hotspot_skew),
+        cmocka_unit_test(test_traffic_limits),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
