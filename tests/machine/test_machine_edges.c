@@ -8,7 +8,10 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <stdio.h>
 #include <string.h>
+#include <unistd.h>
+#include <glib/gstdio.h>
 
 #include "sim/machine/machine.h"
 #include "sim/machine/mnet.h"
@@ -549,6 +552,274 @@ static void test_idle_counts(void **state)
     sim_engine_free(eng);
 }
 
+
+/* Runs fn with stderr sent to a file; returns what it wrote (g_free). */
+static char *capture_stderr(void (*fn)(void *), void *arg)
+{
+    char *path = NULL;
+    int fd = g_file_open_tmp("pgsim-stderr-XXXXXX", &path, NULL);
+    assert_true(fd >= 0);
+    fflush(stderr);
+    int saved = dup(2);
+    dup2(fd, 2);
+    fn(arg);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    close(fd);
+    char *text = NULL;
+    assert_true(g_file_get_contents(path, &text, NULL, NULL));
+    g_unlink(path);
+    g_free(path);
+    return text;
+}
+
+static void check_text(void *arg)
+{
+    const char *const *a = arg; /* text, file name */
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(a[0], a[1] ? a[1] : "x.yaml", &err);
+    assert_non_null(root);
+    if (!mach_model_check(root, a[1], &err))
+        fail_msg("%s", err->message);
+    cfg_free(root);
+}
+
+/* provenance: assumption warns once per model file, listing the values
+ * taken without a source; a model whose values all have one is silent;
+ * a model given without a file name is never taken as shipped. */
+static void test_assumption_warning(void **state)
+{
+    (void)state;
+    const char *all_sourced[] = {"provenance: assumption\n" HEAD NODES NET_OK,
+                                 "sourced.yaml"};
+    char *out = capture_stderr(check_text, all_sourced);
+    assert_string_equal(out, "");
+    g_free(out);
+    const char *two[] = {"provenance: assumption\n" HEAD
+                         "nodes: {cpu: {count: 4}}\n"
+                         "network: {topology: ring, bandwidth: {value: 1 "
+                         "MB/s, source: s}}\n",
+                         "two.yaml"};
+    out = capture_stderr(check_text, two);
+    assert_string_equal(out, "pgsim: warning: two.yaml: 2 values without a "
+                             "source, taken as assumptions (provenance: "
+                             "assumption): count, topology\n");
+    g_free(out);
+    out = capture_stderr(check_text, two); /* once per file */
+    assert_string_equal(out, "");
+    g_free(out);
+    const char *inl[] = {two[0], NULL};
+    out = capture_stderr(check_text, inl);
+    assert_non_null(strstr(out, "warning: <inline machine>: 2 values"));
+    g_free(out);
+}
+
+/* The typed getters on a tree the checker never saw. */
+static void test_getters_unchecked(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "a: [[1]]\nb: {value: 3 MB/s}\nc: [2, 3]\nd: {value: [1 MB/s, x]}\n"
+        "e: 5\nf: {value: 4, source: s}\n",
+        "u.yaml", &err);
+    GArray *l = NULL;
+    assert_false(mach_param_bw_list(root, "a", TRUE, &l, &err));
+    assert_string_equal(err->message, "u.yaml:1:5: found a non-scalar list "
+                                      "item, expected a bandwidth");
+    g_clear_error(&err);
+    assert_false(mach_param_count_list(root, "a", TRUE, &l, &err));
+    assert_string_equal(err->message, "u.yaml:1:5: found a non-scalar list "
+                                      "item, expected a count");
+    g_clear_error(&err);
+    assert_false(mach_param_bw_list(root, "b", TRUE, &l, &err));
+    assert_string_equal(err->message,
+                        "u.yaml:2:12: found a non-list value, expected a "
+                        "list of bandwidths, e.g. [20 MB/s, 10 MB/s]");
+    g_clear_error(&err);
+    assert_false(mach_param_count_list(root, "e", TRUE, &l, &err));
+    assert_non_null(strstr(err->message, "u.yaml:5:4: found a non-list value, "
+                                         "expected a list of counts"));
+    g_clear_error(&err);
+    assert_false(mach_param_bw_list(root, "d", TRUE, &l, &err));
+    assert_non_null(strstr(err->message, "x"));
+    g_clear_error(&err);
+    assert_null(l);
+    assert_true(mach_param_count_list(root, "c", TRUE, &l, &err));
+    assert_int_equal(l->len, 2);
+    assert_int_equal(g_array_index(l, uint64_t, 1), 3);
+    g_array_unref(l);
+    l = NULL;
+    assert_true(mach_param_count_list(root, "zz", FALSE, &l, &err));
+    assert_null(l);
+    assert_false(mach_param_count_list(root, "zz", TRUE, &l, &err));
+    assert_string_equal(err->message, "u.yaml:1:1: found no parameter 'zz', "
+                                      "expected it in the machine model");
+    g_clear_error(&err);
+    double bw = 0;
+    assert_true(mach_param_bandwidth(root, "b", TRUE, &bw, &err));
+    assert_true(bw == 3e6);
+    /* a map without a provenance of its own: an override */
+    assert_int_equal(mach_param_provenance(root, "b", NULL), MACH_PROV_OVERRIDE);
+    const char *text = "x";
+    assert_int_equal(mach_param_provenance(root, "e", &text),
+                     MACH_PROV_OVERRIDE);
+    assert_null(text);
+    assert_int_equal(mach_param_provenance(root, "f", &text), MACH_PROV_SOURCE);
+    assert_string_equal(text, "s");
+    assert_string_equal(mach_param_word(root, "e"), "5");
+    assert_string_equal(mach_param_word(root, "f"), "4");
+    assert_null(mach_param_word(root, "zz"));
+    cfg_free(root);
+}
+
+/* mach_net_params / mach_topo_new on networks the checker never saw. */
+static void net_refused(const char *text, const char *want)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "n.yaml", &err);
+    assert_non_null(root);
+    NetParams p;
+    NetTopo *t = NULL;
+    gboolean ok = mach_net_params(root, &p, &err);
+    if (ok) {
+        t = mach_topo_new(root, 4, NULL, &err);
+        ok = t != NULL;
+    }
+    if (ok)
+        fail_msg("accepted %s", text);
+    if (!g_str_has_prefix(err->message, want))
+        fail_msg("got '%s', want '%s'", err->message, want);
+    g_error_free(err);
+    cfg_free(root);
+}
+
+static void test_net_unchecked(void **state)
+{
+    (void)state;
+    net_refused("topology: ring\nbandwidth: 1 MB/s\nlevel_bandwidth: [x]\n",
+                "n.yaml:3:19: found 'x', expected a non-negative bandwidth");
+    net_refused("topology: ring\nbandwidth: 1 MB/s\nnews_bandwidth: q\n",
+                "n.yaml:3:17: found 'q', expected a non-negative bandwidth");
+    net_refused("topology: ring\nbandwidth: 1 MB/s\ntotal_bandwidth: q\n",
+                "n.yaml:3:18: found 'q', expected a non-negative bandwidth");
+    net_refused("topology: hypercube\nbandwidth: 1 MB/s\ndimension: two\n",
+                "n.yaml:3:12: found 'two', expected a non-negative integer, "
+                "optionally with K (1e3) or M (1e6)");
+    net_refused("topology: mesh\nbandwidth: 1 MB/s\nextents: 4\n",
+                "n.yaml:3:10: found a non-list value, expected a list of "
+                "counts, e.g. [8, 8]");
+    net_refused("topology: star\nbandwidth: 1 MB/s\n",
+                "n.yaml:1:11: found topology 'star' (not built by the machine "
+                "layer), expected hypercube, ring, fat-tree, cm-router, mesh, "
+                "torus, crossbar or bus");
+    assert_true(mach_topo_supported("torus"));
+    assert_true(mach_topo_supported("bus"));
+    assert_false(mach_topo_supported("star"));
+    assert_false(mach_topo_supported(NULL));
+}
+
+/* Section-level refusals of the machine builder. */
+static void test_machine_sections(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string("machine: [1]\nm2: {model: [x]}\n"
+                                    "m3: {model: missing-unit}\n",
+                                    "run.yaml", &err);
+    assert_false(mach_check_section(cfg_get(root, "machine"), &err));
+    assert_string_equal(err->message,
+                        "run.yaml:1:10: found a non-map machine section, "
+                        "expected a map with model: <name> and overrides");
+    g_clear_error(&err);
+    assert_false(mach_check_section(cfg_get(root, "m2"), &err));
+    assert_non_null(strstr(err->message, "run.yaml:2:13: found a sequence"));
+    g_clear_error(&err);
+    /* a model that does not pass the checker, found on $PGSIM_MODELS */
+    g_setenv("PGSIM_MODELS", "tests/data/bad/models", TRUE);
+    assert_null(mach_load_model("missing-unit", &err));
+    assert_non_null(strstr(err->message, "without a unit"));
+    g_clear_error(&err);
+    assert_false(mach_check_section(cfg_get(root, "m3"), &err));
+    assert_true(g_str_has_prefix(err->message, "run.yaml:3:5: "
+                                               "tests/data/bad/models/"
+                                               "missing-unit.yaml:7:"));
+    g_clear_error(&err);
+    g_unsetenv("PGSIM_MODELS");
+    cfg_free(root);
+    SimEngine *eng = sim_engine_new(1);
+    assert_null(mach_new_from_model(eng, "no-such-model", "flow", &err));
+    assert_non_null(strstr(err->message, "found no model 'no-such-model'"));
+    g_clear_error(&err);
+    sim_engine_free(eng);
+}
+
+/* A cm-router machine whose kinds have no lanes: one lane, refused at
+ * the widest kind's count. */
+static void test_cm_router_without_lanes(void **state)
+{
+    (void)state;
+    bad_net("  nodes: {fe: {count: 1}, array: {count: 1}}\n"
+            "  network: {topology: cm-router, bandwidth: 1 MB/s, "
+            "procs_per_router: 16}\n",
+            4, 42, "1 lanes for router_nodes x procs_per_router");
+}
+
+/* Partitions of a model whose kinds all have one processor: the first
+ * largest kind scales, the others stay. */
+static void partition_desc(const char *kinds, guint n, const char *want)
+{
+    GError *err = NULL;
+    char *text = g_strdup_printf("machine:\n  provenance: assumption\n"
+                                 "  name: t\n  nodes: %s\n  network: "
+                                 "{topology: bus, bandwidth: 1 MB/s}\n",
+                                 kinds);
+    CfgNode *root = cfg_load_string(text, "run.yaml", &err);
+    char *desc = NULL;
+    if (!mach_partition(root, n, &desc, &err))
+        fail_msg("%s: %s", kinds, err->message);
+    assert_string_equal(desc, want);
+    g_free(desc);
+    cfg_free(root);
+    g_free(text);
+}
+
+static void test_partition_single_kinds(void **state)
+{
+    (void)state;
+    partition_desc("{a: {count: 1}, b: {count: 1}}", 5, "a 4, b 1");
+    partition_desc("{a: {count: 0}, b: {count: 1}}", 5, "a 0, b 5");
+    partition_desc("{a: {count: 1}, b: {count: 1}, c: {count: 1}}", 3,
+                   "a 1, b 1, c 1");
+    partition_desc("{a: {count: 3}, b: {count: 1}}", 2, "a 1, b 1");
+    partition_desc("{a: {count: 2}, b: {count: 1}, c: {count: 6}}", 9,
+                   "a 3, b 1, c 5");
+    partition_desc("{a: {count: 2}, b: {count: 1}, c: {count: 6}}", 4,
+                   "a 1, b 1, c 2");
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "machine:\n  provenance: assumption\n  name: t\n  nodes: {a: {count: "
+        "2}, b: {count: 1}, c: {count: 6}}\n  network: {topology: bus, "
+        "bandwidth: 1 MB/s}\n",
+        "run.yaml", &err);
+    assert_false(mach_partition(root, 2, NULL, &err));
+    assert_string_equal(err->message,
+                        "found 2 nodes for a bus, expected at least 3 (the "
+                        "single-processor kinds plus one of each other kind)");
+    g_clear_error(&err);
+    assert_true(mach_partition(root, 3, NULL, &err));
+    cfg_free(root);
+    root = cfg_load_string("machine:\n  provenance: assumption\n  name: t\n"
+                           "  nodes: {a: {count: 4}}\n  network: {topology: "
+                           "mesh, bandwidth: 1 MB/s}\n",
+                           "run.yaml", &err);
+    assert_false(mach_partition(root, 4, NULL, &err));
+    assert_non_null(strstr(err->message, "no parameter 'extents'"));
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -563,6 +834,12 @@ int main(void)
         cmocka_unit_test(test_cm_router),
         cmocka_unit_test(test_partition_lanes_first_kind),
         cmocka_unit_test(test_idle_counts),
+        cmocka_unit_test(test_assumption_warning),
+        cmocka_unit_test(test_getters_unchecked),
+        cmocka_unit_test(test_net_unchecked),
+        cmocka_unit_test(test_machine_sections),
+        cmocka_unit_test(test_cm_router_without_lanes),
+        cmocka_unit_test(test_partition_single_kinds),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
