@@ -5,6 +5,26 @@
  * cut off after exactly their triangle budget; budgets use the
  * largest-remainder method (Hamilton apportionment).  Structure database:
  * sim/scene/structdb.h.  O(triangles + structures).
+ *
+ * Primitive order.  Seed 000 §4.1 chunks "every N primitives" of the
+ * input file (its "unsorted" strategy), so the order in which the file
+ * lists a structure's triangles decides the chunks' boxes.  The
+ * structures are written part by part (body, chassis, wheels, interior,
+ * trim) and each part's triangles as a modelling tool writes a
+ * tessellated surface, not spatially sorted: (1) the tessellator sizes
+ * its parameter grid by the surface's extent, so the quads are nearly
+ * square in space (counts along u and v in the ratio of the patch's
+ * lengths, param_length()), rather than a square grid of parameter
+ * steps; (2) it writes the grid as strips, each strip one row of quads
+ * (two triangles each) running the full length of the patch's longer
+ * side, strip after strip — a strip maker makes its strips as long as
+ * the grid allows (fewer strips, fewer vertices sent).  N consecutive
+ * triangles are then a sliver of N/2 quads along the part, which
+ * unsorted chunking keeps and spatial subdivision does not.  The first
+ * version wrote a square parameter grid row by row along u, which on
+ * the body's narrow panels ran across the short side: unsorted chunks
+ * were compact by accident and equal to sorted ones (overlap 1.156 vs
+ * 1.160 at P = 16, granularity 12; issue 15).
  */
 #include "sim/scene/vehicle.h"
 #include "sim/core/memlimit.h"
@@ -274,24 +294,60 @@ static gboolean add_tri(SceneDb *db, guint sid, Vec3 a, Vec3 b, Vec3 c)
     return scene_db_append(db, sid, &e, NULL);
 }
 
-/* Exactly k triangles of patch p, row by row on a cols x rows grid. */
+/* Length of the patch along u (along_u) or v, measured on its middle
+ * line as a polyline of 8 segments. */
+static double param_length(const Patch *p, gboolean along_u)
+{
+    double len = 0;
+    Vec3 prev = along_u ? patch_eval(p, 0, 0.5) : patch_eval(p, 0.5, 0);
+    for (guint s = 1; s <= 8; s++) {
+        double t = s / 8.0;
+        Vec3 q = along_u ? patch_eval(p, t, 0.5) : patch_eval(p, 0.5, t);
+        len += vec3_len(vec3_sub(q, prev));
+        prev = q;
+    }
+    return len;
+}
+
+typedef struct {
+    SceneDb *db;
+    guint sid;
+    const Patch *p;
+    guint cols, rows; /* quads along u, along v */
+    uint64_t k, made; /* the budget, triangles written */
+} Tess;
+
+/* Quad (i, j) as two triangles, the second left out at the budget. */
+static void quad(Tess *t, guint i, guint j)
+{
+    double u0 = (double)i / t->cols, u1 = (double)(i + 1) / t->cols;
+    double v0 = (double)j / t->rows, v1 = (double)(j + 1) / t->rows;
+    Vec3 a = patch_eval(t->p, u0, v0), b = patch_eval(t->p, u1, v0);
+    Vec3 c = patch_eval(t->p, u1, v1), d = patch_eval(t->p, u0, v1);
+    add_tri(t->db, t->sid, a, b, c);
+    if (++t->made < t->k) {
+        add_tri(t->db, t->sid, a, c, d);
+        t->made++;
+    }
+}
+
+/* Exactly k triangles of patch p as a modelling tool writes them: a grid
+ * of nearly square quads (the counts along u and v in the ratio of the
+ * patch's lengths), written strip after strip, each strip running the
+ * whole of the patch's longer side. */
 static void tessellate(SceneDb *db, guint sid, const Patch *p, uint64_t k)
 {
-    guint cols = (guint)ceil(sqrt(k / 2.0));
-    guint rows = (guint)((k + 2 * cols - 1) / (2 * cols));
-    uint64_t made = 0;
-    for (guint j = 0; j < rows && made < k; j++)
-        for (guint i = 0; i < cols && made < k; i++) {
-            double u0 = (double)i / cols, u1 = (double)(i + 1) / cols;
-            double v0 = (double)j / rows, v1 = (double)(j + 1) / rows;
-            Vec3 a = patch_eval(p, u0, v0), b = patch_eval(p, u1, v0);
-            Vec3 c = patch_eval(p, u1, v1), d = patch_eval(p, u0, v1);
-            add_tri(db, sid, a, b, c);
-            if (++made < k) {
-                add_tri(db, sid, a, c, d);
-                made++;
-            }
-        }
+    double lu = param_length(p, TRUE), lv = param_length(p, FALSE);
+    double aspect = lv > 0 && lu > 0 ? lu / lv : 1;
+    double c = ceil(sqrt(k / 2.0 * aspect));
+    Tess t = {db, sid, p, (guint)CLAMP(c, 1, (double)k), 0, k, 0};
+    t.rows = (guint)((k + 2 * t.cols - 1) / (2 * t.cols));
+    gboolean along_u = lu >= lv;
+    guint strips = along_u ? t.rows : t.cols, len = along_u ? t.cols : t.rows;
+    for (guint s = 0; s < strips && t.made < k; s++)
+        for (guint q = 0; q < len && t.made < k; q++)
+            quad(&t, along_u ? q : s, along_u ? s : q);
+    g_assert(t.made == k);
 }
 
 static void append_exec(SceneDb *db, guint parent, guint child)
