@@ -307,6 +307,21 @@ static void gen_overlay(Gen *g, const ScenePphigsSpec *s, const SceneCamera *c)
     scene_db_post(g->db, sid);
 }
 
+SceneCamera scene_pphigs_fit_view(const SceneDb *db)
+{
+    SceneCamera c = scene_camera_default();
+    guint n = scene_db_posted_count(db);
+    if (n == 0)
+        return c;
+    SceneBox b = scene_db_struct_bbox(db, scene_db_posted_at(db, 0));
+    for (guint i = 1; i < n; i++)
+        b = scene_box_union(b,
+                            scene_db_struct_bbox(db, scene_db_posted_at(db, i)));
+    if (!scene_box_is_empty(b))
+        scene_camera_fit(&c, b, 0.9);
+    return c;
+}
+
 gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
                                GError **err)
 {
@@ -332,12 +347,7 @@ gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
         out->camera.near = spec->size / 1000;
         out->camera.far = spec->size * 4;
     } else {
-        guint root = scene_db_posted_at(g.db, 0);
-        SceneBox b = scene_db_struct_bbox(g.db, root);
-        for (guint i = 1; i < scene_db_posted_count(g.db); i++)
-            b = scene_box_union(
-                b, scene_db_struct_bbox(g.db, scene_db_posted_at(g.db, i)));
-        scene_camera_fit(&out->camera, b, 0.9);
+        out->camera = scene_pphigs_fit_view(g.db);
     }
     if (spec->overlays)
         gen_overlay(&g, spec, &out->camera);

@@ -64,6 +64,11 @@ gboolean scene_pphigs_kind_parse(const char *s, ScenePphigsKind *out);
 gboolean scene_pphigs_generate(const ScenePphigsSpec *spec, ScenePphigsDb *out,
                                GError **err);
 void scene_pphigs_db_clear(ScenePphigsDb *d);
+/* The standard view of a database whose generator has no view of its
+ * own (and of a user's structure database file): the default camera
+ * fitted to the posted structures' bounds (the default camera when
+ * they hold no primitive). */
+SceneCamera scene_pphigs_fit_view(const SceneDb *db);
 
 /* The database as a renderable scene named after its kind: the posted
  * network flattened into one mesh (scene_db_flatten()), the standard

@@ -2,6 +2,7 @@
  * Every reader marks what it reads and rejects unknown keys.
  */
 #include "sim/workload/pphigs/pphigs_cfg.h"
+#include "sim/scene/structdb_file.h"
 #include <string.h>
 
 typedef struct {
@@ -69,6 +70,7 @@ static void no_such_db(const CfgNode *root, const char *name,
     for (guint i = 0; cfg_kind(root) == CFG_MAP && i < cfg_map_len(root); i++)
         g_string_append_printf(exp, "%s %s", i ? "," : ":",
                                cfg_map_key(root, i));
+    g_string_append(exp, ", or a structure database file (*.yaml)");
     char *found = g_strdup_printf("database '%s'", name);
     cfg_error(err, name_at ? name_at : root, found, exp->str);
     g_free(found);
@@ -88,6 +90,52 @@ gboolean wl_pphigs_spec_load(const char *path, const char *name,
         no_such_db(root, name, name_at, err);
     cfg_free(root);
     return ok;
+}
+
+/* ---- a user's structure database file ---------------------------------- */
+
+gboolean wl_pphigs_is_db_file(const char *value)
+{
+    return g_str_has_suffix(value, ".yaml") || g_str_has_suffix(value, ".yml");
+}
+
+/* An error of the file as a whole (unreadable, nothing posted), located
+ * at the config key that named it. */
+static void file_error(const CfgNode *at, const char *path, const char *why,
+                       const char *expected, GError **err)
+{
+    char *found = g_strdup_printf("database file '%s' %s", path, why);
+    cfg_error(err, at, found, expected);
+    g_free(found);
+}
+
+SceneDb *wl_pphigs_db_file_load(const char *path, const CfgNode *at,
+                                GError **err)
+{
+    g_assert(at != NULL);
+    GError *e = NULL;
+    SceneDb *db = scene_db_load(path, &e);
+    if (!db && g_error_matches(e, SIM_ERROR, SIM_ERROR_IO)) {
+        file_error(at, path, "that cannot be read",
+                   "a readable structure database file (from the current "
+                   "directory or a data root)",
+                   err);
+        g_error_free(e);
+        return NULL;
+    }
+    if (!db) {
+        g_propagate_error(err, e);
+        return NULL;
+    }
+    if (scene_db_posted_count(db) == 0) {
+        file_error(at, path, "with nothing posted",
+                   "a structure database file that posts at least one "
+                   "structure (posted: [...])",
+                   err);
+        scene_db_free(db);
+        return NULL;
+    }
+    return db;
 }
 
 /* ---- frame.yaml ------------------------------------------------------- */

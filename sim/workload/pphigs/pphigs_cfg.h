@@ -1,6 +1,6 @@
 /* pphigs_cfg.h — reading the pphigs workload's own YAML through cfg: the
- * database generator parameters (configs/pphigs/databases.yaml) and the
- * frame sizes and clustering scale (configs/pphigs/frame.yaml).  The
+ * database generator parameters (configs/pphigs/databases.yaml), a
+ * user's structure database file, and the frame sizes and clustering scale (configs/pphigs/frame.yaml).  The
  * hardware (processors, costs, ring) comes from the machine layer
  * (frame.h, wl_pphigs_costs_from_machine).  Errors: "file:line:column:
  * found <what>, expected <what>" (SIM_ERROR_INPUT).
@@ -21,6 +21,15 @@ gboolean wl_pphigs_spec_from_cfg(const CfgNode *map, ScenePphigsSpec *out,
 gboolean wl_pphigs_spec_load(const char *path, const char *name,
                              const CfgNode *name_at, ScenePphigsSpec *out,
                              GError **err);
+
+/* TRUE when workload.database names a structure database file (a
+ * path ending in .yaml or .yml) rather than a generator entry. */
+gboolean wl_pphigs_is_db_file(const char *value);
+/* Reads a user's structure database file (sim/scene/structdb_file.h);
+ * NULL with *err: the file's own located error, or one at `at` (the
+ * config key, required) when the file cannot be read or posts nothing. */
+SceneDb *wl_pphigs_db_file_load(const char *path, const CfgNode *at,
+                                GError **err);
 
 /* The workload's own parameters (frame.yaml). */
 typedef struct {

@@ -8,8 +8,13 @@
  *   algorithm: simple | complex        (default complex)
  *   gps: 1..64                          (default: the machine's GP count;
  *                                        given, it sets nodes.gp.count)
- *   database: a name in `databases` (the four of seed 001)
- *   databases: generator parameters (configs/pphigs/databases.yaml)
+ *   database: a name in `databases` (the four of seed 001), or a
+ *             structure database file (a path ending in .yaml or .yml,
+ *             sim/scene/structdb_file.h), read when the config is
+ *             loaded and viewed with scene_pphigs_fit_view()
+ *   databases: generator parameters (configs/pphigs/databases.yaml;
+ *              not needed with a file)
+ *   dump_db: writes the database drawn (generated or read) to a file
  *   frame: frame sizes and clustering (configs/pphigs/frame.yaml)
  *   edits_per_frame: matrix modifies per frame (default 0)
  *   edit_angle_deg: rotation each edit applies (default 0)
@@ -42,6 +47,7 @@
 #include "sim/workload/pphigs/pphigs_rebalance.h"
 #include "sim/machine/model.h"
 #include "sim/scene/scene_limits.h"
+#include "sim/scene/structdb_file.h"
 #include "sim/workload/workload.h"
 #include <string.h>
 
@@ -54,6 +60,8 @@ typedef struct {
     int algo;
     int64_t gps; /* 0: the machine's count */
     ScenePphigsSpec spec;
+    SceneDb *file_db; /* workload.database as a file (owned), else NULL */
+    char *dump_db;    /* workload.dump_db, or NULL */
     WlPphigsSetup setup;
     uint64_t edits[ED_N]; /* per frame, of each kind */
     uint64_t attr_cache;  /* §3.4 checkpoint interval, 0: none */
@@ -62,8 +70,13 @@ typedef struct {
     WlPphigsRebalParams rb;
 } Params;
 
-static void params_free(void *p)
+static void params_free(void *params)
 {
+    Params *p = params;
+    if (!p)
+        return;
+    scene_db_free(p->file_db);
+    g_free(p->dump_db);
     g_free(p);
 }
 
@@ -73,7 +86,15 @@ static void params_free(void *p)
  * triangle of its fan. */
 static double mem_bytes(const void *params, GString *what)
 {
-    const ScenePphigsSpec *s = &((const Params *)params)->spec;
+    const Params *p = params;
+    if (p->file_db) { /* read already: its copies, host and GPs */
+        SceneDbStats st;
+        scene_db_stats(p->file_db, &st);
+        g_string_append_printf(what, "a database of %" G_GUINT64_FORMAT
+                               " primitive instances", st.primitives);
+        return 2.0 * (double)st.primitives * SCENE_POLY_BYTES;
+    }
+    const ScenePphigsSpec *s = &p->spec;
     double polys = (double)s->polygons + (double)s->boids * s->boid_polygons +
                    s->well_polygons + s->overlays;
     g_string_append_printf(what, "a database of %.0f polygons of %u vertices",
@@ -98,17 +119,24 @@ static gboolean parse_rebalance(const CfgNode *sec, Params *p, GError **err)
     return ok;
 }
 
-/* Loads the database spec and the frame setup the section names. */
+/* Loads the database spec (or the database file) and the frame setup
+ * the section names. */
 static gboolean parse_files(const CfgNode *sec, Params *p, GError **err)
 {
-    const char *db = NULL, *dbs = NULL, *fr = NULL;
-    if (!cfg_get_str(sec, "database", TRUE, &db, err) ||
-        !cfg_get_str(sec, "databases", TRUE, &dbs, err) ||
-        !cfg_get_str(sec, "frame", TRUE, &fr, err))
+    const char *db = NULL, *dbs = NULL, *fr = NULL, *dump = NULL;
+    if (!cfg_get_str(sec, "database", TRUE, &db, err))
         return FALSE;
-    return wl_pphigs_spec_load(dbs, db, cfg_get(sec, "database"), &p->spec,
-                               err) &&
-           wl_pphigs_setup_load(fr, &p->setup, err);
+    gboolean file = wl_pphigs_is_db_file(db);
+    if (!cfg_get_str(sec, "databases", !file, &dbs, err) ||
+        !cfg_get_str(sec, "frame", TRUE, &fr, err) ||
+        !cfg_get_str(sec, "dump_db", FALSE, &dump, err))
+        return FALSE;
+    p->dump_db = g_strdup(dump);
+    const CfgNode *at = cfg_get(sec, "database");
+    gboolean ok = file ? (p->file_db = wl_pphigs_db_file_load(db, at, err))
+                             != NULL
+                       : wl_pphigs_spec_load(dbs, db, at, &p->spec, err);
+    return ok && wl_pphigs_setup_load(fr, &p->setup, err);
 }
 
 /* edits_per_frame (matrix modifies, the older key) or edits: {kind: n}. */
@@ -248,11 +276,24 @@ typedef struct {
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
 } Run;
 
+/* The database drawn: a copy of the file's, or generated; written to
+ * dump_db when asked. */
+static gboolean make_db(Run *r, GError **err)
+{
+    if (r->p->file_db) {
+        r->db.db = scene_db_copy(r->p->file_db);
+        r->db.camera = scene_pphigs_fit_view(r->db.db);
+    } else if (!scene_pphigs_generate(&r->p->spec, &r->db, err)) {
+        return FALSE;
+    }
+    return !r->p->dump_db || scene_db_save(r->db.db, r->p->dump_db, err);
+}
+
 static gboolean build(Run *r, const WlContext *ctx, GError **err)
 {
     r->m = build_machine(ctx, r->p, err);
     r->frame = r->m ? wl_pphigs_frame_new(r->m, &r->p->setup.frame, err) : NULL;
-    if (!r->frame || !scene_pphigs_generate(&r->p->spec, &r->db, err))
+    if (!r->frame || !make_db(r, err))
         return FALSE;
     r->ngp = wl_pphigs_frame_gps(r->frame);
     WlPphigsWeights w;

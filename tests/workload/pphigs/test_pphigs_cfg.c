@@ -4,8 +4,9 @@
  * inputs fail with a located error; the reproduction's event-driven
  * frames give the analytic traversal's metrics exactly; the `pphigs`
  * workload runs configs/pphigs-flock.yaml deterministically and honours
- * overrides of the workload and of the machine section.  Run from the
- * repository root (make test does).
+ * overrides of the workload and of the machine section; a structure
+ * database file dumped and read back runs as the generated one.  Run
+ * from the repository root (make test does).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -410,6 +411,109 @@ static void test_frame_out(void **st)
     cfg_run_free(r);
 }
 
+/* Two results with the same frame times, elapsed time, traffic and
+ * metrics (names and values, exactly). */
+static void assert_same_result(const SimResult *a, const SimResult *b)
+{
+    assert_int_equal(a->frame_times->len, b->frame_times->len);
+    for (guint i = 0; i < a->frame_times->len; i++)
+        assert_true(g_array_index(a->frame_times, SimTime, i) ==
+                    g_array_index(b->frame_times, SimTime, i));
+    assert_true(a->elapsed == b->elapsed);
+    assert_true(a->comm_bytes == b->comm_bytes);
+    assert_int_equal(a->metrics->len, b->metrics->len);
+    for (guint i = 0; i < a->metrics->len; i++) {
+        const SimMetric *x = g_ptr_array_index(a->metrics, i);
+        const SimMetric *y = g_ptr_array_index(b->metrics, i);
+        assert_string_equal(x->name, y->name);
+        assert_true(x->value == y->value ||
+                    (isnan(x->value) && isnan(y->value)));
+    }
+}
+
+/* A file of `text` in dir; returns its path (free it). */
+static char *write_file(const char *dir, const char *name, const char *text)
+{
+    char *path = g_build_filename(dir, name, NULL);
+    assert_true(g_file_set_contents(path, text, -1, NULL));
+    return path;
+}
+
+/* workload.database=FILE (issue 15 point 6): the flock dumped with
+ * dump_db and read back runs exactly as the generated flock (edits and
+ * rebalancing included); a changed file gives a different run; bad
+ * files fail with located errors. */
+static void test_database_file(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pgsim-pphigs-db-XXXXXX", NULL);
+    char *db = g_build_filename(dir, "flock.yaml", NULL);
+    char *dump = g_strdup_printf("workload.dump_db=%s", db);
+    char *use = g_strdup_printf("workload.database=%s", db);
+    const char *gen[] = {"run.frames=3", "run.fidelity=analytic", dump, NULL};
+    const char *file[] = {"run.frames=3", "run.fidelity=analytic", use, NULL};
+    SimResult *a = app_run(gen, NULL);
+    assert_non_null(a);
+    GError *err = NULL;
+    SimResult *b = app_run(file, &err);
+    if (!b)
+        fail_msg("%s", err->message);
+    assert_same_result(a, b);
+    assert_true(metric(b, "image_matches_serial") == 1);
+    sim_result_free(b);
+    /* The run reads the file: one boid polygon moved changes it. */
+    char *text = NULL;
+    assert_true(g_file_get_contents(db, &text, NULL, NULL));
+    char *at = strstr(text, "polygon: [[");
+    assert_non_null(at);
+    at[strlen("polygon: [[")] = at[strlen("polygon: [[")] == '9' ? '8' : '9';
+    assert_true(g_file_set_contents(db, text, -1, NULL));
+    g_free(text);
+    SimResult *c = app_run(file, NULL);
+    assert_non_null(c);
+    assert_true(metric(c, "commands_per_frame") !=
+                    metric(a, "commands_per_frame") ||
+                c->elapsed != a->elapsed);
+    sim_result_free(c);
+    sim_result_free(a);
+    assert_int_equal(g_remove(db), 0);
+    /* a missing file: located at the key that named it */
+    assert_null(app_run(file, &err));
+    assert_non_null(strstr(err->message, ":1:1: found database file '"));
+    assert_non_null(strstr(err->message, "that cannot be read"));
+    g_clear_error(&err);
+    /* an element of an unknown kind: located in the file */
+    char *bad = write_file(dir, "flock.yaml",
+                           "structure_database: 1\n"
+                           "structures:\n"
+                           "  - name: a\n"
+                           "    elements:\n"
+                           "      - teapot: 3\n"
+                           "posted: [a]\n");
+    assert_null(app_run(file, &err));
+    char *where = g_strdup_printf("%s:5:", db);
+    assert_non_null(strstr(err->message, where));
+    g_free(where);
+    g_clear_error(&err);
+    /* nothing posted: nothing to draw */
+    g_free(write_file(dir, "flock.yaml",
+                      "structure_database: 1\n"
+                      "structures:\n"
+                      "  - name: a\n"
+                      "    elements:\n"
+                      "      - triangle: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n"));
+    assert_null(app_run(file, &err));
+    assert_non_null(strstr(err->message, "with nothing posted"));
+    g_clear_error(&err);
+    assert_int_equal(g_remove(bad), 0);
+    assert_int_equal(g_rmdir(dir), 0);
+    g_free(bad);
+    g_free(use);
+    g_free(dump);
+    g_free(db);
+    g_free(dir);
+}
+
 /* `pgsim run` of one fresh frame reports the reproduction's cells. */
 static void test_run_matches_table(void **st)
 {
@@ -453,6 +557,7 @@ int main(void)
         cmocka_unit_test(test_attr_cache_knob),
         cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_run_matches_table),
+        cmocka_unit_test(test_database_file),
     };
     return cmocka_run_group_tests_name("pphigs_cfg", tests, NULL, NULL);
 }
