@@ -62,6 +62,7 @@ typedef struct {
     guint timers;  /* groups scheduled at a time, not yet issued */
     uint64_t sending; /* messages sent, not yet delivered */
     SimTime max_end;  /* latest end of the work given so far */
+    SimTime max_wait; /* latest end of a refresh wait (`v`) */
     GQueue syncs;     /* Group *: `sync` groups read, not yet scheduled */
     GError *error;
 } Replay;
@@ -314,6 +315,7 @@ static void refresh(Replay *rp, const Act *a, Flight *f)
 {
     SimEngine *eng = rp->t->eng;
     SimTime t = sim_refresh_at(sim_now(eng), a->value);
+    rp->max_wait = MAX(rp->max_wait, t);
     if (a->slot)
         g_array_index(rp->ends, SimTime, a->slot - 1) = t;
     note_done(rp, a->id, t);
@@ -369,9 +371,9 @@ static SimResult *result(Replay *rp, const RplReplayOpts *o)
         sim_result_add_frame(res, end - prev);
         prev = end;
     }
-    /* the end of the last event or of the last work, whichever is later
-     * (work with no handler has no event at its end) */
-    res->elapsed = MAX(sim_now(t->eng), rp->max_end);
+    /* the end of the last event, work or refresh wait, whichever is
+     * later (work and waits with no handler have no event at their end) */
+    res->elapsed = MAX(sim_now(t->eng), MAX(rp->max_end, rp->max_wait));
     res->events = sim_engine_events(t->eng);
     res->config_path = g_strdup(o->trace);
     sim_result_set_metric(res, "actions", (double)rp->actions, "");

@@ -56,6 +56,36 @@ static void app_start(SimEngine *eng, void *ctx, void *arg);
 static void try_cull(Pipe *s);
 static void try_draw(Pipe *s);
 
+/* Stage st's work c (the stage function's named counts, if it gave
+ * them: a recording writes those). */
+static void stage_compute(Pipe *s, int st, SimTime c, SimHandler done,
+                          void *arg)
+{
+    const MachOps *o = s->f->ops ? s->f->ops(s->ctx) : NULL;
+    if (!o || !o->n) {
+        mach_proc_compute(s->proc[st], c, s->phase[st], done, s, arg);
+        return;
+    }
+    g_assert(mach_proc_ops_cost(s->proc[st], o) == c);
+    mach_proc_compute_list(s->proc[st], o, s->phase[st], done, s, arg);
+}
+
+/* Runs h(frame n) at t on processor p's behalf: a wait for the display
+ * refresh when t is the next multiple of `period` (or now: a period of
+ * 1 ps), so a recording writes the wait (`v`), else a timer. */
+static void wait_until(Pipe *s, MachProc *p, SimTime t, SimTime period,
+                       SimHandler h, guint n)
+{
+    SimTime now = sim_now(s->eng);
+    if (t == now && t != sim_refresh_at(now, period))
+        period = 1;
+    if (t == sim_refresh_at(now, period))
+        sim_wait_refresh(s->eng, mach_proc_id(p), period, h, s,
+                         GUINT_TO_POINTER(n));
+    else
+        sim_schedule_at(s->eng, t, h, s, GUINT_TO_POINTER(n));
+}
+
 /* pfSync: the APP process waits for the next frame boundary. */
 static void app_sync(Pipe *s, guint n)
 {
@@ -63,7 +93,7 @@ static void app_sync(Pipe *s, guint n)
         return;
     SimTime T = frame_period(s), now = sim_now(s->eng);
     SimTime t = MAX(ceil_to(now, T), rec(s, n)->app_start + T);
-    sim_schedule_at(s->eng, t, app_start, s, GUINT_TO_POINTER(n + 1));
+    wait_until(s, s->proc[ST_APP], t, T, app_start, n + 1);
 }
 
 static void isect_done(SimEngine *eng, void *ctx, void *arg)
@@ -80,8 +110,7 @@ static void start_isect(Pipe *s, guint n)
     SimTime c = s->f->isect(s->ctx, n);
     rec(s, n)->isect = c;
     s->isect_busy = TRUE;
-    mach_proc_compute(s->proc[ST_ISECT], c, s->phase[ST_ISECT], isect_done, s,
-                      NULL);
+    stage_compute(s, ST_ISECT, c, isect_done, NULL);
 }
 
 static void app_done(SimEngine *eng, void *ctx, void *arg)
@@ -100,8 +129,7 @@ static void app_start(SimEngine *eng, void *ctx, void *arg)
     guint n = GPOINTER_TO_UINT(arg);
     rec(s, n)->app_start = sim_now(eng);
     start_isect(s, n);
-    mach_proc_compute(s->proc[ST_APP], s->f->app(s->ctx, n), s->phase[ST_APP],
-                      app_done, s, arg);
+    stage_compute(s, ST_APP, s->f->app(s->ctx, n), app_done, arg);
 }
 
 /* ---- CULL -------------------------------------------------------------- */
@@ -131,8 +159,7 @@ static void try_cull(Pipe *s)
     rec(s, n)->cull_start = sim_now(s->eng);
     rec(s, n)->stress = s->stress;
     SimTime c = s->f->cull(s->ctx, n, s->stress);
-    mach_proc_compute(s->proc[ST_CULL], c, s->phase[ST_CULL], cull_done, s,
-                      GUINT_TO_POINTER(n));
+    stage_compute(s, ST_CULL, c, cull_done, GUINT_TO_POINTER(n));
     if (s->app_blocked && s->proc[ST_CULL] != s->proc[ST_APP]) {
         s->app_blocked = FALSE;
         app_sync(s, n); /* APP process: pfSync after pfFrame returns */
@@ -168,6 +195,9 @@ static void draw_done(SimEngine *eng, void *ctx, void *arg)
         app_sync(s, n); /* one process: pfSync after the whole frame */
     try_cull(s);
     try_draw(s);
+    /* the swap waits for the refresh: a recording ends the frame there */
+    sim_wait_refresh(eng, mach_proc_id(s->proc[ST_DRAW]), step, NULL, NULL,
+                     NULL);
 }
 
 static void draw_start(SimEngine *eng, void *ctx, void *arg)
@@ -175,8 +205,7 @@ static void draw_start(SimEngine *eng, void *ctx, void *arg)
     Pipe *s = ctx;
     guint n = GPOINTER_TO_UINT(arg);
     rec(s, n)->draw_start = sim_now(eng);
-    mach_proc_compute(s->proc[ST_DRAW], s->f->draw(s->ctx, n),
-                      s->phase[ST_DRAW], draw_done, s, arg);
+    stage_compute(s, ST_DRAW, s->f->draw(s->ctx, n), draw_done, arg);
 }
 
 static void try_draw(Pipe *s)
@@ -191,7 +220,8 @@ static void try_draw(Pipe *s)
         t = MAX(t, rec(s, n - 1)->swap); /* double-buffered frame buffer */
     if (s->p->locked)
         t = ceil_to(t, frame_period(s));
-    sim_schedule_at(s->eng, t, draw_start, s, GUINT_TO_POINTER(n));
+    wait_until(s, s->proc[ST_DRAW], t,
+               s->p->locked ? frame_period(s) : s->p->video, draw_start, n);
 }
 
 /* ---- run --------------------------------------------------------------- */

@@ -47,6 +47,9 @@ typedef struct {
     SimTime (*cull)(void *ctx, guint frame, double stress);
     SimTime (*draw)(void *ctx, guint frame);
     SimTime (*isect)(void *ctx, guint frame); /* NULL: no ISECT process */
+    /* The named counts the stage just called priced (the same time), or
+     * NULL / none: its work is a time.  NULL: stages give times. */
+    const MachOps *(*ops)(void *ctx);
 } WlPfStageFns;
 
 typedef struct {

@@ -80,11 +80,28 @@ static SimTime sum(SimTime a, SimTime b)
 
 /* ---- the stages -------------------------------------------------------- */
 
+/* The stage's counts start afresh (the `ops` hook reads them). */
+static MachOps *ops_reset(WlPfStages *s)
+{
+    s->last.n = 0;
+    return &s->last;
+}
+
+static const MachOps *ops(void *ctx)
+{
+    return &((WlPfStages *)ctx)->last;
+}
+
 static SimTime app(void *ctx, guint n)
 {
     WlPfStages *s = ctx;
     guint moved = wl_pf_town_update(s->town, n);
     wl_pf_frame_stats(s, n)->ground = s->ground;
+    MachOps *o = ops_reset(s);
+    if (!s->app_timed) {
+        mach_ops_add(o, "app_frame", 1);
+        mach_ops_add(o, "app_dcs", moved);
+    }
     return sum(s->c.app_frame, times(s->c.app_dcs, moved));
 }
 
@@ -99,6 +116,11 @@ static SimTime cull(void *ctx, guint n, double stress)
     wl_pf_cull(s->town->g, &v, dl, &f->cull);
     f->dl_items = dl->len;
     const WlPfCosts *c = &s->c;
+    MachOps *o = ops_reset(s);
+    mach_ops_add(o, "cull_node", f->cull.nodes_visited);
+    mach_ops_add(o, "cull_lod", f->cull.lods);
+    mach_ops_add(o, "cull_billboard", f->cull.billboards);
+    mach_ops_add(o, "cull_item", dl->len);
     SimTime t = times(c->cull_node, f->cull.nodes_visited);
     t = sum(t, times(c->cull_lod, f->cull.lods));
     t = sum(t, times(c->cull_billboard, f->cull.billboards));
@@ -125,6 +147,23 @@ static void trace_bus(WlPfStages *s, uint64_t bytes, SimTime from, SimTime to)
                    mach_proc_name(pipe), bytes, from, to);
 }
 
+/* The pipe's share of DRAW, as counts on the pipe (phase "pipe"), and
+ * the stream that feeds it, as a shared-memory transfer; returns the
+ * stream's time. */
+static SimTime feed_pipe(WlPfStages *s, uint64_t bytes, uint64_t tris,
+                         uint64_t states)
+{
+    MachProc *pipe = mach_proc(mach_proc_machine(s->draw_cpu), "pipe", 0);
+    MachOp o[] = {{"triangle", tris}, {"state", states}};
+    mach_proc_compute_ops(pipe, o, 2, sim_engine_phase(s->eng, "pipe"), NULL,
+                          NULL, NULL);
+    SimTime now = sim_now(s->eng), end;
+    mach_shmem_send(&s->bus, s->eng, mach_proc_id(s->draw_cpu),
+                    mach_proc_id(pipe), bytes, NULL, NULL, NULL, &end);
+    trace_bus(s, bytes, now, end);
+    return end - now;
+}
+
 static SimTime draw(void *ctx, guint n)
 {
     WlPfStages *s = ctx;
@@ -134,11 +173,10 @@ static SimTime draw(void *ctx, guint n)
     uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
     f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
-    SimTime now = sim_now(s->eng);
-    f->bus = mach_shmem_transfer(&s->bus, now, (uint64_t)bytes) - now;
-    trace_bus(s, (uint64_t)bytes, now, now + f->bus);
+    f->bus = feed_pipe(s, (uint64_t)bytes, f->draw.tris, states);
     f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
                   times(c->pipe_state, states));
+    ops_reset(s); /* DRAW waits for the slowest of CPU, bus and pipe: a time */
     return MAX(f->cpu, MAX(f->bus, f->pipe));
 }
 
@@ -150,11 +188,14 @@ static SimTime isect(void *ctx, guint n)
     wl_pf_isect(s->town->g, cam.eye.x, cam.eye.z, -100, 100, &f->isect);
     if (f->isect.hit)
         s->ground = f->isect.height; /* APP of a later frame reads it */
+    MachOps *o = ops_reset(s);
+    mach_ops_add(o, "isect_node", f->isect.nodes_tested);
+    mach_ops_add(o, "isect_triangle", f->isect.tris_tested);
     return sum(times(s->c.isect_node, f->isect.nodes_tested),
                times(s->c.isect_triangle, f->isect.tris_tested));
 }
 
 WlPfStageFns wl_pf_stage_fns(gboolean with_isect)
 {
-    return (WlPfStageFns){app, cull, draw, with_isect ? isect : NULL};
+    return (WlPfStageFns){app, cull, draw, with_isect ? isect : NULL, ops};
 }

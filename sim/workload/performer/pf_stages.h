@@ -57,6 +57,9 @@ typedef struct {
     GArray *frames; /* WlPfFrameStats, one per frame */
     double ground;  /* the latest ISECT result */
     gboolean isect;
+    gboolean app_timed; /* app_frame is the workload's app_work, not a
+                           machine cost: APP's work is a time */
+    MachOps last;       /* the named counts of the last stage called */
 } WlPfStages;
 
 /* Reads the costs from m (kinds cpu and pipe); FALSE with a located

@@ -348,15 +348,6 @@ static gboolean get_procs(MachMachine *m, const PfParams *p, MachProc **procs,
     return TRUE;
 }
 
-/* The pipe's busy time: DRAW's pipe share, charged after the run. */
-static void charge_pipe(MachMachine *m, WlPfStages *st, unsigned phase)
-{
-    MachProc *pipe = mach_proc(m, "pipe", 0);
-    for (guint n = 0; n < st->frames->len; n++)
-        mach_proc_compute(pipe, wl_pf_frame_stats(st, n)->pipe, phase, NULL,
-                          NULL, NULL);
-}
-
 static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
                         WlPfStages *st)
 {
@@ -389,7 +380,6 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &p->pipe, &fns, st, recs,
                                  wl_until(ctx), err);
     if (ok) {
-        charge_pipe(m, st, sim_engine_phase(ctx->eng, "pipe"));
         fill_result(out, m, recs, st);
         sim_result_set_phases(out, ctx->eng);
         set_metrics(out, p, recs, st, flattened);
@@ -417,6 +407,8 @@ static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
     p->pipe.frames = (guint)ctx->frames;
     WlPfStages *st = wl_pf_stages_new(m, town, &c, p->cull, p->lazy, p->isect,
                                       p->pipe.frames, err);
+    if (st)
+        st->app_timed = p->has_app_work;
     gboolean ok = st && run_frames(ctx, m, p, st, flattened, out, err);
     wl_pf_stages_free(st);
     wl_pf_town_free(town);

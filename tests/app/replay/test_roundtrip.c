@@ -124,6 +124,8 @@ static const Case dpscan = {
     {"scene.grid=16", "workload.width=256", "workload.height=256", NULL}};
 static const Case argus = {"configs/argus-nurbs.yaml", {NULL}};
 static const Case pn = {"configs/pn-onyx.yaml", {NULL}};
+static const Case performer = {"configs/performer-town.yaml",
+                               {"run.frames=40", NULL}};
 
 static void test_pixelmerge(void **s)
 {
@@ -162,6 +164,14 @@ static void test_pn(void **s)
 {
     (void)s;
     round_trip(&pn, FALSE);
+}
+
+/* Performer's pipelined frames, locked to the refresh: refresh waits
+ * (`v`), frames ending at the swap (`swap`), the pipe's stream (`b`). */
+static void test_performer(void **s)
+{
+    (void)s;
+    round_trip(&performer, FALSE);
 }
 
 /* The comparison can fail: the same trace on a slower network (or at
@@ -264,6 +274,8 @@ static void test_counts_repriced(void **s)
     (void)s;
     counts_repriced(&pn, "pipe", "triangle");
     counts_repriced(&pn, "cpu", "draw_vertex");
+    counts_repriced(&performer, "cpu", "cull_node");
+    counts_repriced(&performer, "pipe", "triangle");
     counts_repriced(&pphigs, "gp", "vertex");
     counts_repriced(&pphigs, "renderer", "expression");
     counts_repriced(&pphigs, "frame_buffer", "store_region");
@@ -413,6 +425,7 @@ int main(void)
         cmocka_unit_test(test_dpscan),
         cmocka_unit_test(test_argus),
         cmocka_unit_test(test_pn),
+        cmocka_unit_test(test_performer),
         cmocka_unit_test(test_counts_repriced),
         cmocka_unit_test(test_other_machine_differs),
         cmocka_unit_test(test_pixelmerge_counts_repriced),
