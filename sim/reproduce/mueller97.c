@@ -4,8 +4,11 @@
  * run of the sortfirst workload (sim/workload/sortfirst/sf_frame.h) on
  * the setup's machine model.  What runs is configs/papers/mueller97/
  * setup.yaml; nothing here is a published value.  The scene is built
- * once; each case builds its chunk database and machine.  Cost: per case
- * O(frames x (P x chunk instances + polygons rendered + pixels)).
+ * once, and each frame of it rasterised once (sim/raster/prerender.h:
+ * every case renders the same frames at the same resolution, and counts
+ * its regions' spans and pixels from that render); each case builds its
+ * chunk database and machine.  Cost: per case O(frames x (P x chunk
+ * instances + polygons rendered + their spans)).
  */
 #include "sim/reproduce/mueller97.h"
 #include "sim/scene/scene_cfg.h"
@@ -144,7 +147,8 @@ static void point_from(RpMuellerPoint *pt, const SimResult *r)
 }
 
 static gboolean run_on(MachMachine *m, const Scene *sc, const MuSetup *s,
-                       RpMuellerPoint *pt, GError **err)
+                       RastPrerenderSet *pre, RpMuellerPoint *pt,
+                       GError **err)
 {
     WlSfCosts c;
     if (!wl_sf_costs_from_machine(m, &c, err))
@@ -157,7 +161,8 @@ static gboolean run_on(MachMachine *m, const Scene *sc, const MuSetup *s,
                     .resolution = (int)s->resolution,
                     .bk = pt->minset ? WL_SF_MINSET : WL_SF_MAXSET,
                     .sizes = s->sizes,
-                    .cull_back = TRUE};
+                    .cull_back = TRUE,
+                    .pre = pre};
     WlSfRun *r = wl_sf_run_new(m, sc, db, &st, &c);
     gboolean ok = wl_sf_run_frames(r, (int)s->frames, SIM_TIME_MAX, err);
     if (ok) {
@@ -174,7 +179,8 @@ static gboolean run_on(MachMachine *m, const Scene *sc, const MuSetup *s,
 }
 
 static gboolean run_case(const RpContext *ctx, const Scene *sc,
-                         const MuSetup *s, RpMuellerPoint *pt, GError **err)
+                         const MuSetup *s, RastPrerenderSet *pre,
+                         RpMuellerPoint *pt, GError **err)
 {
     char *what = g_strdup_printf("%s %s g=%u P=%u",
                                  wl_sf_chunking_names[pt->chunking],
@@ -188,7 +194,7 @@ static gboolean run_case(const RpContext *ctx, const Scene *sc,
     gboolean ok = m != NULL;
     if (ok) {
         rp_note_fidelity(ctx, s->model, mach_fidelity(m));
-        ok = run_on(m, sc, s, pt, err);
+        ok = run_on(m, sc, s, pre, pt, err);
     }
     mach_free(m);
     sim_engine_free(eng);
@@ -270,9 +276,11 @@ static gboolean mueller97_rows(const RpContext *ctx, GPtrArray *rows,
     }
     ok = ok && sc;
     GArray *pts = cases(&s);
+    RastPrerenderSet *pre = rast_prerender_set_new();
     for (guint i = 0; ok && i < pts->len; i++)
-        ok = run_case(ctx, sc, &s,
+        ok = run_case(ctx, sc, &s, pre,
                       &g_array_index(pts, RpMuellerPoint, i), err);
+    rast_prerender_set_free(pre);
     const RpMuellerPoint *p = (const RpMuellerPoint *)(void *)pts->data;
     for (guint i = 0; ok && i < pts->len; i++)
         chart_rows(&p[i], &s, rows);

@@ -138,6 +138,13 @@ void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
                    NULL, 0, rast_zbuffer_sink(zb), &c);
 }
 
+/* Counts from the frame rendered once (setup `pre`) when no image is
+ * wanted: the same spans and pixels, no z-buffer (prerender.h). */
+static gboolean prerendered(const WlSfRun *r)
+{
+    return r->s.pre && !r->s.check_image && !r->hook;
+}
+
 static void render_region(WlSfRun *r, Proc *pr)
 {
     g_array_set_size(r->subset, 0);
@@ -150,7 +157,15 @@ static void render_region(WlSfRun *r, Proc *pr)
     RegionSink k = {r->zb, wl_sf_region_rect(&r->regions, pr->p), 0, 0};
     RastSpanSink sink = {region_span, &k};
     pr->polys = r->subset->len;
-    if (r->subset->len)
+    if (prerendered(r)) {
+        const RastPrerender *pre = rast_prerender_set_get(
+            r->s.pre, (guint)r->frame, &r->view, r->db->flat);
+        RastRect rect = {k.r.x0, k.r.y0, k.r.x1, k.r.y1};
+        rast_prerender_count(pre, r->db->flat,
+                             (const uint32_t *)(void *)r->subset->data,
+                             r->subset->len, rect, &pr->rc, &k.spans,
+                             &k.pixels);
+    } else if (r->subset->len)
         rast_draw_mesh(&r->view, r->db->flat, mat4_identity(),
                        (SceneColor){1, 1, 1}, 0,
                        (const uint32_t *)(void *)r->subset->data,
@@ -770,5 +785,5 @@ const WlSfRegions *wl_sf_run_regions(const WlSfRun *r)
 
 const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r)
 {
-    return r->stats->len ? r->zb : NULL;
+    return r->stats->len && !prerendered(r) ? r->zb : NULL;
 }

@@ -72,6 +72,7 @@
 #include "sim/machine/machine.h"
 #include "sim/raster/image.h"
 #include "sim/raster/pipeline.h"
+#include "sim/raster/prerender.h"
 #include "sim/scene/scene.h"
 #include "sim/workload/sortfirst/sf_book.h"
 #include "sim/workload/sortfirst/sf_trav.h"
@@ -100,6 +101,11 @@ typedef struct {
                           to its extrapolation one frame ahead */
     gboolean feedback; /* weight cells by measured work per polygon */
     WlSfTravMode trav; /* §3.5 traversal (sf_trav.h); plain for pull */
+    RastPrerenderSet *pre; /* NULL: each region rasterised; else, with no
+                              image wanted (check_image, a hook), counts
+                              from each frame rasterised once and kept
+                              here by frame number, for runs of one scene
+                              at one resolution (prerender.h) */
 } WlSfSetup;
 
 /* One frame's figures (sums over processors unless said). */
@@ -156,7 +162,8 @@ const GArray *wl_sf_run_stats(const WlSfRun *r);
 const WlSfBook *wl_sf_run_book(const WlSfRun *r);
 /* The regions the next frame will use (borrowed). */
 const WlSfRegions *wl_sf_run_regions(const WlSfRun *r);
-/* The last frame's image (borrowed; NULL before a frame). */
+/* The last frame's image (borrowed; NULL before a frame, and when the
+ * frames were counted from setup `pre`). */
 const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r);
 
 /* Called after each frame's checks with the frame's assembled image

@@ -761,6 +761,44 @@ static void test_traversal_counts(void **state)
     }
 }
 
+/* Counting from frames rasterised once (setup `pre`, shared by runs)
+ * gives every run the figures of rasterising each region: the same
+ * frame times (vertices, spans and pixels are all charged) and pixels;
+ * no image is kept.  Two runs share the set, as a reproduction's cases
+ * do. */
+static void test_prerender_same_figures(void **state)
+{
+    (void)state;
+    RastPrerenderSet *pre = rast_prerender_set_new();
+    for (int bk = 0; bk < 2; bk++) {
+        Fixture a, b;
+        fixture_init(&a, 6, (WlSfBookkeeping)bk, 5);
+        fixture_init(&b, 6, (WlSfBookkeeping)bk, 5);
+        WlSfCosts c;
+        assert_true(wl_sf_costs_from_machine(b.m, &c, NULL));
+        wl_sf_run_free(b.run);
+        b.s.pre = pre;
+        b.run = wl_sf_run_new(b.m, b.scene, b.db, &b.s, &c);
+        GError *e = NULL;
+        assert_true(wl_sf_run_frames(a.run, 5, SIM_TIME_MAX, &e));
+        assert_true(wl_sf_run_frames(b.run, 5, SIM_TIME_MAX, &e));
+        assert_null(wl_sf_run_zbuffer(b.run));
+        for (guint f = 0; f < 5; f++) {
+            const WlSfFrameStats *x =
+                &g_array_index(wl_sf_run_stats(a.run), WlSfFrameStats, f);
+            const WlSfFrameStats *y =
+                &g_array_index(wl_sf_run_stats(b.run), WlSfFrameStats, f);
+            assert_int_equal(x->end - x->start, y->end - y->start);
+            assert_int_equal(x->pixels, y->pixels);
+            assert_int_equal(x->polys_rendered, y->polys_rendered);
+            assert_true(x->imbalance == y->imbalance && x->pixels > 100);
+        }
+        fixture_clear(&a);
+        fixture_clear(&b);
+    }
+    rast_prerender_set_free(pre);
+}
+
 static void expect_error(const char *override, const char *what)
 {
     GError *e = NULL;
@@ -814,6 +852,7 @@ int main(void)
         cmocka_unit_test(test_database_file),
         cmocka_unit_test(test_traversal_counts),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_prerender_same_figures),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
 }
