@@ -412,6 +412,30 @@ static void test_ply_binary_errors(void **st)
                            hl + 2);
     ply_fails(buf, hl + 2, want);
     g_free(want);
+    /* a list count may take every byte left: uchar indices 0 1 2 last */
+    const char fh[] = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                      "property uchar x\nproperty uchar y\nproperty uchar z\n"
+                      "element face 1\nproperty list uchar uchar "
+                      "vertex_indices\nend_header\n";
+    gsize fl = strlen(fh);
+    memcpy(buf, fh, fl);
+    memcpy(buf + fl, "\0\0\0\1\0\0\0\1\0\3\0\1\2", 13);
+    m = ply_ok(buf, fl + 13);
+    assert_int_equal(scene_mesh_n_polys(m), 1);
+    assert_int_equal(scene_mesh_poly(m, 0)[2], 2);
+    scene_mesh_free(m);
+    buf[fl + 9] = 4; /* one more than the bytes left: read, then missed */
+    want = g_strdup_printf(": byte offset %zu: found end of file, expected "
+                           "1 more bytes (a uchar)",
+                           fl + 13);
+    ply_fails(buf, fl + 13, want);
+    g_free(want);
+    buf[fl + 9] = 5; /* two more: impossible */
+    want = g_strdup_printf(": byte offset %zu: found an impossible list "
+                           "count, expected a count the file holds",
+                           fl + 9);
+    ply_fails(buf, fl + 13, want);
+    g_free(want);
     const char bad[] = "ply\nformat binary_big_endian 1.0\nelement vertex 1\n"
                        "property uchar x\nproperty uchar y\nproperty\n";
     ply_fails(bad, strlen(bad), ":6:9: found end of line, expected a type "
