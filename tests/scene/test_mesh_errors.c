@@ -535,6 +535,40 @@ static void test_ply_colours(void **st)
     scene_mesh_free(m);
 }
 
+/* Roles by name, wherever they sit: each of x, y, z, nx, ny, nz, red,
+ * green and blue in turn as the first property of the vertex. */
+static void test_ply_property_order(void **st)
+{
+    (void)st;
+    static const char *const role[] = {"x",  "y",  "z",     "nx",  "ny",
+                                       "nz", "red", "green", "blue"};
+    static const char *const value[] = {"1", "2", "3", "0", "1",
+                                        "0", "51", "102", "255"};
+    for (guint first = 0; first < 9; first++) {
+        GString *t = g_string_new(HA "element vertex 3\n");
+        for (guint k = 0; k < 9; k++)
+            g_string_append_printf(t, "property %s %s\n",
+                                   (first + k) % 9 >= 6 ? "uchar" : "float",
+                                   role[(first + k) % 9]);
+        g_string_append(t, FACE "end_header\n");
+        for (guint v = 0; v < 3; v++) {
+            for (guint k = 0; k < 9; k++)
+                g_string_append_printf(t, "%s ", value[(first + k) % 9]);
+            g_string_append(t, "\n");
+        }
+        g_string_append(t, "3 0 1 2\n");
+        SceneMesh *m = ply_ok(t->str, t->len);
+        Vec3 p = scene_mesh_vertex(m, 2);
+        assert_true(p.x == 1 && p.y == 2 && p.z == 3);
+        Vec3 n = g_array_index(m->normals, Vec3, 1);
+        assert_true(n.x == 0 && n.y == 1 && n.z == 0);
+        SceneColor c = g_array_index(m->colors, SceneColor, 0);
+        assert_true(c.r == 0.2f && c.g == 0.4f && c.b == 1);
+        scene_mesh_free(m);
+        g_string_free(t, TRUE);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -548,6 +582,7 @@ int main(void)
         cmocka_unit_test(test_ply_binary_errors),
         cmocka_unit_test(test_ply_scalar_types),
         cmocka_unit_test(test_ply_colours),
+        cmocka_unit_test(test_ply_property_order),
     };
     return cmocka_run_group_tests_name("mesh_errors", tests, NULL, NULL);
 }
