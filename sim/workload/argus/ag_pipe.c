@@ -108,25 +108,29 @@ static const AgBlock *block_at(const AgPipe *p, guint b, guint *ctx)
                           b - p->ctx_off[c]);
 }
 
-static SimTime cost_n(SimTime c, uint64_t n)
+/* Work given as named counts of the cpu's costs (wl_ag_cost_ops):
+ * priced by the machine, written as such by a recording; *busy gets its
+ * time. */
+static void compute(MachProc *proc, const MachOps *o, unsigned phase,
+                    SimHandler done, AgPipe *p, guint arg, SimTime *busy)
 {
-    SimTime t;
-    return mach_cost_n(c, n, &t) ? t : SIM_TIME_MAX;
+    *busy += mach_proc_ops_cost(proc, o);
+    mach_proc_compute_list(proc, o, phase, done, p, GUINT_TO_POINTER(arg));
 }
 
 /* ---- application threads ---------------------------------------------- */
 
-static SimTime app_work(const AgPipe *p, const AgBlock *b)
+static void app_work(const AgPipe *p, const AgBlock *b, MachOps *o)
 {
     if (!b->opens)
-        return 0;
+        return;
     const AgBatch *x = &g_array_index(p->st->batches, AgBatch, b->batch);
     if (p->s.app == WL_AG_APP_NURBS)
-        return cost_n(p->c.nurbs_vertex, x->distinct);
-    if (p->s.app == WL_AG_APP_MARCH)
-        return cost_n(p->c.march_voxel, p->s.voxels_per_batch) +
-               cost_n(p->c.march_triangle, x->n);
-    return 0;
+        mach_ops_add(o, "nurbs_vertex", x->distinct);
+    if (p->s.app == WL_AG_APP_MARCH) {
+        mach_ops_add(o, "march_voxel", p->s.voxels_per_batch);
+        mach_ops_add(o, "march_triangle", x->n);
+    }
 }
 
 static void app_issue(SimEngine *eng, void *ctx, void *arg);
@@ -195,10 +199,13 @@ static void app_issue(SimEngine *eng, void *ctx, void *arg)
     if (!app_barrier(p, c, b))
         return;
     resolve_waits(p, p->ctx_off[c] + p->app_next[c], b);
-    SimTime cost = app_work(p, b) + cost_n(p->c.issue_vertex, b->verts) +
-                   (b->opens ? p->c.issue_batch : 0) + p->c.lock;
-    p->out->app_busy += cost;
-    mach_proc_compute(thread_proc(p, c), cost, p->ph_app, app_done, p, arg);
+    MachOps o = {0};
+    app_work(p, b, &o);
+    mach_ops_add(&o, "issue_vertex", b->verts);
+    mach_ops_add(&o, "issue_batch", b->opens ? 1 : 0);
+    mach_ops_add(&o, "lock", 1);
+    compute(thread_proc(p, c), &o, p->ph_app, app_done, p, c,
+            &p->out->app_busy);
 }
 
 /* ---- geometry threads --------------------------------------------------- */
@@ -296,14 +303,15 @@ static void geom_start(AgPipe *p, guint g, guint b)
     p->out->bucketed += pairs;
     p->out->triangles += k->n;
     p->out->verts_issued += k->verts;
-    SimTime cost = p->c.lock + cost_n(p->c.geom_vertex, k->verts) +
-                   cost_n(p->c.geom_triangle, k->n) +
-                   cost_n(p->c.geom_tile, pairs);
-    p->out->geom_busy += cost;
+    MachOps o = {0};
+    mach_ops_add(&o, "lock", 1);
+    mach_ops_add(&o, "geom_vertex", k->verts);
+    mach_ops_add(&o, "geom_triangle", k->n);
+    mach_ops_add(&o, "geom_tile", pairs);
     p->g_busy[g] = TRUE;
     p->g_block[g] = b;
-    mach_proc_compute(worker_proc(p, 0, g), cost, p->ph_geom, geom_done, p,
-                      GUINT_TO_POINTER(g));
+    compute(worker_proc(p, 0, g), &o, p->ph_geom, geom_done, p, g,
+            &p->out->geom_busy);
 }
 
 static void enqueue(SimEngine *eng, void *ctx, void *arg)
@@ -462,22 +470,23 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
     if (k->swap)
         wl_ag_frame_present_tile(p->f, t);
     p->out->pixels += px;
-    SimTime fill =
-        p->f->mode == WL_AG_BLEND ? p->c.rast_blend : p->c.rast_pixel;
     p->out->syncs += k->n_pre + k->n_post;
-    SimTime cost = cost_n(p->c.rast_triangle, n) +
-                   (p->s.fill_infinite
-                        ? 0
-                        : cost_n(fill, px) + cost_n(p->c.rast_clear, cleared)) +
-                   cost_n(p->c.sema, k->n_pre + k->n_post);
-    p->out->rast_busy += cost;
+    MachOps o = {0};
+    mach_ops_add(&o, "rast_triangle", n);
+    if (!p->s.fill_infinite) {
+        mach_ops_add(&o,
+                     p->f->mode == WL_AG_BLEND ? "rast_blend" : "rast_pixel",
+                     px);
+        mach_ops_add(&o, "rast_clear", cleared);
+    }
+    mach_ops_add(&o, "sema", k->n_pre + k->n_post);
     p->r_busy[r] = TRUE;
     p->r_tile[r] = t;
     p->r_block[r] = b;
     if (p->nw)
         p->t_busy[t] = TRUE;
-    mach_proc_compute(worker_proc(p, 1, r), cost, p->ph_rast, rast_done, p,
-                      GUINT_TO_POINTER(r));
+    compute(worker_proc(p, 1, r), &o, p->ph_rast, rast_done, p, r,
+            &p->out->rast_busy);
 }
 
 static void rast_kick(AgPipe *p, guint r)

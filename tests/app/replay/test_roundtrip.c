@@ -123,6 +123,7 @@ static const Case dpscan = {
     "configs/dpscan-cm200.yaml",
     {"scene.grid=16", "workload.width=256", "workload.height=256", NULL}};
 static const Case argus = {"configs/argus-nurbs.yaml", {NULL}};
+static const Case march = {"configs/argus-march.yaml", {NULL}};
 static const Case pn = {"configs/pn-onyx.yaml", {NULL}};
 static const Case performer = {"configs/performer-town.yaml",
                                {"run.frames=40", NULL}};
@@ -156,6 +157,7 @@ static void test_argus(void **s)
 {
     (void)s;
     round_trip(&argus, FALSE);
+    round_trip(&march, FALSE);
 }
 
 /* PN triangles on the Onyx: the CPU -> pipe stream is a shared-memory
@@ -276,6 +278,8 @@ static void test_counts_repriced(void **s)
     counts_repriced(&pn, "cpu", "draw_vertex");
     counts_repriced(&performer, "cpu", "cull_node");
     counts_repriced(&performer, "pipe", "triangle");
+    counts_repriced(&argus, "cpu", "geom_vertex");
+    counts_repriced(&march, "cpu", "march_voxel");
     counts_repriced(&pphigs, "gp", "vertex");
     counts_repriced(&pphigs, "renderer", "expression");
     counts_repriced(&pphigs, "frame_buffer", "store_region");
