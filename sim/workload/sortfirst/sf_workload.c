@@ -11,9 +11,11 @@
  *     mastership: fixed      # fixed | dynamic (§3.3.2.1, push)
  *     chunking: sorted       # sorted | unsorted | partially_sorted (§4.1)
  *     regions: static        # static grid | adaptive (sf_adapt.h)
- *     grid: 32               # G x G work grid of adaptive regions
- *     estimate: previous     # previous frame's rectangles | current |
- *                            # predicted (previous, extrapolated a frame)
+ *     grid: 64               # G x G work grid of adaptive regions
+ *                            # (default 64, at most the resolution)
+ *     estimate: predicted    # previous frame's rectangles | current |
+ *                            # predicted (previous, extrapolated a frame;
+ *                            # the default: docs/validation.md, mueller97)
  *     feedback: false        # weight cells by measured work / polygon
  *     traversal: plain       # plain | flags | culled | flags_culled
  *                            # (§3.5, sf_trav.h; pull: plain)
@@ -114,7 +116,7 @@ static gboolean parse_policy(const CfgNode *sec, WlSfSetup *s, GError **err)
 
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
-    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0, est = 0, tr = 0;
+    int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0, est = 2, tr = 0;
     if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
                       err) ||
         !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch,
@@ -178,7 +180,7 @@ static double sf_mem_bytes(const void *params, GString *what)
 static void *sf_parse(const CfgNode *sec, GError **err)
 {
     WlSfParams *p = g_new0(WlSfParams, 1);
-    uint64_t procs = 16, gran = 12, res = 256, grid = 32;
+    uint64_t procs = 16, gran = 12, res = 256, grid = 0; /* 0: default */
     gboolean check = TRUE, cull = TRUE;
     const char *log = NULL, *dbf = NULL, *dump = NULL;
     gboolean ok =
@@ -201,7 +203,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
     }
     p->setup.procs = (guint)procs;
     p->setup.resolution = (int)res;
-    p->setup.grid = (guint)grid;
+    p->setup.grid = (guint)(grid ? grid : MIN(64, res));
     p->setup.check_image = check;
     p->setup.cull_back = cull;
     p->granularity = (guint)gran;

@@ -549,6 +549,35 @@ static void test_adaptive_predict(void **state)
     fixture_clear(&f);
 }
 
+/* The adaptive defaults (issue 15 point 3, docs/validation.md): estimate
+ * predicted on a grid of 64 (at most the resolution) -- the same run as
+ * asking for them, another run than the old previous / 32. */
+static void test_adaptive_defaults(void **state)
+{
+    (void)state;
+    const char *big = "workload.resolution=128";
+    SimResult *d = run_cfg_set2("workload.regions=adaptive", big, NULL);
+    const char *const explicit_o[] = {"workload.regions=adaptive", big,
+                                      "workload.estimate=predicted",
+                                      "workload.grid=64", NULL};
+    SimResult *e = run_cfg_out(small, explicit_o, 6, NULL, FALSE, NULL);
+    const char *const old_o[] = {"workload.regions=adaptive", big,
+                                 "workload.estimate=previous",
+                                 "workload.grid=32", NULL};
+    SimResult *o = run_cfg_out(small, old_o, 6, NULL, FALSE, NULL);
+    assert_non_null(d);
+    assert_non_null(e);
+    assert_non_null(o);
+    assert_true(metric(d, "frame_ms") == metric(e, "frame_ms"));
+    assert_true(metric(d, "estimate_bytes_per_frame") ==
+                metric(e, "estimate_bytes_per_frame"));
+    assert_true(metric(d, "estimate_bytes_per_frame") !=
+                metric(o, "estimate_bytes_per_frame"));
+    sim_result_free(d);
+    sim_result_free(e);
+    sim_result_free(o);
+}
+
 static void test_adaptive_beats_static(void **state)
 {
     (void)state;
@@ -573,10 +602,11 @@ static void test_adaptive_beats_static(void **state)
     assert_true(metric(c, "image_matches_serial") == 1);
     assert_true(metric(c, "load_imbalance") < metric(s, "load_imbalance"));
     sim_result_free(c);
-    /* the previous frame's estimate extrapolated: the serial image */
+    /* the previous frame's estimate, not extrapolated (the default is
+     * predicted): the serial image */
     c = run_cfg(small, "workload={type: sortfirst, processors: 4, "
                        "granularity: 5, resolution: 64, regions: adaptive, "
-                       "estimate: predicted}",
+                       "estimate: previous, grid: 32}",
                 6, &e);
     assert_non_null(c);
     assert_true(metric(c, "image_matches_serial") == 1);
@@ -847,6 +877,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_split),
         cmocka_unit_test(test_adaptive_predict),
         cmocka_unit_test(test_adaptive_beats_static),
+        cmocka_unit_test(test_adaptive_defaults),
         cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_pull_and_dynamic),
         cmocka_unit_test(test_database_file),
