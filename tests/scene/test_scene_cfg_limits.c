@@ -13,6 +13,8 @@
 #include <math.h>
 #include <string.h>
 
+#include <glib/gstdio.h>
+
 #include "sim/scene/scene_cfg.h"
 
 static Scene *from_text(const char *yaml, GError **err)
@@ -374,6 +376,47 @@ static void test_keyframe_frames(void **st)
     }
 }
 
+/* A model file as a scene: one white instance, tag 0, the default view
+ * fitted; the extension in any case; a model without faces refused. */
+static void test_from_file(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    char *dir = g_dir_make_tmp("pgsim-cfg-XXXXXX", NULL);
+    char *up = g_build_filename(dir, "SQUARE.OBJ", NULL);
+    char *none = g_build_filename(dir, "points.ply", NULL);
+    assert_true(g_file_set_contents(up, "v 0 0 0\nv 2 0 0\nv 2 2 0\n"
+                                        "v 0 2 0\nf 1 2 3 4\n", -1, NULL));
+    assert_true(g_file_set_contents(none, "ply\nformat ascii 1.0\n"
+                                          "element vertex 1\nproperty float x\n"
+                                          "property float y\nproperty float z\n"
+                                          "end_header\n0 0 0\n", -1, NULL));
+    Scene *s = scene_from_file(up, &err);
+    assert_non_null(s);
+    assert_int_equal(scene_n_instances(s), 1);
+    assert_int_equal(scene_n_polys(s), 1);
+    const SceneInstance *in = scene_instance(s, 0);
+    assert_true(in->color.r == 1 && in->color.g == 1 && in->color.b == 1);
+    assert_int_equal(in->tag, 0);
+    assert_true(s->camera.target.x == 1 && s->camera.target.y == 1);
+    assert_true(s->camera.eye.z > 0 && s->camera.eye.x == 1);
+    scene_free(s);
+    assert_null(scene_from_file(none, &err));
+    char *want = g_strdup_printf("%s:0:0: found a model without faces, "
+                                 "expected at least one polygon (an OBJ 'f' "
+                                 "line or a PLY face)",
+                                 none);
+    assert_string_equal(err->message, want);
+    g_free(want);
+    g_clear_error(&err);
+    g_unlink(up);
+    g_unlink(none);
+    g_rmdir(dir);
+    g_free(up);
+    g_free(none);
+    g_free(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -383,6 +426,7 @@ int main(void)
         cmocka_unit_test(test_section_errors),
         cmocka_unit_test(test_edges_accepted),
         cmocka_unit_test(test_keyframe_frames),
+        cmocka_unit_test(test_from_file),
     };
     return cmocka_run_group_tests_name("scene_cfg_limits", tests, NULL, NULL);
 }
