@@ -300,6 +300,14 @@ WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
     return d;
 }
 
+void wl_sf_db_set_procs(WlSfDb *d, guint procs)
+{
+    g_assert(procs >= 1);
+    d->procs = procs;
+    for (guint c = 0; c < d->chunks->len; c++)
+        g_array_index(d->chunks, WlSfChunk, c).master = c % procs;
+}
+
 void wl_sf_db_free(WlSfDb *d)
 {
     if (!d)

@@ -88,6 +88,10 @@ typedef struct {
 WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
                      WlSfChunking chunking, GError **err);
 void wl_sf_db_free(WlSfDb *d);
+/* Re-deals the fixed masters for `procs` processors (chunk c to c mod
+ * procs, as wl_sf_db_new() deals them); the chunks do not depend on the
+ * processor count, so this equals building the database again. */
+void wl_sf_db_set_procs(WlSfDb *d, guint procs);
 /* The partial sort's key: the Morton code of point c's cell in the
  * depth-WL_SF_OCTREE_DEPTH octree over box (depth-first visit order). */
 uint32_t wl_sf_octree_cell(SceneBox box, Vec3 c);

@@ -145,8 +145,30 @@ static gboolean prerendered(const WlSfRun *r)
     return r->s.pre && !r->s.check_image && !r->hook;
 }
 
+/* The region's counts from the frame rendered once, instance by
+ * instance (no subset gathered). */
+static void count_region(WlSfRun *r, Proc *pr)
+{
+    const RastPrerender *pre = rast_prerender_set_get(
+        r->s.pre, (guint)r->frame, &r->view, r->db->flat);
+    WlSfRect q = wl_sf_region_rect(&r->regions, pr->p);
+    RastRect rect = {q.x0, q.y0, q.x1, q.y1};
+    pr->polys = pr->spans = pr->pixels = 0;
+    for (guint k = 0; k < r->render->len; k++) {
+        guint i = g_array_index(r->render, guint, k);
+        guint n = wl_sf_chunk(r->db, wl_sf_inst(r->db, i)->chunk)->polys;
+        rast_prerender_count(pre, r->db->flat, wl_sf_inst_polys(r->db, i), n,
+                             rect, &pr->rc, &pr->spans, &pr->pixels);
+        pr->polys += n;
+    }
+}
+
 static void render_region(WlSfRun *r, Proc *pr)
 {
+    if (prerendered(r)) {
+        count_region(r, pr);
+        return;
+    }
     g_array_set_size(r->subset, 0);
     for (guint k = 0; k < r->render->len; k++) {
         guint i = g_array_index(r->render, guint, k);
@@ -157,15 +179,7 @@ static void render_region(WlSfRun *r, Proc *pr)
     RegionSink k = {r->zb, wl_sf_region_rect(&r->regions, pr->p), 0, 0};
     RastSpanSink sink = {region_span, &k};
     pr->polys = r->subset->len;
-    if (prerendered(r)) {
-        const RastPrerender *pre = rast_prerender_set_get(
-            r->s.pre, (guint)r->frame, &r->view, r->db->flat);
-        RastRect rect = {k.r.x0, k.r.y0, k.r.x1, k.r.y1};
-        rast_prerender_count(pre, r->db->flat,
-                             (const uint32_t *)(void *)r->subset->data,
-                             r->subset->len, rect, &pr->rc, &k.spans,
-                             &k.pixels);
-    } else if (r->subset->len)
+    if (r->subset->len)
         rast_draw_mesh(&r->view, r->db->flat, mat4_identity(),
                        (SceneColor){1, 1, 1}, 0,
                        (const uint32_t *)(void *)r->subset->data,

@@ -41,6 +41,31 @@ static unsigned outcode(Vec4 c)
            (c.y > c.w) << 3 | (c.z < -c.w) << 4 | (c.z > c.w) << 5;
 }
 
+/* Corner k of b under m (axis j at its max when bit j of k is set),
+ * from t: the products m[i][j] x bound, each formed once per box (24,
+ * not 96), summed in mat4_apply_point()'s order, so every corner is bit
+ * for bit what mat4_apply_point() gives. */
+static inline Vec4 corner(const double t[4][3][2], const Mat4 *m, int k)
+{
+    int a = k & 1, e = (k >> 1) & 1, f = (k >> 2) & 1;
+    return (Vec4){t[0][0][a] + t[0][1][e] + t[0][2][f] + m->m[0][3],
+                  t[1][0][a] + t[1][1][e] + t[1][2][f] + m->m[1][3],
+                  t[2][0][a] + t[2][1][e] + t[2][2][f] + m->m[2][3],
+                  t[3][0][a] + t[3][1][e] + t[3][2][f] + m->m[3][3]};
+}
+
+static void products(SceneBox b, const Mat4 *m, double t[4][3][2])
+{
+    for (int i = 0; i < 4; i++) {
+        t[i][0][0] = m->m[i][0] * b.min.x;
+        t[i][0][1] = m->m[i][0] * b.max.x;
+        t[i][1][0] = m->m[i][1] * b.min.y;
+        t[i][1][1] = m->m[i][1] * b.max.y;
+        t[i][2][0] = m->m[i][2] * b.min.z;
+        t[i][2][1] = m->m[i][2] * b.max.z;
+    }
+}
+
 gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox b, Mat4 m,
                           double *x0, double *y0, double *x1, double *y1)
 {
@@ -48,10 +73,10 @@ gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox b, Mat4 m,
     gboolean behind = FALSE;
     *x0 = *y0 = INFINITY;
     *x1 = *y1 = -INFINITY;
+    double t[4][3][2];
+    products(b, &m, t);
     for (int k = 0; k < 8; k++) {
-        Vec3 p = vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
-                      k & 4 ? b.max.z : b.min.z);
-        Vec4 c = mat4_apply_point(m, p);
+        Vec4 c = corner(t, &m, k);
         all &= outcode(c);
         if (c.w <= 0) {
             behind = TRUE;

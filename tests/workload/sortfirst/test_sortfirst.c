@@ -829,6 +829,75 @@ static void test_prerender_same_figures(void **state)
     rast_prerender_set_free(pre);
 }
 
+/* wl_sf_box_screen() forms each corner from shared products: the
+ * rectangle is bit for bit that of the corners by mat4_apply_point(). */
+static void test_box_screen_exact(void **state)
+{
+    (void)state;
+    WlSfRegions rg;
+    wl_sf_regions_init(&rg, 12, 256, 256);
+    SimRng rng;
+    sim_rng_init(&rng, 5, 0);
+    guint seen = 0;
+    for (int t = 0; t < 20000; t++) {
+        Mat4 m;
+        for (int i = 0; i < 16; i++)
+            m.m[i / 4][i % 4] = sim_rng_uniform(&rng) * 2 - 1 +
+                                (i % 5 == 0 ? 2 : 0);
+        Vec3 lo = vec3(sim_rng_uniform(&rng) - 0.5,
+                       sim_rng_uniform(&rng) - 0.5, sim_rng_uniform(&rng));
+        SceneBox b = {lo, vec3_add(lo, vec3(0.3, sim_rng_uniform(&rng), 0.1))};
+        double r[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY}, g[4];
+        gboolean front = TRUE;
+        for (int k = 0; k < 8; k++) {
+            Vec4 c = mat4_apply_point(
+                m, vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
+                        k & 4 ? b.max.z : b.min.z));
+            front = front && c.w > 0;
+            double sx = (c.x / c.w + 1) * 0.5 * 256;
+            double sy = (1 - c.y / c.w) * 0.5 * 256;
+            r[0] = MIN(r[0], sx), r[1] = MIN(r[1], sy);
+            r[2] = MAX(r[2], sx), r[3] = MAX(r[3], sy);
+        }
+        if (!front || !wl_sf_box_screen(&rg, b, m, &g[0], &g[1], &g[2], &g[3]))
+            continue;
+        assert_memory_equal(r, g, sizeof r);
+        seen++;
+    }
+    assert_true(seen > 1000);
+}
+
+/* Re-dealing the masters of a database built for 4 processors gives
+ * the database built for 6 (what reproduce mueller97 relies on to share
+ * one database over its processor counts). */
+static void test_db_set_procs(void **state)
+{
+    (void)state;
+    Fixture f;
+    fixture_init(&f, 4, WL_SF_MAXSET, 5);
+    WlSfDb *d6 = wl_sf_db_new(f.scene->db, 6, 5, WL_SF_CHUNK_SORTED, NULL);
+    assert_non_null(d6);
+    assert_int_equal(wl_sf_n_chunks(f.db), wl_sf_n_chunks(d6));
+    guint moved = 0;
+    for (guint c = 0; c < wl_sf_n_chunks(d6); c++)
+        moved += wl_sf_chunk(f.db, c)->master != wl_sf_chunk(d6, c)->master;
+    assert_true(moved > 0);
+    wl_sf_db_set_procs(f.db, 6);
+    assert_int_equal(f.db->procs, 6);
+    for (guint c = 0; c < wl_sf_n_chunks(d6); c++) {
+        const WlSfChunk *a = wl_sf_chunk(f.db, c), *b = wl_sf_chunk(d6, c);
+        assert_int_equal(a->master, b->master);
+        assert_int_equal(a->polys, b->polys);
+        assert_int_equal(a->inst_first, b->inst_first);
+        assert_memory_equal(&a->box, &b->box, sizeof a->box);
+    }
+    assert_int_equal(f.db->inst_polys->len, d6->inst_polys->len);
+    assert_memory_equal(f.db->inst_polys->data, d6->inst_polys->data,
+                        d6->inst_polys->len * sizeof(uint32_t));
+    wl_sf_db_free(d6);
+    fixture_clear(&f);
+}
+
 static void expect_error(const char *override, const char *what)
 {
     GError *e = NULL;
@@ -884,6 +953,8 @@ int main(void)
         cmocka_unit_test(test_traversal_counts),
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_prerender_same_figures),
+        cmocka_unit_test(test_db_set_procs),
+        cmocka_unit_test(test_box_screen_exact),
     };
     return cmocka_run_group_tests_name("sortfirst", tests, NULL, NULL);
 }
