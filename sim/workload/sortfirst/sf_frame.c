@@ -194,9 +194,24 @@ static void render_region(WlSfRun *r, Proc *pr)
 static void start_frame(SimEngine *eng, void *ctx, void *arg);
 static double max_over_mean(double max, double total, guint n);
 
-static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
+/* The work is given to the machine as named counts of the node's
+ * costs (wl_sf_cost_ops), so a recording writes counts: one op, one
+ * count (a bounding box test: 8 transformed vertices). */
+static MachOps ops1(const char *op, uint64_t n)
 {
-    return mul(mul(r->c.transform_vertex, 8), boxes);
+    MachOps o = {.op = {{op, n}}, .n = 1};
+    return o;
+}
+
+static void add_boxes(MachOps *o, uint64_t boxes)
+{
+    mach_ops_add(o, "transform_vertex", 8 * boxes);
+}
+
+static void charge(WlSfRun *r, Proc *pr, const MachOps *o, unsigned ph,
+                   SimHandler done, guint arg)
+{
+    mach_proc_compute_list(pr->proc, o, ph, done, r, GUINT_TO_POINTER(arg));
 }
 
 /* Processor p's traversal of the hierarchy, the first thing its first
@@ -204,8 +219,9 @@ static SimTime box_cost(const WlSfRun *r, uint64_t boxes)
 static void traverse(WlSfRun *r, Proc *pr)
 {
     const WlSfTravProc *tp = &r->tp[pr->p];
-    SimTime t = add(mul(r->c.node_visit, tp->nodes), box_cost(r, tp->tests));
-    mach_proc_compute(pr->proc, t, r->ph_traverse, NULL, NULL, NULL);
+    MachOps o = ops1("node_visit", tp->nodes);
+    add_boxes(&o, tp->tests);
+    charge(r, pr, &o, r->ph_traverse, NULL, 0);
 }
 
 static void render_done(SimEngine *eng, void *ctx, void *arg);
@@ -254,22 +270,21 @@ static void render(WlSfRun *r, Proc *pr)
     g_array_set_size(r->render, 0);
     wl_sf_book_render_set(r->book, pr->p, pr->fresh, r->render, &pr->w);
     render_region(r, pr);
-    SimTime unpack = add(mul(r->c.chunk_pack, pr->w.recv_polys),
-                         box_cost(r, pr->w.new_boxes));
-    SimTime draw = add(mul(r->c.transform_vertex, pr->rc.verts),
-                       add(mul(r->c.span_create, pr->spans),
-                           mul(r->c.pixel_zbuffer, pr->pixels)));
-    pr->region_work = add(unpack, draw);
-    mach_proc_compute(pr->proc, unpack, r->ph_unpack, NULL, NULL, NULL);
+    MachOps unpack = ops1("chunk_pack", pr->w.recv_polys);
+    add_boxes(&unpack, pr->w.new_boxes);
+    MachOps draw = ops1("transform_vertex", pr->rc.verts);
+    mach_ops_add(&draw, "span_create", pr->spans);
+    mach_ops_add(&draw, "pixel_zbuffer", pr->pixels);
+    pr->region_work = add(mach_proc_ops_cost(pr->proc, &unpack),
+                          mach_proc_ops_cost(pr->proc, &draw));
+    charge(r, pr, &unpack, r->ph_unpack, NULL, 0);
     if (!r->adapt || r->s.current) {
-        mach_proc_compute(pr->proc, draw, r->ph_render, render_done, r,
-                          GUINT_TO_POINTER(pr->p));
+        charge(r, pr, &draw, r->ph_render, render_done, pr->p);
         return;
     }
-    mach_proc_compute(pr->proc, draw, r->ph_render, NULL, NULL, NULL);
-    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r, pr->p)),
-                      r->ph_partition, render_done, r,
-                      GUINT_TO_POINTER(pr->p));
+    charge(r, pr, &draw, r->ph_render, NULL, 0);
+    MachOps part = ops1("grid_cell", partition_cells(r, pr->p));
+    charge(r, pr, &part, r->ph_partition, render_done, pr->p);
 }
 
 static void maybe_render(WlSfRun *r, Proc *pr)
@@ -312,8 +327,8 @@ static void request_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     Proc *m = &r->procs[req->dst];
     WlSfBatch *reply = &m->reply[req->src];
     wl_sf_book_serve(r->book, req, reply, &m->w);
-    mach_proc_compute(m->proc, mul(r->c.chunk_pack, reply->polys), r->ph_pack,
-                      serve_done, r, reply);
+    MachOps o = ops1("chunk_pack", reply->polys);
+    mach_proc_compute_list(m->proc, &o, r->ph_pack, serve_done, r, reply);
 }
 
 static void pull_requests(WlSfRun *r, Proc *pr)
@@ -364,19 +379,21 @@ static void sort(WlSfRun *r, Proc *pr)
     const WlSfTravProc *tp = &r->tp[pr->p];
     g_assert(tp->master_culled <= pr->w.master_boxes &&
              tp->slave_culled <= pr->w.slave_boxes);
-    SimTime t = box_cost(r, pr->w.master_boxes + pr->w.slave_boxes +
-                                pr->w.probe_boxes - tp->master_culled -
-                                tp->slave_culled);
+    MachOps t = {0};
+    add_boxes(&t, pr->w.master_boxes + pr->w.slave_boxes +
+                      pr->w.probe_boxes - tp->master_culled -
+                      tp->slave_culled);
     if (!(r->adapt && r->s.current)) /* else the estimate traversed */
         traverse(r, pr);
-    if (r->adapt && r->s.current) /* master boxes done by the estimate */
-        t = box_cost(r, pr->w.slave_boxes - tp->slave_culled);
-    else if (r->adapt) /* an extrapolation: one more cell's work */
-        t = add(t, mul(r->c.grid_cell, r->adapt->added[pr->p] *
-                                           (r->s.predict ? 2 : 1)));
-    mach_proc_compute(pr->proc, t, r->ph_sort, NULL, NULL, NULL);
-    mach_proc_compute(pr->proc, mul(r->c.chunk_pack, pr->w.sent_polys),
-                      r->ph_pack, sort_done, r, GUINT_TO_POINTER(pr->p));
+    if (r->adapt && r->s.current) { /* master boxes done by the estimate */
+        t.n = 0;
+        add_boxes(&t, pr->w.slave_boxes - tp->slave_culled);
+    } else if (r->adapt) /* an extrapolation: one more cell's work */
+        mach_ops_add(&t, "grid_cell",
+                     r->adapt->added[pr->p] * (r->s.predict ? 2 : 1));
+    charge(r, pr, &t, r->ph_sort, NULL, 0);
+    MachOps pack = ops1("chunk_pack", pr->w.sent_polys);
+    charge(r, pr, &pack, r->ph_pack, sort_done, pr->p);
 }
 
 /* ---- the current-frame estimate (estimate: current) ---------------------
@@ -395,9 +412,8 @@ static void maybe_split(WlSfRun *r, Proc *pr)
 {
     if (!pr->estimated || pr->grids + 1 < r->s.procs)
         return;
-    mach_proc_compute(pr->proc, mul(r->c.grid_cell, partition_cells(r, pr->p)),
-                      r->ph_partition, split_done, r,
-                      GUINT_TO_POINTER(pr->p));
+    MachOps o = ops1("grid_cell", partition_cells(r, pr->p));
+    charge(r, pr, &o, r->ph_partition, split_done, pr->p);
 }
 
 static void grid_arrive(NetNet *net, const NetDelivery *d, void *ctx)
@@ -438,11 +454,10 @@ static void estimate(WlSfRun *r, Proc *pr)
     pr->grids = 0;
     pr->estimated = FALSE;
     traverse(r, pr);
-    SimTime t = add(box_cost(r, own_boxes(r, pr->p) -
-                                    r->tp[pr->p].master_culled),
-                    mul(r->c.grid_cell, r->adapt->added[pr->p]));
-    mach_proc_compute(pr->proc, t, r->ph_estimate, estimate_done, r,
-                      GUINT_TO_POINTER(pr->p));
+    MachOps o = {0};
+    add_boxes(&o, own_boxes(r, pr->p) - r->tp[pr->p].master_culled);
+    mach_ops_add(&o, "grid_cell", r->adapt->added[pr->p]);
+    charge(r, pr, &o, r->ph_estimate, estimate_done, pr->p);
 }
 
 /* The regions of this frame and the next (the split of this frame's
@@ -510,7 +525,8 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
     for (guint p = 0; p < r->s.procs; p++)
         st->traverse_busy = add(
             st->traverse_busy,
-            add(mul(r->c.node_visit, r->tp[p].nodes), box_cost(r, r->tp[p].tests)));
+            add(mul(r->c.node_visit, r->tp[p].nodes),
+                mul(mul(r->c.transform_vertex, 8), r->tp[p].tests)));
     if (r->adapt) {
         for (guint p = 0; p < r->s.procs; p++) {
             st->estimate_bytes += (r->s.procs - 1) * estimate_bytes(r, p);

@@ -280,6 +280,8 @@ static void test_counts_repriced(void **s)
     counts_repriced(&performer, "pipe", "triangle");
     counts_repriced(&argus, "cpu", "geom_vertex");
     counts_repriced(&march, "cpu", "march_voxel");
+    counts_repriced(&sortfirst, "node", "transform_vertex");
+    counts_repriced(&sortfirst, "node", "chunk_pack");
     counts_repriced(&pphigs, "gp", "vertex");
     counts_repriced(&pphigs, "renderer", "expression");
     counts_repriced(&pphigs, "frame_buffer", "store_region");
