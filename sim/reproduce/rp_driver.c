@@ -37,10 +37,14 @@ static RpPaper *load_paper(const RpPaperOps *rp, const char *dir,
     return p;
 }
 
-/* The setup file's path, SHA-256 and tree into t's provenance. */
-static void note_setup(RpTable *t, const char *setup)
+/* The setup file's SHA-256 and tree into t's provenance, under `name`:
+ * the path as the user gave it, or the paper's own setup named relative
+ * to the data root it was found in ("configs/papers/kurc96/setup.yaml",
+ * not "/.../build/../configs/..."), so the line is the same wherever the
+ * checkout or the binary lies. */
+static void note_setup(RpTable *t, const char *setup, const char *name)
 {
-    t->setup = g_strdup(setup);
+    t->setup = g_strdup(name);
     t->setup_sha256 = prov_file_sha256(setup);
     CfgNode *root = cfg_load_file(setup, NULL);
     t->setup_json = root ? prov_cfg_json(root) : NULL;
@@ -55,8 +59,9 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
     if (!paper)
         return NULL;
     RpContext c = *ctx;
-    char *setup = rp_paper_file(papers_dir ? papers_dir : RP_PAPERS_DIR,
-                                rp->name, rp->setup);
+    const char *dir = papers_dir ? papers_dir : RP_PAPERS_DIR;
+    char *setup = rp_paper_file(dir, rp->name, rp->setup);
+    char *setup_name = g_build_filename(dir, rp->name, rp->setup, NULL);
     if (!c.setup)
         c.setup = setup;
     GString *used = g_string_new(NULL);
@@ -71,7 +76,7 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
                             : g_strdup(ctx->fidelity);
     RpTable *t = ok ? rp_table_join(paper, rows, label, wall) : NULL;
     if (t)
-        note_setup(t, c.setup);
+        note_setup(t, c.setup, ctx->setup ? ctx->setup : setup_name);
     g_free(label);
     g_string_free(used, TRUE);
     if (!ok)
@@ -79,6 +84,7 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
     g_ptr_array_free(rows, TRUE);
     rp_paper_free(paper);
     g_free(setup);
+    g_free(setup_name);
     return t;
 }
 

@@ -226,6 +226,44 @@ static void test_json(void **state)
     rm_dir(dir, "fake");
 }
 
+/* A paper found through a data root ($PGSIM_DATA here; the binary's
+ * <exe>/.. in a build tree) is named in the provenance as asked,
+ * relative to that root, not as "<root>/papers/fake/setup.yaml"; the
+ * SHA-256 is still of the file read. */
+static void test_setup_path_clean(void **state)
+{
+    (void)state;
+    char *root = g_dir_make_tmp("pgsim-rp-XXXXXX", NULL);
+    char *papers = g_build_filename(root, "papers", NULL);
+    assert_int_equal(g_mkdir(papers, 0755), 0);
+    g_rmdir(papers);
+    char *made = tmpdir_with("fake", paper_yaml);
+    assert_int_equal(g_rename(made, papers), 0);
+    g_free(made);
+    char *old = g_strdup(g_getenv("PGSIM_DATA"));
+    g_setenv("PGSIM_DATA", root, TRUE);
+    RpContext ctx = {.fidelity = "flow", .quiet = TRUE};
+    GError *err = NULL;
+    RpTable *t = rp_drive(&fake, "papers", &ctx, &err);
+    g_assert_no_error(err);
+    assert_string_equal(t->setup, "papers/fake/setup.yaml");
+    char *file = g_build_filename(papers, "fake", "setup.yaml", NULL);
+    char *sha = prov_file_sha256(file);
+    assert_string_equal(t->setup_sha256, sha);
+    assert_null(strstr(t->setup, root));
+    if (old)
+        g_setenv("PGSIM_DATA", old, TRUE);
+    else
+        g_unsetenv("PGSIM_DATA");
+    rp_table_free(t);
+    rm_dir(papers, "fake");
+    assert_int_equal(g_rmdir(root), 0);
+    g_free(sha);
+    g_free(file);
+    g_free(old);
+    g_free(root);
+}
+
 static void test_fidelities(void **state)
 {
     (void)state;
@@ -438,6 +476,7 @@ int main(void)
         cmocka_unit_test(test_csv),
         cmocka_unit_test(test_json),
         cmocka_unit_test(test_fidelities),
+        cmocka_unit_test(test_setup_path_clean),
         cmocka_unit_test(test_bad_papers),
         cmocka_unit_test(test_run_failure),
         cmocka_unit_test(test_compact_shape),

@@ -560,6 +560,23 @@ char *rpt_render(const SimResult *r, RptFormat f, gboolean timing)
     }
 }
 
+/* A format's file: summary.txt ends with the provenance line the
+ * reproductions' text tables carry (result.json and result.csv hold the
+ * provenance in their own shapes); no time of day, so the file is a
+ * function of the result. */
+static char *render_file(const SimResult *r, RptFormat f, gboolean timing)
+{
+    char *text = rpt_render(r, f, timing);
+    if (f != RPT_TEXT)
+        return text;
+    GString *s = g_string_new(text);
+    g_free(text);
+    SimProvenance p = provenance_of(r);
+    prov_text_line(s, &p);
+    g_string_append_c(s, '\n');
+    return g_string_free(s, FALSE);
+}
+
 gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
                        GError **err)
 {
@@ -572,7 +589,7 @@ gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
     }
     gboolean ok = TRUE;
     for (int f = RPT_TEXT; ok && f <= RPT_CSV; f++) {
-        char *text = rpt_render(r, (RptFormat)f, timing);
+        char *text = render_file(r, (RptFormat)f, timing);
         char *path = g_build_filename(dir, format_files[f], NULL);
         ok = sim_file_write(path, text, strlen(text), err);
         g_free(path);

@@ -11,6 +11,7 @@
 
 #include "sim/core/datapath.h"
 #include "sim/output/json.h"
+#include "sim/output/provenance.h"
 #include "sim/output/progress.h"
 #include "sim/raster/image.h"
 #include <sys/stat.h>
@@ -168,6 +169,52 @@ static void test_atomic(void **state)
 
 /* Text reports scale times and sizes like the header (issue 18, point
  * 11); JSON keeps the exact value. */
+/* summary.txt ends with the provenance line (config, its SHA-256, the
+ * overrides, seed and fidelity; no time of day, so two writes of one
+ * result are the same bytes); stdout's text report has none. */
+static void test_summary_provenance(void **state)
+{
+    (void)state;
+    SimResult *r = sample();
+    r->config_path = g_strdup("configs/demo.yaml");
+    r->config_sha256 = g_strdup("ab12");
+    g_free(r->fidelity);
+    r->fidelity = g_strdup("flow");
+    g_ptr_array_add(r->overrides, g_strdup("run.frames=2"));
+    char *dir = g_dir_make_tmp("pgsim-sum-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "summary.txt", NULL);
+    char *text[2] = {NULL, NULL};
+    for (int i = 0; i < 2; i++) {
+        assert_true(rpt_write_dir(r, dir, FALSE, NULL));
+        assert_true(g_file_get_contents(path, &text[i], NULL, NULL));
+    }
+    assert_string_equal(text[0], text[1]);
+    char *want = g_strdup_printf(
+        "\nprovenance: pgsim %s; config configs/demo.yaml (sha256 ab12); "
+        "overrides run.frames=2; seed 3; fidelity flow\n",
+        prov_version());
+    assert_true(g_str_has_suffix(text[0], want));
+    char *out = rpt_render(r, RPT_TEXT, FALSE);
+    assert_null(strstr(out, "provenance:"));
+    assert_true(g_str_has_prefix(text[0], out));
+    for (int i = 0; i < 3; i++) {
+        char *p = g_build_filename(dir, i == 0   ? "summary.txt"
+                                        : i == 1 ? "result.json"
+                                                 : "result.csv",
+                                   NULL);
+        g_remove(p);
+        g_free(p);
+    }
+    assert_int_equal(g_rmdir(dir), 0);
+    g_free(out);
+    g_free(want);
+    g_free(text[0]);
+    g_free(text[1]);
+    g_free(path);
+    g_free(dir);
+    sim_result_free(r);
+}
+
 static void test_human_metrics(void **state)
 {
     (void)state;
@@ -333,6 +380,7 @@ int main(void)
         cmocka_unit_test(test_file_modes),
         cmocka_unit_test(test_human_metrics),
         cmocka_unit_test(test_kind_summary),
+        cmocka_unit_test(test_summary_provenance),
         cmocka_unit_test(test_progress),
         cmocka_unit_test(test_progress_note_eta),
     };
