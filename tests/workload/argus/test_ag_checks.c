@@ -1,0 +1,522 @@
+/* test_ag_checks.c — the argus workload's parameters and metrics checked
+ * against values the test computes itself (issue 21: a line a test runs
+ * must have its result checked): the thread defaults of ag_workload.c's
+ * opening comment (G = (P - C) / 2, R = P - C - G, at least 1 each), the
+ * `pixels` metric against a serial draw of the same scene, check_image
+ * off leaving no image metrics, and each located input error. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <string.h>
+
+#include "sim/machine/machine.h"
+#include "sim/scene/scene_cfg.h"
+#include "sim/workload/argus/ag_stream.h"
+#include "sim/workload/argus/ag_tile.h"
+#include "sim/workload/argus/ag_workload.h"
+
+static WlAgParams *parse(const char *workload, GError **err)
+{
+    char *text = g_strdup_printf("workload: {type: argus, %s}\n", workload);
+    CfgNode *root = cfg_load_string(text, "t.yaml", err);
+    g_free(text);
+    assert_non_null(root);
+    WlAgParams *p = wl_argus_ops.parse(cfg_get(root, "workload"), err);
+    cfg_free(root);
+    return p;
+}
+
+static void threads_are(const char *w, guint P, guint C, guint G, guint R)
+{
+    GError *err = NULL;
+    WlAgParams *p = parse(w, &err);
+    if (!p)
+        fail_msg("%s: %s", w, err->message);
+    if (p->setup.procs != P || p->setup.contexts != C ||
+        p->setup.geometry != G || p->setup.rasterisers != R)
+        fail_msg("%s: got P %u C %u G %u R %u, expected %u %u %u %u", w,
+                 p->setup.procs, p->setup.contexts, p->setup.geometry,
+                 p->setup.rasterisers, P, C, G, R);
+    wl_argus_ops.free_params(p);
+}
+
+/* The located message: "t.yaml:1:COL: found ..., expected ..." */
+static void rejected(const char *w, const char *message)
+{
+    GError *err = NULL;
+    WlAgParams *p = parse(w, &err);
+    assert_null(p);
+    assert_non_null(err);
+    if (strcmp(err->message, message))
+        fail_msg("%s: message '%s', expected '%s'", w, err->message, message);
+    g_error_free(err);
+}
+
+static void test_thread_defaults(void **state)
+{
+    (void)state;
+    threads_are("processors: 24", 24, 1, 11, 12);
+    threads_are("processors: 24, contexts: 4", 24, 4, 10, 10);
+    threads_are("processors: 7, contexts: 2", 7, 2, 2, 3);
+    threads_are("processors: 24, contexts: 4, geometry: 15", 24, 4, 15, 5);
+    threads_are("processors: 24, contexts: 4, geometry: 20", 24, 4, 20, 1);
+    threads_are("processors: 2, contexts: 2", 2, 2, 1, 1);
+    threads_are("processors: 1", 1, 1, 1, 1);
+    threads_are("processors: 3, geometry: 1, rasterisers: 1", 3, 1, 1, 1);
+    threads_are("processors: 9, contexts: 3, uniprocessor: true", 1, 1, 1, 1);
+    rejected("rasterisers: 0",
+             "t.yaml:1:38: found '0', expected a count in [1, 1024]");
+    rejected("geometry: 0",
+             "t.yaml:1:35: found '0', expected a count in [1, 1024]");
+    rejected("contexts: 0",
+             "t.yaml:1:35: found '0', expected a count in [1, 1024]");
+    rejected("processors: 0",
+             "t.yaml:1:37: found '0', expected a count in [1, 4096]");
+}
+
+static void test_sizes_and_words(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    WlAgParams *p = parse("bytes: {vertex: 100 B, triangle: 7 B}, tile: 8, "
+                          "block: 1, alpha: 1, width: 16, height: 17, "
+                          "voxels_per_cell: 0, cells: 3, workers: pool, "
+                          "fill_rate: finite, check_image: false",
+                          &err);
+    assert_non_null(p);
+    assert_int_equal(p->setup.vertex_bytes, 100);
+    assert_int_equal(p->setup.triangle_bytes, 7);
+    assert_int_equal(p->tile, 8);
+    assert_int_equal(p->block_tris, 1);
+    assert_true(p->alpha == 1.0);
+    assert_int_equal(p->width, 16);
+    assert_int_equal(p->height, 17);
+    assert_int_equal(p->setup.voxels_per_batch, 0);
+    assert_int_equal(p->cells, 3);
+    assert_true(p->setup.pool);
+    assert_false(p->setup.fill_infinite);
+    assert_false(p->check_image);
+    wl_argus_ops.free_params(p);
+    p = parse("processors: 4", &err);
+    assert_int_equal(p->setup.vertex_bytes, 32);
+    assert_int_equal(p->setup.triangle_bytes, 64);
+    assert_true(p->setup.fill_infinite);
+    assert_false(p->setup.pool);
+    assert_true(p->check_image);
+    assert_true(p->alpha == 0.35);
+    assert_int_equal(p->tile, 128);
+    assert_int_equal(p->block_tris, 64);
+    assert_int_equal(p->setup.voxels_per_batch, 4096);
+    wl_argus_ops.free_params(p);
+    rejected("bytes: 3",
+             "t.yaml:1:32: found '3', expected a map {vertex, triangle} of sizes");
+    rejected("bytes: {triangle: lots}",
+             "t.yaml:1:43: found 'lots', expected a non-negative size with a unit (B, kB, KB, MB, GB, TB, KiB, MiB, GiB, TiB)");
+    rejected("bytes: {vertex: lots}",
+             "t.yaml:1:41: found 'lots', expected a non-negative size with a unit (B, kB, KB, MB, GB, TB, KiB, MiB, GiB, TiB)");
+    rejected("tile: 7",
+             "t.yaml:1:31: found '7', expected a count in [8, 4096]");
+    rejected("block: 0",
+             "t.yaml:1:32: found '0', expected a count in [1, 1048576]");
+    rejected("width: 15",
+             "t.yaml:1:32: found '15', expected a count in [16, 16384]");
+    rejected("height: 15",
+             "t.yaml:1:33: found '15', expected a count in [16, 16384]");
+    rejected("alpha: 1.5",
+             "t.yaml:1:32: found '1.5', expected a number in [0, 1]");
+    rejected("workers: both",
+             "t.yaml:1:34: found 'both', expected one of: split, pool");
+    rejected("fill_rate: slow",
+             "t.yaml:1:36: found 'slow', expected one of: infinite, finite");
+}
+
+/* ---- running ------------------------------------------------------------ */
+
+static const char *machine = "machine: {model: origin2000}\n";
+
+static SimResult *run(const char *text, GError **err)
+{
+    CfgNode *root = cfg_load_string(text, "r.yaml", err);
+    assert_non_null(root);
+    void *p = wl_argus_ops.parse(cfg_get(root, "workload"), err);
+    assert_non_null(p);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
+                     .fidelity = "analytic", .frames = 1};
+    SimResult *r = sim_result_new("argus", "");
+    gboolean ok = wl_argus_ops.run(&ctx, p, r, err);
+    sim_engine_free(eng);
+    wl_argus_ops.free_params(p);
+    cfg_free(root);
+    if (!ok) {
+        sim_result_free(r);
+        return NULL;
+    }
+    return r;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    if (!sim_result_get_metric(r, name, &v))
+        fail_msg("no metric %s", name);
+    return v;
+}
+
+static const char *nurbs_scene = "scene: {generator: nurbs, patches_u: 2, patches_v: 1, tess: 4}\n";
+
+/* Pixels touched by the whole scene drawn serially into one frame. */
+static double serial_pixels(const char *scene_yaml, int w, int h)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(scene_yaml, "s.yaml", &err);
+    Scene *s = scene_from_cfg(cfg_get(root, "scene"), &err);
+    assert_non_null(s);
+    SceneMesh *m = scene_flatten(s);
+    RastView v = rast_view_for_camera(&s->camera, w, h);
+    v.cull_back = FALSE;
+    RastColor bg = {0, 0, 0};
+    AgFrame *f = wl_ag_frame_new(w, h, 32, WL_AG_OPAQUE, 1, bg);
+    guint n = scene_mesh_n_polys(m);
+    uint32_t *all = g_new(uint32_t, n);
+    for (guint i = 0; i < n; i++)
+        all[i] = i;
+    double px = (double)wl_ag_draw(f, G_MAXUINT, &v, m, all, n);
+    g_free(all);
+    wl_ag_frame_free(f);
+    scene_mesh_free(m);
+    scene_free(s);
+    cfg_free(root);
+    return px;
+}
+
+static void test_pixels_equal_serial_draw(void **state)
+{
+    (void)state;
+    char *text = g_strdup_printf(
+        "%sworkload: {type: argus, processors: 6, contexts: 2, "
+        "application: nurbs, tile: 32, block: 16, width: 96, height: 80, "
+        "check_image: false}\n%s",
+        machine, nurbs_scene);
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    double want = serial_pixels(nurbs_scene, 96, 80);
+    assert_true(want > 100);
+    assert_true(metric(r, "pixels") == want);
+    assert_true(metric(r, "tiles") == 3 * 3);
+    assert_true(metric(r, "processors") == 6);
+    assert_true(metric(r, "geometry_threads") == 2);
+    assert_true(metric(r, "rasterisers") == 2);
+    double v = 0;
+    assert_false(sim_result_get_metric(r, "image_matches_serial", &v));
+    assert_false(sim_result_get_metric(r, "pixels_differing", &v));
+    sim_result_free(r);
+    g_free(text);
+}
+
+/* The application threads' time is app_work + issue cost a block
+ * (ag_pipe.c app_issue): march voxels and triangles of every batch, a
+ * vertex cost a vertex issued, a batch cost a batch and a lock a block. */
+static void test_application_time_from_costs(void **state)
+{
+    (void)state;
+    const char *text =
+        "machine: {model: origin2000}\n"
+        "workload: {type: argus, processors: 5, contexts: 2,\n"
+        "  application: march, voxels_per_cell: 100, primitives: triangles,\n"
+        "  tile: 32, block: 8, width: 64, height: 48, check_image: false,\n"
+        "  fill_rate: finite}\n"
+        "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n";
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    assert_non_null(m);
+    double batches = metric(r, "batches"), tris = metric(r, "triangles");
+    double verts = metric(r, "vertices_issued"), blocks = metric(r, "blocks");
+    assert_true(batches > 1 && tris > batches && blocks >= batches);
+    assert_true(verts == 3 * tris);
+    double ps = batches * 100.0 * mach_cost(m, "cpu", "march_voxel") +
+                tris * mach_cost(m, "cpu", "march_triangle") +
+                verts * mach_cost(m, "cpu", "issue_vertex") +
+                batches * mach_cost(m, "cpu", "issue_batch") +
+                blocks * mach_cost(m, "cpu", "lock");
+    double ms = metric(r, "application_ms");
+    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
+        fail_msg("application %.9f ms, expected %.9f", ms, ps * 1e-9);
+    /* geometry: a lock, the vertices and triangles of every block, and a
+     * tile cost for every (tile, triangle) pair bucketed */
+    double bucketed = metric(r, "bucketed_triangles");
+    ps = blocks * mach_cost(m, "cpu", "lock") +
+         verts * mach_cost(m, "cpu", "geom_vertex") +
+         tris * mach_cost(m, "cpu", "geom_triangle") +
+         bucketed * mach_cost(m, "cpu", "geom_tile");
+    ms = metric(r, "geometry_ms");
+    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
+        fail_msg("geometry %.9f ms, expected %.9f", ms, ps * 1e-9);
+    /* rasterisation (finite fill, opaque): every bucketed triangle, every
+     * pixel drawn, every pixel cleared, a semaphore operation a sync */
+    ps = bucketed * mach_cost(m, "cpu", "rast_triangle") +
+         metric(r, "pixels") * mach_cost(m, "cpu", "rast_pixel") +
+         64 * 48 * mach_cost(m, "cpu", "rast_clear") +
+         metric(r, "tile_syncs") * mach_cost(m, "cpu", "sema");
+    ms = metric(r, "rasterisation_ms");
+    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
+        fail_msg("rasterisation %.9f ms, expected %.9f", ms, ps * 1e-9);
+    /* one frame from time 0: it ends when its last tile is drawn, the
+     * last thing the run does */
+    assert_true(fabs(metric(r, "frame_ms") - r->elapsed * 1e-9) < 1e-12);
+    /* one frame: frame_hz is the inverse of frame_ms */
+    assert_true(fabs(metric(r, "frame_hz") * metric(r, "frame_ms") - 1000) <
+                1e-9);
+    assert_true(metric(r, "geometry_ms") > 0);
+    assert_true(metric(r, "rasterisation_ms") > 0);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+    sim_result_free(r);
+}
+
+/* Batches and their vertex counts on a hand-made mesh: a strip issues 3
+ * vertices for its first triangle and 1 for each that shares exactly two
+ * vertices with the one before; distinct counts mesh vertices. */
+static void test_batch_vertices(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    for (guint i = 0; i < 12; i++)
+        scene_mesh_add_vertex(m, vec3(i, i % 2, 0));
+    const uint32_t tris[][4] = {
+        /* tag 0: a strip of three, then one sharing a single vertex,
+         * then one sharing two with it */
+        {0, 1, 2, 0}, {1, 2, 3, 0}, {2, 3, 4, 0}, {4, 5, 6, 0}, {5, 6, 7, 0},
+        /* tag 1: the same triangle twice (three shared), then a new one */
+        {8, 9, 10, 1}, {8, 9, 10, 1}, {9, 10, 11, 1},
+        /* tag 2: one triangle */
+        {0, 5, 11, 2}};
+    for (guint i = 0; i < G_N_ELEMENTS(tris); i++)
+        scene_mesh_add_poly(m, tris[i], 3, scene_color(1, 1, 1), tris[i][3]);
+    GError *err = NULL;
+    AgStreams *s = wl_ag_streams_new(m, 2, WL_AG_ORDER_FRAME,
+                                     WL_AG_PRIM_STRIPS, 2, 0, &err);
+    assert_non_null(s);
+    assert_int_equal(s->batches->len, 3);
+    const guint first[] = {0, 5, 8}, n[] = {5, 3, 1}, tag[] = {0, 1, 2};
+    const uint64_t verts[] = {3 + 1 + 1 + 3 + 1, 3 + 3 + 1, 3};
+    const uint64_t distinct[] = {8, 4, 3};
+    uint64_t issued = 0;
+    for (guint b = 0; b < 3; b++) {
+        const AgBatch *x = &g_array_index(s->batches, AgBatch, b);
+        assert_int_equal(x->first, first[b]);
+        assert_int_equal(x->n, n[b]);
+        assert_int_equal(x->tag, tag[b]);
+        assert_int_equal(x->verts, verts[b]);
+        assert_int_equal(x->distinct, distinct[b]);
+    }
+    /* the blocks (2 triangles each) restart their strip: tag 0 as
+     * {0, 1} {2, 3} {4}: 4 + 6 + 3; tag 1 as {5, 6} {7}: 6 + 3; tag 2: 3 */
+    for (guint c = 0; c < 2; c++) {
+        GArray *bl = wl_ag_ctx_blocks(s, c);
+        for (guint k = 0; k < bl->len; k++)
+            issued += g_array_index(bl, AgBlock, k).verts;
+    }
+    assert_int_equal(issued, 13 + 9 + 3);
+    wl_ag_streams_free(s);
+    s = wl_ag_streams_new(m, 1, WL_AG_ORDER_FRAME, WL_AG_PRIM_TRIANGLES, 4, 0,
+                          &err);
+    assert_int_equal(g_array_index(s->batches, AgBatch, 0).verts, 15);
+    wl_ag_streams_free(s);
+    /* more contexts than batches: the idle context still takes part in
+     * the frame's barrier, through an empty block */
+    s = wl_ag_streams_new(m, 4, WL_AG_ORDER_FRAME, WL_AG_PRIM_TRIANGLES, 8, 0,
+                          &err);
+    guint empty = 0;
+    for (guint c = 0; c < 4; c++) {
+        GArray *bl = wl_ag_ctx_blocks(s, c);
+        assert_true(bl->len > 0);
+        guint barrier = 0, arrive = 0;
+        for (guint k = 0; k < bl->len; k++) {
+            const AgBlock *b = &g_array_index(bl, AgBlock, k);
+            for (guint i = 0; i < b->n_pre; i++)
+                barrier += b->pre[i].kind == WL_AG_SYNC_APP_BARRIER;
+            for (guint i = 0; i < b->n_post; i++)
+                arrive += b->post[i].kind == WL_AG_SYNC_BARRIER;
+            empty += b->batch == G_MAXUINT && b->n == 0 && !b->clear &&
+                     !b->swap;
+        }
+        assert_int_equal(barrier, 1);
+        assert_int_equal(arrive, 1);
+    }
+    assert_true(empty >= 1);
+    wl_ag_streams_free(s);
+    scene_mesh_free(m);
+}
+
+/* cells: 0 takes the grid from the last batch tag: n = ceil(cbrt(last
+ * + 1)), so tags 0..7 make a 2^3 grid and tags 0..8 a 3^3 one (one
+ * semaphore a cell). */
+static guint auto_cells(guint tags)
+{
+    SceneMesh *m = scene_mesh_new();
+    for (guint i = 0; i < tags; i++) {
+        uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(i, 0, 0)),
+                         scene_mesh_add_vertex(m, vec3(i + 1, 0, 0)),
+                         scene_mesh_add_vertex(m, vec3(i, 1, 0))};
+        scene_mesh_add_poly(m, v, 3, scene_color(1, 1, 1), i);
+    }
+    GError *err = NULL;
+    AgStreams *s = wl_ag_streams_new(m, 2, WL_AG_ORDER_CELLS,
+                                     WL_AG_PRIM_TRIANGLES, 4, 0, &err);
+    if (!s)
+        fail_msg("%u tags: %s", tags, err->message);
+    guint sems = s->sems;
+    wl_ag_streams_free(s);
+    scene_mesh_free(m);
+    return sems;
+}
+
+static void test_cells_from_last_tag(void **state)
+{
+    (void)state;
+    assert_int_equal(auto_cells(1), 1);
+    assert_int_equal(auto_cells(2), 8);
+    assert_int_equal(auto_cells(8), 8);
+    assert_int_equal(auto_cells(9), 27);
+    assert_int_equal(auto_cells(27), 27);
+    assert_int_equal(auto_cells(28), 64);
+}
+
+/* glClear and glXSwapBuffers of one tile touch that tile's pixels only
+ * (64 x 48 in tiles of 32: the last row of tiles is 16 high). */
+static void test_tile_clear_and_present(void **state)
+{
+    (void)state;
+    RastColor bg = {0.25f, 0.5f, 0.75f};
+    AgFrame *f = wl_ag_frame_new(64, 48, 32, WL_AG_OPAQUE, 1, bg);
+    assert_int_equal(wl_ag_n_tiles(f), 4);
+    for (guint t = 0; t < 4; t++) {
+        for (gsize i = 0; i < 64 * 48; i++) {
+            f->depth[i] = 0.5;
+            f->prim[i] = 7;
+            for (int k = 0; k < 3; k++)
+                f->rgb[3 * i + k] = f->front[3 * i + k] = 1;
+        }
+        int x0 = (int)(t % 2) * 32, y0 = (int)(t / 2) * 32;
+        int h = t < 2 ? 32 : 16;
+        assert_int_equal(wl_ag_frame_clear_tile(f, t), 32 * h);
+        for (int y = 0; y < 48; y++)
+            for (int x = 0; x < 64; x++) {
+                gsize i = (gsize)y * 64 + x;
+                gboolean in = x >= x0 && x < x0 + 32 && y >= y0 && y < y0 + h;
+                assert_true(f->rgb[3 * i] == (in ? 0.25f : 1));
+                assert_true(f->rgb[3 * i + 2] == (in ? 0.75f : 1));
+                assert_true(in ? f->depth[i] > 1e300 : f->depth[i] == 0.5);
+                assert_true(f->prim[i] == (in ? RAST_NO_PRIM : 7));
+            }
+        wl_ag_frame_present_tile(f, t);
+        for (int y = 0; y < 48; y++)
+            for (int x = 0; x < 64; x++) {
+                gsize i = (gsize)y * 64 + x;
+                gboolean in = x >= x0 && x < x0 + 32 && y >= y0 && y < y0 + h;
+                assert_true(f->front[3 * i + 1] == (in ? 0.5f : 1));
+            }
+    }
+    assert_int_equal(wl_ag_frame_clear_tile(f, G_MAXUINT), 64 * 48);
+    wl_ag_frame_free(f);
+}
+
+/* application: none leaves only the issue costs on the application
+ * threads. */
+static void test_application_none(void **state)
+{
+    (void)state;
+    char *text = g_strdup_printf(
+        "%sworkload: {type: argus, processors: 4, contexts: 1,\n"
+        "  application: none, primitives: triangles, tile: 32, block: 4,\n"
+        "  width: 48, height: 48, check_image: false}\n%s",
+        machine, nurbs_scene);
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    double ps = metric(r, "vertices_issued") * mach_cost(m, "cpu", "issue_vertex") +
+                metric(r, "batches") * mach_cost(m, "cpu", "issue_batch") +
+                metric(r, "blocks") * mach_cost(m, "cpu", "lock");
+    double ms = metric(r, "application_ms");
+    if (fabs(ms - ps * 1e-9) > 1e-12 * ms)
+        fail_msg("application %.12f ms, expected %.12f", ms, ps * 1e-9);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+    sim_result_free(r);
+    g_free(text);
+}
+
+static void run_fails(const char *text, const char *needle)
+{
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    assert_null(r);
+    assert_non_null(err);
+    if (!strstr(err->message, needle))
+        fail_msg("message '%s' lacks '%s'", err->message, needle);
+    g_error_free(err);
+}
+
+static void test_run_errors(void **state)
+{
+    (void)state;
+    const char *w = "workload: {type: argus, processors: 2, width: 32, "
+                    "height: 32, tile: 16%s}\n";
+    char *plain = g_strdup_printf(w, "");
+    char *t = g_strconcat(machine, plain,
+                          "scene: {generator: large_polygons, count: 8, "
+                          "max_sides: 4}\n", NULL);
+    run_fails(t, "expected triangles (generators nurbs, march)");
+    g_free(t);
+    t = g_strconcat(machine, plain, "scene: {generator: nowhere}\n", NULL);
+    run_fails(t, "nowhere");
+    g_free(t);
+    t = g_strconcat("machine: {model: no_such_machine}\n", plain, nurbs_scene,
+                    NULL);
+    run_fails(t, "no_such_machine");
+    g_free(t);
+    /* a machine with cpus but not Argus's costs */
+    t = g_strconcat("machine: {model: sgi-onyx}\n", plain, nurbs_scene, NULL);
+    run_fails(t, "found no cost for 'nurbs_vertex' on 'cpu'");
+    g_free(t);
+    char *cells = g_strdup_printf(w, ", order: cells, cells: 1");
+    t = g_strconcat(machine, cells, nurbs_scene, NULL);
+    run_fails(t, "not increasing cell indices below 1^3");
+    g_free(t);
+    g_free(cells);
+    g_free(plain);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_thread_defaults),
+        cmocka_unit_test(test_sizes_and_words),
+        cmocka_unit_test(test_pixels_equal_serial_draw),
+        cmocka_unit_test(test_run_errors),
+        cmocka_unit_test(test_application_time_from_costs),
+        cmocka_unit_test(test_batch_vertices),
+        cmocka_unit_test(test_cells_from_last_tag),
+        cmocka_unit_test(test_tile_clear_and_present),
+        cmocka_unit_test(test_application_none),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,270 @@
+/* test_dp_poly.c — the screen-space polygon kernels of dp_poly.h on
+ * polygons built by hand, every expected value computed here (issue 21):
+ * a square's spans (crossings at the row centre, first pixel, length),
+ * crossings at the same x and depth keeping their edges' order (the
+ * insertion sort is stable), an edge's line pixels running from the
+ * pixel of one end to the pixel of the other in unit steps, and the key
+ * layout (depth, id, colour index). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "sim/scene/scene.h"
+#include "sim/workload/dpscan/dp_poly.h"
+
+/* One polygon of k vertices (x, y, z, val): the caller's arrays. */
+typedef struct {
+    WlDpPolys p;
+    uint32_t start[2];
+    uint8_t color[1], ok[1];
+} One;
+
+static void one_init(One *o, uint32_t k, double *x, double *y, double *z,
+                     double *v, WlDpMode mode)
+{
+    o->start[0] = 0;
+    o->start[1] = k;
+    o->color[0] = 3;
+    o->ok[0] = 1;
+    o->p = (WlDpPolys){.n = 1, .n_ok = 1, .kmax = k, .start = o->start,
+                       .x = x, .y = y, .z = z, .val = v, .color = o->color,
+                       .ok = o->ok, .n_verts = k, .mode = mode};
+}
+
+static void test_square_spans(void **state)
+{
+    (void)state;
+    double x[4] = {1.2, 5.7, 5.7, 1.2}, y[4] = {1.0, 1.0, 3.9, 3.9};
+    double z[4] = {0.5, 0.5, 0.5, 0.5}, v[4] = {0, 1, 1, 0};
+    One o;
+    one_init(&o, 4, x, y, z, v, WL_DP_MODE_FLAT);
+    int32_t y0 = -1;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 3);
+    assert_int_equal(y0, 1);
+    WlDpSpan s[WL_DP_MAX_VERTS / 2];
+    for (int32_t row = 1; row <= 3; row++) {
+        assert_int_equal(wl_dp_poly_spans(&o.p, 0, row, s), 1);
+        assert_true(s[0].xl == 1.2 && s[0].xr == 5.7);
+        assert_true(s[0].vl == 0 && s[0].vr == 1);
+        assert_int_equal(s[0].y, row);
+        assert_int_equal(s[0].x0, 1);
+        assert_int_equal(s[0].len, 5); /* pixels 1 .. 5 */
+        assert_int_equal(s[0].poly, 0);
+    }
+    /* end rows count: to y = 4.0 the polygon touches row 4 too */
+    y[2] = y[3] = 4.0;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 4);
+    /* no area, or behind the eye: no rows */
+    y[2] = y[3] = 1.0;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 0);
+    y[2] = y[3] = 3.9;
+    o.ok[0] = 0;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 0);
+}
+
+/* A bow tie: edges 0 (A -> B) and 2 (C -> D) cross at (2, 2.5), the
+ * centre of row 2, at the same depth but with different values. */
+static void test_equal_crossings_keep_edge_order(void **state)
+{
+    (void)state;
+    double x[4] = {0, 4, 0, 4}, y[4] = {0.5, 4.5, 4.5, 0.5};
+    double z[4] = {0.25, 0.25, 0.25, 0.25}, v[4] = {0, 1, 1, 3};
+    One o;
+    one_init(&o, 4, x, y, z, v, WL_DP_MODE_FLAT);
+    WlDpSpan s[WL_DP_MAX_VERTS / 2];
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, 2, s), 1);
+    assert_true(s[0].xl == 2 && s[0].xr == 2);
+    /* edge 0 at half way: 0.5; edge 2 at half way: 2 */
+    assert_true(s[0].vl == 0.5 && s[0].vr == 2);
+    /* the same crossings met in the other order stay in that order */
+    double x2[4] = {0, 4, 0, 4}, y2[4] = {4.5, 0.5, 0.5, 4.5};
+    double v2[4] = {1, 3, 0, 1};
+    one_init(&o, 4, x2, y2, z, v2, WL_DP_MODE_FLAT);
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, 2, s), 1);
+    assert_true(s[0].vl == 2 && s[0].vr == 0.5);
+}
+
+static void check_edge(One *o, uint32_t e)
+{
+    uint32_t k = (uint32_t)(o->p.start[1]), a = e, b = (e + 1) % k;
+    int64_t ax = (int64_t)floor(o->p.x[a]), ay = (int64_t)floor(o->p.y[a]);
+    int64_t bx = (int64_t)floor(o->p.x[b]), by = (int64_t)floor(o->p.y[b]);
+    uint32_t n = wl_dp_edge_pixels(&o->p, 0, e);
+    assert_int_equal(n, MAX(llabs(bx - ax), llabs(by - ay)) + 1);
+    int64_t px = 0, py = 0;
+    for (uint32_t j = 0; j < n; j++) {
+        int64_t qx, qy;
+        uint64_t key;
+        wl_dp_edge_pixel(&o->p, 0, e, j, &qx, &qy, &key);
+        if (j == 0)
+            assert_true(qx == ax && qy == ay);
+        else
+            assert_true(llabs(qx - px) <= 1 && llabs(qy - py) <= 1);
+        if (j == n - 1)
+            assert_true(qx == bx && qy == by);
+        assert_int_equal(wl_dp_key_id(key), 0);
+        px = qx;
+        py = qy;
+    }
+}
+
+static void test_edge_pixels_join_the_ends(void **state)
+{
+    (void)state;
+    double x[3] = {1.7, 9.2, 3.4}, y[3] = {2.9, 5.1, 12.6};
+    double z[3] = {0.1, 0.5, 0.9}, v[3] = {0, 0, 0};
+    One o;
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_WIREFRAME);
+    for (uint32_t e = 0; e < 3; e++)
+        check_edge(&o, e);
+    /* a one-pixel edge */
+    double x1[3] = {4.1, 4.9, 4.5}, y1[3] = {7.2, 7.8, 7.5};
+    one_init(&o, 3, x1, y1, z, v, WL_DP_MODE_WIREFRAME);
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 1);
+    check_edge(&o, 0);
+    /* a polygon behind the eye draws no line */
+    o.ok[0] = 0;
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 0);
+}
+
+static void test_key_layout(void **state)
+{
+    (void)state;
+    uint64_t k = wl_dp_key(0.25, 0x123456, 7);
+    assert_int_equal(k >> 32, (uint64_t)(0.75 * 4294967295.0));
+    assert_int_equal(wl_dp_key_id(k), 0x123456);
+    assert_int_equal(wl_dp_key_index(k), 7);
+    assert_true(wl_dp_key(0.1, 1, 1) > wl_dp_key(0.2, 1, 1)); /* nearer */
+    assert_int_equal(wl_dp_key(-1, 0, 0) >> 32, 4294967295u);
+    assert_int_equal(wl_dp_key(2, 0, 0), 0);
+}
+
+/* A U shape: four crossings of row 2 at x = 100, 101, 105, 106. */
+static double ux[8] = {100, 106, 106, 105, 105, 101, 101, 100};
+static double uy[8] = {0, 0, 5, 5, 1, 1, 5, 5};
+static double uz[8], uv[8];
+
+/* Every call goes through here, at the same stack depth, so that the
+ * crossings array of wl_dp_poly_spans holds the previous call's values. */
+static __attribute__((noinline)) guint spans(const One *o, int32_t y,
+                                             WlDpSpan *s)
+{
+    return wl_dp_poly_spans(&o->p, 0, y, s);
+}
+
+/* Crossings are sorted by x, then depth, whatever order the edges give
+ * them in (each case after a row of four crossings far to the right, so
+ * that a comparison with a slot past the crossings found so far, which
+ * holds that row's values, shows). */
+static void test_crossings_sorted(void **state)
+{
+    (void)state;
+    WlDpSpan s[WL_DP_MAX_VERTS / 2];
+    One u;
+    one_init(&u, 8, ux, uy, uz, uv, WL_DP_MODE_FLAT);
+    assert_int_equal(spans(&u, 2, s), 2);
+    assert_true(s[0].xl == 100 && s[0].xr == 101);
+    assert_true(s[1].xl == 105 && s[1].xr == 106);
+    /* the left edge first */
+    double x[4] = {1.2, 1.2, 5.7, 5.7}, y[4] = {3.9, 1.0, 1.0, 3.9};
+    double z[4] = {0.5, 0.5, 0.5, 0.5}, v[4] = {0, 0, 1, 1};
+    One o;
+    one_init(&o, 4, x, y, z, v, WL_DP_MODE_FLAT);
+    assert_int_equal(spans(&u, 2, s), 2);
+    assert_int_equal(spans(&o, 2, s), 1);
+    assert_true(s[0].xl == 1.2 && s[0].xr == 5.7);
+    /* the right edge first */
+    double x2[4] = {5.7, 5.7, 1.2, 1.2}, v2[4] = {1, 1, 0, 0};
+    one_init(&o, 4, x2, y, z, v2, WL_DP_MODE_FLAT);
+    assert_int_equal(spans(&u, 2, s), 2);
+    assert_int_equal(spans(&o, 2, s), 1);
+    assert_true(s[0].xl == 1.2 && s[0].xr == 5.7);
+    /* a bow tie crossing at x = 2 on row 2's centre: the nearer first */
+    double bx[4] = {0, 4, 0, 4}, by[4] = {0.5, 4.5, 4.5, 0.5};
+    double bz[4] = {0.2, 0.4, 0.3, 0.1}, bv[4] = {0, 0, 0, 0};
+    one_init(&o, 4, bx, by, bz, bv, WL_DP_MODE_FLAT);
+    assert_int_equal(spans(&u, 2, s), 2);
+    assert_int_equal(spans(&o, 2, s), 1);
+    assert_true(s[0].xl == 2 && s[0].xr == 2);
+    assert_true(fabs(s[0].zl - 0.2) < 1e-12 && fabs(s[0].zr - 0.3) < 1e-12);
+}
+
+static uint64_t depth_bits(double z)
+{
+    return wl_dp_key(z, 0, 0) >> 32;
+}
+
+/* A span's pixel key: depth interpolated at the pixel centre, clamped to
+ * the span's ends; a zero-width span takes its left end's. */
+static void test_span_key_depth(void **state)
+{
+    (void)state;
+    double x[3] = {0, 1, 0}, y[3] = {0, 0, 1}, z[3] = {0}, v[3] = {0};
+    One o;
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_FLAT);
+    WlDpSpan s = {.xl = 1.5, .xr = 5.5, .zl = 0.2, .zr = 0.6, .vl = 0,
+                  .vr = 0, .y = 0, .x0 = 1, .len = 5, .poly = 0};
+    /* pixel 1 (centre 1.5): t 0; pixel 3 (3.5): t 0.5; pixel 5: t 1 */
+    assert_int_equal(wl_dp_span_key(&o.p, &s, 0) >> 32, depth_bits(0.2));
+    assert_int_equal(wl_dp_span_key(&o.p, &s, 2) >> 32, depth_bits(0.4));
+    assert_int_equal(wl_dp_span_key(&o.p, &s, 4) >> 32, depth_bits(0.6));
+    assert_int_equal(wl_dp_key_id(wl_dp_span_key(&o.p, &s, 2)), 0);
+    /* a pixel centre left of xl clamps to the left end */
+    s.xl = 1.9;
+    assert_int_equal(wl_dp_span_key(&o.p, &s, 0) >> 32, depth_bits(0.2));
+    /* zero width */
+    WlDpSpan d = {.xl = 2, .xr = 2, .zl = 0.2, .zr = 0.3, .y = 2, .x0 = 2,
+                  .len = 1, .poly = 0};
+    assert_int_equal(wl_dp_span_key(&o.p, &d, 0) >> 32, depth_bits(0.2));
+}
+
+/* A polygon's colour is the palette entry nearest in RGB (squared
+ * Euclidean distance), the first of equals. */
+static void test_nearest_palette_colour(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(0, 0, 0)),
+                     scene_mesh_add_vertex(m, vec3(1, 0, 0)),
+                     scene_mesh_add_vertex(m, vec3(0, 1, 0))};
+    scene_mesh_add_poly(m, v, 3, scene_color(0.5f, 0.5f, 0.5f), 0);
+    scene_mesh_add_poly(m, v, 3, scene_color(0.5f, 0.1f, 0.5f), 0);
+    scene_mesh_add_poly(m, v, 3, scene_color(0.5f, 0.5f, 0.1f), 0);
+    Scene *sc = scene_new("one");
+    guint id = scene_add_mesh(sc, m);
+    scene_add_instance(sc, id, mat4_identity(), scene_color(1, 1, 1), 0);
+    sc->camera = scene_camera_default();
+    sc->camera.eye = vec3(0.3, 0.3, 5);
+    scene_camera_fit(&sc->camera, scene_bbox(sc), 0.9);
+    float pal[WL_DP_COLORS][3];
+    for (int k = 0; k < WL_DP_COLORS; k++)
+        pal[k][0] = 0.9f, pal[k][1] = 0.5f, pal[k][2] = 0.9f;
+    /* entry 0 differs from grey in green only; 1 and 3 are the grey */
+    pal[0][0] = 0.5f, pal[0][1] = 0, pal[0][2] = 0.5f;
+    pal[1][0] = pal[1][1] = pal[1][2] = 0.5f;
+    pal[3][0] = pal[3][1] = pal[3][2] = 0.5f;
+    WlDpPolys *p = wl_dp_polys_new(sc, 0, 16, 16, WL_DP_MODE_FLAT, pal);
+    assert_int_equal(p->n, 3);
+    assert_int_equal(p->color[0], 1);
+    assert_int_equal(p->color[1], 0);
+    assert_int_equal(p->color[2], 1); /* blue 0.4 off: still the grey */
+    wl_dp_polys_free(p);
+    scene_free(sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_square_spans),
+        cmocka_unit_test(test_equal_crossings_keep_edge_order),
+        cmocka_unit_test(test_edge_pixels_join_the_ends),
+        cmocka_unit_test(test_key_layout),
+        cmocka_unit_test(test_crossings_sorted),
+        cmocka_unit_test(test_span_key_depth),
+        cmocka_unit_test(test_nearest_palette_colour),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

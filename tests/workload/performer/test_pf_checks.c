@@ -1,0 +1,329 @@
+/* test_pf_checks.c — performer results checked against values the test
+ * computes itself (issue 21): the PN-triangle measurement on
+ * Pixel-Planes 5 (host -> GPs -> renderers: every triangle sent once,
+ * split over the GPs and renderers with no remainder lost or doubled, the
+ * slowest GP's time from the model's costs), and the per-frame log and
+ * its _stages.csv (a row per frame, the stage rows adding up to the run). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib/gstdio.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sim/machine/machine.h"
+#include "sim/scene/pn_triangles.h"
+#include "sim/scene/scene_cfg.h"
+#include "sim/workload/performer/pf_graph.h"
+#include "sim/workload/performer/pf_workload.h"
+
+static SimResult *run(const char *yaml, int frames, GError **err)
+{
+    CfgNode *root = cfg_load_string(yaml, "pf.yaml", err);
+    assert_non_null(root);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
+                     .fidelity = "analytic", .frames = frames};
+    void *params = wl_pf_ops.parse(cfg_get(root, "workload"), err);
+    assert_non_null(params);
+    SimResult *r = sim_result_new("performer", "");
+    if (!wl_pf_ops.run(&ctx, params, r, err)) {
+        sim_result_free(r);
+        r = NULL;
+    }
+    wl_pf_ops.free_params(params);
+    sim_engine_free(eng);
+    cfg_free(root);
+    return r;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = NAN;
+    if (!sim_result_get_metric(r, name, &v))
+        fail_msg("no metric %s", name);
+    return v;
+}
+
+static const char *pp5_scene =
+    "scene: {generator: teapots, count: 1, polygons_per_teapot: 300}\n";
+
+/* The scene's coarse triangles, and its PN-tessellated triangles and
+ * points at `level`. */
+static void pn_counts(guint level, uint64_t *coarse, uint64_t *fine,
+                      uint64_t *pts)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(pp5_scene, "s.yaml", &err);
+    Scene *s = scene_from_cfg(cfg_get(root, "scene"), &err);
+    assert_non_null(s);
+    ScenePnParams pn = {level, SCENE_PN_LINEAR};
+    *coarse = scene_n_triangles(s);
+    *fine = *pts = 0;
+    for (guint i = 0; i < scene_n_instances(s); i++) {
+        SceneMesh *m = scene_pn_tessellate(scene_instance_mesh(s, i), &pn);
+        *fine += scene_mesh_n_triangles(m);
+        *pts += scene_mesh_n_vertices(m);
+        scene_mesh_free(m);
+    }
+    scene_free(s);
+    cfg_free(root);
+}
+
+static uint64_t ceil_div(uint64_t a, uint64_t b)
+{
+    return (a + b - 1) / b;
+}
+
+static void check_pp5(guint level, const char *send)
+{
+    char *yaml = g_strdup_printf(
+        "machine: {model: pixel-planes-5}\n%s"
+        "workload: {type: performer, pn: {level: %u, send: %s,\n"
+        "  vertex_bytes: 40 B, command_bytes: 64 B}}\n",
+        pp5_scene, level, send);
+    GError *err = NULL;
+    SimResult *r = run(yaml, 2, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    uint64_t coarse, fine, pts;
+    pn_counts(level, &coarse, &fine, &pts);
+    gboolean fine_sent = !strcmp(send, "fine");
+    assert_true(metric(r, "coarse_tris") == coarse);
+    assert_true(metric(r, "fine_tris") == fine);
+    assert_true(metric(r, "level") == level);
+    /* every triangle sent once to some GP: 3 vertices of 40 B */
+    assert_true(metric(r, "link_bytes_per_frame") ==
+                3.0 * (fine_sent ? fine : coarse) * 40);
+    /* every fine triangle becomes one 64 B renderer command */
+    assert_true(metric(r, "command_bytes_per_frame") == fine * 64.0);
+    /* GP 0 gets the rounded-up share of triangles and points */
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root =
+        cfg_load_string("machine: {model: pixel-planes-5}\n", "m.yaml", &err);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    assert_non_null(m);
+    uint64_t ng = mach_kind(m, "gp")->count;
+    SimTime per = mach_cost(m, "gp", "polygon") +
+                  3 * mach_cost(m, "gp", "vertex") +
+                  mach_cost(m, "gp", "send_primitive");
+    SimTime gp = per * ceil_div(fine, ng);
+    if (!fine_sent && level > 0)
+        gp += mach_cost(m, "gp", "pn_vertex") * ceil_div(pts, ng);
+    assert_true(fabs(metric(r, "gp_ms") - gp * 1e-9) < 1e-9);
+    assert_true(metric(r, "frame_ms") > gp * 1e-9);
+    double v;
+    assert_false(sim_result_get_metric(r, "bus_ms", &v));
+    assert_false(sim_result_get_metric(r, "cpu_ms", &v));
+    assert_true(fabs(metric(r, "fine_tris_per_s") -
+                     fine / (metric(r, "frame_ms") * 1e-3)) <
+                1e-6 * metric(r, "fine_tris_per_s"));
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+    sim_result_free(r);
+    g_free(yaml);
+}
+
+static void test_pn_on_pixel_planes_5(void **st)
+{
+    (void)st;
+    check_pp5(2, "coarse");
+    check_pp5(1, "fine");
+    check_pp5(0, "coarse");
+}
+
+/* ---- the per-frame log -------------------------------------------------- */
+
+static gchar **read_lines(const char *path, guint *n)
+{
+    gchar *text = NULL;
+    if (!g_file_get_contents(path, &text, NULL, NULL))
+        fail_msg("no %s", path);
+    gchar **lines = g_strsplit(g_strchomp(text), "\n", -1);
+    g_free(text);
+    *n = g_strv_length(lines);
+    return lines;
+}
+
+static void test_frame_log(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pf-log-XXXXXX", NULL);
+    assert_non_null(dir);
+    char *log = g_build_filename(dir, "frames.csv", NULL);
+    char *yaml = g_strdup_printf(
+        "machine: {model: sgi-onyx}\n"
+        "workload: {type: performer, frame_log: '%s',\n"
+        "  town: {blocks: 1, houses: 2, trees: 2, cars: 1}}\n",
+        log);
+    GError *err = NULL;
+    SimResult *r = run(yaml, 4, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    guint n = 0;
+    gchar **rows = read_lines(log, &n);
+    assert_int_equal(n, 1 + 4);
+    assert_true(g_str_has_prefix(rows[0], "frame,app_start_ms,app_ms,"));
+    assert_true(g_str_has_suffix(rows[0], ",draw_pipe_ms"));
+    char *stages = g_build_filename(dir, "frames_stages.csv", NULL);
+    guint m = 0;
+    gchar **srows = read_lines(stages, &m);
+    assert_int_equal(m, 1 + 4 * 5);
+    assert_string_equal(srows[0], "frame,stage,ms");
+    double sum = 0;
+    for (guint f = 0; f < 4; f++) {
+        gchar **c = g_strsplit(rows[1 + f], ",", -1);
+        assert_int_equal(g_strv_length(c), 20);
+        assert_int_equal(atoi(c[0]), f);
+        const char *names[] = {"app", "cull", "draw", "isect", "frame"};
+        for (guint k = 0; k < 5; k++) {
+            gchar **s = g_strsplit(srows[1 + 5 * f + k], ",", -1);
+            assert_int_equal(atoi(s[0]), f);
+            assert_string_equal(s[1], names[k]);
+            /* the stage rows repeat the log's app, cull, draw, isect */
+            if (k < 4)
+                assert_string_equal(s[2], c[2 + k]);
+            else if (f > 0) /* and the interval between swaps */
+                assert_string_equal(s[2], c[8]);
+            if (k == 4)
+                sum += g_ascii_strtod(s[2], NULL);
+            g_strfreev(s);
+        }
+        if (f == 0)
+            assert_true(g_ascii_strtod(c[8], NULL) == 0);
+        g_strfreev(c);
+    }
+    /* the frame stages add up to the last swap */
+    assert_true(fabs(sum - r->elapsed * 1e-9) < 1e-5);
+    assert_int_equal(r->frame_times->len, 4);
+    g_strfreev(srows);
+    g_strfreev(rows);
+    g_remove(stages);
+    g_remove(log);
+    g_rmdir(dir);
+    g_free(stages);
+    g_free(log);
+    g_free(yaml);
+    g_free(dir);
+    sim_result_free(r);
+}
+
+/* A geoset's sphere: centre of its vertices' box, radius to the
+ * farthest vertex; the first vertex counts like the others. */
+static void test_geoset_bound(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    guint geode = wl_pf_add_node(g, g->root, WL_PF_GEODE);
+    guint gs = wl_pf_add_gstate(g, (WlPfGeoState){1, 2, 3});
+    const Vec3 tris[6] = {vec3(-5, 0, 4), vec3(1, 0, 0), vec3(0, 1, 0),
+                          vec3(0, 3, 0), vec3(1, 1, 1), vec3(0, 0, 1)};
+    WlPfGeoSet *a = wl_pf_geoset(g, wl_pf_add_geoset(g, geode, tris, 1, gs));
+    assert_true(a->center.x == -2 && a->center.y == 0.5 && a->center.z == 2);
+    assert_true(fabs(a->radius - sqrt(9 + 0.25 + 4)) < 1e-12);
+    WlPfGeoSet *b =
+        wl_pf_geoset(g, wl_pf_add_geoset(g, geode, tris + 3, 1, gs));
+    assert_true(b->center.x == 0.5 && b->center.y == 1.5 && b->center.z == 0.5);
+    assert_true(fabs(b->radius - sqrt(0.25 + 2.25 + 0.25)) < 1e-12);
+    assert_int_equal(wl_pf_geoset_tris(b), 1);
+    wl_pf_graph_free(g);
+}
+
+static void *parse(const char *w, GError **err)
+{
+    char *y = g_strdup_printf("workload: {type: performer, %s}\n", w);
+    CfgNode *root = cfg_load_string(y, "p.yaml", err);
+    g_free(y);
+    assert_non_null(root);
+    void *p = wl_pf_ops.parse(cfg_get(root, "workload"), err);
+    cfg_free(root);
+    return p;
+}
+
+/* Each bound of the town, stress and rate keys, taken on both sides. */
+static void test_parse_edges(void **st)
+{
+    (void)st;
+    const char *ok[] = {
+        "town: {blocks: 1, houses: 0, trees: 0, cars: 0, seed: 0}",
+        "town: {blocks: 256, houses: 256, trees: 1024, cars: 4096}",
+        "town: {block: 20, speed: 0, eye_height: 0, fov: 1}",
+        "town: {block: 10000, speed: 1000, eye_height: 1000, fov: 170}",
+        "town: {lod_ranges: [1, 2, 3]}",
+        "stress: {gain: 0, low: 0.5, high: 0.5, max: 1}",
+        "stress: {gain: 1000, low: 0, high: 10, max: 1000}",
+        "video_rate: 60, frame_rate: 60", "video_rate: 1, frame_rate: 1",
+        "video_rate: 1000, frame_rate: 0.1",
+        "pn: {level: 0}", "pn: {level: 32, normals: quadratic}"};
+    GError *err = NULL;
+    for (guint i = 0; i < G_N_ELEMENTS(ok); i++) {
+        void *p = parse(ok[i], &err);
+        if (!p)
+            fail_msg("%s: %s", ok[i], err->message);
+        wl_pf_ops.free_params(p);
+    }
+    const char *bad[] = {
+        "town: {blocks: 0}", "town: {blocks: 257}", "town: {houses: 257}",
+        "town: {trees: 1025}", "town: {cars: 4097}", "town: {block: 19.9}",
+        "town: {block: 10001}", "town: {fov: 0.9}", "town: {fov: 170.1}",
+        "town: {speed: -1}", "town: {eye_height: 1001}",
+        "town: {lod_ranges: [1, 2]}", "town: {lod_ranges: 5}",
+        "town: {lod_ranges: [0, 2, 3]}", "town: {lod_ranges: [1, 1, 3]}",
+        "town: {lod_ranges: [1, 2, x]}", "stress: 3",
+        "stress: {max: 0.5}", "stress: {gain: 1001}",
+        "stress: {low: 0.6, high: 0.5}", "video_rate: 0.5",
+        "frame_rate: 0.05", "video_rate: 30, frame_rate: 60",
+        "video_rate: 60, frame_rate: 25", "pn: {level: 33}"};
+    for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
+        void *p = parse(bad[i], &err);
+        if (p)
+            fail_msg("%s: accepted", bad[i]);
+        assert_true(g_str_has_prefix(err->message, "p.yaml:1:"));
+        g_clear_error(&err);
+    }
+}
+
+/* mem_bytes: the town's triangles (3 Vec3 each) and 512 B an object. */
+static void test_mem_bytes(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    GString *what = g_string_new("");
+    void *p = parse("flatten: false, town: {blocks: 2, houses: 3, trees: 4, "
+                    "cars: 5}",
+                    &err);
+    double tri = 3 * sizeof(Vec3);
+    double geo = 4 * (128 + 3 * 252.0 + 4 * 2.0) * tri + 5 * 12.0 * tri;
+    assert_true(wl_pf_ops.mem_bytes(p, what) ==
+                geo + (4 * (1.0 + 3 + 4) + 5) * 512.0);
+    assert_string_equal(what->str, "a town of 2 x 2 blocks, 3 houses and 4 "
+                                   "trees a block");
+    wl_pf_ops.free_params(p);
+    p = parse("town: {blocks: 2, houses: 3, trees: 4, cars: 5}", &err);
+    g_string_truncate(what, 0);
+    assert_true(wl_pf_ops.mem_bytes(p, what) ==
+                2 * geo + (4 * (1.0 + 3 + 4) + 5) * 512.0);
+    wl_pf_ops.free_params(p);
+    p = parse("pn: {level: 1}", &err);
+    g_string_truncate(what, 0);
+    assert_true(wl_pf_ops.mem_bytes(p, what) == 0);
+    assert_string_equal(what->str, "pn: no town");
+    wl_pf_ops.free_params(p);
+    g_string_free(what, TRUE);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_pn_on_pixel_planes_5),
+        cmocka_unit_test(test_frame_log),
+        cmocka_unit_test(test_geoset_bound),
+        cmocka_unit_test(test_parse_edges),
+        cmocka_unit_test(test_mem_bytes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
