@@ -9,14 +9,19 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <glib/gstdio.h>
 
 #include "sim/core/cfg.h"
 #include "sim/core/cfg_impl.h"
+#include "sim/core/datapath.h"
+#include "sim/core/engine.h"
 #include "sim/core/error.h"
+#include "sim/core/evq.h"
 #include "sim/core/memlimit.h"
 #include "sim/core/result.h"
 #include "sim/core/rng.h"
-#include "sim/core/units.h"
+#include "sim/core/stats.h"
 
 static void test_cfg_errors(void **state)
 {
@@ -123,67 +128,9 @@ static void test_path_index(void **state)
     assert_int_equal(cfg_path_index("12a", 2), 12);
 }
 
-static uint64_t u64_of(const char *s, CfgUnitKind k)
-{
-    uint64_t v = 0;
-    const char *exp = NULL;
-    if (!cfg_units_u64(s, k, &v, &exp))
-        fail_msg("'%s' refused: %s", s, exp);
-    return v;
-}
 
-static double dbl_of(const char *s, CfgUnitKind k)
-{
-    double v = 0;
-    const char *exp = NULL;
-    if (!cfg_units_double(s, k, &v, &exp))
-        fail_msg("'%s' refused: %s", s, exp);
-    return v;
-}
 
-static const char *refused(const char *s, CfgUnitKind k)
-{
-    double v = 0;
-    const char *exp = NULL;
-    if (cfg_units_double(s, k, &v, &exp))
-        fail_msg("'%s' accepted as %g", s, v);
-    return exp;
-}
 
-static void test_units_edges(void **state)
-{
-    (void)state;
-    assert_int_equal(u64_of("  5 us", CFG_UNIT_TIME), 5 * SIM_US);
-    assert_int_equal(u64_of("+5 us", CFG_UNIT_TIME), 5 * SIM_US);
-    assert_int_equal(u64_of("1.50 us", CFG_UNIT_TIME), 1500000);
-    assert_int_equal(u64_of("1.500000 ns", CFG_UNIT_TIME), 1500);
-    assert_int_equal(u64_of("0.000 s", CFG_UNIT_TIME), 0);
-    assert_int_equal(u64_of("2e3 ps", CFG_UNIT_TIME), 2000);
-    assert_int_equal(u64_of("2e+3 ps", CFG_UNIT_TIME), 2000);
-    assert_int_equal(u64_of("2000e-3 ns", CFG_UNIT_TIME), 2000);
-    assert_true(dbl_of("1 B/s", CFG_UNIT_BANDWIDTH) == 1.0);
-    assert_true(dbl_of("0 B/s", CFG_UNIT_BANDWIDTH) == 0.0);
-    assert_true(dbl_of("1 Hz", CFG_UNIT_FREQ) == 1.0);
-    assert_string_equal(refused("0.5 B/s", CFG_UNIT_BANDWIDTH),
-                        "0 or at least 1 B/s");
-    assert_string_equal(refused("0.5 Hz", CFG_UNIT_FREQ),
-                        "0 or at least 1 Hz");
-    assert_string_equal(refused("0.999 B/s", CFG_UNIT_BANDWIDTH),
-                        "0 or at least 1 B/s");
-    /* more than 20 significant digits: fine for a rate, not a time */
-    assert_true(dbl_of("1.000000000000000000000001 MB/s", CFG_UNIT_BANDWIDTH) ==
-                1e6);
-    assert_true(dbl_of("123456789012345678901234 B/s", CFG_UNIT_BANDWIDTH) ==
-                123456789012345678901234.0);
-    uint64_t v;
-    const char *exp = NULL;
-    assert_false(cfg_units_u64("1.000000000000000000000001 us", CFG_UNIT_TIME,
-                               &v, &exp));
-    assert_non_null(strstr(exp, "at most 20 significant"));
-    assert_false(cfg_units_u64("-1 us", CFG_UNIT_TIME, &v, &exp));
-    assert_false(cfg_units_u64("1e us", CFG_UNIT_TIME, &v, &exp));
-    assert_false(cfg_units_u64("1e+ us", CFG_UNIT_TIME, &v, &exp));
-}
 
 static void test_exit_status(void **state)
 {
@@ -271,17 +218,297 @@ static void test_mem_limit_env(void **state)
     sim_mem_set_limit(0);
 }
 
+/* Freeing nothing is allowed. */
+static void test_free_null(void **state)
+{
+    (void)state;
+    sim_evq_free(NULL);
+    cfg_free(NULL);
+    SimEvq *q = sim_evq_new();
+    sim_evq_free(q);
+}
+
+
+
+/* Moments of 1, 2 and 3 samples (variance with n - 1), and busy time
+ * per phase with its overflow refused whole. */
+static void test_moments_and_busy(void **state)
+{
+    (void)state;
+    SimMoments m = {0};
+    assert_true(sim_moments_var(&m) == 0.0);
+    sim_moments_add(&m, 5);
+    assert_true(sim_moments_var(&m) == 0.0);
+    assert_true(m.min == 5 && m.max == 5 && m.mean == 5);
+    sim_moments_add(&m, 3);
+    assert_true(sim_moments_var(&m) == 2.0);
+    assert_true(m.min == 3 && m.max == 5 && m.mean == 4);
+    sim_moments_add(&m, 7);
+    assert_true(sim_moments_var(&m) == 4.0);
+    assert_true(m.min == 3 && m.max == 7 && m.mean == 5);
+    assert_int_equal(m.n, 3);
+    SimBusy b;
+    sim_busy_init(&b);
+    assert_true(sim_busy_add(&b, 2, 10));
+    assert_true(sim_busy_add(&b, 0, 5));
+    assert_true(sim_busy_add(&b, 2, 1));
+    assert_int_equal(sim_busy_phase(&b, 2), 11);
+    assert_int_equal(sim_busy_phase(&b, 0), 5);
+    assert_int_equal(sim_busy_phase(&b, 1), 0);
+    assert_int_equal(sim_busy_phase(&b, 3), 0);
+    assert_int_equal(b.total, 16);
+    assert_false(sim_busy_add(&b, 1, SIM_TIME_MAX - 15));
+    assert_int_equal(b.total, 16); /* nothing half-added */
+    assert_int_equal(sim_busy_phase(&b, 1), 0);
+    assert_true(sim_busy_add(&b, 1, SIM_TIME_MAX - 16));
+    assert_int_equal(b.total, SIM_TIME_MAX);
+    sim_busy_clear(&b);
+    assert_int_equal(sim_busy_phase(&b, 0), 0);
+    assert_int_equal(b.total, 0);
+}
+
+
+
+/* Booleans, integer ranges and their texts, enums, maps. */
+static void test_getters_edges(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "b: [true, True, TRUE, yes, on, false, False, FALSE, no, off, Yes]\n"
+        "i: {lo: -5, hi: 7, big: 9223372036854775807, x: 1.5}\n"
+        "e: {first: red, last: blue, other: pink}\n"
+        "m: {k: 1}\n",
+        "g.yaml", &err);
+    assert_non_null(root);
+    const CfgNode *bl = cfg_get(root, "b");
+    for (guint k = 0; k < 11; k++) {
+        char *text = g_strdup_printf("v: %s\n", cfg_scalar(cfg_seq_at(bl, k)));
+        CfgNode *wrap = cfg_load_string(text, "w.yaml", &err);
+        g_free(text);
+        gboolean v = 7;
+        gboolean ok = cfg_get_bool(wrap, "v", TRUE, &v, &err);
+        if (k < 10) {
+            assert_true(ok);
+            assert_int_equal(v, k < 5);
+        } else {
+            assert_false(ok);
+            assert_string_equal(err->message,
+                                "w.yaml:1:4: found 'Yes', expected true or "
+                                "false");
+            g_clear_error(&err);
+        }
+        cfg_free(wrap);
+    }
+    const CfgNode *in = cfg_get(root, "i");
+    int64_t x = 99;
+    assert_true(cfg_get_int(in, "lo", TRUE, -5, 7, &x, &err));
+    assert_int_equal(x, -5);
+    assert_true(cfg_get_int(in, "hi", TRUE, -5, 7, &x, &err));
+    assert_int_equal(x, 7);
+    assert_false(cfg_get_int(in, "lo", TRUE, -4, 7, &x, &err));
+    assert_string_equal(err->message,
+                        "g.yaml:2:9: found '-5', expected an integer in "
+                        "[-4, 7]");
+    g_clear_error(&err);
+    assert_false(cfg_get_int(in, "hi", TRUE, 8, INT64_MAX, &x, &err));
+    assert_string_equal(err->message,
+                        "g.yaml:2:17: found '7', expected an integer >= 8");
+    g_clear_error(&err);
+    assert_false(cfg_get_int(in, "x", TRUE, INT64_MIN, INT64_MAX, &x, &err));
+    assert_non_null(strstr(err->message, "found '1.5', expected an integer"));
+    assert_null(strstr(err->message, "integer "));
+    g_clear_error(&err);
+    assert_true(cfg_get_int(in, "big", TRUE, 0, INT64_MAX, &x, &err));
+    assert_int_equal(x, INT64_MAX);
+    x = 3;
+    assert_true(cfg_get_int(in, "none", FALSE, 0, 1, &x, &err));
+    assert_int_equal(x, 3);
+    static const char *const words[] = {"red", "green", "blue", NULL};
+    int w = -1;
+    const CfgNode *en = cfg_get(root, "e");
+    assert_true(cfg_get_enum(en, "first", TRUE, words, &w, &err));
+    assert_int_equal(w, 0);
+    assert_true(cfg_get_enum(en, "last", TRUE, words, &w, &err));
+    assert_int_equal(w, 2);
+    assert_false(cfg_get_enum(en, "other", TRUE, words, &w, &err));
+    assert_string_equal(err->message, "g.yaml:3:36: found 'pink', expected "
+                                      "one of: red, green, blue");
+    g_clear_error(&err);
+    assert_int_equal(w, 2);
+    const CfgNode *m = NULL;
+    assert_true(cfg_get_map(root, "m", TRUE, "a map of k", &m, &err));
+    assert_non_null(m);
+    assert_false(cfg_get_map(root, "b", TRUE, "a map of k", &m, &err));
+    assert_string_equal(err->message,
+                        "g.yaml:1:4: found a sequence, expected a map of k");
+    g_clear_error(&err);
+    assert_true(cfg_get_map(root, "zz", FALSE, "a map", &m, &err));
+    assert_null(m);
+    cfg_free(root);
+}
+
+/* A FIFO is refused as a pipe, not read (it might never end). */
+static void test_fifo_refused(void **state)
+{
+    (void)state;
+    char *tmp = g_dir_make_tmp("pgsim-fifo-XXXXXX", NULL);
+    char *f = g_build_filename(tmp, "p", NULL);
+    assert_int_equal(mkfifo(f, 0600), 0);
+    char *text = NULL;
+    GError *err = NULL;
+    assert_false(sim_file_read(f, &text, NULL, &err));
+    char *want = g_strdup_printf("%s:0:0: found a pipe, expected a regular "
+                                 "file", f);
+    assert_string_equal(err->message, want);
+    g_free(want);
+    g_clear_error(&err);
+    g_unlink(f);
+    g_rmdir(tmp);
+    g_free(f);
+    g_free(tmp);
+}
+
+static void nothing(SimEngine *e, void *ctx, void *arg)
+{
+    (void)e;
+    (void)ctx;
+    (void)arg;
+}
+
+static void fail_twice(SimEngine *e, void *ctx, void *arg)
+{
+    (void)ctx;
+    (void)arg;
+    sim_engine_fail(e, g_error_new(SIM_ERROR, SIM_ERROR_INPUT, "first"));
+    sim_engine_fail(e, g_error_new(SIM_ERROR, SIM_ERROR_INPUT, "second"));
+}
+
+/* A run keeps its first error; an empty queue moves the clock to
+ * `until` but never back; a dry run reports a scheduling error first;
+ * pending events are bounded by the memory limit. */
+static void test_engine_edges(void **state)
+{
+    (void)state;
+    SimEngine *e = sim_engine_new(1);
+    sim_schedule_at(e, 5, fail_twice, NULL, NULL);
+    sim_schedule_at(e, 6, nothing, NULL, NULL);
+    GError *err = NULL;
+    assert_false(sim_engine_run(e, SIM_TIME_MAX, &err));
+    assert_string_equal(err->message, "first");
+    g_clear_error(&err);
+    assert_int_equal(sim_now(e), 5);
+    assert_int_equal(sim_engine_pending(e), 1);
+    assert_true(sim_engine_run(e, 100, &err));
+    assert_int_equal(sim_now(e), 100);
+    assert_true(sim_engine_run(e, 50, &err));
+    assert_int_equal(sim_now(e), 100);
+    assert_true(sim_engine_run(e, SIM_TIME_MAX, &err));
+    assert_int_equal(sim_now(e), 100);
+    assert_int_equal(sim_engine_events(e), 2);
+    sim_engine_free(e);
+    e = sim_engine_new(1);
+    sim_engine_set_dry_run(e, TRUE);
+    sim_schedule_at(e, 1, nothing, NULL, NULL);
+    assert_false(sim_engine_run(e, SIM_TIME_MAX, &err));
+    assert_true(g_error_matches(err, SIM_ERROR, SIM_ERROR_DRY_RUN));
+    g_clear_error(&err);
+    assert_int_equal(sim_engine_events(e), 0);
+    sim_engine_free(e);
+    /* 1,024 pending events fit in 32 KiB; 2,048 do not */
+    sim_mem_set_limit(1024 * 2 * sizeof(SimEvKey));
+    e = sim_engine_new(1);
+    sim_engine_set_dry_run(e, TRUE);
+    for (int i = 0; i < 1024; i++)
+        assert_true(sim_schedule_at(e, (SimTime)i, nothing, NULL, NULL));
+    assert_false(sim_schedule_at(e, 7, nothing, NULL, NULL));
+    assert_int_equal(sim_engine_pending(e), 1024);
+    assert_false(sim_engine_run(e, SIM_TIME_MAX, &err));
+    assert_true(g_error_matches(err, SIM_ERROR, SIM_ERROR_INPUT));
+    assert_non_null(strstr(err->message, "found 2048 pending events"));
+    g_clear_error(&err);
+    sim_engine_free(e);
+    sim_mem_set_limit(0);
+}
+
+/* Plain null spellings are empty values; quoted ones, and near misses,
+ * are strings; an alias copies its anchor's tree at its own place. */
+static void test_nulls_and_aliases(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "a: ~\nb: null\nc: Null\nd: NULL\ne:\nf: \"null\"\ng: nul\nh: 'NULL'\n"
+        "i: nULL\nj: &x {k: [1, 2]}\nl: *x\n",
+        "n.yaml", &err);
+    assert_non_null(root);
+    static const char *const nulls[] = {"a", "b", "c", "d", "e"};
+    for (guint i = 0; i < G_N_ELEMENTS(nulls); i++)
+        assert_int_equal(cfg_kind(cfg_get(root, nulls[i])), CFG_NULL);
+    static const char *const strs[] = {"f", "g", "h", "i"};
+    static const char *const text[] = {"null", "nul", "NULL", "nULL"};
+    for (guint i = 0; i < G_N_ELEMENTS(strs); i++) {
+        const CfgNode *v = cfg_get(root, strs[i]);
+        assert_int_equal(cfg_kind(v), CFG_SCALAR);
+        assert_string_equal(cfg_scalar(v), text[i]);
+    }
+    const CfgNode *l = cfg_get(root, "l");
+    assert_int_equal(cfg_kind(l), CFG_MAP);
+    assert_int_equal(cfg_line(l), 11);
+    assert_int_equal(cfg_col(l), 4);
+    const CfgNode *k = cfg_path(root, "l.k");
+    assert_int_equal(cfg_seq_len(k), 2);
+    assert_string_equal(cfg_scalar(cfg_seq_at(k, 1)), "2");
+    CfgNode *copy = cfg_copy(cfg_get(root, "j"));
+    assert_int_equal(cfg_seq_len(cfg_get(copy, "k")), 2);
+    assert_string_equal(cfg_scalar(cfg_seq_at(cfg_get(copy, "k"), 0)), "1");
+    cfg_free(copy);
+    cfg_free(root);
+}
+
+/* An empty document is an empty value at line 1, column 1; a file whose
+ * size says more than it holds (a /sys attribute, 4096 bytes that read
+ * short) is refused as one that shrank. */
+static void test_empty_and_short(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string("", "e.yaml", &err);
+    assert_non_null(root);
+    assert_int_equal(cfg_kind(root), CFG_NULL);
+    assert_int_equal(cfg_line(root), 1);
+    assert_int_equal(cfg_col(root), 1);
+    assert_string_equal(cfg_file(root), "e.yaml");
+    cfg_free(root);
+    const char *f = "/sys/kernel/mm/transparent_hugepage/enabled";
+    if (!g_file_test(f, G_FILE_TEST_IS_REGULAR))
+        return; /* no sysfs here */
+    char *text = NULL;
+    assert_false(sim_file_read(f, &text, NULL, &err));
+    char *want = g_strdup_printf("%s:0:0: found a file that shrank, expected "
+                                 "a readable file", f);
+    assert_string_equal(err->message, want);
+    g_free(want);
+    g_clear_error(&err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cfg_errors),
         cmocka_unit_test(test_describe_long),
         cmocka_unit_test(test_path_index),
-        cmocka_unit_test(test_units_edges),
         cmocka_unit_test(test_exit_status),
         cmocka_unit_test(test_result_edges),
         cmocka_unit_test(test_rng_below_rejection),
         cmocka_unit_test(test_mem_limit_env),
+        cmocka_unit_test(test_free_null),
+        cmocka_unit_test(test_moments_and_busy),
+        cmocka_unit_test(test_getters_edges),
+        cmocka_unit_test(test_fifo_refused),
+        cmocka_unit_test(test_engine_edges),
+        cmocka_unit_test(test_nulls_and_aliases),
+        cmocka_unit_test(test_empty_and_short),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -44,6 +44,10 @@ static const UnitCase sizes[] = {
     {"1 TiB", 1099511627776.0},              {"3 KiB", 3072},
 };
 
+static const UnitCase counts[] = {
+    {"24", 24}, {"24 K", 24e3}, {"24 M", 24e6}, {"24K", 24e3}, {"3M", 3e6},
+};
+
 static void check_table(const UnitCase *c, size_t n, CfgUnitKind kind,
                         gboolean integer)
 {
@@ -74,6 +78,7 @@ static void test_every_unit(void **state)
                 FALSE);
     check_table(freqs, G_N_ELEMENTS(freqs), CFG_UNIT_FREQ, FALSE);
     check_table(sizes, G_N_ELEMENTS(sizes), CFG_UNIT_SIZE, TRUE);
+    check_table(counts, G_N_ELEMENTS(counts), CFG_UNIT_COUNT, TRUE);
 }
 
 static void test_busy_clear(void **state)
@@ -125,6 +130,7 @@ static void test_input_limit_env(void **state)
         {"5000", 5000},        {"3k", 3072},  {"3M", 3u << 20},
         {"3G", 3ull << 30},    {"3T", 0},     {"3kB", 0},
         {"x", 0},              {"", 0},
+        {"17179869183G", 17179869183ull << 30},  {"17179869184G", 0},
     };
     sim_file_set_limit(0);
     for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {

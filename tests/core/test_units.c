@@ -173,6 +173,100 @@ static void test_flag_parsers(void **state)
     assert_true(bw == 40e6);
 }
 
+static void test_units_edges(void **state)
+{
+    (void)state;
+    assert_int_equal(u64_ok("  5 us", CFG_UNIT_TIME), 5 * SIM_US);
+    assert_int_equal(u64_ok("+5 us", CFG_UNIT_TIME), 5 * SIM_US);
+    assert_int_equal(u64_ok("1.50 us", CFG_UNIT_TIME), 1500000);
+    assert_int_equal(u64_ok("1.500000 ns", CFG_UNIT_TIME), 1500);
+    assert_int_equal(u64_ok("0.000 s", CFG_UNIT_TIME), 0);
+    assert_int_equal(u64_ok("2e3 ps", CFG_UNIT_TIME), 2000);
+    assert_int_equal(u64_ok("2e+3 ps", CFG_UNIT_TIME), 2000);
+    assert_int_equal(u64_ok("2000e-3 ns", CFG_UNIT_TIME), 2000);
+    assert_true(dbl_ok("1 B/s", CFG_UNIT_BANDWIDTH) == 1.0);
+    assert_true(dbl_ok("0 B/s", CFG_UNIT_BANDWIDTH) == 0.0);
+    assert_true(dbl_ok("1 Hz", CFG_UNIT_FREQ) == 1.0);
+    assert_string_equal(dbl_bad("0.5 B/s", CFG_UNIT_BANDWIDTH),
+                        "0 or at least 1 B/s");
+    assert_string_equal(dbl_bad("0.5 Hz", CFG_UNIT_FREQ),
+                        "0 or at least 1 Hz");
+    assert_string_equal(dbl_bad("0.999 B/s", CFG_UNIT_BANDWIDTH),
+                        "0 or at least 1 B/s");
+    /* more than 20 significant digits: fine for a rate, not a time */
+    assert_true(dbl_ok("1.000000000000000000000001 MB/s", CFG_UNIT_BANDWIDTH) ==
+                1e6);
+    assert_true(dbl_ok("123456789012345678901234 B/s", CFG_UNIT_BANDWIDTH) ==
+                123456789012345678901234.0);
+    uint64_t v;
+    const char *exp = NULL;
+    assert_false(cfg_units_u64("1.000000000000000000000001 us", CFG_UNIT_TIME,
+                               &v, &exp));
+    assert_non_null(strstr(exp, "at most 20 significant"));
+    assert_false(cfg_units_u64("-1 us", CFG_UNIT_TIME, &v, &exp));
+    assert_false(cfg_units_u64("1e us", CFG_UNIT_TIME, &v, &exp));
+    assert_false(cfg_units_u64("1e+ us", CFG_UNIT_TIME, &v, &exp));
+}
+
+/* Exact scaling at its edges: half a picosecond rounds up, a fraction of
+ * a byte or a count is refused, 2^64 - 1 fits and 2^64 does not, and a
+ * divisor of 10^19 (the largest that fits) still rounds. */
+static void test_units_exact_edges(void **state)
+{
+    (void)state;
+    assert_int_equal(u64_ok("0.5 ps", CFG_UNIT_TIME), 1);
+    assert_int_equal(u64_ok("0.49 ps", CFG_UNIT_TIME), 0);
+    assert_int_equal(u64_ok("0.51 ps", CFG_UNIT_TIME), 1);
+    assert_int_equal(u64_ok("2.5 ps", CFG_UNIT_TIME), 3);
+    assert_int_equal(u64_ok("1.4999 ps", CFG_UNIT_TIME), 1);
+    assert_int_equal(u64_ok("0.0015 us", CFG_UNIT_TIME), 1500);
+    assert_int_equal(u64_ok("000123 ns", CFG_UNIT_TIME), 123000);
+    assert_int_equal(u64_ok("1234567890 ps", CFG_UNIT_TIME), 1234567890);
+    assert_int_equal(u64_ok("9999999999999999999e-19 ps", CFG_UNIT_TIME), 1);
+    assert_int_equal(u64_ok("4999999999999999999e-19 ps", CFG_UNIT_TIME), 0);
+    assert_int_equal(u64_ok("18446744073709551615e-20 ps", CFG_UNIT_TIME), 0);
+    assert_int_equal(u64_ok("1e-40 ps", CFG_UNIT_TIME), 0);
+    assert_int_equal(u64_ok("1e-41 ps", CFG_UNIT_TIME), 0);
+    assert_int_equal(u64_ok("18446744073709551615 ps", CFG_UNIT_TIME),
+                     UINT64_MAX);
+    assert_int_equal(u64_ok("1844674407370955161e1 ps", CFG_UNIT_TIME),
+                     18446744073709551610ull);
+    assert_string_equal(u64_bad("18446744073709551616 ps", CFG_UNIT_TIME),
+                        "a time below 2^64 ps (about 213 days)");
+    assert_string_equal(u64_bad("1844674407370955162e1 ps", CFG_UNIT_TIME),
+                        "a time below 2^64 ps (about 213 days)");
+    assert_int_equal(u64_ok("17179869183 GiB", CFG_UNIT_SIZE),
+                     (17179869183ull << 30));
+    assert_string_equal(u64_bad("17179869184 GiB", CFG_UNIT_SIZE),
+                        "a size below 2^64 bytes");
+    assert_int_equal(u64_ok("16777215 TiB", CFG_UNIT_SIZE), 16777215ull << 40);
+    assert_string_equal(u64_bad("16777216 TiB", CFG_UNIT_SIZE),
+                        "a size below 2^64 bytes");
+    assert_string_equal(u64_bad("0.5 B", CFG_UNIT_SIZE),
+                        "a whole number of bytes");
+    assert_string_equal(u64_bad("1e-41 B", CFG_UNIT_SIZE),
+                        "a whole number of bytes");
+    assert_string_equal(u64_bad("1e-20 B", CFG_UNIT_SIZE),
+                        "a whole number of bytes");
+    assert_int_equal(u64_ok("0e-50 B", CFG_UNIT_SIZE), 0);
+    assert_int_equal(u64_ok("1.5 KiB", CFG_UNIT_SIZE), 1536);
+    assert_string_equal(u64_bad("1.5", CFG_UNIT_COUNT), "a whole number");
+    assert_int_equal(u64_ok("2.5K", CFG_UNIT_COUNT), 2500);
+    assert_int_equal(u64_ok("0", CFG_UNIT_SIZE), 0);
+    assert_int_equal(u64_ok("0", CFG_UNIT_TIME), 0);
+    assert_non_null(u64_bad("5", CFG_UNIT_TIME));
+    assert_non_null(u64_bad(":5 us", CFG_UNIT_TIME));
+    assert_non_null(u64_bad("5: us", CFG_UNIT_TIME));
+    assert_non_null(u64_bad("5/ us", CFG_UNIT_TIME));
+    assert_non_null(u64_bad(". us", CFG_UNIT_TIME));
+    assert_true(dbl_ok("1e-401 B/s", CFG_UNIT_BANDWIDTH) == 0.0);
+    assert_string_equal(dbl_bad("1e309 B/s", CFG_UNIT_BANDWIDTH),
+                        "a finite bandwidth");
+    assert_string_equal(dbl_bad("1e400 GHz", CFG_UNIT_FREQ),
+                        "a finite frequency");
+    assert_true(dbl_ok("1.5e3 kB/s", CFG_UNIT_BANDWIDTH) == 1.5e6);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -182,6 +276,8 @@ int main(void)
         cmocka_unit_test(test_bad),
         cmocka_unit_test(test_common_spellings),
         cmocka_unit_test(test_flag_parsers),
+        cmocka_unit_test(test_units_edges),
+        cmocka_unit_test(test_units_exact_edges),
     };
     return cmocka_run_group_tests_name("units", tests, NULL, NULL);
 }

@@ -113,6 +113,14 @@ static void test_units_required(void **state)
     bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
                    "  startup: {value: \"  \", source: s}}\n",
         5, 20, "without a unit");
+    /* a single letter ends in no digit: it has a "unit", then fails to
+     * parse as a time */
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: x, source: s}}\n",
+        5, 20, "found 'x', expected a non-negative time");
+    bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
+                   "  startup: {value: \"7\", source: s}}\n",
+        5, 20, "'7' without a unit");
     /* the unit is there but does not parse as a time */
     bad(HEAD NODES "network: {topology: {value: ring, source: s},\n"
                    "  startup: {value: 5 MB, source: s}}\n",
@@ -181,6 +189,7 @@ static void test_sections_refused(void **state)
     bad(HEAD "references: [a]\n" NODES NET_OK, 3, 13,
         "a non-map references section");
     bad(HEAD "references: {a: x, b: [1]}\n" NODES NET_OK, 3, 23, "found");
+    bad(HEAD "references: {b: [1], a: x}\n" NODES NET_OK, 3, 17, "found a sequence");
     good(HEAD "references: {a: x, b: y}\ndescription: d\nmodel: m\n" NODES
              NET_OK);
     bad(HEAD "description: [d]\n" NODES NET_OK, 3, 14, "found");
@@ -797,6 +806,16 @@ static void test_partition_single_kinds(void **state)
                    "a 3, b 1, c 5");
     partition_desc("{a: {count: 2}, b: {count: 1}, c: {count: 6}}", 4,
                    "a 1, b 1, c 2");
+    /* largest remainder; ties go to the earlier kind */
+    partition_desc("{a: {count: 3}, b: {count: 5}}", 5, "a 2, b 3");
+    partition_desc("{a: {count: 3}, b: {count: 5}}", 8, "a 3, b 5");
+    partition_desc("{a: {count: 2}, b: {count: 2}}", 5, "a 3, b 2");
+    partition_desc("{a: {count: 2}, b: {count: 2}, c: {count: 2}}", 8,
+                   "a 3, b 3, c 2");
+    partition_desc("{a: {count: 2}, b: {count: 2}, c: {count: 2}}", 3,
+                   "a 1, b 1, c 1");
+    partition_desc("{a: {count: 5}, b: {count: 3}}", 2, "a 1, b 1");
+    partition_desc("{a: {count: 5}, b: {count: 3}}", 1000, "a 625, b 375");
     GError *err = NULL;
     CfgNode *root = cfg_load_string(
         "machine:\n  provenance: assumption\n  name: t\n  nodes: {a: {count: "
@@ -820,6 +839,222 @@ static void test_partition_single_kinds(void **state)
     cfg_free(root);
 }
 
+/* count x cost saturates exactly when it would pass SIM_TIME_MAX. */
+static void test_cost_n(void **state)
+{
+    (void)state;
+    SimTime t = 1;
+    assert_true(mach_cost_n(SIM_TIME_MAX, 0, &t));
+    assert_int_equal(t, 0);
+    assert_true(mach_cost_n(0, UINT64_MAX, &t));
+    assert_int_equal(t, 0);
+    assert_true(mach_cost_n(SIM_TIME_MAX, 1, &t));
+    assert_int_equal(t, SIM_TIME_MAX);
+    assert_true(mach_cost_n(SIM_TIME_MAX / 2, 2, &t));
+    assert_int_equal(t, SIM_TIME_MAX / 2 * 2);
+    assert_false(mach_cost_n(SIM_TIME_MAX / 2 + 1, 2, &t));
+    assert_int_equal(t, SIM_TIME_MAX);
+    assert_true(mach_cost_n(7, 3, &t));
+    assert_int_equal(t, 21);
+}
+
+/* mach_topo_new on `endpoints`: NULL when built, else the message. */
+static char *topo_try(const char *text, guint endpoints)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "n.yaml", &err);
+    assert_non_null(root);
+    NetTopo *t = mach_topo_new(root, endpoints, NULL, &err);
+    char *msg = NULL;
+    if (t) {
+        assert_int_equal(net_topo_nodes(t), endpoints);
+        net_topo_free(t);
+    } else {
+        msg = g_strdup(err->message);
+        g_error_free(err);
+    }
+    cfg_free(root);
+    return msg;
+}
+
+static void expect_topo(const char *text, guint endpoints, const char *want)
+{
+    char *msg = topo_try(text, endpoints);
+    if (want && (!msg || !strstr(msg, want)))
+        fail_msg("%u on %s: got '%s', want '%s'", endpoints, text,
+                 msg ? msg : "built", want);
+    if (!want && msg)
+        fail_msg("%u on %s: %s", endpoints, text, msg);
+    g_free(msg);
+}
+
+/* The largest shapes each builder takes, and one past them. */
+static void test_topology_limits(void **state)
+{
+    (void)state;
+    expect_topo("topology: hypercube\n", 1u << 24, NULL);
+    expect_topo("topology: hypercube\n", 1u << 25,
+                "33554432 processors on a hypercube");
+    expect_topo("topology: hypercube\ndimension: 24\n", 1u << 24, NULL);
+    expect_topo("topology: hypercube\ndimension: 23\n", 1u << 24,
+                "on a hypercube");
+    expect_topo("topology: cm-router\nprocs_per_router: 1\n", 1u << 20, NULL);
+    expect_topo("topology: cm-router\nprocs_per_router: 1\n", 1u << 21,
+                "2097152 lanes");
+    expect_topo("topology: cm-router\nprocs_per_router: 4\n", 1u << 22, NULL);
+    expect_topo("topology: cm-router\nprocs_per_router: 4\n", 6,
+                "6 lanes");
+    expect_topo("topology: cm-router\nprocs_per_router: 4\n", 12,
+                "12 lanes");
+    expect_topo("topology: cm-router\nprocs_per_router: 4\n"
+                "router_nodes: 2\n",
+                8, NULL);
+    expect_topo("topology: cm-router\nprocs_per_router: 4\n"
+                "router_nodes: 4\n",
+                8, "8 lanes");
+    expect_topo("topology: mesh\nextents: [16777216]\n", 1u << 24, NULL);
+    expect_topo("topology: mesh\nextents: [16777217]\n", 16777217,
+                "unusable mesh extents");
+    expect_topo("topology: torus\nextents: [2, 2, 2]\n", 8, NULL);
+    expect_topo("topology: torus\nextents: []\n", 1, "unusable mesh extents");
+    expect_topo("topology: fat-tree\narity: 64\n", 2, NULL);
+    expect_topo("topology: fat-tree\narity: 65\n", 2, "fat-tree arity");
+    expect_topo("topology: ring\n", 2, NULL);
+}
+
+/* Processor ids run through the kinds in model order, pages of 64
+ * straddling kind boundaries; the cm-router's endpoints are the widest
+ * kind's lanes wherever it stands; a model naming no fidelity is
+ * "analytic (faithful)"; an unknown fidelity word is refused. */
+static void test_kinds_and_fidelity(void **state)
+{
+    (void)state;
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    char *text = g_strdup(
+        "machine:\n  provenance: assumption\n  name: t\n"
+        "  nodes: {a: {count: 63}, b: {count: 2}, c: {count: 64}}\n"
+        "  network: {topology: bus, bandwidth: 1 MB/s}\n");
+    root = cfg_load_string(text, "run.yaml", &err);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "faithful", &err);
+    assert_non_null(m);
+    assert_string_equal(mach_fidelity(m), "analytic (faithful)");
+    assert_int_equal(mach_proc_total(m), 129);
+    static const guint ids[] = {0, 62, 63, 64, 65, 127, 128};
+    static const char *const kinds[] = {"a", "a", "b", "b", "c", "c", "c"};
+    static const guint index[] = {0, 62, 0, 1, 0, 62, 63};
+    for (guint i = 0; i < G_N_ELEMENTS(ids); i++) {
+        MachProc *p = mach_proc_at(m, ids[i]);
+        assert_int_equal(mach_proc_id(p), ids[i]);
+        assert_string_equal(mach_proc_kind(p), kinds[i]);
+        assert_int_equal(mach_proc_index(p), index[i]);
+        char *want = g_strdup_printf("%s%u", kinds[i], index[i]);
+        assert_string_equal(mach_proc_name(p), want);
+        g_free(want);
+    }
+    assert_int_equal(mach_kind(m, "c")->first, 65);
+    assert_int_equal(mach_kind_at(m, 1)->first, 63);
+    assert_null(mach_kind(m, "d"));
+    mach_free(m);
+    m = mach_new_from_cfg(eng, cfg_get(root, "machine"), "exact", &err);
+    assert_null(m);
+    assert_string_equal(err->message, "found fidelity 'exact', expected "
+                                      "analytic, flow, packet or faithful");
+    g_clear_error(&err);
+    cfg_free(root);
+    g_free(text);
+    /* widest SIMD kind first, a narrower one after it */
+    root = cfg_load_string(
+        "machine:\n  provenance: assumption\n  name: t\n"
+        "  nodes: {array: {count: 1, lanes: 32}, fe: {count: 1, lanes: 2}}\n"
+        "  network: {topology: cm-router, bandwidth: 1 MB/s, "
+        "procs_per_router: 8}\n",
+        "run.yaml", &err);
+    m = mach_new_from_cfg(eng, cfg_get(root, "machine"), "flow", &err);
+    if (!m)
+        fail_msg("%s", err->message);
+    assert_int_equal(net_nodes(mach_net(m)), 32);
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
+/* The model folders: ./models first, then $PGSIM_MODELS in order with
+ * empty entries skipped, then each data root's models; a folder named
+ * twice (even spelt differently) is listed once. */
+static void test_model_dirs(void **state)
+{
+    (void)state;
+    g_setenv("PGSIM_MODELS", ":tests/data/models::models:tests/data/models/:"
+                             "tests/data/bad/models",
+             TRUE);
+    GPtrArray *d = mach_model_dirs();
+    assert_true(d->len >= 3);
+    assert_string_equal(d->pdata[0], "models");
+    assert_string_equal(d->pdata[1], "tests/data/models");
+    assert_string_equal(d->pdata[2], "tests/data/bad/models");
+    for (guint i = 0; i < d->len; i++) {
+        assert_true(((const char *)d->pdata[i])[0] != '\0');
+        char *ci = g_canonicalize_filename(d->pdata[i], NULL);
+        for (guint j = 0; j < i; j++) {
+            char *cj = g_canonicalize_filename(d->pdata[j], NULL);
+            assert_string_not_equal(ci, cj);
+            g_free(cj);
+        }
+        g_free(ci);
+    }
+    g_ptr_array_free(d, TRUE);
+    g_unsetenv("PGSIM_MODELS");
+    d = mach_model_dirs();
+    assert_string_equal(d->pdata[0], "models");
+    for (guint i = 1; i < d->len; i++)
+        assert_true(g_str_has_suffix(d->pdata[i], "models"));
+    g_ptr_array_free(d, TRUE);
+}
+
+static void count_done(SimEngine *e, void *ctx, void *arg)
+{
+    (void)arg;
+    *(SimTime *)ctx = sim_now(e);
+}
+
+/* An empty operation list takes no time (its completion runs at once)
+ * but is one request; a list prices its counts by the kind's costs. */
+static void test_empty_op_list(void **state)
+{
+    (void)state;
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root;
+    GError *err = NULL;
+    MachMachine *m = inline_machine(
+        eng, "  nodes: {cpu: {count: 2, costs: {add: 3 us, mul: 5 us}}}\n"
+             "  network: {topology: bus, bandwidth: 1 MB/s}\n",
+        &root, &err);
+    assert_non_null(m);
+    MachProc *p = mach_proc(m, "cpu", 1);
+    MachOps o = {0};
+    SimTime at = 99;
+    assert_true(mach_proc_compute_list(p, &o, 0, count_done, &at, NULL));
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(at, 0);
+    assert_int_equal(mach_proc_busy(p), 0);
+    assert_int_equal(mach_proc_free_at(p), 0);
+    assert_int_equal(mach_proc_requests(p), 1);
+    mach_ops_add(&o, "add", 2);
+    mach_ops_add(&o, "mul", 1);
+    assert_int_equal(mach_proc_ops_cost(p, &o), 11 * SIM_US);
+    assert_true(mach_proc_compute_list(p, &o, 0, count_done, &at, NULL));
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(at, 11 * SIM_US);
+    assert_int_equal(mach_proc_busy(p), 11 * SIM_US);
+    assert_int_equal(mach_proc_requests(p), 2);
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -840,6 +1075,11 @@ int main(void)
         cmocka_unit_test(test_machine_sections),
         cmocka_unit_test(test_cm_router_without_lanes),
         cmocka_unit_test(test_partition_single_kinds),
+        cmocka_unit_test(test_cost_n),
+        cmocka_unit_test(test_topology_limits),
+        cmocka_unit_test(test_kinds_and_fidelity),
+        cmocka_unit_test(test_model_dirs),
+        cmocka_unit_test(test_empty_op_list),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

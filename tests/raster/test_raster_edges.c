@@ -143,6 +143,8 @@ static void test_fan_split_counts(void **state)
         assert_int_equal(c.verts, whole ? (uint64_t)n : 3 * (uint64_t)(n - 2));
         assert_int_equal(c.degenerate, 0);
         assert_int_equal(c.culled, 0);
+        assert_int_equal(c.clipped, 0); /* inside every plane */
+        assert_int_equal(c.rejected, 0);
         assert_int_equal(tu_coverage_max(cv), 1);
         uint64_t px = tu_coverage_count(cv, 1);
         assert_int_equal(c.pixels, px);
@@ -242,6 +244,64 @@ static void test_image_errors(void **state)
     rast_image_free(img);
 }
 
+/* Pixels: channels in place, fill, equality of sizes and contents,
+ * differing pixels counted once whatever channel differs; write picks
+ * PPM by the suffix and PNG otherwise. */
+static void test_image_pixels(void **state)
+{
+    (void)state;
+    RastImage *a = rast_image_new(3, 2), *b = rast_image_new(3, 2);
+    rast_image_fill(a, (RastColor){0.0f, 1.0f, 0.5f});
+    assert_int_equal(rast_image_get(a, 2, 1), 0xff80ff00u);
+    assert_int_equal(a->rgb[0], 0);
+    assert_int_equal(a->rgb[1], 255);
+    assert_int_equal(a->rgb[2], 128);
+    assert_int_equal(a->rgb[17], 128);
+    rast_image_fill(b, (RastColor){0.0f, 1.0f, 0.5f});
+    assert_true(rast_image_equal(a, b));
+    assert_int_equal(rast_image_diff(a, b), 0);
+    rast_image_set(b, 0, 0, 0x00000001u);
+    rast_image_set(b, 2, 1, 0x00020000u | 0xff00u);
+    assert_int_equal(rast_image_get(b, 0, 0), 0xff000001u);
+    assert_int_equal(b->rgb[15], 0);
+    assert_int_equal(b->rgb[16], 0xff);
+    assert_int_equal(b->rgb[17], 2);
+    assert_false(rast_image_equal(a, b));
+    assert_int_equal(rast_image_diff(a, b), 2);
+    rast_image_set(b, 1, 0, 0x0080ff01u); /* only its red differs */
+    assert_int_equal(rast_image_diff(a, b), 3);
+    RastImage *wide = rast_image_new(2, 3), *tall = rast_image_new(3, 3);
+    assert_false(rast_image_equal(a, wide));
+    assert_false(rast_image_equal(a, tall));
+    char *dir = g_dir_make_tmp("rast-px-XXXXXX", NULL);
+    char *ppm = g_build_filename(dir, "b.ppm", NULL);
+    char *png = g_build_filename(dir, "b.png", NULL);
+    GError *err = NULL;
+    assert_true(rast_image_write(b, ppm, &err));
+    assert_true(rast_image_write(b, png, &err));
+    RastImage *r1 = rast_image_read_ppm(ppm, &err);
+    RastImage *r2 = rast_image_read_png(png, &err);
+    assert_non_null(r1);
+    assert_non_null(r2);
+    assert_true(rast_image_equal(r1, b));
+    assert_true(rast_image_equal(r2, b));
+    assert_null(rast_image_read_png(ppm, &err)); /* really a PPM */
+    g_clear_error(&err);
+    rast_image_free(r1);
+    rast_image_free(r2);
+    g_unlink(ppm);
+    g_unlink(png);
+    g_rmdir(dir);
+    g_free(ppm);
+    g_free(png);
+    g_free(dir);
+    rast_image_free(a);
+    rast_image_free(b);
+    rast_image_free(wide);
+    rast_image_free(tall);
+    rast_image_free(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -249,6 +309,7 @@ int main(void)
         cmocka_unit_test(test_clipped_to_nothing),
         cmocka_unit_test(test_fan_split_counts),
         cmocka_unit_test(test_image_errors),
+        cmocka_unit_test(test_image_pixels),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
