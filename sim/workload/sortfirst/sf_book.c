@@ -54,6 +54,9 @@ WlSfBook *wl_sf_book_new(const WlSfDb *db, const WlSfRegions *regions,
     b->held_data = g_new0(uint64_t, nc + 1);
     b->master_data = g_new0(uint64_t, nc + 1);
     b->master = g_new0(guint, nc + 1);
+    b->used = g_new0(uint64_t, nc + 1);
+    b->used_prev = g_new0(uint64_t, nc + 1);
+    b->fresh = g_new0(guint8, ni + 1);
     for (guint c = 0; c < nc; c++) {
         const WlSfChunk *ch = wl_sf_chunk(db, c);
         b->master[c] = ch->master;
@@ -75,6 +78,9 @@ void wl_sf_book_free(WlSfBook *b)
     g_free(b->held_data);
     g_free(b->master_data);
     g_free(b->master);
+    g_free(b->used);
+    g_free(b->used_prev);
+    g_free(b->fresh);
     g_free(b);
 }
 
@@ -87,12 +93,65 @@ void wl_sf_book_set_policy(WlSfBook *b, WlSfMigration mig, WlSfMastership ms)
 
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj)
 {
+    guint nc = wl_sf_n_chunks(b->db);
+    memcpy(b->used_prev, b->used, nc * sizeof *b->used);
+    memset(b->used, 0, nc * sizeof *b->used);
+    if (!b->remapped)
+        memset(b->fresh, 0, wl_sf_n_insts(b->db));
+    b->remapped = FALSE;
     for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
         const WlSfInst *in = wl_sf_inst(b->db, i);
         const WlSfChunk *ch = wl_sf_chunk(b->db, in->chunk);
         b->need[i] = wl_sf_box_regions(&b->regions, ch->box,
                                        mat4_mul(view_proj, in->matrix));
+        b->used[in->chunk] |= b->need[i];
     }
+}
+
+/* ---- edits: instances renumbered --------------------------------------- */
+
+static void remap_new(WlSfBook *b, const gint64 *old_of_new, guint ni,
+                      uint64_t *held, uint64_t *mast, WlSfRemapWork *w)
+{
+    gboolean maxset = b->bk == WL_SF_MAXSET;
+    for (guint i = 0; i < ni; i++) {
+        gint64 o = old_of_new[i];
+        if (o >= 0) {
+            held[i] = b->held_inst[o];
+            mast[i] = b->master_inst[o];
+            continue;
+        }
+        guint m = b->master[wl_sf_inst(b->db, i)->chunk];
+        held[i] = mast[i] = wl_sf_bit(m); /* §3.4.3: master pointers */
+        b->fresh[i] = 1;
+        w[m].ptr_created += maxset;
+    }
+}
+
+void wl_sf_book_remap(WlSfBook *b, const gint64 *old_of_new, guint n_old,
+                      WlSfRemapWork *w)
+{
+    guint ni = wl_sf_n_insts(b->db);
+    uint64_t *held = g_new0(uint64_t, ni + 1), *mast = g_new0(uint64_t, ni + 1);
+    guint8 *kept = g_new0(guint8, n_old + 1);
+    g_free(b->fresh);
+    b->fresh = g_new0(guint8, ni + 1);
+    remap_new(b, old_of_new, ni, held, mast, w);
+    for (guint i = 0; i < ni; i++)
+        if (old_of_new[i] >= 0)
+            kept[old_of_new[i]] = 1;
+    for (guint o = 0; b->bk == WL_SF_MAXSET && o < n_old; o++)
+        for (uint64_t bits = kept[o] ? 0 : b->held_inst[o], q = 0; bits;
+             q++, bits >>= 1)
+            w[q].ptr_collected += bits & 1; /* garbage-collected */
+    g_free(kept);
+    g_free(b->held_inst);
+    g_free(b->master_inst);
+    g_free(b->need);
+    b->held_inst = held;
+    b->master_inst = mast;
+    b->need = g_new0(uint64_t, ni + 1);
+    b->remapped = TRUE;
 }
 
 /* ---- sending ------------------------------------------------------------ */
@@ -186,6 +245,7 @@ static void master_maxset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
                 b->master_data[c] |= wl_sf_bit(q);
             }
             send_pointer(b, &out[q], i, w);
+            w->edit_bytes += b->fresh[i] ? b->sizes.instance : 0;
         }
         b->master_inst[i] = b->need[i] | me;
     }
@@ -198,17 +258,17 @@ static void master_maxset(WlSfBook *b, guint p, guint c, WlSfBatch *out,
         b->master_inst[i] &= ~me;
 }
 
+/* Cull tests of every instance (their result is used[] of this frame);
+ * the copy goes if no instance needed it last frame (§3.3.2.1). */
 static void slave_minset(WlSfBook *b, guint p, guint c, WlSfBookWork *w)
 {
     const WlSfChunk *ch = wl_sf_chunk(b->db, c);
-    uint64_t any = 0;
-    for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
-        any |= b->need[i] & wl_sf_bit(p);
     w->slave_boxes += ch->n_inst;
-    if (!any) {
-        b->held_data[c] &= ~wl_sf_bit(p);
-        w->deleted_chunks++;
-    }
+    if (b->used_prev[c] & wl_sf_bit(p))
+        return;
+    b->held_data[c] &= ~wl_sf_bit(p);
+    w->deleted_chunks++;
+    w->collected += ch->n_inst == 0;
 }
 
 /* Drops the pointers that left p's region; the copy goes at render. */
@@ -268,10 +328,13 @@ void wl_sf_book_pull_sort(WlSfBook *b, guint p, WlSfBatch *out,
             w->probe_boxes += ch->n_inst;
         if (b->master[c] == p)
             continue;
-        if (held && !any) {
+        if (held && !(b->used_prev[c] & me)) { /* a frame late, as push */
             b->held_data[c] &= ~me;
             w->deleted_chunks++;
-        } else if (!held && any) {
+            w->collected += ch->n_inst == 0;
+            held = FALSE;
+        }
+        if (!held && any) {
             WlSfBatch *bt = &out[b->master[c]];
             g_array_append_val(bt->chunks, c);
             bt->bytes += b->sizes.request;
@@ -370,6 +433,7 @@ void wl_sf_book_render_set(WlSfBook *b, guint p, const GArray *fresh,
         if (maxset && b->master[c] != p && !any_pointer(b, ch, me)) {
             b->held_data[c] &= ~me; /* reference count 0 (§3.4.3) */
             w->deleted_chunks++;
+            w->collected += ch->n_inst == 0;
             continue;
         }
         for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)

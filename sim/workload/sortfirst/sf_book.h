@@ -11,7 +11,7 @@
  *   a copy; the chunk goes to each new slave, with the first instance in
  *   the slave's region (§3.3.2.3).  For each slave chunk it cull-tests
  *   every instance against its own region and deletes the chunk when no
- *   instance falls in it.  A newly received chunk is cull-tested the same
+ *   instance fell in it (decided a frame late, below).  A newly received chunk is cull-tested the same
  *   way when it is rendered.
  * max-set (§3.4)  the min-set copy plus instance pointers (the max-set
  *   skeleton): for each master chunk the master holds every instance
@@ -33,8 +33,8 @@
  * as the paper describes it): no bit vectors; every processor
  * transforms the box of every instance of every chunk (held or not) and
  * cull-tests it against its own region, drops slave copies no instance
- * needs, and sends each master a request naming the chunks it needs and
- * lacks; the master answers with the chunks (first instance in the
+ * needed last frame, and sends each master a request naming the chunks
+ * it needs and lacks; the master answers with the chunks (first instance in the
  * requester's region).
  *
  * Dynamic mastership (§3.3.2.1, `mastership: dynamic`; push): when no
@@ -46,6 +46,26 @@
  * rendered instead of two.  A chunk that leaves the screen stays with
  * its last master: the off-screen accumulation the paper warns of.
  * The new master takes over on arrival (its next frame's sort).
+ *
+ * Slave deletion decided on the next frame (§3.3.2.1, push min-set):
+ * "one cannot know this until after a complete traversal, one can
+ * collect this information during one frame and decide whether or not
+ * to delete the chunk during the next frame".  A min-set slave's sort
+ * in frame f deletes the copies no instance needed in frame f - 1
+ * (`used_prev`), so a copy lives one frame past its last use; the
+ * master's copy vector (the regions of f - 1) already leaves it out, so
+ * a chunk needed again is sent again.  Pull deletes by the same rule
+ * (and asks again for a chunk it deleted but needs).
+ *
+ * Edits (sf_edit.h) change the max-set; wl_sf_book_remap carries the
+ * state of every instance that survives to its new number.  A new
+ * instance starts with its master's pointer only (§3.4.3: "places
+ * within it pointers to all of its master chunks"); the pointers of an
+ * obsolete one are garbage-collected on every processor holding them.
+ * A slave copy deleted while its chunk has no instance at all is
+ * counted as collected.  The pointers a master sends for instances an
+ * edit created are counted as edit bytes (chunk data sent with them is
+ * migration: the region needed it).
  *
  * Work is counted, not timed: box transforms of master, slave and newly
  * received chunks (the counts of seed 000 Charts 4 and 5), items sent,
@@ -74,6 +94,7 @@ typedef struct {
     uint64_t cell;     /* per cell of an adaptive work grid */
     uint64_t request;  /* per chunk id in a pull request */
     uint64_t mastership; /* per chunk handed over: id, copy vector */
+    uint64_t edit;     /* per edit command (sf_edit.h) */
 } WlSfSizes;
 
 /* What one processor sends one other processor in a frame. */
@@ -96,6 +117,8 @@ typedef struct {
     uint64_t probe_boxes; /* pull: boxes of chunks not held */
     uint64_t requested;   /* pull: chunks asked for */
     uint64_t handed;      /* dynamic: masterships passed on */
+    uint64_t collected;   /* slave copies deleted, chunk without instance */
+    uint64_t edit_bytes;  /* pointers sent for instances edits created */
     uint64_t held_chunks, held_polys, held_insts; /* after the frame */
 } WlSfBookWork;
 
@@ -112,7 +135,17 @@ typedef struct {
     uint64_t *held_inst;   /* per instance (max-set) */
     uint64_t *master_data; /* per chunk: master's copy vector */
     uint64_t *master_inst; /* per instance: master's pointer vector */
+    uint64_t *used;        /* per chunk: regions needing it this frame */
+    uint64_t *used_prev;   /* per chunk: ... in the previous frame */
+    guint8 *fresh;         /* per instance: created by this frame's edits */
+    gboolean remapped;     /* edits remapped the instances this frame */
 } WlSfBook;
+
+/* Edit work of one processor: max-set pointers created (its new master
+ * instances) and garbage-collected (obsolete instances it pointed to). */
+typedef struct {
+    uint64_t ptr_created, ptr_collected;
+} WlSfRemapWork;
 
 /* Initial distribution: each master holds its chunks (and, max-set, all
  * their instance pointers); nobody else holds anything. */
@@ -128,6 +161,12 @@ static inline guint wl_sf_book_master(const WlSfBook *b, guint c)
     return b->master[c];
 }
 
+/* After the database's instances were rebuilt (wl_sf_db_reinstance):
+ * old_of_new[i] is new instance i's number before, or -1 (new); n_old
+ * the count before.  Adds each processor's pointer work to w[p]
+ * (max-set). */
+void wl_sf_book_remap(WlSfBook *b, const gint64 *old_of_new, guint n_old,
+                      WlSfRemapWork *w);
 /* need[] for a frame's view-projection (what the bucket sorts compute). */
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj);
 /* Processor p's sort pass: master bucket sort, slave cull tests,

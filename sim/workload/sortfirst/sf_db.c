@@ -252,26 +252,19 @@ static GPtrArray *nodes_by_struct(const SceneDb *db, const GArray *nodes)
     return by;
 }
 
-static void build(WlSfDb *d, const SceneDb *db, const Walk *w)
+/* Every structure's primitives, reachable or not (the min-set holds
+ * what is defined; an edit may make a structure reachable). */
+static void chunk_all(WlSfDb *d, const SceneDb *db)
 {
-    GPtrArray *by = nodes_by_struct(db, w->nodes);
     for (guint s = 0; s < scene_db_struct_count(db); s++) {
-        GArray *nodes = g_ptr_array_index(by, s);
-        if (nodes->len == 0)
-            continue; /* not reachable from a posted structure */
-        guint first = d->chunks->len;
         Builder b = {d, db, s};
         chunk_struct(&b);
-        for (guint c = first; c < d->chunks->len; c++)
-            add_instances(d, w, c, nodes);
     }
-    g_ptr_array_unref(by);
 }
 
-WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
-                     WlSfChunking chunking, GError **err)
+gboolean wl_sf_db_reinstance(WlSfDb *d, const SceneDb *db, GError **err)
 {
-    g_assert(procs >= 1 && granularity >= 1);
+    g_assert(scene_db_struct_count(db) == d->n_structs);
     Walk w;
     walk_init(&w, db);
     if (w.mixed) {
@@ -281,8 +274,28 @@ WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
                     "per structure's primitives (one box per chunk)",
                     scene_db_struct_name(db, w.mixed_sid));
         walk_clear(&w);
-        return NULL;
+        return FALSE;
     }
+    g_array_set_size(d->insts, 0);
+    g_array_set_size(d->inst_polys, 0);
+    scene_mesh_free(d->flat);
+    d->flat = scene_db_flatten(db);
+    g_assert(scene_mesh_n_polys(d->flat) == w.next_poly);
+    GPtrArray *by = nodes_by_struct(db, w.nodes);
+    for (guint c = 0; c < d->chunks->len; c++)
+        add_instances(d, &w, c, g_ptr_array_index(by, wl_sf_chunk(d, c)->sid));
+    g_ptr_array_unref(by);
+    if (d->nodes)
+        g_array_unref(d->nodes);
+    d->nodes = g_array_ref(w.nodes);
+    walk_clear(&w);
+    return TRUE;
+}
+
+WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
+                     WlSfChunking chunking, GError **err)
+{
+    g_assert(procs >= 1 && granularity >= 1);
     WlSfDb *d = g_new0(WlSfDb, 1);
     d->procs = procs;
     d->granularity = granularity;
@@ -291,12 +304,12 @@ WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
     d->insts = g_array_new(FALSE, FALSE, sizeof(WlSfInst));
     d->prims = g_array_new(FALSE, FALSE, sizeof(guint));
     d->inst_polys = g_array_new(FALSE, FALSE, sizeof(uint32_t));
-    d->flat = scene_db_flatten(db);
-    g_assert(scene_mesh_n_polys(d->flat) == w.next_poly);
-    build(d, db, &w);
-    d->nodes = g_array_ref(w.nodes);
     d->n_structs = scene_db_struct_count(db);
-    walk_clear(&w);
+    chunk_all(d, db);
+    if (!wl_sf_db_reinstance(d, db, err)) {
+        wl_sf_db_free(d);
+        return NULL;
+    }
     return d;
 }
 
@@ -317,6 +330,7 @@ void wl_sf_db_free(WlSfDb *d)
     g_array_unref(d->prims);
     g_array_unref(d->inst_polys);
     scene_mesh_free(d->flat);
-    g_array_unref(d->nodes);
+    if (d->nodes)
+        g_array_unref(d->nodes);
     g_free(d);
 }

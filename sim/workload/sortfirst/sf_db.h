@@ -19,7 +19,10 @@
  *             axis of the centroids' box (split sizes kept multiples of
  *             N) until a part holds at most N primitives.
  *
- * A chunk instance is one chunk under one max-set node of its structure
+ * Every structure's primitives are chunked, reachable or not (the
+ * min-set: what is defined); a chunk of an unreachable structure has
+ * no instance.  A chunk instance is one chunk under one max-set node of
+ * its structure
  * (seed 000 Fig. 6): with the Bronco instanced three times each chunk
  * has three instances.  Mastership is fixed (§3.3.2.1): chunk c is
  * mastered by processor c mod P, which spreads the master set evenly
@@ -92,6 +95,12 @@ void wl_sf_db_free(WlSfDb *d);
  * procs, as wl_sf_db_new() deals them); the chunks do not depend on the
  * processor count, so this equals building the database again. */
 void wl_sf_db_set_procs(WlSfDb *d, guint procs);
+/* Rebuilds the chunk instances, the max-set tree and the flattened
+ * network from db after edits that keep every structure's elements
+ * (matrix and execute changes, posting); chunks are kept, so chunk ids
+ * stay valid.  FALSE with *err (d unchanged but for its instances) on
+ * a matrix between one structure's primitives.  O(max-set polygons). */
+gboolean wl_sf_db_reinstance(WlSfDb *d, const SceneDb *db, GError **err);
 /* The partial sort's key: the Morton code of point c's cell in the
  * depth-WL_SF_OCTREE_DEPTH octree over box (depth-first visit order). */
 uint32_t wl_sf_octree_cell(SceneBox box, Vec3 c);

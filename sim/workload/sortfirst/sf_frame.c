@@ -10,7 +10,7 @@
 const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "pixel_zbuffer",    "chunk_pack",
                                       "grid_cell",        "node_visit",
-                                      NULL};
+                                      "pointer_update",   NULL};
 
 typedef struct {
     WlSfRun *run;
@@ -54,11 +54,14 @@ struct WlSfRun {
     guint done;
     WlSfTrav trav;      /* this frame's §3.5 counts (sf_trav.h) */
     WlSfTravProc *tp;   /* per processor: its traversal work */
+    WlSfEdit *edit;     /* NULL: no edits (borrowed) */
+    WlSfEditFrame ef;   /* this frame's edit work */
+    WlSfRemapWork *ew;  /* per processor: its pointer work */
     WlSfFrameHook hook; /* NULL: none */
     void *hook_ctx;
     SimTime start;
     unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
-    unsigned ph_estimate, ph_traverse;
+    unsigned ph_estimate, ph_traverse, ph_edit;
 };
 
 /* n x unit, saturating (a saturated time overflows the engine's clock). */
@@ -82,6 +85,7 @@ gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
     c->chunk_pack = mach_cost(m, "node", "chunk_pack");
     c->grid_cell = mach_cost(m, "node", "grid_cell");
     c->node_visit = mach_cost(m, "node", "node_visit");
+    c->pointer_update = mach_cost(m, "node", "pointer_update");
     return TRUE;
 }
 
@@ -365,7 +369,8 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
     maybe_render(r, pr);
 }
 
-static void sort(WlSfRun *r, Proc *pr)
+/* p's sort pass on the book: state changes at the frame's start. */
+static void sort_book(WlSfRun *r, Proc *pr)
 {
     memset(&pr->w, 0, sizeof pr->w);
     memset(&pr->rc, 0, sizeof pr->rc);
@@ -376,6 +381,11 @@ static void sort(WlSfRun *r, Proc *pr)
         wl_sf_book_pull_sort(r->book, pr->p, pr->out, &pr->w);
     else
         wl_sf_book_sort(r->book, pr->p, pr->out, &pr->w);
+}
+
+/* The sort's time: traversal, box transforms, packing. */
+static void sort_charge(WlSfRun *r, Proc *pr)
+{
     const WlSfTravProc *tp = &r->tp[pr->p];
     g_assert(tp->master_culled <= pr->w.master_boxes &&
              tp->slave_culled <= pr->w.slave_boxes);
@@ -394,6 +404,12 @@ static void sort(WlSfRun *r, Proc *pr)
     charge(r, pr, &t, r->ph_sort, NULL, 0);
     MachOps pack = ops1("chunk_pack", pr->w.sent_polys);
     charge(r, pr, &pack, r->ph_pack, sort_done, pr->p);
+}
+
+static void sort(WlSfRun *r, Proc *pr)
+{
+    sort_book(r, pr);
+    sort_charge(r, pr);
 }
 
 /* ---- the current-frame estimate (estimate: current) ---------------------
@@ -479,6 +495,87 @@ static void plan_regions(WlSfRun *r)
         r->regions = r->next;
 }
 
+/* ---- edits (sf_edit.h) ----------------------------------------------------
+ * The application on processor 0 edits the database between frames; it
+ * sends the frame's commands to every other processor, each of which
+ * applies them (and maintains its max-set skeleton) before its first
+ * pass: node_visit per command and per max-set node created or
+ * collected, pointer_update per pointer created or collected. */
+
+/* The predicted estimate's history follows the instances' new numbers
+ * (a new instance has none). */
+static void remap_prediction(WlSfAdapt *a, const gint64 *map, guint n)
+{
+    float *x = g_new0(float, MAX(n, 1)), *y = g_new0(float, MAX(n, 1));
+    guint8 *ok = g_new0(guint8, MAX(n, 1));
+    for (guint i = 0; i < n; i++)
+        if (map[i] >= 0) {
+            x[i] = a->last_x[map[i]];
+            y[i] = a->last_y[map[i]];
+            ok[i] = a->last_ok[map[i]];
+        }
+    g_free(a->last_x);
+    g_free(a->last_y);
+    g_free(a->last_ok);
+    a->last_x = x, a->last_y = y, a->last_ok = ok;
+    a->n_insts = n;
+}
+
+static void edit_apply(WlSfRun *r)
+{
+    memset(&r->ef, 0, sizeof r->ef);
+    memset(r->ew, 0, r->s.procs * sizeof *r->ew);
+    if (!r->edit || r->frame == 0)
+        return;
+    gint64 *map = wl_sf_edit_frame(r->edit, r->book, &r->ef, r->ew);
+    if (map && r->adapt && r->adapt->last_x)
+        remap_prediction(r->adapt, map, wl_sf_n_insts(r->db));
+    g_free(map);
+}
+
+static uint64_t edit_message(const WlSfRun *r)
+{
+    return r->s.sizes.message + r->ef.commands * r->s.sizes.edit;
+}
+
+/* p's edit work as named counts of the node's costs. */
+static MachOps edit_ops(const WlSfRun *r, guint p)
+{
+    uint64_t nodes = r->ef.commands;
+    if (r->s.bk == WL_SF_MAXSET)
+        nodes += r->ef.nodes_created + r->ef.nodes_collected;
+    MachOps o = ops1("node_visit", nodes);
+    mach_ops_add(&o, "pointer_update",
+                 r->ew[p].ptr_created + r->ew[p].ptr_collected);
+    return o;
+}
+
+/* p's frame work after the edits: its first pass. */
+static void begin(WlSfRun *r, Proc *pr)
+{
+    MachOps o = edit_ops(r, pr->p);
+    if (r->ef.commands)
+        charge(r, pr, &o, r->ph_edit, NULL, 0);
+    if (r->adapt && r->s.current)
+        estimate(r, pr);
+    else
+        sort_charge(r, pr);
+}
+
+static void edit_arrive(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    begin(ctx, d->payload);
+}
+
+static void edit_send(WlSfRun *r)
+{
+    for (guint q = 1; r->ef.commands && q < r->s.procs; q++)
+        net_send(r->net, mach_proc_id(r->procs[0].proc),
+                 mach_proc_id(r->procs[q].proc), edit_message(r),
+                 &r->procs[q], edit_arrive, r);
+}
+
 static void start_frame(SimEngine *eng, void *ctx, void *arg)
 {
     (void)arg;
@@ -487,6 +584,7 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     r->done = 0;
     r->view = frame_view(r->scene, &r->s, (guint)r->frame);
     rast_zbuffer_clear(r->zb);
+    edit_apply(r);
     if (r->adapt)
         plan_regions(r);
     r->book->regions = r->regions; /* the bucket sorts use this frame's */
@@ -495,11 +593,13 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     wl_sf_trav_count(r->book, r->s.trav, &r->trav, r->tp);
     for (guint p = 0; p < r->s.procs; p++) {
         r->procs[p].busy0 = mach_proc_busy(r->procs[p].proc);
-        if (r->adapt && r->s.current)
-            estimate(r, &r->procs[p]);
-        else
-            sort(r, &r->procs[p]);
+        if (!(r->adapt && r->s.current))
+            sort_book(r, &r->procs[p]);
     }
+    edit_send(r);
+    for (guint p = 0; p < r->s.procs; p++)
+        if (!r->ef.commands || p == 0) /* others: when the edits arrive */
+            begin(r, &r->procs[p]);
 }
 
 /* ---- the frame's figures --------------------------------------------------
@@ -563,6 +663,27 @@ static void masters(const WlSfRun *r, WlSfFrameStats *st)
     st->master_imbalance = max_over_mean(max, total, r->s.procs);
 }
 
+static void sum_edits(const WlSfRun *r, WlSfFrameStats *st)
+{
+    st->edits = r->ef.commands;
+    st->nodes_created = r->ef.nodes_created;
+    st->nodes_collected = r->ef.nodes_collected;
+    if (r->ef.commands) {
+        st->messages += r->s.procs - 1;
+        st->edit_bytes = (r->s.procs - 1) * edit_message(r);
+    }
+    for (guint p = 0; p < r->s.procs; p++) {
+        const Proc *pr = &r->procs[p];
+        st->pointers_collected += r->ew[p].ptr_collected;
+        st->edit_bytes += pr->w.edit_bytes;
+        st->chunks_collected += pr->w.collected;
+        MachOps o = edit_ops(r, p);
+        if (r->ef.commands)
+            st->edit_busy =
+                add(st->edit_busy, mach_proc_ops_cost(pr->proc, &o));
+    }
+}
+
 static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
 {
     uint64_t total = 0;
@@ -592,6 +713,7 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
         for (guint p = 0; p < r->s.procs; p++)
             st->messages += 2 * r->procs[p].expect;
     }
+    sum_edits(r, st);
     masters(r, st);
     st->polys_rendered = total;
     st->poly_imbalance =
@@ -721,6 +843,7 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     wl_sf_book_set_policy(r->book, s->mig, s->ms);
     g_assert(!s->adaptive || s->mig == WL_SF_PUSH);
     g_assert(s->mig == WL_SF_PUSH || s->trav == WL_SF_TRAV_PLAIN);
+    g_assert(!(s->edits && s->pre)); /* edits change the frames' mesh */
     if (s->adaptive) {
         r->adapt = wl_sf_adapt_new(s->grid, s->procs);
         r->adapt->master = r->book->master;
@@ -729,6 +852,7 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
         wl_sf_adapt_predict(r->adapt, wl_sf_n_insts(db));
     r->procs = g_new0(Proc, s->procs);
     r->tp = g_new0(WlSfTravProc, s->procs);
+    r->ew = g_new0(WlSfRemapWork, s->procs);
     for (guint p = 0; p < s->procs; p++) {
         Proc *pr = &r->procs[p];
         pr->run = r;
@@ -748,6 +872,8 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     r->render = g_array_new(FALSE, FALSE, sizeof(guint));
     r->subset = g_array_new(FALSE, FALSE, sizeof(uint32_t));
     r->ph_traverse = sim_engine_phase(r->eng, "traverse");
+    if (r->s.edits)
+        r->ph_edit = sim_engine_phase(r->eng, "edit");
     r->ph_sort = sim_engine_phase(r->eng, "sort");
     r->ph_pack = sim_engine_phase(r->eng, "pack");
     r->ph_unpack = sim_engine_phase(r->eng, "unpack");
@@ -774,6 +900,7 @@ void wl_sf_run_free(WlSfRun *r)
     }
     g_free(r->procs);
     g_free(r->tp);
+    g_free(r->ew);
     wl_sf_book_free(r->book);
     wl_sf_adapt_free(r->adapt);
     rast_zbuffer_free(r->zb);
@@ -790,6 +917,12 @@ gboolean wl_sf_run_frames(WlSfRun *r, int frames, SimTime until, GError **err)
     r->frames = r->frame + frames;
     sim_schedule_in(r->eng, 0, start_frame, r, NULL); /* failure: in run */
     return sim_engine_run(r->eng, until, err);
+}
+
+void wl_sf_run_set_edit(WlSfRun *r, WlSfEdit *e)
+{
+    g_assert(r->s.edits && r->frame == 0);
+    r->edit = e;
 }
 
 void wl_sf_run_set_hook(WlSfRun *r, WlSfFrameHook hook, void *ctx)

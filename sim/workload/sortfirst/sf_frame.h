@@ -56,6 +56,14 @@
  * per volume test; the chunk boxes in culled subtrees are not
  * transformed by the sort.
  *
+ * Edits (WlSfSetup.edits, sf_edit.h): before frame f >= 1 the editor
+ * changes the database and the book; processor 0 (the application's,
+ * an assumption) sends the frame's commands to every other processor
+ * (bytes.message + bytes.edit per command), and each starts its first
+ * pass when they are in, after phase `edit`: node_visit per command
+ * and (max-set) per max-set node created or collected, pointer_update
+ * per pointer its book created or collected.
+ *
  * The frame ends when every processor has rendered (the frame-buffer
  * read-out is not modelled); the next frame then starts.  The regions'
  * pixels land in one frame z-buffer: with `check_image` it is compared
@@ -75,6 +83,7 @@
 #include "sim/raster/prerender.h"
 #include "sim/scene/scene.h"
 #include "sim/workload/sortfirst/sf_book.h"
+#include "sim/workload/sortfirst/sf_edit.h"
 #include "sim/workload/sortfirst/sf_trav.h"
 
 /* Cost operations of the `node` kind (NULL-terminated). */
@@ -82,7 +91,7 @@ extern const char *const wl_sf_cost_ops[];
 
 typedef struct {
     SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;
-    SimTime grid_cell, node_visit;
+    SimTime grid_cell, node_visit, pointer_update;
 } WlSfCosts;
 
 typedef struct {
@@ -105,7 +114,9 @@ typedef struct {
                               image wanted (check_image, a hook), counts
                               from each frame rasterised once and kept
                               here by frame number, for runs of one scene
-                              at one resolution (prerender.h) */
+                              at one resolution (prerender.h); not with
+                              edits */
+    gboolean edits;    /* an editor will be set (phase `edit`) */
 } WlSfSetup;
 
 /* One frame's figures (sums over processors unless said). */
@@ -139,6 +150,14 @@ typedef struct {
     WlSfTrav trav;               /* §3.5 counts, all processors */
     SimTime traverse_busy;       /* Σ over processors: traversal time
                                     charged (nodes, volume tests) */
+    uint64_t edits;              /* edit commands applied (sf_edit.h) */
+    uint64_t edit_bytes;         /* command messages + the pointers
+                                    masters sent for instances the edits
+                                    created (max-set) */
+    uint64_t nodes_created, nodes_collected; /* max-set nodes */
+    uint64_t pointers_collected; /* max-set pointers garbage-collected */
+    uint64_t chunks_collected;   /* slave copies deleted, no instance */
+    SimTime edit_busy;           /* Σ over processors: edit time */
     double utilisation;          /* busy / (P x frame time) */
     gboolean image_checked, image_ok;
 } WlSfFrameStats;
@@ -171,6 +190,9 @@ const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r);
 typedef gboolean (*WlSfFrameHook)(void *ctx, int frame,
                                   const RastZBuffer *zb, GError **err);
 void wl_sf_run_set_hook(WlSfRun *r, WlSfFrameHook hook, void *ctx);
+/* Edits between frames (sf_edit.h; borrowed, must edit the run's
+ * database); needs WlSfSetup.edits; before the first frame. */
+void wl_sf_run_set_edit(WlSfRun *r, WlSfEdit *e);
 
 /* Renders the whole network serially for frame f into zb (cleared). */
 void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,

@@ -19,11 +19,14 @@
  *     feedback: false        # weight cells by measured work / polygon
  *     traversal: plain       # plain | flags | culled | flags_culled
  *                            # (§3.5, sf_trav.h; pull: plain)
+ *     edits: {matrix: 1, execute: 1, unpost: 0, post: 0}
+ *                            # per frame after the first (sf_edit.h)
+ *     edit_angle_deg: 10     # rotation of a matrix edit
  *     resolution: 256        # N x N screen
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
  *     bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, instance: 8 B,
- *             cell: 4 B, request: 8 B, mastership: 16 B}
+ *             cell: 4 B, request: 8 B, mastership: 16 B, edit: 96 B}
  *     database: my-db.yaml   # optional: a structure database file
  *                            # (structdb_file.h) rendered instead of the
  *                            # scene's; the scene gives the camera
@@ -53,11 +56,11 @@
 
 static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
 {
-    *z = (WlSfSizes){64, 40, 36, 8, 4, 8, 16};
+    *z = (WlSfSizes){64, 40, 36, 8, 4, 8, 16, 96};
     const CfgNode *n;
     if (!cfg_get_map(sec, "bytes", FALSE,
                      "a map {message, chunk, triangle, instance, cell, "
-                     "request, mastership} of sizes",
+                     "request, mastership, edit} of sizes",
                      &n,
                      err))
         return FALSE;
@@ -69,7 +72,31 @@ static gboolean parse_bytes(const CfgNode *sec, WlSfSizes *z, GError **err)
            cfg_get_size(n, "instance", FALSE, &z->instance, err) &&
            cfg_get_size(n, "cell", FALSE, &z->cell, err) &&
            cfg_get_size(n, "request", FALSE, &z->request, err) &&
-           cfg_get_size(n, "mastership", FALSE, &z->mastership, err);
+           cfg_get_size(n, "mastership", FALSE, &z->mastership, err) &&
+           cfg_get_size(n, "edit", FALSE, &z->edit, err);
+}
+
+/* edits: {matrix, execute, unpost, post} counts per frame, and
+ * edit_angle_deg. */
+static gboolean parse_edits(const CfgNode *sec, WlSfParams *p, GError **err)
+{
+    const CfgNode *e = NULL;
+    p->edits.angle_deg = 10;
+    if (!cfg_get_map(sec, "edits", FALSE,
+                     "a map {matrix, execute, unpost, post} of counts per "
+                     "frame",
+                     &e, err) ||
+        !cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
+                        &p->edits.angle_deg, err))
+        return FALSE;
+    for (int k = 0; e && k < WL_SF_ED_N; k++)
+        if (!cfg_get_count(e, wl_sf_edit_names[k], FALSE, 0, 100000,
+                           &p->edits.per_frame[k], err))
+            return FALSE;
+    if (e && !cfg_check_unused(e, err))
+        return FALSE;
+    p->setup.edits = wl_sf_edit_any(&p->edits);
+    return TRUE;
 }
 
 static const char *const region_names[] = {"static", "adaptive", NULL};
@@ -196,7 +223,7 @@ static void *sf_parse(const CfgNode *sec, GError **err)
         cfg_get_str(sec, "frame_log", FALSE, &log, err) &&
         cfg_get_str(sec, "database", FALSE, &dbf, err) &&
         cfg_get_str(sec, "dump_db", FALSE, &dump, err) &&
-        parse_bytes(sec, &p->setup.sizes, err);
+        parse_bytes(sec, &p->setup.sizes, err) && parse_edits(sec, p, err);
     if (!ok) {
         sf_free_params(p);
         return NULL;
@@ -219,6 +246,7 @@ typedef struct {
     double chunks, polys, insts, bytes, master, slave, fresh, rendered;
     double imbalance, imbalance_max, poly_imbalance, util, frame_ms;
     double est_bytes, box_side, split_imbalance, trav_ms, tests;
+    double edits, edit_bytes, edit_ms, created, collected, ptrs, gc, deleted;
     WlSfTrav trav;
     double probe, messages, requests, handovers, held, master_imb, off_max, off_total;
     uint64_t onscreen, regions, peak;
@@ -257,6 +285,14 @@ static void sum_frames(const GArray *stats, guint from, Sums *m)
         m->trav.both += s->trav.both;
         m->trav.boxes_culled += s->trav.boxes_culled;
         m->tests += s->trav.tests;
+        m->edits += s->edits;
+        m->edit_bytes += s->edit_bytes;
+        m->edit_ms += sim_time_to_ms(s->edit_busy);
+        m->created += s->nodes_created;
+        m->collected += s->nodes_collected;
+        m->ptrs += s->pointers_collected;
+        m->gc += s->chunks_collected;
+        m->deleted += s->deleted_chunks;
         m->trav_ms += sim_time_to_ms(s->traverse_busy);
         m->messages += s->messages;
         m->handovers += s->handovers;
@@ -341,6 +377,16 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
     /* what the run's `traversal` mode charged: mean per processor */
     set(out, "volume_tests_per_frame", m.tests / n, "");
     set(out, "traversal_ms", m.trav_ms / n / s->procs, "ms");
+    set(out, "slave_deletions_per_frame", m.deleted / n, "");
+    set(out, "chunks_collected_per_frame", m.gc / n, "");
+    if (s->edits) {
+        set(out, "edits_per_frame", m.edits / n, "");
+        set(out, "edit_bytes_per_frame", m.edit_bytes / n, "B");
+        set(out, "edit_ms", m.edit_ms / n / s->procs, "ms");
+        set(out, "maxset_nodes_created_per_frame", m.created / n, "");
+        set(out, "maxset_nodes_collected_per_frame", m.collected / n, "");
+        set(out, "pointers_collected_per_frame", m.ptrs / n, "");
+    }
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
     if (m.checked)
@@ -463,6 +509,13 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
     if (!db)
         return FALSE;
     WlSfRun *r = wl_sf_run_new(m, sc, db, &p->setup, &c);
+    WlSfEdit *ed = NULL;
+    if (p->setup.edits) {
+        SimEngine *eng = mach_engine(m);
+        ed = wl_sf_edit_new(sc->db, db, &p->edits,
+                            sim_entity_rng(eng, sim_entity_add(eng, "editor")));
+        wl_sf_run_set_edit(r, ed);
+    }
     FrameOut fo = {ctx, sc};
     wl_sf_run_set_hook(r, emit_frame, &fo);
     gboolean ok = wl_sf_run_frames(r, ctx->frames, wl_until(ctx), err);
@@ -482,6 +535,7 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
         ok = write_log(log, st, err);
     g_free(log);
     wl_sf_run_free(r);
+    wl_sf_edit_free(ed);
     wl_sf_db_free(db);
     return ok;
 }

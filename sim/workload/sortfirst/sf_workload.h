@@ -15,6 +15,7 @@ typedef struct {
     char *database;  /* structure database file rendered instead of the
                         scene's (structdb_file.h), or NULL */
     char *dump_db;   /* where to write the database rendered, or NULL */
+    WlSfEditSpec edits; /* edits per frame (sf_edit.h) */
 } WlSfParams;
 
 extern const WlOps wl_sortfirst_ops;

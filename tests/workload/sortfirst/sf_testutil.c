@@ -39,6 +39,23 @@ SimResult *sf_test_run(const char *text, const char *const *overrides,
     return r;
 }
 
+SimResult *sf_test_run_checked(const char *text, int frames,
+                               const char *key_a, const char *val_a,
+                               const char *key_b, const char *val_b)
+{
+    char *a = g_strdup_printf("%s=%s", key_a, val_a);
+    char *b = g_strdup_printf("%s=%s", key_b, val_b);
+    const char *const o[] = {a, b, NULL};
+    GError *e = NULL;
+    SimResult *r = sf_test_run(text, o, frames, NULL, FALSE, &e);
+    if (!r)
+        fail_msg("%s", e->message);
+    assert_true(sf_test_metric(r, "image_matches_serial") == 1);
+    g_free(a);
+    g_free(b);
+    return r;
+}
+
 double sf_test_metric(const SimResult *r, const char *name)
 {
     double v = NAN;

@@ -13,6 +13,12 @@
 SimResult *sf_test_run(const char *text, const char *const *overrides,
                        int frames, const char *out_dir, gboolean all,
                        GError **err);
+/* `text` for `frames` frames with the overrides key_a=val_a and
+ * key_b=val_b (printf'd); fails the test on an error or an image that
+ * differs from the serial render. */
+SimResult *sf_test_run_checked(const char *text, int frames,
+                               const char *key_a, const char *val_a,
+                               const char *key_b, const char *val_b);
 /* Metric `name` of r; fails the test when absent. */
 double sf_test_metric(const SimResult *r, const char *name);
 

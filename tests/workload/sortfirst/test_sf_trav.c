@@ -29,17 +29,8 @@ static const char *const counts[] = {
 
 static SimResult *run(const char *bk, const char *mode)
 {
-    char *a = g_strdup_printf("workload.bookkeeping=%s", bk);
-    char *b = g_strdup_printf("workload.traversal=%s", mode);
-    const char *const o[] = {a, b, NULL};
-    GError *e = NULL;
-    SimResult *r = sf_test_run(small, o, 6, NULL, FALSE, &e);
-    if (!r)
-        fail_msg("%s", e->message);
-    assert_true(sf_test_metric(r, "image_matches_serial") == 1);
-    g_free(a);
-    g_free(b);
-    return r;
+    return sf_test_run_checked(small, 6, "workload.bookkeeping", bk,
+                               "workload.traversal", mode);
 }
 
 static void costs(WlSfCosts *c)
