@@ -11,8 +11,10 @@
  * placed after the run: frame k ends at the sum of the first k+1 frame
  * times, on the last action that completes then (docs/traces.md).
  *
- * Work is recorded as the time it took on the recording processor (`w`
- * actions): the workloads hand the machine costs, not operation counts
+ * Work given as named counts (mach_proc_compute_ops) is recorded as
+ * counts (`c`), other work as the time it took (`w`); shared-memory
+ * transfers (mach_shmem_send) as `b`, refresh waits (sim_wait_refresh)
+ * as `v`, and frames that end at a refresh on their `v` wait (`swap`)
  * (docs/traces.md, "What a recorded trace holds").
  *
  * Memory: 32 bytes per action and per group, held until the trace is

@@ -182,8 +182,12 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
         return NULL;
     }
     t->scale = g_new(double, MAX(t->n_trace, 1));
-    for (guint p = 0; p < t->n_trace; p++)
+    t->rec_kind = g_new0(char *, MAX(t->n_trace, 1));
+    for (guint p = 0; p < t->n_trace; p++) {
         t->scale[p] = clock_ratio(t, h, o->machine, p);
+        const RplKind *rk = rpl_header_kind_of(h, p);
+        t->rec_kind[p] = rk ? g_strdup(rk->name) : NULL;
+    }
     t->phase = g_new(unsigned, h->phases->len);
     for (guint i = 0; i < h->phases->len; i++)
         t->phase[i] = sim_engine_phase(t->eng, h->phases->pdata[i]);
@@ -204,6 +208,9 @@ void rpl_target_free(RplTarget *t)
     g_hash_table_destroy(t->costs);
     if (t->clocks)
         g_hash_table_destroy(t->clocks);
+    for (guint p = 0; t->rec_kind && p < t->n_trace; p++)
+        g_free(t->rec_kind[p]);
+    g_free(t->rec_kind);
     g_free(t->desc);
     g_free(t->map);
     g_free(t->scale);
@@ -211,19 +218,22 @@ void rpl_target_free(RplTarget *t)
     g_free(t);
 }
 
-/* --costs-from: the cost of op on the same kind of that model, scaled by
- * its clock / the target's (an assumption: the operation's time scales
- * with clock); NULL when that model or either clock lacks it. */
+/* --costs-from: the cost of op on kind `from` (the recording kind) of
+ * that model, scaled by its clock (else --clock) / the target kind's (an
+ * assumption: the operation's time scales with clock); NULL when that
+ * model or either clock lacks it. */
 static SimTime *borrowed_cost(const RplTarget *t, const char *kind,
-                              const char *op)
+                              const char *from, const char *op)
 {
-    const MachKindInfo *fk = mach_kind(t->from, kind);
+    const MachKindInfo *fk = mach_kind(t->from, from);
     const MachKindInfo *tk = mach_kind(t->m, kind);
+    const double *given = g_hash_table_lookup(t->clocks, from);
+    double fhz = fk && fk->clock_hz > 0 ? fk->clock_hz : given ? *given : 0;
     SimTime c;
-    if (!fk || fk->clock_hz <= 0 || tk->clock_hz <= 0 ||
-        !mach_cost_lookup(t->from, kind, op, &c, NULL))
+    if (!fk || fhz <= 0 || tk->clock_hz <= 0 ||
+        !mach_cost_lookup(t->from, from, op, &c, NULL))
         return NULL;
-    double v = round((double)c * (fk->clock_hz / tk->clock_hz));
+    double v = round((double)c * (fhz / tk->clock_hz));
     c = v >= (double)SIM_TIME_MAX ? SIM_TIME_MAX : (SimTime)v;
     return g_memdup2(&c, sizeof c);
 }
@@ -232,7 +242,8 @@ const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                               gboolean *fresh)
 {
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
-    char *key = g_strconcat(kind, "\t", op, NULL);
+    const char *from = t->rec_kind[p] ? t->rec_kind[p] : kind;
+    char *key = g_strconcat(kind, "\t", from, "\t", op, NULL);
     gpointer v;
     *fresh = !g_hash_table_lookup_extended(t->costs, key, NULL, &v);
     if (!*fresh) {
@@ -243,7 +254,7 @@ const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
     if (mach_cost_lookup(t->m, kind, op, &c, NULL))
         cp = g_memdup2(&c, sizeof c);
     else if (t->from)
-        cp = borrowed_cost(t, kind, op);
+        cp = borrowed_cost(t, kind, from, op);
     g_hash_table_insert(t->costs, key, cp);
     return cp;
 }

@@ -28,6 +28,7 @@ typedef struct {
     GHashTable *clocks; /* --clock: trace kind -> double Hz */
     SimEngine *from_eng; /* --costs-from: its model, or NULL */
     MachMachine *from;
+    char **rec_kind; /* trace processor -> its recording kind, or NULL */
     gboolean has_shm; /* a bus model: `b` transfers use its memory */
     MachShmem shm;    /* else they go through the network as messages */
 } RplTarget;
@@ -39,8 +40,10 @@ void rpl_target_free(RplTarget *t);
 /* Reads the trace at path to its end and checks it against the target. */
 gboolean rpl_target_check(RplTarget *t, const char *path, GError **err);
 /* The cost of one `op` on trace processor p's target kind (else, with
- * --costs-from, the other model's cost scaled by clocks), or NULL when
- * the model lacks it; *fresh: first time this kind and op were asked. */
+ * --costs-from, the other model's cost of op on p's recording kind,
+ * scaled by that kind's clock there — or --clock — over the target
+ * kind's), or NULL when the models lack it; *fresh: first time this
+ * target kind, recording kind and op were asked. */
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                                   gboolean *fresh);
 /* The cost of a checked `c` or `w` item on its target processor. */
