@@ -29,16 +29,20 @@ typedef struct {
      * its flow.  link is the network's link id, link_name its name. */
     void (*link)(SimTrace *tr, uint64_t link, const char *link_name,
                  uint64_t bytes, SimTime sent, SimTime arrived);
-    /* Packet rung: the link is taken at `start` and released at `end`
-     * while it carries `bytes` of one packet.  A transport reports each
-     * hold when it reserves the link (so possibly ahead of `start`);
-     * holds of one link come in time order and never overlap.  A link
+    /* The link is taken at `start` and released at `end` while it
+     * carries `bytes` of one packet (packet rung), of one message's
+     * circuit (circuit switching: from the header's take to the
+     * tear-down) or of one message's ring-slot claim.  A transport
+     * reports each hold when it reserves the link (so possibly ahead of
+     * `start`) or, for circuits, at the tear-down, and always before the
+     * message's delivery; holds of one channel of a link come in time
+     * order and never overlap (a link's channels may overlap).  A link
      * that reports holds is not also given the per-message `link`
      * average by a writer. */
     void (*hold)(SimTrace *tr, uint64_t link, const char *link_name,
                  uint64_t bytes, SimTime start, SimTime end);
-    /* Packet rung: a message's head waited for the link over [from, to)
-     * (the link was held by others); reported with its hold. */
+    /* A message's head (a packet, a circuit's header, a ring message)
+     * waited for the link over [from, to) while others held it. */
     void (*wait)(SimTrace *tr, uint64_t link, const char *link_name,
                  SimTime from, SimTime to);
 } SimTraceOps;
@@ -84,8 +88,8 @@ static inline void sim_trace_link(SimTrace *tr, uint64_t link,
         tr->ops->link(tr, link, link_name, bytes, sent, arrived);
 }
 
-/* TRUE when the trace listens to packet holds (then a transport builds
- * link names for them). */
+/* TRUE when the trace listens to holds and waits (then a transport
+ * builds link names for them). */
 static inline gboolean sim_trace_wants_holds(const SimTrace *tr)
 {
     return tr && (tr->ops->hold || tr->ops->wait);

@@ -27,6 +27,14 @@
  * holding none) was measured and rejected: +20 % against this rung's
  * +0.7 % on the 64-node iPSC/2 all-to-all (docs/net.md).
  *
+ * Trace hook (sim/core/trace.h): when the engine's trace listens, a
+ * message keeps the time it took each link of its path (m->tp, owned by
+ * the net until tear-down); at tear-down each link reports its hold
+ * [taken, released) with the message's bytes — a circuit holds every
+ * link from set-up to tear-down, data or not — and a header that queued
+ * for a channel reports its wait [reached, taken) on that link.  The
+ * reports add no events and move nothing (docs/traces.md).
+ *
  * Invariants: a lone message takes startup + hops * per_hop + bytes / bw,
  * the analytic time, at both rungs; hold-and-wait cannot deadlock under
  * e-cube (or any dimension-ordered) routing, whose channel dependency
@@ -34,6 +42,7 @@
  * Cost: O(1) per acquire and release.
  */
 #include "sim/net/net_internal.h"
+#include "sim/core/trace.h"
 
 /* The flow rung builds the circuit without per-hop events. */
 static gboolean instant_header(NetNet *n)
@@ -67,10 +76,54 @@ static SimTime data_time(NetNet *n, const NetMsg *m)
     return t;
 }
 
+/* Trace: m->tp holds, per hop, the time the header reached the link
+ * (taken: the time it took it); NULL when nobody listens. */
+static SimTime *taken_at(const NetMsg *m)
+{
+    return m->tp;
+}
+
+static void trace_report(NetNet *n, const NetLink *l, SimTime from,
+                         SimTime to, uint64_t bytes, gboolean hold)
+{
+    SimTrace *tr = sim_engine_trace(net_eng(n));
+    char name[64];
+    net_link_name(n, l->id, name, sizeof name);
+    if (hold)
+        sim_trace_hold(tr, l->id, name, bytes, from, to);
+    else
+        sim_trace_wait(tr, l->id, name, from, to);
+}
+
+/* The header reached path[m->step] at `reached` and takes it now. */
+static void trace_take(NetNet *n, NetMsg *m)
+{
+    SimTime *t = taken_at(m), now = sim_now(net_eng(n));
+    if (!t)
+        return;
+    if (now > t[m->step])
+        trace_report(n, m->path[m->step], t[m->step], now, 0, FALSE);
+    t[m->step] = now;
+}
+
+/* Tear-down: every link of the path was held from its take until now. */
+static void trace_holds(NetNet *n, NetMsg *m)
+{
+    SimTime *t = taken_at(m), now = sim_now(net_eng(n));
+    if (!t)
+        return;
+    for (guint i = 0; i < m->hops; i++)
+        trace_report(n, m->path[i], t[i], now, m->bytes, TRUE);
+    net_disown(n, t);
+    g_free(t);
+    m->tp = NULL;
+}
+
 /* m has just taken a channel on path[m->step]: go on from here. */
 static void advance(NetNet *n, NetMsg *m, uint32_t c)
 {
     NetLink *l = m->path[m->step];
+    trace_take(n, m);
     l->holder[c] = m;
     m->chan[m->step] = c;
     m->step++;
@@ -85,6 +138,8 @@ static void advance(NetNet *n, NetMsg *m, uint32_t c)
 static void circuit_take(NetNet *n, NetMsg *m)
 {
     NetLink *l = m->path[m->step];
+    if (taken_at(m))
+        taken_at(m)[m->step] = sim_now(net_eng(n));
     int c = free_channel(l);
     if (c < 0) {
         g_queue_push_tail(&l->wait, m);
@@ -112,6 +167,7 @@ static void data_done(SimEngine *eng, void *ctx, void *arg)
     (void)eng;
     NetNet *n = ctx;
     NetMsg *m = arg;
+    trace_holds(n, m);
     for (guint i = 0; i < m->hops; i++)
         release(n, m->path[i], m->chan[i]);
     net_account(n, -(gssize)(m->hops * sizeof(uint32_t)));
@@ -125,6 +181,10 @@ static void circuit_start(NetNet *n, NetMsg *m)
     m->chan = g_new(uint32_t, m->hops);
     m->step = 0;
     net_account(n, (gssize)(m->hops * sizeof(uint32_t)));
+    if (sim_trace_wants_holds(sim_engine_trace(net_eng(n)))) {
+        m->tp = g_new0(SimTime, m->hops); /* freed at tear-down or net_free */
+        net_own(n, m->tp, g_free);
+    }
     sim_schedule_in(net_eng(n), net_startup(p, m->bytes) + header, circuit_try,
                     n, m);
 }

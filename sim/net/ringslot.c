@@ -16,10 +16,18 @@
  * destination pair delivers in send order).  Atomic claims cannot
  * deadlock, unlike hop-by-hop holding on a cycle.
  *
+ * Trace hook (sim/core/trace.h): when the engine's trace listens, a
+ * claim reports the hold of its channel on every segment of the path
+ * over [claim, release) with the message's bytes, and a message that
+ * found no channel free reports its wait [request, claim) on its first
+ * segment (where it waits: its source station's queue).  The reports
+ * add no events (docs/traces.md).
+ *
  * Invariants: a lone message takes the analytic time.  Cost per release:
  * O(waiters * hops * channels).
  */
 #include "sim/net/net_internal.h"
+#include "sim/core/trace.h"
 
 typedef struct {
     GQueue wait; /* NetMsg *, FIFO by request */
@@ -59,6 +67,23 @@ static gboolean channel_free(NetMsg *m, uint32_t c)
 
 static void ring_done(SimEngine *eng, void *ctx, void *arg);
 
+/* m claims its path now until now + t: tells the trace. */
+static void trace_claim(NetNet *n, const NetMsg *m, SimTime t)
+{
+    SimTrace *tr = sim_engine_trace(net_eng(n));
+    if (!sim_trace_wants_holds(tr))
+        return;
+    SimTime now = sim_now(net_eng(n));
+    SimTime asked = m->sent + net_startup(net_par(n), m->bytes);
+    char name[64];
+    for (guint i = 0; i < m->hops; i++) {
+        net_link_name(n, m->path[i]->id, name, sizeof name);
+        if (i == 0 && now > asked)
+            sim_trace_wait(tr, m->path[i]->id, name, asked, now);
+        sim_trace_hold(tr, m->path[i]->id, name, m->bytes, now, now + t);
+    }
+}
+
 static gboolean try_claim(NetNet *n, NetMsg *m)
 {
     uint32_t channels = m->path[0]->channels;
@@ -71,6 +96,7 @@ static gboolean try_claim(NetNet *n, NetMsg *m)
         SimTime t = (SimTime)m->hops * net_par(n)->per_hop;
         if (m->bytes)
             t += sim_time_for_bytes((double)m->bytes, m->bw);
+        trace_claim(n, m, t);
         sim_schedule_in(net_eng(n), t, ring_done, n, m);
         return TRUE;
     }
