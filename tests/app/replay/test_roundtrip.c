@@ -388,6 +388,45 @@ static void test_costs_from(void **s)
     tmp_clear(dir, path, machine, fidelity);
 }
 
+/* --costs-from prices an operation on the processor's recording kind:
+ * a PPHIGS frame (GPs, renderers, host, frame buffer) replayed on the
+ * cluster (one kind, `node`) fails without it, naming a GP operation,
+ * and with it (and clocks for the kinds Pixel-Planes 5 gives none)
+ * every processor's busy time is the run's times the ratio of its
+ * recording kind's clock (40 MHz, the i860's, for all four here) to the
+ * cluster's, to the rounding of each scaled cost to a picosecond. */
+static void test_costs_from_kinds(void **s)
+{
+    (void)s;
+    char *dir = g_dir_make_tmp("pgsim-rt-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "t.pgt", NULL);
+    char *machine, *fidelity;
+    const Case one = {"configs/pphigs-flock.yaml", {"run.frames=1", NULL}};
+    SimResult *orig = record(&one, path, &machine, &fidelity);
+    RplReplayOpts o = {.trace = path, .machine = "cluster-ib", .nodes = 34};
+    GError *e = NULL;
+    assert_null(rpl_replay(&o, &e));
+    assert_non_null(strstr(e->message, "nodes.node.costs.vertex"));
+    g_clear_error(&e);
+    const char *clocks[] = {"host=40MHz", "frame_buffer=40MHz", NULL};
+    o.costs_from = "pixel-planes-5";
+    o.clocks = clocks;
+    SimResult *rep = rpl_replay(&o, &e);
+    g_assert_no_error(e);
+    assert_int_equal(orig->nodes->len, 34);
+    for (guint i = 0; i < orig->nodes->len; i++) {
+        const SimNodeResult *x = orig->nodes->pdata[i];
+        char name[16];
+        g_snprintf(name, sizeof name, "node%u", i);
+        double r = (double)busy_of(rep, name) / (double)x->busy.total;
+        if (fabs(r - 40e6 / 2.25e9) > 1e-3 * r)
+            fail_msg("%s: ratio %g, expected 40 MHz / 2.25 GHz", x->name, r);
+    }
+    sim_result_free(rep);
+    sim_result_free(orig);
+    tmp_clear(dir, path, machine, fidelity);
+}
+
 /* Every trace shipped in traces/ reads and replays on its own machine
  * and has actions. */
 static void test_shipped_traces(void **s)
@@ -436,6 +475,7 @@ int main(void)
         cmocka_unit_test(test_other_machine_differs),
         cmocka_unit_test(test_pixelmerge_counts_repriced),
         cmocka_unit_test(test_costs_from),
+        cmocka_unit_test(test_costs_from_kinds),
         cmocka_unit_test(test_shipped_traces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
