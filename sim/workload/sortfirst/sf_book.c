@@ -91,7 +91,25 @@ void wl_sf_book_set_policy(WlSfBook *b, WlSfMigration mig, WlSfMastership ms)
     b->ms = ms;
 }
 
+void wl_sf_book_screens(const WlSfBook *b, Mat4 view_proj, WlSfScreen *out)
+{
+    for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
+        const WlSfInst *in = wl_sf_inst(b->db, i);
+        const WlSfChunk *ch = wl_sf_chunk(b->db, in->chunk);
+        out[i] = wl_sf_screen_of(&b->regions, ch->box,
+                                 mat4_mul(view_proj, in->matrix));
+    }
+}
+
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj)
+{
+    WlSfScreen *scr = g_new(WlSfScreen, wl_sf_n_insts(b->db) + 1);
+    wl_sf_book_screens(b, view_proj, scr);
+    wl_sf_book_need_from(b, scr);
+    g_free(scr);
+}
+
+void wl_sf_book_need_from(WlSfBook *b, const WlSfScreen *scr)
 {
     guint nc = wl_sf_n_chunks(b->db);
     memcpy(b->used_prev, b->used, nc * sizeof *b->used);
@@ -100,11 +118,8 @@ void wl_sf_book_need(WlSfBook *b, Mat4 view_proj)
         memset(b->fresh, 0, wl_sf_n_insts(b->db));
     b->remapped = FALSE;
     for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
-        const WlSfInst *in = wl_sf_inst(b->db, i);
-        const WlSfChunk *ch = wl_sf_chunk(b->db, in->chunk);
-        b->need[i] = wl_sf_box_regions(&b->regions, ch->box,
-                                       mat4_mul(view_proj, in->matrix));
-        b->used[in->chunk] |= b->need[i];
+        b->need[i] = wl_sf_screen_regions(&b->regions, &scr[i]);
+        b->used[wl_sf_inst(b->db, i)->chunk] |= b->need[i];
     }
 }
 

@@ -169,6 +169,11 @@ void wl_sf_book_remap(WlSfBook *b, const gint64 *old_of_new, guint n_old,
                       WlSfRemapWork *w);
 /* need[] for a frame's view-projection (what the bucket sorts compute). */
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj);
+/* Each instance's screen rectangle under view_proj into out[0 .. n_insts). */
+void wl_sf_book_screens(const WlSfBook *b, Mat4 view_proj, WlSfScreen *out);
+/* wl_sf_book_need() from the instances' screen rectangles
+ * (wl_sf_book_screens()). */
+void wl_sf_book_need_from(WlSfBook *b, const WlSfScreen *scr);
 /* Processor p's sort pass: master bucket sort, slave cull tests,
  * deletions; fills out[q] (an array of P batches, each cleared first)
  * with what p sends q; work into *w. */

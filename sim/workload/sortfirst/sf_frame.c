@@ -53,6 +53,8 @@ struct WlSfRun {
     int frame, frames;
     guint done;
     WlSfTrav trav;      /* this frame's §3.5 counts (sf_trav.h) */
+    const WlSfScreen *scr; /* this frame's instance screen rectangles */
+    WlSfScreen *scr_own;   /* their store without setup `screens` */
     WlSfTravProc *tp;   /* per processor: its traversal work */
     WlSfEdit *edit;     /* NULL: no edits (borrowed) */
     WlSfEditFrame ef;   /* this frame's edit work */
@@ -576,6 +578,27 @@ static void edit_send(WlSfRun *r)
                  &r->procs[q], edit_arrive, r);
 }
 
+/* The instances' screen rectangles of this frame: made once per frame
+ * (kept in setup `screens` when given), read by the bucket sort and by
+ * the overlap figures.  Edits change the instances, so the own store
+ * follows their number. */
+static const WlSfScreen *frame_screens(WlSfRun *r)
+{
+    gboolean fresh = TRUE;
+    guint n = wl_sf_n_insts(r->db);
+    WlSfScreen *s;
+    if (r->s.screens) {
+        s = wl_sf_screen_set_get(r->s.screens, (guint)r->frame, n,
+                                 r->view.view_proj, &fresh);
+    } else {
+        r->scr_own = g_renew(WlSfScreen, r->scr_own, n + 1);
+        s = r->scr_own;
+    }
+    if (fresh)
+        wl_sf_book_screens(r->book, r->view.view_proj, s);
+    return s;
+}
+
 static void start_frame(SimEngine *eng, void *ctx, void *arg)
 {
     (void)arg;
@@ -588,7 +611,8 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     if (r->adapt)
         plan_regions(r);
     r->book->regions = r->regions; /* the bucket sorts use this frame's */
-    wl_sf_book_need(r->book, r->view.view_proj);
+    r->scr = frame_screens(r);
+    wl_sf_book_need_from(r->book, r->scr);
     memset(&r->trav, 0, sizeof r->trav);
     wl_sf_trav_count(r->book, r->s.trav, &r->trav, r->tp);
     for (guint p = 0; p < r->s.procs; p++) {
@@ -725,15 +749,11 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
  * (seed 000 §4.2, Chart 3: chunk box size against region size). */
 static double box_side(const WlSfRun *r, guint i)
 {
-    const WlSfInst *in = wl_sf_inst(r->db, i);
-    const WlSfChunk *ch = wl_sf_chunk(r->db, in->chunk);
-    double x0, y0, x1, y1;
-    if (!wl_sf_box_screen(&r->regions, ch->box,
-                          mat4_mul(r->view.view_proj, in->matrix), &x0, &y0,
-                          &x1, &y1))
+    const WlSfScreen *s = &r->scr[i];
+    if (!s->on)
         return 0;
-    double w = MIN(x1, r->regions.width) - MAX(x0, 0);
-    double h = MIN(y1, r->regions.height) - MAX(y0, 0);
+    double w = MIN(s->x1, r->regions.width) - MAX(s->x0, 0);
+    double h = MIN(s->y1, r->regions.height) - MAX(s->y0, 0);
     return w > 0 && h > 0 ? sqrt(w * h) : 0;
 }
 
@@ -844,6 +864,7 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     g_assert(!s->adaptive || s->mig == WL_SF_PUSH);
     g_assert(s->mig == WL_SF_PUSH || s->trav == WL_SF_TRAV_PLAIN);
     g_assert(!(s->edits && s->pre)); /* edits change the frames' mesh */
+    g_assert(!(s->edits && s->screens)); /* and the instances */
     if (s->adaptive) {
         r->adapt = wl_sf_adapt_new(s->grid, s->procs);
         r->adapt->master = r->book->master;
@@ -899,6 +920,7 @@ void wl_sf_run_free(WlSfRun *r)
         g_array_unref(r->procs[p].fresh);
     }
     g_free(r->procs);
+    g_free(r->scr_own);
     g_free(r->tp);
     g_free(r->ew);
     wl_sf_book_free(r->book);

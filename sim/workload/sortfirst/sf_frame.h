@@ -116,6 +116,11 @@ typedef struct {
                               here by frame number, for runs of one scene
                               at one resolution (prerender.h); not with
                               edits */
+    WlSfScreenSet *screens; /* NULL: the instances' screen rectangles
+                               computed each frame; else kept here by
+                               frame number, for runs of one database's
+                               boxes, scene and resolution (sf_regions.h);
+                               not with edits */
     gboolean edits;    /* an editor will be set (phase `edit`) */
 } WlSfSetup;
 

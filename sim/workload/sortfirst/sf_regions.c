@@ -2,6 +2,7 @@
  * (sf_regions.h; seed 000 §4.1). */
 #include "sim/workload/sortfirst/sf_regions.h"
 #include <math.h>
+#include <string.h>
 
 void wl_sf_regions_init(WlSfRegions *r, guint procs, int width, int height)
 {
@@ -98,17 +99,28 @@ gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox b, Mat4 m,
     return TRUE;
 }
 
+WlSfScreen wl_sf_screen_of(const WlSfRegions *r, SceneBox box,
+                           Mat4 clip_from_obj)
+{
+    WlSfScreen s = {0};
+    s.on = !scene_box_is_empty(box) &&
+           wl_sf_box_screen(r, box, clip_from_obj, &s.x0, &s.y0, &s.x1,
+                            &s.y1);
+    return s;
+}
+
 uint64_t wl_sf_box_regions(const WlSfRegions *r, SceneBox box,
                            Mat4 clip_from_obj)
 {
-    double x0, y0, x1, y1;
-    if (scene_box_is_empty(box) ||
-        !wl_sf_box_screen(r, box, clip_from_obj, &x0, &y0, &x1, &y1))
+    WlSfScreen s = wl_sf_screen_of(r, box, clip_from_obj);
+    return wl_sf_screen_regions(r, &s);
+}
+
+uint64_t wl_sf_screen_regions(const WlSfRegions *r, const WlSfScreen *s)
+{
+    if (!s->on)
         return 0;
-    x0 -= 1;
-    y0 -= 1;
-    x1 += 1;
-    y1 += 1;
+    double x0 = s->x0 - 1, y0 = s->y0 - 1, x1 = s->x1 + 1, y1 = s->y1 + 1;
     uint64_t mask = 0;
     for (guint p = 0; p < r->procs; p++) {
         WlSfRect q = wl_sf_region_rect(r, p);
@@ -117,4 +129,61 @@ uint64_t wl_sf_box_regions(const WlSfRegions *r, SceneBox box,
             mask |= wl_sf_bit(p);
     }
     return mask;
+}
+
+/* ---- screen rectangles kept by frame ------------------------------------ */
+
+typedef struct {
+    Mat4 view_proj;
+    guint n;
+    WlSfScreen *v;
+} ScreenFrame;
+
+struct WlSfScreenSet {
+    GArray *by_key; /* ScreenFrame; v NULL: not made */
+};
+
+static void screen_frame_clear(gpointer p)
+{
+    ScreenFrame *f = p;
+    g_free(f->v);
+    f->v = NULL;
+}
+
+WlSfScreenSet *wl_sf_screen_set_new(void)
+{
+    WlSfScreenSet *s = g_new0(WlSfScreenSet, 1);
+    s->by_key = g_array_new(FALSE, TRUE, sizeof(ScreenFrame));
+    g_array_set_clear_func(s->by_key, screen_frame_clear);
+    return s;
+}
+
+void wl_sf_screen_set_clear(WlSfScreenSet *s)
+{
+    g_array_set_size(s->by_key, 0);
+}
+
+void wl_sf_screen_set_free(WlSfScreenSet *s)
+{
+    if (!s)
+        return;
+    g_array_unref(s->by_key);
+    g_free(s);
+}
+
+WlSfScreen *wl_sf_screen_set_get(WlSfScreenSet *s, guint key, guint n,
+                                 Mat4 view_proj, gboolean *fresh)
+{
+    if (key >= s->by_key->len)
+        g_array_set_size(s->by_key, key + 1);
+    ScreenFrame *f = &g_array_index(s->by_key, ScreenFrame, key);
+    *fresh = f->v == NULL;
+    if (*fresh) {
+        f->view_proj = view_proj;
+        f->n = n;
+        f->v = g_new(WlSfScreen, MAX(n, 1));
+    }
+    g_assert(f->n == n &&
+             memcmp(&f->view_proj, &view_proj, sizeof view_proj) == 0);
+    return f->v;
 }

@@ -52,6 +52,34 @@ gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox box,
 uint64_t wl_sf_box_regions(const WlSfRegions *r, SceneBox box,
                            Mat4 clip_from_obj);
 
+/* A box's screen rectangle (wl_sf_box_screen()); on is FALSE when the
+ * box is empty or culled.  It depends on the screen's size, not on the
+ * regions, so it serves every region split of one view. */
+typedef struct {
+    double x0, y0, x1, y1;
+    gboolean on;
+} WlSfScreen;
+
+WlSfScreen wl_sf_screen_of(const WlSfRegions *r, SceneBox box,
+                           Mat4 clip_from_obj);
+/* wl_sf_box_regions() of the box whose screen rectangle is s. */
+uint64_t wl_sf_screen_regions(const WlSfRegions *r, const WlSfScreen *s);
+
+/* Screen rectangles of n boxes kept per key (a frame number), for runs
+ * that revisit the frames of one view sequence with the same boxes
+ * (one chunk database, scene and resolution). */
+typedef struct WlSfScreenSet WlSfScreenSet;
+
+WlSfScreenSet *wl_sf_screen_set_new(void);
+void wl_sf_screen_set_free(WlSfScreenSet *s);
+/* Forgets every key (the boxes changed). */
+void wl_sf_screen_set_clear(WlSfScreenSet *s);
+/* The n rectangles of `key` (borrowed, until clear or free); *fresh is
+ * TRUE when they were just made and the caller must fill them.  Every
+ * call with one key passes the same n and view_proj (g_assert). */
+WlSfScreen *wl_sf_screen_set_get(WlSfScreenSet *s, guint key, guint n,
+                                 Mat4 view_proj, gboolean *fresh);
+
 static inline uint64_t wl_sf_bit(guint p)
 {
     return (uint64_t)1 << p;

@@ -794,14 +794,16 @@ static void test_traversal_counts(void **state)
 }
 
 /* Counting from frames rasterised once (setup `pre`, shared by runs)
- * gives every run the figures of rasterising each region: the same
- * frame times (vertices, spans and pixels are all charged) and pixels;
- * no image is kept.  Two runs share the set, as a reproduction's cases
- * do. */
+ * and screen rectangles kept per frame (setup `screens`) gives every run
+ * the figures of rasterising each region and transforming each box: the
+ * same frame times (vertices, spans and pixels are all charged), pixels
+ * and overlap figures; no image is kept.  Two runs share the sets, as a
+ * reproduction's cases do. */
 static void test_prerender_same_figures(void **state)
 {
     (void)state;
     RastPrerenderSet *pre = rast_prerender_set_new();
+    WlSfScreenSet *screens = wl_sf_screen_set_new();
     for (int bk = 0; bk < 2; bk++) {
         Fixture a, b;
         fixture_init(&a, 6, (WlSfBookkeeping)bk, 5);
@@ -810,6 +812,7 @@ static void test_prerender_same_figures(void **state)
         assert_true(wl_sf_costs_from_machine(b.m, &c, NULL));
         wl_sf_run_free(b.run);
         b.s.pre = pre;
+        b.s.screens = screens; /* kept from bk 0: the same boxes */
         b.run = wl_sf_run_new(b.m, b.scene, b.db, &b.s, &c);
         GError *e = NULL;
         assert_true(wl_sf_run_frames(a.run, 5, SIM_TIME_MAX, &e));
@@ -824,11 +827,14 @@ static void test_prerender_same_figures(void **state)
             assert_int_equal(x->pixels, y->pixels);
             assert_int_equal(x->polys_rendered, y->polys_rendered);
             assert_true(x->imbalance == y->imbalance && x->pixels > 100);
+            assert_true(x->box_side == y->box_side && x->box_side > 0);
+            assert_int_equal(x->region_insts, y->region_insts);
         }
         fixture_clear(&a);
         fixture_clear(&b);
     }
     rast_prerender_set_free(pre);
+    wl_sf_screen_set_free(screens);
 }
 
 /* wl_sf_box_screen() forms each corner from shared products: the
