@@ -7,13 +7,12 @@
  * of the three strategies of §4.1:
  *
  *   unsorted  every N consecutive primitives of a structure;
- *   partially_sorted  "presort the primitives ... by performing an
- *             octree-based sort over each structure's primitives, then
- *             proceed as with the first strategy": primitives ordered by
- *             the octree cell of their centroid (Morton order of a
- *             depth-WL_SF_OCTREE_DEPTH octree over the structure's
- *             centroid box; the depth is our assumption, the paper does
- *             not give it), file order kept inside a cell, then every N;
+ *   partially_sorted  "presort the primitives in the input file by
+ *             performing an octree-based sort over each structure's
+ *             primitives, then proceed as with the first strategy": the
+ *             primitives in the depth-first order of an octree over
+ *             their centroids (wl_sf_octree_order; the octree's rule and
+ *             why in sf_db.c), then every N;
  *   sorted    a simple 3-D spatial subdivision of the structure's
  *             primitives: split at the median centroid along the longest
  *             axis of the centroids' box (split sizes kept multiples of
@@ -54,7 +53,11 @@ typedef enum {
 /* "sorted", "unsorted", "partially_sorted" */
 extern const char *const wl_sf_chunking_names[];
 
-#define WL_SF_OCTREE_DEPTH 3 /* levels of the partial sort's octree */
+/* The partial sort's octree: a cell holding more centroids than this is
+ * split (the point-region octree's rule); a cell this deep is a leaf
+ * whatever it holds (its side 2^-21 of the root's: coincident points). */
+#define WL_SF_OCTREE_LEAF 1
+#define WL_SF_OCTREE_MAX_DEPTH 21
 
 typedef struct {
     guint sid;                 /* structure holding the primitives */
@@ -101,9 +104,10 @@ void wl_sf_db_set_procs(WlSfDb *d, guint procs);
  * stay valid.  FALSE with *err (d unchanged but for its instances) on
  * a matrix between one structure's primitives.  O(max-set polygons). */
 gboolean wl_sf_db_reinstance(WlSfDb *d, const SceneDb *db, GError **err);
-/* The partial sort's key: the Morton code of point c's cell in the
- * depth-WL_SF_OCTREE_DEPTH octree over box (depth-first visit order). */
-uint32_t wl_sf_octree_cell(SceneBox box, Vec3 c);
+/* The partial sort: order[0..n) gets the indices of pts in the
+ * depth-first order of the octree over them (sf_db.c).  O(n) memory,
+ * O(n * WL_SF_OCTREE_MAX_DEPTH) time. */
+void wl_sf_octree_order(const Vec3 *pts, guint n, guint *order);
 
 static inline const WlSfChunk *wl_sf_chunk(const WlSfDb *d, guint c)
 {
