@@ -2,8 +2,9 @@
  * properties: wl_sf_octree_order is a permutation; it is the depth-first
  * order of an octree over the points' bounding cube (at every level the
  * points of a cell are contiguous, cells in octant order); the octree is
- * adaptive (two points 10^-5 apart in a unit box are still told apart)
- * and coincident points keep their file order.  On a long strip of
+ * adaptive (two points 10^-5 apart in a unit box are still told apart),
+ * a point on a centre plane is in the upper half, and coincident points
+ * keep their file order.  On a long strip of
  * triangles written row by row along its length, as a modelling tool
  * writes it, partially sorted chunks hold every primitive once and have
  * smaller boxes (mean sum of extents) than unsorted ones at 5, 12 and
@@ -81,7 +82,7 @@ static void test_depth_first_over_cube(void **state)
 /* Subdivision goes as deep as the points need: b and c, 10^-5 apart near
  * the box's upper x end, are split at depth 17 and come in octant order
  * (c before b), not file order; a depth-3 grid would keep them in one
- * cell. */
+ * cell.  A point on a cell's centre plane goes to the upper half. */
 static void test_adaptive_depth(void **state)
 {
     (void)state;
@@ -91,6 +92,14 @@ static void test_adaptive_depth(void **state)
     assert_int_equal(order[0], 0);
     assert_int_equal(order[1], 2);
     assert_int_equal(order[2], 1);
+    /* a centroid on a centre plane is in the upper half: p (x = 0.5) in
+     * octant 1 after s and q in octant 0; in the lower half p would join
+     * them and come between s (octant 0) and q (octant 3) a level down */
+    Vec3 b[4] = {vec3(0.5, 0, 0), vec3(0.4, 0.4, 0), vec3(1, 1, 1),
+                 vec3(0, 0, 0)};
+    guint ob[4], expect[4] = {3, 1, 0, 2};
+    wl_sf_octree_order(b, 4, ob);
+    assert_memory_equal(ob, expect, sizeof ob);
 }
 
 /* Coincident points stay in file order (leaves at the depth limit), and
