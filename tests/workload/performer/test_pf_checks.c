@@ -233,6 +233,57 @@ static void test_geoset_bound(void **st)
     wl_pf_graph_free(g);
 }
 
+/* A geode holding one geoset whose sphere is centre (x, 0, 0), radius r
+ * (a flat triangle spanning x - r .. x + r). */
+static guint ball(WlPfGraph *g, guint parent, double x, double r, guint gs)
+{
+    guint geode = wl_pf_add_node(g, parent, WL_PF_GEODE);
+    const Vec3 t[3] = {vec3(x - r, 0, 0), vec3(x + r, 0, 0), vec3(x, 0, 0)};
+    wl_pf_add_geoset(g, geode, t, 1, gs);
+    return geode;
+}
+
+static void sphere_is(const WlPfGraph *g, guint node, double cx, double r)
+{
+    const WlPfNode *n = wl_pf_node(g, node);
+    if (fabs(n->center.x - cx) > 1e-12 || fabs(n->radius - r) > 1e-12 ||
+        n->center.y != 0 || n->center.z != 0)
+        fail_msg("node %u: centre %.6f radius %.6f, expected %.6f %.6f",
+                 node, n->center.x, n->radius, cx, r);
+}
+
+/* Bounding spheres of groups: a sphere inside another adds nothing, one
+ * containing the other replaces it, two overlapping ones give the
+ * smallest sphere around both; an SCS scales and moves its sphere; a
+ * group with nothing below has none (radius < 0). */
+static void test_sphere_union(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    guint gs = wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint inside = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    ball(g, inside, 0, 10, gs);
+    ball(g, inside, 5, 1, gs);
+    guint contains = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    ball(g, contains, 5, 1, gs);
+    ball(g, contains, 0, 10, gs);
+    guint overlap = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    ball(g, overlap, 0, 10, gs);
+    ball(g, overlap, 9.5, 1, gs);
+    guint scs = wl_pf_add_node(g, g->root, WL_PF_SCS);
+    wl_pf_node(g, scs)->xf = mat4_mul(mat4_translate(3, 0, 0),
+                                      mat4_scale(2, 2, 2));
+    ball(g, scs, 1, 2, gs);
+    guint empty = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    wl_pf_update_bounds(g, g->root);
+    sphere_is(g, inside, 0, 10);
+    sphere_is(g, contains, 0, 10);
+    sphere_is(g, overlap, 0.25, 10.25);
+    sphere_is(g, scs, 5, 4);
+    assert_true(wl_pf_node(g, empty)->radius < 0);
+    wl_pf_graph_free(g);
+}
+
 static void *parse(const char *w, GError **err)
 {
     char *y = g_strdup_printf("workload: {type: performer, %s}\n", w);
@@ -322,6 +373,7 @@ int main(void)
         cmocka_unit_test(test_pn_on_pixel_planes_5),
         cmocka_unit_test(test_frame_log),
         cmocka_unit_test(test_geoset_bound),
+        cmocka_unit_test(test_sphere_union),
         cmocka_unit_test(test_parse_edges),
         cmocka_unit_test(test_mem_bytes),
     };
