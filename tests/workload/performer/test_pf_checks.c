@@ -274,8 +274,12 @@ static void test_sphere_union(void **st)
     wl_pf_node(g, scs)->xf = mat4_mul(mat4_translate(3, 0, 0),
                                       mat4_scale(2, 2, 2));
     ball(g, scs, 1, 2, gs);
+    guint point = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    ball(g, point, 0, 10, gs);
+    ball(g, point, 20, 0, gs); /* a point still counts */
     guint empty = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     wl_pf_update_bounds(g, g->root);
+    sphere_is(g, point, 5, 15);
     sphere_is(g, inside, 0, 10);
     sphere_is(g, contains, 0, 10);
     sphere_is(g, overlap, 0.25, 10.25);
