@@ -429,6 +429,13 @@ static void test_tile_clear_and_present(void **state)
                 assert_true(f->front[3 * i + 1] == (in ? 0.5f : 1));
             }
     }
+    /* the picture: (0, 0) kept the white front, (63, 47) was presented */
+    RastImage *img = wl_ag_frame_front_image(f);
+    assert_int_equal(rast_image_get(img, 0, 0), 0xffffffffu);
+    assert_int_equal(rast_image_get(img, 63, 47),
+                     rast_channel(0.25f) | rast_channel(0.5f) << 8 |
+                         rast_channel(0.75f) << 16 | 0xff000000u);
+    rast_image_free(img);
     assert_int_equal(wl_ag_frame_clear_tile(f, G_MAXUINT), 64 * 48);
     wl_ag_frame_free(f);
 }
@@ -440,7 +447,7 @@ static void test_application_none(void **state)
     (void)state;
     char *text = g_strdup_printf(
         "%sworkload: {type: argus, processors: 4, contexts: 1,\n"
-        "  application: none, primitives: triangles, tile: 32, block: 4,\n"
+        "  application: none, primitives: triangles, tile: 32, block: 1024,\n"
         "  width: 48, height: 48, check_image: false}\n%s",
         machine, nurbs_scene);
     GError *err = NULL;

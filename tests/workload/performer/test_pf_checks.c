@@ -230,6 +230,10 @@ static void test_geoset_bound(void **st)
     assert_true(b->center.x == 0.5 && b->center.y == 1.5 && b->center.z == 0.5);
     assert_true(fabs(b->radius - sqrt(0.25 + 2.25 + 0.25)) < 1e-12);
     assert_int_equal(wl_pf_geoset_tris(b), 1);
+    /* all below zero: the box starts empty, not at the origin */
+    const Vec3 neg[3] = {vec3(-5, -5, -5), vec3(-3, -4, -5), vec3(-4, -3, -7)};
+    WlPfGeoSet *c = wl_pf_geoset(g, wl_pf_add_geoset(g, geode, neg, 1, gs));
+    assert_true(c->center.x == -4 && c->center.y == -4 && c->center.z == -6);
     wl_pf_graph_free(g);
 }
 
@@ -274,12 +278,16 @@ static void test_sphere_union(void **st)
     wl_pf_node(g, scs)->xf = mat4_mul(mat4_translate(3, 0, 0),
                                       mat4_scale(2, 2, 2));
     ball(g, scs, 1, 2, gs);
+    guint tall = wl_pf_add_node(g, g->root, WL_PF_SCS);
+    wl_pf_node(g, tall)->xf = mat4_scale(1, 3, 1); /* the largest axis */
+    ball(g, tall, 0, 2, gs);
     guint point = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     ball(g, point, 0, 10, gs);
     ball(g, point, 20, 0, gs); /* a point still counts */
     guint empty = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     wl_pf_update_bounds(g, g->root);
     sphere_is(g, point, 5, 15);
+    sphere_is(g, tall, 0, 6);
     sphere_is(g, inside, 0, 10);
     sphere_is(g, contains, 0, 10);
     sphere_is(g, overlap, 0.25, 10.25);

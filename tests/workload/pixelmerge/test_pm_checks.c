@@ -341,6 +341,16 @@ static void test_machine_count_by_default(void **state)
     double v = 0;
     assert_true(sim_result_get_metric(r, "processors", &v));
     assert_true(v == nodes && nodes == 16);
+    /* the peak is the sum of its parts */
+    double sum = 0, part = 0;
+    const char *parts[] = {"memory_base", "memory_polygons", "memory_spans",
+                           "memory_zbuffer", "memory_buffers"};
+    for (guint i = 0; i < G_N_ELEMENTS(parts); i++) {
+        assert_true(sim_result_get_metric(r, parts[i], &part) && part >= 0);
+        sum += part;
+    }
+    assert_true(sim_result_get_metric(r, "peak_memory", &v));
+    assert_true(v == sum && sum > 0);
     sim_result_free(r);
     sim_engine_free(eng);
     wl_pixelmerge_ops.free_params(p);
