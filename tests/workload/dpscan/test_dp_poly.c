@@ -212,6 +212,15 @@ static void test_span_key_depth(void **state)
     assert_int_equal(wl_dp_span_key(&o.p, &s, 2) >> 32, depth_bits(0.4));
     assert_int_equal(wl_dp_span_key(&o.p, &s, 4) >> 32, depth_bits(0.6));
     assert_int_equal(wl_dp_key_id(wl_dp_span_key(&o.p, &s, 2)), 0);
+    /* the shade is interpolated like the depth: pixel 3 at v 0.5 */
+    s.vl = 0;
+    s.vr = 1;
+    assert_int_equal(wl_dp_key_index(wl_dp_span_key(&o.p, &s, 2)),
+                     wl_dp_color_index(o.color[0], 0.5));
+    assert_int_equal(wl_dp_key_index(wl_dp_span_key(&o.p, &s, 4)),
+                     wl_dp_color_index(o.color[0], 1));
+    assert_int_equal(wl_dp_key_index(wl_dp_span_key(&o.p, &s, 0)),
+                     wl_dp_color_index(o.color[0], 0));
     /* a pixel centre left of xl clamps to the left end */
     s.xl = 1.9;
     assert_int_equal(wl_dp_span_key(&o.p, &s, 0) >> 32, depth_bits(0.2));
