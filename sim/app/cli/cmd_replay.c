@@ -77,7 +77,9 @@ int cmd_replay(int argc, char **argv)
          "file of 'TRACE_PROC TARGET_PROC' lines",
          "block|cyclic|FILE"},
         {"fidelity", 0, 0, G_OPTION_ARG_STRING, &o.fidelity,
-         "network model: faithful (default), analytic, flow or packet", "F"},
+         "network model: analytic, flow, packet or faithful (default: the "
+         "fidelity the trace was recorded at, else faithful)",
+         "F"},
         {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o.sets,
          "override a machine key (repeatable)", "machine.KEY=VALUE"},
         {"clock", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o.clocks,

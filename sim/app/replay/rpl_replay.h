@@ -26,7 +26,7 @@ typedef struct {
     const char *machine;     /* a model name (models/NAME.yaml) */
     guint nodes;             /* 0: the model's own size */
     const char *map;         /* "block" (NULL), "cyclic" or a map file */
-    const char *fidelity;    /* NULL: faithful */
+    const char *fidelity;    /* NULL: the trace header's, else faithful */
     const char *const *sets; /* machine.KEY=VALUE overrides, NULL-ended */
     /* KIND=HZ: the recording clock of a trace kind that has none (an
      * assumption the user states), NULL-ended; may be NULL */

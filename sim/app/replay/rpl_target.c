@@ -38,9 +38,10 @@ static gboolean apply_sets(CfgNode *root, const char *const *sets,
     return TRUE;
 }
 
-/* The model o->machine, sized to o->nodes (its partition into *desc). */
+/* The model o->machine, sized to o->nodes (its partition into *desc), at
+ * fidelity fid (NULL: the model's faithful rung). */
 static MachMachine *build(SimEngine *eng, char **desc, const RplReplayOpts *o,
-                          GError **err)
+                          const char *fid, GError **err)
 {
     CfgNode *root = cfg_load_string("machine: {}\n", "replay", err);
     char *model = g_strdup_printf("machine.model=%s", o->machine);
@@ -50,9 +51,7 @@ static MachMachine *build(SimEngine *eng, char **desc, const RplReplayOpts *o,
                   (!o->nodes || mach_partition(root, o->nodes, desc, err));
     MachMachine *m =
         ok ? mach_new_from_cfg(eng, cfg_get(root, "machine"),
-                               o->fidelity ? o->fidelity
-                                           : MACH_FIDELITY_FAITHFUL,
-                               err)
+                               fid ? fid : MACH_FIDELITY_FAITHFUL, err)
            : NULL;
     g_free(model);
     g_free(path);
@@ -170,11 +169,14 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
     t->eng = sim_engine_new(1);
     t->n_trace = h->procs;
     t->costs = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
-    t->m = build(t->eng, &t->desc, o, err);
+    /* --fidelity, else the rung the trace was recorded at (its header),
+     * else the target's faithful rung (docs/traces.md, Replaying). */
+    t->m = build(t->eng, &t->desc, o, o->fidelity ? o->fidelity : h->fidelity,
+                 err);
     RplReplayOpts from = {.machine = o->costs_from};
     if (o->costs_from) {
         t->from_eng = sim_engine_new(1);
-        t->from = t->m ? build(t->from_eng, NULL, &from, err) : NULL;
+        t->from = t->m ? build(t->from_eng, NULL, &from, NULL, err) : NULL;
     }
     if (!t->m || (o->costs_from && !t->from) || !make_map(t, o->map, err) ||
         !parse_clocks(t, o->clocks, err)) {
