@@ -405,6 +405,14 @@ static void test_names_and_spec(void **st)
         assert_true(scene_pphigs_kind_parse(names[k], &got));
         assert_int_equal(got, k);
     }
+    /* a database with nothing posted: the default camera */
+    SceneDb *empty = scene_db_new();
+    scene_db_add_struct(empty, "unposted");
+    SceneCamera fv = scene_pphigs_fit_view(empty), def = scene_camera_default();
+    assert_true(fv.proj == def.proj && fv.eye.z == def.eye.z &&
+                fv.target.z == def.target.z && fv.fov_deg == def.fov_deg &&
+                fv.near == def.near && fv.far == def.far);
+    scene_db_free(empty);
     ScenePphigsKind got = SCENE_PPHIGS_FLOCK;
     assert_false(scene_pphigs_kind_parse("space", &got));
     assert_int_equal(got, SCENE_PPHIGS_FLOCK);

@@ -417,6 +417,33 @@ static void test_from_file(void **st)
     g_free(dir);
 }
 
+/* pn_triangles: level 1 unless given (each triangle becomes 4), level
+ * 0 keeps the triangles. */
+static void test_pn_default_level(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    Scene *flat = from_text("scene: {generator: teapots, polygons_per_teapot: "
+                            "288}\n",
+                            &err);
+    assert_non_null(flat);
+    uint64_t tris = scene_n_triangles(flat);
+    scene_free(flat);
+    const char *pn[] = {"{}", "{level: 0}", "{level: 2, normals: quadratic}"};
+    const uint64_t per[] = {4, 1, 9};
+    for (guint i = 0; i < 3; i++) {
+        char *y = g_strdup_printf("scene: {generator: teapots, "
+                                  "polygons_per_teapot: 288, "
+                                  "pn_triangles: %s}\n",
+                                  pn[i]);
+        Scene *s = from_text(y, &err);
+        assert_non_null(s);
+        assert_int_equal(scene_n_polys(s), per[i] * tris);
+        scene_free(s);
+        g_free(y);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -427,6 +454,7 @@ int main(void)
         cmocka_unit_test(test_edges_accepted),
         cmocka_unit_test(test_keyframe_frames),
         cmocka_unit_test(test_from_file),
+        cmocka_unit_test(test_pn_default_level),
     };
     return cmocka_run_group_tests_name("scene_cfg_limits", tests, NULL, NULL);
 }
