@@ -203,8 +203,9 @@ static void test_flock(void **st)
     assert_int_equal(scene_db_elem(db, boid, 3)->kind, SCENE_EL_COLOR);
     assert_int_equal(colors, 2);
     assert_int_equal(polys, 4);
-    /* the well: polygons of radius h/40 within 1 of a column on the ring
-     * of radius h/8, at heights up to h/4 */
+    /* the well: polygons of radius h/40 within 1 in x, y and z of their
+     * column, column `obj` (one per colour) standing on the ring of
+     * radius h/8 at angle 2 pi obj / well_attributes, up to h/4 high */
     guint wp = 0, wc = 0;
     for (guint k = 0; k < 2; k++) {
         guint w = k ? w1 : w0;
@@ -215,9 +216,10 @@ static void test_flock(void **st)
                 continue;
             }
             Vec3 c = check_regular(e, s.verts, h / 40);
-            double ring = hypot(c.x, c.z);
-            assert_true(ring >= h / 8 - 2 && ring <= h / 8 + 2);
-            assert_true(c.y >= -1 && c.y <= h / 4 + 1);
+            double t = 2 * G_PI * (wc - 1) / 3;
+            assert_true(fabs(c.x - h / 8 * cos(t)) <= 1 + 1e-9);
+            assert_true(fabs(c.z - h / 8 * sin(t)) <= 1 + 1e-9);
+            assert_true(c.y >= -1 - 1e-9 && c.y <= h / 4 + 1 + 1e-9);
             wp++;
         }
     }
