@@ -55,7 +55,11 @@ void wl_pphigs_prim_ops(const SceneElem *e, gboolean offscreen, MachOps *o)
         wl_pphigs_elem_ops(e, o);
 }
 
-void wl_pphigs_nonprim_ops(const SceneDb *db, MachOps *o)
+/* Calls fn(e, ud) on every attribute and execute of every structure
+ * instance of db's max-set, in traversal order: the one walk behind
+ * wl_pphigs_nonprim_ops() and wl_pphigs_nonprim_cost(). */
+static void nonprim_each(const SceneDb *db,
+                         void (*fn)(const SceneElem *e, void *ud), void *ud)
 {
     GArray *mx = scene_db_maxset(db);
     for (guint k = 0; k < mx->len; k++) {
@@ -63,10 +67,20 @@ void wl_pphigs_nonprim_ops(const SceneDb *db, MachOps *o)
         for (guint i = 0; i < scene_db_len(db, sid); i++) {
             const SceneElem *e = scene_db_elem(db, sid, i);
             if (!scene_elem_is_prim(e->kind))
-                wl_pphigs_elem_ops(e, o);
+                fn(e, ud);
         }
     }
     g_array_unref(mx);
+}
+
+static void nonprim_op(const SceneElem *e, void *ud)
+{
+    wl_pphigs_elem_ops(e, ud);
+}
+
+void wl_pphigs_nonprim_ops(const SceneDb *db, MachOps *o)
+{
+    nonprim_each(db, nonprim_op, o);
 }
 
 SimTime wl_pphigs_prim_cost(const WlPphigsCosts *c, const SceneElem *e,
@@ -83,20 +97,17 @@ static void prim_fn(const ScenePrimInst *pi, void *ud)
     w->t += wl_pphigs_prim_cost(w->c, pi->el, off);
 }
 
+static void nonprim_add(const SceneElem *e, void *ud)
+{
+    Walk *w = ud;
+    w->t += wl_pphigs_elem_cost(w->c, e);
+}
+
 SimTime wl_pphigs_nonprim_cost(const SceneDb *db, const WlPphigsCosts *c)
 {
-    SimTime t = 0;
-    GArray *mx = scene_db_maxset(db);
-    for (guint k = 0; k < mx->len; k++) {
-        guint sid = g_array_index(mx, SceneMaxNode, k).sid;
-        for (guint i = 0; i < scene_db_len(db, sid); i++) {
-            const SceneElem *e = scene_db_elem(db, sid, i);
-            if (!scene_elem_is_prim(e->kind))
-                t += wl_pphigs_elem_cost(c, e);
-        }
-    }
-    g_array_unref(mx);
-    return t;
+    Walk w = {.c = c, .t = 0};
+    nonprim_each(db, nonprim_add, &w);
+    return w.t;
 }
 
 SimTime wl_pphigs_traversal_cost(const SceneDb *db, Mat4 vp,
