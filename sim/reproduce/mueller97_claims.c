@@ -19,9 +19,12 @@
  *   C4  min-set transforms about three times (the instance count) as
  *      many slave chunk boxes as max-set: the mean ratio over those cases
  *      within 15 % of the instance count (our tolerance for "about").
- *   C5 (Chart 1)  sorted chunking gives smaller boxes and less overlap
- *      than unsorted at every chunk size above 1, and where partially
- *      sorted was run its box ratio and overlap lie between the two.
+ *   C5 (Chart 1)  "the sorted method was chosen": sorted chunking gives
+ *      smaller boxes and less overlap than unsorted at every chunk size
+ *      above 1, and than partially sorted where that was run.  Chart 1's
+ *      values are not in the text, so whether partially sorted lies
+ *      between the two is not a claim of the paper; cases_partial_between
+ *      reports it as an observation (an earlier reading required it).
  * O(n^2) in the points (n is tens).
  */
 #include "sim/reproduce/mueller97.h"
@@ -268,12 +271,18 @@ static gboolean between(double sorted, double partial, double unsorted)
     return sorted <= partial && partial <= unsorted;
 }
 
+/* Sorted beats the other strategy in both box ratio and overlap. */
+static gboolean beats(const RpMuellerPoint *s, const RpMuellerPoint *o)
+{
+    return s->ratio < o->ratio && s->overlap < o->overlap;
+}
+
 static void claim_chunking(Pts a, GPtrArray *rows)
 {
     const char *id = "C5_sorted_smaller_boxes_less_overlap";
-    const char *text = "Chart 1: sorted chunking gives smaller boxes and less "
-                       "overlap than unsorted, partially sorted in between";
-    guint cases = 0, both = 0, np = 0, mid = 0;
+    const char *text = "Chart 1: the sorted method was chosen: smaller boxes "
+                       "and less overlap than unsorted and partially sorted";
+    guint cases = 0, both = 0, np = 0, mid = 0, pbeat = 0;
     double box = 0, ovl = 0, pbox = 0, povl = 0;
     for (guint i = 0; i < a.n; i++) {
         const RpMuellerPoint *u = &a.pts[i];
@@ -286,12 +295,13 @@ static void claim_chunking(Pts a, GPtrArray *rows)
         if (!s || u->ratio <= 0 || u->overlap <= 0)
             continue;
         cases++;
-        both += s->ratio < u->ratio && s->overlap < u->overlap;
+        both += beats(s, u);
         box += s->ratio / u->ratio;
         ovl += s->overlap / u->overlap;
         if (!p)
             continue;
         np++;
+        pbeat += beats(s, p);
         mid += between(s->ratio, p->ratio, u->ratio) &&
                between(s->overlap, p->overlap, u->overlap);
         pbox += p->ratio / u->ratio;
@@ -303,10 +313,11 @@ static void claim_chunking(Pts a, GPtrArray *rows)
     row(rows, id, "mean_box_sorted_over_unsorted", box / c, text);
     row(rows, id, "mean_overlap_sorted_over_unsorted", ovl / c, text);
     row(rows, id, "cases_partial", np, text);
+    row(rows, id, "cases_sorted_beats_partial", pbeat, text);
     row(rows, id, "cases_partial_between", mid, text);
     row(rows, id, "mean_box_partial_over_unsorted", pbox / cp, text);
     row(rows, id, "mean_overlap_partial_over_unsorted", povl / cp, text);
-    row(rows, id, "holds", cases ? both == cases && mid == np : NAN, text);
+    row(rows, id, "holds", cases ? both == cases && pbeat == np : NAN, text);
 }
 
 void rp_mueller97_claims(const RpMuellerPoint *pts, guint n, GPtrArray *rows)
