@@ -14,6 +14,7 @@
 
 #include "rast_testutil.h"
 #include "sim/raster/clip.h"
+#include "sim/raster/spanlist.h"
 
 static gboolean same_vert(const RastVert *a, const RastVert *b)
 {
@@ -302,6 +303,57 @@ static void test_image_pixels(void **state)
     rast_image_free(NULL);
 }
 
+/* A span list sorted, cleared and filled again, then added to and
+ * sorted again: its last row's bounds are recomputed each time, not
+ * left from the sort before. */
+static void test_spanlist_reuse(void **state)
+{
+    (void)state;
+    RastSpanList *sl = rast_spanlist_new(8, 4);
+    RastSpan s = {0};
+    s.y = 3;
+    s.x0 = 1;
+    s.x1 = 2;
+    rast_spanlist_add(sl, &s);
+    rast_spanlist_sort(sl);
+    size_t n = 9;
+    rast_spanlist_row(sl, 3, &n);
+    assert_int_equal(n, 1);
+    rast_spanlist_clear(sl);
+    s.x0 = 4;
+    s.x1 = 5;
+    rast_spanlist_add(sl, &s);
+    s.x0 = 2;
+    s.x1 = 3;
+    rast_spanlist_add(sl, &s);
+    s.y = 0;
+    rast_spanlist_add(sl, &s);
+    rast_spanlist_sort(sl);
+    assert_int_equal(rast_spanlist_len(sl), 3);
+    const RastSpan *row = rast_spanlist_row(sl, 3, &n);
+    assert_int_equal(n, 2);
+    assert_int_equal(row[0].x0, 2);
+    assert_int_equal(row[1].x0, 4);
+    rast_spanlist_row(sl, 0, &n);
+    assert_int_equal(n, 1);
+    rast_spanlist_row(sl, 1, &n);
+    assert_int_equal(n, 0);
+    rast_spanlist_row(sl, 2, &n);
+    assert_int_equal(n, 0);
+    /* more spans after a sort, no clear: sorted again from scratch */
+    s.y = 3;
+    s.x0 = 6;
+    s.x1 = 7;
+    rast_spanlist_add(sl, &s);
+    rast_spanlist_sort(sl);
+    rast_spanlist_row(sl, 3, &n);
+    assert_int_equal(n, 3);
+    rast_spanlist_row(sl, 0, &n);
+    assert_int_equal(n, 1);
+    assert_int_equal(rast_spanlist_len(sl), 4);
+    rast_spanlist_free(sl);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -310,6 +362,7 @@ int main(void)
         cmocka_unit_test(test_fan_split_counts),
         cmocka_unit_test(test_image_errors),
         cmocka_unit_test(test_image_pixels),
+        cmocka_unit_test(test_spanlist_reuse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
