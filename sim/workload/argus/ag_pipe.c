@@ -111,6 +111,14 @@ static const AgBlock *block_at(const AgPipe *p, guint b, guint *ctx)
 /* Work given as named counts of the cpu's costs (wl_ag_cost_ops):
  * priced by the machine, written as such by a recording; *busy gets its
  * time. */
+/* A lock or semaphore operation: none on a uniprocessor, where nothing
+ * is shared between threads (the costs the machine gives are for the
+ * multiprocessor's synchronisation). */
+static void sync_ops(const AgPipe *p, MachOps *o, const char *op, uint64_t n)
+{
+    mach_ops_add(o, op, p->s.uniprocessor ? 0 : n);
+}
+
 static void compute(MachProc *proc, const MachOps *o, unsigned phase,
                     SimHandler done, AgPipe *p, guint arg, SimTime *busy)
 {
@@ -203,7 +211,7 @@ static void app_issue(SimEngine *eng, void *ctx, void *arg)
     app_work(p, b, &o);
     mach_ops_add(&o, "issue_vertex", b->verts);
     mach_ops_add(&o, "issue_batch", b->opens ? 1 : 0);
-    mach_ops_add(&o, "lock", 1);
+    sync_ops(p, &o, "lock", 1);
     compute(thread_proc(p, c), &o, p->ph_app, app_done, p, c,
             &p->out->app_busy);
 }
@@ -304,7 +312,7 @@ static void geom_start(AgPipe *p, guint g, guint b)
     p->out->triangles += k->n;
     p->out->verts_issued += k->verts;
     MachOps o = {0};
-    mach_ops_add(&o, "lock", 1);
+    sync_ops(p, &o, "lock", 1);
     mach_ops_add(&o, "geom_vertex", k->verts);
     mach_ops_add(&o, "geom_triangle", k->n);
     mach_ops_add(&o, "geom_tile", pairs);
@@ -479,7 +487,7 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
                      px);
         mach_ops_add(&o, "rast_clear", cleared);
     }
-    mach_ops_add(&o, "sema", k->n_pre + k->n_post);
+    sync_ops(p, &o, "sema", k->n_pre + k->n_post);
     p->r_busy[r] = TRUE;
     p->r_tile[r] = t;
     p->r_block[r] = b;

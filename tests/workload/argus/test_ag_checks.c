@@ -285,6 +285,52 @@ static void test_application_time_from_costs(void **state)
     sim_result_free(r);
 }
 
+/* A uniprocessor pays no lock and no semaphore (ag_pipe.h): its
+ * application time is the work alone, and the geometry and rasteriser
+ * times carry no synchronisation; the multiprocessor run of the same
+ * scene pays them (so this test fails if the uniprocessor is charged). */
+static void test_uniprocessor_pays_no_sync(void **state)
+{
+    (void)state;
+    const char *text =
+        "machine: {model: origin2000}\n"
+        "workload: {type: argus, processors: 1, uniprocessor: true,\n"
+        "  application: march, voxels_per_cell: 100, primitives: triangles,\n"
+        "  tile: 32, block: 8, width: 64, height: 48, check_image: false,\n"
+        "  fill_rate: finite}\n"
+        "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n";
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    CfgNode *root = cfg_load_string(text, "u.yaml", &err);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    assert_non_null(m);
+    assert_true(mach_cost(m, "cpu", "lock") > 0);
+    double batches = metric(r, "batches"), tris = metric(r, "triangles");
+    double verts = metric(r, "vertices_issued");
+    double ps = batches * 100.0 * mach_cost(m, "cpu", "march_voxel") +
+                tris * mach_cost(m, "cpu", "march_triangle") +
+                verts * mach_cost(m, "cpu", "issue_vertex") +
+                batches * mach_cost(m, "cpu", "issue_batch");
+    double ms = metric(r, "application_ms");
+    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
+        fail_msg("application %.9f ms, expected %.9f (no lock)", ms,
+                 ps * 1e-9);
+    ps = verts * mach_cost(m, "cpu", "geom_vertex") +
+         tris * mach_cost(m, "cpu", "geom_triangle") +
+         metric(r, "bucketed_triangles") * mach_cost(m, "cpu", "geom_tile");
+    ms = metric(r, "geometry_ms");
+    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
+        fail_msg("geometry %.9f ms, expected %.9f (no lock)", ms, ps * 1e-9);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+    sim_result_free(r);
+}
+
 /* Batches and their vertex counts on a hand-made mesh: a strip issues 3
  * vertices for its first triangle and 1 for each that shares exactly two
  * vertices with the one before; distinct counts mesh vertices. */
@@ -520,6 +566,7 @@ int main(void)
         cmocka_unit_test(test_pixels_equal_serial_draw),
         cmocka_unit_test(test_run_errors),
         cmocka_unit_test(test_application_time_from_costs),
+        cmocka_unit_test(test_uniprocessor_pays_no_sync),
         cmocka_unit_test(test_batch_vertices),
         cmocka_unit_test(test_cells_from_last_tag),
         cmocka_unit_test(test_tile_clear_and_present),
