@@ -218,59 +218,102 @@ static void test_pixels_equal_serial_draw(void **state)
     g_free(text);
 }
 
+/* The march scene of the pricing tests on origin2000; head is the
+ * workload's processor keys. */
+static char *march_text(const char *head)
+{
+    return g_strdup_printf(
+        "machine: {model: origin2000}\n"
+        "workload: {type: argus, %s,\n"
+        "  application: march, voxels_per_cell: 100, primitives: triangles,\n"
+        "  tile: 32, block: 8, width: 64, height: 48, check_image: false,\n"
+        "  fill_rate: finite}\n"
+        "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n",
+        head);
+}
+
+/* A run and the machine its costs come from, for pricing its counts. */
+typedef struct {
+    SimResult *r;
+    CfgNode *root;
+    SimEngine *eng;
+    MachMachine *m;
+} Priced;
+
+static Priced priced_run(const char *head)
+{
+    char *text = march_text(head);
+    GError *err = NULL;
+    Priced x = {run(text, &err), NULL, NULL, NULL};
+    if (!x.r)
+        fail_msg("%s", err->message);
+    x.root = cfg_load_string(text, "m.yaml", &err);
+    x.eng = sim_engine_new(1);
+    x.m = mach_new_from_cfg(x.eng, cfg_get(x.root, "machine"), "analytic",
+                            &err);
+    assert_non_null(x.m);
+    g_free(text);
+    return x;
+}
+
+static void priced_free(Priced *x)
+{
+    mach_free(x->m);
+    sim_engine_free(x->eng);
+    cfg_free(x->root);
+    sim_result_free(x->r);
+}
+
+static double cpu_cost(const Priced *x, const char *op)
+{
+    return mach_cost(x->m, "cpu", op);
+}
+
+/* Metric name (ms) equals ps picoseconds to 1e-9 relative. */
+static void expect_ms(const Priced *x, const char *name, double ps,
+                      const char *what)
+{
+    double ms = metric(x->r, name);
+    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
+        fail_msg("%s %.9f ms, expected %.9f%s", name, ms, ps * 1e-9, what);
+}
+
 /* The application threads' time is app_work + issue cost a block
  * (ag_pipe.c app_issue): march voxels and triangles of every batch, a
  * vertex cost a vertex issued, a batch cost a batch and a lock a block. */
 static void test_application_time_from_costs(void **state)
 {
     (void)state;
-    const char *text =
-        "machine: {model: origin2000}\n"
-        "workload: {type: argus, processors: 5, contexts: 2,\n"
-        "  application: march, voxels_per_cell: 100, primitives: triangles,\n"
-        "  tile: 32, block: 8, width: 64, height: 48, check_image: false,\n"
-        "  fill_rate: finite}\n"
-        "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n";
-    GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
-    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
-    SimEngine *eng = sim_engine_new(1);
-    MachMachine *m =
-        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
-    assert_non_null(m);
+    Priced x = priced_run("processors: 5, contexts: 2");
+    const SimResult *r = x.r;
     double batches = metric(r, "batches"), tris = metric(r, "triangles");
     double verts = metric(r, "vertices_issued"), blocks = metric(r, "blocks");
     assert_true(batches > 1 && tris > batches && blocks >= batches);
     assert_true(verts == 3 * tris);
-    double ps = batches * 100.0 * mach_cost(m, "cpu", "march_voxel") +
-                tris * mach_cost(m, "cpu", "march_triangle") +
-                verts * mach_cost(m, "cpu", "issue_vertex") +
-                batches * mach_cost(m, "cpu", "issue_batch") +
-                blocks * mach_cost(m, "cpu", "lock");
-    double ms = metric(r, "application_ms");
-    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
-        fail_msg("application %.9f ms, expected %.9f", ms, ps * 1e-9);
+    expect_ms(&x, "application_ms",
+              batches * 100.0 * cpu_cost(&x, "march_voxel") +
+                  tris * cpu_cost(&x, "march_triangle") +
+                  verts * cpu_cost(&x, "issue_vertex") +
+                  batches * cpu_cost(&x, "issue_batch") +
+                  blocks * cpu_cost(&x, "lock"),
+              "");
     /* geometry: a lock, the vertices and triangles of every block, and a
      * tile cost for every (tile, triangle) pair bucketed */
     double bucketed = metric(r, "bucketed_triangles");
-    ps = blocks * mach_cost(m, "cpu", "lock") +
-         verts * mach_cost(m, "cpu", "geom_vertex") +
-         tris * mach_cost(m, "cpu", "geom_triangle") +
-         bucketed * mach_cost(m, "cpu", "geom_tile");
-    ms = metric(r, "geometry_ms");
-    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
-        fail_msg("geometry %.9f ms, expected %.9f", ms, ps * 1e-9);
+    expect_ms(&x, "geometry_ms",
+              blocks * cpu_cost(&x, "lock") +
+                  verts * cpu_cost(&x, "geom_vertex") +
+                  tris * cpu_cost(&x, "geom_triangle") +
+                  bucketed * cpu_cost(&x, "geom_tile"),
+              "");
     /* rasterisation (finite fill, opaque): every bucketed triangle, every
      * pixel drawn, every pixel cleared, a semaphore operation a sync */
-    ps = bucketed * mach_cost(m, "cpu", "rast_triangle") +
-         metric(r, "pixels") * mach_cost(m, "cpu", "rast_pixel") +
-         64 * 48 * mach_cost(m, "cpu", "rast_clear") +
-         metric(r, "tile_syncs") * mach_cost(m, "cpu", "sema");
-    ms = metric(r, "rasterisation_ms");
-    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
-        fail_msg("rasterisation %.9f ms, expected %.9f", ms, ps * 1e-9);
+    expect_ms(&x, "rasterisation_ms",
+              bucketed * cpu_cost(&x, "rast_triangle") +
+                  metric(r, "pixels") * cpu_cost(&x, "rast_pixel") +
+                  64 * 48 * cpu_cost(&x, "rast_clear") +
+                  metric(r, "tile_syncs") * cpu_cost(&x, "sema"),
+              "");
     /* one frame from time 0: it ends when its last tile is drawn, the
      * last thing the run does */
     assert_true(fabs(metric(r, "frame_ms") - r->elapsed * 1e-9) < 1e-12);
@@ -279,10 +322,7 @@ static void test_application_time_from_costs(void **state)
                 1e-9);
     assert_true(metric(r, "geometry_ms") > 0);
     assert_true(metric(r, "rasterisation_ms") > 0);
-    mach_free(m);
-    sim_engine_free(eng);
-    cfg_free(root);
-    sim_result_free(r);
+    priced_free(&x);
 }
 
 /* A uniprocessor pays no lock and no semaphore (ag_pipe.h): its
@@ -292,43 +332,23 @@ static void test_application_time_from_costs(void **state)
 static void test_uniprocessor_pays_no_sync(void **state)
 {
     (void)state;
-    const char *text =
-        "machine: {model: origin2000}\n"
-        "workload: {type: argus, processors: 1, uniprocessor: true,\n"
-        "  application: march, voxels_per_cell: 100, primitives: triangles,\n"
-        "  tile: 32, block: 8, width: 64, height: 48, check_image: false,\n"
-        "  fill_rate: finite}\n"
-        "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n";
-    GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
-    CfgNode *root = cfg_load_string(text, "u.yaml", &err);
-    SimEngine *eng = sim_engine_new(1);
-    MachMachine *m =
-        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
-    assert_non_null(m);
-    assert_true(mach_cost(m, "cpu", "lock") > 0);
-    double batches = metric(r, "batches"), tris = metric(r, "triangles");
-    double verts = metric(r, "vertices_issued");
-    double ps = batches * 100.0 * mach_cost(m, "cpu", "march_voxel") +
-                tris * mach_cost(m, "cpu", "march_triangle") +
-                verts * mach_cost(m, "cpu", "issue_vertex") +
-                batches * mach_cost(m, "cpu", "issue_batch");
-    double ms = metric(r, "application_ms");
-    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
-        fail_msg("application %.9f ms, expected %.9f (no lock)", ms,
-                 ps * 1e-9);
-    ps = verts * mach_cost(m, "cpu", "geom_vertex") +
-         tris * mach_cost(m, "cpu", "geom_triangle") +
-         metric(r, "bucketed_triangles") * mach_cost(m, "cpu", "geom_tile");
-    ms = metric(r, "geometry_ms");
-    if (fabs(ms - ps * 1e-9) > 1e-9 * ms)
-        fail_msg("geometry %.9f ms, expected %.9f (no lock)", ms, ps * 1e-9);
-    mach_free(m);
-    sim_engine_free(eng);
-    cfg_free(root);
-    sim_result_free(r);
+    Priced x = priced_run("processors: 1, uniprocessor: true");
+    assert_true(cpu_cost(&x, "lock") > 0);
+    double batches = metric(x.r, "batches"), tris = metric(x.r, "triangles");
+    double verts = metric(x.r, "vertices_issued");
+    expect_ms(&x, "application_ms",
+              batches * 100.0 * cpu_cost(&x, "march_voxel") +
+                  tris * cpu_cost(&x, "march_triangle") +
+                  verts * cpu_cost(&x, "issue_vertex") +
+                  batches * cpu_cost(&x, "issue_batch"),
+              " (no lock)");
+    expect_ms(&x, "geometry_ms",
+              verts * cpu_cost(&x, "geom_vertex") +
+                  tris * cpu_cost(&x, "geom_triangle") +
+                  metric(x.r, "bucketed_triangles") *
+                      cpu_cost(&x, "geom_tile"),
+              " (no lock)");
+    priced_free(&x);
 }
 
 /* Batches and their vertex counts on a hand-made mesh: a strip issues 3
