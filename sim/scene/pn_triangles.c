@@ -95,13 +95,15 @@ Vec3 scene_pn_normal(const ScenePnPatch *pt, ScenePnNormals kind, double u,
 
 /* ---- edges in canonical order ------------------------------------------ */
 
-static int vec3_cmp(Vec3 a, Vec3 b)
+/* Whether a comes after b in (x, y, z) order; a != b (a patch has no
+ * zero-length edge: scene_pn_patch asserts it in mid_normal). */
+static gboolean after(Vec3 a, Vec3 b)
 {
     if (a.x != b.x)
-        return a.x < b.x ? -1 : 1;
+        return a.x > b.x;
     if (a.y != b.y)
-        return a.y < b.y ? -1 : 1;
-    return a.z != b.z ? (a.z < b.z ? -1 : 1) : 0;
+        return a.y > b.y;
+    return a.z > b.z;
 }
 
 /* The point `sb` steps of `steps` from (pa, na) towards (pb, nb) on the
@@ -109,8 +111,7 @@ static int vec3_cmp(Vec3 a, Vec3 b)
 static void edge_eval(Vec3 pa, Vec3 na, Vec3 pb, Vec3 nb, guint sb, guint steps,
                       ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
 {
-    int c = vec3_cmp(pa, pb);
-    if (c > 0 || (c == 0 && vec3_cmp(na, nb) > 0)) {
+    if (after(pa, pb)) {
         edge_eval(pb, nb, pa, na, steps - sb, steps, kind, pos, nrm);
         return;
     }

@@ -1,7 +1,8 @@
 /* test_raster_mutants.c — claims of sim/raster that mutation testing
  * (make mutate, docs/testing.md) found unchecked: a polygon's attribute
  * planes come from its widest fan triangle (scan.c widest_fan: the best
- * conditioned vertices), whichever way it winds. */
+ * conditioned vertices), whichever way it winds; every span carries
+ * the depth clamp range [min z, max z] of its polygon's corners. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -52,10 +53,50 @@ static void test_widest_fan_planes(void **state)
     }
 }
 
+static void range(void *ctx, const RastSpan *s, RastCounters *c)
+{
+    (void)c;
+    double *r = ctx;
+    r[0] = s->zlo;
+    r[1] = s->zhi;
+    r[2] += 1;
+}
+
+/* A triangle whose nearest and farthest corners take each position in
+ * turn, both windings: every span's clamp range is exactly [0.1, 0.7]. */
+static void test_triangle_depth_range(void **state)
+{
+    (void)state;
+    const double z[3] = {0.1, 0.4, 0.7};
+    const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2},
+                            {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    for (int k = 0; k < 12; k++) {
+        const int *q = perm[k % 6];
+        RastScreenVert v[3] = {at(4, 4, z[q[0]]), at(40, 8, z[q[1]]),
+                               at(12, 36, z[q[2]])};
+        if (k >= 6) { /* the other winding */
+            RastScreenVert t = v[1];
+            v[1] = v[2];
+            v[2] = t;
+        }
+        double r[3] = {0, 0, 0};
+        RastCounters c = {0};
+        RastSpanSink sink = {range, r};
+        uint64_t n = k % 2 ? rast_scan_triangle(v, 1, 64, 64, sink, &c)
+                           : rast_scan_polygon(v, 3, 1, 64, 64,
+                                               RAST_SPAN_ENDPOINTS, sink, &c);
+        assert_true(n > 0 && r[2] == (double)n);
+        if (r[0] != 0.1 || r[1] != 0.7)
+            fail_msg("case %d: clamp range [%g, %g], not [0.1, 0.7]", k, r[0],
+                     r[1]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_widest_fan_planes),
+        cmocka_unit_test(test_triangle_depth_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

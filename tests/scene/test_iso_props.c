@@ -255,6 +255,30 @@ static double covered(const SceneMesh *m, guint i)
     return 4.0 * in / (N * N);
 }
 
+/* Corners of polygon i turn counter-clockwise about c by exactly 2 pi /
+ * n each (a regular polygon's corners in order). */
+static void corners_step_evenly(const SceneMesh *m, guint i, Vec3 c)
+{
+    const uint32_t *v = scene_mesh_poly(m, i);
+    guint n = scene_mesh_poly_len(m, i);
+    for (guint k = 0; k < n; k++) {
+        Vec3 a = vec3_sub(scene_mesh_vertex(m, v[k]), c);
+        Vec3 b = vec3_sub(scene_mesh_vertex(m, v[(k + 1) % n]), c);
+        double turn = atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y);
+        NEAR(turn, 2 * G_PI / n, 1e-9);
+    }
+}
+
+/* Counts the signs of centre x, y, depth and the first corner's offset
+ * from the centre in y (its turn in [0, pi) or [pi, 2 pi)). */
+static void count_signs(guint *sign, const SceneMesh *m, guint i, Vec3 c)
+{
+    Vec3 q = scene_mesh_vertex(m, scene_mesh_poly(m, i)[0]);
+    const double d[4] = {c.x, c.y, c.z, q.y - c.y};
+    for (guint k = 0; k < 4; k++)
+        sign[2 * k + (d[k] < 0)]++;
+}
+
 static void test_bigpoly(void **st)
 {
     (void)st;
@@ -267,7 +291,7 @@ static void test_bigpoly(void **st)
     Scene *s = scene_bigpoly_new(&p);
     const SceneMesh *m = scene_instance_mesh(s, 0);
     assert_int_equal(scene_mesh_n_polys(m), 300);
-    guint huge = 0, small_sides[6] = {0};
+    guint huge = 0, small_sides[6] = {0}, sign[2][8] = {{0}};
     for (guint i = 0; i < 300; i++) {
         assert_int_equal(g_array_index(m->poly_tag, uint32_t, i), i);
         const uint32_t *v = scene_mesh_poly(m, i);
@@ -282,6 +306,8 @@ static void test_bigpoly(void **st)
             assert_true(q.z == c.z || fabs(q.z - c.z) < 1e-12);
         }
         assert_true(c.z >= -1 && c.z <= 1);
+        corners_step_evenly(m, i, c);
+        count_signs(sign[r > 0.9], m, i, c);
         SceneColor col = g_array_index(m->poly_color, SceneColor, i);
         assert_true(col.r >= 0 && col.r <= 1 && col.b >= 0 && col.b <= 1);
         if (r > 0.9) { /* huge */
@@ -299,6 +325,11 @@ static void test_bigpoly(void **st)
     }
     assert_true(huge > 30 && huge < 90);
     assert_true(small_sides[3] > 0 && small_sides[4] > 0 && small_sides[5] > 0);
+    /* centres, depths and turns drawn over their whole ranges */
+    for (guint h = 0; h < 2; h++)
+        for (guint k = 0; k < 8; k++)
+            if (sign[h][k] == 0)
+                fail_msg("%s polygons: no sign case %u", h ? "huge" : "small", k);
     /* the camera: orthographic, the unit square filling the view */
     assert_int_equal(s->camera.proj, SCENE_ORTHOGRAPHIC);
     assert_true(s->camera.eye.z == 2 && s->camera.height == 2 &&
