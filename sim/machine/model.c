@@ -493,10 +493,15 @@ static gboolean provenance_ok(const CfgNode *v)
 }
 
 /* A workload's own section (e.g. `pphigs:`): entries {value, unit?,
- * provenance, note?}; the workload parses the values. */
+ * provenance, note?}, or a bare scalar from another file than the
+ * model's (an override: `--set machine.dpscan.op=3 us`, as for costs);
+ * the workload parses the values. */
 static gboolean check_workload_entry(const CfgNode *e, const char *name,
-                                     GError **err)
+                                     const char *model_file, GError **err)
 {
+    if (cfg_kind(e) == CFG_SCALAR && model_file &&
+        g_strcmp0(cfg_file(e), model_file))
+        return TRUE;
     if (cfg_kind(e) != CFG_MAP || !cfg_get(e, "value")) {
         char *found = g_strdup_printf("workload parameter '%s' without a "
                                       "value",
@@ -530,7 +535,8 @@ static gboolean check_workload_entry(const CfgNode *e, const char *name,
     return FALSE;
 }
 
-static gboolean check_workload_section(const CfgNode *sec, GError **err)
+static gboolean check_workload_section(const CfgNode *sec,
+                                       const char *model_file, GError **err)
 {
     if (cfg_kind(sec) != CFG_MAP) {
         cfg_error(err, sec, "a non-map top-level section",
@@ -540,7 +546,7 @@ static gboolean check_workload_section(const CfgNode *sec, GError **err)
     }
     for (guint i = 0; i < cfg_map_len(sec); i++)
         if (!check_workload_entry(cfg_map_value(sec, i), cfg_map_key(sec, i),
-                                  err))
+                                  model_file, err))
             return FALSE;
     return TRUE;
 }
@@ -558,12 +564,13 @@ static gboolean is_top_key(const char *k)
     return FALSE;
 }
 
-static gboolean check_workload_sections(const CfgNode *root, GError **err)
+static gboolean check_workload_sections(const CfgNode *root,
+                                        const char *model_file, GError **err)
 {
     for (guint i = 0; i < cfg_map_len(root); i++) {
         const CfgNode *v = cfg_map_value(root, i);
         if (!is_top_key(cfg_map_key(root, i)) &&
-            !check_workload_section(v, err))
+            !check_workload_section(v, model_file, err))
             return FALSE;
     }
     return TRUE;
@@ -684,7 +691,7 @@ static gboolean check_body(const CfgNode *root, const char *model_file,
     }
     if (!check_nodes(nodes, model_file, err) ||
         !check_network(net, model_file, err) ||
-        !check_workload_sections(root, err))
+        !check_workload_sections(root, model_file, err))
         return FALSE;
     return cfg_check_unused(root, err);
 }

@@ -122,6 +122,14 @@ gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
                   arg);
 }
 
+gboolean mach_proc_compute_priced(MachProc *p, SimTime cost, const MachOp *ops,
+                                  guint n_ops, unsigned phase,
+                                  SimHandler done, void *ctx, void *arg)
+{
+    g_assert(n_ops > 0);
+    return submit(p, cost, ops, n_ops, phase, done, ctx, arg);
+}
+
 void mach_ops_add(MachOps *o, const char *name, uint64_t count)
 {
     for (guint i = 0; i < o->n; i++)

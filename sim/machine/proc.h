@@ -57,6 +57,15 @@ gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
                                unsigned phase, SimHandler done, void *ctx,
                                void *arg);
 
+/* Work of `cost` that the caller priced from n_ops >= 1 named counts of
+ * constants outside the kind's cost table (a workload's own section of
+ * the model: `dpscan.op`, docs/traces.md); the same as
+ * mach_proc_compute() of cost, but a recording writes the names and
+ * counts, not the time. */
+gboolean mach_proc_compute_priced(MachProc *p, SimTime cost, const MachOp *ops,
+                                  guint n_ops, unsigned phase,
+                                  SimHandler done, void *ctx, void *arg);
+
 /* Named counts gathered for one piece of work: mach_ops_add() adds to
  * the entry of that name (a static string) or appends one. */
 #define MACH_OPS_MAX 16

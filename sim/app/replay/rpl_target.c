@@ -38,10 +38,22 @@ static gboolean apply_sets(CfgNode *root, const char *const *sets,
     return TRUE;
 }
 
+/* The model tree with the overrides of root's machine section, kept for
+ * the costs named by a model path (`dpscan.op`); NULL if it fails. */
+static CfgNode *model_tree(const CfgNode *root)
+{
+    char *file = NULL;
+    CfgNode *tree = mach_section_tree(cfg_get(root, "machine"), &file, NULL);
+    g_free(file);
+    return tree;
+}
+
 /* The model o->machine, sized to o->nodes (its partition into *desc), at
- * fidelity fid (NULL: the model's faithful rung). */
-static MachMachine *build(SimEngine *eng, char **desc, const RplReplayOpts *o,
-                          const char *fid, GError **err)
+ * fidelity fid (NULL: the model's faithful rung); *tree (if asked): the
+ * model's tree with the overrides. */
+static MachMachine *build(SimEngine *eng, char **desc, CfgNode **tree,
+                          const RplReplayOpts *o, const char *fid,
+                          GError **err)
 {
     CfgNode *root = cfg_load_string("machine: {}\n", "replay", err);
     char *model = g_strdup_printf("machine.model=%s", o->machine);
@@ -53,6 +65,8 @@ static MachMachine *build(SimEngine *eng, char **desc, const RplReplayOpts *o,
         ok ? mach_new_from_cfg(eng, cfg_get(root, "machine"),
                                fid ? fid : MACH_FIDELITY_FAITHFUL, err)
            : NULL;
+    if (m && tree)
+        *tree = model_tree(root);
     g_free(model);
     g_free(path);
     cfg_free(root);
@@ -171,12 +185,12 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
     t->costs = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
     /* --fidelity, else the rung the trace was recorded at (its header),
      * else the target's faithful rung (docs/traces.md, Replaying). */
-    t->m = build(t->eng, &t->desc, o, o->fidelity ? o->fidelity : h->fidelity,
-                 err);
+    t->m = build(t->eng, &t->desc, &t->tree, o,
+                 o->fidelity ? o->fidelity : h->fidelity, err);
     RplReplayOpts from = {.machine = o->costs_from};
     if (o->costs_from) {
         t->from_eng = sim_engine_new(1);
-        t->from = t->m ? build(t->from_eng, NULL, &from, NULL, err) : NULL;
+        t->from = t->m ? build(t->from_eng, NULL, NULL, &from, NULL, err) : NULL;
     }
     if (!t->m || (o->costs_from && !t->from) || !make_map(t, o->map, err) ||
         !parse_clocks(t, o->clocks, err)) {
@@ -203,6 +217,7 @@ void rpl_target_free(RplTarget *t)
         return;
     mach_free(t->m);
     sim_engine_free(t->eng);
+    cfg_free(t->tree);
     if (t->from_eng) {
         mach_free(t->from);
         sim_engine_free(t->from_eng);
@@ -240,6 +255,23 @@ static SimTime *borrowed_cost(const RplTarget *t, const char *kind,
     return g_memdup2(&c, sizeof c);
 }
 
+/* An operation named by a model path, SECTION.KEY: the time of that
+ * parameter of the target model (a workload's own section, e.g. dpscan's
+ * `dpscan.op`: docs/traces.md); NULL when absent or not a time.  No
+ * node kind, no --costs-from. */
+static SimTime *path_cost(const RplTarget *t, const char *op)
+{
+    const char *dot = strchr(op, '.');
+    char *name = g_strndup(op, dot - op);
+    const CfgNode *sec = t->tree ? cfg_get(t->tree, name) : NULL;
+    SimTime c;
+    gboolean ok = sec && cfg_kind(sec) == CFG_MAP &&
+                  mach_param_node(sec, dot + 1) &&
+                  mach_param_time(sec, dot + 1, TRUE, &c, NULL);
+    g_free(name);
+    return ok ? g_memdup2(&c, sizeof c) : NULL;
+}
+
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                               gboolean *fresh)
 {
@@ -253,7 +285,9 @@ const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
         return v;
     }
     SimTime c, *cp = NULL;
-    if (mach_cost_lookup(t->m, kind, op, &c, NULL))
+    if (strchr(op, '.'))
+        cp = path_cost(t, op);
+    else if (mach_cost_lookup(t->m, kind, op, &c, NULL))
         cp = g_memdup2(&c, sizeof c);
     else if (t->from)
         cp = borrowed_cost(t, kind, from, op);
@@ -273,9 +307,11 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
     if (it->type == RPL_COMPUTE)
         for (guint i = 0; i < it->n_ops; i++)
             if (!rpl_target_op_cost(t, it->proc, it->op[i], &fresh) && fresh)
-                g_string_append_printf(bad, "\n  %s:%u:%d: nodes.%s.costs.%s",
-                                       path, it->line, it->op_col[i], kind,
-                                       it->op[i]);
+                g_string_append_printf(
+                    bad, "\n  %s:%u:%d: %s%s%s%s", path, it->line,
+                    it->op_col[i], strchr(it->op[i], '.') ? "" : "nodes.",
+                    strchr(it->op[i], '.') ? "" : kind,
+                    strchr(it->op[i], '.') ? "" : ".costs.", it->op[i]);
     if (it->type == RPL_WORK && isnan(t->scale[it->proc])) {
         g_string_append_printf(bad,
                                "\n  %s:%u:1: a clock to scale `w` work of "

@@ -25,6 +25,8 @@ typedef struct {
     double *scale;  /* trace processor -> clock ratio for `w` work */
     unsigned *phase; /* header phase index -> engine phase id */
     GHashTable *costs; /* "kind\top" -> SimTime * (NULL: missing) */
+    CfgNode *tree;     /* the target model with --set: costs named by a
+                          model path (dpscan.op) */
     GHashTable *clocks; /* --clock: trace kind -> double Hz */
     SimEngine *from_eng; /* --costs-from: its model, or NULL */
     MachMachine *from;

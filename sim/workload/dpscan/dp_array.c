@@ -100,17 +100,22 @@ void wl_dp_ew(WlDpVm *vm, WlDpPhase ph, uint64_t n, uint64_t active,
     vm->c.steps++;
     vm->c.ew_elems += n * ops;
     vm->c.ew_active += active * ops;
-    for (guint i = 0; i < vm->nt; i++)
-        charge(&vm->t[i], ph, wl_dp_step_cost(&vm->t[i].m, n, ops,
-                                              &vm->t[i].coef));
+    for (guint i = 0; i < vm->nt; i++) {
+        WlDpTarget *t = &vm->t[i];
+        charge(t, ph, wl_dp_step_cost(&t->m, n, ops, &t->coef));
+        wl_dp_count_step(&t->m, n, ops, &t->count[ph]);
+    }
 }
 
 static void charge_scan(WlDpVm *vm, WlDpPhase ph, uint64_t n)
 {
     vm->c.steps++;
-    for (guint i = 0; i < vm->nt; i++)
-        charge(&vm->t[i], ph,
-               wl_dp_scan_cost(&vm->t[i].m, MAX(n, 1), &vm->t[i].coef));
+    for (guint i = 0; i < vm->nt; i++) {
+        WlDpTarget *t = &vm->t[i];
+        charge(t, ph, wl_dp_scan_cost(&t->m, MAX(n, 1), &t->coef));
+        wl_dp_count_slices(&t->m, MAX(n, 1), WL_DP_C_SCAN_SLICE,
+                           &t->count[ph]);
+    }
 }
 
 uint64_t wl_dp_scan_add(WlDpVm *vm, WlDpPhase ph, uint64_t n,
@@ -259,10 +264,14 @@ static SimTime wire_time(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s)
 static SimTime target_send_cost(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s,
                                 uint64_t load)
 {
-    if (t->m.arch != WL_DP_SPMD)
+    WlDpCounts *k = &t->count[s->phase];
+    if (t->m.arch != WL_DP_SPMD) {
+        wl_dp_count_send(&t->m, s->words, s->n_src, s->count, load, 0, k);
         return wl_dp_send_cost(&t->m, s->words, s->n_src, s->count, load,
                                &t->coef);
+    }
     SimTime w = t->wire ? wire_time(vm, t, s) : wl_dp_fattree_wire(&t->m, load);
+    wl_dp_count_send(&t->m, s->words, s->n_src, s->count, load, w, k);
     t->wire_total += w * s->words;
     t->soft_total += t->m.msg_overhead * load * s->words;
     return wl_dp_send_cost_wired(&t->m, s->words, s->n_src, s->count, load, w,
@@ -303,7 +312,10 @@ void wl_dp_news(WlDpVm *vm, WlDpPhase ph, const uint64_t *in, uint64_t *out,
         }
     vm->c.steps++;
     vm->c.news_moves++;
-    for (guint i = 0; i < vm->nt; i++)
-        charge(&vm->t[i], ph,
-               wl_dp_news_cost(&vm->t[i].m, (uint64_t)(w * h), &vm->t[i].coef));
+    for (guint i = 0; i < vm->nt; i++) {
+        WlDpTarget *t = &vm->t[i];
+        charge(t, ph, wl_dp_news_cost(&t->m, (uint64_t)(w * h), &t->coef));
+        wl_dp_count_slices(&t->m, (uint64_t)(w * h), WL_DP_C_NEWS_SLICE,
+                           &t->count[ph]);
+    }
 }

@@ -85,6 +85,7 @@ typedef struct {
     SimTime phase[WL_DP_N_PHASES];
     SimTime total;
     WlDpCoef coef;
+    WlDpCounts count[WL_DP_N_PHASES]; /* phase[ph] as named counts */
     uint64_t max_load; /* largest load of any send */
     /* SPMD sends: the data network's time (measured by `wire` or the
      * analytic fat tree) and the per-message software time, summed over

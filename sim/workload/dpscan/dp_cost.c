@@ -6,6 +6,7 @@
  * (O(levels) for the fat tree), O(pixels) for a z-buffer send's load.
  */
 #include "sim/workload/dpscan/dp_cost.h"
+#include <string.h>
 
 static SimTime mul_time(SimTime t, uint64_t n)
 {
@@ -183,4 +184,87 @@ SimTime wl_dp_news_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k)
         k->news_slices += (double)v;
     }
     return add_time(m->step, mul_time(m->news_slice, v));
+}
+
+/* Named counts (dp_cost.h WlDpCounts): what the functions above charge,
+ * as counts of the model's constants. */
+#define DP_SECTION "dpscan."
+static const char *const cost_paths[WL_DP_N_COSTS] = {
+    DP_SECTION "step",        DP_SECTION "op",
+    DP_SECTION "scan_slice",  DP_SECTION "news_slice",
+    DP_SECTION "send_setup",  DP_SECTION "send_vp",
+    DP_SECTION "send_msg",    DP_SECTION "send_slice",
+    DP_SECTION "net_latency", DP_SECTION "msg_overhead",
+};
+
+const char *wl_dp_cost_path(WlDpCost c)
+{
+    g_assert(c < WL_DP_N_COSTS);
+    return cost_paths[c];
+}
+
+const char *wl_dp_cost_name(WlDpCost c)
+{
+    return wl_dp_cost_path(c) + strlen(DP_SECTION);
+}
+
+SimTime wl_dp_cost_value(const WlDpMachine *m, WlDpCost c)
+{
+    const SimTime v[WL_DP_N_COSTS] = {
+        m->step,       m->op,       m->scan_slice, m->news_slice,
+        m->send_setup, m->send_vp,  m->send_msg,   m->send_slice,
+        m->net_latency, m->msg_overhead,
+    };
+    g_assert(c < WL_DP_N_COSTS);
+    return v[c];
+}
+
+SimTime wl_dp_counts_price(const WlDpMachine *m, const WlDpCounts *k)
+{
+    SimTime t = k->wire;
+    for (int c = 0; c < WL_DP_N_COSTS; c++)
+        t = add_time(t, mul_time(wl_dp_cost_value(m, (WlDpCost)c), k->n[c]));
+    return t;
+}
+
+void wl_dp_count_step(const WlDpMachine *m, uint64_t n, uint32_t ops,
+                      WlDpCounts *k)
+{
+    if (!k)
+        return;
+    k->n[WL_DP_C_STEP]++;
+    k->n[WL_DP_C_OP] += wl_dp_vp_ratio(m, n) * (uint64_t)ops;
+}
+
+void wl_dp_count_slices(const WlDpMachine *m, uint64_t n, WlDpCost c,
+                        WlDpCounts *k)
+{
+    g_assert(c == WL_DP_C_SCAN_SLICE || c == WL_DP_C_NEWS_SLICE);
+    if (!k)
+        return;
+    k->n[WL_DP_C_STEP]++;
+    k->n[c] += wl_dp_vp_ratio(m, n);
+}
+
+void wl_dp_count_send(const WlDpMachine *m, uint32_t words, uint64_t n,
+                      uint64_t active, uint64_t load, SimTime wire,
+                      WlDpCounts *k)
+{
+    if (!k || load == 0 || words == 0 || active == 0)
+        return;
+    k->n[WL_DP_C_STEP] += words;
+    if (m->arch == WL_DP_SIMD) {
+        uint64_t mean = active / m->procs + (active % m->procs != 0);
+        k->n[WL_DP_C_SEND_SETUP] += words;
+        k->n[WL_DP_C_SEND_VP] += words * wl_dp_vp_ratio(m, n);
+        k->n[WL_DP_C_SEND_MSG] += words * mean;
+        k->n[WL_DP_C_SEND_SLICE] += words * load;
+        return;
+    }
+    /* spmd_one(): the slower of the software and the wire. */
+    k->n[WL_DP_C_NET_LATENCY] += words;
+    if (mul_time(m->msg_overhead, load) >= wire)
+        k->n[WL_DP_C_MSG_OVERHEAD] += words * load;
+    else
+        k->wire = add_time(k->wire, mul_time(wire, words));
 }

@@ -143,4 +143,51 @@ static inline uint64_t wl_dp_layout_owner(const WlDpLayout *l, uint32_t x,
  * messages, charged the same way with news_slice per VP slice. */
 SimTime wl_dp_news_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k);
 
+/* The named counts a target was charged (per phase: dp_array.h): the
+ * time is exactly the sum of count[c] x wl_dp_cost_value(m, c), plus
+ * `wire`, the data network's time of the SPMD sends it bounded (a time,
+ * measured on the network or by the fat-tree formula, not a count).
+ * Each count is of one model constant of the `dpscan:` section, and is
+ * named after its key (wl_dp_cost_name): a replay prices the counts from
+ * another model's section (docs/traces.md).  Counts are at the
+ * partition charged: VP slices depend on the processor count. */
+typedef enum {
+    WL_DP_C_STEP,         /* steps issued (elementwise, scan, NEWS, per
+                             array sent) */
+    WL_DP_C_OP,           /* sum over steps of v * ops */
+    WL_DP_C_SCAN_SLICE,   /* sum over scans of v */
+    WL_DP_C_NEWS_SLICE,   /* sum over NEWS moves of v */
+    WL_DP_C_SEND_SETUP,   /* SIMD: arrays sent */
+    WL_DP_C_SEND_VP,      /* SIMD: sum over arrays sent of the VP slices */
+    WL_DP_C_SEND_MSG,     /* SIMD: sum over arrays sent of the mean load */
+    WL_DP_C_SEND_SLICE,   /* SIMD: sum over arrays sent of the load */
+    WL_DP_C_NET_LATENCY,  /* SPMD: arrays sent */
+    WL_DP_C_MSG_OVERHEAD, /* SPMD: the load of arrays the software bounds */
+    WL_DP_N_COSTS
+} WlDpCost;
+
+typedef struct {
+    uint64_t n[WL_DP_N_COSTS];
+    SimTime wire; /* SPMD: wire time of the sends the wire bounds */
+} WlDpCounts;
+
+/* The model key of cost c ("send_slice"), its path in a model
+ * ("dpscan.send_slice": a static string, the name a recording gives the
+ * count) and its value on m. */
+const char *wl_dp_cost_name(WlDpCost c);
+const char *wl_dp_cost_path(WlDpCost c);
+SimTime wl_dp_cost_value(const WlDpMachine *m, WlDpCost c);
+/* sum of k->n[c] x wl_dp_cost_value(m, c) + k->wire (asserted no overflow). */
+SimTime wl_dp_counts_price(const WlDpMachine *m, const WlDpCounts *k);
+
+/* Adds to k what each cost function above charges for the same
+ * arguments (k may be NULL).  A send: `wire` is its wire time (SPMD). */
+void wl_dp_count_step(const WlDpMachine *m, uint64_t n, uint32_t ops,
+                      WlDpCounts *k);
+void wl_dp_count_slices(const WlDpMachine *m, uint64_t n, WlDpCost c,
+                        WlDpCounts *k);
+void wl_dp_count_send(const WlDpMachine *m, uint32_t words, uint64_t n,
+                      uint64_t active, uint64_t load, SimTime wire,
+                      WlDpCounts *k);
+
 #endif

@@ -194,6 +194,28 @@ static void frame_done(SimEngine *eng, void *ctx, void *arg)
     (void)eng, (void)ctx, (void)arg;
 }
 
+/* Phase ph's work on processor q: its named counts (the names are the
+ * model keys they multiply, dp_cost.h), priced here as the array layer
+ * charged them, then the data network's time of the sends it bounded
+ * (SPMD; a time).  `done` goes with the last piece. */
+static void play_phase(MachProc *q, const WlDpTarget *t, int ph, unsigned id,
+                       SimHandler done)
+{
+    const WlDpCounts *k = &t->count[ph];
+    MachOp ops[WL_DP_N_COSTS];
+    guint n = 0;
+    for (int c = 0; c < WL_DP_N_COSTS; c++)
+        if (k->n[c])
+            ops[n++] = (MachOp){wl_dp_cost_path((WlDpCost)c), k->n[c]};
+    SimTime cost = wl_dp_counts_price(&t->m, k) - k->wire;
+    g_assert(cost + k->wire == t->phase[ph]); /* the counts are the charge */
+    if (n)
+        mach_proc_compute_priced(q, cost, ops, n, id, k->wire ? NULL : done,
+                                 NULL, NULL);
+    if (k->wire || !n)
+        mach_proc_compute(q, k->wire, id, done, NULL, NULL);
+}
+
 /* Busy time per phase on the array, or on every node; the last piece
  * of work ends the frame (an event, so the clock reaches its end). */
 static gboolean play(SimEngine *eng, MachMachine *mach, const WlDpTarget *t,
@@ -212,9 +234,8 @@ static gboolean play(SimEngine *eng, MachMachine *mach, const WlDpTarget *t,
     for (int ph = 0; ph < WL_DP_N_PHASES; ph++) {
         unsigned id = sim_engine_phase(eng, wl_dp_phase_name(ph));
         for (guint i = 0; i < n; i++)
-            mach_proc_compute(mach_proc_at(mach, k->first + i), t->phase[ph],
-                              id, ph == WL_DP_N_PHASES - 1 ? frame_done : NULL,
-                              NULL, NULL);
+            play_phase(mach_proc_at(mach, k->first + i), t, ph, id,
+                       ph == WL_DP_N_PHASES - 1 ? frame_done : NULL);
     }
     return sim_engine_run(eng, SIM_TIME_MAX, err);
 }
