@@ -578,6 +578,65 @@ static void test_run_errors(void **state)
     g_free(plain);
 }
 
+/* Own memory: w x h pixels at 24 B (48 with check_image) + 3 B, and per
+ * tile (ceil(w / tile) x ceil(h / tile)) 4 B x (contexts + 2). */
+static void test_mem_bytes(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    WlAgParams *p = parse("width: 100, height: 64, tile: 32, contexts: 2, "
+                          "processors: 8, check_image: false", &err);
+    assert_non_null(p);
+    GString *what = g_string_new("");
+    /* tiles: 4 x 2 (a height of exactly 2 tiles) */
+    assert_true(wl_argus_ops.mem_bytes(p, what) ==
+                100.0 * 64 * 27 + 8 * 4.0 * 4);
+    assert_string_equal(what->str, "100 x 64 pixels, 2 contexts");
+    wl_argus_ops.free_params(p);
+    p = parse("width: 64, height: 33, tile: 16, contexts: 3, processors: 8",
+              &err);
+    assert_non_null(p);
+    g_string_truncate(what, 0);
+    /* tiles: 4 x 3; check_image on by default */
+    assert_true(wl_argus_ops.mem_bytes(p, what) ==
+                64.0 * 33 * 51 + 12 * 4.0 * 5);
+    wl_argus_ops.free_params(p);
+    p = parse("tile: 32, processors: 8", &err);
+    assert_non_null(p);
+    /* no size: 1200 x 1200, 38 x 38 tiles, one context */
+    assert_true(wl_argus_ops.mem_bytes(p, what) ==
+                1200.0 * 1200 * 51 + 38 * 38 * 4.0 * 3);
+    wl_argus_ops.free_params(p);
+    g_string_free(what, TRUE);
+}
+
+/* A uniprocessor moves nothing through shared memory (ag_pipe.h), so it
+ * runs on a machine whose network is no shared bus; the multiprocessor
+ * is refused there. */
+static void test_uniprocessor_needs_no_memory(void **state)
+{
+    (void)state;
+    const char *ring = "machine: {model: origin2000, network: "
+                       "{topology: {value: ring, source: t}}}\n";
+    const char *w = "workload: {type: argus, processors: %s, width: 32, "
+                    "height: 32, tile: 16}\n";
+    char *uni = g_strdup_printf(w, "1, uniprocessor: true");
+    char *t = g_strconcat(ring, uni, nurbs_scene, NULL);
+    GError *err = NULL;
+    SimResult *r = run(t, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    assert_true(metric(r, "pixels") > 0);
+    sim_result_free(r);
+    g_free(t);
+    char *multi = g_strdup_printf(w, "2");
+    t = g_strconcat(ring, multi, nurbs_scene, NULL);
+    run_fails(t, "found a network without a shared memory");
+    g_free(t);
+    g_free(multi);
+    g_free(uni);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -591,6 +650,8 @@ int main(void)
         cmocka_unit_test(test_cells_from_last_tag),
         cmocka_unit_test(test_tile_clear_and_present),
         cmocka_unit_test(test_application_none),
+        cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_uniprocessor_needs_no_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -61,6 +61,43 @@ static void test_every_triangle_once(void **state)
     check_each_once(mixed, 7, 3, 2);
 }
 
+/* Cell order: one batch per cell of the 2^3 grid, empty cells included,
+ * each starting where the previous one ends (the stream walks the mesh
+ * in order), the first cell empty. */
+static void test_cell_batches_contiguous(void **state)
+{
+    (void)state;
+    const guint tags[4] = {1, 1, 3, 5};
+    const guint first[8] = {0, 0, 2, 2, 3, 3, 4, 4};
+    const guint n[8] = {0, 2, 0, 1, 0, 1, 0, 0};
+    SceneMesh *m = tagged_mesh(tags, 4);
+    GError *err = NULL;
+    AgStreams *s = wl_ag_streams_new(m, 2, WL_AG_ORDER_CELLS,
+                                     WL_AG_PRIM_TRIANGLES, 4, 2, &err);
+    assert_non_null(s);
+    assert_int_equal(s->batches->len, 8);
+    assert_int_equal(s->sems, 8);
+    for (guint i = 0; i < 8; i++) {
+        const AgBatch *b = &g_array_index(s->batches, AgBatch, i);
+        if (b->first != first[i] || b->n != n[i] || b->tag != i)
+            fail_msg("cell %u: first %u n %u tag %u, expected %u %u %u", i,
+                     b->first, b->n, b->tag, first[i], n[i], i);
+    }
+    for (guint c = 0; c < 2; c++) {
+        GArray *a = wl_ag_ctx_blocks(s, c);
+        for (guint k = 0; k < a->len; k++) {
+            const AgBlock *x = &g_array_index(a, AgBlock, k);
+            if (x->batch == G_MAXUINT)
+                continue;
+            assert_int_equal(x->first, first[x->batch]);
+            assert_int_equal(x->n, n[x->batch]);
+            assert_int_equal(x->verts, 3 * n[x->batch]);
+        }
+    }
+    wl_ag_streams_free(s);
+    scene_mesh_free(m);
+}
+
 static double metric_at(int frames, const char *name)
 {
     GError *err = NULL;
@@ -105,6 +142,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_triangle_once),
         cmocka_unit_test(test_pixels_mean_over_frames),
+        cmocka_unit_test(test_cell_batches_contiguous),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

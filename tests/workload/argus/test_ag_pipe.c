@@ -106,6 +106,35 @@ static void post(AgBlock *b, AgSyncKind k, guint id)
     b->post[b->n_post++] = (AgSync){k, id};
 }
 
+/* Busy time of processors [from, to). */
+static SimTime busy_of(Rig *r, guint from, guint to)
+{
+    SimTime t = 0;
+    for (guint k = from; k < to; k++)
+        t += mach_proc_busy(mach_proc(r->m, "cpu", k));
+    return t;
+}
+
+/* With a processor per thread (ag_pipe.h: app 0..C-1, geometry, then
+ * raster; a pool's workers after the applications), each group's
+ * processors are busy exactly its threads' summed time, the others not
+ * at all. */
+static void threads_on_their_processors(Rig *r, const AgSetup *s,
+                                        const AgFrameStats *fs)
+{
+    guint C = s->contexts, G = s->geometry, R = s->rasterisers;
+    assert_true(fs->app_busy > 0 && fs->geom_busy > 0 && fs->rast_busy > 0);
+    assert_true(busy_of(r, 0, C) == fs->app_busy);
+    if (s->pool) {
+        assert_true(busy_of(r, C, C + G + R) ==
+                    fs->geom_busy + fs->rast_busy);
+    } else {
+        assert_true(busy_of(r, C, C + G) == fs->geom_busy);
+        assert_true(busy_of(r, C + G, C + G + R) == fs->rast_busy);
+    }
+    assert_true(busy_of(r, C + G + R, s->procs) == 0);
+}
+
 /* Runs one frame; returns the pixels differing from the serial render
  * (mesh order) and the frame time in *ms. */
 static uint64_t run_frame(Rig *r, double *ms)
@@ -121,6 +150,7 @@ static uint64_t run_frame(Rig *r, double *ms)
     gboolean ok = wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e);
     if (!ok)
         fail_msg("%s", e->message);
+    threads_on_their_processors(r, &s, &fs);
     *ms = sim_time_to_ms(fs.end - fs.start);
     AgFrame *ref = wl_ag_frame_new(SIDE, SIDE, 16, WL_AG_BLEND, 0.5f,
                                    (RastColor){0, 0, 0});

@@ -17,6 +17,7 @@
 #include "sim/scene/pn_triangles.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/performer/pf_graph.h"
+#include "sim/workload/performer/pf_pipeline.h"
 #include "sim/workload/performer/pf_workload.h"
 
 static SimResult *run(const char *yaml, int frames, GError **err)
@@ -296,6 +297,33 @@ static void test_sphere_union(void **st)
     wl_pf_graph_free(g);
 }
 
+/* Mean interval between swaps over frames [skip, n): (last swap - swap
+ * of frame skip) / (n - 1 - skip), 0 with fewer than two such frames;
+ * mean latency: swap - APP start averaged over the same frames. */
+static void test_run_summaries(void **st)
+{
+    (void)st;
+    GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
+    const SimTime swap[4] = {3, 7, 12, 19}, app[4] = {0, 2, 5, 10};
+    for (int i = 0; i < 4; i++) {
+        WlPfFrameRec r = {.app_start = app[i] * SIM_MS,
+                          .swap = swap[i] * SIM_MS};
+        g_array_append_val(recs, r);
+    }
+    assert_true(fabs(wl_pf_mean_interval_s(recs, 0) - 16e-3 / 3) < 1e-15);
+    assert_true(fabs(wl_pf_mean_interval_s(recs, 1) - 12e-3 / 2) < 1e-15);
+    assert_true(fabs(wl_pf_mean_interval_s(recs, 2) - 7e-3) < 1e-15);
+    assert_true(wl_pf_mean_interval_s(recs, 3) == 0);
+    assert_true(wl_pf_mean_interval_s(recs, 4) == 0);
+    assert_true(fabs(wl_pf_mean_latency_s(recs, 0) - 24e-3 / 4) < 1e-15);
+    assert_true(fabs(wl_pf_mean_latency_s(recs, 2) - 16e-3 / 2) < 1e-15);
+    assert_true(fabs(wl_pf_mean_latency_s(recs, 3) - 9e-3) < 1e-15);
+    assert_true(wl_pf_mean_latency_s(recs, 4) == 0);
+    g_array_set_size(recs, 1);
+    assert_true(wl_pf_mean_interval_s(recs, 0) == 0);
+    g_array_unref(recs);
+}
+
 static void *parse(const char *w, GError **err)
 {
     char *y = g_strdup_printf("workload: {type: performer, %s}\n", w);
@@ -388,6 +416,7 @@ int main(void)
         cmocka_unit_test(test_sphere_union),
         cmocka_unit_test(test_parse_edges),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_run_summaries),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
