@@ -12,6 +12,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sim/core/rng.h"
 #include "sim/workload/tokenring/tokenring_workload.h"
 
 static SimResult *run_ring(const char *text, int frames, GError **err)
@@ -134,6 +135,40 @@ static void test_machine_refused(void **state)
     g_error_free(err);
 }
 
+/* jitter j: node i's k-th compute is compute x (1 + j (2u - 1)), u the
+ * k-th draw of node i's own stream (entity i of an engine of the same
+ * seed), rounded to the picosecond; each node computes once a round. */
+static void test_jitter_draws(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    SimResult *r = run_ring("workload: {type: tokenring, nodes: 4, "
+                            "compute: 10 us, jitter: 0.25}\n", 3, &err);
+    assert_non_null(r);
+    SimEngine *eng = sim_engine_new(1);
+    for (int i = 0; i < 4; i++) {
+        char *name = g_strdup_printf("node%d", i);
+        sim_entity_add(eng, name);
+        g_free(name);
+    }
+    gboolean varied = FALSE;
+    for (uint32_t i = 0; i < 4; i++) {
+        SimTime want = 0;
+        for (int k = 0; k < 3; k++) {
+            double u = sim_rng_uniform(sim_entity_rng(eng, i));
+            SimTime c = (SimTime)llround(10e6 * (1 + 0.25 * (2 * u - 1)));
+            assert_true(c >= 7500000 && c <= 12500000);
+            want += c;
+        }
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        assert_int_equal(sim_busy_phase(&n->busy, 0), want);
+        varied |= want != 30 * SIM_US;
+    }
+    assert_true(varied);
+    sim_engine_free(eng);
+    sim_result_free(r);
+}
+
 static void test_mem_bytes(void **state)
 {
     (void)state;
@@ -158,6 +193,7 @@ int main(void)
         cmocka_unit_test(test_latency_overflow),
         cmocka_unit_test(test_machine_refused),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_jitter_draws),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,220 @@
+/* test_pf_pipe.c — Performer's frame pipeline (pf_pipeline.c) frame by
+ * frame: every timestamp of every frame record in each process mode,
+ * worked out by hand from fixed stage times (ms) with V = 10 ms and two
+ * retraces a frame (T = 20 ms).  The cases:
+ *   - three processes, DRAW longer than CULL: DRAW runs back to back
+ *     after its double buffer frees, CULL waits for DRAW of frame n - 2;
+ *   - APP+CULL and DRAW, floating: the APP process syncs after CULL;
+ *   - one process: pfSync after the whole frame;
+ *   - locked DRAW starts on frame boundaries;
+ *   - ISECT runs beside APP when it is free, skipped when busy.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/machine/machine.h"
+#include "sim/workload/performer/pf_pipeline.h"
+
+typedef struct {
+    guint app, cull, draw, isect; /* ms */
+} Times;
+
+static SimTime s_app(void *ctx, guint n)
+{
+    (void)n;
+    return ((Times *)ctx)->app * SIM_MS;
+}
+static SimTime s_cull(void *ctx, guint n, double stress)
+{
+    (void)n;
+    (void)stress;
+    return ((Times *)ctx)->cull * SIM_MS;
+}
+static SimTime s_draw(void *ctx, guint n)
+{
+    (void)n;
+    return ((Times *)ctx)->draw * SIM_MS;
+}
+static SimTime s_isect(void *ctx, guint n)
+{
+    (void)n;
+    return ((Times *)ctx)->isect * SIM_MS;
+}
+
+static WlPfPipeParams stress_params; /* stress, low, high, gain, max */
+
+static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
+{
+    SimEngine *eng = sim_engine_new(1);
+    GError *err = NULL;
+    MachMachine *m = mach_new_from_model(eng, "sgi-onyx", "analytic", &err);
+    if (!m)
+        fail_msg("%s", err->message);
+    MachProc *procs[4];
+    for (guint i = 0; i < 4; i++)
+        procs[i] = mach_proc(m, "cpu", i);
+    WlPfStageFns f = {s_app, s_cull, s_draw, t->isect ? s_isect : NULL, NULL};
+    WlPfPipeParams p = {.mode = mode, .video = 10 * SIM_MS, .per_frame = 2,
+                        .locked = locked, .frames = frames,
+                        .stress = stress_params.stress,
+                        .low = stress_params.low,
+                        .high = stress_params.high,
+                        .gain = stress_params.gain,
+                        .max_stress = stress_params.max_stress};
+    GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
+    assert_true(wl_pf_pipe_run(eng, procs, &p, &f, t, recs, SIM_TIME_MAX,
+                               &err));
+    mach_free(m);
+    sim_engine_free(eng);
+    return recs;
+}
+
+/* Frame n's app start, app end, cull start, cull end, draw start, draw
+ * end and swap, in ms. */
+static void frame_is(const GArray *r, guint n, const guint want[7])
+{
+    const WlPfFrameRec *x = &g_array_index(r, WlPfFrameRec, n);
+    const SimTime got[7] = {x->app_start, x->app_end,  x->cull_start,
+                            x->cull_end,  x->draw_start, x->draw_end,
+                            x->swap};
+    for (int i = 0; i < 7; i++)
+        if (got[i] != want[i] * SIM_MS)
+            fail_msg("frame %u field %d: %.3f ms, expected %u", n, i,
+                     got[i] / 1e9, want[i]);
+}
+
+/* Runs the case and checks every frame against want[n]. */
+static void frames_are(WlPfMpMode mode, gboolean locked, Times t, guint n,
+                       const guint want[][7], const guint *isect)
+{
+    GArray *r = run(mode, locked, &t, n);
+    assert_int_equal(r->len, n);
+    for (guint i = 0; i < n; i++) {
+        frame_is(r, i, want[i]);
+        const WlPfFrameRec *x = &g_array_index(r, WlPfFrameRec, i);
+        assert_true(x->stress == 1.0);
+        assert_int_equal(x->isect, (isect ? isect[i] : 0) * SIM_MS);
+    }
+    g_array_free(r, TRUE);
+}
+
+/* Three processes, DRAW 25 ms: frame n's DRAW waits for frame n - 1's
+ * swap (double buffer), swaps at the next retrace; frame 3's CULL waits
+ * until frame 1's DRAW ends (65 ms), and APP syncs to the boundary
+ * after CULL took its frame. */
+static void test_three_processes(void **st)
+{
+    (void)st;
+    const guint want[5][7] = {{0, 3, 3, 7, 7, 32, 40},
+                              {20, 23, 23, 27, 40, 65, 70},
+                              {40, 43, 43, 47, 70, 95, 100},
+                              {60, 63, 65, 69, 100, 125, 130},
+                              {80, 83, 95, 99, 130, 155, 160}};
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 25, 0}, 5, want,
+               NULL);
+}
+
+/* APP+CULL on one process, DRAW on another: pfSync after CULL (14 ms:
+ * the boundary at 20), DRAW at once after CULL. */
+static void test_two_processes(void **st)
+{
+    (void)st;
+    const guint want[4][7] = {{0, 6, 6, 14, 14, 23, 30},
+                              {20, 26, 26, 34, 34, 43, 50},
+                              {40, 46, 46, 54, 54, 63, 70},
+                              {60, 66, 66, 74, 74, 83, 90}};
+    frames_are(WL_PF_MP_APPCULL_DRAW, FALSE, (Times){6, 8, 9, 0}, 4, want,
+               NULL);
+}
+
+/* One process: 23 ms of work, pfSync after DRAW finds the boundary at
+ * 40: every other boundary. */
+static void test_one_process(void **st)
+{
+    (void)st;
+    const guint want[4][7] = {{0, 6, 6, 14, 14, 23, 30},
+                              {40, 46, 46, 54, 54, 63, 70},
+                              {80, 86, 86, 94, 94, 103, 110},
+                              {120, 126, 126, 134, 134, 143, 150}};
+    frames_are(WL_PF_MP_APPCULLDRAW, FALSE, (Times){6, 8, 9, 0}, 4, want,
+               NULL);
+}
+
+/* Locked DRAW starts on a frame boundary and swaps on the next one. */
+static void test_locked(void **st)
+{
+    (void)st;
+    const guint want[4][7] = {{0, 3, 3, 7, 20, 35, 40},
+                              {20, 23, 23, 27, 40, 55, 60},
+                              {40, 43, 43, 47, 60, 75, 80},
+                              {60, 63, 63, 67, 80, 95, 100}};
+    frames_are(WL_PF_MP_APP_CULL_DRAW, TRUE, (Times){3, 4, 15, 0}, 4, want,
+               NULL);
+}
+
+/* ISECT (30 ms) starts with a frame's APP when it is free: frames 0 and
+ * 2, not 1 and 3. */
+static void test_isect(void **st)
+{
+    (void)st;
+    const guint want[4][7] = {{0, 3, 3, 7, 7, 12, 20},
+                              {20, 23, 23, 27, 27, 32, 40},
+                              {40, 43, 43, 47, 47, 52, 60},
+                              {60, 63, 63, 67, 67, 72, 80}};
+    const guint isect[4] = {30, 0, 30, 0};
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 5, 30}, 4, want,
+               isect);
+}
+
+/* Stress feedback: after each DRAW, a load (DRAW time / T) outside
+ * [low, high] moves the stress by gain x (load - (low + high) / 2),
+ * clamped to [1, max_stress]; CULL takes the stress of its start. */
+static double stress_of(Times t, double gain, double max, guint n, guint i)
+{
+    stress_params = (WlPfPipeParams){.stress = TRUE, .low = 0.4,
+                                     .high = 0.6, .gain = gain,
+                                     .max_stress = max};
+    GArray *r = run(WL_PF_MP_APP_CULL_DRAW, FALSE, &t, n);
+    double s = g_array_index(r, WlPfFrameRec, i).stress;
+    g_array_free(r, TRUE);
+    stress_params = (WlPfPipeParams){0};
+    return s;
+}
+
+static void test_stress(void **st)
+{
+    (void)st;
+    /* DRAW 15 ms: load 0.75, +0.25 a DRAW.  DRAWs end at 22, 45 and
+     * 65 ms (each starts at the previous swap: 30, 50); CULLs start at
+     * 3, 23, 43 and 63 ms */
+    Times busy = {3, 4, 15, 0};
+    assert_true(stress_of(busy, 1, 8, 4, 0) == 1.0);
+    assert_true(stress_of(busy, 1, 8, 4, 1) == 1.25);
+    assert_true(stress_of(busy, 1, 8, 4, 2) == 1.25);
+    assert_true(stress_of(busy, 1, 8, 4, 3) == 1.5);
+    assert_true(stress_of(busy, 2, 8, 4, 3) == 2.0);
+    assert_true(stress_of(busy, 1, 1.4, 4, 3) == 1.4); /* clamped */
+    /* DRAW 5 ms: load 0.25, below the band: stress stays at its floor */
+    assert_true(stress_of((Times){3, 4, 5, 0}, 1, 8, 4, 3) == 1.0);
+    /* DRAW 10 and 12 ms: loads 0.5 and 0.6, inside the band */
+    assert_true(stress_of((Times){3, 4, 10, 0}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 12, 0}, 1, 8, 4, 3) == 1.0);
+    /* DRAW 8 ms: load 0.4, on the band's edge: inside */
+    assert_true(stress_of((Times){3, 4, 8, 0}, 1, 8, 4, 3) == 1.0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_three_processes),
+        cmocka_unit_test(test_two_processes),
+        cmocka_unit_test(test_one_process),
+        cmocka_unit_test(test_locked),
+        cmocka_unit_test(test_isect),
+        cmocka_unit_test(test_stress),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
