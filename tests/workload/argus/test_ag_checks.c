@@ -610,6 +610,32 @@ static void test_mem_bytes(void **state)
     g_string_free(what, TRUE);
 }
 
+/* Shared memory carries each block's issued vertices (bytes.vertex
+ * each) and each bucketed triangle (bytes.triangle each); Figure 2's loop
+ * around two contexts in frame order is 6 synchronisation commands (an
+ * appBarrier and a glpBarrier each, glpWaitContext in context 1, the
+ * swap's barrier wait). */
+static void test_memory_bytes_and_syncs(void **state)
+{
+    (void)state;
+    char *text = g_strdup_printf(
+        "%sworkload: {type: argus, processors: 6, contexts: 2, "
+        "application: nurbs, tile: 32, block: 16, width: 96, height: 80, "
+        "bytes: {vertex: 24 B, triangle: 100 B}}\n%s",
+        machine, nurbs_scene);
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    double v = metric(r, "vertices_issued"), b = metric(r, "bucketed_triangles");
+    assert_true(v > 0 && b > 0);
+    assert_true(metric(r, "shared_memory_bytes") == 24 * v + 100 * b);
+    assert_true(metric(r, "sync_commands") == 6);
+    assert_true(metric(r, "contexts") == 2);
+    sim_result_free(r);
+    g_free(text);
+}
+
 /* A uniprocessor moves nothing through shared memory (ag_pipe.h), so it
  * runs on a machine whose network is no shared bus; the multiprocessor
  * is refused there. */
@@ -651,6 +677,7 @@ int main(void)
         cmocka_unit_test(test_tile_clear_and_present),
         cmocka_unit_test(test_application_none),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_memory_bytes_and_syncs),
         cmocka_unit_test(test_uniprocessor_needs_no_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
