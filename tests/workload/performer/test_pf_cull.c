@@ -1,0 +1,270 @@
+/* test_pf_cull.c — the CULL, DRAW and ISECT traversals (pf_cull.c) on
+ * small hand-built graphs, every display-list item and every count
+ * worked out by hand: a node outside the frustum is culled with the
+ * triangles below it counted; LOD picks the child whose range holds the
+ * eye distance times stress; a switch draws its selected child; a
+ * billboard's geosets are each wrapped in PUSH / POP; masks hide a node
+ * from one traversal; DRAW counts lazy state changes against an eager
+ * 3 a geoset; ISECT finds the highest hit of a vertical segment,
+ * skipping billboards and all LOD children but the finest.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+#include <string.h>
+
+#include "sim/workload/performer/pf_cull.h"
+
+/* A geode with one geoset of k triangles, all within 1 of (x, 0, 0). */
+static guint geode_at(WlPfGraph *g, guint parent, WlPfKind kind, double x,
+                      guint k, guint gs)
+{
+    guint n = wl_pf_add_node(g, parent, kind);
+    Vec3 t[9];
+    for (guint i = 0; i < 3 * k; i++)
+        t[i] = vec3(x + (i % 3 == 1 ? 1 : -0.5), i % 3 == 2 ? 0.5 : 0, 0);
+    wl_pf_add_geoset(g, n, t, k, gs);
+    return n;
+}
+
+/* The box |x|, |y|, |z| <= 10 as six inward planes. */
+static WlPfView box_view(double stress, gboolean cull)
+{
+    WlPfView v = {.eye = vec3(0, 0, 0), .stress = stress, .cull = cull};
+    for (int p = 0; p < 6; p++) {
+        memset(v.planes[p], 0, sizeof v.planes[p]);
+        v.planes[p][p / 2] = p % 2 ? -1 : 1;
+        v.planes[p][3] = 10;
+    }
+    return v;
+}
+
+typedef struct {
+    WlPfGraph *g;
+    guint gs[3];
+    guint a, l1, s1, bb; /* geosets drawn: a, LOD child 1, switch child 1 */
+} Town;
+
+static void town_init(Town *t)
+{
+    WlPfGraph *g = t->g = wl_pf_graph_new();
+    t->gs[0] = wl_pf_add_gstate(g, (WlPfGeoState){1, 1, 1});
+    t->gs[1] = wl_pf_add_gstate(g, (WlPfGeoState){1, 2, 1});
+    t->gs[2] = wl_pf_add_gstate(g, (WlPfGeoState){2, 2, 2});
+    guint r = g->root;
+    t->a = geode_at(g, r, WL_PF_GEODE, 0, 1, t->gs[0]);
+    guint d = wl_pf_add_node(g, r, WL_PF_DCS); /* moved out of the box */
+    wl_pf_node(g, d)->xf = mat4_translate(50, 0, 0);
+    geode_at(g, d, WL_PF_GEODE, 0, 2, t->gs[0]);
+    geode_at(g, d, WL_PF_GEODE, 0, 1, t->gs[0]);
+    guint lod = wl_pf_add_node(g, r, WL_PF_LOD);
+    geode_at(g, lod, WL_PF_GEODE, 8, 1, t->gs[0]);
+    t->l1 = geode_at(g, lod, WL_PF_GEODE, 8, 1, t->gs[1]);
+    const double ranges[3] = {0, 5, 100};
+    g_array_append_vals(wl_pf_node(g, lod)->ranges, ranges, 3);
+    guint sw = wl_pf_add_node(g, r, WL_PF_SWITCH);
+    geode_at(g, sw, WL_PF_GEODE, -3, 1, t->gs[0]);
+    t->s1 = geode_at(g, sw, WL_PF_GEODE, -3, 1, t->gs[1]);
+    wl_pf_node(g, sw)->which = 1;
+    t->bb = geode_at(g, r, WL_PF_BILLBOARD, 2, 1, t->gs[2]);
+    Vec3 two[6];
+    for (int i = 0; i < 6; i++)
+        two[i] = vec3(2 + i % 3, i % 2, 0);
+    wl_pf_add_geoset(g, t->bb, two, 2, t->gs[0]);
+    guint m = geode_at(g, r, WL_PF_GEODE, 1, 1, t->gs[0]);
+    wl_pf_node(g, m)->mask = WL_PF_MASK_ISECT; /* not culled or drawn */
+    guint nd = geode_at(g, r, WL_PF_GEODE, 1, 1, t->gs[0]);
+    wl_pf_node(g, nd)->mask = WL_PF_MASK_CULL; /* visited, not drawn */
+    wl_pf_update_bounds(g, r);
+}
+
+/* The geoset index of node n's i-th geoset. */
+static guint gset(const Town *t, guint n, guint i)
+{
+    return g_array_index(wl_pf_node(t->g, n)->geosets, guint, i);
+}
+
+static void dl_is(const GArray *dl, const guint (*want)[2], guint n)
+{
+    assert_int_equal(dl->len, n);
+    for (guint i = 0; i < n; i++) {
+        const WlPfDlItem *it = &g_array_index(dl, WlPfDlItem, i);
+        if (it->op != want[i][0] ||
+            (it->op == WL_PF_DL_GEOSET && it->geoset != want[i][1]))
+            fail_msg("item %u: op %u geoset %u, expected %u %u", i, it->op,
+                     it->geoset, want[i][0], want[i][1]);
+    }
+}
+
+static void test_cull_and_draw(void **st)
+{
+    (void)st;
+    Town t;
+    town_init(&t);
+    WlPfView v = box_view(1, TRUE);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfCullStats cs = {0};
+    wl_pf_cull(t.g, &v, dl, &cs);
+    const guint want[9][2] = {
+        {WL_PF_DL_GEOSET, gset(&t, t.a, 0)},
+        {WL_PF_DL_GEOSET, gset(&t, t.l1, 0)},
+        {WL_PF_DL_GEOSET, gset(&t, t.s1, 0)},
+        {WL_PF_DL_PUSH, 0},
+        {WL_PF_DL_GEOSET, gset(&t, t.bb, 0)},
+        {WL_PF_DL_POP, 0},
+        {WL_PF_DL_PUSH, 0},
+        {WL_PF_DL_GEOSET, gset(&t, t.bb, 1)},
+        {WL_PF_DL_POP, 0}};
+    dl_is(dl, want, 9);
+    /* root, a, the DCS (culled), the LOD and its child 1, the switch and
+     * its child 1, the billboard, the CULL-only geode */
+    assert_int_equal(cs.nodes_visited, 9);
+    assert_int_equal(cs.sphere_tests, 9);
+    assert_int_equal(cs.nodes_culled, 1);
+    assert_int_equal(cs.tris_culled, 3);
+    assert_int_equal(cs.lods, 1);
+    assert_int_equal(cs.lod_sum, 1);
+    assert_int_equal(cs.billboards, 2);
+    assert_int_equal(cs.matrix_saved, 0);
+    /* DRAW: states {1,1,1} (3 from nothing), {1,2,1} (1), {1,2,1} (0),
+     * {2,2,2} (2), {1,1,1} (3) */
+    WlPfDrawStats ds = {0};
+    wl_pf_draw(t.g, dl, &ds);
+    assert_int_equal(ds.geosets, 5);
+    assert_int_equal(ds.tris, 6);
+    assert_int_equal(ds.matrix_ops, 4);
+    assert_int_equal(ds.state_changes, 9);
+    assert_int_equal(ds.state_naive, 15);
+    /* culling off: the DCS is drawn inside its PUSH / POP, nothing tested */
+    WlPfView off = box_view(1, FALSE);
+    WlPfCullStats c2 = {0};
+    g_array_set_size(dl, 0);
+    wl_pf_cull(t.g, &off, dl, &c2);
+    assert_int_equal(dl->len, 13);
+    assert_int_equal(g_array_index(dl, WlPfDlItem, 1).op, WL_PF_DL_PUSH);
+    assert_int_equal(g_array_index(dl, WlPfDlItem, 4).op, WL_PF_DL_POP);
+    assert_int_equal(c2.sphere_tests, 0);
+    assert_int_equal(c2.nodes_culled, 0);
+    assert_int_equal(c2.nodes_visited, 11);
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(t.g);
+}
+
+/* Stress multiplies the LOD distance (the LOD's centre is 8.25 from the
+ * eye): x 0.5 is within [0, 5) and picks child 0, x 20 is past 100 and
+ * picks none (lod_sum counts the number of children for none). */
+static void test_lod_stress(void **st)
+{
+    (void)st;
+    Town t;
+    town_init(&t);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfView v = box_view(0.5, TRUE);
+    WlPfCullStats cs = {0};
+    wl_pf_cull(t.g, &v, dl, &cs);
+    assert_int_equal(cs.lod_sum, 0);
+    assert_int_equal(dl->len, 9);
+    guint lod = wl_pf_child(wl_pf_node(t.g, t.g->root), 2);
+    assert_int_equal(g_array_index(dl, WlPfDlItem, 1).geoset,
+                     gset(&t, wl_pf_child(wl_pf_node(t.g, lod), 0), 0));
+    g_array_set_size(dl, 0);
+    WlPfView far = box_view(20, TRUE);
+    WlPfCullStats cf = {0};
+    wl_pf_cull(t.g, &far, dl, &cf);
+    assert_int_equal(cf.lod_sum, 2);
+    assert_int_equal(cf.lods, 1);
+    assert_int_equal(dl->len, 8);
+    assert_int_equal(cf.nodes_visited, 8);
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(t.g);
+}
+
+/* A switch set to none or all. */
+static void test_switch(void **st)
+{
+    (void)st;
+    Town t;
+    town_init(&t);
+    guint sw = wl_pf_child(wl_pf_node(t.g, t.g->root), 3);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfView v = box_view(1, TRUE);
+    wl_pf_node(t.g, sw)->which = WL_PF_SWITCH_NONE;
+    WlPfCullStats a = {0};
+    wl_pf_cull(t.g, &v, dl, &a);
+    assert_int_equal(dl->len, 8);
+    g_array_set_size(dl, 0);
+    wl_pf_node(t.g, sw)->which = WL_PF_SWITCH_ALL;
+    WlPfCullStats b = {0};
+    wl_pf_cull(t.g, &v, dl, &b);
+    assert_int_equal(dl->len, 10);
+    assert_int_equal(b.nodes_visited, 10);
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(t.g);
+}
+
+/* A horizontal triangle at height h over x, z in [0, 4] (x + z <= 4). */
+static guint floor_at(WlPfGraph *g, guint parent, WlPfKind kind, double h)
+{
+    guint n = wl_pf_add_node(g, parent, kind);
+    const Vec3 t[3] = {vec3(0, h, 0), vec3(4, h, 0), vec3(0, h, 4)};
+    wl_pf_add_geoset(g, n, t, 1, 0);
+    return n;
+}
+
+static void test_isect(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint r = g->root;
+    floor_at(g, r, WL_PF_GEODE, 2);
+    guint d = wl_pf_add_node(g, r, WL_PF_DCS);
+    wl_pf_node(g, d)->xf = mat4_translate(0, 3, 0);
+    floor_at(g, d, WL_PF_GEODE, 2); /* at 5 */
+    guint hid = floor_at(g, r, WL_PF_GEODE, 9);
+    wl_pf_node(g, hid)->mask = WL_PF_MASK_CULL | WL_PF_MASK_DRAW;
+    floor_at(g, r, WL_PF_BILLBOARD, 7);
+    guint lod = wl_pf_add_node(g, r, WL_PF_LOD);
+    floor_at(g, lod, WL_PF_GEODE, 1);
+    floor_at(g, lod, WL_PF_GEODE, 8);
+    const double ranges[3] = {0, 5, 100};
+    g_array_append_vals(wl_pf_node(g, lod)->ranges, ranges, 3);
+    guint far = wl_pf_add_node(g, r, WL_PF_DCS);
+    wl_pf_node(g, far)->xf = mat4_translate(100, 0, 0);
+    floor_at(g, far, WL_PF_GEODE, 6);
+    wl_pf_update_bounds(g, r);
+    WlPfIsectStats s = {0};
+    wl_pf_isect(g, 1, 1, -100, 100, &s);
+    assert_true(s.hit && s.height == 5);
+    /* root, 2, the DCS and its 5, the billboard, the LOD and its 1, the
+     * far DCS (its sphere misses the line) */
+    assert_int_equal(s.nodes_tested, 8);
+    assert_int_equal(s.tris_tested, 3);
+    WlPfIsectStats low = {0};
+    wl_pf_isect(g, 1, 1, -100, 4, &low);
+    assert_true(low.hit && low.height == 2);
+    WlPfIsectStats floor1 = {0};
+    wl_pf_isect(g, 1, 1, -100, 1, &floor1); /* a hit exactly at y1 */
+    assert_true(floor1.hit && floor1.height == 1);
+    WlPfIsectStats miss = {0};
+    wl_pf_isect(g, 3.5, 3.5, -100, 100, &miss); /* x + z > 4 */
+    assert_false(miss.hit);
+    assert_true(miss.tris_tested > 0);
+    WlPfIsectStats edge = {0};
+    wl_pf_isect(g, 4, 0, -100, 100, &edge); /* a corner counts */
+    assert_true(edge.hit && edge.height == 5);
+    wl_pf_graph_free(g);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cull_and_draw),
+        cmocka_unit_test(test_lod_stress),
+        cmocka_unit_test(test_switch),
+        cmocka_unit_test(test_isect),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
