@@ -257,6 +257,25 @@ static void test_vm_ops(void **state)
     wl_dp_vm_free(vm);
 }
 
+/* A scan of an empty array is costed as one element: on one processor
+ * a VP ratio of 1, not 2 (nor 0). */
+static void test_empty_scan_one_proc(void **state)
+{
+    (void)state;
+    WlDpMachine m = simd();
+    m.procs = 1;
+    WlDpVm *vm = wl_dp_vm_new(&m, 1, 2, 2);
+    uint32_t none[1] = {7};
+    assert_int_equal(wl_dp_reduce_max(vm, WL_DP_PH_SCAN, 0, none, 0), 0);
+    assert_int_equal(wl_dp_vm_target(vm, 0)->phase[WL_DP_PH_SCAN], 1000 + 11);
+    uint32_t out[1] = {9};
+    assert_int_equal(wl_dp_scan_add(vm, WL_DP_PH_SCAN, 3, none, out, 1), 7);
+    assert_int_equal(out[0], 0);
+    assert_int_equal(wl_dp_vm_target(vm, 0)->phase[WL_DP_PH_SCAN],
+                     2 * 1000 + 11 + 11 * 3);
+    wl_dp_vm_free(vm);
+}
+
 /* A send: combining, collisions, the deepest element, and the load
  * (the most messages one processor injects or receives) in the cost. */
 static void test_vm_send(void **state)
@@ -396,6 +415,7 @@ int main(void)
         cmocka_unit_test(test_layout),
         cmocka_unit_test(test_vm_ops),
         cmocka_unit_test(test_vm_send),
+        cmocka_unit_test(test_empty_scan_one_proc),
         cmocka_unit_test(test_router_procs),
         cmocka_unit_test(test_vm_send_spmd),
     };
