@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "sim/machine/machine.h"
+#include "sim/machine/shmem.h"
 #include "sim/scene/pn_triangles.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/performer/pf_graph.h"
@@ -127,6 +128,69 @@ static void check_pp5(guint level, const char *send)
     sim_engine_free(eng);
     sim_result_free(r);
     g_free(yaml);
+}
+
+/* The shared-memory machine (Onyx: CPU -> bus -> pipe): the CPU sends 3
+ * vertices a sent triangle (draw_vertex each, vertex_bytes each over the
+ * bus), the pipe draws every fine triangle and, when it tessellates
+ * (coarse sent, level > 0), evaluates every PN point; the three run at
+ * once and the frame is the slowest. */
+static void check_smp(guint level, const char *send)
+{
+    char *yaml = g_strdup_printf(
+        "machine:\n  model: sgi-onyx\n"
+        "  nodes: {pipe: {costs: {pn_vertex: {value: 0.7 us, "
+        "assumption: t}}}}\n%s"
+        "workload: {type: performer, pn: {level: %u, send: %s,\n"
+        "  vertex_bytes: 40 B}}\n",
+        pp5_scene, level, send);
+    GError *err = NULL;
+    SimResult *r = run(yaml, 2, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    uint64_t coarse, fine, pts;
+    pn_counts(level, &coarse, &fine, &pts);
+    gboolean fine_sent = !strcmp(send, "fine");
+    uint64_t sent = fine_sent ? fine : coarse, bytes = 3 * sent * 40;
+    assert_true(metric(r, "link_bytes_per_frame") == bytes);
+    assert_true(metric(r, "command_bytes_per_frame") == 0);
+    assert_int_equal(r->comm_bytes, 2 * bytes);
+    assert_int_equal(r->comm_messages, 2);
+    SimEngine *eng = sim_engine_new(1);
+    CfgNode *root = cfg_load_string(yaml, "m.yaml", &err);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    assert_non_null(m);
+    SimTime cpu = 3 * sent * mach_cost(m, "cpu", "draw_vertex");
+    SimTime pipe = fine * mach_cost(m, "pipe", "triangle");
+    if (!fine_sent && level > 0)
+        pipe += pts * mach_cost(m, "pipe", "pn_vertex");
+    MachShmem bus;
+    assert_true(mach_shmem_init(&bus, m, &err));
+    SimTime wire = sim_time_for_bytes((double)bytes, bus.bandwidth) +
+                   bus.latency;
+    assert_true(fabs(metric(r, "cpu_ms") - cpu * 1e-9) < 1e-12);
+    assert_true(fabs(metric(r, "pipe_ms") - pipe * 1e-9) < 1e-12);
+    assert_true(fabs(metric(r, "bus_ms") - wire * 1e-9) < 1e-12);
+    SimTime frame = MAX(cpu, MAX(pipe, wire));
+    assert_true(fabs(metric(r, "frame_ms") - frame * 1e-9) < 1e-9);
+    assert_int_equal(r->frame_times->len, 2);
+    assert_int_equal(g_array_index(r->frame_times, SimTime, 1), frame);
+    double gp;
+    assert_false(sim_result_get_metric(r, "gp_ms", &gp));
+    mach_free(m);
+    cfg_free(root);
+    sim_engine_free(eng);
+    sim_result_free(r);
+    g_free(yaml);
+}
+
+static void test_pn_on_the_onyx(void **st)
+{
+    (void)st;
+    check_smp(2, "coarse");
+    check_smp(2, "fine");
+    check_smp(0, "coarse");
 }
 
 static void test_pn_on_pixel_planes_5(void **st)
@@ -411,6 +475,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pn_on_pixel_planes_5),
+        cmocka_unit_test(test_pn_on_the_onyx),
         cmocka_unit_test(test_frame_log),
         cmocka_unit_test(test_geoset_bound),
         cmocka_unit_test(test_sphere_union),
