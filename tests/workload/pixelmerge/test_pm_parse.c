@@ -1,0 +1,172 @@
+/* test_pm_parse.c — the pixelmerge section parser field by field: every
+ * default, every word, each count key at both ends of its range (the
+ * value one past either end refused with its file:line:column), and the
+ * own-memory estimate (mem_bytes) worked out from its formula. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/workload/pixelmerge/pm_workload.h"
+
+/* Parses "workload: {type: pixelmerge<extra>}"; NULL with *err set on a
+ * refusal. */
+static WlPmParams *parse(const char *extra, GError **err)
+{
+    char *text = g_strdup_printf("workload: {type: pixelmerge%s}\n", extra);
+    CfgNode *root = cfg_load_string(text, "pm.yaml", err);
+    assert_non_null(root);
+    WlPmParams *p = wl_pixelmerge_ops.parse(cfg_get(root, "workload"), err);
+    cfg_free(root);
+    g_free(text);
+    return p;
+}
+
+static WlPmParams *parse_ok(const char *extra)
+{
+    GError *e = NULL;
+    WlPmParams *p = parse(extra, &e);
+    if (!p)
+        fail_msg("%s: %s", extra, e->message);
+    return p;
+}
+
+/* The refusal names the value's place: "pm.yaml:1:<col>:". */
+static void expect_refused(const char *key, guint64 v)
+{
+    char *extra = g_strdup_printf(", %s: %" G_GUINT64_FORMAT, key, v);
+    GError *e = NULL;
+    assert_null(parse(extra, &e));
+    assert_non_null(e);
+    char *at = g_strdup_printf("pm.yaml:1:%d:",
+                               (int)(strlen("workload: {type: pixelmerge, ") +
+                                     strlen(key) + 3));
+    if (!strstr(e->message, at))
+        fail_msg("%s: '%s' lacks '%s'", extra, e->message, at);
+    g_free(at);
+    g_clear_error(&e);
+    g_free(extra);
+}
+
+static void test_defaults(void **st)
+{
+    (void)st;
+    WlPmParams *p = parse_ok("");
+    assert_int_equal(p->setup.scheme, WL_PM_PAIR);
+    assert_int_equal(p->setup.balance, WL_PM_BAL_RS);
+    assert_int_equal(p->setup.split, WL_PM_SPLIT_CYCLIC);
+    assert_int_equal(p->setup.span_rule, RAST_SPAN_EXACT);
+    assert_int_equal(p->setup.procs, 0);
+    assert_int_equal(p->setup.resolution, 400);
+    assert_true(p->setup.check_image);
+    assert_false(p->setup.cull_back);
+    assert_int_equal(p->setup.fmt.bytes_per_pixel, 8);
+    assert_int_equal(p->setup.fmt.bytes_per_location, 4);
+    assert_int_equal(p->setup.fmt.bytes_per_scanline, 2);
+    assert_int_equal(p->count_bytes, 4);
+    assert_int_equal(p->mem.base, 1000000);
+    assert_int_equal(p->mem.polygon, 200);
+    assert_int_equal(p->mem.span, 32);
+    assert_int_equal(p->mem.location, 8);
+    assert_int_equal(p->mem.pixel, 8);
+    assert_int_equal(p->mem.index, 4);
+    wl_pixelmerge_ops.free_params(p);
+}
+
+static void test_words_and_values(void **st)
+{
+    (void)st;
+    WlPmParams *p = parse_ok(
+        ", scheme: zbuf_exc, balance: hbp, polygon_split: block,"
+        " span_rule: endpoints, processors: 16, resolution: 2,"
+        " check_image: false, cull_back: true, bytes_per_pixel: 5,"
+        " bytes_per_location: 6, bytes_per_scanline: 0, bytes_per_count: 1,"
+        " memory: {base: 11 B, polygon: 12 B, span: 13 B, location: 14 B,"
+        " pixel: 15 B, index: 1 kB}");
+    assert_int_equal(p->setup.scheme, WL_PM_ZBUF_EXC);
+    assert_int_equal(p->setup.balance, WL_PM_BAL_HBP);
+    assert_int_equal(p->setup.split, WL_PM_SPLIT_BLOCK);
+    assert_int_equal(p->setup.span_rule, RAST_SPAN_ENDPOINTS);
+    assert_int_equal(p->setup.procs, 16);
+    assert_int_equal(p->setup.resolution, 2);
+    assert_false(p->setup.check_image);
+    assert_true(p->setup.cull_back);
+    assert_int_equal(p->setup.fmt.bytes_per_pixel, 5);
+    assert_int_equal(p->setup.fmt.bytes_per_location, 6);
+    assert_int_equal(p->setup.fmt.bytes_per_scanline, 0);
+    assert_int_equal(p->count_bytes, 1);
+    assert_int_equal(p->mem.base, 11);
+    assert_int_equal(p->mem.polygon, 12);
+    assert_int_equal(p->mem.span, 13);
+    assert_int_equal(p->mem.location, 14);
+    assert_int_equal(p->mem.pixel, 15);
+    assert_int_equal(p->mem.index, 1000);
+    wl_pixelmerge_ops.free_params(p);
+    p = parse_ok(", scheme: zbuf-exc, balance: strips");
+    assert_int_equal(p->setup.scheme, WL_PM_ZBUF_EXC);
+    assert_int_equal(p->setup.balance, WL_PM_BAL_STRIPS);
+    wl_pixelmerge_ops.free_params(p);
+    p = parse_ok(", scheme: aapc, processors: 1");
+    assert_int_equal(p->setup.scheme, WL_PM_AAPC);
+    assert_int_equal(p->setup.procs, 1);
+    wl_pixelmerge_ops.free_params(p);
+}
+
+/* Each count key: its lowest and highest value accepted, one past
+ * either refused (processors: powers of two only, 1 .. 1024). */
+static void test_count_ranges(void **st)
+{
+    (void)st;
+    static const struct {
+        const char *key;
+        guint64 lo, hi;
+    } k[] = {{"processors", 1, 1024},      {"resolution", 2, 4096},
+             {"bytes_per_pixel", 1, 256},  {"bytes_per_location", 1, 256},
+             {"bytes_per_scanline", 0, 256}, {"bytes_per_count", 1, 16}};
+    for (guint i = 0; i < G_N_ELEMENTS(k); i++) {
+        for (guint j = 0; j < 2; j++) {
+            char *extra = g_strdup_printf(", %s: %" G_GUINT64_FORMAT, k[i].key,
+                                          j ? k[i].hi : k[i].lo);
+            wl_pixelmerge_ops.free_params(parse_ok(extra));
+            g_free(extra);
+        }
+        if (k[i].lo > 0)
+            expect_refused(k[i].key, k[i].lo - 1);
+        expect_refused(k[i].key, k[i].hi + 1);
+    }
+    expect_refused("processors", 6);
+    expect_refused("processors", 3);
+}
+
+/* mem_bytes: N^2 (copies x sizeof(WlPmPixel) + 3) + P (N + 1) 4 + P^2 8,
+ * copies 3 with the serial check, 2 without; P = 0 counts as 1. */
+static void test_mem_bytes(void **st)
+{
+    (void)st;
+    const double px = sizeof(WlPmPixel);
+    WlPmParams *p = parse_ok(", processors: 4, resolution: 10");
+    GString *what = g_string_new(NULL);
+    assert_true(wl_pixelmerge_ops.mem_bytes(p, what) ==
+                100 * (3 * px + 3) + 4 * 11 * 4 + 16 * 8);
+    assert_string_equal(what->str, "4 processors, 10 x 10 pixels");
+    wl_pixelmerge_ops.free_params(p);
+    p = parse_ok(", resolution: 7, check_image: false");
+    g_string_truncate(what, 0);
+    assert_true(wl_pixelmerge_ops.mem_bytes(p, what) ==
+                49 * (2 * px + 3) + 1 * 8 * 4 + 1 * 8);
+    assert_string_equal(what->str, "0 processors, 7 x 7 pixels");
+    wl_pixelmerge_ops.free_params(p);
+    g_string_free(what, TRUE);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_words_and_values),
+        cmocka_unit_test(test_count_ranges),
+        cmocka_unit_test(test_mem_bytes),
+    };
+    return cmocka_run_group_tests_name("pm_parse", tests, NULL, NULL);
+}
