@@ -195,10 +195,12 @@ void wl_pphigs_region_free(WlPphigsRegion *r)
     g_free(r);
 }
 
+/* A centre on an edge is inside for left and top edges only; the edge
+ * of a repeated vertex (a = b = c = 0) excludes nothing. */
 static gboolean inside(const WlPphigsLin *e, double x, double y)
 {
     double v = e->a * x + e->b * y + e->c;
-    return v > 0 || (v == 0 && (e->a > 0 || (e->a == 0 && e->b > 0)));
+    return v > 0 || (v == 0 && (e->a > 0 || (e->a == 0 && e->b >= 0)));
 }
 
 /* The pixel's key, 0 when it does not draw (z outside [-1, 1]). */

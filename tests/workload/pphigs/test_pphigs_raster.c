@@ -1,0 +1,204 @@
+/* test_pphigs_raster.c — the PPHIGS pixel commands on an 8 x 8 screen
+ * worked out by hand (identity view: screen X = 4 (x + 1), Y = 4 (1 - y),
+ * every coordinate a binary fraction, so the arithmetic is exact): the
+ * pixel box (pixel centres X + 0.5 inside the polygon's bounds, a bound
+ * exactly on a centre included), the fill rule (a centre exactly on an
+ * edge is drawn for left and top edges only, whatever the winding; a
+ * repeated vertex changes nothing), the per-command expression count and
+ * the depth key. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/workload/pphigs/pphigs_pixels.h"
+
+#define N 8
+
+typedef struct {
+    Vec3 v[8];
+    SceneElem el;
+    ScenePrimInst pi;
+} Poly;
+
+/* A polygon of n screen points (X, Y), z = 0. */
+static void poly(Poly *p, const double (*xy)[2], guint n)
+{
+    for (guint i = 0; i < n; i++)
+        p->v[i] = vec3(xy[i][0] / 4 - 1, 1 - xy[i][1] / 4, 0);
+    p->el = scene_elem_prim(n == 3 ? SCENE_EL_TRIANGLE : SCENE_EL_POLYGON,
+                            p->v, n);
+    p->pi = (ScenePrimInst){.el = &p->el,
+                            .matrix = mat4_identity(),
+                            .color = vec3(1, 1, 1)};
+}
+
+/* The screen rectangle [x0, x1] x [y0, y1] as a quad, clockwise on the
+ * screen when cw (Y grows downwards). */
+static void rect(Poly *p, double x0, double y0, double x1, double y1,
+                 gboolean cw)
+{
+    const double a[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+    const double b[4][2] = {{x0, y0}, {x0, y1}, {x1, y1}, {x1, y0}};
+    poly(p, cw ? a : b, 4);
+}
+
+/* The commands of p; their count must be `want`. */
+static GArray *cmds(const Poly *p, guint want)
+{
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&p->pi, mat4_identity(), N, N, out),
+                     want);
+    assert_int_equal(out->len, want);
+    return out;
+}
+
+static void expect_box(const WlPphigsCmd *c, int x0, int y0, int x1, int y1)
+{
+    assert_int_equal(c->x0, x0);
+    assert_int_equal(c->y0, y0);
+    assert_int_equal(c->x1, x1);
+    assert_int_equal(c->y1, y1);
+}
+
+/* Draws p's one command on a fresh screen; the pixels drawn must be
+ * exactly `mask` (bit y * 8 + x). */
+static void expect_pixels(const Poly *p, uint64_t mask)
+{
+    GArray *c = cmds(p, 1);
+    WlPphigsRegion *r = wl_pphigs_region_new(0, 0, N, N, 0);
+    assert_int_equal(
+        wl_pphigs_region_draw(r, &g_array_index(c, WlPphigsCmd, 0)),
+        __builtin_popcountll(mask));
+    for (int i = 0; i < N * N; i++)
+        if ((r->key[i] != 0) != ((mask >> i) & 1))
+            fail_msg("pixel (%d, %d): key %llu", i % N, i / N,
+                     (unsigned long long)r->key[i]);
+    wl_pphigs_region_free(r);
+    g_array_unref(c);
+}
+
+#define PX(x, y) (UINT64_C(1) << ((y) * N + (x)))
+
+/* [0.5, 2.5]^2: centres 0.5, 1.5, 2.5 each way; the left (X = 0.5) and
+ * top (Y = 0.5) edges draw their centres, the right and bottom do not:
+ * pixels (0..1, 0..1), in either winding. */
+static void test_fill_rule(void **st)
+{
+    (void)st;
+    const uint64_t want = PX(0, 0) | PX(1, 0) | PX(0, 1) | PX(1, 1);
+    for (int cw = 0; cw < 2; cw++) {
+        Poly p;
+        rect(&p, 0.5, 0.5, 2.5, 2.5, cw);
+        GArray *c = cmds(&p, 1);
+        expect_box(&g_array_index(c, WlPphigsCmd, 0), 0, 0, 2, 2);
+        assert_int_equal(g_array_index(c, WlPphigsCmd, 0).nedges, 4);
+        assert_int_equal(wl_pphigs_cmd_exprs(&g_array_index(c, WlPphigsCmd, 0)),
+                         4 + 1 + 3);
+        g_array_unref(c);
+        expect_pixels(&p, want);
+    }
+    /* a triangle: the diagonal X + Y = 4 through centres (0.5, 3.5),
+     * (1.5, 2.5), (2.5, 1.5), (3.5, 0.5) is a right-bottom edge: not
+     * drawn; the centres with X + Y = 1, 2, 3 are */
+    static const double tri[3][2] = {{0.5, 0.5}, {3.5, 0.5}, {0.5, 3.5}};
+    static const double tri_ccw[3][2] = {{0.5, 0.5}, {0.5, 3.5}, {3.5, 0.5}};
+    const uint64_t t = PX(0, 0) | PX(1, 0) | PX(2, 0) | PX(0, 1) | PX(1, 1) |
+                       PX(0, 2);
+    Poly p;
+    poly(&p, tri, 3);
+    expect_pixels(&p, t);
+    GArray *c = cmds(&p, 1);
+    assert_int_equal(wl_pphigs_cmd_exprs(&g_array_index(c, WlPphigsCmd, 0)),
+                     3 + 1 + 3);
+    g_array_unref(c);
+    poly(&p, tri_ccw, 3);
+    expect_pixels(&p, t);
+    /* the same triangle given as a quad with a repeated vertex */
+    static const double dup[4][2] = {{0.5, 0.5}, {0.5, 0.5}, {3.5, 0.5},
+                                     {0.5, 3.5}};
+    poly(&p, dup, 4);
+    expect_pixels(&p, t);
+    static const double dup2[4][2] = {{0.5, 0.5}, {3.5, 0.5}, {0.5, 3.5},
+                                      {0.5, 3.5}};
+    poly(&p, dup2, 4);
+    expect_pixels(&p, t);
+}
+
+/* A bound exactly on the first or last pixel centre keeps the command
+ * (its box is that one column or row; the fill rule decides the pixels);
+ * a tenth past it there is no command. */
+static void test_box_edges(void **st)
+{
+    (void)st;
+    Poly p;
+    rect(&p, -1, 0.5, 0.5, 2.5, TRUE); /* right edge on centre 0.5 */
+    GArray *c = cmds(&p, 1);
+    expect_box(&g_array_index(c, WlPphigsCmd, 0), 0, 0, 0, 2);
+    g_array_unref(c);
+    expect_pixels(&p, 0);
+    rect(&p, 0.5, -1, 2.5, 0.5, TRUE); /* bottom edge on centre 0.5 */
+    c = cmds(&p, 1);
+    expect_box(&g_array_index(c, WlPphigsCmd, 0), 0, 0, 2, 0);
+    g_array_unref(c);
+    expect_pixels(&p, 0);
+    rect(&p, 7.5, 0.5, 9, 2.5, TRUE); /* left edge on centre 7.5 */
+    c = cmds(&p, 1);
+    expect_box(&g_array_index(c, WlPphigsCmd, 0), 7, 0, 7, 2);
+    g_array_unref(c);
+    expect_pixels(&p, PX(7, 0) | PX(7, 1));
+    rect(&p, 0.5, 7.5, 2.5, 9, TRUE); /* top edge on centre 7.5 */
+    c = cmds(&p, 1);
+    expect_box(&g_array_index(c, WlPphigsCmd, 0), 0, 7, 2, 7);
+    g_array_unref(c);
+    expect_pixels(&p, PX(0, 7) | PX(1, 7));
+    /* the whole screen and more: the box clamps to it */
+    rect(&p, -4, -4, 12, 12, TRUE);
+    c = cmds(&p, 1);
+    expect_box(&g_array_index(c, WlPphigsCmd, 0), 0, 0, 7, 7);
+    g_array_unref(c);
+    expect_pixels(&p, ~UINT64_C(0));
+    /* just outside each side: nothing */
+    rect(&p, -1, 0.5, 0.25, 2.5, TRUE);
+    g_array_unref(cmds(&p, 0));
+    rect(&p, 0.5, -1, 2.5, 0.25, TRUE);
+    g_array_unref(cmds(&p, 0));
+    rect(&p, 7.75, 0.5, 9, 2.5, TRUE);
+    g_array_unref(cmds(&p, 0));
+    rect(&p, 0.5, 7.75, 2.5, 9, TRUE);
+    g_array_unref(cmds(&p, 0));
+    /* between two centres: a box with no centre, no command */
+    rect(&p, 1.75, 1.75, 2.25, 2.25, TRUE);
+    g_array_unref(cmds(&p, 0));
+}
+
+/* z = 0 maps to depth llrint(0.5 (2^32 - 1)) = 2^31 (ties to even), the
+ * key depth << 31 | tag = 2^62 | tag. */
+static void test_depth_key(void **st)
+{
+    (void)st;
+    Poly p;
+    rect(&p, 0.5, 0.5, 1.5, 1.5, TRUE);
+    p.el.tag = 5;
+    GArray *c = cmds(&p, 1);
+    WlPphigsRegion *r = wl_pphigs_region_new(0, 0, N, N, 0x12345678u);
+    assert_int_equal(wl_pphigs_region_draw(r, &g_array_index(c, WlPphigsCmd, 0)),
+                     1);
+    assert_true(r->key[0] == ((UINT64_C(1) << 62) | 5));
+    assert_int_equal(r->rgba[1], 0x12345678u);
+    /* drawn again: an equal key does not win */
+    assert_int_equal(wl_pphigs_region_draw(r, &g_array_index(c, WlPphigsCmd, 0)),
+                     0);
+    wl_pphigs_region_free(r);
+    g_array_unref(c);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fill_rule),
+        cmocka_unit_test(test_box_edges),
+        cmocka_unit_test(test_depth_key),
+    };
+    return cmocka_run_group_tests_name("pphigs_raster", tests, NULL, NULL);
+}
