@@ -126,6 +126,62 @@ static void test_imbalance(void **state)
     assert_float_equal(wl_pm_load_imbalance(z, 2), 0.0, 0.0);
 }
 
+static void expect_owner(WlPmBalance how, guint procs, const uint64_t *counts,
+                         guint h, const guint *want, gboolean banded)
+{
+    WlPmPartition *p = wl_pm_partition_new(how, procs, counts, h);
+    assert_int_equal(p->banded, banded);
+    assert_memory_equal(p->owner, want, h * sizeof *want);
+    wl_pm_partition_free(p);
+}
+
+/* Owners worked out by hand.  RS cuts a band at the s whose prefix is
+ * nearest the middle, the lower s on a tie: [1, 2, 1] (S 0 1 3 4, middle
+ * 2: S[1] = 1 and S[2] = 3 tie) -> [0, 1, 1]; [1, 1, 1, 1] -> [0, 0, 1, 1];
+ * [3, 1, 1, 3] on 4 (S 0 3 4 5 8): first cut 2; [0, 2): middle 1.5,
+ * S[1] = 3 against S[0] = 0 -> cut 1; [2, 4): middle 6.5, S[3] = 5
+ * against S[4] = 8 -> cut 3; the upper half of each cut takes bit
+ * `level`: [0, 2, 1, 3].  Strips on 6 rows, 4 procs: cut 3, then 1 (tie
+ * 1 / 2 at 1.5 -> 1) and 4 (tie at 4.5 -> 4): [0, 2, 2, 1, 3, 3].  HBP
+ * deals rows by count, larger first (equal counts by row), each to the
+ * least-loaded processor (the lowest on a tie): [2, 5, 5, 1, 3] on 2 ->
+ * y1 0, y2 1, y4 0 (5 = 5), y0 1, y3 1 (8 > 7). */
+static void test_exact_owners(void **state)
+{
+    (void)state;
+    static const uint64_t c1[] = {1, 2, 1}, c2[] = {1, 1, 1, 1},
+                          c3[] = {3, 1, 1, 3}, c5[] = {2, 5, 5, 1, 3},
+                          c6[] = {9, 0, 0, 0, 0, 9};
+    static const guint o1[] = {0, 1, 1}, o2[] = {0, 0, 1, 1},
+                       o3[] = {0, 2, 1, 3}, o6[] = {0, 2, 2, 1, 3, 3},
+                       o5[] = {1, 0, 1, 1, 0};
+    expect_owner(WL_PM_BAL_RS, 2, c1, 3, o1, TRUE);
+    expect_owner(WL_PM_BAL_RS, 2, c2, 4, o2, TRUE);
+    expect_owner(WL_PM_BAL_RS, 4, c3, 4, o3, TRUE);
+    expect_owner(WL_PM_BAL_STRIPS, 4, c6, 6, o6, TRUE);
+    expect_owner(WL_PM_BAL_HBP, 2, c5, 5, o5, FALSE);
+    /* prefixes equal to the middle over several rows (zero counts): the
+     * first such s, [2, 0, 0, 2] -> cut 1; all zero: the cut at the
+     * band's start, every row to the upper half */
+    static const uint64_t c7[] = {2, 0, 0, 2}, z4[] = {0, 0, 0, 0};
+    static const guint o7[] = {0, 1, 1, 1}, oz[] = {1, 1, 1, 1};
+    expect_owner(WL_PM_BAL_RS, 2, c7, 4, o7, TRUE);
+    expect_owner(WL_PM_BAL_RS, 2, z4, 4, oz, TRUE);
+    static const guint one[] = {0, 0, 0};
+    expect_owner(WL_PM_BAL_RS, 1, c1, 3, one, TRUE);
+    expect_owner(WL_PM_BAL_HBP, 1, c1, 3, one, FALSE);
+    /* loads and imbalance (max - min) / mean */
+    WlPmPartition *p = wl_pm_partition_new(WL_PM_BAL_RS, 4, c3, 4);
+    uint64_t load[4];
+    wl_pm_partition_loads(p, c3, load);
+    static const uint64_t want[] = {3, 1, 1, 3};
+    assert_memory_equal(load, want, sizeof want);
+    assert_true(wl_pm_load_imbalance(load, 4) == 1.0);
+    wl_pm_partition_free(p);
+    static const uint64_t l3[] = {4, 1, 1};
+    assert_true(wl_pm_load_imbalance(l3, 3) == 1.5);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -135,6 +191,7 @@ int main(void)
         cmocka_unit_test(test_hbp_greedy),
         cmocka_unit_test(test_hbp_bound),
         cmocka_unit_test(test_imbalance),
+        cmocka_unit_test(test_exact_owners),
     };
     return cmocka_run_group_tests_name("pm_balance", tests, NULL, NULL);
 }
