@@ -1,0 +1,166 @@
+/* test_sf_edit_kinds.c — each sort-first edit kind (sf_edit.h) on a
+ * three-structure database small enough to work out by hand:
+ *   root (posted): matrix, execute a;  a: triangle;  b: triangle.
+ * A matrix edit turns the root's matrix (the first structure's: found
+ * in structure 0) by the angle about y and moves no max-set node; an
+ * execute edit can only point root's execute at b (the one other
+ * structure of a's height), creating one node and collecting one; an
+ * unpost then a post of the root rebuild its tree (both nodes created
+ * and collected); the per-kind counts add up.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include <string.h>
+
+#include "sim/core/rng.h"
+#include "sim/workload/sortfirst/sf_edit.h"
+
+typedef struct {
+    SceneDb *src;
+    WlSfDb *sf;
+    WlSfBook *book;
+    WlSfEdit *edit;
+    SimRng rng;
+    Vec3 v[3];
+} Fix;
+
+static void add(SceneDb *db, guint sid, SceneElem e)
+{
+    assert_true(scene_db_append(db, sid, &e, NULL));
+}
+
+static void fix_init(Fix *f, const WlSfEditSpec *spec)
+{
+    f->v[0] = vec3(0, 0, 0), f->v[1] = vec3(1, 0, 0), f->v[2] = vec3(0, 1, 0);
+    f->src = scene_db_new();
+    guint root = scene_db_add_struct(f->src, "root");
+    guint a = scene_db_add_struct(f->src, "a");
+    guint b = scene_db_add_struct(f->src, "b");
+    add(f->src, root, scene_elem_matrix(mat4_translate(1, 2, 3),
+                                        SCENE_MAT_REPLACE));
+    add(f->src, root, scene_elem_execute(a));
+    add(f->src, a, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
+    add(f->src, b, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
+    scene_db_post(f->src, root);
+    GError *e = NULL;
+    f->sf = wl_sf_db_new(f->src, 2, 1, WL_SF_CHUNK_SORTED, &e);
+    assert_non_null(f->sf);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 16, 16);
+    WlSfSizes z = {64, 40, 36, 8, 4, 8, 16, 96};
+    f->book = wl_sf_book_new(f->sf, &r, WL_SF_MAXSET, &z);
+    sim_rng_init(&f->rng, 3, 0);
+    f->edit = wl_sf_edit_new(f->src, f->sf, spec, &f->rng);
+}
+
+static void fix_clear(Fix *f)
+{
+    wl_sf_edit_free(f->edit);
+    wl_sf_book_free(f->book);
+    wl_sf_db_free(f->sf);
+    scene_db_free(f->src);
+}
+
+/* One editing frame; its counts must be (commands, created, collected). */
+static gint64 *edit_frame(Fix *f, uint64_t commands, uint64_t created,
+                          uint64_t collected)
+{
+    WlSfEditFrame ef;
+    WlSfRemapWork w[2];
+    memset(w, 0, sizeof w);
+    gint64 *map = wl_sf_edit_frame(f->edit, f->book, &ef, w);
+    assert_int_equal(ef.commands, commands);
+    assert_int_equal(ef.nodes_created, created);
+    assert_int_equal(ef.nodes_collected, collected);
+    return map;
+}
+
+static void test_matrix_edit(void **st)
+{
+    (void)st;
+    const WlSfEditSpec spec = {{1, 0, 0, 0}, 90};
+    Fix f;
+    fix_init(&f, &spec);
+    gint64 *map = edit_frame(&f, 1, 0, 0);
+    assert_non_null(map); /* one instance, the same one */
+    assert_int_equal(wl_sf_n_insts(f.sf), 1);
+    assert_int_equal(map[0], 0);
+    g_free(map);
+    const SceneElem *m = scene_db_elem(wl_sf_edit_db(f.edit), 0, 0);
+    Mat4 want = mat4_mul(mat4_translate(1, 2, 3),
+                         mat4_rotate(vec3(0, 1, 0), G_PI / 2));
+    assert_memory_equal(&m->matrix, &want, sizeof want);
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_MATRIX], 1);
+    /* the source database is not touched */
+    Mat4 src = scene_db_elem(f.src, 0, 0)->matrix;
+    Mat4 t = mat4_translate(1, 2, 3);
+    assert_memory_equal(&src, &t, sizeof t);
+    fix_clear(&f);
+}
+
+static void test_execute_edit(void **st)
+{
+    (void)st;
+    const WlSfEditSpec spec = {{0, 1, 0, 0}, 10};
+    Fix f;
+    fix_init(&f, &spec);
+    gint64 *map = edit_frame(&f, 1, 1, 1);
+    assert_int_equal(scene_db_elem(wl_sf_edit_db(f.edit), 0, 1)->child, 2);
+    assert_int_equal(wl_sf_n_insts(f.sf), 1);
+    assert_int_equal(map[0], -1); /* b's instance is new */
+    g_free(map);
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_EXECUTE], 1);
+    /* and back: a again */
+    map = edit_frame(&f, 1, 1, 1);
+    assert_int_equal(scene_db_elem(wl_sf_edit_db(f.edit), 0, 1)->child, 1);
+    g_free(map);
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_EXECUTE], 2);
+    fix_clear(&f);
+}
+
+/* Unpost the root, post it again: a new posting, a new tree. */
+static void test_unpost_post(void **st)
+{
+    (void)st;
+    const WlSfEditSpec spec = {{0, 0, 1, 1}, 10};
+    Fix f;
+    fix_init(&f, &spec);
+    gint64 *map = edit_frame(&f, 2, 2, 2);
+    assert_int_equal(map[0], -1);
+    g_free(map);
+    assert_true(scene_db_is_posted(wl_sf_edit_db(f.edit), 0));
+    assert_int_equal(scene_db_posted_count(wl_sf_edit_db(f.edit)), 1);
+    const uint64_t *ap = wl_sf_edit_applied(f.edit);
+    assert_int_equal(ap[WL_SF_ED_UNPOST], 1);
+    assert_int_equal(ap[WL_SF_ED_POST], 1);
+    assert_int_equal(ap[WL_SF_ED_MATRIX] + ap[WL_SF_ED_EXECUTE], 0);
+    fix_clear(&f);
+}
+
+/* No edit asked: no command, no map. */
+static void test_nothing(void **st)
+{
+    (void)st;
+    const WlSfEditSpec spec = {{0, 0, 0, 0}, 10};
+    assert_false(wl_sf_edit_any(&spec));
+    const WlSfEditSpec one = {{0, 0, 0, 1}, 10};
+    assert_true(wl_sf_edit_any(&one));
+    Fix f;
+    fix_init(&f, &spec);
+    assert_null(edit_frame(&f, 0, 0, 0));
+    fix_clear(&f);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_matrix_edit),
+        cmocka_unit_test(test_execute_edit),
+        cmocka_unit_test(test_unpost_post),
+        cmocka_unit_test(test_nothing),
+    };
+    return cmocka_run_group_tests_name("sf_edit_kinds", tests, NULL, NULL);
+}
