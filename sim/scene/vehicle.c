@@ -338,7 +338,7 @@ static void quad(Tess *t, guint i, guint j)
 static void tessellate(SceneDb *db, guint sid, const Patch *p, uint64_t k)
 {
     double lu = param_length(p, TRUE), lv = param_length(p, FALSE);
-    double aspect = lv > 0 && lu > 0 ? lu / lv : 1;
+    double aspect = lu / lv; /* every patch has extent along u and v */
     double c = ceil(sqrt(k / 2.0 * aspect));
     Tess t = {db, sid, p, (guint)CLAMP(c, 1, (double)k), 0, k, 0};
     t.rows = (guint)((k + 2 * t.cols - 1) / (2 * t.cols));
