@@ -20,12 +20,13 @@ void sim_rng_init(SimRng *r, uint64_t seed, uint64_t stream)
 {
     uint64_t x =
         sim_rng_mix(seed) ^ sim_rng_mix(stream + 0x632be59bd9b4e019ULL);
+    /* s[i + 1] = mix(s[i]) and mix is a bijection with mix(0) != 0, so
+     * s[0] and s[1] are never both zero: the all-zero state (a fixed
+     * point of xoshiro) cannot arise. */
     for (int i = 0; i < 4; i++) {
         x = sim_rng_mix(x);
         r->s[i] = x;
     }
-    if (!(r->s[0] | r->s[1] | r->s[2] | r->s[3]))
-        r->s[0] = 1; /* the all-zero state is a fixed point */
 }
 
 static inline uint64_t rotl(uint64_t x, int k)

@@ -130,13 +130,16 @@ gboolean mach_net_params(const CfgNode *net, NetParams *out, GError **err)
     return read_bandwidth(net, out, err);
 }
 
-static gboolean log2_exact(uint64_t n, unsigned *out)
+/* *out = ceil(log2 n) (0 for n <= 1); TRUE when n is a power of two.
+ * n is a guint, so the loop ends at d <= 32 and the shift stays defined;
+ * n = 0 gives d = 0 and 1 != 0. */
+static gboolean log2_exact(guint n, unsigned *out)
 {
     unsigned d = 0;
-    while (((uint64_t)1 << d) < n && d < 63)
+    while (((uint64_t)1 << d) < n)
         d++;
     *out = d;
-    return n > 0 && ((uint64_t)1 << d) == n;
+    return ((uint64_t)1 << d) == n;
 }
 
 static NetTopo *hypercube_new(const CfgNode *net, guint endpoints,

@@ -37,7 +37,7 @@ static uint32_t ft_nodes(const void *st)
 static guint ft_max_hops(const void *st)
 {
     const NetFatTree *t = st;
-    return t->levels ? 2 * t->levels : 1;
+    return 2 * t->levels; /* levels >= 1: net_fattree_new asserts n >= 2 */
 }
 
 static guint ft_route(const void *st, uint32_t src, uint32_t dst,

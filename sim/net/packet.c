@@ -21,7 +21,9 @@
  * and each packet schedules its successor's next event, so packets enter
  * the event queue one after another as they leave the first link rather
  * than all at injection (a 10 KB message in 20-byte CM-5 packets is 512
- * packets).
+ * packets).  A message's packets are one block (m->tp), held by the net
+ * (net_own) until its last packet arrives, so a net freed mid-run (a run
+ * stopped early) frees the packets still queued on links.
  *
  * Trace hook (sim/core/trace.h): when the engine's trace listens, each
  * reservation reports the link's hold [start, end) by that packet, and a
@@ -46,6 +48,13 @@ struct NetPkt {
 
 static void pkt_hop(SimEngine *eng, void *ctx, void *arg);
 static void pkt_arrive(SimEngine *eng, void *ctx, void *arg);
+
+/* ceil(bytes / packet_bytes) packets, at least one. */
+static guint pkt_count(NetNet *n, const NetMsg *m)
+{
+    uint64_t pb = net_par(n)->packet_bytes;
+    return (guint)(m->bytes ? (m->bytes + pb - 1) / pb : 1);
+}
 
 /* Tells the trace that p holds l over [start, end), and that a head
  * packet reaching it at `now` waited until `start`. */
@@ -106,10 +115,13 @@ static void pkt_arrive(SimEngine *eng, void *ctx, void *arg)
     NetPkt *p = arg;
     NetMsg *m = p->m;
     pkt_release_chain(n, p);
-    net_account(n, -(gssize)sizeof *p);
-    g_free(p);
-    if (--m->step == 0)
-        net_msg_deliver(n, m);
+    if (--m->step > 0)
+        return;
+    net_account(n, -(gssize)(pkt_count(n, m) * sizeof *p));
+    net_disown(n, m->tp);
+    g_free(m->tp);
+    m->tp = NULL;
+    net_msg_deliver(n, m);
 }
 
 static void pkt_hop(SimEngine *eng, void *ctx, void *arg)
@@ -127,28 +139,26 @@ static void pkt_inject(SimEngine *eng, void *ctx, void *arg)
     NetNet *n = ctx;
     NetMsg *m = arg;
     uint64_t pb = net_par(n)->packet_bytes, np = m->step;
-    NetPkt *first = NULL, *prev = NULL;
+    NetPkt *pk = g_new0(NetPkt, np);
+    m->tp = pk;
+    net_own(n, pk, g_free); /* freed by net_free if the run stops early */
+    net_account(n, (gssize)(np * sizeof *pk));
     for (uint64_t i = 0; i < np; i++) {
-        NetPkt *p = g_new0(NetPkt, 1);
+        NetPkt *p = &pk[i];
         p->m = m;
         p->head = i == 0;
         p->bytes = (uint32_t)(i + 1 < np ? pb : m->bytes - i * pb);
-        net_account(n, (gssize)sizeof *p);
         p->due = pkt_cross(n, p, sim_now(eng));
-        if (prev)
-            prev->chain = p;
-        else
-            first = p;
-        prev = p;
+        if (i > 0)
+            pk[i - 1].chain = p;
     }
-    pkt_schedule(n, first, first->due);
+    pkt_schedule(n, pk, pk->due);
 }
 
 static void packet_start(NetNet *n, NetMsg *m)
 {
     const NetParams *par = net_par(n);
-    uint64_t pb = par->packet_bytes;
-    m->step = (guint)(m->bytes ? (m->bytes + pb - 1) / pb : 1);
+    m->step = pkt_count(n, m);
     sim_schedule_in(net_eng(n), net_startup(par, m->bytes) + par->per_hop,
                     pkt_inject, n, m);
 }

@@ -72,6 +72,7 @@ static void test_tree_and_locations(void **state)
     assert_string_equal(cfg_scalar(cfg_seq_at(list, 1)), "two");
     assert_int_equal(cfg_col(cfg_seq_at(list, 1)), 13);
     assert_string_equal(cfg_scalar(cfg_path(r, "run.list.2.a")), "3");
+    assert_string_equal(cfg_scalar(cfg_path(r, "run.list.0")), "1");
     assert_null(cfg_path(r, "run.list.3"));
     assert_null(cfg_path(r, "run.seed.x"));
     assert_int_equal(cfg_kind(cfg_path(r, "run.nothing")), CFG_NULL);

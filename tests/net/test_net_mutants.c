@@ -1,12 +1,14 @@
 /* test_net_mutants.c — claims of sim/net that mutation testing (make
  * mutate, docs/testing.md) found unchecked: the flow rung builds a
  * circuit without per-hop events (circuit.c), and an empty message
- * travels as one empty packet (packet.c), in the analytic time. */
+ * travels as one empty packet (packet.c), in the analytic time; the
+ * parts of net_tracked_bytes; a control network slower than 1 B/s. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "sim/net/collective.h"
 #include "sim/net/net.h"
 
 static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
@@ -116,12 +118,74 @@ static void test_flow_many_links(void **state)
     net_topo_free(t);
 }
 
+/* net_tracked_bytes of a fresh net: the net's own record, its
+ * topology's state (state_bytes) and the route scratch (max_hops link
+ * ids), plus the 16-slot link table.  Two nets that differ only in
+ * state_bytes differ by exactly that; a 4-cube's scratch holds one more
+ * id than a 3-cube's. */
+static size_t fresh_tracked(const NetTopo *t)
+{
+    NetParams p = params(NET_SW_CUT_THROUGH);
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_ANALYTIC);
+    size_t b = net_tracked_bytes(net);
+    net_free(net);
+    sim_engine_free(eng);
+    return b;
+}
+
+static void test_tracked_bytes_parts(void **state)
+{
+    (void)state;
+    NetTopo *c3 = net_hypercube_new(3), *c4 = net_hypercube_new(4);
+    NetTopo big = *c3;
+    big.state_bytes += 1000;
+    size_t b3 = fresh_tracked(c3), b4 = fresh_tracked(c4);
+    assert_int_equal(fresh_tracked(&big) - b3, 1000);
+    assert_int_equal(b4 - b3, sizeof(NetLinkId));
+    /* at least the parameters, the state, 3 ids and 16 two-word slots */
+    assert_true(b3 >= sizeof(NetParams) + c3->state_bytes +
+                          3 * sizeof(NetLinkId) + 16 * 2 * sizeof(void *));
+    net_topo_free(c3);
+    net_topo_free(c4);
+}
+
+static void coll_done(NetNet *net, void *ctx)
+{
+    *(SimTime *)ctx = sim_now(net_engine(net));
+}
+
+/* A control network of 1 B/s (any bandwidth above zero counts): a
+ * 2-byte broadcast takes the latency plus 2 s; 0.5 B/s doubles it. */
+static void test_control_network_slow(void **state)
+{
+    (void)state;
+    NetTopo *t = net_fattree_new(4, 2);
+    const double bw[] = {1.0, 0.5};
+    for (int i = 0; i < 2; i++) {
+        NetParams p = params(NET_SW_CUT_THROUGH);
+        p.ctrl_latency = 3 * SIM_US;
+        p.ctrl_bandwidth = bw[i];
+        SimEngine *eng = sim_engine_new(1);
+        NetNet *net = net_new(eng, t, &p, NET_FLOW);
+        SimTime at = 0;
+        net_broadcast(net, 1, 2, coll_done, &at);
+        assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+        assert_int_equal(at, 3 * SIM_US + (SimTime)(i + 1) * 2 * SIM_S);
+        net_free(net);
+        sim_engine_free(eng);
+    }
+    net_topo_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_circuit_flow_no_hop_events),
         cmocka_unit_test(test_empty_message_one_packet),
         cmocka_unit_test(test_flow_many_links),
+        cmocka_unit_test(test_tracked_bytes_parts),
+        cmocka_unit_test(test_control_network_slow),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
