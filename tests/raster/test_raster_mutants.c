@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "sim/raster/scan.h"
 
@@ -92,11 +93,41 @@ static void test_triangle_depth_range(void **state)
     }
 }
 
+static void count_span(void *ctx, const RastSpan *s, RastCounters *c)
+{
+    (void)c;
+    (void)s;
+    (*(int *)ctx)++;
+}
+
+/* The smallest polygon there is: twice its area one subpixel unit, one
+ * winding -1, the other +1 (the winding sum starts at 0); both are
+ * scanned, to the same spans. */
+static void test_smallest_polygon(void **state)
+{
+    (void)state;
+    const int64_t o = 5 * RAST_SUBPIX + RAST_SUBPIX / 2;
+    RastScreenVert a = {o, o, 0.5, {1, 1, 1}}, b = a, c = a;
+    b.x += 1;
+    c.y += 1;
+    RastScreenVert tri[2][3] = {{a, b, c}, {a, c, b}};
+    int spans[2] = {0, 0};
+    for (int w = 0; w < 2; w++) {
+        assert_true(llabs(rast_area2(&tri[w][0], &tri[w][1], &tri[w][2])) == 1);
+        RastCounters cn = {0};
+        RastSpanSink sink = {count_span, &spans[w]};
+        rast_scan_polygon(tri[w], 3, 1, 16, 16, RAST_SPAN_ENDPOINTS, sink, &cn);
+    }
+    assert_int_equal(spans[0], spans[1]);
+    assert_int_equal(spans[0], 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_widest_fan_planes),
         cmocka_unit_test(test_triangle_depth_range),
+        cmocka_unit_test(test_smallest_polygon),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -284,6 +284,9 @@ static const Case ply_bad[] = {
                                "count"},
     {HA "element vertex 1x\n", ":3:16: found '1x', expected an element "
                                "count"},
+    /* the same in a file that is whole otherwise: still refused */
+    {HA "element vertex 3x\n" VXYZ FACE "end_header\n" BODY3 "3 0 1 2\n",
+     ":3:16: found '3x', expected an element count"},
     {HA "element vertex 99\n", ":3:16: found '99', expected a count the "
                                "file size can hold"},
     {HA "element vertex 1 2\n", ":3:18: found '2', expected end of line"},

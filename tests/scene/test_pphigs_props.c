@@ -207,6 +207,11 @@ static void test_flock(void **st)
      * column, column `obj` (one per colour) standing on the ring of
      * radius h/8 at angle 2 pi obj / well_attributes, up to h/4 high */
     guint wp = 0, wc = 0;
+    double lo[3][3], hi[3][3]; /* per column: offsets in x, y, z */
+    for (guint j = 0; j < 9; j++) {
+        lo[j / 3][j % 3] = HUGE_VAL;
+        hi[j / 3][j % 3] = -HUGE_VAL;
+    }
     for (guint k = 0; k < 2; k++) {
         guint w = k ? w1 : w0;
         for (guint i = 0; i < scene_db_len(db, w); i++) {
@@ -220,11 +225,21 @@ static void test_flock(void **st)
             assert_true(fabs(c.x - h / 8 * cos(t)) <= 1 + 1e-9);
             assert_true(fabs(c.z - h / 8 * sin(t)) <= 1 + 1e-9);
             assert_true(c.y >= -1 - 1e-9 && c.y <= h / 4 + 1 + 1e-9);
+            const double off[3] = {c.x - h / 8 * cos(t), c.y, c.z - h / 8 * sin(t)};
+            for (guint a = 0; a < 3; a++) {
+                lo[wc - 1][a] = fmin(lo[wc - 1][a], off[a]);
+                hi[wc - 1][a] = fmax(hi[wc - 1][a], off[a]);
+            }
             wp++;
         }
     }
     assert_int_equal(wp, 20);
     assert_int_equal(wc, 3);
+    /* the offsets drawn from all of [-1, 1]: x and z both sides of the
+     * column, y (about the column's one height) spread over more than 1 */
+    for (guint j = 0; j < 3; j++)
+        assert_true(lo[j][0] < -0.2 && hi[j][0] > 0.2 && lo[j][2] < -0.2 &&
+                    hi[j][2] > 0.2 && hi[j][1] - lo[j][1] > 1);
     assert_int_equal(scene_db_len(db, w0), 1 + 10); /* share 1 of 3 colours */
     assert_int_equal(scene_db_len(db, w1), 2 + 10);
     scene_db_free(db);

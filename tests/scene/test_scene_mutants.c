@@ -1,8 +1,9 @@
 /* test_scene_mutants.c — claims of sim/scene that mutation testing (make
  * mutate, docs/testing.md) found unchecked: an instance's projective
  * transform divides by w when flattened, seed 004's huge polygons are
- * centred about the screen centre, and the PPHIGS scene keeps the
- * database's colours (a white instance). */
+ * centred about the screen centre, and the PPHIGS scene and the
+ * isosurface, large-polygon, march and NURBS generators keep their
+ * colours (one white instance). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 
 #include "sim/scene/isosurface.h"
+#include "sim/scene/march.h"
 #include "sim/scene/nurbs.h"
 #include "sim/scene/pn_triangles.h"
 #include "sim/scene/pphigs_db.h"
@@ -125,6 +127,38 @@ static void test_pphigs_scene_white(void **state)
     const SceneInstance *in = scene_instance(s, 0);
     assert_true(in->color.r == 1 && in->color.g == 1 && in->color.b == 1);
     scene_free(s);
+}
+
+/* One white, untransformed instance of mesh 0 (the generators' own
+ * colours stand as made). */
+static void check_one_white(Scene *s)
+{
+    assert_non_null(s);
+    assert_int_equal(scene_n_instances(s), 1);
+    const SceneInstance *in = scene_instance(s, 0);
+    assert_true(in->color.r == 1 && in->color.g == 1 && in->color.b == 1);
+    assert_int_equal(in->mesh, 0);
+    Mat4 id = mat4_identity();
+    assert_memory_equal(&in->xform, &id, sizeof id);
+    scene_free(s);
+}
+
+static void test_generators_white(void **state)
+{
+    (void)state;
+    SceneIsoParams ip = scene_iso_defaults();
+    ip.grid = 6;
+    check_one_white(scene_iso_new(&ip));
+    SceneBigPolyParams bp = scene_bigpoly_defaults();
+    bp.count = 5;
+    check_one_white(scene_bigpoly_new(&bp));
+    SceneMarchParams mp = scene_march_defaults();
+    mp.iso.grid = 8;
+    mp.cell = 4;
+    check_one_white(scene_march_new(&mp));
+    SceneNurbsParams np = scene_nurbs_defaults();
+    np.tess = 2;
+    check_one_white(scene_nurbs_new(&np));
 }
 
 /* Both teapot layouts centre a full grid on the origin (teapots.h): the
@@ -375,6 +409,7 @@ int main(void)
         cmocka_unit_test(test_projective_instance),
         cmocka_unit_test(test_huge_polygons_centred),
         cmocka_unit_test(test_pphigs_scene_white),
+        cmocka_unit_test(test_generators_white),
         cmocka_unit_test(test_teapot_layouts_centred),
         cmocka_unit_test(test_traverse_defaults),
         cmocka_unit_test(test_instance_bbox_first_vertex),
