@@ -10,6 +10,7 @@
 #include <math.h>
 
 #include "sim/workload/argus/ag_stream.h"
+#include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
 
 /* n separate triangles, triangle i tagged tags[i]. */
@@ -98,6 +99,38 @@ static void test_cell_batches_contiguous(void **state)
     scene_mesh_free(m);
 }
 
+/* Fragment colours are clamped to [0, 1] before they are blended (or
+ * stored): a triangle of colour (1.5, -0.5, 0.5) over a (0.2, 0.4, 0.6)
+ * background at alpha 0.5 gives (0.6, 0.2, 0.55); drawn opaque, the
+ * frame holds (1, 0, 0.5). */
+static void test_fragment_colour_clamped(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(-3, -3, 0)),
+                     scene_mesh_add_vertex(m, vec3(3, -3, 0)),
+                     scene_mesh_add_vertex(m, vec3(0, 3, 0))};
+    scene_mesh_add_poly(m, v, 3, scene_color(1.5f, -0.5f, 0.5f), 0);
+    RastView view = rast_view_make(mat4_identity(), 16, 16);
+    view.cull_back = FALSE;
+    const RastColor bg = {0.2f, 0.4f, 0.6f};
+    const float blend[3] = {0.6f, 0.2f, 0.55f}, opaque[3] = {1, 0, 0.5f};
+    for (int mode = 0; mode < 2; mode++) {
+        AgFrame *f = wl_ag_frame_new(16, 16, 8, mode ? WL_AG_BLEND : WL_AG_OPAQUE,
+                                     0.5f, bg);
+        uint32_t tri = 0;
+        assert_true(wl_ag_draw(f, G_MAXUINT, &view, m, &tri, 1) > 0);
+        const float *px = &f->rgb[3 * (8 * 16 + 8)]; /* the centre */
+        const float *want = mode ? blend : opaque;
+        for (int k = 0; k < 3; k++)
+            if (fabsf(px[k] - want[k]) > 1e-6f)
+                fail_msg("mode %d channel %d: %f, expected %f", mode, k,
+                         px[k], want[k]);
+        wl_ag_frame_free(f);
+    }
+    scene_mesh_free(m);
+}
+
 static double metric_at(int frames, const char *name)
 {
     GError *err = NULL;
@@ -143,6 +176,7 @@ int main(void)
         cmocka_unit_test(test_every_triangle_once),
         cmocka_unit_test(test_pixels_mean_over_frames),
         cmocka_unit_test(test_cell_batches_contiguous),
+        cmocka_unit_test(test_fragment_colour_clamped),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
