@@ -189,6 +189,7 @@ static void test_pn_on_the_onyx(void **st)
 {
     (void)st;
     check_smp(2, "coarse");
+    check_smp(1, "coarse");
     check_smp(2, "fine");
     check_smp(0, "coarse");
 }
@@ -197,6 +198,7 @@ static void test_pn_on_pixel_planes_5(void **st)
 {
     (void)st;
     check_pp5(2, "coarse");
+    check_pp5(1, "coarse");
     check_pp5(1, "fine");
     check_pp5(0, "coarse");
 }
