@@ -230,8 +230,12 @@ static void add_pair(guint tile, void *ctx)
     g_array_append_vals(k->pairs, pr, 2);
 }
 
-static int cmp_pair(const void *a, const void *b)
+/* (tile, triangle) pairs by tile, then triangle (the tie-break is for
+ * clarity: the pairs of a tile arrive in triangle order and the sort is
+ * stable). */
+static gint cmp_pair(gconstpointer a, gconstpointer b, gpointer unused)
 {
+    (void)unused;
     const guint *x = a, *y = b;
     if (x[0] != y[0])
         return x[0] < y[0] ? -1 : 1;
@@ -248,8 +252,8 @@ static guint bucket_block(AgPipe *p, const AgBlock *k, BlockState *s)
     }
     guint np = bk.pairs->len / 2;
     guint *pr = (guint *)bk.pairs->data;
-    if (np > 1)
-        qsort(pr, np, 2 * sizeof(guint), cmp_pair);
+    if (np > 1) /* GLib's sort is documented stable, unlike qsort */
+        g_qsort_with_data(pr, (gint)np, 2 * sizeof(guint), cmp_pair, NULL);
     s->tris = g_new(uint32_t, np ? np : 1);
     s->tile_ids = g_new(guint, np ? np : 1);
     s->tile_start = g_new(guint, np + 1);
