@@ -325,6 +325,50 @@ static void test_application_time_from_costs(void **state)
     priced_free(&x);
 }
 
+/* Blended pixels cost rast_blend (not rast_pixel); with an infinite
+ * fill rate no pixel, blended or cleared, costs anything (seed 002's
+ * footnote): rasterisation is triangles and semaphores. */
+static void test_rasterisation_by_pixel_mode(void **state)
+{
+    (void)state;
+    Priced x = priced_run("processors: 5, contexts: 2, pixels: blend");
+    double bucketed = metric(x.r, "bucketed_triangles");
+    double syncs = metric(x.r, "tile_syncs"), px = metric(x.r, "pixels");
+    assert_true(px > 0 && syncs > 0);
+    assert_true(cpu_cost(&x, "rast_blend") != cpu_cost(&x, "rast_pixel"));
+    expect_ms(&x, "rasterisation_ms",
+              bucketed * cpu_cost(&x, "rast_triangle") +
+                  px * cpu_cost(&x, "rast_blend") +
+                  64 * 48 * cpu_cost(&x, "rast_clear") +
+                  syncs * cpu_cost(&x, "sema"),
+              " (blend)");
+    priced_free(&x);
+    char *finite = march_text("processors: 5, contexts: 2");
+    gchar **parts = g_strsplit(finite, "fill_rate: finite", 2);
+    assert_non_null(parts[1]);
+    char *text = g_strjoinv("fill_rate: infinite", parts);
+    g_strfreev(parts);
+    g_free(finite);
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m = mach_new_from_cfg(eng, cfg_get(root, "machine"),
+                                       "analytic", &err);
+    double want = metric(r, "bucketed_triangles") *
+                      mach_cost(m, "cpu", "rast_triangle") +
+                  metric(r, "tile_syncs") * mach_cost(m, "cpu", "sema");
+    double ms = metric(r, "rasterisation_ms");
+    assert_true(fabs(ms - want * 1e-9) <= 1e-9 * ms);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+    sim_result_free(r);
+    g_free(text);
+}
+
 /* A uniprocessor pays no lock and no semaphore (ag_pipe.h): its
  * application time is the work alone, and the geometry and rasteriser
  * times carry no synchronisation; the multiprocessor run of the same
@@ -677,6 +721,7 @@ int main(void)
         cmocka_unit_test(test_tile_clear_and_present),
         cmocka_unit_test(test_application_none),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_rasterisation_by_pixel_mode),
         cmocka_unit_test(test_memory_bytes_and_syncs),
         cmocka_unit_test(test_uniprocessor_needs_no_memory),
     };
