@@ -258,6 +258,42 @@ static void test_isect(void **st)
     wl_pf_graph_free(g);
 }
 
+/* ISECT prunes by bounding sphere conservatively: a sphere that just
+ * touches the segment (its side at the line's distance, its bottom at
+ * y1, its top at y0) is still searched.  The triangle (0,2,0) (3,2,0)
+ * (0,2,4) has the sphere centre (1.5, 2, 2), radius 2.5 exactly. */
+static void test_isect_touching_sphere(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint n = wl_pf_add_node(g, g->root, WL_PF_GEODE);
+    const Vec3 t[3] = {vec3(0, 2, 0), vec3(3, 2, 0), vec3(0, 2, 4)};
+    wl_pf_add_geoset(g, n, t, 1, 0);
+    wl_pf_update_bounds(g, g->root);
+    assert_true(wl_pf_node(g, n)->radius == 2.5);
+    const double q[][4] = {{1, 1, -0.5, -0.5}, /* bottom at y1 */
+                           {1, 1, 4.5, 9},     /* top at y0 */
+                           {4, 2, -9, 9}};     /* side at the line */
+    for (guint i = 0; i < G_N_ELEMENTS(q); i++) {
+        WlPfIsectStats s = {0};
+        wl_pf_isect(g, q[i][0], q[i][1], q[i][2], q[i][3], &s);
+        assert_int_equal(s.nodes_tested, 2);
+        assert_int_equal(s.tris_tested, 1);
+        assert_false(s.hit);
+    }
+    /* just past each: pruned at the root */
+    const double p[][4] = {{1, 1, -0.5, -0.51}, {1, 1, 4.51, 9},
+                           {4.01, 2, -9, 9}};
+    for (guint i = 0; i < G_N_ELEMENTS(p); i++) {
+        WlPfIsectStats s = {0};
+        wl_pf_isect(g, p[i][0], p[i][1], p[i][2], p[i][3], &s);
+        assert_int_equal(s.nodes_tested, 1);
+        assert_int_equal(s.tris_tested, 0);
+    }
+    wl_pf_graph_free(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -265,6 +301,7 @@ int main(void)
         cmocka_unit_test(test_lod_stress),
         cmocka_unit_test(test_switch),
         cmocka_unit_test(test_isect),
+        cmocka_unit_test(test_isect_touching_sphere),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
