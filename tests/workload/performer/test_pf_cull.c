@@ -294,6 +294,33 @@ static void test_isect_touching_sphere(void **st)
     wl_pf_graph_free(g);
 }
 
+/* CULL keeps a sphere that touches a frustum plane from outside (the
+ * test is conservative): the sphere of radius 2.5 centred 2.5 past the
+ * plane x = 10 is drawn, 0.01 further it is culled. */
+static void test_cull_touching_plane(void **st)
+{
+    (void)st;
+    for (int k = 0; k < 2; k++) {
+        WlPfGraph *g = wl_pf_graph_new();
+        wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+        guint d = wl_pf_add_node(g, g->root, WL_PF_DCS);
+        wl_pf_node(g, d)->xf = mat4_translate(k ? 11.01 : 11, 0, 0);
+        guint n = wl_pf_add_node(g, d, WL_PF_GEODE);
+        const Vec3 t[3] = {vec3(0, 2, 0), vec3(3, 2, 0), vec3(0, 2, 4)};
+        wl_pf_add_geoset(g, n, t, 1, 0);
+        wl_pf_update_bounds(g, g->root);
+        WlPfView v = box_view(1, TRUE);
+        GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+        WlPfCullStats cs = {0};
+        wl_pf_cull(g, &v, dl, &cs);
+        assert_int_equal(cs.nodes_culled, k ? 1 : 0);
+        assert_int_equal(dl->len, k ? 0 : 3);
+        assert_int_equal(cs.tris_culled, k ? 1 : 0);
+        g_array_free(dl, TRUE);
+        wl_pf_graph_free(g);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -302,6 +329,7 @@ int main(void)
         cmocka_unit_test(test_switch),
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_isect_touching_sphere),
+        cmocka_unit_test(test_cull_touching_plane),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
