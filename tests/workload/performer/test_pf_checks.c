@@ -390,6 +390,93 @@ static void test_run_summaries(void **st)
     g_array_unref(recs);
 }
 
+/* The run's metrics are the means of the frame log's columns over the
+ * frames after the first min(4, frames / 4); the frame rate is the
+ * inverse of the mean interval between those frames' swaps; the bytes
+ * to the pipe are 3 vertices of vertex_bytes a drawn triangle; the
+ * frame times are the intervals between swaps (the first from APP's
+ * start). */
+static void check_means(guint frames, guint skip)
+{
+    char *dir = g_dir_make_tmp("pf-means-XXXXXX", NULL);
+    char *log = g_build_filename(dir, "f.csv", NULL);
+    char *yaml = g_strdup_printf(
+        "machine: {model: sgi-onyx}\n"
+        "workload: {type: performer, frame_log: '%s', vertex_bytes: 24 B,\n"
+        "  stress: {gain: 5, low: 0.001, high: 0.002, max: 3},\n"
+        "  town: {blocks: 2, houses: 2, trees: 2, cars: 2}}\n",
+        log);
+    GError *err = NULL;
+    SimResult *r = run(yaml, (int)frames, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    guint n = 0;
+    gchar **rows = read_lines(log, &n);
+    assert_int_equal(n, 1 + frames);
+    double col[20] = {0}, swap0 = 0, swap1 = 0, bytes = 0, prev = 0;
+    for (guint f = 0; f < frames; f++) {
+        gchar **c = g_strsplit(rows[1 + f], ",", -1);
+        double v[20];
+        for (int k = 0; k < 20; k++)
+            v[k] = g_ascii_strtod(c[k], NULL);
+        bytes += 3 * 24 * v[11];
+        double ft = sim_time_to_ms(g_array_index(r->frame_times, SimTime, f));
+        assert_true(fabs(ft - (v[6] - (f ? prev : v[1]))) < 2e-6);
+        prev = v[6];
+        if (f >= skip)
+            for (int k = 0; k < 20; k++)
+                col[k] += v[k];
+        if (f == skip)
+            swap0 = v[6];
+        swap1 = v[6];
+        g_strfreev(c);
+    }
+    double c = frames - skip;
+    const struct {
+        const char *name;
+        int col;
+        double tol;
+    } m[] = {{"app_ms", 2, 1e-6},          {"cull_ms", 3, 1e-6},
+             {"draw_ms", 4, 1e-6},         {"latency_ms", 7, 1e-6},
+             {"stress_mean", 9, 1e-4},     {"lod_mean", 10, 1e-4},
+             {"tris_per_frame", 11, 1e-9}, {"state_changes_per_frame", 13, 1e-9},
+             {"state_changes_saved_per_frame", 14, 1e-9},
+             {"matrix_ops_per_frame", 15, 1e-9},
+             {"tris_culled_per_frame", 16, 1e-9},
+             {"draw_cpu_ms", 17, 1e-6},    {"draw_bus_ms", 18, 1e-6},
+             {"draw_pipe_ms", 19, 1e-6}};
+    for (guint i = 0; i < G_N_ELEMENTS(m); i++)
+        if (fabs(metric(r, m[i].name) - col[m[i].col] / c) > m[i].tol)
+            fail_msg("%u frames: %s %.9f, expected %.9f", frames, m[i].name,
+                     metric(r, m[i].name), col[m[i].col] / c);
+    assert_true(metric(r, "stress_mean") > 1); /* the band is low */
+    double iv = (swap1 - swap0) / (c - 1);
+    assert_true(fabs(metric(r, "frame_rate_hz") - 1000 / iv) < 1e-6);
+    assert_true(metric(r, "target_rate_hz") == 30);
+    assert_true(metric(r, "scs_flattened") == 2 * 2 * 2);
+    assert_true(metric(r, "matrix_ops_saved_per_frame") > 0);
+    assert_true(r->comm_bytes == bytes);
+    assert_int_equal(r->comm_messages, frames);
+    assert_true(fabs(r->elapsed * 1e-9 - swap1) < 1e-6);
+    g_strfreev(rows);
+    char *stages = g_build_filename(dir, "f_stages.csv", NULL);
+    g_remove(stages);
+    g_free(stages);
+    g_remove(log);
+    g_rmdir(dir);
+    g_free(log);
+    g_free(yaml);
+    g_free(dir);
+    sim_result_free(r);
+}
+
+static void test_metrics_are_log_means(void **st)
+{
+    (void)st;
+    check_means(12, 3); /* frames / 4 */
+    check_means(21, 4); /* at most 4 */
+}
+
 static void *parse(const char *w, GError **err)
 {
     char *y = g_strdup_printf("workload: {type: performer, %s}\n", w);
@@ -484,6 +571,7 @@ int main(void)
         cmocka_unit_test(test_parse_edges),
         cmocka_unit_test(test_mem_bytes),
         cmocka_unit_test(test_run_summaries),
+        cmocka_unit_test(test_metrics_are_log_means),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
