@@ -475,6 +475,18 @@ static void test_metrics_are_log_means(void **st)
     (void)st;
     check_means(12, 3); /* frames / 4 */
     check_means(21, 4); /* at most 4 */
+    /* no houses: no LOD is visited, the mean LOD is 0, nothing flattens */
+    GError *err = NULL;
+    SimResult *r = run("machine: {model: sgi-onyx}\n"
+                       "workload: {type: performer,\n"
+                       "  town: {blocks: 1, houses: 0, trees: 1, cars: 1}}\n",
+                       3, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    assert_true(metric(r, "lod_mean") == 0);
+    assert_true(metric(r, "scs_flattened") == 0);
+    assert_true(metric(r, "matrix_ops_saved_per_frame") == 0);
+    sim_result_free(r);
 }
 
 static void *parse(const char *w, GError **err)
