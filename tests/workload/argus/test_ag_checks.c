@@ -110,6 +110,26 @@ static void test_sizes_and_words(void **state)
     assert_int_equal(p->block_tris, 64);
     assert_int_equal(p->setup.voxels_per_batch, 4096);
     wl_argus_ops.free_params(p);
+    /* sizes are capped at 1 MiB; the words map to their enums */
+    p = parse("bytes: {vertex: 3 MiB, triangle: 1025 KiB}, application: "
+              "nurbs, order: cells, primitives: triangles, pixels: blend",
+              &err);
+    assert_non_null(p);
+    assert_int_equal(p->setup.vertex_bytes, 1 << 20);
+    assert_int_equal(p->setup.triangle_bytes, 1 << 20);
+    assert_int_equal(p->setup.app, WL_AG_APP_NURBS);
+    assert_int_equal(p->order, WL_AG_ORDER_CELLS);
+    assert_int_equal(p->prim, WL_AG_PRIM_TRIANGLES);
+    assert_int_equal(p->pixels, WL_AG_BLEND);
+    wl_argus_ops.free_params(p);
+    p = parse("bytes: {vertex: 1 MiB, triangle: 1048575 B}", &err);
+    assert_int_equal(p->setup.vertex_bytes, 1 << 20);
+    assert_int_equal(p->setup.triangle_bytes, (1 << 20) - 1);
+    assert_int_equal(p->setup.app, WL_AG_APP_NONE);
+    assert_int_equal(p->order, WL_AG_ORDER_FRAME);
+    assert_int_equal(p->prim, WL_AG_PRIM_STRIPS);
+    assert_int_equal(p->pixels, WL_AG_OPAQUE);
+    wl_argus_ops.free_params(p);
     rejected("bytes: 3",
              "t.yaml:1:32: found '3', expected a map {vertex, triangle} of sizes");
     rejected("bytes: {triangle: lots}",
