@@ -266,12 +266,72 @@ static void test_streams_carry_the_frame_loop(void **state)
     scene_mesh_free(m);
 }
 
+/* The pipeline's event chain timed by hand: one context issues two
+ * blocks of one quad (2 triangles, 6 vertices) to one geometry thread
+ * and one rasteriser over a single tile, each on its own processor;
+ * shared memory at 100 MB/s with 1 us latency.  Per block: the
+ * application pays 6 issue_vertex + a lock, its vertices (6 x 32 B)
+ * cross the memory, geometry pays a lock, 6 geom_vertex, 2
+ * geom_triangle and 2 geom_tile, the bucketed triangles (2 x 64 B)
+ * cross the memory, the rasteriser pays 2 rast_triangle (infinite fill
+ * rate).  Each thread works its blocks in order; the memory serves one
+ * transfer at a time. */
+static void test_event_chain_timing(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    r.st->contexts = 1;
+    r.st->barrier_parties = 1;
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE, WL_AG_OPAQUE, 1.0f,
+                          (RastColor){0, 0, 0});
+    block(&r, 0, 0, 2);
+    block(&r, 0, 2, 2);
+    GError *e = NULL;
+    AgCosts c;
+    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
+    AgSetup s = {.procs = 3, .contexts = 1, .geometry = 1, .rasterisers = 1,
+                 .fill_infinite = TRUE, .app = WL_AG_APP_NONE,
+                 .vertex_bytes = 32, .triangle_bytes = 64,
+                 .mem_bandwidth = 1e8, .mem_latency = SIM_US};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+    AgFrameStats fs;
+    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+        fail_msg("%s", e->message);
+    SimTime a = 6 * c.issue_vertex + c.lock;
+    SimTime g = c.lock + 6 * c.geom_vertex + 2 * c.geom_triangle +
+                2 * c.geom_tile;
+    SimTime rt = 2 * c.rast_triangle, L = SIM_US;
+    SimTime dv = sim_time_for_bytes(192, 1e8), dt = sim_time_for_bytes(128, 1e8);
+    assert_true(dv < a && dt < g); /* the memory is never the queue */
+    SimTime e0 = a + dv + L, e1 = 2 * a + dv + L;   /* at geometry */
+    SimTime g0 = e0 + g, g1 = MAX(e1, g0) + g;        /* geometry done */
+    SimTime r0 = g0 + dt + L, r1 = g1 + dt + L;       /* at the tile */
+    SimTime end = MAX(r1, r0 + rt) + rt;
+    assert_int_equal(fs.start, 0);
+    assert_int_equal(fs.end, end);
+    assert_int_equal(fs.app_busy, 2 * a);
+    assert_int_equal(fs.geom_busy, 2 * g);
+    assert_int_equal(fs.rast_busy, 2 * rt);
+    assert_int_equal(fs.shmem_bytes, 2 * (192 + 128));
+    assert_int_equal(fs.triangles, 4);
+    assert_int_equal(fs.verts_issued, 12);
+    assert_int_equal(fs.bucketed, 4);
+    assert_int_equal(fs.blocks, 2);
+    assert_int_equal(fs.syncs, 0);
+    assert_int_equal(fs.pixels, 2 * SIDE * SIDE);
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_barrier_blocks),
         cmocka_unit_test(test_wait_context_orders),
         cmocka_unit_test(test_streams_carry_the_frame_loop),
+        cmocka_unit_test(test_event_chain_timing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
