@@ -345,6 +345,56 @@ static void test_application_time_from_costs(void **state)
     priced_free(&x);
 }
 
+/* Nurbs: the application evaluates each distinct patch vertex of a
+ * batch once (nurbs_vertex), then issues as March does; strips issue a
+ * batch's vertices as the streams count them. */
+static void test_nurbs_application_time(void **state)
+{
+    (void)state;
+    char *text = g_strdup_printf(
+        "machine: {model: origin2000}\n"
+        "workload: {type: argus, processors: 1, uniprocessor: true,\n"
+        "  application: nurbs, primitives: strips, tile: 32, block: 16,\n"
+        "  width: 64, height: 48, check_image: false}\n%s",
+        nurbs_scene);
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    Scene *sc = scene_from_cfg(cfg_get(root, "scene"), &err);
+    SceneMesh *m = scene_flatten(sc);
+    AgStreams *st = wl_ag_streams_new(m, 1, WL_AG_ORDER_FRAME,
+                                      WL_AG_PRIM_STRIPS, 16, 0, &err);
+    assert_non_null(st);
+    uint64_t distinct = 0, verts = 0;
+    for (guint b = 0; b < st->batches->len; b++) {
+        const AgBatch *x = &g_array_index(st->batches, AgBatch, b);
+        distinct += x->distinct;
+        verts += x->verts;
+    }
+    assert_true(distinct > 0 && distinct < verts);
+    assert_true(metric(r, "vertices_issued") == verts);
+    assert_true(verts < 3 * metric(r, "triangles")); /* strips share */
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *mach =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    double want = distinct * mach_cost(mach, "cpu", "nurbs_vertex") +
+                  verts * mach_cost(mach, "cpu", "issue_vertex") +
+                  st->batches->len * mach_cost(mach, "cpu", "issue_batch");
+    double ms = metric(r, "application_ms");
+    if (fabs(ms - want * 1e-9) > 1e-9 * ms)
+        fail_msg("application %.9f ms, expected %.9f", ms, want * 1e-9);
+    mach_free(mach);
+    sim_engine_free(eng);
+    wl_ag_streams_free(st);
+    scene_mesh_free(m);
+    scene_free(sc);
+    cfg_free(root);
+    sim_result_free(r);
+    g_free(text);
+}
+
 /* Blended pixels cost rast_blend (not rast_pixel); with an infinite
  * fill rate no pixel, blended or cleared, costs anything (seed 002's
  * footnote): rasterisation is triangles and semaphores. */
@@ -742,6 +792,7 @@ int main(void)
         cmocka_unit_test(test_application_none),
         cmocka_unit_test(test_mem_bytes),
         cmocka_unit_test(test_rasterisation_by_pixel_mode),
+        cmocka_unit_test(test_nurbs_application_time),
         cmocka_unit_test(test_memory_bytes_and_syncs),
         cmocka_unit_test(test_uniprocessor_needs_no_memory),
     };
