@@ -131,6 +131,89 @@ static void test_fragment_colour_clamped(void **state)
     scene_mesh_free(m);
 }
 
+/* Bucketing on a 64 x 48 frame of 16-pixel tiles (4 x 3; identity view:
+ * screen x = (x + 1) 32, y = (1 - y) 24): a triangle lands in the tiles
+ * its screen box overlaps, clamped to the frame; one wholly off any side
+ * lands nowhere; one with a vertex behind the eye (w <= 0) in every
+ * tile.  Tiles are numbered row by row. */
+static void add_tri(SceneMesh *m, double x0, double y0, double x1, double y1,
+                    double z)
+{
+    uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(x0, y0, z)),
+                     scene_mesh_add_vertex(m, vec3(x1, y0, 1)),
+                     scene_mesh_add_vertex(m, vec3(x0, y1, 1))};
+    scene_mesh_add_poly(m, v, 3, scene_color(1, 1, 1), 0);
+}
+
+static void tile_list(guint tile, void *ctx)
+{
+    g_array_append_val((GArray *)ctx, tile);
+}
+
+static void test_bucket_boxes(void **state)
+{
+    (void)state;
+    AgFrame *f = wl_ag_frame_new(64, 48, 16, WL_AG_OPAQUE, 1,
+                                 (RastColor){0, 0, 0});
+    assert_int_equal(f->tiles_x, 4);
+    assert_int_equal(f->tiles_y, 3);
+    assert_int_equal(wl_ag_n_tiles(f), 12);
+    SceneMesh *m = scene_mesh_new();
+    add_tri(m, -0.45, 0.3, 0.05, 0.6, 1);  /* x 17.6..33.6, y 9.6..16.8 */
+    add_tri(m, -1.5, 1.4, -0.8, 0.9, 1);   /* off the top left corner */
+    add_tri(m, 1.1, 0, 1.5, 0.5, 1);       /* off the right */
+    add_tri(m, 0, -1.1, 0.5, -1.5, 1);     /* off the bottom */
+    add_tri(m, -1.9, 0, -1.2, 0.5, 1);     /* off the left */
+    add_tri(m, 0, 1.2, 0.5, 1.5, 1);       /* off the top */
+    add_tri(m, 0.9, -0.9, 1.3, -1.3, 1);   /* the bottom right corner */
+    add_tri(m, -0.2, 0.1, 0.2, 0.2, -1);   /* a vertex behind the eye */
+    add_tri(m, -1.5, 0.3, -1, 0.6, 1);     /* its right edge at x = 0 */
+    add_tri(m, 0.1, 1.5, 0.2, 1, 1);       /* its bottom edge at y = 0 */
+    /* clip w = z: the first vertex of the last triangle has w = -1 */
+    Mat4 vp = mat4_identity();
+    vp.m[3][2] = 1, vp.m[3][3] = 0;
+    const guint want[10][5] = {{4, 1, 2, 5, 6}, {1, 0}, {0}, {0}, {0}, {0},
+                               {1, 11}, {12}, {2, 0, 4}, {1, 2}};
+    for (guint t = 0; t < 10; t++) {
+        GArray *a = g_array_new(FALSE, FALSE, sizeof(guint));
+        guint n = wl_ag_bucket(f, &vp, m, t, tile_list, a);
+        assert_int_equal(n, a->len);
+        if (n != want[t][0])
+            fail_msg("triangle %u: %u tiles, expected %u", t, n, want[t][0]);
+        for (guint k = 0; t != 7 && k < n; k++)
+            assert_int_equal(g_array_index(a, guint, k), want[t][1 + k]);
+        for (guint k = 0; t == 7 && k < n; k++)
+            assert_int_equal(g_array_index(a, guint, k), k);
+        g_array_free(a, TRUE);
+    }
+    /* 70 x 50 pixels (5 x 4 tiles, the last ones partial): a triangle
+     * starting exactly at the right or bottom edge is off the frame */
+    AgFrame *g = wl_ag_frame_new(70, 50, 16, WL_AG_OPAQUE, 1,
+                                 (RastColor){0, 0, 0});
+    SceneMesh *e = scene_mesh_new();
+    add_tri(e, 1, 0, 1.5, 0.5, 1);    /* x from 70 */
+    add_tri(e, 0, -1, 0.5, -1.5, 1);  /* y from 50 */
+    add_tri(e, 0.95, -0.95, 1.5, -1.5, 1); /* the partial corner tile */
+    Mat4 id = mat4_identity();
+    for (guint t = 0; t < 3; t++) {
+        GArray *a = g_array_new(FALSE, FALSE, sizeof(guint));
+        assert_int_equal(wl_ag_bucket(g, &id, e, t, tile_list, a),
+                         t < 2 ? 0 : 1);
+        if (t == 2)
+            assert_int_equal(g_array_index(a, guint, 0), 19);
+        g_array_free(a, TRUE);
+    }
+    scene_mesh_free(e);
+    wl_ag_frame_free(g);
+    /* tiles go to rasterisers along rows and columns: (tx + ty) mod R */
+    assert_int_equal(wl_ag_tile_owner(f, 0, 3), 0);
+    assert_int_equal(wl_ag_tile_owner(f, 5, 3), 2);
+    assert_int_equal(wl_ag_tile_owner(f, 7, 3), 1);
+    assert_int_equal(wl_ag_tile_owner(f, 11, 5), 0);
+    scene_mesh_free(m);
+    wl_ag_frame_free(f);
+}
+
 static double metric_at(int frames, const char *name)
 {
     GError *err = NULL;
@@ -177,6 +260,7 @@ int main(void)
         cmocka_unit_test(test_pixels_mean_over_frames),
         cmocka_unit_test(test_cell_batches_contiguous),
         cmocka_unit_test(test_fragment_colour_clamped),
+        cmocka_unit_test(test_bucket_boxes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
