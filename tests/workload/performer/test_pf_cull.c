@@ -321,6 +321,73 @@ static void test_cull_touching_plane(void **st)
     }
 }
 
+/* pfFlatten applies each static transform to the geometry below it and
+ * turns the SCS into a group (flattened), unless a DCS or billboard is
+ * below it (their matrices change); CULL then counts the PUSH and POP
+ * each flattened group no longer emits. */
+static void test_flatten(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint r = g->root;
+    guint a = wl_pf_add_node(g, r, WL_PF_SCS);
+    wl_pf_node(g, a)->xf = mat4_translate(10, 0, 0);
+    guint b = wl_pf_add_node(g, a, WL_PF_SCS);
+    wl_pf_node(g, b)->xf = mat4_scale(2, 2, 2);
+    guint geo = wl_pf_add_node(g, b, WL_PF_GEODE);
+    const Vec3 t[3] = {vec3(1, 0, 0), vec3(0, 1, 0), vec3(0, 0, 1)};
+    guint gs = wl_pf_add_geoset(g, geo, t, 1, 0);
+    guint c = wl_pf_add_node(g, r, WL_PF_SCS); /* over a DCS: kept */
+    wl_pf_node(g, c)->xf = mat4_translate(0, 5, 0);
+    guint d = wl_pf_add_node(g, c, WL_PF_DCS);
+    guint dg = wl_pf_add_node(g, d, WL_PF_GEODE);
+    guint dgs = wl_pf_add_geoset(g, dg, t, 1, 0);
+    guint e = wl_pf_add_node(g, r, WL_PF_SCS); /* over a billboard: kept */
+    guint bb = wl_pf_add_node(g, e, WL_PF_BILLBOARD);
+    wl_pf_add_geoset(g, bb, t, 1, 0);
+    wl_pf_update_bounds(g, r);
+    assert_int_equal(wl_pf_count_kind(g, WL_PF_SCS), 4);
+    assert_int_equal(wl_pf_flatten(g), 2);
+    assert_int_equal(wl_pf_count_kind(g, WL_PF_SCS), 2);
+    assert_int_equal(wl_pf_count_kind(g, WL_PF_GROUP), 3);
+    for (guint k = 0; k < 2; k++) {
+        const WlPfNode *n = wl_pf_node(g, k ? b : a);
+        assert_int_equal(n->kind, WL_PF_GROUP);
+        assert_true(n->flattened);
+        assert_true(n->xf.m[0][3] == 0 && n->xf.m[0][0] == 1);
+    }
+    assert_int_equal(wl_pf_node(g, c)->kind, WL_PF_SCS);
+    assert_false(wl_pf_node(g, c)->flattened);
+    assert_true(wl_pf_node(g, c)->xf.m[1][3] == 5);
+    const WlPfGeoSet *f = wl_pf_geoset(g, gs);
+    const Vec3 want[3] = {vec3(12, 0, 0), vec3(10, 2, 0), vec3(10, 0, 2)};
+    for (int i = 0; i < 3; i++) {
+        Vec3 v = g_array_index(f->verts, Vec3, i);
+        assert_true(v.x == want[i].x && v.y == want[i].y && v.z == want[i].z);
+    }
+    /* the geoset's bound follows its vertices, and the nodes' theirs */
+    assert_true(f->center.x == 11 && f->center.y == 1 && f->center.z == 1);
+    assert_true(fabs(f->radius - sqrt(3)) < 1e-12);
+    assert_true(wl_pf_node(g, a)->center.x == 11);
+    /* the geometry under the DCS is untouched */
+    assert_true(g_array_index(wl_pf_geoset(g, dgs)->verts, Vec3, 0).x == 1);
+    /* CULL: two flattened groups save a PUSH and a POP each; the kept
+     * SCS still pushes */
+    WlPfView v = box_view(1, FALSE);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfCullStats cs = {0};
+    wl_pf_cull(g, &v, dl, &cs);
+    assert_int_equal(cs.matrix_saved, 4);
+    WlPfDrawStats ds = {0};
+    wl_pf_draw(g, dl, &ds);
+    /* SCS c and DCS d: 2 PUSH + 2 POP; SCS e: 2, and the billboard's 2 */
+    assert_int_equal(ds.matrix_ops, 4 + 2 + 2);
+    assert_int_equal(ds.geosets, 3);
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -330,6 +397,7 @@ int main(void)
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_isect_touching_sphere),
         cmocka_unit_test(test_cull_touching_plane),
+        cmocka_unit_test(test_flatten),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
