@@ -77,7 +77,7 @@ static gboolean read_bandwidth(const CfgNode *net, NetParams *out, GError **err)
     if (!mach_param_bandwidth(net, "bandwidth", FALSE, &out->bandwidth, err) ||
         !mach_param_bandwidth(net, "total_bandwidth", FALSE, &total, err))
         return FALSE;
-    if (out->bandwidth <= 0.0 && total > 0.0)
+    if (out->bandwidth <= 0.0) /* total 0 (absent) leaves it 0 */
         out->bandwidth = total / out->channels;
     if (out->bandwidth <= 0.0)
         out->bandwidth = out->level_bw[0];

@@ -79,6 +79,7 @@ static void test_every_unit(void **state)
     check_table(freqs, G_N_ELEMENTS(freqs), CFG_UNIT_FREQ, FALSE);
     check_table(sizes, G_N_ELEMENTS(sizes), CFG_UNIT_SIZE, TRUE);
     check_table(counts, G_N_ELEMENTS(counts), CFG_UNIT_COUNT, TRUE);
+    check_table(counts, G_N_ELEMENTS(counts), CFG_UNIT_COUNT, FALSE);
 }
 
 static void test_busy_clear(void **state)

@@ -2,7 +2,8 @@
  * mutate, docs/testing.md) found unchecked: the flow rung builds a
  * circuit without per-hop events (circuit.c), and an empty message
  * travels as one empty packet (packet.c), in the analytic time; the
- * parts of net_tracked_bytes; a control network slower than 1 B/s. */
+ * parts of net_tracked_bytes; a control network slower than 1 B/s; the
+ * packet rung's trace of holds and waits. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +11,7 @@
 
 #include "sim/net/collective.h"
 #include "sim/net/net.h"
+#include "sim/core/trace.h"
 
 static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
 {
@@ -29,21 +31,31 @@ static NetParams params(NetSwitching sw)
     return p;
 }
 
-/* One message src -> dst on a 5-cube; its events and arrival time. */
-static uint64_t lone(NetSwitching sw, NetFidelity f, uint32_t dst,
-                     uint64_t bytes, SimTime *at)
+/* `copies` messages 0 -> dst of `bytes` on a 5-cube, all sent at 0,
+ * under trace tr (or none); the run's events and the last arrival. */
+static uint64_t run_msgs(NetSwitching sw, NetFidelity f, uint32_t dst,
+                         uint64_t bytes, int copies, SimTrace *tr, SimTime *at)
 {
     NetTopo *t = net_hypercube_new(5);
     NetParams p = params(sw);
     SimEngine *eng = sim_engine_new(1);
+    sim_engine_set_trace(eng, tr);
     NetNet *net = net_new(eng, t, &p, f);
-    net_send(net, 0, dst, bytes, NULL, arrived, at);
+    for (int i = 0; i < copies; i++)
+        net_send(net, 0, dst, bytes, NULL, arrived, at);
     assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
     uint64_t ev = sim_engine_events(eng);
     net_free(net);
     sim_engine_free(eng);
     net_topo_free(t);
     return ev;
+}
+
+/* One message 0 -> dst on a 5-cube; its events and arrival time. */
+static uint64_t lone(NetSwitching sw, NetFidelity f, uint32_t dst,
+                     uint64_t bytes, SimTime *at)
+{
+    return run_msgs(sw, f, dst, bytes, 1, NULL, at);
 }
 
 /* Flow: the circuit is set up without an event a hop, so a 1-hop and a
@@ -178,6 +190,63 @@ static void test_control_network_slow(void **state)
     net_topo_free(t);
 }
 
+/* What a trace saw of the packet rung: holds (count, bytes) and waits. */
+typedef struct {
+    guint holds, waits;
+    uint64_t held_bytes;
+    SimTime waited;
+} Seen;
+
+static void seen_hold(SimTrace *tr, uint64_t link, const char *name,
+                      uint64_t bytes, SimTime start, SimTime end)
+{
+    (void)link;
+    (void)name;
+    Seen *s = tr->state;
+    assert_true(end > start);
+    s->holds++;
+    s->held_bytes += bytes;
+}
+
+static void seen_wait(SimTrace *tr, uint64_t link, const char *name,
+                      SimTime from, SimTime to)
+{
+    (void)link;
+    (void)name;
+    Seen *s = tr->state;
+    s->waits++;
+    s->waited += to - from;
+}
+
+static const SimTraceOps seen_ops = {.hold = seen_hold, .wait = seen_wait};
+
+/* Cut-through packets of 100 bytes: `copies` messages of 250 bytes (100,
+ * 100, 50) from 0 to dst, all sent at time 0. */
+static Seen traced(uint32_t dst, int copies)
+{
+    Seen s = {0};
+    SimTrace tr = {&seen_ops, &s};
+    SimTime at = 0;
+    run_msgs(NET_SW_CUT_THROUGH, NET_PACKET, dst, 250, copies, &tr, &at);
+    return s;
+}
+
+/* A lone message's head never waits (a free link is not a wait, even of
+ * zero length); each packet holds each link once.  A second message on
+ * the same one-hop path waits once, for the first's 250 bytes (250 us). */
+static void test_packet_trace_waits(void **state)
+{
+    (void)state;
+    Seen lone5 = traced(31, 1), two = traced(1, 2);
+    assert_int_equal(lone5.waits, 0);
+    assert_int_equal(lone5.holds, 3 * 5);
+    assert_int_equal(lone5.held_bytes, 250 * 5);
+    assert_int_equal(two.waits, 1);
+    assert_int_equal(two.waited, 250 * SIM_US);
+    assert_int_equal(two.holds, 2 * 3);
+    assert_int_equal(two.held_bytes, 2 * 250);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -186,6 +255,7 @@ int main(void)
         cmocka_unit_test(test_flow_many_links),
         cmocka_unit_test(test_tracked_bytes_parts),
         cmocka_unit_test(test_control_network_slow),
+        cmocka_unit_test(test_packet_trace_waits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
