@@ -29,7 +29,7 @@ static uint32_t cube_nodes(const void *st)
 static guint cube_max_hops(const void *st)
 {
     const NetCube *c = st;
-    return c->dims ? c->dims : 1;
+    return c->dims; /* 0 for one node: no route, no scratch */
 }
 
 static guint cube_route(const void *st, uint32_t src, uint32_t dst,

@@ -27,7 +27,7 @@ static uint32_t ring_nodes(const void *st)
 static guint ring_max_hops(const void *st)
 {
     uint32_t n = ((const NetRing *)st)->n;
-    return n > 1 ? n - 1 : 1;
+    return n - 1; /* net_ring_new asserts n >= 2 */
 }
 
 static guint ring_route(const void *st, uint32_t src, uint32_t dst,

@@ -191,6 +191,51 @@ static void test_cm200_routes(void **state)
     net_topo_free(t);
 }
 
+/* max_hops sizes the route scratch: it must bound every route (a walk
+ * from src to dst, but on the bus, one shared medium) and, for these
+ * topologies, equal the longest one. */
+static void expect_tight(NetTopo *t)
+{
+    gboolean walks = t->ops != &net_bus_ops;
+    uint32_t n = net_topo_nodes(t);
+    guint bound = t->ops->max_hops(t->state), longest = 0;
+    NetLinkId *r = g_new(NetLinkId, bound + 1);
+    for (uint32_t a = 0; a < n; a++)
+        for (uint32_t b = 0; b < n; b++) {
+            if (a == b)
+                continue;
+            guint h = t->ops->route(t->state, a, b, r);
+            if (h < 1 || h > bound || (walks && !is_walk(t, a, b, r, h)))
+                fail_msg("%s: route %u -> %u of %u hops", t->ops->name, a, b, h);
+            longest = MAX(longest, h);
+        }
+    if (longest != bound)
+        fail_msg("%s of %u nodes: max_hops %u, longest route %u",
+                 t->ops->name, n, bound, longest);
+    g_free(r);
+    net_topo_free(t);
+}
+
+static void test_max_hops_tight(void **state)
+{
+    (void)state;
+    for (unsigned d = 1; d <= 5; d++)
+        expect_tight(net_hypercube_new(d));
+    for (uint32_t n = 2; n <= 7; n++)
+        expect_tight(net_ring_new(n));
+    for (uint32_t n = 2; n <= 10; n++)
+        for (unsigned k = 2; k <= 3; k++)
+            expect_tight(net_fattree_new(n, k));
+    expect_tight(net_crossbar_new(3));
+    expect_tight(net_bus_new(3));
+    expect_tight(net_cm200_new(2, 16, 8, 8));
+    /* one node: no route, no scratch */
+    NetTopo *one = net_hypercube_new(0);
+    assert_int_equal(net_topo_nodes(one), 1);
+    assert_int_equal(one->ops->max_hops(one->state), 0);
+    net_topo_free(one);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -199,6 +244,7 @@ int main(void)
         cmocka_unit_test(test_torus_and_mesh),
         cmocka_unit_test(test_crossbar_bus),
         cmocka_unit_test(test_cm200_routes),
+        cmocka_unit_test(test_max_hops_tight),
     };
     return cmocka_run_group_tests_name("net_topology", tests, NULL, NULL);
 }
