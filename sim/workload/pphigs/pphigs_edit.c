@@ -101,8 +101,13 @@ gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
 {
     g_assert(d->algo != WL_PPHIGS_BY_STRUCTURE); /* no §3 editing */
     const SceneElem *old = dist_hel(d, sid, pos);
-    if (old->kind == e->kind && dist_is_dealt(d, old) != dist_is_dealt(d, e)) {
-        /* an execute changing between ordinary and primitive structure */
+    gboolean remode = old->kind == SCENE_EL_MATRIX && old->mode != e->mode;
+    if (old->kind == e->kind &&
+        (remode || dist_is_dealt(d, old) != dist_is_dealt(d, e))) {
+        /* an execute changing between ordinary and primitive structure,
+         * or a matrix changing mode: the attribute state after it
+         * changes (a concatenation needs the matrices before it on every
+         * GP drawing after it), so it goes as an insert and a delete */
         if (!wl_pphigs_dist_insert(d, sid, pos, e, err))
             return FALSE;
         wl_pphigs_dist_delete(d, sid, pos + 1);
@@ -114,11 +119,8 @@ gboolean wl_pphigs_dist_modify(WlPphigsDist *d, guint sid, guint pos,
     double dw = dist_is_dealt(d, old) ? wl_pphigs_dist_weight(d, &c) -
                                             wl_pphigs_dist_weight(d, old)
                                       : 0;
-    gboolean remode = old->kind == SCENE_EL_MATRIX && old->mode != c.mode;
     if (!scene_db_modify(d->host, sid, pos, &c, err))
         return FALSE;
-    if (remode) /* the attribute state after pos changed (§3.4 cache) */
-        wl_pphigs_attr_cache_edit(d, sid, pos, 0, TRUE);
     c = *dist_hel(d, sid, pos); /* e's vertices may have been the old host's */
     uint64_t m = *dist_mask_at(d, sid, pos);
     for (guint g = 0; g < d->ngp; g++)

@@ -542,12 +542,67 @@ static void test_attr_cache_scan(void **st)
     scene_db_free(db);
 }
 
+/* One structure: replace matrix M1, 2 triangles, matrix M2 (`mode`),
+ * 60 triangles: most GPs hold M1 only if M2 concatenates. */
+static SceneDb *two_matrix_db(SceneMatMode mode)
+{
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "two");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint i = 0; i < 64; i++) {
+        SceneElem e =
+            i == 0   ? scene_elem_matrix(mat4_translate(1, 0, 0),
+                                         SCENE_MAT_REPLACE)
+            : i == 3 ? scene_elem_matrix(mat4_scale(2, 3, 1), mode)
+                      : scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(scene_db_append(db, s, &e, NULL));
+    }
+    scene_db_post(db, s);
+    return db;
+}
+
+/* M2 changing mode (replace -> concatenate and back) changes the state
+ * after it, so the checkpoints after it must go: a triangle inserted
+ * after them then gets M1 and M2 (or M2 alone) as the host draws it,
+ * and the GPs hold what they hold without a cache. */
+static void test_attr_cache_mode_change(void **st)
+{
+    (void)st;
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(2, 0, 0), vec3(0, 2, 0)};
+    for (int from = 0; from < 2; from++) {
+        SceneMatMode m0 = from ? SCENE_MAT_CONCAT : SCENE_MAT_REPLACE;
+        SceneMatMode m1 = from ? SCENE_MAT_REPLACE : SCENE_MAT_CONCAT;
+        SceneDb *db = two_matrix_db(m0);
+        for (guint at = 20; at <= 60; at += 20) {
+            WlPphigsWeights wc = W;
+            wc.attr_cache = 2;
+            WlPphigsDist *a = wl_pphigs_dist_new(db, 16, WL_PPHIGS_COMPLEX, &W);
+            WlPphigsDist *b = wl_pphigs_dist_new(db, 16, WL_PPHIGS_COMPLEX, &wc);
+            SceneElem m = scene_elem_matrix(mat4_scale(2, 3, 1), m1);
+            SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+            for (int k = 0; k < 2; k++) {
+                WlPphigsDist *d = k ? b : a;
+                assert_true(wl_pphigs_dist_modify(d, 0, 3, &m, NULL));
+                wl_pphigs_dist_finish(d);
+                assert_true(wl_pphigs_dist_insert(d, 0, at, &e, NULL));
+                wl_pphigs_dist_finish(d);
+                assert_same_render(d);
+            }
+            assert_same_gps(a, b);
+            wl_pphigs_dist_free(a);
+            wl_pphigs_dist_free(b);
+        }
+        scene_db_free(db);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_simple_edits),
         cmocka_unit_test(test_complex_edits),
         cmocka_unit_test(test_by_structure),
+        cmocka_unit_test(test_attr_cache_mode_change),
         cmocka_unit_test(test_scan_bound),
         cmocka_unit_test(test_scan_bound_unequal),
         cmocka_unit_test(test_strip_split),

@@ -10,6 +10,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <math.h>
+
 #include "sim/scene/pphigs_db.h"
 #include "sim/workload/pphigs/pphigs_rebalance.h"
 
@@ -181,6 +183,50 @@ static void test_cap_reached_exactly(void **s)
     }
 }
 
+/* Detection worked out by hand on 4 GPs: imbalance (max - mean) / max;
+ * a frame counts over the threshold only strictly above it; the count
+ * resets on a frame at or under it; nothing moves before `frames`
+ * consecutive frames over it. */
+static void test_detection_counter(void **s)
+{
+    (void)s;
+    static const double even[NGP] = {1, 1, 1, 1}, half[NGP] = {2, 0, 1, 1},
+                        zero[NGP] = {0, 0, 0, 0}, third[NGP] = {3, 1, 2, 2};
+    assert_true(wl_pphigs_imbalance(even, NGP) == 0);
+    assert_true(wl_pphigs_imbalance(half, NGP) == 0.5); /* (2 - 1) / 2 */
+    assert_true(wl_pphigs_imbalance(zero, NGP) == 0);
+    assert_true(fabs(wl_pphigs_imbalance(third, NGP) - 1.0 / 3) < 1e-15);
+    Fix x;
+    fix_new(&x, SCENE_PPHIGS_STATION, 2);
+    WlPphigsRebalParams p = P;
+    p.threshold = 0.5;
+    p.frames = 2;
+    WlPphigsRebal *rb = wl_pphigs_rebal_new(&p);
+    static const double *const seq[] = {half, third, half, even};
+    static const guint over[] = {0, 0, 0, 0};
+    WlPphigsRebalStep st;
+    for (guint f = 0; f < 4; f++) {
+        wl_pphigs_rebal_frame(rb, x.d, x.vp, &C, seq[f], &st);
+        assert_int_equal(st.over, over[f]);
+        assert_int_equal(st.cause, WL_PPHIGS_REBAL_NONE);
+        assert_int_equal(st.moves, 0);
+    }
+    assert_true(st.imbalance == 0);
+    wl_pphigs_rebal_free(rb);
+    p.threshold = 0.49;
+    rb = wl_pphigs_rebal_new(&p);
+    static const double *const seq2[] = {half, half, third, half};
+    static const guint over2[] = {1, 2, 0, 1};
+    for (guint f = 0; f < 4; f++) {
+        wl_pphigs_rebal_frame(rb, x.d, x.vp, &C, seq2[f], &st);
+        assert_int_equal(st.over, over2[f]);
+        assert_true(st.imbalance == wl_pphigs_imbalance(seq2[f], NGP));
+        assert_int_equal(st.cause == WL_PPHIGS_REBAL_NONE, f != 1);
+    }
+    wl_pphigs_rebal_free(rb);
+    fix_free(&x);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -188,6 +234,7 @@ int main(void)
         cmocka_unit_test(test_imperfect_converges),
         cmocka_unit_test(test_invalidated_converges),
         cmocka_unit_test(test_cap_reached_exactly),
+        cmocka_unit_test(test_detection_counter),
     };
     return cmocka_run_group_tests_name("pphigs_rebalance", tests, NULL, NULL);
 }
