@@ -11,6 +11,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
+#include <math.h>
+
 #include "sim/workload/pphigs/pphigs_pixels.h"
 
 #define N 8
@@ -193,12 +195,52 @@ static void test_depth_key(void **st)
     g_array_unref(c);
 }
 
+/* A triangle of twice-area 0.5625 (under one pixel) still draws the
+ * centre it covers, in either winding. */
+static void test_tiny_triangle(void **st)
+{
+    (void)st;
+    static const double t[3][2] = {{0.25, 0.25}, {1, 0.25}, {0.25, 1}};
+    static const double u[3][2] = {{0.25, 0.25}, {0.25, 1}, {1, 0.25}};
+    Poly p;
+    poly(&p, t, 3);
+    expect_pixels(&p, PX(0, 0));
+    poly(&p, u, 3);
+    expect_pixels(&p, PX(0, 0));
+}
+
+/* Depth follows the plane through the vertices: a rectangle over the
+ * whole width with z = x (NDC), so z = X / 4 - 1 at a pixel centre X:
+ * the key's depth is llrint((1 - z) / 2 (2^32 - 1)), largest on the
+ * left (nearest). */
+static void test_sloped_depth(void **st)
+{
+    (void)st;
+    Poly p;
+    rect(&p, 0, 0, 8, 1, TRUE);
+    for (int i = 0; i < 4; i++)
+        p.v[i].z = p.v[i].x;
+    GArray *c = cmds(&p, 1);
+    WlPphigsRegion *r = wl_pphigs_region_new(0, 0, N, N, 0);
+    assert_int_equal(wl_pphigs_region_draw(r, &g_array_index(c, WlPphigsCmd, 0)),
+                     8);
+    for (int x = 0; x < N; x++) {
+        double z = (x + 0.5) / 4 - 1;
+        uint64_t depth = (uint64_t)llrint((1 - z) / 2 * (double)UINT32_MAX);
+        assert_true(r->key[x] == depth << 31);
+    }
+    wl_pphigs_region_free(r);
+    g_array_unref(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fill_rule),
         cmocka_unit_test(test_box_edges),
         cmocka_unit_test(test_depth_key),
+        cmocka_unit_test(test_tiny_triangle),
+        cmocka_unit_test(test_sloped_depth),
     };
     return cmocka_run_group_tests_name("pphigs_raster", tests, NULL, NULL);
 }
