@@ -1,0 +1,141 @@
+/* test_wl_registry.c — the workload table and the helpers every workload
+ * shares (sim/workload/registry.c): lookup by name, run.until, the frame
+ * log's path and write, which frames go out as images and where. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib/gstdio.h>
+#include <string.h>
+
+#include "sim/workload/workload.h"
+
+extern const WlOps *const wl_all[];
+
+static void test_find(void **st)
+{
+    (void)st;
+    guint n = 0;
+    for (int i = 0; wl_all[i]; i++, n++)
+        assert_ptr_equal(wl_find(wl_all[i]->name), wl_all[i]);
+    assert_true(n >= 7);
+    assert_string_equal(wl_all[0]->name, "pphigs");
+    assert_ptr_equal(wl_find("pphigs"), wl_all[0]);
+    assert_null(wl_find("nosuch"));
+    assert_null(wl_find(""));
+}
+
+static void test_until(void **st)
+{
+    (void)st;
+    CfgNode *root = cfg_load_string("run: {until: 5 ms}\n", "u.yaml", NULL);
+    WlContext ctx = {.root = root};
+    assert_true(wl_until(&ctx) == 5 * SIM_MS);
+    cfg_free(root);
+    root = cfg_load_string("run: {frames: 2}\n", "u.yaml", NULL);
+    ctx.root = root;
+    assert_true(wl_until(&ctx) == SIM_TIME_MAX);
+    cfg_free(root);
+}
+
+static void test_frame_log(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("wlreg-XXXXXX", NULL);
+    assert_non_null(dir);
+    char *sub = g_build_filename(dir, "out", NULL);
+    WlContext ctx = {.out_dir = NULL};
+    char *p = wl_frame_log_path(&ctx, "given.csv", "x.csv");
+    assert_string_equal(p, "given.csv");
+    g_free(p);
+    assert_null(wl_frame_log_path(&ctx, NULL, "x.csv"));
+    ctx.out_dir = sub;
+    p = wl_frame_log_path(&ctx, NULL, "x.csv");
+    char *want = g_build_filename(sub, "x.csv", NULL);
+    assert_string_equal(p, want);
+    assert_true(g_file_test(sub, G_FILE_TEST_IS_DIR));
+    GString *text = g_string_new("a,b\n1,2\n");
+    assert_true(wl_frame_log_write(p, text, "wl", NULL));
+    char *back = NULL;
+    assert_true(g_file_get_contents(p, &back, NULL, NULL));
+    assert_string_equal(back, "a,b\n1,2\n");
+    g_free(back);
+    /* a directory under a file cannot be made */
+    char *bad = g_build_filename(p, "deeper", NULL);
+    ctx.out_dir = bad;
+    assert_null(wl_frame_log_path(&ctx, NULL, "x.csv"));
+    char *badfile = g_build_filename(bad, "f.csv", NULL);
+    GError *e = NULL;
+    assert_false(wl_frame_log_write(badfile, text, "wl", &e));
+    assert_non_null(strstr(e->message, "wl: found an unwritable frame_log"));
+    g_clear_error(&e);
+    g_string_free(text, TRUE);
+    g_remove(p);
+    g_rmdir(sub);
+    g_rmdir(dir);
+    g_free(badfile);
+    g_free(bad);
+    g_free(want);
+    g_free(p);
+    g_free(sub);
+    g_free(dir);
+}
+
+static void test_frames_out(void **st)
+{
+    (void)st;
+    assert_false(wl_wants_frame(NULL, 0));
+    WlContext ctx = {.frames = 4};
+    assert_false(wl_wants_frame(&ctx, 3)); /* no out_dir */
+    char *dir = g_dir_make_tmp("wlreg-XXXXXX", NULL);
+    ctx.out_dir = dir;
+    assert_true(wl_wants_frame(&ctx, 3)); /* the last frame only */
+    assert_false(wl_wants_frame(&ctx, 2));
+    assert_false(wl_wants_frame(&ctx, 4));
+    RastImage *img = rast_image_new(2, 2);
+    char *png = g_build_filename(dir, "frame.png", NULL);
+    assert_true(wl_emit_frame(&ctx, 2, img, NULL)); /* not wanted: nothing */
+    assert_false(g_file_test(png, G_FILE_TEST_EXISTS));
+    assert_true(wl_emit_frame(&ctx, 3, img, NULL));
+    assert_true(g_file_test(png, G_FILE_TEST_EXISTS));
+    g_remove(png);
+    ctx.all_frames = TRUE;
+    assert_true(wl_wants_frame(&ctx, 0));
+    char *png1 = g_build_filename(dir, "frame-0001.png", NULL);
+    assert_true(wl_emit_frame(&ctx, 1, img, NULL));
+    assert_true(g_file_test(png1, G_FILE_TEST_EXISTS));
+    g_remove(png1);
+    /* an out_dir under a regular file: refused with an error */
+    char *file = g_build_filename(dir, "plain", NULL);
+    assert_true(g_file_set_contents(file, "x", 1, NULL));
+    char *under = g_build_filename(file, "d", NULL);
+    ctx.out_dir = under;
+    GError *e = NULL;
+    assert_false(wl_emit_frame(&ctx, 1, img, &e));
+    assert_non_null(e);
+    assert_non_null(strstr(e->message, "cannot create"));
+    g_clear_error(&e);
+    g_remove(file);
+    g_rmdir(dir);
+    /* no trace: marking a frame is a no-op */
+    SimEngine *eng = sim_engine_new(1);
+    wl_mark_frame(eng, 0, SIM_MS);
+    sim_engine_free(eng);
+    rast_image_free(img);
+    g_free(under);
+    g_free(file);
+    g_free(png1);
+    g_free(png);
+    g_free(dir);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_find),
+        cmocka_unit_test(test_until),
+        cmocka_unit_test(test_frame_log),
+        cmocka_unit_test(test_frames_out),
+    };
+    return cmocka_run_group_tests_name("wl_registry", tests, NULL, NULL);
+}
