@@ -122,9 +122,45 @@ static void test_zbuf_exc_costs_more(void **state)
     scene_free(sc);
 }
 
+/* The serial time is the counted work of one processor holding every
+ * polygon, priced one cost a count: polygons, spans, sorted-insertion
+ * steps, pixels, the scanline loop (N of them) and depth comparisons;
+ * insert_ms is the insertion part alone.  A cost so large the product
+ * would wrap saturates. */
+static void test_serial_ms(void **state)
+{
+    (void)state;
+    Scene *sc = two_teapots();
+    WlPmSetup s = {.procs = 1, .resolution = N, .cull_back = TRUE};
+    SceneMesh *flat = scene_flatten(sc);
+    SceneCamera cam = scene_camera_at(sc, 0);
+    RastView v = rast_view_for_camera(&cam, N, N);
+    v.cull_back = TRUE;
+    WlPmCounts k;
+    WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
+    assert_true(k.polygons > 0 && k.rc.spans > 0 && k.insert_steps > 0 &&
+                k.rc.pixels > 0 && k.rc.zcompares > 0);
+    double want = sim_time_to_ms(
+        k.polygons * costs.polygon + k.rc.spans * costs.span +
+        k.insert_steps * costs.insert_step + k.rc.pixels * costs.pixel +
+        N * costs.scanline + k.rc.zcompares * costs.zcompare);
+    double ins = -1;
+    assert_true(wl_pm_serial_ms(sc, &s, &costs, &ins) == want);
+    assert_true(ins == sim_time_to_ms(k.insert_steps * costs.insert_step));
+    assert_true(wl_pm_serial_ms(sc, &s, &costs, NULL) == want);
+    WlPmCosts huge = costs;
+    huge.pixel = SIM_TIME_MAX / 2;
+    assert_true(wl_pm_serial_ms(sc, &s, &huge, NULL) ==
+                sim_time_to_ms(SIM_TIME_MAX));
+    wl_pm_wpa_free(w);
+    scene_mesh_free(flat);
+    scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_serial_ms),
         cmocka_unit_test(test_images_match_serial),
         cmocka_unit_test(test_zbuf_exc_costs_more),
     };
