@@ -27,14 +27,29 @@ typedef struct {
     uint64_t count;
 } SimOp;
 
+/* A further term of work whose resources overlap (the work lasts as
+ * long as its longest term: sim/machine/overlap.h): named counts priced
+ * on processor `node`'s kind, or (bus) `bytes` streamed from the worker
+ * to `node` through the shared memory, priced as that transfer's time. */
+typedef struct {
+    uint32_t node;
+    gboolean bus;
+    uint64_t bytes;
+    const SimOp *ops;
+    unsigned n_ops;
+} SimOpTerm;
+
 typedef struct {
     /* `node` was given `cost` in `phase`, to end at `end`; `handled`: a
      * handler runs when it completes.  ops[0 .. n_ops-1]: the named counts
-     * that cost is priced from (n_ops 0: a time only).  Returns the
-     * action's id. */
+     * that cost is priced from (n_ops 0: a time only); terms[0 ..
+     * n_terms-1]: further terms on overlapping resources (cost is the
+     * longest of all).  Returns the action's id. */
     uint64_t (*compute)(SimRecorder *r, SimTime now, uint32_t node,
                         unsigned phase, SimTime cost, SimTime end,
-                        const SimOp *ops, unsigned n_ops, gboolean handled);
+                        const SimOp *ops, unsigned n_ops,
+                        const SimOpTerm *terms, unsigned n_terms,
+                        gboolean handled);
     /* A message of `bytes` from src to dst was sent. */
     uint64_t (*send)(SimRecorder *r, SimTime now, uint32_t src, uint32_t dst,
                      uint64_t bytes, gboolean handled);

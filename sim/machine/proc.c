@@ -57,10 +57,12 @@ static void fail_overflow(SimEngine *eng, MachProc *p, const char *what)
                                      what, mach_proc_name(p)));
 }
 
-/* Submits `cost`; ops (n_ops of them, or none) go to a recorder. */
-static gboolean submit(MachProc *p, SimTime cost, const MachOp *ops,
-                       guint n_ops, unsigned phase, SimHandler done, void *ctx,
-                       void *arg)
+/* Submits `cost`; ops (n_ops of them, or none) and terms go to a
+ * recorder. */
+static gboolean submit_terms(MachProc *p, SimTime cost, const MachOp *ops,
+                             guint n_ops, const SimOpTerm *terms, guint n_terms,
+                             unsigned phase, SimHandler done, void *ctx,
+                             void *arg)
 {
     SimEngine *eng = p->eng;
     g_assert(phase < sim_engine_phase_count(eng));
@@ -81,12 +83,29 @@ static gboolean submit(MachProc *p, SimTime cost, const MachOp *ops,
     trace_span(p, phase, start, end);
     SimRecorder *rec = sim_engine_recorder(eng);
     if (rec) /* `pgsim run --record`: the trace hears of it (record.h) */
-        return sim_record_schedule_done(eng, rec,
-                                        rec->ops->compute(rec, now, p->id,
-                                                          phase, cost, end, ops,
-                                                          n_ops, done != NULL),
-                                        end, done, ctx, arg);
+        return sim_record_schedule_done(
+            eng, rec,
+            rec->ops->compute(rec, now, p->id, phase, cost, end, ops, n_ops,
+                              terms, n_terms, done != NULL),
+            end, done, ctx, arg);
     return done ? sim_schedule_at(eng, end, done, ctx, arg) : TRUE;
+}
+
+static gboolean submit(MachProc *p, SimTime cost, const MachOp *ops,
+                       guint n_ops, unsigned phase, SimHandler done, void *ctx,
+                       void *arg)
+{
+    return submit_terms(p, cost, ops, n_ops, NULL, 0, phase, done, ctx, arg);
+}
+
+gboolean mach_proc_compute_terms(MachProc *p, SimTime cost, const MachOp *ops,
+                                 guint n_ops, const SimOpTerm *terms,
+                                 guint n_terms, unsigned phase, SimHandler done,
+                                 void *ctx, void *arg)
+{
+    g_assert(n_ops > 0);
+    return submit_terms(p, cost, ops, n_ops, terms, n_terms, phase, done, ctx,
+                        arg);
 }
 
 gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,

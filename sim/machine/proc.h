@@ -81,6 +81,14 @@ SimTime mach_proc_ops_cost(const MachProc *p, const MachOps *o);
 gboolean mach_proc_compute_list(MachProc *p, const MachOps *o, unsigned phase,
                                 SimHandler done, void *ctx, void *arg);
 
+/* For sim/machine/overlap.c: work of `cost` (the longest of its terms,
+ * priced by the caller) that a recording writes as the worker's counts
+ * ops (n_ops >= 1) and the further terms (a `c` line with `|` terms). */
+gboolean mach_proc_compute_terms(MachProc *p, SimTime cost, const MachOp *ops,
+                                 guint n_ops, const SimOpTerm *terms,
+                                 guint n_terms, unsigned phase, SimHandler done,
+                                 void *ctx, void *arg);
+
 /* The time at which all work submitted so far completes (<= now: idle). */
 SimTime mach_proc_free_at(const MachProc *p);
 gboolean mach_proc_idle(const MachProc *p);

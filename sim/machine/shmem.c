@@ -31,12 +31,21 @@ gboolean mach_shmem_init(MachShmem *sh, const MachMachine *m, GError **err)
     return TRUE;
 }
 
+static SimTime occupancy(const MachShmem *sh, uint64_t bytes)
+{
+    return sh->bandwidth > 0 ? sim_time_for_bytes((double)bytes, sh->bandwidth)
+                             : 0;
+}
+
+SimTime mach_shmem_time(const MachShmem *sh, uint64_t bytes)
+{
+    return sim_time_add_sat(occupancy(sh, bytes), sh->latency);
+}
+
 SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes)
 {
     SimTime start = MAX(now, sh->free_at);
-    SimTime occ = sh->bandwidth > 0
-                      ? sim_time_for_bytes((double)bytes, sh->bandwidth)
-                      : 0;
+    SimTime occ = occupancy(sh, bytes);
     sh->free_at = start + occ;
     sh->busy += occ;
     sh->bytes += bytes;
@@ -54,8 +63,8 @@ gboolean mach_shmem_send(MachShmem *sh, SimEngine *eng, uint32_t src,
     SimRecorder *rec = sim_engine_recorder(eng);
     if (rec)
         return sim_record_schedule_done(
-            eng, rec, rec->ops->transfer(rec, now, src, dst, bytes, t), t,
-            done, ctx, arg);
+            eng, rec, rec->ops->transfer(rec, now, src, dst, bytes, t), t, done,
+            ctx, arg);
     return done ? sim_schedule_at(eng, t, done, ctx, arg) : TRUE;
 }
 

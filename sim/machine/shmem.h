@@ -20,7 +20,7 @@
 
 #include "sim/machine/machine.h"
 
-typedef struct {
+typedef struct MachShmem {
     double bandwidth; /* bytes per second */
     SimTime latency;
     SimTime free_at;
@@ -34,6 +34,9 @@ typedef struct {
 gboolean mach_shmem_init(MachShmem *sh, const MachMachine *m, GError **err);
 /* A memory of `bandwidth` bytes/s and `latency` (tests, uniprocessors). */
 void mach_shmem_init_with(MachShmem *sh, double bandwidth, SimTime latency);
+/* The time a transfer of `bytes` takes on an idle memory: its occupancy
+ * (bytes / bandwidth) plus the latency, saturating. */
+SimTime mach_shmem_time(const MachShmem *sh, uint64_t bytes);
 /* Books a transfer of `bytes` requested at `now`; returns its completion
  * time.  bandwidth <= 0 means infinite (only the latency). */
 SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes);

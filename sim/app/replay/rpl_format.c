@@ -1,4 +1,4 @@
-/* rpl_format.c — reading and writing version-1 and -2 traces (rpl_format.h).
+/* rpl_format.c — reading and writing version-1 to -3 traces (rpl_format.h).
  *
  * The reader is a loop over lines: header keywords until the first group
  * or action, then body items.  State: the header, the number of actions
@@ -14,11 +14,11 @@
 struct RplReader {
     RplLines *l;
     RplHeader h;
-    uint64_t actions;   /* actions read so far */
-    gboolean in_group;  /* a group line has been read */
-    GHashTable *await;  /* uint64 id -> itself: `+` without `on` yet */
-    gboolean pending;   /* the current line is a body line not yet used */
-    uint64_t version;   /* 1 or 2 (b, v and swap) */
+    uint64_t actions;         /* actions read so far */
+    gboolean in_group;        /* a group line has been read */
+    GHashTable *await;        /* uint64 id -> itself: `+` without `on` yet */
+    gboolean pending;         /* the current line is a body line not yet used */
+    uint64_t version;         /* 1, 2 (b, v and swap) or 3 (`|` terms) */
     gboolean framed, swapped; /* a `frame` / `swap` flag was read */
 };
 
@@ -62,14 +62,13 @@ static gboolean header_kind(RplReader *r, GError **err)
                     "kind NAME FIRST COUNT CLOCK_HZ", err);
     if (!rpl_lines_u64(r->l, 2, G_MAXUINT32, &first, "a first processor id",
                        err) ||
-        !rpl_lines_u64(r->l, 3, G_MAXUINT32, &count, "a processor count",
-                       err))
+        !rpl_lines_u64(r->l, 3, G_MAXUINT32, &count, "a processor count", err))
         return FALSE;
     hz = g_ascii_strtod(w4, &end);
     if (*end || end == w4 || !(hz >= 0) || hz > 1e15)
         return fail(r, 4, "a clock in Hz (0: none)", err);
-    RplKind k = {g_strdup(rpl_lines_word(r->l, 1)), (guint)first,
-                 (guint)count, hz};
+    RplKind k = {g_strdup(rpl_lines_word(r->l, 1)), (guint)first, (guint)count,
+                 hz};
     g_array_append_val(r->h.kinds, k);
     return TRUE;
 }
@@ -110,8 +109,7 @@ static gboolean header_line(RplReader *r, gboolean *body, GError **err)
         g_free(r->h.fidelity), r->h.fidelity = g_strdup(a);
     else if (!strcmp(k, "phase"))
         g_ptr_array_add(r->h.phases, g_strdup(a));
-    else if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "a processor count",
-                            err))
+    else if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "a processor count", err))
         return FALSE;
     else if (!procs_fit(r, v, err))
         return FALSE;
@@ -129,11 +127,11 @@ static gboolean read_header(RplReader *r, GError **err)
     if (n == 0 || strcmp(rpl_lines_word(r->l, 0), "pgsim-trace"))
         return fail(r, 0, "'pgsim-trace 1' on the first line", err);
     if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v,
-                       "trace format version 1 or 2", err))
+                       "trace format version 1, 2 or 3", err))
         return FALSE;
     if (v < 1 || v > RPL_VERSION || n != 2)
         return fail(r, v < 1 || v > RPL_VERSION ? 1 : 2,
-                    "trace format version 1 or 2 alone", err);
+                    "trace format version 1, 2 or 3 alone", err);
     r->version = v;
     for (;;) {
         gboolean body;
@@ -255,25 +253,81 @@ static gboolean phase_word(RplReader *r, int i, unsigned *out, GError **err)
     return ok;
 }
 
-/* op=count words of a `c` line, from word 3 up to the flags. */
-static gboolean ops(RplReader *r, RplItem *it, GError **err)
+/* OP=COUNT words from word *i on, at most max of them, into the arrays;
+ * *n gets how many; stops at the first word without '='. */
+static gboolean op_words(RplReader *r, int *i, guint max, const char **op,
+                         uint64_t *count, int *col, guint *n, GError **err)
 {
-    int i = 3, n = rpl_lines_count(r->l);
-    for (; i < n; i++) {
-        char *w = (char *)rpl_lines_word(r->l, i), *eq = strchr(w, '=');
+    int end = rpl_lines_count(r->l);
+    for (*n = 0; *i < end; (*i)++) {
+        char *w = (char *)rpl_lines_word(r->l, *i), *eq = strchr(w, '=');
         if (!eq)
             break;
         guint64 v;
-        if (eq == w || it->n_ops == RPL_MAX_OPS ||
+        if (eq == w || *n == max ||
             !g_ascii_string_to_unsigned(eq + 1, 10, 0, G_MAXUINT64, &v, NULL))
-            return fail(r, i, "OP=COUNT (at most 30 a line)", err);
+            return fail(r, *i,
+                        max == RPL_MAX_OPS ? "OP=COUNT (at most 30 a line)"
+                                           : "OP=COUNT (at most 8 a term)",
+                        err);
         *eq = 0; /* the line buffer is ours until the next line */
-        it->op_col[it->n_ops] = rpl_lines_col(r->l, i);
-        it->op[it->n_ops] = w;
-        it->count[it->n_ops++] = v;
+        col[*n] = rpl_lines_col(r->l, *i);
+        op[*n] = w;
+        count[(*n)++] = v;
     }
+    return TRUE;
+}
+
+/* One `|` term from word *i on (version 3): `@Q OP=COUNT ...` or
+ * `b Q BYTES`. */
+static gboolean term(RplReader *r, int *i, RplTerm *t, GError **err)
+{
+    const char *w = rpl_lines_word(r->l, *i);
+    t->col = rpl_lines_col(r->l, *i);
+    if (w && !strcmp(w, "b")) {
+        t->bus = TRUE;
+        *i += 3;
+        return proc_word(r, *i - 2, &t->proc, err) &&
+               rpl_lines_u64(r->l, *i - 1, G_MAXUINT64, &t->bytes,
+                             "a byte count", err);
+    }
+    if (!w || w[0] != '@' || !w[1])
+        return fail(r, *i, "'@PROC OP=COUNT ...' or 'b PROC BYTES' after '|'",
+                    err);
+    char *end;
+    guint64 q = g_ascii_strtoull(w + 1, &end, 10);
+    if (*end || q >= r->h.procs)
+        return fail(r, *i, "'@PROC' with a processor id below procs", err);
+    t->proc = (uint32_t)q;
+    (*i)++;
+    if (!op_words(r, i, RPL_TERM_OPS, t->op, t->count, t->op_col, &t->n_ops,
+                  err))
+        return FALSE;
+    return t->n_ops > 0 || fail(r, *i, "OP=COUNT", err);
+}
+
+/* op=count words of a `c` line from word 3, then `|` terms, up to the
+ * flags. */
+static gboolean ops(RplReader *r, RplItem *it, GError **err)
+{
+    int i = 3;
+    if (!op_words(r, &i, RPL_MAX_OPS, it->op, it->count, it->op_col, &it->n_ops,
+                  err))
+        return FALSE;
     if (it->n_ops == 0)
         return fail(r, 3, "OP=COUNT", err);
+    while (i < rpl_lines_count(r->l) && !strcmp(rpl_lines_word(r->l, i), "|")) {
+        if (r->version < 3 || it->n_terms == RPL_MAX_TERMS)
+            return fail(r, i,
+                        r->version < 3 ? "'+', 'frame' or the end of the "
+                                         "line ('|' terms need 'pgsim-trace 3')"
+                                       : "at most 3 '|' terms",
+                        err);
+        i++;
+        memset(&it->term[it->n_terms], 0, sizeof it->term[0]);
+        if (!term(r, &i, &it->term[it->n_terms++], err))
+            return FALSE;
+    }
     return flags(r, i, it, err);
 }
 
@@ -281,8 +335,9 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
 {
     const char *k = rpl_lines_word(r->l, 0);
     if (!r->in_group)
-        return fail(r, 0, "'at TIME', 'sync TIME' or 'on ID' before the "
-                          "first action",
+        return fail(r, 0,
+                    "'at TIME', 'sync TIME' or 'on ID' before the "
+                    "first action",
                     err);
     it->type = !strcmp(k, "c")   ? RPL_COMPUTE
                : !strcmp(k, "w") ? RPL_WORK
@@ -306,11 +361,10 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
                   (it->value > 0 || fail(r, 2, "a period above 0", err)) &&
                   flags(r, 3, it, err)
         : !phase_word(r, 2, &it->phase, err) ? FALSE
-        : it->type == RPL_WORK
-            ? rpl_lines_u64(r->l, 3, G_MAXUINT64, &it->value,
-                            "a time in picoseconds", err) &&
-                  flags(r, 4, it, err)
-            : ops(r, it, err);
+        : it->type == RPL_WORK ? rpl_lines_u64(r->l, 3, G_MAXUINT64, &it->value,
+                                               "a time in picoseconds", err) &&
+                                     flags(r, 4, it, err)
+                               : ops(r, it, err);
     if (!ok)
         return FALSE;
     if (it->handled) {
@@ -359,8 +413,8 @@ static gboolean at_end(RplReader *r, GError **err)
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "%s:%u:1: found the end of the trace, expected 'on %" PRIu64
                 "' (action %" PRIu64 " is marked '+'; %u such groups missing)",
-                rpl_lines_path(r->l), rpl_lines_number(r->l) + 1, first,
-                first, g_hash_table_size(r->await));
+                rpl_lines_path(r->l), rpl_lines_number(r->l) + 1, first, first,
+                g_hash_table_size(r->await));
     return FALSE;
 }
 
@@ -409,6 +463,28 @@ void rpl_write_header(RplWriter *w, const RplHeader *h)
         rpl_writer_printf(w, "phase %s\n", (char *)h->phases->pdata[i]);
 }
 
+/* Appends " OP=COUNT ..." to buf (of RPL_LINE_MAX) at n; the new n. */
+static int write_ops(char *buf, int n, const char *const *op,
+                     const uint64_t *count, guint n_ops)
+{
+    for (guint i = 0; i < n_ops && n < RPL_LINE_MAX; i++)
+        n += g_snprintf(buf + n, RPL_LINE_MAX - n, " %s=%" PRIu64, op[i],
+                        count[i]);
+    return n;
+}
+
+/* Appends " | @Q OP=COUNT ..." or " | b Q BYTES". */
+static int write_term(char *buf, int n, const RplTerm *t)
+{
+    if (n >= RPL_LINE_MAX)
+        return n;
+    if (t->bus)
+        return n + g_snprintf(buf + n, RPL_LINE_MAX - n, " | b %u %" PRIu64,
+                              t->proc, t->bytes);
+    n += g_snprintf(buf + n, RPL_LINE_MAX - n, " | @%u", t->proc);
+    return write_ops(buf, n, t->op, t->count, t->n_ops);
+}
+
 void rpl_write_item(RplWriter *w, const RplItem *it)
 {
     char buf[RPL_LINE_MAX];
@@ -425,13 +501,13 @@ void rpl_write_item(RplWriter *w, const RplItem *it)
         return;
     case RPL_COMPUTE:
         n = g_snprintf(buf, sizeof buf, "c %u %u", it->proc, it->phase);
-        for (guint i = 0; i < it->n_ops && n < (int)sizeof buf; i++)
-            n += g_snprintf(buf + n, sizeof buf - n, " %s=%" PRIu64, it->op[i],
-                            it->count[i]);
+        n = write_ops(buf, n, it->op, it->count, it->n_ops);
+        for (guint k = 0; k < it->n_terms; k++)
+            n = write_term(buf, n, &it->term[k]);
         break;
     case RPL_WORK:
-        n = g_snprintf(buf, sizeof buf, "w %u %u %" PRIu64, it->proc,
-                       it->phase, it->value);
+        n = g_snprintf(buf, sizeof buf, "w %u %u %" PRIu64, it->proc, it->phase,
+                       it->value);
         break;
     case RPL_SEND:
     case RPL_BUS:

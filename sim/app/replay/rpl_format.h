@@ -1,9 +1,10 @@
-/* rpl_format.h — pgsim's time-independent trace format, version 2
- * (docs/traces.md; version 1 is version 2 without b, v and swap).
+/* rpl_format.h — pgsim's time-independent trace format, version 3
+ * (docs/traces.md; version 2 is version 3 without `|` terms, version 1
+ * is version 2 without b, v and swap).
  *
  * A trace is text, one item per line, '#' starts a comment:
  *
- *     pgsim-trace 2                       first line: the version
+ *     pgsim-trace 3                       first line: the version
  *     machine ipsc2                       recording machine (a model name)
  *     fidelity packet                     its transport when recorded
  *     procs 17                            processors 0 .. 16
@@ -17,6 +18,11 @@
  *                                         completes (work done / delivered)
  *     c 3 1 span=1240 zcmp=5310 [+] [frame]   work on processor 3, phase 1,
  *                                         priced from the machine's costs
+ *     c 2 3 draw_vertex=900 | @4 triangle=300 | b 4 86400
+ *                                         work on 2 as long as the longest
+ *                                         term: its own counts, counts priced
+ *                                         on 4's kind, 86400 bytes to 4
+ *                                         through the shared memory
  *     w 3 1 125000 [+] [frame]            work that took 125000 ps on the
  *                                         recording kind (scaled by clocks)
  *     s 3 5 1024 [+] [frame]              3 sends 1024 bytes to 5
@@ -41,8 +47,23 @@
 #include "sim/app/replay/rpl_lines.h"
 #include "sim/core/time.h"
 
-#define RPL_VERSION 2
+#define RPL_VERSION 3
 #define RPL_MAX_OPS 30
+#define RPL_MAX_TERMS 3 /* `|` terms of a `c` line (version 3) */
+#define RPL_TERM_OPS 8  /* OP=COUNT words in one `|` term */
+
+/* A further term of a `c` line: its work overlaps the processor's own
+ * counts, and the action lasts as long as the longest term (version 3). */
+typedef struct {
+    uint32_t proc;  /* `@Q`: priced on Q's kind; `b Q`: the receiver */
+    gboolean bus;   /* `b Q BYTES`: a shared-memory transfer's time */
+    uint64_t bytes; /* bus: the bytes */
+    guint n_ops;
+    const char *op[RPL_TERM_OPS]; /* borrowed until the next item */
+    uint64_t count[RPL_TERM_OPS];
+    int op_col[RPL_TERM_OPS];
+    int col; /* where the term's first word starts */
+} RplTerm;
 
 typedef struct {
     char *name;
@@ -51,8 +72,8 @@ typedef struct {
 } RplKind;
 
 typedef struct {
-    char *machine;    /* NULL when absent */
-    char *fidelity;   /* NULL when absent */
+    char *machine;  /* NULL when absent */
+    char *fidelity; /* NULL when absent */
     guint procs;
     GPtrArray *phases; /* char * */
     GArray *kinds;     /* RplKind */
@@ -80,10 +101,12 @@ typedef struct {
     uint64_t value; /* RPL_WORK: ps; RPL_SEND, RPL_BUS: bytes;
                        RPL_REFRESH: the period (ps) */
     gboolean handled, frame, swap;
-    guint n_ops; /* RPL_COMPUTE: op names (borrowed until the next item) */
+    guint n_ops;   /* RPL_COMPUTE: op names (borrowed until the next item) */
+    guint n_terms; /* RPL_COMPUTE: `|` terms (version 3), else 0 */
     const char *op[RPL_MAX_OPS];
     uint64_t count[RPL_MAX_OPS];
     int op_col[RPL_MAX_OPS]; /* where each op=count word starts */
+    RplTerm term[RPL_MAX_TERMS];
 } RplItem;
 
 typedef struct RplReader RplReader;

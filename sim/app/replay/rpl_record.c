@@ -70,30 +70,62 @@ static uint64_t add(RplRecorder *r, SimTime now, RecAct a)
     return r->acts->len - 1;
 }
 
-/* Keeps the non-zero counts (the last one if all are zero: a `c` line
- * names at least one); returns the action's RPL_COMPUTE fields. */
-static RecAct keep_ops(RplRecorder *r, const SimOp *ops, unsigned n_ops)
+/* Appends the non-zero counts to r->ops (the last one if all are zero:
+ * a `c` line or term names at least one); returns how many. */
+static guint keep(RplRecorder *r, const SimOp *ops, unsigned n_ops)
 {
-    g_assert(n_ops <= RPL_MAX_OPS);
-    RecAct a = {.value = r->ops->len, .type = RPL_COMPUTE};
+    guint kept = 0;
     for (unsigned i = 0; i < n_ops; i++) {
-        if (ops[i].count == 0 && (a.n_ops > 0 || i + 1 < n_ops))
+        if (ops[i].count == 0 && (kept > 0 || i + 1 < n_ops))
             continue;
         SimOp o = {g_intern_string(ops[i].name), ops[i].count};
         g_array_append_val(r->ops, o);
-        a.n_ops++;
+        kept++;
     }
+    return kept;
+}
+
+/* Markers in r->ops that open a `|` term: {TERM_AT, node} then its
+ * counts; {TERM_BUS, node} then {TERM_BUS, bytes}. */
+static const char TERM_AT[] = "|@", TERM_BUS[] = "|b";
+
+static guint keep_term(RplRecorder *r, const SimOpTerm *t)
+{
+    SimOp mark = {t->bus ? TERM_BUS : TERM_AT, t->node};
+    g_array_append_val(r->ops, mark);
+    if (!t->bus)
+        return 1 + keep(r, t->ops, t->n_ops);
+    SimOp bytes = {TERM_BUS, t->bytes};
+    g_array_append_val(r->ops, bytes);
+    return 2;
+}
+
+/* The action's RPL_COMPUTE fields: its counts, then its terms. */
+static RecAct keep_ops(RplRecorder *r, const SimOp *ops, unsigned n_ops,
+                       const SimOpTerm *terms, unsigned n_terms)
+{
+    g_assert(n_ops <= RPL_MAX_OPS && n_terms <= RPL_MAX_TERMS);
+    RecAct a = {.value = r->ops->len, .type = RPL_COMPUTE};
+    guint n = keep(r, ops, n_ops);
+    for (unsigned i = 0; i < n_terms; i++) {
+        g_assert(terms[i].bus || terms[i].n_ops <= RPL_TERM_OPS);
+        n += keep_term(r, &terms[i]);
+    }
+    g_assert(n <= G_MAXUINT8);
+    a.n_ops = (uint8_t)n;
     return a;
 }
 
 static uint64_t on_compute(SimRecorder *h, SimTime now, uint32_t node,
                            unsigned phase, SimTime cost, SimTime end,
-                           const SimOp *ops, unsigned n_ops, gboolean handled)
+                           const SimOp *ops, unsigned n_ops,
+                           const SimOpTerm *terms, unsigned n_terms,
+                           gboolean handled)
 {
     (void)handled;
     g_assert(phase <= G_MAXUINT16);
     RplRecorder *r = h->state;
-    RecAct a = n_ops ? keep_ops(r, ops, n_ops)
+    RecAct a = n_ops ? keep_ops(r, ops, n_ops, terms, n_terms)
                      : (RecAct){.value = cost, .type = RPL_WORK};
     a.proc = node;
     a.phase = (uint16_t)phase;
@@ -149,8 +181,8 @@ static void on_end(SimRecorder *h, uint64_t id)
     ((RplRecorder *)h->state)->cur = NO_ACTION;
 }
 
-static const SimRecorderOps rec_ops = {
-    on_compute, on_send, on_transfer, on_refresh, on_begin, on_end};
+static const SimRecorderOps rec_ops = {on_compute, on_send,  on_transfer,
+                                       on_refresh, on_begin, on_end};
 
 RplRecorder *rpl_recorder_new(void)
 {
@@ -292,6 +324,21 @@ static guint place_ends(RplRecorder *r, const SimResult *res)
     return missed;
 }
 
+/* The `|` term whose marker is o[i]; returns the index after it. */
+static guint act_term(RplTerm *t, const SimOp *o, guint i, guint n)
+{
+    *t = (RplTerm){.proc = (uint32_t)o[i].count, .bus = o[i].name == TERM_BUS};
+    if (t->bus) {
+        t->bytes = o[i + 1].count;
+        return i + 2;
+    }
+    for (i++; i < n && o[i].name != TERM_AT && o[i].name != TERM_BUS; i++) {
+        t->op[t->n_ops] = o[i].name;
+        t->count[t->n_ops++] = o[i].count;
+    }
+    return i;
+}
+
 static RplItem act_item(const RplRecorder *r, const RecAct *a, uint64_t id)
 {
     RplItem it = {.type = a->type,
@@ -305,12 +352,15 @@ static RplItem act_item(const RplRecorder *r, const RecAct *a, uint64_t id)
                   .swap = a->swap};
     if (a->type != RPL_COMPUTE)
         return it;
-    it.n_ops = a->n_ops;
-    for (guint i = 0; i < a->n_ops; i++) {
-        const SimOp *o = &g_array_index(r->ops, SimOp, a->value + i);
-        it.op[i] = o->name;
-        it.count[i] = o->count;
+    const SimOp *o = &g_array_index(r->ops, SimOp, a->value);
+    guint i = 0;
+    for (; i < a->n_ops && o[i].name != TERM_AT && o[i].name != TERM_BUS; i++) {
+        it.op[i] = o[i].name;
+        it.count[i] = o[i].count;
     }
+    it.n_ops = i;
+    while (i < a->n_ops)
+        i = act_term(&it.term[it.n_terms++], o, i, a->n_ops);
     return it;
 }
 

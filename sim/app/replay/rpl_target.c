@@ -21,8 +21,7 @@ guint rpl_map_cyclic(guint p, guint n, guint t)
     return p % t;
 }
 
-static gboolean apply_sets(CfgNode *root, const char *const *sets,
-                           GError **err)
+static gboolean apply_sets(CfgNode *root, const char *const *sets, GError **err)
 {
     for (; sets && *sets; sets++) {
         if (!g_str_has_prefix(*sets, "machine.")) {
@@ -84,13 +83,13 @@ static gboolean map_file(RplTarget *t, const char *path, GError **err)
     while (l && (n = rpl_lines_next(l, err)) > 0) {
         uint64_t p, q;
         char *what = g_strdup_printf("a target processor below %u", total);
-        gboolean ok =
-            rpl_lines_u64(l, 0, t->n_trace - 1, &p,
-                          "a trace processor id", err) &&
-            rpl_lines_u64(l, 1, total - 1, &q, what, err);
+        gboolean ok = rpl_lines_u64(l, 0, t->n_trace - 1, &p,
+                                    "a trace processor id", err) &&
+                      rpl_lines_u64(l, 1, total - 1, &q, what, err);
         g_free(what);
         if (ok && n > 2)
-            g_propagate_error(err, rpl_lines_error(l, 2, "the end of the line"));
+            g_propagate_error(err,
+                              rpl_lines_error(l, 2, "the end of the line"));
         if (!ok || n > 2)
             break;
         t->map[p] = (guint)q;
@@ -273,7 +272,7 @@ static SimTime *path_cost(const RplTarget *t, const char *op)
 }
 
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
-                              gboolean *fresh)
+                                  gboolean *fresh)
 {
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
     const char *from = t->rec_kind[p] ? t->rec_kind[p] : kind;
@@ -295,23 +294,53 @@ const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
     return cp;
 }
 
+/* Costs missing for counts priced on trace processor p's target kind. */
+static void check_ops(RplTarget *t, guint p, const char *const *op,
+                      const int *col, guint n, guint line, const char *path,
+                      GString *bad)
+{
+    const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
+    gboolean fresh;
+    for (guint i = 0; i < n; i++)
+        if (!rpl_target_op_cost(t, p, op[i], &fresh) && fresh)
+            g_string_append_printf(bad, "\n  %s:%u:%d: %s%s%s%s", path, line,
+                                   col[i], strchr(op[i], '.') ? "" : "nodes.",
+                                   strchr(op[i], '.') ? "" : kind,
+                                   strchr(op[i], '.') ? "" : ".costs.", op[i]);
+}
+
+/* A `|` term: its counts' costs, or a shared memory for a bus term. */
+static void check_term(RplTarget *t, const RplTerm *term, guint line,
+                       const char *path, GString *bad)
+{
+    if (!term->bus) {
+        check_ops(t, term->proc, term->op, term->op_col, term->n_ops, line,
+                  path, bad);
+        return;
+    }
+    if (!t->has_shm && !t->shm_missing) {
+        t->shm_missing = TRUE; /* reported once */
+        g_string_append_printf(bad,
+                               "\n  %s:%u:%d: a shared memory (network "
+                               "{topology: bus, bandwidth, startup}) to price "
+                               "the transfer time of a '| b' term",
+                               path, line, term->col);
+    }
+}
+
 /* Adds the problems of one item to `bad` (one line each, first seen). */
 static void check_item(RplTarget *t, const RplItem *it, const char *path,
                        GString *bad, gboolean *net_missing)
 {
-    gboolean fresh;
     if (it->type != RPL_COMPUTE && it->type != RPL_WORK &&
         it->type != RPL_SEND && it->type != RPL_BUS)
         return; /* group lines and waits: nothing to price */
     const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[it->proc]));
     if (it->type == RPL_COMPUTE)
-        for (guint i = 0; i < it->n_ops; i++)
-            if (!rpl_target_op_cost(t, it->proc, it->op[i], &fresh) && fresh)
-                g_string_append_printf(
-                    bad, "\n  %s:%u:%d: %s%s%s%s", path, it->line,
-                    it->op_col[i], strchr(it->op[i], '.') ? "" : "nodes.",
-                    strchr(it->op[i], '.') ? "" : kind,
-                    strchr(it->op[i], '.') ? "" : ".costs.", it->op[i]);
+        check_ops(t, it->proc, it->op, it->op_col, it->n_ops, it->line, path,
+                  bad);
+    for (guint k = 0; it->type == RPL_COMPUTE && k < it->n_terms; k++)
+        check_term(t, &it->term[k], it->line, path, bad);
     if (it->type == RPL_WORK && isnan(t->scale[it->proc])) {
         g_string_append_printf(bad,
                                "\n  %s:%u:1: a clock to scale `w` work of "
@@ -319,8 +348,7 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
                                "header line, or --clock KIND=HZ) and "
                                "nodes.%s.clock (or a 'machine %s' header: "
                                "recorded here)",
-                               path, it->line, it->proc, kind,
-                               mach_name(t->m));
+                               path, it->line, it->proc, kind, mach_name(t->m));
         for (guint p = 0; p < t->n_trace; p++) /* reported once */
             if (isnan(t->scale[p]))
                 t->scale[p] = INFINITY;
@@ -354,6 +382,22 @@ gboolean rpl_target_check(RplTarget *t, const char *path, GError **err)
     return ok;
 }
 
+/* Counts priced on trace processor p's target kind (checked). */
+static SimTime ops_price(RplTarget *t, guint p, const char *const *op,
+                         const uint64_t *count, guint n)
+{
+    SimTime sum = 0, c;
+    gboolean fresh;
+    for (guint i = 0; i < n; i++) {
+        const SimTime *cp = rpl_target_op_cost(t, p, op[i], &fresh);
+        g_assert(cp); /* rpl_target_check() passed */
+        if (!mach_cost_n(*cp, count[i], &c))
+            return SIM_TIME_MAX;
+        sum = sim_time_add_sat(sum, c);
+    }
+    return sum;
+}
+
 SimTime rpl_target_price(RplTarget *t, const RplItem *it)
 {
     if (it->type == RPL_WORK) {
@@ -363,14 +407,12 @@ SimTime rpl_target_price(RplTarget *t, const RplItem *it)
         double v = round((double)it->value * s);
         return v >= (double)SIM_TIME_MAX ? SIM_TIME_MAX : (SimTime)v;
     }
-    SimTime sum = 0, c;
-    gboolean fresh;
-    for (guint i = 0; i < it->n_ops; i++) {
-        const SimTime *cp = rpl_target_op_cost(t, it->proc, it->op[i], &fresh);
-        g_assert(cp); /* rpl_target_check() passed */
-        if (!mach_cost_n(*cp, it->count[i], &c))
-            return SIM_TIME_MAX;
-        sum = sim_time_add_sat(sum, c);
+    SimTime c = ops_price(t, it->proc, it->op, it->count, it->n_ops);
+    for (guint k = 0; k < it->n_terms; k++) {
+        const RplTerm *term = &it->term[k];
+        c = MAX(c, term->bus ? mach_shmem_time(&t->shm, term->bytes)
+                             : ops_price(t, term->proc, term->op, term->count,
+                                         term->n_ops));
     }
-    return sum;
+    return c;
 }

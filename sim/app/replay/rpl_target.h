@@ -19,20 +19,21 @@
 typedef struct {
     SimEngine *eng;
     MachMachine *m;
-    char *desc;     /* the partition ("node 16"), NULL at the model's size */
-    guint n_trace;  /* trace processors */
-    guint *map;     /* trace processor -> target processor id */
-    double *scale;  /* trace processor -> clock ratio for `w` work */
-    unsigned *phase; /* header phase index -> engine phase id */
+    char *desc;        /* the partition ("node 16"), NULL at the model's size */
+    guint n_trace;     /* trace processors */
+    guint *map;        /* trace processor -> target processor id */
+    double *scale;     /* trace processor -> clock ratio for `w` work */
+    unsigned *phase;   /* header phase index -> engine phase id */
     GHashTable *costs; /* "kind\top" -> SimTime * (NULL: missing) */
     CfgNode *tree;     /* the target model with --set: costs named by a
                           model path (dpscan.op) */
     GHashTable *clocks; /* --clock: trace kind -> double Hz */
     SimEngine *from_eng; /* --costs-from: its model, or NULL */
     MachMachine *from;
-    char **rec_kind; /* trace processor -> its recording kind, or NULL */
-    gboolean has_shm; /* a bus model: `b` transfers use its memory */
-    MachShmem shm;    /* else they go through the network as messages */
+    char **rec_kind;      /* trace processor -> its recording kind, or NULL */
+    gboolean has_shm;     /* a bus model: `b` transfers use its memory */
+    MachShmem shm;        /* else they go through the network as messages */
+    gboolean shm_missing; /* a `| b` term found no shared memory */
 } RplTarget;
 
 /* Builds the target for a trace whose header is h. */
@@ -48,7 +49,10 @@ gboolean rpl_target_check(RplTarget *t, const char *path, GError **err);
  * target kind, recording kind and op were asked. */
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                                   gboolean *fresh);
-/* The cost of a checked `c` or `w` item on its target processor. */
+/* The cost of a checked `c` or `w` item on its target processor (a `c`
+ * line with `|` terms: the longest of its counts and terms, each term's
+ * counts priced on its own processor's target kind, a bus term as the
+ * transfer's time on an idle shared memory). */
 SimTime rpl_target_price(RplTarget *t, const RplItem *it);
 
 #endif

@@ -61,13 +61,13 @@ static void try_draw(Pipe *s);
 static void stage_compute(Pipe *s, int st, SimTime c, SimHandler done,
                           void *arg)
 {
-    const MachOps *o = s->f->ops ? s->f->ops(s->ctx) : NULL;
-    if (!o || !o->n) {
+    const MachOverlap *o = s->f->ops ? s->f->ops(s->ctx) : NULL;
+    if (!o || !o->own.n) {
         mach_proc_compute(s->proc[st], c, s->phase[st], done, s, arg);
         return;
     }
-    g_assert(mach_proc_ops_cost(s->proc[st], o) == c);
-    mach_proc_compute_list(s->proc[st], o, s->phase[st], done, s, arg);
+    g_assert(mach_overlap_cost(s->proc[st], o) == c);
+    mach_proc_compute_overlap(s->proc[st], o, s->phase[st], done, s, arg);
 }
 
 /* Runs h(frame n) at t on processor p's behalf: a wait for the display

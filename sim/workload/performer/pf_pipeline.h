@@ -31,7 +31,7 @@
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_PIPELINE_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_PIPELINE_H
 
-#include "sim/machine/proc.h"
+#include "sim/machine/overlap.h"
 
 typedef enum {
     WL_PF_MP_APPCULLDRAW,   /* one process */
@@ -47,9 +47,10 @@ typedef struct {
     SimTime (*cull)(void *ctx, guint frame, double stress);
     SimTime (*draw)(void *ctx, guint frame);
     SimTime (*isect)(void *ctx, guint frame); /* NULL: no ISECT process */
-    /* The named counts the stage just called priced (the same time), or
-     * NULL / none: its work is a time.  NULL: stages give times. */
-    const MachOps *(*ops)(void *ctx);
+    /* The named counts the stage just called priced (the same time: its
+     * own counts, or the longest of overlapping terms), or NULL / none:
+     * its work is a time.  NULL: stages give times. */
+    const MachOverlap *(*ops)(void *ctx);
 } WlPfStageFns;
 
 typedef struct {

@@ -83,11 +83,11 @@ static SimTime sum(SimTime a, SimTime b)
 /* The stage's counts start afresh (the `ops` hook reads them). */
 static MachOps *ops_reset(WlPfStages *s)
 {
-    s->last.n = 0;
-    return &s->last;
+    mach_overlap_reset(&s->last);
+    return &s->last.own;
 }
 
-static const MachOps *ops(void *ctx)
+static const MachOverlap *ops(void *ctx)
 {
     return &((WlPfStages *)ctx)->last;
 }
@@ -148,22 +148,37 @@ static void trace_bus(WlPfStages *s, uint64_t bytes, SimTime from, SimTime to)
 }
 
 /* The pipe's share of DRAW, as counts on the pipe (phase "pipe"), and
- * the stream that feeds it, as a shared-memory transfer; returns the
- * stream's time. */
-static SimTime feed_pipe(WlPfStages *s, uint64_t bytes, uint64_t tris,
-                         uint64_t states)
+ * the stream that feeds it, as a shared-memory transfer; both are also
+ * the terms DRAW's CPU overlaps with (o).  Returns the stream's time. */
+static SimTime feed_pipe(WlPfStages *s, MachOverlap *o, uint64_t bytes,
+                         uint64_t tris, uint64_t states)
 {
     MachProc *pipe = mach_proc(mach_proc_machine(s->draw_cpu), "pipe", 0);
-    MachOp o[] = {{"triangle", tris}, {"state", states}};
-    mach_proc_compute_ops(pipe, o, 2, sim_engine_phase(s->eng, "pipe"), NULL,
-                          NULL, NULL);
+    MachOps po = {0};
+    mach_ops_add(&po, "triangle", tris);
+    mach_ops_add(&po, "state", states);
+    mach_proc_compute_list(pipe, &po, sim_engine_phase(s->eng, "pipe"), NULL,
+                           NULL, NULL);
+    mach_overlap_ops(o, pipe, &po);
     SimTime now = sim_now(s->eng), end;
     mach_shmem_send(&s->bus, s->eng, mach_proc_id(s->draw_cpu),
                     mach_proc_id(pipe), bytes, NULL, NULL, NULL, &end);
+    mach_overlap_bus(o, &s->bus, pipe, bytes);
     trace_bus(s, bytes, now, end);
     return end - now;
 }
 
+/* DRAW's own counts on the CPU (what wl_pf_draw_cpu() prices). */
+static void draw_ops(MachOps *o, const WlPfDrawStats *st, uint64_t states)
+{
+    mach_ops_add(o, "draw_geoset", st->geosets);
+    mach_ops_add(o, "draw_state", states);
+    mach_ops_add(o, "draw_matrix", st->matrix_ops);
+    mach_ops_add(o, "draw_vertex", 3 * st->tris);
+}
+
+/* DRAW waits for the slowest of CPU, bus and pipe: the CPU's counts with
+ * the pipe's and the stream as overlapping terms. */
 static SimTime draw(void *ctx, guint n)
 {
     WlPfStages *s = ctx;
@@ -172,11 +187,11 @@ static SimTime draw(void *ctx, guint n)
     wl_pf_draw(s->town->g, s->dl[n % WL_PF_NBUF], &f->draw);
     uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
     f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
+    draw_ops(ops_reset(s), &f->draw, states);
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
-    f->bus = feed_pipe(s, (uint64_t)bytes, f->draw.tris, states);
+    f->bus = feed_pipe(s, &s->last, (uint64_t)bytes, f->draw.tris, states);
     f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
                   times(c->pipe_state, states));
-    ops_reset(s); /* DRAW waits for the slowest of CPU, bus and pipe: a time */
     return MAX(f->cpu, MAX(f->bus, f->pipe));
 }
 

@@ -16,7 +16,10 @@
  * issuing (geosets, state changes, matrix operations, vertices), the bus
  * carrying 3 x vertex_bytes per triangle (booked on the machine's shared
  * memory, sim/machine/shmem.h, so it also queues), and the pipe (triangles,
- * state changes).  Each frame's counts are kept for the per-frame log.
+ * state changes): its counts are the CPU's own with the pipe's counts and
+ * the bus stream as overlapping terms (sim/machine/overlap.h; the stream
+ * never queues: the previous frame's ended before this DRAW started).
+ * Each frame's counts are kept for the per-frame log.
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
@@ -59,7 +62,7 @@ typedef struct {
     gboolean isect;
     gboolean app_timed; /* app_frame is the workload's app_work, not a
                            machine cost: APP's work is a time */
-    MachOps last;       /* the named counts of the last stage called */
+    MachOverlap last;   /* the named counts of the last stage called */
 } WlPfStages;
 
 /* Reads the costs from m (kinds cpu and pipe); FALSE with a located

@@ -214,9 +214,9 @@ static uint64_t *op_counts(const char *path, const char *op, guint *n,
     *n = h->procs;
     for (guint p = 0; p < *n; p++) {
         const RplKind *kd = rpl_header_kind_of(h, p);
-        g_ptr_array_add(names, kd ? g_strdup_printf("%s%u", kd->name,
-                                                    p - kd->first)
-                                  : g_strdup("?"));
+        g_ptr_array_add(names,
+                        kd ? g_strdup_printf("%s%u", kd->name, p - kd->first)
+                           : g_strdup("?"));
     }
     uint64_t *k = g_new0(uint64_t, *n);
     RplItem it;
@@ -284,7 +284,8 @@ static void test_counts_repriced(void **s)
     counts_repriced(&pn, "pipe", "triangle");
     counts_repriced(&pn, "cpu", "draw_vertex");
     counts_repriced(&performer, "cpu", "cull_node");
-    counts_repriced(&performer, "pipe", "triangle");
+    counts_repriced(&performer, "cpu",
+                    "draw_vertex"); /* DRAW: CPU-bound at 1 us */
     counts_repriced(&argus, "cpu", "geom_vertex");
     counts_repriced(&march, "cpu", "march_voxel");
     counts_repriced(&sortfirst, "node", "transform_vertex");
