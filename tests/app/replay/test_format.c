@@ -99,7 +99,7 @@ typedef struct {
 } Bad;
 
 static const Bad bads[] = {
-    {"pgsim-trace 3\n", "t.pgt:1:13:", "found '3'"},
+    {"pgsim-trace 4\n", "t.pgt:1:13:", "found '4'"},
     /* version 2's actions: b and v not in version 1; swap only on v, and
      * not with frame */
     {"pgsim-trace 1\nprocs 2\nat 0\nb 0 1 5\n", "t.pgt:4:1:",
