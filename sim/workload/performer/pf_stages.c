@@ -83,13 +83,17 @@ static SimTime sum(SimTime a, SimTime b)
 /* The stage's counts start afresh (the `ops` hook reads them). */
 static MachOps *ops_reset(WlPfStages *s)
 {
-    mach_overlap_reset(&s->last);
-    return &s->last.own;
+    s->last.n = 0;
+    mach_overlap_reset(&s->over);
+    return &s->last;
 }
 
+/* The last stage's counts with its terms (none but for DRAW). */
 static const MachOverlap *ops(void *ctx)
 {
-    return &((WlPfStages *)ctx)->last;
+    WlPfStages *s = ctx;
+    s->over.own = s->last;
+    return &s->over;
 }
 
 static SimTime app(void *ctx, guint n)
@@ -189,7 +193,7 @@ static SimTime draw(void *ctx, guint n)
     f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
     draw_ops(ops_reset(s), &f->draw, states);
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
-    f->bus = feed_pipe(s, &s->last, (uint64_t)bytes, f->draw.tris, states);
+    f->bus = feed_pipe(s, &s->over, (uint64_t)bytes, f->draw.tris, states);
     f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
                   times(c->pipe_state, states));
     return MAX(f->cpu, MAX(f->bus, f->pipe));

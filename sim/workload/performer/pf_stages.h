@@ -62,7 +62,8 @@ typedef struct {
     gboolean isect;
     gboolean app_timed; /* app_frame is the workload's app_work, not a
                            machine cost: APP's work is a time */
-    MachOverlap last;   /* the named counts of the last stage called */
+    MachOps last;       /* the named counts of the last stage called */
+    MachOverlap over;   /* its overlapping terms (DRAW's pipe and bus) */
 } WlPfStages;
 
 /* Reads the costs from m (kinds cpu and pipe); FALSE with a located

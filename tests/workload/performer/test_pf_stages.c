@@ -143,7 +143,9 @@ static void one_frame(Rig *r, WlPfStageFns *f, guint n, gboolean lazy)
     assert_int_equal(fs->pipe, ds->tris * c->pipe_triangle +
                                    states * c->pipe_state);
     assert_int_equal(d, MAX(fs->cpu, MAX(fs->bus, fs->pipe)));
-    assert_int_equal(r->s->last.n, 0); /* DRAW's work is a time */
+    /* DRAW: the CPU's counts, the pipe's counts and the stream as terms */
+    assert_int_equal(mach_proc_ops_cost(r->s->draw_cpu, &r->s->last), fs->cpu);
+    assert_int_equal(r->s->over.n, 2);
 }
 
 static void run_frames(gboolean lazy)
