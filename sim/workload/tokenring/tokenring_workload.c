@@ -12,6 +12,7 @@
  * only one event is ever pending.
  */
 #include "sim/workload/tokenring/tokenring_workload.h"
+#include "sim/core/record.h"
 #include "sim/core/trace.h"
 #include <string.h>
 
@@ -82,6 +83,40 @@ static double tr_mem_bytes(const void *params, GString *what)
 
 static void arrive(SimEngine *eng, void *ctx, void *arg);
 
+/* A recording (`pgsim run --record`, sim/core/record.h): the ring has no
+ * machine model, so the workload tells the recorder itself what each
+ * node does.  Work (a visit's compute, a token's serialisation) is a time
+ * of the ring's nodes, recorded as that many `tick`s (1 ps each on
+ * models/ring-8.yaml, the ring as a model); then(eng, s, arg) runs at
+ * now + t as without a recorder.  Returns FALSE when not recording. */
+static gboolean record_work(SimEngine *eng, uint64_t i, unsigned phase,
+                            SimTime t, SimHandler then, TrState *s, void *arg)
+{
+    SimRecorder *rec = sim_engine_recorder(eng);
+    if (!rec)
+        return FALSE;
+    SimOp tick = {"tick", t};
+    SimTime now = sim_now(eng), end = sim_time_add_sat(now, t);
+    uint64_t id = rec->ops->compute(rec, now, (uint32_t)i, phase, t, end, &tick,
+                                    1, NULL, 0, then != NULL);
+    sim_record_schedule_done(eng, rec, id, end, then, s, arg);
+    return TRUE;
+}
+
+/* The token from i to next as a recorded message, arriving after d. */
+static gboolean record_send(SimEngine *eng, uint64_t i, uint64_t next,
+                            uint64_t bytes, SimTime d, TrState *s)
+{
+    SimRecorder *rec = sim_engine_recorder(eng);
+    if (!rec)
+        return FALSE;
+    uint64_t id = rec->ops->send(rec, sim_now(eng), (uint32_t)i, (uint32_t)next,
+                                 bytes, TRUE);
+    sim_record_schedule_done(eng, rec, id, sim_time_add_sat(sim_now(eng), d),
+                             arrive, s, (void *)(uintptr_t)next);
+    return TRUE;
+}
+
 static SimNodeResult *node_at(TrState *s, uint64_t i)
 {
     return g_ptr_array_index(s->res->nodes, i);
@@ -118,7 +153,9 @@ static void send(SimEngine *eng, void *ctx, void *arg)
     sim_trace_flow(tr, (uint32_t)i, node_at(s, i)->name, (uint32_t)next,
                    node_at(s, next)->name, s->p->token, now,
                    sim_time_add_sat(now, d));
-    sim_schedule_in(eng, d, arrive, s, (void *)(uintptr_t)next);
+    record_work(eng, i, s->send_phase, ser, NULL, s, NULL);
+    if (!record_send(eng, i, next, s->p->token, d, s))
+        sim_schedule_in(eng, d, arrive, s, (void *)(uintptr_t)next);
 }
 
 static gboolean round_done(SimEngine *eng, TrState *s)
@@ -142,7 +179,8 @@ static void arrive(SimEngine *eng, void *ctx, void *arg)
     sim_busy_add(&node_at(s, i)->busy, 0, c);
     sim_trace_span(sim_engine_trace(eng), (uint32_t)i, node_at(s, i)->name,
                    "compute", now, sim_time_add_sat(now, c));
-    sim_schedule_in(eng, c, send, s, arg);
+    if (!record_work(eng, i, 0, c, send, s, arg))
+        sim_schedule_in(eng, c, send, s, arg);
 }
 
 static void fill_comm(TrState *s)

@@ -8,8 +8,8 @@
  * expected busy time is worked out here from the trace's counts.  A
  * reader test shows `|` terms need a version-3 trace. */
 #include "sim/app/replay/rpl_format.h"
-#include "sim/app/replay/rpl_record.h"
 #include "sim/app/replay/rpl_replay.h"
+#include "tests/app/replay/rpl_fixture.h"
 #include <glib/gstdio.h>
 #include <inttypes.h>
 #include <setjmp.h>
@@ -36,36 +36,20 @@ typedef struct {
 static const Costs base = {4 * SIM_US, 3 * SIM_US, 1500 * SIM_NS, 150 * SIM_NS,
                            1 * SIM_US, 4 * SIM_US, 100e6,         2 * SIM_US};
 
-static char *dir, *path; /* the trace, recorded once */
+static RplFixture fx; /* the trace, recorded once */
 
 static int record(void **s)
 {
     (void)s;
     const char *sets[] = {"run.frames=40", NULL};
-    GError *e = NULL;
-    CfgRun *r = cfg_run_load("configs/performer-town.yaml", sets, &e);
-    g_assert_no_error(e);
-    RplRecorder *rec = rpl_recorder_new();
-    CfgRunOpts o = {.quiet = TRUE, .recorder = rpl_recorder_hook(rec)};
-    SimResult *res = cfg_run_exec(r, &o, &e);
-    g_assert_no_error(e);
-    dir = g_dir_make_tmp("pgsim-pf-XXXXXX", NULL);
-    path = g_build_filename(dir, "pf.pgt", NULL);
-    assert_true(rpl_recorder_write(rec, path, r, res, NULL, &e));
-    g_assert_no_error(e);
-    sim_result_free(res);
-    rpl_recorder_free(rec);
-    cfg_run_free(r);
+    rpl_fixture_record(&fx, "configs/performer-town.yaml", sets, "pf.pgt");
     return 0;
 }
 
 static int cleanup(void **s)
 {
     (void)s;
-    g_remove(path);
-    g_rmdir(dir);
-    g_free(path);
-    g_free(dir);
+    rpl_fixture_clear(&fx);
     return 0;
 }
 
@@ -101,7 +85,7 @@ static Draw draw_of(const RplItem *it)
 static GArray *draws(void)
 {
     GError *e = NULL;
-    RplReader *r = rpl_reader_open(path, &e);
+    RplReader *r = rpl_reader_open(fx.path, &e);
     g_assert_no_error(e);
     const RplHeader *h = rpl_reader_header(r);
     unsigned ph = G_MAXUINT;
@@ -180,8 +164,9 @@ static SimTime replay_busy(const Costs *c, const char *phase)
         g_strdup_printf("machine.network.bandwidth=%.0f B/s", c->bandwidth),
         g_strdup_printf("machine.network.startup=%" PRIu64 " ps", c->startup),
         NULL};
-    RplReplayOpts o = {
-        .trace = path, .machine = "sgi-onyx", .sets = (const char *const *)s};
+    RplReplayOpts o = {.trace = fx.path,
+                       .machine = "sgi-onyx",
+                       .sets = (const char *const *)s};
     GError *e = NULL;
     SimResult *res = rpl_replay(&o, &e);
     g_assert_no_error(e);
@@ -288,7 +273,7 @@ static void test_bus_bound(void **s)
 /* Reads text as a trace; the error message, or NULL when it reads. */
 static char *read_error(const char *text)
 {
-    char *tmp = g_build_filename(dir, "bad.pgt", NULL);
+    char *tmp = g_build_filename(fx.dir, "bad.pgt", NULL);
     g_file_set_contents(tmp, text, -1, NULL);
     GError *e = NULL;
     RplReader *r = rpl_reader_open(tmp, &e);
