@@ -44,6 +44,12 @@ typedef struct {
     const char *const *ops; /* NULL-terminated */
 } WlNeed;
 
+/* The costs of one mode of a workload ("with pn:, on Pixel-Planes 5"). */
+typedef struct {
+    const char *when;
+    const WlNeed *needs; /* ended by a NULL kind */
+} WlNeedAlt;
+
 typedef struct {
     const char *name;
     const char *summary;
@@ -61,6 +67,10 @@ typedef struct {
      * so a new model can be written against them (test_workload checks
      * a shipped config's model has them). */
     const WlNeed *needs;
+    /* Optional: the costs of its other modes, or model keys it reads
+     * outside nodes.KIND.costs, each set under a heading (`when`); ended
+     * by when == NULL.  `pgsim help run` lists them after `needs`. */
+    const WlNeedAlt *needs_alt;
     /* Optional: the bytes run() will allocate for the workload's own state
      * (frame buffers, per-processor tables, geometry it generates),
      * estimated from the parsed params alone; appends to `what` the sizes

@@ -29,8 +29,18 @@ static const char summary[] =
     "Runs a simulation described by a YAML config (docs/config.md) and "
     "prints its report (docs/output.md).";
 
+/* One line per kind: "KIND: op, op, ...", indented by `pad`. */
+static void append_needs(GString *s, const WlNeed *needs, int pad)
+{
+    for (const WlNeed *n = needs; n && n->kind; n++) {
+        g_string_append_printf(s, "\n%*s%s:", pad, "", n->kind);
+        for (guint k = 0; n->ops[k]; k++)
+            g_string_append_printf(s, "%s %s", k ? "," : "", n->ops[k]);
+    }
+}
+
 /* The summary, then each workload (workload.type) with the costs it asks
- * a machine model for (nodes.KIND.costs.OP). */
+ * a machine model for (nodes.KIND.costs.OP), and those of its other modes. */
 static char *help_text(void)
 {
     GString *s = g_string_new(summary);
@@ -39,12 +49,12 @@ static char *help_text(void)
     for (guint i = 0; wl_all[i]; i++) {
         const WlOps *w = wl_all[i];
         g_string_append_printf(s, "\n  %-11s %s", w->name, w->summary);
-        if (!w->needs)
+        if (!w->needs && !w->needs_alt)
             g_string_append(s, "\n      (declares none; docs/workloads.md)");
-        for (const WlNeed *n = w->needs; n && n->kind; n++) {
-            g_string_append_printf(s, "\n      %s:", n->kind);
-            for (guint k = 0; n->ops[k]; k++)
-                g_string_append_printf(s, "%s %s", k ? "," : "", n->ops[k]);
+        append_needs(s, w->needs, 6);
+        for (const WlNeedAlt *a = w->needs_alt; a && a->when; a++) {
+            g_string_append_printf(s, "\n      %s:", a->when);
+            append_needs(s, a->needs, 8);
         }
     }
     g_string_append(s, "\nKeys of each workload: docs/workloads.md.");

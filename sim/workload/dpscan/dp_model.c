@@ -148,6 +148,24 @@ static gboolean get_router_procs(const CfgNode *sec, WlDpMachine *m,
     return TRUE;
 }
 
+/* The keys wl_dp_machine_from_cfg requires of each architecture (the
+ * optional ones, news_slice, vp_pow2, router_procs, send_vp and send_msg,
+ * default to 0 or off), for `pgsim help run`. */
+static const char *const simd_keys[] = {"arch",       "op",         "step",
+                                        "scan_slice", "send_setup", "send_slice",
+                                        NULL};
+static const char *const spmd_keys[] = {
+    "arch",         "op",        "step",  "scan_slice",      "net_latency",
+    "msg_overhead", "msg_bytes", "arity", "level_bandwidth", NULL};
+static const WlNeed simd_needs[] = {{"dpscan", simd_keys}, {NULL, NULL}};
+static const WlNeed spmd_needs[] = {{"dpscan", spmd_keys}, {NULL, NULL}};
+const WlNeedAlt wl_dp_model_needs[] = {
+    {"from its model's dpscan: section (models/<workload.model>.yaml), "
+     "arch: simd",
+     simd_needs},
+    {"the same, arch: spmd", spmd_needs},
+    {NULL, NULL}};
+
 gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
                                 GError **err)
 {

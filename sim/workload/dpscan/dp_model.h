@@ -27,9 +27,13 @@
 
 #include "sim/core/cfg.h"
 #include "sim/workload/dpscan/dp_cost.h"
+#include "sim/workload/workload.h"
 
 /* Fills *m (procs left alone) from a `dpscan:` section; FALSE with a
  * located *err on a missing, malformed or unsourced parameter. */
+/* The dpscan: keys each architecture requires (`pgsim help run`). */
+extern const WlNeedAlt wl_dp_model_needs[];
+
 gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
                                 GError **err);
 

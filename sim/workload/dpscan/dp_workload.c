@@ -323,5 +323,6 @@ const WlOps wl_dpscan_ops = {
     .parse = dp_parse,
     .free_params = dp_free_params,
     .run = dp_run,
+    .needs_alt = wl_dp_model_needs,
     .mem_bytes = dp_mem_bytes,
 };

@@ -242,6 +242,23 @@ static const char *const pipe_ops[] = {"triangle", "pn_vertex", NULL};
 static const char *const gp_ops[] = {"polygon", "vertex", "send_primitive",
                                      "pn_vertex", NULL};
 static const char *const rd_ops[] = {"primitive", NULL};
+static const WlNeed smp_needs[] = {{"cpu", smp_ops}, {"pipe", pipe_ops},
+                                   {NULL, NULL}};
+static const WlNeed pp5_needs[] = {{"gp", gp_ops}, {"renderer", rd_ops},
+                                   {NULL, NULL}};
+const WlNeedAlt wl_pf_pn_needs[] = {
+    {"with pn:, on a cpu + pipe machine", smp_needs},
+    {"with pn:, on Pixel-Planes 5 (host + gp + renderer)", pp5_needs},
+    {NULL, NULL}};
+
+/* Every cost of `needs` is in the model, or a located error. */
+static gboolean require(MachMachine *m, const WlNeed *needs, GError **err)
+{
+    for (const WlNeed *n = needs; n->kind; n++)
+        if (!mach_require_costs(m, n->kind, n->ops, err))
+            return FALSE;
+    return TRUE;
+}
 
 static gboolean pick_machine(PnRun *r, GError **err)
 {
@@ -249,15 +266,12 @@ static gboolean pick_machine(PnRun *r, GError **err)
     if (mach_kind(m, "cpu") && mach_kind(m, "pipe")) {
         r->start = smp_frame;
         return mach_shmem_init(&r->bus_mem, m, err) &&
-               mach_require_costs(m, "cpu", smp_ops, err) &&
-               mach_require_costs(m, "pipe", pipe_ops, err);
+               require(m, smp_needs, err);
     }
     if (mach_kind(m, "host") && mach_kind(m, "gp") &&
         mach_kind(m, "renderer")) {
         r->start = pp5_frame;
-        return mach_require_net(m, err) &&
-               mach_require_costs(m, "gp", gp_ops, err) &&
-               mach_require_costs(m, "renderer", rd_ops, err);
+        return mach_require_net(m, err) && require(m, pp5_needs, err);
     }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "machine '%s': found no kinds cpu + pipe or host + gp + "

@@ -46,6 +46,9 @@ typedef struct {
 WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err);
 void wl_pf_pn_params_free(WlPfPnParams *p);
 /* Runs ctx->frames frames on m (shared-memory or Pixel-Planes 5). */
+/* The costs of the PN measurement on each machine it runs on. */
+extern const WlNeedAlt wl_pf_pn_needs[];
+
 gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
                       const WlPfPnParams *p, SimResult *out, GError **err);
 

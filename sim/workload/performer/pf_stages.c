@@ -6,32 +6,38 @@
 
 #include "sim/core/trace.h"
 
-static gboolean cost(MachMachine *m, const char *kind, const char *op,
-                     SimTime *out, GError **err)
+static const char *const cpu_ops[] = {
+    "app_frame",   "app_dcs",     "cull_node",   "cull_lod",
+    "cull_billboard", "cull_item", "draw_geoset", "draw_state",
+    "draw_matrix", "draw_vertex", "isect_node",  "isect_triangle", NULL};
+static const char *const pipe_ops[] = {"triangle", "state", NULL};
+const WlNeed wl_pf_town_needs[] = {{"cpu", cpu_ops}, {"pipe", pipe_ops},
+                                   {NULL, NULL}};
+
+/* Looks up ops[i] of `kind` into *out[i], for every i. */
+static gboolean read_kind(MachMachine *m, const char *kind,
+                          const char *const *ops, SimTime *const *out,
+                          GError **err)
 {
-    return mach_cost_lookup(m, kind, op, out, err);
+    for (guint i = 0; ops[i]; i++)
+        if (!mach_cost_lookup(m, kind, ops[i], out[i], err))
+            return FALSE;
+    return TRUE;
 }
 
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err)
 {
     *c = (WlPfCosts){.vertex_bytes = vertex_bytes};
-    if (!cost(m, "cpu", "app_frame", &c->app_frame, err) ||
-        !cost(m, "cpu", "app_dcs", &c->app_dcs, err) ||
-        !cost(m, "cpu", "cull_node", &c->cull_node, err) ||
-        !cost(m, "cpu", "cull_lod", &c->cull_lod, err) ||
-        !cost(m, "cpu", "cull_billboard", &c->cull_billboard, err) ||
-        !cost(m, "cpu", "cull_item", &c->cull_item, err) ||
-        !cost(m, "cpu", "draw_geoset", &c->draw_geoset, err) ||
-        !cost(m, "cpu", "draw_state", &c->draw_state, err) ||
-        !cost(m, "cpu", "draw_matrix", &c->draw_matrix, err) ||
-        !cost(m, "cpu", "draw_vertex", &c->draw_vertex, err) ||
-        !cost(m, "cpu", "isect_node", &c->isect_node, err) ||
-        !cost(m, "cpu", "isect_triangle", &c->isect_triangle, err) ||
-        !cost(m, "pipe", "triangle", &c->pipe_triangle, err) ||
-        !cost(m, "pipe", "state", &c->pipe_state, err))
-        return FALSE;
-    return TRUE;
+    SimTime *const cpu[] = {
+        &c->app_frame,   &c->app_dcs,     &c->cull_node,   &c->cull_lod,
+        &c->cull_billboard, &c->cull_item, &c->draw_geoset, &c->draw_state,
+        &c->draw_matrix, &c->draw_vertex, &c->isect_node,  &c->isect_triangle};
+    SimTime *const pipe[] = {&c->pipe_triangle, &c->pipe_state};
+    G_STATIC_ASSERT(G_N_ELEMENTS(cpu) == G_N_ELEMENTS(cpu_ops) - 1);
+    G_STATIC_ASSERT(G_N_ELEMENTS(pipe) == G_N_ELEMENTS(pipe_ops) - 1);
+    return read_kind(m, "cpu", cpu_ops, cpu, err) &&
+           read_kind(m, "pipe", pipe_ops, pipe, err);
 }
 
 WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town, const WlPfCosts *c,

@@ -28,6 +28,7 @@
 #include "sim/workload/performer/pf_cull.h"
 #include "sim/workload/performer/pf_pipeline.h"
 #include "sim/workload/performer/pf_town.h"
+#include "sim/workload/workload.h"
 
 #define WL_PF_NBUF 4
 
@@ -68,6 +69,9 @@ typedef struct {
 
 /* Reads the costs from m (kinds cpu and pipe); FALSE with a located
  * error naming what is missing. */
+/* The costs wl_pf_costs_read looks up, per kind (`pgsim help run`). */
+extern const WlNeed wl_pf_town_needs[];
+
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err);
 /* A new stage context over town (borrowed) for `frames` frames; the bus

@@ -435,5 +435,7 @@ const WlOps wl_pf_ops = {
     .parse = pf_parse,
     .free_params = pf_free,
     .run = pf_run,
+    .needs = wl_pf_town_needs,
+    .needs_alt = wl_pf_pn_needs,
     .mem_bytes = pf_mem_bytes,
 };

@@ -16,6 +16,21 @@
 
 #include "tests/app/cli/pgsim_spawn.h"
 
+/* Each "KIND: op, op" line of `needs` is in the help text. */
+static void assert_needs_listed(const char *out, const WlNeed *needs)
+{
+    for (const WlNeed *n = needs; n && n->kind; n++) {
+        GString *line = g_string_new(NULL);
+        g_string_printf(line, "%s:", n->kind);
+        for (guint k = 0; n->ops[k]; k++)
+            g_string_append_printf(line, "%s %s", k ? "," : "", n->ops[k]);
+        g_string_append_c(line, '\n');
+        if (!strstr(out, line->str))
+            fail_msg("pgsim help run lacks the line '%s'", line->str);
+        g_string_free(line, TRUE);
+    }
+}
+
 static void test_help_lists_workloads_and_costs(void **state)
 {
     (void)state;
@@ -28,9 +43,17 @@ static void test_help_lists_workloads_and_costs(void **state)
             fail_msg("pgsim help run does not list workload '%s'",
                      wl_all[i]->name);
         g_free(line);
-        for (const WlNeed *n = wl_all[i]->needs; n && n->kind; n++)
-            for (guint k = 0; n->ops[k]; k++)
-                assert_non_null(strstr(out, n->ops[k]));
+        assert_needs_listed(out, wl_all[i]->needs);
+        for (const WlNeedAlt *a = wl_all[i]->needs_alt; a && a->when; a++) {
+            assert_non_null(strstr(out, a->when));
+            assert_needs_listed(out, a->needs);
+        }
+        /* "declares none" only for a workload that declares nothing */
+        gboolean none = !wl_all[i]->needs && !wl_all[i]->needs_alt;
+        char *head = g_strdup_printf("\n  %-11s %s\n      (declares none;",
+                                     wl_all[i]->name, wl_all[i]->summary);
+        assert_int_equal(strstr(out, head) != NULL, none);
+        g_free(head);
     }
     g_free(out);
     g_free(err);
