@@ -161,6 +161,45 @@ static void test_generators_white(void **state)
     check_one_white(scene_nurbs_new(&np));
 }
 
+/* A view fitted to a single vertex (fit_points takes n >= 1) aims at
+ * it: the camera target moves from the origin to the vertex. */
+static void test_fit_one_vertex(void **state)
+{
+    (void)state;
+    Scene *s = scene_new("t");
+    SceneMesh *m = scene_mesh_new();
+    scene_mesh_add_vertex(m, vec3(3, 4, 5));
+    scene_add_instance(s, scene_add_mesh(s, m), mat4_identity(),
+                       scene_color(1, 1, 1), 0);
+    SceneView v = scene_view_default();
+    v.fit_vertices = TRUE;
+    scene_apply_view(s, &v);
+    Vec3 t = s->camera.target;
+    assert_true(fabs(t.x - 3) < 1e-9 && fabs(t.y - 4) < 1e-9 &&
+                fabs(t.z - 5) < 1e-9);
+    scene_free(s);
+}
+
+/* The teapots share one white mesh (288 polygons, the least: 32 patches
+ * of 3 x 3 quads): the colours are the instances'. */
+static void test_teapot_mesh_white(void **state)
+{
+    (void)state;
+    SceneTeapotsParams p = scene_teapots_defaults();
+    p.count = 2;
+    p.polygons_per_teapot = 288;
+    GError *err = NULL;
+    Scene *s = scene_teapots_new(&p, "t", &err);
+    if (!s)
+        fail_msg("%s", err->message);
+    const SceneMesh *m = scene_instance_mesh(s, 0);
+    for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
+        SceneColor c = g_array_index(m->poly_color, SceneColor, i);
+        assert_true(c.r == 1 && c.g == 1 && c.b == 1);
+    }
+    scene_free(s);
+}
+
 /* Both teapot layouts centre a full grid on the origin (teapots.h): the
  * teapots' box centres average to 0 on every axis. */
 static void check_centred(SceneTeapotLayout layout, guint count, guint columns)
@@ -410,6 +449,8 @@ int main(void)
         cmocka_unit_test(test_huge_polygons_centred),
         cmocka_unit_test(test_pphigs_scene_white),
         cmocka_unit_test(test_generators_white),
+        cmocka_unit_test(test_fit_one_vertex),
+        cmocka_unit_test(test_teapot_mesh_white),
         cmocka_unit_test(test_teapot_layouts_centred),
         cmocka_unit_test(test_traverse_defaults),
         cmocka_unit_test(test_instance_bbox_first_vertex),
