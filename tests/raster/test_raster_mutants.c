@@ -10,7 +10,9 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "sim/raster/clip.h"
 #include "sim/raster/scan.h"
+#include "sim/raster/zbuffer.h"
 
 static void worst(void *ctx, const RastSpan *s, RastCounters *c)
 {
@@ -122,12 +124,63 @@ static void test_smallest_polygon(void **state)
     assert_int_equal(spans[0], 1);
 }
 
+/* A triangle poking out through one side of the guard band g = 2 (each
+ * side in turn): clipped to a quad whose corners all lie within |x|,
+ * |y| <= g w, two of them on the crossed plane. */
+static void test_guard_sides(void **state)
+{
+    (void)state;
+    const double g = 2, dir[4][2] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
+    for (int k = 0; k < 4; k++) {
+        double dx = dir[k][0], dy = dir[k][1];
+        RastVert in[3] = {{{10 * dx, 10 * dy, 0, 1}, {1, 1, 1}},
+                          {{0.5 * dx - 0.5 * dy, 0.5 * dy + 0.5 * dx, 0, 1},
+                           {1, 1, 1}},
+                          {{0.5 * dx + 0.5 * dy, 0.5 * dy - 0.5 * dx, 0, 1},
+                           {1, 1, 1}}};
+        RastVert out[RAST_CLIP_MAX];
+        int n = rast_clip_polygon(in, 3, g, out);
+        assert_int_equal(n, 4);
+        int on = 0;
+        for (int i = 0; i < n; i++) {
+            double along = out[i].pos.x * dx + out[i].pos.y * dy;
+            assert_true(fabs(out[i].pos.x) <= g + 1e-12 &&
+                        fabs(out[i].pos.y) <= g + 1e-12);
+            on += fabs(along - g) < 1e-12;
+        }
+        if (on != 2)
+            fail_msg("side %d: %d corners on the plane, expected 2", k, on);
+    }
+}
+
+/* A new or cleared z-buffer: every pixel empty (depth +inf, no
+ * primitive, colour 0), also after a span was drawn and cleared. */
+static void test_zbuffer_cleared(void **state)
+{
+    (void)state;
+    RastZBuffer *zb = rast_zbuffer_new(5, 3);
+    for (int pass = 0; pass < 2; pass++) {
+        for (int i = 0; i < 15; i++)
+            assert_true(isinf(zb->depth[i]) && zb->depth[i] > 0 &&
+                        zb->prim[i] == RAST_NO_PRIM && zb->rgba[i] == 0);
+        RastSpan sp = {.y = 1, .x0 = 0, .x1 = 5, .prim = 7, .z0 = 0.5,
+                       .zlo = 0, .zhi = 1, .c0 = {1, 1, 1}};
+        RastCounters c = {0};
+        rast_zbuffer_span(zb, &sp, &c);
+        assert_true(zb->prim[5] == 7 && zb->rgba[5] != 0);
+        rast_zbuffer_clear(zb);
+    }
+    rast_zbuffer_free(zb);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_widest_fan_planes),
         cmocka_unit_test(test_triangle_depth_range),
         cmocka_unit_test(test_smallest_polygon),
+        cmocka_unit_test(test_guard_sides),
+        cmocka_unit_test(test_zbuffer_cleared),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
