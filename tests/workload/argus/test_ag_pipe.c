@@ -266,19 +266,8 @@ static void test_streams_carry_the_frame_loop(void **state)
     scene_mesh_free(m);
 }
 
-/* The pipeline's event chain timed by hand: one context issues two
- * blocks of one quad (2 triangles, 6 vertices) to one geometry thread
- * and one rasteriser over a single tile, each on its own processor;
- * shared memory at 100 MB/s with 1 us latency.  Per block: the
- * application pays 6 issue_vertex + a lock, its vertices (6 x 32 B)
- * cross the memory, geometry pays a lock, 6 geom_vertex, 2
- * geom_triangle and 2 geom_tile, the bucketed triangles (2 x 64 B)
- * cross the memory, the rasteriser pays 2 rast_triangle (infinite fill
- * rate).  Each thread works its blocks in order; the memory serves one
- * transfer at a time. */
-static void test_event_chain_timing(void **state)
+static void event_chain(gboolean pooled)
 {
-    (void)state;
     Rig r;
     rig_init(&r);
     r.st->contexts = 1;
@@ -292,9 +281,10 @@ static void test_event_chain_timing(void **state)
     AgCosts c;
     assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
     AgSetup s = {.procs = 3, .contexts = 1, .geometry = 1, .rasterisers = 1,
-                 .fill_infinite = TRUE, .app = WL_AG_APP_NONE,
-                 .vertex_bytes = 32, .triangle_bytes = 64,
-                 .mem_bandwidth = 1e8, .mem_latency = SIM_US};
+                 .pool = pooled, .fill_infinite = TRUE,
+                 .app = WL_AG_APP_NONE, .vertex_bytes = 32,
+                 .triangle_bytes = 64, .mem_bandwidth = 1e8,
+                 .mem_latency = SIM_US};
     AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
     AgFrameStats fs;
     if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
@@ -305,8 +295,11 @@ static void test_event_chain_timing(void **state)
     SimTime rt = 2 * c.rast_triangle, L = SIM_US;
     SimTime dv = sim_time_for_bytes(192, 1e8), dt = sim_time_for_bytes(128, 1e8);
     assert_true(dv < a && dt < g); /* the memory is never the queue */
+    assert_true(a < g); /* block 1 reaches geometry while block 0 is there */
     SimTime e0 = a + dv + L, e1 = 2 * a + dv + L;   /* at geometry */
-    SimTime g0 = e0 + g, g1 = MAX(e1, g0) + g;        /* geometry done */
+    /* split: one geometry thread takes them in turn; pool: the idle
+     * worker takes block 1 at once */
+    SimTime g0 = e0 + g, g1 = (pooled ? e1 : MAX(e1, g0)) + g;
     SimTime r0 = g0 + dt + L, r1 = g1 + dt + L;       /* at the tile */
     SimTime end = MAX(r1, r0 + rt) + rt;
     assert_int_equal(fs.start, 0);
@@ -321,8 +314,39 @@ static void test_event_chain_timing(void **state)
     assert_int_equal(fs.blocks, 2);
     assert_int_equal(fs.syncs, 0);
     assert_int_equal(fs.pixels, 2 * SIDE * SIDE);
+    /* the threads' processors: app 0, then geometry 1 and raster 2
+     * (split) or the two pool workers 1 and 2 */
+    MachProc *q[3];
+    for (int i = 0; i < 3; i++)
+        q[i] = mach_proc(r.m, "cpu", i);
+    assert_int_equal(mach_proc_busy(q[0]), 2 * a);
+    if (!pooled) {
+        assert_int_equal(mach_proc_busy(q[1]), 2 * g);
+        assert_int_equal(mach_proc_busy(q[2]), 2 * rt);
+    } else {
+        assert_int_equal(mach_proc_busy(q[1]) + mach_proc_busy(q[2]),
+                         2 * g + 2 * rt);
+        assert_true(mach_proc_busy(q[2]) >= g); /* worker 1 did geometry */
+    }
     wl_ag_pipe_free(p);
     rig_free(&r);
+}
+
+/* The pipeline's event chain timed by hand: one context issues two
+ * blocks of one quad (2 triangles, 6 vertices) to geometry and
+ * rasterisation over a single tile, each thread on its own processor;
+ * shared memory at 100 MB/s with 1 us latency.  Per block: the
+ * application pays 6 issue_vertex + a lock, its vertices (6 x 32 B)
+ * cross the memory, geometry pays a lock, 6 geom_vertex, 2
+ * geom_triangle and 2 geom_tile, the bucketed triangles (2 x 64 B)
+ * cross the memory, the rasteriser pays 2 rast_triangle (infinite fill
+ * rate).  With one geometry thread and one rasteriser (split), or a
+ * pool of two workers. */
+static void test_event_chain_timing(void **state)
+{
+    (void)state;
+    event_chain(FALSE);
+    event_chain(TRUE);
 }
 
 int main(void)
