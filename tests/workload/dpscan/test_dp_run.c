@@ -113,9 +113,19 @@ static void check_against_layer(const char *model, uint64_t procs,
     } else {
         assert_false(sim_result_get_metric(r, "router_wire_s", &v));
     }
-    /* every processor that plays the frame is busy all of it */
+    /* every processor that plays the frame is busy all of it, each
+     * phase's time in that phase */
     const SimNodeResult *n0 = g_ptr_array_index(r->nodes, 0);
     assert_int_equal(n0->busy.total, t->total);
+    for (int ph = 0; ph < WL_DP_N_PHASES; ph++) {
+        guint id = G_MAXUINT;
+        for (guint k = 0; k < r->phases->len; k++)
+            if (!strcmp(g_ptr_array_index(r->phases, k),
+                        wl_dp_phase_name(ph)))
+                id = k;
+        assert_true(id != G_MAXUINT);
+        assert_int_equal(sim_busy_phase(&n0->busy, id), t->phase[ph]);
+    }
     wl_dp_image_free(img);
     wl_dp_vm_free(vm);
     wl_dp_polys_free(p);
