@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <math.h>
+#include <string.h>
 
 #include "sim/workload/argus/ag_stream.h"
 #include "sim/workload/argus/ag_tile.h"
@@ -214,6 +215,132 @@ static void test_bucket_boxes(void **state)
     wl_ag_frame_free(f);
 }
 
+/* One expected block: triangles [first, first + n), its cell (or -1:
+ * none), clear / swap, and its waits and signals as "kind:id" words
+ * (P, V, A = appBarrier, W = glpWaitContext, B = glpBarrier, BW = the
+ * barrier wait). */
+typedef struct {
+    guint first, n;
+    int cell;
+    gboolean opens, clear, swap;
+    const char *pre, *post;
+} Want;
+
+static const char *kind_name(AgSyncKind k)
+{
+    switch (k) {
+    case WL_AG_SYNC_P:
+        return "P";
+    case WL_AG_SYNC_V:
+        return "V";
+    case WL_AG_SYNC_APP_BARRIER:
+        return "A";
+    case WL_AG_SYNC_WAIT_CONTEXT:
+        return "W";
+    case WL_AG_SYNC_BARRIER:
+        return "B";
+    default:
+        return "BW";
+    }
+}
+
+static char *syncs_text(const AgSync *s, guint n)
+{
+    GString *t = g_string_new("");
+    for (guint i = 0; i < n; i++)
+        g_string_append_printf(t, "%s%s:%u", i ? " " : "",
+                               kind_name(s[i].kind), s[i].id);
+    return g_string_free(t, FALSE);
+}
+
+static void blocks_are(const AgStreams *s, guint c, const Want *w, guint n)
+{
+    GArray *a = wl_ag_ctx_blocks(s, c);
+    assert_int_equal(a->len, n);
+    for (guint i = 0; i < n; i++) {
+        const AgBlock *k = &g_array_index(a, AgBlock, i);
+        char *pre = syncs_text(k->pre, k->n_pre);
+        char *post = syncs_text(k->post, k->n_post);
+        int cell = k->batch == G_MAXUINT
+                       ? -1
+                       : (int)g_array_index(s->batches, AgBatch, k->batch).tag;
+        if (k->ctx != c || k->seq != i || cell != w[i].cell ||
+            (cell >= 0 && (k->first != w[i].first || k->n != w[i].n)) ||
+            k->opens != w[i].opens || k->clear != w[i].clear ||
+            k->swap != w[i].swap || strcmp(pre, w[i].pre) ||
+            strcmp(post, w[i].post) || k->verts != 3 * (uint64_t)k->n)
+            fail_msg("context %u block %u: cell %d [%u, +%u) opens %d "
+                     "clear %d swap %d pre '%s' post '%s'; expected cell %d "
+                     "[%u, +%u) opens %d pre '%s' post '%s'",
+                     c, i, cell, k->first, k->n, k->opens, k->clear, k->swap,
+                     pre, post, w[i].cell, w[i].first, w[i].n, w[i].opens,
+                     w[i].pre, w[i].post);
+        g_free(pre);
+        g_free(post);
+    }
+}
+
+/* Cell order on a 2 x 2 x 2 grid, 2 contexts, blocks of 2 triangles:
+ * cell 0 holds 5 triangles (3 blocks, its waits on the first, its
+ * signals on the last), cell 3 none (one empty block, its semaphores
+ * kept).  Cell (x, y, z) waits on each lower neighbour (z, then y, then
+ * x) and signals once per upper neighbour; context c draws, in each
+ * layer z, the cells j = (c + z) mod 2, + 2, ...; Figure 2's loop: the
+ * appBarrier on each context's first block, glpWaitContext(0) after it
+ * in context 1, glpBarrier after each one's last, context 0's clear
+ * first and swap (after the barrier wait) last. */
+static void test_cell_streams_exactly(void **state)
+{
+    (void)state;
+    const guint tags[11] = {0, 0, 0, 0, 0, 1, 2, 4, 5, 6, 7};
+    SceneMesh *m = tagged_mesh(tags, 11);
+    GError *err = NULL;
+    AgStreams *s = wl_ag_streams_new(m, 2, WL_AG_ORDER_CELLS,
+                                     WL_AG_PRIM_TRIANGLES, 2, 2, &err);
+    assert_non_null(s);
+    const Want c0[8] = {
+        {0, 0, -1, FALSE, TRUE, FALSE, "", ""},
+        {0, 2, 0, TRUE, FALSE, FALSE, "A:0", ""},
+        {2, 2, 0, FALSE, FALSE, FALSE, "", ""},
+        {4, 1, 0, FALSE, FALSE, FALSE, "", "V:0 V:0 V:0"},
+        {6, 1, 2, TRUE, FALSE, FALSE, "P:0", "V:2 V:2"},
+        {8, 1, 5, TRUE, FALSE, FALSE, "P:1 P:4", "V:5"},
+        {10, 1, 7, TRUE, FALSE, FALSE, "P:3 P:5 P:6", "B:0"},
+        {0, 0, -1, FALSE, FALSE, TRUE, "BW:0", ""}};
+    const Want c1[4] = {
+        {5, 1, 1, TRUE, FALSE, FALSE, "P:0 A:0 W:0", "V:1 V:1"},
+        {7, 0, 3, TRUE, FALSE, FALSE, "P:1 P:2", "V:3"},
+        {7, 1, 4, TRUE, FALSE, FALSE, "P:0", "V:4 V:4"},
+        {9, 1, 6, TRUE, FALSE, FALSE, "P:2 P:4", "V:6 B:0"}};
+    blocks_are(s, 0, c0, 8);
+    blocks_are(s, 1, c1, 4);
+    assert_int_equal(s->sems, 8);
+    assert_int_equal(s->barriers, 1);
+    assert_int_equal(s->barrier_parties, 2);
+    assert_int_equal(s->syncs, 30);
+    assert_int_equal(wl_ag_n_blocks(s), 12);
+    wl_ag_streams_free(s);
+    /* frame order: batches dealt round robin, no semaphores */
+    s = wl_ag_streams_new(m, 2, WL_AG_ORDER_FRAME, WL_AG_PRIM_TRIANGLES, 2, 0,
+                          &err);
+    const Want f0[8] = {{0, 0, -1, FALSE, TRUE, FALSE, "", ""},
+                        {0, 2, 0, TRUE, FALSE, FALSE, "A:0", ""},
+                        {2, 2, 0, FALSE, FALSE, FALSE, "", ""},
+                        {4, 1, 0, FALSE, FALSE, FALSE, "", ""},
+                        {6, 1, 2, TRUE, FALSE, FALSE, "", ""},
+                        {8, 1, 5, TRUE, FALSE, FALSE, "", ""},
+                        {10, 1, 7, TRUE, FALSE, FALSE, "", "B:0"},
+                        {0, 0, -1, FALSE, FALSE, TRUE, "BW:0", ""}};
+    const Want f1[3] = {{5, 1, 1, TRUE, FALSE, FALSE, "A:0 W:0", ""},
+                        {7, 1, 4, TRUE, FALSE, FALSE, "", ""},
+                        {9, 1, 6, TRUE, FALSE, FALSE, "", "B:0"}};
+    blocks_are(s, 0, f0, 8);
+    blocks_are(s, 1, f1, 3);
+    assert_int_equal(s->sems, 0);
+    wl_ag_streams_free(s);
+    scene_mesh_free(m);
+}
+
 static double metric_at(int frames, const char *name)
 {
     GError *err = NULL;
@@ -261,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_cell_batches_contiguous),
         cmocka_unit_test(test_fragment_colour_clamped),
         cmocka_unit_test(test_bucket_boxes),
+        cmocka_unit_test(test_cell_streams_exactly),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
