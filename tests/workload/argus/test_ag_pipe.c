@@ -17,6 +17,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 #include <string.h>
 
 #include "sim/scene/march.h"
@@ -349,6 +350,51 @@ static void test_event_chain_timing(void **state)
     event_chain(TRUE);
 }
 
+/* A tile takes the contexts' ready blocks in turn (round robin from the
+ * context after the one it drew last).  Two contexts of two full-screen
+ * quads each (red, green; blue, white), blended at alpha 0.5 over black
+ * on one tile; drawing is slow (finite fill rate, one rasteriser), so
+ * once the first block is drawn every other block is ready: the tile
+ * draws red, blue, green, white, leaving (0.5625, 0.75, 0.625); taking
+ * a context's blocks back to back (red, green, blue, white) would leave
+ * (0.5625, 0.625, 0.75). */
+static void test_tile_round_robin(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    scene_mesh_free(r.mesh);
+    r.mesh = scene_mesh_new();
+    const float col[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+    for (int q = 0; q < 4; q++)
+        add_quad(r.mesh, scene_color(col[q][0], col[q][1], col[q][2]));
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE, WL_AG_BLEND, 0.5f,
+                          (RastColor){0, 0, 0});
+    block(&r, 0, 0, 2);
+    block(&r, 0, 2, 2);
+    block(&r, 1, 4, 2);
+    block(&r, 1, 6, 2);
+    GError *e = NULL;
+    AgCosts c;
+    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
+    AgSetup s = {.procs = 8, .contexts = 2, .geometry = 1, .rasterisers = 1,
+                 .app = WL_AG_APP_NONE, .vertex_bytes = 32,
+                 .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+    AgFrameStats fs;
+    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+        fail_msg("%s", e->message);
+    const float want[3] = {0.5625f, 0.75f, 0.625f};
+    for (int i = 0; i < SIDE * SIDE; i += 97)
+        for (int k = 0; k < 3; k++)
+            if (fabsf(r.f->rgb[3 * i + k] - want[k]) > 1e-6f)
+                fail_msg("pixel %d channel %d: %f, expected %f", i, k,
+                         r.f->rgb[3 * i + k], want[k]);
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -356,6 +402,7 @@ int main(void)
         cmocka_unit_test(test_wait_context_orders),
         cmocka_unit_test(test_streams_carry_the_frame_loop),
         cmocka_unit_test(test_event_chain_timing),
+        cmocka_unit_test(test_tile_round_robin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
