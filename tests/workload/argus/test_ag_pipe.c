@@ -395,6 +395,55 @@ static void test_tile_round_robin(void **state)
     rig_free(&r);
 }
 
+/* Three contexts of 2, 1 and 2 blocks (red, green; blue; white,
+ * yellow): the turn passes over a context with nothing left, so the
+ * tile draws red, blue, white, green, yellow. */
+static void test_tile_round_robin_skips(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    g_ptr_array_add(r.st->ctx, g_array_new(FALSE, TRUE, sizeof(AgBlock)));
+    r.st->contexts = 3;
+    r.st->barrier_parties = 3;
+    scene_mesh_free(r.mesh);
+    r.mesh = scene_mesh_new();
+    const float col[5][3] = {
+        {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, 0}};
+    for (int q = 0; q < 5; q++)
+        add_quad(r.mesh, scene_color(col[q][0], col[q][1], col[q][2]));
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE, WL_AG_BLEND, 0.5f,
+                          (RastColor){0, 0, 0});
+    block(&r, 0, 0, 2);
+    block(&r, 0, 2, 2);
+    block(&r, 1, 4, 2);
+    block(&r, 2, 6, 2);
+    block(&r, 2, 8, 2);
+    GError *e = NULL;
+    AgCosts c;
+    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
+    AgSetup s = {.procs = 8, .contexts = 3, .geometry = 1, .rasterisers = 1,
+                 .app = WL_AG_APP_NONE, .vertex_bytes = 32,
+                 .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+    AgFrameStats fs;
+    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+        fail_msg("%s", e->message);
+    const int order[5] = {0, 2, 3, 1, 4};
+    float want[3] = {0, 0, 0};
+    for (int i = 0; i < 5; i++)
+        for (int k = 0; k < 3; k++)
+            want[k] = 0.5f * col[order[i]][k] + 0.5f * want[k];
+    for (int i = 0; i < SIDE * SIDE; i += 97)
+        for (int k = 0; k < 3; k++)
+            if (fabsf(r.f->rgb[3 * i + k] - want[k]) > 1e-6f)
+                fail_msg("pixel %d channel %d: %f, expected %f", i, k,
+                         r.f->rgb[3 * i + k], want[k]);
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -403,6 +452,7 @@ int main(void)
         cmocka_unit_test(test_streams_carry_the_frame_loop),
         cmocka_unit_test(test_event_chain_timing),
         cmocka_unit_test(test_tile_round_robin),
+        cmocka_unit_test(test_tile_round_robin_skips),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
