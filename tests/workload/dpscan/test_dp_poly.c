@@ -125,6 +125,11 @@ static void test_edge_pixels_join_the_ends(void **state)
     one_init(&o, 3, x1, y1, z, v, WL_DP_MODE_WIREFRAME);
     assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 1);
     check_edge(&o, 0);
+    /* a two-pixel edge: one pixel at each end */
+    double x2[3] = {4.1, 5.9, 4.5}, y2[3] = {7.2, 7.8, 9.5};
+    one_init(&o, 3, x2, y2, z, v, WL_DP_MODE_WIREFRAME);
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 2);
+    check_edge(&o, 0);
     /* a polygon behind the eye draws no line */
     o.ok[0] = 0;
     assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 0);
