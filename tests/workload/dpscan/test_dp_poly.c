@@ -269,9 +269,111 @@ static void test_nearest_palette_colour(void **state)
     scene_free(sc);
 }
 
+/* wl_dp_polys_new: each vertex through the camera's view-projection
+ * (aspect width / height) to the screen, x = (ndc x + 1) w / 2, y =
+ * (1 - ndc y) h / 2, depth (ndc z + 1) / 2 clamped to [0, 1]; the value
+ * interpolated across the polygon is |polygon normal . view direction|
+ * (flat), |vertex normal . view direction| (Gouraud), the world height
+ * over the scene's extent (contour) or 1 (hidden line); the colour is the
+ * nearest palette entry; a polygon with a vertex behind the eye is not
+ * drawable. */
+static Scene *tilted(void)
+{
+    SceneMesh *m = scene_mesh_new();
+    const double t[2][4][3] = {
+        {{-0.8, -0.6, 0}, {0.4, -0.5, -0.3}, {0.5, 0.6, -0.6}, {-0.7, 0.5, 0}},
+        {{-0.2, 0.1, 0.5}, {0.9, -0.9, 0.2}, {0.3, 0.9, 0.4}, {0, 0, 0}}};
+    for (int k = 0; k < 2; k++) {
+        uint32_t v[4];
+        int n = k ? 3 : 4;
+        for (int j = 0; j < n; j++)
+            v[j] = scene_mesh_add_vertex(m, vec3(t[k][j][0], t[k][j][1],
+                                                 t[k][j][2]));
+        scene_mesh_add_poly(m, v, n,
+                            k ? scene_color(0.1f, 0.55f, 0.12f)
+                              : scene_color(0.92f, 0.12f, 0.08f),
+                            0);
+    }
+    Scene *s = scene_new("tilted");
+    scene_add_instance(s, scene_add_mesh(s, m), mat4_translate(0.1, 0, 0),
+                       scene_color(1, 1, 1), 0);
+    s->camera.eye = vec3(0.3, 0.4, 3);
+    s->camera.target = vec3(0, 0, 0);
+    return s;
+}
+
+static void test_polys_new(void **state)
+{
+    (void)state;
+    Scene *s = tilted();
+    float pal[WL_DP_COLORS][3];
+    for (int c = 0; c < WL_DP_COLORS; c++)
+        for (int k = 0; k < 3; k++)
+            pal[c][k] = (float)((c * 7 + k * 3) % 10) / 10.0f;
+    pal[4][0] = 0.9f, pal[4][1] = 0.1f, pal[4][2] = 0.1f;
+    pal[9][0] = 0.1f, pal[9][1] = 0.5f, pal[9][2] = 0.1f;
+    SceneMesh *m = scene_flatten(s);
+    scene_mesh_compute_normals(m);
+    SceneCamera cam = scene_camera_at(s, 0);
+    cam.aspect = 40.0 / 30;
+    Mat4 vp = scene_camera_view_proj(&cam);
+    Vec3 fwd = vec3_norm(vec3_sub(cam.target, cam.eye));
+    const WlDpMode modes[4] = {WL_DP_MODE_FLAT, WL_DP_MODE_GOURAUD,
+                               WL_DP_MODE_CONTOUR, WL_DP_MODE_HIDDEN_LINE};
+    for (int md = 0; md < 4; md++) {
+        WlDpPolys *p = wl_dp_polys_new(s, 0, 40, 30, modes[md], pal);
+        assert_int_equal(p->n, 2);
+        assert_int_equal(p->n_verts, 7);
+        assert_int_equal(p->kmax, 4);
+        assert_int_equal(p->n_ok, 2);
+        assert_int_equal(p->start[1], 4);
+        assert_int_equal(p->start[2], 7);
+        assert_int_equal(p->color[0], 4);
+        assert_int_equal(p->color[1], 9);
+        for (guint i = 0; i < 2; i++) {
+            const uint32_t *idx = scene_mesh_poly(m, i);
+            double flat = fabs(vec3_dot(scene_mesh_poly_normal(m, i), fwd));
+            for (uint32_t j = 0; j < wl_dp_poly_len(p, i); j++) {
+                Vec3 w = scene_mesh_vertex(m, idx[j]);
+                Vec4 c = mat4_apply_point(vp, w);
+                uint32_t a = p->start[i] + j;
+                assert_true(fabs(p->x[a] - (c.x / c.w + 1) * 20) < 1e-9);
+                assert_true(fabs(p->y[a] - (1 - c.y / c.w) * 15) < 1e-9);
+                double z = CLAMP((c.z / c.w + 1) / 2, 0, 1);
+                assert_true(fabs(p->z[a] - z) < 1e-12);
+                assert_true(z > 0.5 && z < 1);
+                double want = flat;
+                if (modes[md] == WL_DP_MODE_GOURAUD)
+                    want = fabs(vec3_dot(
+                        vec3_norm(g_array_index(m->normals, Vec3, idx[j])),
+                        fwd));
+                if (modes[md] == WL_DP_MODE_CONTOUR)
+                    want = (w.y + 0.9) / 1.8;
+                if (modes[md] == WL_DP_MODE_HIDDEN_LINE)
+                    want = 1;
+                if (fabs(p->val[a] - want) > 1e-9)
+                    fail_msg("mode %d polygon %u vertex %u: value %f, "
+                             "expected %f", md, i, j, p->val[a], want);
+            }
+        }
+        wl_dp_polys_free(p);
+    }
+    /* the eye moved between the polygons: the far one is behind it */
+    s->camera.eye = vec3(0.3, 0.4, 0.1);
+    s->camera.target = vec3(0.3, 0.4, -1);
+    WlDpPolys *p = wl_dp_polys_new(s, 0, 40, 30, WL_DP_MODE_FLAT, pal);
+    assert_int_equal(p->ok[0], 1);
+    assert_int_equal(p->ok[1], 0);
+    assert_int_equal(p->n_ok, 1);
+    wl_dp_polys_free(p);
+    scene_mesh_free(m);
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_polys_new),
         cmocka_unit_test(test_square_spans),
         cmocka_unit_test(test_equal_crossings_keep_edge_order),
         cmocka_unit_test(test_edge_pixels_join_the_ends),
