@@ -470,6 +470,23 @@ static void check_means(guint frames, guint skip)
     sim_result_free(r);
 }
 
+/* The pipeline feeds the pipe over the shared bus: a machine whose
+ * network is no bus is refused, located at the machine section. */
+static void test_needs_a_bus(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    SimResult *r = run("machine: {model: sgi-onyx, network: "
+                       "{topology: {value: ring, source: t}}}\n"
+                       "workload: {type: performer, town: {blocks: 1}}\n",
+                       2, &err);
+    assert_null(r);
+    assert_non_null(err);
+    if (!strstr(err->message, "found a network without a shared memory"))
+        fail_msg("%s", err->message);
+    g_error_free(err);
+}
+
 static void test_metrics_are_log_means(void **st)
 {
     (void)st;
@@ -584,6 +601,7 @@ int main(void)
         cmocka_unit_test(test_mem_bytes),
         cmocka_unit_test(test_run_summaries),
         cmocka_unit_test(test_metrics_are_log_means),
+        cmocka_unit_test(test_needs_a_bus),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

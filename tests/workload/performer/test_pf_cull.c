@@ -255,6 +255,13 @@ static void test_isect(void **st)
     WlPfIsectStats edge = {0};
     wl_pf_isect(g, 4, 0, -100, 100, &edge); /* a corner counts */
     assert_true(edge.hit && edge.height == 5);
+    /* so does a point on each edge (one barycentric weight exactly 0) */
+    const double on[3][2] = {{0, 2}, {2, 0}, {2, 2}};
+    for (int k = 0; k < 3; k++) {
+        WlPfIsectStats e = {0};
+        wl_pf_isect(g, on[k][0], on[k][1], -100, 100, &e);
+        assert_true(e.hit && e.height == 5);
+    }
     wl_pf_graph_free(g);
 }
 
