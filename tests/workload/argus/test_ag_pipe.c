@@ -444,6 +444,42 @@ static void test_tile_round_robin_skips(void **state)
     rig_free(&r);
 }
 
+/* A glpPSema no glpVSema answers deadlocks every tile: the frame fails
+ * saying how many tiles are left; an earlier run.until does the same to
+ * a frame that would finish. */
+static void test_deadlock_reported(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        Rig r;
+        rig_init(&r);
+        AgBlock *b = block(&r, 0, 0, 2);
+        if (k == 0) {
+            pre(b, WL_AG_SYNC_P, 0);
+            r.st->sems = 1;
+        }
+        block(&r, 1, 2, 2);
+        GError *e = NULL;
+        AgCosts c;
+        assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
+        AgSetup s = {.procs = 24, .contexts = 2, .geometry = 4,
+                     .rasterisers = 4, .app = WL_AG_APP_NONE,
+                     .vertex_bytes = 32, .triangle_bytes = 64};
+        AgPipe *p =
+            wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+        AgFrameStats fs;
+        assert_false(wl_ag_pipe_frame(p, k ? SIM_US : SIM_TIME_MAX, &fs, &e));
+        assert_non_null(e);
+        if (!g_str_has_prefix(e->message,
+                              "argus: 16 of 16 tiles left undrawn at ") ||
+            !strstr(e->message, "expected every block drawn"))
+            fail_msg("%s", e->message);
+        g_error_free(e);
+        wl_ag_pipe_free(p);
+        rig_free(&r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -453,6 +489,7 @@ int main(void)
         cmocka_unit_test(test_event_chain_timing),
         cmocka_unit_test(test_tile_round_robin),
         cmocka_unit_test(test_tile_round_robin_skips),
+        cmocka_unit_test(test_deadlock_reported),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
