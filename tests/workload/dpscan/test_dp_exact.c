@@ -19,9 +19,16 @@
 
 static WlDpMachine simd(void)
 {
-    WlDpMachine m = {.arch = WL_DP_SIMD, .procs = 8, .op = 7, .step = 1000,
-                     .scan_slice = 11, .send_setup = 13, .send_slice = 17,
-                     .send_vp = 19, .send_msg = 23, .news_slice = 29};
+    WlDpMachine m = {.arch = WL_DP_SIMD,
+                     .procs = 8,
+                     .op = 7,
+                     .step = 1000,
+                     .scan_slice = 11,
+                     .send_setup = 13,
+                     .send_slice = 17,
+                     .send_vp = 19,
+                     .send_msg = 23,
+                     .news_slice = 29};
     return m;
 }
 
@@ -159,8 +166,7 @@ static void owner_is(const WlDpLayout *l, uint32_t x, uint32_t y, uint64_t p)
 {
     if (wl_dp_layout_owner(l, x, y) != p)
         fail_msg("(%u, %u): owner %lu, expected %lu", x, y,
-                 (unsigned long)wl_dp_layout_owner(l, x, y),
-                 (unsigned long)p);
+                 (unsigned long)wl_dp_layout_owner(l, x, y), (unsigned long)p);
 }
 
 /* Power-of-two processors: a 2^ceil(d/2) x 2^floor(d/2) grid of blocks;
@@ -287,13 +293,19 @@ static void test_vm_send(void **state)
     /* 8 sources (2 a processor) to 8 destinations (2 a processor) */
     uint64_t dst[6] = {0, 0, 0, 5, 6, 7}, val[6] = {4, 9, 2, 1, 8, 3};
     uint64_t dest[8] = {0};
-    WlDpSend s = {.phase = WL_DP_PH_ROUTER, .n_src = 8, .n_dst = 8,
-                  .lay = WL_DP_LAYOUT_LINEAR, .dst = dst, .val = val,
-                  .count = 6, .dest = dest, .words = 2,
+    WlDpSend s = {.phase = WL_DP_PH_ROUTER,
+                  .n_src = 8,
+                  .n_dst = 8,
+                  .lay = WL_DP_LAYOUT_LINEAR,
+                  .dst = dst,
+                  .val = val,
+                  .count = 6,
+                  .dest = dest,
+                  .words = 2,
                   .comb = WL_DP_COMBINE_MAX};
     assert_int_equal(wl_dp_send(vm, &s), 2);
-    assert_true(dest[0] == 9 && dest[5] == 1 && dest[6] == 8 &&
-                dest[7] == 3 && dest[1] == 0);
+    assert_true(dest[0] == 9 && dest[5] == 1 && dest[6] == 8 && dest[7] == 3 &&
+                dest[1] == 0);
     const WlDpVmCounts *c = wl_dp_vm_counts(vm);
     assert_true(c->max_depth == 3 && c->collisions == 2 && c->messages == 6 &&
                 c->words == 12 && c->sends == 2 && c->steps == 2);
@@ -326,9 +338,14 @@ static void test_vm_send(void **state)
     /* on the screen: element y * width + x; 4 processors as 2 x 2 blocks
      * of 2 x 1 pixels; explicit sources, both from element 0 */
     uint64_t sc[2] = {0, 0}, sd[2] = {1, 2};
-    WlDpSend q = {.phase = WL_DP_PH_PIXEL, .n_src = 8, .n_dst = 8,
-                  .lay = WL_DP_LAYOUT_SCREEN, .src = sc, .dst = sd,
-                  .count = 2, .words = 1};
+    WlDpSend q = {.phase = WL_DP_PH_PIXEL,
+                  .n_src = 8,
+                  .n_dst = 8,
+                  .lay = WL_DP_LAYOUT_SCREEN,
+                  .src = sc,
+                  .dst = sd,
+                  .count = 2,
+                  .words = 1};
     assert_int_equal(wl_dp_send(vm, &q), 0);
     /* processor 0 injects both: load 2 */
     assert_int_equal(t->phase[WL_DP_PH_PIXEL],
@@ -346,9 +363,14 @@ static void test_router_procs(void **state)
     WlDpVm *vm = wl_dp_vm_new(&m, 1, 2, 2);
     uint64_t dst[2] = {0, 2}; /* processors 0 and 2: nodes 0 and 1 */
     uint64_t src[2] = {0, 1}; /* processors 0 and 1: both node 0 */
-    WlDpSend s = {.phase = WL_DP_PH_ROUTER, .n_src = 4, .n_dst = 4,
-                  .lay = WL_DP_LAYOUT_LINEAR, .src = src, .dst = dst,
-                  .count = 2, .words = 1};
+    WlDpSend s = {.phase = WL_DP_PH_ROUTER,
+                  .n_src = 4,
+                  .n_dst = 4,
+                  .lay = WL_DP_LAYOUT_LINEAR,
+                  .src = src,
+                  .dst = dst,
+                  .count = 2,
+                  .words = 1};
     wl_dp_send(vm, &s);
     assert_int_equal(wl_dp_vm_target(vm, 0)->max_load, 2);
     wl_dp_vm_free(vm);
@@ -377,8 +399,12 @@ static void test_vm_send_spmd(void **state)
     WlDpVm *vm = wl_dp_vm_new(ms, 2, 2, 2);
     wl_dp_vm_set_wire(vm, 1, wire_fn, NULL);
     uint64_t dst[3] = {3, 3, 1};
-    WlDpSend s = {.phase = WL_DP_PH_ROUTER, .n_src = 4, .n_dst = 4,
-                  .lay = WL_DP_LAYOUT_LINEAR, .dst = dst, .count = 3,
+    WlDpSend s = {.phase = WL_DP_PH_ROUTER,
+                  .n_src = 4,
+                  .n_dst = 4,
+                  .lay = WL_DP_LAYOUT_LINEAR,
+                  .dst = dst,
+                  .count = 3,
                   .words = 2};
     wl_dp_send(vm, &s);
     /* pairs (0,3) (1,3) (2,1): load 2 (processor 3 receives two) */
@@ -391,8 +417,7 @@ static void test_vm_send_spmd(void **state)
     const WlDpTarget *t0 = wl_dp_vm_target(vm, 0);
     SimTime f = wl_dp_fattree_wire(&m, 2);
     assert_int_equal(t0->wire_total, 2 * f);
-    assert_int_equal(t0->phase[WL_DP_PH_ROUTER],
-                     2 * (1000 + 31 + MAX(f, 74)));
+    assert_int_equal(t0->phase[WL_DP_PH_ROUTER], 2 * (1000 + 31 + MAX(f, 74)));
     /* the same pair twice counts as one pair of two messages */
     uint64_t d2[3] = {0, 0, 0}, s2[3] = {0, 0, 1};
     s.src = s2;

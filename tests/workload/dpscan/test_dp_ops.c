@@ -49,9 +49,16 @@ static Scene *shapes(void)
     return s;
 }
 
-static const WlDpOps ops = {.transform = 3, .shade = 5, .cross = 7,
-                            .swap = 11, .pair = 13, .pixel = 17, .line = 19,
-                            .clear = 23, .extract = 29, .edge = 31};
+static const WlDpOps ops = {.transform = 3,
+                            .shade = 5,
+                            .cross = 7,
+                            .swap = 11,
+                            .pair = 13,
+                            .pixel = 17,
+                            .line = 19,
+                            .clear = 23,
+                            .extract = 29,
+                            .edge = 31};
 
 static void check_mode(const Scene *s, WlDpMode mode)
 {
@@ -70,9 +77,8 @@ static void check_mode(const Scene *s, WlDpMode mode)
         mode == WL_DP_MODE_GOURAUD || mode == WL_DP_MODE_CONTOUR;
     gboolean lines = !fills;
     SimTime tr = 4 * 3 + (lines ? 0 : per_vertex ? 4 * 5 : 5);
-    SimTime scan = fills ? 2 * 4 + 4 + img->scan_iters *
-                                           (4 * 7 + 6 * 11 + 2 * 13)
-                         : 19;
+    SimTime scan =
+        fills ? 2 * 4 + 4 + img->scan_iters * (4 * 7 + 6 * 11 + 2 * 13) : 19;
     SimTime pixel = img->pixel_iters * (fills ? 17 : 19);
     SimTime disp = 23 + 29 + (mode == WL_DP_MODE_HIDDEN_LINE ? 4 * 31 : 0);
     assert_true(img->pixel_iters > 0);
@@ -110,8 +116,8 @@ static void test_buffer_capacity(void **state)
     uint64_t last = 0;
     const double f[] = {100, 1, 0.5, 0.01};
     for (guint i = 0; i < G_N_ELEMENTS(f); i++) {
-        WlDpRenderOpts o = {.mode = WL_DP_MODE_FLAT, .buffer_factor = f[i],
-                            .ops = ops};
+        WlDpRenderOpts o = {
+            .mode = WL_DP_MODE_FLAT, .buffer_factor = f[i], .ops = ops};
         WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 1 << 20, .op = 1};
         WlDpVm *vm = wl_dp_vm_new(&mc, 1, 48, 40);
         WlDpImage *img = wl_dp_render(vm, p, 48, 40, &o);

@@ -32,8 +32,8 @@ static SimResult *run(const char *workload, GError **err)
     void *p = ops->parse(cfg_get(root, "workload"), err);
     assert_non_null(p);
     SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .frames = 1,
-                     .fidelity = "analytic"};
+    WlContext ctx = {
+        .eng = eng, .root = root, .frames = 1, .fidelity = "analytic"};
     SimResult *r = sim_result_new("dpscan", "");
     if (!ops->run(&ctx, p, r, err)) {
         sim_result_free(r);
@@ -82,7 +82,8 @@ static void check_against_layer(const char *model, uint64_t procs,
     wl_dp_palette_default(pal);
     WlDpPolys *p = wl_dp_polys_new(s, 0, 40, 30, WL_DP_MODE_FLAT, pal);
     WlDpVm *vm = wl_dp_vm_new(&m, 1, 40, 30);
-    WlDpRenderOpts o = {.mode = WL_DP_MODE_FLAT, .buffer_factor = 0.25,
+    WlDpRenderOpts o = {.mode = WL_DP_MODE_FLAT,
+                        .buffer_factor = 0.25,
                         .ops = wl_dp_ops_defaults()};
     WlDpImage *img = wl_dp_render(vm, p, 40, 30, &o);
     const WlDpTarget *t = wl_dp_vm_target(vm, 0);
@@ -120,8 +121,7 @@ static void check_against_layer(const char *model, uint64_t procs,
     for (int ph = 0; ph < WL_DP_N_PHASES; ph++) {
         guint id = G_MAXUINT;
         for (guint k = 0; k < r->phases->len; k++)
-            if (!strcmp(g_ptr_array_index(r->phases, k),
-                        wl_dp_phase_name(ph)))
+            if (!strcmp(g_ptr_array_index(r->phases, k), wl_dp_phase_name(ph)))
                 id = k;
         assert_true(id != G_MAXUINT);
         assert_int_equal(sim_busy_phase(&n0->busy, id), t->phase[ph]);
@@ -152,9 +152,9 @@ static void test_mem_bytes(void **state)
 {
     (void)state;
     GError *err = NULL;
-    CfgNode *root = cfg_load_string(
-        "{type: dpscan, processors: 64, width: 30, height: 20}", "w.yaml",
-        &err);
+    CfgNode *root =
+        cfg_load_string("{type: dpscan, processors: 64, width: 30, height: 20}",
+                        "w.yaml", &err);
     const WlOps *ops = wl_find("dpscan");
     void *p = ops->parse(root, &err);
     assert_non_null(p);

@@ -107,16 +107,15 @@ static void test_cull_and_draw(void **st)
     GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
     WlPfCullStats cs = {0};
     wl_pf_cull(t.g, &v, dl, &cs);
-    const guint want[9][2] = {
-        {WL_PF_DL_GEOSET, gset(&t, t.a, 0)},
-        {WL_PF_DL_GEOSET, gset(&t, t.l1, 0)},
-        {WL_PF_DL_GEOSET, gset(&t, t.s1, 0)},
-        {WL_PF_DL_PUSH, 0},
-        {WL_PF_DL_GEOSET, gset(&t, t.bb, 0)},
-        {WL_PF_DL_POP, 0},
-        {WL_PF_DL_PUSH, 0},
-        {WL_PF_DL_GEOSET, gset(&t, t.bb, 1)},
-        {WL_PF_DL_POP, 0}};
+    const guint want[9][2] = {{WL_PF_DL_GEOSET, gset(&t, t.a, 0)},
+                              {WL_PF_DL_GEOSET, gset(&t, t.l1, 0)},
+                              {WL_PF_DL_GEOSET, gset(&t, t.s1, 0)},
+                              {WL_PF_DL_PUSH, 0},
+                              {WL_PF_DL_GEOSET, gset(&t, t.bb, 0)},
+                              {WL_PF_DL_POP, 0},
+                              {WL_PF_DL_PUSH, 0},
+                              {WL_PF_DL_GEOSET, gset(&t, t.bb, 1)},
+                              {WL_PF_DL_POP, 0}};
     dl_is(dl, want, 9);
     /* root, a, the DCS (culled), the LOD and its child 1, the switch and
      * its child 1, the billboard, the CULL-only geode */
@@ -290,8 +289,8 @@ static void test_isect_touching_sphere(void **st)
         assert_false(s.hit);
     }
     /* just past each: pruned at the root */
-    const double p[][4] = {{1, 1, -0.5, -0.51}, {1, 1, 4.51, 9},
-                           {4.01, 2, -9, 9}};
+    const double p[][4] = {
+        {1, 1, -0.5, -0.51}, {1, 1, 4.51, 9}, {4.01, 2, -9, 9}};
     for (guint i = 0; i < G_N_ELEMENTS(p); i++) {
         WlPfIsectStats s = {0};
         wl_pf_isect(g, p[i][0], p[i][1], p[i][2], p[i][3], &s);

@@ -20,6 +20,7 @@
 
 typedef struct {
     guint app, cull, draw, isect; /* ms */
+    const guint *draws;           /* DRAW of each frame, or NULL: draw */
 } Times;
 
 static SimTime s_app(void *ctx, guint n)
@@ -35,8 +36,8 @@ static SimTime s_cull(void *ctx, guint n, double stress)
 }
 static SimTime s_draw(void *ctx, guint n)
 {
-    (void)n;
-    return ((Times *)ctx)->draw * SIM_MS;
+    const Times *t = ctx;
+    return (t->draws ? t->draws[n] : t->draw) * SIM_MS;
 }
 static SimTime s_isect(void *ctx, guint n)
 {
@@ -57,16 +58,19 @@ static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
     for (guint i = 0; i < 4; i++)
         procs[i] = mach_proc(m, "cpu", i);
     WlPfStageFns f = {s_app, s_cull, s_draw, t->isect ? s_isect : NULL, NULL};
-    WlPfPipeParams p = {.mode = mode, .video = 10 * SIM_MS, .per_frame = 2,
-                        .locked = locked, .frames = frames,
+    WlPfPipeParams p = {.mode = mode,
+                        .video = 10 * SIM_MS,
+                        .per_frame = 2,
+                        .locked = locked,
+                        .frames = frames,
                         .stress = stress_params.stress,
                         .low = stress_params.low,
                         .high = stress_params.high,
                         .gain = stress_params.gain,
                         .max_stress = stress_params.max_stress};
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
-    assert_true(wl_pf_pipe_run(eng, procs, &p, &f, t, recs, SIM_TIME_MAX,
-                               &err));
+    assert_true(
+        wl_pf_pipe_run(eng, procs, &p, &f, t, recs, SIM_TIME_MAX, &err));
     mach_free(m);
     sim_engine_free(eng);
     return recs;
@@ -77,7 +81,7 @@ static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
 static void frame_is(const GArray *r, guint n, const guint want[7])
 {
     const WlPfFrameRec *x = &g_array_index(r, WlPfFrameRec, n);
-    const SimTime got[7] = {x->app_start, x->app_end,  x->cull_start,
+    const SimTime got[7] = {x->app_start, x->app_end,    x->cull_start,
                             x->cull_end,  x->draw_start, x->draw_end,
                             x->swap};
     for (int i = 0; i < 7; i++)
@@ -113,8 +117,20 @@ static void test_three_processes(void **st)
                               {40, 43, 43, 47, 70, 95, 100},
                               {60, 63, 65, 69, 100, 125, 130},
                               {80, 83, 95, 99, 130, 155, 160}};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 25, 0}, 5, want,
-               NULL);
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 25, 0, NULL}, 5,
+               want, NULL);
+}
+
+/* DRAW of frame 0 takes 45 ms: CULL of frame 2 (APP done at 43 ms)
+ * waits for it (52 ms): at most two frames between CULL and DRAW. */
+static void test_cull_waits_for_draw(void **st)
+{
+    (void)st;
+    const guint want[3][7] = {{0, 3, 3, 7, 7, 52, 60},
+                              {20, 23, 23, 27, 60, 105, 110},
+                              {40, 43, 52, 56, 110, 155, 160}};
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 45, 0, NULL}, 3,
+               want, NULL);
 }
 
 /* APP+CULL on one process, DRAW on another: pfSync after CULL (14 ms:
@@ -126,7 +142,7 @@ static void test_two_processes(void **st)
                               {20, 26, 26, 34, 34, 43, 50},
                               {40, 46, 46, 54, 54, 63, 70},
                               {60, 66, 66, 74, 74, 83, 90}};
-    frames_are(WL_PF_MP_APPCULL_DRAW, FALSE, (Times){6, 8, 9, 0}, 4, want,
+    frames_are(WL_PF_MP_APPCULL_DRAW, FALSE, (Times){6, 8, 9, 0, NULL}, 4, want,
                NULL);
 }
 
@@ -139,7 +155,7 @@ static void test_one_process(void **st)
                               {40, 46, 46, 54, 54, 63, 70},
                               {80, 86, 86, 94, 94, 103, 110},
                               {120, 126, 126, 134, 134, 143, 150}};
-    frames_are(WL_PF_MP_APPCULLDRAW, FALSE, (Times){6, 8, 9, 0}, 4, want,
+    frames_are(WL_PF_MP_APPCULLDRAW, FALSE, (Times){6, 8, 9, 0, NULL}, 4, want,
                NULL);
 }
 
@@ -151,8 +167,8 @@ static void test_locked(void **st)
                               {20, 23, 23, 27, 40, 55, 60},
                               {40, 43, 43, 47, 60, 75, 80},
                               {60, 63, 63, 67, 80, 95, 100}};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, TRUE, (Times){3, 4, 15, 0}, 4, want,
-               NULL);
+    frames_are(WL_PF_MP_APP_CULL_DRAW, TRUE, (Times){3, 4, 15, 0, NULL}, 4,
+               want, NULL);
 }
 
 /* ISECT (30 ms) starts with a frame's APP when it is free: frames 0 and
@@ -165,8 +181,8 @@ static void test_isect(void **st)
                               {40, 43, 43, 47, 47, 52, 60},
                               {60, 63, 63, 67, 67, 72, 80}};
     const guint isect[4] = {30, 0, 30, 0};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 5, 30}, 4, want,
-               isect);
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 5, 30, NULL}, 4,
+               want, isect);
 }
 
 /* Stress feedback: after each DRAW, a load (DRAW time / T) outside
@@ -174,8 +190,10 @@ static void test_isect(void **st)
  * clamped to [1, max_stress]; CULL takes the stress of its start. */
 static double stress_of(Times t, double gain, double max, guint n, guint i)
 {
-    stress_params = (WlPfPipeParams){.stress = TRUE, .low = 0.4,
-                                     .high = 0.6, .gain = gain,
+    stress_params = (WlPfPipeParams){.stress = TRUE,
+                                     .low = 0.4,
+                                     .high = 0.6,
+                                     .gain = gain,
                                      .max_stress = max};
     GArray *r = run(WL_PF_MP_APP_CULL_DRAW, FALSE, &t, n);
     double s = g_array_index(r, WlPfFrameRec, i).stress;
@@ -190,7 +208,7 @@ static void test_stress(void **st)
     /* DRAW 15 ms: load 0.75, +0.25 a DRAW.  DRAWs end at 22, 45 and
      * 65 ms (each starts at the previous swap: 30, 50); CULLs start at
      * 3, 23, 43 and 63 ms */
-    Times busy = {3, 4, 15, 0};
+    Times busy = {3, 4, 15, 0, NULL};
     assert_true(stress_of(busy, 1, 8, 4, 0) == 1.0);
     assert_true(stress_of(busy, 1, 8, 4, 1) == 1.25);
     assert_true(stress_of(busy, 1, 8, 4, 2) == 1.25);
@@ -198,12 +216,21 @@ static void test_stress(void **st)
     assert_true(stress_of(busy, 2, 8, 4, 3) == 2.0);
     assert_true(stress_of(busy, 1, 1.4, 4, 3) == 1.4); /* clamped */
     /* DRAW 5 ms: load 0.25, below the band: stress stays at its floor */
-    assert_true(stress_of((Times){3, 4, 5, 0}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 5, 0, NULL}, 1, 8, 4, 3) == 1.0);
     /* DRAW 10 and 12 ms: loads 0.5 and 0.6, inside the band */
-    assert_true(stress_of((Times){3, 4, 10, 0}, 1, 8, 4, 3) == 1.0);
-    assert_true(stress_of((Times){3, 4, 12, 0}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 10, 0, NULL}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 12, 0, NULL}, 1, 8, 4, 3) == 1.0);
     /* DRAW 8 ms: load 0.4, on the band's edge: inside */
-    assert_true(stress_of((Times){3, 4, 8, 0}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 8, 0, NULL}, 1, 8, 4, 3) == 1.0);
+    /* and from a raised stress: frame 0's DRAW (15 ms) raises it to 1.25
+     * for frame 1's CULL (23 ms); frame 1's DRAW (30 to 38 ms) at load
+     * 0.4 leaves it there for frame 2's CULL (43 ms); frame 2's at 0.6
+     * (the upper edge) too */
+    const guint seq[4] = {15, 8, 12, 8};
+    Times varied = {3, 4, 0, 0, seq};
+    assert_true(stress_of(varied, 1, 8, 4, 1) == 1.25);
+    assert_true(stress_of(varied, 1, 8, 4, 2) == 1.25);
+    assert_true(stress_of(varied, 1, 8, 4, 3) == 1.25);
 }
 
 int main(void)
@@ -211,6 +238,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_three_processes),
         cmocka_unit_test(test_two_processes),
+        cmocka_unit_test(test_cull_waits_for_draw),
         cmocka_unit_test(test_one_process),
         cmocka_unit_test(test_locked),
         cmocka_unit_test(test_isect),

@@ -85,10 +85,13 @@ static void test_costs_read(void **st)
 static void test_draw_cpu(void **st)
 {
     (void)st;
-    WlPfCosts c = {.draw_geoset = 2, .draw_state = 3, .draw_matrix = 5,
-                   .draw_vertex = 7};
-    WlPfDrawStats d = {.geosets = 11, .tris = 13, .matrix_ops = 17,
-                       .state_changes = 19, .state_naive = 23};
+    WlPfCosts c = {
+        .draw_geoset = 2, .draw_state = 3, .draw_matrix = 5, .draw_vertex = 7};
+    WlPfDrawStats d = {.geosets = 11,
+                       .tris = 13,
+                       .matrix_ops = 17,
+                       .state_changes = 19,
+                       .state_naive = 23};
     assert_int_equal(wl_pf_draw_cpu(&c, &d, TRUE),
                      11 * 2 + 19 * 3 + 17 * 5 + 3 * 13 * 7);
     assert_int_equal(wl_pf_draw_cpu(&c, &d, FALSE),
@@ -140,8 +143,8 @@ static void one_frame(Rig *r, WlPfStageFns *f, guint n, gboolean lazy)
                                   states * c->draw_state +
                                   ds->matrix_ops * c->draw_matrix +
                                   3 * ds->tris * c->draw_vertex);
-    assert_int_equal(fs->pipe, ds->tris * c->pipe_triangle +
-                                   states * c->pipe_state);
+    assert_int_equal(fs->pipe,
+                     ds->tris * c->pipe_triangle + states * c->pipe_state);
     assert_int_equal(d, MAX(fs->cpu, MAX(fs->bus, fs->pipe)));
     /* DRAW: the CPU's counts, the pipe's counts and the stream as terms */
     assert_int_equal(mach_proc_ops_cost(r->s->draw_cpu, &r->s->last), fs->cpu);

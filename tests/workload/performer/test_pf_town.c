@@ -162,7 +162,8 @@ static void check_lamps(const WlPfTown *t, const WlPfNode *sw, double x0,
     assert_int_equal(wl_pf_geoset_tris(gs), 4 * 12);
     assert_int_equal(gs->gstate, 2);
     for (guint c = 0; c < 4; c++) {
-        Vec3 lo = vec3(INFINITY, INFINITY, INFINITY), hi = vec3(-1e9, -1e9, -1e9);
+        Vec3 lo = vec3(INFINITY, INFINITY, INFINITY),
+             hi = vec3(-1e9, -1e9, -1e9);
         for (guint i = 36 * c; i < 36 * (c + 1); i++) {
             Vec3 v = vtx(gs, i);
             lo = vec3(fmin(lo.x, v.x), fmin(lo.y, v.y), fmin(lo.z, v.z));
@@ -228,7 +229,8 @@ static void test_cars(void **st)
     assert_int_equal(wl_pf_child(root, 4), t->car_group);
     assert_int_equal(cars->children->len, 3);
     for (guint c = 0; c < 3; c++) {
-        assert_int_equal(wl_pf_child(cars, c), g_array_index(t->cars, guint, c));
+        assert_int_equal(wl_pf_child(cars, c),
+                         g_array_index(t->cars, guint, c));
         const WlPfNode *d = child(t, cars, c);
         const WlPfGeoSet *gs = only_geoset(t, child(t, d, 0));
         assert_int_equal(wl_pf_geoset_tris(gs), 48);
