@@ -22,6 +22,7 @@
 #include "sim/scene/scene.h"
 #include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_render.h"
+#include "sim/workload/dpscan/dp_serial.h"
 
 /* Two triangles and a quad, seen from the front (kmax 4). */
 static Scene *shapes(void)
@@ -133,11 +134,122 @@ static void test_buffer_capacity(void **state)
     scene_free(s);
 }
 
+/* The segment buffer as dp_render.h describes it, replayed here from
+ * the polygons' spans: scan line i brings the spans of every polygon
+ * with more than i rows; before a line that would overflow a non-empty
+ * buffer of `cap` segments it is flushed, and once more at the end.
+ * Returns the flushes; *exact: some line filled the buffer exactly. */
+static uint64_t model_flushes(const WlDpPolys *p, uint64_t cap,
+                              gboolean *exact, uint32_t *longest)
+{
+    uint32_t tallest = 0;
+    for (uint64_t i = 0; i < p->n; i++) {
+        int32_t y0;
+        tallest = MAX(tallest, wl_dp_poly_rows(p, i, &y0));
+    }
+    uint64_t nbuf = 0, flushes = 0;
+    *longest = 0;
+    for (uint32_t r = 0; r < tallest; r++) {
+        uint64_t tot = 0;
+        for (uint64_t i = 0; i < p->n; i++) {
+            int32_t y0;
+            if (wl_dp_poly_rows(p, i, &y0) <= r)
+                continue;
+            WlDpSpan sp[WL_DP_MAX_VERTS / 2];
+            guint n = wl_dp_poly_spans(p, i, y0 + (int32_t)r, sp);
+            tot += n;
+            for (guint k = 0; k < n; k++)
+                *longest = MAX(*longest, sp[k].len);
+        }
+        if (nbuf > 0 && nbuf + tot > cap)
+            flushes++, nbuf = 0;
+        *exact |= nbuf + tot == cap;
+        nbuf += tot;
+    }
+    return flushes + (nbuf > 0);
+}
+
+static void test_flushes_by_hand(void **state)
+{
+    (void)state;
+    Scene *s = shapes();
+    float pal[WL_DP_COLORS][3];
+    wl_dp_palette_default(pal);
+    WlDpPolys *p = wl_dp_polys_new(s, 0, 48, 40, WL_DP_MODE_FLAT, pal);
+    gboolean exact = FALSE;
+    for (double f = 0.3; f < 4; f += 0.34) {
+        WlDpRenderOpts o = {
+            .mode = WL_DP_MODE_FLAT, .buffer_factor = f, .ops = ops};
+        WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 1 << 20, .op = 1};
+        WlDpVm *vm = wl_dp_vm_new(&mc, 1, 48, 40);
+        WlDpImage *img = wl_dp_render(vm, p, 48, 40, &o);
+        uint32_t longest;
+        uint64_t cap = MAX((uint64_t)ceil(f * 3), 1);
+        uint64_t want = model_flushes(p, cap, &exact, &longest);
+        if (img->flushes != want)
+            fail_msg("factor %.2f (%lu segments): %lu flushes, expected %lu",
+                     f, (unsigned long)cap, (unsigned long)img->flushes,
+                     (unsigned long)want);
+        assert_int_equal(img->max_len, longest);
+        wl_dp_image_free(img);
+        wl_dp_vm_free(vm);
+    }
+    assert_true(exact); /* a line filled the buffer to the brim */
+    wl_dp_polys_free(p);
+    scene_free(s);
+}
+
+/* Polygons running off the right, bottom, left and top edges: the
+ * pixels past an edge are masked off (counted as clipped), the z-buffer equals the
+ * serial render's. */
+static void test_clipped_at_the_edges(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    const double t[3][3][2] = {{{0.2, 0.3}, {1.6, 0.1}, {0.5, 0.9}},
+                               {{-0.5, -0.2}, {0.1, -1.7}, {-0.9, -0.6}},
+                               {{-1.6, 0.5}, {-0.7, 0.8}, {-0.8, 1.5}}};
+    for (int k = 0; k < 3; k++) {
+        uint32_t v[3];
+        for (int j = 0; j < 3; j++)
+            v[j] = scene_mesh_add_vertex(m, vec3(t[k][j][0], t[k][j][1], 0));
+        scene_mesh_add_poly(m, v, 3, scene_color(1, 0.5f, 0), 0);
+    }
+    Scene *s = scene_new("edges");
+    scene_add_instance(s, scene_add_mesh(s, m), mat4_identity(),
+                       scene_color(1, 1, 1), 0);
+    s->camera.proj = SCENE_ORTHOGRAPHIC;
+    s->camera.eye = vec3(0, 0, 2);
+    s->camera.height = 2;
+    float pal[WL_DP_COLORS][3];
+    wl_dp_palette_default(pal);
+    for (int mode = 0; mode < WL_DP_N_MODES; mode++) {
+        WlDpPolys *p = wl_dp_polys_new(s, 0, 40, 32, (WlDpMode)mode, pal);
+        WlDpRenderOpts o = {
+            .mode = (WlDpMode)mode, .buffer_factor = 1, .ops = ops};
+        WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 64, .op = 1};
+        WlDpVm *vm = wl_dp_vm_new(&mc, 1, 40, 32);
+        WlDpImage *img = wl_dp_render(vm, p, 40, 32, &o);
+        WlDpImage *ref = wl_dp_serial_render(p, 40, 32);
+        if (mode != WL_DP_MODE_POINTS)
+            assert_true(img->clipped > 0);
+        assert_memory_equal(img->zbuf, ref->zbuf, 40 * 32 * sizeof(uint64_t));
+        assert_int_equal(img->pixels, ref->pixels);
+        wl_dp_image_free(ref);
+        wl_dp_image_free(img);
+        wl_dp_vm_free(vm);
+        wl_dp_polys_free(p);
+    }
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_phase_ops),
         cmocka_unit_test(test_buffer_capacity),
+        cmocka_unit_test(test_flushes_by_hand),
+        cmocka_unit_test(test_clipped_at_the_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
