@@ -122,7 +122,9 @@ static void test_sizes_and_words(void **state)
     assert_int_equal(p->prim, WL_AG_PRIM_TRIANGLES);
     assert_int_equal(p->pixels, WL_AG_BLEND);
     wl_argus_ops.free_params(p);
-    p = parse("bytes: {vertex: 1 MiB, triangle: 1048575 B}", &err);
+    p = parse("bytes: {vertex: 1 MiB, triangle: 1048575 B}, cells: 0", &err);
+    assert_non_null(p);
+    assert_int_equal(p->cells, 0); /* 0: from the last batch tag */
     assert_int_equal(p->setup.vertex_bytes, 1 << 20);
     assert_int_equal(p->setup.triangle_bytes, (1 << 20) - 1);
     assert_int_equal(p->setup.app, WL_AG_APP_NONE);

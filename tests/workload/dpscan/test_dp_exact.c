@@ -429,6 +429,77 @@ static void test_vm_send_spmd(void **state)
     wl_dp_vm_free(vm);
 }
 
+/* Named counts (dp_cost.h): each counting function adds what the cost
+ * function of the same arguments charges, as counts of the model's
+ * constants, so that pricing the counts gives the same time; a NULL
+ * counter is allowed; each count is named after its model key. */
+static void test_named_counts(void **state)
+{
+    (void)state;
+    WlDpMachine m = simd();
+    WlDpCounts k = {0};
+    wl_dp_count_step(&m, 17, 5, &k);
+    wl_dp_count_step(&m, 17, 5, NULL);
+    assert_true(k.n[WL_DP_C_STEP] == 1 && k.n[WL_DP_C_OP] == 15);
+    assert_int_equal(wl_dp_counts_price(&m, &k),
+                     wl_dp_step_cost(&m, 17, 5, NULL));
+    wl_dp_count_slices(&m, 17, WL_DP_C_SCAN_SLICE, &k);
+    wl_dp_count_slices(&m, 16, WL_DP_C_NEWS_SLICE, &k);
+    wl_dp_count_slices(&m, 17, WL_DP_C_SCAN_SLICE, NULL);
+    assert_true(k.n[WL_DP_C_STEP] == 3 && k.n[WL_DP_C_SCAN_SLICE] == 3 &&
+                k.n[WL_DP_C_NEWS_SLICE] == 2);
+    assert_int_equal(wl_dp_counts_price(&m, &k),
+                     wl_dp_step_cost(&m, 17, 5, NULL) +
+                         wl_dp_scan_cost(&m, 17, NULL) +
+                         wl_dp_news_cost(&m, 16, NULL));
+    /* a SIMD send: 2 words, v 3, 2 messages a processor, load 3 */
+    WlDpCounts s = {0};
+    wl_dp_count_send(&m, 2, 17, 9, 3, 0, &s);
+    assert_true(s.n[WL_DP_C_STEP] == 2 && s.n[WL_DP_C_SEND_SETUP] == 2 &&
+                s.n[WL_DP_C_SEND_VP] == 6 && s.n[WL_DP_C_SEND_MSG] == 4 &&
+                s.n[WL_DP_C_SEND_SLICE] == 6 && s.wire == 0);
+    assert_int_equal(wl_dp_counts_price(&m, &s),
+                     wl_dp_send_cost(&m, 2, 17, 9, 3, NULL));
+    WlDpCounts z = {0};
+    wl_dp_count_send(&m, 1, 8, 8, 0, 0, &z);
+    wl_dp_count_send(&m, 0, 8, 8, 1, 0, &z);
+    wl_dp_count_send(&m, 1, 8, 0, 1, 0, &z);
+    wl_dp_count_send(&m, 1, 8, 8, 1, 0, NULL);
+    assert_int_equal(wl_dp_counts_price(&m, &z), 0);
+    /* SPMD: the wire bounds (a time), or the software does (a count);
+     * software equal to the wire counts as software */
+    WlDpMachine p = spmd();
+    SimTime wire = wl_dp_fattree_wire(&p, 1000);
+    WlDpCounts w = {0};
+    wl_dp_count_send(&p, 2, 16, 9, 1000, wire, &w);
+    assert_true(w.n[WL_DP_C_NET_LATENCY] == 2 && w.n[WL_DP_C_STEP] == 2 &&
+                w.n[WL_DP_C_MSG_OVERHEAD] == 0 && w.wire == 2 * wire);
+    assert_int_equal(wl_dp_counts_price(&p, &w),
+                     wl_dp_send_cost(&p, 2, 16, 9, 1000, NULL));
+    p.msg_overhead = 5000;
+    WlDpCounts o = {0};
+    wl_dp_count_send(&p, 2, 16, 9, 1000, wire, &o);
+    assert_true(o.n[WL_DP_C_MSG_OVERHEAD] == 2000 && o.wire == 0);
+    assert_int_equal(wl_dp_counts_price(&p, &o),
+                     wl_dp_send_cost(&p, 2, 16, 9, 1000, NULL));
+    WlDpCounts e = {0};
+    wl_dp_count_send(&p, 1, 16, 9, 10, 50000, &e);
+    assert_true(e.n[WL_DP_C_MSG_OVERHEAD] == 10 && e.wire == 0);
+    /* names and values */
+    const char *names[WL_DP_N_COSTS] = {
+        "step",       "op",       "scan_slice", "news_slice",  "send_setup",
+        "send_vp",    "send_msg", "send_slice", "net_latency", "msg_overhead"};
+    const SimTime vals[WL_DP_N_COSTS] = {1000, 7, 11, 29, 13, 19, 23, 17, 31,
+                                         5000};
+    for (int c = 0; c < WL_DP_N_COSTS; c++) {
+        assert_string_equal(wl_dp_cost_name((WlDpCost)c), names[c]);
+        char *path = g_strconcat("dpscan.", names[c], NULL);
+        assert_string_equal(wl_dp_cost_path((WlDpCost)c), path);
+        g_free(path);
+        assert_int_equal(wl_dp_cost_value(&p, (WlDpCost)c), vals[c]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -443,6 +514,7 @@ int main(void)
         cmocka_unit_test(test_empty_scan_one_proc),
         cmocka_unit_test(test_router_procs),
         cmocka_unit_test(test_vm_send_spmd),
+        cmocka_unit_test(test_named_counts),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

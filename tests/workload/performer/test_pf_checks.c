@@ -351,9 +351,13 @@ static void test_sphere_union(void **st)
     guint point = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     ball(g, point, 0, 10, gs);
     ball(g, point, 20, 0, gs); /* a point still counts */
+    guint first = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    ball(g, first, 20, 0, gs); /* a point first: merged, not replaced */
+    ball(g, first, 0, 10, gs);
     guint empty = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     wl_pf_update_bounds(g, g->root);
     sphere_is(g, point, 5, 15);
+    sphere_is(g, first, 5, 15);
     sphere_is(g, tall, 0, 6);
     sphere_is(g, inside, 0, 10);
     sphere_is(g, contains, 0, 10);

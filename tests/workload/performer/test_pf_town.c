@@ -252,6 +252,28 @@ static void test_cars(void **st)
     wl_pf_town_free(t);
 }
 
+/* Houses face any way: their turns about +y cover the whole circle
+ * (sin of the yaw of both signs, in the default town). */
+static void test_house_yaws(void **st)
+{
+    (void)st;
+    WlPfTownParams p = wl_pf_town_defaults();
+    WlPfTown *t = wl_pf_town_new(&p);
+    guint pos = 0, neg = 0, houses = 0;
+    for (guint i = 0; i < t->g->nodes->len; i++) {
+        const WlPfNode *n = wl_pf_node(t->g, i);
+        if (n->kind != WL_PF_SCS)
+            continue;
+        houses++;
+        double c = n->xf.m[0][0], s = n->xf.m[0][2];
+        near(c * c + s * s, 1);
+        pos += s > 0.5, neg += s < -0.5;
+    }
+    assert_int_equal(houses, 8 * 8 * 6);
+    assert_true(pos > 50 && neg > 50);
+    wl_pf_town_free(t);
+}
+
 static void test_camera(void **st)
 {
     (void)st;
@@ -281,6 +303,7 @@ int main(void)
         cmocka_unit_test(test_blocks),
         cmocka_unit_test(test_cars),
         cmocka_unit_test(test_camera),
+        cmocka_unit_test(test_house_yaws),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
