@@ -160,6 +160,46 @@ static void test_mem_bytes(void **st)
     g_string_free(what, TRUE);
 }
 
+/* Per-node memory worked out from its parts: base, polygons x polygon,
+ * spans x span; ZBUF-EXC a full N^2 z-buffer and an N^2 message of
+ * locations; active-pixel schemes the WPA (pixel each) and MSA (index
+ * per column) and two messages of active pixels.  The verdict says
+ * whether the total exceeds the memory (at it: fits). */
+static void test_memory_use(void **st)
+{
+    (void)st;
+    const WlPmMemory mem = {1000, 200, 30, 8, 12, 4};
+    WlPmSetup s = {.scheme = WL_PM_ZBUF_EXC, .resolution = 10,
+                   .fmt = {8, 5, 2}};
+    WlPmMemUse u = wl_pm_memory_use(&mem, &s, 3, 7, 50);
+    assert_int_equal(u.base, 1000);
+    assert_int_equal(u.polygons, 600);
+    assert_int_equal(u.spans, 210);
+    assert_int_equal(u.zbuffer, 800);
+    assert_int_equal(u.buffers, 500);
+    assert_int_equal(u.total, 1000 + 600 + 210 + 800 + 500);
+    s.scheme = WL_PM_PAIR;
+    u = wl_pm_memory_use(&mem, &s, 3, 7, 50);
+    assert_int_equal(u.zbuffer, 50 * 12 + 10 * 4);
+    assert_int_equal(u.buffers, 2 * 50 * 8);
+    assert_int_equal(u.total, 1000 + 600 + 210 + 640 + 800);
+    char *v = wl_pm_memory_verdict(&u, 3250);
+    assert_string_equal(v, "fits: 0.00 of 0.00 MiB (base 0.00, polygons "
+                           "0.00, spans 0.00, z-buffer/WPA 0.00, message "
+                           "buffers 0.00)");
+    g_free(v);
+    v = wl_pm_memory_verdict(&u, 3249);
+    assert_non_null(strstr(v, "* out of memory:"));
+    g_free(v);
+    u = (WlPmMemUse){1048576, 2 * 1048576, 3 * 1048576, 4 * 1048576,
+                     5 * 1048576, 15 * 1048576};
+    v = wl_pm_memory_verdict(&u, 16 * 1048576);
+    assert_string_equal(v, "fits: 15.00 of 16.00 MiB (base 1.00, polygons "
+                           "2.00, spans 3.00, z-buffer/WPA 4.00, message "
+                           "buffers 5.00)");
+    g_free(v);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -167,6 +207,7 @@ int main(void)
         cmocka_unit_test(test_words_and_values),
         cmocka_unit_test(test_count_ranges),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_memory_use),
     };
     return cmocka_run_group_tests_name("pm_parse", tests, NULL, NULL);
 }

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <math.h>
 
 #include "sim/reproduce/reproduce.h"
 #include "sim/reproduce/ellsworth90.h"
@@ -110,12 +111,61 @@ static void test_table_rows(void **st)
     g_ptr_array_unref(rows);
 }
 
+/* The formulas on values worked out by hand: T1 12 us over GPs of 2, 4
+ * and 6 us: efficiency T1 / sum = 1, utilisation sum / (n max) = 2/3,
+ * speed-up n x efficiency x utilisation = 2; all-zero GPs give zeros. */
+static void test_formulas(void **st)
+{
+    (void)st;
+    WlPphigsMetrics m;
+    const double gp[] = {2, 4, 6}, z[] = {0, 0};
+    wl_pphigs_metrics_from(12, gp, 3, &m);
+    assert_true(m.t1 == 12 && m.sum == 12 && m.max == 6);
+    assert_true(m.efficiency == 1);
+    assert_true(fabs(m.utilisation - 2.0 / 3) < 1e-15);
+    assert_true(fabs(m.speedup - 2) < 1e-12);
+    wl_pphigs_metrics_from(5, z, 2, &m);
+    assert_true(m.sum == 0 && m.max == 0 && m.efficiency == 0 &&
+                m.utilisation == 0 && m.speedup == 0);
+    /* element costs: polygon + vertex each; replace vs concat; rejected
+     * polygons pay reject_vertex per vertex only */
+    Vec3 v[4] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(1, 1, 0), vec3(0, 1, 0)};
+    SceneElem q = scene_elem_prim(SCENE_EL_POLYGON, v, 4);
+    assert_int_equal(wl_pphigs_elem_cost(&C, &q), 600 * SIM_NS + 400 * SIM_NS);
+    assert_int_equal(wl_pphigs_prim_cost(&C, &q, FALSE), SIM_US);
+    assert_int_equal(wl_pphigs_prim_cost(&C, &q, TRUE), 300 * SIM_NS);
+    SceneElem r = scene_elem_matrix(mat4_identity(), SCENE_MAT_REPLACE);
+    SceneElem k = scene_elem_matrix(mat4_identity(), SCENE_MAT_CONCAT);
+    SceneElem c = scene_elem_color(vec3(1, 0, 0));
+    SceneElem x = scene_elem_execute(0);
+    assert_int_equal(wl_pphigs_elem_cost(&C, &r), 300 * SIM_NS);
+    assert_int_equal(wl_pphigs_elem_cost(&C, &k), SIM_US);
+    assert_int_equal(wl_pphigs_elem_cost(&C, &c), 100 * SIM_NS);
+    assert_int_equal(wl_pphigs_elem_cost(&C, &x), 500 * SIM_NS);
+    /* weights in us: every primitive kind the polygon's, attributes and
+     * executes their own, the vertex weight, the cluster as given */
+    WlPphigsWeights w;
+    wl_pphigs_weights_from_costs(&C, 2.5, &w);
+    static const struct {
+        int k;
+        double us;
+    } want[] = {{SCENE_EL_TRIANGLE, 0.6}, {SCENE_EL_POLYGON, 0.6},
+                {SCENE_EL_TRISTRIP, 0.6}, {SCENE_EL_POLYGON2D, 0.6},
+                {SCENE_EL_COLOR, 0.1},    {SCENE_EL_MATRIX, 0.3},
+                {SCENE_EL_EXECUTE, 0.5}};
+    for (guint i = 0; i < G_N_ELEMENTS(want); i++)
+        assert_true(fabs(w.w[want[i].k] - want[i].us) < 1e-12);
+    assert_true(fabs(w.w_vertex - 0.1) < 1e-12);
+    assert_true(w.cluster == 2.5 && w.strip_split == 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_gp_is_serial),
         cmocka_unit_test(test_offscreen_is_cheaper),
         cmocka_unit_test(test_table_rows),
+        cmocka_unit_test(test_formulas),
     };
     return cmocka_run_group_tests_name("pphigs_metrics", tests, NULL, NULL);
 }

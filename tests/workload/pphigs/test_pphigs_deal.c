@@ -1,0 +1,141 @@
+/* test_pphigs_deal.c — the simple and complex distributions (§2.2,
+ * §2.3) on lists worked out by hand: which GP owns each primitive,
+ * attributes and ordinary executes on every GP, the least-loaded choice
+ * (this structure's load first, then the GP's whole load, then the
+ * lowest GP) and the complex algorithm's clusters of at most c x maxw.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
+#include "sim/workload/pphigs/pphigs_distrib.h"
+
+/* Triangles weigh 1, everything else 0; clusters of 2 x maxw. */
+static const WlPphigsWeights W = {
+    .w = {[SCENE_EL_TRIANGLE] = 1, [SCENE_EL_POLYGON] = 1.5},
+    .w_vertex = 0,
+    .cluster = 2,
+};
+
+static void add(SceneDb *db, guint sid, SceneElem e)
+{
+    assert_true(scene_db_append(db, sid, &e, NULL));
+}
+
+static void tris(SceneDb *db, guint sid, guint n)
+{
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint i = 0; i < n; i++)
+        add(db, sid, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+}
+
+static void expect_owners(const WlPphigsDist *d, guint sid, const gint *want,
+                          guint n)
+{
+    assert_int_equal(scene_db_len(wl_pphigs_dist_host(d), sid), n);
+    for (guint i = 0; i < n; i++)
+        if (wl_pphigs_dist_owner(d, sid, i) != want[i])
+            fail_msg("element %u of structure %u: GP %d, expected %d", i, sid,
+                     wl_pphigs_dist_owner(d, sid, i), want[i]);
+}
+
+/* root: colour, 2 triangles, execute s1; s1: 4 triangles; 3 GPs.
+ * SIMPLE deals one primitive at a time to the least-loaded GP: the
+ * root's to 0, 1; s1's structure loads start even, so the GP loads
+ * decide: 2 (load 0), then 0, 1 (ties to the lowest), then 2. */
+static SceneDb *two_level(void)
+{
+    SceneDb *db = scene_db_new();
+    guint r = scene_db_add_struct(db, "r"), s1 = scene_db_add_struct(db, "s1");
+    add(db, r, scene_elem_color(vec3(1, 0, 0)));
+    tris(db, r, 2);
+    add(db, r, scene_elem_execute(s1));
+    tris(db, s1, 4);
+    scene_db_post(db, r);
+    return db;
+}
+
+static void test_simple(void **st)
+{
+    (void)st;
+    SceneDb *db = two_level();
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 3, WL_PPHIGS_SIMPLE, &W);
+    static const gint r[] = {-1, 0, 1, -1}, s1[] = {2, 0, 1, 2};
+    expect_owners(d, 0, r, 4);
+    expect_owners(d, 1, s1, 4);
+    /* attributes and the execute on every GP: each GP's root holds the
+     * colour, its triangles and the execute */
+    static const guint len[] = {3, 3, 2};
+    for (guint g = 0; g < 3; g++)
+        assert_int_equal(scene_db_len(wl_pphigs_dist_gp(d, g), 0), len[g]);
+    double loads[3];
+    wl_pphigs_dist_loads(d, loads);
+    assert_true(loads[0] == 2 && loads[1] == 2 && loads[2] == 2);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
+/* COMPLEX: clusters of at most 2 x maxw = 2 weight stay on one GP: the
+ * root's 2 triangles on 0; s1's 4 on 1, 1 (even structure loads: the
+ * GP loads decide) then 2, 2. */
+static void test_complex_clusters(void **st)
+{
+    (void)st;
+    SceneDb *db = two_level();
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 3, WL_PPHIGS_COMPLEX, &W);
+    static const gint r[] = {-1, 0, 0, -1}, s1[] = {1, 1, 2, 2};
+    expect_owners(d, 0, r, 4);
+    expect_owners(d, 1, s1, 4);
+    wl_pphigs_dist_free(d);
+    /* a polygon (1.5) makes maxw 1.5, clusters 3: triangles 1 + 1 + 1
+     * fit, the fourth opens a new cluster */
+    SceneDb *p = scene_db_new();
+    guint s = scene_db_add_struct(p, "s");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    add(p, s, scene_elem_prim(SCENE_EL_POLYGON, v, 3));
+    tris(p, s, 5);
+    scene_db_post(p, s);
+    d = wl_pphigs_dist_new(p, 2, WL_PPHIGS_COMPLEX, &W);
+    /* 1.5 + 1 = 2.5 <= 3 on GP 0, + 1 = 3.5 > 3: GP 1 takes 1, 1, 1 (3),
+     * the fifth triangle: back to the lighter GP 0 (2.5 < 3) */
+    static const gint own[] = {0, 0, 1, 1, 1, 0};
+    expect_owners(d, 0, own, 6);
+    wl_pphigs_dist_free(d);
+    scene_db_free(p);
+    scene_db_free(db);
+}
+
+/* Loads a hair apart: a triangle (1) on GP 0, a polygon (1 - 1e-12) on
+ * GP 1; GP 1 is lighter by less than the 1e-12 that counts, and by more
+ * than the 1e-12 within which loads tie on the GPs' totals, so the next
+ * triangle stays on GP 0, the lower GP. */
+static void test_near_tie(void **st)
+{
+    (void)st;
+    const WlPphigsWeights w = {
+        .w = {[SCENE_EL_TRIANGLE] = 1, [SCENE_EL_POLYGON] = 1 - 1e-12},
+        .cluster = 2};
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "s");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    tris(db, s, 1);
+    add(db, s, scene_elem_prim(SCENE_EL_POLYGON, v, 3));
+    tris(db, s, 1);
+    scene_db_post(db, s);
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_SIMPLE, &w);
+    static const gint own[] = {0, 1, 0};
+    expect_owners(d, 0, own, 3);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_simple),
+        cmocka_unit_test(test_complex_clusters),
+        cmocka_unit_test(test_near_tie),
+    };
+    return cmocka_run_group_tests_name("pphigs_deal", tests, NULL, NULL);
+}
