@@ -62,3 +62,21 @@ double sf_test_metric(const SimResult *r, const char *name)
     assert_true(sim_result_get_metric(r, name, &v));
     return v;
 }
+
+WlSfDb *sf_test_tiny_db(SceneDb **src, guint procs)
+{
+    Vec3 t[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    *src = scene_db_new();
+    guint r = scene_db_add_struct(*src, "r");
+    for (int i = 0; i < 3; i++) {
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, t, 3);
+        assert_true(scene_db_append(*src, r, &e, NULL));
+    }
+    scene_db_post(*src, r);
+    WlSfDb *db = wl_sf_db_new(*src, procs, 2, WL_SF_CHUNK_SORTED, NULL);
+    assert_non_null(db);
+    assert_int_equal(wl_sf_n_chunks(db), 2);
+    assert_int_equal(wl_sf_chunk(db, 0)->polys, 2);
+    assert_int_equal(wl_sf_chunk(db, 1)->polys, 1);
+    return db;
+}

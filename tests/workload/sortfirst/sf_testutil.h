@@ -22,4 +22,8 @@ SimResult *sf_test_run_checked(const char *text, int frames,
 /* Metric `name` of r; fails the test when absent. */
 double sf_test_metric(const SimResult *r, const char *name);
 
+/* One posted structure of 3 triangles in chunks of at most 2, dealt over
+ * `procs`: chunk 0 (2 triangles) mastered by 0, chunk 1 (1) by 1 % procs,
+ * one instance each.  *src gets the structure database (free both). */
+WlSfDb *sf_test_tiny_db(SceneDb **src, guint procs);
 #endif

@@ -9,27 +9,9 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include "sim/workload/sortfirst/sf_book.h"
+#include "tests/workload/sortfirst/sf_testutil.h"
 
 static const WlSfSizes Z = {64, 40, 36, 8, 4, 8, 16, 96};
-
-static WlSfDb *tiny(SceneDb **src, guint procs)
-{
-    Vec3 t[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
-    *src = scene_db_new();
-    guint r = scene_db_add_struct(*src, "r");
-    for (int i = 0; i < 3; i++) {
-        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, t, 3);
-        assert_true(scene_db_append(*src, r, &e, NULL));
-    }
-    scene_db_post(*src, r);
-    WlSfDb *db = wl_sf_db_new(*src, procs, 2, WL_SF_CHUNK_SORTED, NULL);
-    assert_non_null(db);
-    assert_int_equal(wl_sf_n_chunks(db), 2);
-    assert_int_equal(wl_sf_chunk(db, 0)->polys, 2);
-    assert_int_equal(wl_sf_chunk(db, 1)->polys, 1);
-    return db;
-}
 
 /* Max-set: a master keeps a bit vector of ceil(P / 8) bytes for the
  * chunk and one per instance; a holder the chunk record (40 B), its
@@ -41,7 +23,7 @@ static void test_memory(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db = tiny(&src, 2);
+    WlSfDb *db = sf_test_tiny_db(&src, 2);
     WlSfRegions r;
     wl_sf_regions_init(&r, 2, 16, 16);
     WlSfBook *b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
@@ -56,7 +38,7 @@ static void test_memory(void **st)
     wl_sf_book_free(b);
     wl_sf_db_free(db);
     scene_db_free(src);
-    db = tiny(&src, 9);
+    db = sf_test_tiny_db(&src, 9);
     wl_sf_regions_init(&r, 9, 18, 18);
     b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
     assert_int_equal(wl_sf_book_memory(b, 0), 2 * 2 + 40 + 72 + 8);
@@ -74,7 +56,7 @@ static void test_check(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db = tiny(&src, 2);
+    WlSfDb *db = sf_test_tiny_db(&src, 2);
     WlSfRegions r;
     wl_sf_regions_init(&r, 2, 16, 16); /* region 0: x < 8, region 1: x >= 8 */
     for (int bk = 0; bk < 2; bk++) {

@@ -10,7 +10,7 @@
 #include <cmocka.h>
 #include <math.h>
 
-#include "sim/workload/sortfirst/sf_workload.h"
+#include "tests/workload/sortfirst/sf_testutil.h"
 
 /* Field k of frame f. */
 static double v(guint f, guint k)
@@ -46,21 +46,6 @@ static WlSfFrameStats frame(guint f)
     return s;
 }
 
-static WlSfDb *tiny_db(SceneDb **src)
-{
-    Vec3 t[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
-    *src = scene_db_new();
-    guint r = scene_db_add_struct(*src, "r");
-    for (int i = 0; i < 3; i++) {
-        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, t, 3);
-        assert_true(scene_db_append(*src, r, &e, NULL));
-    }
-    scene_db_post(*src, r);
-    WlSfDb *db = wl_sf_db_new(*src, 4, 2, WL_SF_CHUNK_SORTED, NULL);
-    assert_non_null(db);
-    return db;
-}
-
 static double metric(const SimResult *r, const char *name)
 {
     double x = NAN;
@@ -86,7 +71,7 @@ static void test_three_frames(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db = tiny_db(&src);
+    WlSfDb *db = sf_test_tiny_db(&src, 4);
     GArray *stats = g_array_new(FALSE, FALSE, sizeof(WlSfFrameStats));
     for (guint f = 0; f < 3; f++) {
         WlSfFrameStats s = frame(f);
@@ -195,7 +180,7 @@ static void test_one_frame(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db = tiny_db(&src);
+    WlSfDb *db = sf_test_tiny_db(&src, 4);
     GArray *stats = g_array_new(FALSE, FALSE, sizeof(WlSfFrameStats));
     WlSfFrameStats s = frame(0);
     g_array_append_val(stats, s);
