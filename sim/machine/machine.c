@@ -123,7 +123,7 @@ static guint n_pages(const MachMachine *m)
 
 static void build_procs(MachMachine *m)
 {
-    m->pages = g_new0(MachProc *, n_pages(m) ? n_pages(m) : 1);
+    m->pages = g_new0(MachProc *, n_pages(m)); /* NULL for no processors */
 }
 
 /* The kind index of processor id. */
@@ -172,7 +172,7 @@ static guint endpoint_count(const MachMachine *m, const char *topo,
     *count_at = mach_param_node(wide->at, "lanes");
     if (!*count_at)
         *count_at = mach_param_node(wide->at, "count");
-    return wide->info.lanes > G_MAXUINT ? G_MAXUINT : (guint)wide->info.lanes;
+    return (guint)MIN(wide->info.lanes, G_MAXUINT);
 }
 
 /* "faithful": the model's network.fidelity (the transport that models

@@ -67,7 +67,7 @@ static gboolean submit_terms(MachProc *p, SimTime cost, const MachOp *ops,
     SimEngine *eng = p->eng;
     g_assert(phase < sim_engine_phase_count(eng));
     SimTime now = sim_now(eng);
-    SimTime start = p->free_at > now ? p->free_at : now, end;
+    SimTime start = MAX(p->free_at, now), end;
     gboolean overflow;
     if (!sim_time_add(start, cost, &end)) {
         fail_overflow(eng, p, "completion time");

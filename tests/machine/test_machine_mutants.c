@@ -82,12 +82,99 @@ static void test_model_schema_version_exact(void **state)
     }
 }
 
+/* The message mach_model_check gives a model whose node kind has the
+ * extra line `kind` and whose network has the extra line `net` (each at
+ * two spaces deeper than its section; "" for none), or NULL if it
+ * passes.  The node line is line 6, the network line line 10. */
+static char *model_error(const char *kind, const char *net)
+{
+    char *text = g_strdup_printf(
+        "schema_version: 1\nname: t\nnodes:\n  node:\n"
+        "    count: {value: 2, source: s}\n    %s\n"
+        "network:\n  topology: {value: ring, source: s}\n"
+        "  bandwidth: {value: 1 MB/s, source: s}\n  %s\n",
+        kind, net);
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "m.yaml", &err);
+    if (!root)
+        fail_msg("'%s' does not parse: %s", text, err->message);
+    char *msg = NULL;
+    if (!mach_model_check(root, "m.yaml", &err)) {
+        msg = g_strdup(err->message);
+        g_error_free(err);
+    }
+    cfg_free(root);
+    g_free(text);
+    return msg;
+}
+
+typedef struct {
+    const char *kind, *net, *want; /* want NULL: accepted */
+} ModelCase;
+
+/* Each type's value without its unit, or of the wrong shape, names the
+ * type's own example; lists are checked item by item. */
+static const ModelCase model_cases[] = {
+    {"", "startup: {value: 350, source: s}",
+     "m.yaml:10:20: found '350' without a unit, expected a time with its "
+     "unit, e.g. '350 us'"},
+    {"", "per_hop: {value: [1 us], source: s}",
+     "m.yaml:10:20: found a non-scalar value, expected a time with its "
+     "unit, e.g. '350 us'"},
+    {"", "total_bandwidth: {value: '2.8 ', source: s}",
+     "m.yaml:10:28: found '2.8 ' without a unit, expected a bandwidth with "
+     "its unit, e.g. '2.8 MB/s'"},
+    {"clock: {value: 16., source: s}", "",
+     "m.yaml:6:20: found '16.' without a unit, expected a frequency with "
+     "its unit, e.g. '16 MHz'"},
+    {"memory: {value: 4, source: s}", "",
+     "m.yaml:6:21: found '4' without a unit, expected a size with its "
+     "unit, e.g. '4 MB'"},
+    {"", "level_bandwidth: {value: 20 MB/s, source: s}",
+     "m.yaml:10:28: found a non-list value, expected a list of bandwidths, "
+     "e.g. [20 MB/s, 10 MB/s]"},
+    {"", "level_bandwidth: {value: [], source: s}",
+     "m.yaml:10:28: found a non-list value, expected a list of bandwidths, "
+     "e.g. [20 MB/s, 10 MB/s]"},
+    {"", "level_bandwidth: {value: [20 MB/s, 10], source: s}",
+     "m.yaml:10:38: found '10' without a unit, expected a bandwidth with "
+     "its unit, e.g. '2.8 MB/s'"},
+    {"", "extents: {value: 8, source: s}",
+     "m.yaml:10:20: found a non-list value, expected a list of counts, "
+     "e.g. [8, 8]"},
+    {"", "level_bandwidth: {value: [20 MB/s, 10 MB/s], source: s}", NULL},
+    {"", "extents: {value: [2, 1], source: s}", NULL},
+    {"cores: {value: 4, source: s}", "arity: {value: 2, source: s}", NULL},
+    {"lanes: 4", "",
+     "m.yaml:6:12: found bare value for 'lanes', expected {value: ..., "
+     "source|calibrated|assumption: ...} (or provenance: assumption at the "
+     "top of your own model)"},
+    {"colour: {value: 1, source: s}", "",
+     "m.yaml:6:13: found unknown key 'colour', expected one of: count, "
+     "processor, clock, memory, lanes, lane_memory, fpa_lanes, cores, "
+     "peak_flops, costs"},
+};
+
+static void test_model_errors_name_the_type(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < G_N_ELEMENTS(model_cases); i++) {
+        const ModelCase *c = &model_cases[i];
+        char *got = model_error(c->kind, c->net);
+        if (g_strcmp0(got, c->want) != 0)
+            fail_msg("case %zu: got '%s', want '%s'", i, got ? got : "(ok)",
+                     c->want ? c->want : "(ok)");
+        g_free(got);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_node_hypercube),
         cmocka_unit_test(test_unknown_key_list),
         cmocka_unit_test(test_model_schema_version_exact),
+        cmocka_unit_test(test_model_errors_name_the_type),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
