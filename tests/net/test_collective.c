@@ -1,4 +1,5 @@
-/* test_collective.c — collective schedules against hand-computed times. */
+/* test_collective.c — collective schedules against hand-computed times,
+ * and who sends what to whom (read off a crossbar's links). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -27,10 +28,11 @@ static NetParams params(void)
     return p;
 }
 
-static void fx_open(Fx *f, unsigned dims, const NetParams *p, NetFidelity fid)
+/* Takes topo. */
+static void fx_open(Fx *f, NetTopo *topo, const NetParams *p, NetFidelity fid)
 {
     f->eng = sim_engine_new(1);
-    f->topo = net_hypercube_new(dims);
+    f->topo = topo;
     f->net = net_new(f->eng, f->topo, p, fid);
     f->done = 0;
 }
@@ -57,7 +59,7 @@ static void test_xor_alltoall(void **state)
     NetParams p = params();
     for (int fid = NET_ANALYTIC; fid <= NET_PACKET; fid++) {
         Fx f;
-        fx_open(&f, 3, &p, (NetFidelity)fid);
+        fx_open(&f, net_hypercube_new(3), &p, (NetFidelity)fid);
         uint64_t b[64];
         for (int i = 0; i < 64; i++)
             b[i] = i / 8 == i % 8 ? 0 : 100;
@@ -78,7 +80,7 @@ static void test_broadcast_binomial(void **state)
     (void)state;
     NetParams p = params();
     Fx f;
-    fx_open(&f, 4, &p, NET_ANALYTIC);
+    fx_open(&f, net_hypercube_new(4), &p, NET_ANALYTIC);
     net_broadcast(f.net, 5, 50, on_done, &f);
     assert_true(sim_engine_run(f.eng, SIM_TIME_MAX, NULL));
     assert_int_equal(net_total_messages(f.net), 15);
@@ -96,7 +98,7 @@ static void test_allreduce_and_barrier(void **state)
     (void)state;
     NetParams p = params();
     Fx f;
-    fx_open(&f, 4, &p, NET_FLOW);
+    fx_open(&f, net_hypercube_new(4), &p, NET_FLOW);
     net_allreduce(f.net, 8, on_done, &f);
     assert_true(sim_engine_run(f.eng, SIM_TIME_MAX, NULL));
     /* 4 exchange steps across one dimension each. */
@@ -110,7 +112,7 @@ static void test_allreduce_and_barrier(void **state)
     fx_close(&f);
     /* With a control network: fixed latency, no data-network traffic. */
     p.ctrl_latency = 5 * SIM_US;
-    fx_open(&f, 4, &p, NET_PACKET);
+    fx_open(&f, net_hypercube_new(4), &p, NET_PACKET);
     net_prefix_sum(f.net, 4, on_done, &f);
     assert_true(sim_engine_run(f.eng, SIM_TIME_MAX, NULL));
     assert_int_equal(f.done_at, 5 * SIM_US);
@@ -125,7 +127,7 @@ static void test_pairwise_exchange(void **state)
     (void)state;
     NetParams p = params();
     Fx f;
-    fx_open(&f, 3, &p, NET_PACKET);
+    fx_open(&f, net_hypercube_new(3), &p, NET_PACKET);
     uint64_t b[8 * 3];
     for (int i = 0; i < 8; i++) {
         b[i * 3 + 0] = 400;
@@ -149,7 +151,7 @@ static void test_send_lists(void **state)
     (void)state;
     NetParams p = params();
     Fx f;
-    fx_open(&f, 2, &p, NET_PACKET);
+    fx_open(&f, net_hypercube_new(2), &p, NET_PACKET);
     uint32_t count[4] = {0, 2, 0, 1};
     uint32_t dst[3] = {0, 0, 2};
     uint64_t size[3] = {100, 100, 100};
@@ -161,6 +163,172 @@ static void test_send_lists(void **state)
     fx_close(&f);
 }
 
+/* ---- who sends what to whom, read off a crossbar's links: node j's
+ * down link (id 2j + 1) carries exactly the messages sent to j, its up
+ * link (2j) those sent by j.  Node counts that are not powers of two, a
+ * root other than 0, matrices with distinct and zero entries; times from
+ * net_ideal_time (test_transport.c) and the schedule. ---- */
+
+#define N 6
+
+static void xb_open(Fx *x, uint32_t n, NetFidelity fid)
+{
+    NetParams p = params();
+    p.switching = NET_SW_CUT_THROUGH;
+    fx_open(x, net_crossbar_new(n), &p, fid);
+}
+
+static void xb_run(Fx *x)
+{
+    assert_true(sim_engine_run(x->eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(x->done, 1);
+}
+
+/* Bytes and messages on node j's down (dir 1) or up (dir 0) link. */
+static uint64_t link_bytes(const Fx *x, uint32_t j, int dir)
+{
+    const SimLinkStats *s = net_link_stats(x->net, 2 * (NetLinkId)j + dir);
+    return s ? s->bytes : 0;
+}
+
+static uint64_t link_msgs(const Fx *x, uint32_t j, int dir)
+{
+    const SimLinkStats *s = net_link_stats(x->net, 2 * (NetLinkId)j + dir);
+    return s ? s->messages : 0;
+}
+
+/* Binomial broadcast from root 4 of 6: ceil(log2 6) = 3 rounds, each one
+ * message time (distinct senders and receivers: no sharing); every node
+ * but the root receives once; the root sends in every round (to relative
+ * ranks 1, 2, 4: nodes 5, 0, 2), rank 1 (node 5) twice (ranks 3, 5:
+ * nodes 1, 3), and no one else (rank 2's partner, rank 6, does not
+ * exist). */
+static void test_broadcast_ranks(void **state)
+{
+    (void)state;
+    for (NetFidelity f = NET_ANALYTIC; f <= NET_PACKET; f++) {
+        Fx x;
+        xb_open(&x, N, f);
+        net_broadcast(x.net, 4, 100, on_done, &x);
+        xb_run(&x);
+        assert_int_equal(x.done_at, 3 * net_ideal_time(x.net, 0, 1, 100));
+        const uint64_t sent[N] = {0, 0, 0, 0, 3, 2};
+        for (uint32_t j = 0; j < N; j++) {
+            assert_int_equal(link_msgs(&x, j, 1), j == 4 ? 0 : 1);
+            assert_int_equal(link_bytes(&x, j, 1), j == 4 ? 0 : 100);
+            assert_int_equal(link_msgs(&x, j, 0), sent[j]);
+        }
+        assert_int_equal(net_total_messages(x.net), N - 1);
+        fx_close(&x);
+    }
+}
+
+/* A matrix with distinct entries (and zeros on a diagonal and at
+ * [1][3]): the down link of j carries column j, the up link of i row i,
+ * under every schedule; a zero entry sends nothing under NAIVE and
+ * SHIFT (a zero-byte message under XOR, which needs a power of two). */
+static void fill_matrix(uint64_t *b, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++)
+        for (uint32_t j = 0; j < n; j++)
+            b[i * n + j] = i == j || (i == 1 && j == 3) ? 0 : 10 * i + j + 1;
+}
+
+static void check_matrix_links(const Fx *x, const uint64_t *b, uint32_t n,
+                               gboolean zero_sends)
+{
+    for (uint32_t j = 0; j < n; j++) {
+        uint64_t col = 0, row = 0, in = 0, out = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            col += b[i * n + j];
+            row += b[j * n + i];
+            in += i != j && (b[i * n + j] || zero_sends);
+            out += i != j && (b[j * n + i] || zero_sends);
+        }
+        assert_int_equal(link_bytes(x, j, 1), col);
+        assert_int_equal(link_bytes(x, j, 0), row);
+        assert_int_equal(link_msgs(x, j, 1), in);
+        assert_int_equal(link_msgs(x, j, 0), out);
+    }
+}
+
+/* Analytic: each node's messages go one after another, so the collective
+ * ends with the node whose row takes longest (sum of ideal times). */
+static SimTime slowest_row(const Fx *x, const uint64_t *b, uint32_t n,
+                           gboolean zero_sends)
+{
+    SimTime worst = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        SimTime t = 0;
+        for (uint32_t j = 0; j < n; j++)
+            if (j != i && (b[i * n + j] || zero_sends))
+                t += net_ideal_time(x->net, i, j, b[i * n + j]);
+        worst = MAX(worst, t);
+    }
+    return worst;
+}
+
+static void test_alltoall_matrix(void **state)
+{
+    (void)state;
+    uint64_t b[8 * 8];
+    for (int s = NET_A2A_NAIVE; s <= NET_A2A_XOR; s++) {
+        uint32_t n = s == NET_A2A_XOR ? 8 : N;
+        gboolean zs = s == NET_A2A_XOR;
+        fill_matrix(b, n);
+        Fx x;
+        xb_open(&x, n, NET_ANALYTIC);
+        net_alltoall(x.net, b, (NetA2ASchedule)s, on_done, &x);
+        xb_run(&x);
+        check_matrix_links(&x, b, n, zs);
+        if (s != NET_A2A_XOR) /* XOR steps wait for their partner */
+            assert_int_equal(x.done_at, slowest_row(&x, b, n, zs));
+        fx_close(&x);
+    }
+}
+
+/* Uniform: every ordered pair once, `bytes` each. */
+static void test_alltoall_uniform_pairs(void **state)
+{
+    (void)state;
+    for (int s = NET_A2A_NAIVE; s <= NET_A2A_SHIFT; s++) {
+        Fx x;
+        xb_open(&x, N, NET_ANALYTIC);
+        net_alltoall_uniform(x.net, 7, (NetA2ASchedule)s, on_done, &x);
+        xb_run(&x);
+        for (uint32_t j = 0; j < N; j++) {
+            assert_int_equal(link_msgs(&x, j, 1), N - 1);
+            assert_int_equal(link_bytes(&x, j, 0), 7 * (N - 1));
+        }
+        assert_int_equal(x.done_at,
+                         (N - 1) * net_ideal_time(x.net, 0, 1, 7));
+        fx_close(&x);
+    }
+}
+
+/* Send lists: node i sends count[i] messages in order; the longest list
+ * sets the time (analytic: one message time each). */
+static void test_send_lists_routes(void **state)
+{
+    (void)state;
+    const uint32_t count[N] = {2, 0, 1, 0, 0, 3};
+    const uint32_t dst[] = {1, 2, 0, 0, 1, 2};
+    const uint64_t size[] = {5, 6, 7, 8, 9, 10};
+    Fx x;
+    xb_open(&x, N, NET_ANALYTIC);
+    net_send_lists(x.net, count, dst, size, on_done, &x);
+    xb_run(&x);
+    /* into 0: 7 (from 2) + 8 (from 5); 1: 5 + 9; 2: 6 + 10 */
+    assert_int_equal(link_bytes(&x, 0, 1), 15);
+    assert_int_equal(link_bytes(&x, 1, 1), 14);
+    assert_int_equal(link_bytes(&x, 2, 1), 16);
+    assert_int_equal(link_bytes(&x, 5, 0), 27);
+    assert_int_equal(x.done_at, net_ideal_time(x.net, 5, 0, 8) +
+                                    net_ideal_time(x.net, 5, 1, 9) +
+                                    net_ideal_time(x.net, 5, 2, 10));
+    fx_close(&x);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -169,6 +337,10 @@ int main(void)
         cmocka_unit_test(test_allreduce_and_barrier),
         cmocka_unit_test(test_pairwise_exchange),
         cmocka_unit_test(test_send_lists),
+        cmocka_unit_test(test_broadcast_ranks),
+        cmocka_unit_test(test_alltoall_matrix),
+        cmocka_unit_test(test_alltoall_uniform_pairs),
+        cmocka_unit_test(test_send_lists_routes),
     };
     return cmocka_run_group_tests_name("net_collective", tests, NULL, NULL);
 }
