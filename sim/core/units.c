@@ -199,7 +199,6 @@ static const Unit *find_unit(CfgUnitKind kind, const Num *n)
 static const Unit *parse(const char *s, CfgUnitKind kind, Num *n,
                          const char **expected)
 {
-    static const Unit zero = {"", 0, 1, 1};
     NumStatus st = scan_number(s, n);
     gboolean integral = kind == CFG_UNIT_TIME || kind == CFG_UNIT_SIZE ||
                         kind == CFG_UNIT_COUNT;
@@ -217,7 +216,7 @@ static const Unit *parse(const char *s, CfgUnitKind kind, Num *n,
     }
     const Unit *u = find_unit(kind, n);
     if (!u && n->unit_len == 0 && n->mant == 0)
-        u = &zero;
+        u = tables[kind]; /* 0 of the base unit: 0 whatever its factors */
     if (!u)
         *expected = expected_text[kind];
     return u;

@@ -259,6 +259,9 @@ static void test_overrides(void **state)
     assert_int_equal(cfg_seq_len(cfg_path(r, "new.deep.key")), 2);
     assert_true(cfg_set_override(r, "run.list.1={b: 2}", &e));
     assert_string_equal(cfg_scalar(cfg_path(r, "run.list.1.b")), "2");
+    assert_true(cfg_set_override(r, "run.list.0=zero", &e)); /* first item */
+    assert_string_equal(cfg_scalar(cfg_path(r, "run.list.0")), "zero");
+    assert_int_equal(cfg_seq_len(cfg_path(r, "run.list")), 3);
     assert_true(cfg_set_override(r, "run.fast=", &e));
     assert_int_equal(cfg_kind(cfg_path(r, "run.fast")), CFG_NULL);
     /* errors name the override */
@@ -271,6 +274,9 @@ static void test_overrides(void **state)
                    "expected a path through maps");
     assert_false(cfg_set_override(r, "run.list.9=1", &e));
     assert_err(&e, "--set run.list.9=1:1:1: found '9' below a sequence, "
+                   "expected an index in range");
+    assert_false(cfg_set_override(r, "run.list.3=1", &e)); /* one past */
+    assert_err(&e, "--set run.list.3=1:1:1: found '3' below a sequence, "
                    "expected an index in range");
     assert_false(cfg_set_override(r, "run.seed=[1", &e));
     assert_non_null(strstr(e->message, "--set run.seed=[1:"));

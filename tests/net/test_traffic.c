@@ -130,6 +130,65 @@ static void test_pattern_orders(void **state)
     log_free(&lg);
 }
 
+/* XOR: message k of node i goes to i ^ (k + 1).  Pairwise: step s swaps
+ * with i ^ 2^(3 - s), n / 2^(s + 1) messages' worth of bytes (a
+ * recursive-halving exchange: 8, 4, 2, 1 x 10240 on 16 nodes). */
+static void test_xor_and_pairwise_contents(void **state)
+{
+    (void)state;
+    Log lg;
+    run(&lg, NET_TRAFFIC_XOR, NET_ANALYTIC);
+    for (uint32_t i = 0; i < N; i++)
+        for (guint k = 0; k < N - 1; k++) {
+            const Sent *s = &g_array_index(lg.by_src[i], Sent, k);
+            assert_int_equal(s->dst, i ^ (k + 1));
+            assert_int_equal(s->bytes, 10240);
+        }
+    log_free(&lg);
+    run(&lg, NET_TRAFFIC_PAIRWISE, NET_ANALYTIC);
+    for (uint32_t i = 0; i < N; i++) {
+        assert_int_equal(lg.by_src[i]->len, 4);
+        for (guint s = 0; s < 4; s++) {
+            const Sent *m = &g_array_index(lg.by_src[i], Sent, s);
+            assert_int_equal(m->dst, i ^ (1u << (3 - s)));
+            assert_int_equal(m->bytes, 10240 * (N >> (s + 1)));
+        }
+    }
+    log_free(&lg);
+}
+
+/* Random: N - 1 messages a node, never to itself, spread over the nodes.
+ * Hotspot with the same seed: the same lists, but that each message of a
+ * node other than 0 goes to node 0 instead with probability 1/4 (node
+ * 0's own list unchanged). */
+static void test_random_and_hotspot(void **state)
+{
+    (void)state;
+    Log r, h;
+    run(&r, NET_TRAFFIC_RANDOM, NET_ANALYTIC);
+    run(&h, NET_TRAFFIC_HOTSPOT, NET_ANALYTIC);
+    guint into[N] = {0}, moved = 0, msgs = 0;
+    for (uint32_t i = 0; i < N; i++) {
+        assert_int_equal(r.by_src[i]->len, N - 1);
+        assert_int_equal(h.by_src[i]->len, N - 1);
+        for (guint k = 0; k < N - 1; k++) {
+            const Sent *a = &g_array_index(r.by_src[i], Sent, k);
+            const Sent *b = &g_array_index(h.by_src[i], Sent, k);
+            assert_true(a->dst != i && a->dst < N && a->bytes == 10240);
+            into[a->dst]++;
+            assert_true(b->dst == a->dst || (i != 0 && b->dst == 0));
+            moved += b->dst != a->dst;
+            msgs += i != 0 && a->dst != 0;
+        }
+    }
+    for (uint32_t j = 0; j < N; j++)
+        assert_true(into[j] >= 5 && into[j] <= 30); /* 15 each on average */
+    /* 1/4 of the 211 or so movable messages, well inside 1/8 .. 3/8 */
+    assert_true(moved * 8 > msgs && moved * 8 < 3 * msgs);
+    log_free(&r);
+    log_free(&h);
+}
+
 static void test_names_and_checks(void **state)
 {
     (void)state;
@@ -199,6 +258,8 @@ int main(void)
         cmocka_unit_test(test_first_round_memory_65536),
         cmocka_unit_test(test_same_traffic_every_pattern),
         cmocka_unit_test(test_pattern_orders),
+        cmocka_unit_test(test_xor_and_pairwise_contents),
+        cmocka_unit_test(test_random_and_hotspot),
         cmocka_unit_test(test_names_and_checks),
     };
     return cmocka_run_group_tests_name("net_traffic", tests, NULL, NULL);
