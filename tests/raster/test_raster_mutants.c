@@ -11,6 +11,7 @@
 #include <stdlib.h>
 
 #include "sim/raster/clip.h"
+#include "sim/raster/counters.h"
 #include "sim/raster/scan.h"
 #include "sim/raster/zbuffer.h"
 
@@ -173,6 +174,25 @@ static void test_zbuffer_cleared(void **state)
     rast_zbuffer_free(zb);
 }
 
+/* Counters add field by field: each sum, and its name in the text form. */
+static void test_counters_add(void **state)
+{
+    (void)state;
+    RastCounters d = {.verts = 10, .prims = 20, .culled = 30, .clipped = 40,
+                      .rejected = 50, .degenerate = 60, .spans = 70,
+                      .pixels = 80, .winners = 90, .zcompares = 100,
+                      .zwrites = 110};
+    RastCounters s = {.verts = 1, .prims = 2, .culled = 3, .clipped = 4,
+                      .rejected = 5, .degenerate = 6, .spans = 7, .pixels = 8,
+                      .winners = 9, .zcompares = 10, .zwrites = 11};
+    rast_counters_add(&d, &s);
+    char *t = rast_counters_format(&d);
+    assert_string_equal(t, "verts=11 prims=22 culled=33 clipped=44 "
+                           "rejected=55 degenerate=66 spans=77 TPG=88 TPF=99 "
+                           "zcmp=110 zwrites=121");
+    g_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -181,6 +201,7 @@ int main(void)
         cmocka_unit_test(test_smallest_polygon),
         cmocka_unit_test(test_guard_sides),
         cmocka_unit_test(test_zbuffer_cleared),
+        cmocka_unit_test(test_counters_add),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

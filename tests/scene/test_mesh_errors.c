@@ -259,7 +259,14 @@ static SceneMesh *ply_ok(const char *text, gsize len)
 #define FACE "element face 1\nproperty list uchar int vertex_indices\n"
 #define BODY3 "0 0 0\n1 0 0\n0 1 0\n"
 
+#define Q10 "qqqqqqqqqq"
+#define Q40 Q10 Q10 Q10 Q10
+
 static const Case ply_bad[] = {
+    /* a 100-character token: read into a 64-byte buffer, cut, quoted
+     * to its first 40 */
+    {HA Q40 Q40 Q10 Q10 "\n", ":3:1: found '" Q40 "', expected format, "
+     "comment, obj_info, element, property or end_header"},
     {"ply extra\n", ":1:5: found 'extra', expected end of line"},
     {"plyx\n", ":1:1: found 'plyx', expected 'ply' (the PLY magic line)"},
     {HA "property float x\n", ":3:1: found 'property', expected an "

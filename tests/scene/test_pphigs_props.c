@@ -89,13 +89,22 @@ static void check_color(const SceneElem *e)
 static void check_objects(SceneDb *db, guint sid, const ScenePphigsSpec *s,
                           Vec3 lo, Vec3 hi, double r)
 {
-    SceneBox seen = scene_box_empty();
+    SceneBox seen = scene_box_empty(), obj = scene_box_empty();
     uint64_t tag = 1;
     double spread = 0;
-    for (guint i = 1; i < scene_db_len(db, sid); i++) {
-        const SceneElem *e = scene_db_elem(db, sid, i);
-        if (e->kind == SCENE_EL_COLOR) {
-            check_color(e);
+    guint in_obj = 0;
+    for (guint i = 1; i <= scene_db_len(db, sid); i++) {
+        const SceneElem *e =
+            i < scene_db_len(db, sid) ? scene_db_elem(db, sid, i) : NULL;
+        if (!e || e->kind == SCENE_EL_COLOR) {
+            /* an object's polygons spread over its [-r, r] cube on
+             * every axis (over r: all of it, not one half) */
+            Vec3 d = scene_box_size(obj);
+            assert_true(in_obj < 8 || (d.x > r && d.y > r && d.z > r));
+            obj = scene_box_empty();
+            in_obj = 0;
+            if (e)
+                check_color(e);
             continue;
         }
         assert_int_equal(e->kind, SCENE_EL_POLYGON);
@@ -105,12 +114,15 @@ static void check_objects(SceneDb *db, guint sid, const ScenePphigsSpec *s,
         assert_true(c.y >= lo.y - r && c.y <= hi.y + r);
         assert_true(c.z >= lo.z - r && c.z <= hi.z + r);
         seen = scene_box_add_point(seen, c);
+        obj = scene_box_add_point(obj, c);
+        in_obj++;
     }
     assert_int_equal(tag - 1, s->polygons);
-    /* and they spread over the box: more than half of it on each axis */
+    /* and (30 objects) they spread over the box: more than half of it on
+     * each axis */
     Vec3 sz = scene_box_size(seen), want = vec3_sub(hi, lo);
     spread = fmin(sz.x / want.x, fmin(sz.y / want.y, sz.z / want.z));
-    assert_true(spread > 0.5);
+    assert_true(s->attributes < 31 || spread > 0.5);
 }
 
 static void test_station_and_lobby(void **st)
@@ -125,6 +137,10 @@ static void test_station_and_lobby(void **st)
     const SceneElem *m = scene_db_elem(db, 0, 0);
     assert_int_equal(m->kind, SCENE_EL_MATRIX);
     assert_int_equal(m->mode, SCENE_MAT_REPLACE);
+    check_objects(db, 0, &s, vec3(-20, -5, -5), vec3(20, 5, 5), 1);
+    scene_db_free(db);
+    s.attributes = 3; /* 2 objects of 15 polygons */
+    db = gen(&s, &cam);
     check_objects(db, 0, &s, vec3(-20, -5, -5), vec3(20, 5, 5), 1);
     /* the standard view: fitted to the structure's box, fill 0.9 */
     Vec3 c = scene_box_center(scene_db_struct_bbox(db, 0));
