@@ -233,6 +233,26 @@ static void test_sloped_depth(void **st)
     g_array_unref(c);
 }
 
+/* Flat shading: s = 0.3 + 0.7 |n.z| / |n| with n the normal in NDC.
+ * Screen points (0.5, 0.5), (4.5, 2.5), (2.5, 6.5) at z 0.125, 0.5,
+ * -0.25: u = (1, -0.5, 0.375), v = (0.5, -1.5, -0.375),
+ * n = u x v = (0.75, 0.5625, -1.25), |n| = 1.5625, s = 0.86; colour
+ * (1, 0.5, 0.25) -> 219.3, 109.65, 54.825 -> 0xff376edb (0xAABBGGRR). */
+static void test_shading_exact(void **st)
+{
+    (void)st;
+    static const double t[3][2] = {{0.5, 0.5}, {4.5, 2.5}, {2.5, 6.5}};
+    static const double z[3] = {0.125, 0.5, -0.25};
+    Poly p;
+    poly(&p, t, 3);
+    for (int i = 0; i < 3; i++)
+        p.v[i].z = z[i];
+    p.pi.color = vec3(1, 0.5, 0.25);
+    GArray *c = cmds(&p, 1);
+    assert_int_equal(g_array_index(c, WlPphigsCmd, 0).rgba, 0xff376edbu);
+    g_array_unref(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -241,6 +261,7 @@ int main(void)
         cmocka_unit_test(test_depth_key),
         cmocka_unit_test(test_tiny_triangle),
         cmocka_unit_test(test_sloped_depth),
+        cmocka_unit_test(test_shading_exact),
     };
     return cmocka_run_group_tests_name("pphigs_raster", tests, NULL, NULL);
 }
