@@ -373,6 +373,13 @@ static void test_flatten(void **st)
      * clockwise seen from +z) */
     for (guint i = 3; i < 6; i++)
         assert_true(scene_mesh_poly_normal(m, i).z < -0.99);
+    /* strip triangle k takes strip vertices k, k + 1, k + 2, the first
+     * two swapped when k is odd */
+    uint32_t b0 = scene_mesh_poly(m, 3)[0];
+    const uint32_t want[3][3] = {{0, 1, 2}, {2, 1, 3}, {2, 3, 4}};
+    for (guint k = 0; k < 3; k++)
+        for (guint j = 0; j < 3; j++)
+            assert_int_equal(scene_mesh_poly(m, 3 + k)[j], b0 + want[k][j]);
     scene_mesh_free(m);
     scene_db_free(db);
 }
