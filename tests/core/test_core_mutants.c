@@ -10,6 +10,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/core/datapath.h"
+#include "sim/core/engine.h"
 #include "sim/core/stats.h"
 #include "sim/core/units.h"
 
@@ -200,6 +201,54 @@ static void test_override_locations(void **state)
     cfg_free(root);
 }
 
+/* A 21st significant digit that is 0 loses nothing (1 s exactly); any
+ * other digit there cannot be kept in a whole number of picoseconds. */
+static void test_digit_past_twenty(void **state)
+{
+    (void)state;
+    uint64_t v = 0;
+    const char *exp = NULL;
+    assert_true(cfg_units_u64("1.00000000000000000000 s", CFG_UNIT_TIME, &v,
+                              &exp));
+    assert_int_equal(v, 1000000000000ull);
+    assert_false(cfg_units_u64("1.00000000000000000001 s", CFG_UNIT_TIME, &v,
+                               &exp));
+    assert_string_equal(exp, "a number with at most 20 significant digits");
+}
+
+static void count_call(SimEngine *e, void *ctx)
+{
+    (void)e;
+    (*(int *)ctx)++;
+}
+
+static void no_op(SimEngine *e, void *ctx, void *arg)
+{
+    (void)e;
+    (void)ctx;
+    (void)arg;
+}
+
+/* Progress every 2 events calls back twice in 4 events; a NULL callback
+ * turns progress off whatever `every` says. */
+static void test_progress_off(void **state)
+{
+    (void)state;
+    SimEngine *e = sim_engine_new(1);
+    int calls = 0;
+    sim_engine_set_progress(e, 2, count_call, &calls);
+    for (int i = 0; i < 4; i++)
+        sim_schedule_in(e, (SimTime)i, no_op, NULL, NULL);
+    assert_true(sim_engine_run(e, SIM_TIME_MAX, NULL));
+    assert_int_equal(calls, 2);
+    sim_engine_set_progress(e, 1, NULL, &calls);
+    for (int i = 0; i < 3; i++)
+        sim_schedule_in(e, (SimTime)i, no_op, NULL, NULL);
+    assert_true(sim_engine_run(e, SIM_TIME_MAX, NULL));
+    assert_int_equal(calls, 2);
+    sim_engine_free(e);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -209,6 +258,8 @@ int main(void)
         cmocka_unit_test(test_input_limit_env),
         cmocka_unit_test(test_zero_any_exponent),
         cmocka_unit_test(test_override_locations),
+        cmocka_unit_test(test_digit_past_twenty),
+        cmocka_unit_test(test_progress_off),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
