@@ -584,6 +584,11 @@ static void test_attr_cache_mode_change(void **st)
                 WlPphigsDist *d = k ? b : a;
                 assert_true(wl_pphigs_dist_modify(d, 0, 3, &m, NULL));
                 wl_pphigs_dist_finish(d);
+                const SceneDb *h = wl_pphigs_dist_host(d);
+                assert_int_equal(scene_db_len(h, 0), 64); /* in place */
+                assert_int_equal(scene_db_elem(h, 0, 3)->mode, m1);
+                assert_int_equal(scene_db_elem(h, 0, 4)->kind,
+                                 SCENE_EL_TRIANGLE);
                 assert_true(wl_pphigs_dist_insert(d, 0, at, &e, NULL));
                 wl_pphigs_dist_finish(d);
                 assert_same_render(d);
