@@ -179,6 +179,16 @@ static SimResult *run(const char *text, GError **err)
     return r;
 }
 
+/* run() of a config that must run: its error fails the test. */
+static SimResult *must_run(const char *text)
+{
+    GError *err = NULL;
+    SimResult *r = run(text, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    return r;
+}
+
 static double metric(const SimResult *r, const char *name)
 {
     double v = -1;
@@ -222,10 +232,7 @@ static void test_pixels_equal_serial_draw(void **state)
         "application: nurbs, tile: 32, block: 16, width: 96, height: 80, "
         "check_image: false}\n%s",
         machine, nurbs_scene);
-    GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
+    SimResult *r = must_run(text);
     double want = serial_pixels(nurbs_scene, 96, 80);
     assert_true(want > 100);
     assert_true(metric(r, "pixels") == want);
@@ -359,10 +366,8 @@ static void test_nurbs_application_time(void **state)
         "  application: nurbs, primitives: strips, tile: 32, block: 16,\n"
         "  width: 64, height: 48, check_image: false}\n%s",
         nurbs_scene);
+    SimResult *r = must_run(text);
     GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
     CfgNode *root = cfg_load_string(text, "m.yaml", &err);
     Scene *sc = scene_from_cfg(cfg_get(root, "scene"), &err);
     SceneMesh *m = scene_flatten(sc);
@@ -421,10 +426,8 @@ static void test_rasterisation_by_pixel_mode(void **state)
     char *text = g_strjoinv("fill_rate: infinite", parts);
     g_strfreev(parts);
     g_free(finite);
+    SimResult *r = must_run(text);
     GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
     CfgNode *root = cfg_load_string(text, "m.yaml", &err);
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m = mach_new_from_cfg(eng, cfg_get(root, "machine"),
@@ -632,10 +635,8 @@ static void test_application_none(void **state)
         "  application: none, primitives: triangles, tile: 32, block: 1024,\n"
         "  width: 48, height: 48, check_image: false}\n%s",
         machine, nurbs_scene);
+    SimResult *r = must_run(text);
     GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
     CfgNode *root = cfg_load_string(text, "m.yaml", &err);
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m =
@@ -739,10 +740,7 @@ static void test_memory_bytes_and_syncs(void **state)
         "application: nurbs, tile: 32, block: 16, width: 96, height: 80, "
         "bytes: {vertex: 24 B, triangle: 100 B}}\n%s",
         machine, nurbs_scene);
-    GError *err = NULL;
-    SimResult *r = run(text, &err);
-    if (!r)
-        fail_msg("%s", err->message);
+    SimResult *r = must_run(text);
     double v = metric(r, "vertices_issued"), b = metric(r, "bucketed_triangles");
     assert_true(v > 0 && b > 0);
     assert_true(metric(r, "shared_memory_bytes") == 24 * v + 100 * b);
