@@ -350,6 +350,37 @@ static void test_event_chain_timing(void **state)
     event_chain(TRUE);
 }
 
+/* Replaces the rig's mesh by n quads of the colours col[0 .. n-1], and
+ * its frame by a blending one (alpha 0.5 over black). */
+static void rig_quads(Rig *r, const float (*col)[3], int n)
+{
+    scene_mesh_free(r->mesh);
+    r->mesh = scene_mesh_new();
+    for (int q = 0; q < n; q++)
+        add_quad(r->mesh, scene_color(col[q][0], col[q][1], col[q][2]));
+    wl_ag_frame_free(r->f);
+    r->f = wl_ag_frame_new(SIDE, SIDE, SIDE, WL_AG_BLEND, 0.5f,
+                           (RastColor){0, 0, 0});
+}
+
+/* One frame of the rig's streams through a pipe of `contexts`
+ * application threads, one geometry and one rasteriser thread; the pipe
+ * is the caller's to free. */
+static AgPipe *run_blend_frame(Rig *r, guint contexts)
+{
+    GError *e = NULL;
+    AgCosts c;
+    assert_true(wl_ag_costs_from_machine(r->m, &c, &e));
+    AgSetup s = {.procs = 8, .contexts = contexts, .geometry = 1,
+                 .rasterisers = 1, .app = WL_AG_APP_NONE,
+                 .vertex_bytes = 32, .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r->m, &s, &c, r->st, r->f, r->mesh, &r->view);
+    AgFrameStats fs;
+    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+        fail_msg("%s", e->message);
+    return p;
+}
+
 /* A tile takes the contexts' ready blocks in turn (round robin from the
  * context after the one it drew last).  Two contexts of two full-screen
  * quads each (red, green; blue, white), blended at alpha 0.5 over black
@@ -363,28 +394,13 @@ static void test_tile_round_robin(void **state)
     (void)state;
     Rig r;
     rig_init(&r);
-    scene_mesh_free(r.mesh);
-    r.mesh = scene_mesh_new();
     const float col[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
-    for (int q = 0; q < 4; q++)
-        add_quad(r.mesh, scene_color(col[q][0], col[q][1], col[q][2]));
-    wl_ag_frame_free(r.f);
-    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE, WL_AG_BLEND, 0.5f,
-                          (RastColor){0, 0, 0});
+    rig_quads(&r, col, 4);
     block(&r, 0, 0, 2);
     block(&r, 0, 2, 2);
     block(&r, 1, 4, 2);
     block(&r, 1, 6, 2);
-    GError *e = NULL;
-    AgCosts c;
-    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
-    AgSetup s = {.procs = 8, .contexts = 2, .geometry = 1, .rasterisers = 1,
-                 .app = WL_AG_APP_NONE, .vertex_bytes = 32,
-                 .triangle_bytes = 64};
-    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
-    AgFrameStats fs;
-    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
-        fail_msg("%s", e->message);
+    AgPipe *p = run_blend_frame(&r, 2);
     const float want[3] = {0.5625f, 0.75f, 0.625f};
     for (int i = 0; i < SIDE * SIDE; i += 97)
         for (int k = 0; k < 3; k++)
@@ -406,30 +422,15 @@ static void test_tile_round_robin_skips(void **state)
     g_ptr_array_add(r.st->ctx, g_array_new(FALSE, TRUE, sizeof(AgBlock)));
     r.st->contexts = 3;
     r.st->barrier_parties = 3;
-    scene_mesh_free(r.mesh);
-    r.mesh = scene_mesh_new();
     const float col[5][3] = {
         {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {1, 1, 0}};
-    for (int q = 0; q < 5; q++)
-        add_quad(r.mesh, scene_color(col[q][0], col[q][1], col[q][2]));
-    wl_ag_frame_free(r.f);
-    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE, WL_AG_BLEND, 0.5f,
-                          (RastColor){0, 0, 0});
+    rig_quads(&r, col, 5);
     block(&r, 0, 0, 2);
     block(&r, 0, 2, 2);
     block(&r, 1, 4, 2);
     block(&r, 2, 6, 2);
     block(&r, 2, 8, 2);
-    GError *e = NULL;
-    AgCosts c;
-    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
-    AgSetup s = {.procs = 8, .contexts = 3, .geometry = 1, .rasterisers = 1,
-                 .app = WL_AG_APP_NONE, .vertex_bytes = 32,
-                 .triangle_bytes = 64};
-    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
-    AgFrameStats fs;
-    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
-        fail_msg("%s", e->message);
+    AgPipe *p = run_blend_frame(&r, 3);
     const int order[5] = {0, 2, 3, 1, 4};
     float want[3] = {0, 0, 0};
     for (int i = 0; i < 5; i++)
