@@ -1,0 +1,483 @@
+/* test_sf_book_frames.c — the sort-first book driven frame by frame on a
+ * database worked out by hand, every field of every processor's work
+ * checked against the counts of seed 000 §3.3.2 (push, pull, fixed and
+ * dynamic masters) and §3.4 (max-set pointers).
+ *
+ * Structure "a" (3 triangles) is executed twice by the posted root, so
+ * with chunks of at most 2 (unsorted) there are two chunks with two
+ * instances each: chunk 0 (2 triangles, instances 0 and 1, master 0) and
+ * chunk 1 (1 triangle, instances 2 and 3, master 1).  Four processors
+ * share a 16 x 16 screen in 8 x 8 tiles (0 top left, 1 top right, 2
+ * bottom left, 3 bottom right).  Each test places the instances' screen
+ * rectangles by hand, so need[] is known, and runs the processors' sorts,
+ * the deliveries and the render sets as a frame of sf_frame.c does. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/workload/sortfirst/sf_book.h"
+
+#define P 4
+
+/* message, chunk, triangle, instance, cell, request, mastership, edit */
+static const WlSfSizes Z = {64, 40, 36, 8, 4, 8, 16, 96};
+
+typedef struct {
+    SceneDb *src;
+    WlSfDb *db;
+    WlSfBook *b;
+    WlSfBatch out[P][P];   /* what p sends q */
+    WlSfBatch reply[P][P]; /* pull: p's answer to q */
+    WlSfBookWork w[P];
+    GArray *fresh[P];  /* chunks p received */
+    GArray *render[P]; /* instances p renders */
+} Rig;
+
+static void add(SceneDb *db, guint sid, SceneElem e)
+{
+    assert_true(scene_db_append(db, sid, &e, NULL));
+}
+
+static void rig_init(Rig *r, WlSfBookkeeping bk, WlSfMigration mig,
+                     WlSfMastership ms)
+{
+    memset(r, 0, sizeof *r);
+    r->src = scene_db_new();
+    guint root = scene_db_add_struct(r->src, "root");
+    guint a = scene_db_add_struct(r->src, "a");
+    for (int k = 0; k < 3; k++) {
+        Vec3 t[3] = {vec3(k, 0, 0), vec3(k + 1, 0, 0), vec3(k, 1, 0)};
+        add(r->src, a, scene_elem_prim(SCENE_EL_TRIANGLE, t, 3));
+    }
+    add(r->src, root, scene_elem_execute(a));
+    add(r->src, root, scene_elem_execute(a));
+    scene_db_post(r->src, root);
+    GError *e = NULL;
+    r->db = wl_sf_db_new(r->src, P, 2, WL_SF_CHUNK_UNSORTED, &e);
+    assert_non_null(r->db);
+    assert_int_equal(wl_sf_n_chunks(r->db), 2);
+    assert_int_equal(wl_sf_n_insts(r->db), 4);
+    for (guint i = 0; i < 4; i++)
+        assert_int_equal(wl_sf_inst(r->db, i)->chunk, i / 2);
+    assert_int_equal(wl_sf_chunk(r->db, 0)->polys, 2);
+    assert_int_equal(wl_sf_chunk(r->db, 1)->polys, 1);
+    WlSfRegions reg;
+    wl_sf_regions_init(&reg, P, 16, 16);
+    r->b = wl_sf_book_new(r->db, &reg, bk, &Z);
+    wl_sf_book_set_policy(r->b, mig, ms);
+    for (guint p = 0; p < P; p++) {
+        for (guint q = 0; q < P; q++) {
+            wl_sf_batch_init(&r->out[p][q]);
+            wl_sf_batch_init(&r->reply[p][q]);
+        }
+        r->fresh[p] = g_array_new(FALSE, FALSE, sizeof(guint));
+        r->render[p] = g_array_new(FALSE, FALSE, sizeof(guint));
+    }
+}
+
+static void rig_clear(Rig *r)
+{
+    for (guint p = 0; p < P; p++) {
+        for (guint q = 0; q < P; q++) {
+            wl_sf_batch_clear(&r->out[p][q]);
+            wl_sf_batch_clear(&r->reply[p][q]);
+        }
+        g_array_unref(r->fresh[p]);
+        g_array_unref(r->render[p]);
+    }
+    wl_sf_book_free(r->b);
+    wl_sf_db_free(r->db);
+    scene_db_free(r->src);
+}
+
+/* Screen rectangles: a 2 x 2 pixel box inside one tile, across the two
+ * bottom tiles, or off the screen. */
+enum { T0, T1, T2, T3, BOTTOM, OFF };
+
+static WlSfScreen at(int where)
+{
+    static const double box[][4] = {{2, 2, 4, 4},     {10, 2, 12, 4},
+                                    {2, 10, 4, 12},   {10, 10, 12, 12},
+                                    {2, 10, 12, 12}};
+    if (where == OFF)
+        return (WlSfScreen){.on = FALSE};
+    const double *b = box[where];
+    return (WlSfScreen){.on = TRUE, .x0 = b[0], .y0 = b[1], .x1 = b[2],
+                        .y1 = b[3]};
+}
+
+static void set_need(Rig *r, int i0, int i1, int i2, int i3)
+{
+    WlSfScreen s[4] = {at(i0), at(i1), at(i2), at(i3)};
+    wl_sf_book_need_from(r->b, s);
+}
+
+/* Every processor's sort (push), then the deliveries, then the render
+ * sets, as one frame of sf_frame.c. */
+static void push_frame(Rig *r)
+{
+    for (guint p = 0; p < P; p++) {
+        memset(&r->w[p], 0, sizeof r->w[p]);
+        g_array_set_size(r->fresh[p], 0);
+        g_array_set_size(r->render[p], 0);
+    }
+    for (guint p = 0; p < P; p++)
+        wl_sf_book_sort(r->b, p, r->out[p], &r->w[p]);
+    for (guint p = 0; p < P; p++)
+        for (guint q = 0; q < P; q++) {
+            if (q == p)
+                continue;
+            const WlSfBatch *bt = &r->out[p][q];
+            assert_int_equal(bt->src, p);
+            assert_int_equal(bt->dst, q);
+            wl_sf_book_receive(r->b, bt, &r->w[q]);
+            g_array_append_vals(r->fresh[q], bt->chunks->data, bt->chunks->len);
+        }
+    for (guint p = 0; p < P; p++)
+        wl_sf_book_render_set(r->b, p, r->fresh[p], r->render[p], &r->w[p]);
+}
+
+/* The fields of WlSfBookWork, in order, but for edit_bytes and
+ * held_insts. */
+typedef struct {
+    uint64_t mb, sb, nb, sc, sp, si, sby, rc, rp, ri, del, probe, req, hand,
+        coll, hc, hp;
+} Work;
+
+static void expect_work(const Rig *r, guint p, Work x)
+{
+    const WlSfBookWork *w = &r->w[p];
+    const uint64_t got[] = {w->master_boxes, w->slave_boxes, w->new_boxes,
+                            w->sent_chunks, w->sent_polys, w->sent_insts,
+                            w->sent_bytes, w->recv_chunks, w->recv_polys,
+                            w->recv_insts, w->deleted_chunks, w->probe_boxes,
+                            w->requested, w->handed, w->collected,
+                            w->held_chunks, w->held_polys};
+    const uint64_t want[] = {x.mb, x.sb, x.nb, x.sc, x.sp, x.si, x.sby, x.rc,
+                             x.rp, x.ri, x.del, x.probe, x.req, x.hand,
+                             x.coll, x.hc, x.hp};
+    static const char *const name[] = {
+        "master_boxes", "slave_boxes", "new_boxes",  "sent_chunks",
+        "sent_polys",   "sent_insts",  "sent_bytes", "recv_chunks",
+        "recv_polys",   "recv_insts",  "deleted",    "probe_boxes",
+        "requested",    "handed",      "collected",  "held_chunks",
+        "held_polys"};
+    for (guint k = 0; k < G_N_ELEMENTS(got); k++)
+        if (got[k] != want[k])
+            fail_msg("processor %u: %s %llu, expected %llu", p, name[k],
+                     (unsigned long long)got[k], (unsigned long long)want[k]);
+}
+
+/* p renders exactly the instances of `set` (a bit per instance). */
+static void expect_render(const Rig *r, guint p, unsigned set)
+{
+    unsigned got = 0;
+    for (guint k = 0; k < r->render[p]->len; k++) {
+        guint i = g_array_index(r->render[p], guint, k);
+        assert_false(got & (1u << i)); /* once each */
+        got |= 1u << i;
+    }
+    if (got != set)
+        fail_msg("processor %u renders %#x, expected %#x", p, got, set);
+}
+
+static void expect_vec(const uint64_t *v, uint64_t a, uint64_t b, uint64_t c,
+                       uint64_t d, const char *what)
+{
+    const uint64_t want[4] = {a, b, c, d};
+    for (guint i = 0; i < 4; i++)
+        if (v[i] != want[i])
+            fail_msg("%s[%u] = %#llx, expected %#llx", what, i,
+                     (unsigned long long)v[i], (unsigned long long)want[i]);
+}
+
+static void check_ok(const Rig *r)
+{
+    guint inst = 99, proc = 99;
+    assert_true(wl_sf_book_check(r->b, &inst, &proc));
+}
+
+/* Max-set, push, fixed masters.  Frame 1: instance 0 in tile 0,
+ * instance 1 in tile 1, instance 2 across tiles 2 and 3, instance 3 off.
+ * Processor 0 (chunk 0's master) sends processor 1 the chunk (40 + 2 x
+ * 36 B) and the pointer of instance 1 (8 B), 184 B with the header;
+ * processor 1 sends chunk 1 (40 + 36 B) and instance 2's pointer to 2 and
+ * to 3, 148 B each.  Every processor sends every other a message (64 B
+ * header).  Frame 2: instance 0 moves to tile 1, 1 off, 2 to tile 2 only,
+ * 3 to tile 0: processor 1 already holds chunk 0 and only gets instance
+ * 0's pointer; processor 0 gets chunk 1 and instance 3's pointer;
+ * processor 3 drops instance 2's pointer at its sort and, holding no
+ * pointer of chunk 1, deletes the chunk at render (§3.4.3). */
+static void test_maxset_push(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    expect_vec(r.b->need, 1, 2, 12, 0, "need");
+    push_frame(&r);
+    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
+    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 1, 312, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 2});
+    expect_work(&r, 1, (Work){2, 0, 1, 2, 2, 2, 360, 1, 2, 1, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 2, (Work){0, 0, 1, 0, 0, 0, 192, 1, 1, 1, 0, 0, 0, 0, 0,
+                              1, 1});
+    expect_work(&r, 3, (Work){0, 0, 1, 0, 0, 0, 192, 1, 1, 1, 0, 0, 0, 0, 0,
+                              1, 1});
+    expect_render(&r, 0, 1u << 0);
+    expect_render(&r, 1, 1u << 1);
+    expect_render(&r, 2, 1u << 2);
+    expect_render(&r, 3, 1u << 2);
+    expect_vec(r.b->held_inst, 1, 3, 14, 2, "held_inst");
+    expect_vec(r.b->master_inst, 1, 3, 14, 2, "master_inst");
+    assert_int_equal(r.b->held_data[0], 3);
+    assert_int_equal(r.b->held_data[1], 14);
+    assert_int_equal(r.b->master_data[0], 3);
+    assert_int_equal(r.b->master_data[1], 14);
+    check_ok(&r);
+    /* memory: chunk 0's master keeps 1 + 2 vectors of 1 B, the chunk
+     * (112 B) and two pointers; processor 1 chunk 1's 3 B of vectors,
+     * both chunks (112 + 76) and three pointers */
+    assert_int_equal(wl_sf_book_memory(r.b, 0), 3 + 112 + 16);
+    assert_int_equal(wl_sf_book_memory(r.b, 1), 3 + 112 + 76 + 24);
+    assert_int_equal(wl_sf_book_memory(r.b, 2), 76 + 8);
+    set_need(&r, T1, OFF, T2, T0);
+    push_frame(&r);
+    expect_work(&r, 0, (Work){2, 0, 1, 0, 0, 1, 200, 1, 1, 1, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 1, (Work){2, 1, 1, 1, 1, 1, 276, 0, 0, 1, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 2, (Work){0, 1, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 1});
+    expect_work(&r, 3, (Work){0, 1, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 0,
+                              0, 0});
+    expect_render(&r, 0, 1u << 3);
+    expect_render(&r, 1, 1u << 0);
+    expect_render(&r, 2, 1u << 2);
+    expect_render(&r, 3, 0);
+    expect_vec(r.b->held_inst, 3, 1, 6, 3, "held_inst");
+    assert_int_equal(r.b->held_data[1], 7);
+    check_ok(&r);
+    rig_clear(&r);
+}
+
+/* Min-set, push, fixed masters, the same two frames, then all off.
+ * Min-set sends no pointers: a chunk carries its first instance in the
+ * region (the header), and a new copy costs one box per instance at
+ * render.  A slave copy goes when no instance needed it the frame
+ * before (§3.3.2.1): processor 3's copy of chunk 1, needed in frame 1,
+ * survives frame 2 and goes in frame 3; every other copy was needed in
+ * frame 2 and stays. */
+static void test_minset_push(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MINSET, WL_SF_PUSH, WL_SF_FIXED);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    push_frame(&r);
+    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
+    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 0, 304, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 2});
+    expect_work(&r, 1, (Work){2, 0, 2, 2, 2, 0, 344, 1, 2, 0, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 2, (Work){0, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0,
+                              1, 1});
+    expect_work(&r, 3, (Work){0, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0,
+                              1, 1});
+    /* the header names the first instance of the chunk in dst's region */
+    assert_int_equal(r.out[0][1].insts->len, 1);
+    assert_int_equal(g_array_index(r.out[0][1].insts, guint, 0), 1);
+    assert_int_equal(g_array_index(r.out[1][3].insts, guint, 0), 2);
+    assert_int_equal(r.out[0][1].polys, 2);
+    assert_int_equal(r.out[1][2].polys, 1);
+    expect_render(&r, 0, 1u << 0);
+    expect_render(&r, 1, 1u << 1);
+    expect_render(&r, 2, 1u << 2);
+    expect_render(&r, 3, 1u << 2);
+    assert_int_equal(wl_sf_book_memory(r.b, 0), 1 + 112);
+    assert_int_equal(wl_sf_book_memory(r.b, 1), 1 + 112 + 76);
+    set_need(&r, T1, OFF, T2, T0);
+    push_frame(&r);
+    expect_work(&r, 0, (Work){2, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 1, (Work){2, 2, 0, 1, 1, 0, 268, 0, 0, 0, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 2, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 1});
+    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 1});
+    assert_int_equal(g_array_index(r.out[1][0].insts, guint, 0), 3);
+    expect_render(&r, 0, 1u << 3);
+    expect_render(&r, 1, 1u << 0);
+    expect_render(&r, 2, 1u << 2);
+    expect_render(&r, 3, 0);
+    assert_int_equal(r.b->master_data[0], 3);
+    assert_int_equal(r.b->master_data[1], 7);
+    check_ok(&r);
+    set_need(&r, OFF, OFF, OFF, OFF);
+    push_frame(&r);
+    expect_work(&r, 0, (Work){2, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 0,
+                              0, 0});
+    expect_work(&r, 2, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 1});
+    assert_int_equal(r.b->held_data[1], 7);
+    for (guint p = 0; p < P; p++)
+        expect_render(&r, p, 0);
+    rig_clear(&r);
+}
+
+/* Dynamic mastership, max-set: in frame 2 chunk 0's master (0) needs
+ * none of its instances, processor 1 does and holds a copy: mastership
+ * goes to 1 (16 B and, max-set, 2 x (8 + 1) B of pointer vectors) and 0
+ * deletes its copy.  Chunk 1's master (1) needs none either (instance 2
+ * in tile 2, 3 in tile 0): the lowest holder needing it is 2. */
+static void test_dynamic_maxset(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_DYNAMIC);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    push_frame(&r);
+    /* chunk 1's master (1) needs neither instance in frame 1: it hands
+     * the mastership to 2, the lowest region needing it (none held it
+     * before: uni & held is empty), sends 2 the chunk anyway */
+    expect_work(&r, 1, (Work){2, 0, 1, 2, 2, 2, 360 + 16 + 2 * 9, 1, 2, 1, 1,
+                              0, 0, 1, 0, 1, 2});
+    assert_int_equal(wl_sf_book_master(r.b, 0), 0);
+    assert_int_equal(wl_sf_book_master(r.b, 1), 2);
+    assert_int_equal(r.out[1][2].masters->len, 1);
+    assert_int_equal(r.out[1][3].masters->len, 0);
+    assert_int_equal(r.b->held_data[1], 12);
+    assert_int_equal(r.b->master_data[1], 12 | 4);
+    expect_vec(r.b->master_inst, 1, 3, 12 | 4, 4, "master_inst");
+    check_ok(&r);
+    set_need(&r, T1, OFF, T2, T0);
+    push_frame(&r);
+    /* chunk 0: processor 0 hands over to 1 (held and needing it) */
+    assert_int_equal(wl_sf_book_master(r.b, 0), 1);
+    assert_int_equal(r.w[0].handed, 1);
+    assert_int_equal(r.w[0].deleted_chunks, 1);
+    assert_int_equal(r.w[0].sent_bytes, 64 + 8 + 16 + 2 * 9 + 64 + 64);
+    assert_false(r.b->held_data[0] & 1);
+    /* chunk 1: its master (2) needs instance 2 and keeps it */
+    assert_int_equal(wl_sf_book_master(r.b, 1), 2);
+    check_ok(&r);
+    rig_clear(&r);
+}
+
+/* Dynamic mastership, min-set: chunk 1's master hands over as with
+ * max-set, the message carrying 16 B and no pointer vectors; the new
+ * master's copy vector is the regions needing the chunk. */
+static void test_dynamic_minset(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MINSET, WL_SF_PUSH, WL_SF_DYNAMIC);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    push_frame(&r);
+    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
+    expect_work(&r, 1, (Work){2, 0, 2, 2, 2, 0, 344 + 16, 1, 2, 0, 1, 0, 0, 1,
+                              0, 1, 2});
+    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 0, 304, 0, 0, 0, 0, 0, 0, 0, 0,
+                              1, 2});
+    assert_int_equal(wl_sf_book_master(r.b, 1), 2);
+    assert_int_equal(r.b->master_data[1], 12);
+    assert_int_equal(r.b->held_data[1], 12);
+    assert_int_equal(r.b->master_data[0], 3);
+    check_ok(&r);
+    rig_clear(&r);
+}
+
+/* A pull frame: the sorts, each request served and its answer
+ * received, then the render sets. */
+static void pull_frame(Rig *r)
+{
+    for (guint p = 0; p < P; p++) {
+        memset(&r->w[p], 0, sizeof r->w[p]);
+        g_array_set_size(r->fresh[p], 0);
+        g_array_set_size(r->render[p], 0);
+    }
+    for (guint p = 0; p < P; p++)
+        wl_sf_book_pull_sort(r->b, p, r->out[p], &r->w[p]);
+    for (guint p = 0; p < P; p++)
+        for (guint q = 0; q < P; q++)
+            if (q != p && r->out[p][q].chunks->len) {
+                WlSfBatch *a = &r->reply[q][p];
+                wl_sf_book_serve(r->b, &r->out[p][q], a, &r->w[q]);
+                assert_int_equal(a->src, q);
+                assert_int_equal(a->dst, p);
+                wl_sf_book_receive(r->b, a, &r->w[p]);
+                g_array_append_vals(r->fresh[p], a->chunks->data,
+                                    a->chunks->len);
+            }
+    for (guint p = 0; p < P; p++)
+        wl_sf_book_render_set(r->b, p, r->fresh[p], r->render[p], &r->w[p]);
+}
+
+/* Pull (min-set, fixed): a processor asks each master for the chunks it
+ * needs but does not hold (8 B a chunk id after the 64 B header), and
+ * tests the boxes of chunks it does not hold (probe boxes); the master
+ * answers with the chunk data.  Processor 1 asks 0 for chunk 0, 2 and 3
+ * ask 1 for chunk 1.  Frame 2: processor 0 asks 1 for chunk 1; 1 keeps
+ * its copy of chunk 0 (needed in frame 1).  Frame 3 (nothing on
+ * screen): 3 drops its copy of chunk 1, unneeded by it in frame 2; 2
+ * keeps its copy, needed in frame 2. */
+static void test_pull(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MINSET, WL_SF_PULL, WL_SF_FIXED);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    pull_frame(&r);
+    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
+    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 0, 176, 0, 0, 0, 0, 2, 0, 0, 0,
+                              1, 2});
+    expect_work(&r, 1, (Work){2, 0, 2, 2, 2, 0, 72 + 2 * 140, 1, 2, 0, 0, 2,
+                              1, 0, 0, 2, 3});
+    expect_work(&r, 2, (Work){0, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 4, 1, 0, 0,
+                              1, 1});
+    expect_work(&r, 3, (Work){0, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 4, 1, 0, 0,
+                              1, 1});
+    assert_int_equal(g_array_index(r.reply[0][1].insts, guint, 0), 1);
+    expect_render(&r, 0, 1u << 0);
+    expect_render(&r, 1, 1u << 1);
+    expect_render(&r, 2, 1u << 2);
+    expect_render(&r, 3, 1u << 2);
+    check_ok(&r);
+    set_need(&r, T1, OFF, T2, T0);
+    pull_frame(&r);
+    expect_work(&r, 0, (Work){2, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 2, 1, 0, 0,
+                              2, 3});
+    expect_work(&r, 1, (Work){2, 2, 0, 1, 1, 0, 140, 0, 0, 0, 0, 0, 0, 0, 0,
+                              2, 3});
+    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0,
+                              1, 1});
+    expect_render(&r, 0, 1u << 3);
+    expect_render(&r, 3, 0);
+    check_ok(&r);
+    set_need(&r, OFF, OFF, OFF, OFF);
+    pull_frame(&r);
+    expect_work(&r, 2, (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0,
+                              1, 1});
+    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 0, 0,
+                              0, 0});
+    assert_int_equal(r.b->held_data[1], 7);
+    rig_clear(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_maxset_push),
+        cmocka_unit_test(test_minset_push),
+        cmocka_unit_test(test_dynamic_maxset),
+        cmocka_unit_test(test_dynamic_minset),
+        cmocka_unit_test(test_pull),
+    };
+    return cmocka_run_group_tests_name("sf_book_frames", tests, NULL, NULL);
+}
