@@ -1,0 +1,361 @@
+/* test_sf_frame_values.c — the figures of sort-first frames (sf_frame.c)
+ * on a scene worked out by hand: five triangles, one chunk each
+ * (granularity 1, unsorted), seen by an orthographic camera whose view
+ * square [-1, 1]^2 fills a 16 x 16 screen, four processors in 8 x 8
+ * tiles.  Triangle 0 lies in tile 0 (screen box [2, 6]^2), triangle 1 in
+ * tile 1 ([10, 14] x [2, 6]), triangle 2 across all four ([6, 10]^2),
+ * triangles 3 and 4 off the screen.  Chunk c is mastered by c mod 4.
+ * Every figure of WlSfFrameStats that does not depend on the machine's
+ * costs is checked against its hand count; those that do (busy time,
+ * utilisation, traversal time) against the machine's own busy times. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <math.h>
+
+#include "sim/workload/sortfirst/sf_frame.h"
+
+#define P 4
+
+typedef struct {
+    Scene *scene;
+    SimEngine *eng;
+    MachMachine *m;
+    WlSfDb *db;
+    WlSfRun *run;
+    WlSfSetup s;
+    WlSfCosts c;
+} Rig;
+
+/* A right triangle over [x0, x1] x [y0, y1] at z = 0. */
+static void tri(SceneDb *db, guint sid, double x0, double y0, double x1,
+                double y1)
+{
+    Vec3 v[3] = {vec3(x0, y0, 0), vec3(x1, y0, 0), vec3(x0, y1, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    assert_true(scene_db_append(db, sid, &e, NULL));
+}
+
+static Scene *hand_scene(void)
+{
+    Scene *s = scene_new("hand");
+    s->camera = (SceneCamera){.proj = SCENE_ORTHOGRAPHIC,
+                              .eye = vec3(0, 0, 5),
+                              .target = vec3(0, 0, 0),
+                              .up = vec3(0, 1, 0),
+                              .fov_deg = 45,
+                              .height = 2,
+                              .near = 1,
+                              .far = 10,
+                              .aspect = 1};
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    tri(db, root, -0.75, 0.25, -0.25, 0.75); /* tile 0 */
+    tri(db, root, 0.25, 0.25, 0.75, 0.75);   /* tile 1 */
+    tri(db, root, -0.25, -0.25, 0.25, 0.25); /* all four */
+    tri(db, root, 3, 0, 3.5, 0.5);           /* off */
+    tri(db, root, 3, -1, 3.5, -0.5);         /* off */
+    scene_db_post(db, root);
+    scene_set_db(s, db);
+    return s;
+}
+
+static void rig_init_setup(Rig *r, WlSfBookkeeping bk, WlSfMigration mig,
+                           WlSfMastership ms, const WlSfSetup *adapt)
+{
+    GError *e = NULL;
+    r->scene = hand_scene();
+    r->eng = sim_engine_new(1);
+    r->m = mach_new_from_model(r->eng, "cluster-ib", "analytic", &e);
+    assert_non_null(r->m);
+    assert_true(wl_sf_costs_from_machine(r->m, &r->c, &e));
+    r->db = wl_sf_db_new(r->scene->db, P, 1, WL_SF_CHUNK_UNSORTED, &e);
+    assert_non_null(r->db);
+    assert_int_equal(wl_sf_n_chunks(r->db), 5);
+    assert_int_equal(wl_sf_n_insts(r->db), 5);
+    r->s = (WlSfSetup){.procs = P,
+                       .resolution = 16,
+                       .bk = bk,
+                       .mig = mig,
+                       .ms = ms,
+                       .sizes = {64, 40, 36, 8, 4, 8, 16, 96},
+                       .check_image = TRUE};
+    if (adapt) {
+        r->s.adaptive = TRUE;
+        r->s.grid = adapt->grid;
+        r->s.current = adapt->current;
+        r->s.feedback = adapt->feedback;
+    }
+    r->run = wl_sf_run_new(r->m, r->scene, r->db, &r->s, &r->c);
+}
+
+static void rig_init(Rig *r, WlSfBookkeeping bk, WlSfMigration mig,
+                     WlSfMastership ms)
+{
+    rig_init_setup(r, bk, mig, ms, NULL);
+}
+
+static void rig_clear(Rig *r)
+{
+    wl_sf_run_free(r->run);
+    wl_sf_db_free(r->db);
+    mach_free(r->m);
+    sim_engine_free(r->eng);
+    scene_free(r->scene);
+}
+
+static const WlSfFrameStats *frame(const Rig *r, guint f)
+{
+    const GArray *st = wl_sf_run_stats(r->run);
+    assert_true(f < st->len);
+    return &g_array_index(st, WlSfFrameStats, f);
+}
+
+static void run(Rig *r, int frames)
+{
+    GError *e = NULL;
+    if (!wl_sf_run_frames(r->run, frames, SIM_TIME_MAX, &e))
+        fail_msg("%s", e->message);
+}
+
+static void expect_near(double got, double want, const char *what)
+{
+    if (!(fabs(got - want) <= 1e-12 * fabs(want)))
+        fail_msg("%s: %.15g, expected %.15g", what, got, want);
+}
+
+/* Pixels the serial render covers: the triangles do not overlap, so
+ * every covered pixel is z-buffered once, in one region. */
+static uint64_t covered(const Rig *r)
+{
+    RastZBuffer *zb = rast_zbuffer_new(16, 16);
+    wl_sf_render_serial(r->scene, r->db, &r->s, 0, zb);
+    uint64_t n = 0;
+    for (guint i = 0; i < 256; i++)
+        n += zb->prim[i] != RAST_NO_PRIM;
+    rast_zbuffer_free(zb);
+    return n;
+}
+
+/* The frame's busy figures from the machine: each processor's busy
+ * time in [busy0[p], now), max / mean, and busy / (P x frame time). */
+static void expect_busy(const Rig *r, const WlSfFrameStats *st,
+                        const SimTime *busy0)
+{
+    double total = 0, max = 0;
+    for (guint p = 0; p < P; p++) {
+        double b = (double)(mach_proc_busy(mach_proc(r->m, "node", p)) -
+                            busy0[p]);
+        assert_true(b > 0);
+        total += b;
+        max = MAX(max, b);
+    }
+    expect_near(st->imbalance, max * P / total, "imbalance");
+    expect_near(st->utilisation,
+                total / ((double)(st->end - st->start) * P), "utilisation");
+    assert_true(st->end > st->start);
+    /* traversal: node visits and 8 vertices a volume test */
+    SimTime t = r->c.node_visit * st->trav.plain +
+                r->c.transform_vertex * 8 * st->trav.tests;
+    assert_true(st->trav.plain > 0);
+    assert_true(st->traverse_busy == t);
+}
+
+/* Frame 0, max-set push: processor 2 sends triangle 2's chunk and
+ * pointer to 0, 1 and 3 (3 chunks, 3 polygons, 3 pointers); every
+ * processor sends every other a message: 12 x 64 B + 3 x (40 + 36 + 8)
+ * B.  Renders: 0 and 1 two triangles each, 2 and 3 one: 6, max 2, min
+ * 1.  Masters: processor 0 holds 2 master polygons (triangles 0 and 4),
+ * the others 1: max / mean = 2 / 1.25; triangle 4 (processor 0's) and 3
+ * (processor 3's) are off-screen.  Copies held after the frame: 0 has 3
+ * (0, 4, 2), 1 has 2 (1, 2), 2 has 1, 3 has 2 (3, 2).  Three instances
+ * on screen, over 1 + 1 + 4 regions, each box 4 x 4 pixels.  Peak
+ * memory: processor 0, three chunks with their pointer (3 x (40 + 36 +
+ * 8)) and two 2-byte master vectors.  Frame 1 (same view): nothing moves; each
+ * slave pointer is tested (3 slave boxes), 12 header-only messages. */
+static void test_maxset_push(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED);
+    SimTime busy0[P] = {0};
+    run(&r, 1);
+    const WlSfFrameStats *f = frame(&r, 0);
+    assert_int_equal(f->messages, 12);
+    assert_int_equal(f->migrated_chunks, 3);
+    assert_int_equal(f->migrated_polys, 3);
+    assert_int_equal(f->migrated_insts, 3);
+    assert_int_equal(f->migrated_bytes, 12 * 64 + 3 * 84);
+    assert_int_equal(f->master_boxes, 5);
+    assert_int_equal(f->slave_boxes, 0);
+    assert_int_equal(f->new_boxes, 3);
+    assert_int_equal(f->deleted_chunks, 0);
+    assert_int_equal(f->probe_boxes, 0);
+    assert_int_equal(f->requests, 0);
+    assert_int_equal(f->handovers, 0);
+    assert_int_equal(f->polys_rendered, 6);
+    assert_int_equal(f->load_max, 2);
+    assert_int_equal(f->load_min, 1);
+    expect_near(f->poly_imbalance, 2.0 * 4 / 6, "poly_imbalance");
+    expect_near(f->master_imbalance, 2 / 1.25, "master_imbalance");
+    assert_int_equal(f->offscreen_max, 1);
+    assert_int_equal(f->offscreen_total, 2);
+    assert_int_equal(f->held_polys, 8);
+    assert_int_equal(f->onscreen_insts, 3);
+    assert_int_equal(f->region_insts, 6);
+    expect_near(f->box_side, 12, "box_side");
+    assert_int_equal(f->peak_memory, 3 * 84 + 2 * 2);
+    uint64_t px = covered(&r);
+    assert_true(px > 0);
+    assert_int_equal(f->pixels, px);
+    assert_true(f->image_checked && f->image_ok);
+    assert_int_equal(f->estimate_bytes, 0);
+    assert_int_equal(f->estimate_cells, 0);
+    assert_int_equal(f->edits, 0);
+    assert_int_equal(f->edit_bytes, 0);
+    assert_true(f->edit_busy == 0);
+    expect_busy(&r, f, busy0);
+    for (guint p = 0; p < P; p++)
+        busy0[p] = mach_proc_busy(mach_proc(r.m, "node", p));
+    run(&r, 1);
+    f = frame(&r, 1);
+    assert_int_equal(f->messages, 12);
+    assert_int_equal(f->migrated_chunks, 0);
+    assert_int_equal(f->migrated_insts, 0);
+    assert_int_equal(f->migrated_bytes, 12 * 64);
+    assert_int_equal(f->master_boxes, 5);
+    assert_int_equal(f->slave_boxes, 3);
+    assert_int_equal(f->new_boxes, 0);
+    assert_int_equal(f->polys_rendered, 6);
+    assert_int_equal(f->offscreen_total, 2);
+    assert_int_equal(f->held_polys, 8);
+    assert_int_equal(f->pixels, px);
+    assert_true(f->start >= frame(&r, 0)->end);
+    expect_busy(&r, f, busy0);
+    rig_clear(&r);
+}
+
+/* Pull (min-set, fixed): processors 0, 1 and 3 each ask 2 for triangle
+ * 2 (a request and an answer each: 6 messages); each tests the box of
+ * every chunk it does not hold (probe boxes: 0 holds 2 of 5, 1, 2 and 3
+ * one each: 3 + 4 + 4 + 4). */
+static void test_pull(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MINSET, WL_SF_PULL, WL_SF_FIXED);
+    SimTime busy0[P] = {0};
+    run(&r, 1);
+    const WlSfFrameStats *f = frame(&r, 0);
+    assert_int_equal(f->messages, 6);
+    assert_int_equal(f->requests, 3);
+    assert_int_equal(f->probe_boxes, 15);
+    assert_int_equal(f->master_boxes, 5);
+    assert_int_equal(f->migrated_chunks, 3);
+    assert_int_equal(f->migrated_polys, 3);
+    assert_int_equal(f->migrated_insts, 0);
+    assert_int_equal(f->migrated_bytes, 3 * (64 + 8) + 3 * (64 + 76));
+    assert_int_equal(f->new_boxes, 3);
+    assert_int_equal(f->polys_rendered, 6);
+    assert_int_equal(f->offscreen_total, 2);
+    assert_int_equal(f->offscreen_max, 1);
+    assert_true(f->image_ok);
+    expect_busy(&r, f, busy0);
+    rig_clear(&r);
+}
+
+static void expect_rect(const WlSfRegions *g, guint p, int x0, int y0,
+                        int x1, int y1)
+{
+    WlSfRect q = g->rect[p];
+    if (q.x0 != x0 || q.y0 != y0 || q.x1 != x1 || q.y1 != y1)
+        fail_msg("region %u: [%d, %d) x [%d, %d), expected [%d, %d) x "
+                 "[%d, %d)",
+                 p, q.x0, q.x1, q.y0, q.y1, x0, x1, y0, y1);
+}
+
+/* Adaptive regions on a 4 x 4 grid of 4 x 4-pixel cells.  The estimate
+ * puts each on-screen instance's polygon in the cell of its box's
+ * centre: triangle 0 in cell (1, 1), 1 in (3, 1), 2 in (2, 2); each
+ * processor's grid has one non-zero cell (0, 1, 2: their masters) or
+ * none (3), sent sparse: 2 x 4 B.  The k-d split cuts columns at 2 (left
+ * 1 polygon, right 2: max(1 x 2, 2 x 2) = 4, the least, and nearest the
+ * proportional cut), then each half's rows at 2 (the tie of cuts 1 and 2
+ * goes to the one nearest the middle): processor 0 top left, 1 bottom
+ * left, 2 top right, 3 bottom right; estimated weights 1, 0, 1, 1: split
+ * imbalance 1 x 4 / 3.  The split visits the 16 cells of the summed-area
+ * table and 2 x 4 marginals in each of its 3 cuts: 40.  Each processor
+ * adds the others' non-zero cells to its own 16 and the split's 40: 58,
+ * 58, 58, 59, and the estimate added 3 cells.  With the previous-frame
+ * estimate frame 0 runs in the static tiles and frame 1 in the split
+ * ones, where triangle 1 (processor 1's) lies in processor 2's region:
+ * one more chunk and pointer migrate. */
+static void test_adaptive_previous(void **st)
+{
+    (void)st;
+    Rig r;
+    WlSfSetup a = {.grid = 4};
+    rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &a);
+    SimTime busy0[P] = {0};
+    run(&r, 1);
+    const WlSfFrameStats *f = frame(&r, 0);
+    assert_int_equal(f->estimate_bytes, 3 * (8 + 8 + 8 + 0));
+    assert_int_equal(f->estimate_cells, 3 * 58 + 59 + 3);
+    expect_near(f->split_imbalance, 4.0 / 3, "split_imbalance");
+    assert_int_equal(f->migrated_chunks, 3);
+    assert_int_equal(f->migrated_bytes, 12 * 64 + 3 * 84);
+    assert_int_equal(f->polys_rendered, 6);
+    expect_busy(&r, f, busy0);
+    const WlSfRegions *g = wl_sf_run_regions(r.run);
+    expect_rect(g, 0, 0, 0, 8, 8);
+    expect_rect(g, 1, 0, 8, 8, 16);
+    expect_rect(g, 2, 8, 0, 16, 8);
+    expect_rect(g, 3, 8, 8, 16, 16);
+    run(&r, 1);
+    f = frame(&r, 1);
+    assert_int_equal(f->migrated_chunks, 1);
+    assert_int_equal(f->migrated_insts, 1);
+    assert_int_equal(f->migrated_bytes, 12 * 64 + 84);
+    assert_int_equal(f->slave_boxes, 3);
+    assert_int_equal(f->new_boxes, 1);
+    assert_int_equal(f->estimate_cells, 3 * 58 + 59 + 3);
+    assert_true(f->image_ok);
+    rig_clear(&r);
+}
+
+/* The current-frame estimate: frame 0 already runs in the split
+ * regions (4 chunks migrate); with cost feedback each grid message
+ * carries 8 B more. */
+static void test_adaptive_current(void **st)
+{
+    (void)st;
+    Rig r;
+    WlSfSetup a = {.grid = 4, .current = TRUE, .feedback = TRUE};
+    rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &a);
+    SimTime busy0[P] = {0};
+    run(&r, 1);
+    const WlSfFrameStats *f = frame(&r, 0);
+    assert_int_equal(f->estimate_bytes, 3 * (16 + 16 + 16 + 8));
+    assert_int_equal(f->estimate_cells, 3 * 58 + 59 + 3);
+    expect_near(f->split_imbalance, 4.0 / 3, "split_imbalance");
+    assert_int_equal(f->migrated_chunks, 4);
+    assert_int_equal(f->migrated_bytes, 12 * 64 + 4 * 84);
+    assert_int_equal(f->master_boxes, 5);
+    assert_int_equal(f->polys_rendered, 6);
+    assert_true(f->image_ok);
+    expect_busy(&r, f, busy0);
+    expect_rect(wl_sf_run_regions(r.run), 1, 0, 8, 8, 16);
+    rig_clear(&r);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_maxset_push),
+        cmocka_unit_test(test_pull),
+        cmocka_unit_test(test_adaptive_previous),
+        cmocka_unit_test(test_adaptive_current),
+    };
+    return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
+}
