@@ -80,3 +80,25 @@ WlSfDb *sf_test_tiny_db(SceneDb **src, guint procs)
     assert_int_equal(wl_sf_chunk(db, 1)->polys, 1);
     return db;
 }
+
+/* A right triangle over [x0, x1] x [y0, y1] at z = 0. */
+static void tri(SceneDb *db, guint sid, double x0, double y0, double x1,
+                double y1)
+{
+    Vec3 v[3] = {vec3(x0, y0, 0), vec3(x1, y0, 0), vec3(x0, y1, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    assert_true(scene_db_append(db, sid, &e, NULL));
+}
+
+SceneDb *sf_test_hand_db(void)
+{
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    tri(db, root, -0.75, 0.25, -0.25, 0.75); /* tile 0 */
+    tri(db, root, 0.25, 0.25, 0.75, 0.75);   /* tile 1 */
+    tri(db, root, -0.25, -0.25, 0.25, 0.25); /* all four */
+    tri(db, root, 3, 0, 3.5, 0.5);           /* off */
+    tri(db, root, 3, -1, 3.5, -0.5);         /* off */
+    scene_db_post(db, root);
+    return db;
+}

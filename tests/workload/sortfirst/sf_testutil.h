@@ -26,4 +26,11 @@ double sf_test_metric(const SimResult *r, const char *name);
  * `procs`: chunk 0 (2 triangles) mastered by 0, chunk 1 (1) by 1 % procs,
  * one instance each.  *src gets the structure database (free both). */
 WlSfDb *sf_test_tiny_db(SceneDb **src, guint procs);
+
+/* Five right triangles at z = 0 posted by one structure, in the order
+ * (world boxes) [-0.75, -0.25] x [0.25, 0.75], [0.25, 0.75] x [0.25,
+ * 0.75], [-0.25, 0.25]^2, [3, 3.5] x [0, 0.5], [3, 3.5] x [-1, -0.5]:
+ * under an orthographic camera of height 2 on a 16 x 16 screen, one in
+ * each top tile of a 2 x 2 split, one across all four, two off. */
+SceneDb *sf_test_hand_db(void);
 #endif
