@@ -160,15 +160,16 @@ static void test_rotation_invariant(void **st)
 }
 
 /* Y apart from X = (0.1, 0, 0) in x, then only in y, then only in z,
- * then only in x: each coordinate in turn decides which end an edge is
- * computed from (x alone: the order must not look past x). */
+ * then only in x, then only in y: each coordinate in turn decides which
+ * end an edge is computed from (and the order must not look past the
+ * first coordinate that differs). */
 static void test_no_cracks(void **st)
 {
     (void)st;
     Vec3 ny = {0.4, -0.2, 1}, other = {0.1, 0.3, 1};
-    const Vec3 Y[4] = {{1.3, 0.2, 0.1}, {0.1, 1.2, 0.1}, {0.1, 0, 0.9},
-                       {1.3, 0, 0}};
-    for (int y = 0; y < 4; y++)
+    const Vec3 Y[5] = {{1.3, 0.2, 0.1}, {0.1, 1.2, 0.1}, {0.1, 0, 0.9},
+                       {1.3, 0, 0},     {0.1, 1.2, 0}};
+    for (int y = 0; y < 5; y++)
         for (guint L = 1; L < 7; L++)
             for (int k = 0; k < 2; k++) {
                 /* same edge and normals, different opposite vertices */
