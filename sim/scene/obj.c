@@ -10,7 +10,6 @@
 #include "sim/core/datapath.h"
 #include "sim/scene/scene_limits.h"
 
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -76,7 +75,6 @@ static gboolean read_double(ObjParser *o, double *out)
         buf[n++] = *o->p++;
     buf[n] = 0;
     char *endp;
-    errno = 0;
     *out = g_ascii_strtod(buf, &endp);
     if (n == 0 || *endp || !isfinite(*out))
         return fail_token(o, start, "a finite number");

@@ -277,7 +277,6 @@ static gboolean ascii_value(Ply *p, PType t, double *out)
     token(p, TRUE, tok, sizeof tok);
     if (!*tok)
         return fail(p, "end of file", "a number");
-    errno = 0;
     *out = g_ascii_strtod(tok, &end);
     if (*end || !isfinite(*out))
         return fail_tok(p, tok, "a finite number");
