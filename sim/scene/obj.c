@@ -64,19 +64,22 @@ static gboolean at_end(ObjParser *o)
     return o->p >= o->end || *o->p == '#';
 }
 
+/* One number token; a token too long for any number (64 bytes or more)
+ * is refused whole rather than read in pieces. */
 static gboolean read_double(ObjParser *o, double *out)
 {
     skip_space(o);
     const char *start = o->p;
-    char buf[64];
-    gsize n = 0;
-    while (o->p < o->end && n < sizeof buf - 1 && *o->p != ' ' &&
-           *o->p != '\t' && *o->p != '\r')
-        buf[n++] = *o->p++;
+    while (o->p < o->end && *o->p != ' ' && *o->p != '\t' && *o->p != '\r')
+        o->p++;
+    gsize n = (gsize)(o->p - start);
+    char buf[64], *endp;
+    if (n == 0 || n >= sizeof buf)
+        return fail_token(o, start, "a finite number");
+    memcpy(buf, start, n);
     buf[n] = 0;
-    char *endp;
     *out = g_ascii_strtod(buf, &endp);
-    if (n == 0 || *endp || !isfinite(*out))
+    if (*endp || !isfinite(*out))
         return fail_token(o, start, "a finite number");
     return TRUE;
 }
