@@ -28,11 +28,11 @@ static gboolean number(const CfgNode *n, double *out, GError **err)
     return bad(err, n, "a finite number");
 }
 
-/* A sequence of exactly n numbers (n > 0), or of at least -n. */
+/* A sequence of exactly `want` numbers. */
 static gboolean numbers(const CfgNode *n, int want, double *out, GError **err)
 {
     guint len = cfg_seq_len(n);
-    if (cfg_kind(n) != CFG_SEQ || (want > 0 && len != (guint)want)) {
+    if (cfg_kind(n) != CFG_SEQ || len != (guint)want) {
         char *exp = g_strdup_printf("a sequence of %d numbers", want);
         bad(err, n, exp);
         g_free(exp);

@@ -40,6 +40,8 @@ static const Case bad[] = {
      "t.yaml:2:35: found '3', expected an element map {one of triangle, polygon, tristrip, polygon2d, color, matrix, execute: ...}"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{color: [1, 1, 1], execute: a}]}]\n",
      "t.yaml:2:63: found 'a', expected one element kind per list entry"},
+    {"structure_database: 1\nstructures: [{name: a, elements: [{triangle: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], color: [1, 1, 1]}]}]\n",
+     "t.yaml:2:88: found a sequence, expected one element kind per list entry"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{tag: 3}]}]\n",
      "t.yaml:2:35: found a map, expected an element with a key one of triangle, polygon, tristrip, polygon2d, color, matrix, execute"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{color: [1, 1, 1], tag: -1}]}]\n",
