@@ -83,9 +83,10 @@ static void skip_blanks(Ply *p, gboolean newlines)
         advance(p);
 }
 
-/* The next token on the line (or across lines if `newlines`) into buf;
- * empty when the line ends. */
-static void token(Ply *p, gboolean newlines, char *buf, gsize size)
+/* The next token on the line (or across lines if `newlines`) into buf,
+ * cut to size - 1 bytes; empty when the line ends.  Returns the token's
+ * whole length. */
+static gsize token(Ply *p, gboolean newlines, char *buf, gsize size)
 {
     skip_blanks(p, newlines);
     p->tok_pos = p->pos;
@@ -98,6 +99,7 @@ static void token(Ply *p, gboolean newlines, char *buf, gsize size)
         advance(p);
     }
     buf[n] = 0;
+    return p->pos - p->tok_pos;
 }
 
 static void quoted(const char *tok, char *out, gsize size)
@@ -274,11 +276,11 @@ static gboolean parse_header(Ply *p)
 static gboolean ascii_value(Ply *p, PType t, double *out)
 {
     char tok[64], *end;
-    token(p, TRUE, tok, sizeof tok);
+    gsize len = token(p, TRUE, tok, sizeof tok);
     if (!*tok)
         return fail(p, "end of file", "a number");
     *out = g_ascii_strtod(tok, &end);
-    if (*end || !isfinite(*out))
+    if (len >= sizeof tok || *end || !isfinite(*out)) /* or read cut */
         return fail_tok(p, tok, "a finite number");
     if (t < P_F32 && *out != floor(*out))
         return fail_tok(p, tok, "an integer");

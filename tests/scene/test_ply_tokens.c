@@ -1,0 +1,126 @@
+/* test_ply_tokens.c — the PLY tokenizer's edges (sim/scene/ply.c): an
+ * ASCII number of 63 bytes is read whole and one of 64 is refused (not
+ * read cut to its first 63); and the reader never looks past `len`: each
+ * file, good or bad, parses from an exact-size heap copy (whose end a
+ * sanitizer guards) and from a copy followed by more bytes exactly as
+ * from the NUL-terminated text -- same mesh or the same error. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/scene/ply.h"
+
+#define HA "ply\nformat ascii 1.0\n"
+#define VXYZ "property double x\nproperty double y\nproperty double z\n"
+
+static SceneMesh *parse(const char *t, gsize len, GError **err)
+{
+    return scene_ply_parse((const guchar *)t, len, "t.ply", err);
+}
+
+static void test_long_numbers(void **st)
+{
+    (void)st;
+    GString *num = g_string_new("0.");
+    for (int i = 0; i < 60; i++)
+        g_string_append_c(num, '0');
+    g_string_append_c(num, '1'); /* 63 bytes: 1e-61 */
+    char *t = g_strdup_printf(HA "element vertex 1\n" VXYZ "end_header\n"
+                              "%s 2 3\n", num->str);
+    GError *err = NULL;
+    SceneMesh *m = parse(t, strlen(t), &err);
+    assert_non_null(m);
+    Vec3 v = scene_mesh_vertex(m, 0);
+    assert_true(v.x == 1e-61 && v.y == 2 && v.z == 3);
+    scene_mesh_free(m);
+    g_free(t);
+    g_string_insert_c(num, 2, '0'); /* 64 bytes: refused */
+    t = g_strdup_printf(HA "element vertex 1\n" VXYZ "end_header\n%s 2 3\n",
+                        num->str);
+    assert_null(parse(t, strlen(t), &err));
+    assert_string_equal(err->message,
+                        "t.ply:8:1: found '0.00000000000000000000000000000000"
+                        "000000', expected a finite number");
+    g_clear_error(&err);
+    g_free(t);
+    g_string_free(num, TRUE);
+}
+
+/* The same outcome from the string, an exact-size copy and a copy that
+ * goes on with `more`. */
+static void same_outcome(const char *text, const char *more)
+{
+    gsize len = strlen(text);
+    char *exact = g_memdup2(text, len), *longer = g_strconcat(text, more, NULL);
+    const char *src[3] = {text, exact, longer};
+    SceneMesh *m[3];
+    GError *e[3] = {NULL, NULL, NULL};
+    for (guint k = 0; k < 3; k++)
+        m[k] = parse(src[k], len, &e[k]);
+    for (guint k = 1; k < 3; k++) {
+        if (!m[0] || !m[k]) {
+            if (m[0] || m[k] || strcmp(e[0]->message, e[k]->message))
+                fail_msg("case %u: %s | %s\n%s", k,
+                         e[0] ? e[0]->message : "-",
+                         e[k] ? e[k]->message : "-", text);
+            continue;
+        }
+        assert_int_equal(scene_mesh_n_vertices(m[0]), scene_mesh_n_vertices(m[k]));
+        assert_int_equal(scene_mesh_n_polys(m[0]), scene_mesh_n_polys(m[k]));
+        for (guint i = 0; i < scene_mesh_n_vertices(m[0]); i++) {
+            Vec3 a = scene_mesh_vertex(m[0], i), b = scene_mesh_vertex(m[k], i);
+            assert_memory_equal(&a, &b, sizeof a);
+        }
+    }
+    for (guint k = 0; k < 3; k++) {
+        scene_mesh_free(m[k]);
+        g_clear_error(&e[k]);
+    }
+    g_free(exact);
+    g_free(longer);
+}
+
+static void test_nothing_past_len(void **st)
+{
+    (void)st;
+    const char *tri = HA "element vertex 3\n" VXYZ
+                      "element face 1\nproperty list uchar int vertex_indices\n"
+                      "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2";
+    const char *cases[][2] = {
+        {tri, "1"},                           /* an index going on */
+        {tri, " 1\n"},
+        {tri, "\n"},
+        {HA "element vertex 1\n" VXYZ "end_header\n1 2 3", "4"},
+        {HA "element vertex 1\n" VXYZ "end_header\n1 2 3 ", "4"},
+        {HA "element vertex 1\n" VXYZ "end_header\n1 2", " 3"},
+        {HA "comment no end", "\nend_header\n"},
+        {HA "element vertex 1\n" VXYZ "end_header", "\n1 2 3\n"},
+        {HA "element vertex 1\n" VXYZ "end_header  ", "\n1 2 3\n"},
+        {HA "element vertex 1\nproperty double", " x\n"},
+        {HA "element vertex 1\nproperty list", " uchar int x\n"},
+        {HA "element vertex", " 1\n"},
+        {"ply\nformat ascii 1.0", "\n"},
+        {"ply", "\n"},
+        {"ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+         "property uchar x\nproperty uchar y\nproperty uchar z\nend_header\n"
+         "\1\2",
+         "\3"},
+        {"ply\nformat binary_big_endian 1.0\nelement vertex 1\n"
+         "property uchar x\nproperty uchar y\nproperty uchar z\nend_header\n"
+         "\1\2\3",
+         "\4"},
+    };
+    for (guint i = 0; i < G_N_ELEMENTS(cases); i++)
+        same_outcome(cases[i][0], cases[i][1]);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_long_numbers),
+        cmocka_unit_test(test_nothing_past_len),
+    };
+    return cmocka_run_group_tests_name("ply_tokens", tests, NULL, NULL);
+}
