@@ -118,11 +118,54 @@ static void test_nothing_past_len(void **st)
         same_outcome(cases[i][0], cases[i][1]);
 }
 
+/* A header error stops the reader even when the rest of the file is
+ * good: each case is a whole valid file but for one line. */
+static void test_errors_stop(void **st)
+{
+    (void)st;
+    const char *rest = VXYZ "end_header\n0 0 0\n";
+    const char *cases[][2] = {
+        {HA "element vertex 1 2\n", "t.ply:3:18: found '2', expected end "
+                                    "of line"},
+        {HA "element vertex 1\nproperty double w q\n",
+         "t.ply:4:19: found 'q', expected end of line"},
+        {"ply\nformat ascii 1.0 x\nelement vertex 1\n",
+         "t.ply:2:18: found 'x', expected end of line"},
+        {"ply\nformat ascii 2.0\nelement vertex 1\n",
+         "t.ply:2:14: found '2.0', expected version 1.0"},
+        {HA "element vertex 1\nproperty list flt int w\n",
+         "t.ply:4:15: found 'flt', expected a type (char uchar short ushort "
+         "int uint float double or int8 ... float64)"},
+        {HA "element vertex 1\nproperty list float int w\n",
+         "t.ply:4:15: found 'float', expected an integer list-count type"},
+        {HA "element vertex 1\nproperty list uchar flt w\n",
+         "t.ply:4:21: found 'flt', expected a type (char uchar short ushort "
+         "int uint float double or int8 ... float64)"},
+    };
+    for (guint i = 0; i < G_N_ELEMENTS(cases); i++) {
+        char *t = g_strconcat(cases[i][0], rest, NULL);
+        GError *err = NULL;
+        SceneMesh *m = parse(t, strlen(t), &err);
+        if (m)
+            fail_msg("accepted: %s", t);
+        assert_string_equal(err->message, cases[i][1]);
+        g_error_free(err);
+        g_free(t);
+        same_outcome(cases[i][0], rest); /* and cut before the rest */
+    }
+    same_outcome(HA "element vertex 1\nproperty li", "st uchar int x\n");
+}
+
 int main(void)
 {
+    /* a reader that goes on after its error sets a GError over another,
+     * and GLib warns: that is a failure here */
+    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
+                           G_LOG_LEVEL_CRITICAL);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_long_numbers),
         cmocka_unit_test(test_nothing_past_len),
+        cmocka_unit_test(test_errors_stop),
     };
     return cmocka_run_group_tests_name("ply_tokens", tests, NULL, NULL);
 }
