@@ -156,6 +156,34 @@ static void test_errors_stop(void **st)
     same_outcome(HA "element vertex 1\nproperty li", "st uchar int x\n");
 }
 
+/* A face without colour properties is white; one with them keeps its
+ * own (integers over 255). */
+static void test_face_colour(void **st)
+{
+    (void)st;
+    const char *t = HA "element vertex 3\n" VXYZ "element face 2\n"
+                    "property list uchar int vertex_indices\n"
+                    "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 2 1 0\n";
+    GError *err = NULL;
+    SceneMesh *m = parse(t, strlen(t), &err);
+    assert_non_null(m);
+    for (guint i = 0; i < 2; i++) {
+        SceneColor c = g_array_index(m->poly_color, SceneColor, i);
+        assert_true(c.r == 1 && c.g == 1 && c.b == 1);
+        assert_int_equal(g_array_index(m->poly_tag, uint32_t, i), 0);
+    }
+    scene_mesh_free(m);
+    t = HA "element vertex 3\n" VXYZ "element face 1\n"
+        "property list uchar int vertex_indices\nproperty uchar red\n"
+        "property uchar green\nproperty uchar blue\n"
+        "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 51\n";
+    m = parse(t, strlen(t), &err);
+    assert_non_null(m);
+    SceneColor c = g_array_index(m->poly_color, SceneColor, 0);
+    assert_true(c.r == 1 && c.g == 0 && c.b == 0.2f);
+    scene_mesh_free(m);
+}
+
 int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
@@ -166,6 +194,7 @@ int main(void)
         cmocka_unit_test(test_long_numbers),
         cmocka_unit_test(test_nothing_past_len),
         cmocka_unit_test(test_errors_stop),
+        cmocka_unit_test(test_face_colour),
     };
     return cmocka_run_group_tests_name("ply_tokens", tests, NULL, NULL);
 }
