@@ -362,6 +362,23 @@ static void test_attr_cache_knob(void **st)
     assert_true(metric(b, "frame_ms") < metric(a, "frame_ms"));
     sim_result_free(a);
     sim_result_free(b);
+    /* with only modify edits the step back is reported when a cache is
+     * on (every 1: the smallest interval) and not otherwise; modifies
+     * neither scan nor walk */
+    const char *mod1[] = {"run.frames=1", "run.fidelity=analytic",
+                          "workload.attr_cache_every=1", NULL};
+    const char *mod0[] = {"run.frames=1", "run.fidelity=analytic", NULL};
+    a = app_run(mod1, NULL), b = app_run(mod0, NULL);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(metric(a, "edits") > 0);
+    assert_true(metric(a, "attr_cache_walk_per_frame") == 0);
+    assert_true(metric(a, "step_back_elements_per_frame") == 0);
+    double v;
+    assert_false(sim_result_get_metric(b, "attr_cache_walk_per_frame", &v));
+    assert_false(sim_result_get_metric(b, "step_back_max_elements", &v));
+    sim_result_free(a);
+    sim_result_free(b);
     const char *bad[] = {"workload.attr_cache_every=-1", NULL};
     GError *err = NULL;
     assert_null(app_run(bad, &err));
