@@ -586,6 +586,33 @@ static void test_imperfect_exact(void **st)
     }
 }
 
+/* §5.1 on 3 GPs: the move goes from the first of tied most-loaded GPs
+ * to the first of tied least-loaded ones; a budget of exactly 2 moves
+ * (fraction 0.5 of max - mean = 4) stops after 2. */
+static void test_imperfect_ties(void **st)
+{
+    (void)st;
+    WlPphigsWeights w = W;
+    w.cluster = 100;
+    static const double us3[] = {5, 5, 0}, us0[] = {9, 0, 0}, us8[] = {8, 0};
+    for (int k = 0; k < 2; k++) { /* GP 0 holds 10, GP 1 5 of them */
+        WlPphigsDist *d = dist1("tttttttttt", 3, WL_PPHIGS_COMPLEX, &w);
+        for (guint i = 0; i < (k ? 0u : 5u); i++)
+            assert_true(wl_pphigs_dist_move(d, 0, i, 1));
+        WlPphigsRebalStep s = rebal_once(d, 1, 1, k ? us0 : us3);
+        assert_int_equal(s.moves, 1);
+        double load[3];
+        wl_pphigs_dist_loads(d, load);
+        assert_true(load[0] == (k ? 9 : 4) && load[1] == (k ? 1 : 5) &&
+                    load[2] == (k ? 0 : 1));
+        wl_pphigs_dist_free(d);
+    }
+    WlPphigsDist *d = piled("ttttttttt", &W);
+    WlPphigsRebalStep s = rebal_once(d, 0.5, 100, us8);
+    assert_int_equal(s.moves, 2);
+    wl_pphigs_dist_free(d);
+}
+
 /* §5.2: four on-screen triangles on GP 0, four off-screen ones on GP 1
  * (nominal loads even): each exchange swaps one of each (2 moves); the
  * cap counts moves, so 3 allows one exchange, 4 two; with an ample
@@ -631,6 +658,7 @@ int main(void)
         cmocka_unit_test(test_strip_pieces),
         cmocka_unit_test(test_cache_checkpoints),
         cmocka_unit_test(test_imperfect_exact),
+        cmocka_unit_test(test_imperfect_ties),
         cmocka_unit_test(test_invalidated_exact),
     };
     return cmocka_run_group_tests_name("pphigs_exact", tests, NULL, NULL);
