@@ -333,6 +333,22 @@ static void test_edits_exact(void **st)
     assert_int_equal(wl_pphigs_dist_traffic(d)->sent_to[0], 4);
     assert_int_equal(wl_pphigs_dist_traffic(d)->sent_to[1], 4);
     assert_true(scene_db_elem(wl_pphigs_dist_gp(d, 0), 0, 0)->color.y == 1);
+    /* refused edits change nothing: a colour modified into a triangle,
+     * an execute of the structure itself (a cycle) inserted or appended */
+    GError *err = NULL;
+    assert_false(wl_pphigs_dist_modify(d, 0, 0, &e, &err));
+    assert_non_null(strstr(err->message, "expected an element of the same"));
+    g_clear_error(&err);
+    SceneElem x = scene_elem_execute(0);
+    assert_false(wl_pphigs_dist_insert(d, 0, 1, &x, &err));
+    assert_non_null(strstr(err->message, "expected an acyclic"));
+    g_clear_error(&err);
+    assert_false(wl_pphigs_dist_append(d, 0, &x, &err));
+    g_clear_error(&err);
+    assert_int_equal(scene_db_len(wl_pphigs_dist_host(d), 0), 4);
+    assert_int_equal(wl_pphigs_dist_traffic(d)->elements_sent, 8);
+    assert_gp(d, 0, 0, "ad");
+    assert_gp(d, 1, 0, "abc");
     /* append: to GP 0 (loads 1, 2) */
     assert_true(wl_pphigs_dist_append(d, 0, &e, NULL));
     assert_gp(d, 0, 0, "ade");

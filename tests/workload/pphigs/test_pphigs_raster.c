@@ -253,6 +253,45 @@ static void test_shading_exact(void **st)
     g_array_unref(c);
 }
 
+/* Near clipping: a view that takes w from z (x, y kept, z' = 0) and a
+ * triangle A (0, 0, 1), B (0.375, 0, 1), C (0, 0.5, -1) with C behind
+ * the eye.  Clipped at w = 1e-6 the edges BC and CA end at w ~ 0, far
+ * off the screen: the polygon is A (4, 4), B (5.5, 4) and two points
+ * far up along the projections of BC (X = 5.5 + 0.75 (4 - Y)) and CA
+ * (X = 4).  Pixel centres (no centre within 0.125 of an edge): rows
+ * Y = 3.5: X 4.5, 5.5; 2.5 and 1.5: 4.5 .. 6.5; 0.5: 4.5 .. 7.5. */
+static void test_near_clip(void **st)
+{
+    (void)st;
+    Mat4 wz = mat4_identity();
+    wz.m[2][2] = 0;
+    wz.m[3][2] = 1;
+    wz.m[3][3] = 0;
+    Vec3 v[3] = {vec3(0, 0, 1), vec3(0.375, 0, 1), vec3(0, 0.5, -1)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1)};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, N, N, out), 1);
+    const WlPphigsCmd *c = &g_array_index(out, WlPphigsCmd, 0);
+    assert_int_equal(c->nedges, 4);
+    expect_box(c, 4, 0, 7, 3);
+    WlPphigsRegion *r = wl_pphigs_region_new(0, 0, N, N, 0);
+    uint64_t mask = PX(4, 3) | PX(5, 3) | PX(4, 2) | PX(5, 2) | PX(6, 2) |
+                    PX(4, 1) | PX(5, 1) | PX(6, 1) | PX(4, 0) | PX(5, 0) |
+                    PX(6, 0) | PX(7, 0);
+    assert_int_equal(wl_pphigs_region_draw(r, c), 12);
+    for (int i = 0; i < N * N; i++)
+        assert_int_equal(r->key[i] != 0, (mask >> i) & 1);
+    wl_pphigs_region_free(r);
+    /* wholly behind the eye: nothing */
+    for (int i = 0; i < 3; i++)
+        v[i].z = -1;
+    g_array_set_size(out, 0);
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, N, N, out), 0);
+    g_array_unref(out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -262,6 +301,7 @@ int main(void)
         cmocka_unit_test(test_tiny_triangle),
         cmocka_unit_test(test_sloped_depth),
         cmocka_unit_test(test_shading_exact),
+        cmocka_unit_test(test_near_clip),
     };
     return cmocka_run_group_tests_name("pphigs_raster", tests, NULL, NULL);
 }
