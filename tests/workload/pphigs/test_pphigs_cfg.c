@@ -387,6 +387,55 @@ static void test_attr_cache_knob(void **st)
     g_clear_error(&err);
 }
 
+/* With nothing changing between frames (no edits, no rebalancing) a
+ * 2-frame run reports the 1-frame run's per-frame metrics; the last
+ * frame's imbalance is 1 - processor utilisation, and the speed-up is
+ * GPs x efficiency x utilisation (seed 001 §6). */
+static void test_per_frame_metrics(void **st)
+{
+    (void)st;
+    const char *one[] = {"run.frames=1", "run.fidelity=analytic",
+                         "workload.edits_per_frame=0",
+                         "workload.rebalance={enabled: false}", NULL};
+    const char *two[] = {"run.frames=2", "run.fidelity=analytic",
+                         "workload.edits_per_frame=0",
+                         "workload.rebalance={enabled: false}", NULL};
+    SimResult *a = app_run(one, NULL), *b = app_run(two, NULL);
+    assert_non_null(a);
+    assert_non_null(b);
+    static const char *const same[] = {
+        "frame_ms", "ring_bytes_per_frame", "commands_per_frame",
+        "expressions_per_frame", "host_elements_per_frame",
+        "last_imbalance_pct", "distribution_efficiency_pct",
+        "processor_utilisation_pct", "speedup", "gps", "edits",
+        "rebalance_moves", "host_edit_ms_per_frame", "image_matches_serial"};
+    for (guint i = 0; i < G_N_ELEMENTS(same); i++)
+        if (fabs(metric(a, same[i]) - metric(b, same[i])) >
+            1e-9 * fabs(metric(a, same[i])))
+            fail_msg("%s: %g then %g", same[i], metric(a, same[i]),
+                     metric(b, same[i]));
+    assert_true(metric(a, "commands_per_frame") > 0);
+    assert_true(metric(a, "ring_bytes_per_frame") > 0);
+    assert_true(metric(a, "expressions_per_frame") >
+                metric(a, "commands_per_frame"));
+    assert_true(metric(a, "host_elements_per_frame") == 0);
+    assert_true(metric(a, "rebalance_moves") == 0);
+    assert_true(metric(a, "image_matches_serial") == 1);
+    assert_true(fabs(metric(a, "last_imbalance_pct") - 100 +
+                     metric(a, "processor_utilisation_pct")) < 1e-9);
+    assert_true(fabs(metric(a, "speedup") -
+                     metric(a, "gps") *
+                         metric(a, "distribution_efficiency_pct") / 100 *
+                         metric(a, "processor_utilisation_pct") / 100) <
+                1e-9);
+    assert_true(fabs(metric(b, "frame_ms") * 2e-3 - sim_time_to_s(b->elapsed)) <
+                1e-12);
+    double v;
+    assert_false(sim_result_get_metric(a, "step_back_elements_per_frame", &v));
+    sim_result_free(a);
+    sim_result_free(b);
+}
+
 /* A PNG of the 1280 x 1024 frame at dir/name. */
 static void assert_png(const char *dir, const char *name)
 {
@@ -572,6 +621,7 @@ int main(void)
         cmocka_unit_test(test_machine_overrides),
         cmocka_unit_test(test_edit_kinds),
         cmocka_unit_test(test_attr_cache_knob),
+        cmocka_unit_test(test_per_frame_metrics),
         cmocka_unit_test(test_frame_out),
         cmocka_unit_test(test_run_matches_table),
         cmocka_unit_test(test_database_file),
