@@ -394,13 +394,12 @@ static void test_attr_cache_knob(void **st)
 static void test_per_frame_metrics(void **st)
 {
     (void)st;
-    const char *one[] = {"run.frames=1", "run.fidelity=analytic",
-                         "workload.edits_per_frame=0",
-                         "workload.rebalance={enabled: false}", NULL};
-    const char *two[] = {"run.frames=2", "run.fidelity=analytic",
-                         "workload.edits_per_frame=0",
-                         "workload.rebalance={enabled: false}", NULL};
-    SimResult *a = app_run(one, NULL), *b = app_run(two, NULL);
+    const char *sets[] = {"run.frames=1", "run.fidelity=analytic",
+                          "workload.edits_per_frame=0",
+                          "workload.rebalance={enabled: false}", NULL};
+    SimResult *a = app_run(sets, NULL);
+    sets[0] = "run.frames=2";
+    SimResult *b = app_run(sets, NULL);
     assert_non_null(a);
     assert_non_null(b);
     static const char *const same[] = {
