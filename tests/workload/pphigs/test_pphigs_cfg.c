@@ -433,6 +433,25 @@ static void test_per_frame_metrics(void **st)
     assert_false(sim_result_get_metric(a, "step_back_elements_per_frame", &v));
     sim_result_free(a);
     sim_result_free(b);
+    /* each frame unposts one of the two posted structures and posts the
+     * same one back before it is drawn: the frames draw what the
+     * unedited run draws */
+    const char *panel[] = {"run.frames=2", "run.fidelity=analytic",
+                           "workload.database=space_station_panel",
+                           "workload.edits_per_frame=0",
+                           "workload.edits={unpost: 1, post: 1}", NULL};
+    b = app_run(panel, NULL);
+    panel[4] = NULL;
+    a = app_run(panel, NULL);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_true(metric(b, "edits_unpost") == 2 && metric(b, "edits_post") == 2);
+    assert_true(metric(b, "commands_per_frame") ==
+                metric(a, "commands_per_frame"));
+    assert_true(metric(b, "expressions_per_frame") ==
+                metric(a, "expressions_per_frame"));
+    sim_result_free(a);
+    sim_result_free(b);
 }
 
 /* A PNG of the 1280 x 1024 frame at dir/name. */
