@@ -530,6 +530,35 @@ static void test_cache_checkpoints(void **st)
     scene_db_free(db);
 }
 
+/* Deleting the colour at 40, where a checkpoint sits (the state before
+ * 40 does not change), keeps that checkpoint: the scan back from 40
+ * stops there at once and the cache walks nothing more; the
+ * checkpoints after 40 are dropped, so an insert at 49 makes the cache
+ * walk on from 40 to 49 (t t t C t t t C t, the old 41 .. 49) placing
+ * checkpoints at 42, 45 and 47, where the scan back from 49 stops
+ * after 48 and 47. */
+static void test_cache_truncate(void **st)
+{
+    (void)st;
+    SceneDb *db = ctt_db(64);
+    WlPphigsWeights w = W;
+    w.attr_cache = 2;
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 8, WL_PPHIGS_COMPLEX, &w);
+    wl_pphigs_dist_delete(d, 0, 40);
+    wl_pphigs_dist_finish(d);
+    const WlPphigsTraffic *t = wl_pphigs_dist_traffic(d);
+    assert_int_equal(t->last_scan, 0);
+    assert_int_equal(t->cache_walk, 64);
+    Vec3 v[3];
+    SceneElem e = spell_elem('t', v);
+    assert_true(wl_pphigs_dist_insert(d, 0, 49, &e, NULL));
+    wl_pphigs_dist_finish(d);
+    assert_int_equal(t->cache_walk, 64 + 9);
+    assert_int_equal(t->last_scan, 2);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 /* ---- §5 rebalancing ---------------------------------------------------- */
 
 static const WlPphigsCosts RC = {.poly = 600 * SIM_NS,
@@ -673,6 +702,7 @@ int main(void)
         cmocka_unit_test(test_odp_deltas),
         cmocka_unit_test(test_strip_pieces),
         cmocka_unit_test(test_cache_checkpoints),
+        cmocka_unit_test(test_cache_truncate),
         cmocka_unit_test(test_imperfect_exact),
         cmocka_unit_test(test_imperfect_ties),
         cmocka_unit_test(test_invalidated_exact),

@@ -284,6 +284,20 @@ static void test_near_clip(void **st)
     for (int i = 0; i < N * N; i++)
         assert_int_equal(r->key[i] != 0, (mask >> i) & 1);
     wl_pphigs_region_free(r);
+    /* a polygon of more vertices than a command has edges: nothing */
+    Vec3 ring[WL_PPHIGS_MAX_EDGES + 1];
+    for (int i = 0; i <= WL_PPHIGS_MAX_EDGES; i++)
+        ring[i] = vec3(0.5 * cos(i * 2 * G_PI / (WL_PPHIGS_MAX_EDGES + 1)),
+                       0.5 * sin(i * 2 * G_PI / (WL_PPHIGS_MAX_EDGES + 1)), 0);
+    SceneElem big = scene_elem_prim(SCENE_EL_POLYGON, ring,
+                                    WL_PPHIGS_MAX_EDGES + 1);
+    ScenePrimInst bp = {.el = &big, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1)};
+    g_array_set_size(out, 0);
+    assert_int_equal(wl_pphigs_cmds(&bp, mat4_identity(), N, N, out), 0);
+    assert_int_equal(out->len, 0);
+    big.nverts = WL_PPHIGS_MAX_EDGES; /* the largest that draws */
+    assert_int_equal(wl_pphigs_cmds(&bp, mat4_identity(), N, N, out), 1);
     /* wholly behind the eye: nothing */
     for (int i = 0; i < 3; i++)
         v[i].z = -1;
