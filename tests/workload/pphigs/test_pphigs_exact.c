@@ -530,6 +530,52 @@ static void test_cache_checkpoints(void **st)
     scene_db_free(db);
 }
 
+/* The GPs holding a copy of host element (sid, pos). */
+static guint holders(const WlPphigsDist *d, guint sid, guint pos)
+{
+    uint64_t tag = scene_db_elem(wl_pphigs_dist_host(d), sid, pos)->tag;
+    guint n = 0;
+    for (guint g = 0; g < wl_pphigs_dist_ngp(d); g++) {
+        const SceneDb *p = wl_pphigs_dist_gp(d, g);
+        for (guint i = 0; i < scene_db_len(p, sid); i++)
+            n += scene_db_elem(p, sid, i)->tag == tag;
+    }
+    return n;
+}
+
+/* A triangle inserted at 40, before the colour there: the checkpoints
+ * after it move on by one and so does the colour their state names
+ * (now at 41).  A triangle inserted at 45 then scans back to the moved
+ * checkpoint (44) and takes the colour at 41 to its GP, not the
+ * triangle at 40, which stays on its one GP. */
+static void test_cache_shift(void **st)
+{
+    (void)st;
+    SceneDb *db = ctt_db(64);
+    WlPphigsWeights w = W;
+    w.attr_cache = 2;
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 8, WL_PPHIGS_COMPLEX, &w);
+    Vec3 v[3];
+    SceneElem e = spell_elem('t', v);
+    assert_true(wl_pphigs_dist_insert(d, 0, 40, &e, NULL));
+    wl_pphigs_dist_finish(d);
+    assert_true(wl_pphigs_dist_insert(d, 0, 45, &e, NULL));
+    wl_pphigs_dist_finish(d);
+    assert_int_equal(wl_pphigs_dist_traffic(d)->last_scan, 1);
+    assert_int_equal(holders(d, 0, 40), 1);
+    assert_int_equal(holders(d, 0, 45), 1);
+    gint g = wl_pphigs_dist_owner(d, 0, 45);
+    assert_true(g >= 0);
+    const SceneDb *p = wl_pphigs_dist_gp(d, (guint)g);
+    uint64_t colour = scene_db_elem(wl_pphigs_dist_host(d), 0, 41)->tag;
+    gboolean has = FALSE;
+    for (guint i = 0; i < scene_db_len(p, 0); i++)
+        has = has || scene_db_elem(p, 0, i)->tag == colour;
+    assert_true(has);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 /* Deleting the colour at 40, where a checkpoint sits (the state before
  * 40 does not change), keeps that checkpoint: the scan back from 40
  * stops there at once and the cache walks nothing more; the
@@ -703,6 +749,7 @@ int main(void)
         cmocka_unit_test(test_strip_pieces),
         cmocka_unit_test(test_cache_checkpoints),
         cmocka_unit_test(test_cache_truncate),
+        cmocka_unit_test(test_cache_shift),
         cmocka_unit_test(test_imperfect_exact),
         cmocka_unit_test(test_imperfect_ties),
         cmocka_unit_test(test_invalidated_exact),
