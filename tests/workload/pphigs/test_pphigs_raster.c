@@ -253,6 +253,25 @@ static void test_shading_exact(void **st)
     g_array_unref(c);
 }
 
+/* The depth plane and the shading come from the fan triangle (0, i,
+ * i + 1) of largest area: on the convex pentagon (0, 0) (4, 0) (8, 1)
+ * (8, 8) (0, 4) the fan triangles have twice-areas 4, 56 and 32, so
+ * (0, 2, 3), whose three vertices have z = 0, gives z = 0 everywhere
+ * although vertex 4 has z = 0.5 (a non-planar polygon). */
+static void test_largest_fan(void **st)
+{
+    (void)st;
+    static const double xy[5][2] = {{0, 0}, {4, 0}, {8, 1}, {8, 8}, {0, 4}};
+    Poly p;
+    poly(&p, xy, 5);
+    p.v[4].z = 0.5;
+    GArray *c = cmds(&p, 1);
+    const WlPphigsCmd *k = &g_array_index(c, WlPphigsCmd, 0);
+    assert_true(k->z.a == 0 && k->z.b == 0 && k->z.c == 0);
+    assert_int_equal(k->rgba, 0xffffffffu); /* facing the eye */
+    g_array_unref(c);
+}
+
 /* Near clipping: a view that takes w from z (x, y kept, z' = 0) and a
  * triangle A (0, 0, 1), B (0.375, 0, 1), C (0, 0.5, -1) with C behind
  * the eye.  Clipped at w = 1e-6 the edges BC and CA end at w ~ 0, far
@@ -316,6 +335,7 @@ int main(void)
         cmocka_unit_test(test_sloped_depth),
         cmocka_unit_test(test_shading_exact),
         cmocka_unit_test(test_near_clip),
+        cmocka_unit_test(test_largest_fan),
     };
     return cmocka_run_group_tests_name("pphigs_raster", tests, NULL, NULL);
 }
