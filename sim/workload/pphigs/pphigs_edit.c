@@ -56,11 +56,9 @@ gboolean wl_pphigs_dist_insert(WlPphigsDist *d, guint sid, guint pos,
     StructMeta *m = dist_meta(d, sid);
     uint64_t zero = 0;
     g_array_insert_val(m->mask, pos, zero);
-    if (m->first != NONE && m->first >= (gint)pos)
-        m->first++;
     if (m->last != NONE && m->last >= (gint)pos)
         m->last++;
-    region_add(m, (gint)pos);
+    region_add(m, (gint)pos); /* first: a first at or after pos becomes pos */
     step1_send(d, sid, pos);
     return TRUE;
 }
@@ -79,11 +77,9 @@ void wl_pphigs_dist_delete(WlPphigsDist *d, guint sid, guint pos)
     scene_db_delete(d->host, sid, pos);
     StructMeta *m = dist_meta(d, sid);
     g_array_remove_index(m->mask, pos);
-    if (m->first != NONE && m->first > (gint)pos)
-        m->first--;
     if (m->last != NONE && m->last >= (gint)pos)
         m->last--;
-    region_add(m, (gint)pos);
+    region_add(m, (gint)pos); /* first: a first after pos becomes pos */
 }
 
 gboolean wl_pphigs_dist_append(WlPphigsDist *d, guint sid, const SceneElem *e,
