@@ -78,7 +78,7 @@ static void emit_batch(AgStreams *s, const SceneMesh *m, guint c, guint bi,
      * the application visits the cell's voxels whatever it finds */
     guint pieces = b->n ? (b->n + block_tris - 1) / block_tris : 1;
     for (guint k = 0; k < pieces; k++) {
-        AgBlock x = {.ctx = c, .seq = out->len, .batch = bi};
+        AgBlock x = {.ctx = c, .batch = bi};
         x.first = b->first + k * block_tris;
         x.n = MIN(block_tris, b->first + b->n - x.first);
         x.opens = k == 0;
@@ -138,8 +138,6 @@ static void frame_loop(AgStreams *s, guint c)
         if (par)
             add_sync(swap->pre, &swap->n_pre, WL_AG_SYNC_BARRIER_WAIT, 0);
     }
-    for (guint i = 0; i < out->len; i++)
-        g_array_index(out, AgBlock, i).seq = i;
 }
 
 static void count_syncs(AgStreams *s)

@@ -72,7 +72,8 @@ typedef struct {
 #define WL_AG_MAX_SYNC 6
 
 typedef struct {
-    guint ctx, seq; /* seq-th block of context ctx */
+    guint ctx;      /* the issuing context (a block's place in its
+                     * stream is its index there) */
     guint batch;    /* index into the stream's batches */
     guint first, n; /* triangles [first, first + n) of the mesh */
     gboolean opens; /* first block of its batch (pays the app work) */

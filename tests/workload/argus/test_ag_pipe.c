@@ -91,7 +91,7 @@ static void rig_free(Rig *r)
 static AgBlock *block(Rig *r, guint c, guint first, guint n)
 {
     GArray *a = wl_ag_ctx_blocks(r->st, c);
-    AgBlock x = {.ctx = c, .seq = a->len, .batch = G_MAXUINT,
+    AgBlock x = {.ctx = c, .batch = G_MAXUINT,
                  .first = first, .n = n, .verts = 3 * (uint64_t)n};
     g_array_append_val(a, x);
     return &g_array_index(a, AgBlock, a->len - 1);

@@ -21,6 +21,7 @@
 typedef struct {
     guint app, cull, draw, isect; /* ms */
     const guint *draws;           /* DRAW of each frame, or NULL: draw */
+    SimTime draw_ps;              /* added to every DRAW (ps) */
 } Times;
 
 static SimTime s_app(void *ctx, guint n)
@@ -37,7 +38,7 @@ static SimTime s_cull(void *ctx, guint n, double stress)
 static SimTime s_draw(void *ctx, guint n)
 {
     const Times *t = ctx;
-    return (t->draws ? t->draws[n] : t->draw) * SIM_MS;
+    return (t->draws ? t->draws[n] : t->draw) * SIM_MS + t->draw_ps;
 }
 static SimTime s_isect(void *ctx, guint n)
 {
@@ -117,7 +118,7 @@ static void test_three_processes(void **st)
                               {40, 43, 43, 47, 70, 95, 100},
                               {60, 63, 65, 69, 100, 125, 130},
                               {80, 83, 95, 99, 130, 155, 160}};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 25, 0, NULL}, 5,
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 25, 0, NULL, 0}, 5,
                want, NULL);
 }
 
@@ -129,7 +130,7 @@ static void test_cull_waits_for_draw(void **st)
     const guint want[3][7] = {{0, 3, 3, 7, 7, 52, 60},
                               {20, 23, 23, 27, 60, 105, 110},
                               {40, 43, 52, 56, 110, 155, 160}};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 45, 0, NULL}, 3,
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 45, 0, NULL, 0}, 3,
                want, NULL);
 }
 
@@ -142,7 +143,7 @@ static void test_two_processes(void **st)
                               {20, 26, 26, 34, 34, 43, 50},
                               {40, 46, 46, 54, 54, 63, 70},
                               {60, 66, 66, 74, 74, 83, 90}};
-    frames_are(WL_PF_MP_APPCULL_DRAW, FALSE, (Times){6, 8, 9, 0, NULL}, 4, want,
+    frames_are(WL_PF_MP_APPCULL_DRAW, FALSE, (Times){6, 8, 9, 0, NULL, 0}, 4, want,
                NULL);
 }
 
@@ -155,8 +156,27 @@ static void test_one_process(void **st)
                               {40, 46, 46, 54, 54, 63, 70},
                               {80, 86, 86, 94, 94, 103, 110},
                               {120, 126, 126, 134, 134, 143, 150}};
-    frames_are(WL_PF_MP_APPCULLDRAW, FALSE, (Times){6, 8, 9, 0, NULL}, 4, want,
+    frames_are(WL_PF_MP_APPCULLDRAW, FALSE, (Times){6, 8, 9, 0, NULL, 0}, 4, want,
                NULL);
+}
+
+/* One process whose frame ends exactly on a boundary (20 ms) starts the
+ * next frame there; one that ends a picosecond after it waits for the
+ * following boundary (40 ms): pfSync rounds up to the boundary. */
+static void test_one_process_at_boundary(void **st)
+{
+    (void)st;
+    const SimTime start[2][3] = {{0, 20, 40}, {0, 40, 80}};
+    for (SimTime late = 0; late < 2; late++) {
+        Times t = {6, 8, 6, 0, NULL, late};
+        GArray *r = run(WL_PF_MP_APPCULLDRAW, FALSE, &t, 3);
+        for (guint n = 0; n < 3; n++) {
+            const WlPfFrameRec *x = &g_array_index(r, WlPfFrameRec, n);
+            assert_int_equal(x->app_start, start[late][n] * SIM_MS);
+            assert_int_equal(x->draw_end, x->app_start + 20 * SIM_MS + late);
+        }
+        g_array_free(r, TRUE);
+    }
 }
 
 /* Locked DRAW starts on a frame boundary and swaps on the next one. */
@@ -167,7 +187,7 @@ static void test_locked(void **st)
                               {20, 23, 23, 27, 40, 55, 60},
                               {40, 43, 43, 47, 60, 75, 80},
                               {60, 63, 63, 67, 80, 95, 100}};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, TRUE, (Times){3, 4, 15, 0, NULL}, 4,
+    frames_are(WL_PF_MP_APP_CULL_DRAW, TRUE, (Times){3, 4, 15, 0, NULL, 0}, 4,
                want, NULL);
 }
 
@@ -181,7 +201,7 @@ static void test_isect(void **st)
                               {40, 43, 43, 47, 47, 52, 60},
                               {60, 63, 63, 67, 67, 72, 80}};
     const guint isect[4] = {30, 0, 30, 0};
-    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 5, 30, NULL}, 4,
+    frames_are(WL_PF_MP_APP_CULL_DRAW, FALSE, (Times){3, 4, 5, 30, NULL, 0}, 4,
                want, isect);
 }
 
@@ -208,7 +228,7 @@ static void test_stress(void **st)
     /* DRAW 15 ms: load 0.75, +0.25 a DRAW.  DRAWs end at 22, 45 and
      * 65 ms (each starts at the previous swap: 30, 50); CULLs start at
      * 3, 23, 43 and 63 ms */
-    Times busy = {3, 4, 15, 0, NULL};
+    Times busy = {3, 4, 15, 0, NULL, 0};
     assert_true(stress_of(busy, 1, 8, 4, 0) == 1.0);
     assert_true(stress_of(busy, 1, 8, 4, 1) == 1.25);
     assert_true(stress_of(busy, 1, 8, 4, 2) == 1.25);
@@ -216,18 +236,18 @@ static void test_stress(void **st)
     assert_true(stress_of(busy, 2, 8, 4, 3) == 2.0);
     assert_true(stress_of(busy, 1, 1.4, 4, 3) == 1.4); /* clamped */
     /* DRAW 5 ms: load 0.25, below the band: stress stays at its floor */
-    assert_true(stress_of((Times){3, 4, 5, 0, NULL}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 5, 0, NULL, 0}, 1, 8, 4, 3) == 1.0);
     /* DRAW 10 and 12 ms: loads 0.5 and 0.6, inside the band */
-    assert_true(stress_of((Times){3, 4, 10, 0, NULL}, 1, 8, 4, 3) == 1.0);
-    assert_true(stress_of((Times){3, 4, 12, 0, NULL}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 10, 0, NULL, 0}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 12, 0, NULL, 0}, 1, 8, 4, 3) == 1.0);
     /* DRAW 8 ms: load 0.4, on the band's edge: inside */
-    assert_true(stress_of((Times){3, 4, 8, 0, NULL}, 1, 8, 4, 3) == 1.0);
+    assert_true(stress_of((Times){3, 4, 8, 0, NULL, 0}, 1, 8, 4, 3) == 1.0);
     /* and from a raised stress: frame 0's DRAW (15 ms) raises it to 1.25
      * for frame 1's CULL (23 ms); frame 1's DRAW (30 to 38 ms) at load
      * 0.4 leaves it there for frame 2's CULL (43 ms); frame 2's at 0.6
      * (the upper edge) too */
     const guint seq[4] = {15, 8, 12, 8};
-    Times varied = {3, 4, 0, 0, seq};
+    Times varied = {3, 4, 0, 0, seq, 0};
     assert_true(stress_of(varied, 1, 8, 4, 1) == 1.25);
     assert_true(stress_of(varied, 1, 8, 4, 2) == 1.25);
     assert_true(stress_of(varied, 1, 8, 4, 3) == 1.25);
@@ -240,6 +260,7 @@ int main(void)
         cmocka_unit_test(test_two_processes),
         cmocka_unit_test(test_cull_waits_for_draw),
         cmocka_unit_test(test_one_process),
+        cmocka_unit_test(test_one_process_at_boundary),
         cmocka_unit_test(test_locked),
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_stress),
