@@ -254,8 +254,8 @@ static guint bucket_block(AgPipe *p, const AgBlock *k, BlockState *s)
     guint *pr = (guint *)bk.pairs->data;
     if (np > 1) /* GLib's sort is documented stable, unlike qsort */
         g_qsort_with_data(pr, (gint)np, 2 * sizeof(guint), cmp_pair, NULL);
-    s->tris = g_new(uint32_t, np ? np : 1);
-    s->tile_ids = g_new(guint, np ? np : 1);
+    s->tris = g_new(uint32_t, np); /* NULL for no pair: never read */
+    s->tile_ids = g_new(guint, np);
     s->tile_start = g_new(guint, np + 1);
     s->n_tiles = 0;
     for (guint i = 0; i < np; i++) {
@@ -591,9 +591,11 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
     for (guint k = 0; k < p->C; k++)
         p->ctx_off[k + 1] = p->ctx_off[k] + wl_ag_ctx_blocks(st, k)->len;
     p->nblocks = p->ctx_off[p->C];
-    p->bs = g_new0(BlockState, p->nblocks ? p->nblocks : 1);
+    /* every stream has its frame's clear, swap and glpBarrier 0 */
+    g_assert(p->nblocks >= 2 && st->barriers >= 1);
+    p->bs = g_new0(BlockState, p->nblocks);
     p->app_next = g_new0(guint, p->C);
-    p->app_bar = g_new0(guint, st->barriers ? st->barriers : 1);
+    p->app_bar = g_new0(guint, st->barriers);
     p->app_arrived = g_new0(gboolean, p->C);
     p->app_parked = g_new0(gboolean, p->C);
     g_queue_init(&p->gq);
@@ -604,7 +606,7 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
     p->ntiles = wl_ag_n_tiles(f);
     p->tnext = g_new0(guint, (gsize)p->ntiles * p->C);
     p->nsem = st->sems + st->barriers;
-    p->sem = g_new0(int32_t, (gsize)p->ntiles * (p->nsem ? p->nsem : 1));
+    p->sem = g_new0(int32_t, (gsize)p->ntiles * p->nsem);
     p->t_rr = g_new0(guint, p->ntiles);
     p->r_busy = g_new0(gboolean, nr);
     p->r_cursor = g_new0(guint, nr);
@@ -664,12 +666,10 @@ static void reset(AgPipe *p)
     clear_blocks(p);
     memset(p->app_next, 0, p->C * sizeof(guint));
     memset(p->tnext, 0, (gsize)p->ntiles * p->C * sizeof(guint));
-    memset(p->sem, 0,
-           (gsize)p->ntiles * (p->nsem ? p->nsem : 1) * sizeof(int32_t));
+    memset(p->sem, 0, (gsize)p->ntiles * p->nsem * sizeof(int32_t));
     memset(p->t_rr, 0, p->ntiles * sizeof(guint));
     p->pool_cursor = 0;
-    memset(p->app_bar, 0,
-           (p->st->barriers ? p->st->barriers : 1) * sizeof(guint));
+    memset(p->app_bar, 0, p->st->barriers * sizeof(guint));
     memset(p->app_arrived, 0, p->C * sizeof(gboolean));
     memset(p->app_parked, 0, p->C * sizeof(gboolean));
     p->tiles_left = p->ntiles;

@@ -88,11 +88,11 @@ static gboolean parse_threads(const CfgNode *sec, WlAgParams *p, GError **err)
         !cfg_get_count(sec, "geometry", FALSE, 1, 1024, &G, err) ||
         !cfg_get_count(sec, "rasterisers", FALSE, 1, 1024, &R, err))
         return FALSE;
-    uint64_t rest = P > C ? P - C : 1;
+    uint64_t rest = P - MIN(P, C); /* processors beyond the contexts */
     if (!G)
         G = MAX(1, rest / 2);
     if (!R)
-        R = MAX(1, rest > G ? rest - G : 1);
+        R = rest > G ? rest - G : 1;
     p->setup.procs = (guint)P;
     p->setup.contexts = (guint)C;
     p->setup.geometry = (guint)G;
