@@ -46,8 +46,7 @@ static gboolean parse_town(const CfgNode *sec, WlPfTownParams *t, GError **err)
     const CfgNode *n = cfg_get(sec, "town");
     uint64_t v[4] = {t->blocks, t->houses, t->trees, t->cars};
     uint64_t seed = t->seed;
-    if (!n)
-        return TRUE;
+    /* no town: every getter below finds no key, so the defaults stay */
     if (!cfg_get_count(n, "blocks", FALSE, 1, 256, &v[0], err) ||
         !cfg_get_count(n, "houses", FALSE, 0, 256, &v[1], err) ||
         !cfg_get_count(n, "trees", FALSE, 0, 1024, &v[2], err) ||

@@ -19,6 +19,8 @@
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/performer/pf_graph.h"
 #include "sim/workload/performer/pf_pipeline.h"
+#include "sim/workload/performer/pf_pn.h"
+#include "sim/workload/performer/pf_stages.h"
 #include "sim/workload/performer/pf_workload.h"
 
 static SimResult *run(const char *yaml, int frames, GError **err)
@@ -593,6 +595,18 @@ static void test_mem_bytes(void **st)
     g_string_free(what, TRUE);
 }
 
+/* The free functions take NULL (GLib's convention), which the run's
+ * clean-up after a failed build relies on. */
+static void test_free_null(void **st)
+{
+    (void)st;
+    wl_pf_graph_free(NULL);
+    wl_pf_town_free(NULL);
+    wl_pf_stages_free(NULL);
+    wl_pf_pn_params_free(NULL);
+    wl_pf_ops.free_params(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -606,6 +620,7 @@ int main(void)
         cmocka_unit_test(test_run_summaries),
         cmocka_unit_test(test_metrics_are_log_means),
         cmocka_unit_test(test_needs_a_bus),
+        cmocka_unit_test(test_free_null),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
