@@ -381,6 +381,30 @@ static void test_pixels_mean_over_frames(void **state)
     assert_true(ms1 > 0 && fabs(ms3 - ms1) < 0.2 * ms1);
 }
 
+/* wl_ag_costs_from_machine fills every field with the machine's cost of
+ * the op of the same name (wl_ag_cost_ops order), the first included. */
+static void test_costs_from_machine(void **state)
+{
+    (void)state;
+    SimEngine *eng = sim_engine_new(1);
+    GError *err = NULL;
+    MachMachine *m = mach_new_from_model(eng, "origin2000", "analytic", &err);
+    assert_non_null(m);
+    AgCosts c;
+    memset(&c, 0xff, sizeof c);
+    assert_true(wl_ag_costs_from_machine(m, &c, &err));
+    const SimTime *got = (const SimTime *)&c;
+    guint n = 0;
+    for (; wl_ag_cost_ops[n]; n++)
+        if (got[n] != mach_cost(m, "cpu", wl_ag_cost_ops[n]))
+            fail_msg("%s: %" G_GUINT64_FORMAT ", expected %" G_GUINT64_FORMAT,
+                     wl_ag_cost_ops[n], (guint64)got[n],
+                     (guint64)mach_cost(m, "cpu", wl_ag_cost_ops[n]));
+    assert_int_equal(n * sizeof(SimTime), sizeof c);
+    mach_free(m);
+    sim_engine_free(eng);
+}
+
 /* The free functions take NULL (GLib's convention), which the run's
  * clean-up after a failed build relies on. */
 static void test_free_null(void **state)
@@ -401,6 +425,7 @@ int main(void)
         cmocka_unit_test(test_bucket_boxes),
         cmocka_unit_test(test_cell_streams_exactly),
         cmocka_unit_test(test_free_null),
+        cmocka_unit_test(test_costs_from_machine),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -595,6 +595,30 @@ static void test_mem_bytes(void **st)
     g_string_free(what, TRUE);
 }
 
+/* Without frustum culling CULL visits every house of the town each
+ * frame: a flattened house (an SCS turned group) saves its push and pop,
+ * 2 matrix operations a frame each; unflattened, none are saved. */
+static void test_matrix_ops_saved(void **st)
+{
+    (void)st;
+    const char *flat[2] = {"true", "false"};
+    for (int k = 0; k < 2; k++) {
+        char *yaml = g_strdup_printf(
+            "machine: {model: sgi-onyx}\n"
+            "workload: {type: performer, cull: false, flatten: %s,\n"
+            "  town: {blocks: 1, houses: 3, trees: 0, cars: 0}}\n",
+            flat[k]);
+        GError *err = NULL;
+        SimResult *r = run(yaml, 5, &err);
+        if (!r)
+            fail_msg("%s", err->message);
+        assert_true(metric(r, "scs_flattened") == (k ? 0 : 3));
+        assert_true(metric(r, "matrix_ops_saved_per_frame") == (k ? 0 : 6));
+        sim_result_free(r);
+        g_free(yaml);
+    }
+}
+
 /* The free functions take NULL (GLib's convention), which the run's
  * clean-up after a failed build relies on. */
 static void test_free_null(void **st)
@@ -621,6 +645,7 @@ int main(void)
         cmocka_unit_test(test_metrics_are_log_means),
         cmocka_unit_test(test_needs_a_bus),
         cmocka_unit_test(test_free_null),
+        cmocka_unit_test(test_matrix_ops_saved),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
