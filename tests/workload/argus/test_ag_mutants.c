@@ -13,6 +13,7 @@
 #include "sim/workload/argus/ag_stream.h"
 #include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
+#include "sim/raster/zbuffer.h"
 
 /* n separate triangles, triangle i tagged tags[i]. */
 static SceneMesh *tagged_mesh(const guint *tags, guint n)
@@ -381,6 +382,52 @@ static void test_pixels_mean_over_frames(void **state)
     assert_true(ms1 > 0 && fabs(ms3 - ms1) < 0.2 * ms1);
 }
 
+/* A Gouraud triangle (red, green and blue corners, no lighting) drawn
+ * opaque into the tiled frame, tile by tile, gives the picture the
+ * raster module's own z-buffer gives: colours interpolated along each
+ * span from its left end, background elsewhere. */
+static void test_gouraud_as_zbuffer(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    const SceneColor col[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    uint32_t v[3] = {scene_mesh_add_vertex(m, vec3(-0.9, -0.8, 0)),
+                     scene_mesh_add_vertex(m, vec3(0.9, -0.6, 0)),
+                     scene_mesh_add_vertex(m, vec3(-0.2, 0.9, 0))};
+    for (int k = 0; k < 3; k++)
+        g_array_append_val(m->colors, col[k]);
+    scene_mesh_add_poly(m, v, 3, scene_color(1, 1, 1), 0);
+    RastView view = rast_view_make(mat4_identity(), 24, 20);
+    view.cull_back = FALSE;
+    view.lighting = FALSE;
+    view.shading = RAST_SHADE_GOURAUD;
+    AgFrame *f = wl_ag_frame_new(24, 20, 8, WL_AG_OPAQUE, 1,
+                                 (RastColor){0, 0, 0});
+    uint32_t tri = 0;
+    uint64_t px = 0;
+    for (guint t = 0; t < wl_ag_n_tiles(f); t++)
+        px += wl_ag_draw(f, t, &view, m, &tri, 1);
+    RastZBuffer *zb = rast_zbuffer_new(24, 20);
+    RastCounters c = {0};
+    rast_draw_mesh(&view, m, mat4_identity(), scene_color(1, 1, 1), 0, &tri,
+                   1, rast_zbuffer_sink(zb), &c);
+    assert_int_equal(px, rast_zbuffer_covered(zb));
+    assert_true(px > 100);
+    RastImage *img = wl_ag_frame_image(f);
+    for (int y = 0; y < 20; y++)
+        for (int x = 0; x < 24; x++) {
+            uint32_t want = zb->rgba[y * 24 + x] ? zb->rgba[y * 24 + x]
+                                                 : 0xff000000u;
+            if (rast_image_get(img, x, y) != want)
+                fail_msg("pixel (%d, %d): %08x, expected %08x", x, y,
+                         rast_image_get(img, x, y), want);
+        }
+    rast_image_free(img);
+    rast_zbuffer_free(zb);
+    wl_ag_frame_free(f);
+    scene_mesh_free(m);
+}
+
 /* wl_ag_costs_from_machine fills every field with the machine's cost of
  * the op of the same name (wl_ag_cost_ops order), the first included. */
 static void test_costs_from_machine(void **state)
@@ -426,6 +473,7 @@ int main(void)
         cmocka_unit_test(test_cell_streams_exactly),
         cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_costs_from_machine),
+        cmocka_unit_test(test_gouraud_as_zbuffer),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

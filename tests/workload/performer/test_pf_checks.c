@@ -350,6 +350,12 @@ static void test_sphere_union(void **st)
     guint tall = wl_pf_add_node(g, g->root, WL_PF_SCS);
     wl_pf_node(g, tall)->xf = mat4_scale(1, 3, 1); /* the largest axis */
     ball(g, tall, 0, 2, gs);
+    guint wide = wl_pf_add_node(g, g->root, WL_PF_SCS);
+    wl_pf_node(g, wide)->xf = mat4_scale(3, 1, 1); /* largest along x */
+    ball(g, wide, 0, 2, gs);
+    guint deep = wl_pf_add_node(g, g->root, WL_PF_SCS);
+    wl_pf_node(g, deep)->xf = mat4_scale(1, 0.5, 3); /* along z */
+    ball(g, deep, 0, 2, gs);
     guint point = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     ball(g, point, 0, 10, gs);
     ball(g, point, 20, 0, gs); /* a point still counts */
@@ -361,6 +367,8 @@ static void test_sphere_union(void **st)
     sphere_is(g, point, 5, 15);
     sphere_is(g, first, 5, 15);
     sphere_is(g, tall, 0, 6);
+    sphere_is(g, wide, 0, 6);
+    sphere_is(g, deep, 0, 6);
     sphere_is(g, inside, 0, 10);
     sphere_is(g, contains, 0, 10);
     sphere_is(g, overlap, 0.25, 10.25);
