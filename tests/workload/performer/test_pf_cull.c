@@ -394,6 +394,36 @@ static void test_flatten(void **st)
     wl_pf_graph_free(g);
 }
 
+/* A geoset of one triangle collapsed to a point has a sphere of radius
+ * 0, not an empty one (radius < 0): CULL still visits its geode and
+ * draws it, ISECT still tests its triangle (degenerate: no hit). */
+static void test_point_geoset(void **state)
+{
+    (void)state;
+    WlPfGraph *g = wl_pf_graph_new();
+    guint gs = wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint n = wl_pf_add_node(g, g->root, WL_PF_GEODE);
+    const Vec3 t[3] = {vec3(1, 2, 1), vec3(1, 2, 1), vec3(1, 2, 1)};
+    wl_pf_add_geoset(g, n, t, 1, gs);
+    wl_pf_update_bounds(g, g->root);
+    assert_true(wl_pf_node(g, n)->radius == 0);
+    assert_true(wl_pf_node(g, g->root)->radius == 0);
+    WlPfView v = box_view(1, TRUE);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfCullStats cs = {0};
+    wl_pf_cull(g, &v, dl, &cs);
+    assert_int_equal(cs.nodes_visited, 2);
+    assert_int_equal(cs.nodes_culled, 0);
+    assert_int_equal(dl->len, 1);
+    WlPfIsectStats is = {0};
+    wl_pf_isect(g, 1, 1, -100, 100, &is);
+    assert_int_equal(is.nodes_tested, 2);
+    assert_int_equal(is.tris_tested, 1);
+    assert_false(is.hit);
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -404,6 +434,7 @@ int main(void)
         cmocka_unit_test(test_isect_touching_sphere),
         cmocka_unit_test(test_cull_touching_plane),
         cmocka_unit_test(test_flatten),
+        cmocka_unit_test(test_point_geoset),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
