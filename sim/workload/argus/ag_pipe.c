@@ -591,8 +591,9 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
     for (guint k = 0; k < p->C; k++)
         p->ctx_off[k + 1] = p->ctx_off[k] + wl_ag_ctx_blocks(st, k)->len;
     p->nblocks = p->ctx_off[p->C];
-    /* every stream has its frame's clear, swap and glpBarrier 0 */
-    g_assert(p->nblocks >= 2 && st->barriers >= 1);
+    /* streams have glpBarrier 0 (ag_stream.c); bs is NULL for no block
+     * and then never indexed */
+    g_assert(st->barriers >= 1);
     p->bs = g_new0(BlockState, p->nblocks);
     p->app_next = g_new0(guint, p->C);
     p->app_bar = g_new0(guint, st->barriers);

@@ -445,6 +445,56 @@ static void test_tile_round_robin_skips(void **state)
     rig_free(&r);
 }
 
+/* A pool takes ready tiles round robin from tile 0 at each frame.  One
+ * block: a full-screen quad (2 triangles in each of the 4 x 4 tiles)
+ * and 19 small triangles in tile 0, infinite fill rate, a pool of two
+ * workers (processors 1 and 2).  Worker 0 does the geometry, then the
+ * block is ready everywhere: worker 0 takes tile 0 (21 rast_triangle),
+ * worker 1 tiles 1 to 11 (2 each, done at 22) while worker 0 finishes
+ * at 21 and takes 12 and 14, worker 1 13 and 15: worker 0 is busy the
+ * geometry plus 25 triangles, worker 1 26 triangles, every frame. */
+static void test_pool_starts_at_tile_0(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    r.st->contexts = 1;
+    r.st->barrier_parties = 1;
+    const float white[1][3] = {{1, 1, 1}};
+    rig_quads(&r, white, 1);
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, 16, WL_AG_BLEND, 0.5f,
+                          (RastColor){0, 0, 0});
+    for (int k = 0; k < 19; k++) {
+        uint32_t b = scene_mesh_n_vertices(r.mesh);
+        scene_mesh_add_vertex(r.mesh, vec3(-0.9, 0.7, 0));
+        scene_mesh_add_vertex(r.mesh, vec3(-0.7, 0.7, 0));
+        scene_mesh_add_vertex(r.mesh, vec3(-0.8, 0.9, 0));
+        scene_mesh_add_tri(r.mesh, b, b + 1, b + 2, scene_color(1, 0, 0), 0);
+    }
+    block(&r, 0, 0, 21);
+    GError *e = NULL;
+    AgCosts c;
+    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
+    AgSetup s = {.procs = 3, .contexts = 1, .geometry = 1, .rasterisers = 1,
+                 .pool = TRUE, .fill_infinite = TRUE, .app = WL_AG_APP_NONE,
+                 .vertex_bytes = 32, .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+    SimTime geom = 0, rt = mach_cost(r.m, "cpu", "rast_triangle");
+    for (int frame = 1; frame <= 2; frame++) {
+        AgFrameStats fs;
+        if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+            fail_msg("%s", e->message);
+        assert_int_equal(fs.bucketed, 16 * 2 + 19);
+        assert_int_equal(fs.rast_busy, 51 * rt);
+        geom += fs.geom_busy;
+        assert_int_equal(busy_of(&r, 1, 2), geom + frame * 25 * rt);
+        assert_int_equal(busy_of(&r, 2, 3), frame * 26 * rt);
+    }
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 /* A glpPSema no glpVSema answers deadlocks every tile: the frame fails
  * saying how many tiles are left; an earlier run.until does the same to
  * a frame that would finish. */
@@ -491,6 +541,7 @@ int main(void)
         cmocka_unit_test(test_tile_round_robin),
         cmocka_unit_test(test_tile_round_robin_skips),
         cmocka_unit_test(test_deadlock_reported),
+        cmocka_unit_test(test_pool_starts_at_tile_0),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
