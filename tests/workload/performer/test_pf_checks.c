@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sim/core/trace.h"
 #include "sim/machine/machine.h"
 #include "sim/machine/shmem.h"
 #include "sim/scene/pn_triangles.h"
@@ -23,11 +24,14 @@
 #include "sim/workload/performer/pf_stages.h"
 #include "sim/workload/performer/pf_workload.h"
 
+static SimTrace *trace; /* given to run()'s engine when set */
+
 static SimResult *run(const char *yaml, int frames, GError **err)
 {
     CfgNode *root = cfg_load_string(yaml, "pf.yaml", err);
     assert_non_null(root);
     SimEngine *eng = sim_engine_new(1);
+    sim_engine_set_trace(eng, trace);
     WlContext ctx = {.eng = eng, .root = root, .seed = 1,
                      .fidelity = "analytic", .frames = frames};
     void *params = wl_pf_ops.parse(cfg_get(root, "workload"), err);
@@ -627,6 +631,48 @@ static void test_matrix_ops_saved(void **st)
     }
 }
 
+/* A trace that keeps its marks' names and times. */
+static void keep_mark(SimTrace *tr, const char *name, SimTime t)
+{
+    GString *s = tr->state;
+    g_string_append_printf(s, "%s@%" G_GUINT64_FORMAT ";", name, (guint64)t);
+}
+
+/* Each frame's end is marked "frame n" in the trace, n from 0, at the
+ * sum of the frame times so far: the pipeline's swaps and the PN
+ * measurement's frame ends alike. */
+static void test_frame_marks(void **st)
+{
+    (void)st;
+    const char *yaml[2] = {
+        "machine: {model: sgi-onyx}\n"
+        "workload: {type: performer, town: {blocks: 1, houses: 1}}\n",
+        "machine: {model: sgi-onyx}\n"
+        "scene: {generator: teapots, count: 1, polygons_per_teapot: 300}\n"
+        "workload: {type: performer, pn: {level: 1}}\n"};
+    static const SimTraceOps ops = {.mark = keep_mark};
+    for (int k = 0; k < 2; k++) {
+        SimTrace tr = {&ops, g_string_new(NULL)};
+        trace = &tr;
+        GError *err = NULL;
+        SimResult *r = run(yaml[k], 3, &err);
+        trace = NULL;
+        if (!r)
+            fail_msg("%s", err->message);
+        GString *want = g_string_new(NULL);
+        SimTime end = 0;
+        for (guint f = 0; f < 3; f++) {
+            end += g_array_index(r->frame_times, SimTime, f);
+            g_string_append_printf(want, "frame %u@%" G_GUINT64_FORMAT ";", f,
+                                   (guint64)end);
+        }
+        assert_string_equal(((GString *)tr.state)->str, want->str);
+        g_string_free(want, TRUE);
+        g_string_free(tr.state, TRUE);
+        sim_result_free(r);
+    }
+}
+
 /* The free functions take NULL (GLib's convention), which the run's
  * clean-up after a failed build relies on. */
 static void test_free_null(void **st)
@@ -653,6 +699,7 @@ int main(void)
         cmocka_unit_test(test_metrics_are_log_means),
         cmocka_unit_test(test_needs_a_bus),
         cmocka_unit_test(test_free_null),
+        cmocka_unit_test(test_frame_marks),
         cmocka_unit_test(test_matrix_ops_saved),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
