@@ -7,7 +7,9 @@
  *   - APP+CULL and DRAW, floating: the APP process syncs after CULL;
  *   - one process: pfSync after the whole frame;
  *   - locked DRAW starts on frame boundaries;
- *   - ISECT runs beside APP when it is free, skipped when busy.
+ *   - ISECT runs beside APP when it is free, skipped when busy;
+ *   - a frame ending on a boundary or 1 ps after it;
+ *   - what a recording writes of the waits (refresh periods).
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,6 +17,7 @@
 #include <cmocka.h>
 #include <string.h>
 
+#include "sim/core/record.h"
 #include "sim/machine/machine.h"
 #include "sim/workload/performer/pf_pipeline.h"
 
@@ -47,10 +50,12 @@ static SimTime s_isect(void *ctx, guint n)
 }
 
 static WlPfPipeParams stress_params; /* stress, low, high, gain, max */
+static SimRecorder *recorder;        /* given to run()'s engine when set */
 
 static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
 {
     SimEngine *eng = sim_engine_new(1);
+    sim_engine_set_recorder(eng, recorder);
     GError *err = NULL;
     MachMachine *m = mach_new_from_model(eng, "sgi-onyx", "analytic", &err);
     if (!m)
@@ -179,6 +184,76 @@ static void test_one_process_at_boundary(void **st)
     }
 }
 
+/* A recorder that numbers every action and writes the refresh waits
+ * down as "now/period;" (ps). */
+typedef struct {
+    uint64_t id;
+    GString *waits;
+} Rec;
+
+static uint64_t r_compute(SimRecorder *r, SimTime now, uint32_t node,
+                          unsigned phase, SimTime cost, SimTime end,
+                          const SimOp *ops, unsigned n_ops,
+                          const SimOpTerm *terms, unsigned n_terms,
+                          gboolean handled)
+{
+    (void)now, (void)node, (void)phase, (void)cost, (void)end, (void)ops;
+    (void)n_ops, (void)terms, (void)n_terms, (void)handled;
+    return ++((Rec *)r->state)->id;
+}
+
+static uint64_t r_refresh(SimRecorder *r, SimTime now, uint32_t node,
+                          SimTime period)
+{
+    (void)node;
+    Rec *k = r->state;
+    g_string_append_printf(k->waits, "%" G_GUINT64_FORMAT "/%" G_GUINT64_FORMAT
+                           ";", (guint64)now, (guint64)period);
+    return ++k->id;
+}
+
+static void r_begin(SimRecorder *r, uint64_t id, SimTime t)
+{
+    (void)r, (void)id, (void)t;
+}
+
+static void r_end(SimRecorder *r, uint64_t id)
+{
+    (void)r, (void)id;
+}
+
+/* What a recording writes of the waits: DRAW starting at once off a
+ * retrace waits 1 ps (a refresh of period 1: now), pfSync exactly on a
+ * frame boundary waits for that boundary (period T = 20 ms), and each
+ * swap waits for the next retrace (V = 10 ms).  One process, frames of
+ * 6 + 8 + 6 ms: DRAW at 14, 34 and 54 ms, frames end at 20, 40, 60. */
+static void test_recorded_waits(void **st)
+{
+    (void)st;
+    static const SimRecorderOps ops = {.compute = r_compute,
+                                       .refresh = r_refresh,
+                                       .begin = r_begin,
+                                       .end = r_end};
+    Rec k = {0, g_string_new(NULL)};
+    SimRecorder r = {&ops, &k};
+    recorder = &r;
+    Times t = {6, 8, 6, 0, NULL, 0};
+    GArray *recs = run(WL_PF_MP_APPCULLDRAW, FALSE, &t, 3);
+    recorder = NULL;
+    GString *want = g_string_new(NULL);
+    const SimTime w[8][2] = {{14, 0}, {20, 20}, {20, 10}, {34, 0},
+                             {40, 20}, {40, 10}, {54, 0}, {60, 10}};
+    for (int i = 0; i < 8; i++)
+        g_string_append_printf(
+            want, "%" G_GUINT64_FORMAT "/%" G_GUINT64_FORMAT ";",
+            (guint64)(w[i][0] * SIM_MS),
+            (guint64)(w[i][1] ? w[i][1] * SIM_MS : 1));
+    assert_string_equal(k.waits->str, want->str);
+    g_string_free(want, TRUE);
+    g_string_free(k.waits, TRUE);
+    g_array_free(recs, TRUE);
+}
+
 /* Locked DRAW starts on a frame boundary and swaps on the next one. */
 static void test_locked(void **st)
 {
@@ -261,6 +336,7 @@ int main(void)
         cmocka_unit_test(test_cull_waits_for_draw),
         cmocka_unit_test(test_one_process),
         cmocka_unit_test(test_one_process_at_boundary),
+        cmocka_unit_test(test_recorded_waits),
         cmocka_unit_test(test_locked),
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_stress),
