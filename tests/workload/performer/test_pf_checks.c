@@ -673,6 +673,22 @@ static void test_frame_marks(void **st)
     }
 }
 
+/* One frame has no interval between swaps: the frame rate is reported
+ * as 0, not as the inverse of a zero interval. */
+static void test_one_frame_rate(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    SimResult *r = run("machine: {model: sgi-onyx}\n"
+                       "workload: {type: performer, town: {blocks: 1}}\n",
+                       1, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    assert_true(metric(r, "frame_rate_hz") == 0);
+    assert_true(metric(r, "latency_ms") > 0);
+    sim_result_free(r);
+}
+
 /* The free functions take NULL (GLib's convention), which the run's
  * clean-up after a failed build relies on. */
 static void test_free_null(void **st)
@@ -700,6 +716,7 @@ int main(void)
         cmocka_unit_test(test_needs_a_bus),
         cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_frame_marks),
+        cmocka_unit_test(test_one_frame_rate),
         cmocka_unit_test(test_matrix_ops_saved),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
