@@ -115,6 +115,13 @@ static void check_pp5(guint level, const char *send)
         mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
     assert_non_null(m);
     uint64_t ng = mach_kind(m, "gp")->count;
+    /* messages, two frames: the host's one to each GP, and each GP's
+     * one to every renderer its share has a command for (GP g holds
+     * fine / ng triangles, one more for g < fine mod ng) */
+    uint64_t nr = mach_kind(m, "renderer")->count, msgs = 0;
+    for (uint64_t g = 0; g < ng; g++)
+        msgs += 1 + MIN(nr, fine / ng + (g < fine % ng));
+    assert_int_equal(r->comm_messages, 2 * msgs);
     SimTime per = mach_cost(m, "gp", "polygon") +
                   3 * mach_cost(m, "gp", "vertex") +
                   mach_cost(m, "gp", "send_primitive");
