@@ -496,6 +496,30 @@ static void test_pool_round_robin(void **state)
     rig_free(&r);
 }
 
+/* A block's (tile, triangle) pairs are sorted by tile: two triangles,
+ * the first in tile 1 and the second in tile 0 (two pairs out of tile
+ * order), are each drawn at their tile: the picture is the serial one. */
+static void test_two_pairs_sorted(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    scene_mesh_free(r.mesh);
+    r.mesh = scene_mesh_new();
+    const double x0[2] = {-0.4, -0.9}; /* tile 1, then tile 0 */
+    for (int k = 0; k < 2; k++) {
+        uint32_t b = scene_mesh_n_vertices(r.mesh);
+        scene_mesh_add_vertex(r.mesh, vec3(x0[k], 0.7, 0));
+        scene_mesh_add_vertex(r.mesh, vec3(x0[k] + 0.2, 0.7, 0));
+        scene_mesh_add_vertex(r.mesh, vec3(x0[k] + 0.1, 0.9, 0));
+        scene_mesh_add_tri(r.mesh, b, b + 1, b + 2, scene_color(1, k, 0), 0);
+    }
+    block(&r, 0, 0, 2);
+    double ms;
+    assert_int_equal(run_frame(&r, &ms), 0);
+    rig_free(&r);
+}
+
 /* A glpPSema no glpVSema answers deadlocks every tile: the frame fails
  * saying how many tiles are left; an earlier run.until does the same to
  * a frame that would finish. */
@@ -543,6 +567,7 @@ int main(void)
         cmocka_unit_test(test_tile_round_robin_skips),
         cmocka_unit_test(test_deadlock_reported),
         cmocka_unit_test(test_pool_round_robin),
+        cmocka_unit_test(test_two_pairs_sorted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -296,6 +296,22 @@ static void test_camera(void **st)
     wl_pf_town_free(t);
 }
 
+/* The defaults docs/workloads.md gives for `town` (performer). */
+static void test_defaults(void **st)
+{
+    (void)st;
+    WlPfTownParams p = wl_pf_town_defaults();
+    assert_int_equal(p.blocks, 8);
+    assert_int_equal(p.houses, 6);
+    assert_int_equal(p.trees, 8);
+    assert_int_equal(p.cars, 16);
+    assert_true(p.block == 40);
+    assert_true(p.lod_ranges[0] == 60 && p.lod_ranges[1] == 150 &&
+                p.lod_ranges[2] == 400);
+    assert_true(p.speed == 1 && p.eye_height == 2 && p.fov_deg == 60);
+    assert_int_equal(p.seed, 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -304,6 +320,7 @@ int main(void)
         cmocka_unit_test(test_cars),
         cmocka_unit_test(test_camera),
         cmocka_unit_test(test_house_yaws),
+        cmocka_unit_test(test_defaults),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
