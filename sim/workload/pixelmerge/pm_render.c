@@ -4,7 +4,8 @@
  * The local pixels are converted from the raster library's WPA
  * (RastActivePixel, rows consecutive) to WlPmWpa keeping scanline order
  * and the generation order inside a row; depths and primitive ids are
- * kept exactly, so the depth-tie rule is the raster library's.
+ * kept exactly, so the depth-tie rule is the raster library's.  Colours
+ * are repacked from the raster's 0xAABBGGRR to WlPmPixel's 0xRRGGBB.
  */
 #include "sim/workload/pixelmerge/pm_render.h"
 #include "sim/raster/scanzbuf.h"
@@ -41,6 +42,12 @@ static void count_rows(const RastSpanList *sl, WlPmCounts *c)
     }
 }
 
+/* The raster library's 0xAABBGGRR (scan.h) as WlPmPixel's 0xRRGGBB. */
+static uint32_t rgb_of(uint32_t rgba)
+{
+    return (rgba & 0xffu) << 16 | (rgba & 0xff00u) | (rgba >> 16 & 0xffu);
+}
+
 static WlPmWpa *to_wpa(const RastActive *a)
 {
     int w = rast_active_width(a), h = rast_active_height(a);
@@ -50,7 +57,7 @@ static WlPmWpa *to_wpa(const RastActive *a)
         const RastActivePixel *r = rast_active_row(a, y, &n);
         for (size_t i = 0; i < n; i++) {
             WlPmPixel px = {(uint16_t)r[i].x, (uint16_t)y, r[i].z, r[i].prim,
-                            r[i].rgba};
+                            rgb_of(r[i].rgba)};
             wl_pm_wpa_push(out, &px);
         }
     }

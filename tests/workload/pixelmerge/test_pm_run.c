@@ -1,0 +1,209 @@
+/* test_pm_run.c — the pixelmerge run (wl_pm_run_frames_at, issue 21):
+ * every metric it prints equals the value recomputed from one frame run
+ * by the test on a fresh machine (wl_pm_frame_run_procs with the same
+ * setup and costs): phase times, speed-up and utilisation from their
+ * definitions, the counts, and the peak memory as the largest node's
+ * wl_pm_memory_use() (P = 1 included); frames and elapsed time; and a
+ * machine without a "node" kind refused with the exact message. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/scene/scene_cfg.h"
+#include "sim/workload/pixelmerge/pm_workload.h"
+
+static const char *cfg_text =
+    "machine: {model: ipsc2}\n"
+    "workload: {type: pixelmerge, scheme: %s, balance: hbp,\n"
+    "           processors: %u, resolution: 24}\n"
+    "scene: {generator: teapots, count: 2, polygons_per_teapot: 300,\n"
+    "        layout: spread}\n";
+
+typedef struct {
+    CfgNode *root;
+    WlPmParams *p;
+    Scene *sc;
+} Setup;
+
+static Setup setup(const char *scheme, guint procs)
+{
+    char *text = g_strdup_printf(cfg_text, scheme, procs);
+    GError *err = NULL;
+    Setup s = {cfg_load_string(text, "pm.yaml", &err), NULL, NULL};
+    g_free(text);
+    assert_non_null(s.root);
+    s.p = wl_pixelmerge_ops.parse(cfg_get(s.root, "workload"), &err);
+    assert_non_null(s.p);
+    s.sc = scene_from_cfg(cfg_get(s.root, "scene"), &err);
+    assert_non_null(s.sc);
+    return s;
+}
+
+static void setup_clear(Setup *s)
+{
+    scene_free(s->sc);
+    wl_pixelmerge_ops.free_params(s->p);
+    cfg_free(s->root);
+}
+
+static MachMachine *machine(const Setup *s, SimEngine *eng, WlPmCosts *c)
+{
+    GError *err = NULL;
+    MachMachine *m = mach_new_from_cfg(eng, cfg_get(s->root, "machine"),
+                                       "analytic", &err);
+    assert_non_null(m);
+    assert_true(wl_pm_costs_from_machine(m, s->p->count_bytes, c, &err));
+    return m;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    if (!sim_result_get_metric(r, name, &v))
+        fail_msg("no metric %s", name);
+    return v;
+}
+
+/* The largest node's footprint, by the test's own loop over nodes. */
+static WlPmMemUse largest(const Setup *s, const WlPmFrameOut *fo)
+{
+    WlPmMemUse best = {0};
+    for (guint q = 0; q < s->p->setup.procs; q++) {
+        WlPmMemUse u = wl_pm_memory_use(&s->p->mem, &s->p->setup,
+                                        fo->counts[q].polygons,
+                                        fo->counts[q].rc.spans, fo->active[q]);
+        assert_true(u.total > 0);
+        if (u.total > best.total)
+            best = u;
+    }
+    return best;
+}
+
+static void check_memory(const SimResult *r, const WlPmMemUse *u)
+{
+    assert_true(metric(r, "peak_memory") == (double)u->total);
+    assert_true(metric(r, "memory_base") == (double)u->base);
+    assert_true(metric(r, "memory_polygons") == (double)u->polygons);
+    assert_true(metric(r, "memory_spans") == (double)u->spans);
+    assert_true(metric(r, "memory_zbuffer") == (double)u->zbuffer);
+    assert_true(metric(r, "memory_buffers") == (double)u->buffers);
+}
+
+static void check_frame_metrics(const SimResult *r, const WlPmFrameOut *fo,
+                                guint P, double serial)
+{
+    SimTime busy = 0;
+    for (guint q = 0; q < P; q++)
+        busy += fo->busy[q].total;
+    assert_true(metric(r, "processors") == P);
+    assert_true(metric(r, "resolution") == 24);
+    assert_true(metric(r, "span_ms") == fo->span_ms);
+    assert_true(metric(r, "zbuf_ms") == fo->zbuf_ms);
+    assert_true(metric(r, "merge_ms") == fo->merge_ms);
+    assert_true(metric(r, "frame_ms") == fo->frame_ms);
+    assert_true(metric(r, "serial_ms") == serial);
+    assert_true(metric(r, "speedup") == serial / fo->frame_ms);
+    assert_true(metric(r, "utilisation") ==
+                sim_time_to_ms(busy) / (P * fo->frame_ms));
+    assert_true(metric(r, "concurrent_volume") == fo->concurrent_volume);
+    assert_true(metric(r, "merge_bytes") == fo->merge_bytes);
+    assert_true(metric(r, "load_imbalance") == fo->load_imbalance);
+    assert_true(metric(r, "partition_imbalance") == fo->partition_imbalance);
+    assert_true(metric(r, "polygons") == 600);
+    assert_true(metric(r, "tpg") == fo->tpg);
+    assert_true(metric(r, "tpf") == fo->tpf);
+    assert_true(metric(r, "image_matches_serial") == 1);
+}
+
+/* Runs `frames` frames through wl_pm_run_frames and checks the result
+ * against one frame the test runs itself on a fresh machine. */
+static void check_run(const char *scheme, guint P, int frames)
+{
+    Setup s = setup(scheme, P);
+    SimEngine *eng = sim_engine_new(1);
+    WlPmCosts c;
+    MachMachine *m = machine(&s, eng, &c);
+    SimResult *r = sim_result_new("pixelmerge", "");
+    GError *err = NULL;
+    if (!wl_pm_run_frames(m, s.sc, s.p, &c, frames, r, &err))
+        fail_msg("%s", err->message);
+    assert_int_equal(r->frame_times->len, frames);
+    assert_true(r->elapsed == sim_now(mach_engine(m)) && r->elapsed > 0);
+    mach_free(m);
+    sim_engine_free(eng);
+
+    eng = sim_engine_new(1);
+    m = machine(&s, eng, &c);
+    MachProc *procs[8];
+    for (guint q = 0; q < P; q++)
+        procs[q] = mach_proc(m, "node", q);
+    WlPmFrameOut fo;
+    if (!wl_pm_frame_run_procs(mach_net(m), procs, 0, s.sc, &s.p->setup, &c,
+                               &fo, &err))
+        fail_msg("%s", err->message);
+    /* every frame takes as long (one camera); the run ends after them all */
+    for (int f = 0; f < frames; f++)
+        assert_true(g_array_index(r->frame_times, SimTime, f) ==
+                    sim_now(mach_engine(m)));
+    assert_true(r->elapsed == (SimTime)frames * sim_now(mach_engine(m)));
+    double ins = -1;
+    double serial = wl_pm_serial_ms(s.sc, &s.p->setup, &c, &ins);
+    check_frame_metrics(r, &fo, P, serial);
+    assert_true(metric(r, "serial_insert_ms") == ins && ins > 0);
+    WlPmMemUse u = largest(&s, &fo);
+    check_memory(r, &u);
+    wl_pm_frame_out_clear(&fo, P);
+    sim_result_free(r);
+    mach_free(m);
+    sim_engine_free(eng);
+    setup_clear(&s);
+}
+
+static void test_metrics_recomputed(void **state)
+{
+    (void)state;
+    check_run("pair", 4, 1);
+    check_run("aapc", 8, 2);
+    check_run("zbuf-exc", 2, 1);
+    check_run("pair", 1, 1); /* the only node is the peak */
+}
+
+/* A machine with no node kind "node" (the CM-200: front_end and array)
+ * and processors left to the machine: 0 processors, refused. */
+static void test_machine_without_nodes(void **state)
+{
+    (void)state;
+    Setup s = setup("pair", 4);
+    s.p->setup.procs = 0;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string("machine: {model: cm200}\n", "m.yaml",
+                                    &err);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    assert_non_null(m);
+    WlPmCosts c = {.polygon = SIM_US, .merge = {.count_bytes = 4}};
+    SimResult *r = sim_result_new("pixelmerge", "");
+    assert_false(wl_pm_run_frames(m, s.sc, s.p, &c, 1, r, &err));
+    assert_string_equal(err->message,
+                        "pixelmerge: found '0' processors, expected at most "
+                        "the 0 nodes of kind 'node' of machine 'cm200'");
+    assert_int_equal(r->frame_times->len, 0);
+    g_error_free(err);
+    sim_result_free(r);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+    setup_clear(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_metrics_recomputed),
+        cmocka_unit_test(test_machine_without_nodes),
+    };
+    return cmocka_run_group_tests_name("pm_run", tests, NULL, NULL);
+}
