@@ -1,5 +1,7 @@
 /* test_pm_replay.c — timing replay of merge steps on an analytic
- * hypercube: exact times on hand-checked cases. */
+ * hypercube: exact times on hand-checked cases (packing, a message that
+ * arrives before its receiver sends, the global sum and partitioning of
+ * RS and HBP on 2 and 4 processors). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -129,11 +131,108 @@ static void test_rs_global_sum(void **state)
     rig_clear(&rig);
 }
 
+/* Runs the replay of m with balancing `bal` from ready[] on a fresh
+ * analytic hypercube of `dims`; fills done[] and busy[] (merge phase). */
+static void replay(const WlPmMerge *m, WlPmBalance bal, unsigned dims,
+                   const WlPmMergeCosts *c, const SimTime *ready,
+                   SimTime *done, SimTime *busy)
+{
+    Rig rig;
+    rig_init(&rig, dims);
+    guint n = m->n_procs;
+    SimBusy b[4];
+    WlPmReplayOut out;
+    for (guint p = 0; p < n; p++)
+        sim_busy_init(&b[p]);
+    GError *err = NULL;
+    if (!wl_pm_replay(rig.net, m, bal, H, c, ready, b, 0, &out, &err))
+        fail_msg("%s", err->message);
+    SimTime end = 0;
+    for (guint p = 0; p < n; p++) {
+        done[p] = out.done[p];
+        busy[p] = sim_busy_phase(&b[p], 0);
+        end = MAX(end, done[p]);
+        sim_busy_clear(&b[p]);
+    }
+    assert_true(out.end == end);
+    wl_pm_replay_out_clear(&out);
+    rig_clear(&rig);
+}
+
+/* Owners 0 1 0 1 (not banded), PAIR, no global sum (strips).  p0 packs
+ * its 2 pixels of rows 1, 3 (2 us) and sends 2 x 8 + 2 x 2 = 20 B (130
+ * us); p1 packs 4 (4 us) and sends 36 B (146 us).  From ready 0: p1's
+ * message reaches p0 at 150 us; p0 scatters 2 (4), compares 4 (12),
+ * gathers 4 (20): 186 us; p0's reaches p1 at 132 us: scatter 4 (8),
+ * compare 2 (6), gather 4 (20): 166 us.  Busy 2 + 36 and 4 + 34.  With
+ * p0 ready at 200 us, p1's message is there before p0 sends (202 us):
+ * p0 goes straight on, 238 us; p1 waits for 202 + 130: 366 us. */
+static void test_pack_and_early_arrival(void **state)
+{
+    (void)state;
+    static guint owner[H] = {0, 1, 0, 1};
+    WlPmPartition part = {2, H, owner, FALSE};
+    WlPmWpa *local[2];
+    make_local(local, 2);
+    WlPmMerge *m = wl_pm_merge_run(WL_PM_PAIR, local, 2, &part, &fmt);
+    SimTime done[2], busy[2];
+    const SimTime at0[2] = {0, 0}, late[2] = {200 * SIM_US, 0};
+    replay(m, WL_PM_BAL_STRIPS, 1, &costs, at0, done, busy);
+    assert_true(done[0] == 186 * SIM_US && done[1] == 166 * SIM_US);
+    assert_true(busy[0] == 38 * SIM_US && busy[1] == 38 * SIM_US);
+    replay(m, WL_PM_BAL_STRIPS, 1, &costs, late, done, busy);
+    assert_true(done[0] == 238 * SIM_US && done[1] == 366 * SIM_US);
+    wl_pm_merge_free(m);
+    wl_pm_wpa_free(local[0]);
+    wl_pm_wpa_free(local[1]);
+}
+
+/* The global sum and partitioning shift the same merge by a fixed time.
+ * Each exchange of H = 4 counts (16 B): 100 + 10 + 16 us, then 4 x 7 us
+ * of additions: 154 us a stage.  RS: d log2 H = 2d sort steps (11 us);
+ * HBP: H log2 H = 8 sort steps and H P assign steps (13 us).  P = 2:
+ * RS 154 + 22 = 176, HBP 154 + 88 + 104 = 346 us; P = 4: RS 308 + 44 =
+ * 352, HBP 308 + 88 + 208 = 604 us.  The busy time grows by all but the
+ * messages. */
+static void test_balance_prefix(void **state)
+{
+    (void)state;
+    WlPmMergeCosts c = costs;
+    c.assign_step = 13 * SIM_US;
+    const SimTime ready[4] = {0, 0, 0, 0};
+    for (unsigned dims = 1; dims <= 2; dims++) {
+        guint n = 1u << dims;
+        WlPmWpa *local[4];
+        make_local(local, n);
+        WlPmPartition *strips =
+            wl_pm_partition_new(WL_PM_BAL_STRIPS, n, NULL, H);
+        WlPmMerge *m = wl_pm_merge_run(WL_PM_AAPC, local, n, strips, &fmt);
+        SimTime d0[4], b0[4], d1[4], b1[4], d2[4], b2[4];
+        replay(m, WL_PM_BAL_STRIPS, dims, &c, ready, d0, b0);
+        replay(m, WL_PM_BAL_RS, dims, &c, ready, d1, b1);
+        replay(m, WL_PM_BAL_HBP, dims, &c, ready, d2, b2);
+        SimTime rs = dims == 1 ? 176 : 352, hbp = dims == 1 ? 346 : 604;
+        SimTime msgs = dims * 126;
+        for (guint p = 0; p < n; p++) {
+            assert_true(d1[p] - d0[p] == rs * SIM_US);
+            assert_true(d2[p] - d0[p] == hbp * SIM_US);
+            assert_true(b1[p] - b0[p] == (rs - msgs) * SIM_US);
+            assert_true(b2[p] - b0[p] == (hbp - msgs) * SIM_US);
+        }
+        wl_pm_merge_free(m);
+        wl_pm_partition_free(strips);
+        for (guint p = 0; p < n; p++)
+            wl_pm_wpa_free(local[p]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_aapc_two),
         cmocka_unit_test(test_rs_global_sum),
+        cmocka_unit_test(test_pack_and_early_arrival),
+        cmocka_unit_test(test_balance_prefix),
     };
     return cmocka_run_group_tests_name("pm_replay", tests, NULL, NULL);
 }
