@@ -2,7 +2,8 @@
  * every metric it prints equals the value recomputed from one frame run
  * by the test on a fresh machine (wl_pm_frame_run_procs with the same
  * setup and costs): phase times, speed-up and utilisation from their
- * definitions, the counts, and the peak memory as the largest node's
+ * definitions, the counts (themselves rebuilt from the local renders,
+ * the partition, the merge and its replay), and the peak memory as the largest node's
  * wl_pm_memory_use() (P = 1 included); frames and elapsed time; and a
  * machine without a "node" kind refused with the exact message. */
 #include <setjmp.h>
@@ -16,8 +17,8 @@
 
 static const char *cfg_text =
     "machine: {model: ipsc2}\n"
-    "workload: {type: pixelmerge, scheme: %s, balance: hbp,\n"
-    "           processors: %u, resolution: 24}\n"
+    "workload: {type: pixelmerge, scheme: %s,\n"
+    "           processors: %u, resolution: 24%s}\n"
     "scene: {generator: teapots, count: 2, polygons_per_teapot: 300,\n"
     "        layout: spread}\n";
 
@@ -27,9 +28,9 @@ typedef struct {
     Scene *sc;
 } Setup;
 
-static Setup setup(const char *scheme, guint procs)
+static Setup setup(const char *scheme, guint procs, const char *extra)
 {
-    char *text = g_strdup_printf(cfg_text, scheme, procs);
+    char *text = g_strdup_printf(cfg_text, scheme, procs, extra);
     GError *err = NULL;
     Setup s = {cfg_load_string(text, "pm.yaml", &err), NULL, NULL};
     g_free(text);
@@ -117,11 +118,73 @@ static void check_frame_metrics(const SimResult *r, const WlPmFrameOut *fo,
     assert_true(metric(r, "image_matches_serial") == 1);
 }
 
+/* The frame's counts rebuilt from the public pieces: each processor's
+ * local render (its share, active pixels, row counts), the partition by
+ * the setup's balancing, the merge by its scheme, and the merge replayed
+ * alone on a fresh machine (ZBUF-EXC without a global sum: strips). */
+static void check_glue(const Setup *s, const WlPmFrameOut *fo,
+                       const WlPmCosts *c)
+{
+    const WlPmSetup *su = &s->p->setup;
+    guint P = su->procs, N = su->resolution;
+    SceneMesh *flat = scene_flatten(s->sc);
+    SceneCamera cam = scene_camera_at(s->sc, 0);
+    RastView v = rast_view_for_camera(&cam, N, N);
+    v.cull_back = su->cull_back;
+    v.span_rule = su->span_rule;
+    WlPmWpa *local[8];
+    uint64_t rows[24] = {0}, tpg = 0, polys = 0;
+    for (guint q = 0; q < P; q++) {
+        WlPmCounts k;
+        local[q] = wl_pm_render_local(&v, flat, q, P, su->split, &k);
+        assert_memory_equal(&fo->counts[q], &k, sizeof k);
+        assert_int_equal(fo->active[q], wl_pm_wpa_len(local[q]));
+        wl_pm_wpa_add_row_counts(local[q], rows);
+        tpg += k.rc.pixels;
+        polys += k.polygons;
+    }
+    assert_int_equal(fo->tpg, tpg);
+    assert_int_equal(polys, 600);
+    WlPmPartition *part = wl_pm_partition_new(su->balance, P, rows, N);
+    uint64_t load[8];
+    wl_pm_partition_loads(part, rows, load);
+    assert_true(fo->partition_imbalance == wl_pm_load_imbalance(load, P));
+    WlPmMerge *m = wl_pm_merge_run(su->scheme, local, P, part, &su->fmt);
+    assert_int_equal(fo->tpf, wl_pm_frame_count(m->image));
+    assert_int_equal(fo->concurrent_volume, m->concurrent_volume);
+    assert_int_equal(fo->merge_bytes, m->total_bytes);
+    assert_true(fo->load_imbalance == wl_pm_load_imbalance(m->merge_ops, P));
+    SimEngine *eng = sim_engine_new(1);
+    WlPmCosts c2;
+    MachMachine *mm = machine(s, eng, &c2);
+    SimBusy busy[8];
+    SimTime ready[8] = {0};
+    for (guint q = 0; q < P; q++)
+        sim_busy_init(&busy[q]);
+    WlPmReplayOut ro = {0};
+    WlPmBalance bal =
+        su->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS : su->balance;
+    assert_true(wl_pm_replay(mach_net(mm), m, bal, N, &c->merge, ready, busy,
+                             0, &ro, NULL));
+    assert_true(fo->merge_ms == sim_time_to_ms(ro.end));
+    wl_pm_replay_out_clear(&ro);
+    for (guint q = 0; q < P; q++) {
+        sim_busy_clear(&busy[q]);
+        wl_pm_wpa_free(local[q]);
+    }
+    mach_free(mm);
+    sim_engine_free(eng);
+    wl_pm_merge_free(m);
+    wl_pm_partition_free(part);
+    scene_mesh_free(flat);
+}
+
 /* Runs `frames` frames through wl_pm_run_frames and checks the result
  * against one frame the test runs itself on a fresh machine. */
-static void check_run(const char *scheme, guint P, int frames)
+static void check_run(const char *scheme, guint P, int frames,
+                      const char *extra)
 {
-    Setup s = setup(scheme, P);
+    Setup s = setup(scheme, P, extra);
     SimEngine *eng = sim_engine_new(1);
     WlPmCosts c;
     MachMachine *m = machine(&s, eng, &c);
@@ -151,6 +214,7 @@ static void check_run(const char *scheme, guint P, int frames)
     double ins = -1;
     double serial = wl_pm_serial_ms(s.sc, &s.p->setup, &c, &ins);
     check_frame_metrics(r, &fo, P, serial);
+    check_glue(&s, &fo, &c);
     assert_true(metric(r, "serial_insert_ms") == ins && ins > 0);
     WlPmMemUse u = largest(&s, &fo);
     check_memory(r, &u);
@@ -164,10 +228,11 @@ static void check_run(const char *scheme, guint P, int frames)
 static void test_metrics_recomputed(void **state)
 {
     (void)state;
-    check_run("pair", 4, 1);
-    check_run("aapc", 8, 2);
-    check_run("zbuf-exc", 2, 1);
-    check_run("pair", 1, 1); /* the only node is the peak */
+    check_run("pair", 4, 1, ", balance: hbp");
+    check_run("aapc", 8, 2, ", cull_back: true, polygon_split: block");
+    check_run("zbuf-exc", 2, 1, ", span_rule: endpoints, balance: hbp");
+    check_run("pair", 2, 1, ", balance: strips, cull_back: true");
+    check_run("pair", 1, 1, ""); /* the only node is the peak */
 }
 
 /* A machine with no node kind "node" (the CM-200: front_end and array)
@@ -175,7 +240,7 @@ static void test_metrics_recomputed(void **state)
 static void test_machine_without_nodes(void **state)
 {
     (void)state;
-    Setup s = setup("pair", 4);
+    Setup s = setup("pair", 4, "");
     s.p->setup.procs = 0;
     GError *err = NULL;
     CfgNode *root = cfg_load_string("machine: {model: cm200}\n", "m.yaml",
