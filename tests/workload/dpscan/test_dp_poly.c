@@ -3,8 +3,10 @@
  * a square's spans (crossings at the row centre, first pixel, length),
  * crossings at the same x and depth keeping their edges' order (the
  * insertion sort is stable), an edge's line pixels running from the
- * pixel of one end to the pixel of the other in unit steps, and the key
- * layout (depth, id, colour index). */
+ * pixel of one end to the pixel of the other in unit steps, the key
+ * layout (depth, id, colour index), mode names, shaded and contour colour
+ * indices, point and line pixels with their keys, rows of polygons that
+ * start or end inside a row, and the edge length limit. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -370,6 +372,144 @@ static void test_polys_new(void **state)
     scene_free(s);
 }
 
+/* Mode names in WlDpMode order, parsed back; which modes fill. */
+static void test_modes(void **state)
+{
+    (void)state;
+    static const char *const names[WL_DP_N_MODES] = {
+        "flat", "gouraud", "wireframe", "hidden_line", "contour", "points",
+        "lines"};
+    for (int m = 0; m < WL_DP_N_MODES; m++) {
+        assert_string_equal(wl_dp_mode_name((WlDpMode)m), names[m]);
+        WlDpMode got = WL_DP_N_MODES;
+        assert_true(wl_dp_mode_parse(names[m], &got));
+        assert_int_equal(got, m);
+        gboolean fills = m == WL_DP_MODE_FLAT || m == WL_DP_MODE_GOURAUD ||
+                         m == WL_DP_MODE_HIDDEN_LINE ||
+                         m == WL_DP_MODE_CONTOUR;
+        assert_int_equal(wl_dp_mode_fills((WlDpMode)m), fills);
+    }
+    WlDpMode keep = WL_DP_MODE_LINES;
+    assert_false(wl_dp_mode_parse("shaded", &keep));
+    assert_false(wl_dp_mode_parse(NULL, &keep));
+    assert_int_equal(keep, WL_DP_MODE_LINES);
+}
+
+/* Shaded index: 30 + 15 colour + round(14 shade), shade clamped to
+ * [0, 1]; contour index: band floor(15 v) (at most 14), its brightest
+ * shade: 30 + 15 band + 14. */
+static void test_colour_indices(void **state)
+{
+    (void)state;
+    assert_int_equal(wl_dp_color_index(0, 0), 30);
+    assert_int_equal(wl_dp_color_index(2, 0.5), 30 + 30 + 7);
+    assert_int_equal(wl_dp_color_index(1, 0.75 / 14), 30 + 15 + 1);
+    assert_int_equal(wl_dp_color_index(1, 0.25 / 14), 30 + 15);
+    assert_int_equal(wl_dp_color_index(14, 1), 30 + 210 + 14);
+    assert_int_equal(wl_dp_color_index(3, -2), 30 + 45);
+    assert_int_equal(wl_dp_color_index(3, 7), 30 + 45 + 14);
+    assert_int_equal(wl_dp_contour_index(0), 44);
+    assert_int_equal(wl_dp_contour_index(0.1), 30 + 15 + 14);
+    assert_int_equal(wl_dp_contour_index(0.5), 30 + 105 + 14);
+    assert_int_equal(wl_dp_contour_index(0.99), 30 + 210 + 14);
+    assert_int_equal(wl_dp_contour_index(1), 30 + 210 + 14);
+    assert_int_equal(wl_dp_contour_index(-1), 44);
+    assert_int_equal(wl_dp_contour_index(3), 254);
+    /* contour mode keys a pixel by its value's band, not the colour */
+    double x[3] = {0, 1, 0}, y[3] = {0, 0, 1}, z[3] = {0}, v[3] = {0};
+    One o;
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_CONTOUR);
+    WlDpSpan s = {.xl = 0, .xr = 4, .zl = 0.5, .zr = 0.5, .vl = 0.5,
+                  .vr = 0.5, .y = 0, .x0 = 0, .len = 4, .poly = 0};
+    assert_int_equal(wl_dp_key_index(wl_dp_span_key(&o.p, &s, 1)),
+                     30 + 105 + 14);
+}
+
+/* Points and line pixels: the pixel holding the vertex (floor, also
+ * below 0), the polygon's colour at full shade, the depth of the point
+ * (interpolated along an edge) except in wireframe, where lines never
+ * hide each other (depth 1 for all: the key's depth bits are 0). */
+static void test_point_and_line_keys(void **state)
+{
+    (void)state;
+    double x[3] = {3.7, 9.2, 3.4}, y[3] = {-0.2, 5.1, 12.6};
+    double z[3] = {0.25, 0.75, 0.875}, v[3] = {0, 0, 0};
+    One o;
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_POINTS);
+    int64_t px, py;
+    uint64_t key;
+    wl_dp_point_pixel(&o.p, 0, 0, &px, &py, &key);
+    assert_true(px == 3 && py == -1);
+    assert_true(key == wl_dp_key(0.25, 0, wl_dp_color_index(3, 1)));
+    wl_dp_point_pixel(&o.p, 0, 2, &px, &py, &key);
+    assert_true(px == 3 && py == 12);
+    assert_true(key == wl_dp_key(0.875, 0, 30 + 45 + 14));
+    /* edge 0 from (3, -1) to (9, 5): 7 pixels, t = k / 6 */
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_LINES);
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 7);
+    wl_dp_edge_pixel(&o.p, 0, 0, 3, &px, &py, &key);
+    assert_true(px == 6 && py == 2);
+    assert_true(key == wl_dp_key(0.5, 0, 30 + 45 + 14));
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_WIREFRAME);
+    wl_dp_edge_pixel(&o.p, 0, 0, 3, &px, &py, &key);
+    assert_true(key == wl_dp_key(1.0, 0, 30 + 45 + 14));
+    assert_int_equal(key >> 32, 0);
+    wl_dp_point_pixel(&o.p, 0, 1, &px, &py, &key);
+    assert_true(px == 9 && py == 5 && key >> 32 == 0);
+}
+
+/* Rows of polygons that start or end inside a row: every row touched,
+ * from floor(lowest y) (negative too) to floor(highest y); a row is
+ * sampled at its centre moved inside the polygon, so a polygon from y
+ * 2.6 to 3.2 has a span on both rows 2 and 3. */
+static void test_partial_rows(void **state)
+{
+    (void)state;
+    double x[4] = {1.2, 5.7, 5.7, 1.2}, y[4] = {2.6, 2.6, 3.2, 3.2};
+    double z[4] = {0.5, 0.5, 0.5, 0.5}, v[4] = {0, 0, 0, 0};
+    One o;
+    one_init(&o, 4, x, y, z, v, WL_DP_MODE_FLAT);
+    int32_t y0 = 99;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 2);
+    assert_int_equal(y0, 2);
+    WlDpSpan s[WL_DP_MAX_VERTS / 2];
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, 2, s), 1);
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, 3, s), 1);
+    assert_int_equal(s[0].x0, 1);
+    assert_int_equal(s[0].len, 5);
+    /* inside one row */
+    y[0] = y[1] = 1.3, y[2] = y[3] = 1.7;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 1);
+    assert_int_equal(y0, 1);
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, 1, s), 1);
+    /* above the screen: rows -2, -1 and 0 */
+    y[0] = y[1] = -1.5, y[2] = y[3] = 0.5;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 3);
+    assert_int_equal(y0, -2);
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, -2, s), 1);
+    assert_int_equal(s[0].y, -2);
+    /* not behind the eye, not flat: rows reset y0 to 0 first */
+    o.ok[0] = 0;
+    y0 = 99;
+    assert_int_equal(wl_dp_poly_rows(&o.p, 0, &y0), 0);
+    assert_int_equal(y0, 0);
+}
+
+/* An edge of 10^7 pixel steps is still drawn (10^7 + 1 pixels); a longer
+ * one is not (the guard against coordinates out of range). */
+static void test_edge_length_limit(void **state)
+{
+    (void)state;
+    double x[3] = {0.5, 1e7 + 0.5, 0.5}, y[3] = {0.5, 0.5, 3.5};
+    double z[3] = {0}, v[3] = {0};
+    One o;
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_LINES);
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 10000001);
+    x[1] = 1e7 + 1.5;
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 0);
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 2), 4); /* (0,3) to (0,0) */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -381,6 +521,11 @@ int main(void)
         cmocka_unit_test(test_crossings_sorted),
         cmocka_unit_test(test_span_key_depth),
         cmocka_unit_test(test_nearest_palette_colour),
+        cmocka_unit_test(test_modes),
+        cmocka_unit_test(test_colour_indices),
+        cmocka_unit_test(test_point_and_line_keys),
+        cmocka_unit_test(test_partial_rows),
+        cmocka_unit_test(test_edge_length_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

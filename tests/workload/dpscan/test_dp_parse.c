@@ -1,0 +1,174 @@
+/* test_dp_parse.c — the dpscan section (dp_workload.c's parser, issue 21):
+ * the defaults (model cm200, 16384 processors, 1280 x 1024, mode
+ * gouraud, buffer_factor 0.25, wire network) shown by mem_bytes and by a
+ * run equal to one with the values written out (and different from one
+ * with other values), each range's ends accepted and one past them
+ * refused at the value's file:line:column.  Run from the repository root
+ * (models/). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/raster/scan.h"
+#include "sim/workload/dpscan/dp_workload.h"
+
+static const char *scene_yaml = "scene: {generator: isosurface, grid: 5}\n";
+
+/* Parses "{type: dpscan<extra>}"; NULL with *err on a refusal. */
+static void *parse(const char *extra, GError **err)
+{
+    char *text = g_strdup_printf("workload: {type: dpscan%s}\n", extra);
+    CfgNode *root = cfg_load_string(text, "dp.yaml", err);
+    g_free(text);
+    assert_non_null(root);
+    void *p = wl_dpscan_ops.parse(cfg_get(root, "workload"), err);
+    cfg_free(root);
+    return p;
+}
+
+static void test_default_sizes(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    void *p = parse("", &err);
+    assert_non_null(p);
+    GString *what = g_string_new("");
+    assert_true(wl_dpscan_ops.mem_bytes(p, what) ==
+                1280.0 * 1024 * 12 + 16384.0 * 12);
+    assert_string_equal(what->str, "16384 processors, 1280 x 1024 pixels");
+    wl_dpscan_ops.free_params(p);
+    g_string_free(what, TRUE);
+}
+
+/* Every metric of a one-frame run of "{type: dpscan, processors: 64,
+ * width: 24, height: 20<extra>}" on the small isosurface. */
+static SimResult *run(const char *extra)
+{
+    char *text = g_strdup_printf("workload: {type: dpscan, processors: 64, "
+                                 "width: 24, height: 20%s}\n%s",
+                                 extra, scene_yaml);
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "dp.yaml", &err);
+    g_free(text);
+    assert_non_null(root);
+    void *p = wl_dpscan_ops.parse(cfg_get(root, "workload"), &err);
+    if (!p)
+        fail_msg("%s: %s", extra, err->message);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {
+        .eng = eng, .root = root, .frames = 1, .fidelity = "analytic"};
+    SimResult *r = sim_result_new("dpscan", "");
+    if (!wl_dpscan_ops.run(&ctx, p, r, &err))
+        fail_msg("%s: %s", extra, err->message);
+    sim_engine_free(eng);
+    wl_dpscan_ops.free_params(p);
+    cfg_free(root);
+    return r;
+}
+
+/* Do two runs give the same metrics, value for value? */
+static gboolean same_metrics(const SimResult *a, const SimResult *b)
+{
+    static const char *const names[] = {
+        "transform_s", "scan_s", "pixel_s", "router_s", "display_s",
+        "steps", "scan_iters", "pixel_iters", "flushes", "segments",
+        "pixels", "collisions", "messages", "max_load"};
+    for (guint i = 0; i < G_N_ELEMENTS(names); i++) {
+        double x = -1, y = -2;
+        assert_true(sim_result_get_metric(a, names[i], &x));
+        assert_true(sim_result_get_metric(b, names[i], &y));
+        if (x != y)
+            return FALSE;
+    }
+    return TRUE;
+}
+
+static void test_default_words(void **state)
+{
+    (void)state;
+    SimResult *d = run("");
+    SimResult *e = run(", model: cm200, mode: gouraud, buffer_factor: 0.25, "
+                       "wire: network");
+    assert_true(same_metrics(d, e));
+    assert_string_equal(d->machine, "cm200");
+    static const char *const other[] = {
+        ", mode: flat", ", mode: wireframe", ", buffer_factor: 0.5",
+        ", model: cm5"};
+    for (guint i = 0; i < G_N_ELEMENTS(other); i++) {
+        SimResult *o = run(other[i]);
+        if (same_metrics(d, o))
+            fail_msg("'%s' changes nothing", other[i]);
+        sim_result_free(o);
+    }
+    sim_result_free(d);
+    sim_result_free(e);
+}
+
+/* "dp.yaml:1:<col>:" where col is the value's column. */
+static void expect_refused(const char *key, const char *value)
+{
+    char *extra = g_strdup_printf(", %s: %s", key, value);
+    GError *err = NULL;
+    assert_null(parse(extra, &err));
+    assert_non_null(err);
+    char *at = g_strdup_printf(
+        "dp.yaml:1:%d: found ",
+        (int)(strlen("workload: {type: dpscan, ") + strlen(key) + 3));
+    if (strncmp(err->message, at, strlen(at)) != 0)
+        fail_msg("%s: '%s' does not start '%s'", extra, err->message, at);
+    g_free(at);
+    g_clear_error(&err);
+    g_free(extra);
+}
+
+static void expect_accepted(const char *key, const char *value)
+{
+    char *extra = g_strdup_printf(", %s: %s", key, value);
+    GError *err = NULL;
+    void *p = parse(extra, &err);
+    if (!p)
+        fail_msg("%s: %s", extra, err->message);
+    wl_dpscan_ops.free_params(p);
+    g_free(extra);
+}
+
+static void test_ranges(void **state)
+{
+    (void)state;
+    char max_side[16], past_side[16];
+    g_snprintf(max_side, sizeof max_side, "%d", RAST_MAX_SIDE);
+    g_snprintf(past_side, sizeof past_side, "%d", RAST_MAX_SIDE + 1);
+    expect_accepted("processors", "1");
+    expect_accepted("processors", "4294967295");
+    expect_refused("processors", "0");
+    expect_refused("processors", "4294967296");
+    static const char *const sides[] = {"width", "height"};
+    for (guint i = 0; i < 2; i++) {
+        expect_accepted(sides[i], "1");
+        expect_accepted(sides[i], max_side);
+        expect_refused(sides[i], "0");
+        expect_refused(sides[i], past_side);
+    }
+    expect_accepted("buffer_factor", "1e-6");
+    expect_accepted("buffer_factor", "1e6");
+    expect_refused("buffer_factor", "0");
+    expect_refused("buffer_factor", "1.1e6");
+    expect_refused("mode", "shaded");
+    expect_refused("wire", "cable");
+    GError *err = NULL;
+    void *p = parse(", mode: flat, wire: formula, model: cm5", &err);
+    assert_non_null(p);
+    wl_dpscan_ops.free_params(p);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_default_sizes),
+        cmocka_unit_test(test_default_words),
+        cmocka_unit_test(test_ranges),
+    };
+    return cmocka_run_group_tests_name("dp_parse", tests, NULL, NULL);
+}
