@@ -353,7 +353,7 @@ static void test_polys_new(void **state)
                     want = (w.y + 0.9) / 1.8;
                 if (modes[md] == WL_DP_MODE_HIDDEN_LINE)
                     want = 1;
-                if (fabs(p->val[a] - want) > 1e-9)
+                if (!(fabs(p->val[a] - want) <= 1e-9)) /* NaN fails */
                     fail_msg("mode %d polygon %u vertex %u: value %f, "
                              "expected %f", md, i, j, p->val[a], want);
             }

@@ -56,7 +56,7 @@ static double metric(const SimResult *r, const char *name)
 static void same(const SimResult *r, const char *name, double want)
 {
     double got = metric(r, name);
-    if (fabs(got - want) > 1e-12 * fabs(want))
+    if (!(fabs(got - want) <= 1e-12 * fabs(want))) /* NaN fails */
         fail_msg("%s: %.17g, expected %.17g", name, got, want);
 }
 

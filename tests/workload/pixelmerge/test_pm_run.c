@@ -4,14 +4,17 @@
  * setup and costs): phase times, speed-up and utilisation from their
  * definitions, the counts (themselves rebuilt from the local renders,
  * the partition, the merge and its replay), and the peak memory as the largest node's
- * wl_pm_memory_use() (P = 1 included); frames and elapsed time; and a
- * machine without a "node" kind refused with the exact message. */
+ * wl_pm_memory_use() (P = 1 included); frames and elapsed time; a
+ * machine without a "node" kind refused with the exact message; and the
+ * image written under an output directory. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <glib/gstdio.h>
 #include <string.h>
 
+#include "sim/raster/image.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 
@@ -264,11 +267,62 @@ static void test_machine_without_nodes(void **state)
     setup_clear(&s);
 }
 
+/* With an output directory the run writes the last frame's merged image
+ * (DIR/frame.png, no per-frame files): the raster library's image of the
+ * scene, every channel in its place. */
+static void test_frame_png(void **state)
+{
+    (void)state;
+    Setup s = setup("aapc", 4, "");
+    char *dir = g_dir_make_tmp("pm-run-XXXXXX", NULL);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {.eng = eng, .root = s.root, .seed = 1,
+                     .fidelity = "analytic", .frames = 2, .out_dir = dir};
+    SimResult *r = sim_result_new("pixelmerge", "");
+    GError *err = NULL;
+    if (!wl_pixelmerge_ops.run(&ctx, s.p, r, &err))
+        fail_msg("%s", err->message);
+    char *first = g_build_filename(dir, "frame-0000.png", NULL);
+    assert_false(g_file_test(first, G_FILE_TEST_EXISTS));
+    char *png = g_build_filename(dir, "frame.png", NULL);
+    RastImage *got = rast_image_read_png(png, &err);
+    assert_non_null(got);
+    SceneMesh *flat = scene_flatten(s.sc);
+    SceneCamera cam = scene_camera_at(s.sc, 1);
+    RastView v = rast_view_for_camera(&cam, 24, 24);
+    v.cull_back = FALSE;
+    RastSpanList *sl = rast_spanlist_new(24, 24);
+    RastCounters rc = {0};
+    rast_draw_mesh(&v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
+                   0, rast_spanlist_sink(sl), &rc);
+    rast_spanlist_sort(sl);
+    RastActive *a = rast_active_new(24, 24);
+    rast_scanline_zbuffer(a, sl, &rc);
+    RastImage *want = rast_image_new(24, 24);
+    rast_image_from_active(want, a, (RastColor){0, 0, 0});
+    assert_true(rast_active_count(a) > 30); /* the teapots show */
+    assert_int_equal(rast_image_diff(got, want), 0);
+    rast_image_free(want);
+    rast_active_free(a);
+    rast_spanlist_free(sl);
+    scene_mesh_free(flat);
+    rast_image_free(got);
+    g_unlink(png);
+    g_rmdir(dir);
+    g_free(png);
+    g_free(first);
+    g_free(dir);
+    sim_result_free(r);
+    sim_engine_free(eng);
+    setup_clear(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_metrics_recomputed),
         cmocka_unit_test(test_machine_without_nodes),
+        cmocka_unit_test(test_frame_png),
     };
     return cmocka_run_group_tests_name("pm_run", tests, NULL, NULL);
 }
