@@ -64,8 +64,7 @@ static void rs_assign(const uint64_t *S, guint *owner, guint lo, guint hi,
 static void partition_rs(WlPmPartition *p, const uint64_t *counts,
                          gboolean unit)
 {
-    uint64_t *S = g_new(uint64_t, p->height + 1);
-    S[0] = 0;
+    uint64_t *S = g_new0(uint64_t, p->height + 1); /* S[0] = 0 */
     for (guint y = 0; y < p->height; y++)
         S[y + 1] = S[y] + (unit ? 1 : counts[y]);
     rs_assign(S, p->owner, 0, p->height, 0, log2u(p->n_procs), 0);

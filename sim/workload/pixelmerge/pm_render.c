@@ -38,7 +38,7 @@ static void count_rows(const RastSpanList *sl, WlPmCounts *c)
         size_t s;
         rast_spanlist_row(sl, y, &s);
         c->span_rows += s > 0;
-        c->insert_steps += (uint64_t)s * (s > 0 ? s - 1 : 0) / 4;
+        c->insert_steps += (uint64_t)s * (s - 1) / 4; /* s = 0: 0 (unsigned) */
     }
 }
 

@@ -63,8 +63,9 @@ WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
                             uint64_t polygons, uint64_t spans, uint64_t active)
 {
     uint64_t n = s->resolution, n2 = n * n;
-    WlPmMemUse u = {mem->base, polygons * mem->polygon, spans * mem->span, 0,
-                    0, 0};
+    WlPmMemUse u = {.base = mem->base,
+                    .polygons = polygons * mem->polygon,
+                    .spans = spans * mem->span}; /* the rest set below */
     if (s->scheme == WL_PM_ZBUF_EXC) {
         u.zbuffer = n2 * mem->location;
         u.buffers = n2 * s->fmt.bytes_per_location;

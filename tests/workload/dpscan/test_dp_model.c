@@ -166,6 +166,9 @@ static void test_errors(void **state)
         "m.yaml:9:18: found '1', expected a count in [2, 64]");
     bad(spmd, "arity", "{value: 65, source: s}",
         "m.yaml:9:18: found '65', expected a count in [2, 64]");
+    bad(spmd, "arity", NULL,
+        "m.yaml:2:3: found no 'arity', expected the parameter in the "
+        "section");
     bad(spmd, "router_procs", "{value: 0, source: s}",
         "m.yaml:11:25: found '0', expected a count in [1, 1024]");
     bad(spmd, "level_bandwidth", "{value: [], source: s}",
@@ -243,6 +246,8 @@ static void test_not_a_map_and_load(void **state)
 
 int main(void)
 {
+    /* a GLib warning or critical (an error set over another) fails */
+    g_log_set_always_fatal(G_LOG_LEVEL_WARNING | G_LOG_LEVEL_CRITICAL);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spmd_fields),
         cmocka_unit_test(test_simd_fields),

@@ -243,10 +243,44 @@ static void test_clipped_at_the_edges(void **state)
     scene_free(s);
 }
 
+/* Router sends by their words: a segment is 7 words, a z-buffer pixel 2
+ * (a 64-bit key).  With only the issue step costing (1 ps) every send
+ * that carries a message costs its words: 7 a scan line with segments,
+ * 2 a pixel iteration; and the words moved are 7 per segment and 2 per
+ * pixel. */
+static void test_router_words(void **state)
+{
+    (void)state;
+    Scene *s = shapes();
+    float pal[WL_DP_COLORS][3];
+    wl_dp_palette_default(pal);
+    for (int m = 0; m < WL_DP_N_MODES; m++) {
+        WlDpPolys *p = wl_dp_polys_new(s, 0, 48, 40, (WlDpMode)m, pal);
+        WlDpRenderOpts o = {.mode = (WlDpMode)m, .buffer_factor = 100,
+                            .ops = ops};
+        WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 1 << 20, .step = 1};
+        WlDpVm *vm = wl_dp_vm_new(&mc, 1, 48, 40);
+        WlDpImage *img = wl_dp_render(vm, p, 48, 40, &o);
+        const WlDpVmCounts *c = wl_dp_vm_counts(vm);
+        uint64_t want = 7 * img->scan_iters + 2 * img->pixel_iters;
+        assert_true(img->pixel_iters > 0);
+        assert_int_equal(wl_dp_vm_target(vm, 0)->phase[WL_DP_PH_ROUTER],
+                         want);
+        assert_int_equal(c->sends, want);
+        assert_int_equal(c->words, 7 * img->segments + 2 * img->pixels);
+        assert_int_equal(c->messages, img->segments + img->pixels);
+        wl_dp_image_free(img);
+        wl_dp_vm_free(vm);
+        wl_dp_polys_free(p);
+    }
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_phase_ops),
+        cmocka_unit_test(test_router_words),
         cmocka_unit_test(test_buffer_capacity),
         cmocka_unit_test(test_flushes_by_hand),
         cmocka_unit_test(test_clipped_at_the_edges),

@@ -163,12 +163,50 @@ static void test_ranges(void **state)
     wl_dpscan_ops.free_params(p);
 }
 
+/* A run refused: `yaml` parses but names a scene or model that does not
+ * exist; the run fails with an error starting `want` and adds no frame. */
+static void refused(const char *yaml, const char *want)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(yaml, "dp.yaml", &err);
+    assert_non_null(root);
+    void *p = wl_dpscan_ops.parse(cfg_get(root, "workload"), &err);
+    assert_non_null(p);
+    SimEngine *eng = sim_engine_new(1);
+    WlContext ctx = {
+        .eng = eng, .root = root, .frames = 1, .fidelity = "analytic"};
+    SimResult *r = sim_result_new("dpscan", "");
+    assert_false(wl_dpscan_ops.run(&ctx, p, r, &err));
+    assert_non_null(err);
+    if (!strstr(err->message, want))
+        fail_msg("'%s' lacks '%s'", err->message, want);
+    assert_int_equal(r->frame_times->len, 0);
+    g_error_free(err);
+    sim_result_free(r);
+    sim_engine_free(eng);
+    wl_dpscan_ops.free_params(p);
+    cfg_free(root);
+}
+
+static void test_run_refusals(void **state)
+{
+    (void)state;
+    refused("workload: {type: dpscan, processors: 16, width: 8, height: 8}\n"
+            "scene: {generator: nosuch}\n",
+            "dp.yaml:2:");
+    refused("workload: {type: dpscan, model: nosuch, processors: 16}\n"
+            "scene: {generator: isosurface, grid: 4}\n",
+            "nosuch.yaml");
+}
+
 int main(void)
 {
+    g_log_set_always_fatal(G_LOG_LEVEL_WARNING | G_LOG_LEVEL_CRITICAL);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_default_sizes),
         cmocka_unit_test(test_default_words),
         cmocka_unit_test(test_ranges),
+        cmocka_unit_test(test_run_refusals),
     };
     return cmocka_run_group_tests_name("dp_parse", tests, NULL, NULL);
 }
