@@ -834,9 +834,8 @@ MachProvenance mach_param_provenance(const CfgNode *map, const char *key,
         *text = NULL;
     if (!p)
         return MACH_PROV_NONE;
-    if (cfg_kind(p) != CFG_MAP)
-        return MACH_PROV_OVERRIDE;
-    /* the provenance given in the same file as the value */
+    /* the provenance given in the same file as the value (a scalar or a
+     * list has none: cfg_get of a non-map is NULL, so an override) */
     const CfgNode *v = cfg_get(p, "value");
     for (guint i = 0; provenance_keys[i]; i++) {
         const CfgNode *t = cfg_get(p, provenance_keys[i]);

@@ -341,6 +341,51 @@ static void test_check_section_marks_read(void **state)
     cfg_free(root);
 }
 
+/* mach_param_provenance: each of the three words, the first in key order
+ * when there are several, none for a scalar or a list, and a provenance in
+ * another file than the value (the model's source under a --set value)
+ * is not the value's: an override. */
+static void test_provenance_kinds(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "a: {value: 1 us, assumption: z}\nb: {value: 2 us, calibrated: k}\n"
+        "c: {value: 3 us, assumption: y, source: s}\nd: [1, 2]\n"
+        "e: {value: 4 us, source: t}\nf: {source: only}\n",
+        "p.yaml", &err);
+    assert_non_null(root);
+    const char *text = NULL;
+    assert_int_equal(mach_param_provenance(root, "a", &text),
+                     MACH_PROV_ASSUMPTION);
+    assert_string_equal(text, "z");
+    assert_int_equal(mach_param_provenance(root, "b", &text),
+                     MACH_PROV_CALIBRATED);
+    assert_string_equal(text, "k");
+    assert_int_equal(mach_param_provenance(root, "c", &text), MACH_PROV_SOURCE);
+    assert_string_equal(text, "s");
+    assert_int_equal(mach_param_provenance(root, "d", &text),
+                     MACH_PROV_OVERRIDE);
+    assert_null(text);
+    assert_int_equal(mach_param_provenance(root, "f", NULL), MACH_PROV_SOURCE);
+    assert_int_equal(mach_param_provenance(root, "zz", &text), MACH_PROV_NONE);
+    assert_int_equal(mach_param_provenance(root, "e", &text), MACH_PROV_SOURCE);
+    assert_true(cfg_set_override(root, "e.value=5 us", &err));
+    text = "x";
+    assert_int_equal(mach_param_provenance(root, "e", &text),
+                     MACH_PROV_OVERRIDE);
+    assert_null(text);
+    /* a whole parameter set in one --set carries its own provenance */
+    assert_true(cfg_set_override(root, "e={value: 6 us, source: u}", &err));
+    assert_int_equal(mach_param_provenance(root, "e", &text), MACH_PROV_SOURCE);
+    assert_string_equal(text, "u");
+    assert_string_equal(mach_provenance_name(MACH_PROV_NONE), "none");
+    assert_string_equal(mach_provenance_name(MACH_PROV_ASSUMPTION),
+                        "assumption");
+    assert_string_equal(mach_provenance_name(MACH_PROV_OVERRIDE), "override");
+    cfg_free(root);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -354,6 +399,7 @@ int main(void)
         cmocka_unit_test(test_overrides_apply),
         cmocka_unit_test(test_bad_overrides_rejected),
         cmocka_unit_test(test_check_section_marks_read),
+        cmocka_unit_test(test_provenance_kinds),
     };
     return cmocka_run_group_tests_name("machine_model", tests, NULL, NULL);
 }
