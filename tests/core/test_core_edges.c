@@ -22,6 +22,7 @@
 #include "sim/core/result.h"
 #include "sim/core/rng.h"
 #include "sim/core/stats.h"
+#include "sim/core/units.h"
 
 static void test_cfg_errors(void **state)
 {
@@ -492,6 +493,44 @@ static void test_empty_and_short(void **state)
     g_clear_error(&err);
 }
 
+/* Trailing blanks after a bare number are not a unit; the integer
+ * getter's expectation names the range it checks, or none. */
+static void test_value_text_edges(void **state)
+{
+    (void)state;
+    uint64_t v = 0;
+    const char *exp = NULL;
+    assert_true(cfg_units_u64("16 ", CFG_UNIT_COUNT, &v, &exp));
+    assert_int_equal(v, 16);
+    assert_true(cfg_units_u64("0  ", CFG_UNIT_TIME, &v, &exp));
+    assert_int_equal(v, 0);
+    assert_true(cfg_units_u64("5 us \t", CFG_UNIT_TIME, &v, &exp));
+    assert_int_equal(v, 5 * SIM_US);
+    double d = 0;
+    assert_true(cfg_units_double("2 MB/s  ", CFG_UNIT_BANDWIDTH, &d, &exp));
+    assert_true(d == 2e6);
+    GError *err = NULL;
+    CfgNode *r = cfg_load_string("i: x\nj: 5\n", "v.yaml", &err);
+    assert_non_null(r);
+    int64_t x = 0;
+    assert_false(cfg_get_int(r, "i", TRUE, INT64_MIN, INT64_MAX, &x, &err));
+    assert_string_equal(err->message, "v.yaml:1:4: found 'x', expected an "
+                                      "integer");
+    g_clear_error(&err);
+    assert_false(cfg_get_int(r, "i", TRUE, -3, INT64_MAX, &x, &err));
+    assert_string_equal(err->message, "v.yaml:1:4: found 'x', expected an "
+                                      "integer >= -3");
+    g_clear_error(&err);
+    assert_false(cfg_get_int(r, "j", TRUE, INT64_MIN, 4, &x, &err));
+    assert_string_equal(err->message,
+                        "v.yaml:2:4: found '5', expected an integer in "
+                        "[-9223372036854775808, 4]");
+    g_clear_error(&err);
+    assert_true(cfg_get_int(r, "j", TRUE, 5, 5, &x, &err));
+    assert_int_equal(x, 5);
+    cfg_free(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -508,6 +547,7 @@ int main(void)
         cmocka_unit_test(test_fifo_refused),
         cmocka_unit_test(test_engine_edges),
         cmocka_unit_test(test_nulls_and_aliases),
+        cmocka_unit_test(test_value_text_edges),
         cmocka_unit_test(test_empty_and_short),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

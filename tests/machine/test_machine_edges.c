@@ -324,6 +324,12 @@ static void test_net_params_refused(void **state)
                  "[1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, "
                  "1 MB/s, 1 MB/s]}\n",
             5, 60, "more levels than sim/net supports");
+    NetParams eight;
+    good_net(CPU4 "  network: {topology: fat-tree, arity: 2, level_bandwidth: "
+                  "[1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, 1 MB/s, "
+                  "8 MB/s]}\n",
+             4, &eight);
+    assert_true(eight.level_bw[7] == 8e6 && eight.bandwidth == 1e6);
     bad_net(CPU4 "  network: {topology: ring, bandwidth: 1 MB/s, "
                  "startup_long: 1 ms}\n",
             5, 62, "startup_long without long_threshold");
@@ -920,6 +926,10 @@ static void test_topology_limits(void **state)
     expect_topo("topology: fat-tree\narity: 64\n", 2, NULL);
     expect_topo("topology: fat-tree\narity: 65\n", 2, "fat-tree arity");
     expect_topo("topology: ring\n", 2, NULL);
+    expect_topo("topology: hypercube\n", 1, NULL);
+    expect_topo("topology: hypercube\n", 3, "3 processors on a hypercube");
+    expect_topo("topology: fat-tree\narity: 64\n", 1, "fewer than 2 leaves");
+    expect_topo("topology: fat-tree\narity: 1\n", 1, "fat-tree arity");
 }
 
 /* Processor ids run through the kinds in model order, pages of 64

@@ -379,6 +379,18 @@ static void test_provenance_kinds(void **state)
     assert_true(cfg_set_override(root, "e={value: 6 us, source: u}", &err));
     assert_int_equal(mach_param_provenance(root, "e", &text), MACH_PROV_SOURCE);
     assert_string_equal(text, "u");
+    /* a value merged over the model's from another file, whose name sorts
+     * after ("q.yaml") or before ("o.yaml") the model's: an override */
+    CfgNode *over = cfg_load_string("a: {value: 9 us}\n", "q.yaml", &err);
+    cfg_merge(root, over);
+    cfg_free(over);
+    assert_int_equal(mach_param_provenance(root, "a", &text),
+                     MACH_PROV_OVERRIDE);
+    over = cfg_load_string("b: {value: 8 us}\n", "o.yaml", &err);
+    cfg_merge(root, over);
+    cfg_free(over);
+    assert_int_equal(mach_param_provenance(root, "b", &text),
+                     MACH_PROV_OVERRIDE);
     assert_string_equal(mach_provenance_name(MACH_PROV_NONE), "none");
     assert_string_equal(mach_provenance_name(MACH_PROV_ASSUMPTION),
                         "assumption");

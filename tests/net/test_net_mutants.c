@@ -247,6 +247,36 @@ static void test_packet_trace_waits(void **state)
     assert_int_equal(two.held_bytes, 2 * 250);
 }
 
+/* Flow: the last byte.  Two flows 0 -> 1 share one 1 B/us link from
+ * 10 + 1 = 11 us at 0.5 B/us each; the 100-byte one ends at 11 + 200 =
+ * 211 us with exactly 1 byte of the 101-byte one left, which then moves
+ * at 1 B/us and ends at 212 us. */
+static void last_byte_arrived(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    ((SimTime *)ctx)[d->bytes == 101] = d->arrived;
+}
+
+static void test_flow_last_byte(void **state)
+{
+    (void)state;
+    NetParams p = params(NET_SW_CUT_THROUGH);
+    p.startup = 10 * SIM_US;
+    p.per_hop = 1 * SIM_US;
+    SimEngine *eng = sim_engine_new(1);
+    NetTopo *t = net_ring_new(4);
+    NetNet *net = net_new(eng, t, &p, NET_FLOW);
+    SimTime at[2] = {0, 0};
+    net_send(net, 0, 1, 100, NULL, last_byte_arrived, at);
+    net_send(net, 0, 1, 101, NULL, last_byte_arrived, at);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(at[0], 211 * SIM_US);
+    assert_int_equal(at[1], 212 * SIM_US);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -256,6 +286,7 @@ int main(void)
         cmocka_unit_test(test_tracked_bytes_parts),
         cmocka_unit_test(test_control_network_slow),
         cmocka_unit_test(test_packet_trace_waits),
+        cmocka_unit_test(test_flow_last_byte),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -142,12 +142,40 @@ static void test_ring_slots_traced(void **state)
            "arrive 1->2 50 B @163000000 hops=1\n");
 }
 
+/* net_ideal_time: a message to itself pays the start-up only, whatever its
+ * size (as the analytic transport delivers it); elsewhere the slowest link
+ * of the route sets the rate (a fat tree's level-l link carries 2^l times
+ * its per-node bandwidth). */
+static void test_ideal_time(void **state)
+{
+    (void)state;
+    NetParams p = params(NET_SW_CUT_THROUGH);
+    p.level_bw[0] = 4e6; /* per node: leaf links 4 B/us */
+    p.level_bw[1] = 1e6; /* per node: level-1 links 2 x 1 = 2 B/us */
+    SimEngine *eng = sim_engine_new(1);
+    NetTopo *t = net_fattree_new(4, 2);
+    NetNet *net = net_new(eng, t, &p, NET_ANALYTIC);
+    assert_int_equal(net_ideal_time(net, 2, 2, 1000), 10 * SIM_US);
+    assert_int_equal(net_ideal_time(net, 2, 2, 0), 10 * SIM_US);
+    /* 0 -> 1 under one switch: 2 leaf links at 4 B/us, 400 B = 100 us */
+    assert_int_equal(net_ideal_time(net, 0, 1, 400),
+                     10 * SIM_US + 2 * SIM_US + 100 * SIM_US);
+    /* 0 -> 3 climbs a level: 4 links, the level-1 ones at 2 B/us */
+    assert_int_equal(net_ideal_time(net, 0, 3, 400),
+                     10 * SIM_US + 4 * SIM_US + 200 * SIM_US);
+    assert_int_equal(net_ideal_time(net, 0, 3, 0), 14 * SIM_US);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_analytic_recorded),
         cmocka_unit_test(test_circuit_traced),
         cmocka_unit_test(test_ring_slots_traced),
+        cmocka_unit_test(test_ideal_time),
     };
     return cmocka_run_group_tests_name("net_record", tests, NULL, NULL);
 }
