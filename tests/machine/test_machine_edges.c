@@ -928,7 +928,10 @@ static void test_topology_limits(void **state)
     expect_topo("topology: ring\n", 2, NULL);
     expect_topo("topology: hypercube\n", 1, NULL);
     expect_topo("topology: hypercube\n", 3, "3 processors on a hypercube");
-    expect_topo("topology: fat-tree\narity: 64\n", 1, "fewer than 2 leaves");
+    expect_topo("topology: fat-tree\narity: 64\n", 1,
+                "n.yaml:1:1: found fewer than 2 leaves");
+    expect_topo("topology: fat-tree\narity: 65\n", 1,
+                "n.yaml:2:8: found an unusable fat-tree arity");
     expect_topo("topology: fat-tree\narity: 1\n", 1, "fat-tree arity");
 }
 
