@@ -66,7 +66,11 @@ static void test_unknown_model_name(void **state)
     GError *err = NULL;
     assert_null(mach_load_model("no-such-machine", &err));
     assert_non_null(err);
-    assert_non_null(strstr(err->message, "no-such-machine"));
+    /* the folders searched, in order, from ./models (the working tree) */
+    assert_true(g_str_has_prefix(
+        err->message, "found no model 'no-such-machine', expected "
+                      "models/no-such-machine.yaml (model folders searched: "
+                      "models"));
     g_clear_error(&err);
     assert_null(mach_load_model("../models/ipsc2", &err));
     assert_non_null(strstr(err->message, "plain name"));
@@ -398,8 +402,31 @@ static void test_provenance_kinds(void **state)
     cfg_free(root);
 }
 
+/* A value of blanks only has no unit (and is not read before its start). */
+static void test_blank_value(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "schema_version: 1\nname: t\n"
+        "nodes: {node: {count: {value: 2, source: s}}}\n"
+        "network: {topology: {value: ring, source: s},\n"
+        "          bandwidth: {value: '  ', source: s}}\n",
+        "b.yaml", &err);
+    assert_non_null(root);
+    assert_false(mach_model_check(root, "b.yaml", &err));
+    assert_string_equal(err->message,
+                        "b.yaml:5:30: found '  ' without a unit, expected a "
+                        "bandwidth with its unit, e.g. '2.8 MB/s'");
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
 int main(void)
 {
+    /* a GLib warning (an error set twice ...) fails the test */
+    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
+                           G_LOG_LEVEL_CRITICAL);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shipped_models_check),
         cmocka_unit_test(test_workload_section_kept),
@@ -412,6 +439,7 @@ int main(void)
         cmocka_unit_test(test_bad_overrides_rejected),
         cmocka_unit_test(test_check_section_marks_read),
         cmocka_unit_test(test_provenance_kinds),
+        cmocka_unit_test(test_blank_value),
     };
     return cmocka_run_group_tests_name("machine_model", tests, NULL, NULL);
 }
