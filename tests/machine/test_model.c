@@ -402,7 +402,8 @@ static void test_provenance_kinds(void **state)
     cfg_free(root);
 }
 
-/* A value of blanks only has no unit (and is not read before its start). */
+/* A value of blanks only has no unit (and is not read before its start);
+ * nor has a list item without one, wherever it stands. */
 static void test_blank_value(void **state)
 {
     (void)state;
@@ -420,6 +421,28 @@ static void test_blank_value(void **state)
                         "bandwidth with its unit, e.g. '2.8 MB/s'");
     g_clear_error(&err);
     cfg_free(root);
+    /* each list item needs its unit, the first and the last */
+    static const char *const lists[] = {"[4, 1 MB/s]", "[1 MB/s, 4]"};
+    static const int cols[] = {37, 45};
+    for (int i = 0; i < 2; i++) {
+        char *text = g_strdup_printf(
+            "schema_version: 1\nname: t\n"
+            "nodes: {node: {count: {value: 2, source: s}}}\n"
+            "network: {topology: {value: fat-tree, source: s},\n"
+            "          level_bandwidth: {value: %s, source: s}}\n",
+            lists[i]);
+        root = cfg_load_string(text, "b.yaml", &err);
+        g_free(text);
+        assert_false(mach_model_check(root, "b.yaml", &err));
+        char *want = g_strdup_printf(
+            "b.yaml:5:%d: found '4' without a unit, expected a bandwidth "
+            "with its unit, e.g. '2.8 MB/s'",
+            cols[i]);
+        assert_string_equal(err->message, want);
+        g_free(want);
+        g_clear_error(&err);
+        cfg_free(root);
+    }
 }
 
 int main(void)
