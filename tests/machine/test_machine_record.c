@@ -189,6 +189,9 @@ static void test_shmem_send_plain(void **state)
 
 int main(void)
 {
+    /* a GLib warning (an error set twice ...) fails the test */
+    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
+                           G_LOG_LEVEL_CRITICAL);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_compute_recorded, setup, teardown),
         cmocka_unit_test_setup_teardown(test_terms_and_priced_recorded, setup,
