@@ -445,6 +445,36 @@ static void test_blank_value(void **state)
     }
 }
 
+/* A workload section's entries: {value, provenance}; a bare value only as
+ * an override from another file (--set), not in the model's own file,
+ * wherever the section stands in the document. */
+static void test_workload_overrides(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    const char *body = "schema_version: 1\nname: t\n"
+                       "nodes: {node: {count: {value: 2, source: s}}}\n"
+                       "network: {topology: {value: ring, source: s},\n"
+                       "          bandwidth: {value: 1 MB/s, source: s}}\n";
+    char *text = g_strconcat("wl: {w: {value: 3, source: s}}\n", body, NULL);
+    CfgNode *root = cfg_load_string(text, "t.yaml", &err);
+    g_free(text);
+    assert_true(cfg_set_override(root, "wl.w=5", &err));
+    assert_true(mach_model_check(root, "t.yaml", &err));
+    cfg_free(root);
+    /* the same bare value written in the model itself, first in the file */
+    text = g_strconcat("wl: {w: 5}\n", body, NULL);
+    root = cfg_load_string(text, "t.yaml", &err);
+    g_free(text);
+    assert_false(mach_model_check(root, "t.yaml", &err));
+    assert_string_equal(err->message,
+                        "t.yaml:1:9: found workload parameter 'w' without a "
+                        "value, expected {value: ..., unit: ..., "
+                        "source|calibrated|assumption: ...}");
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
 int main(void)
 {
     /* a GLib warning (an error set twice ...) fails the test */
@@ -463,6 +493,7 @@ int main(void)
         cmocka_unit_test(test_check_section_marks_read),
         cmocka_unit_test(test_provenance_kinds),
         cmocka_unit_test(test_blank_value),
+        cmocka_unit_test(test_workload_overrides),
     };
     return cmocka_run_group_tests_name("machine_model", tests, NULL, NULL);
 }
