@@ -188,16 +188,23 @@ static uint64_t scan_rows(const Edge *e, int ne, const Planes *p, int64_t ymin,
     return n;
 }
 
-static void edges_of(const RastScreenVert *t, int n, Edge *e, int64_t *ymin,
-                     int64_t *ymax)
+/* The edges of t[0..n) into e; returns how many.  A corner repeated
+ * next to itself (clipping emits a corner lying on a plane twice, and
+ * snapping can merge close ones) makes an edge of length zero, which
+ * bounds nothing: it is left out (as an edge it would empty every row). */
+static int edges_of(const RastScreenVert *t, int n, Edge *e, int64_t *ymin,
+                    int64_t *ymax)
 {
+    int ne = 0;
     *ymin = *ymax = t[0].y;
     for (int i = 0; i < n; i++) {
         const RastScreenVert *a = &t[i], *b = &t[(i + 1) % n];
-        e[i] = (Edge){a->x, a->y, b->x - a->x, b->y - a->y};
+        if (a->x != b->x || a->y != b->y)
+            e[ne++] = (Edge){a->x, a->y, b->x - a->x, b->y - a->y};
         *ymin = MIN(*ymin, a->y);
         *ymax = MAX(*ymax, a->y);
     }
+    return ne;
 }
 
 uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
@@ -213,10 +220,10 @@ uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
     }
     Edge e[3];
     int64_t ymin, ymax;
-    edges_of(t, 3, e, &ymin, &ymax);
+    int ne = edges_of(t, 3, e, &ymin, &ymax);
     Planes p;
     setup_planes(t, &p);
-    return scan_rows(e, 3, &p, ymin, ymax, prim, width, height,
+    return scan_rows(e, ne, &p, ymin, ymax, prim, width, height,
                      RAST_SPAN_EXACT, sink, c);
 }
 
@@ -253,7 +260,7 @@ uint64_t rast_scan_polygon(const RastScreenVert *v, int n, uint32_t prim,
         t[i] = a2 > 0 ? v[(n - i) % n] : v[i];
     Edge e[RAST_SCAN_MAX];
     int64_t ymin, ymax;
-    edges_of(t, n, e, &ymin, &ymax);
+    int ne = edges_of(t, n, e, &ymin, &ymax);
     int k = widest_fan(t, n);
     RastScreenVert tri[3] = {t[0], t[k], t[k + 1]};
     Planes p;
@@ -262,5 +269,6 @@ uint64_t rast_scan_polygon(const RastScreenVert *v, int n, uint32_t prim,
         p.zlo = fmin(p.zlo, t[i].z);
         p.zhi = fmax(p.zhi, t[i].z);
     }
-    return scan_rows(e, n, &p, ymin, ymax, prim, width, height, rule, sink, c);
+    return scan_rows(e, ne, &p, ymin, ymax, prim, width, height, rule, sink,
+                     c);
 }

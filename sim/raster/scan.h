@@ -100,7 +100,8 @@ typedef enum { RAST_SPAN_EXACT, RAST_SPAN_ENDPOINTS } RastSpanRule;
 #define RAST_SCAN_MAX 16
 
 /* Scan converts one convex polygon v[0..n) (3 <= n <= RAST_SCAN_MAX,
- * either winding, non-zero area) as a whole: one span per row, by
+ * either winding, non-zero area; a corner may repeat next to itself, as
+ * clipping and snapping make it) as a whole: one span per row, by
  * `rule`.  Depth comes from the plane of its widest fan triangle,
  * clamped to the range of all its vertices.  With RAST_SPAN_EXACT and
  * n == 3 it is rast_scan_triangle().  Returns the span count. */

@@ -269,6 +269,18 @@ static void test_counters_each_fate(void **state)
     assert_int_equal(by[1] + by[2] + by[3] + by[4], 0);
     assert_true(by[5] > 0);
     assert_int_equal(by[6], 8 * 8); /* the quad: [48, 56) x [8, 16) */
+    /* the end-point rule: the same fates and counts (the degenerate
+     * triangle stops before the scan, which needs a non-zero area) */
+    v.span_rule = RAST_SPAN_ENDPOINTS;
+    RastCounters e0 = {0};
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 100, NULL, 0,
+                   sink_of(&k), &e0);
+    assert_int_equal(e0.prims, 7);
+    assert_int_equal(e0.culled, 1);
+    assert_int_equal(e0.degenerate, 1);
+    assert_int_equal(e0.rejected, 2);
+    assert_int_equal(e0.clipped, 1);
+    v.span_rule = RAST_SPAN_EXACT;
     /* the same without culling: the back face is drawn too */
     v.cull_back = FALSE;
     RastCounters d = {0};
@@ -351,6 +363,74 @@ static void test_clip_polygon_entry(void **state)
     assert_int_equal(k.s[0].prim, 9);
 }
 
+/* The smallest triangle there is (twice its area one subpixel unit,
+ * front facing) with a corner on the centre of pixel (5, 5), where its
+ * top and left edges meet: the fan keeps it and it covers that pixel. */
+static void test_smallest_front_triangle(void **state)
+{
+    (void)state;
+    const double p = -0.828125, q = -0.8280029296875; /* 1408, 1409 / 256 */
+    RastVert in[3] = {{{p, -p, 0, 1}, {1, 1, 1}},
+                      {{p, -q, 0, 1}, {1, 1, 1}},
+                      {{q, -p, 0, 1}, {1, 1, 1}}};
+    RastView v = rast_view_make(mat4_identity(), 64, 64);
+    Spans k;
+    RastCounters c = {0};
+    rast_draw_clip_polygon(&v, in, 3, 4, sink_of(&k), &c);
+    assert_int_equal(c.culled + c.degenerate + c.rejected, 0);
+    assert_int_equal(k.n, 1);
+    assert_true(k.s[0].y == 5 && k.s[0].x0 == 5 && k.s[0].x1 == 6);
+}
+
+/* A triangle with a corner exactly on the near plane and one beyond it:
+ * clipping emits that corner twice; the end-point rule still scans the
+ * polygon (corners (16, 48), (32, 48), (16, 16): rows 16..47). */
+static void test_endpoints_clipped_repeat(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    add_tri(m, vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, -2), vec3(-0.5, 0.5, -1));
+    RastView v = rast_view_make(mat4_identity(), 64, 64);
+    v.span_rule = RAST_SPAN_ENDPOINTS;
+    Spans k;
+    RastCounters c = {0};
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+                   sink_of(&k), &c);
+    assert_int_equal(c.clipped, 1);
+    assert_int_equal(k.n, 32);
+    for (int i = 0; i < k.n; i++) {
+        assert_int_equal(k.s[i].y, 16 + i);
+        assert_int_equal(k.s[i].x0, 16);
+    }
+    scene_mesh_free(m);
+}
+
+/* A nonagon (RAST_POLY_MAX corners) is drawn whole: one primitive of
+ * nine vertices, flat white when unlit. */
+static void test_nonagon_whole(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    uint32_t idx[9];
+    for (int i = 0; i < 9; i++)
+        idx[i] = scene_mesh_add_vertex(
+            m, vec3(0.5 * cos(2 * G_PI * i / 9), 0.5 * sin(2 * G_PI * i / 9), 0));
+    scene_mesh_add_poly(m, idx, 9, scene_color(1, 1, 1), 0);
+    for (int rule = 0; rule < 2; rule++) {
+        RastView v = rast_view_make(mat4_identity(), 64, 64);
+        v.lighting = FALSE;
+        v.span_rule = rule;
+        Spans k;
+        RastCounters c = {0};
+        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
+                       0, sink_of(&k), &c);
+        assert_int_equal(c.prims, 1);
+        assert_int_equal(c.verts, 9);
+        assert_flat(&k, 1, 1, 1);
+    }
+    scene_mesh_free(m);
+}
+
 /* Scene instances: ids run on over the instances' polygons, each placed
  * by its transform and tinted by its colour. */
 static void test_scene_instances(void **state)
@@ -396,6 +476,9 @@ int main(void)
         cmocka_unit_test(test_span_rule_through_pipeline),
         cmocka_unit_test(test_clip_polygon_entry),
         cmocka_unit_test(test_scene_instances),
+        cmocka_unit_test(test_smallest_front_triangle),
+        cmocka_unit_test(test_endpoints_clipped_repeat),
+        cmocka_unit_test(test_nonagon_whole),
     };
     return cmocka_run_group_tests_name("pipeline_values", tests, NULL, NULL);
 }

@@ -139,6 +139,8 @@ static gboolean covers(const RastScreenVert *t, int n, int64_t sign, int x,
     for (int i = 0; i < n; i++) {
         const RastScreenVert *a = &t[i], *b = &t[(i + 1) % n];
         int64_t dx = (b->x - a->x) * sign, dy = (b->y - a->y) * sign;
+        if (dx == 0 && dy == 0)
+            continue; /* a repeated corner */
         int64_t e = dx * (py - a->y) - dy * (px - a->x);
         if (e < 0 || (e == 0 && !(dy < 0 || (dy == 0 && dx > 0))))
             return FALSE;
@@ -318,6 +320,16 @@ static void test_against_brute_force(void **state)
         done++;
         check_polygon(t, n, RAST_SPAN_EXACT, W, k);
         check_polygon(t, n, RAST_SPAN_ENDPOINTS, W, k);
+        /* a corner repeated next to itself changes nothing */
+        RastScreenVert u[9];
+        int j = (int)sim_rng_below(&r, (uint64_t)n);
+        for (int i = 0, o = 0; i < n; i++) {
+            u[o++] = t[i];
+            if (i == j)
+                u[o++] = t[i];
+        }
+        check_polygon(u, n + 1, RAST_SPAN_EXACT, W, k);
+        check_polygon(u, n + 1, RAST_SPAN_ENDPOINTS, W, k);
         if (n == 3) {
             Spans a = {.n = 0};
             RastCounters c = {0};
@@ -356,6 +368,34 @@ static void test_endpoints_apex_rows(void **state)
     }
 }
 
+/* A triangle one subpixel wide at the top: its top edge runs from the
+ * centre of pixel (5, 5) one subpixel right, one subpixel above the
+ * centre line of row 5, so E = 1 there (inside); the left edge runs
+ * down through the centres of column 5 (inside, a left edge), and the
+ * hypotenuse stays right of them down to row 14: column 5 of rows 5..14
+ * is covered, nothing else. */
+static void test_one_subpixel_top_edge(void **state)
+{
+    (void)state;
+    const int64_t c = 5 * S + S / 2;
+    RastScreenVert v[3] = {{c, c - 1, 0.5, {1, 1, 1}},
+                           {c + 1, c - 1, 0.5, {1, 1, 1}},
+                           {c, c - 1 + 10 * S, 0.5, {1, 1, 1}}};
+    for (int k = 0; k < 2; k++) {
+        Spans got = {.n = 0};
+        RastCounters cn = {0};
+        rast_scan_polygon(v, 3, 1, 16, 16, RAST_SPAN_EXACT,
+                          (RastSpanSink){collect, &got}, &cn);
+        assert_int_equal(got.n, 10);
+        for (int i = 0; i < got.n; i++)
+            assert_true(got.s[i].y == 5 + i && got.s[i].x0 == 5 &&
+                        got.s[i].x1 == 6);
+        RastScreenVert t = v[1]; /* the other winding */
+        v[1] = v[2];
+        v[2] = t;
+    }
+}
+
 /* Rows are clamped to the image: a polygon taller than a 4x3 image gets
  * exactly rows 0..2, each [0, 4). */
 static void test_rows_clamped(void **state)
@@ -387,6 +427,7 @@ int main(void)
         cmocka_unit_test(test_against_brute_force),
         cmocka_unit_test(test_endpoints_apex_rows),
         cmocka_unit_test(test_rows_clamped),
+        cmocka_unit_test(test_one_subpixel_top_edge),
     };
     return cmocka_run_group_tests_name("scan_values", tests, NULL, NULL);
 }
