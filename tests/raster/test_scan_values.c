@@ -396,6 +396,26 @@ static void test_one_subpixel_top_edge(void **state)
     }
 }
 
+/* The smallest quad with a repeated corner: its first fan triangle
+ * (0, 1, 2) has area 0, the second twice-area 1; the depth plane comes
+ * from the second (the widest), so depth is the corners' 0.5, flat. */
+static void test_widest_fan_tiny(void **state)
+{
+    (void)state;
+    const int64_t c = 5 * S + S / 2;
+    RastScreenVert v[4] = {{c, c, 0.5, {1, 1, 1}},
+                           {c + 1, c, 0.5, {1, 1, 1}},
+                           {c + 1, c, 0.5, {1, 1, 1}},
+                           {c, c + 1, 0.5, {1, 1, 1}}};
+    Spans got = {.n = 0};
+    RastCounters cn = {0};
+    rast_scan_polygon(v, 4, 1, 16, 16, RAST_SPAN_ENDPOINTS,
+                      (RastSpanSink){collect, &got}, &cn);
+    assert_int_equal(got.n, 1);
+    assert_true(got.s[0].y == 5 && got.s[0].x0 == 5 && got.s[0].x1 == 6);
+    assert_true(got.s[0].z0 == 0.5 && got.s[0].dzdx == 0.0);
+}
+
 /* Rows are clamped to the image: a polygon taller than a 4x3 image gets
  * exactly rows 0..2, each [0, 4). */
 static void test_rows_clamped(void **state)
@@ -428,6 +448,7 @@ int main(void)
         cmocka_unit_test(test_endpoints_apex_rows),
         cmocka_unit_test(test_rows_clamped),
         cmocka_unit_test(test_one_subpixel_top_edge),
+        cmocka_unit_test(test_widest_fan_tiny),
     };
     return cmocka_run_group_tests_name("scan_values", tests, NULL, NULL);
 }
