@@ -416,6 +416,33 @@ static void test_widest_fan_tiny(void **state)
     assert_true(got.s[0].z0 == 0.5 && got.s[0].dzdx == 0.0);
 }
 
+/* A square whose two fan triangles have equal area and one corner deep
+ * (z 0.8, the others 0): the first widest fan triangle, the flat one,
+ * gives the planes, so every span has depth 0 and slope 0.  Listed both
+ * ways round, the deep corner last of the fan each time. */
+static void test_widest_fan_first_of_equals(void **state)
+{
+    (void)state;
+    RastScreenVert sq[2][4] = {
+        {sv(2, 2, 0, 1, 1, 1), sv(10, 2, 0, 1, 1, 1), sv(10, 10, 0, 1, 1, 1),
+         sv(2, 10, 0.8, 1, 1, 1)},
+        {sv(2, 2, 0, 1, 1, 1), sv(2, 10, 0.8, 1, 1, 1), sv(10, 10, 0, 1, 1, 1),
+         sv(10, 2, 0, 1, 1, 1)}};
+    for (int k = 0; k < 4; k++) {
+        Spans got = {.n = 0};
+        RastCounters c = {0};
+        rast_scan_polygon(sq[k % 2], 4, 1, 16, 16, k / 2,
+                          (RastSpanSink){collect, &got}, &c);
+        assert_int_equal(got.n, 8);
+        for (int i = 0; i < got.n; i++)
+            if (got.s[i].z0 != 0.0 || got.s[i].dzdx != 0.0 ||
+                got.s[i].zhi != 0.8)
+                fail_msg("square %d rule %d row %d: z0 %g dzdx %g zhi %g",
+                         k % 2, k / 2, got.s[i].y, got.s[i].z0,
+                         got.s[i].dzdx, got.s[i].zhi);
+    }
+}
+
 /* Rows are clamped to the image: a polygon taller than a 4x3 image gets
  * exactly rows 0..2, each [0, 4). */
 static void test_rows_clamped(void **state)
@@ -449,6 +476,7 @@ int main(void)
         cmocka_unit_test(test_rows_clamped),
         cmocka_unit_test(test_one_subpixel_top_edge),
         cmocka_unit_test(test_widest_fan_tiny),
+        cmocka_unit_test(test_widest_fan_first_of_equals),
     };
     return cmocka_run_group_tests_name("scan_values", tests, NULL, NULL);
 }

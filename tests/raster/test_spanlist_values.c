@@ -167,6 +167,28 @@ static void test_sizes_and_sink(void **state)
     rast_spanlist_free(NULL);
 }
 
+/* Exactly 8 and 16 spans (sort scratch of a power-of-two size), in
+ * reverse order over 4 rows: sorted by row, then x_min. */
+static void test_power_of_two_counts(void **state)
+{
+    (void)state;
+    for (int n = 8; n <= 16; n += 8) {
+        RastSpanList *sl = rast_spanlist_new(16, 4);
+        for (int i = n - 1; i >= 0; i--)
+            add(sl, span(i % 4, i / 4, i / 4 + 1, (uint32_t)i, 0.5));
+        rast_spanlist_sort(sl);
+        assert_int_equal(rast_spanlist_len(sl), n);
+        for (int y = 0; y < 4; y++) {
+            size_t k;
+            const RastSpan *row = rast_spanlist_row(sl, y, &k);
+            assert_int_equal(k, n / 4);
+            for (size_t j = 0; j < k; j++)
+                assert_int_equal(row[j].prim, (uint32_t)(4 * j + y));
+        }
+        rast_spanlist_free(sl);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -174,6 +196,7 @@ int main(void)
         cmocka_unit_test(test_clear_empties_every_row),
         cmocka_unit_test(test_resort_fewer),
         cmocka_unit_test(test_sizes_and_sink),
+        cmocka_unit_test(test_power_of_two_counts),
     };
     return cmocka_run_group_tests_name("spanlist_values", tests, NULL, NULL);
 }
