@@ -1,0 +1,75 @@
+/* test_image_values.c — the bytes sim/raster/image.c writes (issue 21).
+ *
+ * A 3x2 PNG starts with the signature, an IHDR of width 3, height 2, 8-bit
+ * RGB, then an sRGB chunk (the simplified API's 8-bit sRGB default,
+ * which a stray image flag would drop); a PPM is exactly its header and
+ * the rows; pixels pack as 0xAABBGGRR and fill rounds to the nearest
+ * 1/255. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+#include <glib/gstdio.h>
+
+#include "sim/raster/image.h"
+
+static uint32_t be32(const guchar *p)
+{
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 |
+           p[3];
+}
+
+static void test_written_bytes(void **state)
+{
+    (void)state;
+    char *d = g_dir_make_tmp("rast-imgv-XXXXXX", NULL);
+    char *png = g_build_filename(d, "a.png", NULL);
+    char *ppm = g_build_filename(d, "a.ppm", NULL);
+    RastImage *img = rast_image_new(3, 2);
+    rast_image_fill(img, (RastColor){0.5f, 0.0f, 1.0f});
+    rast_image_set(img, 2, 1, 0xff030201u);
+    assert_int_equal(rast_image_get(img, 0, 0), 0xffff0080u);
+    assert_int_equal(rast_image_get(img, 2, 1), 0xff030201u);
+    GError *err = NULL;
+    assert_true(rast_image_write(img, png, &err));
+    assert_true(rast_image_write(img, ppm, &err));
+    gchar *data;
+    gsize len;
+    assert_true(g_file_get_contents(png, &data, &len, NULL));
+    const guchar *b = (const guchar *)data;
+    assert_true(len > 8 + 25 + 13);
+    assert_memory_equal(b, "\x89PNG\r\n\x1a\n", 8);
+    assert_int_equal(be32(b + 8), 13);
+    assert_memory_equal(b + 12, "IHDR", 4);
+    assert_int_equal(be32(b + 16), 3);
+    assert_int_equal(be32(b + 20), 2);
+    assert_int_equal(b[24], 8); /* bit depth */
+    assert_int_equal(b[25], 2); /* colour type: RGB */
+    assert_int_equal(be32(b + 33), 1);
+    assert_memory_equal(b + 37, "sRGB", 4);
+    g_free(data);
+    assert_true(g_file_get_contents(ppm, &data, &len, NULL));
+    const char head[] = "P6\n3 2\n255\n";
+    assert_int_equal(len, strlen(head) + 18);
+    assert_memory_equal(data, head, strlen(head));
+    const guchar px[18] = {128, 0, 255, 128, 0, 255, 128, 0, 255,
+                           128, 0, 255, 128, 0, 255, 1,   2, 3};
+    assert_memory_equal(data + strlen(head), px, 18);
+    g_free(data);
+    rast_image_free(img);
+    g_unlink(png);
+    g_unlink(ppm);
+    g_rmdir(d);
+    g_free(png);
+    g_free(ppm);
+    g_free(d);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_written_bytes),
+    };
+    return cmocka_run_group_tests_name("image_values", tests, NULL, NULL);
+}
