@@ -7,11 +7,11 @@
  * done so far; because spans come in x_min order, the columns
  * [x_min, covered) of the next span all have current-row entries and
  * the columns >= covered have none.  So the range test of the paper is
- * needed only as an assertion: the split decides everything.
+ * needed only as an assertion: the split decides everything.  Stores
+ * start at max(x_min, covered), so a row's WPA entries are in x order.
  * Per generated pixel: O(1); no per-scanline clearing.
  */
 #include "sim/raster/scanzbuf.h"
-#include <stdlib.h>
 #include <string.h>
 
 struct RastActive {
@@ -148,20 +148,4 @@ const size_t *rast_active_offsets(const RastActive *a)
 size_t rast_active_count(const RastActive *a)
 {
     return a->wpa->len;
-}
-
-static int cmp_x(const void *pa, const void *pb)
-{
-    const RastActivePixel *a = pa, *b = pb;
-    return (a->x > b->x) - (a->x < b->x);
-}
-
-void rast_active_sort_rows(RastActive *a)
-{
-    RastActivePixel *p = (RastActivePixel *)a->wpa->data;
-    for (int y = 0; y < a->height; y++) {
-        size_t k = a->offsets[y + 1] - a->offsets[y];
-        if (k > 1)
-            qsort(p + a->offsets[y], k, sizeof *p, cmp_x);
-    }
 }

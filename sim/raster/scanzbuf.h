@@ -23,7 +23,9 @@
  *
  * The winners and the image equal those of the full z-buffer (same
  * depth-tie rule, rast_depth_wins()).  Within a row the active pixels
- * are in generation order; rast_active_sort_rows() orders them by x.
+ * are in x order: a span stores only the columns right of every column
+ * stored before it in the row (the split), so generation order is x
+ * order and no sort is needed.
  * Cost: O(W) once per frame plus O(1) per generated pixel; memory
  * O(W + active pixels).
  */
@@ -63,8 +65,5 @@ const RastActivePixel *rast_active_row(const RastActive *a, int y, size_t *n);
  * active pixel counts used for load balancing (seed 003, §4). Borrowed. */
 const size_t *rast_active_offsets(const RastActive *a);
 size_t rast_active_count(const RastActive *a);
-
-/* Orders each row's active pixels by x (O(n log n) per row). */
-void rast_active_sort_rows(RastActive *a);
 
 #endif
