@@ -4,7 +4,7 @@
  * RGB, then an sRGB chunk (the simplified API's 8-bit sRGB default,
  * which a stray image flag would drop); a PPM is exactly its header and
  * the rows; pixels pack as 0xAABBGGRR and fill rounds to the nearest
- * 1/255. */
+ * 1/255; readers take sides from 1 to RAST_MAX_SIDE and refuse more. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -66,10 +66,81 @@ static void test_written_bytes(void **state)
     g_free(d);
 }
 
+static char *write_png(const char *d, const char *name, int w, int h)
+{
+    char *path = g_build_filename(d, name, NULL);
+    RastImage *img = rast_image_new(w, h);
+    rast_image_set(img, w - 1, h - 1, 0xff0a0b0cu);
+    GError *err = NULL;
+    assert_true(rast_image_write_png(img, path, &err));
+    rast_image_free(img);
+    return path;
+}
+
+/* Sides of 1 and of exactly RAST_MAX_SIDE read back; one more is "bad
+ * size"; missing files are I/O errors; a 1 x RAST_MAX_SIDE PPM reads.
+ * GLib warnings are fatal here (main), so an error set twice fails. */
+static void test_read_limits(void **state)
+{
+    (void)state;
+    char *d = g_dir_make_tmp("rast-imgl-XXXXXX", NULL);
+    const int sides[3][2] = {{RAST_MAX_SIDE, 1}, {1, RAST_MAX_SIDE}, {1, 1}};
+    for (int k = 0; k < 3; k++) {
+        char *path = write_png(d, "ok.png", sides[k][0], sides[k][1]);
+        GError *err = NULL;
+        RastImage *back = rast_image_read_png(path, &err);
+        assert_non_null(back);
+        assert_int_equal(back->width, sides[k][0]);
+        assert_int_equal(back->height, sides[k][1]);
+        assert_int_equal(rast_image_get(back, back->width - 1, back->height - 1),
+                         0xff0a0b0cu);
+        rast_image_free(back);
+        g_unlink(path);
+        g_free(path);
+    }
+    for (int k = 0; k < 2; k++) {
+        char *path = write_png(d, "big.png", k ? 1 : RAST_MAX_SIDE + 1,
+                               k ? RAST_MAX_SIDE + 1 : 1);
+        GError *err = NULL;
+        assert_null(rast_image_read_png(path, &err));
+        assert_true(g_error_matches(err, SIM_ERROR, SIM_ERROR_IO));
+        assert_true(g_str_has_suffix(err->message, ": bad size"));
+        g_clear_error(&err);
+        g_unlink(path);
+        g_free(path);
+    }
+    char *none = g_build_filename(d, "none.png", NULL);
+    GError *err = NULL;
+    assert_null(rast_image_read_png(none, &err));
+    assert_true(g_error_matches(err, SIM_ERROR, SIM_ERROR_IO));
+    g_clear_error(&err);
+    assert_null(rast_image_read_ppm(none, &err));
+    assert_non_null(err);
+    g_clear_error(&err);
+    /* a PPM one pixel wide and RAST_MAX_SIDE high */
+    char *ppm = g_build_filename(d, "tall.ppm", NULL);
+    RastImage *tall = rast_image_new(1, RAST_MAX_SIDE);
+    rast_image_set(tall, 0, RAST_MAX_SIDE - 1, 0xff030201u);
+    assert_true(rast_image_write_ppm(tall, ppm, &err));
+    RastImage *back = rast_image_read_ppm(ppm, &err);
+    assert_non_null(back);
+    assert_true(rast_image_equal(back, tall));
+    rast_image_free(back);
+    rast_image_free(tall);
+    g_unlink(ppm);
+    g_free(ppm);
+    g_free(none);
+    g_rmdir(d);
+    g_free(d);
+}
+
 int main(void)
 {
+    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
+                           G_LOG_LEVEL_CRITICAL);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_written_bytes),
+        cmocka_unit_test(test_read_limits),
     };
     return cmocka_run_group_tests_name("image_values", tests, NULL, NULL);
 }
