@@ -32,12 +32,19 @@ static void rect_span(void *ctx, const RastSpan *s, RastCounters *c)
     c->zcompares += (uint64_t)(x1 - x0);
 }
 
-/* Random triangles (some past the screen's sides, half back-facing) and
- * a 12-gon reaching through the near plane. */
+/* Random triangles (some past the screen's sides, half back-facing), a
+ * nonagon and a 12-gon reaching through the near plane. */
 static SceneMesh *test_mesh(void)
 {
     SceneMesh *m = tu_random_tris(7, 400, 0.5);
     uint32_t idx[12];
+    /* a nonagon (RAST_POLY_MAX corners): one primitive of nine vertices */
+    for (int k = 0; k < 9; k++) {
+        double a = 2 * G_PI * k / 9;
+        idx[k] = scene_mesh_add_vertex(
+            m, vec3(-0.5 + 0.3 * cos(a), 0.4 + 0.3 * sin(a), 0.2));
+    }
+    scene_mesh_add_poly(m, idx, 9, scene_color(1, 1, 1), 0);
     for (int k = 0; k < 12; k++) {
         double a = 2 * G_PI * k / 12;
         idx[k] = scene_mesh_add_vertex(
