@@ -264,6 +264,30 @@ static void test_w_plane_cut(void **state)
     }
 }
 
+/* Only the planes some corner is outside of are applied: two corners on
+ * the right plane (x = g w, g = 1.7) and one beyond the near plane; the
+ * near cut on the edge along the right plane rounds 2e-16 past it, and
+ * is kept as it is, not cut again (the polygon stays a quad). */
+static void test_only_outcode_planes(void **state)
+{
+    (void)state;
+    RastVert t[3] = {
+        cv(2.4309753081198258, -0.16977793495316196, -0.43571258552789138,
+           1.4299854753646033, 1, 1, 1),
+        cv(1.3408351564419687, 0.29081897599213413, -1.3777739746111786,
+           0.78872656261292273, 1, 1, 1),
+        cv(0.15469342675443754, 0.48569348099674103, 0.088715405219625731,
+           0.77346713377218757, 1, 1, 1)};
+    assert_int_equal(rast_clip_outcode(t[0].pos, 1.7), 0);
+    assert_int_equal(rast_clip_outcode(t[1].pos, 1.7), RAST_OUT_NEAR);
+    assert_int_equal(rast_clip_outcode(t[2].pos, 1.7), 0);
+    RastVert out[RAST_CLIP_MAX];
+    assert_int_equal(rast_clip_polygon(t, 3, 1.7, out), 4);
+    assert_vert(&out[0], &t[0], 0);
+    assert_vert(&out[3], &t[2], 3);
+    assert_true(1.7 * out[1].pos.w - out[1].pos.x < 0); /* the case is real */
+}
+
 static RastVert rand_vert(SimRng *r)
 {
     return cv(-3 + 6 * sim_rng_uniform(r), -3 + 6 * sim_rng_uniform(r),
@@ -318,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_behind_eye_cuts_stay_on_plane),
         cmocka_unit_test(test_w_plane_cut),
         cmocka_unit_test(test_single_coordinate_edges),
+        cmocka_unit_test(test_only_outcode_planes),
     };
     return cmocka_run_group_tests_name("clip_values", tests, NULL, NULL);
 }
