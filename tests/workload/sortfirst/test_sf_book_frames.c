@@ -10,7 +10,8 @@
  * share a 16 x 16 screen in 8 x 8 tiles (0 top left, 1 top right, 2
  * bottom left, 3 bottom right).  Each test places the instances' screen
  * rectangles by hand, so need[] is known, and runs the processors' sorts,
- * the deliveries and the render sets as a frame of sf_frame.c does. */
+ * the deliveries and the render sets as a frame of sf_frame.c does;
+ * then counts the §3.5 traversal (sf_trav.h) on the state reached. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -18,6 +19,7 @@
 #include <string.h>
 
 #include "sim/workload/sortfirst/sf_book.h"
+#include "sim/workload/sortfirst/sf_trav.h"
 
 #define P 4
 
@@ -98,14 +100,16 @@ enum { T0, T1, T2, T3, BOTTOM, OFF };
 
 static WlSfScreen at(int where)
 {
-    static const double box[][4] = {{2, 2, 4, 4},     {10, 2, 12, 4},
-                                    {2, 10, 4, 12},   {10, 10, 12, 12},
+    static const double box[][4] = {{2, 2, 4, 4},
+                                    {10, 2, 12, 4},
+                                    {2, 10, 4, 12},
+                                    {10, 10, 12, 12},
                                     {2, 10, 12, 12}};
     if (where == OFF)
         return (WlSfScreen){.on = FALSE};
     const double *b = box[where];
-    return (WlSfScreen){.on = TRUE, .x0 = b[0], .y0 = b[1], .x1 = b[2],
-                        .y1 = b[3]};
+    return (WlSfScreen){
+        .on = TRUE, .x0 = b[0], .y0 = b[1], .x1 = b[2], .y1 = b[3]};
 }
 
 static void set_need(Rig *r, int i0, int i1, int i2, int i3)
@@ -149,15 +153,15 @@ typedef struct {
 static void expect_work(const Rig *r, guint p, Work x)
 {
     const WlSfBookWork *w = &r->w[p];
-    const uint64_t got[] = {w->master_boxes, w->slave_boxes, w->new_boxes,
-                            w->sent_chunks, w->sent_polys, w->sent_insts,
-                            w->sent_bytes, w->recv_chunks, w->recv_polys,
-                            w->recv_insts, w->deleted_chunks, w->probe_boxes,
-                            w->requested, w->handed, w->collected,
-                            w->held_chunks, w->held_polys};
-    const uint64_t want[] = {x.mb, x.sb, x.nb, x.sc, x.sp, x.si, x.sby, x.rc,
-                             x.rp, x.ri, x.del, x.probe, x.req, x.hand,
-                             x.coll, x.hc, x.hp};
+    const uint64_t got[] = {w->master_boxes, w->slave_boxes,    w->new_boxes,
+                            w->sent_chunks,  w->sent_polys,     w->sent_insts,
+                            w->sent_bytes,   w->recv_chunks,    w->recv_polys,
+                            w->recv_insts,   w->deleted_chunks, w->probe_boxes,
+                            w->requested,    w->handed,         w->collected,
+                            w->held_chunks,  w->held_polys};
+    const uint64_t want[] = {x.mb,  x.sb,   x.nb,   x.sc, x.sp,  x.si,
+                             x.sby, x.rc,   x.rp,   x.ri, x.del, x.probe,
+                             x.req, x.hand, x.coll, x.hc, x.hp};
     static const char *const name[] = {
         "master_boxes", "slave_boxes", "new_boxes",  "sent_chunks",
         "sent_polys",   "sent_insts",  "sent_bytes", "recv_chunks",
@@ -218,15 +222,17 @@ static void test_maxset_push(void **st)
     set_need(&r, T0, T1, BOTTOM, OFF);
     expect_vec(r.b->need, 1, 2, 12, 0, "need");
     push_frame(&r);
-    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
-    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 1, 312, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 2});
-    expect_work(&r, 1, (Work){2, 0, 1, 2, 2, 2, 360, 1, 2, 1, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 2, (Work){0, 0, 1, 0, 0, 0, 192, 1, 1, 1, 0, 0, 0, 0, 0,
-                              1, 1});
-    expect_work(&r, 3, (Work){0, 0, 1, 0, 0, 0, 192, 1, 1, 1, 0, 0, 0, 0, 0,
-                              1, 1});
+    /* Work: boxes (master, slave, new), sent (chunks, polys, pointers,
+     * bytes), received (chunks, polys, pointers), deleted, probes,
+     * requests, handed, collected, held (chunks, polys) */
+    expect_work(&r, 0,
+                (Work){2, 0, 0, 1, 2, 1, 312, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2});
+    expect_work(&r, 1,
+                (Work){2, 0, 1, 2, 2, 2, 360, 1, 2, 1, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 2,
+                (Work){0, 0, 1, 0, 0, 0, 192, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1});
+    expect_work(&r, 3,
+                (Work){0, 0, 1, 0, 0, 0, 192, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1});
     expect_render(&r, 0, 1u << 0);
     expect_render(&r, 1, 1u << 1);
     expect_render(&r, 2, 1u << 2);
@@ -246,14 +252,14 @@ static void test_maxset_push(void **st)
     assert_int_equal(wl_sf_book_memory(r.b, 2), 76 + 8);
     set_need(&r, T1, OFF, T2, T0);
     push_frame(&r);
-    expect_work(&r, 0, (Work){2, 0, 1, 0, 0, 1, 200, 1, 1, 1, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 1, (Work){2, 1, 1, 1, 1, 1, 276, 0, 0, 1, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 2, (Work){0, 1, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 1});
-    expect_work(&r, 3, (Work){0, 1, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 0,
-                              0, 0});
+    expect_work(&r, 0,
+                (Work){2, 0, 1, 0, 0, 1, 200, 1, 1, 1, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 1,
+                (Work){2, 1, 1, 1, 1, 1, 276, 0, 0, 1, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 2,
+                (Work){0, 1, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1});
+    expect_work(&r, 3,
+                (Work){0, 1, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0});
     expect_render(&r, 0, 1u << 3);
     expect_render(&r, 1, 1u << 0);
     expect_render(&r, 2, 1u << 2);
@@ -278,15 +284,14 @@ static void test_minset_push(void **st)
     rig_init(&r, WL_SF_MINSET, WL_SF_PUSH, WL_SF_FIXED);
     set_need(&r, T0, T1, BOTTOM, OFF);
     push_frame(&r);
-    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
-    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 0, 304, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 2});
-    expect_work(&r, 1, (Work){2, 0, 2, 2, 2, 0, 344, 1, 2, 0, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 2, (Work){0, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0,
-                              1, 1});
-    expect_work(&r, 3, (Work){0, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0,
-                              1, 1});
+    expect_work(&r, 0,
+                (Work){2, 0, 0, 1, 2, 0, 304, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2});
+    expect_work(&r, 1,
+                (Work){2, 0, 2, 2, 2, 0, 344, 1, 2, 0, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 2,
+                (Work){0, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0, 1, 1});
+    expect_work(&r, 3,
+                (Work){0, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0, 1, 1});
     /* the header names the first instance of the chunk in dst's region */
     assert_int_equal(r.out[0][1].insts->len, 1);
     assert_int_equal(g_array_index(r.out[0][1].insts, guint, 0), 1);
@@ -301,14 +306,14 @@ static void test_minset_push(void **st)
     assert_int_equal(wl_sf_book_memory(r.b, 1), 1 + 112 + 76);
     set_need(&r, T1, OFF, T2, T0);
     push_frame(&r);
-    expect_work(&r, 0, (Work){2, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 1, (Work){2, 2, 0, 1, 1, 0, 268, 0, 0, 0, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 2, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 1});
-    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 1});
+    expect_work(&r, 0,
+                (Work){2, 0, 2, 0, 0, 0, 192, 1, 1, 0, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 1,
+                (Work){2, 2, 0, 1, 1, 0, 268, 0, 0, 0, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 2,
+                (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1});
+    expect_work(&r, 3,
+                (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1});
     assert_int_equal(g_array_index(r.out[1][0].insts, guint, 0), 3);
     expect_render(&r, 0, 1u << 3);
     expect_render(&r, 1, 1u << 0);
@@ -319,12 +324,12 @@ static void test_minset_push(void **st)
     check_ok(&r);
     set_need(&r, OFF, OFF, OFF, OFF);
     push_frame(&r);
-    expect_work(&r, 0, (Work){2, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 0,
-                              0, 0});
-    expect_work(&r, 2, (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 1});
+    expect_work(&r, 0,
+                (Work){2, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 3,
+                (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0});
+    expect_work(&r, 2,
+                (Work){0, 2, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1});
     assert_int_equal(r.b->held_data[1], 7);
     for (guint p = 0; p < P; p++)
         expect_render(&r, p, 0);
@@ -346,8 +351,9 @@ static void test_dynamic_maxset(void **st)
     /* chunk 1's master (1) needs neither instance in frame 1: it hands
      * the mastership to 2, the lowest region needing it (none held it
      * before: uni & held is empty), sends 2 the chunk anyway */
-    expect_work(&r, 1, (Work){2, 0, 1, 2, 2, 2, 360 + 16 + 2 * 9, 1, 2, 1, 1,
-                              0, 0, 1, 0, 1, 2});
+    expect_work(&r, 1,
+                (Work){2, 0, 1, 2, 2, 2, 360 + 16 + 2 * 9, 1, 2, 1, 1, 0, 0, 1,
+                       0, 1, 2});
     assert_int_equal(wl_sf_book_master(r.b, 0), 0);
     assert_int_equal(wl_sf_book_master(r.b, 1), 2);
     assert_int_equal(r.out[1][2].masters->len, 1);
@@ -380,11 +386,11 @@ static void test_dynamic_minset(void **st)
     rig_init(&r, WL_SF_MINSET, WL_SF_PUSH, WL_SF_DYNAMIC);
     set_need(&r, T0, T1, BOTTOM, OFF);
     push_frame(&r);
-    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
-    expect_work(&r, 1, (Work){2, 0, 2, 2, 2, 0, 344 + 16, 1, 2, 0, 1, 0, 0, 1,
-                              0, 1, 2});
-    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 0, 304, 0, 0, 0, 0, 0, 0, 0, 0,
-                              1, 2});
+    expect_work(
+        &r, 1,
+        (Work){2, 0, 2, 2, 2, 0, 344 + 16, 1, 2, 0, 1, 0, 0, 1, 0, 1, 2});
+    expect_work(&r, 0,
+                (Work){2, 0, 0, 1, 2, 0, 304, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2});
     assert_int_equal(wl_sf_book_master(r.b, 1), 2);
     assert_int_equal(r.b->master_data[1], 12);
     assert_int_equal(r.b->held_data[1], 12);
@@ -434,15 +440,15 @@ static void test_pull(void **st)
     rig_init(&r, WL_SF_MINSET, WL_SF_PULL, WL_SF_FIXED);
     set_need(&r, T0, T1, BOTTOM, OFF);
     pull_frame(&r);
-    /*                mb sb nb sc sp si sby  rc rp ri del pr rq h co hc hp */
-    expect_work(&r, 0, (Work){2, 0, 0, 1, 2, 0, 176, 0, 0, 0, 0, 2, 0, 0, 0,
-                              1, 2});
-    expect_work(&r, 1, (Work){2, 0, 2, 2, 2, 0, 72 + 2 * 140, 1, 2, 0, 0, 2,
-                              1, 0, 0, 2, 3});
-    expect_work(&r, 2, (Work){0, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 4, 1, 0, 0,
-                              1, 1});
-    expect_work(&r, 3, (Work){0, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 4, 1, 0, 0,
-                              1, 1});
+    expect_work(&r, 0,
+                (Work){2, 0, 0, 1, 2, 0, 176, 0, 0, 0, 0, 2, 0, 0, 0, 1, 2});
+    expect_work(
+        &r, 1,
+        (Work){2, 0, 2, 2, 2, 0, 72 + 2 * 140, 1, 2, 0, 0, 2, 1, 0, 0, 2, 3});
+    expect_work(&r, 2,
+                (Work){0, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 4, 1, 0, 0, 1, 1});
+    expect_work(&r, 3,
+                (Work){0, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 4, 1, 0, 0, 1, 1});
     assert_int_equal(g_array_index(r.reply[0][1].insts, guint, 0), 1);
     expect_render(&r, 0, 1u << 0);
     expect_render(&r, 1, 1u << 1);
@@ -451,22 +457,116 @@ static void test_pull(void **st)
     check_ok(&r);
     set_need(&r, T1, OFF, T2, T0);
     pull_frame(&r);
-    expect_work(&r, 0, (Work){2, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 2, 1, 0, 0,
-                              2, 3});
-    expect_work(&r, 1, (Work){2, 2, 0, 1, 1, 0, 140, 0, 0, 0, 0, 0, 0, 0, 0,
-                              2, 3});
-    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0,
-                              1, 1});
+    expect_work(&r, 0,
+                (Work){2, 0, 2, 0, 0, 0, 72, 1, 1, 0, 0, 2, 1, 0, 0, 2, 3});
+    expect_work(&r, 1,
+                (Work){2, 2, 0, 1, 1, 0, 140, 0, 0, 0, 0, 0, 0, 0, 0, 2, 3});
+    expect_work(&r, 3,
+                (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 1, 1});
     expect_render(&r, 0, 1u << 3);
     expect_render(&r, 3, 0);
     check_ok(&r);
     set_need(&r, OFF, OFF, OFF, OFF);
     pull_frame(&r);
-    expect_work(&r, 2, (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0,
-                              1, 1});
-    expect_work(&r, 3, (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 0, 0,
-                              0, 0});
+    expect_work(&r, 2,
+                (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 1, 1});
+    expect_work(&r, 3,
+                (Work){0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 0, 0, 0, 0});
     assert_int_equal(r.b->held_data[1], 7);
+    rig_clear(&r);
+}
+
+/* ---- §3.5 traversal counts of the book's state (sf_trav.h) ----------- */
+
+/* The max-set tree: node 0 the root (structure 0, no primitive), nodes
+ * 1 and 2 its two executions of "a"; instances 0 and 2 (chunks 0, 1)
+ * sit at node 1, 1 and 3 at node 2. */
+static void expect_trav(const Rig *r, WlSfTravMode mode, uint64_t plain,
+                        uint64_t flags, uint64_t culled, uint64_t both,
+                        uint64_t boxes, uint64_t tests, const uint64_t *per)
+{
+    WlSfTrav t = {0};
+    WlSfTravProc tp[P];
+    memset(tp, 0xff, sizeof tp); /* cleared by the count */
+    wl_sf_trav_count(r->b, mode, &t, tp);
+    const uint64_t got[] = {t.plain, t.flags,        t.culled,
+                            t.both,  t.boxes_culled, t.tests};
+    const uint64_t want[] = {plain, flags, culled, both, boxes, tests};
+    for (guint k = 0; k < G_N_ELEMENTS(got); k++)
+        if (got[k] != want[k])
+            fail_msg("%s: total %u: %llu, expected %llu",
+                     wl_sf_trav_names[mode], k, (unsigned long long)got[k],
+                     (unsigned long long)want[k]);
+    for (guint p = 0; p < P; p++) {
+        const uint64_t g[] = {tp[p].nodes, tp[p].tests, tp[p].master_culled,
+                              tp[p].slave_culled};
+        for (guint k = 0; k < 4; k++)
+            if (g[k] != per[4 * p + k])
+                fail_msg("%s: processor %u field %u: %llu, expected %llu",
+                         wl_sf_trav_names[mode], p, k, (unsigned long long)g[k],
+                         (unsigned long long)per[4 * p + k]);
+    }
+}
+
+/* After max-set frame 1 of test_maxset_push, instances 0 and 2 (node 1)
+ * on screen, node 2 off.  Marks: node 1 has chunk 0's master and copies
+ * (processors 0, 1 by pointer) and chunk 1's (1, 2, 3): 15; node 2:
+ * processors 0, 1 (instance 1's pointers, instance 3's master): 3;
+ * the root gathers 15.  Flags: 4 + 4 + 2; culled scans nodes 0 and 1
+ * (4 + 4); with flags 4 + 4.  Boxes culled at node 2: instance 1's
+ * master (0) and slave (1), instance 3's master (1).  Volume tests:
+ * every node is entered (its parent is on): culled 3 per processor;
+ * with flags the processors marked at the node (nodes 0, 1: all; node
+ * 2: 0 and 1). */
+static void test_trav_maxset(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED);
+    for (guint i = 0; i < 4; i++)
+        assert_int_equal(wl_sf_inst(r.db, i)->node, 1 + i % 2);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    push_frame(&r);
+    set_need(&r, T0, OFF, T2, OFF);
+    /* nodes, tests, master culled, slave culled per processor */
+    static const uint64_t plain[] = {3, 0, 0, 0, 3, 0, 0, 0,
+                                     3, 0, 0, 0, 3, 0, 0, 0};
+    static const uint64_t flags[] = {3, 0, 0, 0, 3, 0, 0, 0,
+                                     2, 0, 0, 0, 2, 0, 0, 0};
+    static const uint64_t culled[] = {2, 3, 1, 0, 2, 3, 1, 1,
+                                      2, 3, 0, 0, 2, 3, 0, 0};
+    static const uint64_t both[] = {2, 3, 1, 0, 2, 3, 1, 1,
+                                    2, 2, 0, 0, 2, 2, 0, 0};
+    expect_trav(&r, WL_SF_TRAV_PLAIN, 12, 10, 8, 8, 3, 0, plain);
+    expect_trav(&r, WL_SF_TRAV_FLAGS, 12, 10, 8, 8, 3, 0, flags);
+    expect_trav(&r, WL_SF_TRAV_CULLED, 12, 10, 8, 8, 3, 12, culled);
+    expect_trav(&r, WL_SF_TRAV_BOTH, 12, 10, 8, 8, 3, 10, both);
+    /* the counts add to what the caller holds; per may be NULL */
+    WlSfTrav t = {.plain = 100, .tests = 7};
+    wl_sf_trav_count(r.b, WL_SF_TRAV_CULLED, &t, NULL);
+    assert_int_equal(t.plain, 112);
+    assert_int_equal(t.tests, 19);
+    rig_clear(&r);
+}
+
+/* The same with min-set: a node's flag is its structure's (the root
+ * holds no chunk: 0; "a": every processor mastering or holding one of
+ * its chunks, 15), and a culled chunk's holders are its copies: chunk
+ * 0's master 0 and copy 1, chunk 1's master 1 and copies 2, 3. */
+static void test_trav_minset(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MINSET, WL_SF_PUSH, WL_SF_FIXED);
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    push_frame(&r);
+    set_need(&r, T0, OFF, T2, OFF);
+    static const uint64_t flags[] = {2, 0, 0, 0, 2, 0, 0, 0,
+                                     2, 0, 0, 0, 2, 0, 0, 0};
+    static const uint64_t both[] = {1, 3, 1, 0, 1, 3, 1, 1,
+                                    1, 3, 0, 1, 1, 3, 0, 1};
+    expect_trav(&r, WL_SF_TRAV_FLAGS, 12, 8, 8, 4, 5, 0, flags);
+    expect_trav(&r, WL_SF_TRAV_BOTH, 12, 8, 8, 4, 5, 12, both);
     rig_clear(&r);
 }
 
@@ -478,6 +578,8 @@ int main(void)
         cmocka_unit_test(test_dynamic_maxset),
         cmocka_unit_test(test_dynamic_minset),
         cmocka_unit_test(test_pull),
+        cmocka_unit_test(test_trav_maxset),
+        cmocka_unit_test(test_trav_minset),
     };
     return cmocka_run_group_tests_name("sf_book_frames", tests, NULL, NULL);
 }

@@ -128,15 +128,15 @@ static void expect_busy(const Rig *r, const WlSfFrameStats *st,
 {
     double total = 0, max = 0;
     for (guint p = 0; p < P; p++) {
-        double b = (double)(mach_proc_busy(mach_proc(r->m, "node", p)) -
-                            busy0[p]);
+        double b =
+            (double)(mach_proc_busy(mach_proc(r->m, "node", p)) - busy0[p]);
         assert_true(b > 0);
         total += b;
         max = MAX(max, b);
     }
     expect_near(st->imbalance, max * P / total, "imbalance");
-    expect_near(st->utilisation,
-                total / ((double)(st->end - st->start) * P), "utilisation");
+    expect_near(st->utilisation, total / ((double)(st->end - st->start) * P),
+                "utilisation");
     assert_true(st->end > st->start);
     /* traversal: node visits and 8 vertices a volume test */
     SimTime t = r->c.node_visit * st->trav.plain +
@@ -248,8 +248,8 @@ static void test_pull(void **st)
     rig_clear(&r);
 }
 
-static void expect_rect(const WlSfRegions *g, guint p, int x0, int y0,
-                        int x1, int y1)
+static void expect_rect(const WlSfRegions *g, guint p, int x0, int y0, int x1,
+                        int y1)
 {
     WlSfRect q = g->rect[p];
     if (q.x0 != x0 || q.y0 != y0 || q.x1 != x1 || q.y1 != y1)

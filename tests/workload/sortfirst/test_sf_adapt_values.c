@@ -1,0 +1,212 @@
+/* test_sf_adapt_values.c — the adaptive grid's estimate, weights and
+ * calibration (sf_adapt.h) on values worked out by hand.
+ *
+ * The estimate: the five triangles of sf_test_hand_db() (one chunk
+ * each, chunk c mastered by c mod 2) seen by an orthographic camera of
+ * height 2 (screen x = 8 (wx + 1), y = 8 (1 - wy) on 16 x 16 pixels),
+ * on a 4 x 4 grid of 4-pixel cells: each on-screen instance adds its
+ * polygons to the cell of its box's centre, clipped to the screen; with
+ * prediction the centre moves to 2 c - c_last, clamped to the screen.
+ * weight_in sums the cells whose corner pixel lies in a rectangle;
+ * calibrate sets each cell's factor to its region's work per weight. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <string.h>
+
+#include "sim/workload/sortfirst/sf_adapt.h"
+#include "tests/workload/sortfirst/sf_testutil.h"
+
+static Mat4 ortho(void)
+{
+    SceneCamera c = {.proj = SCENE_ORTHOGRAPHIC,
+                     .eye = vec3(0, 0, 5),
+                     .target = vec3(0, 0, 0),
+                     .up = vec3(0, 1, 0),
+                     .fov_deg = 45,
+                     .height = 2,
+                     .near = 1,
+                     .far = 10,
+                     .aspect = 1};
+    return scene_camera_view_proj(&c);
+}
+
+/* The 16 weights, as "cell:weight" pairs of the non-zero ones. */
+static void expect_weights(const WlSfAdapt *a, const char *want)
+{
+    GString *got = g_string_new("");
+    for (guint i = 0; i < 16; i++)
+        if (a->weight[i])
+            g_string_append_printf(got, "%s%u:%llu", got->len ? " " : "", i,
+                                   (unsigned long long)a->weight[i]);
+    if (strcmp(got->str, want))
+        fail_msg("weights %s, expected %s", got->str, want);
+    g_string_free(got, TRUE);
+}
+
+static void expect_procs(const uint64_t *v, uint64_t a, uint64_t b,
+                         const char *what)
+{
+    if (v[0] != a || v[1] != b)
+        fail_msg("%s %llu %llu, expected %llu %llu", what,
+                 (unsigned long long)v[0], (unsigned long long)v[1],
+                 (unsigned long long)a, (unsigned long long)b);
+}
+
+/* Scaled by 0.1 about the origin every triangle is on screen: box
+ * centres (screen) T0 (7.6, 7.6) cell 5, T1 (8.4, 7.6) cell 6, T2 (8, 8)
+ * cell 10, T3 (10.6, 7.8) cell 6, T4 (10.6, 8.6) cell 10.  Processor 0
+ * masters T0, T2, T4 (3 added, in cells 5 and 10: 2 non-zero), 1
+ * masters T1, T3 (2 added, both in cell 6: 1 non-zero).  At full scale
+ * T3 and T4 are off: T0 (4, 4) cell 5 (a centre on a cell edge is in
+ * the cell after it), T1 (12, 4) cell 7, T2 (8, 8) cell 10. */
+static void test_estimate(void **st)
+{
+    (void)st;
+    SceneDb *src = sf_test_hand_db();
+    WlSfDb *db = wl_sf_db_new(src, 2, 1, WL_SF_CHUNK_UNSORTED, NULL);
+    assert_non_null(db);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 16, 16);
+    WlSfAdapt *a = wl_sf_adapt_new(4, 2);
+    for (int k = 0; k < 2; k++) { /* a second estimate starts afresh */
+        wl_sf_adapt_estimate(a, db, &r,
+                             mat4_mul(ortho(), mat4_scale(0.1, 0.1, 0.1)));
+        expect_weights(a, "5:1 6:2 10:2");
+        expect_procs(a->added, 3, 2, "added");
+        expect_procs(a->nz, 2, 1, "nz");
+        assert_int_equal(a->predicted, 0);
+    }
+    wl_sf_adapt_estimate(a, db, &r, ortho());
+    expect_weights(a, "5:1 7:1 10:1");
+    expect_procs(a->added, 2, 1, "added");
+    expect_procs(a->nz, 2, 1, "nz");
+    /* every cell's weight adds up in weight_in over the whole screen */
+    assert_int_equal(wl_sf_adapt_weight_in(a, &r, (WlSfRect){0, 0, 16, 16}), 3);
+    wl_sf_adapt_free(a);
+    wl_sf_db_free(db);
+    scene_db_free(src);
+}
+
+/* Prediction: frame 1 at full scale (centres as above, none predicted);
+ * frame 2 moved 2 px right (world + 0.25): T0 (6, 4), T1 (14, 4), T2
+ * (10, 8) extrapolate to (8, 4) cell 6, (16, 4) clamped cell 7, (12, 8)
+ * cell 11; 3 predicted.  Without prediction: cells 5, 7, 10.  Frame 3
+ * far off screen forgets every history, so frame 4 (back at frame 1's
+ * view) predicts nothing. */
+static void test_predict(void **st)
+{
+    (void)st;
+    SceneDb *src = sf_test_hand_db();
+    WlSfDb *db = wl_sf_db_new(src, 2, 1, WL_SF_CHUNK_UNSORTED, NULL);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 16, 16);
+    WlSfAdapt *a = wl_sf_adapt_new(4, 2), *plain = wl_sf_adapt_new(4, 2);
+    wl_sf_adapt_predict(a, wl_sf_n_insts(db));
+    Mat4 moved = mat4_mul(ortho(), mat4_translate(0.25, 0, 0));
+    wl_sf_adapt_estimate(a, db, &r, ortho());
+    expect_weights(a, "5:1 7:1 10:1");
+    assert_int_equal(a->predicted, 0);
+    wl_sf_adapt_estimate(a, db, &r, moved);
+    expect_weights(a, "6:1 7:1 11:1");
+    assert_int_equal(a->predicted, 3);
+    wl_sf_adapt_estimate(plain, db, &r, moved);
+    expect_weights(plain, "5:1 7:1 10:1");
+    assert_int_equal(plain->predicted, 0);
+    wl_sf_adapt_estimate(a, db, &r,
+                         mat4_mul(ortho(), mat4_translate(50, 0, 0)));
+    expect_weights(a, "");
+    for (guint i = 0; i < 5; i++)
+        assert_int_equal(a->last_ok[i], 0);
+    wl_sf_adapt_estimate(a, db, &r, ortho());
+    expect_weights(a, "5:1 7:1 10:1");
+    assert_int_equal(a->predicted, 0);
+    /* the history kept: the centres of the last estimate */
+    assert_true(a->last_x[0] == 4 && a->last_y[0] == 4);
+    assert_true(a->last_x[2] == 8 && a->last_y[2] == 8);
+    assert_int_equal(a->last_ok[1], 1);
+    assert_int_equal(a->last_ok[3], 0);
+    wl_sf_adapt_free(plain);
+    wl_sf_adapt_free(a);
+    wl_sf_db_free(db);
+    scene_db_free(src);
+}
+
+/* Cell i weighs 2^i, so a sum names its cells.  On 16 px a cell's
+ * corner is at 4 x; on 10 px at 0, 2, 5, 7 (x w / G, rounded down). */
+static void test_weight_in(void **st)
+{
+    (void)st;
+    WlSfAdapt *a = wl_sf_adapt_new(4, 4);
+    for (guint i = 0; i < 16; i++)
+        a->weight[i] = 1u << i;
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 4, 16, 16);
+    static const struct {
+        WlSfRect q;
+        uint64_t want;
+    } cases[] = {
+        {{0, 0, 16, 16}, 0xffff},
+        {{-5, -5, 21, 21}, 0xffff}, /* beyond the screen: each cell once */
+        {{4, 4, 8, 8}, 1u << 5},
+        {{0, 0, 4, 4}, 1},
+        {{0, 0, 5, 5}, 1 | 2 | 16 | 32},
+        {{5, 4, 12, 8}, 1u << 6},
+        {{1, 1, 4, 4}, 0},
+        {{12, 12, 16, 16}, 1u << 15},
+        {{8, 0, 16, 8}, 4 | 8 | 64 | 128},
+    };
+    for (guint k = 0; k < G_N_ELEMENTS(cases); k++) {
+        uint64_t got = wl_sf_adapt_weight_in(a, &r, cases[k].q);
+        if (got != cases[k].want)
+            fail_msg("case %u: %#llx, expected %#llx", k,
+                     (unsigned long long)got,
+                     (unsigned long long)cases[k].want);
+    }
+    wl_sf_regions_init(&r, 4, 10, 10);
+    assert_int_equal(wl_sf_adapt_weight_in(a, &r, (WlSfRect){2, 0, 5, 10}),
+                     2 | 32 | 512 | 8192);
+    assert_int_equal(wl_sf_adapt_weight_in(a, &r, (WlSfRect){0, 5, 10, 7}),
+                     0xf00);
+    wl_sf_adapt_free(a);
+}
+
+/* Four 8 x 8 tiles over 4 x 4 cells.  Tile 0 weighs 10 (cell 0) and
+ * worked 50: factor 5; tile 1 weighs 4 (cell 2), worked 8: 2; tile 2
+ * weighs nothing: the mean of the others, 13 / 3; tile 3 weighs 5
+ * (cell 15), worked 30: 6. */
+static void test_calibrate_tiles(void **st)
+{
+    (void)st;
+    WlSfAdapt *a = wl_sf_adapt_new(4, 4);
+    a->weight[0] = 10;
+    a->weight[2] = 4;
+    a->weight[15] = 5;
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 4, 16, 16);
+    double work[4] = {50, 8, 99, 30};
+    assert_false(a->calibrated);
+    wl_sf_adapt_calibrate(a, &r, work);
+    assert_true(a->calibrated);
+    for (guint y = 0; y < 4; y++)
+        for (guint x = 0; x < 4; x++) {
+            guint tile = (y >= 2) * 2 + (x >= 2);
+            double want[4] = {5, 2, 13.0 / 3, 6};
+            if (a->factor[y * 4 + x] != want[tile])
+                fail_msg("cell (%u, %u): %g, expected %g", x, y,
+                         a->factor[y * 4 + x], want[tile]);
+        }
+    wl_sf_adapt_free(a);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_estimate),
+        cmocka_unit_test(test_predict),
+        cmocka_unit_test(test_weight_in),
+        cmocka_unit_test(test_calibrate_tiles),
+    };
+    return cmocka_run_group_tests_name("sf_adapt_values", tests, NULL, NULL);
+}
