@@ -44,6 +44,8 @@ static Scene *hand_scene(void)
     return s;
 }
 
+/* adapt (may be NULL): its grid (0: static regions), current,
+ * feedback, pre and screens (pre: no image check) replace the rig's. */
 static void rig_init_setup(Rig *r, WlSfBookkeeping bk, WlSfMigration mig,
                            WlSfMastership ms, const WlSfSetup *adapt)
 {
@@ -65,10 +67,13 @@ static void rig_init_setup(Rig *r, WlSfBookkeeping bk, WlSfMigration mig,
                        .sizes = {64, 40, 36, 8, 4, 8, 16, 96},
                        .check_image = TRUE};
     if (adapt) {
-        r->s.adaptive = TRUE;
+        r->s.adaptive = adapt->grid > 0;
         r->s.grid = adapt->grid;
         r->s.current = adapt->current;
         r->s.feedback = adapt->feedback;
+        r->s.pre = adapt->pre;
+        r->s.screens = adapt->screens;
+        r->s.check_image = !adapt->pre;
     }
     r->run = wl_sf_run_new(r->m, r->scene, r->db, &r->s, &r->c);
 }
@@ -163,7 +168,9 @@ static void test_maxset_push(void **st)
     Rig r;
     rig_init(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED);
     SimTime busy0[P] = {0};
+    assert_null(wl_sf_run_zbuffer(r.run)); /* no frame yet */
     run(&r, 1);
+    assert_non_null(wl_sf_run_zbuffer(r.run));
     const WlSfFrameStats *f = frame(&r, 0);
     assert_int_equal(f->messages, 12);
     assert_int_equal(f->migrated_chunks, 3);
@@ -332,6 +339,78 @@ static void test_adaptive_current(void **st)
     rig_clear(&r);
 }
 
+/* Counted from the frames rasterised once (setup `pre`) and the screen
+ * rectangles kept by frame (`screens`): the same figures as frame by
+ * frame rasterising, for a first run that fills both stores and a
+ * second that finds them filled; no image is kept. */
+static void test_prerendered(void **st)
+{
+    (void)st;
+    RastPrerenderSet *pre = rast_prerender_set_new();
+    WlSfScreenSet *screens = wl_sf_screen_set_new();
+    WlSfSetup x = {.pre = pre, .screens = screens};
+    for (int pass = 0; pass < 2; pass++) {
+        Rig r;
+        rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &x);
+        run(&r, 2);
+        uint64_t px = covered(&r);
+        for (guint k = 0; k < 2; k++) {
+            const WlSfFrameStats *f = frame(&r, k);
+            assert_int_equal(f->polys_rendered, 6);
+            assert_int_equal(f->load_max, 2);
+            assert_int_equal(f->load_min, 1);
+            assert_int_equal(f->pixels, px);
+            assert_int_equal(f->region_insts, 6);
+            assert_int_equal(f->onscreen_insts, 3);
+            expect_near(f->box_side, 12, "box_side");
+            assert_int_equal(f->offscreen_total, 2);
+            assert_false(f->image_checked);
+        }
+        assert_int_equal(frame(&r, 0)->migrated_chunks, 3);
+        assert_int_equal(frame(&r, 1)->slave_boxes, 3);
+        assert_null(wl_sf_run_zbuffer(r.run));
+        rig_clear(&r);
+    }
+    rast_prerender_set_free(pre);
+    wl_sf_screen_set_free(screens);
+}
+
+/* The camera moved to look at (10, 10): no triangle on screen.  The
+ * max / mean ratios of an empty frame are 0 (nothing rendered, no
+ * estimated weight), every master polygon is off-screen (processor 0:
+ * 2), nothing migrates, and the grids sent are empty. */
+static void test_nothing_on_screen(void **st)
+{
+    (void)st;
+    for (int adaptive = 0; adaptive < 2; adaptive++) {
+        Rig r;
+        WlSfSetup a = {.grid = adaptive ? 4 : 0};
+        rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &a);
+        r.scene->camera.eye = vec3(10, 10, 5);
+        r.scene->camera.target = vec3(10, 10, 0);
+        run(&r, 2);
+        for (guint k = 0; k < 2; k++) {
+            const WlSfFrameStats *f = frame(&r, k);
+            assert_int_equal(f->polys_rendered, 0);
+            assert_int_equal(f->load_max, 0);
+            assert_int_equal(f->load_min, 0);
+            assert_true(f->poly_imbalance == 0);
+            assert_true(f->split_imbalance == 0);
+            expect_near(f->master_imbalance, 2 / 1.25, "master_imbalance");
+            assert_int_equal(f->offscreen_max, 2);
+            assert_int_equal(f->offscreen_total, 5);
+            assert_int_equal(f->onscreen_insts, 0);
+            assert_true(f->box_side == 0);
+            assert_int_equal(f->pixels, 0);
+            assert_int_equal(f->migrated_chunks, 0);
+            assert_int_equal(f->migrated_bytes, 12 * 64);
+            assert_int_equal(f->estimate_bytes, 0);
+            assert_true(f->image_ok);
+        }
+        rig_clear(&r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -339,6 +418,8 @@ int main(void)
         cmocka_unit_test(test_pull),
         cmocka_unit_test(test_adaptive_previous),
         cmocka_unit_test(test_adaptive_current),
+        cmocka_unit_test(test_prerendered),
+        cmocka_unit_test(test_nothing_on_screen),
     };
     return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
 }
