@@ -200,6 +200,35 @@ static void test_calibrate_tiles(void **st)
     wl_sf_adapt_free(a);
 }
 
+/* 3 x 3 cells of weight 1 on 12 x 12 pixels, 6 processors.  The root
+ * is cut at column 1 (columns 1 and 2 both leave 18 and lie 0.5 from the
+ * proportional 1.5: the first stays); the left column (3 processors) is
+ * too narrow for a vertical cut, so rows: 1 | 2, then the 2 at row 2;
+ * the right 2 x 3 (3 processors) is cut at row 1 (max(2 x 2, 4 x 1) =
+ * 4, against 8 at row 2), its lower 2 x 2 at column 2.  Visited: the 9
+ * table cells and 2 x (3 + 3 + 2 + 3 + 2) marginal lines. */
+static void test_split_narrow(void **st)
+{
+    (void)st;
+    WlSfAdapt *a = wl_sf_adapt_new(3, 6);
+    for (guint i = 0; i < 9; i++)
+        a->weight[i] = 1;
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 6, 12, 12);
+    assert_int_equal(wl_sf_adapt_split(a, &r), 35);
+    static const int want[6][4] = {{0, 0, 4, 4},  {0, 4, 4, 8},
+                                   {0, 8, 4, 12}, {4, 0, 12, 4},
+                                   {4, 4, 8, 12}, {8, 4, 12, 12}};
+    for (guint p = 0; p < 6; p++) {
+        WlSfRect q = r.rect[p];
+        if (q.x0 != want[p][0] || q.y0 != want[p][1] || q.x1 != want[p][2] ||
+            q.y1 != want[p][3])
+            fail_msg("region %u: [%d, %d) x [%d, %d)", p, q.x0, q.x1, q.y0,
+                     q.y1);
+    }
+    wl_sf_adapt_free(a);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -207,6 +236,7 @@ int main(void)
         cmocka_unit_test(test_predict),
         cmocka_unit_test(test_weight_in),
         cmocka_unit_test(test_calibrate_tiles),
+        cmocka_unit_test(test_split_narrow),
     };
     return cmocka_run_group_tests_name("sf_adapt_values", tests, NULL, NULL);
 }
