@@ -411,6 +411,36 @@ static void test_nothing_on_screen(void **st)
     }
 }
 
+/* The camera moved to look at (3.75, 1): only triangle 3 is on screen,
+ * at [2, 6] x [12, 16], in region 2 alone.  One polygon rendered (by
+ * processor 2, sent by its master 3): max / mean = 1 x 4 / 1; the
+ * estimate weighs 1 in all: split imbalance 4 too.  Off-screen master
+ * polygons: 2 of processor 0, 1 each of 1 and 2. */
+static void test_one_polygon(void **st)
+{
+    (void)st;
+    for (int adaptive = 0; adaptive < 2; adaptive++) {
+        Rig r;
+        WlSfSetup a = {.grid = adaptive ? 4 : 0};
+        rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &a);
+        r.scene->camera.eye = vec3(3.75, 1, 5);
+        r.scene->camera.target = vec3(3.75, 1, 0);
+        run(&r, 1);
+        const WlSfFrameStats *f = frame(&r, 0);
+        assert_int_equal(f->polys_rendered, 1);
+        assert_int_equal(f->load_max, 1);
+        assert_int_equal(f->load_min, 0);
+        expect_near(f->poly_imbalance, 4, "poly_imbalance");
+        assert_true(f->split_imbalance == (adaptive ? 4 : 0));
+        assert_int_equal(f->region_insts, 1);
+        assert_int_equal(f->migrated_chunks, 1);
+        assert_int_equal(f->offscreen_max, 2);
+        assert_int_equal(f->offscreen_total, 4);
+        assert_true(f->image_ok);
+        rig_clear(&r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -420,6 +450,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_current),
         cmocka_unit_test(test_prerendered),
         cmocka_unit_test(test_nothing_on_screen),
+        cmocka_unit_test(test_one_polygon),
     };
     return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
 }
