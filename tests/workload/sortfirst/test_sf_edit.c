@@ -175,6 +175,11 @@ static void test_edit_work(void **state)
     assert_true(sf_test_metric(m, "maxset_nodes_created_per_frame") == 0);
     assert_true(fabs(sf_test_metric(m, "edit_ms") * 1e9 -
                      (double)c.node_visit) < 1e-6);
+    /* the command goes from processor 0 to the 3 others: a 64 B header
+     * and 96 B a command each, one message more each; min-set sends no
+     * pointers for new instances */
+    assert_true(sf_test_metric(m, "edit_bytes_per_frame") == 3 * (64 + 96));
+    assert_true(sf_test_metric(m, "messages_per_frame") == 4 * 3 + 3);
     sim_result_free(m);
     /* an execute: subtrees replaced, pointers and chunks collected */
     SimResult *x = run_edits("maxset", "{execute: 1}");
