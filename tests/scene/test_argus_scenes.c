@@ -59,6 +59,7 @@ static void test_march_count_and_cells(void **state)
     SceneMesh *m = scene_iso_mesh_cells(&p.iso, p.cell);
     double n = scene_mesh_n_polys(m);
     assert_true(fabs(n - 53346) / 53346 < 0.01);
+    assert_int_equal(n, 53340); /* march.h's count for the defaults */
     uint32_t last = 0;
     for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
         uint32_t t = g_array_index(m->poly_tag, uint32_t, i);
@@ -72,12 +73,58 @@ static void test_march_count_and_cells(void **state)
     scene_mesh_free(m);
 }
 
+/* The defaults field by field (march.h), and the scene: 1200 x 1000,
+ * two-sided, one white untransformed instance of the cell-ordered mesh,
+ * seen from (1, 1, 1) (azimuth 45, elevation atan(1 / sqrt 2)) with
+ * aspect 1.2 and the vertices filling exactly `fill` of the frame. */
+static void test_march_scene(void **state)
+{
+    (void)state;
+    SceneMarchParams p = scene_march_defaults();
+    assert_int_equal(p.iso.field, SCENE_FIELD_METABALLS);
+    assert_true(p.iso.grid == 64 && p.iso.balls == 10 && p.iso.seed == 2);
+    assert_true(p.iso.iso == 1.67 && p.cell == 16 && p.fill == 0.95);
+    assert_true(p.iso.color.r == 0.95f && p.iso.color.g == 0.90f &&
+                p.iso.color.b == 0.80f);
+    assert_true(p.iso.periods == scene_iso_defaults().periods);
+    p.iso.grid = 12;
+    p.cell = 4;
+    p.fill = 0.5;
+    Scene *s = scene_march_new(&p);
+    assert_string_equal(s->name, "march");
+    assert_true(s->width == 1200 && s->height == 1000 && s->two_sided);
+    assert_int_equal(scene_n_instances(s), 1);
+    SceneMesh *cells = scene_iso_mesh_cells(&p.iso, p.cell);
+    const SceneMesh *m = scene_instance_mesh(s, 0);
+    assert_int_equal(scene_mesh_n_polys(m), scene_mesh_n_polys(cells));
+    for (guint i = 0; i < scene_mesh_n_polys(m); i++)
+        assert_int_equal(g_array_index(m->poly_tag, uint32_t, i),
+                         g_array_index(cells->poly_tag, uint32_t, i));
+    scene_mesh_free(cells);
+    SceneCamera c = s->camera;
+    Vec3 d = vec3_norm(vec3_sub(c.eye, c.target));
+    double k = 1 / sqrt(3.0);
+    assert_true(fabs(d.x - k) < 1e-12 && fabs(d.y - k) < 1e-12 &&
+                fabs(d.z - k) < 1e-12);
+    assert_true(c.aspect == 1.2 && c.fov_deg == 45 &&
+                c.proj == SCENE_PERSPECTIVE);
+    Mat4 vp = scene_camera_view_proj(&c);
+    double hi = 0;
+    for (guint i = 0; i < scene_mesh_n_vertices(m); i++) {
+        Vec4 q = mat4_apply_point(vp, scene_mesh_vertex(m, i));
+        hi = fmax(hi, fmax(fabs(q.x / q.w), fabs(q.y / q.w)));
+    }
+    assert_true(fabs(hi - 0.5) < 1e-6);
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nurbs_counts_and_strips),
         cmocka_unit_test(test_nurbs_patches_meet),
         cmocka_unit_test(test_march_count_and_cells),
+        cmocka_unit_test(test_march_scene),
     };
     return cmocka_run_group_tests_name("argus_scenes", tests, NULL, NULL);
 }

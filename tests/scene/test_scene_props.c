@@ -156,6 +156,14 @@ static void test_view_directions(void **st)
     v.elevation_deg = 88;
     scene_apply_view(s, &v);
     assert_true(s->camera.up.z == -1);
+    /* at this elevation sin(el) is 0.999 exactly, not above: +y stays */
+    const double at[] = {87.43744126687686, -87.43744126687686};
+    for (guint i = 0; i < 2; i++) {
+        v.elevation_deg = at[i];
+        assert_true(fabs(sin(at[i] * G_PI / 180)) == 0.999);
+        scene_apply_view(s, &v);
+        assert_true(s->camera.up.y == 1 && s->camera.up.z == 0);
+    }
     scene_free(s);
 }
 

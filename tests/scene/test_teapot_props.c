@@ -179,6 +179,25 @@ static void test_layouts(void **st)
     assert_true(scene_instance(s, 1)->color.g == 0.70f);
     assert_true(scene_instance(s, 4)->color.b == 0.85f);
     scene_free(s);
+    /* counts whose rows are not the count rounded up (ceil(count / cols)
+     * with cols = ceil(sqrt(count))): 3 = 2 + 1 and 7 = 3 + 3 + 1 */
+    p.count = 3;
+    s = scene_teapots_new(&p, "w", NULL);
+    const double x3[] = {-0.5, 0.5, 0}, y3[] = {0.5, 0.5, -0.5};
+    for (guint i = 0; i < 3; i++) {
+        NEAR(instance_centre(s, i).x, x3[i] * 2 * size.x, 1e-6);
+        NEAR(instance_centre(s, i).y, y3[i] * 2 * size.y, 1e-6);
+    }
+    scene_free(s);
+    p.count = 7;
+    s = scene_teapots_new(&p, "w", NULL);
+    const double x7[] = {-1, 0, 1, -1, 0, 1, 0}, y7[] = {1, 1, 1, 0, 0, 0, -1};
+    for (guint i = 0; i < 7; i++) {
+        NEAR(instance_centre(s, i).x, x7[i] * 2 * size.x, 1e-6);
+        NEAR(instance_centre(s, i).y, y7[i] * 2 * size.y, 1e-6);
+    }
+    scene_free(s);
+    p.count = 5;
     /* depth: 2 columns, 3 rows about the middle one, each row shifted
      * right by shift x width and moved back by spacing x depth */
     p.layout = SCENE_TEAPOTS_DEPTH;
