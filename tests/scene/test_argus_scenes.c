@@ -2,7 +2,8 @@
  * the slides' counts (117,504 stripped triangles in 102 patches of 14 x 14
  * control points; about 53,346 triangles from a 64^3 volume in 16^3
  * cells, within 1 %), strips really share edges, the patch surface is
- * continuous across patches, and cells come out in increasing order. */
+ * continuous across patches, cells come out in increasing order, and the
+ * March scene keeps its defaults, frame, view and fill. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

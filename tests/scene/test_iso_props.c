@@ -5,7 +5,8 @@
  * gyroid's cut-open surface (two-sided, inside the cube in x, y and z),
  * cells tagging the triangles of their own box, the memory estimates at
  * their limits, and the large polygons (regular, their sizes, centres and
- * depths in range, the huge ones covering over 3/4 of the screen).
+ * depths in range, the huge ones covering over 3/4 of the screen, by an
+ * exact clipped area, and each the first draw that does).
  * Found unchecked by make mutate (docs/testing.md). */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -15,6 +16,7 @@
 #include <string.h>
 
 #include "sim/core/memlimit.h"
+#include "sim/core/rng.h"
 #include "sim/scene/isosurface.h"
 
 #define NEAR(a, b, tol) assert_true(fabs((a) - (b)) <= (tol))
@@ -255,6 +257,101 @@ static double covered(const SceneMesh *m, guint i)
     return 4.0 * in / (N * N);
 }
 
+/* Exact area of polygon i clipped to [-1, 1]^2: the polygon cut by each
+ * of the four half-planes a x + b y <= 1 in turn, then the shoelace. */
+static double clipped_area(const SceneMesh *m, guint i)
+{
+    Vec3 a[40], b[40];
+    guint na = scene_mesh_poly_len(m, i);
+    for (guint k = 0; k < na; k++)
+        a[k] = scene_mesh_vertex(m, scene_mesh_poly(m, i)[k]);
+    const double hp[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    for (guint h = 0; h < 4; h++) {
+        guint nb = 0;
+        for (guint k = 0; k < na; k++) {
+            Vec3 p = a[k], q = a[(k + 1) % na];
+            double sp = hp[h][0] * p.x + hp[h][1] * p.y - 1;
+            double sq = hp[h][0] * q.x + hp[h][1] * q.y - 1;
+            if (sp <= 0)
+                b[nb++] = p;
+            if ((sp < 0 && sq > 0) || (sp > 0 && sq < 0))
+                b[nb++] = vec3_add(p, vec3_scale(vec3_sub(q, p), sp / (sp - sq)));
+        }
+        memcpy(a, b, sizeof(Vec3) * (na = nb));
+    }
+    double area = 0;
+    for (guint k = 0; k < na; k++)
+        area += a[k].x * a[(k + 1) % na].y - a[(k + 1) % na].x * a[k].y;
+    return area / 2;
+}
+
+/* The first huge polygon of a draw, by the rule of isosurface.c: after
+ * the huge-or-small draw, corners 4 + below(5), radius 0.95 + 0.3 u,
+ * turn 2 pi u, centre 0.2 (2 u - 1) in x and y, depth 2 u - 1, drawn
+ * again until its exact clipped area exceeds 3; *n its corners. */
+static void first_huge(guint64 seed, Vec3 *pts, guint *n)
+{
+    SimRng r;
+    sim_rng_init(&r, seed, 0);
+    (void)sim_rng_uniform(&r);
+    SceneMesh *m = scene_mesh_new();
+    for (;;) {
+        *n = 4 + (guint)sim_rng_below(&r, 5);
+        double rad = 0.95 + 0.3 * sim_rng_uniform(&r);
+        double rot = 2 * G_PI * sim_rng_uniform(&r);
+        double cx = 0.2 * (2 * sim_rng_uniform(&r) - 1);
+        double cy = 0.2 * (2 * sim_rng_uniform(&r) - 1);
+        double z = -1 + 2 * sim_rng_uniform(&r);
+        uint32_t v[8];
+        for (guint k = 0; k < *n; k++) {
+            double a = rot + 2 * G_PI * k / *n;
+            pts[k] = vec3(cx + rad * cos(a), cy + rad * sin(a), z);
+            v[k] = scene_mesh_add_vertex(m, pts[k]);
+        }
+        scene_mesh_add_poly(m, v, *n, scene_color(1, 1, 1), 0);
+        if (clipped_area(m, scene_mesh_n_polys(m) - 1) > 3.0)
+            break;
+    }
+    scene_mesh_free(m);
+}
+
+/* Every polygon huge: each covers over 3/4 of the screen (3 of its 4
+ * units), the rule being exact: the least of 400 is just above 3, and
+ * the first polygon of each of 40 seeds is the first draw that covers
+ * enough (a rule that turned good polygons down would skip it). */
+static void test_huge_rule(void **st)
+{
+    (void)st;
+    SceneBigPolyParams p = scene_bigpoly_defaults();
+    p.count = 400;
+    p.huge_fraction = 1;
+    Scene *s = scene_bigpoly_new(&p);
+    const SceneMesh *m = scene_instance_mesh(s, 0);
+    double least = 4;
+    for (guint i = 0; i < 400; i++) {
+        double a = clipped_area(m, i);
+        assert_true(a > 3.0);
+        least = fmin(least, a);
+    }
+    print_message("least clipped area %.6f\n", least);
+    assert_true(least < 3.01);
+    scene_free(s);
+    p.count = 1;
+    for (p.seed = 1; p.seed <= 40; p.seed++) {
+        Vec3 want[8];
+        guint n;
+        first_huge(p.seed, want, &n);
+        s = scene_bigpoly_new(&p);
+        m = scene_instance_mesh(s, 0);
+        assert_int_equal(scene_mesh_poly_len(m, 0), n);
+        for (guint k = 0; k < n; k++) {
+            Vec3 got = scene_mesh_vertex(m, scene_mesh_poly(m, 0)[k]);
+            assert_true(vec3_len(vec3_sub(got, want[k])) < 1e-12);
+        }
+        scene_free(s);
+    }
+}
+
 /* Corners of polygon i turn counter-clockwise about c by exactly 2 pi /
  * n each (a regular polygon's corners in order). */
 static void corners_step_evenly(const SceneMesh *m, guint i, Vec3 c)
@@ -345,6 +442,7 @@ int main(void)
         cmocka_unit_test(test_gyroid_cells),
         cmocka_unit_test(test_iso_check),
         cmocka_unit_test(test_bigpoly),
+        cmocka_unit_test(test_huge_rule),
     };
     return cmocka_run_group_tests_name("iso_props", tests, NULL, NULL);
 }

@@ -3,7 +3,8 @@
  * its part list: every body triangle on a face of one of the two boxes
  * and wound outwards; every tube, ellipsoid band and tyre sector vertex
  * on its surface (centre, axis and radii by hand from the part's index),
- * each closed surface drawn all the way round; the largest-remainder
+ * each closed surface drawn all the way round and every triangle wound
+ * to face outwards; the largest-remainder
  * budgets exact (T - 2n split by weight: body 1.5, chassis 0.6, tyre 2,
  * hub 1, interior 1, trim 0.4); the copies' placement matrices and the
  * orbiting camera exact.  Found unchecked by make mutate
@@ -52,6 +53,42 @@ static gboolean part_of(const char *name, int *g, guint *i)
 
 /* ---- surfaces ---------------------------------------------------------- */
 
+/* Triangle t's normal (by its winding) points along out, the outward
+ * direction of the surface at the triangle's centroid d (relative to the
+ * part's centre) that out() computes. */
+static void wound_out(const GArray *v, Vec3 c, const void *arg,
+                      Vec3 (*out)(Vec3 d, const void *arg))
+{
+    for (guint i = 0; i + 2 < v->len; i += 3) {
+        const Vec3 *t = &g_array_index(v, Vec3, i);
+        Vec3 n = vec3_cross(vec3_sub(t[1], t[0]), vec3_sub(t[2], t[0]));
+        Vec3 d = vec3_sub(vec3_scale(vec3_add(vec3_add(t[0], t[1]), t[2]),
+                                     1.0 / 3),
+                          c);
+        if (!(vec3_dot(n, out(d, arg)) > 0))
+            fail_msg("part at (%g, %g, %g): triangle %u wound inwards", c.x,
+                     c.y, c.z, i / 3);
+    }
+}
+
+static Vec3 tube_out(Vec3 d, const void *axis)
+{
+    return *(const char *)axis == 'x' ? vec3(0, d.y, d.z) : vec3(d.x, d.y, 0);
+}
+
+static Vec3 ellipsoid_out(Vec3 d, const void *radii)
+{
+    const Vec3 *a = radii; /* the gradient of the ellipsoid's equation */
+    return vec3(d.x / (a->x * a->x), d.y / (a->y * a->y), d.z / (a->z * a->z));
+}
+
+static Vec3 torus_out(Vec3 d, const void *unused)
+{
+    (void)unused;
+    double rho = hypot(d.x, d.y); /* minus the tube's centre circle */
+    return vec3_sub(d, vec3(0.28 * d.x / rho, 0.28 * d.y / rho, 0));
+}
+
 /* Every vertex at distance r from the axis through c along unit z or x
  * (axis 'x' or 'z'), within half the length h of c along it, and the
  * tube drawn all the way round (both cross directions span over 1.2 r: at most r for a half tube). */
@@ -71,6 +108,7 @@ static void on_tube(const GArray *v, Vec3 c, char axis, double h, double r)
             hi[k] = fmax(hi[k], p[k]);
         }
     }
+    wound_out(v, c, &axis, tube_out);
     if (!(hi[0] - lo[0] > 1.2 * r && hi[1] - lo[1] > 1.2 * r))
         fail_msg("tube at (%g, %g, %g): across %g and %g, radius %g", c.x, c.y,
                  c.z, hi[0] - lo[0], hi[1] - lo[1], r);
@@ -91,6 +129,7 @@ static void on_ellipsoid(const GArray *v, Vec3 c, Vec3 a)
         lo = vec3(fmin(lo.x, d.x), fmin(lo.y, d.y), fmin(lo.z, d.z));
         hi = vec3(fmax(hi.x, d.x), fmax(hi.y, d.y), fmax(hi.z, d.z));
     }
+    wound_out(v, c, &a, ellipsoid_out);
     assert_true(lo.x < -0.5 * a.x && hi.x > 0.5 * a.x);
     assert_true(lo.z < -0.5 * a.z && hi.z > 0.5 * a.z);
     assert_true(lo.y < -0.5 * a.y && hi.y > 0.5 * a.y);
@@ -116,6 +155,7 @@ static void on_sector(const GArray *v, Vec3 c, guint j, guint sectors)
         zlo = fmin(zlo, d.z);
         zhi = fmax(zhi, d.z);
     }
+    wound_out(v, c, NULL, torus_out);
     assert_true(zlo < -0.1 && zhi > 0.1);
 }
 
