@@ -208,6 +208,26 @@ static void test_append(void **st)
     scene_mesh_append(d, b, mat4_identity());
     assert_int_equal(d->normals->len, 0);
     assert_int_equal(d->colors->len, 0);
+    /* one bare vertex already there: b's normals and colours dropped */
+    SceneMesh *one = scene_mesh_new();
+    scene_mesh_add_vertex(one, vec3(0, 0, 0));
+    scene_mesh_append(one, b, mat4_identity());
+    assert_int_equal(one->normals->len, 0);
+    assert_int_equal(one->colors->len, 0);
+    scene_mesh_free(one);
+    /* a single coloured vertex with its normal, into an empty mesh: kept */
+    SceneMesh *src = scene_mesh_new(), *dst = scene_mesh_new();
+    scene_mesh_add_vertex(src, vec3(1, 2, 3));
+    Vec3 up = vec3(0, 1, 0);
+    SceneColor red = scene_color(1, 0, 0);
+    g_array_append_val(src->normals, up);
+    g_array_append_val(src->colors, red);
+    scene_mesh_append(dst, src, mat4_identity());
+    assert_int_equal(dst->normals->len, 1);
+    assert_int_equal(dst->colors->len, 1);
+    assert_true(g_array_index(dst->colors, SceneColor, 0).r == 1);
+    scene_mesh_free(src);
+    scene_mesh_free(dst);
     /* projective: w = 2 halves the points, w = 0 leaves them */
     SceneMesh *p = scene_mesh_new();
     Mat4 h = mat4_identity();

@@ -149,6 +149,41 @@ static void test_mesh(void **st)
     }
 }
 
+static double dist(const SceneMesh *m, uint32_t a, uint32_t b)
+{
+    return vec3_len(vec3_sub(scene_mesh_vertex(m, a), scene_mesh_vertex(m, b)));
+}
+
+/* A split quad a b c d becomes two consecutive triangles across its
+ * shorter diagonal: (a, b, c) (a, c, d) when |ac| <= |bd|, else (a, b, d)
+ * (b, c, d).  The pole triangles of collapsed cells match neither. */
+static void test_split_diagonals(void **st)
+{
+    (void)st;
+    SceneTeapotTess t;
+    assert_true(scene_teapot_tess_for(32 * 100 + 600, "w", &t, NULL));
+    assert_true(t.n == 10 && t.split == 600); /* 32 x 11^2 > 3800 */
+    SceneMesh *m = scene_teapot_mesh(t, scene_color(1, 1, 1));
+    guint ac = 0, bd = 0;
+    for (guint i = 0; i + 1 < scene_mesh_n_polys(m); i++) {
+        if (scene_mesh_poly_len(m, i) != 3 || scene_mesh_poly_len(m, i + 1) != 3)
+            continue;
+        const uint32_t *p = scene_mesh_poly(m, i), *q = scene_mesh_poly(m, i + 1);
+        if (q[0] == p[0] && q[1] == p[2]) { /* a b c, a c d */
+            assert_true(dist(m, p[0], p[2]) <= dist(m, p[1], q[2]));
+            ac++;
+            i++;
+        } else if (q[0] == p[1] && q[2] == p[2]) { /* a b d, b c d */
+            assert_true(dist(m, p[0], q[1]) > dist(m, p[1], p[2]));
+            bd++;
+            i++;
+        }
+    }
+    assert_int_equal(ac + bd, 600);
+    assert_true(ac > 100 && bd > 100);
+    scene_mesh_free(m);
+}
+
 static Vec3 instance_centre(const Scene *s, guint i)
 {
     return scene_box_center(scene_instance_bbox(s, i));
@@ -277,6 +312,7 @@ int main(void)
         cmocka_unit_test(test_tess_rule),
         cmocka_unit_test(test_eval),
         cmocka_unit_test(test_mesh),
+        cmocka_unit_test(test_split_diagonals),
         cmocka_unit_test(test_layouts),
         cmocka_unit_test(test_checks),
     };

@@ -95,11 +95,14 @@ static Vec3 torus_out(Vec3 d, const void *unused)
 static void on_tube(const GArray *v, Vec3 c, char axis, double h, double r)
 {
     double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
+    double alo = HUGE_VAL, ahi = -HUGE_VAL;
     for (guint i = 0; i < v->len; i++) {
         Vec3 d = vec3_sub(g_array_index(v, Vec3, i), c);
         double along = axis == 'x' ? d.x : d.z;
         double p[2] = {d.y, axis == 'x' ? d.z : d.x};
         assert_true(fabs(along) <= h + TOL);
+        alo = fmin(alo, along);
+        ahi = fmax(ahi, along);
         if (fabs(hypot(p[0], p[1]) - r) > TOL)
             fail_msg("tube at (%g, %g, %g): vertex %u off radius %g", c.x, c.y,
                      c.z, i, r);
@@ -109,6 +112,7 @@ static void on_tube(const GArray *v, Vec3 c, char axis, double h, double r)
         }
     }
     wound_out(v, c, &axis, tube_out);
+    assert_true(fabs(alo + h) < TOL && fabs(ahi - h) < TOL); /* end to end */
     if (!(hi[0] - lo[0] > 1.2 * r && hi[1] - lo[1] > 1.2 * r))
         fail_msg("tube at (%g, %g, %g): across %g and %g, radius %g", c.x, c.y,
                  c.z, hi[0] - lo[0], hi[1] - lo[1], r);
@@ -130,6 +134,9 @@ static void on_ellipsoid(const GArray *v, Vec3 c, Vec3 a)
         hi = vec3(fmax(hi.x, d.x), fmax(hi.y, d.y), fmax(hi.z, d.z));
     }
     wound_out(v, c, &a, ellipsoid_out);
+    /* latitudes -0.45 pi to 0.45 pi, both reached */
+    assert_true(fabs(hi.y - a.y * sin(0.45 * G_PI)) < TOL);
+    assert_true(fabs(lo.y + a.y * sin(0.45 * G_PI)) < TOL);
     assert_true(lo.x < -0.5 * a.x && hi.x > 0.5 * a.x);
     assert_true(lo.z < -0.5 * a.z && hi.z > 0.5 * a.z);
     assert_true(lo.y < -0.5 * a.y && hi.y > 0.5 * a.y);
@@ -141,7 +148,7 @@ static void on_ellipsoid(const GArray *v, Vec3 c, Vec3 a)
 static void on_sector(const GArray *v, Vec3 c, guint j, guint sectors)
 {
     double a0 = 2 * G_PI * j / sectors, a1 = 2 * G_PI * (j + 1) / sectors;
-    double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+    double zlo = HUGE_VAL, zhi = -HUGE_VAL, alo = HUGE_VAL, ahi = -HUGE_VAL;
     for (guint i = 0; i < v->len; i++) {
         Vec3 d = vec3_sub(g_array_index(v, Vec3, i), c);
         double rho = hypot(d.x, d.y) - 0.28;
@@ -152,10 +159,13 @@ static void on_sector(const GArray *v, Vec3 c, guint j, guint sectors)
         if (ang > a1 + 1e-6)
             fail_msg("sector %u of %u: vertex at %g rad, not in [%g, %g]", j,
                      sectors, ang, a0, a1);
+        alo = fmin(alo, ang);
+        ahi = fmax(ahi, ang);
         zlo = fmin(zlo, d.z);
         zhi = fmax(zhi, d.z);
     }
     wound_out(v, c, NULL, torus_out);
+    assert_true(fabs(alo - a0) < 1e-6 && fabs(ahi - a1) < 1e-6); /* whole */
     assert_true(zlo < -0.1 && zhi > 0.1);
 }
 
@@ -223,37 +233,67 @@ static void check_body(guint c, const GArray *v, SceneBox *box)
     *box = scene_box_union(*box, got);
 }
 
+/* The part's first vertex is its surface at (u, v) = (0, 0), where the
+ * angles start: a tube at angle 0 on e1 = axis x (0, 1, 0) and at its
+ * -axis end, an ellipsoid band at longitude 0 (+x) and latitude -0.45
+ * pi, a tyre sector at its first angle on the tube's outer circle. */
+static void first_is(const GArray *v, Vec3 want)
+{
+    Vec3 got = g_array_index(v, Vec3, 0);
+    if (vec3_len(vec3_sub(got, want)) > TOL)
+        fail_msg("first vertex (%g, %g, %g), expected (%g, %g, %g)", got.x,
+                 got.y, got.z, want.x, want.y, want.z);
+}
+
+static Vec3 band_start(Vec3 c, Vec3 a)
+{
+    double ph = -0.45 * G_PI;
+    return vec3_add(c, vec3(a.x * cos(ph), a.y * sin(ph), 0));
+}
+
 /* Part c of its group (the group's own count; nw wheel parts). */
 static void check_part(int g, guint c, guint nw, const GArray *v, SceneBox *box)
 {
     if (g == BODY) {
         check_body(c, v, box);
     } else if (g == CHASSIS && c % 2 == 0) { /* rails along x */
-        on_tube(v, vec3(-1.75 + 0.5 * ((c / 4) % 8), 0.45,
-                        (c / 2) % 2 ? 0.6 : -0.6), 'x', 0.25, 0.06);
+        Vec3 at = vec3(-1.75 + 0.5 * ((c / 4) % 8), 0.45,
+                       (c / 2) % 2 ? 0.6 : -0.6);
+        on_tube(v, at, 'x', 0.25, 0.06);
+        first_is(v, vec3_add(at, vec3(-0.25, 0, 0.06)));
     } else if (g == CHASSIS) { /* cross members along z */
-        on_tube(v, vec3(-1.9 + 3.8 * c / 50, 0.4, 0), 'z', 0.6, 0.04);
+        Vec3 at = vec3(-1.9 + 3.8 * c / 50, 0.4, 0);
+        on_tube(v, at, 'z', 0.6, 0.04);
+        first_is(v, vec3_add(at, vec3(-0.04, 0, -0.6)));
     } else if (g == WHEELS) {
         guint per = nw / 4, w = c / per, j = c % per;
         double side = w % 2 ? 1 : -1;
         Vec3 centre = vec3(w < 2 ? 1.35 : -1.35, 0.4, 0.85 * side);
-        if (j + 1 == per) /* the hub, 0.1 outwards */
-            on_ellipsoid(v, vec3(centre.x, 0.4, centre.z + 0.1 * side),
-                         vec3(0.2, 0.2, 0.06));
-        else
+        if (j + 1 == per) { /* the hub, 0.1 outwards */
+            Vec3 at = vec3(centre.x, 0.4, centre.z + 0.1 * side);
+            on_ellipsoid(v, at, vec3(0.2, 0.2, 0.06));
+            first_is(v, band_start(at, vec3(0.2, 0.2, 0.06)));
+        } else {
             on_sector(v, centre, j, per - 1);
+            double a0 = 2 * G_PI * j / (per - 1);
+            first_is(v, vec3_add(centre, vec3(0.4 * cos(a0), 0.4 * sin(a0), 0)));
+        }
     } else if (g == INTERIOR) {
-        on_ellipsoid(v, vec3(-1.6 + 0.5 * (c % 4), 0.9 + 0.3 * ((c / 12) % 2),
-                             0.5 * ((double)((c / 4) % 3) - 1)),
-                     vec3(0.25, 0.15, 0.2));
+        Vec3 at = vec3(-1.6 + 0.5 * (c % 4), 0.9 + 0.3 * ((c / 12) % 2),
+                       0.5 * ((double)((c / 4) % 3) - 1));
+        on_ellipsoid(v, at, vec3(0.25, 0.15, 0.2));
+        first_is(v, band_start(at, vec3(0.25, 0.15, 0.2)));
     } else {
         double x = (c / 2) % 2 ? 2.14 : -2.14;
-        if (c % 2)
-            on_tube(v, vec3(x > 0 ? 2.17 : -2.17, 0.55 + 0.05 * (c % 8), 0),
-                    'z', 0.9, 0.03);
-        else
-            on_ellipsoid(v, vec3(x, 0.8 + 0.1 * (c % 3), -0.8 + 1.6 * (c % 7) / 6.0),
-                         vec3(0.04, 0.08, 0.1));
+        if (c % 2) {
+            Vec3 at = vec3(x > 0 ? 2.17 : -2.17, 0.55 + 0.05 * (c % 8), 0);
+            on_tube(v, at, 'z', 0.9, 0.03);
+            first_is(v, vec3_add(at, vec3(-0.03, 0, -0.9)));
+        } else {
+            Vec3 at = vec3(x, 0.8 + 0.1 * (c % 3), -0.8 + 1.6 * (c % 7) / 6.0);
+            on_ellipsoid(v, at, vec3(0.04, 0.08, 0.1));
+            first_is(v, band_start(at, vec3(0.04, 0.08, 0.1)));
+        }
     }
 }
 
