@@ -368,6 +368,49 @@ static void test_keyframes(void **st)
     scene_path_free(p);
 }
 
+/* Exactly at a key's frame the path gives that key, down to the fields
+ * it does not interpolate (the projection, which alternates here): the
+ * segment starting there, or the last key at the last frame.  Two keys
+ * interpolate like more. */
+static void test_key_edges(void **st)
+{
+    (void)st;
+    const double xs[] = {0, 1, 3, 6, 7};
+    const double fr[] = {0, 2, 4, 6, 8.5};
+    for (int interp = 0; interp < 2; interp++) {
+        SceneCameraPath *p = scene_path_new_keyframes(
+            interp ? SCENE_INTERP_CATMULL_ROM : SCENE_INTERP_LINEAR);
+        for (guint i = 0; i < 5; i++) {
+            SceneCamera c = scene_camera_default();
+            c.proj = i % 2 ? SCENE_ORTHOGRAPHIC : SCENE_PERSPECTIVE;
+            c.eye = vec3(xs[i], 1, 5);
+            scene_path_add_key(p, fr[i], &c);
+        }
+        for (guint i = 0; i < 5; i++) {
+            SceneCamera c = scene_path_camera(p, fr[i]);
+            assert_int_equal(c.proj, i % 2 ? SCENE_ORTHOGRAPHIC
+                                           : SCENE_PERSPECTIVE);
+            assert_true(c.eye.x == xs[i]);
+            /* just before the key: still the segment before it */
+            if (i > 0)
+                assert_int_equal(scene_path_camera(p, fr[i] - 1e-9).proj,
+                                 (i - 1) % 2 ? SCENE_ORTHOGRAPHIC
+                                             : SCENE_PERSPECTIVE);
+        }
+        scene_path_free(p);
+    }
+    const double two[] = {0, 4}, f2[] = {1, 3};
+    SceneCameraPath *p = keys(SCENE_INTERP_LINEAR, two, f2, 2);
+    SceneCamera mid = scene_path_camera(p, 2);
+    NEAR(mid.eye.x, 2, 1e-12);
+    NEAR(mid.fov_deg, 12, 1e-12);
+    scene_path_free(p);
+    p = keys(SCENE_INTERP_CATMULL_ROM, two, f2, 2);
+    mid = scene_path_camera(p, 1.5); /* ends doubled: p0 = p1, p3 = p2 */
+    NEAR(mid.eye.x, cr(0, 0, 4, 4, 0.25), 1e-12);
+    scene_path_free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -379,6 +422,7 @@ int main(void)
         cmocka_unit_test(test_fit_points),
         cmocka_unit_test(test_orbit),
         cmocka_unit_test(test_keyframes),
+        cmocka_unit_test(test_key_edges),
     };
     return cmocka_run_group_tests_name("camera_props", tests, NULL, NULL);
 }
