@@ -412,6 +412,49 @@ static void test_budgets(void **st)
     scene_db_free(db);
 }
 
+/* An ellipsoid band's grid follows the lengths of its middle lines,
+ * each an 8-segment polyline (vehicle.c, param_length): an interior part
+ * (radii 0.25, 0.15, 0.2) measures 2.4825 times longer round (at latitude
+ * 0) than from pole to pole (at longitude pi), so a budget of 20 takes
+ * ceil(sqrt(20 / 2 x 2.4825)) = 5 columns round, 5 vertices on its lowest
+ * latitude (the seam welds the ends), in ceil(20 / 10) = 2 strips.  (7 of
+ * the 8 segments would give 2.5913 and 6 columns.)  106 structures and
+ * 2315 triangles give every interior part 2 + (2315 - 200) / 117.5 = 20. */
+static void test_ellipsoid_grid(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint root, parts = 0;
+    assert_true(scene_vehicle_build(db, 106, 2315, "x", &root, NULL));
+    GArray *v = g_array_new(FALSE, FALSE, sizeof(Vec3));
+    for (guint sid = 0; sid < scene_db_struct_count(db); sid++) {
+        int g;
+        guint i;
+        if (!part_of(scene_db_struct_name(db, sid), &g, &i) || g != INTERIOR)
+            continue;
+        assert_int_equal(verts_of(db, sid, v), 3 * 20);
+        double ymin = HUGE_VAL;
+        for (guint k = 0; k < v->len; k++)
+            ymin = fmin(ymin, g_array_index(v, Vec3, k).y);
+        GArray *low = g_array_new(FALSE, FALSE, sizeof(Vec3));
+        for (guint k = 0; k < v->len; k++) {
+            Vec3 q = g_array_index(v, Vec3, k);
+            gboolean seen = q.y - ymin > 1e-12;
+            for (guint j = 0; j < low->len && !seen; j++)
+                seen = vec3_len(vec3_sub(g_array_index(low, Vec3, j), q)) < 1e-12;
+            if (!seen)
+                g_array_append_val(low, q);
+        }
+        assert_int_equal(low->len, 5);
+        g_array_free(low, TRUE);
+        assert_int_equal(n_distinct(db, sid, 1), 3); /* 2 strips */
+        parts++;
+    }
+    assert_int_equal(parts, 10);
+    g_array_free(v, TRUE);
+    scene_db_free(db);
+}
+
 /* ---- copies and camera -------------------------------------------------- */
 
 /* Copy k of n sits at angle a = 2 pi k / n on the circle of radius R,
@@ -462,6 +505,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_part_shapes),
         cmocka_unit_test(test_budgets),
+        cmocka_unit_test(test_ellipsoid_grid),
         cmocka_unit_test(test_copies_and_camera),
     };
     return cmocka_run_group_tests_name("vehicle_parts", tests, NULL, NULL);
