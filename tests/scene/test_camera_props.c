@@ -232,6 +232,32 @@ static void test_fit_points(void **st)
     assert_true(c.far > c.near && c.near > 0);
 }
 
+/* fit_box is fit_points on the box's 8 corners, whichever corner is on
+ * the silhouette: seen from -z the near face (z = min, corner 0 among
+ * them) bounds the view, seen from +z the far one does not. */
+static void test_fit_box_corners(void **st)
+{
+    (void)st;
+    SceneBox b = box(vec3(-1, 0, 2), vec3(3, 1, 4));
+    Vec3 k[8];
+    for (int i = 0; i < 8; i++)
+        k[i] = vec3(i & 1 ? 3 : -1, i & 2 ? 1 : 0, i & 4 ? 4 : 2);
+    const Vec3 eyes[] = {{1, 0.5, -20}, {1, 0.5, 20}, {-9, -8, -7}};
+    for (int proj = 0; proj < 2; proj++)
+        for (guint e = 0; e < 3; e++) {
+            SceneCamera a = scene_camera_default(), p;
+            a.proj = proj ? SCENE_ORTHOGRAPHIC : SCENE_PERSPECTIVE;
+            a.eye = eyes[e];
+            a.target = vec3(1, 0.5, 3);
+            p = a;
+            scene_camera_fit_box(&a, b, 0.6);
+            scene_camera_fit_points(&p, k, 8, 0.6);
+            assert_memory_equal(&a, &p, sizeof a);
+            if (!proj)
+                check_fit(&a, k, 8, 0.6);
+        }
+}
+
 /* Orbits: frame f turns the base camera by deg0 + f * step about the
  * axis through the centre, eye, target and up alike. */
 static void test_orbit(void **st)
@@ -420,6 +446,7 @@ int main(void)
         cmocka_unit_test(test_orthographic),
         cmocka_unit_test(test_fit_sphere),
         cmocka_unit_test(test_fit_points),
+        cmocka_unit_test(test_fit_box_corners),
         cmocka_unit_test(test_orbit),
         cmocka_unit_test(test_keyframes),
         cmocka_unit_test(test_key_edges),
