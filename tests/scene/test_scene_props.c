@@ -225,6 +225,47 @@ static void test_view_fits(void **st)
     scene_free(s);
 }
 
+/* The box fit takes all 8 corners of every instance's box, the corners
+ * at each box's minimum too: seen from -z and from below (the minimum
+ * corners nearest the eye, on the silhouette; the boxes away from the
+ * origin) every corner projects
+ * inside +-fill, one touches it, and the extent is centred. */
+static void test_fit_box_corners(void **st)
+{
+    (void)st;
+    Scene *s = scene_new("fit");
+    scene_add_mesh(s, mesh());
+    scene_add_instance(s, 0, mat4_translate(4, 5, 6), scene_color(1, 1, 1), 0);
+    scene_add_instance(s, 0, mat4_translate(7, 7, 7), scene_color(1, 1, 1), 0);
+    SceneView v = scene_view_default();
+    v.fit_box = TRUE;
+    v.fill = 0.7;
+    const double az[] = {180, 200}, el[] = {0, -30};
+    for (guint k = 0; k < 2; k++) {
+        v.azimuth_deg = az[k];
+        v.elevation_deg = el[k];
+        scene_apply_view(s, &v);
+        Mat4 vp = scene_camera_view_proj(&s->camera);
+        double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+        for (guint i = 0; i < 2; i++)
+            for (int c = 0; c < 8; c++) {
+                Vec3 off = i ? vec3(7, 7, 7) : vec3(4, 5, 6);
+                Vec3 p = vec3_add(off, vec3(c & 1, (c & 2) / 2, (c & 4) / 4));
+                Vec4 h = mat4_apply_point(vp, p);
+                double q[2] = {h.x / h.w, h.y / h.w};
+                for (int a = 0; a < 2; a++) {
+                    lo[a] = fmin(lo[a], q[a]);
+                    hi[a] = fmax(hi[a], q[a]);
+                }
+            }
+        NEAR(lo[0] + hi[0], 0, 1e-6);
+        NEAR(lo[1] + hi[1], 0, 1e-6);
+        assert_true(hi[0] <= 0.7 + 1e-9 && hi[1] <= 0.7 + 1e-9);
+        assert_true(fabs(hi[0] - 0.7) < 1e-6 || fabs(hi[1] - 0.7) < 1e-6);
+    }
+    scene_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -232,6 +273,7 @@ int main(void)
         cmocka_unit_test(test_flatten),
         cmocka_unit_test(test_view_directions),
         cmocka_unit_test(test_view_fits),
+        cmocka_unit_test(test_fit_box_corners),
     };
     return cmocka_run_group_tests_name("scene_props", tests, NULL, NULL);
 }
