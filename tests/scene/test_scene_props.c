@@ -218,10 +218,25 @@ static void test_view_fits(void **st)
     v.fit_vertices = TRUE;
     scene_apply_view(s, &v);
     assert_true(s->camera.far > s->camera.near && s->camera.near > 0);
+    SceneCamera fit_v = s->camera;
     v.fit_vertices = FALSE;
     v.fit_box = TRUE;
     scene_apply_view(s, &v);
     assert_true(s->camera.far > s->camera.near && s->camera.near > 0);
+    SceneCamera fit_b = s->camera;
+    /* with nothing to fit both fall back to the sphere fit of the box */
+    v.fit_box = FALSE;
+    scene_apply_view(s, &v);
+    assert_memory_equal(&fit_v, &s->camera, sizeof fit_v);
+    assert_memory_equal(&fit_b, &s->camera, sizeof fit_b);
+    /* instances of a mesh without vertices: the vertex fit leaves the
+     * unit-distance camera the view rule starts from */
+    scene_add_instance(s, scene_add_mesh(s, scene_mesh_new()),
+                       mat4_identity(), scene_color(1, 1, 1), 0);
+    v.fit_vertices = TRUE;
+    scene_apply_view(s, &v);
+    assert_true(s->camera.eye.z == 1 && s->camera.target.z == 0);
+    assert_true(s->camera.near == 0.1 && s->camera.far == 100);
     scene_free(s);
 }
 
