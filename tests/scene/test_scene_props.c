@@ -255,14 +255,16 @@ static void test_fit_box_corners(void **st)
     SceneView v = scene_view_default();
     v.fit_box = TRUE;
     v.fill = 0.7;
-    const double az[] = {180, 200}, el[] = {0, -30};
-    for (guint k = 0; k < 2; k++) {
+    const double az[] = {180, 200, 200}, el[] = {0, -30, -30};
+    for (guint k = 0; k < 3; k++) {
         v.azimuth_deg = az[k];
         v.elevation_deg = el[k];
+        if (k == 2) /* one instance: fitted by its box too */
+            g_array_set_size(s->instances, 1);
         scene_apply_view(s, &v);
         Mat4 vp = scene_camera_view_proj(&s->camera);
         double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
-        for (guint i = 0; i < 2; i++)
+        for (guint i = 0; i < scene_n_instances(s); i++)
             for (int c = 0; c < 8; c++) {
                 Vec3 off = i ? vec3(7, 7, 7) : vec3(4, 5, 6);
                 Vec3 p = vec3_add(off, vec3(c & 1, (c & 2) / 2, (c & 4) / 4));
