@@ -402,6 +402,25 @@ static void test_budgets(void **st)
         }
         scene_db_free(db);
     }
+    /* 1200: q = 1000 w / 117.5, floors 959, 41 left over by remainder:
+     * the 35 panels (.766), then the 4 hubs and 2 of the 10 interior
+     * parts (.511; the hubs come first), none to the trim (.404), tubes
+     * (.106) or sectors (.021, the largest q) */
+    const guint want_g[5] = {35 * 15, 25 * 7, 16 * 19 + 4 * 11, 10 * 10 + 2,
+                             10 * 5};
+    guint got_g[5] = {0};
+    SceneDb *gdb = scene_db_new();
+    guint groot;
+    assert_true(scene_vehicle_build(gdb, 106, 1200, "x", &groot, NULL));
+    for (guint sid = 0; sid < scene_db_struct_count(gdb); sid++) {
+        int g;
+        guint i;
+        if (part_of(scene_db_struct_name(gdb, sid), &g, &i))
+            got_g[g] += scene_db_len(gdb, sid);
+    }
+    for (int g = 0; g < 5; g++)
+        assert_int_equal(got_g[g], want_g[g]);
+    scene_db_free(gdb);
     GError *err = NULL;
     SceneDb *db = scene_db_new();
     guint root;
