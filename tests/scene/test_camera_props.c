@@ -425,6 +425,13 @@ static void test_key_edges(void **st)
         }
         scene_path_free(p);
     }
+    /* a keyframed path starts at 1 frame: no keys, or one at frame 0 */
+    SceneCameraPath *none = scene_path_new_keyframes(SCENE_INTERP_LINEAR);
+    assert_int_equal(scene_path_n_frames(none), 1);
+    SceneCamera k0 = scene_camera_default();
+    scene_path_add_key(none, 0, &k0);
+    assert_int_equal(scene_path_n_frames(none), 1);
+    scene_path_free(none);
     const double two[] = {0, 4}, f2[] = {1, 3};
     SceneCameraPath *p = keys(SCENE_INTERP_LINEAR, two, f2, 2);
     SceneCamera mid = scene_path_camera(p, 2);
