@@ -431,6 +431,9 @@ static void test_bigpoly(void **st)
     assert_int_equal(s->camera.proj, SCENE_ORTHOGRAPHIC);
     assert_true(s->camera.eye.z == 2 && s->camera.height == 2 &&
                 s->camera.near == 0.5 && s->camera.far == 3.5);
+    assert_true(s->camera.eye.x == 0 && s->camera.eye.y == 0);
+    assert_true(s->camera.target.x == 0 && s->camera.target.y == 0 &&
+                s->camera.target.z == 0); /* looking at the origin */
     scene_free(s);
 }
 
