@@ -428,6 +428,13 @@ static void test_budgets(void **st)
     assert_non_null(strstr(err->message, "v.yaml:4:5: found 10 structures and 7"));
     g_error_free(err);
     assert_false(scene_vehicle_build(db, 9, 100, "v", &root, NULL));
+    /* at most 2^28 triangles (refused before anything is built) */
+    err = NULL;
+    assert_false(scene_vehicle_build(db, 106, (1u << 28) + 1, "v", &root, &err));
+    assert_non_null(strstr(err->message, "v: found 106 structures and "
+                                         "268435457 triangles, expected"));
+    g_error_free(err);
+    assert_int_equal(scene_db_struct_count(db), 0);
     scene_db_free(db);
 }
 
