@@ -34,6 +34,12 @@ static void test_boxes(void **st)
     assert_true(same(scene_box_center(e), vec3(0, 0, 0)));
     assert_true(same(scene_box_size(e), vec3(0, 0, 0)));
     assert_true(scene_box_radius(e) == 0);
+    /* empty by one inverted axis (mesh.h): the same zero centre and size */
+    SceneBox inv = {{1, 2, 3}, {4, 5, 0}};
+    assert_true(scene_box_is_empty(inv));
+    assert_true(same(scene_box_center(inv), vec3(0, 0, 0)));
+    assert_true(same(scene_box_size(inv), vec3(0, 0, 0)));
+    assert_true(scene_box_radius(inv) == 0);
     assert_true(same(scene_box_center(b), vec3(2.5, 4, 5.5)));
     assert_true(same(scene_box_size(b), vec3(3, 4, 5)));
     NEAR(scene_box_radius(b), 0.5 * sqrt(50), 1e-12);

@@ -474,6 +474,8 @@ static void test_ellipsoid_grid(void **st)
         assert_int_equal(low->len, 5);
         g_array_free(low, TRUE);
         assert_int_equal(n_distinct(db, sid, 1), 3); /* 2 strips */
+        SceneBox unused = scene_box_empty(); /* on the band, pole to pole */
+        check_part(g, i - 80, 20, v, &unused);
         parts++;
     }
     assert_int_equal(parts, 10);
