@@ -422,6 +422,22 @@ static void test_bigpoly(void **st)
     }
     assert_true(huge > 30 && huge < 90);
     assert_true(small_sides[3] > 0 && small_sides[4] > 0 && small_sides[5] > 0);
+    /* up to 16 corners, the most the generator takes: every count drawn */
+    SceneBigPolyParams q = p;
+    q.count = 400;
+    q.huge_fraction = 0;
+    q.max_sides = 16;
+    Scene *sq = scene_bigpoly_new(&q);
+    const SceneMesh *mq = scene_instance_mesh(sq, 0);
+    guint seen[17] = {0};
+    for (guint i = 0; i < 400; i++) {
+        guint n = scene_mesh_poly_len(mq, i);
+        assert_true(n >= 3 && n <= 16);
+        seen[n]++;
+    }
+    for (guint n = 3; n <= 16; n++)
+        assert_true(seen[n] > 0);
+    scene_free(sq);
     /* centres, depths and turns drawn over their whole ranges */
     for (guint h = 0; h < 2; h++)
         for (guint k = 0; k < 8; k++)

@@ -483,6 +483,40 @@ static void test_ellipsoid_grid(void **st)
     scene_db_free(db);
 }
 
+/* One part a wheel (26 structures: 20 parts, 4 of them wheels): each is
+ * a whole tyre, the torus all the way round (one sector, no hub). */
+static void test_one_part_wheels(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint root, wheels = 0;
+    assert_true(scene_vehicle_build(db, 26, 400, "x", &root, NULL));
+    GArray *v = g_array_new(FALSE, FALSE, sizeof(Vec3));
+    for (guint sid = 0; sid < scene_db_struct_count(db); sid++) {
+        int g;
+        guint i;
+        if (!part_of(scene_db_struct_name(db, sid), &g, &i) || g != WHEELS)
+            continue;
+        guint w = i - 12;
+        double side = w % 2 ? 1 : -1;
+        Vec3 c = vec3(w < 2 ? 1.35 : -1.35, 0.4, 0.85 * side);
+        verts_of(db, sid, v);
+        SceneBox b = scene_box_empty();
+        for (guint k = 0; k < v->len; k++) {
+            Vec3 d = vec3_sub(g_array_index(v, Vec3, k), c);
+            double rho = hypot(d.x, d.y) - 0.28;
+            assert_true(fabs(rho * rho + d.z * d.z - 0.12 * 0.12) < TOL);
+            b = scene_box_add_point(b, d);
+        }
+        assert_true(b.min.x < -0.3 && b.max.x > 0.3 && b.min.y < -0.3 &&
+                    b.max.y > 0.3);
+        wheels++;
+    }
+    assert_int_equal(wheels, 4);
+    g_array_free(v, TRUE);
+    scene_db_free(db);
+}
+
 /* ---- copies and camera -------------------------------------------------- */
 
 /* Copy k of n sits at angle a = 2 pi k / n on the circle of radius R,
@@ -534,6 +568,7 @@ int main(void)
         cmocka_unit_test(test_part_shapes),
         cmocka_unit_test(test_budgets),
         cmocka_unit_test(test_ellipsoid_grid),
+        cmocka_unit_test(test_one_part_wheels),
         cmocka_unit_test(test_copies_and_camera),
     };
     return cmocka_run_group_tests_name("vehicle_parts", tests, NULL, NULL);
