@@ -176,6 +176,27 @@ static void test_counts_and_normals(void **st)
     scene_mesh_free(m);
 }
 
+/* Vertex normals start from zero: a vertex no polygon uses keeps the
+ * zero vector, and a flat triangle's normals have exactly zero x and y. */
+static void test_normals_from_zero(void **st)
+{
+    (void)st;
+    SceneMesh *m = scene_mesh_new();
+    scene_mesh_add_vertex(m, vec3(0, 0, 0));
+    scene_mesh_add_vertex(m, vec3(1, 0, 0));
+    scene_mesh_add_vertex(m, vec3(0, 1, 0));
+    scene_mesh_add_vertex(m, vec3(5, 5, 5)); /* in no polygon */
+    scene_mesh_add_tri(m, 0, 1, 2, scene_color(1, 1, 1), 0);
+    scene_mesh_compute_normals(m);
+    for (guint i = 0; i < 3; i++) {
+        Vec3 n = g_array_index(m->normals, Vec3, i);
+        assert_true(n.x == 0 && n.y == 0 && n.z == 1);
+    }
+    Vec3 lone = g_array_index(m->normals, Vec3, 3);
+    assert_true(lone.x == 0 && lone.y == 0 && lone.z == 0);
+    scene_mesh_free(m);
+}
+
 static void test_append(void **st)
 {
     (void)st;
@@ -287,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_overlaps),
         cmocka_unit_test(test_box_transform),
         cmocka_unit_test(test_counts_and_normals),
+        cmocka_unit_test(test_normals_from_zero),
         cmocka_unit_test(test_append),
         cmocka_unit_test(test_validate),
     };
