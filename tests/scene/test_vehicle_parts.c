@@ -483,6 +483,34 @@ static void test_ellipsoid_grid(void **st)
     scene_db_free(db);
 }
 
+/* A square panel's strips run along u, its first side: 164 structures
+ * give 55 panels, 6 on the first face (4.2 / 6 = 0.7 by 0.7), whose
+ * middle lines measure exactly equal (0.7 both) for body.0 to body.4;
+ * the second quad follows the first along x (u), not up y (v). */
+static void test_square_panels(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint root, seen = 0;
+    assert_true(scene_vehicle_build(db, 164, 20000, "x", &root, NULL));
+    GArray *v = g_array_new(FALSE, FALSE, sizeof(Vec3));
+    for (guint sid = 0; sid < scene_db_struct_count(db); sid++) {
+        int g;
+        guint i;
+        if (!part_of(scene_db_struct_name(db, sid), &g, &i) || g != BODY ||
+            i > 4)
+            continue;
+        verts_of(db, sid, v);
+        Vec3 a = g_array_index(v, Vec3, 0), b = g_array_index(v, Vec3, 6);
+        assert_true(a.x == -2.1 + 0.7 * i || fabs(a.x - (-2.1 + 0.7 * i)) < TOL);
+        assert_true(b.y == a.y && b.x > a.x + 0.01);
+        seen++;
+    }
+    assert_int_equal(seen, 5);
+    g_array_free(v, TRUE);
+    scene_db_free(db);
+}
+
 /* One part a wheel (26 structures: 20 parts, 4 of them wheels): each is
  * a whole tyre, the torus all the way round (one sector, no hub). */
 static void test_one_part_wheels(void **st)
@@ -569,6 +597,7 @@ int main(void)
         cmocka_unit_test(test_budgets),
         cmocka_unit_test(test_ellipsoid_grid),
         cmocka_unit_test(test_one_part_wheels),
+        cmocka_unit_test(test_square_panels),
         cmocka_unit_test(test_copies_and_camera),
     };
     return cmocka_run_group_tests_name("vehicle_parts", tests, NULL, NULL);
