@@ -258,6 +258,23 @@ static void test_fit_box_corners(void **st)
         }
 }
 
+/* The orthographic point fit weighs every point, the first too: the eye
+ * goes 2 r from the box centre, r the largest distance from it, here the
+ * first point's alone (sqrt 75 from (5, 5, 5); the others sqrt 50). */
+static void test_fit_ortho_first_point(void **st)
+{
+    (void)st;
+    const Vec3 pts[] = {{10, 10, 10}, {0, 0, 5}, {5, 0, 0}, {0, 5, 0}};
+    SceneCamera c = scene_camera_default();
+    c.proj = SCENE_ORTHOGRAPHIC;
+    c.aspect = 2;
+    scene_camera_fit_points(&c, pts, 4, 0.5);
+    double r = sqrt(75.0);
+    NEAR(vec3_len(vec3_sub(c.eye, c.target)), 2 * r, 1e-12);
+    NEAR(c.far, 2 * r + 1.01 * r, 1e-9);
+    NEAR(c.height, 2 * 5 / 0.5, 1e-12); /* 5 up and down, 5 / 2 across */
+}
+
 /* Orbits: frame f turns the base camera by deg0 + f * step about the
  * axis through the centre, eye, target and up alike. */
 static void test_orbit(void **st)
@@ -454,6 +471,7 @@ int main(void)
         cmocka_unit_test(test_fit_sphere),
         cmocka_unit_test(test_fit_points),
         cmocka_unit_test(test_fit_box_corners),
+        cmocka_unit_test(test_fit_ortho_first_point),
         cmocka_unit_test(test_orbit),
         cmocka_unit_test(test_keyframes),
         cmocka_unit_test(test_key_edges),
