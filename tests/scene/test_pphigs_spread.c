@@ -193,6 +193,31 @@ static void test_flock_ranges(void **st)
     scene_db_free(db);
 }
 
+/* Boid colours spread as the shares of the later elements fall:
+ * 3 colours among 8 elements stand at 0, 2 and 5; and the smallest
+ * figure (2 levels: a spine and a joint) is a figure like any other. */
+static void test_layouts(void **st)
+{
+    (void)st;
+    ScenePphigsSpec s = spec(SCENE_PPHIGS_FLOCK);
+    s.boid_colors = 3;
+    s.boid_polygons = 5;
+    SceneDb *db = gen(&s, NULL);
+    guint boid;
+    assert_true(scene_db_find(db, "boid", &boid));
+    assert_int_equal(scene_db_len(db, boid), 8);
+    for (guint i = 0; i < 8; i++)
+        assert_int_equal(scene_db_elem(db, boid, i)->kind == SCENE_EL_COLOR,
+                         i == 0 || i == 2 || i == 5);
+    scene_db_free(db);
+    s = spec(SCENE_PPHIGS_HUMANS);
+    s.levels = 2;
+    s.structures = 2;
+    db = gen(&s, NULL);
+    assert_int_equal(scene_db_height(db, scene_db_posted_at(db, 0)), 2);
+    scene_db_free(db);
+}
+
 /* Figures: joints shifted over [-seg, seg] in x, polygons centred over
  * [-seg/4, seg/4] x [0, seg] x [-seg/4, seg/4] (seg = size / 20 = 2). */
 static void test_figure_ranges(void **st)
@@ -263,6 +288,7 @@ int main(void)
         cmocka_unit_test(test_polygon_orientation),
         cmocka_unit_test(test_object_ranges),
         cmocka_unit_test(test_flock_ranges),
+        cmocka_unit_test(test_layouts),
         cmocka_unit_test(test_figure_ranges),
         cmocka_unit_test(test_overlay_ranges),
     };
