@@ -106,6 +106,10 @@ static void test_copy_and_names(void **st)
     assert_int_equal(scene_db_posted_at(c, 0), a2);
     assert_int_equal(scene_db_posted_at(c, 1), a);
     assert_string_equal(scene_db_struct_name(c, a2), "a");
+    /* the copy's boxes are computed, not taken from its blank cache */
+    SceneBox bo = scene_db_struct_bbox(db, a), bc = scene_db_struct_bbox(c, a);
+    assert_memory_equal(&bo, &bc, sizeof bo);
+    assert_true(bc.min.x == 3 && bc.max.x == 4 && bc.max.y == 1);
     scene_db_free(c);
     scene_db_free(db);
 }
@@ -278,6 +282,46 @@ static void test_instances(void **st)
     scene_db_free(db);
 }
 
+/* The cycle check: a path found after a dead end names only the chain
+ * (the dead end is dropped), and each structure is searched once, so a
+ * 48-level lattice of doubled executes (2^48 paths) is checked at once. */
+static void test_cycle_search(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint a = scene_db_add_struct(db, "a"), d = scene_db_add_struct(db, "d");
+    guint b = scene_db_add_struct(db, "b"), c = scene_db_add_struct(db, "c");
+    guint e = scene_db_add_struct(db, "e");
+    add(db, a, scene_elem_execute(d));
+    add(db, d, scene_elem_execute(e));
+    add(db, a, scene_elem_execute(b));
+    add(db, b, scene_elem_execute(c));
+    SceneElem x = scene_elem_execute(a);
+    GError *err = NULL;
+    assert_false(scene_db_append(db, c, &x, &err));
+    assert_string_equal(err->message,
+                        "found execute of 'a' in 'c' closing the cycle "
+                        "c -> a -> b -> c, expected an acyclic structure "
+                        "network");
+    g_clear_error(&err);
+    guint top = scene_db_add_struct(db, "lattice");
+    guint prev = top;
+    for (int i = 0; i < 48; i++) {
+        char name[16];
+        g_snprintf(name, sizeof name, "l%d", i);
+        guint next = scene_db_add_struct(db, name);
+        add(db, prev, scene_elem_execute(next));
+        add(db, prev, scene_elem_execute(next));
+        prev = next;
+    }
+    guint root = scene_db_add_struct(db, "root");
+    add(db, root, scene_elem_execute(top)); /* searches the whole lattice */
+    x = scene_elem_execute(root);
+    assert_false(scene_db_append(db, prev, &x, &err)); /* and back up */
+    g_clear_error(&err);
+    scene_db_free(db);
+}
+
 /* A sub-structure executed from two parents: counted once in the min-set
  * (structures, stored primitives), twice in the max-set. */
 static void test_stats_shared(void **st)
@@ -332,6 +376,7 @@ int main(void)
         cmocka_unit_test(test_box_cache),
         cmocka_unit_test(test_box_matrices),
         cmocka_unit_test(test_instances),
+        cmocka_unit_test(test_cycle_search),
         cmocka_unit_test(test_stats_shared),
     };
     return cmocka_run_group_tests_name("structdb_values", tests, NULL, NULL);
