@@ -169,6 +169,19 @@ static void test_box_matrices(void **st)
     EQ(b.max.z, 3);
     EQ(b.min.z, 0);
     EQ(b.max.y, 1);
+    /* a point sent to w = 0 (infinity) is taken as it is (w read as 1) */
+    SceneDb *inf = scene_db_new();
+    guint si = scene_db_add_struct(inf, "inf");
+    Mat4 wx = mat4_identity();
+    wx.m[3][3] = 0;
+    wx.m[3][0] = 1; /* w = x */
+    add(inf, si, scene_elem_matrix(wx, SCENE_MAT_REPLACE));
+    Vec3 q[3] = {vec3(0, 5, 6), vec3(2, 4, 0), vec3(4, 0, 8)};
+    add(inf, si, scene_elem_prim(SCENE_EL_TRIANGLE, q, 3));
+    b = scene_db_struct_bbox(inf, si); /* (0 5 6); (1 2 0); (1 0 2) */
+    assert_true(b.min.x == 0 && b.max.x == 1 && b.min.y == 0 &&
+                b.max.y == 5 && b.min.z == 0 && b.max.z == 6);
+    scene_db_free(inf);
     /* chunks of 1: each primitive under its own matrix */
     GArray *c = scene_db_chunk_bboxes(db, s, 1);
     assert_int_equal(c->len, 2);
@@ -353,6 +366,11 @@ static void test_stats_shared(void **st)
     assert_int_equal(g_array_index(k, guint, 1), c);
     g_array_unref(k);
     assert_int_equal(scene_db_execute_count(db, a, c), 1);
+    guint none = scene_db_add_struct(db, "none"); /* no elements at all */
+    k = scene_db_children(db, none);
+    assert_int_equal(k->len, 0);
+    g_array_unref(k);
+    assert_int_equal(scene_db_height(db, none), 1);
     assert_int_equal(scene_db_execute_count(db, c, a), 0);
     /* posting a structure twice counts it once; nothing posted: zeros */
     scene_db_post(db, a);
