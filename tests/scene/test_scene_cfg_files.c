@@ -121,6 +121,19 @@ static void test_run_config_sections(void **st)
                                         "colour: 3\n");
     check_fail(extra, ":3:1: found unknown key 'colour', expected one of: "
                       "scene, schema_version, machine, workload, run, sweep");
+    /* a YAML file that does not parse, or is not there */
+    char *broken = put(&t, "broken.yaml", "scene: {file: [\n");
+    GError *err = NULL;
+    assert_null(scene_load(broken, &err));
+    assert_true(g_str_has_prefix(err->message, broken));
+    g_clear_error(&err);
+    char *missing = g_build_filename(t.dir, "missing.yaml", NULL);
+    assert_null(scene_load(missing, &err));
+    assert_int_equal(err->code, SIM_ERROR_IO);
+    g_clear_error(&err);
+    g_free(missing);
+    g_unlink(broken);
+    g_free(broken);
     char *noscene = put(&t, "noscene.yaml", "machine: {p: 4}\n");
     check_fail(noscene, ":1:1: found no key 'scene', expected a scene: "
                         "section (docs/scenes.md)");

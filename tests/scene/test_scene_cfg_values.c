@@ -158,6 +158,16 @@ static void test_path_sets_camera(void **st)
     assert_false(same_cam(s->camera, c1));
     assert_true(fabs(s->camera.eye.x - 9) < 1e-9);
     scene_free(s);
+    /* an orbit given no frames: one frame, a whole turn per frame, frame
+     * 0 the section's camera */
+    s = from_text("scene: {generator: teapots, camera: {eye: [0, 0, 9],"
+                  " target: [0, 0, 0]}, path: {kind: orbit}}\n");
+    assert_int_equal(scene_path_n_frames(s->path), 1);
+    c0 = scene_camera_at(s, 0);
+    assert_true(fabs(c0.eye.z - 9) < 1e-9 && fabs(c0.eye.x) < 1e-9);
+    c1 = scene_camera_at(s, 0.25); /* a quarter turn a quarter frame on */
+    assert_true(fabs(c1.eye.x - 9) < 1e-9 || fabs(c1.eye.x + 9) < 1e-9);
+    scene_free(s);
 }
 
 int main(void)
