@@ -133,8 +133,8 @@ static gboolean check_colors(ObjParser *o, const char *const *at,
 
 static gboolean parse_v(ObjParser *o)
 {
-    double x[7];
-    const char *at[7];
+    double x[6]; /* at most 6 numbers: the 7th is refused before it is read */
+    const char *at[6];
     int n = 0;
     while (!at_end(o)) {
         if (n == 6)

@@ -152,6 +152,32 @@ static void test_columns(void **st)
     scene_mesh_free(m);
 }
 
+/* Faces read are white; a one-vertex mesh writes its colour and normal
+ * (present means at least one, not more than one). */
+static void test_faces_and_writer(void **st)
+{
+    (void)st;
+    const char *t = TRI "f 1 2 3\nf 3 2 1\n";
+    GError *err = NULL;
+    SceneMesh *m = parse(t, strlen(t), &err);
+    assert_non_null(m);
+    for (guint i = 0; i < 2; i++) {
+        SceneColor c = g_array_index(m->poly_color, SceneColor, i);
+        assert_true(c.r == 1 && c.g == 1 && c.b == 1);
+    }
+    scene_mesh_free(m);
+    m = scene_mesh_new();
+    scene_mesh_add_vertex(m, vec3(1, 2, 3));
+    SceneColor c = {0.5f, 0.25f, 1};
+    g_array_append_val(m->colors, c);
+    Vec3 n = vec3(0, 0, 1);
+    g_array_append_val(m->normals, n);
+    char *text = scene_obj_to_string(m);
+    assert_string_equal(text, "# pgsim OBJ\nv 1 2 3 0.5 0.25 1\nvn 0 0 1\n");
+    g_free(text);
+    scene_mesh_free(m);
+}
+
 int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
@@ -162,6 +188,7 @@ int main(void)
         cmocka_unit_test(test_long_numbers),
         cmocka_unit_test(test_nothing_past_len),
         cmocka_unit_test(test_columns),
+        cmocka_unit_test(test_faces_and_writer),
     };
     return cmocka_run_group_tests_name("obj_tokens", tests, NULL, NULL);
 }
