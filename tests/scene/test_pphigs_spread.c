@@ -218,6 +218,62 @@ static void test_layouts(void **st)
     scene_db_free(db);
 }
 
+/* One figure of 8 structures, 4 levels: the chain 0-1-2-3, then 4..7
+ * hung round-robin under chain members 0, 1, 2, 0; structure k holds
+ * share(k) of the 7 polygons (0, 1, 1, 1, 1, 1, 1, 1). */
+static void test_figure_tree(void **st)
+{
+    (void)st;
+    ScenePphigsSpec s = spec(SCENE_PPHIGS_HUMANS);
+    s.levels = 4;
+    s.structures = 8;
+    s.polygons = 7;
+    SceneDb *db = gen(&s, NULL);
+    const guint parent[8] = {0, 0, 1, 2, 0, 1, 2, 0};
+    for (guint i = 1; i < 8; i++)
+        for (guint p = 0; p < 8; p++)
+            assert_int_equal(scene_db_execute_count(db, p, i),
+                             p == parent[i]);
+    for (guint k = 0; k < 8; k++) {
+        guint polys = 0;
+        for (guint i = 0; i < scene_db_len(db, k); i++)
+            polys += scene_db_elem(db, k, i)->kind == SCENE_EL_POLYGON;
+        assert_int_equal(polys, k > 0);
+    }
+    scene_db_free(db);
+}
+
+/* A primitive spanning the clip cube between two opposite planes (one
+ * vertex beyond each) is on screen: each plane has its own bit. */
+static void test_offscreen_spans(void **st)
+{
+    (void)st;
+    for (int axis = 0; axis < 3; axis++) {
+        double a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+        a[axis] = -2, b[axis] = 2;
+        Vec3 p[3] = {vec3(a[0], a[1], a[2]), vec3(b[0], b[1], b[2]),
+                     vec3(0.1, 0.1, 0.1)};
+        p[2] = vec3_add(p[1], vec3(axis ? 0.1 : 0, axis ? 0 : 0.1, 0));
+        SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, p, 3);
+        assert_false(scene_pphigs_prim_offscreen(mat4_identity(), &e));
+        /* and both beyond the same plane: off */
+        p[0] = p[1];
+        p[0].x += 0.05;
+        e = scene_elem_prim(SCENE_EL_POLYGON, p, 3);
+        assert_true(scene_pphigs_prim_offscreen(mat4_identity(), &e));
+    }
+    /* each pair of planes across axes too: right and above, left and far */
+    Vec3 q[3] = {vec3(2, 0, 0), vec3(0, 2, 0), vec3(2, 2, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, q, 3);
+    assert_false(scene_pphigs_prim_offscreen(mat4_identity(), &e));
+    Vec3 r[3] = {vec3(-2, 0, 0), vec3(0, 0, 2), vec3(-2, 0, 2)};
+    e = scene_elem_prim(SCENE_EL_POLYGON, r, 3);
+    assert_false(scene_pphigs_prim_offscreen(mat4_identity(), &e));
+    Vec3 t[3] = {vec3(0, -2, 0), vec3(0, 0, -2), vec3(0, -2, -2)};
+    e = scene_elem_prim(SCENE_EL_POLYGON, t, 3);
+    assert_false(scene_pphigs_prim_offscreen(mat4_identity(), &e));
+}
+
 /* Figures: joints shifted over [-seg, seg] in x, polygons centred over
  * [-seg/4, seg/4] x [0, seg] x [-seg/4, seg/4] (seg = size / 20 = 2). */
 static void test_figure_ranges(void **st)
@@ -289,6 +345,8 @@ int main(void)
         cmocka_unit_test(test_object_ranges),
         cmocka_unit_test(test_flock_ranges),
         cmocka_unit_test(test_layouts),
+        cmocka_unit_test(test_figure_tree),
+        cmocka_unit_test(test_offscreen_spans),
         cmocka_unit_test(test_figure_ranges),
         cmocka_unit_test(test_overlay_ranges),
     };

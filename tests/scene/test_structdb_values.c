@@ -261,6 +261,9 @@ static void test_instances(void **st)
     assert_int_equal(scene_mesh_n_polys(m), 5);
     assert_int_equal(scene_mesh_n_vertices(m), 3 + 3 + 4 + 3 + 3);
     assert_int_equal(scene_mesh_poly_len(m, 2), 4);
+    for (guint i = 0, base = 0; i < 5; i++) /* each on its own vertices */
+        for (guint k = 0; k < scene_mesh_poly_len(m, i); k++, base++)
+            assert_int_equal(scene_mesh_poly(m, i)[k], base);
     assert_int_equal(g_array_index(m->poly_tag, uint32_t, 2), leaf);
     Vec3 q = scene_mesh_vertex(m, scene_mesh_poly(m, 2)[2]);
     assert_true(q.x == 3 && q.y == 1 && q.z == 0);
@@ -366,7 +369,14 @@ static void test_stats_shared(void **st)
     assert_int_equal(g_array_index(k, guint, 1), c);
     g_array_unref(k);
     assert_int_equal(scene_db_execute_count(db, a, c), 1);
+    assert_int_equal(scene_db_execute_count(db, b, c), 1); /* its first */
     guint none = scene_db_add_struct(db, "none"); /* no elements at all */
+    SceneDb *lone = scene_db_new();
+    scene_db_post(lone, scene_db_add_struct(lone, "empty"));
+    GArray *mx = scene_db_maxset(lone);
+    assert_int_equal(mx->len, 1);
+    g_array_unref(mx);
+    scene_db_free(lone);
     k = scene_db_children(db, none);
     assert_int_equal(k->len, 0);
     g_array_unref(k);
