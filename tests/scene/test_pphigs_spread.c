@@ -176,10 +176,13 @@ static void test_flock_ranges(void **st)
     assert_int_equal(scene_db_len(db, w1), 1 + 20);
     for (guint k = 0; k < 2; k++) {
         guint w = k ? w1 : w0;
+        double ylo = HUGE_VAL, yhi = -HUGE_VAL; /* one object: one height */
         for (guint i = k; i < scene_db_len(db, w); i++) {
             Vec3 c = centre(scene_db_elem(db, w, i));
             assert_true(fabs(c.x - 2.5) <= 1 + 1e-9 && fabs(c.z) <= 1 + 1e-9);
+            ylo = fmin(ylo, c.y), yhi = fmax(yhi, c.y);
         }
+        assert_true(yhi - ylo <= 2 + 1e-9 && yhi - ylo > 1.5);
     }
     scene_db_free(db);
     /* no colour at all: the polygons still stand on the column at 0 */
