@@ -285,6 +285,12 @@ static void test_instances(void **st)
     EQ(p[3].color.y, 1);
     assert_true(pr == 111);
     g_array_unref(r.inst);
+    /* statistics reaching the last structure created (leaf) */
+    SceneDbStats ds;
+    scene_db_stats(db, &ds);
+    assert_true(ds.structures == 3 && ds.depth == 3 && ds.primitives == 6 &&
+                ds.min_primitives == 6 && ds.attributes == 2 &&
+                ds.executes == 2 && ds.instances == 3);
     /* max-set: root, mid, leaf with parents, depths and entry matrices */
     GArray *mx = scene_db_maxset(db);
     assert_int_equal(mx->len, 3);
