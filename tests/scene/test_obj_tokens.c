@@ -143,6 +143,15 @@ static void test_columns(void **st)
     assert_non_null(m);
     assert_int_equal(scene_mesh_n_polys(m), 1);
     scene_mesh_free(m);
+    /* an empty texture field at the line's end is allowed; vp (parameter
+     * vertices) are not texture coordinates */
+    t = TRI "vt 0 0\nf 1/1 2/1 3/\n";
+    m = parse(t, strlen(t), &err);
+    assert_non_null(m);
+    assert_int_equal(scene_mesh_n_polys(m), 1);
+    scene_mesh_free(m);
+    fails(TRI "vp 0 0\nf 1/1 2 3\n", "t.obj:5:5: found '1', expected no "
+                                     "texture index (none defined above)");
     /* v/vt/vn: the normal index is the third field */
     t = TRI "vt 0 0\nvt 1 1\nvn 1 0 0\nvn 0 0 1\nf 1/2/2 2/1/2 3/2/2\n";
     m = parse(t, strlen(t), &err);

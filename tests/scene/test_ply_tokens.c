@@ -181,6 +181,15 @@ static void test_face_colour(void **st)
     assert_non_null(m);
     SceneColor c = g_array_index(m->poly_color, SceneColor, 0);
     assert_true(c.r == 1 && c.g == 0 && c.b == 0.2f);
+    /* written back as bytes, clamped to [0, 1] first */
+    g_array_index(m->poly_color, SceneColor, 0) =
+        (SceneColor){1.5f, -0.5f, 0.2f};
+    gsize n;
+    guchar *b = scene_ply_encode(m, SCENE_PLY_ASCII, &n);
+    char *text = g_strndup((const char *)b, n);
+    assert_non_null(strstr(text, "\n 3 0 1 2 255 0 51\n"));
+    g_free(text);
+    g_free(b);
     scene_mesh_free(m);
 }
 

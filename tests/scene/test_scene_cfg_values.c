@@ -110,6 +110,23 @@ static void test_view_fits(void **st)
     assert_true(d[2] < d[0] && d[3] < d[0]);
 }
 
+/* Large polygons of one size (min_size = max_size) are allowed; a
+ * missing or non-map section is refused once (warnings are fatal). */
+static void test_sizes_and_sections(void **st)
+{
+    (void)st;
+    scene_free(from_text("scene: {generator: large_polygons, count: 4, "
+                         "min_size: 0.5, max_size: 0.5}\n"));
+    GError *err = NULL;
+    assert_null(scene_from_cfg(NULL, &err));
+    CfgNode *root = cfg_load_string("scene: [1, 2]\n", "v.yaml", &err);
+    assert_null(scene_from_cfg(cfg_get(root, "scene"), &err));
+    assert_string_equal(err->message, "v.yaml:1:8: found a non-map, expected "
+                                      "a scene map {generator | file ...}");
+    g_clear_error(&err);
+    cfg_free(root);
+}
+
 /* An eye one unit from the target is a camera like any other. */
 static void test_unit_camera(void **st)
 {
@@ -181,6 +198,7 @@ int main(void)
         cmocka_unit_test(test_pphigs_default_seed),
         cmocka_unit_test(test_placement_default_at),
         cmocka_unit_test(test_view_fits),
+        cmocka_unit_test(test_sizes_and_sections),
         cmocka_unit_test(test_unit_camera),
         cmocka_unit_test(test_keyframe_interp),
         cmocka_unit_test(test_path_sets_camera),
