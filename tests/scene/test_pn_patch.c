@@ -198,12 +198,40 @@ static void test_grid(void **st)
     }
 }
 
+/* The grid's triangles at level 1 (3 points a side): rows by weight of
+ * P3, each cell split into an upright and (inside) an inverted one,
+ * all wound like the input. */
+static void test_connectivity(void **st)
+{
+    (void)st;
+    SceneMesh *m = scene_mesh_new();
+    Vec3 N[3];
+    for (int i = 0; i < 3; i++) {
+        N[i] = vec3_norm(Nraw[i]);
+        scene_mesh_add_vertex(m, P[i]);
+        g_array_append_val(m->normals, N[i]);
+    }
+    scene_mesh_add_tri(m, 0, 1, 2, scene_color(1, 1, 1), 0);
+    ScenePnParams p = {1, SCENE_PN_LINEAR};
+    SceneMesh *t = scene_pn_tessellate(m, &p);
+    /* points: row 0: 0 1 2; row 1: 3 4; row 2: 5 */
+    const uint32_t want[4][3] = {{0, 1, 3}, {1, 4, 3}, {1, 2, 4}, {3, 4, 5}};
+    assert_int_equal(scene_mesh_n_polys(t), 4);
+    for (guint i = 0; i < 4; i++) {
+        assert_int_equal(scene_mesh_poly_len(t, i), 3);
+        assert_memory_equal(scene_mesh_poly(t, i), want[i], sizeof want[i]);
+    }
+    scene_mesh_free(t);
+    scene_mesh_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_control_net),
         cmocka_unit_test(test_evaluation),
         cmocka_unit_test(test_grid),
+        cmocka_unit_test(test_connectivity),
     };
     return cmocka_run_group_tests_name("pn_patch", tests, NULL, NULL);
 }
