@@ -437,6 +437,16 @@ static void test_move_exact(void **st)
     assert_int_equal(t->elements_removed, 2);
     assert_int_equal(t->elements_sent, 5 + 2);
     wl_pphigs_dist_free(d);
+    /* a GP lacking the colour gets it with the triangle: t t C t deals
+     * a and d (with c) to GP 0, b to GP 1; d moved to GP 1 takes c */
+    d = dist1("ttCt", 2, WL_PPHIGS_COMPLEX, &W);
+    assert_gp(d, 0, 0, "acd");
+    assert_gp(d, 1, 0, "b");
+    assert_true(wl_pphigs_dist_move(d, 0, 3, 1));
+    assert_gp(d, 0, 0, "ac");
+    assert_gp(d, 1, 0, "bcd");
+    assert_int_equal(wl_pphigs_dist_traffic(d)->last_scan, 3);
+    wl_pphigs_dist_free(d);
 }
 
 /* ---- §2.3.2 strip splitting ------------------------------------------ */
