@@ -181,6 +181,30 @@ static void test_setup(void **state)
                 "frame.yaml:10:1: found unknown key 'width2', expected one "
                 "of: width, height, region, cmd_bytes, end_bytes, batch, "
                 "pixel_bytes, element_bytes, cluster_scale, strip_split");
+    /* every size is a count of at least 1 */
+    static const char *const sizes[][2] = {
+        {"width: 1280", "1:8"},   {"height: 1024", "2:9"},
+        {"region: 128", "3:9"},   {"cmd_bytes: 20", "4:12"},
+        {"end_bytes: 4", "5:12"}, {"batch: 16", "6:8"},
+        {"pixel_bytes: 3", "7:14"}, {"element_bytes: 24", "8:16"}};
+    for (guint i = 0; i < G_N_ELEMENTS(sizes); i++) {
+        GString *y = g_string_new(frame_keys);
+        char *zero = g_strdup(sizes[i][0]);
+        strcpy(strchr(zero, ':'), ": 0");
+        g_string_replace(y, sizes[i][0], zero, 1);
+        g_string_append(y, "cluster_scale: {value: 1, source: y}\n");
+        CfgNode *root = cfg_load_string(y->str, "frame.yaml", &err);
+        assert_non_null(root);
+        assert_false(wl_pphigs_setup_from_cfg(root, &s, &err));
+        char *want = g_strdup_printf("frame.yaml:%s: found '0', expected a "
+                                     "count in [1, 16777216]", sizes[i][1]);
+        assert_string_equal(err->message, want);
+        g_clear_error(&err);
+        g_free(want);
+        g_free(zero);
+        cfg_free(root);
+        g_string_free(y, TRUE);
+    }
     CfgNode *seq = cfg_load_string("[1]", "frame.yaml", &err);
     assert_false(wl_pphigs_setup_from_cfg(seq, &s, &err));
     assert_string_equal(err->message, "frame.yaml:1:1: found a non-map, "

@@ -233,6 +233,22 @@ static void test_sloped_depth(void **st)
     g_array_unref(c);
 }
 
+/* The depth plane z = a X + b Y + c through screen points (4, 4), (8, 4),
+ * (4, 8) at z 0.5, 0.25, 0.75: a = -1/16, b = 1/16, c = 0.5 + 4/16 -
+ * 4/16 = 0.5. */
+static void test_depth_plane(void **st)
+{
+    (void)st;
+    static const double xy[3][2] = {{4, 4}, {8, 4}, {4, 8}};
+    Poly p;
+    poly(&p, xy, 3);
+    p.v[0].z = 0.5, p.v[1].z = 0.25, p.v[2].z = 0.75;
+    GArray *c = cmds(&p, 1);
+    const WlPphigsCmd *k = &g_array_index(c, WlPphigsCmd, 0);
+    assert_true(k->z.a == -1.0 / 16 && k->z.b == 1.0 / 16 && k->z.c == 0.5);
+    g_array_unref(c);
+}
+
 /* Flat shading: s = 0.3 + 0.7 |n.z| / |n| with n the normal in NDC.
  * Screen points (0.5, 0.5), (4.5, 2.5), (2.5, 6.5) at z 0.125, 0.5,
  * -0.25: u = (1, -0.5, 0.375), v = (0.5, -1.5, -0.375),
@@ -336,6 +352,7 @@ int main(void)
         cmocka_unit_test(test_shading_exact),
         cmocka_unit_test(test_near_clip),
         cmocka_unit_test(test_largest_fan),
+        cmocka_unit_test(test_depth_plane),
     };
     return cmocka_run_group_tests_name("pphigs_raster", tests, NULL, NULL);
 }
