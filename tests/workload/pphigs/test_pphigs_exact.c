@@ -23,6 +23,8 @@
 #include <string.h>
 
 #include "sim/workload/pphigs/pphigs_rebalance.h"
+#include "sim/workload/pphigs/pphigs_run.h"
+#include "sim/scene/pphigs_db.h"
 
 /* Unit weights: a triangle 1 (w_vertex 0), attributes small. */
 static const WlPphigsWeights W = {
@@ -625,6 +627,28 @@ static const WlPphigsCosts RC = {.poly = 600 * SIM_NS,
                                  .concat = SIM_US,
                                  .execute = 500 * SIM_NS};
 
+/* The analytic table rows deal the list as it is: one 40-triangle
+ * strip stays whole on one of 4 GPs (strips are split only where the
+ * frame setup asks), so each algorithm's utilisation is exactly 1/4. */
+static void test_analytic_unsplit(void **st)
+{
+    (void)st;
+    ScenePphigsDb db = {scene_db_new(), {0}};
+    guint s = scene_db_add_struct(db.db, "strip");
+    Vec3 v[42];
+    for (int i = 0; i < 42; i++)
+        v[i] = vec3(i / 2, i % 2, 0);
+    SceneElem e = scene_elem_prim(SCENE_EL_TRISTRIP, v, 42);
+    assert_true(scene_db_append(db.db, s, &e, NULL));
+    scene_db_post(db.db, s);
+    db.camera = scene_pphigs_fit_view(db.db);
+    WlPphigsMetrics simple, complex;
+    wl_pphigs_run_db_analytic(&db, 4, &RC, 8, &simple, &complex);
+    assert_true(simple.utilisation == 0.25 && complex.utilisation == 0.25);
+    assert_true(simple.efficiency == 1 && complex.efficiency == 1);
+    scene_db_free(db.db);
+}
+
 /* One acting frame (frames = 1) with the given made-up GP times. */
 static WlPphigsRebalStep rebal_once(WlPphigsDist *d, double fraction,
                                     guint max_moves, const double *us)
@@ -757,6 +781,7 @@ int main(void)
         cmocka_unit_test(test_colour_insert_delete),
         cmocka_unit_test(test_odp_deltas),
         cmocka_unit_test(test_strip_pieces),
+        cmocka_unit_test(test_analytic_unsplit),
         cmocka_unit_test(test_cache_checkpoints),
         cmocka_unit_test(test_cache_truncate),
         cmocka_unit_test(test_cache_shift),
