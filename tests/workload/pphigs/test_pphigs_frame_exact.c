@@ -131,10 +131,39 @@ static void test_frame_counts(void **st)
     sim_engine_free(eng);
 }
 
+/* The ends of the processor counts a frame takes: 64 GPs (one bit each
+ * in the distribution's masks) and a single renderer are accepted. */
+static void test_count_ends(void **st)
+{
+    (void)st;
+    static const char *const over[] = {"nodes.gp.count=64",
+                                       "nodes.renderer.count=1"};
+    for (guint i = 0; i < G_N_ELEMENTS(over); i++) {
+        SimEngine *eng = sim_engine_new(1);
+        CfgNode *sec = cfg_load_string(PP5, "pp5.yaml", NULL);
+        assert_true(cfg_set_override(sec, over[i], NULL));
+        MachMachine *m = mach_new_from_cfg(eng, sec, "analytic", NULL);
+        assert_non_null(m);
+        WlPphigsFrameSpec s = {.cmd_bytes = 1, .end_bytes = 1, .batch = 1,
+                               .pixel_bytes = 1, .width = 8, .height = 8,
+                               .region = 8, .element_bytes = 1};
+        GError *err = NULL;
+        WlPphigsFrame *f = wl_pphigs_frame_new(m, &s, &err);
+        if (!f)
+            fail_msg("%s: %s", over[i], err->message);
+        assert_int_equal(wl_pphigs_frame_gps(f), i ? 2 : 64);
+        wl_pphigs_frame_free(f);
+        mach_free(m);
+        cfg_free(sec);
+        sim_engine_free(eng);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_frame_counts),
+        cmocka_unit_test(test_count_ends),
     };
     return cmocka_run_group_tests_name("pphigs_frame_exact", tests, NULL, NULL);
 }
