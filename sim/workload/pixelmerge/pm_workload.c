@@ -197,7 +197,8 @@ static double pm_mem_bytes(const void *params, GString *what)
 static WlPmMemUse peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
                               const WlPmSetup *s)
 {
-    WlPmMemUse peak = {0};
+    WlPmMemUse peak;
+    memset(&peak, 0, sizeof peak); /* all parts 0 until a node has bytes */
     for (guint q = 0; q < s->procs; q++) {
         WlPmMemUse u =
             wl_pm_memory_use(&p->mem, s, fo->counts[q].polygons,
