@@ -7,7 +7,7 @@
 
 WlSfAdapt *wl_sf_adapt_new(guint grid, guint procs)
 {
-    g_assert(grid >= 1 && grid <= 1024 && (uint64_t)grid * grid >= procs);
+    g_assert(grid >= 1 && grid <= 1024 && wl_sf_adapt_fits(grid, procs));
     WlSfAdapt *a = g_new0(WlSfAdapt, 1);
     a->grid = grid;
     a->procs = procs;
@@ -118,6 +118,55 @@ void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
     }
 }
 
+/* ---- which nodes can be split to the end ------------------------------
+ * A node of a x b cells holds k processors when k = 1 or when some cut
+ * across either axis leaves both halves (k/2 and k - k/2 processors)
+ * able to hold theirs: cells >= k is not enough (3 x 3 cells cannot
+ * hold 9: each half of 4 or 5 needs 2 of the 3 lines).  A larger node
+ * holds whatever a smaller one does (widen its last slab), so a node
+ * of `other` lines across holds k exactly when it is at least
+ * need(other, k) lines long; need(other, k) <= k (a strip of k lines).
+ * Memoised per (other, k): O(G P) entries, each O(P) to fill. */
+
+typedef struct {
+    guint grid, procs;
+    guint8 *memo; /* (grid + 1) x (procs + 1); 0: not yet known */
+} Need;
+
+static guint need(Need *n, guint other, guint k);
+
+static gboolean holds(Need *n, guint a, guint b, guint k)
+{
+    guint k1 = k / 2, k2 = k - k1;
+    return k == 1 || a >= need(n, b, k1) + need(n, b, k2) ||
+           b >= need(n, a, k1) + need(n, a, k2);
+}
+
+static guint need(Need *n, guint other, guint k)
+{
+    guint8 *m = &n->memo[(gsize)other * (n->procs + 1) + k];
+    guint a = 1;
+    if (*m)
+        return *m;
+    while (!holds(n, a, other, k))
+        a++;
+    return *m = (guint8)a;
+}
+
+static Need need_new(guint grid, guint procs)
+{
+    gsize cells = ((gsize)MAX(grid, procs) + 1) * (procs + 1);
+    return (Need){MAX(grid, procs), procs, g_new0(guint8, cells)};
+}
+
+gboolean wl_sf_adapt_fits(guint grid, guint procs)
+{
+    Need n = need_new(grid, procs);
+    gboolean ok = holds(&n, grid, grid, procs);
+    g_free(n.memo);
+    return ok;
+}
+
 /* ---- the k-d split --------------------------------------------------------
  */
 
@@ -131,6 +180,7 @@ typedef struct {
     uint64_t visited;
     uint64_t *marg; /* scratch, G */
     uint64_t *sat;  /* (G+1)^2 summed-area table of weight x factor */
+    Need need;      /* lines each side of a cut keeps */
 } Split;
 
 /* Σ of the weights of cells [x0, x1) x [y0, y1). */
@@ -210,7 +260,7 @@ static void leaf(Split *s, Cells c, guint p)
 static Cut axis_cut(Split *s, Cells c, int axis, guint k1, guint k)
 {
     guint w = c.x1 - c.x0, h = c.y1 - c.y0, other = axis ? w : h;
-    guint n1 = (k1 + other - 1) / other, n2 = (k - k1 + other - 1) / other;
+    guint n1 = need(&s->need, other, k1), n2 = need(&s->need, other, k - k1);
     guint lo = axis ? c.y0 : c.x0, hi = axis ? c.y1 : c.x1;
     if (n1 + n2 > hi - lo)
         return (Cut){0, UINT64_MAX};
@@ -253,11 +303,13 @@ uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r)
 {
     g_assert(r->procs == a->procs);
     gsize g1 = (gsize)a->grid + 1;
-    Split s = {a, r, 0, g_new0(uint64_t, a->grid), g_new0(uint64_t, g1 * g1)};
+    Split s = {a, r, 0, g_new0(uint64_t, a->grid), g_new0(uint64_t, g1 * g1),
+               need_new(a->grid, a->procs)};
     build_sat(&s);
     split(&s, (Cells){0, 0, a->grid, a->grid}, 0, r->procs);
     g_free(s.marg);
     g_free(s.sat);
+    g_free(s.need.memo);
     return s.visited;
 }
 

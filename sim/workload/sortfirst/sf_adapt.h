@@ -20,7 +20,8 @@
  * the larger of the two sides' weight per processor (the weighted
  * median: left weight ~ W (k/2) / k), ties broken towards the cut
  * proportional to area; each side keeps at least enough cells for its
- * processors.  The cut runs across the node's longer side (in cells),
+ * processors (enough for every level of the split below it, not only
+ * one cell each).  The cut runs across the node's longer side (in cells),
  * the other side only when the longer cannot hold both halves.  Leaves are the P regions, cell
  * boundaries mapped to pixels as i W / G.  Deterministic (integer
  * weights, fixed order).  The split reads a node's line weights from a
@@ -53,8 +54,11 @@ typedef struct {
     uint64_t predicted; /* instances placed by extrapolation, last call */
 } WlSfAdapt;
 
-/* grid in 1 .. 1024 with grid^2 >= procs. */
+/* grid in 1 .. 1024 with wl_sf_adapt_fits(grid, procs). */
 WlSfAdapt *wl_sf_adapt_new(guint grid, guint procs);
+/* Whether the split can give each of procs processors a region of a
+ * grid x grid estimate (more than grid^2 >= procs: see the split). */
+gboolean wl_sf_adapt_fits(guint grid, guint procs);
 void wl_sf_adapt_free(WlSfAdapt *a);
 /* Clears, then adds every on-screen chunk instance under view_proj
  * (regions give the screen size). */

@@ -262,6 +262,55 @@ static void test_split_refused_inside(void **st)
     wl_sf_adapt_free(a);
 }
 
+/* Which grids can hold which processor counts (hand-worked): 3 x 3
+ * cells hold 7 but not 8 or 9 (halves of 4 and 4 or 5 each need 2 of
+ * the 3 lines); 5 x 5 holds 21, not 22; every grid the config allows
+ * (8 .. 1024) holds every count it allows (1 .. 64). */
+static void test_fits(void **st)
+{
+    (void)st;
+    assert_true(wl_sf_adapt_fits(3, 7));
+    assert_false(wl_sf_adapt_fits(3, 8));
+    assert_false(wl_sf_adapt_fits(3, 9));
+    assert_true(wl_sf_adapt_fits(5, 21));
+    assert_false(wl_sf_adapt_fits(5, 22));
+    assert_true(wl_sf_adapt_fits(1, 1));
+    for (guint g = 8; g <= 1024; g = g < 16 ? g + 1 : g * 2)
+        for (guint p = 1; p <= WL_SF_MAX_PROCS; p++)
+            if (!wl_sf_adapt_fits(g, p))
+                fail_msg("grid %u, %u processors", g, p);
+}
+
+/* 29 processors on an 8 x 8 grid whose weights once led the split into
+ * a node it could not cut (3 x 3 cells for 9 processors: an abort on a
+ * valid config).  Every cut now leaves each side enough lines for its
+ * whole subtree: the 29 regions are non-empty and tile the screen. */
+static void test_split_29_on_8(void **st)
+{
+    (void)st;
+    static const uint64_t w[64] = {
+        0, 0, 0, 0, 0, 5,  0, 0, 5,  0,  40, 0, 0, 0, 0, 0,
+        5, 0, 5, 5, 40, 0, 1, 40, 1, 1, 0,  1, 40, 0, 0, 1,
+        1, 0, 40, 0, 1, 40, 0, 40, 0, 0, 0,  5, 40, 0, 0, 0,
+        0, 1, 1, 0, 1, 0,  40, 40, 0, 0, 0, 0, 0,  5, 0, 0};
+    WlSfAdapt *a = wl_sf_adapt_new(8, 29);
+    memcpy(a->weight, w, sizeof w);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 29, 64, 64); /* 8 px a cell */
+    wl_sf_adapt_split(a, &r);
+    guint8 owner[64 * 64] = {0};
+    for (guint p = 0; p < 29; p++) {
+        WlSfRect q = r.rect[p];
+        assert_true(q.x0 < q.x1 && q.y0 < q.y1);
+        for (int y = q.y0; y < q.y1; y++)
+            for (int x = q.x0; x < q.x1; x++)
+                assert_int_equal(owner[y * 64 + x]++, 0);
+    }
+    for (guint i = 0; i < 64 * 64; i++)
+        assert_int_equal(owner[i], 1);
+    wl_sf_adapt_free(a);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -271,6 +320,8 @@ int main(void)
         cmocka_unit_test(test_calibrate_tiles),
         cmocka_unit_test(test_split_narrow),
         cmocka_unit_test(test_split_refused_inside),
+        cmocka_unit_test(test_fits),
+        cmocka_unit_test(test_split_29_on_8),
     };
     return cmocka_run_group_tests_name("sf_adapt_values", tests, NULL, NULL);
 }
