@@ -186,6 +186,10 @@ static void test_write_read(void **st)
     SceneDb *r2 = from_text(y->str, &err);
     assert_int_equal(scene_db_struct_count(r2), 0);
     g_string_free(y, TRUE);
+    /* a file that is not there, or does not parse: no database */
+    assert_null(scene_db_load("/nonexistent-pgsim-dir/db.yaml", &err));
+    assert_int_equal(err->code, SIM_ERROR_IO);
+    g_clear_error(&err);
     /* an unwritable path: an I/O error naming it */
     assert_false(scene_db_save(db, "/nonexistent-pgsim-dir/db.yaml", &err));
     assert_int_equal(err->code, SIM_ERROR_IO);
