@@ -708,6 +708,26 @@ static void test_free_null(void **st)
     wl_pf_ops.free_params(NULL);
 }
 
+/* A machine with fewer cpus than the mode needs (3 for APP, CULL and
+ * DRAW, and one for ISECT, on by default) is refused at the workload
+ * section, and the run stops there. */
+static void test_machine_refused(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    SimResult *r = run("machine: {model: sgi-onyx, nodes: {cpu: {count: 2}}}\n"
+                       "workload: {type: performer, mode: app_cull_draw,\n"
+                       "  town: {blocks: 2, houses: 2, trees: 2, cars: 2}}\n",
+                       2, &err);
+    assert_null(r);
+    assert_non_null(err);
+    assert_string_equal(err->message,
+                        "pf.yaml:2:11: found machine 'sgi-onyx' with 2 cpu "
+                        "nodes, expected 4 cpus (mode app_cull_draw + isect) "
+                        "and a pipe");
+    g_error_free(err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -725,6 +745,7 @@ int main(void)
         cmocka_unit_test(test_frame_marks),
         cmocka_unit_test(test_one_frame_rate),
         cmocka_unit_test(test_matrix_ops_saved),
+        cmocka_unit_test(test_machine_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
