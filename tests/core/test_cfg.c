@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "sim/core/cfg.h"
+#include "tests/support.h"
 
 static const char *doc = "schema_version: 1\n"          /* 1 */
                          "machine:\n"                   /* 2 */
@@ -351,9 +352,7 @@ static void test_get_map(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_tree_and_locations),
         cmocka_unit_test(test_getters),

@@ -11,6 +11,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/core/cfg_impl.h"
+#include "tests/support.h"
 
 static CfgNode *try_load(const char *text, GError **err)
 {
@@ -128,9 +129,7 @@ static void test_path_index(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nesting_limit),
         cmocka_unit_test(test_alias_limit),

@@ -23,6 +23,7 @@
 #include "sim/core/rng.h"
 #include "sim/core/stats.h"
 #include "sim/core/units.h"
+#include "tests/support.h"
 
 static void test_cfg_errors(void **state)
 {
@@ -533,9 +534,7 @@ static void test_value_text_edges(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cfg_errors),
         cmocka_unit_test(test_describe_long),

@@ -13,6 +13,7 @@
 #include "sim/core/engine.h"
 #include "sim/core/stats.h"
 #include "sim/core/units.h"
+#include "tests/support.h"
 
 typedef struct {
     const char *text;
@@ -251,9 +252,7 @@ static void test_progress_off(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_unit),
         cmocka_unit_test(test_busy_clear),

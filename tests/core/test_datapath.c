@@ -6,6 +6,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/core/datapath.h"
+#include "tests/support.h"
 #include <glib/gstdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -129,9 +130,7 @@ static void test_bounded_reads(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_file_limit),
         cmocka_unit_test(test_name_as_given_when_it_exists),

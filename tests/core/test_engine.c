@@ -5,6 +5,7 @@
 #include <cmocka.h>
 
 #include "sim/core/engine.h"
+#include "tests/support.h"
 
 typedef struct {
     GArray *log; /* int tags in execution order */
@@ -247,9 +248,7 @@ static void test_progress_every_n_events(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_time_order_then_schedule_order),
         cmocka_unit_test(test_zero_delay_runs_after_pending_ties),

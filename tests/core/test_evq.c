@@ -9,6 +9,7 @@
 
 #include "sim/core/evq.h"
 #include "sim/core/rng.h"
+#include "tests/support.h"
 
 static SimEvKey key(SimTime t, uint64_t seq)
 {
@@ -135,9 +136,7 @@ static void test_push_below_settled_and_same_time(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_heap_matches_sorted_reference),
         cmocka_unit_test(test_equal_times_pop_in_seq_order),

@@ -12,6 +12,7 @@
 #include "sim/core/memlimit.h"
 #include "sim/core/record.h"
 #include "tests/core/rec_log.h"
+#include "tests/support.h"
 
 static void test_refresh_at(void **state)
 {
@@ -145,9 +146,7 @@ static void test_schedule_refused(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_refresh_at),
         cmocka_unit_test(test_wait_without_recorder),

@@ -6,6 +6,7 @@
 
 #include "sim/core/rng.h"
 #include "sim/core/stats.h"
+#include "tests/support.h"
 #include <stdlib.h>
 
 static void test_known_first_values_are_stable(void **state)
@@ -116,9 +117,7 @@ static void test_busy_per_phase(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_known_first_values_are_stable),
         cmocka_unit_test(test_below_is_in_range_and_unbiased),

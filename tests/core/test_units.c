@@ -8,6 +8,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/core/units.h"
+#include "tests/support.h"
 
 static uint64_t u64_ok(const char *s, CfgUnitKind k)
 {
@@ -269,9 +270,7 @@ static void test_units_exact_edges(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_times),
         cmocka_unit_test(test_sizes_counts),

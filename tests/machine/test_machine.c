@@ -10,6 +10,7 @@
 #include "sim/core/trace.h"
 #include "sim/machine/machine.h"
 #include "sim/machine/shmem.h"
+#include "tests/support.h"
 
 typedef struct {
     SimEngine *eng;
@@ -498,9 +499,7 @@ static void test_bad_fidelity(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_all_models_build),
         cmocka_unit_test(test_faithful_fidelity),

@@ -17,6 +17,7 @@
 #include "sim/machine/mnet.h"
 #include "sim/machine/model.h"
 #include "sim/machine/partition.h"
+#include "tests/support.h"
 
 /* A model's lines after the header; "m.yaml" is its file name. */
 #define HEAD "schema_version: 1\nname: t\n"
@@ -1070,9 +1071,7 @@ static void test_empty_op_list(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_type_examples),
         cmocka_unit_test(test_units_required),

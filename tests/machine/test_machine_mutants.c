@@ -11,6 +11,7 @@
 #include "sim/machine/machine.h"
 #include "sim/machine/model.h"
 #include "sim/machine/partition.h"
+#include "tests/support.h"
 #include <string.h>
 
 static void test_one_node_hypercube(void **state)
@@ -170,9 +171,7 @@ static void test_model_errors_name_the_type(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_node_hypercube),
         cmocka_unit_test(test_unknown_key_list),

@@ -13,6 +13,7 @@
 #include "sim/machine/machine.h"
 #include "sim/machine/shmem.h"
 #include "tests/core/rec_log.h"
+#include "tests/support.h"
 
 typedef struct {
     SimEngine *eng;
@@ -189,9 +190,7 @@ static void test_shmem_send_plain(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_compute_recorded, setup, teardown),
         cmocka_unit_test_setup_teardown(test_terms_and_priced_recorded, setup,

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "sim/machine/machine.h"
+#include "tests/support.h"
 
 static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
 {
@@ -193,18 +194,9 @@ static void test_dimension_mismatch(void **state)
     cfg_free(root);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    g_setenv("PGSIM_MODELS", "tests/data/models", TRUE);
-    return 0;
-}
-
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mesh_model),
         cmocka_unit_test(test_torus_override),
@@ -213,5 +205,6 @@ int main(void)
         cmocka_unit_test(test_lazy_64k_through_model),
         cmocka_unit_test(test_dimension_mismatch),
     };
-    return cmocka_run_group_tests_name("machine_mnet", tests, setup, NULL);
+    return cmocka_run_group_tests_name("machine_mnet", tests, support_test_models,
+                                       NULL);
 }

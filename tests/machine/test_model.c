@@ -9,6 +9,7 @@
 
 #include "sim/machine/machine.h"
 #include "sim/machine/model.h"
+#include "tests/support.h"
 
 static const char *const shipped[] = {"ipsc2", "pixel-planes-5", "cm200",
                                       "cm5",   "cluster-ib",     NULL};
@@ -477,9 +478,7 @@ static void test_workload_overrides(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shipped_models_check),
         cmocka_unit_test(test_workload_section_kept),

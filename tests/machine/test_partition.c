@@ -11,6 +11,7 @@
 #include "sim/machine/machine.h"
 #include "sim/machine/model.h"
 #include "sim/machine/partition.h"
+#include "tests/support.h"
 
 typedef struct {
     CfgNode *root;
@@ -140,18 +141,9 @@ static void test_mesh_keeps_shape(void **state)
     part_close(&p);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    g_setenv("PGSIM_MODELS", "tests/data/models", TRUE);
-    return 0;
-}
-
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hypercube_and_fat_tree),
         cmocka_unit_test(test_ring_split),
@@ -159,5 +151,6 @@ int main(void)
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_mesh_keeps_shape),
     };
-    return cmocka_run_group_tests_name("machine_partition", tests, setup, NULL);
+    return cmocka_run_group_tests_name("machine_partition", tests, support_test_models,
+                                       NULL);
 }

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "sim/machine/partition.h"
+#include "tests/support.h"
 
 /* An inline crossbar machine with the given node kinds (YAML flow map
  * body, e.g. "a: {count: 1}, b: {count: 3}"). */
@@ -163,23 +164,15 @@ static void test_widest_kind(void **state)
     cfg_free(root);
 }
 
-static int setup(void **state)
-{
-    (void)state;
-    g_setenv("PGSIM_MODELS", "tests/data/models", TRUE);
-    return 0;
-}
-
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_largest_remainder),
         cmocka_unit_test(test_single_kinds),
         cmocka_unit_test(test_too_few),
         cmocka_unit_test(test_widest_kind),
     };
-    return cmocka_run_group_tests_name("partition_split", tests, setup, NULL);
+    return cmocka_run_group_tests_name("partition_split", tests, support_test_models,
+                                       NULL);
 }

@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include "sim/machine/shmem.h"
+#include "tests/support.h"
 
 static void test_fifo(void **state)
 {
@@ -51,9 +52,7 @@ static void test_needs_a_bus(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fifo),
         cmocka_unit_test(test_needs_a_bus),

@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include "sim/net/collective.h"
+#include "tests/support.h"
 
 typedef struct {
     SimEngine *eng;
@@ -331,9 +332,7 @@ static void test_send_lists_routes(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_xor_alltoall),
         cmocka_unit_test(test_broadcast_binomial),

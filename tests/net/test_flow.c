@@ -19,6 +19,7 @@
 
 #include "sim/core/rng.h"
 #include "sim/net/net.h"
+#include "tests/support.h"
 
 #define NMSG 60
 #define MAXH 16
@@ -272,9 +273,7 @@ static void test_fattree_levels(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hypercube_one_channel),
         cmocka_unit_test(test_hypercube_two_channels),

@@ -6,6 +6,7 @@
 #include <cmocka.h>
 
 #include "sim/net/net.h"
+#include "tests/support.h"
 
 static void test_ecube_bit_order(void **state)
 {
@@ -150,9 +151,7 @@ static void test_lazy_state_64k(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ecube_bit_order),
         cmocka_unit_test(test_ecube_hops_hamming),

@@ -14,6 +14,7 @@
 
 #include "sim/net/net.h"
 #include "sim/net/traffic.h"
+#include "tests/support.h"
 
 static guint popcount(uint32_t x)
 {
@@ -761,9 +762,7 @@ static void test_alltoall_counts(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mesh_routes),
         cmocka_unit_test(test_hypercube_ring_routes),

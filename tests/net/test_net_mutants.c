@@ -12,6 +12,7 @@
 #include "sim/net/collective.h"
 #include "sim/net/net.h"
 #include "sim/core/trace.h"
+#include "tests/support.h"
 
 static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
 {
@@ -279,9 +280,7 @@ static void test_flow_last_byte(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_circuit_flow_no_hop_events),
         cmocka_unit_test(test_empty_message_one_packet),

@@ -12,6 +12,7 @@
 
 #include "sim/net/net.h"
 #include "tests/core/rec_log.h"
+#include "tests/support.h"
 
 static void noted(NetNet *net, const NetDelivery *d, void *ctx)
 {
@@ -171,9 +172,7 @@ static void test_ideal_time(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_analytic_recorded),
         cmocka_unit_test(test_circuit_traced),

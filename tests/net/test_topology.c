@@ -6,6 +6,7 @@
 #include <cmocka.h>
 
 #include "sim/net/net.h"
+#include "tests/support.h"
 
 /* Follows a route's link ends: returns FALSE if it is not a walk from
  * src to dst. */
@@ -238,9 +239,7 @@ static void test_max_hops_tight(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fattree_up_down),
         cmocka_unit_test(test_ring_slots_order),

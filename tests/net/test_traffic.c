@@ -13,6 +13,7 @@
 
 #include "sim/core/trace.h"
 #include "sim/net/traffic.h"
+#include "tests/support.h"
 #include <sys/resource.h>
 
 #define N 16
@@ -254,9 +255,7 @@ static void test_first_round_memory_65536(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_first_round_memory_65536),
         cmocka_unit_test(test_same_traffic_every_pattern),

@@ -7,6 +7,7 @@
 #include <cmocka.h>
 
 #include "sim/net/net.h"
+#include "tests/support.h"
 
 typedef struct {
     SimTime at[64];
@@ -402,9 +403,7 @@ static void test_memory_returns(void **state)
 
 int main(void)
 {
-    /* a GLib warning (an error set twice ...) fails the test */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lone_message_all_fidelities),
         cmocka_unit_test(test_bottleneck_first_or_last),

@@ -13,6 +13,7 @@
 #include <glib/gstdio.h>
 
 #include "sim/raster/image.h"
+#include "tests/support.h"
 
 static uint32_t be32(const guchar *p)
 {
@@ -136,8 +137,7 @@ static void test_read_limits(void **state)
 
 int main(void)
 {
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_written_bytes),
         cmocka_unit_test(test_read_limits),

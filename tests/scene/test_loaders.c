@@ -13,6 +13,7 @@
 #include "sim/scene/obj.h"
 #include "sim/scene/ply.h"
 #include "sim/scene/teapot.h"
+#include "tests/support.h"
 
 static SceneMesh *obj(const char *text)
 {
@@ -383,8 +384,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_obj_forms),
         cmocka_unit_test(test_ply_ascii),

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "sim/scene/obj.h"
+#include "tests/support.h"
 
 #define TRI "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
 
@@ -191,8 +192,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_long_numbers),
         cmocka_unit_test(test_nothing_past_len),

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "sim/scene/ply.h"
+#include "tests/support.h"
 
 #define HA "ply\nformat ascii 1.0\n"
 #define VXYZ "property double x\nproperty double y\nproperty double z\n"
@@ -197,8 +198,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_long_numbers),
         cmocka_unit_test(test_nothing_past_len),

@@ -14,6 +14,7 @@
 #include <glib/gstdio.h>
 
 #include "sim/scene/scene_cfg.h"
+#include "tests/support.h"
 
 typedef struct {
     char *dir;
@@ -178,8 +179,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_load_by_extension),
         cmocka_unit_test(test_run_config_sections),

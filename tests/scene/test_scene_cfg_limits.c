@@ -16,6 +16,7 @@
 #include <glib/gstdio.h>
 
 #include "sim/scene/scene_cfg.h"
+#include "tests/support.h"
 
 static Scene *from_text(const char *yaml, GError **err)
 {
@@ -448,8 +449,7 @@ int main(void)
 {
     /* a failed section sets its error once: a GError set over another
      * (a reader going on after its error) warns, and that is a failure */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_count_ranges),
         cmocka_unit_test(test_real_ranges),

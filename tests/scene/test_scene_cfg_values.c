@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "sim/scene/scene_cfg.h"
+#include "tests/support.h"
 
 static Scene *from_text(const char *yaml)
 {
@@ -191,8 +192,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_seed_zero),
         cmocka_unit_test(test_pphigs_default_seed),

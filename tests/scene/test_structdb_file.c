@@ -11,6 +11,7 @@
 
 #include "sim/scene/structdb_file.h"
 #include "sim/scene/vehicle.h"
+#include "tests/support.h"
 
 static void assert_same_elem(const SceneElem *a, const SceneElem *b)
 {
@@ -166,8 +167,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_roundtrip_vehicle),
         cmocka_unit_test(test_load_handwritten),

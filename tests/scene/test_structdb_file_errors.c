@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "sim/scene/structdb_file.h"
+#include "tests/support.h"
 
 typedef struct {
     const char *yaml, *message;
@@ -206,8 +207,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_errors),
         cmocka_unit_test(test_write_read),

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "sim/scene/structdb.h"
+#include "tests/support.h"
 
 #define EQ(a, b) assert_true(fabs((a) - (b)) < 1e-12)
 
@@ -402,8 +403,7 @@ int main(void)
 {
     /* a reader that goes on after its error sets a GError over another,
      * and GLib warns: that is a failure here */
-    g_log_set_always_fatal(G_LOG_FATAL_MASK | G_LOG_LEVEL_WARNING |
-                           G_LOG_LEVEL_CRITICAL);
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_constructors),
         cmocka_unit_test(test_copy_and_names),
