@@ -15,8 +15,9 @@ out=$(make -s -j2 all 2>&1) || { echo "$out" | tail -20; echo "land: build fails
 if echo "$out" | grep -q 'warning:'; then echo "$out" | grep warning: | head; echo "land: warnings" >&2; exit 1; fi
 # The rebased tree must pass the suite: another landing may have changed
 # what this branch's tests (or goldens) expect.
-make test > /tmp/pgsim-land-test.log 2>&1 ||
-    { tail -20 /tmp/pgsim-land-test.log; echo "land: make test fails after the rebase" >&2; exit 1; }
+log=/tmp/pgsim-land-test-$br.log # one per branch: landings queue, logs do not mix
+make test > "$log" 2>&1 ||
+    { tail -20 "$log"; echo "land: make test fails after the rebase" >&2; exit 1; }
 cd "$main_dir"
 git merge --ff-only -q "$br"
 echo "land: main is now $(git rev-parse --short HEAD)"
