@@ -41,7 +41,6 @@ struct AgPipe {
     MachMachine *m;
     SimEngine *eng;
     AgSetup s;
-    AgCosts c;
     const AgStreams *st;
     AgFrame *f;
     const SceneMesh *mesh;
@@ -569,15 +568,13 @@ static void pool_kick(AgPipe *p)
 
 /* ---- lifetime and frames ------------------------------------------------ */
 
-AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
-                       const AgStreams *st, AgFrame *f, const SceneMesh *mesh,
-                       const RastView *view)
+AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgStreams *st,
+                       AgFrame *f, const SceneMesh *mesh, const RastView *view)
 {
     AgPipe *p = g_new0(AgPipe, 1);
     p->m = m;
     p->eng = mach_engine(m);
     p->s = *s;
-    p->c = *c;
     p->st = st;
     p->f = f;
     p->mesh = mesh;

@@ -53,7 +53,9 @@
 typedef enum { WL_AG_APP_NONE, WL_AG_APP_NURBS, WL_AG_APP_MARCH } AgApp;
 extern const char *const wl_ag_app_names[]; /* "none" "nurbs" "march" */
 
-/* Costs of the `cpu` node kind, cached (wl_ag_cost_ops lists them). */
+/* Costs of the `cpu` node kind (wl_ag_cost_ops lists them), for pricing
+ * the pipeline's counts by hand; the pipeline itself gives the machine
+ * named counts (ag_pipe.c compute) and keeps no copy. */
 typedef struct {
     SimTime nurbs_vertex, march_voxel, march_triangle;
     SimTime issue_vertex, issue_batch;
@@ -85,9 +87,8 @@ typedef struct {
 typedef struct AgPipe AgPipe;
 
 /* Borrowed: machine, streams, frame, mesh, view (all outlive the pipe). */
-AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgCosts *c,
-                       const AgStreams *st, AgFrame *f, const SceneMesh *mesh,
-                       const RastView *view);
+AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgStreams *st,
+                       AgFrame *f, const SceneMesh *mesh, const RastView *view);
 void wl_ag_pipe_free(AgPipe *p);
 /* Runs one frame from now to the last tile's last block; FALSE with *err
  * on an engine error or a deadlock (blocks left undrawn). */

@@ -222,17 +222,14 @@ static gboolean check_machine(Run *r, WlAgParams *p, const CfgNode *root,
 
 static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p, GError **err)
 {
-    AgCosts c;
     r->scene = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
     if (!r->scene)
         return FALSE;
     r->m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
                              ctx->fidelity, err);
     if (!r->m || !check_machine(r, p, ctx->root, err) ||
-        !wl_ag_costs_from_machine(r->m, &c, err))
+        !mach_require_costs(r->m, "cpu", wl_ag_cost_ops, err))
         return FALSE;
-    if (p->setup.uniprocessor)
-        c.lock = c.sema = 0;
     r->mesh = scene_flatten(r->scene);
     if (!triangles_only(r->mesh, err))
         return FALSE;
@@ -250,7 +247,7 @@ static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p, GError **err)
     r->view = rast_view_for_camera(&r->scene->camera, w, h);
     r->view.cull_back = FALSE;
     r->pipe =
-        wl_ag_pipe_new(r->m, &p->setup, &c, r->st, r->f, r->mesh, &r->view);
+        wl_ag_pipe_new(r->m, &p->setup, r->st, r->f, r->mesh, &r->view);
     return TRUE;
 }
 

@@ -141,12 +141,10 @@ static void threads_on_their_processors(Rig *r, const AgSetup *s,
 static uint64_t run_frame(Rig *r, double *ms)
 {
     GError *e = NULL;
-    AgCosts c;
-    assert_true(wl_ag_costs_from_machine(r->m, &c, &e));
     AgSetup s = {.procs = 24, .contexts = 2, .geometry = 4,
                  .rasterisers = 4, .pool = pool, .app = WL_AG_APP_NONE,
                  .vertex_bytes = 32, .triangle_bytes = 64};
-    AgPipe *p = wl_ag_pipe_new(r->m, &s, &c, r->st, r->f, r->mesh, &r->view);
+    AgPipe *p = wl_ag_pipe_new(r->m, &s, r->st, r->f, r->mesh, &r->view);
     AgFrameStats fs;
     gboolean ok = wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e);
     if (!ok)
@@ -232,6 +230,30 @@ static void test_wait_context_orders(void **state)
     assert_true(wait_frame(TRUE, FALSE, &ms) > 0);
 }
 
+/* The last thread to reach the application barrier wakes every other
+ * one, context 0 included: context 0 reaches it at once (Y's block) and
+ * parks, context 1 issues A first and arrives last.  glpWaitContext(1)
+ * in Y then orders Y after A: the serial picture.  A wake-up that
+ * skipped context 0 would leave Y never issued (the frame fails). */
+static void test_app_barrier_wakes_context_0(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        pool = k == 1;
+        Rig r;
+        rig_init(&r);
+        AgBlock *y = block(&r, 0, A_TRIS, 2);
+        pre(y, WL_AG_SYNC_APP_BARRIER, 0);
+        pre(y, WL_AG_SYNC_WAIT_CONTEXT, 1);
+        block(&r, 1, 0, A_TRIS);
+        pre(block(&r, 1, 0, 0), WL_AG_SYNC_APP_BARRIER, 0);
+        double ms;
+        assert_int_equal(run_frame(&r, &ms), 0);
+        rig_free(&r);
+    }
+    pool = FALSE;
+}
+
 static guint kind_count(const AgStreams *s, AgSyncKind k)
 {
     return (guint)wl_ag_count_syncs(s, k);
@@ -286,7 +308,7 @@ static void event_chain(gboolean pooled)
                  .app = WL_AG_APP_NONE, .vertex_bytes = 32,
                  .triangle_bytes = 64, .mem_bandwidth = 1e8,
                  .mem_latency = SIM_US};
-    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
     AgFrameStats fs;
     if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
         fail_msg("%s", e->message);
@@ -369,12 +391,10 @@ static void rig_quads(Rig *r, const float (*col)[3], int n)
 static AgPipe *run_blend_frame(Rig *r, guint contexts)
 {
     GError *e = NULL;
-    AgCosts c;
-    assert_true(wl_ag_costs_from_machine(r->m, &c, &e));
     AgSetup s = {.procs = 8, .contexts = contexts, .geometry = 1,
                  .rasterisers = 1, .app = WL_AG_APP_NONE,
                  .vertex_bytes = 32, .triangle_bytes = 64};
-    AgPipe *p = wl_ag_pipe_new(r->m, &s, &c, r->st, r->f, r->mesh, &r->view);
+    AgPipe *p = wl_ag_pipe_new(r->m, &s, r->st, r->f, r->mesh, &r->view);
     AgFrameStats fs;
     if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
         fail_msg("%s", e->message);
@@ -475,12 +495,10 @@ static void test_pool_round_robin(void **state)
     }
     block(&r, 0, 0, 21);
     GError *e = NULL;
-    AgCosts c;
-    assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
     AgSetup s = {.procs = 3, .contexts = 1, .geometry = 1, .rasterisers = 1,
                  .pool = TRUE, .fill_infinite = TRUE, .app = WL_AG_APP_NONE,
                  .vertex_bytes = 32, .triangle_bytes = 64};
-    AgPipe *p = wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
     SimTime geom = 0, rt = mach_cost(r.m, "cpu", "rast_triangle");
     for (int frame = 1; frame <= 2; frame++) {
         AgFrameStats fs;
@@ -536,13 +554,11 @@ static void test_deadlock_reported(void **state)
         }
         block(&r, 1, 2, 2);
         GError *e = NULL;
-        AgCosts c;
-        assert_true(wl_ag_costs_from_machine(r.m, &c, &e));
         AgSetup s = {.procs = 24, .contexts = 2, .geometry = 4,
                      .rasterisers = 4, .app = WL_AG_APP_NONE,
                      .vertex_bytes = 32, .triangle_bytes = 64};
         AgPipe *p =
-            wl_ag_pipe_new(r.m, &s, &c, r.st, r.f, r.mesh, &r.view);
+            wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
         AgFrameStats fs;
         assert_false(wl_ag_pipe_frame(p, k ? SIM_US : SIM_TIME_MAX, &fs, &e));
         assert_non_null(e);
@@ -561,6 +577,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_barrier_blocks),
         cmocka_unit_test(test_wait_context_orders),
+        cmocka_unit_test(test_app_barrier_wakes_context_0),
         cmocka_unit_test(test_streams_carry_the_frame_loop),
         cmocka_unit_test(test_event_chain_timing),
         cmocka_unit_test(test_tile_round_robin),

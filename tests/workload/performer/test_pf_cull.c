@@ -180,6 +180,68 @@ static void test_lod_stress(void **st)
     wl_pf_graph_free(t.g);
 }
 
+/* LOD ranges are half-open, [range[i], range[i + 1]): a LOD whose three
+ * children are centred at (4, 0, 0) (its sphere's centre, 4 from the
+ * eye) with ranges {r0, r1, r2, r3} picks, at stress s, the child whose
+ * range holds 4 s; a distance exactly on a boundary belongs to the
+ * farther child, one exactly at the last range to none (lod_sum then
+ * counts the 3 children), one below the first range to none too. */
+static int lod_pick(const double *ranges, guint nr, double stress)
+{
+    WlPfGraph *g = wl_pf_graph_new();
+    guint gs = wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint lod = wl_pf_add_node(g, g->root, WL_PF_LOD);
+    guint geo[3];
+    for (guint i = 0; i < 3; i++) {
+        geo[i] = wl_pf_add_node(g, lod, WL_PF_GEODE);
+        const Vec3 t[3] = {vec3(3, 0, 0), vec3(5, 0, 0), vec3(4, 0, 0)};
+        wl_pf_add_geoset(g, geo[i], t, 1, gs);
+    }
+    g_array_append_vals(wl_pf_node(g, lod)->ranges, ranges, nr);
+    wl_pf_update_bounds(g, g->root);
+    assert_true(wl_pf_node(g, lod)->center.x == 4);
+    WlPfView v = box_view(stress, TRUE);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfCullStats cs = {0};
+    wl_pf_cull(g, &v, dl, &cs);
+    assert_int_equal(cs.lods, 1);
+    int pick = -1;
+    if (dl->len) {
+        assert_int_equal(dl->len, 1);
+        guint item = g_array_index(dl, WlPfDlItem, 0).geoset;
+        for (guint i = 0; i < 3; i++)
+            if (item == g_array_index(wl_pf_node(g, geo[i])->geosets, guint, 0))
+                pick = (int)i;
+        assert_true(pick >= 0);
+        assert_int_equal(cs.lod_sum, pick);
+        assert_int_equal(cs.nodes_visited, 3);
+    } else {
+        assert_int_equal(cs.lod_sum, 3);
+        assert_int_equal(cs.nodes_visited, 2);
+    }
+    g_array_free(dl, TRUE);
+    wl_pf_graph_free(g);
+    return pick;
+}
+
+static void test_lod_boundaries(void **st)
+{
+    (void)st;
+    const double r[5] = {2, 4, 8, 16, 32};
+    assert_int_equal(lod_pick(r, 4, 1), 1);     /* 4: on the 0 -> 1 boundary */
+    assert_int_equal(lod_pick(r, 4, 0.5), 0);   /* 2: the first range's start */
+    assert_int_equal(lod_pick(r, 4, 0.25), -1); /* 1: below every range */
+    assert_int_equal(lod_pick(r, 4, 1.5), 1);   /* 6 */
+    assert_int_equal(lod_pick(r, 4, 2), 2);     /* 8: on the 1 -> 2 boundary */
+    assert_int_equal(lod_pick(r, 4, 3), 2);     /* 12 */
+    assert_int_equal(lod_pick(r, 4, 4), -1);    /* 16: the last range's end */
+    /* a range past the children's (5 ranges, 3 children): no child 3 */
+    assert_int_equal(lod_pick(r, 5, 5), -1); /* 20, in [16, 32) */
+    /* one range short (3 ranges): child 2 has no upper bound, never drawn */
+    assert_int_equal(lod_pick(r, 3, 1.5), 1);
+    assert_int_equal(lod_pick(r, 3, 3), -1);
+}
+
 /* A switch set to none or all. */
 static void test_switch(void **st)
 {
@@ -429,6 +491,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cull_and_draw),
         cmocka_unit_test(test_lod_stress),
+        cmocka_unit_test(test_lod_boundaries),
         cmocka_unit_test(test_switch),
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_isect_touching_sphere),
