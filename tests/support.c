@@ -15,3 +15,16 @@ int support_test_models(void **state)
     g_setenv("PGSIM_MODELS", "tests/data/models", TRUE);
     return 0;
 }
+
+static int vec3_same(Vec3 a, Vec3 b)
+{
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+int support_camera_equal(const SceneCamera *a, const SceneCamera *b)
+{
+    return a->proj == b->proj && vec3_same(a->eye, b->eye) &&
+           vec3_same(a->target, b->target) && vec3_same(a->up, b->up) &&
+           a->fov_deg == b->fov_deg && a->height == b->height &&
+           a->near == b->near && a->far == b->far && a->aspect == b->aspect;
+}
