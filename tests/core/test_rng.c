@@ -115,6 +115,82 @@ static void test_busy_per_phase(void **state)
     sim_busy_clear(&b);
 }
 
+/* Reference values of the published algorithms, computed independently
+ * (a direct Python transcription of splitmix64 and xoshiro256** from the
+ * papers cited in rng.c): mix(0) is splitmix64's well-known first output. */
+static void test_reference_values(void **state)
+{
+    (void)state;
+    assert_true(sim_rng_mix(0) == 0xe220a8397b1dcdafULL);
+    assert_true(sim_rng_mix(1) == 0x910a2dec89025cc1ULL);
+    SimRng r;
+    sim_rng_init(&r, 12345, 7);
+    const uint64_t want[] = {0xad8a4308a6583b9fULL, 0x73d9d488d4a5e9d0ULL,
+                             0xf5014c52f76eb572ULL, 0xb29ba18c63cf458aULL};
+    for (int i = 0; i < 4; i++)
+        assert_true(sim_rng_u64(&r) == want[i]);
+    sim_rng_init(&r, 3, 4);
+    assert_true(sim_rng_uniform(&r) == 0.6035144609353897);
+    assert_true(sim_rng_uniform(&r) == 0.38903616270786034);
+    assert_true(fabs(sim_rng_exp(&r, 2.0) - 1.1633723888167098) < 1e-13);
+    /* eight normals take 20 uniforms: the sixth rejects two pairs */
+    const double nm[] = {10.738784857393812, 9.259054422943594,
+                         10.334891166125775, 13.630522006191164,
+                         11.497375902079495, 10.622685762460758,
+                         13.466882390710905, 13.125056221301081};
+    for (int i = 0; i < 8; i++)
+        assert_true(fabs(sim_rng_normal(&r, 10.0, 3.0) - nm[i]) < 1e-12);
+}
+
+/* n = 2^63 + 1 rejects about half the draws (threshold 2^63 - 1): the
+ * eight values take 20 draws in the reference. */
+static void test_below_rejection_reference(void **state)
+{
+    (void)state;
+    SimRng r;
+    sim_rng_init(&r, 1, 2);
+    const uint64_t want[] = {1381868078914345435ULL, 9202356868409158563ULL,
+                             2601916470229181230ULL, 5559805447233235304ULL,
+                             3725117600180909818ULL, 265239456687484441ULL,
+                             2424903339762140729ULL, 3578577075245689539ULL};
+    for (int i = 0; i < 8; i++)
+        assert_true(sim_rng_below(&r, (1ULL << 63) + 1) == want[i]);
+}
+
+/* Lemire keeps a product whose low word equals the threshold exactly:
+ * for n = 3 the threshold is 2^64 mod 3 = 1, and a state whose output is
+ * 3^-1 mod 2^64 (0xaaaaaaaaaaaaaaab) gives low word 1 and value 2; a
+ * rejection would draw again and give 0. */
+static void test_below_keeps_threshold_tie(void **state)
+{
+    (void)state;
+    SimRng r = {{0x0f0f0f0f0f0f0f0fULL, 0x07ceb240795ceb24ULL, 0, 0}};
+    SimRng c = r;
+    assert_true(sim_rng_u64(&c) == 0xaaaaaaaaaaaaaaabULL);
+    assert_int_equal(sim_rng_below(&r, 3), 2);
+}
+
+/* bernoulli(p) is true exactly when the uniform draw u is below p, so it
+ * is true with probability p: false at p = u (and so never at p = 0),
+ * true just above u. */
+static void test_bernoulli_is_strict(void **state)
+{
+    (void)state;
+    SimRng r, c;
+    sim_rng_init(&r, 8, 9);
+    for (int i = 0; i < 50; i++) {
+        c = r;
+        double u = sim_rng_uniform(&c);
+        SimRng d = r;
+        assert_false(sim_rng_bernoulli(&d, u));
+        d = r;
+        assert_true(sim_rng_bernoulli(&d, nextafter(u, 2.0)));
+        assert_false(sim_rng_bernoulli(&r, 0.0));
+        assert_true(sim_rng_bernoulli(&c, 1.0));
+        r = c;
+    }
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -125,6 +201,10 @@ int main(void)
         cmocka_unit_test(test_moments_small),
         cmocka_unit_test(test_compensated_sum),
         cmocka_unit_test(test_busy_per_phase),
+        cmocka_unit_test(test_reference_values),
+        cmocka_unit_test(test_below_rejection_reference),
+        cmocka_unit_test(test_below_keeps_threshold_tie),
+        cmocka_unit_test(test_bernoulli_is_strict),
     };
     return cmocka_run_group_tests_name("rng_stats", tests, NULL, NULL);
 }
