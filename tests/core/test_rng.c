@@ -191,6 +191,28 @@ static void test_bernoulli_is_strict(void **state)
     }
 }
 
+/* The polar method rejects a pair on the unit circle (s = 1) and at the
+ * centre (s = 0) and draws two more uniforms.  States built by inverting
+ * the output function: s[1] = 0xcd00000000000000 outputs 2^63 (u = 0);
+ * with s[0] = s[1], s[2] = 0 the next output is 0 (v = -1, s = 1), with
+ * s[0] = s[2] = 0 it is 2^63 again (u = v = 0, s = 0). */
+static void test_normal_rejects_circle_and_centre(void **state)
+{
+    (void)state;
+    const uint64_t a = 0xcd00000000000000ULL;
+    SimRng circle = {{a, a, 0, 5}}, centre = {{0, a, 0, 5}};
+    SimRng *cases[] = {&circle, &centre};
+    for (int i = 0; i < 2; i++) {
+        SimRng r = *cases[i], skip = *cases[i];
+        assert_true(sim_rng_u64(&skip) == 1ULL << 63);
+        uint64_t second = sim_rng_u64(&skip);
+        assert_true(second == (i == 0 ? 0 : 1ULL << 63));
+        double want = sim_rng_normal(&skip, 10.0, 3.0);
+        assert_true(isfinite(want) && want != 10.0);
+        assert_true(sim_rng_normal(&r, 10.0, 3.0) == want);
+    }
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -205,6 +227,7 @@ int main(void)
         cmocka_unit_test(test_below_rejection_reference),
         cmocka_unit_test(test_below_keeps_threshold_tie),
         cmocka_unit_test(test_bernoulli_is_strict),
+        cmocka_unit_test(test_normal_rejects_circle_and_centre),
     };
     return cmocka_run_group_tests_name("rng_stats", tests, NULL, NULL);
 }
