@@ -4,8 +4,9 @@
  * at most 20 significant digits (what fits in 64 bits); a unit is an
  * exact, case-sensitive match in the kind's table and contributes a power of
  * ten, a power-of-two factor (KiB ...) and an optional division by 8 (bits).
- * Integer results are computed in checked 64-bit arithmetic after cancelling
- * powers of ten, so no binary rounding ever enters a time, size or count;
+ * Integer results are computed exactly in 128-bit arithmetic (mantissa x
+ * factor x 10^e, divided last) and checked to fit 64 bits, so no binary
+ * rounding ever enters a time, size or count;
  * doubles go through one correctly rounded g_ascii_strtod()
  * (locale-independent).
  *
@@ -222,50 +223,32 @@ static const Unit *parse(const char *s, CfgUnitKind kind, Num *n,
     return u;
 }
 
-static gboolean mul_checked(uint64_t a, uint64_t b, uint64_t *out)
-{
-    if (a != 0 && b > UINT64_MAX / a)
-        return FALSE;
-    *out = a * b;
-    return TRUE;
-}
-
-/* mant * 10^e * bin exactly; non-integral results round (times) or fail. */
+/* mant * 10^e * bin exactly, in 128 bits (mant * bin < 2^104: bin is at
+ * most 2^40), so a large mantissa with a negative exponent is divided
+ * before any overflow is judged; non-integral results round half up
+ * (times) or are inexact.  FALSE when the result is 2^64 or more. */
 static gboolean scale_exact(uint64_t mant, int e, uint64_t bin, gboolean round,
                             uint64_t *out, gboolean *inexact)
 {
-    uint64_t v;
-    *inexact = FALSE;
-    while (e < 0 && mant != 0 && mant % 10 == 0) {
-        mant /= 10;
-        e++;
-    }
-    if (mant == 0 || e < -40) {
-        *out = 0;
-        *inexact = mant != 0 && !round;
-        return TRUE;
-    }
-    if (!mul_checked(mant, bin, &v))
-        return FALSE;
-    for (; e > 0; e--)
-        if (!mul_checked(v, 10, &v))
+    unsigned __int128 v = (unsigned __int128)mant * bin, d = 1;
+    for (; e > 0; e--) {
+        if (v > UINT64_MAX / 10)
             return FALSE;
-    if (e == 0) {
-        *out = v;
-        return TRUE;
+        v *= 10;
     }
-    if (-e > 19) { /* divisor > 2^64 > v: quotient 0, below one half */
+    if (e < -32) { /* d >= 10^33 > 2 v: the quotient rounds to 0 */
         *out = 0;
-        *inexact = !round;
+        *inexact = v != 0 && !round;
         return TRUE;
     }
-    uint64_t d = 1;
     for (; e < 0; e++)
         d *= 10;
-    uint64_t q = v / d, r = v % d;
+    unsigned __int128 q = v / d, r = v % d;
     *inexact = r != 0 && !round;
-    *out = q + (round && r >= d - r ? 1 : 0);
-    return !(round && r >= d - r && q == UINT64_MAX);
+    if (round && r >= d - r)
+        q++;
+    *out = (uint64_t)q;
+    return q <= UINT64_MAX;
 }
 
 gboolean cfg_units_u64(const char *s, CfgUnitKind kind, uint64_t *out,

@@ -268,6 +268,34 @@ static void test_units_exact_edges(void **state)
     assert_true(dbl_ok("1.5e3 kB/s", CFG_UNIT_BANDWIDTH) == 1.5e6);
 }
 
+/* A 20-digit mantissa times a binary or sexagesimal factor passes 2^64
+ * before the division by a power of ten brings it back: the scaling is
+ * exact in 128 bits.  5^27 x 2^40 / 10^27 = 2^13; 12345678901234567891 x
+ * 3600e12 / 1e20 = 444444440444444.44 ps; N x 3.6 for N =
+ * 5124095576030431004 is 2^64 - 1.6, which rounds to 2^64 - 2, and the
+ * next N overflows. */
+static void test_units_wide_intermediate(void **state)
+{
+    (void)state;
+    assert_int_equal(u64_ok("7450580596923828125e-27 TiB", CFG_UNIT_SIZE),
+                     8192);
+    assert_int_equal(u64_ok("12345678901234567891e-20 h", CFG_UNIT_TIME),
+                     444444440444444ULL);
+    assert_string_equal(u64_bad("18446744073709551615e-19 TiB", CFG_UNIT_SIZE),
+                        "a whole number of bytes");
+    assert_true(u64_ok("5124095576030431004e-15 h", CFG_UNIT_TIME) ==
+                UINT64_MAX - 1);
+    assert_string_equal(u64_bad("5124095576030431005e-15 h", CFG_UNIT_TIME),
+                        "a time below 2^64 ps (about 213 days)");
+    assert_int_equal(u64_ok("0e99999 s", CFG_UNIT_TIME), 0);
+    /* far beyond 128 bits both ways: refused, and 0 (or inexact) */
+    assert_string_equal(u64_bad("1e200 ps", CFG_UNIT_TIME),
+                        "a time below 2^64 ps (about 213 days)");
+    assert_int_equal(u64_ok("1e-200 ps", CFG_UNIT_TIME), 0);
+    assert_string_equal(u64_bad("1e-200 B", CFG_UNIT_SIZE),
+                        "a whole number of bytes");
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -280,6 +308,7 @@ int main(void)
         cmocka_unit_test(test_flag_parsers),
         cmocka_unit_test(test_units_edges),
         cmocka_unit_test(test_units_exact_edges),
+        cmocka_unit_test(test_units_wide_intermediate),
     };
     return cmocka_run_group_tests_name("units", tests, NULL, NULL);
 }
