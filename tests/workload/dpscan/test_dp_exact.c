@@ -273,12 +273,16 @@ static void test_empty_scan_one_proc(void **state)
     WlDpVm *vm = wl_dp_vm_new(&m, 1, 2, 2);
     uint32_t none[1] = {7};
     assert_int_equal(wl_dp_reduce_max(vm, WL_DP_PH_SCAN, 0, none, 0), 0);
+    const WlDpCounts *k = &wl_dp_vm_target(vm, 0)->count[WL_DP_PH_SCAN];
     assert_int_equal(wl_dp_vm_target(vm, 0)->phase[WL_DP_PH_SCAN], 1000 + 11);
+    assert_true(k->n[WL_DP_C_STEP] == 1 && k->n[WL_DP_C_SCAN_SLICE] == 1);
+    assert_int_equal(wl_dp_counts_price(&m, k), 1000 + 11);
     uint32_t out[1] = {9};
     assert_int_equal(wl_dp_scan_add(vm, WL_DP_PH_SCAN, 3, none, out, 1), 7);
     assert_int_equal(out[0], 0);
     assert_int_equal(wl_dp_vm_target(vm, 0)->phase[WL_DP_PH_SCAN],
                      2 * 1000 + 11 + 11 * 3);
+    assert_true(k->n[WL_DP_C_STEP] == 2 && k->n[WL_DP_C_SCAN_SLICE] == 4);
     wl_dp_vm_free(vm);
 }
 
