@@ -341,6 +341,43 @@ static void test_near_clip(void **st)
     g_array_unref(out);
 }
 
+/* A vertex exactly on the near plane (w = 1e-6, the clip's bound) is
+ * outside: both edges through it are cut there, so the polygon keeps two
+ * copies of it (one from each cut) and the command has 4 edges, 8
+ * expressions. */
+static void test_vertex_on_near_plane(void **st)
+{
+    (void)st;
+    Mat4 wz = mat4_identity();
+    wz.m[2][2] = 0;
+    wz.m[3][2] = 1;
+    wz.m[3][3] = 0;
+    Vec3 v[3] = {vec3(0, 0, 1), vec3(0.375, 0, 1), vec3(0, 0.5, 1e-6)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1)};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, N, N, out), 1);
+    const WlPphigsCmd *c = &g_array_index(out, WlPphigsCmd, 0);
+    assert_int_equal(c->nedges, 4);
+    assert_int_equal(wl_pphigs_cmd_exprs(c), 8);
+    /* just in front of the plane the vertex is kept once */
+    v[2].z = 2e-6;
+    g_array_set_size(out, 0);
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, N, N, out), 1);
+    assert_int_equal(g_array_index(out, WlPphigsCmd, 0).nedges, 3);
+    /* on the plane again, with A behind the eye: the edge C A is wholly
+     * outside and adds nothing; the polygon is the cut of A B, B and the
+     * cut of B C (3 edges; C kept as inside would add itself and a cut
+     * of C A at C: 5) */
+    v[2].z = 1e-6;
+    v[0].z = -1;
+    g_array_set_size(out, 0);
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, N, N, out), 1);
+    assert_int_equal(g_array_index(out, WlPphigsCmd, 0).nedges, 3);
+    g_array_unref(out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -351,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_sloped_depth),
         cmocka_unit_test(test_shading_exact),
         cmocka_unit_test(test_near_clip),
+        cmocka_unit_test(test_vertex_on_near_plane),
         cmocka_unit_test(test_largest_fan),
         cmocka_unit_test(test_depth_plane),
     };
