@@ -333,6 +333,8 @@ static void test_near_clip(void **st)
     assert_int_equal(out->len, 0);
     big.nverts = WL_PPHIGS_MAX_EDGES; /* the largest that draws */
     assert_int_equal(wl_pphigs_cmds(&bp, mat4_identity(), N, N, out), 1);
+    assert_int_equal(g_array_index(out, WlPphigsCmd, 0).nedges,
+                     WL_PPHIGS_MAX_EDGES); /* every vertex kept */
     /* wholly behind the eye: nothing */
     for (int i = 0; i < 3; i++)
         v[i].z = -1;
