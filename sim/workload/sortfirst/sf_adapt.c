@@ -54,6 +54,24 @@ void wl_sf_adapt_predict(WlSfAdapt *a, guint n_insts)
     a->last_ok = g_new0(guint8, MAX(n_insts, 1));
 }
 
+void wl_sf_adapt_remap(WlSfAdapt *a, const gint64 *map, guint n)
+{
+    g_assert(a->last_x);
+    float *x = g_new0(float, MAX(n, 1)), *y = g_new0(float, MAX(n, 1));
+    guint8 *ok = g_new0(guint8, MAX(n, 1));
+    for (guint i = 0; i < n; i++)
+        if (map[i] >= 0) {
+            x[i] = a->last_x[map[i]];
+            y[i] = a->last_y[map[i]];
+            ok[i] = a->last_ok[map[i]];
+        }
+    g_free(a->last_x);
+    g_free(a->last_y);
+    g_free(a->last_ok);
+    a->last_x = x, a->last_y = y, a->last_ok = ok;
+    a->n_insts = n;
+}
+
 /* With prediction: remembers instance i's centre (cx, cy) and moves it
  * to 2 c - c_last when it had one, clamped to [0, size). */
 static void extrapolate(WlSfAdapt *a, const WlSfRegions *r, guint i,

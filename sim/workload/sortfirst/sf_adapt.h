@@ -73,6 +73,10 @@ void wl_sf_adapt_estimate(WlSfAdapt *a, const WlSfDb *db,
  * screen motion curve, so the error grows with its second derivative.
  * Costs each master 2 floats and a flag per instance it estimates. */
 void wl_sf_adapt_predict(WlSfAdapt *a, guint n_insts);
+/* With prediction on: the instances were renumbered (edits, sf_edit.h);
+ * map[i] is new instance i's old number, or -1 for a new one, which has
+ * no history (n new instances). */
+void wl_sf_adapt_remap(WlSfAdapt *a, const gint64 *map, guint n);
 /* Splits the screen into r->procs regions (r->rect) of equal estimated
  * weight; returns the cells visited. */
 uint64_t wl_sf_adapt_split(const WlSfAdapt *a, WlSfRegions *r);

@@ -421,15 +421,12 @@ static gboolean any_pointer(const WlSfBook *b, const WlSfChunk *ch, uint64_t me)
 static void count_held(const WlSfBook *b, guint p, WlSfBookWork *w)
 {
     uint64_t me = wl_sf_bit(p);
-    w->held_chunks = w->held_polys = w->held_insts = 0;
+    w->held_chunks = w->held_polys = 0;
     for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
-        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
         if (!(b->held_data[c] & me))
             continue;
         w->held_chunks++;
-        w->held_polys += ch->polys;
-        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
-            w->held_insts += (b->held_inst[i] & me) != 0;
+        w->held_polys += wl_sf_chunk(b->db, c)->polys;
     }
 }
 

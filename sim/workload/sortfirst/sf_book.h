@@ -119,7 +119,7 @@ typedef struct {
     uint64_t handed;      /* dynamic: masterships passed on */
     uint64_t collected;   /* slave copies deleted, chunk without instance */
     uint64_t edit_bytes;  /* pointers sent for instances edits created */
-    uint64_t held_chunks, held_polys, held_insts; /* after the frame */
+    uint64_t held_chunks, held_polys; /* after the frame */
 } WlSfBookWork;
 
 typedef struct {

@@ -241,8 +241,8 @@ void wl_sf_octree_order(const Vec3 *pts, guint n, guint *order)
  * primitives' centroids. */
 static void octree_sort(Prim *p, guint n)
 {
-    Vec3 *c = g_new(Vec3, n ? n : 1);
-    guint *order = g_new(guint, n ? n : 1);
+    Vec3 *c = g_new(Vec3, n); /* NULL when n = 0: nothing is read */
+    guint *order = g_new(guint, n);
     Prim *copy = g_memdup2(p, n * sizeof *p);
     for (guint i = 0; i < n; i++)
         c[i] = p[i].centroid;

@@ -504,25 +504,6 @@ static void plan_regions(WlSfRun *r)
  * pass: node_visit per command and per max-set node created or
  * collected, pointer_update per pointer created or collected. */
 
-/* The predicted estimate's history follows the instances' new numbers
- * (a new instance has none). */
-static void remap_prediction(WlSfAdapt *a, const gint64 *map, guint n)
-{
-    float *x = g_new0(float, MAX(n, 1)), *y = g_new0(float, MAX(n, 1));
-    guint8 *ok = g_new0(guint8, MAX(n, 1));
-    for (guint i = 0; i < n; i++)
-        if (map[i] >= 0) {
-            x[i] = a->last_x[map[i]];
-            y[i] = a->last_y[map[i]];
-            ok[i] = a->last_ok[map[i]];
-        }
-    g_free(a->last_x);
-    g_free(a->last_y);
-    g_free(a->last_ok);
-    a->last_x = x, a->last_y = y, a->last_ok = ok;
-    a->n_insts = n;
-}
-
 static void edit_apply(WlSfRun *r)
 {
     memset(&r->ef, 0, sizeof r->ef);
@@ -531,7 +512,7 @@ static void edit_apply(WlSfRun *r)
         return;
     gint64 *map = wl_sf_edit_frame(r->edit, r->book, &r->ef, r->ew);
     if (map && r->adapt && r->adapt->last_x)
-        remap_prediction(r->adapt, map, wl_sf_n_insts(r->db));
+        wl_sf_adapt_remap(r->adapt, map, wl_sf_n_insts(r->db));
     g_free(map);
 }
 

@@ -311,11 +311,48 @@ static void test_split_29_on_8(void **st)
     wl_sf_adapt_free(a);
 }
 
+/* Renumbered instances keep their history: new i takes old map[i]'s
+ * centre and flag (old 0 included), a new one (-1) starts without; a
+ * remap to no instance keeps prediction on (a later remap still
+ * carries histories). */
+static void test_remap(void **st)
+{
+    (void)st;
+    WlSfAdapt *a = wl_sf_adapt_new(4, 2);
+    wl_sf_adapt_predict(a, 3);
+    for (guint i = 0; i < 3; i++) {
+        a->last_x[i] = 1.5f + (float)i;
+        a->last_y[i] = 10.25f + (float)i;
+        a->last_ok[i] = i != 1;
+    }
+    const gint64 map[4] = {2, -1, 0, 1};
+    wl_sf_adapt_remap(a, map, 4);
+    assert_int_equal(a->n_insts, 4);
+    static const float x[4] = {3.5f, 0, 1.5f, 2.5f};
+    static const float y[4] = {12.25f, 0, 10.25f, 11.25f};
+    static const guint8 ok[4] = {1, 0, 1, 0};
+    for (guint i = 0; i < 4; i++) {
+        assert_true(a->last_x[i] == x[i] && a->last_y[i] == y[i]);
+        assert_int_equal(a->last_ok[i], ok[i]);
+    }
+    wl_sf_adapt_remap(a, map, 0);
+    assert_int_equal(a->n_insts, 0);
+    assert_non_null(a->last_x); /* still predicting */
+    assert_non_null(a->last_y);
+    assert_non_null(a->last_ok);
+    const gint64 fresh[2] = {-1, -1};
+    wl_sf_adapt_remap(a, fresh, 2);
+    assert_int_equal(a->n_insts, 2);
+    assert_true(a->last_x[1] == 0 && a->last_ok[0] == 0 && a->last_ok[1] == 0);
+    wl_sf_adapt_free(a);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_estimate),
         cmocka_unit_test(test_predict),
+        cmocka_unit_test(test_remap),
         cmocka_unit_test(test_weight_in),
         cmocka_unit_test(test_calibrate_tiles),
         cmocka_unit_test(test_split_narrow),

@@ -143,8 +143,7 @@ static void push_frame(Rig *r)
         wl_sf_book_render_set(r->b, p, r->fresh[p], r->render[p], &r->w[p]);
 }
 
-/* The fields of WlSfBookWork, in order, but for edit_bytes and
- * held_insts. */
+/* The fields of WlSfBookWork, in order, but for edit_bytes. */
 typedef struct {
     uint64_t mb, sb, nb, sc, sp, si, sby, rc, rp, ri, del, probe, req, hand,
         coll, hc, hp;
@@ -546,6 +545,16 @@ static void test_trav_maxset(void **st)
     wl_sf_trav_count(r.b, WL_SF_TRAV_CULLED, &t, NULL);
     assert_int_equal(t.plain, 112);
     assert_int_equal(t.tests, 19);
+    /* nothing on screen: only the root is entered (it has no parent);
+     * its children, whose parent (node 0) failed its volume test, are
+     * neither scanned nor tested.  Every chunk box is culled: instance
+     * 0's master (0), 1's master (0) and slave (1), 2's master (1) and
+     * slaves (2, 3), 3's master (1): 7 */
+    set_need(&r, OFF, OFF, OFF, OFF);
+    static const uint64_t none[] = {0, 1, 2, 0, 0, 1, 2, 1,
+                                    0, 1, 0, 1, 0, 1, 0, 1};
+    expect_trav(&r, WL_SF_TRAV_CULLED, 12, 10, 0, 0, 7, 4, none);
+    expect_trav(&r, WL_SF_TRAV_BOTH, 12, 10, 0, 0, 7, 4, none);
     rig_clear(&r);
 }
 
@@ -570,6 +579,178 @@ static void test_trav_minset(void **st)
     rig_clear(&r);
 }
 
+/* ---- edits: the instances renumbered (wl_sf_book_remap) -------------- */
+
+/* The rig after frame 1 (instance 0 in tile 0, 1 in tile 1, 2 across
+ * the bottom tiles, 3 off), pushed or pulled. */
+static void frame1(Rig *r, WlSfBookkeeping bk, WlSfMigration mig)
+{
+    rig_init(r, bk, mig, WL_SF_FIXED);
+    set_need(r, T0, T1, BOTTOM, OFF);
+    if (mig == WL_SF_PULL)
+        pull_frame(r);
+    else
+        push_frame(r);
+}
+
+/* need[] of n instances at the places `where`. */
+static void set_need_n(Rig *r, guint n, const int *where)
+{
+    WlSfScreen s[4];
+    for (guint i = 0; i < n; i++)
+        s[i] = at(where[i]);
+    wl_sf_book_need_from(r->b, s);
+}
+
+static void reinstance(Rig *r)
+{
+    GError *e = NULL;
+    assert_true(wl_sf_db_reinstance(r->db, r->src, &e));
+}
+
+static void expect_remap(const WlSfRemapWork *w, const uint64_t *created,
+                         const uint64_t *collected)
+{
+    for (guint p = 0; p < P; p++)
+        if (w[p].ptr_created != created[p] ||
+            w[p].ptr_collected != collected[p])
+            fail_msg("processor %u: pointers created %llu collected %llu, "
+                     "expected %llu, %llu", p,
+                     (unsigned long long)w[p].ptr_created,
+                     (unsigned long long)w[p].ptr_collected,
+                     (unsigned long long)created[p],
+                     (unsigned long long)collected[p]);
+}
+
+/* Max-set.  After frame 1 (pointers held: instance 0 by 0, 1 by 0 and
+ * 1, 2 by 1, 2, 3, 3 by 1) the root is unposted: every instance is
+ * obsolete, its pointers garbage-collected (0: 2, 1: 3, 2: 1, 3: 1).
+ * In the next frame the chunks have no instance: the slave copies (1's
+ * of chunk 0, 2's and 3's of chunk 1) hold no pointer and go at render,
+ * counted as collected; the masters keep theirs.  Posting the root
+ * again makes four new instances with their master's pointer only (0
+ * and 1 create two each); in frame 3 (frame 1's places) the pointers
+ * the masters send for them are edit bytes (0: one, 1: two). */
+static void test_remap_unpost_post(void **st)
+{
+    (void)st;
+    Rig r;
+    frame1(&r, WL_SF_MAXSET, WL_SF_PUSH);
+    expect_vec(r.b->held_inst, 1, 3, 14, 2, "held_inst");
+    WlSfRemapWork w[P] = {{0}};
+    assert_true(scene_db_unpost(r.src, 0));
+    reinstance(&r);
+    assert_int_equal(wl_sf_n_insts(r.db), 0);
+    const gint64 none[1] = {0};
+    wl_sf_book_remap(r.b, none, 4, w);
+    expect_remap(w, (const uint64_t[]){0, 0, 0, 0},
+                 (const uint64_t[]){2, 3, 1, 1});
+    set_need_n(&r, 0, NULL);
+    push_frame(&r);
+    expect_work(&r, 0,
+                (Work){0, 0, 0, 0, 0, 0, 192, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2});
+    expect_work(&r, 1,
+                (Work){0, 0, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1});
+    expect_work(&r, 2,
+                (Work){0, 0, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0});
+    expect_work(&r, 3,
+                (Work){0, 0, 0, 0, 0, 0, 192, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0});
+    assert_int_equal(r.b->held_data[0], 1);
+    assert_int_equal(r.b->held_data[1], 2);
+    memset(w, 0, sizeof w);
+    scene_db_post(r.src, 0);
+    reinstance(&r);
+    assert_int_equal(wl_sf_n_insts(r.db), 4);
+    const gint64 fresh[4] = {-1, -1, -1, -1};
+    wl_sf_book_remap(r.b, fresh, 0, w);
+    expect_remap(w, (const uint64_t[]){2, 2, 0, 0},
+                 (const uint64_t[]){0, 0, 0, 0});
+    expect_vec(r.b->held_inst, 1, 1, 2, 2, "held_inst");
+    expect_vec(r.b->master_inst, 1, 1, 2, 2, "master_inst");
+    set_need(&r, T0, T1, BOTTOM, OFF);
+    push_frame(&r);
+    expect_work(&r, 0,
+                (Work){2, 0, 0, 1, 2, 1, 312, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2});
+    expect_work(&r, 1,
+                (Work){2, 0, 1, 2, 2, 2, 360, 1, 2, 1, 0, 0, 0, 0, 0, 2, 3});
+    assert_int_equal(r.w[0].edit_bytes, 8);
+    assert_int_equal(r.w[1].edit_bytes, 16);
+    assert_int_equal(r.w[2].edit_bytes, 0);
+    /* the next frame: nothing is new any more */
+    set_need(&r, T0, T1, BOTTOM, T3);
+    push_frame(&r);
+    assert_int_equal(r.w[1].sent_insts, 1);
+    assert_int_equal(r.w[1].edit_bytes, 0);
+    check_ok(&r);
+    rig_clear(&r);
+}
+
+/* A map that keeps three instances (new 0 is old 3, 1 old 2, 2 old 1)
+ * and makes one new (3, chunk 1's: master 1): each survivor carries its
+ * pointer vectors; max-set collects old 0's pointer (processor 0's) and
+ * 1 creates the new one's; the min-set has no pointer work.  need[]
+ * starts empty. */
+static void test_remap_kept(void **st)
+{
+    (void)st;
+    for (int bk = 0; bk <= 1; bk++) {
+        Rig r;
+        frame1(&r, bk ? WL_SF_MAXSET : WL_SF_MINSET, WL_SF_PUSH);
+        WlSfRemapWork w[P] = {{0}};
+        const gint64 map[4] = {3, 2, 1, -1};
+        wl_sf_book_remap(r.b, map, 4, w);
+        expect_remap(w, (const uint64_t[]){0, (uint64_t)bk, 0, 0},
+                     (const uint64_t[]){(uint64_t)bk, 0, 0, 0});
+        if (bk) {
+            expect_vec(r.b->held_inst, 2, 14, 3, 2, "held_inst");
+            expect_vec(r.b->master_inst, 2, 14, 3, 2, "master_inst");
+        } else { /* the min-set's vectors stay its masters' bits */
+            expect_vec(r.b->held_inst, 2, 2, 1, 2, "held_inst");
+            expect_vec(r.b->master_inst, 2, 2, 1, 2, "master_inst");
+        }
+        expect_vec(r.b->need, 0, 0, 0, 0, "need");
+        rig_clear(&r);
+    }
+}
+
+/* Min-set and pull: after frame 1 the root is unposted (no pointer
+ * work: the min-set keeps none); a slave copy needed in frame 1 stays
+ * through frame 2 and goes in frame 3 (a frame late), counted as
+ * collected since its chunk has no instance left. */
+static void test_remap_unpost_minset(void **st)
+{
+    (void)st;
+    for (int pull = 0; pull <= 1; pull++) {
+        Rig r;
+        frame1(&r, WL_SF_MINSET, pull ? WL_SF_PULL : WL_SF_PUSH);
+        WlSfRemapWork w[P] = {{0}};
+        assert_true(scene_db_unpost(r.src, 0));
+        reinstance(&r);
+        const gint64 none[1] = {0};
+        wl_sf_book_remap(r.b, none, 4, w);
+        expect_remap(w, (const uint64_t[]){0, 0, 0, 0},
+                     (const uint64_t[]){0, 0, 0, 0});
+        uint64_t msg = pull ? 0 : 192;
+        for (int f = 2; f <= 3; f++) {
+            set_need_n(&r, 0, NULL);
+            if (pull)
+                pull_frame(&r);
+            else
+                push_frame(&r);
+            uint64_t gone = f == 3;
+            expect_work(&r, 0, (Work){0, 0, 0, 0, 0, 0, msg, 0, 0, 0, 0, 0,
+                                      0, 0, 0, 1, 2});
+            expect_work(&r, 1, (Work){0, 0, 0, 0, 0, 0, msg, 0, 0, 0, gone,
+                                      0, 0, 0, gone, 2 - gone, 3 - 2 * gone});
+            expect_work(&r, 2, (Work){0, 0, 0, 0, 0, 0, msg, 0, 0, 0, gone,
+                                      0, 0, 0, gone, 1 - gone, 1 - gone});
+        }
+        assert_int_equal(r.b->held_data[0], 1);
+        assert_int_equal(r.b->held_data[1], 2);
+        rig_clear(&r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -580,6 +761,9 @@ int main(void)
         cmocka_unit_test(test_pull),
         cmocka_unit_test(test_trav_maxset),
         cmocka_unit_test(test_trav_minset),
+        cmocka_unit_test(test_remap_unpost_post),
+        cmocka_unit_test(test_remap_kept),
+        cmocka_unit_test(test_remap_unpost_minset),
     };
     return cmocka_run_group_tests_name("sf_book_frames", tests, NULL, NULL);
 }
