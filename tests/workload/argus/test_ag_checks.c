@@ -138,6 +138,8 @@ static void test_sizes_and_words(void **state)
              "t.yaml:1:43: found 'lots', expected a non-negative size with a unit (B, kB, KB, MB, GB, TB, KiB, MiB, GiB, TiB)");
     rejected("bytes: {vertex: lots}",
              "t.yaml:1:41: found 'lots', expected a non-negative size with a unit (B, kB, KB, MB, GB, TB, KiB, MiB, GiB, TiB)");
+    rejected("voxels_per_cell: 1073741825",
+             "t.yaml:1:42: found '1073741825', expected a count in [0, 1073741824]");
     rejected("tile: 7",
              "t.yaml:1:31: found '7', expected a count in [8, 4096]");
     rejected("block: 0",
@@ -547,7 +549,7 @@ static void test_batch_vertices(void **state)
 
 /* cells: 0 takes the grid from the last batch tag: n = ceil(cbrt(last
  * + 1)), so tags 0..7 make a 2^3 grid and tags 0..8 a 3^3 one (one
- * semaphore a cell). */
+ * semaphore a cell); a mesh without triangles is one empty cell. */
 static guint auto_cells(guint tags)
 {
     SceneMesh *m = scene_mesh_new();
@@ -571,6 +573,7 @@ static guint auto_cells(guint tags)
 static void test_cells_from_last_tag(void **state)
 {
     (void)state;
+    assert_int_equal(auto_cells(0), 1); /* no batch: one empty cell */
     assert_int_equal(auto_cells(1), 1);
     assert_int_equal(auto_cells(2), 8);
     assert_int_equal(auto_cells(8), 8);
