@@ -728,6 +728,79 @@ static void test_machine_refused(void **st)
     g_error_free(err);
 }
 
+/* The workload's keys reach the run: the mode and isect decide how many
+ * cpus are needed (the refusal names them), app_work replaces the
+ * model's app_frame (APP is app_work + app_dcs a car), vertex_bytes
+ * defaults to 32 B a vertex sent to the pipe, and phase: locked swaps on
+ * frame boundaries (T = 1/30 s) where floating swaps on retraces. */
+static void test_keys_reach_the_run(void **st)
+{
+    (void)st;
+    const char *one = "machine: {model: sgi-onyx, nodes: {cpu: {count: 1}}}\n";
+    const struct {
+        const char *w, *need;
+    } modes[] = {{"mode: appcull_draw, isect: false", "2 cpus (mode appcull_draw)"},
+                 {"mode: appculldraw", "2 cpus (mode appculldraw + isect)"},
+                 {"isect: false", "3 cpus (mode app_cull_draw)"}};
+    for (guint i = 0; i < G_N_ELEMENTS(modes); i++) {
+        char *y = g_strdup_printf("%sworkload: {type: performer, %s, "
+                                  "town: {blocks: 1}}\n",
+                                  one, modes[i].w);
+        GError *err = NULL;
+        assert_null(run(y, 2, &err));
+        char *want = g_strdup_printf("expected %s and a pipe", modes[i].need);
+        if (!g_str_has_suffix(err->message, want))
+            fail_msg("%s: '%s'", modes[i].w, err->message);
+        g_free(want);
+        g_clear_error(&err);
+        g_free(y);
+    }
+    /* one process and no ISECT run on one cpu */
+    GError *err = NULL;
+    char *y = g_strdup_printf("%sworkload: {type: performer, mode: "
+                              "appculldraw, isect: false, app_work: 3 ms,\n"
+                              "  cull: false, town: {blocks: 1, houses: 1, "
+                              "cars: 5, speed: 0}}\n",
+                              one);
+    SimResult *r = run(y, 4, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m = mach_new_from_model(eng, "sgi-onyx", "analytic", &err);
+    double dcs = mach_cost(m, "cpu", "app_dcs") * 1e-9;
+    assert_true(fabs(metric(r, "app_ms") - (3 + 5 * dcs)) < 1e-9);
+    /* 3 vertices of 32 B a triangle drawn, the default (the same
+     * triangles every frame: no culling, a standing eye) */
+    assert_true(r->comm_bytes == 4 * 3 * 32 * metric(r, "tris_per_frame"));
+    sim_result_free(r);
+    g_free(y);
+    mach_free(m);
+    sim_engine_free(eng);
+    /* locked: every swap on a frame boundary; floating: not every one */
+    const char *phase[2] = {"locked", "floating"};
+    for (int k = 0; k < 2; k++) {
+        y = g_strdup_printf("machine: {model: sgi-onyx}\n"
+                            "workload: {type: performer, phase: %s, "
+                            "app_work: 1 ms,\n  town: {blocks: 2}}\n",
+                            phase[k]);
+        r = run(y, 6, &err);
+        if (!r)
+            fail_msg("%s", err->message);
+        SimTime T, end = 0;
+        assert_true(sim_time_from_s(1.0 / 60, &T));
+        T *= 2;
+        guint on = 0;
+        for (guint f = 0; f < 6; f++) {
+            end += g_array_index(r->frame_times, SimTime, f);
+            on += end % T == 0;
+        }
+        if (k == 0 ? on != 6 : on == 6)
+            fail_msg("%s: %u of 6 swaps on a frame boundary", phase[k], on);
+        sim_result_free(r);
+        g_free(y);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -746,6 +819,7 @@ int main(void)
         cmocka_unit_test(test_one_frame_rate),
         cmocka_unit_test(test_matrix_ops_saved),
         cmocka_unit_test(test_machine_refused),
+        cmocka_unit_test(test_keys_reach_the_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
