@@ -20,6 +20,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sim/core/record.h"
 #include "sim/scene/march.h"
 #include "sim/workload/argus/ag_pipe.h"
 
@@ -514,6 +515,85 @@ static void test_pool_round_robin(void **state)
     rig_free(&r);
 }
 
+/* A recorder that writes down, for one processor, the rast_triangle
+ * count of each piece of work it is given. */
+typedef struct {
+    uint32_t node;
+    GString *seq;
+} RastRec;
+
+static uint64_t rr_compute(SimRecorder *r, SimTime now, uint32_t node,
+                           unsigned phase, SimTime cost, SimTime end,
+                           const SimOp *ops, unsigned n_ops,
+                           const SimOpTerm *terms, unsigned n_terms,
+                           gboolean handled)
+{
+    (void)now, (void)phase, (void)cost, (void)end, (void)terms;
+    (void)n_terms, (void)handled;
+    RastRec *k = r->state;
+    for (unsigned i = 0; node == k->node && i < n_ops; i++)
+        if (!strcmp(ops[i].name, "rast_triangle"))
+            g_string_append_printf(k->seq, "%" G_GUINT64_FORMAT " ",
+                                   (guint64)ops[i].count);
+    return 1;
+}
+
+static void rr_begin(SimRecorder *r, uint64_t id, SimTime t)
+{
+    (void)r, (void)id, (void)t;
+}
+
+static void rr_end(SimRecorder *r, uint64_t id)
+{
+    (void)r, (void)id;
+}
+
+/* A rasteriser serves its tiles round robin, from the tile after the
+ * one it drew last: one rasteriser owns the 2 x 2 tiles; block 1 (a
+ * full-screen quad: 2 triangles a tile) and block 2 (two, and a small
+ * triangle in tile 1: 4 a tile, 5 in tile 1) are both ready once its
+ * first tile is drawn (finite fill rate), so it draws block 1 at tiles
+ * 0, 1, 2, 3, then block 2 at each, not block 2 at tile 0 right after
+ * block 1 there, nor the tiles in another order. */
+static void test_rasteriser_round_robin(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    r.st->contexts = 1;
+    r.st->barrier_parties = 1;
+    const float col[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    rig_quads(&r, col, 3);
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE / 2, WL_AG_BLEND, 0.5f,
+                          (RastColor){0, 0, 0});
+    uint32_t b = scene_mesh_n_vertices(r.mesh); /* a small one in tile 1 */
+    scene_mesh_add_vertex(r.mesh, vec3(0.2, 0.7, 0));
+    scene_mesh_add_vertex(r.mesh, vec3(0.4, 0.7, 0));
+    scene_mesh_add_vertex(r.mesh, vec3(0.3, 0.9, 0));
+    scene_mesh_add_tri(r.mesh, b, b + 1, b + 2, scene_color(1, 1, 1), 0);
+    block(&r, 0, 0, 2);
+    block(&r, 0, 2, 5);
+    static const SimRecorderOps ops = {
+        .compute = rr_compute, .begin = rr_begin, .end = rr_end};
+    RastRec k = {mach_proc_id(mach_proc(r.m, "cpu", 2)), g_string_new("")};
+    SimRecorder rec = {&ops, &k};
+    sim_engine_set_recorder(r.eng, &rec);
+    GError *e = NULL;
+    AgSetup s = {.procs = 3, .contexts = 1, .geometry = 1, .rasterisers = 1,
+                 .app = WL_AG_APP_NONE, .vertex_bytes = 32,
+                 .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
+    AgFrameStats fs;
+    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+        fail_msg("%s", e->message);
+    assert_string_equal(k.seq->str, "2 2 2 2 4 5 4 4 ");
+    sim_engine_set_recorder(r.eng, NULL);
+    g_string_free(k.seq, TRUE);
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 /* A block's (tile, triangle) pairs are sorted by tile: two triangles,
  * the first in tile 1 and the second in tile 0 (two pairs out of tile
  * order), are each drawn at their tile: the picture is the serial one. */
@@ -588,6 +668,7 @@ int main(void)
         cmocka_unit_test(test_tile_round_robin_skips),
         cmocka_unit_test(test_deadlock_reported),
         cmocka_unit_test(test_pool_round_robin),
+        cmocka_unit_test(test_rasteriser_round_robin),
         cmocka_unit_test(test_two_pairs_sorted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
