@@ -50,6 +50,7 @@ static SimTime s_isect(void *ctx, guint n)
 }
 
 static WlPfPipeParams stress_params; /* stress, low, high, gain, max */
+static SimTime busy[4];              /* the last run's processors' work */
 static SimRecorder *recorder;        /* given to run()'s engine when set */
 
 static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
@@ -77,6 +78,8 @@ static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     assert_true(
         wl_pf_pipe_run(eng, procs, &p, &f, t, recs, SIM_TIME_MAX, &err));
+    for (guint i = 0; i < 4; i++)
+        busy[i] = mach_proc_busy(procs[i]);
     mach_free(m);
     sim_engine_free(eng);
     return recs;
@@ -102,12 +105,22 @@ static void frames_are(WlPfMpMode mode, gboolean locked, Times t, guint n,
 {
     GArray *r = run(mode, locked, &t, n);
     assert_int_equal(r->len, n);
+    SimTime work = 0;
     for (guint i = 0; i < n; i++) {
         frame_is(r, i, want[i]);
         const WlPfFrameRec *x = &g_array_index(r, WlPfFrameRec, i);
         assert_true(x->stress == 1.0);
         assert_int_equal(x->isect, (isect ? isect[i] : 0) * SIM_MS);
+        work += (t.app + t.cull + t.draw) * SIM_MS + x->isect;
     }
+    /* the processors did the n frames' stages, no more: busy[0] APP (and
+     * CULL, and DRAW as the mode shares them), then the others in turn */
+    assert_int_equal(busy[0] + busy[1] + busy[2] + busy[3], work);
+    assert_int_equal(busy[0], n * (t.app + (mode != WL_PF_MP_APP_CULL_DRAW
+                                                ? t.cull
+                                                : 0) +
+                                   (mode == WL_PF_MP_APPCULLDRAW ? t.draw : 0)) *
+                                  SIM_MS);
     g_array_free(r, TRUE);
 }
 
