@@ -151,8 +151,8 @@ static void cull_done(SimEngine *eng, void *ctx, void *arg)
 static void try_cull(Pipe *s)
 {
     guint n = s->cull_next;
-    if (s->cull_busy || n >= s->app_done || n >= s->p->frames ||
-        (n >= 2 && s->draw_done < n - 1))
+    /* n < app_done <= frames: app_sync starts no APP past the last frame */
+    if (s->cull_busy || n >= s->app_done || (n >= 2 && s->draw_done < n - 1))
         return;
     s->cull_busy = TRUE;
     s->cull_next++;

@@ -575,7 +575,9 @@ static void test_parse_edges(void **st)
         "stress: {max: 0.5}", "stress: {gain: 1001}",
         "stress: {low: 0.6, high: 0.5}", "video_rate: 0.5",
         "frame_rate: 0.05", "video_rate: 30, frame_rate: 60",
-        "video_rate: 60, frame_rate: 25", "pn: {level: 33}"};
+        "video_rate: 60, frame_rate: 25", "pn: {level: 33}",
+        /* k = 0.99999999999983: within 1e-9 of a whole number, below 1 */
+        "video_rate: 59.99999999999, frame_rate: 60"};
     for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
         void *p = parse(bad[i], &err);
         if (p)
