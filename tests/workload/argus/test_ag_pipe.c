@@ -506,6 +506,8 @@ static void test_pool_round_robin(void **state)
         if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
             fail_msg("%s", e->message);
         assert_int_equal(fs.bucketed, 16 * 2 + 19);
+        /* this frame's bytes: 63 vertices of 32 B, 51 triangles of 64 B */
+        assert_int_equal(fs.shmem_bytes, 63 * 32 + 51 * 64);
         assert_int_equal(fs.rast_busy, 51 * rt);
         geom += fs.geom_busy;
         assert_int_equal(busy_of(&r, 1, 2), geom + frame * 26 * rt);
