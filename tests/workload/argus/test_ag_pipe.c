@@ -620,6 +620,29 @@ static void test_two_pairs_sorted(void **state)
     rig_free(&r);
 }
 
+/* Streams without a block: every tile is finished at once (none has
+ * anything to draw), so the frame ends where it starts, having drawn,
+ * moved and synchronised nothing. */
+static void test_empty_frame(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    GError *e = NULL;
+    AgSetup s = {.procs = 4, .contexts = 2, .geometry = 1, .rasterisers = 1,
+                 .vertex_bytes = 32, .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
+    AgFrameStats fs;
+    if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+        fail_msg("%s", e->message);
+    assert_int_equal(fs.start, 0);
+    assert_int_equal(fs.end, 0);
+    assert_int_equal(fs.blocks, 0);
+    assert_int_equal(fs.pixels + fs.triangles + fs.shmem_bytes + fs.syncs, 0);
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 /* A glpPSema no glpVSema answers deadlocks every tile: the frame fails
  * saying how many tiles are left, also when the other context's block
  * signals a glpBarrier arrival (barriers count apart from semaphores);
@@ -669,6 +692,7 @@ int main(void)
         cmocka_unit_test(test_tile_round_robin),
         cmocka_unit_test(test_tile_round_robin_skips),
         cmocka_unit_test(test_deadlock_reported),
+        cmocka_unit_test(test_empty_frame),
         cmocka_unit_test(test_pool_round_robin),
         cmocka_unit_test(test_rasteriser_round_robin),
         cmocka_unit_test(test_two_pairs_sorted),
