@@ -198,6 +198,68 @@ static void check_smp(guint level, const char *send)
     g_free(yaml);
 }
 
+/* pn: with no keys: level 2, the coarse mesh sent, 32 B a vertex and,
+ * on Pixel-Planes 5, 100 B a renderer command. */
+static void test_pn_defaults(void **st)
+{
+    (void)st;
+    uint64_t coarse, fine, pts;
+    pn_counts(2, &coarse, &fine, &pts);
+    GError *err = NULL;
+    char *y = g_strdup_printf("machine:\n  model: sgi-onyx\n"
+                              "  nodes: {pipe: {costs: {pn_vertex: {value: "
+                              "0.7 us, assumption: t}}}}\n%s"
+                              "workload: {type: performer, pn: {}}\n",
+                              pp5_scene);
+    SimResult *r = run(y, 1, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    assert_true(metric(r, "level") == 2);
+    assert_true(metric(r, "fine_tris") == fine);
+    assert_true(metric(r, "link_bytes_per_frame") == 3.0 * coarse * 32);
+    sim_result_free(r);
+    g_free(y);
+    y = g_strdup_printf("machine: {model: pixel-planes-5}\n%s"
+                        "workload: {type: performer, pn: {}}\n",
+                        pp5_scene);
+    r = run(y, 1, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    assert_true(metric(r, "command_bytes_per_frame") == fine * 100.0);
+    sim_result_free(r);
+    g_free(y);
+}
+
+/* pn: refuses a machine of neither kind set and a scene that is already
+ * tessellated, saying what it expected. */
+static void test_pn_refusals(void **st)
+{
+    (void)st;
+    const struct {
+        const char *machine, *scene, *want;
+    } bad[] = {
+        {"machine: {model: ipsc2}\n", pp5_scene,
+         "machine 'ipsc2': found no kinds cpu + pipe or host + gp + renderer, "
+         "expected a shared-memory machine with a pipe (models/sgi-onyx.yaml) "
+         "or Pixel-Planes 5"},
+        {"machine: {model: pixel-planes-5}\n",
+         "scene: {generator: teapots, count: 1, polygons_per_teapot: 300,\n"
+         "  pn_triangles: {level: 1}}\n",
+         "found a pre-tessellated scene, expected the coarse scene "
+         "(workload.pn tessellates it)"}};
+    for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
+        char *y = g_strconcat(bad[i].machine, bad[i].scene,
+                              "workload: {type: performer, pn: {level: 1}}\n",
+                              NULL);
+        GError *err = NULL;
+        assert_null(run(y, 1, &err));
+        if (!g_str_has_suffix(err->message, bad[i].want))
+            fail_msg("'%s', expected '%s'", err->message, bad[i].want);
+        g_error_free(err);
+        g_free(y);
+    }
+}
+
 static void test_pn_on_the_onyx(void **st)
 {
     (void)st;
@@ -808,6 +870,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pn_on_pixel_planes_5),
         cmocka_unit_test(test_pn_on_the_onyx),
+        cmocka_unit_test(test_pn_defaults),
+        cmocka_unit_test(test_pn_refusals),
         cmocka_unit_test(test_frame_log),
         cmocka_unit_test(test_geoset_bound),
         cmocka_unit_test(test_sphere_union),
