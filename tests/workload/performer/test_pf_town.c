@@ -184,6 +184,17 @@ static void test_blocks(void **st)
     const WlPfNode *root = wl_pf_node(t->g, t->g->root);
     assert_int_equal(root->children->len, 4 + 1);
     assert_int_equal(t->g->gstates->len, 10);
+    /* terrain, trees, lamps, six house looks, cars */
+    const guint gst[10][3] = {{0, 0, 0}, {1, 1, 1}, {2, 2, 0}, {3, 3, 0},
+                              {4, 4, 1}, {5, 3, 0}, {3, 4, 1}, {4, 3, 0},
+                              {5, 4, 1}, {6, 5, 0}};
+    for (guint i = 0; i < 10; i++) {
+        const WlPfGeoState *x = &g_array_index(t->g->gstates, WlPfGeoState, i);
+        if (x->texture != gst[i][0] || x->material != gst[i][1] ||
+            x->modes != gst[i][2])
+            fail_msg("geostate %u: %u %u %u", i, x->texture, x->material,
+                     x->modes);
+    }
     const WlPfGeoState *g5 = &g_array_index(t->g->gstates, WlPfGeoState, 5);
     assert_true(g5->texture == 5 && g5->material == 3 && g5->modes == 0);
     const WlPfGeoState *g9 = &g_array_index(t->g->gstates, WlPfGeoState, 9);
@@ -204,6 +215,106 @@ static void test_blocks(void **st)
         }
     assert_int_equal(wl_pf_count_kind(t->g, WL_PF_SCS), 8);
     assert_int_equal(wl_pf_count_kind(t->g, WL_PF_DCS), 3);
+    wl_pf_town_free(t);
+}
+
+/* splitmix64 (Steele, Lea and Flood 2014), the town's placement stream,
+ * written out again here so that every drawn value can be predicted. */
+static uint64_t sm64(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+static double unit(uint64_t *s)
+{
+    return (double)(sm64(s) >> 11) / 9007199254740992.0;
+}
+
+/* Every placement from the seed, in drawing order: per block, per
+ * house x = x0 + 6 + (block - 12) u, z likewise, yaw 2 pi u, size 6 + 6
+ * u by 5 + 10 u by 6 + 6 u, look 3 + (draw mod 6); then per tree x =
+ * x0 + 2 + (block - 4) u, z likewise. */
+static void test_placement_from_seed(void **st)
+{
+    (void)st;
+    WlPfTownParams p = wl_pf_town_defaults();
+    p.blocks = 2, p.houses = 2, p.trees = 3, p.cars = 0, p.seed = 77;
+    p.block = 50;
+    WlPfTown *t = wl_pf_town_new(&p);
+    uint64_t rng = 77;
+    const WlPfNode *root = wl_pf_node(t->g, t->g->root);
+    for (guint bi = 0; bi < 2; bi++)
+        for (guint bj = 0; bj < 2; bj++) {
+            const WlPfNode *b = child(t, root, 2 * bi + bj);
+            double x0 = 50.0 * bi, z0 = 50.0 * bj;
+            for (guint h = 0; h < 2; h++) {
+                double x = x0 + 6 + 38 * unit(&rng);
+                double z = z0 + 6 + 38 * unit(&rng);
+                double yaw = 2 * G_PI * unit(&rng);
+                double sx = 6 + 6 * unit(&rng), sy = 5 + 10 * unit(&rng);
+                double sz = 6 + 6 * unit(&rng);
+                guint look = 3 + (guint)(sm64(&rng) % 6);
+                const WlPfNode *scs = child(t, b, 1 + h);
+                Mat4 want = mat4_mul(
+                    mat4_translate(x, wl_pf_town_height(x, z), z),
+                    mat4_rotate(vec3(0, 1, 0), yaw));
+                for (int i = 0; i < 4; i++)
+                    for (int j = 0; j < 4; j++)
+                        near(scs->xf.m[i][j], want.m[i][j]);
+                const WlPfGeoSet *gs =
+                    only_geoset(t, child(t, child(t, scs, 0), 2));
+                Vec3 lo, hi;
+                bbox(gs, &lo, &hi);
+                near(hi.x, sx / 2), near(hi.y, sy), near(hi.z, sz / 2);
+                assert_int_equal(gs->gstate, look);
+            }
+            const WlPfNode *bb = child(t, b, 3);
+            for (guint k = 0; k < 3; k++) {
+                double x = x0 + 2 + 46 * unit(&rng);
+                double z = z0 + 2 + 46 * unit(&rng);
+                const WlPfGeoSet *gs =
+                    wl_pf_geoset(t->g, g_array_index(bb->geosets, guint, k));
+                near(vtx(gs, 0).x, x - 2), near(vtx(gs, 0).z, z);
+                near(vtx(gs, 0).y, wl_pf_town_height(x, z));
+            }
+        }
+    wl_pf_town_free(t);
+}
+
+/* Each box has its six faces: of a house's 12 k^2 triangles, 2 k^2 lie
+ * in each face plane of its box. */
+static void test_box_faces(void **st)
+{
+    (void)st;
+    WlPfTown *t = small_town();
+    const WlPfNode *lod = child(t, child(t, wl_pf_node(t->g, t->g->root), 0), 1);
+    lod = child(t, lod, 0);
+    for (guint i = 0; i < 3; i++) {
+        const WlPfGeoSet *gs = only_geoset(t, child(t, lod, i));
+        guint k = 4 >> i;
+        Vec3 lo, hi;
+        bbox(gs, &lo, &hi);
+        const double bound[3][2] = {{lo.x, hi.x}, {lo.y, hi.y}, {lo.z, hi.z}};
+        for (int a = 0; a < 3; a++)
+            for (int side = 0; side < 2; side++) {
+                guint in = 0;
+                for (guint tr = 0; tr < wl_pf_geoset_tris(gs); tr++) {
+                    gboolean all = TRUE;
+                    for (guint v = 0; v < 3; v++) {
+                        Vec3 q = vtx(gs, 3 * tr + v);
+                        double c = a == 0 ? q.x : (a == 1 ? q.y : q.z);
+                        all &= fabs(c - bound[a][side]) < 1e-9;
+                    }
+                    in += all;
+                }
+                if (in != 2 * k * k)
+                    fail_msg("LOD %u axis %d side %d: %u triangles, "
+                             "expected %u", i, a, side, in, 2 * k * k);
+            }
+    }
     wl_pf_town_free(t);
 }
 
@@ -321,6 +432,8 @@ int main(void)
         cmocka_unit_test(test_camera),
         cmocka_unit_test(test_house_yaws),
         cmocka_unit_test(test_defaults),
+        cmocka_unit_test(test_placement_from_seed),
+        cmocka_unit_test(test_box_faces),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
