@@ -266,6 +266,46 @@ static void test_crossbar_bus_cm200_routes(void **state)
     check_cm200(1, 4, 4, 2);
     check_cm200(3, 4, 8, 4);
     check_cm200(2, 1, 2, 2);
+    /* NEWS grids whose sides are not powers of two: the -x and -y
+     * neighbours wrap modulo 3 */
+    check_cm200(1, 3, 3, 2);
+    check_cm200(1, 3, 2, 3);
+}
+
+/* Exact link names and classes of a CM-200 of 2 routers x 4 processors on
+ * a 4 x 2 NEWS grid: ports end at router 0 (vertex P) as "r0", cube links
+ * join routers, NEWS links join grid neighbours; a level bandwidth of
+ * exactly 1 B/s is used as given (only 0 means the base bandwidth). */
+static void test_cm200_names(void **state)
+{
+    (void)state;
+    NetTopo *c = net_cm200_new(1, 4, 4, 2);
+    NetLinkId r[4];
+    char name[48];
+    const char *want[] = {"port:p0->r0", "cube:r0->r1", "port:r1->p5"};
+    assert_int_equal(c->ops->route(c->state, 0, 5, r), 3);
+    for (guint i = 0; i < 3; i++) {
+        c->ops->link_name(c->state, r[i], name, sizeof name);
+        assert_string_equal(name, want[i]);
+    }
+    assert_int_equal(c->ops->route(c->state, 5, 0, r), 3);
+    c->ops->link_name(c->state, r[2], name, sizeof name);
+    assert_string_equal(name, "port:r0->p0");
+    /* 0 -> 3 is the -x NEWS neighbour (wrap), 0 -> 4 the +y one */
+    assert_int_equal(c->ops->route(c->state, 0, 3, r), 1);
+    c->ops->link_name(c->state, r[0], name, sizeof name);
+    assert_string_equal(name, "news:p0->p3");
+    assert_int_equal(r[0], 2 * 8 + 2 * 1 + 4 * 0 + 1);
+    assert_int_equal(c->ops->route(c->state, 0, 4, r), 1);
+    assert_int_equal(r[0], 18 + 2);
+    NetParams p = {0};
+    p.bandwidth = 1e6;
+    p.level_bw[0] = 1.0;
+    p.level_bw[1] = 1.0;
+    assert_true(c->ops->link_bw(c->state, 18 + 2, &p) == 1.0);
+    assert_true(c->ops->link_bw(c->state, 16, &p) == 1.0); /* cube r0->r1 */
+    assert_true(c->ops->link_bw(c->state, 15, &p) == 1e6); /* ejection p7 */
+    net_topo_free(c);
 }
 
 static NetParams params(void)
@@ -768,6 +808,7 @@ int main(void)
         cmocka_unit_test(test_hypercube_ring_routes),
         cmocka_unit_test(test_fattree_routes),
         cmocka_unit_test(test_crossbar_bus_cm200_routes),
+        cmocka_unit_test(test_cm200_names),
         cmocka_unit_test(test_self_and_tiny_messages),
         cmocka_unit_test(test_fattree_deep_levels),
         cmocka_unit_test(test_hotspot_skew),
