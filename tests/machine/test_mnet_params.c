@@ -196,6 +196,163 @@ static void test_bad_values(void **state)
     }
 }
 
+/* mach_topo_new on the map `net: {...}` for `endpoints` processors: the
+ * topology (or NULL) and its error, whose location is checked by the
+ * caller. */
+static NetTopo *topo(const char *net, guint endpoints, char **msg)
+{
+    char *text = g_strdup_printf("net: %s\n", net);
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(text, "n.yaml", &err);
+    assert_non_null(root);
+    NetTopo *t = mach_topo_new(cfg_get(root, "net"), endpoints, NULL, &err);
+    assert_true((t == NULL) == (err != NULL));
+    *msg = err ? g_strdup(err->message) : NULL;
+    g_clear_error(&err);
+    cfg_free(root);
+    g_free(text);
+    return t;
+}
+
+/* A topology of `nodes` nodes, `hops` maximum hops and `name` ops. */
+static void topo_ok(const char *net, guint endpoints, const char *name,
+                    guint hops)
+{
+    char *msg = NULL;
+    NetTopo *t = topo(net, endpoints, &msg);
+    if (!t)
+        fail_msg("%s on %u: %s", net, endpoints, msg);
+    assert_string_equal(t->ops->name, name);
+    assert_int_equal(net_topo_nodes(t), endpoints);
+    if (t->ops->max_hops(t->state) != hops)
+        fail_msg("%s on %u: %u hops, want %u", net, endpoints,
+                 t->ops->max_hops(t->state), hops);
+    net_topo_free(t);
+}
+
+static void topo_bad(const char *net, guint endpoints, const char *want)
+{
+    char *msg = NULL;
+    NetTopo *t = topo(net, endpoints, &msg);
+    if (t)
+        fail_msg("%s on %u: accepted", net, endpoints);
+    if (strcmp(msg, want) != 0)
+        fail_msg("%s on %u:\n got '%s'\nwant '%s'", net, endpoints, msg, want);
+    g_free(msg);
+}
+
+#define CUBE_EXP "expected a power of two up to 2^24 processors (= 2^dimension)"
+#define FT_EXP "expected arity 2..64 and at least 2 processors"
+#define CM_EXP                                                                 \
+    "expected lanes = 2^d x procs_per_router (d <= 20) = router_nodes x "      \
+    "procs_per_router"
+
+static void test_topologies(void **state)
+{
+    (void)state;
+    topo_ok("{topology: hypercube}", 8, "hypercube", 3);
+    topo_ok("{topology: hypercube}", 1, "hypercube", 0);
+    topo_ok("{topology: hypercube, dimension: 3}", 8, "hypercube", 3);
+    topo_ok("{topology: hypercube}", 1u << 24, "hypercube", 24);
+    topo_bad("{topology: hypercube}", 6,
+             "n.yaml:1:6: found 6 processors on a hypercube, " CUBE_EXP);
+    topo_bad("{topology: hypercube}", 1u << 25,
+             "n.yaml:1:6: found 33554432 processors on a hypercube, " CUBE_EXP);
+    topo_bad("{topology: hypercube, dimension: 2}", 8,
+             "n.yaml:1:6: found 8 processors on a hypercube, " CUBE_EXP);
+    topo_ok("{topology: ring}", 2, "ring", 1);
+    topo_bad("{topology: ring}", 1,
+             "n.yaml:1:6: found fewer than 2 stations on a ring, expected at "
+             "least 2 processors");
+    topo_ok("{topology: fat-tree, arity: 2}", 2, "fat-tree", 2);
+    topo_ok("{topology: fat-tree, arity: 64}", 64, "fat-tree", 2);
+    topo_bad("{topology: fat-tree, arity: 1}", 8,
+             "n.yaml:1:34: found an unusable fat-tree arity, " FT_EXP);
+    topo_bad("{topology: fat-tree, arity: 65}", 8,
+             "n.yaml:1:34: found an unusable fat-tree arity, " FT_EXP);
+    topo_bad("{topology: fat-tree, arity: 2}", 1,
+             "n.yaml:1:6: found fewer than 2 leaves, " FT_EXP);
+    topo_ok("{topology: crossbar}", 3, "crossbar", 2);
+    topo_ok("{topology: bus}", 3, "bus", 1);
+    /* a mesh's hop bound is the sum of its extents (mesh.c) */
+    topo_ok("{topology: mesh, extents: [4, 2]}", 8, "mesh", 6);
+    topo_ok("{topology: torus, extents: [4, 2]}", 8, "mesh", 6);
+    /* 0 -> 3 on 4 x 2: three hops on the mesh, one round the torus */
+    for (guint wrap = 0; wrap < 2; wrap++) {
+        char *msg = NULL;
+        NetTopo *t = topo(wrap ? "{topology: torus, extents: [4, 2]}"
+                               : "{topology: mesh, extents: [4, 2]}", 8, &msg);
+        NetLinkId r[8];
+        assert_int_equal(t->ops->route(t->state, 0, 3, r), wrap ? 1 : 3);
+        net_topo_free(t);
+    }
+    topo_ok("{topology: mesh, extents: [2, 1, 3]}", 6, "mesh", 6);
+    topo_ok("{topology: mesh, extents: [16777216]}", 1u << 24, "mesh",
+            1u << 24);
+    topo_bad("{topology: mesh, extents: [4, 2]}", 9,
+             "n.yaml:1:6: found 9 processors on a mesh of 8 nodes, expected "
+             "the product of network.extents");
+    static const char *const bad_ext[] = {"[]", "[1, 1, 1, 1]", "[0, 4]",
+                                          "[16777217]"};
+    for (guint i = 0; i < G_N_ELEMENTS(bad_ext); i++) {
+        char *net = g_strdup_printf("{topology: torus, extents: %s}",
+                                    bad_ext[i]);
+        topo_bad(net, 4, "n.yaml:1:33: found unusable mesh extents, expected "
+                         "1 to 3 extents of 1 .. 2^24");
+        g_free(net);
+    }
+    topo_bad("{topology: star}", 4,
+             "n.yaml:1:17: found topology 'star' (not built by the machine "
+             "layer), expected hypercube, ring, fat-tree, cm-router, mesh, "
+             "torus, crossbar or bus");
+    assert_true(mach_topo_supported("torus"));
+    assert_true(mach_topo_supported("bus"));
+    assert_false(mach_topo_supported("star"));
+}
+
+/* CM-200: lanes = 2^d routers x procs_per_router on a NEWS grid of
+ * 2^ceil(half) columns: 32 lanes are 8 x 4, so lane 8 is lane 0's +y
+ * neighbour (one NEWS hop), 16 lanes are 4 x 4. */
+static void test_cm_router(void **state)
+{
+    (void)state;
+    char *msg = NULL;
+    NetTopo *t = topo("{topology: cm-router, procs_per_router: 4}", 32, &msg);
+    assert_non_null(t);
+    assert_int_equal(t->ops->max_hops(t->state), 5);
+    NetLinkId r[8];
+    assert_int_equal(t->ops->route(t->state, 0, 8, r), 1);
+    assert_int_equal(t->ops->route(t->state, 0, 4, r), 3); /* routers 0, 1 */
+    net_topo_free(t);
+    t = topo("{topology: cm-router, procs_per_router: 4, router_nodes: 4}",
+             16, &msg);
+    assert_non_null(t);
+    assert_int_equal(t->ops->max_hops(t->state), 4);
+    assert_int_equal(t->ops->route(t->state, 0, 4, r), 1);
+    assert_int_equal(t->ops->route(t->state, 0, 8, r), 3); /* r0 -> r2 */
+    net_topo_free(t);
+    topo_ok("{topology: cm-router, procs_per_router: 1}", 1u << 20,
+            "cm200", 22);
+    topo_ok("{topology: cm-router, procs_per_router: 2}", 2, "cm200", 2);
+    static const struct {
+        const char *net;
+        guint lanes;
+    } bad[] = {
+        {"{topology: cm-router, procs_per_router: 0}", 16},
+        {"{topology: cm-router, procs_per_router: 3}", 16},
+        {"{topology: cm-router, procs_per_router: 3}", 12},
+        {"{topology: cm-router, procs_per_router: 4, router_nodes: 2}", 16},
+        {"{topology: cm-router, procs_per_router: 1}", 1u << 21},
+    };
+    for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
+        char *want = g_strdup_printf("n.yaml:1:6: found %u lanes for "
+                                     "router_nodes x procs_per_router, " CM_EXP,
+                                     bad[i].lanes);
+        topo_bad(bad[i].net, bad[i].lanes, want);
+        g_free(want);
+    }
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -205,6 +362,8 @@ int main(void)
         cmocka_unit_test(test_bandwidth_sources),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_bad_values),
+        cmocka_unit_test(test_topologies),
+        cmocka_unit_test(test_cm_router),
     };
     return cmocka_run_group_tests_name("mnet_params", tests, NULL, NULL);
 }
