@@ -323,6 +323,75 @@ static void test_describe(void **state)
     g_free(text);
 }
 
+static const char *at(const CfgNode *r, const char *path)
+{
+    const char *v = cfg_scalar(cfg_path(r, path));
+    return v ? v : "(none)";
+}
+
+/* --set: an index within a sequence, a new path of maps, a replaced
+ * value; refusals of a bad path, an index past the end and a key below a
+ * scalar, located at the override. */
+static void test_override(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *r = cfg_load_string("q: [1, 2]\ns: x\nm: {a: 1}\n", "o.yaml", &err);
+    assert_true(cfg_set_override(r, "q.1=9", &err));
+    assert_string_equal(at(r, "q.1"), "9");
+    assert_string_equal(at(r, "q.0"), "1");
+    assert_true(cfg_set_override(r, "q.0=7", &err));
+    assert_string_equal(at(r, "q.0"), "7");
+    assert_true(cfg_set_override(r, "new.deep.key=3", &err));
+    assert_string_equal(at(r, "new.deep.key"), "3");
+    assert_true(cfg_set_override(r, "m.b=4", &err));
+    assert_string_equal(at(r, "m.a"), "1");
+    assert_string_equal(at(r, "m.b"), "4");
+    assert_true(cfg_set_override(r, "m.a=[5, 6]", &err));
+    assert_string_equal(at(r, "m.a.1"), "6");
+    assert_false(cfg_set_override(r, "q.2=9", &err));
+    expect_msg(&err, "--set q.2=9:1:1: found '2' below a sequence, expected "
+                     "an index in range");
+    assert_false(cfg_set_override(r, "s.x=1", &err));
+    expect_msg(&err, "--set s.x=1:1:1: found 'x' below a scalar, expected a "
+                     "path through maps");
+    static const char *const bad[] = {"noequals", "=5", "a..b=1", "a b=1",
+                                      ".a=1", "a.=1"};
+    for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
+        assert_false(cfg_set_override(r, bad[i], &err));
+        char *want = g_strdup_printf("--set: found '%s', expected "
+                                     "key.path=value", bad[i]);
+        expect_msg(&err, want);
+        g_free(want);
+    }
+    assert_true(cfg_set_override(r, "A_z-9=1", &err));
+    assert_string_equal(at(r, "A_z-9"), "1");
+    cfg_free(r);
+}
+
+/* Maps merge key by key (recursively); anything else replaces. */
+static void test_merge(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *base = cfg_load_string("a: 1\nm: {x: 1, y: 2, k: {p: 1}}\nq: [1]\n",
+                                    "b.yaml", &err);
+    CfgNode *over = cfg_load_string("m: {y: 3, z: 4, k: {r: 2}}\nb: 5\n"
+                                    "q: [7, 8]\n", "o.yaml", &err);
+    cfg_merge(base, over);
+    assert_string_equal(at(base, "a"), "1");
+    assert_string_equal(at(base, "m.x"), "1");
+    assert_string_equal(at(base, "m.y"), "3");
+    assert_string_equal(at(base, "m.z"), "4");
+    assert_string_equal(at(base, "m.k.p"), "1");
+    assert_string_equal(at(base, "m.k.r"), "2");
+    assert_string_equal(at(base, "b"), "5");
+    assert_string_equal(at(base, "q.1"), "8");
+    assert_string_equal(cfg_file(cfg_path(base, "m.z")), "o.yaml");
+    cfg_free(base);
+    cfg_free(over);
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -335,6 +404,8 @@ int main(void)
         cmocka_unit_test(test_units_getters_refuse),
         cmocka_unit_test(test_flags),
         cmocka_unit_test(test_describe),
+        cmocka_unit_test(test_override),
+        cmocka_unit_test(test_merge),
     };
     return cmocka_run_group_tests_name("cfg_get", tests, setup, teardown);
 }
