@@ -15,6 +15,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sim/scene/camera.h"
 #include "sim/workload/performer/pf_cull.h"
 
 /* A geode with one geoset of k triangles, all within 1 of (x, 0, 0). */
@@ -240,6 +241,42 @@ static void test_lod_boundaries(void **st)
     /* one range short (3 ranges): child 2 has no upper bound, never drawn */
     assert_int_equal(lod_pick(r, 3, 1.5), 1);
     assert_int_equal(lod_pick(r, 3, 3), -1);
+}
+
+/* The frustum planes of a camera at (1, 2, 3) looking down -z, 90
+ * degrees (tan 45 = 1) by aspect 2, near 1, far 10: each unit-normal
+ * plane (left, right, bottom, top, near, far) holds the four corners of
+ * its face, (1 + 2 x d, 2 + y d, 3 - d) for the face's fixed x = -+1, y
+ * = -+1 or d = 1, 10, and has the other corners inside; stress and the
+ * culling switch are copied. */
+static void test_view_planes(void **st)
+{
+    (void)st;
+    SceneCamera c = scene_camera_default();
+    c.eye = vec3(1, 2, 3);
+    c.target = vec3(1, 2, -7);
+    c.up = vec3(0, 1, 0);
+    c.fov_deg = 90;
+    c.aspect = 2;
+    c.near = 1;
+    c.far = 10;
+    WlPfView v = wl_pf_view(&c, 1.5, TRUE);
+    assert_true(v.stress == 1.5 && v.cull);
+    assert_true(v.eye.x == 1 && v.eye.y == 2 && v.eye.z == 3);
+    assert_false(wl_pf_view(&c, 1, FALSE).cull);
+    for (int p = 0; p < 6; p++) {
+        const double *q = v.planes[p];
+        assert_true(fabs(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] - 1) < 1e-12);
+        for (int k = 0; k < 8; k++) {
+            double x = k & 1 ? 1 : -1, y = k & 2 ? 1 : -1, d = k & 4 ? 10 : 1;
+            Vec3 w = vec3(1 + 2 * x * d, 2 + y * d, 3 - d);
+            double dist = q[0] * w.x + q[1] * w.y + q[2] * w.z + q[3];
+            double face = p / 2 == 0 ? x : (p / 2 == 1 ? y : (d == 1 ? -1 : 1));
+            gboolean on = face == (p % 2 ? 1 : -1);
+            if (on ? fabs(dist) > 1e-9 : dist <= 1e-9)
+                fail_msg("plane %d corner %d: distance %g", p, k, dist);
+        }
+    }
 }
 
 /* A switch set to none or all. */
@@ -492,6 +529,7 @@ int main(void)
         cmocka_unit_test(test_cull_and_draw),
         cmocka_unit_test(test_lod_stress),
         cmocka_unit_test(test_lod_boundaries),
+        cmocka_unit_test(test_view_planes),
         cmocka_unit_test(test_switch),
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_isect_touching_sphere),
