@@ -124,9 +124,23 @@ static void one_frame(Rig *r, WlPfStageFns *f, guint n, gboolean lazy)
                             fs->isect.tris_tested * c->isect_triangle);
     counts_price_to(r, i);
     assert_true(r->s->ground == (fs->isect.hit ? fs->isect.height : before));
-    /* CULL, at stress 1.5 */
+    /* CULL, at stress 1.5: the twin town culled by hand at the frame's
+     * camera (on the ground APP used) gives the same list and counts */
     SimTime k = f->cull(r->s, n, 1.5);
     const WlPfCullStats *cs = &fs->cull;
+    SceneCamera cam = wl_pf_town_camera(r->twin, n, fs->ground);
+    WlPfView v = wl_pf_view(&cam, 1.5, TRUE);
+    GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    WlPfCullStats hand = {0};
+    wl_pf_cull(r->twin->g, &v, dl, &hand);
+    assert_int_equal(fs->dl_items, dl->len);
+    assert_int_equal(cs->nodes_visited, hand.nodes_visited);
+    assert_int_equal(cs->nodes_culled, hand.nodes_culled);
+    assert_int_equal(cs->lod_sum, hand.lod_sum);
+    assert_int_equal(cs->tris_culled, hand.tris_culled);
+    WlPfDrawStats dhand = {0};
+    wl_pf_draw(r->twin->g, dl, &dhand);
+    g_array_free(dl, TRUE);
     assert_true(cs->nodes_visited > 0 && cs->lods > 0 && fs->dl_items > 0);
     assert_int_equal(k, cs->nodes_visited * c->cull_node +
                             cs->lods * c->cull_lod +
@@ -137,6 +151,9 @@ static void one_frame(Rig *r, WlPfStageFns *f, guint n, gboolean lazy)
     SimTime d = f->draw(r->s, n);
     const WlPfDrawStats *ds = &fs->draw;
     assert_true(ds->tris > 0 && ds->geosets > 0);
+    assert_int_equal(ds->tris, dhand.tris);
+    assert_int_equal(ds->matrix_ops, dhand.matrix_ops);
+    assert_int_equal(ds->state_changes, dhand.state_changes);
     assert_true(ds->state_naive > ds->state_changes);
     uint64_t states = lazy ? ds->state_changes : ds->state_naive;
     assert_int_equal(fs->cpu, ds->geosets * c->draw_geoset +
@@ -151,6 +168,11 @@ static void one_frame(Rig *r, WlPfStageFns *f, guint n, gboolean lazy)
     assert_int_equal(r->s->over.n, 2);
 }
 
+static void noop(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng, (void)ctx, (void)arg;
+}
+
 static void run_frames(gboolean lazy)
 {
     Rig r;
@@ -160,15 +182,20 @@ static void run_frames(gboolean lazy)
     assert_null(wl_pf_stage_fns(FALSE).isect);
     assert_true(r.s->ground == wl_pf_town_height(0, 0));
     for (guint n = 0; n < 4; n++) {
+        /* frame n's stages run at n x 50 ms, the bus idle since frame
+         * n - 1 */
+        sim_schedule_at(r.eng, n * 50 * SIM_MS, noop, NULL, NULL);
+        assert_true(sim_engine_run(r.eng, SIM_TIME_MAX, NULL));
+        assert_int_equal(sim_now(r.eng), n * 50 * SIM_MS);
         SimTime busy = r.s->bus.busy;
         one_frame(&r, &f, n, lazy);
         const WlPfFrameStats *fs = wl_pf_frame_stats(r.s, n);
-        /* the bus: 3 vertices of 40 B a triangle, at the bus's rate */
+        /* the bus: 3 vertices of 40 B a triangle, at the bus's rate, and
+         * its latency: DRAW's stream lasts that long from now */
         uint64_t bytes = 3 * 40 * fs->draw.tris;
-        assert_int_equal(r.s->bus.busy - busy,
-                         sim_time_for_bytes((double)bytes, r.s->bus.bandwidth));
-        if (n == 0)
-            assert_int_equal(fs->bus, r.s->bus.busy + r.s->bus.latency);
+        SimTime wire = sim_time_for_bytes((double)bytes, r.s->bus.bandwidth);
+        assert_int_equal(r.s->bus.busy - busy, wire);
+        assert_int_equal(fs->bus, wire + r.s->bus.latency);
     }
     rig_free(&r);
 }
