@@ -840,11 +840,12 @@ static void test_keys_reach_the_run(void **st)
     g_free(y);
     mach_free(m);
     sim_engine_free(eng);
-    /* locked: every swap on a frame boundary; floating: not every one */
-    const char *phase[2] = {"locked", "floating"};
-    for (int k = 0; k < 2; k++) {
+    /* locked (the default): every swap on a frame boundary; floating:
+     * not every one */
+    const char *phase[3] = {"phase: locked, ", "phase: floating, ", ""};
+    for (int k = 0; k < 3; k++) {
         y = g_strdup_printf("machine: {model: sgi-onyx}\n"
-                            "workload: {type: performer, phase: %s, "
+                            "workload: {type: performer, %s"
                             "app_work: 1 ms,\n  town: {blocks: 2}}\n",
                             phase[k]);
         r = run(y, 6, &err);
@@ -858,11 +859,133 @@ static void test_keys_reach_the_run(void **st)
             end += g_array_index(r->frame_times, SimTime, f);
             on += end % T == 0;
         }
-        if (k == 0 ? on != 6 : on == 6)
+        if (k != 1 ? on != 6 : on == 6)
             fail_msg("%s: %u of 6 swaps on a frame boundary", phase[k], on);
         sim_result_free(r);
         g_free(y);
     }
+}
+
+/* A trace that writes each flow down as "src>dst:bytes;". */
+static void keep_flow(SimTrace *tr, uint32_t src, const char *src_name,
+                      uint32_t dst, const char *dst_name, uint64_t bytes,
+                      SimTime sent, SimTime arrived)
+{
+    (void)src_name, (void)dst_name, (void)sent, (void)arrived;
+    g_string_append_printf(tr->state, "%u>%u:%" G_GUINT64_FORMAT ";", src,
+                           dst, (guint64)bytes);
+}
+
+/* DRAW streams each frame's vertices from the cpu that runs DRAW (the
+ * last of the mode's processes: cpu 2 of three, cpu 1 of two) to the
+ * pipe, one flow a frame of 3 vertices of vertex_bytes a triangle. */
+static void test_draw_stream_source(void **st)
+{
+    (void)st;
+    static const SimTraceOps ops = {.flow = keep_flow};
+    const char *mode[2] = {"app_cull_draw", "appcull_draw"};
+    for (int k = 0; k < 2; k++) {
+        SimTrace tr = {&ops, g_string_new(NULL)};
+        trace = &tr;
+        char *y = g_strdup_printf("machine: {model: sgi-onyx}\n"
+                                  "workload: {type: performer, mode: %s,\n"
+                                  "  town: {blocks: 1, houses: 1}}\n",
+                                  mode[k]);
+        GError *err = NULL;
+        SimResult *r = run(y, 3, &err);
+        trace = NULL;
+        if (!r)
+            fail_msg("%s", err->message);
+        SimEngine *eng = sim_engine_new(1);
+        MachMachine *m = mach_new_from_model(eng, "sgi-onyx", "analytic", &err);
+        uint32_t src = mach_proc_id(mach_proc(m, "cpu", 2 - k));
+        uint32_t dst = mach_proc_id(mach_proc(m, "pipe", 0));
+        gchar **flows = g_strsplit(((GString *)tr.state)->str, ";", -1);
+        assert_int_equal(g_strv_length(flows), 3 + 1);
+        uint64_t sum = 0;
+        for (guint f = 0; f < 3; f++) {
+            guint a, b;
+            guint64 bytes;
+            assert_int_equal(sscanf(flows[f], "%u>%u:%" G_GUINT64_FORMAT, &a,
+                                    &b, &bytes),
+                             3);
+            assert_int_equal(a, src);
+            assert_int_equal(b, dst);
+            assert_true(bytes > 0 && bytes % (3 * 32) == 0);
+            sum += bytes;
+        }
+        assert_int_equal(sum, r->comm_bytes);
+        g_strfreev(flows);
+        mach_free(m);
+        sim_engine_free(eng);
+        g_string_free(tr.state, TRUE);
+        sim_result_free(r);
+        g_free(y);
+    }
+}
+
+/* Stress feedback is off without a stress: key: a DRAW loaded past the
+ * band's top (frame rate 60 Hz, nothing culled) leaves every frame at
+ * stress 1; the same run with stress: {} raises it. */
+static void test_stress_off_by_default(void **st)
+{
+    (void)st;
+    const char *key[2] = {"", "stress: {}, "};
+    for (int k = 0; k < 2; k++) {
+        char *y = g_strdup_printf("machine: {model: sgi-onyx}\n"
+                                  "workload: {type: performer, %s"
+                                  "frame_rate: 60, cull: false,\n"
+                                  "  town: {blocks: 4, houses: 6, "
+                                  "lod_ranges: [1000, 2000, 3000]}}\n",
+                                  key[k]);
+        GError *err = NULL;
+        SimResult *r = run(y, 8, &err);
+        if (!r)
+            fail_msg("%s", err->message);
+        if (k == 0) {
+            assert_true(metric(r, "draw_ms") > 0.9 * 1000 / 60.0);
+            assert_true(metric(r, "stress_mean") == 1);
+        } else {
+            assert_true(metric(r, "stress_mean") > 1);
+        }
+        sim_result_free(r);
+        g_free(y);
+    }
+}
+
+/* With no LOD visited (no houses) the log's mean_lod column is 0. */
+static void test_log_lod_without_houses(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pf-lod-XXXXXX", NULL);
+    char *log = g_build_filename(dir, "f.csv", NULL);
+    char *y = g_strdup_printf("machine: {model: sgi-onyx}\n"
+                              "workload: {type: performer, frame_log: '%s',\n"
+                              "  town: {blocks: 1, houses: 0}}\n",
+                              log);
+    GError *err = NULL;
+    SimResult *r = run(y, 2, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    guint n = 0;
+    gchar **rows = read_lines(log, &n);
+    assert_int_equal(n, 3);
+    for (guint f = 1; f < 3; f++) {
+        gchar **c = g_strsplit(rows[f], ",", -1);
+        assert_true(g_ascii_strtod(c[10], NULL) == 0);
+        assert_true(g_ascii_strtod(c[11], NULL) > 0);
+        g_strfreev(c);
+    }
+    g_strfreev(rows);
+    char *stages = g_build_filename(dir, "f_stages.csv", NULL);
+    g_remove(stages);
+    g_remove(log);
+    g_rmdir(dir);
+    g_free(stages);
+    g_free(log);
+    g_free(dir);
+    g_free(y);
+    sim_result_free(r);
 }
 
 int main(void)
@@ -886,6 +1009,9 @@ int main(void)
         cmocka_unit_test(test_matrix_ops_saved),
         cmocka_unit_test(test_machine_refused),
         cmocka_unit_test(test_keys_reach_the_run),
+        cmocka_unit_test(test_draw_stream_source),
+        cmocka_unit_test(test_stress_off_by_default),
+        cmocka_unit_test(test_log_lod_without_houses),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
