@@ -129,9 +129,18 @@ static void test_frames_out(void **st)
     g_free(dir);
 }
 
+/* pphigs' parameters free function takes NULL (its file database and
+ * dump path are freed only for real parameters). */
+static void test_free_params_null(void **st)
+{
+    (void)st;
+    wl_find("pphigs")->free_params(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_params_null),
         cmocka_unit_test(test_find),
         cmocka_unit_test(test_until),
         cmocka_unit_test(test_frame_log),

@@ -16,6 +16,7 @@
 
 #include "sim/workload/dpscan/dp_array.h"
 #include "sim/workload/dpscan/dp_cost.h"
+#include "sim/workload/dpscan/dp_render.h"
 
 static WlDpMachine simd(void)
 {
@@ -504,9 +505,20 @@ static void test_named_counts(void **state)
     }
 }
 
+/* Every free function of the array layer and the renderer takes NULL. */
+static void test_free_null(void **state)
+{
+    (void)state;
+    wl_dp_vm_free(NULL);
+    wl_dp_layout_free(NULL);
+    wl_dp_polys_free(NULL);
+    wl_dp_image_free(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_vp_ratio),
         cmocka_unit_test(test_step_scan_news),
         cmocka_unit_test(test_send_simd),

@@ -184,9 +184,18 @@ static void test_concurrent_volume(void **state)
     g_ptr_array_free(steps, TRUE);
 }
 
+/* The merge and the partition free functions take NULL. */
+static void test_free_null(void **state)
+{
+    (void)state;
+    wl_pm_merge_free(NULL);
+    wl_pm_partition_free(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_image_equals_serial),
         cmocka_unit_test(test_diff_detects_loss),
         cmocka_unit_test(test_step_shapes),

@@ -12,6 +12,7 @@
 #include "tests/scene/mesh_check.h"
 #include "sim/core/rng.h"
 #include "sim/workload/pphigs/pphigs_distrib.h"
+#include "sim/workload/pphigs/pphigs_dist_internal.h"
 #include <string.h>
 
 typedef struct {
@@ -601,9 +602,18 @@ static void test_attr_cache_mode_change(void **st)
     }
 }
 
+/* The distribution and its attribute cache free functions take NULL. */
+static void test_free_null(void **st)
+{
+    (void)st;
+    wl_pphigs_dist_free(NULL);
+    wl_pphigs_attr_cache_free(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_simple_edits),
         cmocka_unit_test(test_complex_edits),
         cmocka_unit_test(test_by_structure),

@@ -380,9 +380,18 @@ static void test_odp_edits_equal_serial(void **st)
     scene_pphigs_db_clear(&db);
 }
 
+/* The frame and region free functions take NULL. */
+static void test_free_null(void **st)
+{
+    (void)st;
+    wl_pphigs_frame_free(NULL);
+    wl_pphigs_region_free(NULL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_frame_equals_serial),
         cmocka_unit_test(test_missing_primitive_differs),
         cmocka_unit_test(test_shared_edge_once),
