@@ -11,6 +11,8 @@
 
 #include "sim/reproduce/reproduce.h"
 #include "sim/reproduce/ellsworth90.h"
+#include "sim/workload/pphigs/pphigs_metrics.h"
+#include <string.h>
 
 /* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
 static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
@@ -159,6 +161,49 @@ static void test_formulas(void **st)
     assert_true(w.cluster == 2.5 && w.strip_split == 0);
 }
 
+/* The count of name in o (0 if absent). */
+static uint64_t ops_of(const MachOps *o, const char *name)
+{
+    for (guint i = 0; i < o->n; i++)
+        if (strcmp(o->op[i].name, name) == 0)
+            return o->op[i].count;
+    return 0;
+}
+
+/* a = C M(replace) X(b) X(b) T; b = M(concat) T C: the attributes and
+ * executes of every instance, attributes first in each structure and a
+ * first in the max-set, are all counted:
+ * a: 100 + 300 + 2 x 500 ns; each of b's 2 instances 1000 + 100 ns. */
+static void test_nonprim_exact(void **st)
+{
+    (void)st;
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    SceneDb *db = scene_db_new();
+    guint a = scene_db_add_struct(db, "a"), b = scene_db_add_struct(db, "b");
+    SceneElem ea[] = {scene_elem_color(vec3(1, 0, 0)),
+                      scene_elem_matrix(mat4_identity(), SCENE_MAT_REPLACE),
+                      scene_elem_execute(b), scene_elem_execute(b),
+                      scene_elem_prim(SCENE_EL_TRIANGLE, v, 3)};
+    SceneElem eb[] = {scene_elem_matrix(mat4_identity(), SCENE_MAT_CONCAT),
+                      scene_elem_prim(SCENE_EL_TRIANGLE, v, 3),
+                      scene_elem_color(vec3(0, 1, 0))};
+    for (guint i = 0; i < G_N_ELEMENTS(ea); i++)
+        assert_true(scene_db_append(db, a, &ea[i], NULL));
+    for (guint i = 0; i < G_N_ELEMENTS(eb); i++)
+        assert_true(scene_db_append(db, b, &eb[i], NULL));
+    scene_db_post(db, a);
+    assert_int_equal(wl_pphigs_nonprim_cost(db, &C),
+                     (100 + 300 + 2 * 500 + 2 * (1000 + 100)) * SIM_NS);
+    MachOps o = {0};
+    wl_pphigs_nonprim_ops(db, &o);
+    assert_int_equal(ops_of(&o, "color"), 3);
+    assert_int_equal(ops_of(&o, "matrix_replace"), 1);
+    assert_int_equal(ops_of(&o, "matrix_concat"), 2);
+    assert_int_equal(ops_of(&o, "execute"), 2);
+    assert_int_equal(ops_of(&o, "polygon"), 0);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -166,6 +211,7 @@ int main(void)
         cmocka_unit_test(test_offscreen_is_cheaper),
         cmocka_unit_test(test_table_rows),
         cmocka_unit_test(test_formulas),
+        cmocka_unit_test(test_nonprim_exact),
     };
     return cmocka_run_group_tests_name("pphigs_metrics", tests, NULL, NULL);
 }
