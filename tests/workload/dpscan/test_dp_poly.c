@@ -249,6 +249,7 @@ static void test_nearest_palette_colour(void **state)
     scene_mesh_add_poly(m, v, 3, scene_color(0.5f, 0.5f, 0.5f), 0);
     scene_mesh_add_poly(m, v, 3, scene_color(0.5f, 0.1f, 0.5f), 0);
     scene_mesh_add_poly(m, v, 3, scene_color(0.5f, 0.5f, 0.1f), 0);
+    scene_mesh_add_poly(m, v, 3, scene_color(0.9f, 0.5f, 0.9f), 0);
     Scene *sc = scene_new("one");
     guint id = scene_add_mesh(sc, m);
     scene_add_instance(sc, id, mat4_identity(), scene_color(1, 1, 1), 0);
@@ -263,10 +264,11 @@ static void test_nearest_palette_colour(void **state)
     pal[1][0] = pal[1][1] = pal[1][2] = 0.5f;
     pal[3][0] = pal[3][1] = pal[3][2] = 0.5f;
     WlDpPolys *p = wl_dp_polys_new(sc, 0, 16, 16, WL_DP_MODE_FLAT, pal);
-    assert_int_equal(p->n, 3);
+    assert_int_equal(p->n, 4);
     assert_int_equal(p->color[0], 1);
     assert_int_equal(p->color[1], 0);
     assert_int_equal(p->color[2], 1); /* blue 0.4 off: still the grey */
+    assert_int_equal(p->color[3], 2); /* the first (0.9, 0.5, 0.9) entry */
     wl_dp_polys_free(p);
     scene_free(sc);
 }
