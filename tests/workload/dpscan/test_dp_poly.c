@@ -362,6 +362,18 @@ static void test_polys_new(void **state)
         }
         wl_dp_polys_free(p);
     }
+    /* depth clamped to [0, 1]: every vertex beyond the far plane at 1,
+     * every one nearer than the near plane (but in front) at 0 */
+    const double planes[2][2] = {{0.5, 1.5}, {4.5, 10}};
+    for (int k = 0; k < 2; k++) {
+        s->camera.near = planes[k][0];
+        s->camera.far = planes[k][1];
+        WlDpPolys *q = wl_dp_polys_new(s, 0, 40, 30, WL_DP_MODE_FLAT, pal);
+        assert_int_equal(q->n_ok, 2);
+        for (uint32_t a = 0; a < q->n_verts; a++)
+            assert_true(q->z[a] == (k ? 0.0 : 1.0));
+        wl_dp_polys_free(q);
+    }
     /* the eye moved between the polygons: the far one is behind it */
     s->camera.eye = vec3(0.3, 0.4, 0.1);
     s->camera.target = vec3(0.3, 0.4, -1);
