@@ -213,6 +213,34 @@ static void test_normal_rejects_circle_and_centre(void **state)
     }
 }
 
+/* Phases in increasing order, each one past the end of the array: every
+ * add grows it by one; a phase at or past the end reads 0; a cleared
+ * accumulator reads 0 everywhere. */
+static void test_busy_growth(void **state)
+{
+    (void)state;
+    SimBusy b;
+    sim_busy_init(&b);
+    assert_int_equal(sim_busy_phase(&b, 0), 0);
+    for (unsigned ph = 0; ph < 5; ph++) {
+        assert_true(sim_busy_add(&b, ph, 10 + ph));
+        assert_int_equal(b.per_phase->len, ph + 1);
+        assert_int_equal(sim_busy_phase(&b, ph + 1), 0);
+    }
+    for (unsigned ph = 0; ph < 5; ph++)
+        assert_int_equal(sim_busy_phase(&b, ph), 10 + ph);
+    assert_int_equal(b.total, 60);
+    assert_true(sim_busy_add(&b, 2, SIM_TIME_MAX - 60));
+    assert_int_equal(b.total, SIM_TIME_MAX);
+    assert_false(sim_busy_add(&b, 0, 1)); /* the total would overflow */
+    assert_int_equal(sim_busy_phase(&b, 0), 10);
+    sim_busy_clear(&b);
+    assert_null(b.per_phase);
+    assert_int_equal(b.total, 0);
+    assert_int_equal(sim_busy_phase(&b, 0), 0);
+    sim_busy_clear(&b);
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -223,6 +251,7 @@ int main(void)
         cmocka_unit_test(test_moments_small),
         cmocka_unit_test(test_compensated_sum),
         cmocka_unit_test(test_busy_per_phase),
+        cmocka_unit_test(test_busy_growth),
         cmocka_unit_test(test_reference_values),
         cmocka_unit_test(test_below_rejection_reference),
         cmocka_unit_test(test_below_keeps_threshold_tie),
