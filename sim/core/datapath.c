@@ -60,11 +60,13 @@ static guint64 env_limit(void)
     char *end = NULL;
     if (!s || !*s)
         return 0;
+    errno = 0;
     guint64 v = g_ascii_strtoull(s, &end, 10);
+    gboolean range = errno == ERANGE; /* saturated at 2^64 - 1 */
     int shift = *end == 'k' ? 10 : *end == 'M' ? 20 : *end == 'G' ? 30 : 0;
     if (shift)
         end++;
-    if (*end || v > (G_MAXUINT64 >> shift))
+    if (*end || range || v > (G_MAXUINT64 >> shift))
         return 0;
     return v << shift;
 }

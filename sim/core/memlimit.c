@@ -4,6 +4,7 @@
 #include "sim/core/memlimit.h"
 #include "sim/core/error.h"
 
+#include <errno.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -19,13 +20,15 @@ gboolean sim_mem_parse(const char *text, guint64 *out)
     char *end = NULL;
     if (!text || !g_ascii_isdigit(*text))
         return FALSE;
+    errno = 0;
     guint64 v = g_ascii_strtoull(text, &end, 10);
+    gboolean range = errno == ERANGE; /* saturated at 2^64 - 1 */
     const char *units = "kMGT";
     const char *u = *end ? strchr(units, *end) : NULL;
     int shift = u ? 10 * (int)(u - units + 1) : 0;
     if (u)
         end++;
-    if (*end || v == 0 || v > (G_MAXUINT64 >> shift))
+    if (*end || v == 0 || range || v > (G_MAXUINT64 >> shift))
         return FALSE;
     *out = v << shift;
     return TRUE;

@@ -134,6 +134,7 @@ static void test_input_limit_env(void **state)
         {"3G", 3ull << 30},    {"3T", 0},     {"3kB", 0},
         {"x", 0},              {"", 0},
         {"17179869183G", 17179869183ull << 30},  {"17179869184G", 0},
+        {"18446744073709551615", G_MAXUINT64}, {"18446744073709551616", 0},
     };
     sim_file_set_limit(0);
     for (size_t i = 0; i < G_N_ELEMENTS(cases); i++) {
