@@ -200,7 +200,10 @@ uint64_t wl_sf_book_memory(const WlSfBook *b, guint p);
  * processor (the migration invariant); else names the first miss. */
 gboolean wl_sf_book_check(const WlSfBook *b, guint *inst, guint *proc);
 
+/* An empty batch: no item, 0 polygons, 0 bytes, src = dst = 0. */
 void wl_sf_batch_init(WlSfBatch *bt);
+/* Frees the arrays and leaves the batch zeroed, so clearing it again
+ * (or clearing a zeroed batch) does nothing. */
 void wl_sf_batch_clear(WlSfBatch *bt);
 
 #endif

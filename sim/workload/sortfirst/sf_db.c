@@ -226,9 +226,7 @@ void wl_sf_octree_order(const Vec3 *pts, guint n, guint *order)
         order[i] = i;
         box = scene_box_add_point(box, pts[i]);
     }
-    if (n < 2)
-        return;
-    Vec3 s = scene_box_size(box);
+    Vec3 s = scene_box_size(box); /* 0 for no point or one */
     double side = MAX(s.x, MAX(s.y, s.z));
     if (!(side > 0))
         return; /* all at one point: file order */

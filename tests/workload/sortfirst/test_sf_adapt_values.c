@@ -32,11 +32,11 @@ static Mat4 ortho(void)
     return scene_camera_view_proj(&c);
 }
 
-/* The 16 weights, as "cell:weight" pairs of the non-zero ones. */
+/* The G x G weights, as "cell:weight" pairs of the non-zero ones. */
 static void expect_weights(const WlSfAdapt *a, const char *want)
 {
     GString *got = g_string_new("");
-    for (guint i = 0; i < 16; i++)
+    for (guint i = 0; i < a->grid * a->grid; i++)
         if (a->weight[i])
             g_string_append_printf(got, "%s%u:%llu", got->len ? " " : "", i,
                                    (unsigned long long)a->weight[i]);
@@ -84,6 +84,48 @@ static void test_estimate(void **st)
     expect_procs(a->nz, 2, 1, "nz");
     /* every cell's weight adds up in weight_in over the whole screen */
     assert_int_equal(wl_sf_adapt_weight_in(a, &r, (WlSfRect){0, 0, 16, 16}), 3);
+    wl_sf_adapt_free(a);
+    wl_sf_db_free(db);
+    scene_db_free(src);
+}
+
+/* A right triangle over [x0, x1] x [y0, y1] at z = 0 (world). */
+static void tri(SceneDb *db, guint sid, double x0, double y0, double x1,
+                double y1)
+{
+    Vec3 v[3] = {vec3(x0, y0, 0), vec3(x1, y0, 0), vec3(x0, y1, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    assert_true(scene_db_append(db, sid, &e, NULL));
+}
+
+/* One processor masters three triangles: A and B with box centres at
+ * screen (13.6, 5.6), C at (1, 5).  On 4 x 4 cells A and B share cell
+ * 7 (counted once in nz: the 8th bit of the processor's first mark
+ * byte), C is in cell 4.  On 16 x 16 cells of one pixel, C's centre
+ * x = 1 is on the edge of column 1 and falls in it: cell 5 x 16 + 1. */
+static void test_cells(void **st)
+{
+    (void)st;
+    SceneDb *src = scene_db_new();
+    guint root = scene_db_add_struct(src, "root");
+    tri(src, root, 0.6, 0.2, 0.8, 0.4);
+    tri(src, root, 0.6, 0.2, 0.8, 0.4);
+    tri(src, root, -0.9375, 0.3125, -0.8125, 0.4375);
+    scene_db_post(src, root);
+    WlSfDb *db = wl_sf_db_new(src, 1, 1, WL_SF_CHUNK_UNSORTED, NULL);
+    assert_int_equal(wl_sf_n_insts(db), 3);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 1, 16, 16);
+    WlSfAdapt *a = wl_sf_adapt_new(4, 1);
+    wl_sf_adapt_estimate(a, db, &r, ortho());
+    expect_weights(a, "4:1 7:2");
+    assert_int_equal(a->added[0], 3);
+    assert_int_equal(a->nz[0], 2);
+    wl_sf_adapt_free(a);
+    a = wl_sf_adapt_new(16, 1);
+    wl_sf_adapt_estimate(a, db, &r, ortho());
+    expect_weights(a, "81:1 93:2");
+    assert_int_equal(a->nz[0], 2);
     wl_sf_adapt_free(a);
     wl_sf_db_free(db);
     scene_db_free(src);
@@ -351,6 +393,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_estimate),
+        cmocka_unit_test(test_cells),
         cmocka_unit_test(test_predict),
         cmocka_unit_test(test_remap),
         cmocka_unit_test(test_weight_in),

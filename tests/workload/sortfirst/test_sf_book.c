@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <string.h>
 
 #include "tests/workload/sortfirst/sf_testutil.h"
 
@@ -87,9 +88,35 @@ static void test_check(void **st)
     scene_db_free(src);
 }
 
+/* A batch starts empty (no item, no polygon, no byte, src = dst = 0);
+ * clearing leaves it zeroed, so a second clear does nothing. */
+static void test_batch(void **st)
+{
+    (void)st;
+    WlSfBatch bt;
+    memset(&bt, 0xa5, sizeof bt);
+    wl_sf_batch_init(&bt);
+    assert_int_equal(bt.src, 0);
+    assert_int_equal(bt.dst, 0);
+    assert_int_equal(bt.polys, 0);
+    assert_int_equal(bt.bytes, 0);
+    assert_int_equal(bt.chunks->len + bt.insts->len + bt.masters->len, 0);
+    guint c = 3;
+    g_array_append_val(bt.chunks, c);
+    bt.bytes = 64;
+    wl_sf_batch_clear(&bt);
+    assert_null(bt.chunks);
+    assert_null(bt.insts);
+    assert_null(bt.masters);
+    assert_int_equal(bt.bytes, 0);
+    wl_sf_batch_clear(&bt);
+    assert_null(bt.chunks);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_batch),
         cmocka_unit_test(test_memory),
         cmocka_unit_test(test_check),
     };

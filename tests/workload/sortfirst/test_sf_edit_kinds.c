@@ -27,6 +27,9 @@ typedef struct {
     Vec3 v[3];
 } Fix;
 
+/* fix_init posts b as well (a second posting). */
+static gboolean post_b;
+
 static void add(SceneDb *db, guint sid, SceneElem e)
 {
     assert_true(scene_db_append(db, sid, &e, NULL));
@@ -45,6 +48,8 @@ static void fix_init(Fix *f, const WlSfEditSpec *spec)
     add(f->src, a, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
     add(f->src, b, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
     scene_db_post(f->src, root);
+    if (post_b)
+        scene_db_post(f->src, b);
     GError *e = NULL;
     f->sf = wl_sf_db_new(f->src, 2, 1, WL_SF_CHUNK_SORTED, &e);
     assert_non_null(f->sf);
@@ -154,6 +159,63 @@ static void test_nothing(void **st)
     fix_clear(&f);
 }
 
+/* Two postings: root (node 0, its execute of a node 1) and b (node 2,
+ * a root too).  A matrix edit keeps both trees: every node and instance
+ * continues (b's root is matched to the old root of its own posting,
+ * not to a child of node 0). */
+static void test_two_postings(void **st)
+{
+    (void)st;
+    const WlSfEditSpec spec = {{1, 0, 0, 0}, 30};
+    Fix f;
+    post_b = TRUE;
+    fix_init(&f, &spec);
+    post_b = FALSE;
+    assert_int_equal(f.sf->nodes->len, 3);
+    assert_int_equal(wl_sf_n_insts(f.sf), 2);
+    gint64 *map = edit_frame(&f, 1, 0, 0);
+    assert_int_equal(map[0], 0);
+    assert_int_equal(map[1], 1);
+    g_free(map);
+    fix_clear(&f);
+}
+
+/* Structure 0 a leaf ("b" first): an execute edit can point the root's
+ * execute of "a" at it, structure 0 being of a's height. */
+static void test_execute_to_first(void **st)
+{
+    (void)st;
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    SceneDb *src = scene_db_new();
+    guint b = scene_db_add_struct(src, "b");
+    guint root = scene_db_add_struct(src, "root");
+    guint a = scene_db_add_struct(src, "a");
+    add(src, b, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    add(src, root, scene_elem_execute(a));
+    add(src, a, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    scene_db_post(src, root);
+    WlSfDb *sf = wl_sf_db_new(src, 2, 1, WL_SF_CHUNK_SORTED, NULL);
+    assert_non_null(sf);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 16, 16);
+    WlSfSizes z = {64, 40, 36, 8, 4, 8, 16, 96};
+    WlSfBook *book = wl_sf_book_new(sf, &r, WL_SF_MAXSET, &z);
+    SimRng rng;
+    sim_rng_init(&rng, 3, 0);
+    const WlSfEditSpec spec = {{0, 1, 0, 0}, 10};
+    WlSfEdit *ed = wl_sf_edit_new(src, sf, &spec, &rng);
+    WlSfEditFrame ef;
+    WlSfRemapWork w[2] = {{0}};
+    gint64 *map = wl_sf_edit_frame(ed, book, &ef, w);
+    assert_int_equal(ef.commands, 1);
+    assert_int_equal(scene_db_elem(wl_sf_edit_db(ed), root, 0)->child, b);
+    g_free(map);
+    wl_sf_edit_free(ed);
+    wl_sf_book_free(book);
+    wl_sf_db_free(sf);
+    scene_db_free(src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -161,6 +223,8 @@ int main(void)
         cmocka_unit_test(test_execute_edit),
         cmocka_unit_test(test_unpost_post),
         cmocka_unit_test(test_nothing),
+        cmocka_unit_test(test_two_postings),
+        cmocka_unit_test(test_execute_to_first),
     };
     return cmocka_run_group_tests_name("sf_edit_kinds", tests, NULL, NULL);
 }

@@ -336,6 +336,15 @@ static void test_adaptive_current(void **st)
     assert_true(f->image_ok);
     expect_busy(&r, f, busy0);
     expect_rect(wl_sf_run_regions(r.run), 1, 0, 8, 8, 16);
+    /* phase `estimate`: 8 vertices per master box (chunk c's master is
+     * c mod 4: 2, 1, 1, 1 boxes) and a grid cell per on-screen instance
+     * added (triangles 0, 1, 2: processors 0, 1, 2) */
+    unsigned ph = sim_engine_phase(r.eng, "estimate");
+    static const SimTime boxes[P] = {2, 1, 1, 1}, added[P] = {1, 1, 1, 0};
+    for (guint p = 0; p < P; p++)
+        assert_true(mach_proc_busy_phase(mach_proc(r.m, "node", p), ph) ==
+                    8 * boxes[p] * r.c.transform_vertex +
+                        added[p] * r.c.grid_cell);
     rig_clear(&r);
 }
 
@@ -441,6 +450,24 @@ static void test_one_polygon(void **st)
     }
 }
 
+/* The camera moved to look at (4.0625, -0.5625): triangle 3's box
+ * spans screen [-0.5, 3.5] x [-0.5, 3.5], triangle 4's [-0.5, 3.5] x
+ * [7.5, 11.5]; clipped to the screen they are 3.5 x 3.5 and 3.5 x 4:
+ * box sides 3.5 and sqrt(14). */
+static void test_box_side_clipped(void **st)
+{
+    (void)st;
+    Rig r;
+    rig_init(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED);
+    r.scene->camera.eye = vec3(4.0625, -0.5625, 5);
+    r.scene->camera.target = vec3(4.0625, -0.5625, 0);
+    run(&r, 1);
+    const WlSfFrameStats *f = frame(&r, 0);
+    assert_int_equal(f->onscreen_insts, 2);
+    expect_near(f->box_side, 3.5 + sqrt(14), "box_side");
+    rig_clear(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -451,6 +478,7 @@ int main(void)
         cmocka_unit_test(test_prerendered),
         cmocka_unit_test(test_nothing_on_screen),
         cmocka_unit_test(test_one_polygon),
+        cmocka_unit_test(test_box_side_clipped),
     };
     return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
 }

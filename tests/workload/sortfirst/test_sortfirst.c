@@ -738,6 +738,26 @@ static void test_database_file(void **state)
     assert_non_null(e);
     assert_non_null(strstr(e->message, "db.yaml:4:26: found 'b'"));
     g_clear_error(&e);
+    /* a matrix between one structure's primitives: no chunk box */
+    assert_true(g_file_set_contents(
+        path,
+        "structure_database: 1\nstructures:\n  - name: a\n    elements:\n"
+        "      - triangle: [[0,0,0], [1,0,0], [0,1,0]]\n"
+        "      - {matrix: [1,0,0,2, 0,1,0,0, 0,0,1,0, 0,0,0,1]}\n"
+        "      - triangle: [[0,0,0], [1,0,0], [0,1,0]]\n"
+        "posted: [a]\n",
+        -1, NULL));
+    assert_null(run_cfg(small, use, 1, &e));
+    assert_non_null(e);
+    assert_non_null(strstr(e->message, "matrix element between the "
+                                       "primitives of structure 'a'"));
+    g_clear_error(&e);
+    /* dump_db into a directory that does not exist: refused */
+    char *bad = g_strdup_printf("workload.dump_db=%s/no/such/dir/db.yaml", dir);
+    assert_null(run_cfg(small, bad, 1, &e));
+    assert_non_null(e);
+    g_clear_error(&e);
+    g_free(bad);
     assert_int_equal(g_remove(path), 0);
     assert_int_equal(g_rmdir(dir), 0);
     g_free(use);
