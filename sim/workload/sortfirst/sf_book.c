@@ -1,6 +1,10 @@
 /* sf_book.c — min-set and max-set bookkeeping (sf_book.h; seed 000
  * §3.3.2.1 push communication with fixed masters, §3.3.2.3 arriving
  * primitives, §3.4.2-§3.4.4 max-set operations, traversal, migration).
+ * Per-chunk and per-instance arrays hold exactly one element each, so a
+ * read past the end is a memory error the sanitizer build reports (NULL
+ * when there is none: never read then; used, used_prev and fresh, which
+ * memcpy and memset take, at least one).
  */
 #include "sim/workload/sortfirst/sf_book.h"
 #include <string.h>
@@ -48,15 +52,15 @@ WlSfBook *wl_sf_book_new(const WlSfDb *db, const WlSfRegions *regions,
     b->regions = *regions;
     b->bk = bk;
     b->sizes = *sizes;
-    b->need = g_new0(uint64_t, ni + 1);
-    b->held_inst = g_new0(uint64_t, ni + 1);
-    b->master_inst = g_new0(uint64_t, ni + 1);
-    b->held_data = g_new0(uint64_t, nc + 1);
-    b->master_data = g_new0(uint64_t, nc + 1);
-    b->master = g_new0(guint, nc + 1);
-    b->used = g_new0(uint64_t, nc + 1);
-    b->used_prev = g_new0(uint64_t, nc + 1);
-    b->fresh = g_new0(guint8, ni + 1);
+    b->need = g_new0(uint64_t, ni);
+    b->held_inst = g_new0(uint64_t, ni);
+    b->master_inst = g_new0(uint64_t, ni);
+    b->held_data = g_new0(uint64_t, nc);
+    b->master_data = g_new0(uint64_t, nc);
+    b->master = g_new0(guint, nc);
+    b->used = g_new0(uint64_t, MAX(nc, 1));
+    b->used_prev = g_new0(uint64_t, MAX(nc, 1));
+    b->fresh = g_new0(guint8, MAX(ni, 1));
     for (guint c = 0; c < nc; c++) {
         const WlSfChunk *ch = wl_sf_chunk(db, c);
         b->master[c] = ch->master;
@@ -103,7 +107,7 @@ void wl_sf_book_screens(const WlSfBook *b, Mat4 view_proj, WlSfScreen *out)
 
 void wl_sf_book_need(WlSfBook *b, Mat4 view_proj)
 {
-    WlSfScreen *scr = g_new(WlSfScreen, wl_sf_n_insts(b->db) + 1);
+    WlSfScreen *scr = g_new(WlSfScreen, wl_sf_n_insts(b->db));
     wl_sf_book_screens(b, view_proj, scr);
     wl_sf_book_need_from(b, scr);
     g_free(scr);
@@ -147,10 +151,10 @@ void wl_sf_book_remap(WlSfBook *b, const gint64 *old_of_new, guint n_old,
                       WlSfRemapWork *w)
 {
     guint ni = wl_sf_n_insts(b->db);
-    uint64_t *held = g_new0(uint64_t, ni + 1), *mast = g_new0(uint64_t, ni + 1);
-    guint8 *kept = g_new0(guint8, n_old + 1);
+    uint64_t *held = g_new0(uint64_t, ni), *mast = g_new0(uint64_t, ni);
+    guint8 *kept = g_new0(guint8, n_old);
     g_free(b->fresh);
-    b->fresh = g_new0(guint8, ni + 1);
+    b->fresh = g_new0(guint8, MAX(ni, 1));
     remap_new(b, old_of_new, ni, held, mast, w);
     for (guint i = 0; i < ni; i++)
         if (old_of_new[i] >= 0)
@@ -165,7 +169,7 @@ void wl_sf_book_remap(WlSfBook *b, const gint64 *old_of_new, guint n_old,
     g_free(b->need);
     b->held_inst = held;
     b->master_inst = mast;
-    b->need = g_new0(uint64_t, ni + 1);
+    b->need = g_new0(uint64_t, ni);
     b->remapped = TRUE;
 }
 

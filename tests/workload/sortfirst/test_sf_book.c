@@ -113,10 +113,52 @@ static void test_batch(void **st)
     assert_null(bt.chunks);
 }
 
+/* A database without a primitive: no chunk, no instance.  The book
+ * works on it all the same: nothing to sort, send, hold or miss. */
+static void test_empty(void **st)
+{
+    (void)st;
+    SceneDb *src = scene_db_new();
+    scene_db_post(src, scene_db_add_struct(src, "none"));
+    WlSfDb *db = wl_sf_db_new(src, 2, 4, WL_SF_CHUNK_SORTED, NULL);
+    assert_non_null(db);
+    assert_int_equal(wl_sf_n_chunks(db), 0);
+    assert_int_equal(wl_sf_n_insts(db), 0);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 16, 16);
+    for (int bk = 0; bk <= 1; bk++) {
+        WlSfBook *b = wl_sf_book_new(db, &r, (WlSfBookkeeping)bk, &Z);
+        wl_sf_book_need(b, mat4_identity());
+        WlSfBatch out[2];
+        wl_sf_batch_init(&out[0]);
+        wl_sf_batch_init(&out[1]);
+        WlSfBookWork w = {0};
+        wl_sf_book_sort(b, 0, out, &w);
+        assert_int_equal(w.sent_bytes, 64); /* the end-of-sort marker */
+        GArray *render = g_array_new(FALSE, FALSE, sizeof(guint));
+        wl_sf_book_render_set(b, 1, NULL, render, &w);
+        assert_int_equal(render->len, 0);
+        assert_int_equal(w.held_chunks, 0);
+        WlSfRemapWork rw[2] = {{0}};
+        wl_sf_book_remap(b, NULL, 0, rw);
+        assert_int_equal(rw[0].ptr_collected + rw[1].ptr_created, 0);
+        assert_int_equal(wl_sf_book_memory(b, 0), 0);
+        guint inst = 7, proc = 7;
+        assert_true(wl_sf_book_check(b, &inst, &proc));
+        g_array_unref(render);
+        wl_sf_batch_clear(&out[0]);
+        wl_sf_batch_clear(&out[1]);
+        wl_sf_book_free(b);
+    }
+    wl_sf_db_free(db);
+    scene_db_free(src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_batch),
+        cmocka_unit_test(test_empty),
         cmocka_unit_test(test_memory),
         cmocka_unit_test(test_check),
     };
