@@ -988,6 +988,52 @@ static void test_log_lod_without_houses(void **st)
     sim_result_free(r);
 }
 
+/* Node `name`'s busy time in phase `phase` (0 when none). */
+static SimTime phase_busy(const SimResult *r, const char *name,
+                          const char *phase)
+{
+    for (guint i = 0; i < r->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        if (strcmp(n->name, name))
+            continue;
+        for (guint k = 0; k < r->phases->len; k++)
+            if (!strcmp(g_ptr_array_index(r->phases, k), phase))
+                return k < n->busy.per_phase->len
+                           ? g_array_index(n->busy.per_phase, SimTime, k)
+                           : 0;
+    }
+    return 0;
+}
+
+/* Each stage's work is charged to its phase on its process's cpu
+ * (three processes and ISECT: cpu0 app, cpu1 cull, cpu2 draw, cpu3
+ * isect), all of each cpu's busy time. */
+static void test_stage_phases(void **st)
+{
+    (void)st;
+    GError *err = NULL;
+    SimResult *r = run("machine: {model: sgi-onyx}\n"
+                       "workload: {type: performer, town: {blocks: 1}}\n",
+                       3, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    const char *stage[4][2] = {
+        {"cpu0", "app"}, {"cpu1", "cull"}, {"cpu2", "draw"}, {"cpu3", "isect"}};
+    guint seen = 0;
+    for (guint i = 0; i < r->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        for (guint k = 0; k < 4; k++)
+            if (!strcmp(n->name, stage[k][0])) {
+                assert_true(n->busy.total > 0);
+                assert_int_equal(phase_busy(r, stage[k][0], stage[k][1]),
+                                 n->busy.total);
+                seen++;
+            }
+    }
+    assert_int_equal(seen, 4);
+    sim_result_free(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1009,6 +1055,7 @@ int main(void)
         cmocka_unit_test(test_matrix_ops_saved),
         cmocka_unit_test(test_machine_refused),
         cmocka_unit_test(test_keys_reach_the_run),
+        cmocka_unit_test(test_stage_phases),
         cmocka_unit_test(test_draw_stream_source),
         cmocka_unit_test(test_stress_off_by_default),
         cmocka_unit_test(test_log_lod_without_houses),
