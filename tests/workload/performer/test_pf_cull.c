@@ -346,6 +346,9 @@ static void test_isect(void **st)
     WlPfIsectStats floor1 = {0};
     wl_pf_isect(g, 1, 1, -100, 1, &floor1); /* a hit exactly at y1 */
     assert_true(floor1.hit && floor1.height == 1);
+    WlPfIsectStats at_y0 = {0};
+    wl_pf_isect(g, 1, 1, 1, 1.5, &at_y0); /* and one exactly at y0 */
+    assert_true(at_y0.hit && at_y0.height == 1);
     WlPfIsectStats miss = {0};
     wl_pf_isect(g, 3.5, 3.5, -100, 100, &miss); /* x + z > 4 */
     assert_false(miss.hit);
@@ -360,6 +363,45 @@ static void test_isect(void **st)
         wl_pf_isect(g, on[k][0], on[k][1], -100, 100, &e);
         assert_true(e.hit && e.height == 5);
     }
+    wl_pf_graph_free(g);
+}
+
+/* ISECT on a triangle in general position, a = (1, 1, 2), b = (5, 3, 1),
+ * c = (2, 6, 6), the second of its geoset (after one far away), under an
+ * SCS that moves it by (10, 0, 0): a vertical line through the point of
+ * barycentric weights (wa, wb, wc) hits at height wa + 3 wb + 6 wc when
+ * all three are >= 0, and misses when one is negative. */
+static void isect_weights(WlPfGraph *g, double wa, double wb, double wc,
+                          gboolean hit)
+{
+    double x = 10 + wa * 1 + wb * 5 + wc * 2, z = wa * 2 + wb * 1 + wc * 6;
+    WlPfIsectStats s = {0};
+    wl_pf_isect(g, x, z, -100, 100, &s);
+    assert_int_equal(s.nodes_tested, 3);
+    assert_int_equal(s.tris_tested, 2);
+    if (s.hit != hit || (hit && fabs(s.height - (wa + 3 * wb + 6 * wc)) > 1e-12))
+        fail_msg("weights (%g, %g, %g): hit %d at %g", wa, wb, wc, s.hit,
+                 s.height);
+}
+
+static void test_isect_general_triangle(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint scs = wl_pf_add_node(g, g->root, WL_PF_SCS);
+    wl_pf_node(g, scs)->xf = mat4_translate(10, 0, 0);
+    guint n = wl_pf_add_node(g, scs, WL_PF_GEODE);
+    const Vec3 t[6] = {vec3(1, 0, 9), vec3(2, 0, 9), vec3(1, 0, 10),
+                       vec3(1, 1, 2), vec3(5, 3, 1), vec3(2, 6, 6)};
+    wl_pf_add_geoset(g, n, t, 2, 0);
+    wl_pf_update_bounds(g, g->root);
+    isect_weights(g, 0.2, 0.3, 0.5, TRUE);
+    isect_weights(g, 0.7, 0.1, 0.2, TRUE);
+    isect_weights(g, 0.1, 0.8, 0.1, TRUE);
+    isect_weights(g, -0.1, 0.6, 0.5, FALSE);
+    isect_weights(g, 0.6, -0.1, 0.5, FALSE);
+    isect_weights(g, 0.6, 0.5, -0.1, FALSE);
     wl_pf_graph_free(g);
 }
 
@@ -533,6 +575,7 @@ int main(void)
         cmocka_unit_test(test_switch),
         cmocka_unit_test(test_isect),
         cmocka_unit_test(test_isect_touching_sphere),
+        cmocka_unit_test(test_isect_general_triangle),
         cmocka_unit_test(test_cull_touching_plane),
         cmocka_unit_test(test_flatten),
         cmocka_unit_test(test_point_geoset),
