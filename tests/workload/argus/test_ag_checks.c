@@ -109,6 +109,13 @@ static void test_sizes_and_words(void **state)
     assert_int_equal(p->tile, 128);
     assert_int_equal(p->block_tris, 64);
     assert_int_equal(p->setup.voxels_per_batch, 4096);
+    /* no size (the scene's), cells from the last tag, no uniprocessor */
+    assert_int_equal(p->width, 0);
+    assert_int_equal(p->height, 0);
+    assert_int_equal(p->cells, 0);
+    assert_false(p->setup.uniprocessor);
+    assert_int_equal(p->setup.app, WL_AG_APP_NONE);
+    assert_int_equal(p->order, WL_AG_ORDER_FRAME);
     wl_argus_ops.free_params(p);
     /* sizes are capped at 1 MiB; the words map to their enums */
     p = parse("bytes: {vertex: 3 MiB, triangle: 1025 KiB}, application: "
