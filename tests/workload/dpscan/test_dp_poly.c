@@ -13,6 +13,7 @@
 #include <cmocka.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "sim/scene/scene.h"
 #include "sim/workload/dpscan/dp_poly.h"
@@ -524,9 +525,50 @@ static void test_edge_length_limit(void **state)
     assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 2), 4); /* (0,3) to (0,0) */
 }
 
+/* A vertex exactly on a row's centre: an edge holds its lower end (the
+ * smaller y), not its upper one, so the left vertex D (1, 2.5) of the
+ * triangle A (4, 0.5), B (7, 4.5), D is crossed once on row 2, whichever
+ * way the polygon winds: one span from 1 to 5.5 (pixels 1 .. 5). */
+static void test_vertex_on_row_centre(void **state)
+{
+    (void)state;
+    const double xs[2][3] = {{4, 7, 1}, {4, 1, 7}};
+    const double ys[2][3] = {{0.5, 4.5, 2.5}, {0.5, 2.5, 4.5}};
+    for (int w = 0; w < 2; w++) {
+        double x[3], y[3], z[3] = {0.5, 0.5, 0.5}, v[3] = {0, 0, 0};
+        memcpy(x, xs[w], sizeof x);
+        memcpy(y, ys[w], sizeof y);
+        One o;
+        one_init(&o, 3, x, y, z, v, WL_DP_MODE_FLAT);
+        WlDpSpan s[WL_DP_MAX_VERTS / 2];
+        assert_int_equal(wl_dp_poly_spans(&o.p, 0, 2, s), 1);
+        assert_true(s[0].xl == 1 && s[0].xr == 5.5);
+        assert_int_equal(s[0].x0, 1);
+        assert_int_equal(s[0].len, 5);
+    }
+}
+
+/* A row the polygon starts within is sampled just inside its extent,
+ * at lo + (hi - lo) 1e-6: the edge from (2, 2.6) to (6, 4.6) is crossed
+ * at x = 2 + 2 (2e-6) on row 2, the vertical edge x = 2 at 2. */
+static void test_row_sampled_inside(void **state)
+{
+    (void)state;
+    double x[3] = {2, 6, 2}, y[3] = {2.6, 4.6, 4.6};
+    double z[3] = {0.5, 0.5, 0.5}, v[3] = {0, 0, 0};
+    One o;
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_FLAT);
+    WlDpSpan s[WL_DP_MAX_VERTS / 2];
+    assert_int_equal(wl_dp_poly_spans(&o.p, 0, 2, s), 1);
+    assert_true(s[0].xl == 2);
+    assert_true(fabs(s[0].xr - (2 + 2 * 2e-6)) < 1e-12);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_vertex_on_row_centre),
+        cmocka_unit_test(test_row_sampled_inside),
         cmocka_unit_test(test_polys_new),
         cmocka_unit_test(test_square_spans),
         cmocka_unit_test(test_equal_crossings_keep_edge_order),
