@@ -236,6 +236,12 @@ static void test_span_key_depth(void **state)
     WlDpSpan d = {.xl = 2, .xr = 2, .zl = 0.2, .zr = 0.3, .y = 2, .x0 = 2,
                   .len = 1, .poly = 0};
     assert_int_equal(wl_dp_span_key(&o.p, &d, 0) >> 32, depth_bits(0.2));
+    /* under a pixel wide: still interpolated (centre 2.5 halfway along
+     * 2.25 .. 2.75) */
+    d.xl = 2.25;
+    d.xr = 2.75;
+    d.zr = 0.4;
+    assert_int_equal(wl_dp_span_key(&o.p, &d, 0) >> 32, depth_bits(0.3));
 }
 
 /* A polygon's colour is the palette entry nearest in RGB (squared
