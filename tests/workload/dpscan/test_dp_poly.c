@@ -229,6 +229,10 @@ static void test_span_key_depth(void **state)
                      wl_dp_color_index(o.color[0], 1));
     assert_int_equal(wl_dp_key_index(wl_dp_span_key(&o.p, &s, 0)),
                      wl_dp_color_index(o.color[0], 0));
+    /* a pixel centre right of xr clamps to the right end */
+    s.xr = 5.25;
+    assert_int_equal(wl_dp_span_key(&o.p, &s, 4) >> 32, depth_bits(0.6));
+    s.xr = 5.5;
     /* a pixel centre left of xl clamps to the left end */
     s.xl = 1.9;
     assert_int_equal(wl_dp_span_key(&o.p, &s, 0) >> 32, depth_bits(0.2));
