@@ -133,7 +133,24 @@ static void test_edge_pixels_join_the_ends(void **state)
     one_init(&o, 3, x2, y2, z, v, WL_DP_MODE_WIREFRAME);
     assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 2);
     check_edge(&o, 0);
+    /* line keys: depth along the edge where lines hide each other (LINES;
+     * the one-pixel edge at its first end's), none in WIREFRAME; the
+     * polygon's colour at full shade */
+    int64_t qx, qy;
+    uint64_t key;
+    one_init(&o, 3, x1, y1, z, v, WL_DP_MODE_LINES);
+    wl_dp_edge_pixel(&o.p, 0, 0, 0, &qx, &qy, &key);
+    assert_int_equal(key, wl_dp_key(0.1, 0, wl_dp_color_index(3, 1)));
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_LINES);
+    assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 9);
+    wl_dp_edge_pixel(&o.p, 0, 0, 4, &qx, &qy, &key); /* t 0.5 */
+    assert_int_equal(key, wl_dp_key(0.1 + 0.5 * (0.5 - 0.1), 0,
+                                    wl_dp_color_index(3, 1)));
+    one_init(&o, 3, x, y, z, v, WL_DP_MODE_WIREFRAME);
+    wl_dp_edge_pixel(&o.p, 0, 0, 4, &qx, &qy, &key);
+    assert_int_equal(key >> 32, 0);
     /* a polygon behind the eye draws no line */
+    one_init(&o, 3, x2, y2, z, v, WL_DP_MODE_WIREFRAME);
     o.ok[0] = 0;
     assert_int_equal(wl_dp_edge_pixels(&o.p, 0, 0), 0);
 }
