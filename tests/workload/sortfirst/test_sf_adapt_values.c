@@ -242,6 +242,33 @@ static void test_calibrate_tiles(void **st)
     wl_sf_adapt_free(a);
 }
 
+/* Only the first P regions count: 2 processors (left and right halves
+ * of 16 x 16), the rect[] entries past them left from a 4-way split
+ * (region 2 the bottom-left tile, holding weight).  Left: cells 0 (10)
+ * and 8 (4), worked 42: factor 3; right: no weight, the mean over the
+ * two regions with weight, left's only: 3. */
+static void test_calibrate_first_regions(void **st)
+{
+    (void)st;
+    WlSfAdapt *a = wl_sf_adapt_new(4, 2);
+    a->weight[0] = 10;
+    a->weight[8] = 4;
+    WlSfRegions r, four;
+    wl_sf_regions_init(&four, 4, 16, 16);
+    wl_sf_regions_init(&r, 2, 16, 16);
+    r.rect[2] = four.rect[2];
+    r.rect[3] = four.rect[3];
+    double *work = g_new(double, 2); /* exactly P figures */
+    work[0] = 42;
+    work[1] = 7;
+    wl_sf_adapt_calibrate(a, &r, work);
+    for (guint i = 0; i < 16; i++)
+        if (a->factor[i] != 3)
+            fail_msg("cell %u: %g, expected 3", i, a->factor[i]);
+    g_free(work);
+    wl_sf_adapt_free(a);
+}
+
 /* 3 x 3 cells of weight 1 on 12 x 12 pixels, 6 processors.  The root
  * is cut at column 1 (columns 1 and 2 both leave 18 and lie 0.5 from the
  * proportional 1.5: the first stays); the left column (3 processors) is
@@ -398,6 +425,7 @@ int main(void)
         cmocka_unit_test(test_remap),
         cmocka_unit_test(test_weight_in),
         cmocka_unit_test(test_calibrate_tiles),
+        cmocka_unit_test(test_calibrate_first_regions),
         cmocka_unit_test(test_split_narrow),
         cmocka_unit_test(test_split_refused_inside),
         cmocka_unit_test(test_fits),

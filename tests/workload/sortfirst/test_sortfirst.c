@@ -382,6 +382,38 @@ static void test_workload_metrics(void **state)
     sim_result_free(r);
 }
 
+/* The frame log's columns (frames 1 and 2 of 3 rows) average to the
+ * steady-state metrics; its peak memory column peaks at peak_memory. */
+static void expect_log_means(const SimResult *r, char **lines)
+{
+    static const char *const col[] = {
+        NULL, "frame_ms", "migrated_chunks_per_frame",
+        "migrated_polygons_per_frame", "migrated_pointers_per_frame",
+        "migrated_bytes_per_frame", "master_boxes_per_frame",
+        "slave_boxes_per_frame", "new_boxes_per_frame",
+        "polygons_rendered_per_frame", NULL, NULL, "load_imbalance",
+        "polygon_imbalance", "utilisation", NULL, "estimate_bytes_per_frame"};
+    double peak = 0;
+    for (guint k = 0; k < G_N_ELEMENTS(col); k++) {
+        double sum = 0;
+        for (guint f = 1; f <= 3; f++) {
+            char **v = g_strsplit(lines[f], ",", -1);
+            assert_int_equal(g_strv_length(v), G_N_ELEMENTS(col));
+            double x = g_ascii_strtod(v[k], NULL);
+            sum += f > 1 ? x : 0;
+            peak = k == 15 ? MAX(peak, x) : peak;
+            assert_true(k || x == f - 1); /* the frame number */
+            g_strfreev(v);
+        }
+        if (col[k] && !(fabs(sum / 2 - metric(r, col[k])) <=
+                        1e-6 * MAX(1, fabs(metric(r, col[k])))))
+            fail_msg("column %u: mean %.9g, %s %.9g", k, sum / 2, col[k],
+                     metric(r, col[k]));
+    }
+    assert_true(peak == metric(r, "peak_memory"));
+    assert_true(metric(r, "estimate_bytes_per_frame") > 0);
+}
+
 static void test_frame_log(void **state)
 {
     (void)state;
@@ -390,7 +422,8 @@ static void test_frame_log(void **state)
     char *path = g_build_filename(dir, "frames.csv", NULL);
     char *ov = g_strdup_printf("workload.frame_log=%s", path);
     GError *e = NULL;
-    SimResult *r = run_cfg(small, ov, 3, &e);
+    const char *const o[] = {ov, "workload.regions=adaptive", NULL};
+    SimResult *r = run_cfg_out(small, o, 3, NULL, FALSE, &e);
     assert_non_null(r);
     char *text = NULL;
     assert_true(g_file_get_contents(path, &text, NULL, NULL));
@@ -402,6 +435,8 @@ static void test_frame_log(void **state)
     char **f0 = g_strsplit(lines[1], ",", -1),
          **f2 = g_strsplit(lines[3], ",", -1);
     assert_true(g_ascii_strtod(f0[5], NULL) > g_ascii_strtod(f2[5], NULL));
+    assert_true(g_ascii_strtod(f0[5], NULL) == metric(r, "initial_bytes"));
+    expect_log_means(r, lines);
     g_strfreev(f0);
     g_strfreev(f2);
     g_strfreev(lines);
