@@ -730,6 +730,12 @@ static void test_mem_bytes(void **state)
     assert_true(wl_argus_ops.mem_bytes(p, what) ==
                 64.0 * 33 * 51 + 12 * 4.0 * 5);
     wl_argus_ops.free_params(p);
+    p = parse("width: 65, height: 16, tile: 16, processors: 8", &err);
+    assert_non_null(p);
+    /* tiles: 5 x 1 (a pixel past 4 tiles) */
+    assert_true(wl_argus_ops.mem_bytes(p, what) ==
+                65.0 * 16 * 51 + 5 * 1 * 4.0 * 3);
+    wl_argus_ops.free_params(p);
     p = parse("tile: 32, processors: 8", &err);
     assert_non_null(p);
     /* no size: 1200 x 1200, 38 x 38 tiles, one context */

@@ -161,6 +161,12 @@ static void test_bucket_boxes(void **state)
     assert_int_equal(f->tiles_x, 4);
     assert_int_equal(f->tiles_y, 3);
     assert_int_equal(wl_ag_n_tiles(f), 12);
+    /* a pixel past a whole number of tiles makes one more (65 x 33) */
+    AgFrame *odd = wl_ag_frame_new(65, 33, 16, WL_AG_OPAQUE, 1,
+                                   (RastColor){0, 0, 0});
+    assert_int_equal(odd->tiles_x, 5);
+    assert_int_equal(odd->tiles_y, 3);
+    wl_ag_frame_free(odd);
     SceneMesh *m = scene_mesh_new();
     add_tri(m, -0.45, 0.3, 0.05, 0.6, 1);  /* x 17.6..33.6, y 9.6..16.8 */
     add_tri(m, -1.5, 1.4, -0.8, 0.9, 1);   /* off the top left corner */
