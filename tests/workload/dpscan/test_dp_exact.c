@@ -463,6 +463,9 @@ static void test_named_counts(void **state)
     assert_true(s.n[WL_DP_C_STEP] == 2 && s.n[WL_DP_C_SEND_SETUP] == 2 &&
                 s.n[WL_DP_C_SEND_VP] == 6 && s.n[WL_DP_C_SEND_MSG] == 4 &&
                 s.n[WL_DP_C_SEND_SLICE] == 6 && s.wire == 0);
+    /* nothing of the SPMD formula on the SIMD router */
+    assert_true(s.n[WL_DP_C_NET_LATENCY] == 0 &&
+                s.n[WL_DP_C_MSG_OVERHEAD] == 0);
     assert_int_equal(wl_dp_counts_price(&m, &s),
                      wl_dp_send_cost(&m, 2, 17, 9, 3, NULL));
     WlDpCounts z = {0};
