@@ -518,9 +518,30 @@ static void test_free_null(void **state)
     wl_dp_image_free(NULL);
 }
 
+/* The renderer's statement costs (operations per element) by default,
+ * and the z-buffer's extraction: a pixel's colour index is its key's low
+ * byte, 0 where nothing was drawn (the first pixel included). */
+static void test_render_defaults_and_extract(void **state)
+{
+    (void)state;
+    WlDpOps o = wl_dp_ops_defaults();
+    assert_true(o.transform == 35 && o.shade == 21 && o.cross == 12 &&
+                o.swap == 6 && o.pair == 6 && o.pixel == 20 && o.line == 16 &&
+                o.clear == 2 && o.extract == 2 && o.edge == 6);
+    WlDpImage *img = wl_dp_image_new(3, 1);
+    img->zbuf[0] = wl_dp_key(0.5, 7, 41);
+    img->zbuf[2] = wl_dp_key(0.25, 9, 200);
+    img->index[1] = 99; /* overwritten: nothing drawn there */
+    wl_dp_image_extract(img);
+    assert_true(img->index[0] == 41 && img->index[1] == 0 &&
+                img->index[2] == 200);
+    wl_dp_image_free(img);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_render_defaults_and_extract),
         cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_vp_ratio),
         cmocka_unit_test(test_step_scan_news),
