@@ -297,6 +297,14 @@ static void test_adaptive_previous(void **st)
     assert_int_equal(f->migrated_bytes, 12 * 64 + 3 * 84);
     assert_int_equal(f->polys_rendered, 6);
     expect_busy(&r, f, busy0);
+    /* phase `sort`: 8 vertices per master box (2, 1, 1, 1; no slave
+     * yet) and, without prediction, one grid cell per instance added */
+    unsigned ph = sim_engine_phase(r.eng, "sort");
+    static const SimTime boxes[P] = {2, 1, 1, 1}, added[P] = {1, 1, 1, 0};
+    for (guint p = 0; p < P; p++)
+        assert_true(mach_proc_busy_phase(mach_proc(r.m, "node", p), ph) ==
+                    8 * boxes[p] * r.c.transform_vertex +
+                        added[p] * r.c.grid_cell);
     const WlSfRegions *g = wl_sf_run_regions(r.run);
     expect_rect(g, 0, 0, 0, 8, 8);
     expect_rect(g, 1, 0, 8, 8, 16);
