@@ -102,7 +102,9 @@ static void tri(SceneDb *db, guint sid, double x0, double y0, double x1,
  * screen (13.6, 5.6), C at (1, 5).  On 4 x 4 cells A and B share cell
  * 7 (counted once in nz: the 8th bit of the processor's first mark
  * byte), C is in cell 4.  On 16 x 16 cells of one pixel, C's centre
- * x = 1 is on the edge of column 1 and falls in it: cell 5 x 16 + 1. */
+ * x = 1 is on the edge of column 1 and falls in it: cell 5 x 16 + 1.
+ * D, flat at world x = 1, has its centre on the screen's right edge
+ * (x = 16, y = 5.6): the last column of its row (cells 7 and 95). */
 static void test_cells(void **st)
 {
     (void)st;
@@ -111,21 +113,22 @@ static void test_cells(void **st)
     tri(src, root, 0.6, 0.2, 0.8, 0.4);
     tri(src, root, 0.6, 0.2, 0.8, 0.4);
     tri(src, root, -0.9375, 0.3125, -0.8125, 0.4375);
+    tri(src, root, 1, 0.2, 1, 0.4); /* flat, on the right edge x = 16 */
     scene_db_post(src, root);
     WlSfDb *db = wl_sf_db_new(src, 1, 1, WL_SF_CHUNK_UNSORTED, NULL);
-    assert_int_equal(wl_sf_n_insts(db), 3);
+    assert_int_equal(wl_sf_n_insts(db), 4);
     WlSfRegions r;
     wl_sf_regions_init(&r, 1, 16, 16);
     WlSfAdapt *a = wl_sf_adapt_new(4, 1);
     wl_sf_adapt_estimate(a, db, &r, ortho());
-    expect_weights(a, "4:1 7:2");
-    assert_int_equal(a->added[0], 3);
+    expect_weights(a, "4:1 7:3");
+    assert_int_equal(a->added[0], 4);
     assert_int_equal(a->nz[0], 2);
     wl_sf_adapt_free(a);
     a = wl_sf_adapt_new(16, 1);
     wl_sf_adapt_estimate(a, db, &r, ortho());
-    expect_weights(a, "81:1 93:2");
-    assert_int_equal(a->nz[0], 2);
+    expect_weights(a, "81:1 93:2 95:1");
+    assert_int_equal(a->nz[0], 3);
     wl_sf_adapt_free(a);
     wl_sf_db_free(db);
     scene_db_free(src);
