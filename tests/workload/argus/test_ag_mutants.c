@@ -83,7 +83,8 @@ static void test_cell_batches_contiguous(void **state)
     assert_int_equal(s->sems, 8);
     for (guint i = 0; i < 8; i++) {
         const AgBatch *b = &g_array_index(s->batches, AgBatch, i);
-        if (b->first != first[i] || b->n != n[i] || b->tag != i)
+        if (b->first != first[i] || b->n != n[i] || b->tag != i ||
+            b->verts != 3 * n[i] || b->distinct != 3 * n[i])
             fail_msg("cell %u: first %u n %u tag %u, expected %u %u %u", i,
                      b->first, b->n, b->tag, first[i], n[i], i);
     }
