@@ -2,7 +2,8 @@
  * (make mutate, docs/testing.md) found unchecked: partitioning a
  * hypercube whose config states its dimension to one node sets the
  * dimension to 0 (2^0 = 1 node), so the machine builds; a model's
- * schema_version must be exactly 1. */
+ * schema_version must be exactly 1; a machine of exactly 16M processors
+ * builds. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -169,6 +170,31 @@ static void test_model_errors_name_the_type(void **state)
     }
 }
 
+/* The 16M bound on processors in all is inclusive: two kinds of 8M make
+ * exactly 2^24 processors and build (one more is refused: test_machine.c,
+ * too-many); processors are paged in lazily, so this allocates little. */
+static void test_exactly_16m_processors(void **state)
+{
+    (void)state;
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(
+        "machine:\n  provenance: assumption\n  name: t\n"
+        "  nodes: {a: {count: 8388608}, b: {count: 8388608}}\n"
+        "  network: {topology: hypercube, bandwidth: 1 MB/s}\n",
+        "run.yaml", &err);
+    assert_non_null(root);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    if (!m)
+        fail_msg("2^24 processors: %s", err->message);
+    assert_int_equal(mach_proc_total(m), 1u << 24);
+    assert_int_equal(mach_kind_count(m), 2);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -177,6 +203,7 @@ int main(void)
         cmocka_unit_test(test_unknown_key_list),
         cmocka_unit_test(test_model_schema_version_exact),
         cmocka_unit_test(test_model_errors_name_the_type),
+        cmocka_unit_test(test_exactly_16m_processors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -98,6 +98,7 @@ static MachProc *thread_proc(AgPipe *p, guint thread)
 
 static const AgBlock *block_at(const AgPipe *p, guint b, guint *ctx)
 {
+    g_assert(b < p->nblocks);
     guint c = 0;
     while (c + 1 < p->C && p->ctx_off[c + 1] <= b)
         c++;

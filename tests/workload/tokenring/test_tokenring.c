@@ -1,6 +1,7 @@
 /* test_tokenring.c — the quickstart workload against its closed form:
  * without jitter a round takes N * (compute + bytes/bandwidth + latency);
- * busy time, messages and bytes add up; run.until stops it early. */
+ * busy time, messages and bytes add up; a jitter-free compute is exact to
+ * the picosecond; run.until stops it early. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -85,6 +86,28 @@ static void test_jitter_bounds(void **state)
     g_free(t);
 }
 
+/* Without jitter a compute is the configured time to the picosecond, even
+ * where a double cannot hold it: 2^53 + 1 ps (about 2.5 hours) would round
+ * to 2^53 through the jitter formula's llround((double)compute * f). */
+static void test_exact_compute(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    SimResult *r = run_ring(
+        "workload: {type: tokenring, nodes: 2, token: 1000 B,\n"
+        "  compute: 9007199254740993 ps, jitter: 0,\n"
+        "  link: {latency: 2 us, bandwidth: 100 MB/s}}\nrun: {frames: 1}\n",
+        1, &e);
+    const SimTime c = ((SimTime)1 << 53) + 1;
+    for (guint i = 0; i < r->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(r->nodes, i);
+        assert_int_equal(sim_busy_phase(&n->busy, 0), c);
+    }
+    assert_int_equal(g_array_index(r->frame_times, SimTime, 0),
+                     2 * (c + 12 * SIM_US));
+    sim_result_free(r);
+}
+
 static void test_until(void **state)
 {
     (void)state;
@@ -123,6 +146,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_closed_form),
         cmocka_unit_test(test_jitter_bounds),
+        cmocka_unit_test(test_exact_compute),
         cmocka_unit_test(test_until),
         cmocka_unit_test(test_parse_errors),
     };
