@@ -5,8 +5,9 @@
  * is busy in its phases; every region reaches the frame buffer; the same
  * inputs give the same results twice; ring-slot packets are never faster than
  * the contention-free analytic transport; off-screen work sends nothing; the
- * host's edit traffic delays the GP it goes to; a machine the frame
- * cannot use is a located error.
+ * host's edit traffic delays the GP it goes to (and a frame with nothing
+ * to scan gives the host no request); a machine the frame cannot use (no
+ * frame buffer or two included) is a located error.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -273,6 +274,9 @@ static void test_host_edits(void **st)
         unsigned edit = sim_engine_phase(eng, "edit");
         assert_int_equal(mach_proc_busy_phase(host, edit),
                          k ? (500 * 20 + 300 * 2) * SIM_US : 0);
+        /* one scan and one packing with edits; nothing to scan or send
+         * submits no host work at all (not even a zero-time request) */
+        assert_int_equal(mach_proc_requests(host), k ? 2 : 0);
         wl_pphigs_dist_free(d);
         wl_pphigs_frame_free(f);
         mach_free(m);
@@ -309,8 +313,13 @@ static void test_bad_machine(void **st)
 {
     (void)st;
     expect_bad_machine("nodes.gp.count=65", "65 gp processors");
+    /* exactly one frame buffer: none is as wrong as two */
     expect_bad_machine("nodes.frame_buffer.count=2",
                        "2 frame_buffer processors");
+    expect_bad_machine("nodes.frame_buffer.count=0",
+                       "0 frame_buffer processors");
+    expect_bad_machine("nodes.frame_buffer.count=0",
+                       "1 .. 1 frame_buffer processors");
     expect_bad_machine("nodes.renderer.count=0", "0 renderer processors");
 }
 
