@@ -1,13 +1,15 @@
 /* test_pphigs_parse.c — the pphigs section parser at the ends of every
  * range (the lowest and highest value accepted, one step past refused at
  * its file:line:column), the refusals that combine keys, and the
- * own-memory estimate (mem_bytes) worked out from the database spec.
+ * own-memory estimate (mem_bytes) worked out from the database spec or
+ * counted in a database file.
  * Run from the repository root (make test does).
  */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include <glib/gstdio.h>
 #include <string.h>
 
 #include "sim/workload/pphigs/pphigs_cfg.h"
@@ -151,12 +153,59 @@ static void test_mem_bytes(void **st)
     wl_pphigs_ops.free_params(p);
 }
 
+/* mem_bytes of a database file: its host and GP copies, 2 x primitive
+ * instances (max-set) x SCENE_POLY_BYTES; the spec's formula is not used.
+ * The file: a leaf of 2 triangles executed twice under a root holding
+ * one more, so 1 + 2 x 2 = 5 instances. */
+static void test_mem_bytes_file(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pgsim-pphigs-mem-XXXXXX", NULL);
+    char *db = g_build_filename(dir, "db.yaml", NULL);
+    assert_true(g_file_set_contents(
+        db,
+        "structure_database: 1\n"
+        "structures:\n"
+        "  - name: leaf\n"
+        "    elements:\n"
+        "      - triangle: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n"
+        "      - triangle: [[0, 0, 1], [1, 0, 1], [0, 1, 1]]\n"
+        "  - name: root\n"
+        "    elements:\n"
+        "      - triangle: [[0, 0, 2], [1, 0, 2], [0, 1, 2]]\n"
+        "      - execute: leaf\n"
+        "      - execute: leaf\n"
+        "posted: [root]\n",
+        -1, NULL));
+    char *text = g_strdup_printf("workload: {type: pphigs, database: %s,"
+                                 " frame: configs/pphigs/frame.yaml}\n",
+                                 db);
+    CfgNode *root = cfg_load_string(text, "pp.yaml", NULL);
+    assert_non_null(root);
+    GError *err = NULL;
+    void *p = wl_pphigs_ops.parse(cfg_get(root, "workload"), &err);
+    if (!p)
+        fail_msg("%s", err->message);
+    GString *what = g_string_new(NULL);
+    assert_true(wl_pphigs_ops.mem_bytes(p, what) == 2.0 * 5 * SCENE_POLY_BYTES);
+    assert_string_equal(what->str, "a database of 5 primitive instances");
+    g_string_free(what, TRUE);
+    wl_pphigs_ops.free_params(p);
+    cfg_free(root);
+    g_free(text);
+    assert_int_equal(g_remove(db), 0);
+    assert_int_equal(g_rmdir(dir), 0);
+    g_free(db);
+    g_free(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ranges),
         cmocka_unit_test(test_combined_refusals),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_mem_bytes_file),
     };
     return cmocka_run_group_tests_name("pphigs_parse", tests, NULL, NULL);
 }
