@@ -727,12 +727,14 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
 }
 
 /* √ area of instance i's screen rectangle clipped to the screen, pixels
- * (seed 000 §4.2, Chart 3: chunk box size against region size). */
+ * (seed 000 §4.2, Chart 3: chunk box size against region size).  Only
+ * for an instance some region needs: need[i] comes from this frame's
+ * r->scr (start_frame) and is 0 for a rectangle not on screen
+ * (wl_sf_screen_regions), so the rectangle is on. */
 static double box_side(const WlSfRun *r, guint i)
 {
     const WlSfScreen *s = &r->scr[i];
-    if (!s->on)
-        return 0;
+    g_assert(s->on);
     double w = MIN(s->x1, r->regions.width) - MAX(s->x0, 0);
     double h = MIN(s->y1, r->regions.height) - MAX(s->y0, 0);
     return w > 0 && h > 0 ? sqrt(w * h) : 0;

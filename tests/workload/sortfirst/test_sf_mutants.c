@@ -2,7 +2,8 @@
  * that mutation testing (make mutate, docs/testing.md) found unchecked:
  * calibration sets each cell's factor to its owner's work per estimated
  * polygon, the mean of those for a region without polygons, and leaves
- * the factor at 1 when no region has any. */
+ * the factor at 1 when no region has any; sorted chunking's median
+ * split. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -49,21 +50,33 @@ static void test_regions_grid(void **state)
     }
 }
 
+/* One posted structure of n triangles, the i-th with its right-angle
+ * corner at c[i] and legs of 1 along x and y: centroid c[i] + (1/3,
+ * 1/3, 0). */
+static SceneDb *triangles_at(const Vec3 *c, guint n)
+{
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    for (guint i = 0; i < n; i++) {
+        Vec3 v[3] = {c[i], vec3_add(c[i], vec3(1, 0, 0)),
+                     vec3_add(c[i], vec3(0, 1, 0))};
+        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(scene_db_append(db, root, &e, NULL));
+    }
+    scene_db_post(db, root);
+    return db;
+}
+
 /* Sorted chunking splits at the median along the longest axis of the
  * centroids' box (sf_db.h): 16 triangles stacked along z, stored in a
  * scrambled order, make chunks of 4 consecutive depths. */
 static void test_sorted_chunks_longest_axis(void **state)
 {
     (void)state;
-    SceneDb *db = scene_db_new();
-    guint root = scene_db_add_struct(db, "root");
-    for (guint i = 0; i < 16; i++) {
-        double z = (7 * i) % 16;
-        Vec3 v[3] = {vec3(0, 0, z), vec3(1, 0, z), vec3(0, 1, z)};
-        SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
-        assert_true(scene_db_append(db, root, &e, NULL));
-    }
-    scene_db_post(db, root);
+    Vec3 c[16];
+    for (guint i = 0; i < 16; i++)
+        c[i] = vec3(0, 0, (7 * i) % 16);
+    SceneDb *db = triangles_at(c, 16);
     GError *err = NULL;
     WlSfDb *d = wl_sf_db_new(db, 4, 4, WL_SF_CHUNK_SORTED, &err);
     assert_non_null(d);
@@ -76,12 +89,43 @@ static void test_sorted_chunks_longest_axis(void **state)
     scene_db_free(db);
 }
 
+/* Sorted chunking with granularity 2 splits 5 primitives into
+ * ceil(ceil(5/2) / 2) x 2 = 4 and 1 (sf_db.c split_sorted), then splits
+ * the 4 along their own longest axis.  Centroids (x, y) of primitives
+ * 0..4: (0, 0) (1, 3.5) (2, 0.2) (3, 3.4) (4, 1): x is the longest axis
+ * of all five (4 > 3.5), y of the first four (3.5 > 3), so the chunks
+ * are {0, 2} {3, 1} (by y) {4}.  A split of 2 and 3 would give {0, 1}
+ * {2, 4} {3} instead. */
+static void test_sorted_split_sizes(void **state)
+{
+    (void)state;
+    static const double at[5][2] = {{0, 0}, {1, 3.5}, {2, 0.2}, {3, 3.4},
+                                    {4, 1}};
+    Vec3 c[5];
+    for (guint i = 0; i < 5; i++)
+        c[i] = vec3(at[i][0] - 1.0 / 3, at[i][1] - 1.0 / 3, 0);
+    SceneDb *db = triangles_at(c, 5);
+    GError *err = NULL;
+    WlSfDb *d = wl_sf_db_new(db, 1, 2, WL_SF_CHUNK_SORTED, &err);
+    assert_non_null(d);
+    assert_int_equal(wl_sf_n_chunks(d), 3);
+    static const guint sizes[3] = {2, 2, 1}, order[5] = {0, 2, 3, 1, 4};
+    for (guint c = 0; c < 3; c++)
+        assert_int_equal(wl_sf_chunk(d, c)->n_prims, sizes[c]);
+    assert_int_equal(d->prims->len, 5);
+    for (guint i = 0; i < 5; i++)
+        assert_int_equal(g_array_index(d->prims, guint, i), order[i]);
+    wl_sf_db_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_calibrate),
         cmocka_unit_test(test_regions_grid),
         cmocka_unit_test(test_sorted_chunks_longest_axis),
+        cmocka_unit_test(test_sorted_split_sizes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
