@@ -2,7 +2,8 @@
  * touched; an imperfect one (primitives piled on one GP) and one with
  * invalidated weights (strips of a coherent model, half off-screen)
  * converge under the threshold, act only after `frames` frames over it,
- * move at most `max_moves` per frame, and stay converged.  Per-frame GP
+ * move at most `max_moves` per frame, and stay converged; an exchange
+ * needs a gain strictly below the gap (worked out by hand).  Per-frame GP
  * times are the real traversal's (off-screen primitives cheaper).
  */
 #include <setjmp.h>
@@ -232,6 +233,52 @@ static void test_detection_counter(void **s)
     fix_free(&x);
 }
 
+/* §5.2 exchange worked out by hand on 2 GPs, view = identity: GP 0 holds
+ * an on-screen quad (actual 1 us), GP 1 an equal-nominal quad off to the
+ * right (rejected, 0.3 us).  The exchange gains 1 - 0.3 us; it is made
+ * only when that is strictly less than the measured gap: at a gain equal
+ * to the gap the two GPs would just trade places. */
+static guint exchange_moves(double gp0_us)
+{
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    Vec3 on[4] = {vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, 0), vec3(0.5, 0.5, 0),
+                  vec3(-0.5, 0.5, 0)};
+    Vec3 off[4] = {vec3(2, -0.5, 0), vec3(3, -0.5, 0), vec3(3, 0.5, 0),
+                   vec3(2, 0.5, 0)};
+    SceneElem a = scene_elem_prim(SCENE_EL_POLYGON, on, 4),
+              b = scene_elem_prim(SCENE_EL_POLYGON, off, 4);
+    assert_true(scene_db_append(db, root, &a, NULL));
+    assert_true(scene_db_append(db, root, &b, NULL));
+    scene_db_post(db, root);
+    WlPphigsWeights w;
+    wl_pphigs_weights_from_costs(&C, 1, &w);
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+    for (guint i = 0; i < 2; i++)
+        if (wl_pphigs_dist_owner(d, root, i) != (gint)i)
+            assert_true(wl_pphigs_dist_move(d, root, i, i));
+    WlPphigsRebalParams p = P;
+    p.frames = 1;
+    WlPphigsRebal *rb = wl_pphigs_rebal_new(&p);
+    const double us[2] = {gp0_us, 0.3};
+    WlPphigsRebalStep st;
+    wl_pphigs_rebal_frame(rb, d, mat4_identity(), &C, us, &st);
+    assert_int_equal(st.cause, WL_PPHIGS_REBAL_INVALIDATED);
+    assert_int_equal(wl_pphigs_dist_owner(d, root, 0), st.moves ? 1 : 0);
+    assert_int_equal(wl_pphigs_dist_owner(d, root, 1), st.moves ? 0 : 1);
+    wl_pphigs_rebal_free(rb);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+    return st.moves;
+}
+
+static void test_exchange_needs_gain_below_gap(void **s)
+{
+    (void)s;
+    assert_int_equal(exchange_moves(1.25), 2); /* gap 0.95 > gain 0.7 */
+    assert_int_equal(exchange_moves(1.0), 0);  /* gap = gain, bit for bit */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -240,6 +287,7 @@ int main(void)
         cmocka_unit_test(test_invalidated_converges),
         cmocka_unit_test(test_cap_reached_exactly),
         cmocka_unit_test(test_detection_counter),
+        cmocka_unit_test(test_exchange_needs_gain_below_gap),
     };
     return cmocka_run_group_tests_name("pphigs_rebalance", tests, NULL, NULL);
 }
