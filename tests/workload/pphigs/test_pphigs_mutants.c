@@ -1,12 +1,15 @@
 /* test_pphigs_mutants.c — claims of the PPHIGS workload that mutation
  * testing (make mutate, docs/testing.md) found unchecked: the
  * non-primitive cost sums every colour, matrix and execute element of
- * every instance in the max-set view, the posted root's included. */
+ * every instance in the max-set view, the posted root's included; the
+ * first element of a distributed list draws on the far plane (its id is
+ * at least 1). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
 
+#include "sim/workload/pphigs/pphigs_distrib.h"
 #include "sim/workload/pphigs/pphigs_metrics.h"
 #include "sim/workload/pphigs/pphigs_pixels.h"
 #include <math.h>
@@ -94,12 +97,53 @@ static void test_box_clamped_to_screen(void **state)
     assert_int_equal(c.y1, 79);
 }
 
+/* A primitive on the far plane (NDC z = 1, inside [-1, 1]) has depth 0,
+ * so its pixel key is its tag alone (pphigs_pixels.c pixel_key) and it
+ * wins over the cleared key 0 only with a tag of at least 1: the ids the
+ * distribution gives (pphigs_distrib.c retag) start at 1, so the host
+ * list's very first element draws too. */
+static void test_far_plane_first_element_draws(void **state)
+{
+    (void)state;
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    Vec3 v[3] = {vec3(-1, -1, 1), vec3(1, -1, 1), vec3(0, 1, 1)};
+    add(db, root, scene_elem_prim(SCENE_EL_POLYGON, v, 3));
+    scene_db_post(db, root);
+    WlPphigsWeights w;
+    WlPphigsCosts c = {.poly = 1000, .vertex = 100};
+    wl_pphigs_weights_from_costs(&c, 1, &w);
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 1, WL_PPHIGS_COMPLEX, &w);
+    const SceneElem *e = scene_db_elem(wl_pphigs_dist_gp(d, 0), root, 0);
+    ScenePrimInst pi = {.el = e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1), .depth = 1};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 8, 8, out), 1);
+    /* as many pixels as the same triangle at z = 0 (tag 0, depth > 0) */
+    Vec3 near[3] = {vec3(-1, -1, 0), vec3(1, -1, 0), vec3(0, 1, 0)};
+    SceneElem ne = scene_elem_prim(SCENE_EL_POLYGON, near, 3);
+    pi.el = &ne;
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 8, 8, out), 1);
+    uint64_t won[2];
+    for (guint k = 0; k < 2; k++) {
+        WlPphigsRegion *r = wl_pphigs_region_new(0, 0, 8, 8, 0);
+        won[k] = wl_pphigs_region_draw(r, &g_array_index(out, WlPphigsCmd, k));
+        wl_pphigs_region_free(r);
+    }
+    assert_true(won[1] > 0);
+    assert_int_equal(won[0], won[1]);
+    g_array_free(out, TRUE);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_nonprim_cost),
         cmocka_unit_test(test_shading),
         cmocka_unit_test(test_box_clamped_to_screen),
+        cmocka_unit_test(test_far_plane_first_element_draws),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
