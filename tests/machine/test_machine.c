@@ -263,6 +263,31 @@ static void test_overflow_stops_engine(void **state)
     g_error_free(err);
 }
 
+/* At SIM_TIME_MAX - 5 an idle processor is asked for 10 ps: its
+ * completion time overflows though its busy time would not. */
+static void late_compute(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    MachProc *p = ctx;
+    *(gboolean *)arg = mach_proc_compute(p, 10, 0, NULL, NULL, NULL);
+}
+
+static void test_late_overflow_charges_nothing(void **state)
+{
+    Fix *f = *state;
+    MachProc *p = mach_proc(f->m, "cpu", 1);
+    gboolean ok = TRUE;
+    assert_true(sim_schedule_at(f->eng, SIM_TIME_MAX - 5, late_compute, p,
+                                &ok));
+    GError *err = NULL;
+    assert_false(sim_engine_run(f->eng, SIM_TIME_MAX, &err));
+    assert_false(ok);
+    assert_int_equal(mach_proc_busy(p), 0);
+    assert_true(g_error_matches(err, SIM_ERROR, SIM_ERROR_OVERFLOW));
+    assert_non_null(strstr(err->message, "completion time of processor cpu1"));
+    g_error_free(err);
+}
+
 /* A trace sink that keeps the spans it is given. */
 typedef struct {
     GString *text;
@@ -514,6 +539,8 @@ int main(void)
                                         setup_tiny, teardown),
         cmocka_unit_test_setup_teardown(test_overflow_stops_engine, setup_tiny,
                                         teardown),
+        cmocka_unit_test_setup_teardown(test_late_overflow_charges_nothing,
+                                        setup_tiny, teardown),
         cmocka_unit_test_setup_teardown(test_trace_spans, setup_tiny, teardown),
         cmocka_unit_test_setup_teardown(test_fill_result, setup_tiny, teardown),
         cmocka_unit_test(test_network_from_model),
