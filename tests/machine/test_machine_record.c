@@ -12,39 +12,10 @@
 
 #include "sim/machine/machine.h"
 #include "sim/machine/shmem.h"
-#include "tests/core/rec_log.h"
+#include "tests/machine/tiny_rec.h"
 #include "tests/support.h"
 
-typedef struct {
-    SimEngine *eng;
-    MachMachine *m;
-    RecLog log;
-} Fix;
-
-static int setup(void **state)
-{
-    Fix *f = g_new0(Fix, 1);
-    GError *err = NULL;
-    g_setenv("PGSIM_MODELS", "tests/data/models", TRUE);
-    f->eng = sim_engine_new(1);
-    f->m = mach_new_from_model(f->eng, "tiny", "analytic", &err);
-    if (!f->m)
-        fail_msg("%s", err->message);
-    rec_log_init(&f->log);
-    sim_engine_set_recorder(f->eng, &f->log.rec);
-    *state = f;
-    return 0;
-}
-
-static int teardown(void **state)
-{
-    Fix *f = *state;
-    mach_free(f->m);
-    sim_engine_free(f->eng);
-    rec_log_clear(&f->log);
-    g_free(f);
-    return 0;
-}
+typedef TinyRec Fix;
 
 static void noted(SimEngine *eng, void *ctx, void *arg)
 {
@@ -192,12 +163,14 @@ int main(void)
 {
     support_warnings_fatal();
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(test_compute_recorded, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_terms_and_priced_recorded, setup,
-                                        teardown),
-        cmocka_unit_test_setup_teardown(test_ops_pricing, setup, teardown),
-        cmocka_unit_test_setup_teardown(test_shmem_send_recorded, setup,
-                                        teardown),
+        cmocka_unit_test_setup_teardown(
+            test_compute_recorded, tiny_rec_setup, tiny_rec_teardown),
+        cmocka_unit_test_setup_teardown(
+            test_terms_and_priced_recorded, tiny_rec_setup, tiny_rec_teardown),
+        cmocka_unit_test_setup_teardown(
+            test_ops_pricing, tiny_rec_setup, tiny_rec_teardown),
+        cmocka_unit_test_setup_teardown(
+            test_shmem_send_recorded, tiny_rec_setup, tiny_rec_teardown),
         cmocka_unit_test(test_shmem_send_plain),
     };
     return cmocka_run_group_tests_name("machine_record", tests, NULL, NULL);
