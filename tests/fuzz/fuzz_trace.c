@@ -6,14 +6,23 @@
 #include "sim/app/replay/rpl_replay.h"
 #include "tests/fuzz/fuzz.h"
 #include <glib/gstdio.h>
+#include <stdlib.h>
+
+static char *scratch_dir;
+
+static void remove_scratch(void)
+{
+    g_rmdir(scratch_dir);
+    g_free(scratch_dir);
+}
 
 static char *scratch(void)
 {
     static char *path;
     if (!path) {
-        char *dir = g_dir_make_tmp("pgsim-fuzz-trace-XXXXXX", NULL);
-        path = g_build_filename(dir, "input.pgt", NULL);
-        g_free(dir);
+        scratch_dir = g_dir_make_tmp("pgsim-fuzz-trace-XXXXXX", NULL);
+        path = g_build_filename(scratch_dir, "input.pgt", NULL);
+        atexit(remove_scratch);
     }
     return path;
 }
