@@ -432,6 +432,82 @@ static void test_tile_round_robin(void **state)
     rig_free(&r);
 }
 
+/* Adds two triangles covering tile 0 (the top-left quadrant of a 2 x 2
+ * tiling: every pixel centre in it) and no other tile in colour c. */
+static void add_tile0_quad(SceneMesh *m, SceneColor c)
+{
+    uint32_t b = scene_mesh_n_vertices(m);
+    const double v[4][2] = {
+        {-0.99, 0.01}, {-0.01, 0.01}, {-0.01, 0.99}, {-0.99, 0.99}};
+    for (int i = 0; i < 4; i++)
+        scene_mesh_add_vertex(m, vec3(v[i][0], v[i][1], 0));
+    scene_mesh_add_tri(m, b, b + 1, b + 2, c, 0);
+    scene_mesh_add_tri(m, b, b + 2, b + 3, c, 0);
+}
+
+/* Blends the layers col[order[0]], col[order[1]], ... (n of them) over
+ * *c at alpha 0.5. */
+static void blend_layers(float c[3], const float (*col)[3], const int *order,
+                         int n)
+{
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            c[k] = 0.5f * col[order[i]][k] + 0.5f * c[k];
+}
+
+/* Every tile starts each frame's round robin at context 0.  One
+ * rasteriser owns the 2 x 2 tiles.  Context 0 issues block a (grey over
+ * tile 0 only, 2048 blended fragments: slow to draw) then b (a red
+ * full-screen quad); context 1 issues c (four blue full-screen quads,
+ * slower to issue than a).  The rasteriser draws a at tile 0 while b
+ * and c finish their geometry, so at tiles 1, 2 and 3 both contexts'
+ * blocks are ready at the first pick: from context 0, red then blue;
+ * at tile 0 from context 1 (after a): blue then red.  Twice with the
+ * same pipe (the second frame over the first's picture): each frame
+ * starts the tiles afresh. */
+static void test_round_robin_starts_at_context_0(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    scene_mesh_free(r.mesh);
+    r.mesh = scene_mesh_new();
+    add_tile0_quad(r.mesh, scene_color(0.5, 0.5, 0.5));
+    add_quad(r.mesh, scene_color(1, 0, 0));
+    for (int l = 0; l < 4; l++)
+        add_quad(r.mesh, scene_color(0, 0, 1));
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE / 2, WL_AG_BLEND, 0.5f,
+                          (RastColor){0, 0, 0});
+    block(&r, 0, 0, 2);
+    block(&r, 0, 2, 2);
+    block(&r, 1, 4, 8);
+    AgPipe *p = run_blend_frame(&r, 2);
+    const float col[3][3] = {{0.5f, 0.5f, 0.5f}, {1, 0, 0}, {0, 0, 1}};
+    const int at0[6] = {0, 2, 2, 2, 2, 1}, at1[5] = {1, 2, 2, 2, 2};
+    float want[2][3] = {{0}}; /* [0]: tile 0, [1]: tiles 1 to 3 */
+    for (int frame = 1; frame <= 2; frame++) {
+        GError *e = NULL;
+        AgFrameStats fs;
+        if (frame == 2 && !wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+            fail_msg("%s", e->message);
+        blend_layers(want[0], col, at0, 6);
+        blend_layers(want[1], col, at1, 5);
+        for (int y = 0; y < SIDE; y += 7)
+            for (int x = 0; x < SIDE; x += 7) {
+                int other = x >= SIDE / 2 || y >= SIDE / 2; /* not tile 0 */
+                const float *px = &r.f->rgb[3 * (y * SIDE + x)];
+                for (int k = 0; k < 3; k++)
+                    if (fabsf(px[k] - want[other][k]) > 1e-5f)
+                        fail_msg("frame %d pixel (%d, %d) channel %d: %f, "
+                                 "expected %f", frame, x, y, k, px[k],
+                                 want[other][k]);
+            }
+    }
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
 /* Three contexts of 2, 1 and 2 blocks (red, green; blue; white,
  * yellow): the turn passes over a context with nothing left, so the
  * tile draws red, blue, white, green, yellow. */
@@ -691,6 +767,7 @@ int main(void)
         cmocka_unit_test(test_event_chain_timing),
         cmocka_unit_test(test_tile_round_robin),
         cmocka_unit_test(test_tile_round_robin_skips),
+        cmocka_unit_test(test_round_robin_starts_at_context_0),
         cmocka_unit_test(test_deadlock_reported),
         cmocka_unit_test(test_empty_frame),
         cmocka_unit_test(test_pool_round_robin),
