@@ -684,9 +684,11 @@ static void test_run_errors(void **state)
                     "height: 32, tile: 16%s}\n";
     char *plain = g_strdup_printf(w, "");
     char *t = g_strconcat(machine, plain,
-                          "scene: {generator: large_polygons, count: 8, "
-                          "max_sides: 4}\n", NULL);
-    run_fails(t, "expected triangles (generators nurbs, march)");
+                          "scene: {generator: large_polygons, count: 1, "
+                          "max_sides: 16, seed: 1}\n", NULL);
+    /* the scene's only polygon (polygon 0) has 12 sides */
+    run_fails(t, "argus: found a polygon of 12 vertices (polygon 0), "
+                 "expected triangles (generators nurbs, march)");
     g_free(t);
     t = g_strconcat(machine, plain, "scene: {generator: nowhere}\n", NULL);
     run_fails(t, "nowhere");
