@@ -328,11 +328,13 @@ static gboolean get_procs(MachMachine *m, const PfParams *p, MachProc **procs,
                           GError **err)
 {
     guint need = wl_pf_mp_procs(p->pipe.mode) + (p->isect ? 1 : 0);
+    /* run_pipeline calls this after wl_pf_costs_read found the costs of
+     * both kinds (mach_cost_lookup fails on a missing kind) */
     const MachKindInfo *k = mach_kind(m, "cpu");
-    if (!k || k->count < need || !mach_kind(m, "pipe")) {
-        char *found = g_strdup_printf("machine '%s' with %u cpu nodes%s",
-                                      mach_name(m), k ? k->count : 0,
-                                      mach_kind(m, "pipe") ? "" : ", no pipe");
+    g_assert(k && mach_kind(m, "pipe"));
+    if (k->count < need) {
+        char *found = g_strdup_printf("machine '%s' with %u cpu nodes",
+                                      mach_name(m), k->count);
         char *exp = g_strdup_printf("%u cpus (mode %s%s) and a pipe", need,
                                     wl_pf_mp_mode_names[p->pipe.mode],
                                     p->isect ? " + isect" : "");
