@@ -713,6 +713,32 @@ static void test_remap_kept(void **st)
     }
 }
 
+/* The identity map (every instance kept, old 0 included): no pointer
+ * work, every vector carried as it was, no instance fresh. */
+static void test_remap_identity(void **st)
+{
+    (void)st;
+    for (int bk = 0; bk <= 1; bk++) {
+        Rig r;
+        frame1(&r, bk ? WL_SF_MAXSET : WL_SF_MINSET, WL_SF_PUSH);
+        uint64_t held[4], mast[4];
+        memcpy(held, r.b->held_inst, sizeof held);
+        memcpy(mast, r.b->master_inst, sizeof mast);
+        WlSfRemapWork w[P] = {{0}};
+        const gint64 map[4] = {0, 1, 2, 3};
+        wl_sf_book_remap(r.b, map, 4, w);
+        expect_remap(w, (const uint64_t[]){0, 0, 0, 0},
+                     (const uint64_t[]){0, 0, 0, 0});
+        expect_vec(r.b->held_inst, held[0], held[1], held[2], held[3],
+                   "held_inst");
+        expect_vec(r.b->master_inst, mast[0], mast[1], mast[2], mast[3],
+                   "master_inst");
+        for (guint i = 0; i < 4; i++)
+            assert_int_equal(r.b->fresh[i], 0);
+        rig_clear(&r);
+    }
+}
+
 /* Min-set and pull: after frame 1 the root is unposted (no pointer
  * work: the min-set keeps none); a slave copy needed in frame 1 stays
  * through frame 2 and goes in frame 3 (a frame late), counted as
@@ -763,6 +789,7 @@ int main(void)
         cmocka_unit_test(test_trav_minset),
         cmocka_unit_test(test_remap_unpost_post),
         cmocka_unit_test(test_remap_kept),
+        cmocka_unit_test(test_remap_identity),
         cmocka_unit_test(test_remap_unpost_minset),
     };
     return cmocka_run_group_tests_name("sf_book_frames", tests, NULL, NULL);

@@ -192,6 +192,90 @@ static void test_strip_chunks(void **state)
     scene_db_free(db);
 }
 
+/* ---- polygon counts of every primitive kind --------------------------- */
+
+/* Structure "part": a triangle (1 polygon), a 5-vertex strip (3), a
+ * 2-vertex polygon (no area: 0, left out of the chunks), a quad (1) and
+ * a 4-vertex strip (2); executed twice by the posted root under two
+ * translations.  Unsorted chunks of 2 primitives for 3 masters. */
+static SceneDb *kinds_db(void)
+{
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    guint part = scene_db_add_struct(db, "part");
+    Vec3 v[5] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0), vec3(1, 1, 2),
+                 vec3(0, 2, -1)};
+    const SceneElemKind kind[5] = {SCENE_EL_TRIANGLE, SCENE_EL_TRISTRIP,
+                                   SCENE_EL_POLYGON, SCENE_EL_POLYGON,
+                                   SCENE_EL_TRISTRIP};
+    const guint nv[5] = {3, 5, 2, 4, 4};
+    for (guint k = 0; k < 5; k++) {
+        SceneElem e = scene_elem_prim(kind[k], v, nv[k]);
+        assert_true(scene_db_append(db, part, &e, NULL));
+    }
+    for (int k = 0; k < 2; k++) {
+        SceneElem m = scene_elem_matrix(mat4_translate(10 * (k + 1), 0, 0),
+                                        SCENE_MAT_REPLACE);
+        SceneElem x = scene_elem_execute(part);
+        assert_true(scene_db_append(db, root, &m, NULL));
+        assert_true(scene_db_append(db, root, &x, NULL));
+    }
+    scene_db_post(db, root);
+    return db;
+}
+
+/* Chunk 0 holds positions 0 and 1 (1 + 3 polygons), chunk 1 positions 3
+ * and 4 (1 + 2); each has the two instances (max-set nodes 1 and 2),
+ * whose polygons are those of `flat` in traversal order: node 1 owns
+ * polygons 0..6 (triangle 0, strip 1-3, quad 4, strip 5-6), node 2 the
+ * same shifted by 7.  The boxes are of the chunks' own vertices: chunk 0
+ * (the 5-vertex strip) reaches y = 2 and z = -1, chunk 1 does not. */
+static void test_polygon_counts(void **state)
+{
+    (void)state;
+    SceneDb *src = kinds_db();
+    WlSfDb *d = wl_sf_db_new(src, 3, 2, WL_SF_CHUNK_UNSORTED, NULL);
+    assert_non_null(d);
+    assert_int_equal(scene_mesh_n_polys(d->flat), 14);
+    assert_int_equal(d->min_prims, 4);
+    assert_int_equal(d->n_structs, 2);
+    assert_int_equal(wl_sf_n_chunks(d), 2);
+    assert_int_equal(wl_sf_n_insts(d), 4);
+    const guint polys[2] = {4, 3}, pos[2][2] = {{0, 1}, {3, 4}};
+    const uint32_t want[4][4] = {{0, 1, 2, 3}, {7, 8, 9, 10}, {4, 5, 6},
+                                 {11, 12, 13}};
+    for (guint c = 0; c < 2; c++) {
+        const WlSfChunk *ch = wl_sf_chunk(d, c);
+        assert_int_equal(ch->sid, 1);
+        assert_int_equal(ch->polys, polys[c]);
+        assert_int_equal(ch->n_prims, 2);
+        assert_int_equal(ch->prim_first, 2 * c);
+        assert_int_equal(ch->master, c);
+        assert_int_equal(ch->inst_first, 2 * c);
+        assert_int_equal(ch->n_inst, 2);
+        for (guint i = 0; i < 2; i++)
+            assert_int_equal(g_array_index(d->prims, guint, 2 * c + i),
+                             pos[c][i]);
+        assert_true(ch->box.min.x == 0 && ch->box.max.x == 1);
+        assert_true(ch->box.min.y == 0 && ch->box.max.y == (c ? 1 : 2));
+        assert_true(ch->box.min.z == (c ? 0 : -1) && ch->box.max.z == 2);
+        for (guint k = 0; k < 2; k++) {
+            guint i = 2 * c + k;
+            const WlSfInst *in = wl_sf_inst(d, i);
+            assert_int_equal(in->chunk, c);
+            assert_int_equal(in->node, k + 1);
+            assert_true(in->matrix.m[0][3] == 10.0 * (k + 1));
+            assert_memory_equal(wl_sf_inst_polys(d, i), want[i],
+                                polys[c] * sizeof(uint32_t));
+        }
+    }
+    wl_sf_db_set_procs(d, 1);
+    assert_int_equal(wl_sf_chunk(d, 0)->master, 0);
+    assert_int_equal(wl_sf_chunk(d, 1)->master, 0);
+    wl_sf_db_free(d);
+    scene_db_free(src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -199,6 +283,7 @@ int main(void)
         cmocka_unit_test(test_adaptive_depth),
         cmocka_unit_test(test_coincident_file_order),
         cmocka_unit_test(test_strip_chunks),
+        cmocka_unit_test(test_polygon_counts),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

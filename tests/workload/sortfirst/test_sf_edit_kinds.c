@@ -216,6 +216,26 @@ static void test_execute_to_first(void **st)
     scene_db_free(src);
 }
 
+/* Unposting the only posted structure leaves no instance: the edit
+ * still hands back a map (empty, but not NULL: numbers changed, so the
+ * run remaps its prediction too); both nodes are collected.  A second
+ * frame finds nothing to unpost: no command, no map. */
+static void test_unpost_last(void **st)
+{
+    (void)st;
+    const WlSfEditSpec spec = {{0, 0, 1, 0}, 10};
+    Fix f;
+    fix_init(&f, &spec);
+    gint64 *map = edit_frame(&f, 1, 0, 2);
+    assert_non_null(map);
+    assert_int_equal(wl_sf_n_insts(f.sf), 0);
+    assert_int_equal(f.sf->nodes->len, 0);
+    g_free(map);
+    assert_null(edit_frame(&f, 0, 0, 0));
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_UNPOST], 1);
+    fix_clear(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -225,6 +245,7 @@ int main(void)
         cmocka_unit_test(test_nothing),
         cmocka_unit_test(test_two_postings),
         cmocka_unit_test(test_execute_to_first),
+        cmocka_unit_test(test_unpost_last),
     };
     return cmocka_run_group_tests_name("sf_edit_kinds", tests, NULL, NULL);
 }

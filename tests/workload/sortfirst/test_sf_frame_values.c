@@ -476,6 +476,38 @@ static void test_box_side_clipped(void **st)
     rig_clear(&r);
 }
 
+/* A frame that takes no time: one processor (no message) on a machine
+ * whose seven sort-first costs are 0.  Its utilisation is 0 (nothing
+ * busy over no time), not busy / 0. */
+static void test_zero_time_frame(void **st)
+{
+    (void)st;
+    static const char *cfg =
+        "schema_version: 1\n"
+        "machine: {model: cluster-ib}\n"
+        "workload: {type: sortfirst, processors: 1, granularity: 5,\n"
+        "           resolution: 32, bookkeeping: maxset}\n"
+        "scene: {generator: vehicle, structures: 10, triangles: 200,\n"
+        "        instances: 2, circle_radius: 6, camera_radius: 15,\n"
+        "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
+    const char *o[16] = {NULL};
+    guint n = 0;
+    for (; wl_sf_cost_ops[n] && n + 1 < G_N_ELEMENTS(o); n++)
+        o[n] = g_strdup_printf("machine.nodes.node.costs.%s.value=0 ns",
+                               wl_sf_cost_ops[n]);
+    GError *e = NULL;
+    SimResult *r = sf_test_run(cfg, o, 2, NULL, FALSE, &e);
+    if (!r)
+        fail_msg("%s", e->message);
+    assert_int_equal(n, 7);
+    assert_true(sf_test_metric(r, "frame_ms") == 0);
+    assert_true(sf_test_metric(r, "polygons_rendered_per_frame") > 0);
+    assert_true(sf_test_metric(r, "utilisation") == 0);
+    sim_result_free(r);
+    for (guint k = 0; k < n; k++)
+        g_free((char *)o[k]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -487,6 +519,7 @@ int main(void)
         cmocka_unit_test(test_nothing_on_screen),
         cmocka_unit_test(test_one_polygon),
         cmocka_unit_test(test_box_side_clipped),
+        cmocka_unit_test(test_zero_time_frame),
     };
     return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
 }
