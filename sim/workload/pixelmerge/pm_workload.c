@@ -110,8 +110,8 @@ static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m, GError **err)
                      "sizes",
                      &n, err))
         return FALSE;
-    if (!n)
-        return TRUE;
+    /* no memory map: n is NULL, and each optional read of a NULL map
+     * finds nothing and keeps the default (cfg_get) */
     return cfg_get_size(n, "base", FALSE, &m->base, err) &&
            cfg_get_size(n, "polygon", FALSE, &m->polygon, err) &&
            cfg_get_size(n, "span", FALSE, &m->span, err) &&

@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <glib/gstdio.h>
+#include <math.h>
 
 #include "sim/workload/dpscan/dp_array.h"
 #include "sim/workload/workload.h"
@@ -79,9 +80,8 @@ static void test_hook_gets_pairs_and_prices(void **state)
     wl_dp_vm_free(vm);
 }
 
-/* router_wire_s of one dpscan frame of `yml` at `fid`. */
-static double run_wire_s(const char *yml, const char *fid, double *frame,
-                         double *messages)
+/* One dpscan frame of `yml` at `fid` (its result, elapsed included). */
+static SimResult *dp_frame(const char *yml, const char *fid)
 {
     GError *err = NULL;
     CfgNode *root = cfg_load_string(yml, "run.yaml", &err);
@@ -91,16 +91,25 @@ static double run_wire_s(const char *yml, const char *fid, double *frame,
     SimEngine *eng = sim_engine_new(1);
     WlContext ctx = {.eng = eng, .root = root, .frames = 1, .fidelity = fid};
     SimResult *r = sim_result_new("dpscan", "cm5");
-    assert_true(ops->run(&ctx, p, r, &err));
+    if (!ops->run(&ctx, p, r, &err))
+        fail_msg("%s", err->message);
+    sim_engine_free(eng);
+    ops->free_params(p);
+    cfg_free(root);
+    return r;
+}
+
+/* router_wire_s of one dpscan frame of `yml` at `fid`. */
+static double run_wire_s(const char *yml, const char *fid, double *frame,
+                         double *messages)
+{
+    SimResult *r = dp_frame(yml, fid);
     double w = 0;
     assert_true(sim_result_get_metric(r, "router_wire_s", &w));
     *frame = sim_time_to_s(r->elapsed);
     assert_true(sim_result_get_metric(r, "messages", messages));
     assert_true(r->comm_messages > 0);
     sim_result_free(r);
-    sim_engine_free(eng);
-    ops->free_params(p);
-    cfg_free(root);
     return w;
 }
 
@@ -159,12 +168,63 @@ static void test_workload_uses_fidelity(void **state)
     assert_true(ff >= fa);
 }
 
+/* The CM-5 with a per-message software cost of 1 ns (a model written to
+ * a temporary data root): the wire, not the software, bounds a send
+ * that crosses nodes, so the router phase's counts carry wire time.
+ * The frame played on the machine then lasts exactly the sum of its
+ * counted phases (the compute part and the wire part of a phase add up
+ * to the phase, never more). */
+static void test_wire_bound_phases_add_up(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("dpwire-XXXXXX", NULL);
+    char *mdir = g_build_filename(dir, "models", NULL);
+    assert_int_equal(g_mkdir(mdir, 0700), 0);
+    char *text = NULL;
+    assert_true(g_file_get_contents("models/cm5.yaml", &text, NULL, NULL));
+    char **parts = g_strsplit(text, "value: 5.68 us", -1);
+    assert_int_equal(g_strv_length(parts), 2); /* msg_overhead, once */
+    char *fast = g_strjoinv("value: 1 ns", parts);
+    char *model = g_build_filename(mdir, "cm5fast.yaml", NULL);
+    assert_true(g_file_set_contents(model, fast, -1, NULL));
+    char *obj = g_build_filename(dir, "tri.obj", NULL);
+    assert_true(g_file_set_contents(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                         "f 1 2 3\n", -1, NULL));
+    g_setenv("PGSIM_DATA", dir, TRUE);
+    char *yml = g_strdup_printf("workload: {type: dpscan, model: cm5fast, "
+                                "processors: 2, width: 2, height: 2}\n"
+                                "scene: {file: %s}\n", obj);
+    SimResult *r = dp_frame(yml, "analytic");
+    static const char *const ph[] = {"transform_s", "scan_s", "pixel_s",
+                                     "router_s", "display_s"};
+    double sum = 0, v, wire, soft;
+    for (guint i = 0; i < G_N_ELEMENTS(ph); i++) {
+        assert_true(sim_result_get_metric(r, ph[i], &v));
+        sum += v;
+    }
+    assert_true(sim_result_get_metric(r, "router_wire_s", &wire));
+    assert_true(sim_result_get_metric(r, "router_soft_s", &soft));
+    assert_true(wire > 1e-6 && soft < wire); /* the wire bounds */
+    double frame = sim_time_to_s(r->elapsed);
+    assert_true(fabs(frame - sum) <= 1e-12 * sum);
+    g_unsetenv("PGSIM_DATA");
+    sim_result_free(r);
+    g_remove(model);
+    g_remove(obj);
+    g_rmdir(mdir);
+    g_rmdir(dir);
+    g_strfreev(parts);
+    g_free(text), g_free(fast), g_free(model), g_free(obj), g_free(yml);
+    g_free(mdir), g_free(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hook_gets_pairs_and_prices),
         cmocka_unit_test(test_workload_uses_fidelity),
         cmocka_unit_test(test_self_sends_no_wire),
+        cmocka_unit_test(test_wire_bound_phases_add_up),
     };
     return cmocka_run_group_tests_name("dp_wire", tests, NULL, NULL);
 }

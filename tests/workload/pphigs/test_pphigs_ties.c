@@ -1,0 +1,180 @@
+/* test_pphigs_ties.c — the PPHIGS workload at its exact edges (issue 21,
+ * seed-7 survivors): a polygon whose screen area2 is exactly the
+ * degeneracy bound 1e-12 draws nothing while one a rounding step larger
+ * draws; an edit finds its element when the list holds exactly one
+ * candidate; an element appended at the attribute cache's front is
+ * walked by the next scan that needs it; a run on all 64 GPs reports
+ * per-GP traffic.  Run from the repository root (make test does).
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+#include <glib/gstdio.h>
+#include <math.h>
+#include <unistd.h>
+
+#include "sim/app/run/config.h"
+#include "sim/workload/pphigs/pphigs_distrib.h"
+#include "sim/workload/pphigs/pphigs_pixels.h"
+
+/* Commands of the triangle v (object = clip space, w = 1) on a 2 x 2
+ * screen: screen x = v.x + 1 and y = 1 - v.y, both exact here. */
+static guint cmds_of(const Vec3 *v)
+{
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1), .depth = 1};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    guint n = wl_pphigs_cmds(&pi, mat4_identity(), 2, 2, out);
+    assert_int_equal(n, out->len);
+    g_array_free(out, TRUE);
+    return n;
+}
+
+/* Screen points (0, 0.5), (X, 0.5), (0, 0.5 + 2^-40): area2 = X 2^-40,
+ * exactly the double 1e-12 for X = 1e-12 2^40 (in [1, 2), so X - 1 and
+ * back are exact).  The box covers pixel (0, 0)'s centre either way. */
+static void test_area_bound_exact(void **st)
+{
+    (void)st;
+    double eps = ldexp(1, -40), x = ldexp(1e-12, 40);
+    assert_true(x * eps == 1e-12);
+    Vec3 at[3] = {vec3(-1, 0.5, 0), vec3(x - 1, 0.5, 0),
+                  vec3(-1, 0.5 - eps, 0)};
+    assert_int_equal(cmds_of(at), 0); /* |d| > 1e-12 fails: degenerate */
+    double up = nextafter(x, 2);
+    Vec3 above[3] = {vec3(-1, 0.5, 0), vec3(up - 1, 0.5, 0),
+                     vec3(-1, 0.5 - eps, 0)};
+    assert_int_equal(cmds_of(above), 1);
+}
+
+/* ---- through the workload --------------------------------------------- */
+
+static const char *const ONE_TRIANGLE =
+    "structure_database: 1\n"
+    "structures:\n"
+    "  - name: root\n"
+    "    elements:\n"
+    "      - matrix: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n"
+    "      - triangle: [[-1, -1, 0], [1, -1, 0], [0, 1, 0]]\n"
+    "posted: [root]\n";
+
+static char *db_file(void)
+{
+    char *path = NULL;
+    int fd = g_file_open_tmp("pphigs-ties-XXXXXX.yaml", &path, NULL);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_true(g_file_set_contents(path, ONE_TRIANGLE, -1, NULL));
+    return path;
+}
+
+static SimResult *run_with(const char *path, const char *extra)
+{
+    char *db = g_strdup_printf("workload.database=%s", path);
+    const char *sets[] = {"run.frames=2", "workload.edits_per_frame=0",
+                          "run.fidelity=analytic", db, extra, NULL};
+    GError *err = NULL;
+    CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    SimResult *res = cfg_run_exec(r, NULL, &err);
+    if (!res)
+        fail_msg("%s", err->message);
+    cfg_run_free(r);
+    g_free(db);
+    return res;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    if (!sim_result_get_metric(r, name, &v))
+        fail_msg("no metric %s", name);
+    return v;
+}
+
+/* One triangle: frame 1 appends a copy (the one candidate picked), then
+ * deletes both; frame 2 finds no primitive for any edit. */
+static void test_single_candidate(void **st)
+{
+    (void)st;
+    char *path = db_file();
+    SimResult *r = run_with(path, "workload.edits={append: 1, delete: 2}");
+    assert_true(metric(r, "edits_append") == 1);
+    assert_true(metric(r, "edits_delete") == 2);
+    assert_true(metric(r, "image_matches_serial") == 1);
+    sim_result_free(r);
+    g_unlink(path);
+    g_free(path);
+}
+
+/* All 64 GPs (the traffic arrays' size): the run completes with every
+ * frame equal to the serial render. */
+static void test_all_gps(void **st)
+{
+    (void)st;
+    char *path = db_file();
+    SimResult *r = run_with(path, "workload.gps=64");
+    assert_true(metric(r, "gps") == 64);
+    assert_true(metric(r, "image_matches_serial") == 1);
+    sim_result_free(r);
+    g_unlink(path);
+    g_free(path);
+}
+
+/* ---- the attribute cache's front --------------------------------------- */
+
+static const WlPphigsWeights W = {
+    .w = {[SCENE_EL_TRIANGLE] = 1, [SCENE_EL_COLOR] = 0.1},
+    .cluster = 2,
+    .attr_cache = 2,
+};
+
+/* colour, 10 triangles: the cache is built to the end (front at 11). */
+static SceneDb *colour_db(void)
+{
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "s");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint i = 0; i < 11; i++) {
+        SceneElem e = i == 0 ? scene_elem_color(vec3(1, 0, 0))
+                             : scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+        assert_true(scene_db_append(db, s, &e, NULL));
+    }
+    scene_db_post(db, s);
+    return db;
+}
+
+/* A triangle appended at the front's position (11) is not yet walked;
+ * the next append's scan (from 12) walks exactly it: cache_walk + 1.
+ * Deleting an element at the front (after a truncation left it there)
+ * is the same: the front does not move. */
+static void test_cache_front_append(void **st)
+{
+    (void)st;
+    SceneDb *db = colour_db();
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &W);
+    uint64_t w0 = wl_pphigs_dist_traffic(d)->cache_walk;
+    assert_int_equal(w0, 11);
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(2, 0, 0), vec3(0, 2, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    assert_true(wl_pphigs_dist_append(d, 0, &e, NULL));
+    assert_int_equal(wl_pphigs_dist_traffic(d)->cache_walk, w0);
+    assert_true(wl_pphigs_dist_append(d, 0, &e, NULL));
+    assert_int_equal(wl_pphigs_dist_traffic(d)->cache_walk, w0 + 1);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_area_bound_exact),
+        cmocka_unit_test(test_single_candidate),
+        cmocka_unit_test(test_all_gps),
+        cmocka_unit_test(test_cache_front_append),
+    };
+    return cmocka_run_group_tests_name("pphigs_ties", tests, NULL, NULL);
+}
