@@ -54,13 +54,15 @@ static void circuit_try(SimEngine *eng, void *ctx, void *arg);
 static void circuit_take(NetNet *n, NetMsg *m);
 static void data_done(SimEngine *eng, void *ctx, void *arg);
 
-/* Channel of l free for a newcomer, or -1; never jumps the FIFO. */
+/* Channel of l free for a newcomer, or -1.  A newcomer never jumps the
+ * FIFO: a link has waiters only while all its channels are held, since a
+ * header queues only when it finds none free and release() hands a freed
+ * channel to the head waiter in the same step, so no test of the FIFO is
+ * needed here (the one that stood here could never decide). */
 static int free_channel(NetLink *l)
 {
     if (!l->holder)
         l->holder = g_new0(NetMsg *, l->channels);
-    if (!g_queue_is_empty(&l->wait))
-        return -1;
     for (uint32_t c = 0; c < l->channels; c++)
         if (!l->holder[c])
             return (int)c;

@@ -298,6 +298,43 @@ static void test_circuit_blocking_order(void **state)
     net_topo_free(t);
 }
 
+/* A newcomer to a link whose channels are all held queues behind the
+ * headers already waiting there.  One link of 2 channels (hypercube of
+ * dimension 1), 1000 B = 1000 us each: 1-5 at 0, 6 at 1500 us while 5
+ * waits.  1, 2 end at 1000; 3, 4 take the channels then and end at 2000;
+ * 5 and then 6 take them at 2000 and end at 3000. */
+static void send_six(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    net_send(ctx, 0, 1, 1000, GUINT_TO_POINTER(6), log_arrival, arg);
+}
+
+static void test_circuit_fifo_newcomer(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(1);
+    NetParams p = params(0, 0);
+    p.channels = 2;
+    for (int f = NET_FLOW; f <= NET_PACKET; f++) { /* both circuit rungs */
+        SimEngine *eng = sim_engine_new(1);
+        NetNet *net = net_new(eng, t, &p, (NetFidelity)f);
+        Log lg = {0};
+        for (guint i = 1; i <= 5; i++)
+            net_send(net, 0, 1, 1000, GUINT_TO_POINTER(i), log_arrival, &lg);
+        sim_schedule_at(eng, 1500 * SIM_US, send_six, net, &lg);
+        assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+        assert_int_equal(lg.n, 6);
+        SimTime at[6] = {1000, 1000, 2000, 2000, 3000, 3000};
+        for (guint i = 0; i < 6; i++) {
+            assert_int_equal(lg.order[i], i + 1);
+            assert_int_equal(lg.at[i], at[i] * SIM_US);
+        }
+        net_free(net);
+        sim_engine_free(eng);
+    }
+    net_topo_free(t);
+}
+
 /* The flow rung on a circuit machine serialises a shared channel (first
  * come, first served) where max-min would share it: 0->1 and 0->3 both
  * cross n0->n1; circuits give 1000 and 2000 us, sharing 2000 and 2000. */
@@ -413,6 +450,7 @@ int main(void)
         cmocka_unit_test(test_flow_incremental),
         cmocka_unit_test(test_xor_permutation_contention_free),
         cmocka_unit_test(test_circuit_blocking_order),
+        cmocka_unit_test(test_circuit_fifo_newcomer),
         cmocka_unit_test(test_circuit_flow_serialises),
         cmocka_unit_test(test_fifo_sharing_favours_near_senders),
         cmocka_unit_test(test_memory_returns),

@@ -35,6 +35,25 @@ static void test_box(void **st)
     SceneBox r = scene_box_transform(b, mat4_rotate(vec3(0, 0, 1), G_PI / 2));
     NEAR(r.min.x, -2);
     NEAR(r.max.y, 1);
+    /* 45 degrees about z: x' = (x - y) / sqrt 2, y' = (x + y) / sqrt 2;
+     * the extremes come from the off-diagonal corners (-1, 2) and (1, 0)
+     * as well as the diagonal ones, so every corner must be visited */
+    double h = sqrt(0.5);
+    SceneBox z = scene_box_transform(b, mat4_rotate(vec3(0, 0, 1), G_PI / 4));
+    NEAR(z.min.x, -3 * h);
+    NEAR(z.max.x, 1 * h);
+    NEAR(z.min.y, -1 * h);
+    NEAR(z.max.y, 3 * h);
+    NEAR(z.min.z, 3);
+    NEAR(z.max.z, 5);
+    /* 45 degrees about x: y' = (y - z) / sqrt 2, z' = (y + z) / sqrt 2 */
+    SceneBox x = scene_box_transform(b, mat4_rotate(vec3(1, 0, 0), G_PI / 4));
+    NEAR(x.min.x, -1);
+    NEAR(x.max.x, 1);
+    NEAR(x.min.y, -5 * h);
+    NEAR(x.max.y, -1 * h);
+    NEAR(x.min.z, 3 * h);
+    NEAR(x.max.z, 7 * h);
     SceneBox u = scene_box_union(scene_box_empty(), b);
     NEAR(u.max.y, 2);
     assert_true(scene_box_is_empty(

@@ -48,6 +48,9 @@ static void test_defaults_and_fields(void **st)
     NEAR(scene_iso_field(&p, c, vec3(0, 0.25, 0)), 1 + 0.0625 / 1.0625, 1e-9);
     p.balls = 1;
     NEAR(scene_iso_field(&p, c, vec3(0, 0, -0.5)), 0.25, 1e-9);
+    /* exactly at a centre (d = 0) the 1e-12 guard sets the value:
+     * 1/16 / 1e-12, finite and positive */
+    NEAR(scene_iso_field(&p, c, vec3(0, 0, 0)), 0.0625e12, 1e-3);
 }
 
 /* The centre of the one metaball of seed `seed`: where the field peaks
