@@ -352,9 +352,9 @@ void mach_free(MachMachine *m)
     if (m->net_err)
         g_error_free(m->net_err);
     for (guint pg = 0; m->pages && pg < n_pages(m); pg++) {
-        for (guint i = 0;
-             m->pages[pg] && i < PROC_PAGE && pg * PROC_PAGE + i < m->n_procs;
-             i++)
+        /* slots past n_procs in the last page stay zero (g_new0), which
+         * mach_proc_clear leaves alone */
+        for (guint i = 0; m->pages[pg] && i < PROC_PAGE; i++)
             mach_proc_clear(&m->pages[pg][i]);
         g_free(m->pages[pg]);
     }

@@ -446,7 +446,7 @@ gboolean net_busiest_link(const NetNet *n, NetLinkId *out)
     uint64_t best = 0;
     for (guint i = 0; i < n->links_cap; i++) {
         NetLink *l = n->links[i].l;
-        if (!l || (l->st.bytes == 0 && l->st.messages == 0))
+        if (!l) /* a link exists once a message crossed it (account_path) */
             continue;
         if (!found || l->st.bytes > best ||
             (l->st.bytes == best && l->id < *out)) {
