@@ -236,6 +236,89 @@ static void test_unpost_last(void **st)
     fix_clear(&f);
 }
 
+/* ---- the execute edit's 16 tries (MAX_EXEC_TRIES) --------------------- */
+
+/* One leaf L; a and b execute L (the same height); the posted root
+ * executes a once, then L 98 times.  Of the 101 executes only root's
+ * first can be retargeted (at b): every other points at L, the one
+ * structure of its height.  Each try draws an execute (1 in 101) and a
+ * starting structure (sf_edit.c edit_execute, retarget). */
+static SceneDb *tries_db(void)
+{
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    SceneDb *db = scene_db_new();
+    guint l = scene_db_add_struct(db, "L");
+    guint a = scene_db_add_struct(db, "a");
+    guint b = scene_db_add_struct(db, "b");
+    guint root = scene_db_add_struct(db, "root");
+    add(db, l, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    add(db, a, scene_elem_execute(l));
+    add(db, b, scene_elem_execute(l));
+    add(db, root, scene_elem_execute(a));
+    for (int k = 0; k < 98; k++)
+        add(db, root, scene_elem_execute(l));
+    scene_db_post(db, root);
+    return db;
+}
+
+/* The try (0-based) on which seed `seed` first draws root's execute of
+ * a (execute 2 of the 101: a's, b's, then root's), replaying the two
+ * draws of each try; G_MAXUINT if not within 40. */
+static guint first_hit(uint64_t seed)
+{
+    SimRng g;
+    sim_rng_init(&g, seed, 0);
+    for (guint t = 0; t < 40; t++) {
+        gboolean hit = sim_rng_below(&g, 101) == 2;
+        sim_rng_below(&g, 4);
+        if (hit)
+            return t;
+    }
+    return G_MAXUINT;
+}
+
+/* Whether one execute edit with `seed` applies. */
+static gboolean execute_applies(SceneDb *src, uint64_t seed)
+{
+    WlSfDb *sf = wl_sf_db_new(src, 2, 1, WL_SF_CHUNK_SORTED, NULL);
+    assert_non_null(sf);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 2, 16, 16);
+    WlSfSizes z = {64, 40, 36, 8, 4, 8, 16, 96};
+    WlSfBook *book = wl_sf_book_new(sf, &r, WL_SF_MAXSET, &z);
+    SimRng rng;
+    sim_rng_init(&rng, seed, 0);
+    const WlSfEditSpec spec = {{0, 1, 0, 0}, 10};
+    WlSfEdit *ed = wl_sf_edit_new(src, sf, &spec, &rng);
+    WlSfEditFrame ef;
+    WlSfRemapWork w[2] = {{0}};
+    g_free(wl_sf_edit_frame(ed, book, &ef, w));
+    gboolean applied = ef.commands == 1;
+    if (applied) /* root's execute of a now points at b */
+        assert_int_equal(scene_db_elem(wl_sf_edit_db(ed), 3, 0)->child, 2);
+    wl_sf_edit_free(ed);
+    wl_sf_book_free(book);
+    wl_sf_db_free(sf);
+    return applied;
+}
+
+/* An execute edit gives up after exactly 16 tries: a seed whose first
+ * draw of the one retargetable execute is the 16th try applies, one
+ * whose first is the 17th does not (nor one of the 2nd, as a check). */
+static void test_execute_tries(void **st)
+{
+    (void)st;
+    SceneDb *src = tries_db();
+    const guint want[3] = {1, 15, 16};
+    for (guint k = 0; k < 3; k++) {
+        uint64_t seed = 1;
+        while (first_hit(seed) != want[k])
+            seed++;
+        assert_true(execute_applies(src, seed) == (want[k] < 16));
+    }
+    scene_db_free(src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -246,6 +329,7 @@ int main(void)
         cmocka_unit_test(test_two_postings),
         cmocka_unit_test(test_execute_to_first),
         cmocka_unit_test(test_unpost_last),
+        cmocka_unit_test(test_execute_tries),
     };
     return cmocka_run_group_tests_name("sf_edit_kinds", tests, NULL, NULL);
 }

@@ -986,9 +986,81 @@ static void test_errors(void **state)
                  "without a structure database");
 }
 
+/* The processors a machine can take (sf_workload.c check_procs): as
+ * many as its nodes of kind `node` (here exactly 4 of 4), and no more
+ * than its network has endpoints: a CM router of 2 lanes takes 2 of 3
+ * nodes, not 3. */
+static void test_procs_limits(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    SimResult *r = run_cfg(small, "machine.nodes.node.count=4", 1, &e);
+    if (!r)
+        fail_msg("%s", e->message);
+    assert_true(metric(r, "processors") == 4);
+    sim_result_free(r);
+    static const char *const router[] = {
+        "topology=cm-router",
+        "procs_per_router={value: 1, assumption: test}",
+        "router_nodes={value: 2, assumption: test}",
+        "aggregate_bandwidth={value: 3 Gbit/s, assumption: test}",
+        "router_cycle={value: 500 us, assumption: test}",
+        "router_link_bandwidth={value: 1.25 MB/s, assumption: test}",
+        "news_bandwidth={value: 1.25 MB/s, assumption: test}"};
+    const char *o[G_N_ELEMENTS(router) + 4] = {NULL};
+    for (guint k = 0; k < G_N_ELEMENTS(router); k++)
+        o[k] = g_strdup_printf("machine.network.%s", router[k]);
+    guint n = G_N_ELEMENTS(router);
+    o[n] = "machine.nodes.node.count=3";
+    o[n + 1] = "machine.nodes.node.lanes=2";
+    for (guint procs = 2; procs <= 3; procs++) {
+        char *p = g_strdup_printf("workload.processors=%u", procs);
+        o[n + 2] = p;
+        r = run_cfg_out(small, o, 1, NULL, FALSE, &e);
+        if (procs == 2 && !r)
+            fail_msg("%s", e->message);
+        if (procs == 3) {
+            assert_null(r);
+            assert_non_null(strstr(e->message, "'3' processors"));
+            g_clear_error(&e);
+        }
+        sim_result_free(r);
+        g_free(p);
+    }
+    for (guint k = 0; k < n; k++)
+        g_free((char *)o[k]);
+}
+
+/* The most processors there can be (WL_SF_MAX_PROCS = 64, one bit each
+ * of a 64-bit mask) with adaptive regions: every processor has a
+ * region, every region a split share, and the image is the serial one;
+ * plain traversal has each of the 64 visit every max-set node, 64 times
+ * the visits of one processor on the same frame. */
+static void test_64_processors(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    const char *const one[] = {"workload.processors=1", NULL};
+    SimResult *r1 = run_cfg_out(small, one, 1, NULL, FALSE, &e);
+    SimResult *r = run_cfg_set2("workload.processors=64",
+                                "workload.regions=adaptive", &e);
+    if (!r || !r1)
+        fail_msg("%s", e->message);
+    assert_true(metric(r, "processors") == 64);
+    assert_true(metric(r, "image_matches_serial") == 1);
+    assert_true(metric(r, "split_imbalance") >= 1);
+    assert_true(metric(r, "traversal_nodes_per_frame") ==
+                64 * metric(r1, "traversal_nodes_per_frame"));
+    assert_true(metric(r, "traversal_ms") > 0);
+    sim_result_free(r);
+    sim_result_free(r1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_procs_limits),
+        cmocka_unit_test(test_64_processors),
         cmocka_unit_test(test_chunks_partition),
         cmocka_unit_test(test_migration_and_image),
         cmocka_unit_test(test_check_can_fail),
