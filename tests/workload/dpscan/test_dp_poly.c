@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "sim/scene/scene.h"
+#include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_poly.h"
 
 /* One polygon of k vertices (x, y, z, val): the caller's arrays. */
@@ -591,6 +592,88 @@ static void test_row_sampled_inside(void **state)
     assert_true(fabs(s[0].xr - (2 + 2 * 2e-6)) < 1e-12);
 }
 
+/* ---- projection limits of wl_dp_polys_new ------------------------------ */
+
+/* ok[] of the triangles (a, b, c) of pts in threes, seen on a 2 x 2
+ * screen by cam (aspect set to 1 as wl_dp_polys_new does). */
+static void oks(const SceneCamera *cam, const Vec3 *pts, guint n, uint8_t *ok)
+{
+    Scene *s = scene_new("limits");
+    s->camera = *cam;
+    SceneMesh *m = scene_mesh_new();
+    for (guint i = 0; i < n; i++)
+        scene_mesh_add_vertex(m, pts[i]);
+    for (guint t = 0; t < n / 3; t++)
+        scene_mesh_add_tri(m, 3 * t, 3 * t + 1, 3 * t + 2,
+                           scene_color(1, 1, 1), t);
+    scene_add_instance(s, scene_add_mesh(s, m), mat4_identity(),
+                       scene_color(1, 1, 1), 0);
+    float pal[WL_DP_COLORS][3];
+    wl_dp_palette_default(pal);
+    WlDpPolys *p = wl_dp_polys_new(s, 0, 2, 2, WL_DP_MODE_FLAT, pal);
+    assert_int_equal(p->n, n / 3);
+    memcpy(ok, p->ok, p->n);
+    wl_dp_polys_free(p);
+    scene_free(s);
+}
+
+/* An eye at the origin looking down -z. */
+static SceneCamera down_z(SceneProjection proj)
+{
+    SceneCamera c = scene_camera_default();
+    c.proj = proj;
+    c.eye = vec3(0, 0, 0);
+    c.target = vec3(0, 0, -1);
+    c.up = vec3(0, 1, 0);
+    c.height = 2; /* orthographic: x, y in [-1, 1] fill the screen */
+    c.aspect = 1;
+    return c;
+}
+
+/* A vertex with clip w exactly 1e-12 is behind the eye (w <= 1e-12),
+ * one a rounding step further in front (w > 1e-12) is drawable. */
+static void test_behind_eye_bound(void **state)
+{
+    (void)state;
+    SceneCamera c = down_z(SCENE_PERSPECTIVE);
+    Mat4 vp = scene_camera_view_proj(&c);
+    double z = -1e-12;
+    for (int i = 0; i < 64 && mat4_apply_point(vp, vec3(0, 0, z)).w != 1e-12;
+         i++)
+        z = nextafter(z, mat4_apply_point(vp, vec3(0, 0, z)).w < 1e-12
+                             ? -1.0 : 1.0);
+    assert_true(mat4_apply_point(vp, vec3(0, 0, z)).w == 1e-12);
+    double z2 = z;
+    while (!(mat4_apply_point(vp, vec3(0, 0, z2)).w > 1e-12))
+        z2 = nextafter(z2, -1.0);
+    Vec3 pts[6] = {vec3(0, 0, z),  vec3(1, 0, -1), vec3(0, 1, -1),
+                   vec3(0, 0, z2), vec3(1, 0, -1), vec3(0, 1, -1)};
+    uint8_t ok[2];
+    oks(&c, pts, 6, ok);
+    assert_int_equal(ok[0], 0);
+    assert_int_equal(ok[1], 1);
+}
+
+/* Orthographic, height 2 on 2 x 2 pixels: screen x = x + 1 and
+ * y = 1 - y exactly, so a vertex at x = 9999999 lands at screen x 1e7,
+ * the first coordinate refused (|x| < 1e7), and 9999998.5 is drawable;
+ * the same along y (y = -9999999). */
+static void test_far_outside_bound(void **state)
+{
+    (void)state;
+    SceneCamera c = down_z(SCENE_ORTHOGRAPHIC);
+    Vec3 pts[12] = {vec3(9999999, 0, -1),    vec3(0, 0, -1), vec3(0, 1, -1),
+                    vec3(9999998.5, 0, -1),  vec3(0, 0, -1), vec3(0, 1, -1),
+                    vec3(0, -9999999, -1),   vec3(0, 0, -1), vec3(1, 0, -1),
+                    vec3(0, -9999998.5, -1), vec3(0, 0, -1), vec3(1, 0, -1)};
+    uint8_t ok[4];
+    oks(&c, pts, 12, ok);
+    assert_int_equal(ok[0], 0);
+    assert_int_equal(ok[1], 1);
+    assert_int_equal(ok[2], 0);
+    assert_int_equal(ok[3], 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -609,6 +692,8 @@ int main(void)
         cmocka_unit_test(test_point_and_line_keys),
         cmocka_unit_test(test_partial_rows),
         cmocka_unit_test(test_edge_length_limit),
+        cmocka_unit_test(test_behind_eye_bound),
+        cmocka_unit_test(test_far_outside_bound),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
