@@ -1034,6 +1034,32 @@ static void test_stage_phases(void **st)
     sim_result_free(r);
 }
 
+/* matrix_ops_saved_per_frame is the mean over the frames after the
+ * first min(4, frames / 4) of the PUSH and POP that flattening saved
+ * (pf_cull.c: 2 a flattened SCS drawn).  Without culling every SCS is
+ * drawn every frame, so it is 2 x scs_flattened (2 x 2 blocks of 2
+ * houses: 8 SCS, 16) for 1, 8 (2 skipped) and 12 frames (3 skipped). */
+static void test_matrix_saved_mean(void **st)
+{
+    (void)st;
+    const int frames[3] = {1, 8, 12};
+    for (int i = 0; i < 3; i++) {
+        GError *err = NULL;
+        SimResult *r = run("machine: {model: sgi-onyx}\n"
+                           "workload: {type: performer, cull: false,\n"
+                           "  town: {blocks: 2, houses: 2, trees: 2, "
+                           "cars: 2}}\n",
+                           frames[i], &err);
+        if (!r)
+            fail_msg("%s", err->message);
+        assert_true(metric(r, "scs_flattened") == 8);
+        if (metric(r, "matrix_ops_saved_per_frame") != 16)
+            fail_msg("%d frames: %g saved, expected 16", frames[i],
+                     metric(r, "matrix_ops_saved_per_frame"));
+        sim_result_free(r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1059,6 +1085,7 @@ int main(void)
         cmocka_unit_test(test_draw_stream_source),
         cmocka_unit_test(test_stress_off_by_default),
         cmocka_unit_test(test_log_lod_without_houses),
+        cmocka_unit_test(test_matrix_saved_mean),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
