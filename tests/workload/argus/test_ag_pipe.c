@@ -155,7 +155,8 @@ static uint64_t run_frame(Rig *r, double *ms)
     AgFrame *ref = wl_ag_frame_new(SIDE, SIDE, 16, WL_AG_BLEND, 0.5f,
                                    (RastColor){0, 0, 0});
     guint n = scene_mesh_n_polys(r->mesh);
-    uint32_t all[A_TRIS + 2];
+    uint32_t all[A_TRIS + 4]; /* A, Y and at most one more quad */
+    assert_true(n <= G_N_ELEMENTS(all));
     for (guint i = 0; i < n; i++)
         all[i] = i;
     wl_ag_draw(ref, G_MAXUINT, &r->view, r->mesh, all, n);
@@ -229,6 +230,29 @@ static void test_wait_context_orders(void **state)
      * no application barrier, context 1 calls it before A is issued and
      * it orders nothing (the reason for appBarrier in Figure 2) */
     assert_true(wait_frame(TRUE, FALSE, &ms) > 0);
+}
+
+/* glpWaitContext(0) waits for what context 0 had issued when it was
+ * called, not for the block context 0 issues next: context 1 (Y) parks
+ * at the application barrier at once; context 0 issues A, arrives last
+ * (waking context 1) and issues B (a green quad) after the barrier,
+ * while context 1 calls glpWaitContext(0) and issues Y.  At every tile
+ * A is drawn first and then the turn goes to context 1: A, Y, B, the
+ * mesh order.  Waiting for B as well would draw A, B, Y. */
+static void test_wait_context_excludes_next_block(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    add_quad(r.mesh, scene_color(0.1, 0.9, 0.2)); /* B: triangles 42, 43 */
+    block(&r, 0, 0, A_TRIS);
+    pre(block(&r, 0, A_TRIS + 2, 2), WL_AG_SYNC_APP_BARRIER, 0);
+    AgBlock *y = block(&r, 1, A_TRIS, 2);
+    pre(y, WL_AG_SYNC_APP_BARRIER, 0);
+    pre(y, WL_AG_SYNC_WAIT_CONTEXT, 0);
+    double ms;
+    assert_int_equal(run_frame(&r, &ms), 0);
+    rig_free(&r);
 }
 
 /* The last thread to reach the application barrier wakes every other
@@ -763,6 +787,7 @@ int main(void)
         cmocka_unit_test(test_barrier_blocks),
         cmocka_unit_test(test_wait_context_orders),
         cmocka_unit_test(test_app_barrier_wakes_context_0),
+        cmocka_unit_test(test_wait_context_excludes_next_block),
         cmocka_unit_test(test_streams_carry_the_frame_loop),
         cmocka_unit_test(test_event_chain_timing),
         cmocka_unit_test(test_tile_round_robin),
