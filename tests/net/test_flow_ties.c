@@ -2,7 +2,9 @@
  * times complete in send order" (sim/net/flow.c): messages of one size on
  * disjoint crossbar paths, sent at one instant in a scrambled source
  * order, end at the same picosecond and are delivered in the order they
- * were sent, as the analytic transport delivers them. */
+ * were sent, as the analytic transport delivers them; and a flow whose
+ * bytes are done to rounding when a recompute comes ends then, by its
+ * predicted end. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -79,6 +81,37 @@ static void check_late_starter(NetFidelity fid)
     sim_engine_free(eng);
 }
 
+/* A recompute 1 ps before a flow's predicted end: the flow is brought up
+ * to now at its rate, which in doubles can overshoot its bytes (1e9 + 3
+ * B at 3000 B/s: 3000 x (T - 1) x 1e-12 exceeds them by 1.2e-7 B), and
+ * it must then end at once, not carry a remainder onto the shared link:
+ * it arrives by its predicted end T.  One link (0 -> 1), no start-up. */
+static void send_second(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    net_send(ctx, 0, 1, 1000, NULL, arrived, arg);
+}
+
+static void check_recompute_at_end(void)
+{
+    SimEngine *eng = sim_engine_new(1);
+    NetTopo *t = net_hypercube_new(1);
+    NetParams p = {0};
+    p.bandwidth = 3000;
+    p.switching = NET_SW_CUT_THROUGH; /* the flow transport */
+    NetNet *net = net_new(eng, t, &p, NET_FLOW);
+    Order o = {0};
+    SimTime end = net_ideal_time(net, 0, 1, 1000000003);
+    assert_true(sim_schedule_at(eng, end - 1, send_second, net, &o));
+    net_send(net, 0, 1, 1000000003, NULL, arrived, &o);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(o.n, 2);
+    assert_true(o.at[0] >= end - 1 && o.at[0] <= end);
+    net_free(net);
+    net_topo_free(t);
+    sim_engine_free(eng);
+}
+
 static void test_equal_ends_in_send_order(void **state)
 {
     (void)state;
@@ -86,6 +119,7 @@ static void test_equal_ends_in_send_order(void **state)
     check(NET_ANALYTIC);
     check_late_starter(NET_FLOW);
     check_late_starter(NET_ANALYTIC);
+    check_recompute_at_end();
 }
 
 int main(void)
