@@ -213,6 +213,8 @@ static void test_load_errors(void **state)
     load_fails("a: 1\n---\nb: 2\n", "t.yaml:2:1: found a second YAML "
                                     "document");
     load_fails("a: *nope\n", "t.yaml:1:4: found alias '*nope'");
+    /* a syntax error before the first node: the document start fails */
+    load_fails("]\n", "t.yaml:1:1: found YAML syntax error");
     load_fails("base: &b {x: 1}\nd:\n  <<: *b\n", "t.yaml:3:3: found "
                                                   "merge key '<<'");
     GString *deep = g_string_new("");
