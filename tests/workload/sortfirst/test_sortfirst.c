@@ -969,6 +969,8 @@ static void test_errors(void **state)
     expect_error("workload.bookkeeping=both", "maxset");
     expect_error("workload.processors=65", "processors");
     expect_error("machine.nodes.node.count=2", "at most the 2 nodes");
+    expect_error("machine.network.topology=dragonfly", /* no network */
+                 "topology 'dragonfly' (not yet built");
     expect_error("workload.granularity=0", "granularity");
     expect_error("workload.regions=dynamic", "adaptive");
     expect_error("workload.estimate=next", "current");
@@ -1056,11 +1058,37 @@ static void test_64_processors(void **state)
     sim_result_free(r1);
 }
 
+/* The result's frame times are each frame's own duration: frames run
+ * back to back from time 0, so they add up to the simulated time, and
+ * the mean of those after the first is frame_ms. */
+static void test_frame_times(void **state)
+{
+    (void)state;
+    GError *e = NULL;
+    SimResult *r = run_cfg(small, NULL, 3, &e);
+    if (!r)
+        fail_msg("%s", e->message);
+    assert_int_equal(r->frame_times->len, 3);
+    SimTime sum = 0;
+    for (guint f = 0; f < 3; f++) {
+        SimTime t = g_array_index(r->frame_times, SimTime, f);
+        assert_true(t > 0);
+        sum += t;
+    }
+    assert_true(sum == r->elapsed);
+    double mean = sim_time_to_ms(g_array_index(r->frame_times, SimTime, 1) +
+                                 g_array_index(r->frame_times, SimTime, 2)) /
+                  2;
+    assert_true(fabs(metric(r, "frame_ms") - mean) <= 1e-9 * mean);
+    sim_result_free(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_procs_limits),
         cmocka_unit_test(test_64_processors),
+        cmocka_unit_test(test_frame_times),
         cmocka_unit_test(test_chunks_partition),
         cmocka_unit_test(test_migration_and_image),
         cmocka_unit_test(test_check_can_fail),
