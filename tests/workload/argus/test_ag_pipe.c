@@ -618,10 +618,12 @@ static void test_pool_round_robin(void **state)
 }
 
 /* A recorder that writes down, for one processor, the rast_triangle
- * count of each piece of work it is given. */
+ * count of each piece of work it is given (and, with geom, its
+ * geom_vertex count). */
 typedef struct {
     uint32_t node;
     GString *seq;
+    gboolean geom; /* also "g<vertices>" for each geom_vertex count */
 } RastRec;
 
 static uint64_t rr_compute(SimRecorder *r, SimTime now, uint32_t node,
@@ -633,10 +635,14 @@ static uint64_t rr_compute(SimRecorder *r, SimTime now, uint32_t node,
     (void)now, (void)phase, (void)cost, (void)end, (void)terms;
     (void)n_terms, (void)handled;
     RastRec *k = r->state;
-    for (unsigned i = 0; node == k->node && i < n_ops; i++)
+    for (unsigned i = 0; node == k->node && i < n_ops; i++) {
         if (!strcmp(ops[i].name, "rast_triangle"))
             g_string_append_printf(k->seq, "%" G_GUINT64_FORMAT " ",
                                    (guint64)ops[i].count);
+        if (k->geom && !strcmp(ops[i].name, "geom_vertex"))
+            g_string_append_printf(k->seq, "g%" G_GUINT64_FORMAT " ",
+                                   (guint64)ops[i].count);
+    }
     return 1;
 }
 
@@ -678,7 +684,8 @@ static void test_rasteriser_round_robin(void **state)
     block(&r, 0, 2, 5);
     static const SimRecorderOps ops = {
         .compute = rr_compute, .begin = rr_begin, .end = rr_end};
-    RastRec k = {mach_proc_id(mach_proc(r.m, "cpu", 2)), g_string_new("")};
+    RastRec k = {mach_proc_id(mach_proc(r.m, "cpu", 2)), g_string_new(""),
+                 FALSE};
     SimRecorder rec = {&ops, &k};
     sim_engine_set_recorder(r.eng, &rec);
     GError *e = NULL;
@@ -692,6 +699,71 @@ static void test_rasteriser_round_robin(void **state)
     assert_string_equal(k.seq->str, "2 2 2 2 4 5 4 4 ");
     sim_engine_set_recorder(r.eng, NULL);
     g_string_free(k.seq, TRUE);
+    wl_ag_pipe_free(p);
+    rig_free(&r);
+}
+
+/* Adds n small triangles inside tile `tile` of a 2 x 2 tiling. */
+static void add_small_tris(SceneMesh *m, int n, int tile)
+{
+    double x = tile % 2 ? 0.3 : -0.7, y = tile < 2 ? 0.6 : -0.4;
+    for (int k = 0; k < n; k++) {
+        uint32_t b = scene_mesh_n_vertices(m);
+        scene_mesh_add_vertex(m, vec3(x, y, 0));
+        scene_mesh_add_vertex(m, vec3(x + 0.2, y, 0));
+        scene_mesh_add_vertex(m, vec3(x + 0.1, y + 0.2, 0));
+        scene_mesh_add_tri(m, b, b + 1, b + 2, scene_color(1, 1, 1), 0);
+    }
+}
+
+/* A pool worker takes geometry only when it is idle: one context issues
+ * block 0 (a full-screen quad and 10 small triangles in tile 0: 36
+ * vertices) and block 1 (100 small triangles in tile 3: 300 vertices,
+ * slow to issue); a pool of two workers (processors 1 and 2), blended
+ * at a finite fill rate on 2 x 2 tiles.  Worker 0 does block 0's
+ * geometry; then worker 0 draws it at tile 0 and worker 1 at tile 1
+ * (over 1000 pixels each), and block 1 reaches the queue meanwhile.
+ * Worker 1, with fewer pixels, is idle first and takes block 1's
+ * geometry: processor 2 draws 2 triangles (tile 1), then transforms 300
+ * vertices; worker 0, busy, is not given it. */
+static void test_pool_geometry_to_idle_worker(void **state)
+{
+    (void)state;
+    Rig r;
+    rig_init(&r);
+    r.st->contexts = 1;
+    r.st->barrier_parties = 1;
+    const float white[1][3] = {{1, 1, 1}};
+    rig_quads(&r, white, 1);
+    wl_ag_frame_free(r.f);
+    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE / 2, WL_AG_BLEND, 0.5f,
+                          (RastColor){0, 0, 0});
+    add_small_tris(r.mesh, 10, 0);
+    add_small_tris(r.mesh, 100, 3);
+    block(&r, 0, 0, 12);
+    block(&r, 0, 12, 100);
+    static const SimRecorderOps ops = {
+        .compute = rr_compute, .begin = rr_begin, .end = rr_end};
+    RastRec k[2] = {{mach_proc_id(mach_proc(r.m, "cpu", 1)),
+                     g_string_new(""), TRUE},
+                    {mach_proc_id(mach_proc(r.m, "cpu", 2)),
+                     g_string_new(""), TRUE}};
+    SimRecorder rec[2] = {{&ops, &k[0]}, {&ops, &k[1]}};
+    GError *e = NULL;
+    AgSetup s = {.procs = 3, .contexts = 1, .geometry = 1, .rasterisers = 1,
+                 .pool = TRUE, .app = WL_AG_APP_NONE, .vertex_bytes = 32,
+                 .triangle_bytes = 64};
+    AgPipe *p = wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
+    for (int w = 0; w < 2; w++) {
+        sim_engine_set_recorder(r.eng, &rec[w]);
+        AgFrameStats fs;
+        if (!wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e))
+            fail_msg("%s", e->message);
+        if (!g_str_has_prefix(k[w].seq->str, w ? "2 g300 " : "g36 12 "))
+            fail_msg("worker %d: %s", w, k[w].seq->str);
+        g_string_free(k[w].seq, TRUE);
+    }
+    sim_engine_set_recorder(r.eng, NULL);
     wl_ag_pipe_free(p);
     rig_free(&r);
 }
@@ -797,6 +869,7 @@ int main(void)
         cmocka_unit_test(test_empty_frame),
         cmocka_unit_test(test_pool_round_robin),
         cmocka_unit_test(test_rasteriser_round_robin),
+        cmocka_unit_test(test_pool_geometry_to_idle_worker),
         cmocka_unit_test(test_two_pairs_sorted),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
