@@ -815,6 +815,34 @@ static void test_empty_frame(void **state)
     rig_free(&r);
 }
 
+/* An engine error ends the frame with that error: a dry run (the engine
+ * stops before the first event) fails the frame with the engine's
+ * message, even for streams without a block (nothing left undrawn). */
+static void test_engine_error_ends_frame(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        Rig r;
+        rig_init(&r);
+        if (k == 1)
+            block(&r, 0, 0, 2);
+        sim_engine_set_dry_run(r.eng, TRUE);
+        GError *e = NULL;
+        AgSetup s = {.procs = 4, .contexts = 2, .geometry = 1,
+                     .rasterisers = 1, .vertex_bytes = 32,
+                     .triangle_bytes = 64};
+        AgPipe *p = wl_ag_pipe_new(r.m, &s, r.st, r.f, r.mesh, &r.view);
+        AgFrameStats fs;
+        assert_false(wl_ag_pipe_frame(p, SIM_TIME_MAX, &fs, &e));
+        assert_non_null(e);
+        assert_string_equal(e->message, "stopped before the first simulated "
+                                        "event (dry run)");
+        g_error_free(e);
+        wl_ag_pipe_free(p);
+        rig_free(&r);
+    }
+}
+
 /* A glpPSema no glpVSema answers deadlocks every tile: the frame fails
  * saying how many tiles are left, also when the other context's block
  * signals a glpBarrier arrival (barriers count apart from semaphores);
@@ -867,6 +895,7 @@ int main(void)
         cmocka_unit_test(test_round_robin_starts_at_context_0),
         cmocka_unit_test(test_deadlock_reported),
         cmocka_unit_test(test_empty_frame),
+        cmocka_unit_test(test_engine_error_ends_frame),
         cmocka_unit_test(test_pool_round_robin),
         cmocka_unit_test(test_rasteriser_round_robin),
         cmocka_unit_test(test_pool_geometry_to_idle_worker),
