@@ -436,7 +436,8 @@ static void test_gouraud_as_zbuffer(void **state)
 }
 
 /* wl_ag_costs_from_machine fills every field with the machine's cost of
- * the op of the same name (wl_ag_cost_ops order), the first included. */
+ * the op of the same name (wl_ag_cost_ops order), the first included;
+ * a machine without them is refused. */
 static void test_costs_from_machine(void **state)
 {
     (void)state;
@@ -455,6 +456,15 @@ static void test_costs_from_machine(void **state)
                      wl_ag_cost_ops[n], (guint64)got[n],
                      (guint64)mach_cost(m, "cpu", wl_ag_cost_ops[n]));
     assert_int_equal(n * sizeof(SimTime), sizeof c);
+    mach_free(m);
+    /* a machine without Argus's costs: FALSE, naming the first missing */
+    m = mach_new_from_model(eng, "sgi-onyx", "analytic", &err);
+    assert_non_null(m);
+    assert_false(wl_ag_costs_from_machine(m, &c, &err));
+    assert_non_null(err);
+    if (!strstr(err->message, "found no cost for 'nurbs_vertex' on 'cpu'"))
+        fail_msg("%s", err->message);
+    g_error_free(err);
     mach_free(m);
     sim_engine_free(eng);
 }
