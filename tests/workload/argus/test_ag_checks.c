@@ -697,6 +697,22 @@ static void test_run_errors(void **state)
                     NULL);
     run_fails(t, "no_such_machine");
     g_free(t);
+    /* processors: the machine's 'cpu' count at most (origin2000: 24; a
+     * machine without the kind has 0), located at the key */
+    t = g_strconcat("machine: {model: pixel-planes-5}\n", plain, nurbs_scene,
+                    NULL);
+    run_fails(t, "r.yaml:2:37: found 2 processors, expected at most the 0 "
+                 "'cpu' processors of machine 'pixel-planes-5'");
+    g_free(t);
+    t = g_strconcat(machine, "workload: {type: argus, processors: 25, "
+                    "width: 32, height: 32, tile: 16}\n", nurbs_scene, NULL);
+    run_fails(t, "r.yaml:2:37: found 25 processors, expected at most the 24 "
+                 "'cpu' processors of machine 'origin2000'");
+    g_free(t);
+    t = g_strconcat(machine, "workload: {type: argus, processors: 24, "
+                    "width: 32, height: 32, tile: 16}\n", nurbs_scene, NULL);
+    sim_result_free(must_run(t));
+    g_free(t);
     /* a machine with cpus but not Argus's costs */
     t = g_strconcat("machine: {model: sgi-onyx}\n", plain, nurbs_scene, NULL);
     run_fails(t, "found no cost for 'nurbs_vertex' on 'cpu'");
