@@ -90,10 +90,38 @@ static void test_instancing_imbalance(void **st)
                 inst.efficiency < plain.efficiency + 0.005);
 }
 
+/* wl_pphigs_run_algo (the by-structure path of the reproduction) prices
+ * one algorithm as wl_pphigs_run_db prices both: the same t1 (one GP),
+ * the same metrics field by field; on one GP t1 is the frame itself. */
+static void test_run_algo_matches_db(void **st)
+{
+    (void)st;
+    ScenePphigsSpec sp;
+    WlPphigsRig rig = {.model = "pixel-planes-5", .fidelity = "analytic"};
+    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
+                                    "two_human_figures", NULL, &sp, NULL));
+    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
+                                     NULL));
+    ScenePphigsDb db;
+    assert_true(scene_pphigs_generate(&sp, &db, NULL));
+    WlPphigsMetrics s, x, a[2], one;
+    assert_true(wl_pphigs_run_db(&db, 4, &rig, &s, &x, NULL));
+    assert_true(wl_pphigs_run_algo(&db, 4, WL_PPHIGS_SIMPLE, &rig, &a[0], NULL));
+    assert_true(wl_pphigs_run_algo(&db, 4, WL_PPHIGS_COMPLEX, &rig, &a[1], NULL));
+    assert_memory_equal(&a[0], &s, sizeof s);
+    assert_memory_equal(&a[1], &x, sizeof x);
+    assert_true(s.t1 > 0 && s.max < s.t1 && s.speedup > 1);
+    assert_true(wl_pphigs_run_algo(&db, 1, WL_PPHIGS_SIMPLE, &rig, &one, NULL));
+    assert_true(one.t1 == s.t1 && one.max == one.t1 && one.sum == one.t1);
+    assert_true(one.speedup == 1 && one.efficiency == 1);
+    scene_pphigs_db_clear(&db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_instancing_imbalance),
+        cmocka_unit_test(test_run_algo_matches_db),
     };
     return cmocka_run_group_tests_name("pphigs_run", tests, NULL, NULL);
 }

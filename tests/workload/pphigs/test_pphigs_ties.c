@@ -70,11 +70,17 @@ static char *db_file(void)
     return path;
 }
 
-static SimResult *run_with(const char *path, const char *extra)
+/* A run of the one-triangle file: run.frames, edits_per_frame and
+ * fidelity as given, then the settings `more` (NULL-terminated). */
+static SimResult *run_with(const char *path, const char *frames,
+                           const char *edits, const char *const *more)
 {
     char *db = g_strdup_printf("workload.database=%s", path);
-    const char *sets[] = {"run.frames=2", "workload.edits_per_frame=0",
-                          "run.fidelity=analytic", db, extra, NULL};
+    const char *sets[8] = {frames, edits, "run.fidelity=analytic", db};
+    for (guint i = 0; more && more[i]; i++) {
+        g_assert(i < 3);
+        sets[4 + i] = more[i];
+    }
     GError *err = NULL;
     CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, &err);
     if (!r)
@@ -101,7 +107,9 @@ static void test_single_candidate(void **st)
 {
     (void)st;
     char *path = db_file();
-    SimResult *r = run_with(path, "workload.edits={append: 1, delete: 2}");
+    const char *ed[] = {"workload.edits={append: 1, delete: 2}", NULL};
+    SimResult *r = run_with(path, "run.frames=2", "workload.edits_per_frame=0",
+                            ed);
     assert_true(metric(r, "edits_append") == 1);
     assert_true(metric(r, "edits_delete") == 2);
     assert_true(metric(r, "image_matches_serial") == 1);
@@ -116,10 +124,36 @@ static void test_all_gps(void **st)
 {
     (void)st;
     char *path = db_file();
-    SimResult *r = run_with(path, "workload.gps=64");
+    const char *gps[] = {"workload.gps=64", NULL};
+    SimResult *r = run_with(path, "run.frames=2", "workload.edits_per_frame=0",
+                            gps);
     assert_true(metric(r, "gps") == 64);
     assert_true(metric(r, "image_matches_serial") == 1);
     sim_result_free(r);
+    g_unlink(path);
+    g_free(path);
+}
+
+/* A modify turns its matrix about y by edit_angle_deg (§3.1), before the
+ * frame draws: the triangle in the z = 0 plane, turned by 90 degrees, is
+ * seen edge-on and draws no command; unturned it draws. */
+static void test_modify_turns_about_y(void **st)
+{
+    (void)st;
+    char *path = db_file();
+    static const char *const angle[] = {"workload.edit_angle_deg=90",
+                                        "workload.edit_angle_deg=0"};
+    for (guint i = 0; i < 2; i++) {
+        const char *more[] = {angle[i], NULL};
+        SimResult *r = run_with(path, "run.frames=1",
+                                "workload.edits_per_frame=1", more);
+        assert_true(metric(r, "edits") == 1);
+        if (i == 0)
+            assert_true(metric(r, "commands_per_frame") == 0);
+        else
+            assert_true(metric(r, "commands_per_frame") > 0);
+        sim_result_free(r);
+    }
     g_unlink(path);
     g_free(path);
 }
@@ -174,6 +208,7 @@ int main(void)
         cmocka_unit_test(test_area_bound_exact),
         cmocka_unit_test(test_single_candidate),
         cmocka_unit_test(test_all_gps),
+        cmocka_unit_test(test_modify_turns_about_y),
         cmocka_unit_test(test_cache_front_append),
     };
     return cmocka_run_group_tests_name("pphigs_ties", tests, NULL, NULL);
