@@ -17,6 +17,7 @@
 #include "sim/app/run/config.h"
 #include "sim/workload/pphigs/pphigs_distrib.h"
 #include "sim/workload/pphigs/pphigs_pixels.h"
+#include "sim/workload/pphigs/pphigs_rebalance.h"
 
 /* Commands of the triangle v (object = clip space, w = 1) on a 2 x 2
  * screen: screen x = v.x + 1 and y = 1 - v.y, both exact here. */
@@ -202,6 +203,45 @@ static void test_cache_front_append(void **st)
     scene_db_free(db);
 }
 
+/* ---- the rebalancer's budget at a tie ---------------------------------- */
+
+/* §5.1 on 2 GPs: 8 triangles of nominal weight 1, all on GP 0, measured
+ * 8 us and 0 us: budget = fraction (max - mean) = 0.5 (8 - 4) = 2, so
+ * moving stops once exactly 2 have moved (moved < budget fails at the
+ * tie): 2 moves, not 3. */
+static void test_imperfect_budget_tie(void **st)
+{
+    (void)st;
+    SceneDb *db = colour_db();
+    WlPphigsWeights w = W;
+    w.w[SCENE_EL_COLOR] = 0; /* on every GP: no load */
+    w.attr_cache = 0;
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+    for (guint i = 1; i < 9; i++)
+        if (wl_pphigs_dist_owner(d, 0, i) != 0)
+            assert_true(wl_pphigs_dist_move(d, 0, i, 0));
+    for (guint i = 9; i < 11; i++) /* the last two go: 8 stay */
+        wl_pphigs_dist_delete(d, 0, 9);
+    wl_pphigs_dist_finish(d);
+    double load[2];
+    wl_pphigs_dist_loads(d, load);
+    assert_true(load[0] == 8 && load[1] == 0);
+    WlPphigsRebalParams p = {.threshold = 0.1, .frames = 1, .fraction = 0.5,
+                             .max_moves = 16, .seed = 3};
+    WlPphigsRebal *rb = wl_pphigs_rebal_new(&p);
+    WlPphigsCosts c = {.poly = SIM_US};
+    const double us[2] = {8, 0};
+    WlPphigsRebalStep out;
+    wl_pphigs_rebal_frame(rb, d, mat4_identity(), &c, us, &out);
+    assert_int_equal(out.cause, WL_PPHIGS_REBAL_IMPERFECT);
+    assert_int_equal(out.moves, 2);
+    wl_pphigs_dist_loads(d, load);
+    assert_true(load[0] == 6 && load[1] == 2);
+    wl_pphigs_rebal_free(rb);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -210,6 +250,7 @@ int main(void)
         cmocka_unit_test(test_all_gps),
         cmocka_unit_test(test_modify_turns_about_y),
         cmocka_unit_test(test_cache_front_append),
+        cmocka_unit_test(test_imperfect_budget_tie),
     };
     return cmocka_run_group_tests_name("pphigs_ties", tests, NULL, NULL);
 }
