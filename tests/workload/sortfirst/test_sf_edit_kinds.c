@@ -319,6 +319,36 @@ static void test_execute_tries(void **st)
     scene_db_free(src);
 }
 
+/* A post with no structure unposted by an edit picks one never posted:
+ * the first not posted from a random structure on (sf_edit.c
+ * edit_post).  With a seed whose draw starts at the root (posted) that
+ * is a (structure 1), then b; with all three posted no edit applies. */
+static void test_post_random(void **st)
+{
+    (void)st;
+    uint64_t seed = 1;
+    for (;; seed++) {
+        SimRng g;
+        sim_rng_init(&g, seed, 0);
+        if (sim_rng_below(&g, 3) == 0)
+            break;
+    }
+    const WlSfEditSpec spec = {{0, 0, 0, 1}, 10};
+    Fix f;
+    fix_init(&f, &spec);
+    sim_rng_init(&f.rng, seed, 0); /* the editor's (borrowed) */
+    g_free(edit_frame(&f, 1, 1, 0)); /* a: one new root node */
+    const SceneDb *db = wl_sf_edit_db(f.edit);
+    assert_true(scene_db_is_posted(db, 1));
+    assert_false(scene_db_is_posted(db, 2));
+    g_free(edit_frame(&f, 1, 1, 0)); /* then b, the one left */
+    assert_true(scene_db_is_posted(db, 2));
+    assert_int_equal(scene_db_posted_count(db), 3);
+    assert_null(edit_frame(&f, 0, 0, 0));
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_POST], 2);
+    fix_clear(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -330,6 +360,7 @@ int main(void)
         cmocka_unit_test(test_execute_to_first),
         cmocka_unit_test(test_unpost_last),
         cmocka_unit_test(test_execute_tries),
+        cmocka_unit_test(test_post_random),
     };
     return cmocka_run_group_tests_name("sf_edit_kinds", tests, NULL, NULL);
 }
