@@ -508,6 +508,40 @@ static void test_zero_time_frame(void **st)
         g_free((char *)o[k]);
 }
 
+/* A grid sent dense when its non-zero cells are half of it or more
+ * (sf_frame.c grid_bytes: the sparse list's pairs cost as much then).
+ * The camera widened to [-2.5, 5.5] x [-4, 4] shows all five triangles;
+ * on a 2 x 2 grid of 8-pixel cells processor 0's triangles 0 (centre
+ * (-0.5, 0.5)) and 4 ((3.25, -0.75)) fall in cells 0 and 3: 2 of 4
+ * cells, dense (4 entries to add); processors 1, 2, 3 have one
+ * triangle each, sparse (1 entry).  Each processor's partition work is
+ * its own grid, the others' entries and the split: processor 1 adds
+ * processor 0's 4 entries where processor 0 adds 1, so 3 cells more. */
+static void test_dense_grid_at_half(void **st)
+{
+    (void)st;
+    Rig r;
+    WlSfSetup a = {.grid = 2};
+    rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &a);
+    r.scene->camera.height = 8;
+    r.scene->camera.eye = vec3(1.5, 0, 5);
+    r.scene->camera.target = vec3(1.5, 0, 0);
+    run(&r, 1);
+    const WlSfFrameStats *f = frame(&r, 0);
+    assert_int_equal(f->onscreen_insts, 5);
+    unsigned ph = sim_engine_phase(r.eng, "partition");
+    SimTime b[P];
+    for (guint p = 0; p < P; p++)
+        b[p] = mach_proc_busy_phase(mach_proc(r.m, "node", p), ph);
+    assert_true(b[1] == b[0] + 3 * r.c.grid_cell);
+    assert_true(b[2] == b[1] && b[3] == b[1]);
+    /* bytes: dense 4 cells, sparse 2 per non-zero cell, to 3 others */
+    uint64_t cell = r.s.sizes.cell;
+    assert_int_equal(f->estimate_bytes, 3 * (4 * cell + 3 * 2 * cell));
+    assert_true(f->image_ok);
+    rig_clear(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -520,6 +554,7 @@ int main(void)
         cmocka_unit_test(test_one_polygon),
         cmocka_unit_test(test_box_side_clipped),
         cmocka_unit_test(test_zero_time_frame),
+        cmocka_unit_test(test_dense_grid_at_half),
     };
     return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
 }
