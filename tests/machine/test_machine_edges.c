@@ -470,6 +470,11 @@ static void test_cm_router(void **state)
     bad_net(SIMD("48", "16", ""), 4, 36, "48 lanes");
     bad_net(SIMD("40", "8", ""), 4, 36, "40 lanes");
     bad_net(SIMD("0", "16", ""), 4, 36, "zero lanes");
+    /* two kinds equally widest: the first one's lanes are the endpoints */
+    bad_net("  nodes: {array: {count: 1, lanes: 48}, b: {count: 1, lanes: "
+            "48}, fe: {count: 1}}\n  network: {topology: cm-router, "
+            "bandwidth: 1 MB/s, procs_per_router: 16}\n",
+            4, 36, "48 lanes");
     bad_net("  nodes: {array: {count: 1, lanes: 64}}\n  network: {topology: "
             "cm-router, bandwidth: 1 MB/s}\n",
             5, 12, "no parameter 'procs_per_router'");
