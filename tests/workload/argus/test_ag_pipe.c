@@ -248,8 +248,8 @@ static void test_wait_context_excludes_next_block(void **state)
     block(&r, 0, 0, A_TRIS);
     pre(block(&r, 0, A_TRIS + 2, 2), WL_AG_SYNC_APP_BARRIER, 0);
     AgBlock *y = block(&r, 1, A_TRIS, 2);
+    pre(y, WL_AG_SYNC_WAIT_CONTEXT, 0); /* the commands in either order */
     pre(y, WL_AG_SYNC_APP_BARRIER, 0);
-    pre(y, WL_AG_SYNC_WAIT_CONTEXT, 0);
     double ms;
     assert_int_equal(run_frame(&r, &ms), 0);
     rig_free(&r);
