@@ -392,7 +392,7 @@ static void test_pixels_mean_over_frames(void **state)
 /* A Gouraud triangle (red, green and blue corners, no lighting) drawn
  * opaque into the tiled frame, tile by tile, gives the picture the
  * raster module's own z-buffer gives: colours interpolated along each
- * span from its left end, background elsewhere. */
+ * span from its left end, background elsewhere; alpha plays no part. */
 static void test_gouraud_as_zbuffer(void **state)
 {
     (void)state;
@@ -430,6 +430,14 @@ static void test_gouraud_as_zbuffer(void **state)
                          rast_image_get(img, x, y), want);
         }
     rast_image_free(img);
+    /* opaque pixels take the fragment's colour whatever the alpha: the
+     * same floats with alpha 0.3 as with 1 */
+    AgFrame *g = wl_ag_frame_new(24, 20, 8, WL_AG_OPAQUE, 0.3f,
+                                 (RastColor){0, 0, 0});
+    for (guint t = 0; t < wl_ag_n_tiles(g); t++)
+        wl_ag_draw(g, t, &view, m, &tri, 1);
+    assert_memory_equal(g->rgb, f->rgb, 3 * 24 * 20 * sizeof(float));
+    wl_ag_frame_free(g);
     rast_zbuffer_free(zb);
     wl_ag_frame_free(f);
     scene_mesh_free(m);
