@@ -389,6 +389,45 @@ static void test_pixels_mean_over_frames(void **state)
     assert_true(ms1 > 0 && fabs(ms3 - ms1) < 0.2 * ms1);
 }
 
+/* Opaque pixels are z-buffered: two full-screen quads, the nearer
+ * (z = -0.5, red) drawn before the farther (z = 0.5, blue), leave the
+ * frame (colour, depth, primitive) the nearer alone leaves; drawn the
+ * other way round, the same. */
+static void test_opaque_depth_test(void **state)
+{
+    (void)state;
+    SceneMesh *m = scene_mesh_new();
+    const double z[2] = {-0.5, 0.5};
+    for (int q = 0; q < 2; q++) {
+        uint32_t v[4];
+        const double c[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        for (int i = 0; i < 4; i++)
+            v[i] = scene_mesh_add_vertex(m, vec3(c[i][0], c[i][1], z[q]));
+        SceneColor col = scene_color(q ? 0 : 1, 0, q ? 1 : 0);
+        scene_mesh_add_tri(m, v[0], v[1], v[2], col, 0);
+        scene_mesh_add_tri(m, v[0], v[2], v[3], col, 0);
+    }
+    RastView view = rast_view_make(mat4_identity(), 16, 16);
+    view.cull_back = FALSE;
+    const uint32_t near[2] = {0, 1}, both[2][4] = {{0, 1, 2, 3}, {2, 3, 0, 1}};
+    AgFrame *want = wl_ag_frame_new(16, 16, 8, WL_AG_OPAQUE, 1,
+                                    (RastColor){0, 0, 0});
+    wl_ag_draw(want, G_MAXUINT, &view, m, near, 2);
+    for (int k = 0; k < 2; k++) {
+        AgFrame *f = wl_ag_frame_new(16, 16, 8, WL_AG_OPAQUE, 1,
+                                     (RastColor){0, 0, 0});
+        assert_int_equal(wl_ag_draw(f, G_MAXUINT, &view, m, both[k], 4),
+                         2 * 16 * 16); /* both quads, all drawn */
+        assert_memory_equal(f->rgb, want->rgb, 3 * 16 * 16 * sizeof(float));
+        assert_memory_equal(f->depth, want->depth, 16 * 16 * sizeof(double));
+        assert_memory_equal(f->prim, want->prim, 16 * 16 * sizeof(uint32_t));
+        wl_ag_frame_free(f);
+    }
+    assert_true(want->rgb[0] > 0 && want->rgb[2] == 0); /* red */
+    wl_ag_frame_free(want);
+    scene_mesh_free(m);
+}
+
 /* A Gouraud triangle (red, green and blue corners, no lighting) drawn
  * opaque into the tiled frame, tile by tile, gives the picture the
  * raster module's own z-buffer gives: colours interpolated along each
@@ -499,6 +538,7 @@ int main(void)
         cmocka_unit_test(test_free_null),
         cmocka_unit_test(test_costs_from_machine),
         cmocka_unit_test(test_gouraud_as_zbuffer),
+        cmocka_unit_test(test_opaque_depth_test),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
