@@ -242,10 +242,43 @@ static void test_imperfect_budget_tie(void **st)
     scene_db_free(db);
 }
 
+/* The one command of triangle v (clip = object space) coloured col on a
+ * 100 x 80 screen. */
+static uint32_t rgba_of_tri(const Vec3 *v, Vec3 col)
+{
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(), .color = col,
+                        .depth = 1};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 100, 80, out), 1);
+    uint32_t rgba = g_array_index(out, WlPphigsCmd, 0).rgba;
+    g_array_free(out, TRUE);
+    return rgba;
+}
+
+/* Shading of a small tilted triangle (its NDC normal shorter than 1) is
+ * the same 0.3 + 0.7 |n_z| / |n| as a large one's; channels clamp to
+ * [0, 1] (a negative one to 0, one above 1 to 255). */
+static void test_shading_edges(void **st)
+{
+    (void)st;
+    /* u = (0.5, 0, 0), v = (0.25, 0.5, 0.25): n = (0, -0.125, 0.25) */
+    Vec3 small[3] = {vec3(-0.25, -0.25, 0), vec3(0.25, -0.25, 0),
+                     vec3(0, 0.25, 0.25)};
+    double s = 0.3 + 0.7 / sqrt(1.25);
+    uint32_t want = 0xff000000u | (uint32_t)lrint(255 * s) |
+                    (uint32_t)lrint(255 * 0.5 * s) << 8;
+    assert_int_equal(rgba_of_tri(small, vec3(1, 0.5, 0)), want);
+    Vec3 flat[3] = {vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, 0), vec3(0, 0.5, 0)};
+    assert_int_equal(rgba_of_tri(flat, vec3(-0.5, 2, 0.25)),
+                     0xff000000u | 255u << 8 | (uint32_t)lrint(63.75) << 16);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_area_bound_exact),
+        cmocka_unit_test(test_shading_edges),
         cmocka_unit_test(test_single_candidate),
         cmocka_unit_test(test_all_gps),
         cmocka_unit_test(test_modify_turns_about_y),
