@@ -274,6 +274,38 @@ static void test_shading_edges(void **st)
                      0xff000000u | 255u << 8 | (uint32_t)lrint(63.75) << 16);
 }
 
+/* Two posted structures, each a colour and 10 triangles; an insert into
+ * the first: finishing scans back once, in the edited structure only
+ * (the other has no edited region), so all the scanning done is that
+ * one scan. */
+static void test_finish_scans_edited_only(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    for (guint t = 0; t < 2; t++) {
+        guint s = scene_db_add_struct(db, t ? "b" : "a");
+        for (guint i = 0; i < 11; i++) {
+            SceneElem e = i == 0 ? scene_elem_color(vec3(1, 0, 0))
+                                 : scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+            assert_true(scene_db_append(db, s, &e, NULL));
+        }
+        scene_db_post(db, s);
+    }
+    WlPphigsWeights w = W;
+    w.attr_cache = 0;
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 4, WL_PPHIGS_COMPLEX, &w);
+    uint64_t before = wl_pphigs_dist_traffic(d)->total_scan;
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    assert_true(wl_pphigs_dist_insert(d, 0, 6, &e, NULL));
+    wl_pphigs_dist_finish(d);
+    const WlPphigsTraffic *t = wl_pphigs_dist_traffic(d);
+    assert_true(t->last_scan > 0);
+    assert_int_equal(t->total_scan - before, t->last_scan);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -284,6 +316,7 @@ int main(void)
         cmocka_unit_test(test_modify_turns_about_y),
         cmocka_unit_test(test_cache_front_append),
         cmocka_unit_test(test_imperfect_budget_tie),
+        cmocka_unit_test(test_finish_scans_edited_only),
     };
     return cmocka_run_group_tests_name("pphigs_ties", tests, NULL, NULL);
 }
