@@ -542,6 +542,41 @@ static void test_dense_grid_at_half(void **st)
     rig_clear(&r);
 }
 
+/* Culled boxes cost no transform in the sort (sort_charge): with
+ * `traversal: culled` and, after a first frame, the camera turned to
+ * (10, 10), every master and slave box is in a culled subtree, so the
+ * second frame adds nothing to any processor's `sort` phase; with the
+ * current-frame estimate (masters done by the estimate) likewise for
+ * the slave boxes.  Frame 1 has slave boxes to cull: the pointers
+ * frame 0 sent (3; 4 in the split regions of the current estimate). */
+static void test_culled_boxes_free(void **st)
+{
+    (void)st;
+    for (int current = 0; current < 2; current++) {
+        Rig r;
+        WlSfSetup a = {.grid = current ? 4 : 0, .current = current};
+        rig_init_setup(&r, WL_SF_MAXSET, WL_SF_PUSH, WL_SF_FIXED, &a);
+        wl_sf_run_free(r.run);
+        r.s.trav = WL_SF_TRAV_CULLED;
+        r.run = wl_sf_run_new(r.m, r.scene, r.db, &r.s, &r.c);
+        run(&r, 1);
+        unsigned ph = sim_engine_phase(r.eng, "sort");
+        SimTime b0[P];
+        for (guint p = 0; p < P; p++)
+            b0[p] = mach_proc_busy_phase(mach_proc(r.m, "node", p), ph);
+        r.scene->camera.eye = vec3(10, 10, 5);
+        r.scene->camera.target = vec3(10, 10, 0);
+        run(&r, 1);
+        const WlSfFrameStats *f = frame(&r, 1);
+        assert_int_equal(f->slave_boxes, current ? 4 : 3);
+        assert_int_equal(f->onscreen_insts, 0);
+        for (guint p = 0; p < P; p++)
+            assert_true(mach_proc_busy_phase(mach_proc(r.m, "node", p),
+                                             ph) == b0[p]);
+        rig_clear(&r);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -555,6 +590,7 @@ int main(void)
         cmocka_unit_test(test_box_side_clipped),
         cmocka_unit_test(test_zero_time_frame),
         cmocka_unit_test(test_dense_grid_at_half),
+        cmocka_unit_test(test_culled_boxes_free),
     };
     return cmocka_run_group_tests_name("sf_frame_values", tests, NULL, NULL);
 }
