@@ -306,6 +306,41 @@ static void test_finish_scans_edited_only(void **st)
     scene_db_free(db);
 }
 
+/* A modify that makes a dealt polygon heavier (more vertices, w_vertex
+ * 1) adds the difference to its GP's load: of two GPs with one triangle
+ * each, the one whose triangle became a hexagon is no longer the least
+ * loaded, so the next polygon goes to the other (GP 0 would win the
+ * tie of equal loads). */
+static void test_modify_moves_load(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "s");
+    Vec3 v[6] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(2, 1, 0),
+                 vec3(1, 2, 0), vec3(0, 2, 0), vec3(-1, 1, 0)};
+    SceneElem col = scene_elem_color(vec3(1, 0, 0));
+    assert_true(scene_db_append(db, s, &col, NULL));
+    for (guint i = 0; i < 2; i++) {
+        SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+        assert_true(scene_db_append(db, s, &e, NULL));
+    }
+    scene_db_post(db, s);
+    WlPphigsWeights w = {.w = {[SCENE_EL_POLYGON] = 1}, .w_vertex = 1,
+                         .cluster = 0};
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+    guint on0 = wl_pphigs_dist_owner(d, s, 1) == 0 ? 1 : 2;
+    assert_int_equal(wl_pphigs_dist_owner(d, s, on0), 0);
+    assert_int_equal(wl_pphigs_dist_owner(d, s, 3 - on0), 1);
+    SceneElem hex = scene_elem_prim(SCENE_EL_POLYGON, v, 6);
+    assert_true(wl_pphigs_dist_modify(d, s, on0, &hex, NULL));
+    SceneElem tri = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+    assert_true(wl_pphigs_dist_insert(d, s, 3, &tri, NULL));
+    wl_pphigs_dist_finish(d);
+    assert_int_equal(wl_pphigs_dist_owner(d, s, 3), 1);
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -317,6 +352,7 @@ int main(void)
         cmocka_unit_test(test_cache_front_append),
         cmocka_unit_test(test_imperfect_budget_tie),
         cmocka_unit_test(test_finish_scans_edited_only),
+        cmocka_unit_test(test_modify_moves_load),
     };
     return cmocka_run_group_tests_name("pphigs_ties", tests, NULL, NULL);
 }
