@@ -101,9 +101,7 @@ static void walk_children(Walk *w, const WlPfNode *n, Mat4 m, Vec3 wc)
             w->st->lods++;
             w->st->lod_sum += lod < 0 ? n->children->len : (guint)lod;
         }
-        if (lod < 0)
-            return;
-    }
+    } /* lod < 0 (no child in range): the loop below takes no child */
     for (guint i = 0; i < n->children->len; i++) {
         if ((n->kind == WL_PF_LOD && (int)i != lod) ||
             (n->kind == WL_PF_SWITCH && !switch_takes(n, i)))
