@@ -431,6 +431,23 @@ static gboolean check_kind(const CfgNode *kind, const char *model_file,
     return TRUE;
 }
 
+/* A kind's name is one step of a key path (--set machine.nodes.KIND.count,
+ * which partitions write too): letters, digits, '_' and '-'. */
+static gboolean check_kind_name(const CfgNode *nodes, guint i, GError **err)
+{
+    const char *name = cfg_map_key(nodes, i);
+    if (*name && strspn(name, "abcdefghijklmnopqrstuvwxyz"
+                              "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") ==
+                     strlen(name))
+        return TRUE;
+    char *found = g_strdup_printf("node kind name '%s'", name);
+    cfg_error(err, cfg_map_value(nodes, i), found,
+              "a name of letters, digits, '_' and '-' (a step of "
+              "--set machine.nodes.KIND.count)");
+    g_free(found);
+    return FALSE;
+}
+
 static gboolean check_nodes(const CfgNode *nodes, const char *model_file,
                             GError **err)
 {
@@ -440,8 +457,8 @@ static gboolean check_nodes(const CfgNode *nodes, const char *model_file,
         return FALSE;
     }
     for (guint i = 0; i < cfg_map_len(nodes); i++) {
-        (void)cfg_map_key(nodes, i);
-        if (!check_kind(cfg_map_value(nodes, i), model_file, err))
+        if (!check_kind_name(nodes, i, err) ||
+            !check_kind(cfg_map_value(nodes, i), model_file, err))
             return FALSE;
     }
     return TRUE;

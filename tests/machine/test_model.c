@@ -114,6 +114,7 @@ static void test_bad_models_rejected(void **state)
     expect_bad("extents-unit.yaml", 9, "4 MB");
     expect_bad("workload-no-value.yaml", 11, "without a value");
     expect_bad("costs-not-a-map.yaml", 7, "a non-map costs section");
+    expect_bad("kind-name-space.yaml", 6, "node kind name 'graphics processor'");
 }
 
 static void test_models_path_from_env(void **state)

@@ -3,7 +3,8 @@
  * hypercube's stated dimension follows a power-of-two N (and only then);
  * the CM-200 rule picks the first of equally wide kinds, counts a kind
  * without `lanes` as one lane, sets router_nodes when the model states it,
- * and refuses lanes that are not procs_per_router x a power of two. */
+ * and refuses lanes that are not procs_per_router x a power of two, and
+ * (through the model check) a kind name that is no step of a key path. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -158,14 +159,33 @@ static void test_cm_refused(void **state)
         g_free(msg);
         cfg_free(root);
     }
-    /* a kind name that is no key path: the override of its lanes fails */
-    CfgNode *root = machine("'a b': {count: 1, lanes: 4}", CM);
-    char *msg = NULL, *desc = part(root, 16, &msg);
-    assert_null(desc);
-    assert_string_equal(msg, "--set: found 'machine.nodes.a b.lanes=16', "
-                             "expected key.path=value");
-    g_free(msg);
-    cfg_free(root);
+    /* a kind name that is no step of a key path is refused by the model
+     * check, at the kind, before a partition writes its lanes; a name of
+     * letters, digits, '_' and '-' partitions */
+    const char *names[] = {"'a b'", "'a.b'", "''", "'a-b_2'"};
+    for (guint i = 0; i < G_N_ELEMENTS(names); i++) {
+        char *kinds = g_strdup_printf("%s: {count: 1, lanes: 4}", names[i]);
+        CfgNode *root = machine(kinds, CM);
+        char *msg = NULL, *desc = part(root, 16, &msg);
+        if (i + 1 < G_N_ELEMENTS(names)) {
+            char *want = g_strdup_printf(
+                "run.yaml:4:%u: found node kind name '%.*s', expected a "
+                "name of letters, digits, '_' and '-' (a step of --set "
+                "machine.nodes.KIND.count)",
+                (unsigned)(strlen(names[i]) + 13),
+                (int)strlen(names[i]) - 2, names[i] + 1);
+            assert_null(desc);
+            if (!msg || strcmp(msg, want) != 0)
+                fail_msg("got '%s'\nwant '%s'", msg, want);
+            g_free(want);
+        } else {
+            assert_string_equal(desc, "a-b_2 lanes 16 = 4 routers x 4");
+        }
+        g_free(desc);
+        g_free(msg);
+        g_free(kinds);
+        cfg_free(root);
+    }
 }
 
 int main(void)
