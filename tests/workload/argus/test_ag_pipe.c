@@ -255,6 +255,41 @@ static void test_wait_context_excludes_next_block(void **state)
     rig_free(&r);
 }
 
+/* The wait is looked up on the block that carries it, also when that is
+ * not its context's first: context 1 issues an empty block E, then Y
+ * with glpWaitContext(0) after the application barrier.  Y still waits
+ * for A at every tile (the serial picture); reading the wait of another
+ * block (E's or one of context 0's, which wait for nothing) lets Y
+ * overtake A, as dropping the wait does. */
+static uint64_t later_wait_frame(gboolean with_wait)
+{
+    Rig r;
+    rig_init(&r);
+    block(&r, 0, 0, A_TRIS);
+    pre(block(&r, 0, 0, 0), WL_AG_SYNC_APP_BARRIER, 0);
+    block(&r, 1, 0, 0);
+    AgBlock *y = block(&r, 1, A_TRIS, 2);
+    pre(y, WL_AG_SYNC_APP_BARRIER, 0);
+    pre(y, WL_AG_SYNC_WAIT_CONTEXT, 0);
+    if (!with_wait)
+        wl_ag_streams_drop(r.st, WL_AG_SYNC_WAIT_CONTEXT);
+    double ms;
+    uint64_t d = run_frame(&r, &ms);
+    rig_free(&r);
+    return d;
+}
+
+static void test_wait_context_on_later_block(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 2; k++) {
+        pool = k == 1;
+        assert_int_equal(later_wait_frame(TRUE), 0);
+        assert_true(later_wait_frame(FALSE) > 0);
+    }
+    pool = FALSE;
+}
+
 /* The last thread to reach the application barrier wakes every other
  * one, context 0 included: context 0 reaches it at once (Y's block) and
  * parks, context 1 issues A first and arrives last.  glpWaitContext(1)
@@ -888,6 +923,7 @@ int main(void)
         cmocka_unit_test(test_wait_context_orders),
         cmocka_unit_test(test_app_barrier_wakes_context_0),
         cmocka_unit_test(test_wait_context_excludes_next_block),
+        cmocka_unit_test(test_wait_context_on_later_block),
         cmocka_unit_test(test_streams_carry_the_frame_loop),
         cmocka_unit_test(test_event_chain_timing),
         cmocka_unit_test(test_tile_round_robin),
