@@ -2,7 +2,8 @@
  * mutation testing (make mutate, docs/testing.md) found unchecked:
  * "#rrggbb" palette colours read channel by channel, and a NEWS move's
  * time is its coefficients times the machine's unit costs (dp_cost.h:
- * "tests can check sums"). */
+ * "tests can check sums"), and points mode draws no vertex of a polygon
+ * behind the eye. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -107,6 +108,44 @@ static void test_router_procs_default(void **state)
     assert_true(c.router_procs > 1);
 }
 
+/* Points mode draws the vertices of the polygons in front of the eye
+ * only: by hand, polygon 0 (ok) has two vertices on a 16 x 16 screen and
+ * one left of it (clipped), polygon 1 (not ok: a vertex behind the eye)
+ * has three on screen, none drawn.  The z-buffer holds exactly polygon
+ * 0's two keys at the floors of its vertices. */
+static void test_points_skip_polygons_behind_eye(void **state)
+{
+    (void)state;
+    double x[6] = {2.5, 10.2, -1.5, 12, 13.5, 9.9};
+    double y[6] = {3.5, 4.9, 12, 12, 13, 14.2};
+    double z[6] = {0.5, 0.25, 0.75, 0.5, 0.5, 0.5}, v[6] = {0};
+    uint32_t start[3] = {0, 3, 6};
+    uint8_t color[2] = {3, 5}, ok[2] = {1, 0};
+    WlDpPolys p = {.n = 2, .n_ok = 1, .kmax = 3, .start = start,
+                   .x = x, .y = y, .z = z, .val = v, .color = color,
+                   .ok = ok, .n_verts = 6, .mode = WL_DP_MODE_POINTS};
+    WlDpRenderOpts o = {.mode = WL_DP_MODE_POINTS, .buffer_factor = 1,
+                        .ops = wl_dp_ops_defaults()};
+    WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 16};
+    WlDpVm *vm = wl_dp_vm_new(&mc, 1, 16, 16);
+    WlDpImage *img = wl_dp_render(vm, &p, 16, 16, &o);
+    assert_int_equal(img->pixels, 2);
+    assert_int_equal(img->clipped, 1);
+    assert_int_equal(img->max_len, 1);
+    uint8_t idx = wl_dp_color_index(3, 1.0);
+    for (int k = 0; k < 16 * 16; k++) {
+        uint64_t want = k == 3 * 16 + 2    ? wl_dp_key(0.5, 0, idx)
+                        : k == 4 * 16 + 10 ? wl_dp_key(0.25, 0, idx)
+                                           : 0;
+        if (img->zbuf[k] != want)
+            fail_msg("pixel %d: key %#llx, expected %#llx", k,
+                     (unsigned long long)img->zbuf[k],
+                     (unsigned long long)want);
+    }
+    wl_dp_image_free(img);
+    wl_dp_vm_free(vm);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -114,6 +153,7 @@ int main(void)
         cmocka_unit_test(test_news_cost_sum),
         cmocka_unit_test(test_flushes_send_each_segment_once),
         cmocka_unit_test(test_router_procs_default),
+        cmocka_unit_test(test_points_skip_polygons_behind_eye),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
