@@ -772,6 +772,54 @@ static void test_free_null(void **st)
     wl_pf_ops.free_params(NULL);
 }
 
+/* A shared-memory machine with a pipe that lacks one Performer cost
+ * (sgi-onyx without isect_triangle, written to a scratch model folder)
+ * is refused before any frame runs: no result, the missing cost named
+ * at the model's cpu costs. */
+static void test_missing_cost_refused(void **st)
+{
+    (void)st;
+    char *src = NULL;
+    assert_true(g_file_get_contents("models/sgi-onyx.yaml", &src, NULL, NULL));
+    GString *y = g_string_new(NULL);
+    gchar **lines = g_strsplit(src, "\n", -1);
+    gboolean skip = FALSE;
+    for (gchar **l = lines; *l; l++) {
+        if (g_str_has_prefix(*l, "      isect_triangle:"))
+            skip = TRUE;
+        else if (skip && !g_str_has_prefix(*l, "        "))
+            skip = FALSE;
+        if (!skip)
+            g_string_append_printf(y, "%s\n", *l);
+    }
+    g_strfreev(lines);
+    g_free(src);
+    char *dir = g_dir_make_tmp("pgsim-pf-XXXXXX", NULL);
+    char *path = g_build_filename(dir, "onyx-short.yaml", NULL);
+    assert_true(g_file_set_contents(path, y->str, -1, NULL));
+    g_string_free(y, TRUE);
+    char *old = g_strdup(g_getenv("PGSIM_MODELS"));
+    g_setenv("PGSIM_MODELS", dir, TRUE);
+    GError *err = NULL;
+    SimResult *r = run("machine: {model: onyx-short}\n"
+                       "workload: {type: performer, town: {blocks: 1}}\n",
+                       2, &err);
+    if (old)
+        g_setenv("PGSIM_MODELS", old, TRUE);
+    else
+        g_unsetenv("PGSIM_MODELS");
+    assert_null(r);
+    assert_non_null(err);
+    if (!strstr(err->message, "found no cost for 'isect_triangle' on 'cpu'"))
+        fail_msg("%s", err->message);
+    g_error_free(err);
+    g_unlink(path);
+    g_rmdir(dir);
+    g_free(path);
+    g_free(dir);
+    g_free(old);
+}
+
 /* A machine with fewer cpus than the mode needs (3 for APP, CULL and
  * DRAW, and one for ISECT, on by default) is refused at the workload
  * section, and the run stops there. */
@@ -1080,6 +1128,7 @@ int main(void)
         cmocka_unit_test(test_one_frame_rate),
         cmocka_unit_test(test_matrix_ops_saved),
         cmocka_unit_test(test_machine_refused),
+        cmocka_unit_test(test_missing_cost_refused),
         cmocka_unit_test(test_keys_reach_the_run),
         cmocka_unit_test(test_stage_phases),
         cmocka_unit_test(test_draw_stream_source),
