@@ -2,8 +2,10 @@
  * computes itself (issue 21): the PN-triangle measurement on
  * Pixel-Planes 5 (host -> GPs -> renderers: every triangle sent once,
  * split over the GPs and renderers with no remainder lost or doubled, the
- * slowest GP's time from the model's costs), and the per-frame log and
- * its _stages.csv (a row per frame, the stage rows adding up to the run). */
+ * slowest GP's time from the model's costs; no frame finished before
+ * run.until: per-frame figures 0; an engine error fails the run), and
+ * the per-frame log and its _stages.csv (a row per frame, the stage rows
+ * adding up to the run). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -25,6 +27,7 @@
 #include "sim/workload/performer/pf_workload.h"
 
 static SimTrace *trace; /* given to run()'s engine when set */
+static gboolean dry;     /* run()'s engine stops before the first event */
 
 static SimResult *run(const char *yaml, int frames, GError **err)
 {
@@ -32,6 +35,7 @@ static SimResult *run(const char *yaml, int frames, GError **err)
     assert_non_null(root);
     SimEngine *eng = sim_engine_new(1);
     sim_engine_set_trace(eng, trace);
+    sim_engine_set_dry_run(eng, dry);
     WlContext ctx = {.eng = eng, .root = root, .seed = 1,
                      .fidelity = "analytic", .frames = frames};
     void *params = wl_pf_ops.parse(cfg_get(root, "workload"), err);
@@ -228,6 +232,66 @@ static void test_pn_defaults(void **st)
     assert_true(metric(r, "command_bytes_per_frame") == fine * 100.0);
     sim_result_free(r);
     g_free(y);
+}
+
+/* pn: when run.until ends the run before a frame finishes (the bus
+ * transfer alone takes longer than 1 us), every per-frame figure is 0,
+ * not a division by no frames: frame time, triangle rate and the bytes
+ * per frame on either machine; the mesh figures stand. */
+static void test_pn_no_frame_finished(void **st)
+{
+    (void)st;
+    const char *machines[] = {
+        "machine:\n  model: sgi-onyx\n"
+        "  nodes: {pipe: {costs: {pn_vertex: {value: 0.7 us, "
+        "assumption: t}}}}\n",
+        "machine: {model: pixel-planes-5}\n"};
+    uint64_t coarse, fine, pts;
+    pn_counts(2, &coarse, &fine, &pts);
+    for (guint i = 0; i < G_N_ELEMENTS(machines); i++) {
+        char *y = g_strconcat(machines[i], pp5_scene,
+                              "run: {until: 1 us}\n"
+                              "workload: {type: performer, pn: {}}\n",
+                              NULL);
+        GError *err = NULL;
+        SimResult *r = run(y, 3, &err);
+        if (!r)
+            fail_msg("%s", err->message);
+        assert_int_equal(r->frame_times->len, 0);
+        assert_true(metric(r, "frame_ms") == 0);
+        assert_true(metric(r, "fine_tris_per_s") == 0);
+        assert_true(metric(r, "link_bytes_per_frame") == 0);
+        assert_true(metric(r, "command_bytes_per_frame") == 0);
+        assert_true(metric(r, "fine_tris") == fine);
+        assert_true(metric(r, "coarse_tris") == coarse);
+        sim_result_free(r);
+        g_free(y);
+    }
+}
+
+/* pn: an engine error fails the run with the engine's message (a dry
+ * run stops before the first event), on either machine. */
+static void test_pn_engine_error(void **st)
+{
+    (void)st;
+    const char *machines[] = {
+        "machine:\n  model: sgi-onyx\n"
+        "  nodes: {pipe: {costs: {pn_vertex: {value: 0.7 us, "
+        "assumption: t}}}}\n",
+        "machine: {model: pixel-planes-5}\n"};
+    dry = TRUE;
+    for (guint i = 0; i < G_N_ELEMENTS(machines); i++) {
+        char *y = g_strconcat(machines[i], pp5_scene,
+                              "workload: {type: performer, pn: {}}\n", NULL);
+        GError *err = NULL;
+        assert_null(run(y, 1, &err));
+        assert_non_null(err);
+        assert_string_equal(err->message, "stopped before the first "
+                                          "simulated event (dry run)");
+        g_error_free(err);
+        g_free(y);
+    }
+    dry = FALSE;
 }
 
 /* pn: refuses a machine of neither kind set and a scene that is already
@@ -1115,6 +1179,8 @@ int main(void)
         cmocka_unit_test(test_pn_on_the_onyx),
         cmocka_unit_test(test_pn_defaults),
         cmocka_unit_test(test_pn_refusals),
+        cmocka_unit_test(test_pn_no_frame_finished),
+        cmocka_unit_test(test_pn_engine_error),
         cmocka_unit_test(test_frame_log),
         cmocka_unit_test(test_geoset_bound),
         cmocka_unit_test(test_sphere_union),
