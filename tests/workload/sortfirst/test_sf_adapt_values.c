@@ -98,6 +98,34 @@ static void tri(SceneDb *db, guint sid, double x0, double y0, double x1,
     assert_true(scene_db_append(db, sid, &e, NULL));
 }
 
+/* A database of one posted structure of the n triangles t[i] = (x0, y0,
+ * x1, y1) (tri()), one chunk and instance each, all mastered by one
+ * processor.  *src gets the structure database (free both). */
+static WlSfDb *tris_db(SceneDb **src, const double (*t)[4], guint n)
+{
+    *src = scene_db_new();
+    guint root = scene_db_add_struct(*src, "root");
+    for (guint i = 0; i < n; i++)
+        tri(*src, root, t[i][0], t[i][1], t[i][2], t[i][3]);
+    scene_db_post(*src, root);
+    WlSfDb *db = wl_sf_db_new(*src, 1, 1, WL_SF_CHUNK_UNSORTED, NULL);
+    assert_int_equal(wl_sf_n_insts(db), n);
+    return db;
+}
+
+/* One processor's estimate of db on `grid` x `grid` cells of the 16 x
+ * 16 screen under ortho(); its weights must be `want` (free it). */
+static WlSfAdapt *estimate_one(const WlSfDb *db, guint grid,
+                               const char *want)
+{
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 1, 16, 16);
+    WlSfAdapt *a = wl_sf_adapt_new(grid, 1);
+    wl_sf_adapt_estimate(a, db, &r, ortho());
+    expect_weights(a, want);
+    return a;
+}
+
 /* One processor masters three triangles: A and B with box centres at
  * screen (13.6, 5.6), C at (1, 5).  On 4 x 4 cells A and B share cell
  * 7 (counted once in nz: the 8th bit of the processor's first mark
@@ -108,28 +136,39 @@ static void tri(SceneDb *db, guint sid, double x0, double y0, double x1,
 static void test_cells(void **st)
 {
     (void)st;
-    SceneDb *src = scene_db_new();
-    guint root = scene_db_add_struct(src, "root");
-    tri(src, root, 0.6, 0.2, 0.8, 0.4);
-    tri(src, root, 0.6, 0.2, 0.8, 0.4);
-    tri(src, root, -0.9375, 0.3125, -0.8125, 0.4375);
-    tri(src, root, 1, 0.2, 1, 0.4); /* flat, on the right edge x = 16 */
-    scene_db_post(src, root);
-    WlSfDb *db = wl_sf_db_new(src, 1, 1, WL_SF_CHUNK_UNSORTED, NULL);
-    assert_int_equal(wl_sf_n_insts(db), 4);
-    WlSfRegions r;
-    wl_sf_regions_init(&r, 1, 16, 16);
-    WlSfAdapt *a = wl_sf_adapt_new(4, 1);
-    wl_sf_adapt_estimate(a, db, &r, ortho());
-    expect_weights(a, "4:1 7:3");
+    static const double t[4][4] = {
+        {0.6, 0.2, 0.8, 0.4},
+        {0.6, 0.2, 0.8, 0.4},
+        {-0.9375, 0.3125, -0.8125, 0.4375},
+        {1, 0.2, 1, 0.4}, /* flat, on the right edge x = 16 */
+    };
+    SceneDb *src;
+    WlSfDb *db = tris_db(&src, t, 4);
+    WlSfAdapt *a = estimate_one(db, 4, "4:1 7:3");
     assert_int_equal(a->added[0], 4);
     assert_int_equal(a->nz[0], 2);
     wl_sf_adapt_free(a);
-    a = wl_sf_adapt_new(16, 1);
-    wl_sf_adapt_estimate(a, db, &r, ortho());
-    expect_weights(a, "81:1 93:2 95:1");
+    a = estimate_one(db, 16, "81:1 93:2 95:1");
     assert_int_equal(a->nz[0], 3);
     wl_sf_adapt_free(a);
+    wl_sf_db_free(db);
+    scene_db_free(src);
+}
+
+/* A box's centre is that of its part on screen (clamped at 0 and at
+ * the size on each axis), on 4 x 4 cells of 4 pixels.  A over screen
+ * [-4, 7.5] x [-4, 7.5]: centre (3.75, 3.75), cell 0 (clamped at 1
+ * instead it would be 4.25: cell 1 or 4).  B over [2, 30] x [6, 20]:
+ * centre (9, 11), cell 10 (unclamped (16, 13): cell 15). */
+static void test_clamped_centres(void **st)
+{
+    (void)st;
+    static const double t[3][4] = {{-1.5, 1.5, -0.0625, 0.0625},
+                                   {-0.75, 0.25, 2.75, -1.5},
+                                   {-0.75, 0.25, 2.75, -1.5}};
+    SceneDb *src;
+    WlSfDb *db = tris_db(&src, t, 3);
+    wl_sf_adapt_free(estimate_one(db, 4, "0:1 10:2"));
     wl_sf_db_free(db);
     scene_db_free(src);
 }
@@ -424,6 +463,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_estimate),
         cmocka_unit_test(test_cells),
+        cmocka_unit_test(test_clamped_centres),
         cmocka_unit_test(test_predict),
         cmocka_unit_test(test_remap),
         cmocka_unit_test(test_weight_in),

@@ -29,6 +29,8 @@ typedef struct {
 
 /* fix_init posts b as well (a second posting). */
 static gboolean post_b;
+/* fix_init gives root a triangle of its own, after its matrix. */
+static gboolean root_prim;
 
 static void add(SceneDb *db, guint sid, SceneElem e)
 {
@@ -44,6 +46,8 @@ static void fix_init(Fix *f, const WlSfEditSpec *spec)
     guint b = scene_db_add_struct(f->src, "b");
     add(f->src, root, scene_elem_matrix(mat4_translate(1, 2, 3),
                                         SCENE_MAT_REPLACE));
+    if (root_prim)
+        add(f->src, root, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
     add(f->src, root, scene_elem_execute(a));
     add(f->src, a, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
     add(f->src, b, scene_elem_prim(SCENE_EL_TRIANGLE, f->v, 3));
@@ -159,6 +163,25 @@ static void test_nothing(void **st)
     fix_clear(&f);
 }
 
+/* A matrix edit with fix_init's flags set as given: the db has `nodes`
+ * max-set nodes and two instances, and both continue (map 0, 1). */
+static void matrix_keeps_both(gboolean two, gboolean own, guint nodes)
+{
+    const WlSfEditSpec spec = {{1, 0, 0, 0}, 30};
+    Fix f;
+    post_b = two;
+    root_prim = own;
+    fix_init(&f, &spec);
+    post_b = root_prim = FALSE;
+    assert_int_equal(f.sf->nodes->len, nodes);
+    assert_int_equal(wl_sf_n_insts(f.sf), 2);
+    gint64 *map = edit_frame(&f, 1, 0, 0);
+    assert_int_equal(map[0], 0);
+    assert_int_equal(map[1], 1);
+    g_free(map);
+    fix_clear(&f);
+}
+
 /* Two postings: root (node 0, its execute of a node 1) and b (node 2,
  * a root too).  A matrix edit keeps both trees: every node and instance
  * continues (b's root is matched to the old root of its own posting,
@@ -166,18 +189,17 @@ static void test_nothing(void **st)
 static void test_two_postings(void **st)
 {
     (void)st;
-    const WlSfEditSpec spec = {{1, 0, 0, 0}, 30};
-    Fix f;
-    post_b = TRUE;
-    fix_init(&f, &spec);
-    post_b = FALSE;
-    assert_int_equal(f.sf->nodes->len, 3);
-    assert_int_equal(wl_sf_n_insts(f.sf), 2);
-    gint64 *map = edit_frame(&f, 1, 0, 0);
-    assert_int_equal(map[0], 0);
-    assert_int_equal(map[1], 1);
-    g_free(map);
-    fix_clear(&f);
+    matrix_keeps_both(TRUE, FALSE, 3);
+}
+
+/* The root's own triangle: its chunk (chunk 0, structure 0) has one
+ * instance, of max-set node 0 (instance 0); a's, of node 1, is
+ * instance 1.  A matrix edit keeps both: node 0 continues old node 0,
+ * so its instance is old instance 0, not a new one. */
+static void test_root_node_kept(void **st)
+{
+    (void)st;
+    matrix_keeps_both(FALSE, TRUE, 2);
 }
 
 /* Structure 0 a leaf ("b" first): an execute edit can point the root's
@@ -357,6 +379,7 @@ int main(void)
         cmocka_unit_test(test_unpost_post),
         cmocka_unit_test(test_nothing),
         cmocka_unit_test(test_two_postings),
+        cmocka_unit_test(test_root_node_kept),
         cmocka_unit_test(test_execute_to_first),
         cmocka_unit_test(test_unpost_last),
         cmocka_unit_test(test_execute_tries),
