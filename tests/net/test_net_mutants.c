@@ -163,6 +163,46 @@ static void test_tracked_bytes_parts(void **state)
     net_topo_free(c4);
 }
 
+static void ignore_arrival(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    (void)d;
+    (void)ctx;
+}
+
+/* Tracked bytes when the link table grows: a message i -> i ^ 1 on a
+ * 5-cube crosses one link no message crossed before, so each adds one
+ * link record d.  The 16-slot table (load <= 1/2) doubles at the 9th
+ * link and again at the 17th: those steps add d plus 16 and 32 slots,
+ * all others d alone (the idle level, messages delivered). */
+static void test_tracked_bytes_table_growth(void **state)
+{
+    (void)state;
+    NetTopo *t = net_hypercube_new(5);
+    NetParams p = params(NET_SW_CUT_THROUGH);
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_ANALYTIC);
+    size_t idle[21];
+    idle[0] = net_tracked_bytes(net);
+    for (uint32_t k = 1; k <= 20; k++) {
+        net_send(net, k - 1, (k - 1) ^ 1, 10, NULL, ignore_arrival, NULL);
+        assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+        idle[k] = net_tracked_bytes(net);
+    }
+    size_t d = idle[1] - idle[0];
+    assert_true(d >= sizeof(GQueue) && d < 4096); /* a link has a queue */
+    for (uint32_t k = 1; k <= 20; k++)
+        if (k != 9 && k != 17)
+            assert_int_equal(idle[k] - idle[k - 1], d);
+    assert_true(idle[9] > idle[8] + d && idle[17] > idle[16] + d);
+    size_t slots16 = idle[9] - idle[8] - d;
+    assert_true(slots16 >= 16 * 2 * sizeof(void *));
+    assert_int_equal(idle[17] - idle[16] - d, 2 * slots16);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
 static void coll_done(NetNet *net, void *ctx)
 {
     *(SimTime *)ctx = sim_now(net_engine(net));
@@ -286,6 +326,7 @@ int main(void)
         cmocka_unit_test(test_empty_message_one_packet),
         cmocka_unit_test(test_flow_many_links),
         cmocka_unit_test(test_tracked_bytes_parts),
+        cmocka_unit_test(test_tracked_bytes_table_growth),
         cmocka_unit_test(test_control_network_slow),
         cmocka_unit_test(test_packet_trace_waits),
         cmocka_unit_test(test_flow_last_byte),
