@@ -66,12 +66,18 @@ static Vec3 rnd_in(Gen *g, Vec3 lo, Vec3 hi)
     return vec3(uni(g, lo.x, hi.x), uni(g, lo.y, hi.y), uni(g, lo.z, hi.z));
 }
 
+void scene_pphigs_plane_basis(Vec3 n, Vec3 *u, Vec3 *v)
+{
+    Vec3 a = fabs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0);
+    *u = vec3_norm(vec3_cross(n, a));
+    *v = vec3_cross(n, *u);
+}
+
 /* A planar regular polygon of radius r about c, randomly oriented. */
 static void add_poly(Gen *g, guint sid, Vec3 c, double r)
 {
-    Vec3 n = vec3_norm(rnd_in(g, vec3(-1, -1, -1), vec3(1, 1, 1)));
-    Vec3 a = fabs(n.x) < 0.9 ? vec3(1, 0, 0) : vec3(0, 1, 0);
-    Vec3 u = vec3_norm(vec3_cross(n, a)), v = vec3_cross(n, u);
+    Vec3 n = vec3_norm(rnd_in(g, vec3(-1, -1, -1), vec3(1, 1, 1))), u, v;
+    scene_pphigs_plane_basis(n, &u, &v);
     Vec3 *p = g_new(Vec3, g->verts);
     for (guint i = 0; i < g->verts; i++) {
         double t = 2 * G_PI * i / g->verts;

@@ -76,6 +76,11 @@ SceneCamera scene_pphigs_fit_view(const SceneDb *db);
  * and s->db holding the database.  NULL with *err as above. */
 Scene *scene_pphigs_scene_new(const ScenePphigsSpec *spec, GError **err);
 
+/* The in-plane axes the generators draw a polygon of unit normal n on:
+ * u = n x a normalised, a the x axis unless |n.x| >= 0.9 (then the y
+ * axis, so that a is never near n), and v = n x u. */
+void scene_pphigs_plane_basis(Vec3 n, Vec3 *u, Vec3 *v);
+
 /* TRUE when the primitive lies wholly outside one clip plane of `mvp`
  * (-w <= x, y, z <= w): trivially rejected, off-screen.  An
  * order-dependent (2-D) primitive is tested against x and y only: it is

@@ -1,7 +1,8 @@
 /* test_pphigs_db.c — the four PPHIGS database generators, checked element
  * by element on small specs: structure counts, depth, matrix modes,
  * colours per object, boid instancing, and the spec limits at their
- * boundaries (one value accepted, the next rejected).
+ * boundaries (one value accepted, the next rejected); the in-plane axes
+ * of a polygon on both sides of their switch at |n.x| = 0.9.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -10,6 +11,7 @@
 
 #include "tests/scene/mesh_check.h"
 #include "sim/scene/pphigs_db.h"
+#include <math.h>
 
 static ScenePphigsSpec spec(ScenePphigsKind k)
 {
@@ -176,6 +178,35 @@ static void test_limits(void **st)
     assert_false(scene_pphigs_generate(&s, &d, NULL));
 }
 
+static void assert_vec(Vec3 a, double x, double y, double z)
+{
+    assert_true(fabs(a.x - x) < 1e-15 && fabs(a.y - y) < 1e-15 &&
+                fabs(a.z - z) < 1e-15);
+}
+
+/* n = z: u = z x x = y, v = z x y = -x.  n = (0.9, sqrt 0.19, 0), at the
+ * switch: a = y, u = n x y = (0, 0, 0.9) normalised = z, v = n x z =
+ * (n.y, -0.9, 0); just under 0.9: a = x, u = n x x = (0, 0, -n.y)
+ * normalised = -z, v = n x -z = (-n.y, n.x, 0). */
+static void test_plane_basis(void **st)
+{
+    (void)st;
+    Vec3 u, v;
+    scene_pphigs_plane_basis(vec3(0, 0, 1), &u, &v);
+    assert_vec(u, 0, 1, 0);
+    assert_vec(v, -1, 0, 0);
+    double y = sqrt(1 - 0.9 * 0.9);
+    scene_pphigs_plane_basis(vec3(0.9, y, 0), &u, &v);
+    assert_vec(u, 0, 0, 1);
+    assert_vec(v, y, -0.9, 0);
+    double x = nextafter(0.9, 0);
+    scene_pphigs_plane_basis(vec3(x, y, 0), &u, &v);
+    assert_vec(u, 0, 0, -1);
+    assert_vec(v, -y, x, 0);
+    scene_pphigs_plane_basis(vec3(-0.9, y, 0), &u, &v); /* |n.x| */
+    assert_vec(u, 0, 0, -1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -183,6 +214,7 @@ int main(void)
         cmocka_unit_test(test_station),
         cmocka_unit_test(test_flock),
         cmocka_unit_test(test_limits),
+        cmocka_unit_test(test_plane_basis),
     };
     return cmocka_run_group_tests_name("pphigs_db", tests, NULL, NULL);
 }

@@ -16,6 +16,7 @@
 #include "sim/app/run/config.h"
 #include "sim/workload/pphigs/pphigs_run.h"
 #include "sim/workload/workload.h"
+#include "tests/support.h"
 #include <glib/gstdio.h>
 #include <math.h>
 #include <string.h>
@@ -631,6 +632,7 @@ static void test_run_matches_table(void **st)
 
 int main(void)
 {
+    support_warnings_fatal(); /* an error set twice is a bug */
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_db_stats_match_paper),
         cmocka_unit_test(test_bad_specs),

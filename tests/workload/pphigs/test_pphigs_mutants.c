@@ -3,7 +3,9 @@
  * non-primitive cost sums every colour, matrix and execute element of
  * every instance in the max-set view, the posted root's included; the
  * first element of a distributed list draws on the far plane (its id is
- * at least 1). */
+ * at least 1); a polygon's depth plane and shade come from its fan
+ * triangle (0, i, i+1) of largest screen area; modify reaches every
+ * holder up to the 64th GP. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -137,6 +139,60 @@ static void test_far_plane_first_element_draws(void **state)
     scene_db_free(db);
 }
 
+/* A quad that is not planar, (-0.5, -0.5, 0) (0.5, -0.5, 0) (0.5, 0.2, 0)
+ * (0, 0.9, 0.5): its fan triangles (0, 1, 2) and (0, 2, 3) have NDC
+ * areas 0.35 and 0.525 (and (1, 2, 3), not a fan triangle, 0.175), so
+ * (0, 2, 3) sets the plane and the shade: u = (1, 0.7, 0),
+ * v = (0.5, 1.4, 0.5), n = (0.35, -0.5, 1.05); the plane has z = 0.5 at
+ * vertex 3 (screen (50, 4) on 100 x 80), where (0, 1, 2)'s has z = 0. */
+static void test_largest_fan_triangle(void **state)
+{
+    (void)state;
+    Vec3 v[4] = {vec3(-0.5, -0.5, 0), vec3(0.5, -0.5, 0), vec3(0.5, 0.2, 0),
+                 vec3(0, 0.9, 0.5)};
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 4);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 0.5, 0.25), .depth = 1};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 100, 80, out), 1);
+    WlPphigsCmd c = g_array_index(out, WlPphigsCmd, 0);
+    assert_int_equal(c.nedges, 4);
+    assert_int_equal(c.rgba, rgba_of(0.3 + 0.7 * 1.05 / sqrt(1.475)));
+    assert_true(fabs(c.z.a * 50 + c.z.b * 4 + c.z.c - 0.5) < 1e-12);
+    assert_true(fabs(c.z.a * 25 + c.z.b * 60 + c.z.c) < 1e-12); /* vertex 0 */
+    g_array_free(out, TRUE);
+}
+
+/* On 64 GPs (the most a distribution takes) a modified colour, held by
+ * every GP (simple algorithm), is sent to each of the 64 once and every
+ * copy changes. */
+static void test_modify_64_gps(void **state)
+{
+    (void)state;
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    add(db, root, scene_elem_color(vec3(1, 0, 0)));
+    add(db, root, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    scene_db_post(db, root);
+    WlPphigsWeights w = {.w = {[SCENE_EL_TRIANGLE] = 1}, .cluster = 1};
+    WlPphigsDist *d = wl_pphigs_dist_new(db, 64, WL_PPHIGS_SIMPLE, &w);
+    uint64_t sent = wl_pphigs_dist_traffic(d)->elements_sent;
+    assert_int_equal(sent, 64 + 1);
+    SceneElem c = scene_elem_color(vec3(0, 0, 1));
+    assert_true(wl_pphigs_dist_modify(d, root, 0, &c, NULL));
+    const WlPphigsTraffic *t = wl_pphigs_dist_traffic(d);
+    assert_int_equal(t->elements_sent, sent + 64);
+    for (guint g = 0; g < 64; g++) {
+        assert_int_equal(t->sent_to[g], g == 0 ? 3 : 2);
+        const SceneElem *e = scene_db_elem(wl_pphigs_dist_gp(d, g), root, 0);
+        assert_true(e->kind == SCENE_EL_COLOR && e->color.z == 1 &&
+                    e->color.x == 0);
+    }
+    wl_pphigs_dist_free(d);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -144,6 +200,8 @@ int main(void)
         cmocka_unit_test(test_shading),
         cmocka_unit_test(test_box_clamped_to_screen),
         cmocka_unit_test(test_far_plane_first_element_draws),
+        cmocka_unit_test(test_largest_fan_triangle),
+        cmocka_unit_test(test_modify_64_gps),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
