@@ -565,6 +565,7 @@ static void test_remap(void **st)
     assert_int_equal(a->n_insts, 2);
     assert_true(a->last_ok[0] == 0 && a->last_ok[1] == 0);
     wl_sf_adapt_free(a);
+    wl_sf_adapt_free(NULL);
 }
 
 int main(void)

@@ -46,6 +46,7 @@ static void test_memory(void **st)
     assert_int_equal(wl_sf_book_memory(b, 1), 2 * 2 + 40 + 36 + 8);
     assert_int_equal(wl_sf_book_memory(b, 2), 0);
     wl_sf_book_free(b);
+    wl_sf_book_free(NULL);
     wl_sf_db_free(db);
     scene_db_free(src);
 }
