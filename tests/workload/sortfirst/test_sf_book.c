@@ -10,6 +10,7 @@
 #include <cmocka.h>
 #include <string.h>
 
+#include "sim/workload/sortfirst/sf_trav.h"
 #include "tests/workload/sortfirst/sf_testutil.h"
 
 static const WlSfSizes Z = {64, 40, 36, 8, 4, 8, 16, 96};
@@ -155,9 +156,40 @@ static void test_empty(void **st)
     scene_db_free(src);
 }
 
+/* 64 processors, every bit of the masks: the one node (the posted
+ * root) is scanned by each in the plain traversal, and volume-tested
+ * by each when culling (a root is always entered; nothing is needed,
+ * so nothing is scanned). */
+static void test_trav_64(void **st)
+{
+    (void)st;
+    SceneDb *src;
+    WlSfDb *db = sf_test_tiny_db(&src, 64);
+    WlSfRegions r;
+    wl_sf_regions_init(&r, 64, 64, 64);
+    WlSfBook *b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
+    WlSfTravProc tp[64];
+    for (int mode = WL_SF_TRAV_PLAIN; mode <= WL_SF_TRAV_CULLED;
+         mode += WL_SF_TRAV_CULLED) {
+        WlSfTrav t = {0};
+        wl_sf_trav_count(b, mode, &t, tp);
+        gboolean plain = mode == WL_SF_TRAV_PLAIN;
+        assert_int_equal(t.plain, 64);
+        assert_int_equal(t.tests, plain ? 0 : 64);
+        for (guint p = 0; p < 64; p++) {
+            assert_int_equal(tp[p].nodes, plain);
+            assert_int_equal(tp[p].tests, !plain);
+        }
+    }
+    wl_sf_book_free(b);
+    wl_sf_db_free(db);
+    scene_db_free(src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_trav_64),
         cmocka_unit_test(test_batch),
         cmocka_unit_test(test_empty),
         cmocka_unit_test(test_memory),
