@@ -15,6 +15,16 @@
 
 static const WlSfSizes Z = {64, 40, 36, 8, 4, 8, 16, 96};
 
+/* sf_test_tiny_db() for `procs`, *r its regions on a screen of 2 procs
+ * pixels square (at least the grid), and a max-set book of it. */
+static WlSfBook *tiny_book(SceneDb **src, WlSfDb **db, guint procs,
+                           WlSfRegions *r)
+{
+    *db = sf_test_tiny_db(src, procs);
+    wl_sf_regions_init(r, procs, 2 * (int)procs, 2 * (int)procs);
+    return wl_sf_book_new(*db, r, WL_SF_MAXSET, &Z);
+}
+
 /* Max-set: a master keeps a bit vector of ceil(P / 8) bytes for the
  * chunk and one per instance; a holder the chunk record (40 B), its
  * triangles (36 B each) and its instance pointers (8 B each).
@@ -25,10 +35,9 @@ static void test_memory(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db = sf_test_tiny_db(&src, 2);
+    WlSfDb *db;
     WlSfRegions r;
-    wl_sf_regions_init(&r, 2, 16, 16);
-    WlSfBook *b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
+    WlSfBook *b = tiny_book(&src, &db, 2, &r);
     assert_int_equal(wl_sf_book_memory(b, 0), 122);
     assert_int_equal(wl_sf_book_memory(b, 1), 86);
     assert_int_equal(wl_sf_book_master(b, 0), 0);
@@ -40,9 +49,7 @@ static void test_memory(void **st)
     wl_sf_book_free(b);
     wl_sf_db_free(db);
     scene_db_free(src);
-    db = sf_test_tiny_db(&src, 9);
-    wl_sf_regions_init(&r, 9, 18, 18);
-    b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
+    b = tiny_book(&src, &db, 9, &r);
     assert_int_equal(wl_sf_book_memory(b, 0), 2 * 2 + 40 + 72 + 8);
     assert_int_equal(wl_sf_book_memory(b, 1), 2 * 2 + 40 + 36 + 8);
     assert_int_equal(wl_sf_book_memory(b, 2), 0);
@@ -164,10 +171,9 @@ static void test_trav_64(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db = sf_test_tiny_db(&src, 64);
+    WlSfDb *db;
     WlSfRegions r;
-    wl_sf_regions_init(&r, 64, 64, 64);
-    WlSfBook *b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
+    WlSfBook *b = tiny_book(&src, &db, 64, &r);
     WlSfTravProc tp[64];
     for (int mode = WL_SF_TRAV_PLAIN; mode <= WL_SF_TRAV_CULLED;
          mode += WL_SF_TRAV_CULLED) {
