@@ -249,8 +249,10 @@ static gint *match_nodes(const GArray *old, const GArray *old_serial,
         } else if (match[n->parent] >= 0) {
             guint po = (guint)match[n->parent];
             guint slot = ko.start[po] + kn.ord[i];
-            if (slot < ko.start[po + 1])
-                o = (gint)ko.kids[slot];
+            /* the parents run one structure, whose executes (one child
+             * node each) no edit adds or removes: as many children */
+            g_assert(slot < ko.start[po + 1]);
+            o = (gint)ko.kids[slot];
         }
         if (o >= 0 && g_array_index(old, SceneMaxNode, o).sid != n->sid)
             o = -1;

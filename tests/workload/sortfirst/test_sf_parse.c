@@ -185,6 +185,26 @@ static void test_count_ranges(void **st)
                       (int)strlen(HEAD ", edit_angle_deg: ") + 1, "");
 }
 
+/* bytes and edits must be maps of known keys with valid values: each
+ * refused at the offending node. */
+static void test_sub_maps(void **st)
+{
+    (void)st;
+    static const char *const bad[][2] = {
+        {", bytes: 5", "a map {message"},
+        {", bytes: {chunk: [1]}", ""},
+        {", edits: 5", "a map {matrix"},
+        {", edits: {post: -1}", ""},
+        {", edits: {posts: 1}", "posts"},
+    };
+    static const char *const at[] = {", bytes: ", ", bytes: {chunk: ",
+                                     ", edits: ", ", edits: {post: ",
+                                     ", edits: {"};
+    for (guint k = 0; k < G_N_ELEMENTS(bad); k++)
+        expect_refused_at(bad[k][0], (int)(strlen(HEAD) + strlen(at[k])) + 1,
+                          bad[k][1]);
+}
+
 /* migration: pull is refused, at the word, unless min-set, fixed,
  * static and plain. */
 static void test_pull_policy(void **st)
@@ -233,6 +253,7 @@ int main(void)
         cmocka_unit_test(test_count_ranges),
         cmocka_unit_test(test_pull_policy),
         cmocka_unit_test(test_mem_bytes),
+        cmocka_unit_test(test_sub_maps),
     };
     return cmocka_run_group_tests_name("sf_parse", tests, NULL, NULL);
 }
