@@ -8,7 +8,7 @@
 #include <math.h>
 
 #define W_EPS 1e-6 /* near clip: keep w > W_EPS */
-#define MAX_CLIP (WL_PPHIGS_MAX_EDGES + 1)
+#define MAX_CLIP (2 * WL_PPHIGS_MAX_EDGES) /* each vertex adds <= 2 */
 #define KEY_ODP (UINT64_C(1) << 63)
 
 typedef struct {
@@ -23,11 +23,13 @@ static Vec4 lerp4(Vec4 a, Vec4 b, double t)
                   a.z + t * (b.z - a.z), a.w + t * (b.w - a.w)};
 }
 
-/* Sutherland-Hodgman against w > W_EPS; returns the clipped count. */
+/* Sutherland-Hodgman against w > W_EPS; returns the clipped count
+ * (n <= WL_PPHIGS_MAX_EDGES in, at most 2 n out: never truncated, so an
+ * outline past WL_PPHIGS_MAX_EDGES is refused whole by the caller). */
 static guint clip_near(const Vec4 *in, guint n, Vec4 *out)
 {
     guint k = 0;
-    for (guint i = 0; i < n && k + 2 <= MAX_CLIP; i++) {
+    for (guint i = 0; i < n; i++) {
         Vec4 p = in[i], q = in[(i + 1) % n];
         gboolean pin = p.w > W_EPS, qin = q.w > W_EPS;
         if (pin)
@@ -77,8 +79,8 @@ static uint32_t shade_rgba(Vec3 color, ScreenPt p0, ScreenPt p1, ScreenPt p2,
                   p1.z - p0.z);
     Vec3 v = vec3(2 * (p2.x - p0.x) / width, -2 * (p2.y - p0.y) / height,
                   p2.z - p0.z);
-    Vec3 n = vec3_cross(u, v);
-    double len = vec3_len(n), s = len > 0 ? 0.3 + 0.7 * fabs(n.z) / len : 1;
+    Vec3 n = vec3_cross(u, v); /* n.z = -4 d / (width height), d != 0 */
+    double s = 0.3 + 0.7 * fabs(n.z) / vec3_len(n);
     double c[3] = {color.x * s, color.y * s, color.z * s};
     uint32_t out = 0xff000000u;
     for (int i = 0; i < 3; i++) {

@@ -60,7 +60,9 @@ typedef struct {
 
 /* Appends to out (GArray of WlPphigsCmd) the commands of a primitive
  * instance seen through vp on a width x height screen: none when it is
- * degenerate or wholly behind the eye or off the screen.  Returns how
+ * degenerate or wholly behind the eye or off the screen, or when its
+ * outline, clipped at the near plane, has more than
+ * WL_PPHIGS_MAX_EDGES vertices.  Returns how
  * many were appended. */
 guint wl_pphigs_cmds(const ScenePrimInst *pi, Mat4 vp, guint width,
                      guint height, GArray *out);

@@ -1,8 +1,7 @@
 /* test_pm_replay.c — timing replay of merge steps on an analytic
  * hypercube: exact times on hand-checked cases (packing, a message that
  * arrives before its receiver sends, the global sum and partitioning of
- * RS and HBP on 2 and 4 processors, the partitioning's log2 of a
- * height of 1 or 2 taken as 1). */
+ * RS and HBP on 2 and 4 processors). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -227,42 +226,6 @@ static void test_balance_prefix(void **state)
     }
 }
 
-/* The partitioning's log2 of the screen height is at least 1: a merge
- * of no steps on 2 processors, balanced by RS, for heights 1, 2 and 8.
- * The sum exchanges h counts (4h B): 100 + 10 + 4h us, adds h counts
- * (7h us), then sorts d log2 h = max(1, log2 h) units (11 us each):
- * h = 1: 114 + 7 + 11 = 132 us; h = 2: 118 + 14 + 11 = 143 us; h = 8:
- * 142 + 56 + 33 = 231 us. */
-static void test_partition_log_height(void **state)
-{
-    (void)state;
-    const guint heights[3] = {1, 2, 8};
-    const SimTime want[3] = {132 * SIM_US, 143 * SIM_US, 231 * SIM_US};
-    WlPmMerge m = {.scheme = WL_PM_PAIR, .n_procs = 2,
-                   .steps = g_ptr_array_new()};
-    const SimTime ready[2] = {0, 0};
-    for (guint i = 0; i < 3; i++) {
-        Rig rig;
-        rig_init(&rig, 1);
-        SimBusy b[2];
-        sim_busy_init(&b[0]);
-        sim_busy_init(&b[1]);
-        WlPmReplayOut out;
-        GError *err = NULL;
-        if (!wl_pm_replay(rig.net, &m, WL_PM_BAL_RS, heights[i], &costs,
-                          ready, b, 0, &out, &err))
-            fail_msg("%s", err->message);
-        assert_int_equal(out.done[0], want[i]);
-        assert_int_equal(out.done[1], want[i]);
-        assert_int_equal(out.end, want[i]);
-        wl_pm_replay_out_clear(&out);
-        sim_busy_clear(&b[0]);
-        sim_busy_clear(&b[1]);
-        rig_clear(&rig);
-    }
-    g_ptr_array_free(m.steps, TRUE);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -270,7 +233,6 @@ int main(void)
         cmocka_unit_test(test_rs_global_sum),
         cmocka_unit_test(test_pack_and_early_arrival),
         cmocka_unit_test(test_balance_prefix),
-        cmocka_unit_test(test_partition_log_height),
     };
     return cmocka_run_group_tests_name("pm_replay", tests, NULL, NULL);
 }

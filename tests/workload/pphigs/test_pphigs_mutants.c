@@ -5,7 +5,9 @@
  * first element of a distributed list draws on the far plane (its id is
  * at least 1); a polygon's depth plane and shade come from its fan
  * triangle (0, i, i+1) of largest screen area; modify reaches every
- * holder up to the 64th GP. */
+ * holder up to the 64th GP; a cut at the near plane lies on its edge,
+ * in x, y and z; the pixel box starts from vertex 0; a polygon that
+ * clipping takes past the command's edges draws nothing. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -145,6 +147,7 @@ static void test_far_plane_first_element_draws(void **state)
  * (0, 2, 3) sets the plane and the shade: u = (1, 0.7, 0),
  * v = (0.5, 1.4, 0.5), n = (0.35, -0.5, 1.05); the plane has z = 0.5 at
  * vertex 3 (screen (50, 4) on 100 x 80), where (0, 1, 2)'s has z = 0. */
+/* ... of largest area, the first of equal ones. */
 static void test_largest_fan_triangle(void **state)
 {
     (void)state;
@@ -160,12 +163,19 @@ static void test_largest_fan_triangle(void **state)
     assert_int_equal(c.rgba, rgba_of(0.3 + 0.7 * 1.05 / sqrt(1.475)));
     assert_true(fabs(c.z.a * 50 + c.z.b * 4 + c.z.c - 0.5) < 1e-12);
     assert_true(fabs(c.z.a * 25 + c.z.b * 60 + c.z.c) < 1e-12); /* vertex 0 */
+    /* a square with vertex 3 lifted: both fan triangles have screen area
+     * 1000 exactly, and the tie keeps the first, (0, 1, 2), flat at z = 0 */
+    v[2] = vec3(0.5, 0.5, 0), v[3] = vec3(-0.5, 0.5, 0.5);
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 100, 80, out), 1);
+    c = g_array_index(out, WlPphigsCmd, 1);
+    assert_int_equal(c.rgba, rgba_of(1));
+    assert_true(c.z.a == 0 && c.z.b == 0 && c.z.c == 0);
     g_array_free(out, TRUE);
 }
 
 /* On 64 GPs (the most a distribution takes) a modified colour, held by
  * every GP (simple algorithm), is sent to each of the 64 once and every
- * copy changes. */
+ * copy changes; deleted, it goes from all 64. */
 static void test_modify_64_gps(void **state)
 {
     (void)state;
@@ -189,8 +199,100 @@ static void test_modify_64_gps(void **state)
         assert_true(e->kind == SCENE_EL_COLOR && e->color.z == 1 &&
                     e->color.x == 0);
     }
+    /* deleted: removed from each of the 64 */
+    wl_pphigs_dist_delete(d, root, 0);
+    wl_pphigs_dist_finish(d);
+    assert_int_equal(t->elements_removed, 64);
+    for (guint g = 0; g < 64; g++)
+        assert_int_equal(scene_db_len(wl_pphigs_dist_gp(d, g), root),
+                         g == 0 ? 1 : 0);
     wl_pphigs_dist_free(d);
     scene_db_free(db);
+}
+
+/* A view that takes w from z, keeps x and y and sets z' = w / 2 (NDC
+ * z = 0.5 everywhere), and a triangle A (0, 0.25, 1), B (0.375, 0, 1),
+ * C (0.25, 0.5, -1) with C behind the eye.  The clipped outline is A, B,
+ * the cut of BC, the cut of CA (w = 1e-6, far off the 8 x 8 screen);
+ * each cut is a point of its edge, so the outline's edges 1 (B to the
+ * cut of BC) and 3 (the cut of CA to A) lie on the projected lines BC
+ * and CA, which pass through C's projection (x/w, y/w) = (-0.25, -0.5),
+ * screen (3, 6).  The cuts keep z' = w / 2, so the depth plane is flat
+ * at 0.5 and every drawn pixel has the key of depth (1 - 0.5) / 2. */
+static void test_near_cut_on_edge(void **state)
+{
+    (void)state;
+    Mat4 wz = mat4_identity();
+    wz.m[2][2] = 0.5;
+    wz.m[3][2] = 1;
+    wz.m[3][3] = 0;
+    Vec3 v[3] = {vec3(0, 0.25, 1), vec3(0.375, 0, 1), vec3(0.25, 0.5, -1)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    e.tag = 9;
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1)};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, 8, 8, out), 1);
+    const WlPphigsCmd *c = &g_array_index(out, WlPphigsCmd, 0);
+    assert_int_equal(c->nedges, 4);
+    for (guint k = 1; k < 4; k += 2) {
+        const WlPphigsLin *l = &c->edge[k];
+        double at = l->a * 3 + l->b * 6 + l->c;
+        assert_true(fabs(at) <= 1e-9 * (fabs(l->a) * 3 + fabs(l->b) * 6 +
+                                          fabs(l->c)));
+    }
+    assert_true(c->z.a == 0 && c->z.b == 0 && c->z.c == 0.5);
+    WlPphigsRegion *r = wl_pphigs_region_new(0, 0, 8, 8, 0);
+    assert_true(wl_pphigs_region_draw(r, c) > 0);
+    uint64_t key = (uint64_t)llrint(0.25 * (double)UINT32_MAX) << 31 | 9;
+    for (guint i = 0; i < 64; i++)
+        assert_true(r->key[i] == 0 || r->key[i] == key);
+    wl_pphigs_region_free(r);
+    g_array_free(out, TRUE);
+}
+
+/* The pixel box spans every vertex, the first one too: a triangle whose
+ * vertex 0, NDC (0.5, 0.5), is its rightmost and topmost point (screen
+ * (6, 2) on 8 x 8; the others (2, 3) and (4, 6)) covers centres x 2..5
+ * (ceil(2 - 0.5) .. floor(6 - 0.5)) and y 2..5. */
+static void test_box_from_vertex_0(void **state)
+{
+    (void)state;
+    Vec3 v[3] = {vec3(0.5, 0.5, 0), vec3(-0.5, 0.25, 0), vec3(0, -0.5, 0)};
+    SceneElem e = scene_elem_prim(SCENE_EL_TRIANGLE, v, 3);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1)};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, mat4_identity(), 8, 8, out), 1);
+    const WlPphigsCmd *c = &g_array_index(out, WlPphigsCmd, 0);
+    assert_true(c->x0 == 2 && c->x1 == 5 && c->y0 == 2 && c->y1 == 5);
+    g_array_free(out, TRUE);
+}
+
+/* A 24-gon (the most edges a command has) with one vertex behind the
+ * eye: near clipping replaces that vertex by two cuts, 25 vertices, one
+ * more than a command holds: no command (like a 25-gon).  With every
+ * vertex in front it draws. */
+static void test_clipped_past_max_edges(void **state)
+{
+    (void)state;
+    Mat4 wz = mat4_identity(); /* w = z, z' = 0 */
+    wz.m[2][2] = 0;
+    wz.m[3][2] = 1;
+    wz.m[3][3] = 0;
+    Vec3 ring[WL_PPHIGS_MAX_EDGES];
+    for (int i = 0; i < WL_PPHIGS_MAX_EDGES; i++)
+        ring[i] = vec3(0.5 * cos(i * 2 * G_PI / WL_PPHIGS_MAX_EDGES),
+                       0.5 * sin(i * 2 * G_PI / WL_PPHIGS_MAX_EDGES), 1);
+    SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, ring, WL_PPHIGS_MAX_EDGES);
+    ScenePrimInst pi = {.el = &e, .matrix = mat4_identity(),
+                        .color = vec3(1, 1, 1)};
+    GArray *out = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, 8, 8, out), 1);
+    ring[5].z = -1;
+    assert_int_equal(wl_pphigs_cmds(&pi, wz, 8, 8, out), 0);
+    assert_int_equal(out->len, 1);
+    g_array_free(out, TRUE);
 }
 
 int main(void)
@@ -202,6 +304,9 @@ int main(void)
         cmocka_unit_test(test_far_plane_first_element_draws),
         cmocka_unit_test(test_largest_fan_triangle),
         cmocka_unit_test(test_modify_64_gps),
+        cmocka_unit_test(test_near_cut_on_edge),
+        cmocka_unit_test(test_box_from_vertex_0),
+        cmocka_unit_test(test_clipped_past_max_edges),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

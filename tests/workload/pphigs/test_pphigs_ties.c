@@ -307,7 +307,7 @@ static void test_finish_scans_edited_only(void **st)
 }
 
 /* A modify that makes a dealt polygon heavier (more vertices, w_vertex
- * 1) adds the difference to its GP's load: of two GPs with one triangle
+ * 1; by 1 or by 3) adds the difference to its GP's load: of two GPs with one triangle
  * each, the one whose triangle became a hexagon is no longer the least
  * loaded, so the next polygon goes to the other (GP 0 would win the
  * tie of equal loads). */
@@ -327,17 +327,19 @@ static void test_modify_moves_load(void **st)
     scene_db_post(db, s);
     WlPphigsWeights w = {.w = {[SCENE_EL_POLYGON] = 1}, .w_vertex = 1,
                          .cluster = 0};
-    WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
-    guint on0 = wl_pphigs_dist_owner(d, s, 1) == 0 ? 1 : 2;
-    assert_int_equal(wl_pphigs_dist_owner(d, s, on0), 0);
-    assert_int_equal(wl_pphigs_dist_owner(d, s, 3 - on0), 1);
-    SceneElem hex = scene_elem_prim(SCENE_EL_POLYGON, v, 6);
-    assert_true(wl_pphigs_dist_modify(d, s, on0, &hex, NULL));
-    SceneElem tri = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
-    assert_true(wl_pphigs_dist_insert(d, s, 3, &tri, NULL));
-    wl_pphigs_dist_finish(d);
-    assert_int_equal(wl_pphigs_dist_owner(d, s, 3), 1);
-    wl_pphigs_dist_free(d);
+    for (guint nv = 4; nv <= 6; nv += 2) { /* heavier by 1 and by 3 */
+        WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+        guint on0 = wl_pphigs_dist_owner(d, s, 1) == 0 ? 1 : 2;
+        assert_int_equal(wl_pphigs_dist_owner(d, s, on0), 0);
+        assert_int_equal(wl_pphigs_dist_owner(d, s, 3 - on0), 1);
+        SceneElem hex = scene_elem_prim(SCENE_EL_POLYGON, v, nv);
+        assert_true(wl_pphigs_dist_modify(d, s, on0, &hex, NULL));
+        SceneElem tri = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+        assert_true(wl_pphigs_dist_insert(d, s, 3, &tri, NULL));
+        wl_pphigs_dist_finish(d);
+        assert_int_equal(wl_pphigs_dist_owner(d, s, 3), 1);
+        wl_pphigs_dist_free(d);
+    }
     scene_db_free(db);
 }
 

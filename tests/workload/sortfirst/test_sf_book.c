@@ -10,20 +10,9 @@
 #include <cmocka.h>
 #include <string.h>
 
-#include "sim/workload/sortfirst/sf_trav.h"
 #include "tests/workload/sortfirst/sf_testutil.h"
 
 static const WlSfSizes Z = {64, 40, 36, 8, 4, 8, 16, 96};
-
-/* sf_test_tiny_db() for `procs`, *r its regions on a screen of 2 procs
- * pixels square (at least the grid), and a max-set book of it. */
-static WlSfBook *tiny_book(SceneDb **src, WlSfDb **db, guint procs,
-                           WlSfRegions *r)
-{
-    *db = sf_test_tiny_db(src, procs);
-    wl_sf_regions_init(r, procs, 2 * (int)procs, 2 * (int)procs);
-    return wl_sf_book_new(*db, r, WL_SF_MAXSET, &Z);
-}
 
 /* Max-set: a master keeps a bit vector of ceil(P / 8) bytes for the
  * chunk and one per instance; a holder the chunk record (40 B), its
@@ -35,9 +24,10 @@ static void test_memory(void **st)
 {
     (void)st;
     SceneDb *src;
-    WlSfDb *db;
+    WlSfDb *db = sf_test_tiny_db(&src, 2);
     WlSfRegions r;
-    WlSfBook *b = tiny_book(&src, &db, 2, &r);
+    wl_sf_regions_init(&r, 2, 16, 16);
+    WlSfBook *b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
     assert_int_equal(wl_sf_book_memory(b, 0), 122);
     assert_int_equal(wl_sf_book_memory(b, 1), 86);
     assert_int_equal(wl_sf_book_master(b, 0), 0);
@@ -49,12 +39,13 @@ static void test_memory(void **st)
     wl_sf_book_free(b);
     wl_sf_db_free(db);
     scene_db_free(src);
-    b = tiny_book(&src, &db, 9, &r);
+    db = sf_test_tiny_db(&src, 9);
+    wl_sf_regions_init(&r, 9, 18, 18);
+    b = wl_sf_book_new(db, &r, WL_SF_MAXSET, &Z);
     assert_int_equal(wl_sf_book_memory(b, 0), 2 * 2 + 40 + 72 + 8);
     assert_int_equal(wl_sf_book_memory(b, 1), 2 * 2 + 40 + 36 + 8);
     assert_int_equal(wl_sf_book_memory(b, 2), 0);
     wl_sf_book_free(b);
-    wl_sf_book_free(NULL);
     wl_sf_db_free(db);
     scene_db_free(src);
 }
@@ -163,39 +154,9 @@ static void test_empty(void **st)
     scene_db_free(src);
 }
 
-/* 64 processors, every bit of the masks: the one node (the posted
- * root) is scanned by each in the plain traversal, and volume-tested
- * by each when culling (a root is always entered; nothing is needed,
- * so nothing is scanned). */
-static void test_trav_64(void **st)
-{
-    (void)st;
-    SceneDb *src;
-    WlSfDb *db;
-    WlSfRegions r;
-    WlSfBook *b = tiny_book(&src, &db, 64, &r);
-    WlSfTravProc tp[64];
-    for (int mode = WL_SF_TRAV_PLAIN; mode <= WL_SF_TRAV_CULLED;
-         mode += WL_SF_TRAV_CULLED) {
-        WlSfTrav t = {0};
-        wl_sf_trav_count(b, mode, &t, tp);
-        gboolean plain = mode == WL_SF_TRAV_PLAIN;
-        assert_int_equal(t.plain, 64);
-        assert_int_equal(t.tests, plain ? 0 : 64);
-        for (guint p = 0; p < 64; p++) {
-            assert_int_equal(tp[p].nodes, plain);
-            assert_int_equal(tp[p].tests, !plain);
-        }
-    }
-    wl_sf_book_free(b);
-    wl_sf_db_free(db);
-    scene_db_free(src);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_trav_64),
         cmocka_unit_test(test_batch),
         cmocka_unit_test(test_empty),
         cmocka_unit_test(test_memory),

@@ -276,57 +276,6 @@ static void test_polygon_counts(void **state)
     scene_db_free(src);
 }
 
-/* ---- the sorted strategy's first split ------------------------------- */
-
-/* Appends to sid a quad of side 1 in z = c.z, or a triangle, with
- * centroid c (scene_db_append copies the vertices). */
-static void prim_at(SceneDb *db, guint sid, Vec3 c, gboolean tri)
-{
-    Vec3 q[4] = {vec3(c.x - 0.5, c.y - 0.5, c.z), vec3(c.x + 0.5, c.y - 0.5, c.z),
-                 vec3(c.x + 0.5, c.y + 0.5, c.z), vec3(c.x - 0.5, c.y + 0.5, c.z)};
-    Vec3 t[3] = {vec3(c.x + 1, c.y, c.z), vec3(c.x - 1, c.y + 1, c.z),
-                 vec3(c.x, c.y - 1, c.z)};
-    SceneElem e = tri ? scene_elem_prim(SCENE_EL_TRIANGLE, t, 3)
-                      : scene_elem_prim(SCENE_EL_POLYGON, q, 4);
-    assert_true(scene_db_append(db, sid, &e, NULL));
-}
-
-/* Sorted chunks of one primitive of a structure holding B at position 0
- * then A (a triangle when `tri`, else a quad) at 1: the position chunk 0
- * holds, i.e. which comes first along the centroids' longest axis. */
-static guint first_of(Vec3 b, Vec3 a, gboolean tri)
-{
-    SceneDb *src = scene_db_new();
-    guint sid = scene_db_add_struct(src, "s");
-    prim_at(src, sid, b, FALSE);
-    prim_at(src, sid, a, tri);
-    scene_db_post(src, sid);
-    WlSfDb *d = wl_sf_db_new(src, 1, 1, WL_SF_CHUNK_SORTED, NULL);
-    assert_int_equal(wl_sf_n_chunks(d), 2);
-    guint pos = g_array_index(d->prims, guint, wl_sf_chunk(d, 0)->prim_first);
-    wl_sf_db_free(d);
-    scene_db_free(src);
-    return pos;
-}
-
-/* A (position 1) comes first in each case.  A triangle's centroid and a
- * quad's are the means of 3 and 4 vertices: A at the origin, B 1/16
- * past it along one axis, A first; were a vertex sum to start at 1 on
- * some axis, A would move 1/3 and B 1/4 along it, B first.  Extents
- * tied between two axes: the first of x, y, z is the longest. */
-static void test_sorted_first_split(void **state)
-{
-    (void)state;
-    const double d = 0.0625;
-    assert_int_equal(first_of(vec3(d, 0, 0), vec3(0, 0, 0), TRUE), 1);
-    assert_int_equal(first_of(vec3(0, d, 0), vec3(0, 0, 0), TRUE), 1);
-    assert_int_equal(first_of(vec3(0, 0, d), vec3(0, 0, 0), TRUE), 1);
-    assert_int_equal(first_of(vec3(d, 0, 0), vec3(0, d, 0), FALSE), 1);
-    assert_int_equal(first_of(vec3(0, d, 0), vec3(0, 0, d), FALSE), 1);
-    assert_int_equal(first_of(vec3(d, 0, 0), vec3(0, 0, d), FALSE), 1);
-    wl_sf_db_free(NULL);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -335,7 +284,6 @@ int main(void)
         cmocka_unit_test(test_coincident_file_order),
         cmocka_unit_test(test_strip_chunks),
         cmocka_unit_test(test_polygon_counts),
-        cmocka_unit_test(test_sorted_first_split),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -155,9 +155,8 @@ static void test_nothing(void **st)
     (void)st;
     const WlSfEditSpec spec = {{0, 0, 0, 0}, 10};
     assert_false(wl_sf_edit_any(&spec));
-    const WlSfEditSpec one = {{0, 0, 0, 1}, 10}, first = {{1, 0, 0, 0}, 10};
+    const WlSfEditSpec one = {{0, 0, 0, 1}, 10};
     assert_true(wl_sf_edit_any(&one));
-    assert_true(wl_sf_edit_any(&first));
     Fix f;
     fix_init(&f, &spec);
     assert_null(edit_frame(&f, 0, 0, 0));
@@ -372,143 +371,6 @@ static void test_post_random(void **st)
     fix_clear(&f);
 }
 
-/* A seed whose first draws below n1 then n2 give (any, want). */
-static uint64_t seed_for(uint64_t n1, uint64_t n2, uint64_t want)
-{
-    for (uint64_t seed = 1;; seed++) {
-        SimRng g;
-        sim_rng_init(&g, seed, 0);
-        if (n1)
-            sim_rng_below(&g, n1);
-        if (sim_rng_below(&g, n2) == want)
-            return seed;
-    }
-}
-
-/* An editor over src (2 processors, sorted chunks of 1) with its own
- * rng at `seed`; one frame's commands count must be `commands`; the
- * edited database is checked by the caller, then everything freed by
- * edit_done(). */
-typedef struct {
-    WlSfDb *sf;
-    WlSfBook *book;
-    WlSfEdit *ed;
-    SimRng rng;
-} Ed;
-
-static void edit_start(Ed *x, const SceneDb *src, const WlSfEditSpec *spec,
-                       uint64_t seed)
-{
-    x->sf = wl_sf_db_new(src, 2, 1, WL_SF_CHUNK_SORTED, NULL);
-    assert_non_null(x->sf);
-    WlSfRegions r;
-    wl_sf_regions_init(&r, 2, 16, 16);
-    WlSfSizes z = {64, 40, 36, 8, 4, 8, 16, 96};
-    x->book = wl_sf_book_new(x->sf, &r, WL_SF_MAXSET, &z);
-    sim_rng_init(&x->rng, seed, 0);
-    x->ed = wl_sf_edit_new(src, x->sf, spec, &x->rng);
-}
-
-static uint64_t edit_step(Ed *x)
-{
-    WlSfEditFrame ef;
-    WlSfRemapWork w[2] = {{0}};
-    g_free(wl_sf_edit_frame(x->ed, x->book, &ef, w));
-    return ef.commands;
-}
-
-static void edit_done(Ed *x)
-{
-    wl_sf_edit_free(x->ed);
-    wl_sf_book_free(x->book);
-    wl_sf_db_free(x->sf);
-}
-
-/* Neither a matrix nor an execute edit applies to a database with no
- * matrix and no execute element: no command, no map. */
-static void test_nothing_to_edit(void **st)
-{
-    (void)st;
-    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
-    SceneDb *src = scene_db_new();
-    guint root = scene_db_add_struct(src, "root");
-    add(src, root, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
-    scene_db_post(src, root);
-    const WlSfEditSpec spec = {{1, 1, 0, 0}, 10};
-    Ed x;
-    edit_start(&x, src, &spec, 3);
-    assert_int_equal(edit_step(&x), 0);
-    edit_done(&x);
-    wl_sf_edit_free(NULL);
-    scene_db_free(src);
-}
-
-/* Leaves a, b, c, d after the root executing a: an execute edit tries
- * the structures from a random one on, in increasing order mod 5,
- * skipping a (the old child) and the root (another height).  A seed
- * whose start is a (structure 1) retargets at b (2), the next one. */
-static void test_execute_next(void **st)
-{
-    (void)st;
-    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
-    SceneDb *src = scene_db_new();
-    guint root = scene_db_add_struct(src, "root");
-    const char *leaf[4] = {"a", "b", "c", "d"};
-    for (guint k = 0; k < 4; k++)
-        add(src, scene_db_add_struct(src, leaf[k]),
-            scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
-    add(src, root, scene_elem_execute(1));
-    scene_db_post(src, root);
-    const WlSfEditSpec spec = {{0, 1, 0, 0}, 10};
-    Ed x;
-    edit_start(&x, src, &spec, seed_for(1, 5, 1));
-    assert_int_equal(edit_step(&x), 1);
-    assert_int_equal(scene_db_elem(wl_sf_edit_db(x.ed), root, 0)->child, 2);
-    edit_done(&x);
-    scene_db_free(src);
-}
-
-/* root and b posted, a not.  A post starting at a (the one not posted)
- * posts it; then with all posted a post applies nothing and draws no
- * number (the editor's stream, which picks later edits, goes on as a
- * fresh one's after its first draw). */
-static void test_post_only_left(void **st)
-{
-    (void)st;
-    const WlSfEditSpec spec = {{0, 0, 0, 1}, 10};
-    uint64_t seed = seed_for(0, 3, 1);
-    Fix f;
-    post_b = TRUE;
-    fix_init(&f, &spec);
-    post_b = FALSE;
-    sim_rng_init(&f.rng, seed, 0);
-    g_free(edit_frame(&f, 1, 1, 0));
-    assert_true(scene_db_is_posted(wl_sf_edit_db(f.edit), 1));
-    assert_null(edit_frame(&f, 0, 0, 0));
-    SimRng g;
-    sim_rng_init(&g, seed, 0);
-    sim_rng_below(&g, 3);
-    assert_int_equal(sim_rng_u64(&f.rng), sim_rng_u64(&g));
-    fix_clear(&f);
-}
-
-/* Unpost the root, post it back (the last unposted), post once more:
- * the list of unposted structures is empty again, so the second post
- * picks one never posted (a or b): two postings.  The root's two nodes
- * are collected and made anew (a new posting), and one more made. */
-static void test_unpost_post_post(void **st)
-{
-    (void)st;
-    const WlSfEditSpec spec = {{0, 0, 1, 2}, 10};
-    Fix f;
-    fix_init(&f, &spec);
-    g_free(edit_frame(&f, 3, 3, 2)); /* root's 2 nodes anew, + 1 */
-    const SceneDb *db = wl_sf_edit_db(f.edit);
-    assert_int_equal(scene_db_posted_count(db), 2);
-    assert_true(scene_db_is_posted(db, 0));
-    fix_clear(&f);
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -522,10 +384,6 @@ int main(void)
         cmocka_unit_test(test_unpost_last),
         cmocka_unit_test(test_execute_tries),
         cmocka_unit_test(test_post_random),
-        cmocka_unit_test(test_nothing_to_edit),
-        cmocka_unit_test(test_execute_next),
-        cmocka_unit_test(test_post_only_left),
-        cmocka_unit_test(test_unpost_post_post),
     };
     return cmocka_run_group_tests_name("sf_edit_kinds", tests, NULL, NULL);
 }

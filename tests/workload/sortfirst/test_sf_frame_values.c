@@ -87,7 +87,6 @@ static void rig_init(Rig *r, WlSfBookkeeping bk, WlSfMigration mig,
 static void rig_clear(Rig *r)
 {
     wl_sf_run_free(r->run);
-    wl_sf_run_free(NULL);
     wl_sf_db_free(r->db);
     mach_free(r->m);
     sim_engine_free(r->eng);
