@@ -343,6 +343,41 @@ static void test_modify_moves_load(void **st)
     scene_db_free(db);
 }
 
+/* The other signs: of two GPs with one quad each (loads 5, 5; w_vertex
+ * 1), the one whose quad became a triangle (lighter by 1) is the least
+ * loaded and takes the next polygon; a modified colour (not dealt)
+ * moves no load, so the next polygon goes by the tie to GP 0. */
+static void test_modify_lighter_and_colour(void **st)
+{
+    (void)st;
+    SceneDb *db = scene_db_new();
+    guint s = scene_db_add_struct(db, "s");
+    Vec3 v[4] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(1, 1, 0), vec3(0, 1, 0)};
+    SceneElem col = scene_elem_color(vec3(1, 0, 0));
+    assert_true(scene_db_append(db, s, &col, NULL));
+    for (guint i = 0; i < 2; i++) {
+        SceneElem e = scene_elem_prim(SCENE_EL_POLYGON, v, 4);
+        assert_true(scene_db_append(db, s, &e, NULL));
+    }
+    scene_db_post(db, s);
+    WlPphigsWeights w = {.w = {[SCENE_EL_POLYGON] = 1}, .w_vertex = 1,
+                         .cluster = 0};
+    for (int colour = 0; colour < 2; colour++) {
+        WlPphigsDist *d = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+        guint on1 = wl_pphigs_dist_owner(d, s, 1) == 1 ? 1 : 2;
+        assert_int_equal(wl_pphigs_dist_owner(d, s, on1), 1);
+        SceneElem tri = scene_elem_prim(SCENE_EL_POLYGON, v, 3);
+        SceneElem blue = scene_elem_color(vec3(0, 0, 1));
+        assert_true(wl_pphigs_dist_modify(d, s, colour ? 0 : on1,
+                                          colour ? &blue : &tri, NULL));
+        assert_true(wl_pphigs_dist_insert(d, s, 3, &tri, NULL));
+        wl_pphigs_dist_finish(d);
+        assert_int_equal(wl_pphigs_dist_owner(d, s, 3), colour ? 0 : 1);
+        wl_pphigs_dist_free(d);
+    }
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -355,6 +390,7 @@ int main(void)
         cmocka_unit_test(test_imperfect_budget_tie),
         cmocka_unit_test(test_finish_scans_edited_only),
         cmocka_unit_test(test_modify_moves_load),
+        cmocka_unit_test(test_modify_lighter_and_colour),
     };
     return cmocka_run_group_tests_name("pphigs_ties", tests, NULL, NULL);
 }
