@@ -3,7 +3,8 @@
  * kept spans equal those of drawing the subset again through a sink that
  * clips spans to the rectangle (random triangles partly off screen, back
  * faces, and a 12-gon split into fan triangles and cut by the near
- * plane); a set builds each key once and keeps it. */
+ * plane); a set builds each key once and keeps it, keys asked in any
+ * order. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -172,12 +173,39 @@ static void test_set_builds_once(void **state)
     scene_mesh_free(m);
 }
 
+/* Keys asked in order 0, 1 (each equal to the set's length so far) are
+ * built and kept like any other; a set of NULL frees nothing. */
+static void test_set_keys_in_order(void **state)
+{
+    (void)state;
+    SceneMesh *m = test_mesh();
+    RastView a = test_view(1.3), b = test_view(0.7);
+    RastPrerenderSet *s = rast_prerender_set_new();
+    const RastPrerender *p0 = rast_prerender_set_get(s, 0, &a, m);
+    const RastPrerender *p1 = rast_prerender_set_get(s, 1, &b, m);
+    assert_non_null(p0);
+    assert_non_null(p1);
+    assert_ptr_not_equal(p0, p1);
+    assert_ptr_equal(rast_prerender_set_get(s, 0, &a, m), p0);
+    assert_ptr_equal(rast_prerender_set_get(s, 1, &b, m), p1);
+    RastPrerender *direct = rast_prerender_new(&b, m);
+    assert_int_equal(rast_prerender_n_spans(p1),
+                     rast_prerender_n_spans(direct));
+    rast_prerender_free(direct);
+    compare(p0, &a, m, NULL, 0, (RastRect){0, 0, W, H});
+    rast_prerender_set_free(s);
+    rast_prerender_set_free(NULL);
+    rast_prerender_free(NULL);
+    scene_mesh_free(m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_counts_equal_a_redraw),
         cmocka_unit_test(test_view_matters),
         cmocka_unit_test(test_set_builds_once),
+        cmocka_unit_test(test_set_keys_in_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
