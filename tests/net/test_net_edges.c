@@ -422,8 +422,16 @@ static void run_lists(NetTraffic t, uint64_t *to0, uint64_t *max_other)
     assert_int_equal(net_delivered(net), 16 * 15);
     *to0 = received(net, 0);
     *max_other = 0;
-    for (uint32_t d = 1; d < 16; d++)
+    uint64_t all = *to0;
+    for (uint32_t d = 1; d < 16; d++) {
         *max_other = MAX(*max_other, received(net, d));
+        all += received(net, d);
+    }
+    /* no message is to its sender: each crosses its sender's input port
+     * (link 2s), 15 a node, and its receiver's output port */
+    assert_int_equal(all, 16 * 15);
+    for (uint32_t s = 0; s < 16; s++)
+        assert_int_equal(net_link_stats(net, 2 * (NetLinkId)s)->messages, 15);
     net_free(net);
     sim_engine_free(eng);
     net_topo_free(x);

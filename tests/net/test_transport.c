@@ -408,6 +408,31 @@ static void test_fifo_sharing_favours_near_senders(void **state)
     net_topo_free(t);
 }
 
+/* Packets of a message that fills its packets exactly (200 bytes, 100 a
+ * packet: two, no empty third) over the line 0 -> 2, slow link then one
+ * four times faster, per hop 10 us, no startup.  Injected at 10 us, p1
+ * holds link 0 over [10, 110), p2 over [110, 210); on link 2 a packet
+ * cannot end before it ended on link 0 (cut-through), so p1 arrives at
+ * 110 and p2, on link 2 from 120, at 210: the message at 210 us.  A
+ * trailing empty packet would leave link 0 at 210 and arrive at 220. */
+static void test_packet_exact_multiple(void **state)
+{
+    (void)state;
+    NetTopo *t = net_topo_wrap(&line_ops, g_new0(char, 1), 1);
+    NetParams p = params(0, 10 * SIM_US);
+    p.switching = NET_SW_CUT_THROUGH;
+    SimEngine *eng = sim_engine_new(1);
+    NetNet *net = net_new(eng, t, &p, NET_PACKET);
+    Log lg = {0};
+    net_send(net, 0, 2, 200, NULL, log_arrival, &lg);
+    assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
+    assert_int_equal(lg.n, 1);
+    assert_int_equal(lg.at[0], 210 * SIM_US);
+    net_free(net);
+    sim_engine_free(eng);
+    net_topo_free(t);
+}
+
 /* Nothing leaks: tracked memory returns to its idle level. */
 static void test_memory_returns(void **state)
 {
@@ -446,6 +471,7 @@ int main(void)
         cmocka_unit_test(test_bottleneck_first_or_last),
         cmocka_unit_test(test_long_message_startup),
         cmocka_unit_test(test_store_and_forward),
+        cmocka_unit_test(test_packet_exact_multiple),
         cmocka_unit_test(test_two_flows_share_link),
         cmocka_unit_test(test_flow_incremental),
         cmocka_unit_test(test_xor_permutation_contention_free),
