@@ -7,7 +7,9 @@
  * triangle (0, i, i+1) of largest screen area; modify reaches every
  * holder up to the 64th GP; a cut at the near plane lies on its edge,
  * in x, y and z; the pixel box starts from vertex 0; a polygon that
- * clipping takes past the command's edges draws nothing. */
+ * clipping takes past the command's edges draws nothing; a modify that
+ * changes a matrix's mode is an insert and a delete, one whose insert
+ * fails changes nothing. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -295,6 +297,63 @@ static void test_clipped_past_max_edges(void **state)
     g_array_free(out, TRUE);
 }
 
+/* pphigs_edit.c: a modify that changes a matrix's mode goes as an
+ * insert and a delete, so its traffic and GP lists equal those of that
+ * insert, delete and finish done by hand on a twin; a modify whose
+ * insert fails (an execute that would close a cycle, also a change of
+ * kind between executes of an ordinary and of a primitive structure)
+ * changes nothing and returns FALSE. */
+static void test_modify_as_insert_delete(void **state)
+{
+    (void)state;
+    SceneDb *db = scene_db_new();
+    guint root = scene_db_add_struct(db, "root");
+    guint prim = scene_db_add_struct(db, "prim");
+    guint mid = scene_db_add_struct(db, "mid");
+    scene_db_set_primitive(db, prim, TRUE);
+    Vec3 v[3] = {vec3(0, 0, 0), vec3(1, 0, 0), vec3(0, 1, 0)};
+    add(db, prim, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    add(db, root, scene_elem_matrix(mat4_scale(2, 2, 2), SCENE_MAT_REPLACE));
+    for (guint i = 0; i < 3; i++)
+        add(db, root, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    add(db, root, scene_elem_execute(prim));
+    add(db, root, scene_elem_execute(mid));
+    add(db, mid, scene_elem_prim(SCENE_EL_TRIANGLE, v, 3));
+    scene_db_post(db, root);
+    WlPphigsWeights w = {.w = {[SCENE_EL_TRIANGLE] = 1}, .cluster = 1};
+    WlPphigsDist *a = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+    WlPphigsDist *b = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+    SceneElem cat = scene_elem_matrix(mat4_scale(3, 3, 3), SCENE_MAT_CONCAT);
+    assert_true(wl_pphigs_dist_modify(a, root, 0, &cat, NULL));
+    assert_true(wl_pphigs_dist_insert(b, root, 0, &cat, NULL));
+    wl_pphigs_dist_delete(b, root, 1);
+    wl_pphigs_dist_finish(b);
+    const WlPphigsTraffic *ta = wl_pphigs_dist_traffic(a),
+                          *tb = wl_pphigs_dist_traffic(b);
+    assert_int_equal(ta->elements_sent, tb->elements_sent);
+    assert_int_equal(ta->elements_removed, tb->elements_removed);
+    for (guint g = 0; g < 2; g++)
+        assert_int_equal(scene_db_len(wl_pphigs_dist_gp(a, g), root),
+                         scene_db_len(wl_pphigs_dist_gp(b, g), root));
+    /* execute(prim) -> execute(root) inside mid: a cycle, refused */
+    add(db, mid, scene_elem_execute(prim));
+    wl_pphigs_dist_free(a);
+    a = wl_pphigs_dist_new(db, 2, WL_PPHIGS_COMPLEX, &w);
+    uint64_t sent = wl_pphigs_dist_traffic(a)->elements_sent;
+    SceneElem loop = scene_elem_execute(root);
+    GError *err = NULL;
+    assert_false(wl_pphigs_dist_modify(a, mid, 1, &loop, &err));
+    assert_non_null(err);
+    g_clear_error(&err);
+    const SceneDb *h = wl_pphigs_dist_host(a);
+    assert_int_equal(scene_db_len(h, mid), 2);
+    assert_int_equal(scene_db_elem(h, mid, 1)->child, prim);
+    assert_int_equal(wl_pphigs_dist_traffic(a)->elements_sent, sent);
+    wl_pphigs_dist_free(a);
+    wl_pphigs_dist_free(b);
+    scene_db_free(db);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -307,6 +366,7 @@ int main(void)
         cmocka_unit_test(test_near_cut_on_edge),
         cmocka_unit_test(test_box_from_vertex_0),
         cmocka_unit_test(test_clipped_past_max_edges),
+        cmocka_unit_test(test_modify_as_insert_delete),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
