@@ -2,8 +2,9 @@
  * mutation testing (make mutate, docs/testing.md) found unchecked:
  * "#rrggbb" palette colours read channel by channel, and a NEWS move's
  * time is its coefficients times the machine's unit costs (dp_cost.h:
- * "tests can check sums"), and points mode draws no vertex of a polygon
- * behind the eye. */
+ * "tests can check sums"), points mode draws no vertex of a polygon
+ * behind the eye, and hidden-line mode keeps a filled square's border
+ * pixels, the screen's edge included. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -146,6 +147,41 @@ static void test_points_skip_polygons_behind_eye(void **state)
     wl_dp_vm_free(vm);
 }
 
+/* Hidden-line mode keeps the border pixels of what the fill drew: a
+ * square over pixels 0..3 of rows 0..3 of an 8 x 8 screen (its corner
+ * at pixel 0, the screen's edge counting as "nothing" beside it) shows
+ * its 12 border pixels with the fill's colour index, its 4 inner pixels
+ * and everything else background (0). */
+static void test_hidden_line_border(void **state)
+{
+    (void)state;
+    double x[4] = {0.2, 3.8, 3.8, 0.2}, y[4] = {0.2, 0.2, 3.8, 3.8};
+    double z[4] = {0.5, 0.5, 0.5, 0.5}, v[4] = {1, 1, 1, 1};
+    uint32_t start[2] = {0, 4};
+    uint8_t color[1] = {3}, ok[1] = {1};
+    WlDpPolys p = {.n = 1, .n_ok = 1, .kmax = 4, .start = start,
+                   .x = x, .y = y, .z = z, .val = v, .color = color,
+                   .ok = ok, .n_verts = 4, .mode = WL_DP_MODE_HIDDEN_LINE};
+    WlDpRenderOpts o = {.mode = WL_DP_MODE_HIDDEN_LINE, .buffer_factor = 1,
+                        .ops = wl_dp_ops_defaults()};
+    WlDpMachine mc = {.arch = WL_DP_SIMD, .procs = 16};
+    WlDpVm *vm = wl_dp_vm_new(&mc, 1, 8, 8);
+    WlDpImage *img = wl_dp_render(vm, &p, 8, 8, &o);
+    uint8_t fill = wl_dp_key_index(img->zbuf[0]);
+    assert_true(fill != 0);
+    for (int k = 0; k < 64; k++) {
+        int px = k % 8, py = k / 8;
+        gboolean in = px < 4 && py < 4;
+        gboolean border = in && (px == 0 || px == 3 || py == 0 || py == 3);
+        assert_int_equal(img->zbuf[k] != 0, in);
+        if (img->index[k] != (border ? fill : 0))
+            fail_msg("pixel (%d, %d): index %u, expected %u", px, py,
+                     img->index[k], border ? fill : 0);
+    }
+    wl_dp_image_free(img);
+    wl_dp_vm_free(vm);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -154,6 +190,7 @@ int main(void)
         cmocka_unit_test(test_flushes_send_each_segment_once),
         cmocka_unit_test(test_router_procs_default),
         cmocka_unit_test(test_points_skip_polygons_behind_eye),
+        cmocka_unit_test(test_hidden_line_border),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
