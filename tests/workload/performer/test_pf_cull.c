@@ -17,6 +17,7 @@
 
 #include "sim/scene/camera.h"
 #include "sim/workload/performer/pf_cull.h"
+#include "tests/support.h"
 
 /* A geode with one geoset of k triangles, all within 1 of (x, 0, 0). */
 static guint geode_at(WlPfGraph *g, guint parent, WlPfKind kind, double x,
@@ -565,9 +566,36 @@ static void test_point_geoset(void **state)
     wl_pf_graph_free(g);
 }
 
+/* A bounding sphere through a transform: the centre moved, the radius
+ * times the largest axis scale (3 here, 0.5 for a shrinking one), for
+ * radii below 1 too; an empty sphere (radius < 0) stays empty. */
+static void test_sphere_xform(void **state)
+{
+    (void)state;
+    Mat4 m = mat4_mul(mat4_translate(1, 2, 3), mat4_scale(2, 3, 1));
+    const double r[4] = {0.5, 0, 2, -1}, want[4] = {1.5, 0, 6, -1};
+    for (int i = 0; i < 4; i++) {
+        Vec3 c;
+        double o = NAN;
+        wl_pf_sphere_xform(m, vec3(1, 1, 1), r[i], &c, &o);
+        assert_true(c.x == 3 && c.y == 5 && c.z == 4);
+        if (o != want[i])
+            fail_msg("radius %g: %g, expected %g", r[i], o, want[i]);
+    }
+    /* a shrinking transform shrinks the sphere: largest scale 0.5 */
+    Vec3 c;
+    double o = NAN;
+    wl_pf_sphere_xform(mat4_scale(0.5, 0.25, 0.5), vec3(2, 4, 2), 2, &c, &o);
+    assert_true(c.x == 1 && c.y == 1 && c.z == 1 && o == 1);
+}
+
 int main(void)
 {
+    /* a GLib critical (an append to the counting walk's NULL display
+     * list, say) fails the suite */
+    support_warnings_fatal();
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sphere_xform),
         cmocka_unit_test(test_cull_and_draw),
         cmocka_unit_test(test_lod_stress),
         cmocka_unit_test(test_lod_boundaries),
