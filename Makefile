@@ -104,7 +104,7 @@ check: deps
 	  EXTRA_LDFLAGS="-fsanitize=$(SANITIZE)" \
 	  build-san/pgsim $(TESTBIN:$(BUILD)/%=build-san/%) \
 	  $(FUZZBIN:$(BUILD)/%=build-san/%)
-	@PGSIM_SANITIZE=1 sh scripts/run-tests.sh build-san \
+	@G_SLICE=always-malloc PGSIM_SANITIZE=1 sh scripts/run-tests.sh build-san \
 	  $(TESTBIN:$(BUILD)/%=build-san/%) $(FUZZBIN:$(BUILD)/%=build-san/%)
 
 # libFuzzer (Debian clang): every harness for SECONDS seconds, one after
