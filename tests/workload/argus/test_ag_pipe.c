@@ -601,6 +601,20 @@ static void test_tile_round_robin_skips(void **state)
     rig_free(&r);
 }
 
+/* A rig of one context and one barrier party whose one white quad is
+ * drawn on a blended frame of `tile`-pixel tiles: the pool tests' start. */
+static void rig_pool_init(Rig *r, int tile)
+{
+    rig_init(r);
+    r->st->contexts = 1;
+    r->st->barrier_parties = 1;
+    const float white[1][3] = {{1, 1, 1}};
+    rig_quads(r, white, 1);
+    wl_ag_frame_free(r->f);
+    r->f = wl_ag_frame_new(SIDE, SIDE, tile, WL_AG_BLEND, 0.5f,
+                           (RastColor){0, 0, 0});
+}
+
 /* A pool takes ready tiles round robin, from tile 0 at each frame and
  * then from the tile after the one taken.  One block: a full-screen quad
  * (2 triangles in each of the 4 x 4 tiles) and 19 small triangles in
@@ -614,14 +628,7 @@ static void test_pool_round_robin(void **state)
 {
     (void)state;
     Rig r;
-    rig_init(&r);
-    r.st->contexts = 1;
-    r.st->barrier_parties = 1;
-    const float white[1][3] = {{1, 1, 1}};
-    rig_quads(&r, white, 1);
-    wl_ag_frame_free(r.f);
-    r.f = wl_ag_frame_new(SIDE, SIDE, 16, WL_AG_BLEND, 0.5f,
-                          (RastColor){0, 0, 0});
+    rig_pool_init(&r, 16);
     for (int k = 0; k < 19; k++) {
         uint32_t b = scene_mesh_n_vertices(r.mesh);
         scene_mesh_add_vertex(r.mesh, vec3(-0.4, 0.7, 0));
@@ -765,14 +772,7 @@ static void test_pool_geometry_to_idle_worker(void **state)
 {
     (void)state;
     Rig r;
-    rig_init(&r);
-    r.st->contexts = 1;
-    r.st->barrier_parties = 1;
-    const float white[1][3] = {{1, 1, 1}};
-    rig_quads(&r, white, 1);
-    wl_ag_frame_free(r.f);
-    r.f = wl_ag_frame_new(SIDE, SIDE, SIDE / 2, WL_AG_BLEND, 0.5f,
-                          (RastColor){0, 0, 0});
+    rig_pool_init(&r, SIDE / 2);
     add_small_tris(r.mesh, 10, 0);
     add_small_tris(r.mesh, 100, 3);
     block(&r, 0, 0, 12);

@@ -234,6 +234,14 @@ static void test_pn_defaults(void **st)
     g_free(y);
 }
 
+/* The two machines a pn run is checked on: an Onyx pipe with a vertex
+ * cost of its own, and Pixel-Planes 5. */
+static const char *const pn_machines[] = {
+    "machine:\n  model: sgi-onyx\n"
+    "  nodes: {pipe: {costs: {pn_vertex: {value: 0.7 us, "
+    "assumption: t}}}}\n",
+    "machine: {model: pixel-planes-5}\n"};
+
 /* pn: when run.until ends the run before a frame finishes (the bus
  * transfer alone takes longer than 1 us), every per-frame figure is 0,
  * not a division by no frames: frame time, triangle rate and the bytes
@@ -241,15 +249,10 @@ static void test_pn_defaults(void **st)
 static void test_pn_no_frame_finished(void **st)
 {
     (void)st;
-    const char *machines[] = {
-        "machine:\n  model: sgi-onyx\n"
-        "  nodes: {pipe: {costs: {pn_vertex: {value: 0.7 us, "
-        "assumption: t}}}}\n",
-        "machine: {model: pixel-planes-5}\n"};
     uint64_t coarse, fine, pts;
     pn_counts(2, &coarse, &fine, &pts);
-    for (guint i = 0; i < G_N_ELEMENTS(machines); i++) {
-        char *y = g_strconcat(machines[i], pp5_scene,
+    for (guint i = 0; i < G_N_ELEMENTS(pn_machines); i++) {
+        char *y = g_strconcat(pn_machines[i], pp5_scene,
                               "run: {until: 1 us}\n"
                               "workload: {type: performer, pn: {}}\n",
                               NULL);
@@ -274,14 +277,9 @@ static void test_pn_no_frame_finished(void **st)
 static void test_pn_engine_error(void **st)
 {
     (void)st;
-    const char *machines[] = {
-        "machine:\n  model: sgi-onyx\n"
-        "  nodes: {pipe: {costs: {pn_vertex: {value: 0.7 us, "
-        "assumption: t}}}}\n",
-        "machine: {model: pixel-planes-5}\n"};
     dry = TRUE;
-    for (guint i = 0; i < G_N_ELEMENTS(machines); i++) {
-        char *y = g_strconcat(machines[i], pp5_scene,
+    for (guint i = 0; i < G_N_ELEMENTS(pn_machines); i++) {
+        char *y = g_strconcat(pn_machines[i], pp5_scene,
                               "workload: {type: performer, pn: {}}\n", NULL);
         GError *err = NULL;
         assert_null(run(y, 1, &err));
