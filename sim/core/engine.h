@@ -1,17 +1,21 @@
 /* engine.h — the discrete-event engine.
  *
- * Events are (time, handler, ctx, arg) records in a growable pool, ordered
- * by a SimEvq on (time, seq).  Handlers run one at a time; a handler may
- * schedule any number of events at or after the current time.  Scheduling
+ * Events are whole records (time, seq, handler, ctx, arg) held in a
+ * SimEvq (evq.h), a monotone radix heap ordered on (time, seq), where seq
+ * counts schedules so equal times run in schedule order.  Handlers run
+ * one at a time; a handler may schedule any number of events at or after
+ * the current time (never before: the queue relies on it).  Scheduling
  * past SIM_TIME_MAX is an error, never a wrap: the engine records it,
- * stops, and sim_engine_run() returns FALSE with SIM_ERROR_OVERFLOW.
+ * stops, and sim_engine_run() returns FALSE with SIM_ERROR_OVERFLOW; so
+ * is growing the pending events past the memory limit (--mem-limit).
  *
  * Cancellation is left to the caller (a generation counter in ctx that the
- * handler checks), which keeps the queue key at 24 bytes.
+ * handler checks), which keeps the queue free of position bookkeeping.
  *
  * Entities are named ids; each has a lazily created RNG stream seeded from
  * (run seed, entity id).  Phases are interned names for busy-time
- * accounting.  Cost: O(log n) per event for n pending events.
+ * accounting.  Cost per event: O(1) to schedule, O(1) plus amortised
+ * O(log of the pending time span) record moves to run (docs/engine.md).
  */
 #ifndef PGSIM_CORE_ENGINE_H
 #define PGSIM_CORE_ENGINE_H
