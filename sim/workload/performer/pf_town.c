@@ -1,10 +1,11 @@
 /* pf_town.c — the procedural town (see pf_town.h).
  *
- * Placement draws from a splitmix64 stream seeded by `seed` (Steele,
- * Lea and Flood, OOPSLA 2014), so the town is the same on every
+ * Placement draws from one sim/core/rng.h stream seeded by (`seed`, 0),
+ * the project's only generator, so the town is the same on every
  * platform.  Building is O(size of the town).
  */
 #include "sim/workload/performer/pf_town.h"
+#include "sim/core/rng.h"
 
 WlPfTownParams wl_pf_town_defaults(void)
 {
@@ -18,19 +19,6 @@ WlPfTownParams wl_pf_town_defaults(void)
                             .eye_height = 2.0,
                             .fov_deg = 60,
                             .seed = 1};
-}
-
-static uint64_t next_u64(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-static double uniform(uint64_t *s)
-{
-    return (double)(next_u64(s) >> 11) / 9007199254740992.0;
 }
 
 double wl_pf_town_height(double x, double z)
@@ -97,7 +85,7 @@ static void add_terrain(WlPfGraph *g, guint parent, double x0, double z0,
 }
 
 static void add_house(WlPfGraph *g, guint parent, const WlPfTownParams *p,
-                      Vec3 at, double yaw, uint64_t *rng, guint first_gs)
+                      Vec3 at, double yaw, SimRng *rng, guint first_gs)
 {
     guint scs = wl_pf_add_node(g, parent, WL_PF_SCS);
     wl_pf_node(g, scs)->xf = mat4_mul(mat4_translate(at.x, at.y, at.z),
@@ -106,9 +94,10 @@ static void add_house(WlPfGraph *g, guint parent, const WlPfTownParams *p,
     double r0 = 0;
     g_array_append_val(wl_pf_node(g, lod)->ranges, r0);
     g_array_append_vals(wl_pf_node(g, lod)->ranges, p->lod_ranges, 3);
-    double sx = 6 + 6 * uniform(rng), sy = 5 + 10 * uniform(rng),
-           sz = 6 + 6 * uniform(rng);
-    guint gs = first_gs + (guint)(next_u64(rng) % 6);
+    double sx = 6 + 6 * sim_rng_uniform(rng),
+           sy = 5 + 10 * sim_rng_uniform(rng),
+           sz = 6 + 6 * sim_rng_uniform(rng);
+    guint gs = first_gs + (guint)sim_rng_below(rng, 6);
     for (guint k = 4; k >= 1; k /= 2) {
         guint geode = wl_pf_add_node(g, lod, WL_PF_GEODE);
         add_geoset(g, geode, box_tris(sx, sy, sz, k), gs);
@@ -116,13 +105,13 @@ static void add_house(WlPfGraph *g, guint parent, const WlPfTownParams *p,
 }
 
 static void add_trees(WlPfGraph *g, guint parent, const WlPfTownParams *p,
-                      double x0, double z0, uint64_t *rng, guint gs)
+                      double x0, double z0, SimRng *rng, guint gs)
 {
     guint bb = wl_pf_add_node(g, parent, WL_PF_BILLBOARD);
     wl_pf_node(g, bb)->mask &= ~(guint32)WL_PF_MASK_ISECT;
     for (guint i = 0; i < p->trees; i++) {
-        double x = x0 + 2 + (p->block - 4) * uniform(rng);
-        double z = z0 + 2 + (p->block - 4) * uniform(rng);
+        double x = x0 + 2 + (p->block - 4) * sim_rng_uniform(rng);
+        double z = z0 + 2 + (p->block - 4) * sim_rng_uniform(rng);
         double y = wl_pf_town_height(x, z);
         GArray *v = g_array_new(FALSE, FALSE, sizeof(Vec3));
         quad(v, vec3(x - 2, y, z), vec3(x + 2, y, z), vec3(x + 2, y + 8, z),
@@ -151,7 +140,7 @@ static void add_lamps(WlPfGraph *g, guint parent, double x0, double z0,
     add_geoset(g, geode, v, gs);
 }
 
-static void add_block(WlPfTown *t, guint bi, guint bj, uint64_t *rng, guint gs0)
+static void add_block(WlPfTown *t, guint bi, guint bj, SimRng *rng, guint gs0)
 {
     WlPfGraph *g = t->g;
     const WlPfTownParams *p = &t->p;
@@ -159,10 +148,10 @@ static void add_block(WlPfTown *t, guint bi, guint bj, uint64_t *rng, guint gs0)
     guint grp = wl_pf_add_node(g, g->root, WL_PF_GROUP);
     add_terrain(g, grp, x0, z0, p->block, gs0);
     for (guint h = 0; h < p->houses; h++) {
-        double x = x0 + 6 + (p->block - 12) * uniform(rng);
-        double z = z0 + 6 + (p->block - 12) * uniform(rng);
+        double x = x0 + 6 + (p->block - 12) * sim_rng_uniform(rng);
+        double z = z0 + 6 + (p->block - 12) * sim_rng_uniform(rng);
         Vec3 at = vec3(x, wl_pf_town_height(x, z), z);
-        add_house(g, grp, p, at, 2 * G_PI * uniform(rng), rng, gs0 + 3);
+        add_house(g, grp, p, at, 2 * G_PI * sim_rng_uniform(rng), rng, gs0 + 3);
     }
     add_trees(g, grp, p, x0, z0, rng, gs0 + 1);
     add_lamps(g, grp, x0, z0, (bi + bj) % 2 == 0, gs0 + 2);
@@ -198,7 +187,8 @@ WlPfTown *wl_pf_town_new(const WlPfTownParams *p)
     t->p = *p;
     t->g = wl_pf_graph_new();
     t->cars = g_array_new(FALSE, FALSE, sizeof(guint));
-    uint64_t rng = p->seed;
+    SimRng rng;
+    sim_rng_init(&rng, p->seed, 0);
     /* terrain, trees, lamps, six house looks, cars */
     guint gs0 = gstate(t->g, 0, 0, 0);
     gstate(t->g, 1, 1, 1);

@@ -14,6 +14,7 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include "sim/core/rng.h"
 #include "sim/workload/performer/pf_town.h"
 
 static WlPfTown *small_town(void)
@@ -220,23 +221,11 @@ static void test_blocks(void **st)
 
 /* splitmix64 (Steele, Lea and Flood 2014), the town's placement stream,
  * written out again here so that every drawn value can be predicted. */
-static uint64_t sm64(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-static double unit(uint64_t *s)
-{
-    return (double)(sm64(s) >> 11) / 9007199254740992.0;
-}
-
 /* Every placement from the seed, in drawing order: per block, per
  * house x = x0 + 6 + (block - 12) u, z likewise, yaw 2 pi u, size 6 + 6
- * u by 5 + 10 u by 6 + 6 u, look 3 + (draw mod 6); then per tree x =
- * x0 + 2 + (block - 4) u, z likewise. */
+ * u by 5 + 10 u by 6 + 6 u, look 3 + (a draw below 6); then per tree x =
+ * x0 + 2 + (block - 4) u, z likewise; u from one sim/core/rng.h stream
+ * (seed, 0). */
 static void test_placement_from_seed(void **st)
 {
     (void)st;
@@ -244,23 +233,26 @@ static void test_placement_from_seed(void **st)
     p.blocks = 2, p.houses = 2, p.trees = 3, p.cars = 0, p.seed = 77;
     p.block = 50;
     WlPfTown *t = wl_pf_town_new(&p);
-    uint64_t rng = 77;
+    SimRng r;
+    sim_rng_init(&r, 77, 0);
+    SimRng *rng = &r;
     const WlPfNode *root = wl_pf_node(t->g, t->g->root);
     for (guint bi = 0; bi < 2; bi++)
         for (guint bj = 0; bj < 2; bj++) {
             const WlPfNode *b = child(t, root, 2 * bi + bj);
             double x0 = 50.0 * bi, z0 = 50.0 * bj;
             for (guint h = 0; h < 2; h++) {
-                double x = x0 + 6 + 38 * unit(&rng);
-                double z = z0 + 6 + 38 * unit(&rng);
-                double yaw = 2 * G_PI * unit(&rng);
-                double sx = 6 + 6 * unit(&rng), sy = 5 + 10 * unit(&rng);
-                double sz = 6 + 6 * unit(&rng);
-                guint look = 3 + (guint)(sm64(&rng) % 6);
+                double x = x0 + 6 + 38 * sim_rng_uniform(rng);
+                double z = z0 + 6 + 38 * sim_rng_uniform(rng);
+                double yaw = 2 * G_PI * sim_rng_uniform(rng);
+                double sx = 6 + 6 * sim_rng_uniform(rng),
+                       sy = 5 + 10 * sim_rng_uniform(rng);
+                double sz = 6 + 6 * sim_rng_uniform(rng);
+                guint look = 3 + (guint)sim_rng_below(rng, 6);
                 const WlPfNode *scs = child(t, b, 1 + h);
-                Mat4 want = mat4_mul(
-                    mat4_translate(x, wl_pf_town_height(x, z), z),
-                    mat4_rotate(vec3(0, 1, 0), yaw));
+                Mat4 want =
+                    mat4_mul(mat4_translate(x, wl_pf_town_height(x, z), z),
+                             mat4_rotate(vec3(0, 1, 0), yaw));
                 for (int i = 0; i < 4; i++)
                     for (int j = 0; j < 4; j++)
                         near(scs->xf.m[i][j], want.m[i][j]);
@@ -273,8 +265,8 @@ static void test_placement_from_seed(void **st)
             }
             const WlPfNode *bb = child(t, b, 3);
             for (guint k = 0; k < 3; k++) {
-                double x = x0 + 2 + 46 * unit(&rng);
-                double z = z0 + 2 + 46 * unit(&rng);
+                double x = x0 + 2 + 46 * sim_rng_uniform(rng);
+                double z = z0 + 2 + 46 * sim_rng_uniform(rng);
                 const WlPfGeoSet *gs =
                     wl_pf_geoset(t->g, g_array_index(bb->geosets, guint, k));
                 near(vtx(gs, 0).x, x - 2), near(vtx(gs, 0).z, z);
@@ -290,7 +282,8 @@ static void test_box_faces(void **st)
 {
     (void)st;
     WlPfTown *t = small_town();
-    const WlPfNode *lod = child(t, child(t, wl_pf_node(t->g, t->g->root), 0), 1);
+    const WlPfNode *lod =
+        child(t, child(t, wl_pf_node(t->g, t->g->root), 0), 1);
     lod = child(t, lod, 0);
     for (guint i = 0; i < 3; i++) {
         const WlPfGeoSet *gs = only_geoset(t, child(t, lod, i));
@@ -312,7 +305,8 @@ static void test_box_faces(void **st)
                 }
                 if (in != 2 * k * k)
                     fail_msg("LOD %u axis %d side %d: %u triangles, "
-                             "expected %u", i, a, side, in, 2 * k * k);
+                             "expected %u",
+                             i, a, side, in, 2 * k * k);
             }
     }
     wl_pf_town_free(t);
