@@ -235,8 +235,9 @@ static gboolean build_net(MachMachine *m, GError **err)
     return TRUE;
 }
 
-CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
-                           GError **err)
+CfgNode *mach_section_tree_in(const CfgNode *section,
+                              const char *const *model_dirs, char **model_file,
+                              GError **err)
 {
     const char *model = NULL;
     if (cfg_kind(section) != CFG_MAP) {
@@ -253,7 +254,7 @@ CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
             cfg_set_override(copy, "schema_version=1", NULL);
         return copy;
     }
-    CfgNode *tree = mach_load_model(model, err);
+    CfgNode *tree = mach_load_model_in(model, model_dirs, err);
     if (!tree) {
         g_prefix_error(err, "%s:%d:%d: ", cfg_file(section), cfg_line(section),
                        cfg_col(section));
@@ -302,12 +303,19 @@ static MachMachine *build(SimEngine *eng, CfgNode *tree, const char *model_file,
     return m;
 }
 
-MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
-                               const char *fidelity, GError **err)
+CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
+                           GError **err)
+{
+    return mach_section_tree_in(section, NULL, model_file, err);
+}
+
+MachMachine *mach_new_from_cfg_in(SimEngine *eng, const CfgNode *section,
+                                  const char *fidelity,
+                                  const char *const *model_dirs, GError **err)
 {
     g_assert(eng && section);
     char *model_file = NULL;
-    CfgNode *tree = mach_section_tree(section, &model_file, err);
+    CfgNode *tree = mach_section_tree_in(section, model_dirs, &model_file, err);
     MachMachine *m = tree ? build(eng, tree, model_file, fidelity, err) : NULL;
     g_free(model_file);
     if (m)
@@ -315,16 +323,28 @@ MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
     return m;
 }
 
-gboolean mach_check_section(const CfgNode *section, GError **err)
+MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
+                               const char *fidelity, GError **err)
+{
+    return mach_new_from_cfg_in(eng, section, fidelity, NULL, err);
+}
+
+gboolean mach_check_section_in(const CfgNode *section,
+                               const char *const *model_dirs, GError **err)
 {
     char *model_file = NULL;
-    CfgNode *tree = mach_section_tree(section, &model_file, err);
+    CfgNode *tree = mach_section_tree_in(section, model_dirs, &model_file, err);
     gboolean ok = tree && mach_model_check(tree, model_file, err);
     cfg_free(tree);
     g_free(model_file);
     if (ok)
         cfg_mark_read(section);
     return ok;
+}
+
+gboolean mach_check_section(const CfgNode *section, GError **err)
+{
+    return mach_check_section_in(section, NULL, err);
 }
 
 MachMachine *mach_new_from_model(SimEngine *eng, const char *name,

@@ -35,18 +35,33 @@
  * `fidelity` is "analytic", "flow", "packet" or MACH_FIDELITY_FAITHFUL:
  * the model's own `network.fidelity` (the transport that models its
  * hardware, e.g. circuit switching on the iPSC/2 = "packet"), reported
- * by mach_fidelity() as "<word> (faithful)".  Returns a new machine
- * (mach_free) or NULL with *err set (unknown model, bad override ...). */
+ * by mach_fidelity() as "<word> (faithful)".  A `model:` name is found on
+ * the model search path with the extra folders `model_dirs` (a
+ * NULL-terminated array, borrowed, or NULL: model_find.h), searched after
+ * ./models and $PGSIM_MODELS and before the shipped models.  Returns a
+ * new machine (mach_free) or NULL with *err set (unknown model, bad
+ * override ...). */
+MachMachine *mach_new_from_cfg_in(SimEngine *eng, const CfgNode *section,
+                                  const char *fidelity,
+                                  const char *const *model_dirs, GError **err);
+/* mach_new_from_cfg_in() without extra folders. */
 MachMachine *mach_new_from_cfg(SimEngine *eng, const CfgNode *section,
                                const char *fidelity, GError **err);
 /* Checks a config's `machine` section early (load, merge, check) and
  * marks all of its keys read, so that cfg_check_unused() on the whole
- * config accepts them.  The app calls it before cfg_check_unused(). */
+ * config accepts them.  The app calls it before cfg_check_unused().
+ * `model_dirs` as for mach_new_from_cfg_in(). */
+gboolean mach_check_section_in(const CfgNode *section,
+                               const char *const *model_dirs, GError **err);
 gboolean mach_check_section(const CfgNode *section, GError **err);
 /* The model tree of a section, unchecked: the model named by `model:`
- * with the section deep-merged over it, or a copy of the section itself.
- * Returns a new tree (cfg_free) and in *model_file (g_free) the file
- * whose values need provenance; NULL with *err if the model is missing. */
+ * (found as above) with the section deep-merged over it, or a copy of
+ * the section itself.  Returns a new tree (cfg_free) and in *model_file
+ * (g_free) the file whose values need provenance; NULL with *err if the
+ * model is missing. */
+CfgNode *mach_section_tree_in(const CfgNode *section,
+                              const char *const *model_dirs, char **model_file,
+                              GError **err);
 CfgNode *mach_section_tree(const CfgNode *section, char **model_file,
                            GError **err);
 /* mach_new_from_cfg() from a model name alone (no overrides). */

@@ -1,15 +1,17 @@
-/* model.c — finding, loading and checking machine model files.
+/* model.c — checking machine model files, and loading one by name.
  *
- * The checker walks the tree once: top-level keys, each node kind, each
- * cost, each network key.  Every parameter is looked up in a small type
- * table; its value must parse as that type, carry a unit when the type
- * has one, and come with a non-empty `source`, `calibrated` or
- * `assumption` unless it is an override from another file (model.h).
- * Errors are located: "file:line:col: found <what>, expected <what>".
+ * Finding the file is model_find.c's; reading a checked tree's values
+ * and their provenance is model_param.c's.  The checker walks the tree
+ * once: top-level keys, each node kind, each cost, each network key.
+ * Every parameter is looked up in a small type table; its value must
+ * parse as that type, carry a unit when the type has one, and come with
+ * a non-empty `source`, `calibrated` or `assumption` unless it is an
+ * override from another file (model.h).  Errors are located:
+ * "file:line:col: found <what>, expected <what>".
  *
  * Invariant: a tree that passed mach_model_check() has every accepted key
- * marked read, and the typed getters below cannot fail on it except for a
- * missing required key.  Cost: O(size of the tree).
+ * marked read, and the typed getters (model_param.h) cannot fail on it
+ * except for a missing required key.  Cost: O(size of the tree).
  */
 #include "sim/machine/model.h"
 #include "sim/core/datapath.h"
@@ -60,9 +62,6 @@ static const MachKeyType net_keys[] = {
     {NULL, 0},
 };
 
-static const char *const provenance_keys[] = {"source", "calibrated",
-                                              "assumption", NULL};
-
 static gboolean lookup(const MachKeyType *t, const char *key, MachType *out)
 {
     for (; t->key; t++) {
@@ -94,110 +93,6 @@ static char *key_list(const MachKeyType *t, const char *extra)
     return g_string_free(s, FALSE);
 }
 
-/* ---- finding and loading ---------------------------------------------- */
-
-static gboolean name_ok(const char *name)
-{
-    if (!name || !*name || name[0] == '.')
-        return FALSE;
-    for (const char *c = name; *c; c++)
-        if (!g_ascii_isalnum(*c) && *c != '-' && *c != '_' && *c != '.')
-            return FALSE;
-    return TRUE;
-}
-
-static char *try_dir(const char *dir, const char *name)
-{
-    char *file = g_strconcat(name, ".yaml", NULL);
-    char *path = g_build_filename(dir, file, NULL);
-    g_free(file);
-    if (g_file_test(path, G_FILE_TEST_IS_REGULAR))
-        return path;
-    g_free(path);
-    return NULL;
-}
-
-/* Adds dir (owned) unless the same folder is already listed. */
-static void add_dir(GPtrArray *dirs, char *dir)
-{
-    char *c = g_canonicalize_filename(dir, NULL);
-    gboolean dup = FALSE;
-    for (guint i = 0; !dup && i < dirs->len; i++) {
-        char *o = g_canonicalize_filename(dirs->pdata[i], NULL);
-        dup = strcmp(o, c) == 0;
-        g_free(o);
-    }
-    g_free(c);
-    if (dup)
-        g_free(dir);
-    else
-        g_ptr_array_add(dirs, dir);
-}
-
-GPtrArray *mach_model_dirs(void)
-{
-    GPtrArray *dirs = g_ptr_array_new_with_free_func(g_free);
-    add_dir(dirs, g_strdup("models"));
-    const char *env = g_getenv("PGSIM_MODELS");
-    char **list = g_strsplit(env ? env : "", ":", -1);
-    for (char **d = list; *d; d++)
-        if (**d)
-            add_dir(dirs, g_strdup(*d));
-    g_strfreev(list);
-    GPtrArray *roots = sim_data_roots();
-    for (guint i = 0; i < roots->len; i++)
-        add_dir(dirs, g_build_filename(roots->pdata[i], "models", NULL));
-    g_ptr_array_free(roots, TRUE);
-    return dirs;
-}
-
-static void no_model(GError **err, const char *name, const GPtrArray *dirs)
-{
-    GString *s = g_string_new(NULL);
-    for (guint i = 0; i < dirs->len; i++)
-        if (g_file_test(dirs->pdata[i], G_FILE_TEST_IS_DIR))
-            g_string_append_printf(s, "%s%s", s->len ? ", " : "",
-                                   (const char *)dirs->pdata[i]);
-    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "found no model '%s', expected models/%s.yaml (model folders "
-                "searched: %s; more with $PGSIM_MODELS)",
-                name, name, s->len ? s->str : "none exists");
-    g_string_free(s, TRUE);
-}
-
-char *mach_model_path(const char *name, GError **err)
-{
-    if (!name_ok(name)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "found model name '%s', expected a plain name such as "
-                    "'ipsc2' (letters, digits, '-', '_')",
-                    name ? name : "");
-        return NULL;
-    }
-    GPtrArray *dirs = mach_model_dirs();
-    char *path = NULL;
-    for (guint i = 0; !path && i < dirs->len; i++)
-        path = try_dir(dirs->pdata[i], name);
-    if (!path)
-        no_model(err, name, dirs);
-    g_ptr_array_free(dirs, TRUE);
-    return path;
-}
-
-CfgNode *mach_load_model(const char *name, GError **err)
-{
-    char *path = mach_model_path(name, err);
-    if (!path)
-        return NULL;
-    CfgNode *root = cfg_load_file(path, err);
-    if (root && !mach_model_check(root, cfg_file(root), err)) {
-        cfg_free(root);
-        root = NULL;
-    }
-    g_free(path);
-    return root;
-}
-
 /* ---- checking ----------------------------------------------------------- */
 
 static gboolean has_unit(const char *s)
@@ -206,28 +101,6 @@ static gboolean has_unit(const char *s)
     while (n > 0 && g_ascii_isspace(s[n - 1]))
         n--;
     return n > 0 && !g_ascii_isdigit(s[n - 1]) && s[n - 1] != '.';
-}
-
-static const char *type_example(MachType t)
-{
-    switch (t) {
-    case MACH_T_TIME:
-        return "a time with its unit, e.g. '350 us'";
-    case MACH_T_BANDWIDTH:
-        return "a bandwidth with its unit, e.g. '2.8 MB/s'";
-    case MACH_T_FREQ:
-        return "a frequency with its unit, e.g. '16 MHz'";
-    case MACH_T_SIZE:
-        return "a size with its unit, e.g. '4 MB'";
-    case MACH_T_BW_LIST:
-        return "a list of bandwidths, e.g. [20 MB/s, 10 MB/s]";
-    case MACH_T_COUNT_LIST:
-        return "a list of counts, e.g. [8, 8]";
-    case MACH_T_COUNT:
-        return "a count, e.g. 16 or 64K";
-    default:
-        return "a word, e.g. hypercube";
-    }
 }
 
 static gboolean check_unit(const CfgNode *v, MachType t, GError **err)
@@ -239,7 +112,7 @@ static gboolean check_unit(const CfgNode *v, MachType t, GError **err)
         return TRUE;
     char *found = s ? g_strdup_printf("'%s' without a unit", s)
                     : g_strdup("a non-scalar value");
-    cfg_error(err, v, found, type_example(t));
+    cfg_error(err, v, found, mach_type_example(t));
     g_free(found);
     return FALSE;
 }
@@ -248,7 +121,7 @@ static gboolean check_unit(const CfgNode *v, MachType t, GError **err)
 static gboolean check_list(const CfgNode *v, MachType t, GError **err)
 {
     if (cfg_kind(v) != CFG_SEQ || cfg_seq_len(v) == 0) {
-        cfg_error(err, v, "a non-list value", type_example(t));
+        cfg_error(err, v, "a non-list value", mach_type_example(t));
         return FALSE;
     }
     MachType item = t == MACH_T_BW_LIST ? MACH_T_BANDWIDTH : MACH_T_COUNT;
@@ -314,7 +187,7 @@ static gboolean check_provenance(const CfgNode *p, const char *name,
                                  GError **err)
 {
     gboolean found_any = FALSE;
-    for (const char *const *k = provenance_keys; *k; k++) {
+    for (const char *const *k = mach_provenance_keys; *k; k++) {
         const CfgNode *v = cfg_get(p, *k); /* marks every one read */
         const char *s = v ? cfg_scalar(v) : NULL;
         if (v && (!s || !*s)) {
@@ -533,7 +406,7 @@ static gboolean check_workload_entry(const CfgNode *e, const char *name,
     (void)cfg_get(e, "unit");
     (void)cfg_get(e, "note");
     gboolean found_any = FALSE;
-    for (const char *const *k = provenance_keys; *k; k++) {
+    for (const char *const *k = mach_provenance_keys; *k; k++) {
         const CfgNode *v = cfg_get(e, *k);
         if (v && !provenance_ok(v)) {
             cfg_error(err, v, "an empty provenance",
@@ -713,168 +586,24 @@ static gboolean check_body(const CfgNode *root, const char *model_file,
     return cfg_check_unused(root, err);
 }
 
-/* ---- typed access ------------------------------------------------------- */
+/* ---- loading by name ---------------------------------------------------- */
 
-/* Resolves (map, key) to the (container, key) that holds the value. */
-static const CfgNode *holder(const CfgNode *map, const char **key)
+CfgNode *mach_load_model_in(const char *name, const char *const *extra,
+                            GError **err)
 {
-    const CfgNode *p = cfg_get(map, *key);
-    if (p && cfg_kind(p) == CFG_MAP) {
-        *key = "value";
-        return p;
+    char *path = mach_model_path_in(name, extra, err);
+    if (!path)
+        return NULL;
+    CfgNode *root = cfg_load_file(path, err);
+    if (root && !mach_model_check(root, cfg_file(root), err)) {
+        cfg_free(root);
+        root = NULL;
     }
-    return p ? map : NULL;
+    g_free(path);
+    return root;
 }
 
-const CfgNode *mach_param_node(const CfgNode *map, const char *key)
+CfgNode *mach_load_model(const char *name, GError **err)
 {
-    const CfgNode *h = holder(map, &key);
-    return h ? cfg_get(h, key) : NULL;
-}
-
-static gboolean absent(const CfgNode *map, const char *key, gboolean required,
-                       GError **err)
-{
-    if (required) {
-        char *found = g_strdup_printf("no parameter '%s'", key);
-        cfg_error(err, map, found, "it in the machine model");
-        g_free(found);
-        return FALSE;
-    }
-    return TRUE;
-}
-
-gboolean mach_param_time(const CfgNode *map, const char *key, gboolean required,
-                         SimTime *out, GError **err)
-{
-    const CfgNode *h = holder(map, &key);
-    return h ? cfg_get_time(h, key, TRUE, out, err)
-             : absent(map, key, required, err);
-}
-
-gboolean mach_param_count(const CfgNode *map, const char *key,
-                          gboolean required, uint64_t *out, GError **err)
-{
-    const CfgNode *h = holder(map, &key);
-    return h ? cfg_get_count(h, key, TRUE, 0, UINT64_MAX, out, err)
-             : absent(map, key, required, err);
-}
-
-gboolean mach_param_bandwidth(const CfgNode *map, const char *key,
-                              gboolean required, double *out, GError **err)
-{
-    const CfgNode *h = holder(map, &key);
-    return h ? cfg_get_bandwidth(h, key, TRUE, out, err)
-             : absent(map, key, required, err);
-}
-
-gboolean mach_param_freq(const CfgNode *map, const char *key, gboolean required,
-                         double *out, GError **err)
-{
-    const CfgNode *h = holder(map, &key);
-    return h ? cfg_get_freq(h, key, TRUE, out, err)
-             : absent(map, key, required, err);
-}
-
-gboolean mach_param_size(const CfgNode *map, const char *key, gboolean required,
-                         uint64_t *out, GError **err)
-{
-    const CfgNode *h = holder(map, &key);
-    return h ? cfg_get_size(h, key, TRUE, out, err)
-             : absent(map, key, required, err);
-}
-
-/* One list item of type t (MACH_T_BANDWIDTH: double, MACH_T_COUNT:
- * uint64_t), parsed where it stands. */
-static gboolean parse_item(const CfgNode *v, MachType t, void *out,
-                           GError **err)
-{
-    char *what =
-        g_strdup_printf("%s:%d:%d", cfg_file(v), cfg_line(v), cfg_col(v));
-    const char *s = cfg_scalar(v);
-    gboolean ok =
-        s && (t == MACH_T_BANDWIDTH ? cfg_parse_bandwidth(s, what, out, err)
-                                    : cfg_parse_count(s, what, out, err));
-    if (!s)
-        cfg_error(err, v, "a non-scalar list item",
-                  t == MACH_T_BANDWIDTH ? "a bandwidth" : "a count");
-    g_free(what);
-    return ok;
-}
-
-/* A list parameter of type t into a new GArray (doubles or uint64_t). */
-static gboolean param_list(const CfgNode *map, const char *key,
-                           gboolean required, MachType t, GArray **out,
-                           GError **err)
-{
-    const CfgNode *v = mach_param_node(map, key);
-    if (!v)
-        return absent(map, key, required, err);
-    if (cfg_kind(v) != CFG_SEQ) {
-        cfg_error(err, v, "a non-list value", type_example(t));
-        return FALSE;
-    }
-    MachType item = t == MACH_T_BW_LIST ? MACH_T_BANDWIDTH : MACH_T_COUNT;
-    GArray *a = g_array_new(FALSE, FALSE, 8);
-    for (guint i = 0; i < cfg_seq_len(v); i++) {
-        union {
-            double d;
-            uint64_t u;
-        } x;
-        if (!parse_item(cfg_seq_at(v, i), item, &x, err)) {
-            g_array_unref(a);
-            return FALSE;
-        }
-        g_array_append_val(a, x);
-    }
-    *out = a;
-    return TRUE;
-}
-
-gboolean mach_param_bw_list(const CfgNode *map, const char *key,
-                            gboolean required, GArray **out, GError **err)
-{
-    return param_list(map, key, required, MACH_T_BW_LIST, out, err);
-}
-
-gboolean mach_param_count_list(const CfgNode *map, const char *key,
-                               gboolean required, GArray **out, GError **err)
-{
-    return param_list(map, key, required, MACH_T_COUNT_LIST, out, err);
-}
-
-MachProvenance mach_param_provenance(const CfgNode *map, const char *key,
-                                     const char **text)
-{
-    const CfgNode *p = cfg_get(map, key);
-    if (text)
-        *text = NULL;
-    if (!p)
-        return MACH_PROV_NONE;
-    /* the provenance given in the same file as the value (a scalar or a
-     * list has none: cfg_get of a non-map is NULL, so an override) */
-    const CfgNode *v = cfg_get(p, "value");
-    for (guint i = 0; provenance_keys[i]; i++) {
-        const CfgNode *t = cfg_get(p, provenance_keys[i]);
-        if (!t || (v && g_strcmp0(cfg_file(v), cfg_file(t)) != 0))
-            continue;
-        if (text)
-            *text = cfg_scalar(t);
-        return (MachProvenance)(MACH_PROV_SOURCE + i);
-    }
-    return MACH_PROV_OVERRIDE;
-}
-
-const char *mach_provenance_name(MachProvenance p)
-{
-    static const char *const names[] = {"none", "source", "calibrated",
-                                        "assumption", "override"};
-    g_assert((unsigned)p < G_N_ELEMENTS(names));
-    return names[p];
-}
-
-const char *mach_param_word(const CfgNode *map, const char *key)
-{
-    const CfgNode *v = mach_param_node(map, key);
-    return v ? cfg_scalar(v) : NULL;
+    return mach_load_model_in(name, NULL, err);
 }
