@@ -2,6 +2,7 @@
 #include "tests/support.h"
 
 #include <glib.h>
+#include <glib/gstdio.h>
 
 void support_warnings_fatal(void)
 {
@@ -27,4 +28,19 @@ int support_camera_equal(const SceneCamera *a, const SceneCamera *b)
            vec3_same(a->target, b->target) && vec3_same(a->up, b->up) &&
            a->fov_deg == b->fov_deg && a->height == b->height &&
            a->near == b->near && a->far == b->far && a->aspect == b->aspect;
+}
+
+void support_rm_tree(const char *path)
+{
+    GDir *d = g_dir_open(path, 0, NULL);
+    if (d) {
+        const char *e;
+        while ((e = g_dir_read_name(d))) {
+            char *p = g_build_filename(path, e, NULL);
+            support_rm_tree(p);
+            g_free(p);
+        }
+        g_dir_close(d);
+    }
+    g_remove(path);
 }

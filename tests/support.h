@@ -13,5 +13,7 @@ int support_test_models(void **state);
  * padding after `proj` is indeterminate, and differs between an -O0 and
  * an -O2 build of the same test. */
 int support_camera_equal(const SceneCamera *a, const SceneCamera *b);
+/* Removes a file, or a folder and everything in it (test scratch). */
+void support_rm_tree(const char *path);
 
 #endif

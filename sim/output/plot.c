@@ -3,11 +3,14 @@
  * Rows are grouped by series (first-seen order) and, within a series, by
  * x; each group becomes one data line "x mean min max label", sorted by x.
  * When any group holds more than one row (repetitions), the chart draws
- * min..max error bars around the mean.  O(rows * groups per series).
+ * min..max error bars around the mean.  O(rows log rows).
  */
 #include "sim/output/plot.h"
 #include "sim/core/datapath.h"
+#include <errno.h>
+#include <glib/gstdio.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -64,6 +67,19 @@ static gboolean opt_str(const CfgNode *m, const char *key, char **out,
     return TRUE;
 }
 
+gboolean plot_cfg_name_ok(const CfgNode *at, const char *what,
+                          const char *name, GError **err)
+{
+    if (plot_name_ok(name))
+        return TRUE;
+    char *shown = plot_printable(name);
+    char *found = g_strdup_printf("the %s name '%s'", what, shown);
+    cfg_error(err, at, found, PLOT_NAME_RULE);
+    g_free(found);
+    g_free(shown);
+    return FALSE;
+}
+
 static PlotSpec *read_spec(const CfgNode *m, guint i, GError **err)
 {
     static const char *const styles[] = {"linespoints", "points", "lines",
@@ -80,6 +96,7 @@ static PlotSpec *read_spec(const CfgNode *m, guint i, GError **err)
     g_free(p->style);
     p->style = g_strdup(styles[style]);
     if (opt_str(m, "name", &p->name, err) &&
+        plot_cfg_name_ok(cfg_get(m, "name"), "plot", p->name, err) &&
         opt_str(m, "series", &p->series, err) &&
         opt_str(m, "title", &p->title, err) &&
         opt_str(m, "xlabel", &p->xlabel, err) &&
@@ -154,20 +171,6 @@ static gboolean x_is_numeric(const DataTable *t, int xc)
     return TRUE;
 }
 
-static PlotSeries *series_for(GPtrArray *all, const char *name)
-{
-    for (guint i = 0; i < all->len; i++) {
-        PlotSeries *s = g_ptr_array_index(all, i);
-        if (strcmp(s->name, name) == 0)
-            return s;
-    }
-    PlotSeries *s = g_new0(PlotSeries, 1);
-    s->name = g_strdup(name);
-    s->groups = g_array_new(FALSE, TRUE, sizeof(PlotGroup));
-    g_ptr_array_add(all, s);
-    return s;
-}
-
 static void series_free(gpointer p)
 {
     PlotSeries *s = p;
@@ -178,30 +181,36 @@ static void series_free(gpointer p)
     g_free(s);
 }
 
-static void add_point(PlotSeries *s, double x, const char *label, double y)
+/* Rows are grouped in O(rows log rows): series and categories through
+ * hash tables, points sorted by x (stable: the first-seen label of an x
+ * stays) and equal x merged. */
+typedef struct {
+    GPtrArray *all;    /* PlotSeries, first-seen order */
+    GHashTable *index; /* series name (borrowed) -> position + 1 */
+    GHashTable *cats;  /* category label (borrowed) -> position + 1 */
+} Grouping;
+
+static PlotSeries *series_for(Grouping *g, const char *name)
 {
-    PlotGroup *g = NULL;
-    for (guint i = 0; i < s->groups->len && !g; i++)
-        if (g_array_index(s->groups, PlotGroup, i).x == x)
-            g = &g_array_index(s->groups, PlotGroup, i);
-    if (!g) {
-        PlotGroup ng = {x, g_strdup(label), 0.0, y, y, 0};
-        g_array_append_val(s->groups, ng);
-        g = &g_array_index(s->groups, PlotGroup, s->groups->len - 1);
-    }
-    g->sum += y;
-    g->min = MIN(g->min, y);
-    g->max = MAX(g->max, y);
-    g->n++;
+    guint at = GPOINTER_TO_UINT(g_hash_table_lookup(g->index, name));
+    if (at)
+        return g_ptr_array_index(g->all, at - 1);
+    PlotSeries *s = g_new0(PlotSeries, 1);
+    s->name = g_strdup(name);
+    s->groups = g_array_new(FALSE, TRUE, sizeof(PlotGroup));
+    g_ptr_array_add(g->all, s);
+    g_hash_table_insert(g->index, s->name, GUINT_TO_POINTER(g->all->len));
+    return s;
 }
 
-static double category(GPtrArray *cats, const char *label)
+static double category(Grouping *g, const char *label)
 {
-    for (guint i = 0; i < cats->len; i++)
-        if (strcmp(g_ptr_array_index(cats, i), label) == 0)
-            return i;
-    g_ptr_array_add(cats, g_strdup(label));
-    return cats->len - 1;
+    guint at = GPOINTER_TO_UINT(g_hash_table_lookup(g->cats, label));
+    if (!at) {
+        at = g_hash_table_size(g->cats) + 1;
+        g_hash_table_insert(g->cats, (gpointer)label, GUINT_TO_POINTER(at));
+    }
+    return at - 1;
 }
 
 static gint by_x(gconstpointer a, gconstpointer b)
@@ -210,39 +219,143 @@ static gint by_x(gconstpointer a, gconstpointer b)
     return x < y ? -1 : x > y;
 }
 
+/* Sorts a series' points by x and folds equal x into one group. */
+static void merge_groups(GArray *gs)
+{
+    g_array_sort(gs, by_x);
+    guint k = 0;
+    for (guint i = 0; i < gs->len; i++) {
+        PlotGroup *p = &g_array_index(gs, PlotGroup, i);
+        PlotGroup *q = k ? &g_array_index(gs, PlotGroup, k - 1) : NULL;
+        if (q && q->x == p->x) {
+            q->sum += p->sum;
+            q->min = MIN(q->min, p->min);
+            q->max = MAX(q->max, p->max);
+            q->n += p->n;
+            g_free(p->label);
+        } else {
+            g_array_index(gs, PlotGroup, k++) = *p;
+        }
+    }
+    g_array_set_size(gs, k);
+}
+
+static gboolean too_many_series(const PlotSpec *p, const Grouping *g,
+                                const char *name, guint row, GError **err)
+{
+    if (g->all->len < PLOT_MAX_SERIES ||
+        g_hash_table_contains(g->index, name))
+        return FALSE;
+    char *shown = plot_printable(name);
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "plot %s: found a series number %d, '%s' in column '%s' "
+                "(data row %u), expected at most %d series in a chart",
+                p->name, PLOT_MAX_SERIES + 1, shown, p->series, row + 1,
+                PLOT_MAX_SERIES);
+    g_free(shown);
+    return TRUE;
+}
+
 static GPtrArray *group_rows(const PlotSpec *p, const DataTable *t,
-                             gboolean *categorical)
+                             gboolean *categorical, GError **err)
 {
     int xc = dt_col(t, p->x), yc = dt_col(t, p->y);
     int sc = p->series ? dt_col(t, p->series) : -1;
-    GPtrArray *all = g_ptr_array_new_with_free_func(series_free);
-    GPtrArray *cats = g_ptr_array_new_with_free_func(g_free);
+    Grouping g = {g_ptr_array_new_with_free_func(series_free),
+                  g_hash_table_new(g_str_hash, g_str_equal),
+                  g_hash_table_new(g_str_hash, g_str_equal)};
     *categorical = !x_is_numeric(t, xc);
     for (guint r = 0; r < t->rows->len; r++) {
         double x, y;
         const char *xs = dt_cell(t, r, xc);
+        const char *sn = sc >= 0 ? dt_cell(t, r, sc) : "";
         if (!number(dt_cell(t, r, yc), &y) || !*xs)
             continue;
-        x = *categorical ? category(cats, xs) : g_ascii_strtod(xs, NULL);
-        add_point(series_for(all, sc >= 0 ? dt_cell(t, r, sc) : ""), x, xs, y);
+        if (too_many_series(p, &g, sn, r, err)) {
+            g_ptr_array_free(g.all, TRUE);
+            g.all = NULL;
+            break;
+        }
+        x = *categorical ? category(&g, xs) : g_ascii_strtod(xs, NULL);
+        PlotGroup pt = {x, g_strdup(xs), y, y, y, 1};
+        g_array_append_val(series_for(&g, sn)->groups, pt);
     }
-    for (guint i = 0; i < all->len; i++)
-        g_array_sort(((PlotSeries *)g_ptr_array_index(all, i))->groups, by_x);
-    g_ptr_array_free(cats, TRUE);
-    return all;
+    for (guint i = 0; g.all && i < g.all->len; i++)
+        merge_groups(((PlotSeries *)g_ptr_array_index(g.all, i))->groups);
+    g_hash_table_destroy(g.index);
+    g_hash_table_destroy(g.cats);
+    return g.all;
 }
 
 /* ---- writing --------------------------------------------------------- */
 
+gboolean plot_name_ok(const char *name)
+{
+    gsize n = name ? strlen(name) : 0;
+    if (n == 0 || n > PLOT_NAME_MAX ||
+        !(g_ascii_isalnum(name[0]) || name[0] == '_'))
+        return FALSE;
+    for (gsize i = 0; i < n; i++)
+        if (!g_ascii_isalnum(name[i]) && !strchr("._+-", name[i]))
+            return FALSE;
+    return TRUE;
+}
+
+char *plot_printable(const char *s)
+{
+    char *o = g_strdup(s);
+    for (char *c = o; *c; c++)
+        if ((guchar)*c < 0x20 || *c == 0x7f)
+            *c = ' ';
+    return o;
+}
+
+/* A gnuplot string expression of single-quoted pieces: gnuplot
+ * substitutes backquotes (shell commands) inside double quotes and reads
+ * backslash escapes there, but in single quotes nothing is special except
+ * the quote itself (gnuplot 5.4 "help syntax", "help substitution").
+ * gnuplot 5.4's scanner reads a doubled quote inside a string but not at
+ * its start (three quotes and a letter are an empty string and a stray
+ * token), so a quote is joined in as "'": 'it' . "'" . 's'.  A control
+ * byte would end the command line (the next line a new command, such as
+ * `!rm ...`), so it becomes a space. */
 static void put_quoted(GString *o, const char *s)
 {
-    g_string_append_c(o, '"');
+    g_string_append_c(o, '\'');
     for (; *s; s++) {
-        if (*s == '"' || *s == '\\')
-            g_string_append_c(o, '\\');
-        g_string_append_c(o, *s == '\n' ? ' ' : *s);
+        if (*s == '\'')
+            g_string_append(o, "' . \"'\" . '");
+        else
+            g_string_append_c(o, (guchar)*s < 0x20 || *s == 0x7f ? ' ' : *s);
     }
+    g_string_append_c(o, '\'');
+}
+
+/* A label field of the data file, in double quotes (gnuplot's data
+ * reader has no escapes): quotes become single quotes, control bytes
+ * (the tab separator, line ends) spaces. */
+static void put_data_label(GString *o, const char *s)
+{
     g_string_append_c(o, '"');
+    for (; *s; s++)
+        g_string_append_c(o, *s == '"' ? '\''
+                             : (guchar)*s < 0x20 || *s == 0x7f ? ' '
+                                                               : *s);
+    g_string_append_c(o, '"');
+}
+
+/* A comment line of a data file or script (no line end inside). */
+static void put_comment(GString *o, const char *fmt, ...) G_GNUC_PRINTF(2, 3);
+static void put_comment(GString *o, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    char *text = g_strdup_vprintf(fmt, ap);
+    va_end(ap);
+    char *line = plot_printable(text);
+    g_string_append_printf(o, "# %s\n", line);
+    g_free(line);
+    g_free(text);
 }
 
 static gboolean has_spread(const GPtrArray *all)
@@ -259,18 +372,16 @@ static gboolean has_spread(const GPtrArray *all)
 static GString *data_text(const PlotSpec *p, const GPtrArray *all)
 {
     GString *o = g_string_new(NULL);
-    g_string_append_printf(o,
-                           "# %s: x=%s y=%s (mean, min, max over rows "
-                           "with the same x) label\n",
-                           p->name, p->x, p->y);
+    put_comment(o, "%s: x=%s y=%s (mean, min, max over rows with the same "
+                "x) label", p->name, p->x, p->y);
     for (guint i = 0; i < all->len; i++) {
         const PlotSeries *s = g_ptr_array_index(all, i);
-        g_string_append_printf(o, "# series %s\n", s->name);
+        put_comment(o, "series %s", s->name);
         for (guint k = 0; k < s->groups->len; k++) {
             const PlotGroup *g = &g_array_index(s->groups, PlotGroup, k);
             g_string_append_printf(o, "%.17g\t%.17g\t%.17g\t%.17g\t", g->x,
                                    g->sum / g->n, g->min, g->max);
-            put_quoted(o, g->label);
+            put_data_label(o, g->label);
             g_string_append_c(o, '\n');
         }
         g_string_append(o, "\n\n");
@@ -324,8 +435,8 @@ static void script_head(GString *o, const PlotSpec *p, gboolean cat)
     char *xl = p->xlabel ? g_strdup(p->xlabel) : plot_label(p->x);
     char *yl = p->ylabel ? g_strdup(p->ylabel) : plot_label(p->y);
     char *title = chart_title(p, xl, yl);
-    g_string_append(o, "# pgsim chart: edit and rerun `gnuplot ");
-    g_string_append_printf(o, "%s.gp`\nset title ", p->name);
+    put_comment(o, "pgsim chart: edit and rerun 'gnuplot %s.gp'", p->name);
+    g_string_append(o, "set title ");
     put_quoted(o, title);
     g_string_append(o, "\nset xlabel ");
     put_quoted(o, xl);
@@ -353,7 +464,7 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
     g_string_append(o, "plot");
     for (guint i = 0; i < all->len; i++) {
         const PlotSeries *s = g_ptr_array_index(all, i);
-        g_string_append_printf(o, "%s \"%s.dat\" index %u using 1:2",
+        g_string_append_printf(o, "%s '%s.dat' index %u using 1:2",
                                i ? ", \\\n    " : " ", p->name, i);
         if (bars)
             g_string_append(o, ":3:4");
@@ -387,11 +498,11 @@ static GString *script_text(const PlotSpec *p, const GPtrArray *all,
     g_string_append_printf(o,
                            "set terminal pngcairo size 900,560 "
                            "noenhanced font \"sans,10\"\n"
-                           "set output \"%s.png\"\n%s",
+                           "set output '%s.png'\n%s",
                            p->name, plot->str);
     g_string_append_printf(o,
                            "set terminal svg size 900,560 noenhanced "
-                           "font \"sans,10\"\nset output \"%s.svg\"\n%s"
+                           "font \"sans,10\"\nset output '%s.svg'\n%s"
                            "set output\n",
                            p->name, plot->str);
     g_string_free(plot, TRUE);
@@ -430,6 +541,88 @@ static gboolean run_gnuplot(const char *dir, const char *name, GError **err)
     return ok;
 }
 
+/* The chart's four files, drawn in a private folder beside them
+ * (dir/.NAME-XXXXXX) and renamed into dir only when gnuplot made a PNG
+ * and an SVG that are not empty: a failed chart leaves the earlier one,
+ * or nothing, and no stray script, data or empty image. */
+static const char *const chart_exts[] = {".dat", ".gp", ".svg", ".png"};
+
+static gboolean chart_made(const char *stage, const char *name, GError **err)
+{
+    for (guint i = 2; i < G_N_ELEMENTS(chart_exts); i++) {
+        char *file = g_strconcat(name, chart_exts[i], NULL);
+        char *path = g_build_filename(stage, file, NULL);
+        GStatBuf st;
+        int rc = g_stat(path, &st), e = errno;
+        gboolean ok = rc == 0 && st.st_size > 0;
+        if (!ok)
+            g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                        "gnuplot: found %s, expected a chart in %s",
+                        rc == 0 ? "an empty file" : g_strerror(e), path);
+        g_free(path);
+        g_free(file);
+        if (!ok)
+            return FALSE;
+    }
+    return TRUE;
+}
+
+/* Renames the staged files into dir (keep) or removes them; then the
+ * stage folder. */
+static gboolean unstage(const char *stage, const char *dir, const char *name,
+                        gboolean keep, GError **err)
+{
+    gboolean ok = TRUE;
+    for (guint i = 0; i < G_N_ELEMENTS(chart_exts); i++) {
+        char *file = g_strconcat(name, chart_exts[i], NULL);
+        char *from = g_build_filename(stage, file, NULL);
+        char *to = g_build_filename(dir, file, NULL);
+        if (keep && ok && g_rename(from, to) != 0) {
+            int e = errno;
+            g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                        "%s: found %s, expected a writable file", to,
+                        g_strerror(e));
+            ok = FALSE;
+        }
+        g_remove(from);
+        g_free(to);
+        g_free(from);
+        g_free(file);
+    }
+    g_rmdir(stage);
+    return ok;
+}
+
+static gboolean draw(const char *dir, const char *name, const GString *dat,
+                     const GString *gp, GError **err)
+{
+    if (g_mkdir_with_parents(dir, 0777) != 0) {
+        int e = errno;
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                    "%s: found %s, expected a folder for the chart", dir,
+                    g_strerror(e));
+        return FALSE;
+    }
+    char *tmpl = g_strdup_printf(".%s-XXXXXX", name);
+    char *stage = g_build_filename(dir, tmpl, NULL);
+    g_free(tmpl);
+    if (!g_mkdtemp(stage)) {
+        int e = errno;
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                    "%s: found %s, expected a writable folder", dir,
+                    g_strerror(e));
+        g_free(stage);
+        return FALSE;
+    }
+    gboolean ok = save(stage, name, ".dat", dat, err) &&
+                  save(stage, name, ".gp", gp, err) &&
+                  run_gnuplot(stage, name, err) &&
+                  chart_made(stage, name, err);
+    ok = unstage(stage, dir, name, ok, ok ? err : NULL) && ok;
+    g_free(stage);
+    return ok;
+}
+
 DataTable *plot_xy_table_new(void)
 {
     GPtrArray *cols = g_ptr_array_new();
@@ -450,29 +643,78 @@ void plot_xy_add(DataTable *t, double x, double y, const char *series)
     dt_add_row(t, row);
 }
 
-gboolean plot_render(const PlotSpec *p, const DataTable *t, const char *dir,
-                     GError **err)
+/* Skips a comment to its line end; returns the last byte of it. */
+static const char *comment_end(const char *c)
 {
+    while (c[1] && c[1] != '\n')
+        c++;
+    return c;
+}
+
+gboolean plot_script_safe(const char *gp)
+{
+    char quote = 0; /* the open string's quote, or 0 */
+    gboolean line_start = TRUE, continued = FALSE;
+    for (const char *c = gp; *c; c++) {
+        if (line_start && !continued && !g_str_has_prefix(c, "# ") &&
+            !g_str_has_prefix(c, "set ") && !g_str_has_prefix(c, "plot "))
+            return FALSE;
+        line_start = FALSE;
+        if (quote == '"' && *c == '\\' && c[1] && c[1] != '\n')
+            c++; /* an escape in a double-quoted constant of ours */
+        else if (*c == '\n' && quote)
+            return FALSE; /* a string would span lines */
+        else if (*c == '\n')
+            line_start = TRUE, continued = c > gp && c[-1] == '\\';
+        else if (*c == '`' && quote != '\'')
+            return FALSE;
+        else if (*c == '#' && !quote)
+            c = comment_end(c);
+        else if ((*c == '\'' || *c == '"') && (!quote || quote == *c))
+            quote = quote ? 0 : *c;
+    }
+    return !quote;
+}
+
+gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
+                    GString **gp, GError **err)
+{
+    if (!plot_name_ok(p->name)) {
+        char *shown = plot_printable(p->name ? p->name : "");
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "plot: found the chart name '%s', expected " PLOT_NAME_RULE,
+                    shown);
+        g_free(shown);
+        return FALSE;
+    }
     if (!plot_check_columns(p, t, err))
         return FALSE;
     gboolean cat;
-    GPtrArray *all = group_rows(p, t, &cat);
-    if (all->len == 0) {
+    GPtrArray *all = group_rows(p, t, &cat, err);
+    if (!all)
+        return FALSE;
+    gboolean ok = all->len > 0;
+    if (ok) {
+        *dat = data_text(p, all);
+        *gp = script_text(p, all, cat);
+        g_assert(plot_script_safe((*gp)->str)); /* put_quoted's promise */
+    } else {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "plot %s: no row has a number in both '%s' and '%s'",
                     p->name, p->x, p->y);
-        g_ptr_array_free(all, TRUE);
-        return FALSE;
     }
-    GString *dat = data_text(p, all), *gp = script_text(p, all, cat);
-    gboolean ok = g_mkdir_with_parents(dir, 0777) == 0 &&
-                  save(dir, p->name, ".dat", dat, err) &&
-                  save(dir, p->name, ".gp", gp, err) &&
-                  run_gnuplot(dir, p->name, err);
-    if (!ok && err && !*err)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_IO, "%s: cannot create", dir);
+    g_ptr_array_free(all, TRUE);
+    return ok;
+}
+
+gboolean plot_render(const PlotSpec *p, const DataTable *t, const char *dir,
+                     GError **err)
+{
+    GString *dat = NULL, *gp = NULL;
+    if (!plot_texts(p, t, &dat, &gp, err))
+        return FALSE;
+    gboolean ok = draw(dir, p->name, dat, gp, err);
     g_string_free(dat, TRUE);
     g_string_free(gp, TRUE);
-    g_ptr_array_free(all, TRUE);
     return ok;
 }

@@ -6,6 +6,12 @@
  * max y over the rows that share x) and <dir>/<name>.gp (a script that
  * draws <name>.png with pngcairo and <name>.svg), then runs gnuplot on it
  * in <dir>, so a user can edit the .gp file and rerun `gnuplot NAME.gp`.
+ *
+ * Data never becomes gnuplot code: values reach gnuplot only through the
+ * .dat file, every text put into the script (titles, labels, series
+ * names) is a single-quoted string, where gnuplot substitutes nothing
+ * (no backquote commands, no macros), and the chart name, which names the
+ * files, is limited to PLOT_NAME_RULE, so it never leaves <dir>.
  */
 #ifndef PGSIM_OUTPUT_PLOT_H
 #define PGSIM_OUTPUT_PLOT_H
@@ -13,8 +19,19 @@
 #include "sim/output/table.h"
 #include "sim/core/cfg.h"
 
+/* A chart name: letters, digits and . _ + -, starting with a letter, a
+ * digit or _ (so no path, no hidden file, no option), at most PLOT_NAME_MAX
+ * bytes. */
+#define PLOT_NAME_MAX 120
+#define PLOT_NAME_RULE                                                        \
+    "a name of letters, digits and . _ + - that starts with a letter, a "   \
+    "digit or _ (at most 120 characters)"
+/* More lines than this make no readable chart (and gnuplot rereads the
+ * data file once per line): plot_render() refuses them. */
+#define PLOT_MAX_SERIES 500
+
 typedef struct {
-    char *name;   /* output file stem */
+    char *name;   /* output file stem (plot_name_ok) */
     char *x, *y;  /* column names */
     char *series; /* column name; NULL: one series */
     gboolean logx, logy;
@@ -28,6 +45,15 @@ typedef struct {
  * "comm_bytes" -> "comm (B)" (g_free).  Default labels and titles come
  * from it. */
 char *plot_label(const char *col);
+
+/* TRUE when name follows PLOT_NAME_RULE. */
+gboolean plot_name_ok(const char *name);
+/* TRUE when name follows PLOT_NAME_RULE, else a located error at `at`:
+ * "found the <what> name '...', expected <PLOT_NAME_RULE>". */
+gboolean plot_cfg_name_ok(const CfgNode *at, const char *what,
+                          const char *name, GError **err);
+/* A copy of s with control bytes as spaces, for messages (g_free). */
+char *plot_printable(const char *s);
 
 /* Returns a new spec with x and y set; free with plot_spec_free(). */
 PlotSpec *plot_spec_new(const char *name, const char *x, const char *y);
@@ -43,10 +69,22 @@ gboolean plot_check_columns(const PlotSpec *p, const DataTable *t,
  * take, and one row of it (numbers written so they read back exactly). */
 DataTable *plot_xy_table_new(void);
 void plot_xy_add(DataTable *t, double x, double y, const char *series);
-/* Writes NAME.dat and NAME.gp in dir and runs gnuplot there.  Rows whose
- * x or y is empty or not a number are skipped (a categorical x, one that
- * is not numeric, is placed at 0, 1, 2 ... in first-seen order). */
+/* Writes NAME.dat and NAME.gp and runs gnuplot on them in a private
+ * folder inside dir, then renames the four files into dir: a failure
+ * leaves dir as it was.  Rows whose x or y is empty or not a number are
+ * skipped (a categorical x, one that is not numeric, is placed at 0, 1,
+ * 2 ... in first-seen order).  A bad name or more than PLOT_MAX_SERIES
+ * series is an input error.  O(rows log rows). */
 gboolean plot_render(const PlotSpec *p, const DataTable *t, const char *dir,
                      GError **err);
+/* TRUE when a script keeps data out of gnuplot's code: every line starts
+ * with "# ", "set " or "plot " or continues a line ending in '', no
+ * string spans lines and every backquote is inside single quotes.
+ * plot_texts() asserts it of each script it makes. */
+gboolean plot_script_safe(const char *gp);
+/* What plot_render() writes, without writing it: new NAME.dat and NAME.gp
+ * texts (g_string_free) in *dat and *gp, or FALSE and *err. */
+gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
+                    GString **gp, GError **err);
 
 #endif

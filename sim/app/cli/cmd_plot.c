@@ -5,7 +5,8 @@
  * exactly V (all of them must hold).
  *
  * Writes FILE.png, FILE.svg, FILE.gp and FILE.dat (default: <y>-vs-<x>
- * next to the CSV) through plot_render().
+ * next to the CSV, other characters than plot_name_ok's as '_') through
+ * plot_render(); an -o name outside plot_name_ok's set is refused.
  */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
@@ -32,6 +33,18 @@ static gboolean check_out(const char *out)
                 out);
         return FALSE;
     }
+    char *base = g_path_get_basename(out);
+    base[strlen(base) - 4] = '\0';
+    gboolean named = plot_name_ok(base);
+    if (!named) {
+        char *shown = plot_printable(base);
+        fprintf(stderr, "pgsim plot: -o: found the name '%s', expected %s\n",
+                shown, PLOT_NAME_RULE);
+        g_free(shown);
+    }
+    g_free(base);
+    if (!named)
+        return FALSE;
     char *dir = g_path_get_dirname(out);
     gboolean ok = g_file_test(dir, G_FILE_TEST_IS_DIR);
     if (!ok)
@@ -76,6 +89,19 @@ static gboolean parse_opts(PlotOpts *o, int *argc, char ***argv, int *status)
     return !o->out || check_out(o->out);
 }
 
+/* "<y>-vs-<x>" with every character outside PLOT_NAME_RULE as '_' (the
+ * columns are data). */
+static char *default_stem(const PlotOpts *o)
+{
+    char *stem = g_strdup_printf("%s-vs-%s", o->y, o->x);
+    for (char *c = stem; *c; c++)
+        if (!g_ascii_isalnum(*c) && (c == stem || !strchr("._+-", *c)))
+            *c = '_';
+    if (strlen(stem) > PLOT_NAME_MAX)
+        stem[PLOT_NAME_MAX] = '\0';
+    return stem;
+}
+
 /* Splits -o FILE.png (or the default) into a directory and a stem. */
 static void out_names(const PlotOpts *o, const char *csv, char **dir,
                       char **stem)
@@ -87,7 +113,7 @@ static void out_names(const PlotOpts *o, const char *csv, char **dir,
         *stem = base;
     } else {
         *dir = g_path_get_dirname(csv);
-        *stem = g_strdup_printf("%s-vs-%s", o->y, o->x);
+        *stem = default_stem(o);
     }
 }
 

@@ -335,7 +335,9 @@ static gboolean read_name(SweepSpec *s, const CfgNode *root, GError **err)
     if (!cfg_get_str(root, "name", FALSE, &name, err))
         return FALSE;
     s->name = name ? g_strdup(name) : stem_of(s->path);
-    return TRUE;
+    /* it names the default output folder out/<name> */
+    return !name ||
+           plot_cfg_name_ok(cfg_get(root, "name"), "sweep", name, err);
 }
 
 static gboolean read_spec(SweepSpec *s, const CfgNode *root, const char *text,

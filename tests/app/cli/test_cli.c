@@ -242,8 +242,8 @@ static void test_plot_where_and_labels(void **state)
     assert_non_null(strstr(dat, "\n1\t5\t5\t5\t"));
     assert_non_null(strstr(dat, "\n2\t7\t7\t7\t"));
     assert_null(strstr(dat, "\n1\t2\t"));
-    assert_non_null(strstr(gp, "set title \"frame (s) against n\""));
-    assert_non_null(strstr(gp, "set ylabel \"frame (s)\""));
+    assert_non_null(strstr(gp, "set title 'frame (s) against n'"));
+    assert_non_null(strstr(gp, "set ylabel 'frame (s)'"));
     g_free(dat);
     g_free(gp);
     const char *cat[] = {"plot", csv, "--x", "scene", "--y", "frame_s",

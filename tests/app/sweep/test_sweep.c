@@ -110,6 +110,17 @@ static void test_bad_files(void **state)
     expect_bad("parameters: {a: [1]}\n", "found no 'base'");
     expect_bad("base: {a: 1}\nplots:\n  - {x: a}\n", "bad.yaml:3:");
     expect_bad("base: {a: 1}\ncombine: cross\n", "bad.yaml:2:");
+    /* names that would leave the output folder (issue 32) */
+    expect_bad("name: ../../x\nbase: {a: 1}\nparameters: {a: [1]}\n",
+               "bad.yaml:1:7: found the sweep name '../../x', expected a "
+               "name of letters");
+    expect_bad("base: {a: 1}\nparameters: {a: [1]}\n"
+               "plots:\n  - {name: ../x, x: a, y: a}\n",
+               "bad.yaml:4:12: found the plot name '../x', expected a "
+               "name of letters");
+    expect_bad("base: {a: 1}\nparameters: {a: [1]}\n"
+               "plots:\n  - {name: \"a`touch M`\", x: a, y: a}\n",
+               "bad.yaml:4:12: found the plot name 'a`touch M`'");
 }
 
 /* Every file under tests/data/bad/sweep/ fails with a located error. */
