@@ -15,6 +15,7 @@
 #include "sim/reproduce/igehy98.h"
 #include "sim/output/plot.h"
 #include "sim/workload/argus/ag_workload.h"
+#include "sim/workload/metrics.h"
 #include <math.h>
 
 gboolean rp_igehy98_rate(const char *path, const char *const *sets,
@@ -32,7 +33,7 @@ gboolean rp_igehy98_rate(const char *path, const char *const *sets,
                          .fidelity = "analytic", .frames = 1};
         SimResult *r = sim_result_new("argus", "");
         ok = wl_argus_ops.run(&ctx, p, r, err) &&
-             sim_result_get_metric(r, "frame_hz", hz);
+             wl_get_metric(r, "frame_hz", hz);
         sim_result_free(r);
         sim_engine_free(eng);
     }

@@ -23,6 +23,7 @@
 #include "sim/reproduce/kurc96.h"
 #include "sim/reproduce/rp_driver.h"
 #include "sim/scene/scene_cfg.h"
+#include "sim/workload/metrics.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 #include <math.h>
 
@@ -92,21 +93,21 @@ static void kurc_clear(Kurc *k)
 static void run_from_result(RpKurcRun *run, const SimResult *r,
                             const MachMachine *m)
 {
-    run->span_ms = sim_result_metric(r, "span_ms");
-    run->zbuf_ms = sim_result_metric(r, "zbuf_ms");
-    run->merge_ms = sim_result_metric(r, "merge_ms");
-    run->volume = sim_result_metric(r, "concurrent_volume");
-    run->imbalance = sim_result_metric(r, "load_imbalance");
-    run->speedup = sim_result_metric(r, "speedup");
-    run->polygons = sim_result_metric(r, "polygons");
-    run->tpg = sim_result_metric(r, "tpg");
-    run->tpf = sim_result_metric(r, "tpf");
-    run->memory = sim_result_metric(r, "peak_memory");
+    run->span_ms = wl_metric(r, "span_ms");
+    run->zbuf_ms = wl_metric(r, "zbuf_ms");
+    run->merge_ms = wl_metric(r, "merge_ms");
+    run->volume = wl_metric(r, "concurrent_volume");
+    run->imbalance = wl_metric(r, "load_imbalance");
+    run->speedup = wl_metric(r, "speedup");
+    run->polygons = wl_metric(r, "polygons");
+    run->tpg = wl_metric(r, "tpg");
+    run->tpf = wl_metric(r, "tpf");
+    run->memory = wl_metric(r, "peak_memory");
     static const char *const part[5] = {"memory_base", "memory_polygons",
                                         "memory_spans", "memory_zbuffer",
                                         "memory_buffers"};
     for (int i = 0; i < 5; i++)
-        run->mem_part[i] = sim_result_metric(r, part[i]);
+        run->mem_part[i] = wl_metric(r, part[i]);
     const MachKindInfo *node = mach_kind(m, "node");
     run->node_memory = node ? (double)node->memory : 0;
 }

@@ -13,6 +13,7 @@
  */
 #include "sim/reproduce/mueller97.h"
 #include "sim/scene/scene_cfg.h"
+#include "sim/workload/metrics.h"
 #include "sim/workload/sortfirst/sf_workload.h"
 #include <math.h>
 
@@ -137,14 +138,14 @@ static gboolean setup_load(MuSetup *s, const char *path, GError **err)
 
 static void point_from(RpMuellerPoint *pt, const SimResult *r)
 {
-    pt->bytes = sim_result_metric(r, "migrated_bytes_per_frame");
-    pt->overlap = sim_result_metric(r, "chunk_overlap");
-    pt->ratio = sim_result_metric(r, "box_region_ratio");
-    pt->master = sim_result_metric(r, "master_boxes_per_frame");
-    pt->slave = sim_result_metric(r, "slave_boxes_per_frame");
-    pt->fresh = sim_result_metric(r, "new_boxes_per_frame");
-    pt->polys = sim_result_metric(r, "polygons_rendered_per_frame");
-    pt->transforms = sim_result_metric(r, "transforms_per_frame");
+    pt->bytes = wl_metric(r, "migrated_bytes_per_frame");
+    pt->overlap = wl_metric(r, "chunk_overlap");
+    pt->ratio = wl_metric(r, "box_region_ratio");
+    pt->master = wl_metric(r, "master_boxes_per_frame");
+    pt->slave = wl_metric(r, "slave_boxes_per_frame");
+    pt->fresh = wl_metric(r, "new_boxes_per_frame");
+    pt->polys = wl_metric(r, "polygons_rendered_per_frame");
+    pt->transforms = wl_metric(r, "transforms_per_frame");
 }
 
 /* What the cases share: each frame rasterised once, and the last chunk

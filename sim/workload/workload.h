@@ -50,6 +50,16 @@ typedef struct {
     const WlNeed *needs; /* ended by a NULL kind */
 } WlNeedAlt;
 
+/* A metric a workload puts in its SimResult: the name, the unit exactly
+ * as passed to sim_result_set_metric ("" when dimensionless) and what it
+ * means, in one line.  Tables end with a NULL name (sim/workload/metrics.h
+ * checks results and reads metrics against them). */
+typedef struct {
+    const char *name;
+    const char *unit;
+    const char *meaning;
+} WlMetric;
+
 typedef struct {
     const char *name;
     const char *summary;
@@ -80,6 +90,11 @@ typedef struct {
      * allocates anything.  NULL: nothing beyond the scene, image and
      * event pool, which their owners check. */
     double (*mem_bytes)(const void *params, GString *what);
+    /* Every metric run() may set, in the order it sets them, ended by a
+     * NULL name.  The runner refuses a result holding any other
+     * (wl_check_metrics), papers read metrics through it (wl_metric) and
+     * `pgsim help run` lists it. */
+    const WlMetric *metrics;
 } WlOps;
 
 /* The run's `run.until` bound (already validated by the config loader):

@@ -39,13 +39,27 @@ static void append_needs(GString *s, const WlNeed *needs, int pad)
     }
 }
 
+/* The metrics a workload declares, one a line: "name [unit]  meaning". */
+static void append_metrics(GString *s, const WlMetric *metrics)
+{
+    g_string_append(s, "\n      metrics:");
+    for (const WlMetric *m = metrics; m && m->name; m++) {
+        char *head = g_strdup_printf("%s%s%s%s", m->name, *m->unit ? " [" : "",
+                                     m->unit, *m->unit ? "]" : "");
+        g_string_append_printf(s, "\n        %-34s %s", head, m->meaning);
+        g_free(head);
+    }
+}
+
 /* The summary, then each workload (workload.type) with the costs it asks
- * a machine model for (nodes.KIND.costs.OP), and those of its other modes. */
+ * a machine model for (nodes.KIND.costs.OP), those of its other modes,
+ * and the metrics it reports. */
 static char *help_text(void)
 {
     GString *s = g_string_new(summary);
     g_string_append(s, "\n\nWorkloads (workload.type) and the costs each "
-                       "needs from a machine model (nodes.KIND.costs):");
+                       "needs from a machine model (nodes.KIND.costs), then the "
+                       "metrics it reports (name [unit], meaning):");
     for (guint i = 0; wl_all[i]; i++) {
         const WlOps *w = wl_all[i];
         g_string_append_printf(s, "\n  %-11s %s", w->name, w->summary);
@@ -56,6 +70,7 @@ static char *help_text(void)
             g_string_append_printf(s, "\n      %s:", a->when);
             append_needs(s, a->needs, 8);
         }
+        append_metrics(s, w->metrics);
     }
     g_string_append(s, "\nKeys of each workload: docs/workloads.md.");
     return g_string_free(s, FALSE);

@@ -19,6 +19,7 @@
 #include "sim/output/progress.h"
 #include "sim/machine/machine.h"
 #include "sim/scene/scene_cfg.h"
+#include "sim/workload/metrics.h"
 #include <string.h>
 
 #ifndef PGSIM_PREFIX
@@ -319,7 +320,8 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
                          : NULL;
     rpt_progress_attach(p, eng);
     gint64 t0 = g_get_monotonic_time();
-    gboolean ok = r->wl->run(&ctx, r->wl_params, res, err);
+    gboolean ok = r->wl->run(&ctx, r->wl_params, res, err) &&
+                  wl_check_metrics(r->wl, res, err);
     res->wall_s = (double)(g_get_monotonic_time() - t0) * 1e-6;
     rpt_progress_finish(p);
     res->events = sim_engine_events(eng);

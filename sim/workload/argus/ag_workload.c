@@ -363,6 +363,34 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
 
 static const WlNeed ag_needs[] = {{"cpu", wl_ag_cost_ops}, {NULL, NULL}};
 
+/* Every metric ag_run sets, in order (docs/workloads.md, "argus");
+ * per-frame figures of the first frame unless said. */
+static const WlMetric ag_metrics[] = {
+    {"processors", "", "processors of the machine used"},
+    {"contexts", "", "application contexts (drawing streams)"},
+    {"geometry_threads", "", "geometry threads"},
+    {"rasterisers", "", "rasteriser threads"},
+    {"tiles", "", "screen tiles"},
+    {"frame_ms", "ms", "mean frame time"},
+    {"frame_hz", "Hz", "frames per second of simulated time"},
+    {"triangles", "", "triangles drawn"},
+    {"vertices_issued", "", "vertices the contexts issued"},
+    {"batches", "", "batches in the streams"},
+    {"blocks", "", "command blocks"},
+    {"sync_commands", "", "synchronisation commands in the streams"},
+    {"tile_syncs", "", "synchronisation commands processed at tiles"},
+    {"bucketed_triangles", "", "triangles put in tile queues"},
+    {"pixels", "", "fragments per frame, mean over frames"},
+    {"application_ms", "ms", "application busy time summed over threads"},
+    {"geometry_ms", "ms", "geometry busy time summed over threads"},
+    {"rasterisation_ms", "ms", "rasteriser busy time summed over threads"},
+    {"shared_memory_bytes", "B", "bytes booked on the shared memory"},
+    {"image_matches_serial", "",
+     "check_image: 1 when the last frame equals the serial render"},
+    {"pixels_differing", "", "check_image: pixels that differ from it"},
+    {NULL, NULL, NULL},
+};
+
 const WlOps wl_argus_ops = {
     .name = "argus",
     .summary = "seed 002: the parallel graphics API (glpBarrier, glpPSema/"
@@ -374,4 +402,5 @@ const WlOps wl_argus_ops = {
     .run = ag_run,
     .mem_bytes = ag_mem_bytes,
     .needs = ag_needs,
+    .metrics = ag_metrics,
 };

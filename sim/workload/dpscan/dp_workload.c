@@ -316,6 +316,29 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+/* Every metric dp_run sets (add_metrics), in order; the first five are
+ * "<phase>_s" for the phases of dp_array.h, checked by the runner. */
+static const WlMetric dp_metrics[] = {
+    {"transform_s", "s", "phase transform: the frame's counted time"},
+    {"scan_s", "s", "phase scan: the frame's counted time"},
+    {"pixel_s", "s", "phase pixel: the frame's counted time"},
+    {"router_s", "s", "phase router: the frame's counted time"},
+    {"display_s", "s", "phase display: the frame's counted time"},
+    {"polygons_per_s", "1/s", "polygons / the frame's counted time"},
+    {"steps", "", "data-parallel operations issued"},
+    {"scan_iters", "", "scan-line iterations (one per scan line)"},
+    {"pixel_iters", "", "pixel-loop iterations (longest buffered span, per flush)"},
+    {"flushes", "", "flushes of the segment buffer"},
+    {"segments", "", "span segments sent into the buffer"},
+    {"pixels", "", "pixel messages into the z-buffer"},
+    {"collisions", "", "router messages combined with an earlier one"},
+    {"messages", "", "router messages sent"},
+    {"max_load", "", "largest load of any router send"},
+    {"router_wire_s", "s", "SPMD: the data network's time of all sends"},
+    {"router_soft_s", "s", "SPMD: per-message software time of all sends"},
+    {NULL, NULL, NULL},
+};
+
 const WlOps wl_dpscan_ops = {
     .name = "dpscan",
     .summary = "seed 004: data-parallel scan conversion on SIMD/SPMD "
@@ -325,4 +348,5 @@ const WlOps wl_dpscan_ops = {
     .run = dp_run,
     .needs_alt = wl_dp_model_needs,
     .mem_bytes = dp_mem_bytes,
+    .metrics = dp_metrics,
 };

@@ -427,6 +427,45 @@ static gboolean pf_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+/* Every metric pf_run sets (set_metrics; the town's means skip the first
+ * 4 frames) and wl_pf_pn_run with pn: (docs/workloads.md, "performer",
+ * "PN triangles"). */
+static const WlMetric pf_metrics[] = {
+    {"target_rate_hz", "Hz", "the frame rate asked for"},
+    {"frame_rate_hz", "Hz", "1 / mean swap interval"},
+    {"latency_ms", "ms", "mean time from APP's start to the swap"},
+    {"app_ms", "ms", "mean APP stage time"},
+    {"cull_ms", "ms", "mean CULL stage time"},
+    {"draw_ms", "ms", "mean DRAW stage time"},
+    {"draw_cpu_ms", "ms", "DRAW's CPU issuing stream, mean"},
+    {"draw_bus_ms", "ms", "DRAW's bus-to-pipe stream, mean"},
+    {"draw_pipe_ms", "ms", "DRAW's graphics-pipe stream, mean"},
+    {"tris_per_frame", "", "triangles drawn per frame"},
+    {"tris_culled_per_frame", "", "triangles culled per frame"},
+    {"state_changes_per_frame", "", "graphics state changes per frame"},
+    {"state_changes_saved_per_frame", "",
+     "state changes lazy evaluation saved (eager - lazy)"},
+    {"matrix_ops_per_frame", "", "matrix operations per frame"},
+    {"matrix_ops_saved_per_frame", "", "matrix operations pfFlatten saved"},
+    {"scs_flattened", "", "static coordinate systems flattened"},
+    {"stress_mean", "", "mean load-management stress"},
+    {"lod_mean", "", "mean LOD child chosen (3 = none)"},
+    {"level", "", "pn: tessellation level L"},
+    {"coarse_tris", "", "pn: triangles of the coarse mesh"},
+    {"fine_tris", "", "pn: triangles after tessellation"},
+    {"link_bytes_per_frame", "B",
+     "pn: bytes to the tessellating processors per frame"},
+    {"command_bytes_per_frame", "B",
+     "pn, Pixel-Planes 5: renderer command bytes per frame"},
+    {"cpu_ms", "ms", "pn, shared memory: CPU time"},
+    {"bus_ms", "ms", "pn, shared memory: bus time"},
+    {"pipe_ms", "ms", "pn, shared memory: graphics-pipe time"},
+    {"gp_ms", "ms", "pn, Pixel-Planes 5: GP time"},
+    {"frame_ms", "ms", "pn: mean frame time"},
+    {"fine_tris_per_s", "1/s", "pn: fine triangles per second"},
+    {NULL, NULL, NULL},
+};
+
 const WlOps wl_pf_ops = {
     .name = "performer",
     .summary = "IRIS Performer's multiprocessed frame pipeline (APP, CULL, "
@@ -438,4 +477,5 @@ const WlOps wl_pf_ops = {
     .needs = wl_pf_town_needs,
     .needs_alt = wl_pf_pn_needs,
     .mem_bytes = pf_mem_bytes,
+    .metrics = pf_metrics,
 };

@@ -363,6 +363,40 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
 
 static const WlNeed pm_needs[] = {{"node", wl_pm_cost_ops}, {NULL, NULL}};
 
+/* Every metric pm_run sets (docs/workloads.md, "pixelmerge"). */
+static const WlMetric pm_metrics[] = {
+    {"processors", "", "P, the processors run"},
+    {"resolution", "", "N, the image side in pixels"},
+    {"span_ms", "ms", "span-list creation: the slowest node's time"},
+    {"zbuf_ms", "ms", "local z-buffering: the slowest node's time"},
+    {"merge_ms", "ms", "pixel merging, from the last local z-buffer's end"},
+    {"frame_ms", "ms", "the whole frame (last frame)"},
+    {"serial_ms", "ms", "the local phases of the whole scene on one node"},
+    {"speedup", "", "serial_ms / frame_ms"},
+    {"utilisation", "", "busy time of the P nodes / (P x frame time)"},
+    {"concurrent_volume", "B",
+     "sum over exchange steps of the step's largest message (Fig. 1)"},
+    {"merge_bytes", "B", "all pixel-merge bytes sent"},
+    {"load_imbalance", "",
+     "(max - min) / mean merge operations per node (Fig. 2)"},
+    {"partition_imbalance", "",
+     "(max - min) / mean pixels each owner z-buffers"},
+    {"polygons", "", "Table 1: polygons in the scene"},
+    {"tpg", "", "Table 1: total pixels generated"},
+    {"tpf", "", "Table 1: pixels in the final picture"},
+    {"peak_memory", "B", "largest per-node footprint (memory model)"},
+    {"memory_base", "B", "that node's footprint: fixed part"},
+    {"memory_polygons", "B", "that node's footprint: its polygons"},
+    {"memory_spans", "B", "that node's footprint: its span lists"},
+    {"memory_zbuffer", "B", "that node's footprint: z-buffer (or WPA+MSA)"},
+    {"memory_buffers", "B", "that node's footprint: message buffers"},
+    {"image_matches_serial", "",
+     "1 when the merged image equals the serial render (check_image)"},
+    {"serial_insert_ms", "ms",
+     "of serial_ms, the span-list insertion steps (docs/validation.md)"},
+    {NULL, NULL, NULL},
+};
+
 const WlOps wl_pixelmerge_ops = {
     .name = "pixelmerge",
     .summary = "seed 003: object-space parallel rendering with active "
@@ -372,4 +406,5 @@ const WlOps wl_pixelmerge_ops = {
     .run = pm_run,
     .mem_bytes = pm_mem_bytes,
     .needs = pm_needs,
+    .metrics = pm_metrics,
 };

@@ -612,6 +612,44 @@ static const WlNeed pphigs_needs[] = {{"gp", gp_ops},
                                       {"host", host_ops},
                                       {NULL, NULL}};
 
+/* Every metric run() sets, in order (docs/workloads.md, "pphigs"). */
+static const WlMetric pphigs_metrics[] = {
+    {"frame_ms", "ms", "mean frame time"},
+    {"gp_util_pct", "%", "busy / simulated time, mean over GPs"},
+    {"renderer_util_pct", "%", "busy / simulated time, mean over renderers"},
+    {"ring_bytes_per_frame", "B", "ring traffic per frame"},
+    {"commands_per_frame", "", "renderer commands per frame"},
+    {"gps", "", "GPs run"},
+    {"last_imbalance_pct", "%",
+     "(max - mean) / max GP processor time, last frame (sec. 5)"},
+    {"edits", "", "matrix modifies run in all"},
+    {"host_elements_per_frame", "",
+     "display-list elements the host sent the GPs (edits, moves)"},
+    {"rebalance_moves", "", "rebalancing moves in all (sec. 5)"},
+    {"distribution_efficiency_pct", "%",
+     "sec. 6: T1 / sum of GP processor time, last frame"},
+    {"processor_utilisation_pct", "%",
+     "sec. 6: sum of GP processor time / (P x the largest)"},
+    {"speedup", "", "sec. 6: T1 / the largest GP processor time"},
+    {"expressions_per_frame", "",
+     "linear expressions the renderers evaluated per frame"},
+    {"image_matches_serial", "",
+     "1 when the last frame equals a serial render of the list"},
+    {"edits_append", "", "append edits run in all (when asked for)"},
+    {"edits_insert", "", "insert edits run in all (when asked for)"},
+    {"edits_delete", "", "delete edits run in all (when asked for)"},
+    {"edits_unpost", "", "unpost edits run in all (when asked for)"},
+    {"edits_post", "", "post edits run in all (when asked for)"},
+    {"step_back_elements_per_frame", "",
+     "elements the backward scans examined per frame (sec. 3.4-3.5)"},
+    {"step_back_max_elements", "", "elements of the largest backward scan"},
+    {"attr_cache_walk_per_frame", "",
+     "host elements walked per frame to place checkpoints again"},
+    {"host_edit_ms_per_frame", "ms",
+     "the host's time stepping back and packing elements, per frame"},
+    {NULL, NULL, NULL},
+};
+
 const WlOps wl_pphigs_ops = {
     .name = "pphigs",
     .summary = "PPHIGS display list distributed by primitive over the "
@@ -621,4 +659,5 @@ const WlOps wl_pphigs_ops = {
     .run = run,
     .mem_bytes = mem_bytes,
     .needs = pphigs_needs,
+    .metrics = pphigs_metrics,
 };

@@ -241,6 +241,15 @@ static gboolean tr_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
+/* Every metric tr_run sets (docs/config.md, "tokenring"). */
+static const WlMetric tr_metrics[] = {
+    {"hops", "", "token hops run (messages sent)"},
+    {"hop_time_mean", "s", "simulated time / hops"},
+    {"link_utilisation_mean", "",
+     "busy time of the links / (links x simulated time)"},
+    {NULL, NULL, NULL},
+};
+
 const WlOps wl_tokenring_ops = {
     .name = "tokenring",
     .summary = "a token passed around a ring of nodes (a test of the engine)",
@@ -248,4 +257,5 @@ const WlOps wl_tokenring_ops = {
     .free_params = tr_free,
     .run = tr_run,
     .mem_bytes = tr_mem_bytes,
+    .metrics = tr_metrics,
 };

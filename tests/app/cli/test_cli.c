@@ -1,5 +1,6 @@
 /* test_cli.c — what a new user meets first (issue 18): `pgsim help run`
- * lists every workload with the machine costs it needs, `pgsim help help`
+ * lists every workload with the machine costs it needs and the metrics
+ * it declares (issue 31), `pgsim help help`
  * succeeds, and `pgsim validate` checks sweep files as sweeps (every
  * point), so a sweep that validates runs, and one with a bad point does
  * not validate.  Runs the built binary, like test_scenarios. */
@@ -31,6 +32,24 @@ static void assert_needs_listed(const char *out, const WlNeed *needs)
     }
 }
 
+/* Each declared metric is a line "NAME [UNIT] ... MEANING" of the help
+ * after `out` (the workload's own heading: names recur across workloads). */
+static void assert_metrics_listed(const char *out, const WlMetric *metrics)
+{
+    for (const WlMetric *m = metrics; m && m->name; m++) {
+        char *head = *m->unit ? g_strdup_printf("\n        %s [%s] ",
+                                                m->name, m->unit)
+                              : g_strdup_printf("\n        %s ", m->name);
+        const char *at = strstr(out, head);
+        if (!at)
+            fail_msg("pgsim help run does not list metric '%s'", m->name);
+        const char *eol = strchr(at + 1, '\n');
+        const char *meaning = strstr(at, m->meaning);
+        assert_true(meaning && (!eol || meaning < eol));
+        g_free(head);
+    }
+}
+
 static void test_help_lists_workloads_and_costs(void **state)
 {
     (void)state;
@@ -39,11 +58,13 @@ static void test_help_lists_workloads_and_costs(void **state)
     assert_int_equal(test_pgsim(args, &out, &err), 0);
     for (guint i = 0; wl_all[i]; i++) {
         char *line = g_strdup_printf("\n  %-11s ", wl_all[i]->name);
-        if (!strstr(out, line))
+        const char *at = strstr(out, line);
+        if (!at)
             fail_msg("pgsim help run does not list workload '%s'",
                      wl_all[i]->name);
         g_free(line);
         assert_needs_listed(out, wl_all[i]->needs);
+        assert_metrics_listed(at, wl_all[i]->metrics);
         for (const WlNeedAlt *a = wl_all[i]->needs_alt; a && a->when; a++) {
             assert_non_null(strstr(out, a->when));
             assert_needs_listed(out, a->needs);
