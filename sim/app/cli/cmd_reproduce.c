@@ -3,9 +3,9 @@
  * [--quiet]`.
  *
  * Runs paper reproductions (sim/reproduce/reproduce.h), joins them to the
- * published values in configs/papers/<name>/published.yaml and prints the tables in
- * the chosen format on stdout.  With --out DIR each reproduction's table
- * is also written, atomically, as DIR/<name>.{txt,csv,json} (and, with
+ * published values in configs/papers/<name>/published.yaml and prints the
+ * tables in the chosen format on stdout.  With --out DIR each reproduction's
+ * table is also written, atomically, as DIR/<name>.{txt,csv,json} (and, with
  * --fidelity all, the chart DIR/<name>-speed.png).  `all` also writes the
  * Markdown report when asked where: --doc FILE, or DIR/reproduction.md
  * under --out DIR, with charts in <its directory>/reproduction/; never
@@ -15,24 +15,23 @@
  * `all -j N` (default: the number of cores) runs up to N papers at once
  * (costliest first by RpPaperOps.cost_s; NAME,NAME... runs a list like
  * `all`),
- * each in a forked child (like the sweep's local pool), without progress
- * lines: the child writes its stdout text and its report section to a
- * private temporary file, and the parent, once every child has ended,
- * prints and joins them in the registry's order, so the output is the one
- * of -j 1 (wall-time figures aside).  A child that fails, or dies, fails
- * the command with the first such paper's error in registry order.
+ * each in a worker process of the pool that sweeps use too
+ * (sim/app/pool/pool.h), without progress lines: the worker sends its
+ * stdout text and its report section back on its pipe, and the parent,
+ * once every worker has ended, prints and joins them in the registry's
+ * order, so the output is the one of -j 1 (wall-time figures aside).  A
+ * worker that fails, or dies, fails the command with the first such
+ * paper's error in registry order.
  */
 #include "sim/core/datapath.h"
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
+#include "sim/app/pool/pool.h"
 #include "sim/reproduce/rp_doc.h"
 #include "sim/reproduce/rp_driver.h"
 #include "sim/reproduce/rp_speed.h"
-#include <errno.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 typedef enum { FMT_TEXT, FMT_CSV, FMT_JSON } RpFormat;
 
@@ -90,8 +89,7 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
                    entries, argc, argv, status))
         return FALSE;
     *status = 2;
-    return cli_want_args("reproduce", "NAME|all|NAME,NAME...", *argc, *argv,
-                         1);
+    return cli_want_args("reproduce", "NAME|all|NAME,NAME...", *argc, *argv, 1);
 }
 
 static gboolean check_opts(RpOpts *o, GError **err)
@@ -215,8 +213,8 @@ static GPtrArray *run_one_into(const RpPaperOps *rp, const RpOpts *o,
 }
 
 /* The same, printed on stdout. */
-static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o,
-                          gboolean first, GError **err)
+static GPtrArray *run_one(const RpPaperOps *rp, const RpOpts *o, gboolean first,
+                          GError **err)
 {
     GString *s = g_string_new(NULL);
     GPtrArray *passes = run_one_into(rp, o, first, s, err);
@@ -282,103 +280,70 @@ static gboolean paper_all(int i, const RpOpts *o, const char *charts,
     return ok;
 }
 
-/* ---- -j: one forked child per paper -------------------------------- */
+/* ---- -j: one worker process per paper (sim/app/pool) ---------------- */
 
-/* The child's file: "O<text length>\n<text><md>" or "E<code>\n<msg>". */
-static G_NORETURN void paper_child(int i, const RpOpts *o, const char *charts,
-                                   gboolean want_md, const char *path)
+typedef struct {
+    const RpOpts *o;
+    const char *charts;
+    gboolean want_md;
+} RpWork;
+
+/* In the child: "O<text length>\n<text><md>" or "E<code>\n<msg>". */
+static char *paper_work(void *ctx, guint i, gsize *len)
 {
-    RpOpts quiet = *o;
+    const RpWork *w = ctx;
+    RpOpts quiet = *w->o;
     quiet.quiet = TRUE; /* progress lines of parallel papers would mix */
     GString *text = g_string_new(NULL), *md = g_string_new(NULL);
     GString *out = g_string_new(NULL);
     GError *e = NULL;
-    if (paper_all(i, &quiet, charts, text, want_md ? md : NULL, &e))
+    if (paper_all((int)i, &quiet, w->charts, text, w->want_md ? md : NULL, &e))
         g_string_printf(out, "O%zu\n%s%s", text->len, text->str, md->str);
     else
         g_string_printf(out, "E%d\n%s", e->code, e->message);
-    _exit(g_file_set_contents(path, out->str, (gssize)out->len, NULL) ? 0
-                                                                       : 3);
+    *len = out->len;
+    return g_string_free(out, FALSE);
 }
 
-typedef struct {
-    pid_t pid;
-    char *path; /* the child's result file */
-    int status;
-} RpKid;
-
-static gboolean spawn_paper(RpKid *k, int i, const RpOpts *o,
-                            const char *charts, gboolean want_md, GError **err)
-{
-    int fd = g_file_open_tmp("pgsim-reproduce-XXXXXX", &k->path, err);
-    if (fd < 0)
-        return FALSE;
-    close(fd);
-    fflush(stdout);
-    fflush(stderr);
-    k->pid = fork();
-    if (k->pid == 0)
-        paper_child(i, o, charts, want_md, k->path);
-    if (k->pid > 0)
-        return TRUE;
-    g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                "reproduce: cannot fork a worker: %s", g_strerror(errno));
-    return FALSE;
-}
-
-/* Waits for any child of kids[0 .. n) and records its status. */
-static void reap_one(RpKid *kids, int n)
-{
-    int status = 0;
-    pid_t p;
-    while ((p = waitpid(-1, &status, 0)) < 0 && errno == EINTR)
-        ;
-    for (int i = 0; p > 0 && i < n; i++)
-        if (kids[i].pid == p) {
-            kids[i].status = status;
-            kids[i].pid = 0;
-        }
-}
-
-/* Prints paper i's text and appends its section, from its child's file. */
-static gboolean join_paper(const RpKid *k, const char *name, GString *md,
+/* Prints paper i's text and appends its section, from its worker's
+ * output. */
+static gboolean join_paper(const PoolResult *r, const char *name, GString *md,
                            GError **err)
 {
-    char *buf = NULL, *end = NULL;
-    gsize len = 0;
-    gboolean read = WIFEXITED(k->status) && WEXITSTATUS(k->status) == 0 &&
-                    g_file_get_contents(k->path, &buf, &len, NULL);
-    guint64 n = read && len > 1 ? g_ascii_strtoull(buf + 1, &end, 10) : 0;
+    const char *buf = r->out->str, *rest;
+    char *end = NULL;
+    gsize len = r->out->len;
+    gboolean read = !r->fail && len > 1;
+    guint64 n = read ? g_ascii_strtoull(buf + 1, &end, 10) : 0;
+    rest = end ? end + 1 : NULL;
     gboolean ok = read && buf[0] == 'O' && end && *end == '\n' &&
-                  n <= len - (gsize)(end + 1 - buf);
+                  n <= len - (gsize)(rest - buf);
     if (ok) {
-        fwrite(end + 1, 1, n, stdout);
+        fwrite(rest, 1, n, stdout);
         if (md)
-            g_string_append(md, end + 1 + n);
-    } else if (read && buf[0] == 'E' && len > 1) {
+            g_string_append_len(md, rest + n, (gssize)(len - (rest - buf) - n));
+    } else if (read && buf[0] == 'E') {
         int code = (int)g_ascii_strtoll(buf + 1, &end, 10);
-        g_set_error(err, SIM_ERROR, code, "%s", end + 1);
+        g_set_error(err, SIM_ERROR, code, "%s", *end ? end + 1 : end);
     } else {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                    "reproduce %s: the worker ended without a result "
-                    "(status %d)",
-                    name, k->status);
+                    "reproduce %s: the worker ended without a result (%s)",
+                    name, r->fail ? r->fail : "no output");
     }
-    g_free(buf);
     return ok;
 }
 
 /* The order in which -j starts the papers: costliest first (by their
  * cost_s hint; ties in list order), so that a long paper does not start
  * last and run alone (longest processing time first, Graham 1969). */
-static int *spawn_order(const RpOpts *o)
+static guint *spawn_order(const RpOpts *o)
 {
-    int *ord = g_new(int, o->n_list);
+    guint *ord = g_new(guint, o->n_list);
     for (int i = 0; i < o->n_list; i++) {
         int j = i;
         for (; j > 0 && o->list[ord[j - 1]]->cost_s < o->list[i]->cost_s; j--)
             ord[j] = ord[j - 1];
-        ord[j] = i;
+        ord[j] = (guint)i;
     }
     return ord;
 }
@@ -387,32 +352,18 @@ static int *spawn_order(const RpOpts *o)
 static gboolean papers_forked(const RpOpts *o, GString *md, const char *charts,
                               GError **err)
 {
-    int n = o->n_list, next = 0, running = 0;
+    guint n = (guint)o->n_list;
     if (!o->quiet)
-        fprintf(stderr, "reproduce: %d papers, %d at once\n", n, o->jobs);
-    RpKid *kids = g_new0(RpKid, n);
-    int *ord = spawn_order(o);
-    gboolean ok = TRUE;
-    while (next < n || running > 0) {
-        if (ok && next < n && running < o->jobs) {
-            int k = ord[next];
-            ok = spawn_paper(&kids[k], k, o, charts, md != NULL, err);
-            running += ok;
-            next += ok ? 1 : n;
-            continue;
-        }
-        reap_one(kids, n);
-        running--;
-    }
-    for (int i = 0; i < n; i++) {
-        ok = ok && join_paper(&kids[i], o->list[i]->name, md, err);
-        if (kids[i].path)
-            unlink(kids[i].path);
-        g_free(kids[i].path);
-    }
+        fprintf(stderr, "reproduce: %u papers, %d at once\n", n, o->jobs);
+    RpWork w = {o, charts, md != NULL};
+    guint *ord = spawn_order(o);
+    PoolResult *r = pool_map(n, ord, paper_work, &w, o->jobs, err);
+    gboolean ok = r != NULL;
+    for (guint i = 0; ok && i < n; i++)
+        ok = join_paper(&r[i], o->list[i]->name, md, err);
     fflush(stdout);
+    pool_results_free(r, n);
     g_free(ord);
-    g_free(kids);
     return ok;
 }
 
@@ -458,8 +409,8 @@ static gboolean write_report(const RpOpts *o, const char *doc, GError **err)
 static gboolean run_all(const RpOpts *o, GError **err)
 {
     char *doc = doc_path(o);
-    gboolean ok = doc ? write_report(o, doc, err)
-                      : run_papers(o, NULL, NULL, err);
+    gboolean ok =
+        doc ? write_report(o, doc, err) : run_papers(o, NULL, NULL, err);
     if (ok && !doc && !o->quiet)
         fprintf(stderr, "reproduce: no report written (--doc FILE or --out "
                         "DIR writes the Markdown report)\n");

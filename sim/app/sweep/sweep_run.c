@@ -1,21 +1,16 @@
 /* sweep_run.c — running sweep points: one line per point, the master's
- * bookkeeping, and the local pool of forked workers.
+ * bookkeeping, and points in forked workers.
  *
- * Pool invariant: at most `jobs` children exist; the parent holds only the
- * read end of each child's pipe, so EOF on it means the child is gone.  A
- * child writes its whole line and exits; the parent reaps it, and turns a
- * non-zero exit, a signal or a missing line into the point's error line.
- * Output order is the log's business (sweep_log_finish sorts).  O(points).
+ * Workers are the process pool's (sim/app/pool/pool.h: at most `jobs`
+ * children, one per point); a worker's output becomes the point's line,
+ * and a non-zero exit, a signal or anything but one complete line
+ * becomes the point's error line.  Output order is the log's business
+ * (sweep_log_finish sorts).  O(points).
  */
 #include "sim/app/sweep/sweep_run.h"
+#include "sim/app/pool/pool.h"
 #include "sim/output/json.h"
-#include <errno.h>
-#include <poll.h>
-#include <signal.h>
-#include <stdio.h>
 #include <string.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 /* ---- lines ----------------------------------------------------------- */
 
@@ -112,91 +107,66 @@ char *sweep_point_line(const SweepSpec *s, guint i, SweepRunFn fn)
     return line_finish(b);
 }
 
-/* ---- children -------------------------------------------------------- */
+/* ---- in worker processes (sim/app/pool) ------------------------------ */
 
-static G_NORETURN void child_main(const SweepSpec *s, guint i, SweepRunFn fn,
-                                  int wfd)
+typedef struct {
+    const SweepSpec *spec;
+    SweepRunFn fn;
+    SweepJob *job;  /* sweep_run_local's points */
+    int one;        /* sweep_point_isolated's point, or -1 once handed out */
+    char *one_line; /* and its line */
+} SweepPool;
+
+static char *pool_work(void *ctx, guint i, gsize *len)
 {
-    char *line = sweep_point_line(s, i, fn);
-    size_t len = strlen(line), off = 0;
-    while (off < len) {
-        ssize_t w = write(wfd, line + off, len - off);
-        if (w < 0 && errno == EINTR)
-            continue;
-        if (w <= 0)
-            _exit(3);
-        off += (size_t)w;
-    }
-    _exit(0);
+    const SweepPool *sp = ctx;
+    char *line = sweep_point_line(sp->spec, i, sp->fn);
+    *len = strlen(line);
+    return line;
 }
 
-/* Forks a child for point i; returns its pid and the pipe's read end. */
-static pid_t spawn_point(const SweepSpec *s, guint i, SweepRunFn fn, int *rfd)
+/* The point's line from what its worker wrote: an error line when the
+ * worker failed or did not write exactly one complete line. */
+static char *worker_line(const SweepSpec *s, guint i, const GString *out,
+                         const char *fail)
 {
-    int fds[2];
-    if (pipe(fds) != 0)
-        return -1;
-    fflush(stdout);
-    fflush(stderr);
-    pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[0]);
-        signal(SIGINT, SIG_DFL);
-        child_main(s, i, fn, fds[1]);
-    }
-    close(fds[1]);
-    if (pid < 0)
-        close(fds[0]);
-    *rfd = fds[0];
-    return pid;
+    if (fail)
+        return sweep_point_error_line(s, i, fail);
+    if (out->len == 0 || out->str[out->len - 1] != '\n' ||
+        memchr(out->str, '\n', out->len - 1))
+        return sweep_point_error_line(s, i, "worker wrote no complete line");
+    return g_strdup(out->str);
 }
 
-/* Reaps the child and returns the point's line (error line on failure). */
-static char *reap(const SweepSpec *s, guint i, pid_t pid, GString *buf)
+static gboolean one_next(void *ctx, guint *i)
 {
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR)
-        ;
-    char msg[96] = "";
-    if (WIFSIGNALED(status))
-        g_snprintf(msg, sizeof msg, "worker killed by signal %d (%s)",
-                   WTERMSIG(status), g_strsignal(WTERMSIG(status)));
-    else if (WEXITSTATUS(status) != 0)
-        g_snprintf(msg, sizeof msg, "worker exited with status %d",
-                   WEXITSTATUS(status));
-    else if (buf->len == 0 || buf->str[buf->len - 1] != '\n' ||
-             memchr(buf->str, '\n', buf->len - 1))
-        g_strlcpy(msg, "worker wrote no complete line", sizeof msg);
-    if (*msg)
-        return sweep_point_error_line(s, i, msg);
-    return g_strdup(buf->str);
+    SweepPool *sp = ctx;
+    if (sp->one < 0)
+        return FALSE;
+    *i = (guint)sp->one;
+    sp->one = -1;
+    return TRUE;
 }
 
-static gboolean read_all(int fd, GString *buf)
+static gboolean one_done(void *ctx, guint i, const GString *out,
+                         const char *fail, GError **err)
 {
-    char chunk[4096];
-    for (;;) {
-        ssize_t n = read(fd, chunk, sizeof chunk);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0)
-            return n == 0;
-        g_string_append_len(buf, chunk, n);
-    }
+    (void)err;
+    SweepPool *sp = ctx;
+    sp->one_line = worker_line(sp->spec, i, out, fail);
+    return TRUE;
 }
 
 char *sweep_point_isolated(const SweepSpec *s, guint i, SweepRunFn fn)
 {
-    int fd;
-    pid_t pid = spawn_point(s, i, fn, &fd);
-    if (pid < 0)
+    static const PoolOps ops = {one_next, pool_work, one_done};
+    SweepPool sp = {s, fn, NULL, (int)i, NULL};
+    GError *err = NULL;
+    if (!pool_run(&ops, &sp, 1, &err)) {
+        g_clear_error(&err);
         return sweep_point_error_line(s, i, "cannot fork a worker");
-    GString *buf = g_string_new(NULL);
-    read_all(fd, buf);
-    close(fd);
-    char *line = reap(s, i, pid, buf);
-    g_string_free(buf, TRUE);
-    return line;
+    }
+    return sp.one_line;
 }
 
 /* ---- the master's bookkeeping ---------------------------------------- */
@@ -262,96 +232,26 @@ void sweep_job_done(SweepJob *j)
 
 /* ---- the local pool -------------------------------------------------- */
 
-typedef struct {
-    pid_t pid;
-    int fd;
-    guint point;
-    GString *buf;
-} SweepChild;
-
-static gboolean fill_pool(SweepJob *j, GArray *kids, int jobs)
+static gboolean pool_next(void *ctx, guint *i)
 {
-    guint i;
-    while ((int)kids->len < jobs && sweep_job_next(j, &i)) {
-        SweepChild c = {0, -1, i, NULL};
-        c.pid = spawn_point(j->spec, i, j->fn, &c.fd);
-        if (c.pid < 0)
-            return FALSE;
-        c.buf = g_string_new(NULL);
-        g_array_append_val(kids, c);
-    }
-    return TRUE;
+    return sweep_job_next(((SweepPool *)ctx)->job, i);
 }
 
-/* Reads what a child sent; on EOF reaps it and records its line. */
-static gboolean drain(SweepJob *j, GArray *kids, guint k, gboolean *gone,
-                      GError **err)
+static gboolean pool_done(void *ctx, guint i, const GString *out,
+                          const char *fail, GError **err)
 {
-    SweepChild *c = &g_array_index(kids, SweepChild, k);
-    char chunk[4096];
-    ssize_t n = read(c->fd, chunk, sizeof chunk);
-    *gone = FALSE;
-    if (n > 0 || (n < 0 && errno == EINTR)) {
-        if (n > 0)
-            g_string_append_len(c->buf, chunk, n);
-        return TRUE;
-    }
-    close(c->fd);
-    char *line = reap(j->spec, c->point, c->pid, c->buf);
-    g_string_free(c->buf, TRUE);
-    g_array_remove_index_fast(kids, k);
-    *gone = TRUE;
-    gboolean ok = sweep_job_finish(j, line, err);
+    SweepPool *sp = ctx;
+    char *line = worker_line(sp->spec, i, out, fail);
+    gboolean ok = sweep_job_finish(sp->job, line, err);
     g_free(line);
     return ok;
 }
 
-static gboolean poll_kids(SweepJob *j, GArray *kids, GError **err)
-{
-    struct pollfd *pf = g_new0(struct pollfd, kids->len);
-    for (guint k = 0; k < kids->len; k++)
-        pf[k] =
-            (struct pollfd){g_array_index(kids, SweepChild, k).fd, POLLIN, 0};
-    int r = poll(pf, kids->len, -1);
-    gboolean ok = TRUE;
-    for (guint k = kids->len; ok && r > 0 && k-- > 0;) {
-        gboolean gone;
-        if (pf[k].revents)
-            ok = drain(j, kids, k, &gone, err);
-    }
-    g_free(pf);
-    return ok;
-}
-
-static void kill_kids(GArray *kids)
-{
-    for (guint k = 0; k < kids->len; k++) {
-        SweepChild *c = &g_array_index(kids, SweepChild, k);
-        kill(c->pid, SIGTERM);
-        waitpid(c->pid, NULL, 0);
-        close(c->fd);
-        g_string_free(c->buf, TRUE);
-    }
-}
-
 gboolean sweep_run_local(SweepJob *j, int jobs, GError **err)
 {
-    g_assert(jobs >= 1);
-    GArray *kids = g_array_new(FALSE, FALSE, sizeof(SweepChild));
-    gboolean ok = TRUE;
-    while (ok) {
-        if (!fill_pool(j, kids, jobs)) {
-            g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                        "cannot start a worker process: %s", g_strerror(errno));
-            ok = FALSE;
-        } else if (kids->len == 0) {
-            break;
-        } else {
-            ok = poll_kids(j, kids, err);
-        }
-    }
-    kill_kids(kids);
-    g_array_free(kids, TRUE);
+    static const PoolOps ops = {pool_next, pool_work, pool_done};
+    SweepPool sp = {j->spec, j->fn, j, -1, NULL};
+    gboolean ok = pool_run(&ops, &sp, jobs, err);
     sweep_job_done(j);
     return ok;
 }
