@@ -6,6 +6,7 @@
  * bytes: memory is constant whatever the file's length.  Cost: O(bytes).
  */
 #include "sim/app/replay/rpl_lines.h"
+#include "sim/app/replay/rpl_gunzip.h"
 #include "sim/core/error.h"
 #include <errno.h>
 #include <gio/gio.h>
@@ -51,9 +52,8 @@ RplLines *rpl_lines_open(const char *path, GError **err)
         return NULL;
     }
     if (is_gz(path)) {
-        GZlibDecompressor *z =
-            g_zlib_decompressor_new(G_ZLIB_COMPRESSOR_FORMAT_GZIP);
-        GInputStream *c = g_converter_input_stream_new(in, G_CONVERTER(z));
+        GConverter *z = rpl_gunzip_new(); /* every member, not the first */
+        GInputStream *c = g_converter_input_stream_new(in, z);
         g_object_unref(z);
         g_object_unref(in);
         in = c;

@@ -1,8 +1,9 @@
 /* rpl_lines.h — reading and writing trace text, plain or gzip.
  *
  * A file whose name ends in ".gz" is (de)compressed on the fly by GLib's
- * GZlibCompressor/GZlibDecompressor (GIO, a Debian package); any other
- * name is plain text.  The reader hands out one line at a time from a
+ * GZlibCompressor/GZlibDecompressor (GIO, a Debian package), read through
+ * every gzip member (rpl_gunzip.h: `cat a.gz b.gz` reads as a then b);
+ * any other name is plain text.  The reader hands out one line at a time from a
  * fixed buffer (a line longer than RPL_LINE_MAX is a located error), so
  * memory does not grow with the file.  Tokens are blank-separated words;
  * the reader remembers each word's column for located errors of the
