@@ -5,12 +5,14 @@
  * in up to N worker processes (default: the number of cores) or, under
  * mpirun, over the MPI ranks (sweep_mpi.c), then writes the ordered
  * results.csv / results.jsonl and the charts of the `plots:` section into
- * DIR (default out/<sweep name>).  Exit status: 0 when every point
+ * DIR (default out/<sweep name>), holding DIR's lock (sweep_lock.h) from
+ * start to end.  Exit status: 0 when every point
  * succeeded, 1 when some point failed (its row holds the error) or a chart
  * could not be drawn, 2 on bad input.
  */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
+#include "sim/app/sweep/sweep_lock.h"
 #include "sim/app/sweep/sweep_mpi.h"
 #include "sim/app/run/config.h"
 #include <stdio.h>
@@ -123,7 +125,11 @@ static int run_master(const SweepSpec *s, const SweepOpts *o, int size)
 {
     GError *err = NULL;
     char *dir = out_dir_for(o, s);
-    SweepLog *log = sweep_log_open(dir, s, o->resume, &err);
+    /* another sweep may not write to dir until this one has finished */
+    char *fp = sweep_spec_fingerprint(s);
+    SweepLock *lock = sweep_lock_take(dir, fp, &err);
+    g_free(fp);
+    SweepLog *log = lock ? sweep_log_open(dir, s, o->resume, &err) : NULL;
     guint ran = 0;
     if (!log && size > 1)
         sweep_mpi_master(NULL, size, NULL); /* stop the workers */
@@ -140,6 +146,7 @@ static int run_master(const SweepSpec *s, const SweepOpts *o, int size)
         sweep_log_close(log);
     }
     int st = report(s, dir, ran, err);
+    sweep_lock_release(lock);
     g_free(dir);
     return st;
 }

@@ -2,7 +2,8 @@
  * ordered outputs.
  *
  * Durability: each line is written with one write() on an O_APPEND
- * descriptor and followed by fsync(), so after a crash the file is a
+ * descriptor (more when a filling disk takes only part of it; the error
+ * then carries the system's reason) and followed by fsync(), so after a crash the file is a
  * sequence of complete lines plus at most one partial line at the end,
  * which resume truncates.  Lines are never edited in place.  Reading the
  * log is O(bytes); finishing is O(points * columns).
@@ -174,12 +175,20 @@ gboolean sweep_log_append(SweepLog *log, const char *line, GError **err)
 {
     size_t len = strlen(line);
     g_assert(len > 0 && line[len - 1] == '\n');
-    ssize_t w;
-    do
-        w = write(log->fd, line, len);
-    while (w < 0 && errno == EINTR);
-    if (w != (ssize_t)len)
-        return io_error(err, log->path, "append a line");
+    /* a full disk first takes part of the line (a short count, errno
+     * untouched: "Success"), then fails with the reason: write the rest */
+    while (len > 0) {
+        ssize_t w = write(log->fd, line, len);
+        if (w < 0 && errno == EINTR)
+            continue;
+        if (w <= 0) {
+            if (w == 0)
+                errno = EIO;
+            return io_error(err, log->path, "append a line");
+        }
+        line += w;
+        len -= (size_t)w;
+    }
     if (fsync(log->fd) != 0)
         return io_error(err, log->path, "sync");
     return TRUE;
