@@ -40,7 +40,7 @@ SimTime sim_refresh_at(SimTime t, SimTime period)
 {
     g_assert(period > 0);
     SimTime q = t / period + (t % period != 0);
-    return q > SIM_TIME_MAX / period ? SIM_TIME_MAX : q * period;
+    return sim_time_mul_sat(period, q);
 }
 
 gboolean sim_wait_refresh(SimEngine *eng, uint32_t node, SimTime period,

@@ -4,7 +4,10 @@
  * simulated time, far beyond any frame.  No floating point in the clock:
  * conversions from seconds round to the nearest picosecond once, at the
  * edge (config parsing, cost tables).  Adding times goes through
- * sim_time_add(), which reports overflow instead of wrapping.
+ * sim_time_add(), which reports overflow instead of wrapping; a count
+ * times a unit cost goes through sim_time_mul_sat(), the one place that
+ * prices "n x cost" (a saturated SIM_TIME_MAX then overflows the engine's
+ * clock, a located run error, instead of wrapping to a small time).
  */
 #ifndef PGSIM_CORE_TIME_H
 #define PGSIM_CORE_TIME_H
@@ -35,6 +38,13 @@ static inline gboolean sim_time_add(SimTime a, SimTime b, SimTime *out)
 static inline SimTime sim_time_add_sat(SimTime a, SimTime b)
 {
     return a > SIM_TIME_MAX - b ? SIM_TIME_MAX : a + b;
+}
+
+/* n x unit, saturating at SIM_TIME_MAX: the price of n operations of one
+ * cost.  Every "count x cost" in pgsim goes through here. */
+static inline SimTime sim_time_mul_sat(SimTime unit, uint64_t n)
+{
+    return n != 0 && unit > SIM_TIME_MAX / n ? SIM_TIME_MAX : unit * n;
 }
 
 /* Seconds (finite, >= 0) to picoseconds, rounded to nearest; returns FALSE

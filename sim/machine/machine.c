@@ -20,8 +20,7 @@
 typedef struct {
     MachKindInfo info;
     char *name;
-    GHashTable *costs;       /* op (borrowed from tree) -> SimTime * */
-    const CfgNode *costs_at; /* for located errors; may be NULL */
+    GHashTable *costs; /* op (borrowed from tree) -> MachCost * (costs.h) */
     const CfgNode *at;
 } MachKind;
 
@@ -50,20 +49,9 @@ struct MachMachine {
 
 static gboolean read_costs(MachKind *k, const CfgNode *kind, GError **err)
 {
-    k->costs = g_hash_table_new_full(g_str_hash, g_str_equal, NULL, g_free);
+    k->costs = mach_cost_table_new(k->name, cfg_get(kind, "costs"), err);
     k->info.costs = k->costs; /* for mach_proc_compute_ops() */
-    k->costs_at = cfg_get(kind, "costs");
-    const CfgNode *costs = k->costs_at;
-    for (guint i = 0; costs && i < cfg_map_len(costs); i++) {
-        const char *op = cfg_map_key(costs, i);
-        SimTime *t = g_new(SimTime, 1);
-        if (!mach_param_time(costs, op, TRUE, t, err)) {
-            g_free(t);
-            return FALSE;
-        }
-        g_hash_table_insert(k->costs, (gpointer)op, t);
-    }
-    return TRUE;
+    return k->costs != NULL;
 }
 
 static gboolean read_kind(MachKind *k, const char *name, const CfgNode *kind,
@@ -451,60 +439,6 @@ MachProc *mach_proc(MachMachine *m, const char *kind, guint i)
     const MachKind *k = find_kind(m, kind);
     g_assert(k && i < k->info.count);
     return proc_get(m, k->info.first + i);
-}
-
-/* ---- costs ----------------------------------------------------------------
- */
-
-gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
-                          const char *op, SimTime *out, GError **err)
-{
-    const MachKind *k = find_kind(m, kind);
-    const SimTime *t = k ? g_hash_table_lookup(k->costs, op) : NULL;
-    if (t) {
-        *out = *t;
-        return TRUE;
-    }
-    const CfgNode *at =
-        k ? (k->costs_at ? k->costs_at : k->at) : cfg_get(m->tree, "nodes");
-    char *found = k ? g_strdup_printf("no cost for '%s' on '%s'", op, kind)
-                    : g_strdup_printf("no node kind '%s'", kind);
-    char *exp = g_strdup_printf("costs: {%s: {value: <time>, source: ...}} "
-                                "under nodes.%s in model %s",
-                                op, kind, m->name);
-    cfg_error(err, at, found, exp);
-    g_free(found);
-    g_free(exp);
-    return FALSE;
-}
-
-SimTime mach_cost(const MachMachine *m, const char *kind, const char *op)
-{
-    SimTime t = 0;
-    GError *err = NULL;
-    if (!mach_cost_lookup(m, kind, op, &t, &err))
-        g_error("mach_cost: %s", err->message);
-    return t;
-}
-
-gboolean mach_require_costs(const MachMachine *m, const char *kind,
-                            const char *const *ops, GError **err)
-{
-    SimTime t;
-    for (; *ops; ops++)
-        if (!mach_cost_lookup(m, kind, *ops, &t, err))
-            return FALSE;
-    return TRUE;
-}
-
-gboolean mach_cost_n(SimTime cost, uint64_t n, SimTime *out)
-{
-    if (n != 0 && cost > SIM_TIME_MAX / n) {
-        *out = SIM_TIME_MAX;
-        return FALSE;
-    }
-    *out = cost * n;
-    return TRUE;
 }
 
 /* ---- network parameters ------------------------------------------------ */

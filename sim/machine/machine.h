@@ -7,9 +7,9 @@
  * Processors are numbered in node-kind order (host 0, gp 1..16, ...);
  * those are also the network endpoint numbers.
  *
- * Costs are SimTime per named operation of a node kind; workloads should
- * check the operations they need once (mach_require_costs) and cache the
- * SimTime values for their inner loops.
+ * Costs are SimTime per named operation of a node kind, each with its
+ * provenance: costs.h, the one home for pricing (a workload declares its
+ * costs in a table and reads them from the set mach_costs_new() fills).
  *
  * The network: the machine builds a NetNet (sim/net/net.h) from the
  * model's `network` section at the requested fidelity (mnet.h); links get
@@ -27,6 +27,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/core/result.h"
+#include "sim/machine/costs.h"
 #include "sim/machine/proc.h"
 #include "sim/net/net.h"
 
@@ -89,16 +90,8 @@ MachProc *mach_proc_at(MachMachine *m, guint id);
 /* The i-th processor of a kind (asserts the kind exists, i < count). */
 MachProc *mach_proc(MachMachine *m, const char *kind, guint i);
 
-/* Cost of one `op` on `kind`.  mach_cost() asserts that it exists;
- * mach_cost_lookup() reports a missing one as a located input error. */
-SimTime mach_cost(const MachMachine *m, const char *kind, const char *op);
-gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
-                          const char *op, SimTime *out, GError **err);
-/* Checks that `kind` exists and has every op of the NULL-terminated list. */
-gboolean mach_require_costs(const MachMachine *m, const char *kind,
-                            const char *const *ops, GError **err);
-/* n x cost into *out; FALSE on overflow (then *out is SIM_TIME_MAX). */
-gboolean mach_cost_n(SimTime cost, uint64_t n, SimTime *out);
+/* Costs: mach_cost(), mach_cost_lookup(), mach_costs_new() ... in
+ * costs.h. */
 
 /* The machine's network (borrowed), or NULL if its topology is not yet
  * built by the machine layer; mach_require_net() then says so in *err. */

@@ -8,6 +8,7 @@
  * costs, charged on submission.  Cost: O(1) + one event per request.
  */
 #include "sim/machine/proc.h"
+#include "sim/machine/costs.h"
 #include "sim/core/record.h"
 #include "sim/core/trace.h"
 #include <string.h>
@@ -117,11 +118,10 @@ gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
 /* count x the kind's cost of op, saturating. */
 static SimTime op_cost(const MachProc *p, const MachOp *op)
 {
-    const SimTime *unit =
+    const MachCost *unit =
         p->info->costs ? g_hash_table_lookup(p->info->costs, op->name) : NULL;
-    g_assert(unit); /* the workload checked with mach_require_costs() */
-    return op->count && *unit > SIM_TIME_MAX / op->count ? SIM_TIME_MAX
-                                                         : *unit * op->count;
+    g_assert(unit); /* the workload checked with mach_costs_new() */
+    return sim_time_mul_sat(unit->value, op->count);
 }
 
 static SimTime ops_cost(const MachProc *p, const MachOp *ops, guint n_ops)

@@ -33,7 +33,7 @@ typedef struct {
     uint64_t memory;      /* bytes per node, 0 when not given */
     uint64_t lanes;       /* SIMD lanes per processor, 1 if not SIMD */
     uint64_t lane_memory; /* bytes per lane, 0 when not given */
-    GHashTable *costs;    /* op name -> SimTime *: its cost table */
+    GHashTable *costs;    /* op name -> MachCost * (costs.h): its costs */
 } MachKindInfo;
 
 /* Submits `cost` of work in `phase`; done(eng, ctx, arg) runs when it
@@ -49,7 +49,7 @@ typedef SimOp MachOp;
 
 /* The same work given as n_ops >= 1 counts: cost = sum of count x mach_cost()
  * of each name on the processor's kind (asserted to exist: check with
- * mach_require_costs() first), saturating.  Same time, busy time and
+ * mach_costs_new() first), saturating.  Same time, busy time and
  * events as mach_proc_compute() of that cost; a recording (`--record`)
  * writes the names and counts (a `c` line, docs/traces.md) instead of
  * the time, so a replay prices them from its target's cost table. */

@@ -12,6 +12,7 @@
 #include "sim/core/cfg.h"
 #include "sim/core/engine.h"
 #include "sim/core/result.h"
+#include "sim/machine/costs.h"
 #include "sim/raster/image.h"
 
 typedef struct {
@@ -38,11 +39,9 @@ gboolean wl_emit_frame(const WlContext *ctx, int frame, const RastImage *img,
 void wl_mark_frame(SimEngine *eng, guint frame, SimTime end);
 
 /* Costs a workload asks a machine model for: operation names under
- * nodes.<kind>.costs (sim/machine/model.h). */
-typedef struct {
-    const char *kind;
-    const char *const *ops; /* NULL-terminated */
-} WlNeed;
+ * nodes.<kind>.costs, declared once; the machine fills them, with their
+ * provenance, through mach_costs_new() (sim/machine/costs.h). */
+typedef MachNeed WlNeed;
 
 /* The costs of one mode of a workload ("with pn:, on Pixel-Planes 5"). */
 typedef struct {

@@ -851,25 +851,6 @@ static void test_partition_single_kinds(void **state)
     cfg_free(root);
 }
 
-/* count x cost saturates exactly when it would pass SIM_TIME_MAX. */
-static void test_cost_n(void **state)
-{
-    (void)state;
-    SimTime t = 1;
-    assert_true(mach_cost_n(SIM_TIME_MAX, 0, &t));
-    assert_int_equal(t, 0);
-    assert_true(mach_cost_n(0, UINT64_MAX, &t));
-    assert_int_equal(t, 0);
-    assert_true(mach_cost_n(SIM_TIME_MAX, 1, &t));
-    assert_int_equal(t, SIM_TIME_MAX);
-    assert_true(mach_cost_n(SIM_TIME_MAX / 2, 2, &t));
-    assert_int_equal(t, SIM_TIME_MAX / 2 * 2);
-    assert_false(mach_cost_n(SIM_TIME_MAX / 2 + 1, 2, &t));
-    assert_int_equal(t, SIM_TIME_MAX);
-    assert_true(mach_cost_n(7, 3, &t));
-    assert_int_equal(t, 21);
-}
-
 /* mach_topo_new on `endpoints`: NULL when built, else the message. */
 static char *topo_try(const char *text, guint endpoints)
 {
@@ -1095,7 +1076,6 @@ int main(void)
         cmocka_unit_test(test_machine_sections),
         cmocka_unit_test(test_cm_router_without_lanes),
         cmocka_unit_test(test_partition_single_kinds),
-        cmocka_unit_test(test_cost_n),
         cmocka_unit_test(test_topology_limits),
         cmocka_unit_test(test_kinds_and_fidelity),
         cmocka_unit_test(test_model_dirs),

@@ -386,14 +386,12 @@ gboolean rpl_target_check(RplTarget *t, const char *path, GError **err)
 static SimTime ops_price(RplTarget *t, guint p, const char *const *op,
                          const uint64_t *count, guint n)
 {
-    SimTime sum = 0, c;
+    SimTime sum = 0;
     gboolean fresh;
     for (guint i = 0; i < n; i++) {
         const SimTime *cp = rpl_target_op_cost(t, p, op[i], &fresh);
         g_assert(cp); /* rpl_target_check() passed */
-        if (!mach_cost_n(*cp, count[i], &c))
-            return SIM_TIME_MAX;
-        sum = sim_time_add_sat(sum, c);
+        sum = sim_time_add_sat(sum, sim_time_mul_sat(*cp, count[i]));
     }
     return sum;
 }

@@ -8,12 +8,6 @@
 #include "sim/workload/dpscan/dp_cost.h"
 #include <string.h>
 
-static SimTime mul_time(SimTime t, uint64_t n)
-{
-    g_assert(n == 0 || t <= SIM_TIME_MAX / n);
-    return t * n;
-}
-
 static SimTime add_time(SimTime a, SimTime b)
 {
     SimTime s;
@@ -45,7 +39,7 @@ SimTime wl_dp_step_cost(const WlDpMachine *m, uint64_t n, uint32_t ops,
         k->steps += 1.0;
         k->op_slices += (double)v * (double)ops;
     }
-    return add_time(m->step, mul_time(m->op, v * (uint64_t)ops));
+    return add_time(m->step, sim_time_mul_sat(m->op, v * (uint64_t)ops));
 }
 
 SimTime wl_dp_scan_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k)
@@ -55,7 +49,7 @@ SimTime wl_dp_scan_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k)
         k->steps += 1.0;
         k->scan_slices += (double)v;
     }
-    return add_time(m->step, mul_time(m->scan_slice, v));
+    return add_time(m->step, sim_time_mul_sat(m->scan_slice, v));
 }
 
 double wl_dp_fattree_escape(unsigned arity, uint64_t p, unsigned level)
@@ -98,7 +92,7 @@ static void count_send(const WlDpMachine *m, uint32_t words, uint64_t n,
  * of the per-message software and the wire. */
 static SimTime spmd_one(const WlDpMachine *m, uint64_t load, SimTime wire)
 {
-    SimTime soft = mul_time(m->msg_overhead, load);
+    SimTime soft = sim_time_mul_sat(m->msg_overhead, load);
     return add_time(add_time(m->step, m->net_latency), MAX(soft, wire));
 }
 
@@ -109,16 +103,17 @@ SimTime wl_dp_send_cost(const WlDpMachine *m, uint32_t words, uint64_t n,
         return 0;
     count_send(m, words, n, active, load, k);
     if (m->arch == WL_DP_SPMD)
-        return mul_time(spmd_one(m, load, wl_dp_fattree_wire(m, load)), words);
+        return sim_time_mul_sat(spmd_one(m, load, wl_dp_fattree_wire(m, load)),
+                                words);
     /* Slices holding a message: the messages are spread over the array. */
     uint64_t vps = wl_dp_vp_ratio(m, n);
     uint64_t mean = active / m->procs + (active % m->procs != 0);
     SimTime one = add_time(
         add_time(m->step, m->send_setup),
-        add_time(add_time(mul_time(m->send_vp, vps),
-                          mul_time(m->send_msg, mean)),
-                 mul_time(m->send_slice, load)));
-    return mul_time(one, words);
+        add_time(add_time(sim_time_mul_sat(m->send_vp, vps),
+                          sim_time_mul_sat(m->send_msg, mean)),
+                 sim_time_mul_sat(m->send_slice, load)));
+    return sim_time_mul_sat(one, words);
 }
 
 SimTime wl_dp_send_cost_wired(const WlDpMachine *m, uint32_t words,
@@ -129,7 +124,7 @@ SimTime wl_dp_send_cost_wired(const WlDpMachine *m, uint32_t words,
     if (load == 0 || words == 0 || active == 0)
         return 0;
     count_send(m, words, n, active, load, k);
-    return mul_time(spmd_one(m, load, wire), words);
+    return sim_time_mul_sat(spmd_one(m, load, wire), words);
 }
 
 static unsigned log2u(uint64_t v)
@@ -183,7 +178,7 @@ SimTime wl_dp_news_cost(const WlDpMachine *m, uint64_t n, WlDpCoef *k)
         k->steps += 1.0;
         k->news_slices += (double)v;
     }
-    return add_time(m->step, mul_time(m->news_slice, v));
+    return add_time(m->step, sim_time_mul_sat(m->news_slice, v));
 }
 
 /* Named counts (dp_cost.h WlDpCounts): what the functions above charge,
@@ -223,7 +218,8 @@ SimTime wl_dp_counts_price(const WlDpMachine *m, const WlDpCounts *k)
 {
     SimTime t = k->wire;
     for (int c = 0; c < WL_DP_N_COSTS; c++)
-        t = add_time(t, mul_time(wl_dp_cost_value(m, (WlDpCost)c), k->n[c]));
+        t = add_time(t, sim_time_mul_sat(wl_dp_cost_value(m, (WlDpCost)c),
+                                         k->n[c]));
     return t;
 }
 
@@ -263,8 +259,8 @@ void wl_dp_count_send(const WlDpMachine *m, uint32_t words, uint64_t n,
     }
     /* spmd_one(): the slower of the software and the wire. */
     k->n[WL_DP_C_NET_LATENCY] += words;
-    if (mul_time(m->msg_overhead, load) >= wire)
+    if (sim_time_mul_sat(m->msg_overhead, load) >= wire)
         k->n[WL_DP_C_MSG_OVERHEAD] += words * load;
     else
-        k->wire = add_time(k->wire, mul_time(wire, words));
+        k->wire = add_time(k->wire, sim_time_mul_sat(wire, words));
 }

@@ -73,12 +73,6 @@ void wl_pf_stages_free(WlPfStages *s)
     g_free(s);
 }
 
-static SimTime times(SimTime c, uint64_t n)
-{
-    SimTime t;
-    return mach_cost_n(c, n, &t) ? t : SIM_TIME_MAX;
-}
-
 static SimTime sum(SimTime a, SimTime b)
 {
     return sim_time_add_sat(a, b);
@@ -112,7 +106,7 @@ static SimTime app(void *ctx, guint n)
         mach_ops_add(o, "app_frame", 1);
         mach_ops_add(o, "app_dcs", moved);
     }
-    return sum(s->c.app_frame, times(s->c.app_dcs, moved));
+    return sum(s->c.app_frame, sim_time_mul_sat(s->c.app_dcs, moved));
 }
 
 static SimTime cull(void *ctx, guint n, double stress)
@@ -131,20 +125,20 @@ static SimTime cull(void *ctx, guint n, double stress)
     mach_ops_add(o, "cull_lod", f->cull.lods);
     mach_ops_add(o, "cull_billboard", f->cull.billboards);
     mach_ops_add(o, "cull_item", dl->len);
-    SimTime t = times(c->cull_node, f->cull.nodes_visited);
-    t = sum(t, times(c->cull_lod, f->cull.lods));
-    t = sum(t, times(c->cull_billboard, f->cull.billboards));
-    return sum(t, times(c->cull_item, dl->len));
+    SimTime t = sim_time_mul_sat(c->cull_node, f->cull.nodes_visited);
+    t = sum(t, sim_time_mul_sat(c->cull_lod, f->cull.lods));
+    t = sum(t, sim_time_mul_sat(c->cull_billboard, f->cull.billboards));
+    return sum(t, sim_time_mul_sat(c->cull_item, dl->len));
 }
 
 SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
                        gboolean lazy)
 {
     uint64_t states = lazy ? st->state_changes : st->state_naive;
-    SimTime t = times(c->draw_geoset, st->geosets);
-    t = sum(t, times(c->draw_state, states));
-    t = sum(t, times(c->draw_matrix, st->matrix_ops));
-    return sum(t, times(c->draw_vertex, 3 * st->tris));
+    SimTime t = sim_time_mul_sat(c->draw_geoset, st->geosets);
+    t = sum(t, sim_time_mul_sat(c->draw_state, states));
+    t = sum(t, sim_time_mul_sat(c->draw_matrix, st->matrix_ops));
+    return sum(t, sim_time_mul_sat(c->draw_vertex, 3 * st->tris));
 }
 
 /* The DRAW CPU's stream to the pipe as one traced message per frame. */
@@ -200,8 +194,8 @@ static SimTime draw(void *ctx, guint n)
     draw_ops(ops_reset(s), &f->draw, states);
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
     f->bus = feed_pipe(s, &s->over, (uint64_t)bytes, f->draw.tris, states);
-    f->pipe = sum(times(c->pipe_triangle, f->draw.tris),
-                  times(c->pipe_state, states));
+    f->pipe = sum(sim_time_mul_sat(c->pipe_triangle, f->draw.tris),
+                  sim_time_mul_sat(c->pipe_state, states));
     return MAX(f->cpu, MAX(f->bus, f->pipe));
 }
 
@@ -216,8 +210,8 @@ static SimTime isect(void *ctx, guint n)
     MachOps *o = ops_reset(s);
     mach_ops_add(o, "isect_node", f->isect.nodes_tested);
     mach_ops_add(o, "isect_triangle", f->isect.tris_tested);
-    return sum(times(s->c.isect_node, f->isect.nodes_tested),
-               times(s->c.isect_triangle, f->isect.tris_tested));
+    return sum(sim_time_mul_sat(s->c.isect_node, f->isect.nodes_tested),
+               sim_time_mul_sat(s->c.isect_triangle, f->isect.tris_tested));
 }
 
 WlPfStageFns wl_pf_stage_fns(gboolean with_isect)

@@ -8,13 +8,6 @@
 #include "sim/workload/pixelmerge/pm_frame.h"
 #include <string.h>
 
-static SimTime mul(SimTime unit, uint64_t n)
-{
-    if (n && unit > SIM_TIME_MAX / n)
-        return SIM_TIME_MAX;
-    return unit * n;
-}
-
 static SimTime add(SimTime a, SimTime b)
 {
     return sim_time_add_sat(a, b);
@@ -23,18 +16,21 @@ static SimTime add(SimTime a, SimTime b)
 static SimTime span_time(const WlPmCounts *k, const WlPmCosts *c,
                          gboolean sorted)
 {
-    SimTime t = add(mul(c->polygon, k->polygons), mul(c->span, k->rc.spans));
-    return sorted ? add(t, mul(c->insert_step, k->insert_steps)) : t;
+    SimTime t = add(sim_time_mul_sat(c->polygon, k->polygons),
+                    sim_time_mul_sat(c->span, k->rc.spans));
+    return sorted ? add(t, sim_time_mul_sat(c->insert_step, k->insert_steps))
+                  : t;
 }
 
 static SimTime zbuf_time(const WlPmCounts *k, const WlPmCosts *c, guint n,
                          gboolean full)
 {
-    SimTime t = add(mul(c->pixel, k->rc.pixels), mul(c->scanline, n));
+    SimTime t = add(sim_time_mul_sat(c->pixel, k->rc.pixels),
+                    sim_time_mul_sat(c->scanline, n));
     if (full)
-        return add(t, add(mul(c->zbuf_init, (uint64_t)n * n),
-                          mul(c->zcompare, k->rc.pixels)));
-    return add(t, mul(c->zcompare, k->rc.zcompares));
+        return add(t, add(sim_time_mul_sat(c->zbuf_init, (uint64_t)n * n),
+                          sim_time_mul_sat(c->zcompare, k->rc.pixels)));
+    return add(t, sim_time_mul_sat(c->zcompare, k->rc.zcompares));
 }
 
 double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
@@ -51,7 +47,8 @@ double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
     SimTime t =
         add(span_time(&k, c, TRUE), zbuf_time(&k, c, resolution, FALSE));
     if (insert_ms)
-        *insert_ms = sim_time_to_ms(mul(c->insert_step, k.insert_steps));
+        *insert_ms =
+            sim_time_to_ms(sim_time_mul_sat(c->insert_step, k.insert_steps));
     wl_pm_wpa_free(w);
     scene_mesh_free(flat);
     return sim_time_to_ms(t);

@@ -40,13 +40,13 @@ typedef struct {
     gboolean overflow;
 } Replay;
 
+/* n x unit; a saturated product sets *overflow (reported by the caller). */
 static SimTime times(SimTime unit, uint64_t n, gboolean *overflow)
 {
-    if (n && unit > SIM_TIME_MAX / n) {
+    SimTime t = sim_time_mul_sat(unit, n);
+    if (t == SIM_TIME_MAX)
         *overflow = TRUE;
-        return 0;
-    }
-    return unit * n;
+    return t;
 }
 
 static void rstep_init(RStep *s, guint n, gboolean exchange)

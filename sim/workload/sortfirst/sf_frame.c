@@ -66,14 +66,6 @@ struct WlSfRun {
     unsigned ph_estimate, ph_traverse, ph_edit;
 };
 
-/* n x unit, saturating (a saturated time overflows the engine's clock). */
-static SimTime mul(SimTime unit, uint64_t n)
-{
-    SimTime t;
-    mach_cost_n(unit, n, &t);
-    return t;
-}
-
 #define add sim_time_add_sat
 
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
@@ -630,8 +622,9 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
     for (guint p = 0; p < r->s.procs; p++)
         st->traverse_busy = add(
             st->traverse_busy,
-            add(mul(r->c.node_visit, r->tp[p].nodes),
-                mul(mul(r->c.transform_vertex, 8), r->tp[p].tests)));
+            add(sim_time_mul_sat(r->c.node_visit, r->tp[p].nodes),
+                sim_time_mul_sat(sim_time_mul_sat(r->c.transform_vertex, 8),
+                                 r->tp[p].tests)));
     if (r->adapt) {
         for (guint p = 0; p < r->s.procs; p++) {
             st->estimate_bytes += (r->s.procs - 1) * estimate_bytes(r, p);
