@@ -74,7 +74,7 @@ static SimTime data_time(NetNet *n, const NetMsg *m)
 {
     SimTime t = m->bytes ? sim_time_for_bytes((double)m->bytes, m->bw) : 0;
     if (instant_header(n))
-        t += (SimTime)m->hops * net_par(n)->per_hop;
+        t += sim_time_mul_sat(net_par(n)->per_hop, m->hops);
     return t;
 }
 

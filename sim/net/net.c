@@ -261,7 +261,7 @@ static guint route(const NetNet *n, uint32_t src, uint32_t dst)
 
 static SimTime latency(const NetParams *p, guint hops, uint64_t bytes)
 {
-    return net_startup(p, bytes) + (SimTime)hops * p->per_hop;
+    return net_startup(p, bytes) + sim_time_mul_sat(p->per_hop, hops);
 }
 
 SimTime net_msg_latency(const NetNet *n, const NetMsg *m)

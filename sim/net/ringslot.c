@@ -93,7 +93,7 @@ static gboolean try_claim(NetNet *n, NetMsg *m)
         for (guint i = 0; i < m->hops; i++)
             m->path[i]->holder[c] = m;
         m->step = c;
-        SimTime t = (SimTime)m->hops * net_par(n)->per_hop;
+        SimTime t = sim_time_mul_sat(net_par(n)->per_hop, m->hops);
         if (m->bytes)
             t += sim_time_for_bytes((double)m->bytes, m->bw);
         trace_claim(n, m, t);

@@ -245,12 +245,11 @@ static SimTime *borrowed_cost(const RplTarget *t, const char *kind,
     const MachKindInfo *tk = mach_kind(t->m, kind);
     const double *given = g_hash_table_lookup(t->clocks, from);
     double fhz = fk && fk->clock_hz > 0 ? fk->clock_hz : given ? *given : 0;
-    SimTime c;
-    if (!fk || fhz <= 0 || tk->clock_hz <= 0 ||
-        !mach_cost_lookup(t->from, from, op, &c, NULL))
+    const MachCost *mc = mach_cost_info(t->from, from, op);
+    if (!fk || fhz <= 0 || tk->clock_hz <= 0 || !mc)
         return NULL;
-    double v = round((double)c * (fhz / tk->clock_hz));
-    c = v >= (double)SIM_TIME_MAX ? SIM_TIME_MAX : (SimTime)v;
+    double v = round((double)mc->value * (fhz / tk->clock_hz));
+    SimTime c = v >= (double)SIM_TIME_MAX ? SIM_TIME_MAX : (SimTime)v;
     return g_memdup2(&c, sizeof c);
 }
 
@@ -283,11 +282,13 @@ const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
         g_free(key);
         return v;
     }
-    SimTime c, *cp = NULL;
+    SimTime *cp = NULL;
+    const MachCost *mc =
+        strchr(op, '.') ? NULL : mach_cost_info(t->m, kind, op);
     if (strchr(op, '.'))
         cp = path_cost(t, op);
-    else if (mach_cost_lookup(t->m, kind, op, &c, NULL))
-        cp = g_memdup2(&c, sizeof c);
+    else if (mc)
+        cp = g_memdup2(&mc->value, sizeof mc->value);
     else if (t->from)
         cp = borrowed_cost(t, kind, from, op);
     g_hash_table_insert(t->costs, key, cp);

@@ -27,6 +27,7 @@ const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
                                       "lock",
                                       "sema",
                                       NULL};
+const MachNeed wl_ag_needs[] = {{"cpu", wl_ag_cost_ops}, {NULL, NULL}};
 
 typedef struct {
     gboolean done;
@@ -75,19 +76,18 @@ struct AgPipe {
 gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
                                   GError **err)
 {
-    if (!mach_require_costs(m, "cpu", wl_ag_cost_ops, err))
+    MachCosts *set = mach_costs_new(m, wl_ag_needs, err);
+    if (!set)
         return FALSE;
-    SimTime *dst[] = {&c->nurbs_vertex,  &c->march_voxel, &c->march_triangle,
-                      &c->issue_vertex,  &c->issue_batch, &c->geom_vertex,
-                      &c->geom_triangle, &c->geom_tile,   &c->rast_triangle,
-                      &c->rast_pixel,    &c->rast_blend,  &c->rast_clear,
-                      &c->lock,          &c->sema};
-    guint i = 0;
-    for (; wl_ag_cost_ops[i]; i++) {
-        g_assert(i < G_N_ELEMENTS(dst));
-        *dst[i] = mach_cost(m, "cpu", wl_ag_cost_ops[i]);
-    }
-    g_assert(i == G_N_ELEMENTS(dst));
+    SimTime *const dst[] = {
+        &c->nurbs_vertex,  &c->march_voxel, &c->march_triangle,
+        &c->issue_vertex,  &c->issue_batch, &c->geom_vertex,
+        &c->geom_triangle, &c->geom_tile,   &c->rast_triangle,
+        &c->rast_pixel,    &c->rast_blend,  &c->rast_clear,
+        &c->lock,          &c->sema};
+    G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_ag_cost_ops) - 1);
+    mach_costs_fill(set, "cpu", wl_ag_cost_ops, dst);
+    mach_costs_free(set);
     return TRUE;
 }
 

@@ -64,6 +64,8 @@ typedef struct {
     SimTime lock, sema;
 } AgCosts;
 extern const char *const wl_ag_cost_ops[];
+/* The same, declared for the machine (WlOps.needs; costs.h). */
+extern const MachNeed wl_ag_needs[];
 
 typedef struct {
     guint procs, contexts, geometry, rasterisers;

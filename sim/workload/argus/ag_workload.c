@@ -228,7 +228,7 @@ static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p, GError **err)
     r->m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
                              ctx->fidelity, err);
     if (!r->m || !check_machine(r, p, ctx->root, err) ||
-        !mach_require_costs(r->m, "cpu", wl_ag_cost_ops, err))
+        !mach_costs_check(r->m, wl_ag_needs, err))
         return FALSE;
     r->mesh = scene_flatten(r->scene);
     if (!triangles_only(r->mesh, err))
@@ -361,8 +361,6 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
-static const WlNeed ag_needs[] = {{"cpu", wl_ag_cost_ops}, {NULL, NULL}};
-
 /* Every metric ag_run sets, in order (docs/workloads.md, "argus");
  * per-frame figures of the first frame unless said. */
 static const WlMetric ag_metrics[] = {
@@ -401,6 +399,6 @@ const WlOps wl_argus_ops = {
     .free_params = ag_free_params,
     .run = ag_run,
     .mem_bytes = ag_mem_bytes,
-    .needs = ag_needs,
+    .needs = wl_ag_needs,
     .metrics = ag_metrics,
 };

@@ -272,8 +272,8 @@ static SimTime target_send_cost(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s,
     }
     SimTime w = t->wire ? wire_time(vm, t, s) : wl_dp_fattree_wire(&t->m, load);
     wl_dp_count_send(&t->m, s->words, s->n_src, s->count, load, w, k);
-    t->wire_total += w * s->words;
-    t->soft_total += t->m.msg_overhead * load * s->words;
+    t->wire_total += sim_time_mul_sat(w, s->words);
+    t->soft_total += sim_time_mul_sat(t->m.msg_overhead, load * s->words);
     return wl_dp_send_cost_wired(&t->m, s->words, s->n_src, s->count, load, w,
                                  &t->coef);
 }

@@ -251,27 +251,18 @@ const WlNeedAlt wl_pf_pn_needs[] = {
     {"with pn:, on Pixel-Planes 5 (host + gp + renderer)", pp5_needs},
     {NULL, NULL}};
 
-/* Every cost of `needs` is in the model, or a located error. */
-static gboolean require(MachMachine *m, const WlNeed *needs, GError **err)
-{
-    for (const WlNeed *n = needs; n->kind; n++)
-        if (!mach_require_costs(m, n->kind, n->ops, err))
-            return FALSE;
-    return TRUE;
-}
-
 static gboolean pick_machine(PnRun *r, GError **err)
 {
     MachMachine *m = r->m;
     if (mach_kind(m, "cpu") && mach_kind(m, "pipe")) {
         r->start = smp_frame;
         return mach_shmem_init(&r->bus_mem, m, err) &&
-               require(m, smp_needs, err);
+               mach_costs_check(m, smp_needs, err);
     }
     if (mach_kind(m, "host") && mach_kind(m, "gp") &&
         mach_kind(m, "renderer")) {
         r->start = pp5_frame;
-        return mach_require_net(m, err) && require(m, pp5_needs, err);
+        return mach_require_net(m, err) && mach_costs_check(m, pp5_needs, err);
     }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "machine '%s': found no kinds cpu + pipe or host + gp + "

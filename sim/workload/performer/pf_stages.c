@@ -14,17 +14,6 @@ static const char *const pipe_ops[] = {"triangle", "state", NULL};
 const WlNeed wl_pf_town_needs[] = {{"cpu", cpu_ops}, {"pipe", pipe_ops},
                                    {NULL, NULL}};
 
-/* Looks up ops[i] of `kind` into *out[i], for every i. */
-static gboolean read_kind(MachMachine *m, const char *kind,
-                          const char *const *ops, SimTime *const *out,
-                          GError **err)
-{
-    for (guint i = 0; ops[i]; i++)
-        if (!mach_cost_lookup(m, kind, ops[i], out[i], err))
-            return FALSE;
-    return TRUE;
-}
-
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err)
 {
@@ -36,8 +25,13 @@ gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
     SimTime *const pipe[] = {&c->pipe_triangle, &c->pipe_state};
     G_STATIC_ASSERT(G_N_ELEMENTS(cpu) == G_N_ELEMENTS(cpu_ops) - 1);
     G_STATIC_ASSERT(G_N_ELEMENTS(pipe) == G_N_ELEMENTS(pipe_ops) - 1);
-    return read_kind(m, "cpu", cpu_ops, cpu, err) &&
-           read_kind(m, "pipe", pipe_ops, pipe, err);
+    MachCosts *set = mach_costs_new(m, wl_pf_town_needs, err);
+    if (!set)
+        return FALSE;
+    mach_costs_fill(set, "cpu", cpu_ops, cpu);
+    mach_costs_fill(set, "pipe", pipe_ops, pipe);
+    mach_costs_free(set);
+    return TRUE;
 }
 
 WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town, const WlPfCosts *c,

@@ -329,7 +329,7 @@ static gboolean get_procs(MachMachine *m, const PfParams *p, MachProc **procs,
 {
     guint need = wl_pf_mp_procs(p->pipe.mode) + (p->isect ? 1 : 0);
     /* run_pipeline calls this after wl_pf_costs_read found the costs of
-     * both kinds (mach_cost_lookup fails on a missing kind) */
+     * both kinds (mach_costs_new fails on a missing kind) */
     const MachKindInfo *k = mach_kind(m, "cpu");
     g_assert(k && mach_kind(m, "pipe"));
     if (k->count < need) {

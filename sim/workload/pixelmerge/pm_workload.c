@@ -36,6 +36,7 @@ const char *const wl_pm_cost_ops[] = {
     "polygon",  "span",      "insert_step", "pixel",   "zcompare",
     "scanline", "zbuf_init", "pack",        "scatter", "compare",
     "gather",   "sum_elem",  "sort_elem",   "assign_step", NULL};
+const MachNeed wl_pm_needs[] = {{"node", wl_pm_cost_ops}, {NULL, NULL}};
 
 /* Scheme words: the library's names plus "zbuf_exc" (underscore). */
 static const char *const scheme_words[] = {"zbuf-exc", "pair", "aapc",
@@ -46,15 +47,18 @@ static const char *const span_rules[] = {"exact", "endpoints", NULL};
 gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
                                   WlPmCosts *c, GError **err)
 {
-    if (!mach_require_costs(m, "node", wl_pm_cost_ops, err))
+    MachCosts *set = mach_costs_new(m, wl_pm_needs, err);
+    if (!set)
         return FALSE;
-    SimTime *dst[] = {&c->polygon,        &c->span,         &c->insert_step,
-                      &c->pixel,          &c->zcompare,     &c->scanline,
-                      &c->zbuf_init,      &c->merge.pack,   &c->merge.scatter,
-                      &c->merge.compare,  &c->merge.gather, &c->merge.sum_elem,
-                      &c->merge.sort_elem, &c->merge.assign_step};
-    for (guint i = 0; wl_pm_cost_ops[i]; i++)
-        *dst[i] = mach_cost(m, "node", wl_pm_cost_ops[i]);
+    SimTime *const dst[] = {
+        &c->polygon,         &c->span,          &c->insert_step,
+        &c->pixel,           &c->zcompare,      &c->scanline,
+        &c->zbuf_init,       &c->merge.pack,    &c->merge.scatter,
+        &c->merge.compare,   &c->merge.gather,  &c->merge.sum_elem,
+        &c->merge.sort_elem, &c->merge.assign_step};
+    G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_pm_cost_ops) - 1);
+    mach_costs_fill(set, "node", wl_pm_cost_ops, dst);
+    mach_costs_free(set);
     c->merge.count_bytes = count_bytes;
     return TRUE;
 }
@@ -361,8 +365,6 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
-static const WlNeed pm_needs[] = {{"node", wl_pm_cost_ops}, {NULL, NULL}};
-
 /* Every metric pm_run sets (docs/workloads.md, "pixelmerge"). */
 static const WlMetric pm_metrics[] = {
     {"processors", "", "P, the processors run"},
@@ -405,6 +407,6 @@ const WlOps wl_pixelmerge_ops = {
     .free_params = pm_free_params,
     .run = pm_run,
     .mem_bytes = pm_mem_bytes,
-    .needs = pm_needs,
+    .needs = wl_pm_needs,
     .metrics = pm_metrics,
 };

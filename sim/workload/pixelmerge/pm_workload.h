@@ -43,9 +43,12 @@ typedef struct {
 /* The node cost operations, NULL-terminated (models/ipsc2.yaml
  * nodes.node.costs). */
 extern const char *const wl_pm_cost_ops[];
+/* The same, declared for the machine (WlOps.needs; costs.h). */
+extern const MachNeed wl_pm_needs[];
 
-/* Reads the costs of node kind "node"; a missing op is a located input
- * error naming the model. */
+/* Reads the costs of node kind "node" from the set the machine fills
+ * for wl_pm_needs; every missing op in one located input error naming
+ * the model. */
 gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
                                   WlPmCosts *c, GError **err);
 

@@ -63,8 +63,7 @@ struct WlPphigsFrame {
     NetNet *net;
     WlPphigsFrameSpec s;
     WlPphigsCosts c;
-    SimTime gp_send, rend_expr, rend_cmp, rend_begin, rend_shade, fb_store,
-        host_send, host_scan;
+    SimTime gp_send; /* per command sent (0: sends are free) */
     guint ngp, nrend, nx, ny, nregions;
     Gp *gp;
     Rend *rend;
@@ -83,33 +82,51 @@ struct WlPphigsFrame {
 
 /* ---- costs from the machine ------------------------------------------- */
 
+/* The costs a frame reads, declared once (`pgsim help run`; the machine
+ * prices the named counts the frame hands it). */
+static const char *const gp_ops[] = {
+    "polygon",       "vertex",  "reject_vertex",  "color", "matrix_replace",
+    "matrix_concat", "execute", "send_primitive", NULL};
+static const char *const renderer_ops[] = {"expression", "compare",
+                                           "region_begin", "region_shade",
+                                           NULL};
+static const char *const fb_ops[] = {"store_region", NULL};
+static const char *const host_ops[] = {"send_element", "scan_element", NULL};
+const MachNeed wl_pphigs_needs[] = {{"gp", gp_ops},
+                                    {"renderer", renderer_ops},
+                                    {"frame_buffer", fb_ops},
+                                    {"host", host_ops},
+                                    {NULL, NULL}};
+static const MachNeed gp_needs[] = {{"gp", gp_ops}, {NULL, NULL}};
+
+/* The GP table and the send cost from a set that declared gp_ops. */
+static void fill_gp(const MachCosts *set, WlPphigsCosts *c, SimTime *send)
+{
+    SimTime *const dst[] = {&c->poly,   &c->vertex, &c->reject_vertex,
+                            &c->color,  &c->matrix, &c->concat,
+                            &c->execute, send};
+    G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(gp_ops) - 1);
+    mach_costs_fill(set, "gp", gp_ops, dst);
+}
+
 gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,
                                       SimTime *send, GError **err)
 {
-    return mach_cost_lookup(m, "gp", "polygon", &c->poly, err) &&
-           mach_cost_lookup(m, "gp", "vertex", &c->vertex, err) &&
-           mach_cost_lookup(m, "gp", "reject_vertex", &c->reject_vertex, err) &&
-           mach_cost_lookup(m, "gp", "color", &c->color, err) &&
-           mach_cost_lookup(m, "gp", "matrix_replace", &c->matrix, err) &&
-           mach_cost_lookup(m, "gp", "matrix_concat", &c->concat, err) &&
-           mach_cost_lookup(m, "gp", "execute", &c->execute, err) &&
-           mach_cost_lookup(m, "gp", "send_primitive", send, err);
+    MachCosts *set = mach_costs_new(m, gp_needs, err);
+    if (set)
+        fill_gp(set, c, send);
+    mach_costs_free(set);
+    return set != NULL;
 }
 
+/* Every cost of wl_pphigs_needs, all missing ones in one error. */
 static gboolean hw_costs(WlPphigsFrame *f, GError **err)
 {
-    const MachMachine *m = f->m;
-    return wl_pphigs_costs_from_machine(m, &f->c, &f->gp_send, err) &&
-           mach_cost_lookup(m, "renderer", "expression", &f->rend_expr, err) &&
-           mach_cost_lookup(m, "renderer", "compare", &f->rend_cmp, err) &&
-           mach_cost_lookup(m, "renderer", "region_begin", &f->rend_begin,
-                            err) &&
-           mach_cost_lookup(m, "renderer", "region_shade", &f->rend_shade,
-                            err) &&
-           mach_cost_lookup(m, "frame_buffer", "store_region", &f->fb_store,
-                            err) &&
-           mach_cost_lookup(m, "host", "send_element", &f->host_send, err) &&
-           mach_cost_lookup(m, "host", "scan_element", &f->host_scan, err);
+    MachCosts *set = mach_costs_new(f->m, wl_pphigs_needs, err);
+    if (set)
+        fill_gp(set, &f->c, &f->gp_send);
+    mach_costs_free(set);
+    return set != NULL;
 }
 
 /* The kind's processor count, checked against [lo, hi]. */

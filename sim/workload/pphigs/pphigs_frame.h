@@ -73,6 +73,9 @@ typedef struct {
     uint64_t expressions;   /* linear expressions the renderers evaluated */
 } WlPphigsFrameStats;
 
+/* The costs a frame reads, per kind (WlOps.needs; costs.h). */
+extern const MachNeed wl_pphigs_needs[];
+
 /* The GP cost table and the per-command send cost of machine m (its
  * `gp` kind); FALSE with a located *err if one is missing. */
 gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,

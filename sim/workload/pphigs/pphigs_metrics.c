@@ -22,7 +22,8 @@ SimTime wl_pphigs_elem_cost(const WlPphigsCosts *c, const SceneElem *e)
     case SCENE_EL_EXECUTE:
         return c->execute;
     default:
-        return c->poly + c->vertex * e->nverts;
+        return sim_time_add_sat(c->poly,
+                                sim_time_mul_sat(c->vertex, e->nverts));
     }
 }
 
@@ -86,7 +87,8 @@ void wl_pphigs_nonprim_ops(const SceneDb *db, MachOps *o)
 SimTime wl_pphigs_prim_cost(const WlPphigsCosts *c, const SceneElem *e,
                             gboolean offscreen)
 {
-    return offscreen ? c->reject_vertex * e->nverts : wl_pphigs_elem_cost(c, e);
+    return offscreen ? sim_time_mul_sat(c->reject_vertex, e->nverts)
+                     : wl_pphigs_elem_cost(c, e);
 }
 
 static void prim_fn(const ScenePrimInst *pi, void *ud)

@@ -596,22 +596,6 @@ static gboolean run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
-/* The costs wl_pphigs_costs_from_machine() and hw_costs() look up
- * (pphigs_frame.c). */
-static const char *const gp_ops[] = {
-    "polygon",       "vertex",  "reject_vertex",  "color", "matrix_replace",
-    "matrix_concat", "execute", "send_primitive", NULL};
-static const char *const renderer_ops[] = {"primitive", "region_begin",
-                                           "region_shade", NULL};
-static const char *const fb_ops[] = {"store_region", NULL};
-static const char *const host_ops[] = {"send_element", "scan_element",
-                                       NULL};
-static const WlNeed pphigs_needs[] = {{"gp", gp_ops},
-                                      {"renderer", renderer_ops},
-                                      {"frame_buffer", fb_ops},
-                                      {"host", host_ops},
-                                      {NULL, NULL}};
-
 /* Every metric run() sets, in order (docs/workloads.md, "pphigs"). */
 static const WlMetric pphigs_metrics[] = {
     {"frame_ms", "ms", "mean frame time"},
@@ -658,6 +642,6 @@ const WlOps wl_pphigs_ops = {
     .free_params = params_free,
     .run = run,
     .mem_bytes = mem_bytes,
-    .needs = pphigs_needs,
+    .needs = wl_pphigs_needs,
     .metrics = pphigs_metrics,
 };

@@ -11,6 +11,7 @@ const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "pixel_zbuffer",    "chunk_pack",
                                       "grid_cell",        "node_visit",
                                       "pointer_update",   NULL};
+const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
 
 typedef struct {
     WlSfRun *run;
@@ -71,15 +72,16 @@ struct WlSfRun {
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
                                   GError **err)
 {
-    if (!mach_require_costs(m, "node", wl_sf_cost_ops, err))
+    MachCosts *set = mach_costs_new(m, wl_sf_needs, err);
+    if (!set)
         return FALSE;
-    c->transform_vertex = mach_cost(m, "node", "transform_vertex");
-    c->span_create = mach_cost(m, "node", "span_create");
-    c->pixel_zbuffer = mach_cost(m, "node", "pixel_zbuffer");
-    c->chunk_pack = mach_cost(m, "node", "chunk_pack");
-    c->grid_cell = mach_cost(m, "node", "grid_cell");
-    c->node_visit = mach_cost(m, "node", "node_visit");
-    c->pointer_update = mach_cost(m, "node", "pointer_update");
+    SimTime *const dst[] = {&c->transform_vertex, &c->span_create,
+                            &c->pixel_zbuffer,    &c->chunk_pack,
+                            &c->grid_cell,        &c->node_visit,
+                            &c->pointer_update};
+    G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_sf_cost_ops) - 1);
+    mach_costs_fill(set, "node", wl_sf_cost_ops, dst);
+    mach_costs_free(set);
     return TRUE;
 }
 

@@ -88,6 +88,8 @@
 
 /* Cost operations of the `node` kind (NULL-terminated). */
 extern const char *const wl_sf_cost_ops[];
+/* The same, declared for the machine (WlOps.needs; costs.h). */
+extern const MachNeed wl_sf_needs[];
 
 typedef struct {
     SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;

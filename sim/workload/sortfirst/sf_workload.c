@@ -554,8 +554,6 @@ static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
-static const WlNeed sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
-
 /* Every metric wl_sf_fill_metrics sets, in order; per-frame figures are
  * means over the frames after the first (docs/workloads.md, "sortfirst"). */
 static const WlMetric sf_metrics[] = {
@@ -641,6 +639,6 @@ const WlOps wl_sortfirst_ops = {
     .free_params = sf_free_params,
     .run = sf_run,
     .mem_bytes = sf_mem_bytes,
-    .needs = sf_needs,
+    .needs = wl_sf_needs,
     .metrics = sf_metrics,
 };
