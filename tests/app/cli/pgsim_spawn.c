@@ -27,3 +27,22 @@ int test_pgsim(const char *const *args, char **out, char **err)
     g_ptr_array_free(argv, TRUE);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+
+char *test_ring_sweep(const char *dir, const char *values)
+{
+    char *base = g_build_filename(dir, "ring.yaml", NULL);
+    char *sweep = g_build_filename(dir, "s.yaml", NULL);
+    char *text = g_strdup_printf("name: s\nbase: ring.yaml\nparameters:\n"
+                                 "  workload.nodes: {values: [%s]}\n",
+                                 values);
+    assert_true(g_file_set_contents(
+        base,
+        "schema_version: 1\nworkload: {type: tokenring, nodes: 4, token: 1 "
+        "KB, compute: 20 us, jitter: 0, link: {latency: 5 us, bandwidth: "
+        "20 MB/s}}\nrun: {frames: 2}\n",
+        -1, NULL));
+    assert_true(g_file_set_contents(sweep, text, -1, NULL));
+    g_free(text);
+    g_free(base);
+    return sweep;
+}

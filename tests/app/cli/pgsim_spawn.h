@@ -8,5 +8,9 @@ const char *test_pgsim_bin(void);
 /* Runs pgsim with the NULL-terminated args; returns the exit status (-1
  * when it did not exit) and sets *out and *err to its output (g_free). */
 int test_pgsim(const char *const *args, char **out, char **err);
+/* Writes dir/ring.yaml (a 2-frame token ring) and dir/s.yaml, a sweep
+ * named s over it with workload.nodes taking `values` (YAML list items,
+ * "4, 8"); returns the sweep's path (g_free). */
+char *test_ring_sweep(const char *dir, const char *values);
 
 #endif

@@ -96,19 +96,7 @@ static void test_validate_sweeps(void **state)
     g_free(err);
     /* one bad point among good ones: validate refuses it, located */
     char *dir = g_dir_make_tmp("pgsim-cli-XXXXXX", NULL);
-    char *base = g_build_filename(dir, "ring.yaml", NULL);
-    char *sweep = g_build_filename(dir, "s.yaml", NULL);
-    assert_true(g_file_set_contents(
-        base,
-        "schema_version: 1\nworkload: {type: tokenring, nodes: 4, token: 1 "
-        "KB, compute: 20 us, jitter: 0, link: {latency: 5 us, bandwidth: "
-        "20 MB/s}}\nrun: {frames: 2}\n",
-        -1, NULL));
-    assert_true(g_file_set_contents(
-        sweep,
-        "name: s\nbase: ring.yaml\nparameters:\n  workload.nodes: {values: "
-        "[4, 8, zero]}\n",
-        -1, NULL));
+    char *sweep = test_ring_sweep(dir, "4, 8, zero");
     const char *bad[] = {"validate", sweep, NULL};
     assert_int_equal(test_pgsim(bad, &out, &err), 2);
     assert_non_null(strstr(err, "point 2"));
@@ -116,11 +104,9 @@ static void test_validate_sweeps(void **state)
     g_free(out);
     g_free(err);
     /* the same sweep without the bad value validates and runs */
-    assert_true(g_file_set_contents(
-        sweep,
-        "name: s\nbase: ring.yaml\nparameters:\n  workload.nodes: {values: "
-        "[4, 8]}\n",
-        -1, NULL));
+    g_free(sweep);
+    sweep = test_ring_sweep(dir, "4, 8");
+    bad[1] = sweep;
     assert_int_equal(test_pgsim(bad, &out, &err), 0);
     g_free(out);
     g_free(err);
@@ -134,7 +120,6 @@ static void test_validate_sweeps(void **state)
                              NULL, NULL, NULL, NULL));
     g_free(od);
     g_free(sweep);
-    g_free(base);
     g_free(dir);
 }
 

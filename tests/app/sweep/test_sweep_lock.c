@@ -62,20 +62,8 @@ static void test_cli_takes_the_lock(void **state)
 {
     (void)state;
     char *top = g_dir_make_tmp("pgsim-lock-XXXXXX", NULL);
-    char *base = g_build_filename(top, "ring.yaml", NULL);
-    char *sweep = g_build_filename(top, "s.yaml", NULL);
+    char *sweep = test_ring_sweep(top, "4, 8");
     char *od = g_build_filename(top, "o", NULL);
-    assert_true(g_file_set_contents(
-        base,
-        "schema_version: 1\nworkload: {type: tokenring, nodes: 4, token: 1 "
-        "KB, compute: 20 us, jitter: 0, link: {latency: 5 us, bandwidth: "
-        "20 MB/s}}\nrun: {frames: 2}\n",
-        -1, NULL));
-    assert_true(g_file_set_contents(
-        sweep,
-        "name: s\nbase: ring.yaml\nparameters:\n  workload.nodes: {values: "
-        "[4, 8]}\n",
-        -1, NULL));
     GError *e = NULL;
     SweepLock *other = sweep_lock_take(od, FP_B, &e);
     g_assert_no_error(e);
@@ -96,7 +84,6 @@ static void test_cli_takes_the_lock(void **state)
     g_free(csv);
     g_free(od);
     g_free(sweep);
-    g_free(base);
     support_rm_tree(top);
     g_free(top);
 }
