@@ -12,7 +12,9 @@
 #include "sim/output/provenance.h"
 #include "sim/output/table.h"
 #include <errno.h>
+#include <glib/gstdio.h>
 #include <string.h>
+#include <unistd.h>
 
 static const char *const format_names[] = {"text", "json", "csv", NULL};
 static const char *const format_files[] = {"summary.txt", "result.json",
@@ -577,6 +579,34 @@ static char *render_file(const SimResult *r, RptFormat f, gboolean timing)
     return g_string_free(s, FALSE);
 }
 
+/* Renames or removes the staged files (NULL entries skipped). */
+static gboolean unstage(char **staged, const char *dir, gboolean keep,
+                        GError **err)
+{
+    gboolean ok = TRUE;
+    for (int f = RPT_TEXT; f <= RPT_CSV; f++) {
+        if (!staged[f])
+            continue;
+        char *path = g_build_filename(dir, format_files[f], NULL);
+        if (keep && ok && g_rename(staged[f], path) != 0) {
+            int e = errno;
+            g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                        "%s: found %s, expected a writable file", path,
+                        g_strerror(e));
+            ok = FALSE;
+        }
+        if (!keep || !ok)
+            g_remove(staged[f]);
+        g_free(path);
+        g_free(staged[f]);
+    }
+    return ok;
+}
+
+/* The three files are written beside their places first (".NAME.PID"
+ * hidden files, each whole and synced) and renamed into place only when
+ * all three are written: a full disk or any other failure leaves the
+ * earlier run's files as they were, never a mix of old and new. */
 gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
                        GError **err)
 {
@@ -587,13 +617,15 @@ gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
                     dir, g_strerror(errno));
         return FALSE;
     }
+    char *staged[RPT_CSV + 1] = {NULL};
     gboolean ok = TRUE;
     for (int f = RPT_TEXT; ok && f <= RPT_CSV; f++) {
         char *text = render_file(r, (RptFormat)f, timing);
-        char *path = g_build_filename(dir, format_files[f], NULL);
-        ok = sim_file_write(path, text, strlen(text), err);
-        g_free(path);
+        char *name = g_strdup_printf(".%s.%d", format_files[f], (int)getpid());
+        staged[f] = g_build_filename(dir, name, NULL);
+        ok = sim_file_write(staged[f], text, strlen(text), err);
+        g_free(name);
         g_free(text);
     }
-    return ok;
+    return unstage(staged, dir, ok, err) && ok;
 }

@@ -25,7 +25,10 @@ const char *rpt_format_file(RptFormat f);
 
 /* Returns the rendering as a new string (g_free). */
 char *rpt_render(const SimResult *r, RptFormat f, gboolean timing);
-/* Writes all three renderings into dir (created if needed), atomically;
+/* Writes all three renderings into dir (created if needed), together:
+ * each is written beside its place and the three are renamed into place
+ * only when all are written, so after a failure (a full disk, reported
+ * with the system's reason) dir holds the earlier files, unchanged.
  * FALSE with *err on failure. */
 gboolean rpt_write_dir(const SimResult *r, const char *dir, gboolean timing,
                        GError **err);

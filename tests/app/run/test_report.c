@@ -7,7 +7,10 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <glib/gstdio.h>
+#include <errno.h>
+#include <signal.h>
 #include <string.h>
+#include <sys/resource.h>
 
 #include "sim/core/datapath.h"
 #include "sim/output/json.h"
@@ -164,6 +167,70 @@ static void test_atomic(void **state)
     g_free(nodir);
     g_free(sub);
     g_free(path);
+    g_free(dir);
+}
+
+static char *file_text(const char *dir, const char *name)
+{
+    char *p = g_build_filename(dir, name, NULL), *text = NULL;
+    assert_true(g_file_get_contents(p, &text, NULL, NULL));
+    g_free(p);
+    return text;
+}
+
+/* run --out over an earlier run's folder on a disk that fills after
+ * summary.txt (issue 32; RLIMIT_FSIZE stands in for the full disk):
+ * the folder stays wholly old, with no stray file, and the error carries
+ * the system's reason. */
+static void test_write_dir_all_or_nothing(void **state)
+{
+    (void)state;
+    const char *names[] = {"summary.txt", "result.json", "result.csv"};
+    char *dir = g_dir_make_tmp("pgsim-full-XXXXXX", NULL);
+    char *old_d = g_build_filename(dir, "old", NULL);
+    char *new_d = g_build_filename(dir, "new", NULL);
+    SimResult *r1 = sample(), *r2 = sample();
+    for (int i = 0; i < 2000; i++) /* new files larger than the old */
+        sim_result_add_frame(r2, (SimTime)i * SIM_MS);
+    GError *e = NULL;
+    assert_true(rpt_write_dir(r1, old_d, FALSE, &e));
+    assert_true(rpt_write_dir(r2, new_d, FALSE, &e));
+    char *old_text[3];
+    for (int i = 0; i < 3; i++)
+        old_text[i] = file_text(old_d, names[i]);
+    char *new_sum = file_text(new_d, names[0]);
+    char *new_json = file_text(new_d, names[1]);
+    assert_true(strlen(new_sum) < strlen(new_json));
+    struct rlimit lim, was;
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &was), 0);
+    lim = was;
+    lim.rlim_cur = strlen(new_sum) + 1; /* summary.txt fits, JSON not */
+    void (*prev)(int) = signal(SIGXFSZ, SIG_IGN);
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &lim), 0);
+    gboolean ok = rpt_write_dir(r2, old_d, FALSE, &e);
+    setrlimit(RLIMIT_FSIZE, &was);
+    signal(SIGXFSZ, prev);
+    assert_false(ok);
+    if (!strstr(e->message, g_strerror(EFBIG)))
+        fail_msg("got: %s", e->message);
+    g_clear_error(&e);
+    assert_int_equal(dir_entries(old_d), 3);
+    for (int i = 0; i < 3; i++) {
+        char *now = file_text(old_d, names[i]);
+        if (strcmp(now, old_text[i]) != 0)
+            fail_msg("%s changed: the folder mixes two runs", names[i]);
+        g_free(now);
+        g_free(old_text[i]);
+    }
+    g_free(new_sum);
+    g_free(new_json);
+    sim_result_free(r1);
+    sim_result_free(r2);
+    char *rm[] = {(char *)"rm", (char *)"-rf", dir, NULL};
+    assert_true(g_spawn_sync(NULL, rm, NULL, G_SPAWN_SEARCH_PATH, NULL, NULL,
+                             NULL, NULL, NULL, NULL));
+    g_free(old_d);
+    g_free(new_d);
     g_free(dir);
 }
 
@@ -377,6 +444,7 @@ int main(void)
         cmocka_unit_test(test_json),
         cmocka_unit_test(test_csv_and_text),
         cmocka_unit_test(test_atomic),
+        cmocka_unit_test(test_write_dir_all_or_nothing),
         cmocka_unit_test(test_file_modes),
         cmocka_unit_test(test_human_metrics),
         cmocka_unit_test(test_kind_summary),
