@@ -1,10 +1,13 @@
 /* sf_frame.c — sort-first frames on the machine (sf_frame.h; seed 000
  * §3.3.2 push communication, §4.1 the two passes: a sorting pass over
- * the chunks' bounding boxes, then the rendering pass).
+ * the chunks' bounding boxes, then the rendering pass): the node costs
+ * the run declares, each frame's events on the processors (traversal,
+ * sort, pack, the exchange or pull requests, the current-frame estimate
+ * and split, edits, unpack and render) and the run's lifetime.  A
+ * region's rendering is sf_render.c, the frame's figures and checks
+ * sf_figures.c; the three share sf_frame_internal.h.
  */
-#include "sim/workload/sortfirst/sf_frame.h"
-#include "sim/workload/sortfirst/sf_adapt.h"
-#include <math.h>
+#include "sim/workload/sortfirst/sf_frame_internal.h"
 #include <string.h>
 
 const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
@@ -12,62 +15,6 @@ const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "grid_cell",        "node_visit",
                                       "pointer_update",   NULL};
 const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
-
-typedef struct {
-    WlSfRun *run;
-    guint p;
-    MachProc *proc;
-    WlSfBatch *out; /* P batches: what p sends each processor */
-    WlSfBookWork w;
-    GArray *fresh; /* chunks received this frame */
-    guint received;
-    guint expect; /* pull: answers awaited (masters asked) */
-    WlSfBatch *reply; /* pull: P batches, its answers to each */
-    gboolean sorted;
-    RastCounters rc; /* raster work (vertices, primitives ...) */
-    uint64_t spans, pixels, polys;
-    SimTime busy0; /* busy time at the frame's start */
-    SimTime region_work; /* unpack + render: the work its region sets */
-    guint grids;         /* estimate: grids received (current) */
-    gboolean estimated;  /* estimate: own grid done (current) */
-} Proc;
-
-struct WlSfRun {
-    MachMachine *m;
-    NetNet *net;
-    SimEngine *eng;
-    const Scene *scene;
-    const WlSfDb *db;
-    WlSfSetup s;
-    WlSfCosts c;
-    WlSfRegions regions, next; /* this frame's; the next frame's */
-    WlSfAdapt *adapt;          /* NULL: static regions */
-    double split_imbalance;    /* of the last split, over its estimate */
-    uint64_t split_cells;      /* cells the next split visits */
-    WlSfBook *book;
-    Proc *procs;
-    RastView view;
-    RastZBuffer *zb, *serial;
-    GArray *stats;  /* WlSfFrameStats */
-    GArray *render; /* scratch: instances */
-    GArray *subset; /* scratch: polygons */
-    int frame, frames;
-    guint done;
-    WlSfTrav trav;      /* this frame's §3.5 counts (sf_trav.h) */
-    const WlSfScreen *scr; /* this frame's instance screen rectangles */
-    WlSfScreen *scr_own;   /* their store without setup `screens` */
-    WlSfTravProc *tp;   /* per processor: its traversal work */
-    WlSfEdit *edit;     /* NULL: no edits (borrowed) */
-    WlSfEditFrame ef;   /* this frame's edit work */
-    WlSfRemapWork *ew;  /* per processor: its pointer work */
-    WlSfFrameHook hook; /* NULL: none */
-    void *hook_ctx;
-    SimTime start;
-    unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
-    unsigned ph_estimate, ph_traverse, ph_edit;
-};
-
-#define add sim_time_add_sat
 
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
                                   GError **err)
@@ -85,114 +32,10 @@ gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
     return TRUE;
 }
 
-/* ---- region rendering ---------------------------------------------------- */
-
-typedef struct {
-    RastZBuffer *zb;
-    WlSfRect r;
-    uint64_t spans, pixels;
-} RegionSink;
-
-/* Z-buffers the part of a span inside the region, pixel by pixel with the
- * formulas of rast_zbuffer_span(), so the pixels equal the serial ones. */
-static void region_span(void *ctx, const RastSpan *s, RastCounters *c)
-{
-    RegionSink *k = ctx;
-    if (s->y < k->r.y0 || s->y >= k->r.y1)
-        return;
-    int x0 = MAX(s->x0, k->r.x0), x1 = MIN(s->x1, k->r.x1);
-    if (x0 >= x1)
-        return;
-    RastZBuffer *zb = k->zb;
-    size_t row = (size_t)s->y * (size_t)zb->width;
-    k->spans++;
-    k->pixels += (uint64_t)(x1 - x0);
-    for (int x = x0; x < x1; x++) {
-        size_t i = row + (size_t)x;
-        double z = rast_span_z(s, x);
-        c->zcompares++;
-        if (rast_depth_wins(z, s->prim, zb->depth[i], zb->prim[i])) {
-            zb->depth[i] = z;
-            zb->prim[i] = s->prim;
-            zb->rgba[i] = rast_span_rgba(s, x);
-            c->zwrites++;
-        }
-    }
-}
-
-static RastView frame_view(const Scene *scene, const WlSfSetup *s, guint frame)
-{
-    SceneCamera cam = scene_camera_at(scene, frame);
-    RastView v = rast_view_for_camera(&cam, s->resolution, s->resolution);
-    v.cull_back = s->cull_back;
-    return v;
-}
-
-void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
-                         const WlSfSetup *s, guint frame, RastZBuffer *zb)
-{
-    RastView v = frame_view(scene, s, frame);
-    RastCounters c = {0};
-    rast_zbuffer_clear(zb);
-    rast_draw_mesh(&v, db->flat, mat4_identity(), (SceneColor){1, 1, 1}, 0,
-                   NULL, 0, rast_zbuffer_sink(zb), &c);
-}
-
-/* Counts from the frame rendered once (setup `pre`) when no image is
- * wanted: the same spans and pixels, no z-buffer (prerender.h). */
-static gboolean prerendered(const WlSfRun *r)
-{
-    return r->s.pre && !r->s.check_image && !r->hook;
-}
-
-/* The region's counts from the frame rendered once, instance by
- * instance (no subset gathered). */
-static void count_region(WlSfRun *r, Proc *pr)
-{
-    const RastPrerender *pre = rast_prerender_set_get(
-        r->s.pre, (guint)r->frame, &r->view, r->db->flat);
-    WlSfRect q = wl_sf_region_rect(&r->regions, pr->p);
-    RastRect rect = {q.x0, q.y0, q.x1, q.y1};
-    pr->polys = pr->spans = pr->pixels = 0;
-    for (guint k = 0; k < r->render->len; k++) {
-        guint i = g_array_index(r->render, guint, k);
-        guint n = wl_sf_chunk(r->db, wl_sf_inst(r->db, i)->chunk)->polys;
-        rast_prerender_count(pre, r->db->flat, wl_sf_inst_polys(r->db, i), n,
-                             rect, &pr->rc, &pr->spans, &pr->pixels);
-        pr->polys += n;
-    }
-}
-
-static void render_region(WlSfRun *r, Proc *pr)
-{
-    if (prerendered(r)) {
-        count_region(r, pr);
-        return;
-    }
-    g_array_set_size(r->subset, 0);
-    for (guint k = 0; k < r->render->len; k++) {
-        guint i = g_array_index(r->render, guint, k);
-        const uint32_t *polys = wl_sf_inst_polys(r->db, i);
-        guint n = wl_sf_chunk(r->db, wl_sf_inst(r->db, i)->chunk)->polys;
-        g_array_append_vals(r->subset, polys, n);
-    }
-    RegionSink k = {r->zb, wl_sf_region_rect(&r->regions, pr->p), 0, 0};
-    RastSpanSink sink = {region_span, &k};
-    pr->polys = r->subset->len;
-    if (r->subset->len)
-        rast_draw_mesh(&r->view, r->db->flat, mat4_identity(),
-                       (SceneColor){1, 1, 1}, 0,
-                       (const uint32_t *)(void *)r->subset->data,
-                       r->subset->len, sink, &pr->rc);
-    pr->spans = k.spans;
-    pr->pixels = k.pixels;
-}
-
 /* ---- the frame's events ---------------------------------------------------
  */
 
 static void start_frame(SimEngine *eng, void *ctx, void *arg);
-static double max_over_mean(double max, double total, guint n);
 
 /* The work is given to the machine as named counts of the node's
  * costs (wl_sf_cost_ops), so a recording writes counts: one op, one
@@ -208,7 +51,7 @@ static void add_boxes(MachOps *o, uint64_t boxes)
     mach_ops_add(o, "transform_vertex", 8 * boxes);
 }
 
-static void charge(WlSfRun *r, Proc *pr, const MachOps *o, unsigned ph,
+static void charge(WlSfRun *r, WlSfProc *pr, const MachOps *o, unsigned ph,
                    SimHandler done, guint arg)
 {
     mach_proc_compute_list(pr->proc, o, ph, done, r, GUINT_TO_POINTER(arg));
@@ -216,7 +59,7 @@ static void charge(WlSfRun *r, Proc *pr, const MachOps *o, unsigned ph,
 
 /* Processor p's traversal of the hierarchy, the first thing its first
  * pass does (sf_trav.h): charged in phase `traverse`. */
-static void traverse(WlSfRun *r, Proc *pr)
+static void traverse(WlSfRun *r, WlSfProc *pr)
 {
     const WlSfTravProc *tp = &r->tp[pr->p];
     MachOps o = ops1("node_visit", tp->nodes);
@@ -241,7 +84,7 @@ static uint64_t grid_bytes(const WlSfRun *r, guint q, uint64_t *entries)
 
 /* Grid cells processor p handles after the exchange: its own grid, the
  * P - 1 received ones added in, then the split. */
-static uint64_t partition_cells(const WlSfRun *r, guint p)
+uint64_t wl_sf_partition_cells(const WlSfRun *r, guint p)
 {
     uint64_t n = (uint64_t)r->adapt->grid * r->adapt->grid, e;
     for (guint q = 0; q < r->s.procs; q++)
@@ -254,7 +97,7 @@ static uint64_t partition_cells(const WlSfRun *r, guint p)
 
 /* Bytes processor p's grid and region work (feedback, 8 B) add to each
  * message it sends. */
-static uint64_t estimate_bytes(const WlSfRun *r, guint p)
+uint64_t wl_sf_estimate_bytes(const WlSfRun *r, guint p)
 {
     return grid_bytes(r, p, NULL) + (r->s.feedback ? 8 : 0);
 }
@@ -262,32 +105,32 @@ static uint64_t estimate_bytes(const WlSfRun *r, guint p)
 /* Bytes riding on p's exchange messages (previous-frame estimate). */
 static uint64_t ride_bytes(const WlSfRun *r, guint p)
 {
-    return !r->adapt || r->s.current ? 0 : estimate_bytes(r, p);
+    return !r->adapt || r->s.current ? 0 : wl_sf_estimate_bytes(r, p);
 }
 
-static void render(WlSfRun *r, Proc *pr)
+static void render(WlSfRun *r, WlSfProc *pr)
 {
     g_array_set_size(r->render, 0);
     wl_sf_book_render_set(r->book, pr->p, pr->fresh, r->render, &pr->w);
-    render_region(r, pr);
+    wl_sf_render_region(r, pr);
     MachOps unpack = ops1("chunk_pack", pr->w.recv_polys);
     add_boxes(&unpack, pr->w.new_boxes);
     MachOps draw = ops1("transform_vertex", pr->rc.verts);
     mach_ops_add(&draw, "span_create", pr->spans);
     mach_ops_add(&draw, "pixel_zbuffer", pr->pixels);
-    pr->region_work = add(mach_proc_ops_cost(pr->proc, &unpack),
-                          mach_proc_ops_cost(pr->proc, &draw));
+    pr->region_work = sim_time_add_sat(mach_proc_ops_cost(pr->proc, &unpack),
+                                       mach_proc_ops_cost(pr->proc, &draw));
     charge(r, pr, &unpack, r->ph_unpack, NULL, 0);
     if (!r->adapt || r->s.current) {
         charge(r, pr, &draw, r->ph_render, render_done, pr->p);
         return;
     }
     charge(r, pr, &draw, r->ph_render, NULL, 0);
-    MachOps part = ops1("grid_cell", partition_cells(r, pr->p));
+    MachOps part = ops1("grid_cell", wl_sf_partition_cells(r, pr->p));
     charge(r, pr, &part, r->ph_partition, render_done, pr->p);
 }
 
-static void maybe_render(WlSfRun *r, Proc *pr)
+static void maybe_render(WlSfRun *r, WlSfProc *pr)
 {
     guint want = r->s.mig == WL_SF_PULL ? pr->expect : r->s.procs - 1;
     if (pr->sorted && pr->received == want)
@@ -299,7 +142,7 @@ static void arrive(NetNet *net, const NetDelivery *d, void *ctx)
     (void)net;
     WlSfRun *r = ctx;
     const WlSfBatch *bt = d->payload;
-    Proc *pr = &r->procs[bt->dst];
+    WlSfProc *pr = &r->procs[bt->dst];
     wl_sf_book_receive(r->book, bt, &pr->w);
     g_array_append_vals(pr->fresh, bt->chunks->data, bt->chunks->len);
     pr->received++;
@@ -324,14 +167,14 @@ static void request_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     (void)net;
     WlSfRun *r = ctx;
     const WlSfBatch *req = d->payload;
-    Proc *m = &r->procs[req->dst];
+    WlSfProc *m = &r->procs[req->dst];
     WlSfBatch *reply = &m->reply[req->src];
     wl_sf_book_serve(r->book, req, reply, &m->w);
     MachOps o = ops1("chunk_pack", reply->polys);
     mach_proc_compute_list(m->proc, &o, r->ph_pack, serve_done, r, reply);
 }
 
-static void pull_requests(WlSfRun *r, Proc *pr)
+static void pull_requests(WlSfRun *r, WlSfProc *pr)
 {
     for (guint q = 0; q < r->s.procs; q++) {
         WlSfBatch *bt = &pr->out[q];
@@ -347,7 +190,7 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     WlSfRun *r = ctx;
-    Proc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
+    WlSfProc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
     if (r->s.mig == WL_SF_PULL) {
         pull_requests(r, pr);
         pr->sorted = TRUE;
@@ -366,7 +209,7 @@ static void sort_done(SimEngine *eng, void *ctx, void *arg)
 }
 
 /* p's sort pass on the book: state changes at the frame's start. */
-static void sort_book(WlSfRun *r, Proc *pr)
+static void sort_book(WlSfRun *r, WlSfProc *pr)
 {
     memset(&pr->w, 0, sizeof pr->w);
     memset(&pr->rc, 0, sizeof pr->rc);
@@ -380,7 +223,7 @@ static void sort_book(WlSfRun *r, Proc *pr)
 }
 
 /* The sort's time: traversal, box transforms, packing. */
-static void sort_charge(WlSfRun *r, Proc *pr)
+static void sort_charge(WlSfRun *r, WlSfProc *pr)
 {
     const WlSfTravProc *tp = &r->tp[pr->p];
     g_assert(tp->master_culled <= pr->w.master_boxes &&
@@ -402,7 +245,7 @@ static void sort_charge(WlSfRun *r, Proc *pr)
     charge(r, pr, &pack, r->ph_pack, sort_done, pr->p);
 }
 
-static void sort(WlSfRun *r, Proc *pr)
+static void sort(WlSfRun *r, WlSfProc *pr)
 {
     sort_book(r, pr);
     sort_charge(r, pr);
@@ -420,18 +263,18 @@ static void split_done(SimEngine *eng, void *ctx, void *arg)
     sort(r, &r->procs[GPOINTER_TO_UINT(arg)]);
 }
 
-static void maybe_split(WlSfRun *r, Proc *pr)
+static void maybe_split(WlSfRun *r, WlSfProc *pr)
 {
     if (!pr->estimated || pr->grids + 1 < r->s.procs)
         return;
-    MachOps o = ops1("grid_cell", partition_cells(r, pr->p));
+    MachOps o = ops1("grid_cell", wl_sf_partition_cells(r, pr->p));
     charge(r, pr, &o, r->ph_partition, split_done, pr->p);
 }
 
 static void grid_arrive(NetNet *net, const NetDelivery *d, void *ctx)
 {
     (void)net;
-    Proc *pr = d->payload;
+    WlSfProc *pr = d->payload;
     pr->grids++;
     maybe_split(ctx, pr);
 }
@@ -440,12 +283,12 @@ static void estimate_done(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     WlSfRun *r = ctx;
-    Proc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
+    WlSfProc *pr = &r->procs[GPOINTER_TO_UINT(arg)];
     for (guint q = 0; q < r->s.procs; q++)
         if (q != pr->p)
             net_send(r->net, mach_proc_id(pr->proc),
                      mach_proc_id(r->procs[q].proc),
-                     estimate_bytes(r, pr->p), &r->procs[q],
+                     wl_sf_estimate_bytes(r, pr->p), &r->procs[q],
                      grid_arrive, r);
     pr->estimated = TRUE;
     maybe_split(r, pr);
@@ -461,7 +304,7 @@ static uint64_t own_boxes(const WlSfRun *r, guint p)
     return n;
 }
 
-static void estimate(WlSfRun *r, Proc *pr)
+static void estimate(WlSfRun *r, WlSfProc *pr)
 {
     pr->grids = 0;
     pr->estimated = FALSE;
@@ -486,7 +329,7 @@ static void plan_regions(WlSfRun *r)
         total += w;
         max = MAX(max, w);
     }
-    r->split_imbalance = max_over_mean(max, total, r->s.procs);
+    r->split_imbalance = wl_sf_max_over_mean(max, total, r->s.procs);
     if (r->s.current)
         r->regions = r->next;
 }
@@ -510,13 +353,13 @@ static void edit_apply(WlSfRun *r)
     g_free(map);
 }
 
-static uint64_t edit_message(const WlSfRun *r)
+uint64_t wl_sf_edit_message(const WlSfRun *r)
 {
     return r->s.sizes.message + r->ef.commands * r->s.sizes.edit;
 }
 
 /* p's edit work as named counts of the node's costs. */
-static MachOps edit_ops(const WlSfRun *r, guint p)
+MachOps wl_sf_edit_ops(const WlSfRun *r, guint p)
 {
     uint64_t nodes = r->ef.commands;
     if (r->s.bk == WL_SF_MAXSET)
@@ -528,9 +371,9 @@ static MachOps edit_ops(const WlSfRun *r, guint p)
 }
 
 /* p's frame work after the edits: its first pass. */
-static void begin(WlSfRun *r, Proc *pr)
+static void begin(WlSfRun *r, WlSfProc *pr)
 {
-    MachOps o = edit_ops(r, pr->p);
+    MachOps o = wl_sf_edit_ops(r, pr->p);
     if (r->ef.commands)
         charge(r, pr, &o, r->ph_edit, NULL, 0);
     if (r->adapt && r->s.current)
@@ -549,7 +392,7 @@ static void edit_send(WlSfRun *r)
 {
     for (guint q = 1; r->ef.commands && q < r->s.procs; q++)
         net_send(r->net, mach_proc_id(r->procs[0].proc),
-                 mach_proc_id(r->procs[q].proc), edit_message(r),
+                 mach_proc_id(r->procs[q].proc), wl_sf_edit_message(r),
                  &r->procs[q], edit_arrive, r);
 }
 
@@ -580,7 +423,7 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     WlSfRun *r = ctx;
     r->start = sim_now(eng);
     r->done = 0;
-    r->view = frame_view(r->scene, &r->s, (guint)r->frame);
+    r->view = wl_sf_frame_view(r->scene, &r->s, (guint)r->frame);
     rast_zbuffer_clear(r->zb);
     edit_apply(r);
     if (r->adapt)
@@ -599,186 +442,6 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
     for (guint p = 0; p < r->s.procs; p++)
         if (!r->ef.commands || p == 0) /* others: when the edits arrive */
             begin(r, &r->procs[p]);
-}
-
-/* ---- the frame's figures --------------------------------------------------
- */
-
-/* max / mean, 0 when the mean is 0. */
-static double max_over_mean(double max, double total, guint n)
-{
-    return total > 0 ? max * n / total : 0;
-}
-
-/* Work = each processor's busy time in the frame. */
-static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
-{
-    double total = 0, max = 0;
-    for (guint p = 0; p < r->s.procs; p++) {
-        const Proc *pr = &r->procs[p];
-        double busy = (double)(mach_proc_busy(pr->proc) - pr->busy0);
-        total += busy;
-        max = MAX(max, busy);
-    }
-    st->imbalance = max_over_mean(max, total, r->s.procs);
-    for (guint p = 0; p < r->s.procs; p++)
-        st->traverse_busy = add(
-            st->traverse_busy,
-            add(sim_time_mul_sat(r->c.node_visit, r->tp[p].nodes),
-                sim_time_mul_sat(sim_time_mul_sat(r->c.transform_vertex, 8),
-                                 r->tp[p].tests)));
-    if (r->adapt) {
-        for (guint p = 0; p < r->s.procs; p++) {
-            st->estimate_bytes += (r->s.procs - 1) * estimate_bytes(r, p);
-            st->estimate_cells += partition_cells(r, p);
-        }
-        st->split_imbalance = r->split_imbalance;
-        for (guint p = 0; p < r->s.procs; p++)
-            st->estimate_cells += r->adapt->added[p];
-    }
-}
-
-/* Where the master copies are: per processor its master polygons and
- * those with no instance in any region (off-screen, seed 000 §3.3.2.1). */
-static void masters(const WlSfRun *r, WlSfFrameStats *st)
-{
-    uint64_t poly[WL_SF_MAX_PROCS] = {0}, off[WL_SF_MAX_PROCS] = {0};
-    double total = 0, max = 0;
-    for (guint c = 0; c < wl_sf_n_chunks(r->db); c++) {
-        const WlSfChunk *ch = wl_sf_chunk(r->db, c);
-        guint m = wl_sf_book_master(r->book, c);
-        uint64_t any = 0;
-        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++)
-            any |= r->book->need[i];
-        poly[m] += ch->polys;
-        off[m] += any ? 0 : ch->polys;
-    }
-    for (guint p = 0; p < r->s.procs; p++) {
-        total += (double)poly[p];
-        max = MAX(max, (double)poly[p]);
-        st->offscreen_max = MAX(st->offscreen_max, off[p]);
-        st->offscreen_total += off[p];
-        st->held_polys += r->procs[p].w.held_polys;
-    }
-    st->master_imbalance = max_over_mean(max, total, r->s.procs);
-}
-
-static void sum_edits(const WlSfRun *r, WlSfFrameStats *st)
-{
-    st->edits = r->ef.commands;
-    st->nodes_created = r->ef.nodes_created;
-    st->nodes_collected = r->ef.nodes_collected;
-    if (r->ef.commands) {
-        st->messages += r->s.procs - 1;
-        st->edit_bytes = (r->s.procs - 1) * edit_message(r);
-    }
-    for (guint p = 0; p < r->s.procs; p++) {
-        const Proc *pr = &r->procs[p];
-        st->pointers_collected += r->ew[p].ptr_collected;
-        st->edit_bytes += pr->w.edit_bytes;
-        st->chunks_collected += pr->w.collected;
-        MachOps o = edit_ops(r, p);
-        if (r->ef.commands)
-            st->edit_busy =
-                add(st->edit_busy, mach_proc_ops_cost(pr->proc, &o));
-    }
-}
-
-static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
-{
-    uint64_t total = 0;
-    st->load_min = UINT64_MAX;
-    for (guint p = 0; p < r->s.procs; p++) {
-        const Proc *pr = &r->procs[p];
-        st->migrated_chunks += pr->w.sent_chunks;
-        st->migrated_polys += pr->w.sent_polys;
-        st->migrated_insts += pr->w.sent_insts;
-        st->migrated_bytes += pr->w.sent_bytes;
-        st->master_boxes += pr->w.master_boxes;
-        st->slave_boxes += pr->w.slave_boxes;
-        st->new_boxes += pr->w.new_boxes;
-        st->probe_boxes += pr->w.probe_boxes;
-        st->deleted_chunks += pr->w.deleted_chunks;
-        st->requests += pr->w.requested;
-        st->handovers += pr->w.handed;
-        st->pixels += pr->pixels;
-        st->load_max = MAX(st->load_max, pr->polys);
-        st->load_min = MIN(st->load_min, pr->polys);
-        st->peak_memory = MAX(st->peak_memory, wl_sf_book_memory(r->book, p));
-        total += pr->polys;
-    }
-    st->messages = (uint64_t)r->s.procs * (r->s.procs - 1);
-    if (r->s.mig == WL_SF_PULL) {
-        st->messages = 0;
-        for (guint p = 0; p < r->s.procs; p++)
-            st->messages += 2 * r->procs[p].expect;
-    }
-    sum_edits(r, st);
-    masters(r, st);
-    st->polys_rendered = total;
-    st->poly_imbalance =
-        max_over_mean((double)st->load_max, (double)total, r->s.procs);
-    sum_busy(r, st);
-}
-
-/* √ area of instance i's screen rectangle clipped to the screen, pixels
- * (seed 000 §4.2, Chart 3: chunk box size against region size).  Only
- * for an instance some region needs: need[i] comes from this frame's
- * r->scr (start_frame) and is 0 for a rectangle not on screen
- * (wl_sf_screen_regions), so the rectangle is on. */
-static double box_side(const WlSfRun *r, guint i)
-{
-    const WlSfScreen *s = &r->scr[i];
-    g_assert(s->on);
-    double w = MIN(s->x1, r->regions.width) - MAX(s->x0, 0);
-    double h = MIN(s->y1, r->regions.height) - MAX(s->y0, 0);
-    return w > 0 && h > 0 ? sqrt(w * h) : 0;
-}
-
-static void overlap(const WlSfRun *r, WlSfFrameStats *st)
-{
-    for (guint i = 0; i < wl_sf_n_insts(r->db); i++) {
-        uint64_t m = r->book->need[i];
-        if (m) {
-            st->onscreen_insts++;
-            st->region_insts += (uint64_t)__builtin_popcountll(m);
-            st->box_side += box_side(r, i);
-        }
-    }
-}
-
-static double utilisation(const WlSfRun *r, SimTime frame)
-{
-    SimTime busy = 0;
-    for (guint p = 0; p < r->s.procs; p++)
-        busy += mach_proc_busy(r->procs[p].proc) - r->procs[p].busy0;
-    return frame ? (double)busy / ((double)frame * r->s.procs) : 0;
-}
-
-static gboolean check_frame(WlSfRun *r, WlSfFrameStats *st, GError **err)
-{
-    guint inst, proc;
-    if (!wl_sf_book_check(r->book, &inst, &proc)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                    "sortfirst: frame %d: found chunk instance %u over "
-                    "region %u not held by processor %u, expected every "
-                    "overlapping instance held",
-                    r->frame, inst, proc, proc);
-        return FALSE;
-    }
-    if (!r->s.check_image)
-        return TRUE;
-    wl_sf_render_serial(r->scene, r->db, &r->s, (guint)r->frame, r->serial);
-    size_t n = (size_t)r->s.resolution * (size_t)r->s.resolution;
-    st->image_checked = TRUE;
-    st->image_ok = memcmp(r->zb->rgba, r->serial->rgba, n * 4) == 0 &&
-                   memcmp(r->zb->prim, r->serial->prim, n * 4) == 0;
-    if (!st->image_ok)
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
-                    "sortfirst: frame %d: found an image that differs from "
-                    "the serial render, expected the same pixels",
-                    r->frame);
-    return st->image_ok;
 }
 
 /* Cost feedback: this frame's region work (unpack + render) per
@@ -802,11 +465,9 @@ static void render_done(SimEngine *eng, void *ctx, void *arg)
         return;
     WlSfFrameStats st = {.start = r->start, .end = sim_now(eng),
                          .trav = r->trav};
-    sum_work(r, &st);
-    overlap(r, &st);
-    st.utilisation = utilisation(r, st.end - st.start);
+    wl_sf_frame_sum(r, &st);
     GError *e = NULL;
-    gboolean ok = check_frame(r, &st, &e) &&
+    gboolean ok = wl_sf_frame_check(r, &st, &e) &&
                   (!r->hook || r->hook(r->hook_ctx, r->frame, r->zb, &e));
     g_array_append_val(r->stats, st);
     if (!ok) {
@@ -849,11 +510,11 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
     }
     if (s->adaptive && s->predict && !s->current)
         wl_sf_adapt_predict(r->adapt, wl_sf_n_insts(db));
-    r->procs = g_new0(Proc, s->procs);
+    r->procs = g_new0(WlSfProc, s->procs);
     r->tp = g_new0(WlSfTravProc, s->procs);
     r->ew = g_new0(WlSfRemapWork, s->procs);
     for (guint p = 0; p < s->procs; p++) {
-        Proc *pr = &r->procs[p];
+        WlSfProc *pr = &r->procs[p];
         pr->run = r;
         pr->p = p;
         pr->proc = mach_proc(m, "node", p);
@@ -948,5 +609,5 @@ const WlSfRegions *wl_sf_run_regions(const WlSfRun *r)
 
 const RastZBuffer *wl_sf_run_zbuffer(const WlSfRun *r)
 {
-    return r->stats->len && !prerendered(r) ? r->zb : NULL;
+    return r->stats->len && !wl_sf_prerendered(r) ? r->zb : NULL;
 }
