@@ -1,7 +1,8 @@
 #!/bin/sh
 # Checks that includes point one way down the floors of sim/, and that
 # files inside a workload folder follow one naming rule.  Floors:
-#   app -> reproduce -> workload -> machine, raster -> net, scene -> output, core
+#   app -> reproduce -> run -> workload -> machine, raster -> net, scene ->
+#   output, core
 # A file may include a header of its own folder or of a lower floor; an
 # include of a higher floor, or of another folder on the same floor, is
 # reported as FILE:LINE and fails.  Run by `make test`.
@@ -10,8 +11,8 @@ cd "$(dirname "$0")/.."
 floor() {
     case $1 in
     core) echo 0 ;; output) echo 1 ;; net | scene) echo 2 ;;
-    machine | raster) echo 3 ;; workload) echo 4 ;; reproduce) echo 5 ;;
-    app) echo 6 ;; *) echo -1 ;;
+    machine | raster) echo 3 ;; workload) echo 4 ;; run) echo 5 ;;
+    reproduce) echo 6 ;; app) echo 7 ;; *) echo -1 ;;
     esac
 }
 bad=0

@@ -1,5 +1,6 @@
 /* support.c — set-up steps many test binaries share (support.h). */
 #include "tests/support.h"
+#include "sim/run/run.h"
 
 #include <glib.h>
 #include <glib/gstdio.h>
@@ -43,4 +44,50 @@ void support_rm_tree(const char *path)
         g_dir_close(d);
     }
     g_remove(path);
+}
+
+/* The run settings of `o` as overrides, after the caller's own. */
+static GPtrArray *run_overrides(const CfgNode *root, const SupportRun *o)
+{
+    GPtrArray *ov = g_ptr_array_new_with_free_func(g_free);
+    if (!cfg_has(root, "schema_version"))
+        g_ptr_array_add(ov, g_strdup("schema_version=1"));
+    if (o && o->fidelity)
+        g_ptr_array_add(ov, g_strdup_printf("run.fidelity=%s", o->fidelity));
+    if (o && o->frames)
+        g_ptr_array_add(ov, g_strdup_printf("run.frames=%d", o->frames));
+    if (o && o->seed)
+        g_ptr_array_add(ov, g_strdup_printf("run.seed=%" G_GUINT64_FORMAT,
+                                            o->seed));
+    for (guint i = 0; o && o->overrides && o->overrides[i]; i++)
+        g_ptr_array_add(ov, g_strdup(o->overrides[i]));
+    g_ptr_array_add(ov, NULL);
+    return ov;
+}
+
+SimResult *support_run_tree(CfgNode *root, const SupportRun *o, GError **err)
+{
+    GPtrArray *ov = run_overrides(root, o);
+    CfgRun *run =
+        cfg_run_from_tree(root, (const char *const *)ov->pdata, err);
+    g_ptr_array_free(ov, TRUE);
+    if (!run)
+        return NULL;
+    CfgRunOpts opts = {.out_dir = o ? o->out_dir : NULL,
+                       .quiet = TRUE,
+                       .trace = o ? o->trace : NULL,
+                       .dry_run = o && o->dry_run,
+                       .all_frames = o && o->all_frames};
+    SimResult *r = cfg_run_exec(run, &opts, err);
+    if (o && o->now)
+        *o->now = sim_now(run->eng);
+    cfg_run_free(run);
+    return r;
+}
+
+SimResult *support_run_text(const char *yaml, const SupportRun *o,
+                            GError **err)
+{
+    CfgNode *root = cfg_load_string(yaml, "test.yaml", err);
+    return root ? support_run_tree(root, o, err) : NULL;
 }

@@ -26,6 +26,8 @@ struct SimEngine {
     gboolean hole; /* heap root is the event being run */
     gboolean stopped;
     gboolean dry; /* sim_engine_set_dry_run() */
+    gboolean cut; /* stopped at the horizon with events pending */
+    SimTime horizon; /* sim_engine_set_horizon(); SIM_TIME_MAX: none */
     GError *error;
     GArray *entities; /* SimEntity */
     GPtrArray *phases;
@@ -44,6 +46,7 @@ SimEngine *sim_engine_new(uint64_t seed)
     SimEngine *e = g_new0(SimEngine, 1);
     e->q = sim_evq_new();
     e->seed = seed;
+    e->horizon = SIM_TIME_MAX;
     e->entities = g_array_new(FALSE, TRUE, sizeof(SimEntity));
     e->phases = g_ptr_array_new_with_free_func(g_free);
     e->phase_ids = g_hash_table_new(g_str_hash, g_str_equal);
@@ -183,6 +186,8 @@ gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
     }
     uint64_t next_progress =
         e->progress_every ? e->events + e->progress_every : UINT64_MAX;
+    SimTime asked = until;
+    until = MIN(until, e->horizon);
     e->stopped = FALSE;
     while (!e->stopped && sim_evq_len(e->q) > 0) {
         SimEvKey ev = *sim_evq_top(e->q);
@@ -200,15 +205,38 @@ gboolean sim_engine_run(SimEngine *e, SimTime until, GError **err)
             next_progress = e->events + e->progress_every;
         }
     }
+    /* Time passes to `until` when the caller asked for it, or when the
+     * horizon cut pending work short; a run that merely ran out of events
+     * under the horizon ends at its last event. */
+    gboolean pending = sim_evq_len(e->q) > 0;
+    gboolean cut = !e->stopped && pending && sim_evq_top(e->q)->time > until &&
+                   until == e->horizon && until != SIM_TIME_MAX;
     if (until != SIM_TIME_MAX && !e->stopped && until > e->now &&
-        (sim_evq_len(e->q) == 0 || sim_evq_top(e->q)->time > until))
+        (cut || (asked != SIM_TIME_MAX &&
+                 (!pending || sim_evq_top(e->q)->time > until))))
         e->now = until;
+    e->cut = e->cut || cut;
     if (e->error) {
         g_propagate_error(err, e->error);
         e->error = NULL;
         return FALSE;
     }
     return TRUE;
+}
+
+void sim_engine_set_horizon(SimEngine *e, SimTime t)
+{
+    e->horizon = t;
+}
+
+SimTime sim_engine_horizon(const SimEngine *e)
+{
+    return e->horizon;
+}
+
+gboolean sim_engine_cut(const SimEngine *e)
+{
+    return e->cut;
 }
 
 uint32_t sim_entity_add(SimEngine *e, const char *name)

@@ -53,6 +53,16 @@ gboolean sim_schedule_at(SimEngine *eng, SimTime t, SimHandler fn, void *ctx,
  * error (overflow, or one a handler reported with sim_engine_fail()). */
 gboolean sim_engine_run(SimEngine *eng, SimTime until, GError **err);
 void sim_engine_stop(SimEngine *eng);
+/* The run's stop time (`run.until`, set by the runner, sim/run/run.h):
+ * every sim_engine_run() stops at the earlier of its own `until` and the
+ * horizon, so a workload honours run.until without reading it.
+ * SIM_TIME_MAX (the default): none. */
+void sim_engine_set_horizon(SimEngine *eng, SimTime t);
+SimTime sim_engine_horizon(const SimEngine *eng);
+/* TRUE once a run has stopped at the horizon with events still pending
+ * after it: the simulation was cut short.  A workload then ends its frame
+ * loop and does not count the frame in progress. */
+gboolean sim_engine_cut(const SimEngine *eng);
 /* Dry run (`pgsim validate`): sim_engine_run() runs no event and returns
  * FALSE with SIM_ERROR_DRY_RUN, so a workload performs every check and
  * allocation that precedes its first simulated event and then stops the

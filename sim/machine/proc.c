@@ -74,7 +74,10 @@ static gboolean submit_terms(MachProc *p, SimTime cost, const MachOp *ops,
         fail_overflow(eng, p, "completion time");
         return FALSE;
     }
-    charge(p, phase, cost, &overflow);
+    /* busy time counts only within the run's horizon (run.until): work
+     * cut short by it is busy up to the horizon, then no more */
+    SimTime h = sim_engine_horizon(eng);
+    charge(p, phase, end <= h ? cost : start >= h ? 0 : h - start, &overflow);
     if (overflow) {
         fail_overflow(eng, p, "busy time");
         return FALSE;

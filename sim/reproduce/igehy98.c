@@ -14,32 +14,27 @@
  */
 #include "sim/reproduce/igehy98.h"
 #include "sim/output/plot.h"
-#include "sim/workload/argus/ag_workload.h"
+#include "sim/run/run.h"
 #include "sim/workload/metrics.h"
 #include <math.h>
 
 gboolean rp_igehy98_rate(const char *path, const char *const *sets,
                          double *hz, GError **err)
 {
-    CfgNode *root = cfg_load_file(path, err);
-    gboolean ok = root != NULL;
-    for (guint i = 0; ok && sets && sets[i]; i++)
-        ok = cfg_set_override(root, sets[i], err);
-    void *p = ok ? wl_argus_ops.parse(cfg_get(root, "workload"), err) : NULL;
-    ok = p != NULL;
-    if (ok) {
-        SimEngine *eng = sim_engine_new(RP_SEED);
-        WlContext ctx = {.eng = eng, .root = root, .seed = RP_SEED,
-                         .fidelity = "analytic", .frames = 1};
-        SimResult *r = sim_result_new("argus", "");
-        ok = wl_argus_ops.run(&ctx, p, r, err) &&
-             wl_get_metric(r, "frame_hz", hz);
-        sim_result_free(r);
-        sim_engine_free(eng);
-    }
-    if (p)
-        wl_argus_ops.free_params(p);
-    cfg_free(root);
+    GPtrArray *ov = g_ptr_array_new_with_free_func(g_free);
+    for (guint i = 0; sets && sets[i]; i++)
+        g_ptr_array_add(ov, g_strdup(sets[i]));
+    g_ptr_array_add(ov, g_strdup("run.fidelity=analytic"));
+    g_ptr_array_add(ov, g_strdup("run.frames=1"));
+    g_ptr_array_add(ov, g_strdup_printf("run.seed=%d", (int)RP_SEED));
+    g_ptr_array_add(ov, NULL);
+    CfgRun *r = cfg_run_load(path, (const char *const *)ov->pdata, err);
+    g_ptr_array_free(ov, TRUE);
+    CfgRunOpts o = {.quiet = TRUE};
+    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+    gboolean ok = res && wl_get_metric(res, "frame_hz", hz);
+    sim_result_free(res);
+    cfg_run_free(r);
     return ok;
 }
 

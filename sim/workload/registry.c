@@ -26,15 +26,6 @@ const WlOps *wl_find(const char *name)
     return NULL;
 }
 
-SimTime wl_until(const WlContext *ctx)
-{
-    SimTime t = SIM_TIME_MAX;
-    const CfgNode *run = cfg_get(ctx->root, "run");
-    if (!cfg_get_time(run, "until", FALSE, &t, NULL))
-        t = SIM_TIME_MAX; /* cannot happen on a loaded config */
-    return t;
-}
-
 char *wl_frame_log_path(const WlContext *ctx, const char *path,
                         const char *name)
 {

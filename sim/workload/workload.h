@@ -1,10 +1,14 @@
 /* workload.h — the workload plug-in contract.
  *
- * A workload is a small ops table.  `pgsim run` loads the config, finds
- * the workload named by `workload.type`, lets it parse its own section
- * (unknown keys are then rejected by cfg_check_unused on the whole tree),
- * and calls run(), which builds the machine it needs from the `machine`
- * section, runs the engine and fills the SimResult.
+ * A workload is a small ops table.  The runner (sim/run/run.h) loads the
+ * config, finds the workload named by `workload.type`, lets it parse its
+ * own section, asks it which other sections it reads (plan()), builds
+ * the engine, the machine and the scene once, refuses every section the
+ * workload does not read, and calls run() with the built objects in a
+ * WlContext.  A workload states its work on the machine's processors
+ * and network; the engine's clock is the only clock, and the runner's
+ * stop time (run.until) is the engine's horizon, so a workload honours
+ * it by ending its frame loop when sim_engine_cut() says so.
  */
 #ifndef PGSIM_WORKLOAD_WORKLOAD_H
 #define PGSIM_WORKLOAD_WORKLOAD_H
@@ -13,11 +17,20 @@
 #include "sim/core/engine.h"
 #include "sim/core/result.h"
 #include "sim/machine/costs.h"
+#include "sim/machine/machine.h"
 #include "sim/raster/image.h"
+#include "sim/scene/scene.h"
 
 typedef struct {
     SimEngine *eng;      /* fresh engine seeded with `seed`; borrowed */
     const CfgNode *root; /* whole config (machine, scene ...); borrowed */
+    MachMachine *machine; /* built by the runner (WL_READS_MACHINE), on
+                             eng at `fidelity`; else NULL; borrowed */
+    Scene *scene;         /* built from `scene:` (WL_READS_SCENE); else
+                             NULL; borrowed: the workload may edit it (a
+                             run uses it once) */
+    SimTime until;        /* run.until (also eng's horizon); SIM_TIME_MAX:
+                             none */
     uint64_t seed;
     const char *fidelity; /* "analytic", "flow" or "packet" */
     int frames;           /* frames to simulate (>= 1) */
@@ -59,6 +72,23 @@ typedef struct {
     const char *meaning;
 } WlMetric;
 
+/* The sections of a run config a workload reads besides its own. */
+enum {
+    WL_READS_MACHINE = 1u << 0, /* the runner builds ctx->machine */
+    WL_READS_SCENE = 1u << 1,   /* the runner builds ctx->scene */
+};
+
+/* What the runner builds for one parsed workload (WlOps.plan). */
+typedef struct {
+    unsigned reads;            /* WL_READS_* */
+    const char *default_model; /* the model when the config has no
+                                  machine: section; NULL: one is needed */
+    /* "key.path=value" overrides of the machine section that workload
+     * keys stand for (pphigs `gps: 16` is nodes.gp.count=16), applied
+     * after the config's own; the runner owns and frees them. */
+    GPtrArray *machine_set;
+} WlPlan;
+
 typedef struct {
     const char *name;
     const char *summary;
@@ -66,6 +96,10 @@ typedef struct {
      * NULL with *err set. */
     void *(*parse)(const CfgNode *section, GError **err);
     void (*free_params)(void *params);
+    /* Fills `plan` (zeroed, machine_set an empty array) for parsed params:
+     * which sections the runner builds, and refuses when present and
+     * unread.  NULL: the workload reads no section but its own. */
+    void (*plan)(const void *params, WlPlan *plan);
     /* Runs the workload and fills `out`; FALSE with *err on failure.
      * The runner (cfg_run_exec) fills seed, fidelity, events, wall time
      * and, if left 0, elapsed: workloads need not. */
@@ -95,10 +129,6 @@ typedef struct {
      * `pgsim help run` lists it. */
     const WlMetric *metrics;
 } WlOps;
-
-/* The run's `run.until` bound (already validated by the config loader):
- * the time to pass to sim_engine_run(); SIM_TIME_MAX when absent. */
-SimTime wl_until(const WlContext *ctx);
 
 /* The per-frame log's path: `path` (a workload's frame_log key) when
  * set, else <out_dir>/<name> under `pgsim run --out DIR`, else NULL (no

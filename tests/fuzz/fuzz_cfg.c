@@ -2,7 +2,7 @@
  * as `pgsim validate` loads it (cfg_load_string + cfg_run_from_tree:
  * overrides, schema, run, workload parser, machine section, scene,
  * unknown keys).  See fuzz.h. */
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/core/cfg.h"
 #include "tests/fuzz/fuzz.h"
 

@@ -14,6 +14,7 @@
 #include "sim/reproduce/igehy98.h"
 
 static const char *small =
+    "schema_version: 1\n"
     "machine: {model: origin2000}\n"
     "workload: {type: argus, processors: 8, contexts: 1,\n"
     "  application: nurbs, tile: 32, width: 160, height: 120,\n"

@@ -24,6 +24,7 @@
 
 #include "sim/workload/performer/pf_stages.h"
 #include "sim/workload/performer/pf_workload.h"
+#include "tests/support.h"
 
 /* ---- the pipeline with synthetic stage costs --------------------------- */
 
@@ -378,19 +379,13 @@ static double pn_metric(const char *send, guint level, const char *tri,
     GError *err = NULL;
     CfgNode *root = cfg_load_string(yaml, "pn.yaml", &err);
     assert_non_null(root);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE, FALSE};
-    void *params = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
-    assert_non_null(params);
-    SimResult *r = sim_result_new("performer", "sgi-onyx");
-    if (!wl_pf_ops.run(&ctx, params, r, &err))
+    SupportRun o = {.fidelity = "analytic", .frames = 3};
+    SimResult *r = support_run_tree(root, &o, &err);
+    if (!r)
         fail_msg("%s", err->message);
     double v = -1;
     assert_true(sim_result_get_metric(r, metric, &v));
     sim_result_free(r);
-    wl_pf_ops.free_params(params);
-    sim_engine_free(eng);
-    cfg_free(root);
     g_free(yaml);
     return v;
 }
@@ -468,18 +463,12 @@ static void test_bad_machine(void **st)
                        "workload: {type: performer}\n";
     GError *err = NULL;
     CfgNode *root = cfg_load_string(yaml, "m.yaml", &err);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {eng, root, 1, "analytic", 3, NULL, TRUE, FALSE};
-    void *params = wl_pf_ops.parse(cfg_get(root, "workload"), &err);
-    SimResult *r = sim_result_new("performer", "x");
-    assert_false(wl_pf_ops.run(&ctx, params, r, &err));
+    assert_non_null(root);
+    SupportRun o = {.fidelity = "analytic", .frames = 3};
+    assert_null(support_run_tree(root, &o, &err));
     if (!strstr(err->message, "found no node kind 'cpu'"))
         fail_msg("got %s", err->message);
     g_error_free(err);
-    sim_result_free(r);
-    wl_pf_ops.free_params(params);
-    sim_engine_free(eng);
-    cfg_free(root);
 }
 
 int main(void)

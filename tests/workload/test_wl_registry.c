@@ -1,5 +1,6 @@
 /* test_wl_registry.c — the workload table and the helpers every workload
- * shares (sim/workload/registry.c): lookup by name, run.until, the frame
+ * shares (sim/workload/registry.c): lookup by name, run.until (the
+ * runner's ctx->until and engine horizon, sim/run/run.h), the frame
  * log's path and write, which frames go out as images and where. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -8,6 +9,7 @@
 #include <glib/gstdio.h>
 #include <string.h>
 
+#include "sim/run/run.h"
 #include "sim/workload/workload.h"
 
 extern const WlOps *const wl_all[];
@@ -25,17 +27,73 @@ static void test_find(void **st)
     assert_null(wl_find(""));
 }
 
+/* What a probe workload saw of its context (probe_run). */
+static SimTime seen_until;
+static SimTime seen_horizon;
+static const WlOps *probed; /* the workload the probe stands in for */
+
+static gboolean probe_run(const WlContext *ctx, void *params, SimResult *out,
+                          GError **err)
+{
+    seen_until = ctx->until;
+    seen_horizon = sim_engine_horizon(ctx->eng);
+    return probed->run(ctx, params, out, err);
+}
+
+/* Loads `yaml` through the runner, runs it with tokenring's run wrapped
+ * by probe_run (every other op tokenring's own), and returns its result;
+ * *until is the CfgRun's run.until. */
+static SimResult *probe(const char *yaml, SimTime *until)
+{
+    GError *err = NULL;
+    CfgNode *root = cfg_load_string(yaml, "u.yaml", &err);
+    assert_non_null(root);
+    CfgRun *run = cfg_run_from_tree(root, NULL, &err);
+    if (!run)
+        fail_msg("%s", err->message);
+    probed = run->wl;
+    WlOps ops = *run->wl;
+    ops.run = probe_run;
+    run->wl = &ops;
+    *until = run->until;
+    seen_until = seen_horizon = 0;
+    CfgRunOpts o = {.quiet = TRUE};
+    SimResult *r = cfg_run_exec(run, &o, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    cfg_run_free(run);
+    return r;
+}
+
+/* run.until reaches the workload as ctx->until and is the engine's
+ * horizon, so a workload that runs to its own end stops there: a
+ * tokenring round of the defaults is 8 x (20 us + 1000 B / 2.8 MB/s +
+ * 5 us), about 3.06 ms, so 5 ms holds one of 100 rounds. */
 static void test_until(void **st)
 {
     (void)st;
-    CfgNode *root = cfg_load_string("run: {until: 5 ms}\n", "u.yaml", NULL);
-    WlContext ctx = {.root = root};
-    assert_true(wl_until(&ctx) == 5 * SIM_MS);
-    cfg_free(root);
-    root = cfg_load_string("run: {frames: 2}\n", "u.yaml", NULL);
-    ctx.root = root;
-    assert_true(wl_until(&ctx) == SIM_TIME_MAX);
-    cfg_free(root);
+    SimTime until = 0;
+    SimResult *r = probe("schema_version: 1\n"
+                         "workload: {type: tokenring}\n"
+                         "run: {frames: 100, until: 5 ms}\n",
+                         &until);
+    assert_true(until == 5 * SIM_MS);
+    assert_true(seen_until == 5 * SIM_MS);
+    assert_true(seen_horizon == 5 * SIM_MS);
+    assert_int_equal(r->frame_times->len, 1);
+    assert_true(r->elapsed <= 5 * SIM_MS);
+    sim_result_free(r);
+    /* without run.until: no horizon, and every round runs */
+    r = probe("schema_version: 1\n"
+              "workload: {type: tokenring}\n"
+              "run: {frames: 100}\n",
+              &until);
+    assert_true(until == SIM_TIME_MAX);
+    assert_true(seen_until == SIM_TIME_MAX);
+    assert_true(seen_horizon == SIM_TIME_MAX);
+    assert_int_equal(r->frame_times->len, 100);
+    assert_true(r->elapsed > 5 * SIM_MS);
+    sim_result_free(r);
 }
 
 static void test_frame_log(void **st)

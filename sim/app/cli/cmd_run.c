@@ -9,7 +9,7 @@
  */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/app/replay/rpl_record.h"
 #include "sim/app/run/report.h"
 #include "sim/app/trace/trace_file.h"

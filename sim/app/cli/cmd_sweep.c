@@ -14,7 +14,7 @@
 #include "sim/app/cli/commands.h"
 #include "sim/app/sweep/sweep_lock.h"
 #include "sim/app/sweep/sweep_mpi.h"
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>

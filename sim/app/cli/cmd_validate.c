@@ -9,7 +9,7 @@
  * 2, located message); writes nothing. */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/app/sweep/sweep_spec.h"
 
 static const char summary[] =

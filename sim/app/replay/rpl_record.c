@@ -215,17 +215,14 @@ uint64_t rpl_recorder_actions(const RplRecorder *r)
     return r->acts->len;
 }
 
-/* The recording machine's kinds, clocks and resolved fidelity. */
+/* The recording machine's kinds, clocks and resolved fidelity: the
+ * machine the runner built for the run (none: no header lines). */
 static gboolean machine_header(const CfgRun *run, RplHeader *h, GError **err)
 {
-    if (!run->machine)
+    (void)err;
+    const MachMachine *m = run->machine_built;
+    if (!m)
         return TRUE;
-    SimEngine *eng = sim_engine_new(0);
-    MachMachine *m = mach_new_from_cfg(eng, run->machine, run->fidelity, err);
-    if (!m) {
-        sim_engine_free(eng);
-        return FALSE;
-    }
     for (guint i = 0; i < mach_kind_count(m); i++) {
         const MachKindInfo *k = mach_kind_at(m, i);
         RplKind rk = {g_strdup(k->name), k->first, k->count, k->clock_hz};
@@ -233,8 +230,6 @@ static gboolean machine_header(const CfgRun *run, RplHeader *h, GError **err)
     }
     h->procs = mach_proc_total(m);
     h->fidelity = g_strndup(mach_fidelity(m), strcspn(mach_fidelity(m), " "));
-    mach_free(m);
-    sim_engine_free(eng);
     return TRUE;
 }
 

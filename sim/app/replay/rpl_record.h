@@ -23,7 +23,7 @@
 #ifndef PGSIM_APP_REPLAY_RPL_RECORD_H
 #define PGSIM_APP_REPLAY_RPL_RECORD_H
 
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/core/record.h"
 
 typedef struct RplRecorder RplRecorder;

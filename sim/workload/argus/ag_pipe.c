@@ -690,11 +690,11 @@ gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,
     if (!sim_engine_run(p->eng, until, err))
         return FALSE;
     out->shmem_bytes = p->mem.bytes - bytes0;
-    if (p->tiles_left) {
+    if (p->tiles_left && !sim_engine_cut(p->eng)) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "argus: %u of %u tiles left undrawn at %.3f ms: the "
-                    "streams' semaphores deadlock, or run.until ended the "
-                    "frame, expected every block drawn",
+                    "argus: %u of %u tiles left undrawn at %.3f ms with "
+                    "nothing left to run: the streams' semaphores deadlock, "
+                    "expected every block drawn",
                     p->tiles_left, p->ntiles, sim_time_to_ms(sim_now(p->eng)));
         return FALSE;
     }

@@ -160,8 +160,8 @@ static double ag_mem_bytes(const void *params, GString *what)
 /* ---- running ------------------------------------------------------------ */
 
 typedef struct {
-    MachMachine *m;
-    Scene *scene;
+    MachMachine *m; /* borrowed from the runner */
+    const Scene *scene; /* borrowed from the runner */
     SceneMesh *mesh; /* flattened, triangles only */
     AgStreams *st;
     AgFrame *f;
@@ -176,8 +176,6 @@ static void run_clear(Run *r)
     wl_ag_frame_free(r->f);
     wl_ag_streams_free(r->st);
     scene_mesh_free(r->mesh);
-    scene_free(r->scene);
-    mach_free(r->m);
     if (r->stats)
         g_array_unref(r->stats);
 }
@@ -222,12 +220,9 @@ static gboolean check_machine(Run *r, WlAgParams *p, const CfgNode *root,
 
 static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p, GError **err)
 {
-    r->scene = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
-    if (!r->scene)
-        return FALSE;
-    r->m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
-                             ctx->fidelity, err);
-    if (!r->m || !check_machine(r, p, ctx->root, err) ||
+    r->scene = ctx->scene;
+    r->m = ctx->machine;
+    if (!check_machine(r, p, ctx->root, err) ||
         !mach_costs_check(r->m, wl_ag_needs, err))
         return FALSE;
     r->mesh = scene_flatten(r->scene);
@@ -343,7 +338,9 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
     r.stats = g_array_new(FALSE, TRUE, sizeof(AgFrameStats));
     for (int f = 0; ok && f < ctx->frames; f++) {
         AgFrameStats fs;
-        ok = wl_ag_pipe_frame(r.pipe, wl_until(ctx), &fs, err);
+        ok = wl_ag_pipe_frame(r.pipe, ctx->until, &fs, err);
+        if (ok && sim_engine_cut(ctx->eng))
+            break; /* run.until ended the run inside this frame */
         if (ok) {
             g_array_append_val(r.stats, fs);
             sim_result_add_frame(out, fs.end - fs.start);
@@ -351,7 +348,10 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
             ok = emit_frame(ctx, &r, f, err);
         }
     }
-    if (ok) {
+    if (ok && sim_engine_cut(ctx->eng)) {
+        mach_fill_result(r.m, out);
+        out->elapsed = sim_now(ctx->eng);
+    } else if (ok) {
         mach_fill_result(r.m, out);
         fill_metrics(out, &r, p);
         check_image(&r, p, out);
@@ -359,6 +359,12 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
     }
     run_clear(&r);
     return ok;
+}
+
+static void ag_plan(const void *params, WlPlan *plan)
+{
+    (void)params;
+    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
 }
 
 /* Every metric ag_run sets, in order (docs/workloads.md, "argus");
@@ -397,6 +403,7 @@ const WlOps wl_argus_ops = {
                "shared-memory multiprocessor",
     .parse = ag_parse,
     .free_params = ag_free_params,
+    .plan = ag_plan,
     .run = ag_run,
     .mem_bytes = ag_mem_bytes,
     .needs = wl_ag_needs,

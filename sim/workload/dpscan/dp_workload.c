@@ -273,9 +273,10 @@ static gboolean one_frame(const WlContext *ctx, const DpParams *p,
         wire->err = NULL;
         ok = FALSE;
     }
-    ok = ok && play(ctx->eng, mach, t, err) &&
-         write_image(ctx, p, img, fr, err);
-    if (ok) {
+    ok = ok && play(ctx->eng, mach, t, err);
+    gboolean cut = sim_engine_cut(ctx->eng); /* run.until ended it */
+    ok = ok && (cut || write_image(ctx, p, img, fr, err));
+    if (ok && !cut) {
         sim_result_add_frame(out, t->total);
         wl_mark_frame(ctx->eng, (guint)fr, sim_now(ctx->eng));
         add_metrics(out, t, img, wl_dp_vm_counts(vm), poly->n);
@@ -294,13 +295,11 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     if (!wl_dp_machine_load("models", p->model, &m, err))
         return FALSE;
     m.procs = p->procs;
-    Scene *s = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
-    if (!s)
-        return FALSE;
+    const Scene *s = ctx->scene;
     MachMachine *mach = dp_machine(ctx->eng, p->model, &m, ctx->fidelity, err);
     gboolean ok = mach != NULL;
     DpWire *wire = ok && !p->formula ? dp_wire_new(mach, &m) : NULL;
-    for (int fr = 0; ok && fr < ctx->frames; fr++)
+    for (int fr = 0; ok && fr < ctx->frames && !sim_engine_cut(ctx->eng); fr++)
         ok = one_frame(ctx, p, &m, mach, wire, s, fr, out, err);
     if (ok) {
         mach_fill_result(mach, out);
@@ -312,7 +311,6 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     }
     dp_wire_free(wire);
     mach_free(mach);
-    scene_free(s);
     return ok;
 }
 
@@ -339,12 +337,21 @@ static const WlMetric dp_metrics[] = {
     {NULL, NULL, NULL},
 };
 
+/* The machine is workload.model at workload.processors (dp_machine);
+ * a machine: section would be ignored, so the runner refuses it. */
+static void dp_plan(const void *params, WlPlan *plan)
+{
+    (void)params;
+    plan->reads = WL_READS_SCENE;
+}
+
 const WlOps wl_dpscan_ops = {
     .name = "dpscan",
     .summary = "seed 004: data-parallel scan conversion on SIMD/SPMD "
                "machines (CM-200, CM-5)",
     .parse = dp_parse,
     .free_params = dp_free_params,
+    .plan = dp_plan,
     .run = dp_run,
     .needs_alt = wl_dp_model_needs,
     .mem_bytes = dp_mem_bytes,

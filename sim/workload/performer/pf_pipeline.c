@@ -250,7 +250,14 @@ gboolean wl_pf_pipe_run(SimEngine *eng, MachProc *const *procs,
     g_array_set_size(recs, p->frames);
     memset(recs->data, 0, sizeof(WlPfFrameRec) * p->frames);
     sim_schedule_at(eng, 0, app_start, &s, GUINT_TO_POINTER(0));
-    return sim_engine_run(eng, until, err);
+    if (!sim_engine_run(eng, until, err))
+        return FALSE;
+    guint done = 0; /* frames swap in order; `until` may cut the rest */
+    while (done < recs->len &&
+           g_array_index(recs, WlPfFrameRec, done).swap > 0)
+        done++;
+    g_array_set_size(recs, done);
+    return TRUE;
 }
 
 double wl_pf_mean_interval_s(const GArray *recs, guint skip)

@@ -47,18 +47,16 @@ typedef struct {
     uint64_t coarse_tris, fine_tris, fine_points; /* per frame */
 } PnMesh;
 
-static gboolean pn_mesh(const CfgNode *root, const WlPfPnParams *p, PnMesh *out,
-                        GError **err)
+static gboolean pn_mesh(const WlContext *ctx, const WlPfPnParams *p,
+                        PnMesh *out, GError **err)
 {
-    const CfgNode *sec = cfg_get(root, "scene");
+    const CfgNode *sec = cfg_get(ctx->root, "scene");
     if (sec && cfg_get(sec, "pn_triangles")) {
         cfg_error(err, cfg_get(sec, "pn_triangles"), "a pre-tessellated scene",
                   "the coarse scene (workload.pn tessellates it)");
         return FALSE;
     }
-    Scene *s = scene_from_cfg(sec, err);
-    if (!s)
-        return FALSE;
+    const Scene *s = ctx->scene;
     *out = (PnMesh){0};
     for (guint i = 0; i < scene_n_instances(s); i++) {
         SceneMesh *fine =
@@ -68,7 +66,6 @@ static gboolean pn_mesh(const CfgNode *root, const WlPfPnParams *p, PnMesh *out,
         scene_mesh_free(fine);
     }
     out->coarse_tris = scene_n_triangles(s);
-    scene_free(s);
     return TRUE;
 }
 
@@ -301,11 +298,11 @@ gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
                       const WlPfPnParams *p, SimResult *out, GError **err)
 {
     PnRun r = {.ctx = ctx, .m = m, .p = p, .out = out};
-    if (!pick_machine(&r, err) || !pn_mesh(ctx->root, p, &r.mesh, err))
+    if (!pick_machine(&r, err) || !pn_mesh(ctx, p, &r.mesh, err))
         return FALSE;
     r.frames_left = (guint)ctx->frames;
     sim_schedule_at(ctx->eng, 0, frame_start, &r, NULL);
-    gboolean ok = sim_engine_run(ctx->eng, wl_until(ctx), err);
+    gboolean ok = sim_engine_run(ctx->eng, ctx->until, err);
     if (!ok)
         return FALSE;
     mach_fill_result(m, out);
@@ -314,6 +311,6 @@ gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
         out->comm_messages = r.bus_mem.transfers;
     }
     out->elapsed = sim_now(ctx->eng);
-    set_metrics(&r, out);
+    set_metrics(&r, out); /* over the frames run.until left whole */
     return TRUE;
 }

@@ -363,7 +363,9 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
     mach_fill_result(m, out);
     out->comm_bytes = bytes;
     out->comm_messages = recs->len;
-    out->elapsed = g_array_index(recs, WlPfFrameRec, recs->len - 1).swap;
+    out->elapsed = recs->len && !sim_engine_cut(mach_engine(m))
+                       ? g_array_index(recs, WlPfFrameRec, recs->len - 1).swap
+                       : sim_now(mach_engine(m));
 }
 
 /* Runs the frames over st and reports them. */
@@ -378,12 +380,13 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
     st->draw_cpu = procs[wl_pf_mp_procs(p->pipe.mode) - 1];
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &p->pipe, &fns, st, recs,
-                                 wl_until(ctx), err);
+                                 ctx->until, err);
     if (ok) {
         fill_result(out, m, recs, st);
         sim_result_set_phases(out, ctx->eng);
-        set_metrics(out, p, recs, st, flattened);
     }
+    if (ok && !sim_engine_cut(ctx->eng)) /* whole runs only (run.until) */
+        set_metrics(out, p, recs, st, flattened);
     char *log =
         ok ? wl_frame_log_path(ctx, p->frame_log, "performer_frames.csv")
            : NULL;
@@ -419,12 +422,16 @@ static gboolean pf_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
     PfParams *p = params;
-    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
-                                       ctx->fidelity, err);
-    gboolean ok = m && (p->pn ? wl_pf_pn_run(ctx, m, p->pn, out, err)
-                              : run_pipeline(ctx, m, p, out, err));
-    mach_free(m);
-    return ok;
+    return p->pn ? wl_pf_pn_run(ctx, ctx->machine, p->pn, out, err)
+                 : run_pipeline(ctx, ctx->machine, p, out, err);
+}
+
+/* The pipeline generates its town (workload.town); the PN measurement
+ * tessellates the config's scene. */
+static void pf_plan(const void *params, WlPlan *plan)
+{
+    const PfParams *p = params;
+    plan->reads = WL_READS_MACHINE | (p->pn ? WL_READS_SCENE : 0);
 }
 
 /* Every metric pf_run sets (set_metrics; the town's means skip the first
@@ -473,6 +480,7 @@ const WlOps wl_pf_ops = {
                "pipe; with pn:, curved PN triangles as geometry compression",
     .parse = pf_parse,
     .free_params = pf_free,
+    .plan = pf_plan,
     .run = pf_run,
     .needs = wl_pf_town_needs,
     .needs_alt = wl_pf_pn_needs,

@@ -234,7 +234,7 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
     gboolean ok =
         wl_pm_replay_procs(net, procs, m, bal, s->resolution, &c->merge, ready,
                            out->busy, sim_engine_phase(eng, "merge"), &ro, err);
-    if (ok) {
+    if (ok && !sim_engine_cut(eng)) { /* a frame run.until cut: no times */
         out->merge_ms = sim_time_to_ms(ro.end - barrier);
         out->frame_ms = sim_time_to_ms(ro.end - base);
     }

@@ -270,7 +270,8 @@ gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
         ok = FALSE;
     }
     out->end = 0;
-    for (guint p = 0; ok && p < n; p++) {
+    gboolean whole = !sim_engine_cut(r.eng); /* run.until cut it short */
+    for (guint p = 0; ok && whole && p < n; p++) {
         g_assert(r.cur[p] == r.n_steps);
         out->end = MAX(out->end, out->done[p]);
     }

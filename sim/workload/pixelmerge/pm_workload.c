@@ -286,8 +286,11 @@ static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
     wl_pm_frame_out_clear(fo, s->procs);
     s->keep_image = wl_wants_frame(ctx, f);
     if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo,
-                               err) ||
-        (fo->image && !wl_emit_frame(ctx, f, fo->image, err)))
+                               err))
+        return FALSE;
+    if (sim_engine_cut(mach_engine(m)))
+        return TRUE; /* run.until ended the run inside this frame */
+    if (fo->image && !wl_emit_frame(ctx, f, fo->image, err))
         return FALSE;
     SimTime t;
     if (!sim_time_from_s(fo->frame_ms * 1e-3, &t))
@@ -329,9 +332,14 @@ gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
         procs[q] = mach_proc(m, "node", q);
     WlPmFrameOut fo = {0};
     gboolean ok = TRUE;
-    for (int f = 0; ok && f < frames; f++)
-        ok = run_frame(m, procs, f, sc, &s, c, ctx, &fo, out, err);
-    if (ok) {
+    SimEngine *eng = mach_engine(m);
+    int done = 0; /* frames run.until did not cut */
+    for (; ok && done < frames && !sim_engine_cut(eng); done++)
+        ok = run_frame(m, procs, done, sc, &s, c, ctx, &fo, out, err);
+    if (ok && sim_engine_cut(eng)) {
+        mach_fill_result(m, out);
+        out->elapsed = sim_now(eng);
+    } else if (ok) {
         mach_fill_result(m, out);
         WlPmMemUse mem = peak_memory(&fo, p, &s);
         double insert_ms = 0;
@@ -348,21 +356,18 @@ gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
 static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
-    Scene *sc = scene_from_cfg(cfg_get(ctx->root, "scene"), err);
-    if (!sc)
-        return FALSE;
-    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
-                                       ctx->fidelity, err);
     WlPmCosts c;
     WlPmParams *p = params;
-    gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err) &&
-                  wl_pm_run_frames_at(
-                      m, sc, p, &c, ctx->frames,
-                      cfg_path(ctx->root, "workload.processors"), ctx, out,
-                      err);
-    mach_free(m);
-    scene_free(sc);
-    return ok;
+    return wl_pm_costs_from_machine(ctx->machine, p->count_bytes, &c, err) &&
+           wl_pm_run_frames_at(ctx->machine, ctx->scene, p, &c, ctx->frames,
+                               cfg_path(ctx->root, "workload.processors"), ctx,
+                               out, err);
+}
+
+static void pm_plan(const void *params, WlPlan *plan)
+{
+    (void)params;
+    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
 }
 
 /* Every metric pm_run sets (docs/workloads.md, "pixelmerge"). */
@@ -405,6 +410,7 @@ const WlOps wl_pixelmerge_ops = {
                "pixel merging on a hypercube (iPSC/2)",
     .parse = pm_parse,
     .free_params = pm_free_params,
+    .plan = pm_plan,
     .run = pm_run,
     .mem_bytes = pm_mem_bytes,
     .needs = wl_pm_needs,

@@ -617,6 +617,8 @@ gboolean wl_pphigs_frame_run(WlPphigsFrame *f, const WlPphigsDist *d, Mat4 vp,
     }
     if (!sim_engine_run(f->eng, SIM_TIME_MAX, err))
         return FALSE;
+    if (sim_engine_cut(f->eng)) /* run.until ended it: no frame figures */
+        return TRUE;
     g_assert(f->stored == f->nregions);
     for (guint g = 0; g < f->ngp; g++)
         f->gp_us[g] = sim_time_to_us(gp_busy(f, g) - f->busy0[g]);

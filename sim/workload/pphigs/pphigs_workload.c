@@ -234,32 +234,24 @@ static gboolean check_gps(const WlContext *ctx, const CfgNode *mach,
     return FALSE;
 }
 
-static MachMachine *build_machine(const WlContext *ctx, const Params *p,
-                                  GError **err)
+/* Pixel-Planes 5 unless the config names a machine; `gps` stands for
+ * nodes.gp.count (check_gps refuses two different counts). */
+static void plan(const void *params, WlPlan *plan)
 {
-    const CfgNode *mach = cfg_get(ctx->root, "machine");
-    if (!check_gps(ctx, mach, p->gps, err))
-        return NULL;
-    CfgNode *sec = mach ? cfg_copy(mach)
-                        : cfg_load_string("model: pixel-planes-5\n",
-                                          "<pphigs default machine>", err);
-    if (sec && p->gps) {
-        char *ov = g_strdup_printf("nodes.gp.count=%" G_GINT64_FORMAT, p->gps);
-        gboolean ok = cfg_set_override(sec, ov, err);
-        g_assert(ok);
-        g_free(ov);
-    }
-    MachMachine *m =
-        sec ? mach_new_from_cfg(ctx->eng, sec, ctx->fidelity, err) : NULL;
-    cfg_free(sec);
-    return m;
+    const Params *p = params;
+    plan->reads = WL_READS_MACHINE;
+    plan->default_model = "pixel-planes-5";
+    if (p->gps)
+        g_ptr_array_add(plan->machine_set,
+                        g_strdup_printf("nodes.gp.count=%" G_GINT64_FORMAT,
+                                        p->gps));
 }
 
 /* ---- one run ---------------------------------------------------------- */
 
 typedef struct {
     const Params *p;
-    MachMachine *m;
+    MachMachine *m; /* borrowed from the runner */
     ScenePphigsDb db;
     WlPphigsDist *d;
     WlPphigsFrame *frame;
@@ -291,8 +283,10 @@ static gboolean make_db(Run *r, GError **err)
 
 static gboolean build(Run *r, const WlContext *ctx, GError **err)
 {
-    r->m = build_machine(ctx, r->p, err);
-    r->frame = r->m ? wl_pphigs_frame_new(r->m, &r->p->setup.frame, err) : NULL;
+    r->m = ctx->machine;
+    if (!check_gps(ctx, cfg_get(ctx->root, "machine"), r->p->gps, err))
+        return FALSE;
+    r->frame = wl_pphigs_frame_new(r->m, &r->p->setup.frame, err);
     if (!r->frame || !make_db(r, err))
         return FALSE;
     r->ngp = wl_pphigs_frame_gps(r->frame);
@@ -318,7 +312,6 @@ static void run_clear(Run *r)
 {
     wl_pphigs_rebal_free(r->rb);
     wl_pphigs_frame_free(r->frame);
-    mach_free(r->m);
     wl_pphigs_dist_free(r->d);
     if (r->unposted)
         g_array_unref(r->unposted);
@@ -477,6 +470,8 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     Mat4 vp = scene_camera_view_proj(&r->db.camera);
     if (!wl_pphigs_frame_run(r->frame, r->d, vp, elems, &st, err))
         return FALSE;
+    if (sim_engine_cut(mach_engine(r->m)))
+        return TRUE; /* run.until ended the run inside this frame */
     r->host_elems += st.host_elements;
     sim_result_add_frame(out, st.time);
     wl_mark_frame(mach_engine(r->m), out->frame_times->len - 1,
@@ -584,11 +579,14 @@ static gboolean run(const WlContext *ctx, void *params, SimResult *out,
 {
     Run r = {.p = params};
     gboolean ok = build(&r, ctx, err);
-    SimTime until = wl_until(ctx);
-    for (int f = 0; ok && f < ctx->frames && sim_now(ctx->eng) < until; f++)
+    for (int f = 0; ok && f < ctx->frames && !sim_engine_cut(ctx->eng); f++)
         ok = one_frame(&r, out, err) &&
-             wl_emit_frame(ctx, f, wl_pphigs_frame_image(r.frame), err);
-    if (ok) {
+             (sim_engine_cut(ctx->eng) ||
+              wl_emit_frame(ctx, f, wl_pphigs_frame_image(r.frame), err));
+    if (ok && sim_engine_cut(ctx->eng)) {
+        mach_fill_result(r.m, out);
+        out->elapsed = sim_now(ctx->eng);
+    } else if (ok) {
         check_image(&r);
         fill(&r, ctx, out);
     }
@@ -640,6 +638,7 @@ const WlOps wl_pphigs_ops = {
                "GPs of Pixel-Planes 5 (seed 001)",
     .parse = parse,
     .free_params = params_free,
+    .plan = plan,
     .run = run,
     .mem_bytes = mem_bytes,
     .needs = wl_pphigs_needs,

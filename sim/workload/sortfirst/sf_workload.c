@@ -446,32 +446,27 @@ static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
     return FALSE;
 }
 
-/* The scene (its camera) and the database rendered: the scene's, or the
- * `database` file's in its place; written to `dump_db` when asked. */
-static Scene *load_scene(const CfgNode *root, const WlSfParams *p,
-                         GError **err)
+/* The runner's scene (its camera) with the database rendered: the
+ * scene's, or the `database` file's in its place; written to `dump_db`
+ * when asked. */
+static gboolean load_db(const CfgNode *root, Scene *sc, const WlSfParams *p,
+                        GError **err)
 {
-    const CfgNode *sec = cfg_get(root, "scene");
-    Scene *sc = scene_from_cfg(sec, err);
-    if (sc && p->database) {
+    if (p->database) {
         SceneDb *db = scene_db_load(p->database, err);
-        if (!db) {
-            scene_free(sc);
-            return NULL;
-        }
+        if (!db)
+            return FALSE;
         scene_set_db(sc, db);
     }
-    if (sc && sc->db && p->dump_db && !scene_db_save(sc->db, p->dump_db, err)) {
-        scene_free(sc);
-        return NULL;
-    }
-    if (!sc || sc->db)
-        return sc;
+    if (sc->db && p->dump_db && !scene_db_save(sc->db, p->dump_db, err))
+        return FALSE;
+    if (sc->db)
+        return TRUE;
+    const CfgNode *sec = cfg_get(root, "scene");
     cfg_error(err, sec ? sec : root, "a scene without a structure database",
               "a hierarchical scene (e.g. generator: vehicle) or "
               "workload.database: a structure database file");
-    scene_free(sc);
-    return NULL;
+    return FALSE;
 }
 
 typedef struct {
@@ -518,18 +513,19 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
     }
     FrameOut fo = {ctx, sc};
     wl_sf_run_set_hook(r, emit_frame, &fo);
-    gboolean ok = wl_sf_run_frames(r, ctx->frames, wl_until(ctx), err);
+    gboolean ok = wl_sf_run_frames(r, ctx->frames, ctx->until, err);
     const GArray *st = wl_sf_run_stats(r);
     for (guint f = 0; ok && f < st->len; f++) {
         const WlSfFrameStats *t = &g_array_index(st, WlSfFrameStats, f);
         sim_result_add_frame(out, t->end - t->start);
         wl_mark_frame(mach_engine(m), f, t->end);
     }
-    if (ok && st->len) {
+    if (ok) { /* frames run.until cut are not in st */
         mach_fill_result(m, out);
-        wl_sf_fill_metrics(out, st, db, &p->setup);
         out->elapsed = sim_now(mach_engine(m));
     }
+    if (ok && st->len)
+        wl_sf_fill_metrics(out, st, db, &p->setup);
     char *log = wl_frame_log_path(ctx, p->frame_log, "sortfirst_frames.csv");
     if (ok && log)
         ok = write_log(log, st, err);
@@ -543,15 +539,14 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
 static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
-    Scene *sc = load_scene(ctx->root, params, err);
-    if (!sc)
-        return FALSE;
-    MachMachine *m = mach_new_from_cfg(ctx->eng, cfg_get(ctx->root, "machine"),
-                                       ctx->fidelity, err);
-    gboolean ok = m && run_frames(ctx, m, sc, params, out, err);
-    mach_free(m);
-    scene_free(sc);
-    return ok;
+    return load_db(ctx->root, ctx->scene, params, err) &&
+           run_frames(ctx, ctx->machine, ctx->scene, params, out, err);
+}
+
+static void sf_plan(const void *params, WlPlan *plan)
+{
+    (void)params;
+    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
 }
 
 /* Every metric wl_sf_fill_metrics sets, in order; per-frame figures are
@@ -637,6 +632,7 @@ const WlOps wl_sortfirst_ops = {
                "bookkeeping",
     .parse = sf_parse,
     .free_params = sf_free_params,
+    .plan = sf_plan,
     .run = sf_run,
     .mem_bytes = sf_mem_bytes,
     .needs = wl_sf_needs,

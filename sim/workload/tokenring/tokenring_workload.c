@@ -213,14 +213,7 @@ static void fill_comm(TrState *s)
 static gboolean tr_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
-    const TrParams *p = params;
-    const CfgNode *m = cfg_get(ctx->root, "machine");
-    if (m) { /* it would be ignored: say so instead */
-        cfg_error(err, m, "a machine section",
-                  "none: tokenring simulates its own ring (workload.nodes, "
-                  "workload.link)");
-        return FALSE;
-    }
+    const TrParams *p = params; /* no machine: the runner refuses one */
     TrState s = {.p = p, .res = out, .frames_left = ctx->frames};
     s.links = g_new0(SimLinkStats, p->nodes);
     s.send_phase = sim_engine_phase(ctx->eng, "send");
@@ -233,7 +226,7 @@ static gboolean tr_run(const WlContext *ctx, void *params, SimResult *out,
     g_free(out->machine);
     out->machine = g_strdup_printf("ring-%" G_GUINT64_FORMAT, p->nodes);
     sim_schedule_at(ctx->eng, 0, arrive, &s, (void *)(uintptr_t)0);
-    gboolean ok = sim_engine_run(ctx->eng, wl_until(ctx), err);
+    gboolean ok = sim_engine_run(ctx->eng, ctx->until, err);
     out->elapsed = sim_now(ctx->eng);
     sim_result_set_phases(out, ctx->eng);
     fill_comm(&s);

@@ -3,7 +3,7 @@
 #ifndef PGSIM_TESTS_RPL_FIXTURE_H
 #define PGSIM_TESTS_RPL_FIXTURE_H
 
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 
 typedef struct {
     char *dir, *path; /* the temporary directory and the trace in it */

@@ -5,7 +5,7 @@
  * are computed here by running the trace's config; the same command with
  * --fidelity faithful is shown to differ (the comparison can fail). */
 #include "sim/app/run/report.h"
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "tests/app/cli/pgsim_spawn.h"
 #include <json-glib/json-glib.h>
 #include <setjmp.h>

@@ -29,10 +29,14 @@ static SimResult *record(const Case *c, const char *path, char **machine,
                          char **fidelity)
 {
     GError *e = NULL;
+    /* a CfgRun runs once: the reference run has a load of its own */
     CfgRun *r = cfg_run_load(c->config, c->sets, &e);
     g_assert_no_error(e);
     CfgRunOpts plain = {.quiet = TRUE};
     SimResult *ref = cfg_run_exec(r, &plain, &e);
+    g_assert_no_error(e);
+    cfg_run_free(r);
+    r = cfg_run_load(c->config, c->sets, &e);
     g_assert_no_error(e);
     RplRecorder *rec = rpl_recorder_new();
     CfgRunOpts o = {.quiet = TRUE, .recorder = rpl_recorder_hook(rec)};

@@ -12,7 +12,7 @@
 #include <sys/wait.h>
 #include <glib/gstdio.h>
 
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/core/error.h"
 #include "sim/core/memlimit.h"
 #include "sim/workload/pixelmerge/pm_pixels.h"

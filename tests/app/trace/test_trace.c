@@ -4,7 +4,7 @@
  * the links of their routes bandwidth-use tracks, and at the packet rung
  * each hop's holds and queue. */
 #include "sim/output/json.h"
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include <math.h>
 #include "sim/app/trace/trace_file.h"
 #include "sim/net/net.h"

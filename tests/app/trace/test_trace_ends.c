@@ -10,7 +10,7 @@
  * their spans carry (issue 18: spans once used first-use entity numbers
  * while flows used processor ids, so arrows joined the wrong tracks).
  */
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/core/trace.h"
 #include <setjmp.h>
 #include <stdarg.h>

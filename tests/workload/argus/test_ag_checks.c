@@ -16,6 +16,7 @@
 #include "sim/workload/argus/ag_stream.h"
 #include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
+#include "tests/support.h"
 
 static WlAgParams *parse(const char *workload, GError **err)
 {
@@ -173,21 +174,8 @@ static SimResult *run(const char *text, GError **err)
 {
     CfgNode *root = cfg_load_string(text, "r.yaml", err);
     assert_non_null(root);
-    void *p = wl_argus_ops.parse(cfg_get(root, "workload"), err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                     .fidelity = "analytic", .frames = frames};
-    SimResult *r = sim_result_new("argus", "");
-    gboolean ok = wl_argus_ops.run(&ctx, p, r, err);
-    sim_engine_free(eng);
-    wl_argus_ops.free_params(p);
-    cfg_free(root);
-    if (!ok) {
-        sim_result_free(r);
-        return NULL;
-    }
-    return r;
+    SupportRun o = {.fidelity = "analytic", .frames = frames};
+    return support_run_tree(root, &o, err);
 }
 
 /* run() of a config that must run: its error fails the test. */

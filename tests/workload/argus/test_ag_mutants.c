@@ -13,6 +13,7 @@
 #include "sim/workload/argus/ag_stream.h"
 #include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
+#include "tests/support.h"
 #include "sim/raster/zbuffer.h"
 
 /* n separate triangles, triangle i tagged tags[i]. */
@@ -361,20 +362,13 @@ static double metric_at(int frames, const char *name)
         "scene: {generator: march, grid: 8, cell: 4, iso: 1.67}\n",
         "a.yaml", &err);
     assert_non_null(root);
-    void *p = wl_argus_ops.parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                     .fidelity = "analytic", .frames = frames};
-    SimResult *r = sim_result_new("argus", "");
-    if (!wl_argus_ops.run(&ctx, p, r, &err))
+    SupportRun o = {.fidelity = "analytic", .frames = frames};
+    SimResult *r = support_run_tree(root, &o, &err);
+    if (!r)
         fail_msg("%s", err->message);
     double px = -1;
     assert_true(sim_result_get_metric(r, name, &px));
     sim_result_free(r);
-    sim_engine_free(eng);
-    wl_argus_ops.free_params(p);
-    cfg_free(root);
     return px;
 }
 

@@ -881,7 +881,8 @@ static void test_engine_error_ends_frame(void **state)
 /* A glpPSema no glpVSema answers deadlocks every tile: the frame fails
  * saying how many tiles are left, also when the other context's block
  * signals a glpBarrier arrival (barriers count apart from semaphores);
- * an earlier run.until does the same to a frame that would finish. */
+ * an `until` short of the frame does the same unless it is the run's
+ * horizon (run.until: the runner's graceful cut, test_run_until). */
 static void test_deadlock_reported(void **state)
 {
     (void)state;

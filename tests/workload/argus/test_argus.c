@@ -17,6 +17,7 @@
 #include "sim/scene/march.h"
 #include "sim/workload/argus/ag_tile.h"
 #include "sim/workload/argus/ag_workload.h"
+#include "tests/support.h"
 
 static const char *workers = "split";
 
@@ -41,25 +42,8 @@ static SimResult *run_text(const char *text, GError **err)
 {
     CfgNode *root = cfg_load_string(text, "argus.yaml", err);
     assert_non_null(root);
-    void *p = wl_argus_ops.parse(cfg_get(root, "workload"), err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng,
-                     .root = root,
-                     .seed = 1,
-                     .fidelity = "analytic",
-                     .frames = 1,
-                     .out_dir = out_dir};
-    SimResult *r = sim_result_new("argus", "");
-    gboolean ok = wl_argus_ops.run(&ctx, p, r, err);
-    sim_engine_free(eng);
-    wl_argus_ops.free_params(p);
-    cfg_free(root);
-    if (!ok) {
-        sim_result_free(r);
-        return NULL;
-    }
-    return r;
+    SupportRun o = {.fidelity = "analytic", .frames = 1, .out_dir = out_dir};
+    return support_run_tree(root, &o, err);
 }
 
 static double metric(const SimResult *r, const char *name)

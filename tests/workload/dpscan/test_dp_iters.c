@@ -12,6 +12,7 @@
 #include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/workload/workload.h"
+#include "tests/support.h"
 
 /* Three triangles of different sizes, seen from the front. */
 static Scene *triangles(void)
@@ -88,19 +89,10 @@ static SimResult *run(const char *wire)
                                 "scene: {generator: isosurface, grid: 6}\n",
                                 wire);
     GError *err = NULL;
-    CfgNode *root = cfg_load_string(yml, "run.yaml", &err);
-    const WlOps *ops = wl_find("dpscan");
-    void *p = ops->parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .frames = 1,
-                     .fidelity = "analytic"};
-    SimResult *r = sim_result_new("dpscan", "cm5");
-    if (!ops->run(&ctx, p, r, &err))
+    SupportRun o = {.fidelity = "analytic", .frames = 1};
+    SimResult *r = support_run_text(yml, &o, &err);
+    if (!r)
         fail_msg("%s", err->message);
-    sim_engine_free(eng);
-    ops->free_params(p);
-    cfg_free(root);
     g_free(yml);
     return r;
 }

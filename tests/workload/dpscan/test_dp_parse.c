@@ -13,6 +13,7 @@
 
 #include "sim/raster/scan.h"
 #include "sim/workload/dpscan/dp_workload.h"
+#include "tests/support.h"
 
 static const char *scene_yaml = "scene: {generator: isosurface, grid: 5}\n";
 
@@ -53,18 +54,10 @@ static SimResult *run(const char *extra)
     CfgNode *root = cfg_load_string(text, "dp.yaml", &err);
     g_free(text);
     assert_non_null(root);
-    void *p = wl_dpscan_ops.parse(cfg_get(root, "workload"), &err);
-    if (!p)
+    SupportRun o = {.fidelity = "analytic", .frames = 1};
+    SimResult *r = support_run_tree(root, &o, &err);
+    if (!r)
         fail_msg("%s: %s", extra, err->message);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {
-        .eng = eng, .root = root, .frames = 1, .fidelity = "analytic"};
-    SimResult *r = sim_result_new("dpscan", "");
-    if (!wl_dpscan_ops.run(&ctx, p, r, &err))
-        fail_msg("%s: %s", extra, err->message);
-    sim_engine_free(eng);
-    wl_dpscan_ops.free_params(p);
-    cfg_free(root);
     return r;
 }
 
@@ -164,28 +157,20 @@ static void test_ranges(void **state)
 }
 
 /* A run refused: `yaml` parses but names a scene or model that does not
- * exist; the run fails with an error starting `want` and adds no frame. */
+ * exist; the run (through the runner) fails with an error holding `want`
+ * and gives no result, so no frame. */
 static void refused(const char *yaml, const char *want)
 {
     GError *err = NULL;
     CfgNode *root = cfg_load_string(yaml, "dp.yaml", &err);
     assert_non_null(root);
-    void *p = wl_dpscan_ops.parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {
-        .eng = eng, .root = root, .frames = 1, .fidelity = "analytic"};
-    SimResult *r = sim_result_new("dpscan", "");
-    assert_false(wl_dpscan_ops.run(&ctx, p, r, &err));
+    SupportRun o = {.fidelity = "analytic", .frames = 1};
+    SimResult *r = support_run_tree(root, &o, &err);
+    assert_null(r);
     assert_non_null(err);
     if (!strstr(err->message, want))
         fail_msg("'%s' lacks '%s'", err->message, want);
-    assert_int_equal(r->frame_times->len, 0);
     g_error_free(err);
-    sim_result_free(r);
-    sim_engine_free(eng);
-    wl_dpscan_ops.free_params(p);
-    cfg_free(root);
 }
 
 static void test_run_refusals(void **state)

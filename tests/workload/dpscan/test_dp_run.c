@@ -19,6 +19,7 @@
 #include "sim/workload/dpscan/dp_model.h"
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/workload/dpscan/dp_workload.h"
+#include "tests/support.h"
 
 static const char *scene_yaml = "scene: {generator: isosurface, grid: 6}\n";
 
@@ -28,21 +29,8 @@ static SimResult *run(const char *workload, GError **err)
     CfgNode *root = cfg_load_string(text, "run.yaml", err);
     g_free(text);
     assert_non_null(root);
-    const WlOps *ops = wl_find("dpscan");
-    void *p = ops->parse(cfg_get(root, "workload"), err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {
-        .eng = eng, .root = root, .frames = 1, .fidelity = "analytic"};
-    SimResult *r = sim_result_new("dpscan", "");
-    if (!ops->run(&ctx, p, r, err)) {
-        sim_result_free(r);
-        r = NULL;
-    }
-    sim_engine_free(eng);
-    ops->free_params(p);
-    cfg_free(root);
-    return r;
+    SupportRun o = {.fidelity = "analytic", .frames = 1};
+    return support_run_tree(root, &o, err);
 }
 
 static double metric(const SimResult *r, const char *name)

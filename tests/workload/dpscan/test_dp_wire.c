@@ -13,6 +13,7 @@
 
 #include "sim/workload/dpscan/dp_array.h"
 #include "sim/workload/workload.h"
+#include "tests/support.h"
 
 typedef struct {
     guint calls;
@@ -85,17 +86,11 @@ static SimResult *dp_frame(const char *yml, const char *fid)
 {
     GError *err = NULL;
     CfgNode *root = cfg_load_string(yml, "run.yaml", &err);
-    const WlOps *ops = wl_find("dpscan");
-    void *p = ops->parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .frames = 1, .fidelity = fid};
-    SimResult *r = sim_result_new("dpscan", "cm5");
-    if (!ops->run(&ctx, p, r, &err))
+    assert_non_null(root);
+    SupportRun o = {.fidelity = fid, .frames = 1};
+    SimResult *r = support_run_tree(root, &o, &err);
+    if (!r)
         fail_msg("%s", err->message);
-    sim_engine_free(eng);
-    ops->free_params(p);
-    cfg_free(root);
     return r;
 }
 

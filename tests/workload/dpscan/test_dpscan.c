@@ -14,6 +14,7 @@
 #include "sim/workload/dpscan/dp_model.h"
 #include "sim/workload/dpscan/dp_poly.h"
 #include "sim/workload/workload.h"
+#include "tests/support.h"
 
 static void test_vp_ratio(void **state)
 {
@@ -235,25 +236,17 @@ static void test_workload_run(void **state)
                       "processors: 1024, width: 64, height: 48}\n"
                       "scene: {generator: isosurface, grid: 8}\n";
     GError *err = NULL;
-    CfgNode *root = cfg_load_string(yml, "run.yaml", &err);
-    const WlOps *ops = wl_find("dpscan");
-    assert_non_null(ops);
-    void *p = ops->parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
     char *dir = g_dir_make_tmp("dpscan-XXXXXX", NULL);
-    WlContext ctx = {.eng = eng,
-                     .root = root,
-                     .frames = 2,
-                     .fidelity = "analytic",
-                     .out_dir = dir};
-    SimResult *r = sim_result_new("dpscan", "cm200");
-    assert_true(ops->run(&ctx, p, r, &err));
+    SimTime now = 0;
+    SupportRun o = {
+        .fidelity = "analytic", .frames = 2, .out_dir = dir, .now = &now};
+    SimResult *r = support_run_text(yml, &o, &err);
+    assert_non_null(r);
     assert_int_equal(r->frame_times->len, 2);
     /* The clock ends where the two frames' counted work ends. */
     SimTime f0 = g_array_index(r->frame_times, SimTime, 0);
     assert_true(f0 > 0);
-    assert_int_equal(sim_now(eng), 2 * f0);
+    assert_int_equal(now, 2 * f0);
     /* Only the last frame is written, through the generic hook. */
     char *first = g_build_filename(dir, "frame-0000.png", NULL);
     assert_false(g_file_test(first, G_FILE_TEST_EXISTS));
@@ -272,9 +265,6 @@ static void test_workload_run(void **state)
     assert_true(sim_result_get_metric(r, "polygons_per_s", &pps));
     assert_true(pps > 0);
     sim_result_free(r);
-    sim_engine_free(eng);
-    ops->free_params(p);
-    cfg_free(root);
 }
 
 int main(void)

@@ -25,6 +25,7 @@
 #include "sim/workload/performer/pf_pn.h"
 #include "sim/workload/performer/pf_stages.h"
 #include "sim/workload/performer/pf_workload.h"
+#include "tests/support.h"
 
 static SimTrace *trace; /* given to run()'s engine when set */
 static gboolean dry;     /* run()'s engine stops before the first event */
@@ -33,22 +34,11 @@ static SimResult *run(const char *yaml, int frames, GError **err)
 {
     CfgNode *root = cfg_load_string(yaml, "pf.yaml", err);
     assert_non_null(root);
-    SimEngine *eng = sim_engine_new(1);
-    sim_engine_set_trace(eng, trace);
-    sim_engine_set_dry_run(eng, dry);
-    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                     .fidelity = "analytic", .frames = frames};
-    void *params = wl_pf_ops.parse(cfg_get(root, "workload"), err);
-    assert_non_null(params);
-    SimResult *r = sim_result_new("performer", "");
-    if (!wl_pf_ops.run(&ctx, params, r, err)) {
-        sim_result_free(r);
-        r = NULL;
-    }
-    wl_pf_ops.free_params(params);
-    sim_engine_free(eng);
-    cfg_free(root);
-    return r;
+    SupportRun o = {.fidelity = "analytic",
+                    .frames = frames,
+                    .trace = trace,
+                    .dry_run = dry};
+    return support_run_tree(root, &o, err);
 }
 
 static double metric(const SimResult *r, const char *name)

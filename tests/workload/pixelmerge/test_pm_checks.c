@@ -13,6 +13,7 @@
 #include "sim/scene/teapot.h"
 #include "sim/workload/pixelmerge/pm_frame.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
+#include "tests/support.h"
 
 enum { N = 32 };
 
@@ -325,18 +326,16 @@ static void test_machine_count_by_default(void **state)
         "scene: {generator: teapots, count: 1, polygons_per_teapot: 300}\n",
         "pm.yaml", &err);
     assert_non_null(root);
-    void *p = wl_pixelmerge_ops.parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m =
         mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
     assert_non_null(m);
     double nodes = mach_kind(m, "node")->count;
     mach_free(m);
-    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                     .fidelity = "analytic", .frames = 1};
-    SimResult *r = sim_result_new("pixelmerge", "");
-    if (!wl_pixelmerge_ops.run(&ctx, p, r, &err))
+    sim_engine_free(eng);
+    SupportRun o = {.fidelity = "analytic", .frames = 1};
+    SimResult *r = support_run_tree(root, &o, &err);
+    if (!r)
         fail_msg("%s", err->message);
     double v = 0;
     assert_true(sim_result_get_metric(r, "processors", &v));
@@ -352,9 +351,6 @@ static void test_machine_count_by_default(void **state)
     assert_true(sim_result_get_metric(r, "peak_memory", &v));
     assert_true(v == sum && sum > 0);
     sim_result_free(r);
-    sim_engine_free(eng);
-    wl_pixelmerge_ops.free_params(p);
-    cfg_free(root);
 }
 
 int main(void)

@@ -17,6 +17,7 @@
 #include "sim/raster/image.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
+#include "tests/support.h"
 
 static const char *cfg_text =
     "machine: {model: ipsc2}\n"
@@ -275,12 +276,10 @@ static void test_frame_png(void **state)
     (void)state;
     Setup s = setup("aapc", 4, "");
     char *dir = g_dir_make_tmp("pm-run-XXXXXX", NULL);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = s.root, .seed = 1,
-                     .fidelity = "analytic", .frames = 2, .out_dir = dir};
-    SimResult *r = sim_result_new("pixelmerge", "");
+    SupportRun o = {.fidelity = "analytic", .frames = 2, .out_dir = dir};
     GError *err = NULL;
-    if (!wl_pixelmerge_ops.run(&ctx, s.p, r, &err))
+    SimResult *r = support_run_tree(cfg_copy(s.root), &o, &err);
+    if (!r)
         fail_msg("%s", err->message);
     char *first = g_build_filename(dir, "frame-0000.png", NULL);
     assert_false(g_file_test(first, G_FILE_TEST_EXISTS));
@@ -313,7 +312,6 @@ static void test_frame_png(void **state)
     g_free(first);
     g_free(dir);
     sim_result_free(r);
-    sim_engine_free(eng);
     setup_clear(&s);
 }
 

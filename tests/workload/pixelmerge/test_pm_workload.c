@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "sim/workload/pixelmerge/pm_workload.h"
+#include "tests/support.h"
 
 static const char *small =
     "machine: {model: ipsc2}\n"
@@ -24,27 +25,9 @@ static SimResult *run_cfg(const char *text, const char *fidelity,
 {
     CfgNode *root = cfg_load_string(text, "pm.yaml", err);
     assert_non_null(root);
-    if (override)
-        assert_true(cfg_set_override(root, override, err));
-    void *p = wl_pixelmerge_ops.parse(cfg_get(root, "workload"), err);
-    SimResult *r = NULL;
-    if (p) {
-        SimEngine *eng = sim_engine_new(1);
-        WlContext ctx = {.eng = eng,
-                         .root = root,
-                         .seed = 1,
-                         .fidelity = fidelity,
-                         .frames = 1};
-        r = sim_result_new("pixelmerge", "");
-        if (!wl_pixelmerge_ops.run(&ctx, p, r, err)) {
-            sim_result_free(r);
-            r = NULL;
-        }
-        sim_engine_free(eng);
-        wl_pixelmerge_ops.free_params(p);
-    }
-    cfg_free(root);
-    return r;
+    const char *ov[] = {override, NULL};
+    SupportRun o = {.fidelity = fidelity, .frames = 1, .overrides = ov};
+    return support_run_tree(root, &o, err);
 }
 
 static double metric(const SimResult *r, const char *name)

@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/workload/pphigs/pphigs_run.h"
 #include "sim/workload/workload.h"
 #include "tests/support.h"
@@ -189,17 +189,13 @@ static void run_flock(const char *const *sets, Out *o)
     o->gps = 4;
     for (; sets && *sets; sets++)
         assert_true(cfg_set_override(root, *sets, NULL));
-    const WlOps *ops = wl_find("pphigs");
-    assert_non_null(ops);
     GError *err = NULL;
     assert_non_null(cfg_get(cfg_get(root, "workload"), "type")); /* app's */
-    void *p = ops->parse(cfg_get(root, "workload"), &err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(3);
-    WlContext ctx = {eng, root, 3, "packet", 3, NULL, TRUE, FALSE};
-    SimResult *r = sim_result_new("pphigs", "pixel-planes-5");
-    assert_true(ops->run(&ctx, p, r, &err));
-    assert_true(cfg_check_unused(cfg_get(root, "workload"), NULL));
+    /* the runner refuses any key nobody read (cfg_check_unused) */
+    SupportRun opt = {.fidelity = "packet", .frames = 3, .seed = 3};
+    SimResult *r = support_run_tree(root, &opt, &err);
+    if (!r)
+        fail_msg("%s", err->message);
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
     assert_int_equal(r->metrics->len, 16);
@@ -209,9 +205,6 @@ static void run_flock(const char *const *sets, Out *o)
     o->bytes = r->comm_bytes;
     assert_int_equal(r->nodes->len + sim_result_n_idle(r), 1 + o->gps + 16 + 1);
     sim_result_free(r);
-    sim_engine_free(eng);
-    ops->free_params(p);
-    cfg_free(root);
 }
 
 static void test_workload_runs(void **st)
@@ -476,9 +469,10 @@ static void test_frame_out(void **st)
 {
     (void)st;
     const char *sets[] = {"run.frames=2", "run.fidelity=analytic", NULL};
-    CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, NULL);
-    assert_non_null(r);
     for (int all = 0; all <= 1; all++) {
+        /* a CfgRun runs once: one load per run */
+        CfgRun *r = cfg_run_load("configs/pphigs-flock.yaml", sets, NULL);
+        assert_non_null(r);
         char *dir = g_dir_make_tmp("pgsim-pphigs-XXXXXX", NULL);
         CfgRunOpts o = {.out_dir = dir, .quiet = TRUE, .all_frames = all};
         SimResult *res = cfg_run_exec(r, &o, NULL);
@@ -492,8 +486,8 @@ static void test_frame_out(void **st)
         assert_int_equal(g_rmdir(dir), 0); /* nothing else was written */
         sim_result_free(res);
         g_free(dir);
+        cfg_run_free(r);
     }
-    cfg_run_free(r);
 }
 
 /* Two results with the same frame times, elapsed time, traffic and

@@ -14,7 +14,7 @@
 #include <math.h>
 #include <unistd.h>
 
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/workload/pphigs/pphigs_distrib.h"
 #include "sim/workload/pphigs/pphigs_pixels.h"
 #include "sim/workload/pphigs/pphigs_rebalance.h"

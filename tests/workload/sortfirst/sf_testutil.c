@@ -5,6 +5,7 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include "tests/support.h"
 #include "tests/workload/sortfirst/sf_testutil.h"
 
 SimResult *sf_test_run(const char *text, const char *const *overrides,
@@ -15,28 +16,12 @@ SimResult *sf_test_run(const char *text, const char *const *overrides,
     assert_non_null(root);
     for (guint k = 0; overrides && overrides[k]; k++)
         assert_true(cfg_set_override(root, overrides[k], err));
-    void *p = wl_sortfirst_ops.parse(cfg_get(root, "workload"), err);
-    SimResult *r = NULL;
-    if (p) {
-        SimEngine *eng = sim_engine_new(1);
-        WlContext ctx = {.eng = eng,
-                         .root = root,
-                         .seed = 1,
-                         .fidelity = "analytic",
-                         .frames = frames,
-                         .out_dir = out_dir,
-                         .quiet = TRUE,
-                         .all_frames = all};
-        r = sim_result_new("sortfirst", "");
-        if (!wl_sortfirst_ops.run(&ctx, p, r, err)) {
-            sim_result_free(r);
-            r = NULL;
-        }
-        sim_engine_free(eng);
-        wl_sortfirst_ops.free_params(p);
-    }
-    cfg_free(root);
-    return r;
+    SupportRun o = {.fidelity = "analytic",
+                    .frames = frames,
+                    .seed = 1,
+                    .out_dir = out_dir,
+                    .all_frames = all};
+    return support_run_tree(root, &o, err);
 }
 
 SimResult *sf_test_run_checked(const char *text, int frames,

@@ -9,7 +9,8 @@
 /* Runs `text` with the NULL-terminated overrides (may be NULL) for
  * `frames` frames, seed 1, analytic; frames to out_dir (NULL: none),
  * every frame when `all`.  A new result, or NULL with *err set.  Fails
- * the test on an unreadable config or override. */
+ * the test on an unreadable config or override.  Through the runner
+ * (tests/support.h). */
 SimResult *sf_test_run(const char *text, const char *const *overrides,
                        int frames, const char *out_dir, gboolean all,
                        GError **err);

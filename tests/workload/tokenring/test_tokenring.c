@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "sim/workload/tokenring/tokenring_workload.h"
+#include "tests/support.h"
 
 static const char *ring =
     "workload: {type: tokenring, nodes: 5, token: 1000 B, compute: 10 us,\n"
@@ -19,21 +20,9 @@ static SimResult *run_ring(const char *text, int frames, GError **err)
 {
     CfgNode *root = cfg_load_string(text, "ring.yaml", err);
     assert_non_null(root);
-    void *p = wl_tokenring_ops.parse(cfg_get(root, "workload"), err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng,
-                     .root = root,
-                     .seed = 1,
-                     .fidelity = "analytic",
-                     .frames = frames};
-    SimResult *r = sim_result_new("tokenring", "");
-    gboolean ok = wl_tokenring_ops.run(&ctx, p, r, err);
-    assert_true(ok);
-    r->events = sim_engine_events(eng);
-    sim_engine_free(eng);
-    wl_tokenring_ops.free_params(p);
-    cfg_free(root);
+    SupportRun o = {.fidelity = "analytic", .frames = frames};
+    SimResult *r = support_run_tree(root, &o, err);
+    assert_non_null(r);
     return r;
 }
 

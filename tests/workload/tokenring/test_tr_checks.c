@@ -4,7 +4,8 @@
  * workload section is 8 nodes, 1000 B, 20 us, no jitter, 5 us and
  * 2.8 MB/s; hop_time_mean and link_utilisation_mean; a latency past
  * SimTime's range is an engine error, not a wrap; a machine section is
- * refused at its location; mem_bytes is a record per node. */
+ * refused at its location (by the runner, sim/run/run.h); mem_bytes is a
+ * record per node. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,25 +15,14 @@
 
 #include "sim/core/rng.h"
 #include "sim/workload/tokenring/tokenring_workload.h"
+#include "tests/support.h"
 
 static SimResult *run_ring(const char *text, int frames, GError **err)
 {
     CfgNode *root = cfg_load_string(text, "ring.yaml", err);
     assert_non_null(root);
-    void *p = wl_tokenring_ops.parse(cfg_get(root, "workload"), err);
-    assert_non_null(p);
-    SimEngine *eng = sim_engine_new(1);
-    WlContext ctx = {.eng = eng, .root = root, .seed = 1,
-                     .fidelity = "analytic", .frames = frames};
-    SimResult *r = sim_result_new("tokenring", "");
-    if (!wl_tokenring_ops.run(&ctx, p, r, err)) {
-        sim_result_free(r);
-        r = NULL;
-    }
-    sim_engine_free(eng);
-    wl_tokenring_ops.free_params(p);
-    cfg_free(root);
-    return r;
+    SupportRun o = {.fidelity = "analytic", .frames = frames};
+    return support_run_tree(root, &o, err);
 }
 
 static double metric(const SimResult *r, const char *name)
@@ -129,9 +119,9 @@ static void test_machine_refused(void **state)
                             1, &err);
     assert_null(r);
     assert_string_equal(err->message,
-                        "ring.yaml:1:10: found a machine section, expected "
-                        "none: tokenring simulates its own ring "
-                        "(workload.nodes, workload.link)");
+                        "ring.yaml:1:10: found a machine: section, expected "
+                        "none: workload tokenring does not read it with "
+                        "these settings ('pgsim help run')");
     g_error_free(err);
 }
 

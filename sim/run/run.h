@@ -1,4 +1,8 @@
-/* config.h — the run config: a YAML file checked from top to bottom.
+/* run.h — the runner: a run config checked from top to bottom, built
+ * once (engine, machine, scene) and run (docs/architecture.md, "the path
+ * of one run").  Everything that runs a workload comes through here:
+ * `pgsim run`, `validate`, sweep points, reproductions, replay's
+ * recording and the benches.
  *
  *     schema_version: 1                 # required, must be 1
  *     machine: {model: ipsc2, ...}      # optional; sim/machine checks it
@@ -7,15 +11,18 @@
  *     run: {seed: 1, frames: 1, fidelity: faithful, until: 10 ms}
  *
  * Loading applies --set overrides first, then reads every section with
- * its consumer (workload parse, mach_check_section, scene_from_cfg) and
- * finally rejects any key nobody read (cfg_check_unused on the whole
- * tree).  Every problem is a located error with exit status 2
- * (docs/config.md).  Machine models are looked up by the machine layer;
- * cfg_run_load() adds the config's repository models/ directory and the
- * install prefix's share/pgsim/models to its search path ($PGSIM_MODELS).
+ * its consumer: the workload parses its own and says (WlOps.plan) which
+ * of `machine:` and `scene:` it reads; the runner builds those (the
+ * machine on the run's engine at run.fidelity, with the workload's
+ * machine overrides), refuses a present section the workload does not
+ * read, and finally rejects any key nobody read (cfg_check_unused on the
+ * whole tree).  run.until becomes the engine's horizon.  Every problem is a located error with exit status 2
+ * (docs/config.md).  Machine models are looked up by the machine layer,
+ * with the config's repository models/ directory and the install prefix's
+ * share/pgsim/models as extra folders (CfgRun.model_dirs).
  */
-#ifndef PGSIM_APP_RUN_CONFIG_H
-#define PGSIM_APP_RUN_CONFIG_H
+#ifndef PGSIM_RUN_RUN_H
+#define PGSIM_RUN_RUN_H
 
 #include "sim/core/cfg.h"
 #include "sim/core/record.h"
@@ -24,6 +31,12 @@
 
 typedef struct {
     CfgNode *root;           /* owned: the tree after overrides */
+    SimEngine *eng;          /* owned: seeded with `seed`, horizon `until` */
+    MachMachine *machine_built; /* owned: the workload's machine; NULL when
+                                   it reads none (WlPlan) */
+    Scene *scene_built;      /* owned: the workload's scene; NULL when it
+                                reads none */
+    gboolean executed;       /* cfg_run_exec() ran (it runs once) */
     const CfgNode *machine;  /* borrowed from root; NULL when absent */
     const CfgNode *scene;    /* borrowed from root; NULL when absent */
     const CfgNode *workload; /* borrowed: the workload section */
@@ -35,6 +48,9 @@ typedef struct {
                              model's network.fidelity (static) */
     SimTime until;        /* run.until; SIM_TIME_MAX when absent */
     char *path;           /* the config file as named; NULL for a tree */
+    GPtrArray *model_dirs; /* char *, NULL-terminated: the extra model
+                              folders (the config's repository models/,
+                              the install prefix's) */
     char *sha256;         /* of the file's bytes; NULL for a tree */
     GPtrArray *overrides; /* char *: the overrides applied, in order */
 } CfgRun;
@@ -62,10 +78,11 @@ typedef struct {
     SimRecorder *recorder; /* --record (sim/core/record.h); NULL: none */
 } CfgRunOpts;
 
-/* Runs the config's workload on a fresh engine seeded with run->seed and
- * returns a new result (sim_result_free) with the engine figures and
- * wall-clock time filled, or NULL with *err set. */
-SimResult *cfg_run_exec(const CfgRun *run, const CfgRunOpts *opts,
+/* Runs the config's workload on the engine, machine and scene the load
+ * built (once: a CfgRun runs one time) and returns a new result
+ * (sim_result_free) with the engine figures and wall-clock time filled,
+ * or NULL with *err set. */
+SimResult *cfg_run_exec(CfgRun *run, const CfgRunOpts *opts,
                         GError **err);
 
 #endif

@@ -1,4 +1,4 @@
-/* config.c — loading and running a run config (config.h).
+/* run.c — the runner: loading, building and running a run config (run.h).
  *
  * Order matters for good errors: overrides first (so --set can fix or
  * break anything), then the sections in a fixed order (schema_version,
@@ -6,13 +6,15 @@
  * unknown-key check over the whole tree, which therefore sees exactly the
  * keys no consumer knew.  Every error is located (file:line:col).
  *
- * Model search path: the machine layer looks in ./models and then
- * $PGSIM_MODELS; cfg_run_load() appends to $PGSIM_MODELS the models/
- * directory of the repository that holds the config (nearest ancestor of
- * the config's directory with a models/ folder) and the install prefix's
- * share/pgsim/models (next to the executable, then PGSIM_PREFIX).
+ * Model search path: the machine layer looks in ./models, the user's
+ * $PGSIM_MODELS, the runner's extra folders and the shipped models/
+ * under every data root (sim/machine/model_find.h).  The extra folders
+ * are the models/ directory of the repository that holds the config
+ * (nearest ancestor of the config's directory with a models/ folder) and
+ * the install prefix's share/pgsim/models; they are passed as a
+ * parameter (CfgRun.model_dirs), never through the environment.
  */
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/output/provenance.h"
 #include "sim/core/datapath.h"
 #include "sim/core/memlimit.h"
@@ -54,35 +56,24 @@ static char *repo_models_dir(const char *path)
     return NULL;
 }
 
-static void add_dir(GString *s, const char *dir)
+static void add_dir(GPtrArray *dirs, char *dir)
 {
-    if (!dir || !g_file_test(dir, G_FILE_TEST_IS_DIR))
-        return;
-    if (s->len)
-        g_string_append_c(s, ':');
-    g_string_append(s, dir);
+    if (dir && g_file_test(dir, G_FILE_TEST_IS_DIR))
+        g_ptr_array_add(dirs, dir);
+    else
+        g_free(dir);
 }
 
-/* Extends $PGSIM_MODELS as described above (once per config). */
-static void extend_model_path(const char *config_path)
+/* The extra model folders of a config at `path` (NULL: a tree with no
+ * file), NULL-terminated. */
+static GPtrArray *model_dirs(const char *path)
 {
-    GString *s = g_string_new(g_getenv("PGSIM_MODELS"));
-    char *repo = repo_models_dir(config_path);
-    add_dir(s, repo);
-    char *exe = g_file_read_link("/proc/self/exe", NULL);
-    if (exe) {
-        char *bindir = g_path_get_dirname(exe);
-        char *share =
-            g_build_filename(bindir, "..", "share", "pgsim", "models", NULL);
-        add_dir(s, share);
-        g_free(share);
-        g_free(bindir);
-        g_free(exe);
-    }
-    add_dir(s, PGSIM_PREFIX "/share/pgsim/models");
-    g_setenv("PGSIM_MODELS", s->str, TRUE);
-    g_free(repo);
-    g_string_free(s, TRUE);
+    GPtrArray *dirs = g_ptr_array_new_with_free_func(g_free);
+    if (path)
+        add_dir(dirs, repo_models_dir(path));
+    add_dir(dirs, g_strdup(PGSIM_PREFIX "/share/pgsim/models"));
+    g_ptr_array_add(dirs, NULL);
+    return dirs;
 }
 
 static gboolean check_root(const CfgNode *root, GError **err)
@@ -187,14 +178,89 @@ static gboolean check_workload_memory(const CfgRun *r, GError **err)
     return ok;
 }
 
-static gboolean read_scene(CfgRun *r, GError **err)
+/* A section present in the config that the workload will not read: it
+ * would be ignored, so it is refused where it stands. */
+static gboolean refuse_unread(const CfgRun *r, const char *key,
+                              GError **err)
 {
-    r->scene = cfg_get(r->root, "scene");
-    if (!r->scene)
+    const CfgNode *sec = cfg_get(r->root, key);
+    if (!sec)
         return TRUE;
-    Scene *s = scene_from_cfg(r->scene, err);
-    scene_free(s);
-    return s != NULL;
+    char *found = g_strdup_printf("a %s: section", key);
+    char *exp = g_strdup_printf("none: workload %s does not read it with "
+                                "these settings ('pgsim help run')",
+                                r->wl->name);
+    cfg_error(err, sec, found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+/* The machine section the workload runs on: the config's (or the
+ * workload's default model), with the workload's own overrides applied
+ * to a copy.  Returns a new tree or NULL with *err set. */
+static CfgNode *machine_section(const CfgRun *r, const WlPlan *plan,
+                                GError **err)
+{
+    CfgNode *sec;
+    if (r->machine) {
+        sec = cfg_copy(r->machine);
+    } else if (plan->default_model) {
+        char *text = g_strdup_printf("model: %s\n", plan->default_model);
+        char *where = g_strdup_printf("<%s's default machine>", r->wl->name);
+        sec = cfg_load_string(text, where, err);
+        g_free(where);
+        g_free(text);
+    } else {
+        char *exp = g_strdup_printf("machine: {model: NAME} (workload %s "
+                                    "runs on a machine; docs/models.md)",
+                                    r->wl->name);
+        cfg_error(err, r->root, "no key 'machine'", exp);
+        g_free(exp);
+        return NULL;
+    }
+    for (guint i = 0; sec && i < plan->machine_set->len; i++) {
+        if (!cfg_set_override(sec, plan->machine_set->pdata[i], err)) {
+            cfg_free(sec);
+            return NULL;
+        }
+    }
+    return sec;
+}
+
+static gboolean build_machine(CfgRun *r, const WlPlan *plan, GError **err)
+{
+    CfgNode *sec = machine_section(r, plan, err);
+    if (!sec)
+        return FALSE;
+    r->machine_built =
+        mach_new_from_cfg_in(r->eng, sec, r->fidelity,
+                             (const char *const *)r->model_dirs->pdata, err);
+    cfg_free(sec);
+    if (r->machine_built && r->machine)
+        cfg_mark_read(r->machine);
+    return r->machine_built != NULL;
+}
+
+/* Builds what the workload's plan says it reads, once, on a new engine
+ * whose horizon is run.until; refuses what it does not read. */
+static gboolean build(CfgRun *r, GError **err)
+{
+    WlPlan plan = {.machine_set = g_ptr_array_new_with_free_func(g_free)};
+    if (r->wl->plan)
+        r->wl->plan(r->wl_params, &plan);
+    r->machine = cfg_get(r->root, "machine");
+    r->scene = cfg_get(r->root, "scene");
+    r->eng = sim_engine_new(r->seed);
+    sim_engine_set_horizon(r->eng, r->until);
+    gboolean ok =
+        ((plan.reads & WL_READS_MACHINE) ? build_machine(r, &plan, err)
+                                         : refuse_unread(r, "machine", err)) &&
+        ((plan.reads & WL_READS_SCENE)
+             ? (r->scene_built = scene_from_cfg(r->scene, err)) != NULL
+             : refuse_unread(r, "scene", err));
+    g_ptr_array_free(plan.machine_set, TRUE);
+    return ok;
 }
 
 /* A machine that --set made from nothing must name a model (or be a
@@ -225,21 +291,22 @@ static gboolean apply_overrides(CfgNode *root, const char *const *ov,
     return had_machine || check_made_machine(root, err);
 }
 
-CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
-                          GError **err)
+/* Loads a tree (taken) read from `path` (NULL: none). */
+static CfgRun *run_new(CfgNode *root, const char *const *overrides,
+                       const char *path, GError **err)
 {
     CfgRun *r = g_new0(CfgRun, 1);
     r->root = root;
+    r->path = g_strdup(path);
+    r->model_dirs = model_dirs(path);
     r->overrides = g_ptr_array_new_with_free_func(g_free);
     for (int i = 0; overrides && overrides[i]; i++)
         g_ptr_array_add(r->overrides, g_strdup(overrides[i]));
     gboolean ok =
         check_root(root, err) && apply_overrides(root, overrides, err) &&
         check_schema(root, err) && read_run(r, err) &&
-        read_workload(r, err) && check_workload_memory(r, err);
-    r->machine = ok ? cfg_get(root, "machine") : NULL;
-    ok = ok && (!r->machine || mach_check_section(r->machine, err)) &&
-         read_scene(r, err) && cfg_check_unused(root, err);
+        read_workload(r, err) && check_workload_memory(r, err) &&
+        build(r, err) && cfg_check_unused(root, err);
     if (!ok) {
         cfg_run_free(r);
         return NULL;
@@ -247,21 +314,19 @@ CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
     return r;
 }
 
+CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
+                          GError **err)
+{
+    return run_new(root, overrides, NULL, err);
+}
+
 CfgRun *cfg_run_load(const char *path, const char *const *overrides,
                      GError **err)
 {
     CfgNode *root = cfg_load_file(path, err);
-    if (!root)
-        return NULL;
-    extend_model_path(path);
-    char *sha = prov_file_sha256(path);
-    CfgRun *r = cfg_run_from_tree(root, overrides, err);
-    if (r) {
-        r->path = g_strdup(path);
-        r->sha256 = sha;
-    } else {
-        g_free(sha);
-    }
+    CfgRun *r = root ? run_new(root, overrides, path, err) : NULL;
+    if (r)
+        r->sha256 = prov_file_sha256(path);
     return r;
 }
 
@@ -271,7 +336,12 @@ void cfg_run_free(CfgRun *r)
         return;
     if (r->wl && r->wl_params)
         r->wl->free_params(r->wl_params);
+    mach_free(r->machine_built); /* before its engine */
+    scene_free(r->scene_built);
+    sim_engine_free(r->eng);
     cfg_free(r->root);
+    if (r->model_dirs)
+        g_ptr_array_free(r->model_dirs, TRUE);
     g_free(r->path);
     g_free(r->sha256);
     if (r->overrides)
@@ -294,9 +364,11 @@ static void fill_provenance(SimResult *res, const CfgRun *r)
         g_ptr_array_add(res->overrides, g_strdup(r->overrides->pdata[i]));
 }
 
-SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
+SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
 {
-    SimEngine *eng = sim_engine_new(r->seed);
+    g_assert(!r->executed); /* the built objects carry one run's state */
+    r->executed = TRUE;
+    SimEngine *eng = r->eng;
     sim_engine_set_trace(eng, opts ? opts->trace : NULL);
     sim_engine_set_recorder(eng, opts ? opts->recorder : NULL);
     sim_engine_set_dry_run(eng, opts && opts->dry_run);
@@ -309,6 +381,9 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
     fill_provenance(res, r);
     WlContext ctx = {.eng = eng,
                      .root = r->root,
+                     .machine = r->machine_built,
+                     .scene = r->scene_built,
+                     .until = r->until,
                      .seed = r->seed,
                      .fidelity = r->fidelity,
                      .frames = r->frames,
@@ -327,7 +402,6 @@ SimResult *cfg_run_exec(const CfgRun *r, const CfgRunOpts *opts, GError **err)
     res->events = sim_engine_events(eng);
     if (!res->elapsed)
         res->elapsed = sim_now(eng);
-    sim_engine_free(eng);
     if (!ok) {
         sim_result_free(res);
         return NULL;
