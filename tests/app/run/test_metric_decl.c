@@ -12,7 +12,7 @@
 #include <cmocka.h>
 #include <string.h>
 
-#include "sim/app/run/config.h"
+#include "sim/run/run.h"
 #include "sim/app/sweep/sweep_spec.h"
 #include "sim/core/error.h"
 #include "sim/output/plot.h"
