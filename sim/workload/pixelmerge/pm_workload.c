@@ -20,10 +20,9 @@
  *     memory: {base: 1 MB, polygon: 200 B, span: 32 B, location: 8 B,
  *              pixel: 8 B, index: 4 B}
  *
- * The machine is the config's `machine` section (mach_new_from_cfg, so
- * `run.fidelity` picks the network model); node costs are the node kind
- * "node"'s cost table (wl_pm_cost_ops).  The scene is the config's
- * `scene` section (scene_from_cfg: generator, layout, view rule).
+ * The machine and the scene are the runner's (sim/run/run.h), built from
+ * the config's `machine` and `scene` sections; node costs are the node
+ * kind "node"'s cost table (wl_pm_cost_ops).
  * Processor p of the workload is machine processor node<p>: P < nodes
  * runs on the subcube of nodes 0 .. P-1 (the rest stay idle).
  * Cost per frame: pm_frame.h.
