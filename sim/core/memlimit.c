@@ -1,11 +1,13 @@
 /* memlimit.c — the process's memory limit and the check against it
  * (memlimit.h).  Physical memory comes from sysconf(_SC_PHYS_PAGES) x
- * the page size (POSIX/glibc); O(1). */
+ * the page size (POSIX/glibc), lowered by getrlimit(RLIMIT_AS and
+ * RLIMIT_DATA) and a cgroup v2 memory.max; O(1) after the first call. */
 #include "sim/core/memlimit.h"
 #include "sim/core/error.h"
 
 #include <errno.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 static guint64 set_limit;
@@ -34,12 +36,43 @@ gboolean sim_mem_parse(const char *text, guint64 *out)
     return TRUE;
 }
 
+/* The smaller of v and a resource limit's soft value (if set). */
+static guint64 below_rlimit(guint64 v, int resource)
+{
+    struct rlimit rl;
+    if (getrlimit(resource, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
+        v = MIN(v, (guint64)rl.rlim_cur);
+    return v;
+}
+
+/* The smaller of v and the cgroup (v2) memory limit, if one is set. */
+static guint64 below_cgroup(guint64 v)
+{
+    char *text = NULL;
+    guint64 max;
+    if (g_file_get_contents("/sys/fs/cgroup/memory.max", &text, NULL, NULL) &&
+        g_ascii_string_to_unsigned(g_strstrip(text), 10, 1, G_MAXUINT64, &max,
+                                   NULL))
+        v = MIN(v, max);
+    g_free(text);
+    return v;
+}
+
+/* Physical memory, or less when this process may not have it all: an
+ * address-space or data limit (ulimit -v, -d) or a cgroup's memory.max,
+ * so that an estimate under the limit can also be allocated.  Read once. */
 static guint64 physical(void)
 {
+    static guint64 cached;
+    if (cached)
+        return cached;
     long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-    if (pages <= 0 || size <= 0)
-        return (guint64)1 << 32; /* assumption: 4 GiB when unknown */
-    return (guint64)pages * (guint64)size;
+    guint64 v = pages <= 0 || size <= 0
+                    ? (guint64)1 << 32 /* assumption: 4 GiB when unknown */
+                    : (guint64)pages * (guint64)size;
+    v = below_cgroup(below_rlimit(below_rlimit(v, RLIMIT_AS), RLIMIT_DATA));
+    cached = v;
+    return v;
 }
 
 guint64 sim_mem_limit(void)

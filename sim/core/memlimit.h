@@ -16,7 +16,8 @@
 #include <glib.h>
 
 /* The limit in bytes: sim_mem_set_limit()'s, else $PGSIM_MEM_LIMIT's
- * (bytes with an optional k/M/G/T suffix), else physical memory. */
+ * (bytes with an optional k/M/G/T suffix), else physical memory or the
+ * process's address-space, data or cgroup limit if smaller. */
 guint64 sim_mem_limit(void);
 /* 0 restores the default. */
 void sim_mem_set_limit(guint64 bytes);

@@ -43,12 +43,16 @@ void rpl_header_clear(RplHeader *h)
 
 const RplKind *rpl_header_kind_of(const RplHeader *h, guint p)
 {
-    for (guint i = 0; i < h->kinds->len; i++) {
-        const RplKind *k = &g_array_index(h->kinds, RplKind, i);
-        if (p >= k->first && p - k->first < k->count)
-            return k;
+    guint lo = 0, hi = h->kinds ? h->kinds->len : 0;
+    while (lo < hi) { /* the first kind whose first id is above p */
+        guint mid = lo + (hi - lo) / 2;
+        if (g_array_index(h->kinds, RplKind, mid).first <= p)
+            lo = mid + 1;
+        else
+            hi = mid;
     }
-    return NULL;
+    const RplKind *k = lo ? &g_array_index(h->kinds, RplKind, lo - 1) : NULL;
+    return k && p - k->first < k->count ? k : NULL;
 }
 
 static gboolean header_kind(RplReader *r, GError **err)
@@ -64,17 +68,22 @@ static gboolean header_kind(RplReader *r, GError **err)
                        err) ||
         !rpl_lines_u64(r->l, 3, G_MAXUINT32, &count, "a processor count", err))
         return FALSE;
+    if (count == 0)
+        return fail(r, 3, "a processor count above 0", err);
     hz = g_ascii_strtod(w4, &end);
-    if (*end || end == w4 || !(hz >= 0) || hz > 1e15)
-        return fail(r, 4, "a clock in Hz (0: none)", err);
+    if (*end || end == w4 || !(hz == 0 || (hz >= RPL_CLOCK_MIN &&
+                                           hz <= RPL_CLOCK_MAX)))
+        return fail(r, 4, "a clock from 1 Hz to 1e15 Hz (0: none)", err);
     RplKind k = {g_strdup(rpl_lines_word(r->l, 1)), (guint)first, (guint)count,
-                 hz};
+                 hz, rpl_lines_number(r->l), rpl_lines_col(r->l, 2)};
     g_array_append_val(r->h.kinds, k);
     return TRUE;
 }
 
-/* A replay keeps a map entry and a clock ratio per trace processor
- * (16 bytes): a huge `procs` is an input error, not an allocation. */
+/* A replay keeps no state per trace processor unless a map file gives
+ * one (4 bytes each); 16 bytes a processor leaves room for that and for
+ * a SimGrid import's per-rank state: a huge `procs` is an input error
+ * here, never a failed allocation later. */
 static gboolean procs_fit(RplReader *r, uint64_t n, GError **err)
 {
     char *where = g_strdup_printf("%s:%u:7", rpl_lines_path(r->l),
@@ -111,10 +120,57 @@ static gboolean header_line(RplReader *r, gboolean *body, GError **err)
         g_ptr_array_add(r->h.phases, g_strdup(a));
     else if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v, "a processor count", err))
         return FALSE;
+    else if (v == 0)
+        return fail(r, 1, "a processor count above 0", err);
     else if (!procs_fit(r, v, err))
         return FALSE;
     else
         r->h.procs = (guint)v;
+    return TRUE;
+}
+
+static gint by_first(gconstpointer a, gconstpointer b)
+{
+    guint x = ((const RplKind *)a)->first, y = ((const RplKind *)b)->first;
+    return x < y ? -1 : x > y;
+}
+
+static gboolean kind_fail(RplReader *r, const RplKind *k, const char *what,
+                          GError **err)
+{
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "%s:%u:%d: found kind '%s' over processors %u..%" G_GUINT64_FORMAT
+                ", expected %s",
+                rpl_lines_path(r->l), k->line, k->col, k->name, k->first,
+                (guint64)k->first + k->count - 1, what);
+    return FALSE;
+}
+
+/* The header is complete (the body starts on the current line when
+ * body): `procs` was given, and the kinds, sorted by first id, are
+ * disjoint and below procs.  O(kinds log kinds). */
+static gboolean header_done(RplReader *r, gboolean body, GError **err)
+{
+    if (body && !r->h.procs)
+        return fail(r, 0, "a 'procs N' header line before the first group",
+                    err);
+    g_array_sort(r->h.kinds, by_first);
+    for (guint i = 0; i < r->h.kinds->len; i++) {
+        const RplKind *k = &g_array_index(r->h.kinds, RplKind, i);
+        const RplKind *prev = i ? k - 1 : NULL;
+        char *what = NULL;
+        if ((guint64)k->first + k->count > r->h.procs)
+            what = g_strdup_printf("processors below procs %u", r->h.procs);
+        else if (prev && prev->first + prev->count > k->first)
+            what = g_strdup_printf("no processor of kind '%s' (line %u) in "
+                                   "a second kind",
+                                   prev->name, prev->line);
+        if (what) {
+            kind_fail(r, k, what, err);
+            g_free(what);
+            return FALSE;
+        }
+    }
     return TRUE;
 }
 
@@ -137,12 +193,12 @@ static gboolean read_header(RplReader *r, GError **err)
         gboolean body;
         n = rpl_lines_next(r->l, err);
         if (n <= 0)
-            return n == 0;
+            return n == 0 && header_done(r, FALSE, err);
         if (!header_line(r, &body, err))
             return FALSE;
         if (body) {
             r->pending = TRUE;
-            return TRUE;
+            return header_done(r, TRUE, err);
         }
     }
 }
@@ -331,6 +387,29 @@ static gboolean ops(RplReader *r, RplItem *it, GError **err)
     return flags(r, i, it, err);
 }
 
+/* Memory an action marked `+` holds until its `on` group is read: the
+ * reader's entry here and the replay's flight (rpl_replay.c), about. */
+#define RPL_AWAIT_BYTES 128.0
+
+/* The `+` actions awaiting their groups fit the memory limit: a trace
+ * whose replies never come is an input error before memory runs out.
+ * Checked every 65,536 entries; O(1). */
+static gboolean await_fits(RplReader *r, GError **err)
+{
+    guint n = g_hash_table_size(r->await);
+    if (n % 65536)
+        return TRUE;
+    char *where = g_strdup_printf("%s:%u:1", rpl_lines_path(r->l),
+                                  rpl_lines_number(r->l));
+    char *what = g_strdup_printf("%u actions marked '+' whose 'on' groups "
+                                 "have not come",
+                                 n);
+    gboolean ok = sim_mem_check(n * RPL_AWAIT_BYTES, where, what, err);
+    g_free(where);
+    g_free(what);
+    return ok;
+}
+
 static gboolean action(RplReader *r, RplItem *it, GError **err)
 {
     const char *k = rpl_lines_word(r->l, 0);
@@ -371,6 +450,8 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
         uint64_t *key = g_new(uint64_t, 1);
         *key = it->id;
         g_hash_table_add(r->await, key);
+        if (!await_fits(r, err))
+            return FALSE;
     }
     r->actions++;
     return TRUE;
@@ -402,6 +483,13 @@ static gboolean group(RplReader *r, RplItem *it, GError **err)
 
 static gboolean at_end(RplReader *r, GError **err)
 {
+    if (r->actions == 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s:%u:1: found the end of the trace, expected at least "
+                    "one action (c, w, s, b or v)",
+                    rpl_lines_path(r->l), rpl_lines_number(r->l) + 1);
+        return FALSE;
+    }
     if (g_hash_table_size(r->await) == 0)
         return FALSE;
     GHashTableIter i;

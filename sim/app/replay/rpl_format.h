@@ -51,6 +51,10 @@
 #define RPL_MAX_OPS 30
 #define RPL_MAX_TERMS 3 /* `|` terms of a `c` line (version 3) */
 #define RPL_TERM_OPS 8  /* OP=COUNT words in one `|` term */
+/* Clocks a trace or --clock may give (Hz): below 1 Hz or above 1 PHz a
+ * clock ratio turns any recorded work into 0 ps or the end of time. */
+#define RPL_CLOCK_MIN 1.0
+#define RPL_CLOCK_MAX 1e15
 
 /* A further term of a `c` line: its work overlaps the processor's own
  * counts, and the action lasts as long as the longest term (version 3). */
@@ -69,6 +73,8 @@ typedef struct {
     char *name;
     guint first, count;
     double clock_hz; /* 0: not given */
+    guint line;      /* where the reader found it (0: not read) */
+    int col;         /* ... and its FIRST word */
 } RplKind;
 
 typedef struct {
@@ -76,7 +82,8 @@ typedef struct {
     char *fidelity; /* NULL when absent */
     guint procs;
     GPtrArray *phases; /* char * */
-    GArray *kinds;     /* RplKind */
+    GArray *kinds;     /* RplKind: sorted by first id, disjoint, each
+                          within procs (the reader checks and sorts) */
 } RplHeader;
 
 typedef enum {
@@ -122,7 +129,8 @@ gboolean rpl_reader_next(RplReader *r, RplItem *it, GError **err);
 /* Actions marked `+` whose `on` group has not been read yet. */
 guint rpl_reader_awaited(const RplReader *r);
 
-/* The kind (borrowed) that holds recording processor p, or NULL. */
+/* The kind (borrowed) that holds recording processor p, or NULL;
+ * O(log kinds). */
 const RplKind *rpl_header_kind_of(const RplHeader *h, guint p);
 void rpl_header_clear(RplHeader *h);
 

@@ -12,6 +12,7 @@
 #include <gio/gio.h>
 #include <glib/gstdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define RPL_BUF 65536
 
@@ -41,8 +42,25 @@ static GError *io_error(const char *path, GError *e)
     return r;
 }
 
+/* A trace or map file must be a regular file: opening a FIFO would wait
+ * for a writer (pgsim run refuses them the same way, datapath.c). */
+static gboolean regular(const char *path, GError **err)
+{
+    GStatBuf st;
+    if (g_stat(path, &st) != 0 || S_ISREG(st.st_mode))
+        return TRUE; /* a missing file: g_file_read() says why */
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "%s:0:0: found %s, expected a regular file", path,
+                S_ISDIR(st.st_mode)    ? "a directory"
+                : S_ISFIFO(st.st_mode) ? "a pipe"
+                                       : "a special file");
+    return FALSE;
+}
+
 RplLines *rpl_lines_open(const char *path, GError **err)
 {
+    if (!regular(path, err))
+        return NULL;
     GFile *f = g_file_new_for_path(path);
     GError *e = NULL;
     GInputStream *in = G_INPUT_STREAM(g_file_read(f, NULL, &e));
@@ -100,6 +118,12 @@ static int raw_line(RplLines *l, GError **err)
         any = TRUE;
         if (ch == '\n')
             break;
+        if (ch == 0) { /* would end the line's text early, silently */
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "%s:%u:%zu: found a NUL byte, expected text",
+                        l->path, l->number + 1, k + 1);
+            return -1;
+        }
         if (k == RPL_LINE_MAX) {
             g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                         "%s:%u:1: found a line longer than %d characters, "

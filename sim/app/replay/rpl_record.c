@@ -225,7 +225,7 @@ static gboolean machine_header(const CfgRun *run, RplHeader *h, GError **err)
         return TRUE;
     for (guint i = 0; i < mach_kind_count(m); i++) {
         const MachKindInfo *k = mach_kind_at(m, i);
-        RplKind rk = {g_strdup(k->name), k->first, k->count, k->clock_hz};
+        RplKind rk = {g_strdup(k->name), k->first, k->count, k->clock_hz, 0, 0};
         g_array_append_val(h->kinds, rk);
     }
     h->procs = mach_proc_total(m);

@@ -109,9 +109,9 @@ static void add_act(Replay *rp, Group *g, const RplItem *it)
     Act a = {.type = it->type,
              .handled = it->handled,
              .frame = it->frame,
-             .proc = t->map[it->proc],
+             .proc = rpl_target_map(t, it->proc),
              .peer = it->type == RPL_SEND || it->type == RPL_BUS
-                         ? t->map[it->peer]
+                         ? rpl_target_map(t, it->peer)
                          : 0,
              .phase = work ? t->phase[it->phase] : 0,
              .id = it->id,

@@ -105,9 +105,11 @@ static gboolean args(const RplLines *l, int n, SgAct *a, GError **err)
                                l, 2 + n, "no arguments or SRC DST TAG")),
                            FALSE));
     case SG_BCAST:
+        a->root_col = n < 2 ? 0 : rpl_lines_col(l, 3);
         return num(l, 2, &a->size, err) &&
                (n < 2 || rank_word(l, 3, &root, err)) && (a->peer = root, 1);
     case SG_REDUCE:
+        a->root_col = n < 3 ? 0 : rpl_lines_col(l, 4);
         return num(l, 2, &a->size, err) && num(l, 3, &a->flops, err) &&
                (n < 3 || rank_word(l, 4, &root, err)) && (a->peer = root, 1);
     case SG_ALLREDUCE:
@@ -140,6 +142,7 @@ gboolean rpl_sg_parse(const RplLines *l, SgAct *a, GError **err)
     }
     a->type = s->type;
     int n = rpl_lines_count(l) - 2;
+    a->arg_col = n > 0 ? rpl_lines_col(l, 2) : 0;
     if (n < s->min || n > s->max) {
         char *what = g_strdup_printf("%d to %d arguments after '%s'", s->min,
                                      s->max, s->name);

@@ -50,6 +50,8 @@ typedef struct {
     gboolean doubles; /* init named a datatype: elements are 8 bytes */
     gboolean matched; /* wait names SRC DST TAG */
     guint src, dst;   /* wait */
+    int arg_col;      /* where the first argument starts (end of line: 0) */
+    int root_col;     /* bcast/reduce: where ROOT starts (0: not given) */
 } SgAct;
 
 /* TRUE when a line's words look like a SimGrid action (used to tell an

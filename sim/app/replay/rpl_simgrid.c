@@ -6,11 +6,23 @@
  * send request; arrivals go to a mailbox per (src, dst, tag) holding
  * either unclaimed arrivals or posted receives.  Cost: O(1) per action
  * plus the network's own.
+ *
+ * Memory follows what is held: actions read ahead of the rank that
+ * needs its next one, and requests not yet waited for; both are checked
+ * against the memory limit as they grow (a trace whose receives never
+ * come is an input error, not an exhausted machine).  Every rank must
+ * finish and every message must be received.
  */
+
+/* Bytes a rank's state takes (SgRank, its flop cost, the map), about. */
+#define SG_RANK_BYTES 128.0
+/* Bytes one held action or request takes (with its list node), about. */
+#define SG_HELD_BYTES 160.0
 #include "sim/app/replay/rpl_simgrid.h"
 #include "sim/app/replay/rpl_sgparse.h"
 #include "sim/app/replay/rpl_target.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
 #include "sim/net/collective.h"
 #include <math.h>
 #include <string.h>
@@ -21,6 +33,7 @@ typedef struct {
     gboolean recv, complete;
     guint src, dst;
     int64_t tag;
+    guint line; /* the send or receive */
     SgRank *owner;
 } SgReq;
 
@@ -52,6 +65,8 @@ typedef struct {
     SgAct coll;
     GError *error;
     uint64_t actions;
+    guint64 ahead, live; /* actions read ahead, requests in rank queues */
+    guint64 grown;       /* additions to either (checked every 65,536) */
 } Sg;
 
 static void step(Sg *sg, SgRank *r);
@@ -65,10 +80,30 @@ static void fail(Sg *sg, GError *e)
     sim_engine_stop(sg->t->eng);
 }
 
+/* What is held fits the memory limit (checked every 65,536 additions);
+ * else the run stops with a located error. */
+static void held_grew(Sg *sg)
+{
+    if (++sg->grown % 65536 || sg->error)
+        return;
+    GError *e = NULL;
+    char *where = g_strdup_printf("%s:%u:1", rpl_lines_path(sg->l),
+                                  rpl_lines_number(sg->l));
+    char *what = g_strdup_printf(
+        "%" G_GUINT64_FORMAT " actions read ahead of ranks that wait and "
+        "%" G_GUINT64_FORMAT " requests not yet waited for",
+        sg->ahead, sg->live);
+    if (!sim_mem_check((sg->ahead + sg->live) * SG_HELD_BYTES, where, what,
+                       &e))
+        fail(sg, e);
+    g_free(where);
+    g_free(what);
+}
+
 /* The next action of rank r, reading ahead; NULL when it has none. */
 static SgAct *next_act(Sg *sg, SgRank *r)
 {
-    while (g_queue_is_empty(&r->q) && !sg->eof) {
+    while (g_queue_is_empty(&r->q) && !sg->eof && !sg->error) {
         GError *e = NULL;
         int n = rpl_lines_next(sg->l, &e);
         SgAct *a = g_new(SgAct, 1);
@@ -80,8 +115,12 @@ static SgAct *next_act(Sg *sg, SgRank *r)
             break;
         }
         g_queue_push_tail(&sg->ranks[a->rank].q, a);
+        sg->ahead++;
+        held_grew(sg);
     }
-    return g_queue_pop_head(&r->q);
+    SgAct *a = g_queue_pop_head(&r->q);
+    sg->ahead -= a != NULL;
+    return a;
 }
 
 static SgBox *box(Sg *sg, guint src, guint dst, int64_t tag)
@@ -102,7 +141,7 @@ static void req_done(Sg *sg, SgReq *q)
     SgRank *r = q->owner;
     q->complete = TRUE;
     if (r->wait == q) {
-        g_queue_remove(&r->reqs, q);
+        sg->live -= g_queue_remove(&r->reqs, q);
         g_free(q);
         r->wait = NULL;
         step(sg, r);
@@ -113,6 +152,7 @@ static void req_done(Sg *sg, SgReq *q)
     for (GList *i = r->reqs.head; i; i = i->next)
         if (!((SgReq *)i->data)->complete)
             return;
+    sg->live -= g_queue_get_length(&r->reqs);
     g_queue_clear_full(&r->reqs, g_free);
     r->waitall = FALSE;
     step(sg, r);
@@ -126,7 +166,7 @@ static void arrived(NetNet *net, const NetDelivery *d, void *ctx)
     SgBox *b = box(sg, send->src, send->dst, send->tag);
     SgReq *recv = g_queue_pop_head(&b->posted);
     if (!recv)
-        g_queue_push_tail(&b->arrived, GINT_TO_POINTER(1));
+        g_queue_push_tail(&b->arrived, GUINT_TO_POINTER(send->line));
     req_done(sg, send);
     if (recv)
         req_done(sg, recv);
@@ -152,21 +192,25 @@ static SimTime flops_cost(const Sg *sg, const SgRank *r, double flops)
 
 static MachProc *proc_of(Sg *sg, const SgRank *r)
 {
-    return mach_proc_at(sg->t->m, sg->t->map[r->id]);
+    return mach_proc_at(sg->t->m, rpl_target_map(sg->t, r->id));
 }
 
-static SgReq *new_req(SgRank *r, gboolean recv, guint src, guint dst,
-                      int64_t tag)
+static SgReq *new_req(SgRank *r, gboolean recv, const SgAct *a)
 {
     SgReq *q = g_new0(SgReq, 1);
-    *q = (SgReq){.recv = recv, .src = src, .dst = dst, .tag = tag, .owner = r};
+    *q = (SgReq){.recv = recv,
+                 .src = recv ? a->peer : r->id,
+                 .dst = recv ? r->id : a->peer,
+                 .tag = a->tag,
+                 .line = a->line,
+                 .owner = r};
     return q;
 }
 
 static SgReq *send(Sg *sg, SgRank *r, const SgAct *a)
 {
-    SgReq *q = new_req(r, FALSE, r->id, a->peer, a->tag);
-    net_send(mach_net(sg->t->m), sg->t->map[r->id], sg->t->map[a->peer],
+    SgReq *q = new_req(r, FALSE, a);
+    net_send(mach_net(sg->t->m), rpl_target_map(sg->t, r->id), rpl_target_map(sg->t, a->peer),
              bytes_of(r, a->size), q, arrived, sg);
     return q;
 }
@@ -176,7 +220,7 @@ static SgReq *send(Sg *sg, SgRank *r, const SgAct *a)
 static SgReq *recv(Sg *sg, SgRank *r, const SgAct *a)
 {
     SgBox *b = box(sg, a->peer, r->id, a->tag);
-    SgReq *q = new_req(r, TRUE, a->peer, r->id, a->tag);
+    SgReq *q = new_req(r, TRUE, a);
     if (g_queue_pop_head(&b->arrived))
         q->complete = TRUE;
     else
@@ -198,12 +242,12 @@ static SgReq *find_req(SgRank *r, const SgAct *a)
 }
 
 /* Blocks r on q unless it is complete (then frees it). */
-static gboolean block_on(SgRank *r, SgReq *q)
+static gboolean block_on(Sg *sg, SgRank *r, SgReq *q)
 {
     if (!q)
         return FALSE;
     if (q->complete) {
-        g_queue_remove(&r->reqs, q);
+        sg->live -= g_queue_remove(&r->reqs, q);
         g_free(q);
         return FALSE;
     }
@@ -274,6 +318,25 @@ static void coll_enter(Sg *sg, SgRank *r, const SgAct *a)
         coll_start(sg, r);
 }
 
+/* Work or a sleep of d from `from` ends within the 64-bit clock; else
+ * the run stops with an error located at the action's argument (a
+ * saturated end would report the end of time as a result). */
+static gboolean fits_clock(Sg *sg, const SgAct *a, SimTime from, SimTime d)
+{
+    SimTime end;
+    from = MAX(from, sim_now(sg->t->eng));
+    if (d < SIM_TIME_MAX && sim_time_add(from, d, &end))
+        return TRUE;
+    fail(sg, g_error_new(SIM_ERROR, SIM_ERROR_INPUT,
+                         "%s:%u:%d: found %s ending past the simulated clock's "
+                         "end (%.0f s) at %.6g s, expected work and sleeps "
+                         "that end within it",
+                         rpl_lines_path(sg->l), a->line, a->arg_col,
+                         a->type == SG_SLEEP ? "a sleep" : "a compute",
+                         sim_time_to_s(SIM_TIME_MAX), sim_time_to_s(from)));
+    return FALSE;
+}
+
 /* Runs action a of rank r; TRUE when r must wait. */
 static gboolean run_act(Sg *sg, SgRank *r, const SgAct *a)
 {
@@ -283,31 +346,36 @@ static gboolean run_act(Sg *sg, SgRank *r, const SgAct *a)
         r->doubles = r->doubles || a->doubles;
         return FALSE;
     case SG_COMPUTE:
-        mach_proc_compute(proc_of(sg, r), flops_cost(sg, r, a->flops), 0, resume,
-                          sg, r);
+        if (fits_clock(sg, a, mach_proc_free_at(proc_of(sg, r)),
+                       flops_cost(sg, r, a->flops)))
+            mach_proc_compute(proc_of(sg, r), flops_cost(sg, r, a->flops), 0,
+                              resume, sg, r);
         return TRUE;
     case SG_SLEEP:
         {
             SimTime t;
             if (!sim_time_from_s(a->seconds, &t))
-                t = SIM_TIME_MAX - sim_now(sg->t->eng);
-            sim_schedule_in(sg->t->eng, t, resume, sg, r);
+                t = SIM_TIME_MAX;
+            if (fits_clock(sg, a, sim_now(sg->t->eng), t))
+                sim_schedule_in(sg->t->eng, t, resume, sg, r);
         }
         return TRUE;
     case SG_SEND:
-        return block_on(r, send(sg, r, a));
+        return block_on(sg, r, send(sg, r, a));
     case SG_RECV:
-        return block_on(r, recv(sg, r, a));
+        return block_on(sg, r, recv(sg, r, a));
     case SG_ISEND:
-        g_queue_push_tail(&r->reqs, send(sg, r, a));
-        return FALSE;
     case SG_IRECV:
-        g_queue_push_tail(&r->reqs, recv(sg, r, a));
+        g_queue_push_tail(&r->reqs, a->type == SG_ISEND ? send(sg, r, a)
+                                                        : recv(sg, r, a));
+        sg->live++;
+        held_grew(sg);
         return FALSE;
     case SG_WAIT:
-        return block_on(r, find_req(r, a));
+        return block_on(sg, r, find_req(r, a));
     case SG_WAITALL:
         if (all_complete(r)) {
+            sg->live -= g_queue_get_length(&r->reqs);
             g_queue_clear_full(&r->reqs, g_free);
             return FALSE;
         }
@@ -335,7 +403,57 @@ static void step(Sg *sg, SgRank *r)
 typedef struct {
     guint ranks;
     guint compute_line, coll_line; /* 0: none */
+    guint rank_line, root_line;    /* where ranks and the largest root
+                                      were set */
+    int rank_col, root_col;
+    guint root;
 } SgScan;
+
+/* Rank (or peer) id v at line a->line, column col, may raise the count. */
+static void see_rank(SgScan *s, const SgAct *a, guint v, int col)
+{
+    if (v + 1 > s->ranks) {
+        s->ranks = v + 1;
+        s->rank_line = a->line;
+        s->rank_col = col;
+    }
+}
+
+/* Every root names a rank, and the ranks' state fits the memory limit
+ * (a rank id near 2^32 is an input error, not a failed allocation). */
+static gboolean scan_fits(const char *path, const SgScan *s, GError **err)
+{
+    if (s->root_line && s->root >= s->ranks) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s:%u:%d: found root %u, expected a root below the %u "
+                    "ranks of the trace",
+                    path, s->root_line, s->root_col, s->root, s->ranks);
+        return FALSE;
+    }
+    char *where = g_strdup_printf("%s:%u:%d", path, s->rank_line, s->rank_col);
+    char *what = g_strdup_printf("rank %u (%u ranks)", s->ranks - 1, s->ranks);
+    gboolean ok = sim_mem_check(s->ranks * SG_RANK_BYTES, where, what, err);
+    g_free(where);
+    g_free(what);
+    return ok;
+}
+
+static void scan_act(SgScan *s, const SgAct *a, const RplLines *l)
+{
+    see_rank(s, a, a->rank, rpl_lines_col(l, 0));
+    if (a->type == SG_SEND || a->type == SG_ISEND || a->type == SG_RECV ||
+        a->type == SG_IRECV)
+        see_rank(s, a, a->peer, a->arg_col);
+    if (a->root_col && (!s->root_line || a->peer > s->root)) {
+        s->root = a->peer;
+        s->root_line = a->line;
+        s->root_col = a->root_col;
+    }
+    if ((a->type == SG_COMPUTE || a->flops > 0) && !s->compute_line)
+        s->compute_line = a->line;
+    if (a->type >= SG_BARRIER && !s->coll_line)
+        s->coll_line = a->line;
+}
 
 static gboolean scan(const char *path, SgScan *s, GError **err)
 {
@@ -343,22 +461,14 @@ static gboolean scan(const char *path, SgScan *s, GError **err)
     SgAct a;
     int n = 0;
     memset(s, 0, sizeof *s);
-    while (l && (n = rpl_lines_next(l, err)) > 0 && rpl_sg_parse(l, &a, err)) {
-        s->ranks = MAX(s->ranks, a.rank + 1);
-        if (a.type == SG_SEND || a.type == SG_ISEND || a.type == SG_RECV ||
-            a.type == SG_IRECV)
-            s->ranks = MAX(s->ranks, a.peer + 1);
-        if ((a.type == SG_COMPUTE || a.flops > 0) && !s->compute_line)
-            s->compute_line = a.line;
-        if (a.type >= SG_BARRIER && !s->coll_line)
-            s->coll_line = a.line;
-    }
+    while (l && (n = rpl_lines_next(l, err)) > 0 && rpl_sg_parse(l, &a, err))
+        scan_act(s, &a, l);
     gboolean ok = l && n == 0 && !(err && *err);
     rpl_lines_free(l);
     if (ok && s->ranks == 0)
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "%s: found no actions, expected RANK ACTION lines", path);
-    return ok && s->ranks > 0;
+    return ok && s->ranks > 0 && scan_fits(path, s, err);
 }
 
 /* The flop cost of every rank's processor kind, and the network shape
@@ -376,8 +486,8 @@ static gboolean check_target(Sg *sg, const SgScan *s, const char *path,
                         "'%s', expected nodes.%s.costs.flop in its model "
                         "(time per flop; --set machine.nodes.%s.costs.flop=1ns)",
                         path, s->compute_line, mach_name(t->m),
-                        mach_proc_kind(mach_proc_at(t->m, t->map[r])),
-                        mach_proc_kind(mach_proc_at(t->m, t->map[r])));
+                        mach_proc_kind(mach_proc_at(t->m, rpl_target_map(t, r))),
+                        mach_proc_kind(mach_proc_at(t->m, rpl_target_map(t, r))));
             return FALSE;
         }
         sg->flop[r] = *c;
@@ -385,7 +495,7 @@ static gboolean check_target(Sg *sg, const SgScan *s, const char *path,
     NetNet *net = mach_net(t->m);
     gboolean ident = TRUE;
     for (guint r = 0; r < sg->n; r++)
-        ident = ident && t->map[r] == r;
+        ident = ident && rpl_target_map(t, r) == r;
     if (s->coll_line && (!net || net_nodes(net) != sg->n || !ident)) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "%s:%u:1: found a collective over %u ranks on %u network "
@@ -422,6 +532,33 @@ static SimResult *sg_result(Sg *sg, const RplReplayOpts *o)
     return res;
 }
 
+/* A message nobody received, or a receive no message came for, left in
+ * a mailbox when every rank finished: the earliest in the file, or
+ * NULL. */
+static GError *unmatched(Sg *sg)
+{
+    GHashTableIter it;
+    gpointer key, val;
+    guint line = 0;
+    const char *what = NULL;
+    g_hash_table_iter_init(&it, sg->boxes);
+    while (g_hash_table_iter_next(&it, &key, &val)) {
+        SgBox *b = val;
+        guint sent = GPOINTER_TO_UINT(g_queue_peek_head(&b->arrived));
+        SgReq *q = g_queue_peek_head(&b->posted);
+        if (sent && (!line || sent < line))
+            line = sent, what = "a send no rank receives";
+        if (q && (!line || q->line < line))
+            line = q->line, what = "a receive no rank sends to";
+    }
+    if (!line)
+        return NULL;
+    return g_error_new(SIM_ERROR, SIM_ERROR_INPUT,
+                       "%s:%u:1: found %s, expected every send matched by a "
+                       "receive (same ranks and tag)",
+                       rpl_lines_path(sg->l), line, what);
+}
+
 static gboolean sg_run(Sg *sg, GError **err)
 {
     for (guint i = 0; i < sg->n; i++)
@@ -439,6 +576,8 @@ static gboolean sg_run(Sg *sg, GError **err)
                 "send, or a collective some rank never reaches), expected "
                 "every rank to finish",
                 rpl_lines_path(sg->l), i);
+    if (!sg->error)
+        sg->error = unmatched(sg);
     if (sg->error) {
         g_propagate_error(err, sg->error);
         return FALSE;

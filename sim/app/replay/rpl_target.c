@@ -4,6 +4,7 @@
  */
 #include "sim/app/replay/rpl_target.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
 #include "sim/machine/model.h"
 #include "sim/machine/partition.h"
 #include <math.h>
@@ -72,50 +73,80 @@ static MachMachine *build(SimEngine *eng, char **desc, CfgNode **tree,
     return m;
 }
 
-/* The map file: lines "TRACE_PROC TARGET_PROC" ('#' comments). */
+/* One map-file line: "TRACE_PROC TARGET_PROC", each trace processor
+ * once; FALSE with *err located. */
+static gboolean map_line(RplTarget *t, RplLines *l, int n, GError **err)
+{
+    uint64_t p, q;
+    guint total = mach_proc_total(t->m);
+    char *pw = g_strdup_printf("a trace processor id below %u", t->n_trace);
+    char *qw = g_strdup_printf("a target processor below %u", total);
+    gboolean ok = rpl_lines_u64(l, 0, t->n_trace - 1, &p, pw, err) &&
+                  rpl_lines_u64(l, 1, total - 1, &q, qw, err);
+    g_free(pw);
+    g_free(qw);
+    if (ok && n > 2)
+        g_propagate_error(err, rpl_lines_error(l, 2, "the end of the line"));
+    else if (ok && t->map[p])
+        g_propagate_error(
+            err, rpl_lines_error(l, 0,
+                                 "a trace processor not given on an earlier "
+                                 "line (one line per trace processor)"));
+    else if (ok)
+        t->map[p] = (guint)q + 1;
+    return ok && !(err && *err);
+}
+
+/* The map file: lines "TRACE_PROC TARGET_PROC" ('#' comments), one per
+ * trace processor.  Memory: 4 bytes per trace processor, checked. */
 static gboolean map_file(RplTarget *t, const char *path, GError **err)
 {
-    RplLines *l = rpl_lines_open(path, err);
-    guint total = mach_proc_total(t->m);
-    int n;
-    for (guint i = 0; i < t->n_trace; i++)
-        t->map[i] = G_MAXUINT;
-    while (l && (n = rpl_lines_next(l, err)) > 0) {
-        uint64_t p, q;
-        char *what = g_strdup_printf("a target processor below %u", total);
-        gboolean ok = rpl_lines_u64(l, 0, t->n_trace - 1, &p,
-                                    "a trace processor id", err) &&
-                      rpl_lines_u64(l, 1, total - 1, &q, what, err);
-        g_free(what);
-        if (ok && n > 2)
-            g_propagate_error(err,
-                              rpl_lines_error(l, 2, "the end of the line"));
-        if (!ok || n > 2)
-            break;
-        t->map[p] = (guint)q;
-    }
-    for (guint i = 0; l && !(err && *err) && i < t->n_trace; i++)
-        if (t->map[i] == G_MAXUINT)
+    char *where = g_strdup_printf("%s:1:1", path);
+    char *what = g_strdup_printf("a map of %u trace processors", t->n_trace);
+    gboolean fits = t->n_trace > 0 &&
+                    sim_mem_check(4.0 * t->n_trace, where, what, err);
+    g_free(where);
+    g_free(what);
+    RplLines *l = fits ? rpl_lines_open(path, err) : NULL;
+    if (!l) {
+        if (t->n_trace == 0)
             g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                        "%s: found no line for trace processor %u, expected "
-                        "one 'TRACE_PROC TARGET_PROC' line per processor",
-                        path, i);
-    gboolean ok = l && !(err && *err);
+                        "%s:0:0: found a trace with no processors, expected "
+                        "'procs N' above 0 to map",
+                        path);
+        return FALSE;
+    }
+    t->map = g_new0(guint, t->n_trace);
+    int n;
+    while ((n = rpl_lines_next(l, err)) > 0 && map_line(t, l, n, err))
+        ;
+    for (guint i = 0; n == 0 && i < t->n_trace; i++)
+        if (!t->map[i]) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "%s:%u:1: found the end of the file, expected a line "
+                        "'%u TARGET_PROC' (one line per trace processor)",
+                        path, rpl_lines_number(l) + 1, i);
+            n = -1;
+        }
     rpl_lines_free(l);
-    return ok;
+    return n == 0;
 }
 
 static gboolean make_map(RplTarget *t, const char *map, GError **err)
 {
-    guint total = mach_proc_total(t->m);
-    t->map = g_new(guint, MAX(t->n_trace, 1));
     if (map && strcmp(map, "block") && strcmp(map, "cyclic"))
         return map_file(t, map, err);
-    for (guint p = 0; p < t->n_trace; p++)
-        t->map[p] = map && !strcmp(map, "cyclic")
-                        ? rpl_map_cyclic(p, t->n_trace, total)
-                        : rpl_map_block(p, t->n_trace, total);
+    t->cyclic = map && !strcmp(map, "cyclic");
     return TRUE;
+}
+
+guint rpl_target_map(const RplTarget *t, guint p)
+{
+    guint total = mach_proc_total(t->m);
+    if (t->map)
+        return t->map[p] - 1;
+    return t->cyclic ? rpl_map_cyclic(p, t->n_trace, total)
+                     : rpl_map_block(p, t->n_trace, total);
 }
 
 /* --clock KIND=HZ (HZ, kHz, MHz or GHz) into *hz; FALSE with *err. */
@@ -132,14 +163,15 @@ static gboolean parse_clock(const char *s, char **kind, double *hz,
     while (eq && *end == ' ')
         end++;
     for (guint i = 0; eq && eq > s && v > 0 && i < G_N_ELEMENTS(units); i++)
-        if (!strcmp(end, units[i].unit)) {
+        if (!strcmp(end, units[i].unit) && v * units[i].scale >= RPL_CLOCK_MIN &&
+            v * units[i].scale <= RPL_CLOCK_MAX) {
             *kind = g_strndup(s, eq - s);
             *hz = v * units[i].scale;
             return TRUE;
         }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "replay: --clock: found '%s', expected KIND=FREQUENCY "
-                "(40MHz, 2.5 GHz ...)",
+                "replay: --clock: found '%s', expected KIND=FREQUENCY from "
+                "1 Hz to 1e15 Hz (40MHz, 2.5 GHz ...)",
                 s);
     return FALSE;
 }
@@ -158,21 +190,31 @@ static gboolean parse_clocks(RplTarget *t, const char *const *clocks,
     return TRUE;
 }
 
-/* Recording-clock / target-clock for trace processor p; 1 on the
- * recording machine's own kinds; NAN when a clock is missing. */
-static double clock_ratio(const RplTarget *t, const RplHeader *h,
-                          const char *machine, guint p)
+double rpl_target_scale(const RplTarget *t, guint p)
 {
-    const RplKind *rk = rpl_header_kind_of(h, p);
-    MachProc *q = mach_proc_at(t->m, t->map[p]);
+    const RplKind *rk = rpl_header_kind_of(&t->rec, p);
+    MachProc *q = mach_proc_at(t->m, rpl_target_map(t, p));
     const MachKindInfo *tk = mach_kind(t->m, mach_proc_kind(q));
     const double *given = rk ? g_hash_table_lookup(t->clocks, rk->name) : NULL;
     double rhz = given ? *given : rk ? rk->clock_hz : 0;
     if (rhz > 0 && tk->clock_hz > 0)
         return rhz == tk->clock_hz ? 1 : rhz / tk->clock_hz;
-    gboolean same = h->machine && !strcmp(h->machine, machine) &&
+    gboolean same = t->rec.machine && !strcmp(t->rec.machine, t->model) &&
                     (!rk || !strcmp(rk->name, tk->name));
     return same ? 1 : NAN;
+}
+
+/* A copy of the trace's machine name and kinds (the header need not
+ * outlive the target). */
+static void copy_rec(RplHeader *rec, const RplHeader *h)
+{
+    rec->machine = g_strdup(h->machine);
+    rec->kinds = g_array_new(FALSE, FALSE, sizeof(RplKind));
+    for (guint i = 0; h->kinds && i < h->kinds->len; i++) {
+        RplKind k = g_array_index(h->kinds, RplKind, i);
+        k.name = g_strdup(k.name);
+        g_array_append_val(rec->kinds, k);
+    }
 }
 
 RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
@@ -181,6 +223,8 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
     RplTarget *t = g_new0(RplTarget, 1);
     t->eng = sim_engine_new(1);
     t->n_trace = h->procs;
+    t->model = g_strdup(o->machine);
+    copy_rec(&t->rec, h);
     t->costs = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
     /* --fidelity, else the rung the trace was recorded at (its header),
      * else the target's faithful rung (docs/traces.md, Replaying). */
@@ -195,13 +239,6 @@ RplTarget *rpl_target_new(const RplReplayOpts *o, const RplHeader *h,
         !parse_clocks(t, o->clocks, err)) {
         rpl_target_free(t);
         return NULL;
-    }
-    t->scale = g_new(double, MAX(t->n_trace, 1));
-    t->rec_kind = g_new0(char *, MAX(t->n_trace, 1));
-    for (guint p = 0; p < t->n_trace; p++) {
-        t->scale[p] = clock_ratio(t, h, o->machine, p);
-        const RplKind *rk = rpl_header_kind_of(h, p);
-        t->rec_kind[p] = rk ? g_strdup(rk->name) : NULL;
     }
     t->phase = g_new(unsigned, h->phases->len);
     for (guint i = 0; i < h->phases->len; i++)
@@ -224,12 +261,10 @@ void rpl_target_free(RplTarget *t)
     g_hash_table_destroy(t->costs);
     if (t->clocks)
         g_hash_table_destroy(t->clocks);
-    for (guint p = 0; t->rec_kind && p < t->n_trace; p++)
-        g_free(t->rec_kind[p]);
-    g_free(t->rec_kind);
+    rpl_header_clear(&t->rec);
+    g_free(t->model);
     g_free(t->desc);
     g_free(t->map);
-    g_free(t->scale);
     g_free(t->phase);
     g_free(t);
 }
@@ -273,8 +308,9 @@ static SimTime *path_cost(const RplTarget *t, const char *op)
 const SimTime *rpl_target_op_cost(RplTarget *t, guint p, const char *op,
                                   gboolean *fresh)
 {
-    const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
-    const char *from = t->rec_kind[p] ? t->rec_kind[p] : kind;
+    const char *kind = mach_proc_kind(mach_proc_at(t->m, rpl_target_map(t, p)));
+    const RplKind *rk = rpl_header_kind_of(&t->rec, p);
+    const char *from = rk ? rk->name : kind;
     char *key = g_strconcat(kind, "\t", from, "\t", op, NULL);
     gpointer v;
     *fresh = !g_hash_table_lookup_extended(t->costs, key, NULL, &v);
@@ -300,7 +336,7 @@ static void check_ops(RplTarget *t, guint p, const char *const *op,
                       const int *col, guint n, guint line, const char *path,
                       GString *bad)
 {
-    const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[p]));
+    const char *kind = mach_proc_kind(mach_proc_at(t->m, rpl_target_map(t, p)));
     gboolean fresh;
     for (guint i = 0; i < n; i++)
         if (!rpl_target_op_cost(t, p, op[i], &fresh) && fresh)
@@ -336,13 +372,16 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
     if (it->type != RPL_COMPUTE && it->type != RPL_WORK &&
         it->type != RPL_SEND && it->type != RPL_BUS)
         return; /* group lines and waits: nothing to price */
-    const char *kind = mach_proc_kind(mach_proc_at(t->m, t->map[it->proc]));
+    const char *kind =
+        mach_proc_kind(mach_proc_at(t->m, rpl_target_map(t, it->proc)));
     if (it->type == RPL_COMPUTE)
         check_ops(t, it->proc, it->op, it->op_col, it->n_ops, it->line, path,
                   bad);
     for (guint k = 0; it->type == RPL_COMPUTE && k < it->n_terms; k++)
         check_term(t, &it->term[k], it->line, path, bad);
-    if (it->type == RPL_WORK && isnan(t->scale[it->proc])) {
+    if (it->type == RPL_WORK && !t->clock_missing &&
+        isnan(rpl_target_scale(t, it->proc))) {
+        t->clock_missing = TRUE; /* reported once */
         g_string_append_printf(bad,
                                "\n  %s:%u:1: a clock to scale `w` work of "
                                "processor %u: its recording clock (a 'kind' "
@@ -350,9 +389,6 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
                                "nodes.%s.clock (or a 'machine %s' header: "
                                "recorded here)",
                                path, it->line, it->proc, kind, mach_name(t->m));
-        for (guint p = 0; p < t->n_trace; p++) /* reported once */
-            if (isnan(t->scale[p]))
-                t->scale[p] = INFINITY;
     }
     if ((it->type == RPL_SEND || (it->type == RPL_BUS && !t->has_shm)) &&
         !mach_net(t->m) && !*net_missing) {
@@ -360,6 +396,48 @@ static void check_item(RplTarget *t, const RplItem *it, const char *path,
         g_string_append_printf(bad, "\n  %s:%u:1: a network (this trace sends)",
                                path, it->line);
     }
+}
+
+/* TRUE when a `c` or `w` item records some work (a count or time). */
+static gboolean has_work(const RplItem *it)
+{
+    gboolean any = it->type == RPL_WORK && it->value > 0;
+    for (guint i = 0; it->type == RPL_COMPUTE && i < it->n_ops; i++)
+        any = any || it->count[i] > 0;
+    for (guint k = 0; it->type == RPL_COMPUTE && k < it->n_terms; k++) {
+        const RplTerm *term = &it->term[k];
+        any = any || (term->bus && term->bytes > 0);
+        for (guint i = 0; !term->bus && i < term->n_ops; i++)
+            any = any || term->count[i] > 0;
+    }
+    return any;
+}
+
+/* Counts recorded work and the part the target prices at 0 ps (once
+ * every cost and clock it needs was found). */
+static void note_work(RplTarget *t, const RplItem *it)
+{
+    if (!has_work(it))
+        return;
+    t->work++;
+    if (rpl_target_price(t, it) == 0 && !t->zero_work++)
+        t->zero_line = it->line;
+}
+
+/* Recorded work that every clock and cost turns into 0 ps would replay
+ * as a run that took no time: an input error, not a result. */
+static gboolean work_survives(const RplTarget *t, const char *path,
+                              GError **err)
+{
+    if (t->work == 0 || t->zero_work < t->work)
+        return TRUE;
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                "%s:%u:1: found all %" G_GUINT64_FORMAT " actions' recorded "
+                "work priced at 0 ps on machine '%s', expected clocks and "
+                "costs that keep work above 0 ps (--clock KIND=HZ, the "
+                "'kind' lines' clocks, nodes.KIND.clock and costs)",
+                path, t->zero_line, t->work, mach_name(t->m));
+    return FALSE;
 }
 
 gboolean rpl_target_check(RplTarget *t, const char *path, GError **err)
@@ -370,9 +448,13 @@ gboolean rpl_target_check(RplTarget *t, const char *path, GError **err)
     GString *bad = g_string_new(NULL);
     gboolean net_missing = FALSE;
     RplItem it;
-    while (rpl_reader_next(r, &it, err))
+    while (rpl_reader_next(r, &it, err)) {
         check_item(t, &it, path, bad, &net_missing);
-    gboolean ok = !(err && *err) && bad->len == 0;
+        if (bad->len == 0)
+            note_work(t, &it);
+    }
+    gboolean ok = !(err && *err) && bad->len == 0 &&
+                  work_survives(t, path, err);
     if (!(err && *err) && bad->len)
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "%s: found work the machine '%s' cannot price, expected "
@@ -400,7 +482,7 @@ static SimTime ops_price(RplTarget *t, guint p, const char *const *op,
 SimTime rpl_target_price(RplTarget *t, const RplItem *it)
 {
     if (it->type == RPL_WORK) {
-        double s = t->scale[it->proc];
+        double s = rpl_target_scale(t, it->proc);
         if (s == 1)
             return it->value;
         double v = round((double)it->value * s);
