@@ -109,11 +109,52 @@ static void test_bad_output_names_refused(void **state)
     g_free(top);
 }
 
+/* A sweep file's plot title, labels and series column with commands in
+ * them: the sweep draws its chart and runs nothing. */
+static void test_sweep_plot_runs_nothing(void **state)
+{
+    (void)state;
+    char *gnuplot = g_find_program_in_path("gnuplot");
+    if (!gnuplot)
+        skip();
+    g_free(gnuplot);
+    char *top = g_dir_make_tmp("pgsim-plotcli-XXXXXX", NULL);
+    char *mark = g_build_filename(top, "X", NULL);
+    char *sweep = test_ring_sweep(top, "4, 8");
+    char *text = NULL;
+    assert_true(g_file_get_contents(sweep, &text, NULL, NULL));
+    char *plots = g_strdup_printf(
+        "%splots:\n  - {name: c, x: workload.nodes, y: mean_frame_s, "
+        "title: '`touch %s`', xlabel: 'a''\" . system(\"touch %s\") . \"',"
+        " ylabel: \"x\\n!touch %s\"}\n",
+        text, mark, mark, mark);
+    assert_true(g_file_set_contents(sweep, plots, -1, NULL));
+    char *od = g_build_filename(top, "o", NULL);
+    const char *run[] = {"sweep", sweep, "-q", "-j", "1", "--out", od, NULL};
+    char *err = NULL;
+    int st = plot(run, &err);
+    if (st != 0)
+        fail_msg("exit %d: %s", st, err);
+    g_free(err);
+    assert_false(g_file_test(mark, G_FILE_TEST_EXISTS));
+    char *png = g_build_filename(od, "c.png", NULL);
+    assert_true(g_file_test(png, G_FILE_TEST_EXISTS));
+    g_free(png);
+    g_free(od);
+    g_free(plots);
+    g_free(text);
+    g_free(sweep);
+    g_free(mark);
+    support_rm_tree(top);
+    g_free(top);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_backquoted_series_runs_nothing),
         cmocka_unit_test(test_bad_output_names_refused),
+        cmocka_unit_test(test_sweep_plot_runs_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
