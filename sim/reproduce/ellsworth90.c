@@ -1,16 +1,43 @@
 /* ellsworth90.c — `pgsim reproduce ellsworth90`: seed 001's table (§6)
- * for the four generated databases, from event-driven frames on
- * Pixel-Planes 5 machines built by the machine layer
- * (sim/workload/pphigs/pphigs_run.h).  Everything it simulates is named
- * by configs/papers/ellsworth90/setup.yaml (model, database parameters,
- * frame sizes, rows, GP counts); the published values are joined by the
- * driver, never read here.  Nothing is read from the published table.
- * Cost: per database and GP count, 2 distributions and 2 frames, O(n P)
- * each, plus one frame on one GP.
+ * for the four generated databases, each cell one run of the pphigs
+ * workload through the runner (sim/run/run.h): setup.yaml's `cell` with
+ * the cell's database, GP count and algorithm set, one event-driven
+ * frame on a Pixel-Planes 5 machine built by the machine layer.  The
+ * cells are the workload's declared metrics (seed 001 §6's efficiency,
+ * utilisation and speed-up of the frame, T1 the host list's traversal;
+ * the database's counts).  Everything it simulates is named by
+ * configs/papers/ellsworth90/setup.yaml; the published values are joined
+ * by the driver, never read here.
+ * Cost: per database and GP count, 3 runs (simple, complex, by
+ * structure), each a distribution and a frame, O(n P).
  */
 #include "sim/reproduce/ellsworth90.h"
+#include "sim/run/run.h"
+#include "sim/workload/metrics.h"
 
 enum { MAX_ROWS = 16, MAX_GPS = 16 };
+
+/* ---- one cell ---------------------------------------------------------- */
+
+/* One run of the cell with database `db` on `gps` GPs with `algo`: a
+ * new result (sim_result_free), or NULL with *err. */
+static SimResult *run_cell(const RpEllRig *rig, const char *db, guint gps,
+                           const char *algo, GError **err)
+{
+    char *set[] = {g_strdup_printf("workload.database=%s", db),
+                   g_strdup_printf("workload.gps=%u", gps),
+                   g_strdup_printf("workload.algorithm=%s", algo),
+                   g_strdup_printf("run.fidelity=%s", rig->fidelity),
+                   g_strdup_printf("run.seed=%d", (int)RP_SEED), NULL};
+    CfgRun *r = cfg_run_from_tree(cfg_copy(rig->cell),
+                                  (const char *const *)set, err);
+    CfgRunOpts o = {.quiet = TRUE};
+    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+    cfg_run_free(r);
+    for (guint i = 0; set[i]; i++)
+        g_free(set[i]);
+    return res;
+}
 
 /* ---- rows ------------------------------------------------------------- */
 
@@ -20,32 +47,28 @@ static void add(GPtrArray *rows, const char *table, const char *row,
     g_ptr_array_add(rows, rp_row_new(table, row, col, v, NULL));
 }
 
-static void db_rows(const ScenePphigsDb *db, const char *row, GPtrArray *rows)
+/* The database table, from any run of the database. */
+static void db_rows(const SimResult *r, const char *row, GPtrArray *rows)
 {
-    SceneDbStats st;
-    scene_db_stats(db->db, &st);
-    add(rows, "db", row, "depth", st.depth);
-    add(rows, "db", row, "structures", st.instances);
+    double prims = wl_metric(r, "db_primitives");
+    add(rows, "db", row, "depth", wl_metric(r, "db_depth"));
+    add(rows, "db", row, "structures", wl_metric(r, "db_structures"));
     add(rows, "db", row, "polys_per_structure",
-        (double)st.primitives / st.instances);
+        prims / wl_metric(r, "db_structures"));
     add(rows, "db", row, "poly_attr_ratio",
-        (double)st.primitives / (double)MAX(st.attributes, 1));
-    add(rows, "db", row, "offscreen_pct",
-        100 * scene_pphigs_offscreen_share(
-                  db->db, scene_camera_view_proj(&db->camera)));
+        prims / MAX(wl_metric(r, "db_attributes"), 1));
+    add(rows, "db", row, "offscreen_pct", wl_metric(r, "db_offscreen_pct"));
 }
 
 /* pgsim's own columns: §2.1's distribute-by-structure, which the paper
  * describes and rejects but does not measure (no published cells). */
-static gboolean by_structure_rows(const ScenePphigsDb *db, const char *row,
-                                  guint p, const WlPphigsRig *rig,
-                                  GPtrArray *rows, GError **err)
+static void by_structure_rows(const SimResult *m, const char *row, guint p,
+                              GPtrArray *rows)
 {
-    WlPphigsMetrics m;
-    if (!wl_pphigs_run_algo(db, p, WL_PPHIGS_BY_STRUCTURE, rig, &m, err))
-        return FALSE;
     static const char *const what[] = {"eff", "util", "speedup"};
-    double v[] = {100 * m.efficiency, 100 * m.utilisation, m.speedup};
+    double v[] = {wl_metric(m, "distribution_efficiency_pct"),
+                  wl_metric(m, "processor_utilisation_pct"),
+                  wl_metric(m, "speedup")};
     for (int i = 0; i < 3; i++) {
         char col[40];
         g_snprintf(col, sizeof col, "by_structure_%s_%u", what[i], p);
@@ -53,50 +76,54 @@ static gboolean by_structure_rows(const ScenePphigsDb *db, const char *row,
                                          "pgsim's own: §2.1, not measured "
                                          "in the paper"));
     }
-    return TRUE;
 }
 
-static gboolean cell_rows(const ScenePphigsDb *db, const char *row,
-                          const guint *gp_counts, guint n_gp,
-                          const WlPphigsRig *rig, GPtrArray *rows, GError **err)
+static void paper_rows(const SimResult *s, const SimResult *x,
+                       const char *row, guint p, GPtrArray *rows)
 {
-    for (guint k = 0; k < n_gp; k++) {
-        WlPphigsMetrics s, x;
-        guint p = gp_counts[k];
-        if (!wl_pphigs_run_db(db, p, rig, &s, &x, err))
-            return FALSE;
-        char col[32];
-        g_snprintf(col, sizeof col, "simple_eff_%u", p);
-        add(rows, "1", row, col, 100 * s.efficiency);
-        g_snprintf(col, sizeof col, "complex_eff_%u", p);
-        add(rows, "1", row, col, 100 * x.efficiency);
-        g_snprintf(col, sizeof col, "util_%u", p);
-        add(rows, "1", row, col, 100 * x.utilisation);
-        g_snprintf(col, sizeof col, "speedup_%u", p);
-        add(rows, "1", row, col, x.speedup);
-        if (!by_structure_rows(db, row, p, rig, rows, err))
-            return FALSE;
-    }
-    return TRUE;
+    char col[32];
+    g_snprintf(col, sizeof col, "simple_eff_%u", p);
+    add(rows, "1", row, col, wl_metric(s, "distribution_efficiency_pct"));
+    g_snprintf(col, sizeof col, "complex_eff_%u", p);
+    add(rows, "1", row, col, wl_metric(x, "distribution_efficiency_pct"));
+    g_snprintf(col, sizeof col, "util_%u", p);
+    add(rows, "1", row, col, wl_metric(x, "processor_utilisation_pct"));
+    g_snprintf(col, sizeof col, "speedup_%u", p);
+    add(rows, "1", row, col, wl_metric(x, "speedup"));
 }
 
-gboolean rp_ellsworth90_table1(const ScenePphigsSpec *specs, guint n,
-                               const guint *gp_counts, guint n_gp,
-                               const WlPphigsRig *rig, GPtrArray *rows,
-                               GError **err)
+/* One database's rows: at each GP count the three algorithms, then the
+ * database table from the last run. */
+static gboolean db_cells(const RpEllRig *rig, const char *db, GPtrArray *rows,
+                         GError **err)
 {
-    for (guint i = 0; i < n; i++) {
-        ScenePphigsDb db;
-        if (!scene_pphigs_generate(&specs[i], &db, err))
-            return FALSE;
-        const char *row = scene_pphigs_kind_name(specs[i].kind);
-        gboolean ok = cell_rows(&db, row, gp_counts, n_gp, rig, rows, err);
-        if (ok)
-            db_rows(&db, row, rows);
-        scene_pphigs_db_clear(&db);
-        if (!ok)
-            return FALSE;
+    static const char *const algos[] = {"simple", "complex", "by_structure"};
+    SimResult *m[3] = {NULL, NULL, NULL};
+    gboolean ok = TRUE;
+    for (guint k = 0; ok && k < rig->n_gp; k++) {
+        for (int a = 0; a < 3; a++)
+            sim_result_free(m[a]), m[a] = NULL;
+        for (int a = 0; ok && a < 3; a++)
+            ok = (m[a] = run_cell(rig, db, rig->gp_counts[k], algos[a],
+                                  err)) != NULL;
+        if (ok) {
+            paper_rows(m[0], m[1], db, rig->gp_counts[k], rows);
+            by_structure_rows(m[2], db, rig->gp_counts[k], rows);
+        }
     }
+    if (ok)
+        db_rows(m[1], db, rows);
+    for (int a = 0; a < 3; a++)
+        sim_result_free(m[a]);
+    return ok;
+}
+
+gboolean rp_ellsworth90_table1(const RpEllRig *rig, const char *const *dbs,
+                               guint n, GPtrArray *rows, GError **err)
+{
+    for (guint i = 0; i < n; i++)
+        if (!db_cells(rig, dbs[i], rows, err))
+            return FALSE;
     return TRUE;
 }
 
@@ -104,9 +131,9 @@ gboolean rp_ellsworth90_table1(const ScenePphigsSpec *specs, guint n,
 
 typedef struct {
     CfgNode *root;
-    const char *model, *databases, *frame;
-    ScenePphigsSpec specs[MAX_ROWS];
-    guint n_specs, gp_counts[MAX_GPS], n_gp;
+    const CfgNode *cell;
+    const char *dbs[MAX_ROWS];
+    guint n_dbs, gp_counts[MAX_GPS], n_gp;
 } EllSetup;
 
 static gboolean seq_of(const CfgNode *root, const char *key, guint max,
@@ -124,7 +151,7 @@ static gboolean seq_of(const CfgNode *root, const char *key, guint max,
     return FALSE;
 }
 
-static gboolean read_specs(EllSetup *s, GError **err)
+static gboolean read_rows(EllSetup *s, GError **err)
 {
     const CfgNode *rows;
     if (!seq_of(s->root, "rows", MAX_ROWS, &rows, err))
@@ -135,9 +162,7 @@ static gboolean read_specs(EllSetup *s, GError **err)
             cfg_error(err, r, "another value", "a database name");
             return FALSE;
         }
-        if (!wl_pphigs_spec_load(s->databases, cfg_scalar(r), r,
-                                 &s->specs[s->n_specs++], err))
-            return FALSE;
+        s->dbs[s->n_dbs++] = cfg_scalar(r);
     }
     return TRUE;
 }
@@ -157,14 +182,16 @@ static gboolean read_gp_counts(EllSetup *s, GError **err)
     return TRUE;
 }
 
+/* setup.yaml; the cell's keys are the runner's to check (every run). */
 static gboolean setup_load(EllSetup *s, const char *path, GError **err)
 {
+    static const char *const runner_reads[] = {"cell", NULL};
     s->root = cfg_load_file(path, err);
-    return s->root && cfg_get_str(s->root, "model", TRUE, &s->model, err) &&
-           cfg_get_str(s->root, "databases", TRUE, &s->databases, err) &&
-           cfg_get_str(s->root, "frame", TRUE, &s->frame, err) &&
-           read_specs(s, err) && read_gp_counts(s, err) &&
-           cfg_check_unused(s->root, err);
+    return s->root &&
+           cfg_get_map(s->root, "cell", TRUE, "a pphigs run config",
+                       &s->cell, err) &&
+           read_rows(s, err) && read_gp_counts(s, err) &&
+           cfg_check_unused_except(s->root, runner_reads, err);
 }
 
 static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
@@ -173,11 +200,9 @@ static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
     EllSetup s = {0};
     gboolean ok = setup_load(&s, ctx->setup, err);
     if (ok) {
-        WlPphigsRig rig = {
-            s.model, ctx->fidelity ? ctx->fidelity : "analytic", {{0}, 0, 0}};
-        ok = wl_pphigs_setup_load(s.frame, &rig.setup, err) &&
-             rp_ellsworth90_table1(s.specs, s.n_specs, s.gp_counts, s.n_gp,
-                                   &rig, rows, err);
+        RpEllRig rig = {s.cell, ctx->fidelity ? ctx->fidelity : "analytic",
+                        s.gp_counts, s.n_gp};
+        ok = rp_ellsworth90_table1(&rig, s.dbs, s.n_dbs, rows, err);
     }
     cfg_free(s.root);
     return ok;

@@ -12,17 +12,24 @@
 #ifndef PGSIM_REPRODUCE_ELLSWORTH90_H
 #define PGSIM_REPRODUCE_ELLSWORTH90_H
 
+#include "sim/core/cfg.h"
 #include "sim/reproduce/reproduce.h"
-#include "sim/workload/pphigs/pphigs_run.h"
+
+/* What every cell runs (all borrowed). */
+typedef struct {
+    const CfgNode *cell;     /* a pphigs run config (setup.yaml's `cell`) */
+    const char *fidelity;    /* run.fidelity of every cell */
+    const guint *gp_counts;  /* the table's GP columns */
+    guint n_gp;
+} RpEllRig;
+
+/* Appends RpRow * for the n databases named (`workload.database` of the
+ * cell, in row order) at each of the rig's GP counts: one run of the
+ * cell per database, GP count and algorithm.  FALSE with *err if a
+ * database or the machine is bad. */
+gboolean rp_ellsworth90_table1(const RpEllRig *rig, const char *const *dbs,
+                               guint n, GPtrArray *rows, GError **err);
 
 extern const RpPaperOps rp_ellsworth90;
-
-/* Appends RpRow * for the given databases (n specs, in row order) at
- * each of the n_gp GP counts.  FALSE with *err if a spec or the machine
- * is bad. */
-gboolean rp_ellsworth90_table1(const ScenePphigsSpec *specs, guint n,
-                               const guint *gp_counts, guint n_gp,
-                               const WlPphigsRig *rig, GPtrArray *rows,
-                               GError **err);
 
 #endif

@@ -43,7 +43,8 @@
  * Cost per frame: the frame's (pphigs_frame.h) plus O(host size) per edit.
  */
 #include "sim/workload/pphigs/pphigs_pixels.h"
-#include "sim/workload/pphigs/pphigs_run.h"
+#include "sim/workload/pphigs/pphigs_cfg.h"
+#include "sim/workload/pphigs/pphigs_metrics.h"
 #include "sim/workload/pphigs/pphigs_rebalance.h"
 #include "sim/machine/model.h"
 #include "sim/scene/scene_limits.h"
@@ -266,6 +267,8 @@ typedef struct {
     uint64_t scanned;      /* total_scan + cache_walk charged so far */
     double imbalance;
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
+    SceneDbStats db_st;    /* the database as drawn, before any edit */
+    double db_offscreen;   /* its off-screen share under the camera */
 } Run;
 
 /* The database drawn: a copy of the file's, or generated; written to
@@ -278,6 +281,9 @@ static gboolean make_db(Run *r, GError **err)
     } else if (!scene_pphigs_generate(&r->p->spec, &r->db, err)) {
         return FALSE;
     }
+    scene_db_stats(r->db.db, &r->db_st);
+    r->db_offscreen = scene_pphigs_offscreen_share(
+        r->db.db, scene_camera_view_proj(&r->db.camera));
     return !r->p->dump_db || scene_db_save(r->db.db, r->p->dump_db, err);
 }
 
@@ -531,6 +537,20 @@ static void fill_edits(Run *r, const WlContext *ctx, SimResult *out)
                           "ms");
 }
 
+/* The database as drawn, before any edit (seed 001 §6's database
+ * table): its counts and its off-screen share. */
+static void fill_db(const Run *r, SimResult *out)
+{
+    sim_result_set_metric(out, "db_depth", r->db_st.depth, "");
+    sim_result_set_metric(out, "db_structures", (double)r->db_st.instances,
+                          "");
+    sim_result_set_metric(out, "db_primitives", (double)r->db_st.primitives,
+                          "");
+    sim_result_set_metric(out, "db_attributes", (double)r->db_st.attributes,
+                          "");
+    sim_result_set_metric(out, "db_offscreen_pct", 100 * r->db_offscreen, "%");
+}
+
 static void fill(Run *r, const WlContext *ctx, SimResult *out)
 {
     SimTime now = sim_now(ctx->eng);
@@ -561,6 +581,7 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "expressions_per_frame", r->exprs / n, "");
     sim_result_set_metric(out, "image_matches_serial", r->image_ok, "");
     fill_edits(r, ctx, out);
+    fill_db(r, out);
 }
 
 /* The last frame against a serial render of the host's list. */
@@ -629,6 +650,12 @@ static const WlMetric pphigs_metrics[] = {
      "host elements walked per frame to place checkpoints again"},
     {"host_edit_ms_per_frame", "ms",
      "the host's time stepping back and packing elements, per frame"},
+    {"db_depth", "", "levels of the database's structure network, as drawn"},
+    {"db_structures", "", "structure instances of the database (max-set)"},
+    {"db_primitives", "", "primitive instances of the database (max-set)"},
+    {"db_attributes", "", "attribute instances of the database (max-set)"},
+    {"db_offscreen_pct", "%",
+     "share of the database's polygons wholly outside the view"},
     {NULL, NULL, NULL},
 };
 

@@ -14,7 +14,7 @@
 #include <cmocka.h>
 
 #include "sim/run/run.h"
-#include "sim/workload/pphigs/pphigs_run.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 #include "sim/workload/workload.h"
 #include "tests/support.h"
 #include <glib/gstdio.h>
@@ -131,12 +131,12 @@ static void test_bad_specs(void **st)
 static void test_frames_equal_analytic(void **st)
 {
     (void)st;
-    WlPphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0, 0}};
+    PphigsRig rig = {"pixel-planes-5", "packet", {{0}, 0, 0}};
     assert_true(
         wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m =
-        wl_pphigs_machine_new(eng, "pixel-planes-5", 4, "packet", NULL);
+        pphigs_rig_machine_new(eng, "pixel-planes-5", 4, "packet", NULL);
     assert_non_null(m);
     WlPphigsCosts c;
     SimTime send;
@@ -150,8 +150,8 @@ static void test_frames_equal_analytic(void **st)
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     WlPphigsMetrics a[2], b[2];
-    assert_true(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], NULL));
-    wl_pphigs_run_db_analytic(&db, 4, &c, rig.setup.cluster_scale, &b[0],
+    assert_true(pphigs_rig_run_db(&db, 4, &rig, &a[0], &a[1], NULL));
+    pphigs_rig_analytic(&db, 4, &c, rig.setup.cluster_scale, &b[0],
                               &b[1]);
     for (int k = 0; k < 2; k++) {
         assert_true(a[k].t1 == b[k].t1); /* integer picoseconds */
@@ -163,12 +163,12 @@ static void test_frames_equal_analytic(void **st)
     /* a bad model or fidelity is an error, not a crash */
     GError *err = NULL;
     rig.model = "no-such-machine";
-    assert_false(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], &err));
+    assert_false(pphigs_rig_run_db(&db, 4, &rig, &a[0], &a[1], &err));
     assert_non_null(strstr(err->message, "no-such-machine"));
     g_clear_error(&err);
     rig.model = "pixel-planes-5";
     rig.fidelity = "exact";
-    assert_false(wl_pphigs_run_db(&db, 4, &rig, &a[0], &a[1], &err));
+    assert_false(pphigs_rig_run_db(&db, 4, &rig, &a[0], &a[1], &err));
     assert_non_null(strstr(err->message, "exact"));
     g_clear_error(&err);
     scene_pphigs_db_clear(&db);
@@ -198,7 +198,7 @@ static void run_flock(const char *const *sets, Out *o)
         fail_msg("%s", err->message);
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
-    assert_int_equal(r->metrics->len, 16);
+    assert_int_equal(r->metrics->len, 21); /* 16 + the database's 5 */
     assert_true(((SimMetric *)g_ptr_array_index(r->metrics, 14))->value == 1);
     for (guint i = 0; i < 15; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
@@ -605,7 +605,7 @@ static void test_run_matches_table(void **st)
                           NULL};
     SimResult *r = app_run(sets, NULL);
     assert_non_null(r);
-    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0, 0}};
+    PphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 0, 0}};
     assert_true(
         wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup, NULL));
     ScenePphigsSpec s;
@@ -614,7 +614,7 @@ static void test_run_matches_table(void **st)
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     WlPphigsMetrics simple, complex;
-    assert_true(wl_pphigs_run_db(&db, 4, &rig, &simple, &complex, NULL));
+    assert_true(pphigs_rig_run_db(&db, 4, &rig, &simple, &complex, NULL));
     near(metric(r, "distribution_efficiency_pct"), 100 * complex.efficiency,
          1e-12);
     near(metric(r, "processor_utilisation_pct"), 100 * complex.utilisation,

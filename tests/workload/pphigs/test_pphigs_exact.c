@@ -23,7 +23,7 @@
 #include <string.h>
 
 #include "sim/workload/pphigs/pphigs_rebalance.h"
-#include "sim/workload/pphigs/pphigs_run.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 #include "sim/scene/pphigs_db.h"
 
 /* Unit weights: a triangle 1 (w_vertex 0), attributes small. */
@@ -643,7 +643,7 @@ static void test_analytic_unsplit(void **st)
     scene_db_post(db.db, s);
     db.camera = scene_pphigs_fit_view(db.db);
     WlPphigsMetrics simple, complex;
-    wl_pphigs_run_db_analytic(&db, 4, &RC, 8, &simple, &complex);
+    pphigs_rig_analytic(&db, 4, &RC, 8, &simple, &complex);
     assert_true(simple.utilisation == 0.25 && complex.utilisation == 0.25);
     assert_true(simple.efficiency == 1 && complex.efficiency == 1);
     scene_db_free(db.db);

@@ -1,7 +1,6 @@
 /* test_pphigs_metrics.c — seed 001's metrics on generated databases:
  * one GP is the serial traversal; the speed-up identity; the complex
- * algorithm beats the simple one where attributes are dense; the table
- * rows of the reproduction.
+ * algorithm beats the simple one where attributes are dense.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -9,9 +8,8 @@
 #include <cmocka.h>
 #include <math.h>
 
-#include "sim/reproduce/reproduce.h"
-#include "sim/reproduce/ellsworth90.h"
 #include "sim/workload/pphigs/pphigs_metrics.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 #include <string.h>
 
 /* Test costs: a 4-vertex polygon 1 us on-screen, 0.3 us rejected. */
@@ -45,11 +43,11 @@ static void test_one_gp_is_serial(void **st)
     ScenePphigsDb db;
     assert_true(scene_pphigs_generate(&s, &db, NULL));
     WlPphigsMetrics a, b;
-    wl_pphigs_run_db_analytic(&db, 1, &C, 8, &a, &b);
+    pphigs_rig_analytic(&db, 1, &C, 8, &a, &b);
     assert_true(fabs(a.efficiency - 1) < 1e-12);
     assert_true(fabs(b.efficiency - 1) < 1e-12);
     assert_true(fabs(b.utilisation - 1) < 1e-12);
-    wl_pphigs_run_db_analytic(&db, 4, &C, 8, &a, &b);
+    pphigs_rig_analytic(&db, 4, &C, 8, &a, &b);
     assert_true(fabs(b.speedup - b.t1 / b.max) < 1e-9);
     assert_true(a.efficiency < 0.9); /* attributes copied to every GP */
     assert_true(b.efficiency > a.efficiency + 0.1);
@@ -79,38 +77,6 @@ static void test_offscreen_is_cheaper(void **st)
     assert_int_equal(tf - t,
                      n_off * (C.poly + 4 * C.vertex - 4 * C.reject_vertex));
     scene_pphigs_db_clear(&db);
-}
-
-static void test_table_rows(void **st)
-{
-    (void)st;
-    ScenePphigsSpec s[2] = {flock(), flock()};
-    s[1].kind = SCENE_PPHIGS_HUMANS;
-    s[1].figures = 2, s[1].structures = 20, s[1].polygons = 200;
-    s[1].levels = 5;
-    WlPphigsRig rig = {"pixel-planes-5", "analytic", {{0}, 64, 0}};
-    const guint gps[] = {4, 16};
-    rig.setup.frame = (WlPphigsFrameSpec){100, 16, 16, 4, 640, 512, 128, 80};
-    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
-    assert_true(rp_ellsworth90_table1(s, 2, gps, 2, &rig, rows, NULL));
-    assert_int_equal(rows->len, 2 * (8 + 6 + 5)); /* + by-structure */
-    guint table1 = 0;
-    for (guint i = 0; i < rows->len; i++) {
-        RpRow *r = g_ptr_array_index(rows, i);
-        if (g_strcmp0(r->table, "1") == 0)
-            table1++;
-        if (g_strcmp0(r->column, "depth") == 0)
-            assert_true(r->sim == (i < 19 ? 2 : 5));
-    }
-    assert_int_equal(table1, 28);
-    g_ptr_array_unref(rows);
-    s[1].levels = 50; /* cannot be met */
-    GError *err = NULL;
-    rows = g_ptr_array_new_with_free_func(rp_row_free);
-    assert_false(rp_ellsworth90_table1(s, 2, gps, 2, &rig, rows, &err));
-    assert_non_null(err);
-    g_clear_error(&err);
-    g_ptr_array_unref(rows);
 }
 
 /* The formulas on values worked out by hand: T1 12 us over GPs of 2, 4
@@ -209,7 +175,6 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_one_gp_is_serial),
         cmocka_unit_test(test_offscreen_is_cheaper),
-        cmocka_unit_test(test_table_rows),
         cmocka_unit_test(test_formulas),
         cmocka_unit_test(test_nonprim_exact),
     };

@@ -1,5 +1,7 @@
-/* test_pphigs_run.c — the reproduction's computation on variants of seed
- * 001's human figures (issue 16 point 5, docs/validation.md): §2.2's
+/* test_pphigs_run.c — the reproduction's cells (the workload's own
+ * metrics of a frame through the runner) equal the tests' rig of frames
+ * run by hand (pphigs_rig.h); the rig on variants of seed 001's human
+ * figures (issue 16 point 5, docs/validation.md): §2.2's
  * instancing imbalance is in the model (a small structure instanced many
  * times repeats its uneven split at every instance), yet even the most
  * instanced figures the generator's counts allow keep the complex
@@ -10,7 +12,8 @@
 #include <stddef.h>
 #include <cmocka.h>
 
-#include "sim/workload/pphigs/pphigs_run.h"
+#include "tests/support.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 #include <stdio.h>
 
 /* Every leaf part of a figure (fig<f>_part<p> beyond the 9-deep chain,
@@ -47,23 +50,31 @@ static void instance_leaves(SceneDb *db)
     g_free(to);
 }
 
+/* The analytic rig of the reproduction and seed 001's human figures as
+ * generated (scene_pphigs_db_clear). */
+static void human_figures(PphigsRig *rig, ScenePphigsDb *db)
+{
+    ScenePphigsSpec sp;
+    *rig = (PphigsRig){.model = "pixel-planes-5", .fidelity = "analytic"};
+    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
+                                    "two_human_figures", NULL, &sp, NULL));
+    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig->setup,
+                                     NULL));
+    assert_true(scene_pphigs_generate(&sp, db, NULL));
+}
+
 /* Complex-algorithm metrics of the figures at 4 GPs (x) and 16 (x16). */
 static void humans(gboolean instanced, WlPphigsMetrics *x,
                    WlPphigsMetrics *x16)
 {
-    ScenePphigsSpec sp;
-    WlPphigsRig rig = {.model = "pixel-planes-5", .fidelity = "analytic"};
-    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
-                                    "two_human_figures", NULL, &sp, NULL));
-    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
-                                     NULL));
+    PphigsRig rig;
     ScenePphigsDb db;
-    assert_true(scene_pphigs_generate(&sp, &db, NULL));
+    human_figures(&rig, &db);
     if (instanced)
         instance_leaves(db.db);
     WlPphigsMetrics s;
-    assert_true(wl_pphigs_run_db(&db, 4, &rig, &s, x, NULL));
-    assert_true(wl_pphigs_run_db(&db, 16, &rig, &s, x16, NULL));
+    assert_true(pphigs_rig_run_db(&db, 4, &rig, &s, x, NULL));
+    assert_true(pphigs_rig_run_db(&db, 16, &rig, &s, x16, NULL));
     scene_pphigs_db_clear(&db);
     print_message("human figures%s: complex util_4 %.2f %%, util_16 %.2f %%, "
                   "eff_4 %.2f %%\n",
@@ -90,30 +101,80 @@ static void test_instancing_imbalance(void **st)
                 inst.efficiency < plain.efficiency + 0.005);
 }
 
-/* wl_pphigs_run_algo (the by-structure path of the reproduction) prices
- * one algorithm as wl_pphigs_run_db prices both: the same t1 (one GP),
+/* pphigs_rig_run_algo prices one algorithm as pphigs_rig_run_db prices
+ * both: the same t1 (one GP),
  * the same metrics field by field; on one GP t1 is the frame itself. */
 static void test_run_algo_matches_db(void **st)
 {
     (void)st;
-    ScenePphigsSpec sp;
-    WlPphigsRig rig = {.model = "pixel-planes-5", .fidelity = "analytic"};
-    assert_true(wl_pphigs_spec_load("configs/pphigs/databases.yaml",
-                                    "two_human_figures", NULL, &sp, NULL));
-    assert_true(wl_pphigs_setup_load("configs/pphigs/frame.yaml", &rig.setup,
-                                     NULL));
+    PphigsRig rig;
     ScenePphigsDb db;
-    assert_true(scene_pphigs_generate(&sp, &db, NULL));
+    human_figures(&rig, &db);
     WlPphigsMetrics s, x, a[2], one;
-    assert_true(wl_pphigs_run_db(&db, 4, &rig, &s, &x, NULL));
-    assert_true(wl_pphigs_run_algo(&db, 4, WL_PPHIGS_SIMPLE, &rig, &a[0], NULL));
-    assert_true(wl_pphigs_run_algo(&db, 4, WL_PPHIGS_COMPLEX, &rig, &a[1], NULL));
+    assert_true(pphigs_rig_run_db(&db, 4, &rig, &s, &x, NULL));
+    assert_true(pphigs_rig_run_algo(&db, 4, WL_PPHIGS_SIMPLE, &rig, &a[0], NULL));
+    assert_true(pphigs_rig_run_algo(&db, 4, WL_PPHIGS_COMPLEX, &rig, &a[1], NULL));
     assert_memory_equal(&a[0], &s, sizeof s);
     assert_memory_equal(&a[1], &x, sizeof x);
     assert_true(s.t1 > 0 && s.max < s.t1 && s.speedup > 1);
-    assert_true(wl_pphigs_run_algo(&db, 1, WL_PPHIGS_SIMPLE, &rig, &one, NULL));
+    assert_true(pphigs_rig_run_algo(&db, 1, WL_PPHIGS_SIMPLE, &rig, &one, NULL));
     assert_true(one.t1 == s.t1 && one.max == one.t1 && one.sum == one.t1);
     assert_true(one.speedup == 1 && one.efficiency == 1);
+    scene_pphigs_db_clear(&db);
+}
+
+/* One frame of the human figures through the runner, as
+ * `pgsim reproduce ellsworth90` runs a cell. */
+static SimResult *runner_cell(guint gps, const char *algo)
+{
+    char *yaml = g_strdup_printf(
+        "machine: {model: pixel-planes-5}\n"
+        "workload: {type: pphigs, algorithm: %s, gps: %u,\n"
+        "  database: two_human_figures,\n"
+        "  databases: configs/pphigs/databases.yaml,\n"
+        "  frame: configs/pphigs/frame.yaml, rebalance: {enabled: false}}\n",
+        algo, gps);
+    SupportRun o = {.fidelity = "analytic", .frames = 1, .seed = 1};
+    SimResult *r = support_run_text(yaml, &o, NULL);
+    assert_non_null(r);
+    g_free(yaml);
+    return r;
+}
+
+static double metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    assert_true(sim_result_get_metric(r, name, &v));
+    return v;
+}
+
+/* The reproduction's cells are the workload's own metrics of a frame
+ * run through the runner, its T1 the host list's traversal cost: for
+ * each algorithm they equal, to the last bit, the rig's frames with T1
+ * the busy time of a frame on one GP; on one GP the frame is T1. */
+static void test_runner_matches_rig(void **st)
+{
+    (void)st;
+    PphigsRig rig;
+    ScenePphigsDb db;
+    human_figures(&rig, &db);
+    static const char *const algos[] = {"simple", "complex", "by_structure"};
+    for (int a = 0; a < 3; a++) {
+        WlPphigsMetrics m;
+        assert_true(pphigs_rig_run_algo(&db, 4, (WlPphigsAlgo)a, &rig, &m,
+                                        NULL));
+        SimResult *r = runner_cell(4, algos[a]);
+        assert_true(metric(r, "distribution_efficiency_pct") ==
+                    100 * m.efficiency);
+        assert_true(metric(r, "processor_utilisation_pct") ==
+                    100 * m.utilisation);
+        assert_true(metric(r, "speedup") == m.speedup);
+        sim_result_free(r);
+    }
+    SimResult *r = runner_cell(1, "simple");
+    assert_true(metric(r, "speedup") == 1);
+    assert_true(metric(r, "distribution_efficiency_pct") == 100);
+    sim_result_free(r);
     scene_pphigs_db_clear(&db);
 }
 
@@ -122,6 +183,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_instancing_imbalance),
         cmocka_unit_test(test_run_algo_matches_db),
+        cmocka_unit_test(test_runner_matches_rig),
     };
     return cmocka_run_group_tests_name("pphigs_run", tests, NULL, NULL);
 }

@@ -1,15 +1,13 @@
-/* pphigs_run.c — one database at one GP count, both algorithms (see
- * pphigs_run.h): a fresh distribution of a generated database followed
- * by one event-driven frame on a fresh Pixel-Planes 5 machine; the
- * metrics are the GPs' busy times.  sim/reproduce/ellsworth90.c builds
- * seed 001's table from these.
+/* pphigs_rig.c — the tests' rig (pphigs_rig.h): a fresh distribution
+ * of a generated database followed by one event-driven frame on a fresh
+ * Pixel-Planes 5 machine; the metrics are the GPs' busy times.
  * Cost: per database and GP count, 2 distributions and 2 frames, O(n P)
  * each, plus one frame on one GP.
  */
-#include "sim/workload/pphigs/pphigs_run.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 #include <string.h>
 
-MachMachine *wl_pphigs_machine_new(SimEngine *eng, const char *model, guint ngp,
+MachMachine *pphigs_rig_machine_new(SimEngine *eng, const char *model, guint ngp,
                                    const char *fidelity, GError **err)
 {
     char *text =
@@ -34,11 +32,11 @@ static WlPphigsDist *distribute(const ScenePphigsDb *db, guint ngp,
 
 /* Per-GP processor times (us) of one frame of `a` on ngp GPs. */
 static gboolean frame_times(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
-                            const WlPphigsRig *rig, double *us, GError **err)
+                            const PphigsRig *rig, double *us, GError **err)
 {
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m =
-        wl_pphigs_machine_new(eng, rig->model, ngp, rig->fidelity, err);
+        pphigs_rig_machine_new(eng, rig->model, ngp, rig->fidelity, err);
     WlPphigsFrame *f =
         m ? wl_pphigs_frame_new(m, &rig->setup.frame, err) : NULL;
     gboolean ok = f != NULL;
@@ -60,7 +58,7 @@ static gboolean frame_times(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
 }
 
 static gboolean run_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
-                         const WlPphigsRig *rig, double t1,
+                         const PphigsRig *rig, double t1,
                          WlPphigsMetrics *out, GError **err)
 {
     double *us = g_new(double, ngp);
@@ -71,8 +69,8 @@ static gboolean run_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
     return ok;
 }
 
-gboolean wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
-                          const WlPphigsRig *rig, WlPphigsMetrics *simple,
+gboolean pphigs_rig_run_db(const ScenePphigsDb *db, guint ngp,
+                          const PphigsRig *rig, WlPphigsMetrics *simple,
                           WlPphigsMetrics *complex, GError **err)
 {
     double t1 = 0;
@@ -81,8 +79,8 @@ gboolean wl_pphigs_run_db(const ScenePphigsDb *db, guint ngp,
            run_algo(db, ngp, WL_PPHIGS_COMPLEX, rig, t1, complex, err);
 }
 
-gboolean wl_pphigs_run_algo(const ScenePphigsDb *db, guint ngp,
-                            WlPphigsAlgo a, const WlPphigsRig *rig,
+gboolean pphigs_rig_run_algo(const ScenePphigsDb *db, guint ngp,
+                            WlPphigsAlgo a, const PphigsRig *rig,
                             WlPphigsMetrics *out, GError **err)
 {
     double t1 = 0;
@@ -100,7 +98,7 @@ static void analytic_algo(const ScenePphigsDb *db, guint ngp, WlPphigsAlgo a,
     wl_pphigs_dist_free(d);
 }
 
-void wl_pphigs_run_db_analytic(const ScenePphigsDb *db, guint ngp,
+void pphigs_rig_analytic(const ScenePphigsDb *db, guint ngp,
                                const WlPphigsCosts *c, double cluster_scale,
                                WlPphigsMetrics *simple,
                                WlPphigsMetrics *complex)
