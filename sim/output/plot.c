@@ -240,18 +240,30 @@ static void merge_groups(GArray *gs)
     g_array_set_size(gs, k);
 }
 
-static gboolean too_many_series(const PlotSpec *p, const Grouping *g,
-                                const char *name, guint row, GError **err)
+typedef struct {
+    const char *one, *many; /* "series", "categories" */
+    int limit;
+} PlotLimit;
+
+static const PlotLimit series_limit = {"series", "series", PLOT_MAX_SERIES};
+static const PlotLimit category_limit = {"category", "categories",
+                                         PLOT_MAX_CATEGORIES};
+
+/* TRUE with *err when `value` would be the (limit+1)-th distinct one of
+ * `seen` (series names or categories, from column col). */
+static gboolean over_limit(const PlotSpec *p, GHashTable *seen,
+                           const PlotLimit *lim, const char *col,
+                           const char *value, guint row, GError **err)
 {
-    if (g->all->len < PLOT_MAX_SERIES ||
-        g_hash_table_contains(g->index, name))
+    if (g_hash_table_size(seen) < (guint)lim->limit ||
+        g_hash_table_contains(seen, value))
         return FALSE;
-    char *shown = plot_printable(name);
+    char *shown = plot_printable(value);
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "plot %s: found a series number %d, '%s' in column '%s' "
-                "(data row %u), expected at most %d series in a chart",
-                p->name, PLOT_MAX_SERIES + 1, shown, p->series, row + 1,
-                PLOT_MAX_SERIES);
+                "plot %s: found a %s number %d, '%s' in column '%s' (data "
+                "row %u), expected at most %d %s in a chart",
+                p->name, lim->one, lim->limit + 1, shown, col, row + 1,
+                lim->limit, lim->many);
     g_free(shown);
     return TRUE;
 }
@@ -271,7 +283,9 @@ static GPtrArray *group_rows(const PlotSpec *p, const DataTable *t,
         const char *sn = sc >= 0 ? dt_cell(t, r, sc) : "";
         if (!number(dt_cell(t, r, yc), &y) || !*xs)
             continue;
-        if (too_many_series(p, &g, sn, r, err)) {
+        if (over_limit(p, g.index, &series_limit, p->series, sn, r, err) ||
+            (*categorical &&
+             over_limit(p, g.cats, &category_limit, p->x, xs, r, err))) {
             g_ptr_array_free(g.all, TRUE);
             g.all = NULL;
             break;

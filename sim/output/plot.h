@@ -29,6 +29,9 @@
 /* More lines than this make no readable chart (and gnuplot rereads the
  * data file once per line): plot_render() refuses them. */
 #define PLOT_MAX_SERIES 500
+/* Nor more labels on a categorical (non-numeric) x axis: gnuplot takes
+ * minutes over 200,000 of them. */
+#define PLOT_MAX_CATEGORIES 1000
 
 typedef struct {
     char *name;   /* output file stem (plot_name_ok) */
@@ -73,12 +76,13 @@ void plot_xy_add(DataTable *t, double x, double y, const char *series);
  * folder inside dir, then renames the four files into dir: a failure
  * leaves dir as it was.  Rows whose x or y is empty or not a number are
  * skipped (a categorical x, one that is not numeric, is placed at 0, 1,
- * 2 ... in first-seen order).  A bad name or more than PLOT_MAX_SERIES
- * series is an input error.  O(rows log rows). */
+ * 2 ... in first-seen order).  A bad name, more than PLOT_MAX_SERIES
+ * series or more than PLOT_MAX_CATEGORIES categories is an input error.
+ * O(rows log rows). */
 gboolean plot_render(const PlotSpec *p, const DataTable *t, const char *dir,
                      GError **err);
 /* TRUE when a script keeps data out of gnuplot's code: every line starts
- * with "# ", "set " or "plot " or continues a line ending in '', no
+ * with "# ", "set " or "plot " or continues a line ending in a backslash, no
  * string spans lines and every backquote is inside single quotes.
  * plot_texts() asserts it of each script it makes. */
 gboolean plot_script_safe(const char *gp);

@@ -5,8 +5,8 @@
  * create does not appear, and the script has no backquote or line outside
  * a single-quoted string; chart names that could leave the folder or hide
  * a file are refused (in a sweep file, with a located error); a failed
- * gnuplot leaves the folder as it was; 200,000 series are refused at
- * once, and 200,000 points of one series are drawn. */
+ * gnuplot leaves the folder as it was; 200,000 series or categories are
+ * refused at once, and 200,000 points of one series are drawn. */
 #include "sim/output/plot.h"
 #include <setjmp.h>
 #include <stdarg.h>
@@ -321,6 +321,20 @@ static void test_many_series_refused(void **state)
     assert_false(plot_render(p, t, dir, &err));
     if (!strstr(err->message, "found a series number 501, 's500' in column "
                               "'s' (data row 501), expected at most 500"))
+        fail_msg("got: %s", err->message);
+    g_clear_error(&err);
+    /* 200,000 categories on x (gnuplot takes minutes over their labels) */
+    g_free(p->series);
+    p->series = NULL;
+    for (guint r = 0; r < t->rows->len; r++) {
+        char **row = g_ptr_array_index(t->rows, r);
+        g_free(row[0]);
+        row[0] = g_strdup_printf("c%u", r);
+    }
+    assert_false(plot_render(p, t, dir, &err));
+    if (!strstr(err->message, "found a category number 1001, 'c1000' in "
+                              "column 'x' (data row 1001), expected at most "
+                              "1000 categories"))
         fail_msg("got: %s", err->message);
     g_error_free(err);
     char *l = listing(dir);
