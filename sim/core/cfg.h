@@ -119,6 +119,10 @@ gboolean cfg_set_override(CfgNode *root, const char *assignment, GError **err);
 /* Deep-merges `over` into `base` (maps merge, anything else replaces);
  * used for machine models included by name and then overridden. */
 void cfg_merge(CfgNode *base, const CfgNode *over);
+/* Sets key of map to value (taken), replacing the value it had; a new
+ * key is located where the value is.  For a run tree built from sections
+ * of other files (cfg_copy keeps their locations). */
+void cfg_map_put(CfgNode *map, const char *key, CfgNode *value);
 
 /* Describes a node for "found ...": "'text'", "a map", "a sequence",
  * "an empty value".  Returns a new string (g_free). */

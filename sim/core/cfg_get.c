@@ -429,6 +429,16 @@ gboolean cfg_set_override(CfgNode *root, const char *assignment, GError **err)
     return ok;
 }
 
+void cfg_map_put(CfgNode *map, const char *key, CfgNode *value)
+{
+    g_assert(map->kind == CFG_MAP && value);
+    CfgEntry *e = cfg_map_find(map, key);
+    if (e)
+        cfg_node_assign(e->value, value);
+    else
+        cfg_map_add(map, key, value->file, value->line, value->col, value);
+}
+
 void cfg_merge(CfgNode *base, const CfgNode *over)
 {
     if (base->kind != CFG_MAP || over->kind != CFG_MAP) {
