@@ -16,78 +16,159 @@
  *   fig2      the same rows x {rs, hbp}_imbalance: (max - min) / mean
  *             merge operations of AAPC (§5)
  *   text      P16/2POT/640 x aapc_hbp_speedup
- * Every run is one frame on a fresh engine and machine built at the
- * context's network fidelity; runs are cached by (scene, N, P, scheme,
- * balance): about 90.  Charts: kurc96_plot.c.
+ * Every run is one frame of the `pixelmerge` workload through the runner
+ * (sim/run/run.h): a run tree of the setup's machine, workload and the
+ * row's scene, with the run's scheme, balance, processors and resolution
+ * and run.seed / frames / fidelity as overrides, built on a fresh engine
+ * and machine at the context's network fidelity; results are the
+ * workload's metrics.  Runs are cached by (scene, N, P, scheme,
+ * balance): about 90.  The cross-validation's cost changes are overrides
+ * of the model's node costs (machine.nodes.node.costs.OP.value), so they
+ * reach the machine that prices the work.  Charts: kurc96_plot.c.
  */
 #include "sim/reproduce/kurc96.h"
+#include "sim/machine/machine.h"
 #include "sim/reproduce/rp_driver.h"
-#include "sim/scene/scene_cfg.h"
+#include "sim/run/run.h"
 #include "sim/workload/metrics.h"
-#include "sim/workload/pixelmerge/pm_workload.h"
 #include <math.h>
-
 
 const char *const rp_kurc96_scenes[] = {"1POT",   "2POT",   "4POT_1", "4POT_2",
                                         "8POT_1", "8POT_2", NULL};
 enum { N_SCENES = 6 };
 
+/* The node costs of each fitted group (RP_KURC_GROUPS, in its order):
+ * scatter and gather are one group. */
+static const char *const group_ops[RP_KURC_GROUPS][2] = {
+    {"polygon", NULL},    {"span", NULL},      {"insert_step", NULL},
+    {"pixel", NULL},      {"zbuf_init", NULL}, {"compare", NULL},
+    {"scatter", "gather"}};
+
 typedef struct {
     const RpContext *ctx;
     CfgNode *setup;
-    WlPmParams *base;
-    Scene *scenes[N_SCENES];
-    GHashTable *cache; /* key -> RpKurcRun * */
+    SimTime cost[RP_KURC_GROUPS][2]; /* the model's node costs of the groups */
+    gboolean have_costs;             /* cost[] read from a built machine */
+    GHashTable *cache;               /* key -> RpKurcRun * */
 } Kurc;
 
-static gboolean load_scenes(Kurc *k, GError **err)
+/* Every scene of the paper is there, and nothing else. */
+static gboolean check_scenes(const Kurc *k, GError **err)
 {
-    const CfgNode *sc = cfg_get(k->setup, "scenes");
-    for (int i = 0; i < N_SCENES; i++) {
-        const CfgNode *s = sc ? cfg_get(sc, rp_kurc96_scenes[i]) : NULL;
-        if (!s) {
-            cfg_error(err, sc ? sc : k->setup,
-                      "no scene "
-                      "'1POT' ... '8POT_2'",
-                      "scenes: {1POT: ..., 2POT: "
-                      "..., 4POT_1, 4POT_2, 8POT_1, 8POT_2}");
+    const CfgNode *sc;
+    if (!cfg_get_map(k->setup, "scenes", TRUE,
+                     "scenes: {1POT: ..., 2POT: ..., 4POT_1, 4POT_2, "
+                     "8POT_1, 8POT_2}",
+                     &sc, err))
+        return FALSE;
+    for (int i = 0; i < N_SCENES; i++)
+        if (!cfg_get(sc, rp_kurc96_scenes[i])) {
+            cfg_error(err, sc, "no scene '1POT' ... '8POT_2'",
+                      "scenes: {1POT: ..., 2POT: ..., 4POT_1, 4POT_2, "
+                      "8POT_1, 8POT_2}");
             return FALSE;
         }
-        k->scenes[i] = scene_from_cfg(s, err);
-        if (!k->scenes[i])
+    for (guint i = 0; i < cfg_map_len(sc); i++) {
+        const char *key = cfg_map_key(sc, i);
+        if (!g_strv_contains((const char *const *)rp_kurc96_scenes, key)) {
+            char *found = g_strdup_printf("scene '%s'", key);
+            cfg_error(err, cfg_map_value(sc, i), found,
+                      "one of 1POT, 2POT, 4POT_1, 4POT_2, 8POT_1, 8POT_2");
+            g_free(found);
             return FALSE;
+        }
     }
     return TRUE;
 }
 
+/* Loads the setup and checks its top level; the runner checks each
+ * section when it builds a run from it. */
 static gboolean kurc_init(Kurc *k, const RpContext *ctx, GError **err)
 {
+    static const char *const runner_reads[] = {"machine", "workload", "scenes",
+                                               NULL};
     k->ctx = ctx;
     k->cache = g_hash_table_new_full(g_str_hash, g_str_equal, g_free, g_free);
     k->setup = cfg_load_file(ctx->setup, err);
-    if (!k->setup)
-        return FALSE;
-    const CfgNode *wl = cfg_get(k->setup, "workload");
-    const char *type = NULL;
-    if (!cfg_get_str(wl, "type", TRUE, &type, err))
-        return FALSE;
-    k->base = wl_pixelmerge_ops.parse(wl, err);
-    if (!k->base || !load_scenes(k, err) ||
-        !mach_check_section(cfg_get(k->setup, "machine"), err))
+    const CfgNode *sec;
+    if (!k->setup ||
+        !cfg_get_map(k->setup, "machine", TRUE, "machine: {model: ipsc2}", &sec,
+                     err) ||
+        !cfg_get_map(k->setup, "workload", TRUE,
+                     "workload: {type: pixelmerge, ...}", &sec, err) ||
+        !check_scenes(k, err))
         return FALSE;
     cfg_mark_read(cfg_get(k->setup, "view")); /* used through anchors */
-    return cfg_check_unused(k->setup, err);
+    return cfg_check_unused_except(k->setup, runner_reads, err);
 }
 
 static void kurc_clear(Kurc *k)
 {
-    for (int i = 0; i < N_SCENES; i++)
-        if (k->scenes[i])
-            scene_free(k->scenes[i]);
-    if (k->base)
-        wl_pixelmerge_ops.free_params(k->base);
     cfg_free(k->setup);
     g_hash_table_destroy(k->cache);
+}
+
+/* The run tree of scene `scene`: the setup's machine and workload
+ * sections and the scene, copied with their places in the setup file. */
+static CfgNode *run_tree(const Kurc *k, const char *scene, GError **err)
+{
+    CfgNode *root = cfg_load_string("schema_version: 1\n", k->ctx->setup, err);
+    if (!root)
+        return NULL;
+    cfg_map_put(root, "machine", cfg_copy(cfg_get(k->setup, "machine")));
+    cfg_map_put(root, "workload", cfg_copy(cfg_get(k->setup, "workload")));
+    cfg_map_put(root, "scene",
+                cfg_copy(cfg_get(cfg_get(k->setup, "scenes"), scene)));
+    return root;
+}
+
+/* The overrides of one run, NULL-terminated (g_ptr_array_unref); scale
+ * (NULL: none) multiplies the node costs of the fitted groups. */
+static GPtrArray *run_overrides(const Kurc *k, const RpKurcSpec *sp,
+                                const double *scale)
+{
+    GPtrArray *o = g_ptr_array_new_with_free_func(g_free);
+    g_ptr_array_add(o, g_strdup_printf("workload.scheme=%s", sp->scheme));
+    g_ptr_array_add(o, g_strdup_printf("workload.balance=%s", sp->balance));
+    g_ptr_array_add(o, g_strdup_printf("workload.processors=%u", sp->procs));
+    g_ptr_array_add(o,
+                    g_strdup_printf("workload.resolution=%u", sp->resolution));
+    g_ptr_array_add(o, g_strdup_printf("run.seed=%d", RP_SEED));
+    g_ptr_array_add(o, g_strdup("run.frames=1"));
+    g_ptr_array_add(o, g_strdup_printf("run.fidelity=%s", k->ctx->fidelity));
+    for (int g = 0; scale && g < RP_KURC_GROUPS; g++)
+        for (int j = 0; j < 2 && group_ops[g][j] && scale[g] != 1; j++) {
+            SimTime t = (SimTime)llround((double)k->cost[g][j] * scale[g]);
+            g_ptr_array_add(o, g_strdup_printf("machine.nodes.node.costs.%s."
+                                               "value=%" G_GUINT64_FORMAT " ps",
+                                               group_ops[g][j], t));
+        }
+    g_ptr_array_add(o, NULL);
+    return o;
+}
+
+/* Reads the groups' node costs from machine m, once. */
+static gboolean read_costs(Kurc *k, const MachMachine *m, GError **err)
+{
+    for (int g = 0; !k->have_costs && g < RP_KURC_GROUPS; g++)
+        for (int j = 0; j < 2 && group_ops[g][j]; j++)
+            if (!mach_cost_lookup(m, "node", group_ops[g][j], &k->cost[g][j],
+                                  err))
+                return FALSE;
+    k->have_costs = TRUE;
+    return TRUE;
+}
+
+static CfgRun *build(Kurc *k, const RpKurcSpec *sp, const double *scale,
+                     GError **err)
+{
+    CfgNode *root = run_tree(k, sp->scene, err);
+    if (!root)
+        return NULL;
+    GPtrArray *ov = run_overrides(k, sp, scale);
+    CfgRun *r = cfg_run_from_tree(root, (const char *const *)ov->pdata, err);
+    g_ptr_array_unref(ov);
+    return r;
 }
 
 static void run_from_result(RpKurcRun *run, const SimResult *r,
@@ -112,72 +193,72 @@ static void run_from_result(RpKurcRun *run, const SimResult *r,
     run->node_memory = node ? (double)node->memory : 0;
 }
 
-/* Multiplies the fitted cost groups (RP_KURC_GROUPS) by scale[]. */
-static void scale_costs(WlPmCosts *c, const double *scale)
-{
-    SimTime *f[RP_KURC_GROUPS][2] = {
-        {&c->polygon, NULL},          {&c->span, NULL},
-        {&c->insert_step, NULL},      {&c->pixel, NULL},
-        {&c->zbuf_init, NULL},        {&c->merge.compare, NULL},
-        {&c->merge.scatter, &c->merge.gather}};
-    for (int g = 0; scale && g < RP_KURC_GROUPS; g++)
-        for (int k = 0; k < 2 && f[g][k]; k++)
-            *f[g][k] = (SimTime)llround((double)*f[g][k] * scale[g]);
-}
-
 /* One run; scale (NULL: none) multiplies the fitted cost groups. */
-static gboolean simulate(Kurc *k, const WlPmParams *p, int scene,
-                         const double *scale, RpKurcRun *run, GError **err)
+static gboolean simulate(Kurc *k, const RpKurcSpec *sp, const double *scale,
+                         RpKurcRun *run, GError **err)
 {
-    SimEngine *eng = sim_engine_new(RP_SEED);
-    MachMachine *m = mach_new_from_cfg(eng, cfg_get(k->setup, "machine"),
-                                       k->ctx->fidelity, err);
-    SimResult *r = sim_result_new("pixelmerge", "ipsc2");
-    WlPmCosts c;
-    if (m)
+    if (scale && !k->have_costs) { /* the model's costs, from a build */
+        CfgRun *b = build(k, sp, NULL, err);
+        gboolean ok = b && read_costs(k, b->machine_built, err);
+        cfg_run_free(b);
+        if (!ok)
+            return FALSE;
+    }
+    CfgRun *r = build(k, sp, scale, err);
+    CfgRunOpts o = {.quiet = TRUE};
+    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+    gboolean ok = res && (scale || read_costs(k, r->machine_built, err));
+    if (ok) {
+        const MachMachine *m = r->machine_built;
         rp_note_fidelity(k->ctx, mach_name(m), mach_fidelity(m));
-    gboolean ok = m && wl_pm_costs_from_machine(m, p->count_bytes, &c, err);
-    if (ok)
-        scale_costs(&c, scale);
-    ok = ok && wl_pm_run_frames(m, k->scenes[scene], p, &c, 1, r, err);
-    if (ok)
-        run_from_result(run, r, m);
-    sim_result_free(r);
-    mach_free(m);
-    sim_engine_free(eng);
+        run_from_result(run, res, m);
+    }
+    sim_result_free(res);
+    cfg_run_free(r);
     return ok;
 }
 
-/* The cached run of (scene, N, P, scheme, balance). */
-static const RpKurcRun *get_run(Kurc *k, int scene, guint n, guint procs,
-                                WlPmScheme scheme, WlPmBalance bal,
-                                GError **err)
+/* The cached run of sp. */
+static const RpKurcRun *get_run(Kurc *k, const RpKurcSpec *sp, GError **err)
 {
-    char *key = g_strdup_printf("%d/%u/%u/%d/%d", scene, n, procs, scheme, bal);
+    char *key = g_strdup_printf("%s/%u/%u/%s/%s", sp->scene, sp->resolution,
+                                sp->procs, sp->scheme, sp->balance);
     RpKurcRun *run = g_hash_table_lookup(k->cache, key);
     if (run) {
         g_free(key);
         return run;
     }
-    WlPmParams p = *k->base;
-    p.setup.scheme = scheme;
-    p.setup.balance = bal;
-    p.setup.procs = procs;
-    p.setup.resolution = n;
-    char *what = g_strdup_printf("%s N=%u P=%u %s-%s", rp_kurc96_scenes[scene],
-                                 n, procs, wl_pm_scheme_names[scheme],
-                                 wl_pm_balance_names[bal]);
+    char *what =
+        g_strdup_printf("%s N=%u P=%u %s-%s", sp->scene, sp->resolution,
+                        sp->procs, sp->scheme, sp->balance);
     rp_step(k->ctx, what);
     g_free(what);
     run = g_new0(RpKurcRun, 1);
-    if (!simulate(k, &p, scene, NULL, run, err)) {
+    if (!simulate(k, sp, NULL, run, err)) {
         g_free(run);
         g_free(key);
         return NULL;
     }
-
     g_hash_table_insert(k->cache, key, run);
     return run;
+}
+
+/* The run of scene i (rp_kurc96_scenes) with these settings. */
+static const RpKurcRun *run_of(Kurc *k, int i, guint n, guint procs,
+                               const char *scheme, const char *balance,
+                               GError **err)
+{
+    RpKurcSpec sp = {rp_kurc96_scenes[i], n, procs, scheme, balance};
+    return get_run(k, &sp, err);
+}
+
+gboolean rp_kurc96_simulate(const RpContext *ctx, const RpKurcSpec *sp,
+                            const double *scale, RpKurcRun *run, GError **err)
+{
+    Kurc k = {0};
+    gboolean ok = kurc_init(&k, ctx, err) && simulate(&k, sp, scale, run, err);
+    kurc_clear(&k);
+    return ok;
 }
 
 static void add(GPtrArray *rows, const char *table, const char *row,
@@ -190,10 +271,9 @@ static gboolean table1(Kurc *k, GPtrArray *rows, GError **err)
 {
     for (int i = 0; i < N_SCENES; i++) {
         const char *s = rp_kurc96_scenes[i];
-        const RpKurcRun *a =
-            get_run(k, i, 400, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err);
+        const RpKurcRun *a = run_of(k, i, 400, 16, "aapc", "hbp", err);
         const RpKurcRun *b =
-            a ? get_run(k, i, 640, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err) : NULL;
+            a ? run_of(k, i, 640, 16, "aapc", "hbp", err) : NULL;
         if (!b)
             return FALSE;
         add(rows, "1", s, "polygons", a->polygons, NULL);
@@ -209,23 +289,28 @@ static gboolean table1(Kurc *k, GPtrArray *rows, GError **err)
     return TRUE;
 }
 
-/* The memory verdict of a run (pm_workload.h): "* out of memory: ..."
- * when the node's peak exceeds its memory, else "fits: ...".  The paper
- * marks with "*" the ZBUF-EXC runs that did not fit (all in the withheld
- * P=8 rows: every P=16 run has times). */
-static char *memory_note(const RpKurcRun *r)
+/* The memory verdict of a run: "* out of memory: ..." when the node's
+ * peak (the workload's memory model) exceeds the machine's node memory,
+ * else "fits: ...".  The paper marks with "*" the ZBUF-EXC runs that did
+ * not fit (all in the withheld P=8 rows: every P=16 run has times). */
+char *rp_kurc96_memory_note(const RpKurcRun *r)
 {
-    WlPmMemUse u = {(uint64_t)r->mem_part[0], (uint64_t)r->mem_part[1],
-                    (uint64_t)r->mem_part[2], (uint64_t)r->mem_part[3],
-                    (uint64_t)r->mem_part[4], (uint64_t)r->memory};
-    return wl_pm_memory_verdict(&u, (uint64_t)r->node_memory);
+    const double mb = 1048576.0; /* MiB */
+    return g_strdup_printf(
+        "%s %.2f of %.2f MiB (base %.2f, polygons %.2f, spans %.2f, "
+        "z-buffer/WPA %.2f, message buffers %.2f)",
+        r->memory > r->node_memory ? "* out of memory:" : "fits:",
+        r->memory / mb, r->node_memory / mb, r->mem_part[0] / mb,
+        r->mem_part[1] / mb, r->mem_part[2] / mb, r->mem_part[3] / mb,
+        r->mem_part[4] / mb);
 }
 
 static void table2_row(GPtrArray *rows, const char *row, const RpKurcRun *pr,
                        const RpKurcRun *zx)
 {
-    char *zx_note = memory_note(zx);
-    char *pr_note = pr->memory > pr->node_memory ? memory_note(pr) : NULL;
+    char *zx_note = rp_kurc96_memory_note(zx);
+    char *pr_note =
+        pr->memory > pr->node_memory ? rp_kurc96_memory_note(pr) : NULL;
     add(rows, "2", row, "pair_rs_span_ms", pr->span_ms, pr_note);
     add(rows, "2", row, "pair_rs_zbuf_ms", pr->zbuf_ms, pr_note);
     add(rows, "2", row, "pair_rs_merge_ms", pr->merge_ms, pr_note);
@@ -242,10 +327,9 @@ static gboolean table2(Kurc *k, GPtrArray *rows, GError **err)
     for (int j = 0; j < 2; j++)
         for (int i = 0; i < N_SCENES; i++) {
             const RpKurcRun *pr =
-                get_run(k, i, 400, procs[j], WL_PM_PAIR, WL_PM_BAL_RS, err);
+                run_of(k, i, 400, procs[j], "pair", "rs", err);
             const RpKurcRun *zx =
-                pr ? get_run(k, i, 400, procs[j], WL_PM_ZBUF_EXC,
-                             WL_PM_BAL_STRIPS, err)
+                pr ? run_of(k, i, 400, procs[j], "zbuf_exc", "strips", err)
                    : NULL;
             if (!zx)
                 return FALSE;
@@ -266,9 +350,9 @@ static double phase_ms(const RpKurcRun *r, int ph)
     return ph == 0 ? r->span_ms : ph == 1 ? r->zbuf_ms : r->merge_ms;
 }
 
-static const char *const cv_cols[6] = {
-    "pair_rs_span_ms",  "pair_rs_zbuf_ms",  "pair_rs_merge_ms",
-    "zbuf_exc_span_ms", "zbuf_exc_zbuf_ms", "zbuf_exc_merge_ms"};
+static const char *const cv_cols[6] = {"pair_rs_span_ms",  "pair_rs_zbuf_ms",
+                                       "pair_rs_merge_ms", "zbuf_exc_span_ms",
+                                       "zbuf_exc_zbuf_ms", "zbuf_exc_merge_ms"};
 
 typedef struct {
     int scene[N_SCENES * 6];
@@ -284,13 +368,9 @@ static gboolean cv_scene(Kurc *k, int s, const RpPaper *paper, CvCells *c,
     char *row = g_strdup_printf("P16/%s", rp_kurc96_scenes[s]);
     gboolean ok = TRUE;
     for (int m = 0; ok && m < 2; m++) {
-        WlPmParams p = *k->base;
-        p.setup.scheme = m ? WL_PM_ZBUF_EXC : WL_PM_PAIR;
-        p.setup.balance = m ? WL_PM_BAL_STRIPS : WL_PM_BAL_RS;
-        p.setup.procs = 16;
-        p.setup.resolution = 400;
-        const RpKurcRun *b =
-            get_run(k, s, 400, 16, p.setup.scheme, p.setup.balance, err);
+        RpKurcSpec sp = {rp_kurc96_scenes[s], 400, 16, m ? "zbuf_exc" : "pair",
+                         m ? "strips" : "rs"};
+        const RpKurcRun *b = get_run(k, &sp, err);
         ok = b != NULL;
         for (int g = 0; ok && g < RP_KURC_GROUPS; g++) {
             double scale[RP_KURC_GROUPS];
@@ -298,7 +378,7 @@ static gboolean cv_scene(Kurc *k, int s, const RpPaper *paper, CvCells *c,
                 scale[j] = j == g ? 1 + CV_STEP : 1;
             RpKurcRun r;
             rp_step(k->ctx, "leave-one-scene-out responses");
-            ok = simulate(k, &p, s, scale, &r, err);
+            ok = simulate(k, &sp, scale, &r, err);
             for (int ph = 0; ok && ph < 3; ph++) {
                 int i = (s * 2 + m) * 3 + ph;
                 c->jac[i * RP_KURC_GROUPS + g] =
@@ -358,8 +438,8 @@ static gboolean cross_validate(Kurc *k, GPtrArray *rows, GError **err)
     for (int s = 0; ok && s < N_SCENES; s++)
         ok = cv_scene(k, s, paper, c, err);
     if (ok) {
-        RpKurcCv cv = {N_SCENES * 6, RP_KURC_GROUPS, N_SCENES,
-                       c->scene,     c->pub,         c->sim,   c->jac};
+        RpKurcCv cv = {N_SCENES * 6, RP_KURC_GROUPS, N_SCENES, c->scene,
+                       c->pub,       c->sim,         c->jac};
         double loso[N_SCENES * 6];
         rp_kurc96_cv_run(&cv, loso);
         cv_rows(rows, c, loso, &cv);
@@ -379,8 +459,8 @@ static gboolean fig_point(Kurc *k, GPtrArray *rows, int scene, guint n,
                                        "aapc_rs_bytes", "aapc_hbp_bytes"};
     const RpKurcRun *r[4];
     for (int i = 0; i < 4; i++) {
-        r[i] = get_run(k, scene, n, procs, i < 2 ? WL_PM_PAIR : WL_PM_AAPC,
-                       i % 2 ? WL_PM_BAL_HBP : WL_PM_BAL_RS, err);
+        r[i] = run_of(k, scene, n, procs, i < 2 ? "pair" : "aapc",
+                      i % 2 ? "hbp" : "rs", err);
         if (!r[i])
             return FALSE;
         add(rows, "fig1", row, col[i], r[i]->volume, NULL);
@@ -414,7 +494,7 @@ static gboolean figures(Kurc *k, GPtrArray *rows, RpKurcFigs *f, GError **err)
 
 static gboolean speedup(Kurc *k, GPtrArray *rows, GError **err)
 {
-    const RpKurcRun *r = get_run(k, 1, 640, 16, WL_PM_AAPC, WL_PM_BAL_HBP, err);
+    const RpKurcRun *r = run_of(k, 1, 640, 16, "aapc", "hbp", err);
     if (r)
         add(rows, "text", "P16/2POT/640", "aapc_hbp_speedup", r->speedup,
             "P=16; serial = the modified scanline z-buffer over all "
@@ -428,8 +508,7 @@ static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows, GError **err)
     RpKurcFigs figs = {0};
     gboolean ok = kurc_init(&k, ctx, err) && table1(&k, rows, err) &&
                   table2(&k, rows, err) && cross_validate(&k, rows, err) &&
-                  figures(&k, rows, &figs, err) &&
-                  speedup(&k, rows, err);
+                  figures(&k, rows, &figs, err) && speedup(&k, rows, err);
     if (ok && ctx->out_dir)
         rp_kurc96_charts(&figs, ctx->out_dir, ctx->fidelity);
     rp_kurc96_figs_clear(&figs);
@@ -440,7 +519,7 @@ static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows, GError **err)
 const RpPaperOps rp_kurc96 = {
     .name = "kurc96",
     .citation = "Kurç, Aykanat, Özgüç: active pixel merging on the iPSC/2 "
-               "hypercube (seed 003): Tables 1-2, Figs. 1-2, speed-up",
+                "hypercube (seed 003): Tables 1-2, Figs. 1-2, speed-up",
     .setup = "setup.yaml",
     .rows = kurc96_run,
     .cost_s = 12, /* measured: user time of `pgsim reproduce kurc96` */

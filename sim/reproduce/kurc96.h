@@ -24,6 +24,26 @@ typedef struct {
  * span, insert_step, pixel, zbuf_init, compare, scatter = gather. */
 #define RP_KURC_GROUPS 7
 
+/* One run of the paper: scene row key (rp_kurc96_scenes), N, P and the
+ * workload's scheme ("pair", "aapc", "zbuf_exc") and balance ("strips",
+ * "rs", "hbp"). */
+typedef struct {
+    const char *scene;
+    guint resolution, procs;
+    const char *scheme, *balance;
+} RpKurcSpec;
+
+/* Runs sp once on the setup ctx->setup at ctx->fidelity, through the
+ * runner, into *run; scale (NULL: none) multiplies the model's node costs
+ * of the fitted groups (RP_KURC_GROUPS factors), given to the machine as
+ * overrides of machine.nodes.node.costs.  FALSE with *err on failure. */
+gboolean rp_kurc96_simulate(const RpContext *ctx, const RpKurcSpec *sp,
+                            const double *scale, RpKurcRun *run, GError **err);
+/* The memory verdict of a run, "* out of memory: 4.21 of 4.00 MiB (base
+ * ..., z-buffer/WPA ..., message buffers ...)" or "fits: ...";
+ * g_free(). */
+char *rp_kurc96_memory_note(const RpKurcRun *r);
+
 /* The linearised cells of the fit (kurc96_cv.c): cell i of scene
  * scene[i] has published value pub[i], simulated sim[i] at the model's
  * costs and jac[i * groups + j] = d sim / d (relative change of group j). */

@@ -1,10 +1,12 @@
 /* test_kurc96.c — `pgsim reproduce kurc96` on a reduced setup (the
  * real configs/papers/kurc96/setup.yaml with 300-polygon teapots, through
  * RpContext.setup): every row key and column the issue names is
- * produced once, joined to configs/papers/kurc96/published.yaml with no published
- * cell left unsimulated, values are finite and sensible, the P=8
+ * produced once, joined to configs/papers/kurc96/published.yaml with no
+ * published cell left unsimulated, values are finite and sensible, the P=8
  * ZBUF-EXC cells carry the out-of-memory note, and the run honours the
- * context's fidelity. */
+ * context's fidelity.  The cross-validation's cost scaling reaches the
+ * machine (a merge cost moves the merge time, and only it; a scale of 1
+ * changes nothing), and the memory note's format. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -19,8 +21,8 @@
 static char *small_setup(void)
 {
     char *text = NULL;
-    assert_true(
-        g_file_get_contents("configs/papers/kurc96/setup.yaml", &text, NULL, NULL));
+    assert_true(g_file_get_contents("configs/papers/kurc96/setup.yaml", &text,
+                                    NULL, NULL));
     GString *s = g_string_new(text);
     guint n = g_string_replace(s, "polygons_per_teapot: 3751",
                                "polygons_per_teapot: 300", 0);
@@ -132,10 +134,83 @@ static void test_rows_complete(void **state)
     g_free(path);
 }
 
+/* One P=16, N=400 PAIR-RS run of the reduced 1POT at the analytic
+ * network, its fitted cost groups scaled by scale (NULL: none). */
+static RpKurcRun run_scaled(const char *path, const double *scale)
+{
+    RpContext ctx = {.setup = path, .fidelity = "analytic", .quiet = TRUE};
+    RpKurcSpec sp = {"1POT", 400, 16, "pair", "rs"};
+    RpKurcRun r;
+    GError *err = NULL;
+    if (!rp_kurc96_simulate(&ctx, &sp, scale, &r, &err))
+        fail_msg("%s", err->message);
+    return r;
+}
+
+/* A scaled cost group is an override of the model's node costs, so it
+ * reaches the machine that prices the work: compare (group 5) x 1.1
+ * lengthens the merge, which the processors time, and leaves the local
+ * phases alone; polygon (group 0) x 1.1 lengthens span creation only;
+ * all factors 1 give the unscaled run bit for bit. */
+static void test_cost_scale_override(void **state)
+{
+    (void)state;
+    char *path = small_setup();
+    double one[RP_KURC_GROUPS], cmp[RP_KURC_GROUPS], poly[RP_KURC_GROUPS];
+    for (int g = 0; g < RP_KURC_GROUPS; g++)
+        one[g] = cmp[g] = poly[g] = 1;
+    cmp[5] = poly[0] = 1.1;
+    RpKurcRun base = run_scaled(path, NULL), same = run_scaled(path, one);
+    RpKurcRun c = run_scaled(path, cmp), p = run_scaled(path, poly);
+    assert_true(same.span_ms == base.span_ms && same.zbuf_ms == base.zbuf_ms &&
+                same.merge_ms == base.merge_ms && same.speedup == base.speedup);
+    assert_true(c.merge_ms > base.merge_ms);
+    assert_true(c.span_ms == base.span_ms && c.zbuf_ms == base.zbuf_ms);
+    assert_true(p.span_ms > base.span_ms);
+    assert_true(p.zbuf_ms == base.zbuf_ms && p.merge_ms == base.merge_ms);
+    assert_true(p.volume == base.volume && c.volume == base.volume);
+    g_unlink(path);
+    g_free(path);
+}
+
+/* The memory note: the peak against the node's memory (at it: fits),
+ * every part in MiB. */
+static void test_memory_note(void **state)
+{
+    (void)state;
+    RpKurcRun r = {.memory = 3250,
+                   .node_memory = 3250,
+                   .mem_part = {1000, 600, 210, 640, 800}};
+    char *v = rp_kurc96_memory_note(&r);
+    assert_string_equal(v, "fits: 0.00 of 0.00 MiB (base 0.00, polygons "
+                           "0.00, spans 0.00, z-buffer/WPA 0.00, message "
+                           "buffers 0.00)");
+    g_free(v);
+    r.node_memory = 3249;
+    v = rp_kurc96_memory_note(&r);
+    assert_true(g_str_has_prefix(v, "* out of memory: 0.00 of 0.00 MiB"));
+    g_free(v);
+    const double mb = 1048576;
+    r = (RpKurcRun){.memory = 15 * mb,
+                    .node_memory = 16 * mb,
+                    .mem_part = {mb, 2 * mb, 3 * mb, 4 * mb, 5 * mb}};
+    v = rp_kurc96_memory_note(&r);
+    assert_string_equal(v, "fits: 15.00 of 16.00 MiB (base 1.00, polygons "
+                           "2.00, spans 3.00, z-buffer/WPA 4.00, message "
+                           "buffers 5.00)");
+    g_free(v);
+    r.memory = 16 * mb + 1;
+    v = rp_kurc96_memory_note(&r);
+    assert_true(g_str_has_prefix(v, "* out of memory: 16.00 of 16.00 MiB"));
+    g_free(v);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rows_complete),
+        cmocka_unit_test(test_cost_scale_override),
+        cmocka_unit_test(test_memory_note),
     };
     return cmocka_run_group_tests_name("rp_kurc96", tests, NULL, NULL);
 }

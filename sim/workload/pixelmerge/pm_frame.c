@@ -1,9 +1,14 @@
 /* pm_frame.c — one frame: local rendering, merge, timing (seed 003 §2–5).
  *
- * Counted operations become time by the linear cost model of pm_frame.h;
- * every product saturates instead of wrapping (a saturated time makes the
- * replay report an overflow).  The merged image is compared with the
- * serial render (P = 1, same polygons and ids) when check_image is set.
+ * Every piece of work is described once, as named operation counts
+ * (span_ops, zbuf_ops; the merge's in pm_replay.c), and charged once: on
+ * a machine to its processors, which price it by their kind's cost table
+ * and are the frame's clock (the barrier is when the last one is free,
+ * the phase times are their busy time per phase); without a machine
+ * (tests of the algorithm alone) it is priced by the linear cost model
+ * of pm_frame.h.  Every product saturates instead of wrapping.  The
+ * merged image is compared with the serial render (P = 1, same polygons
+ * and ids) when check_image is set.
  */
 #include "sim/workload/pixelmerge/pm_frame.h"
 #include <string.h>
@@ -13,24 +18,40 @@ static SimTime add(SimTime a, SimTime b)
     return sim_time_add_sat(a, b);
 }
 
-static SimTime span_time(const WlPmCounts *k, const WlPmCosts *c,
-                         gboolean sorted)
+/* The counts of a processor's local phases, named as wl_pm_cost_ops:
+ * the one description of the work, priced by the processor's kind on a
+ * machine or by a WlPmCosts (local_price) without one. */
+static guint span_ops(const WlPmCounts *k, gboolean sorted, MachOp *o)
 {
-    SimTime t = add(sim_time_mul_sat(c->polygon, k->polygons),
-                    sim_time_mul_sat(c->span, k->rc.spans));
-    return sorted ? add(t, sim_time_mul_sat(c->insert_step, k->insert_steps))
-                  : t;
+    o[0] = (MachOp){"polygon", k->polygons};
+    o[1] = (MachOp){"span", k->rc.spans};
+    o[2] = (MachOp){"insert_step", k->insert_steps};
+    return sorted ? 3 : 2;
 }
 
-static SimTime zbuf_time(const WlPmCounts *k, const WlPmCosts *c, guint n,
-                         gboolean full)
+static guint zbuf_ops(const WlPmCounts *k, guint n, gboolean full, MachOp *o)
 {
-    SimTime t = add(sim_time_mul_sat(c->pixel, k->rc.pixels),
-                    sim_time_mul_sat(c->scanline, n));
-    if (full)
-        return add(t, add(sim_time_mul_sat(c->zbuf_init, (uint64_t)n * n),
-                          sim_time_mul_sat(c->zcompare, k->rc.pixels)));
-    return add(t, sim_time_mul_sat(c->zcompare, k->rc.zcompares));
+    o[0] = (MachOp){"pixel", k->rc.pixels};
+    o[1] = (MachOp){"scanline", n};
+    o[2] = (MachOp){"zcompare", full ? k->rc.pixels : k->rc.zcompares};
+    o[3] = (MachOp){"zbuf_init", (uint64_t)n * n};
+    return full ? 4 : 3;
+}
+
+static const WlPmUnit local_units[] = {
+    {"polygon", G_STRUCT_OFFSET(WlPmCosts, polygon)},
+    {"span", G_STRUCT_OFFSET(WlPmCosts, span)},
+    {"insert_step", G_STRUCT_OFFSET(WlPmCosts, insert_step)},
+    {"pixel", G_STRUCT_OFFSET(WlPmCosts, pixel)},
+    {"zcompare", G_STRUCT_OFFSET(WlPmCosts, zcompare)},
+    {"scanline", G_STRUCT_OFFSET(WlPmCosts, scanline)},
+    {"zbuf_init", G_STRUCT_OFFSET(WlPmCosts, zbuf_init)},
+    {NULL, 0}};
+
+/* The named counts o[0 .. n-1] at c's prices, saturating. */
+static SimTime local_price(const WlPmCosts *c, const MachOp *o, guint n)
+{
+    return wl_pm_price(c, local_units, o, n);
 }
 
 double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
@@ -44,8 +65,9 @@ double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
     v.span_rule = s->span_rule;
     WlPmCounts k;
     WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
-    SimTime t =
-        add(span_time(&k, c, TRUE), zbuf_time(&k, c, resolution, FALSE));
+    MachOp so[3], zo[4];
+    SimTime t = add(local_price(c, so, span_ops(&k, TRUE, so)),
+                    local_price(c, zo, zbuf_ops(&k, resolution, FALSE, zo)));
     if (insert_ms)
         *insert_ms =
             sim_time_to_ms(sim_time_mul_sat(c->insert_step, k.insert_steps));
@@ -117,59 +139,69 @@ static gboolean image_matches(const Local *l, const WlPmFrame *img)
     return ok;
 }
 
-/* The counts of span_time() / zbuf_time(), named as wl_pm_cost_ops. */
-static guint span_ops(const WlPmCounts *k, gboolean sorted, MachOp *o)
-{
-    o[0] = (MachOp){"polygon", k->polygons};
-    o[1] = (MachOp){"span", k->rc.spans};
-    o[2] = (MachOp){"insert_step", k->insert_steps};
-    return sorted ? 3 : 2;
-}
+/* The engine phases of a frame: span, zbuf, merge. */
+enum { PH_SPAN, PH_ZBUF, PH_MERGE, N_PH };
 
-static guint zbuf_ops(const WlPmCounts *k, guint n, gboolean full, MachOp *o)
-{
-    o[0] = (MachOp){"pixel", k->rc.pixels};
-    o[1] = (MachOp){"scanline", n};
-    o[2] = (MachOp){"zcompare", full ? k->rc.pixels : k->rc.zcompares};
-    o[3] = (MachOp){"zbuf_init", (uint64_t)n * n};
-    return full ? 4 : 3;
-}
-
-/* Gives processor p its local phases as named counts (the same times). */
-static void local_compute(MachProc *proc, const WlPmCounts *k, guint n,
-                          gboolean full, unsigned ph_span, unsigned ph_zbuf)
-{
-    MachOp o[4];
-    mach_proc_compute_ops(proc, o, span_ops(k, !full, o), ph_span, NULL, NULL,
-                          NULL);
-    mach_proc_compute_ops(proc, o, zbuf_ops(k, n, full, o), ph_zbuf, NULL, NULL,
-                          NULL);
-}
-
-/* Local phases into busy[]; returns the barrier time (slowest node). */
-static SimTime local_phases(const Local *l, const WlPmSetup *s,
-                            const WlPmCosts *c, SimEngine *eng,
-                            MachProc *const *procs, WlPmFrameOut *out)
+/* Processor p's local phases, charged once: to machine processor
+ * procs[p] when there are processors (its busy time per phase is the
+ * record), else priced at c into out->busy[p].  *end gets when p's
+ * local work ends; the two phase times go into t[2]. */
+static void local_proc(const Local *l, guint p, const WlPmSetup *s,
+                       const WlPmCosts *c, MachProc *const *procs,
+                       const unsigned *ph, SimTime *t, WlPmFrameOut *out)
 {
     gboolean full = s->scheme == WL_PM_ZBUF_EXC;
-    unsigned ph_span = sim_engine_phase(eng, "span");
-    unsigned ph_zbuf = sim_engine_phase(eng, "zbuf");
-    SimTime barrier = 0, span_max = 0, zbuf_max = 0;
+    MachOp o[2][4];
+    guint n[2] = {span_ops(&l->counts[p], !full, o[0]),
+                  zbuf_ops(&l->counts[p], s->resolution, full, o[1])};
+    for (int i = 0; i < 2; i++) {
+        if (procs) {
+            SimTime before = mach_proc_busy_phase(procs[p], ph[i]);
+            mach_proc_compute_ops(procs[p], o[i], n[i], ph[i], NULL, NULL,
+                                  NULL);
+            t[i] = mach_proc_busy_phase(procs[p], ph[i]) - before;
+        } else {
+            t[i] = local_price(c, o[i], n[i]);
+            sim_busy_add(&out->busy[p], ph[i], t[i]);
+        }
+    }
+}
+
+/* The local phases of every processor from `base`; returns the barrier:
+ * when the last processor is free (its machine processor's free time,
+ * or base + its priced work without processors).  span_ms and zbuf_ms
+ * are the largest processor's time in the phase. */
+static SimTime local_phases(const Local *l, const WlPmSetup *s,
+                            const WlPmCosts *c, MachProc *const *procs,
+                            const unsigned *ph, SimTime base, WlPmFrameOut *out)
+{
+    SimTime barrier = base, span_max = 0, zbuf_max = 0;
     for (guint p = 0; p < s->procs; p++) {
-        SimTime ts = span_time(&l->counts[p], c, !full);
-        SimTime tz = zbuf_time(&l->counts[p], c, s->resolution, full);
-        sim_busy_add(&out->busy[p], ph_span, ts);
-        sim_busy_add(&out->busy[p], ph_zbuf, tz);
-        if (procs)
-            local_compute(procs[p], &l->counts[p], s->resolution, full, ph_span,
-                          ph_zbuf);
-        span_max = MAX(span_max, ts);
-        zbuf_max = MAX(zbuf_max, tz);
-        barrier = MAX(barrier, add(ts, tz));
+        SimTime t[2];
+        local_proc(l, p, s, c, procs, ph, t, out);
+        span_max = MAX(span_max, t[0]);
+        zbuf_max = MAX(zbuf_max, t[1]);
+        barrier = MAX(barrier, procs ? mach_proc_free_at(procs[p])
+                                     : add(base, add(t[0], t[1])));
     }
     out->span_ms = sim_time_to_ms(span_max);
     out->zbuf_ms = sim_time_to_ms(zbuf_max);
     return barrier;
+}
+
+/* With processors: their busy time per phase (N_PH per processor), read
+ * before the frame (start[]) or added to out->busy after it. */
+static void procs_busy(MachProc *const *procs, guint n, const unsigned *ph,
+                       SimTime *start, WlPmFrameOut *out)
+{
+    for (guint p = 0; procs && p < n; p++)
+        for (int i = 0; i < N_PH; i++) {
+            SimTime b = mach_proc_busy_phase(procs[p], ph[i]);
+            if (out)
+                sim_busy_add(&out->busy[p], ph[i], b - start[p * N_PH + i]);
+            else
+                start[p * N_PH + i] = b;
+        }
 }
 
 static void merge_metrics(const Local *l, const WlPmSetup *s,
@@ -223,21 +255,33 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
     }
     if (s->keep_image)
         out->image = frame_image(m->image);
+    const unsigned ph[N_PH] = {sim_engine_phase(eng, "span"),
+                               sim_engine_phase(eng, "zbuf"),
+                               sim_engine_phase(eng, "merge")};
+    SimTime *start = g_new(SimTime, (gsize)n * N_PH);
+    procs_busy(procs, n, ph, start, NULL);
     SimTime base = sim_now(eng);
-    SimTime barrier = add(base, local_phases(&l, s, c, eng, procs, out));
+    SimTime barrier = local_phases(&l, s, c, procs, ph, base, out);
     SimTime *ready = g_new(SimTime, n);
     for (guint p = 0; p < n; p++)
         ready[p] = barrier;
     WlPmReplayOut ro = {0};
-    WlPmBalance bal =
-        s->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS : s->balance;
-    gboolean ok =
-        wl_pm_replay_procs(net, procs, m, bal, s->resolution, &c->merge, ready,
-                           out->busy, sim_engine_phase(eng, "merge"), &ro, err);
+    WlPmReplayRig rig = {.net = net,
+                         .procs = procs,
+                         .costs = &c->merge,
+                         .ready = ready,
+                         .busy = procs ? NULL : out->busy,
+                         .phase = ph[PH_MERGE],
+                         .bal = s->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS
+                                                            : s->balance,
+                         .height = s->resolution};
+    gboolean ok = wl_pm_replay(&rig, m, &ro, err);
+    procs_busy(procs, n, ph, start, out);
     if (ok && !sim_engine_cut(eng)) { /* a frame run.until cut: no times */
         out->merge_ms = sim_time_to_ms(ro.end - barrier);
         out->frame_ms = sim_time_to_ms(ro.end - base);
     }
+    g_free(start);
     wl_pm_replay_out_clear(&ro);
     g_free(ready);
     wl_pm_merge_free(m);

@@ -64,15 +64,19 @@ typedef struct {
 } WlPmFrameOut;
 
 /* Renders and merges one frame of `scene` (its frame-0 camera) on `net`
- * (P <= its nodes; the engine is net's), starting at the engine's current
- * time, which it advances to the frame's end; fills *out (free its busy with
- * wl_pm_frame_out_clear()).  FALSE with *err on engine failure. */
+ * (P <= its nodes; the engine is net's) without machine processors:
+ * every compute is priced at c and is an engine event; starts at the
+ * engine's current time, which it advances to the frame's end; fills
+ * *out (free its busy with wl_pm_frame_out_clear()).  FALSE with *err on
+ * engine failure. */
 gboolean wl_pm_frame_run(NetNet *net, const Scene *scene, const WlPmSetup *s,
                          const WlPmCosts *c, WlPmFrameOut *out, GError **err);
 /* The same for the scene's camera of frame `frame`, computing on machine
- * processors procs[0 .. P-1] (borrowed; NULL: plain engine events): each
- * is charged its span, zbuf and merge work through mach_proc_compute(),
- * in the engine's phases "span", "zbuf" and "merge". */
+ * processors procs[0 .. P-1] (borrowed; NULL: as wl_pm_frame_run): each
+ * is charged its span, zbuf and merge work once, as named counts priced
+ * by its kind (mach_proc_compute_ops), in the engine's phases "span",
+ * "zbuf" and "merge"; the frame's times and out->busy are read from
+ * them, and c supplies only the merge's count_bytes. */
 gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
                                const Scene *scene, const WlPmSetup *s,
                                const WlPmCosts *c, WlPmFrameOut *out,

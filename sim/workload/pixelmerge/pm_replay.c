@@ -9,9 +9,11 @@
  * max(own send, arrival of its step-s message).
  */
 #include "sim/workload/pixelmerge/pm_replay.h"
-#include <math.h>
+#include <string.h>
 
-/* A compute as named counts (wl_pm_cost_ops), for mach_proc_compute_ops. */
+/* A compute as named counts (wl_pm_cost_ops): the one description of
+ * the work, priced by the processor's kind or, without processors, by
+ * the rig's costs (op_price). */
 typedef struct {
     MachOp op[3];
     guint n;
@@ -21,29 +23,52 @@ typedef struct {
     gboolean exchange;
     uint32_t *dst;
     uint64_t *bytes;
-    SimTime *pre, *post;
-    OpList *pre_ops, *post_ops; /* the counts priced into pre / post */
+    OpList *pre_ops, *post_ops;
 } RStep;
 
 typedef struct {
-    NetNet *net;
-    MachProc *const *procs; /* NULL: schedule on the engine directly */
+    const WlPmReplayRig *rig;
     SimEngine *eng;
     guint n, n_steps;
     RStep *steps;
     guint *cur;
     gboolean *waiting;
     guint8 *got;
-    SimBusy *busy;
-    unsigned phase;
     SimTime *done;
     gboolean overflow;
 } Replay;
 
-/* n x unit; a saturated product sets *overflow (reported by the caller). */
-static SimTime times(SimTime unit, uint64_t n, gboolean *overflow)
+SimTime wl_pm_price(const void *costs, const WlPmUnit *units, const MachOp *o,
+                    guint n)
 {
-    SimTime t = sim_time_mul_sat(unit, n);
+    SimTime t = 0;
+    for (guint i = 0; i < n; i++) {
+        const WlPmUnit *u = units;
+        while (strcmp(o[i].name, u->name) != 0)
+            g_assert((++u)->name);
+        t = sim_time_add_sat(
+            t, sim_time_mul_sat(G_STRUCT_MEMBER(SimTime, costs, u->off),
+                                o[i].count));
+    }
+    return t;
+}
+
+static const WlPmUnit merge_units[] = {
+    {"pack", G_STRUCT_OFFSET(WlPmMergeCosts, pack)},
+    {"scatter", G_STRUCT_OFFSET(WlPmMergeCosts, scatter)},
+    {"compare", G_STRUCT_OFFSET(WlPmMergeCosts, compare)},
+    {"gather", G_STRUCT_OFFSET(WlPmMergeCosts, gather)},
+    {"sum_elem", G_STRUCT_OFFSET(WlPmMergeCosts, sum_elem)},
+    {"sort_elem", G_STRUCT_OFFSET(WlPmMergeCosts, sort_elem)},
+    {"assign_step", G_STRUCT_OFFSET(WlPmMergeCosts, assign_step)},
+    {NULL, 0}};
+
+/* The ops' price at c; a saturated sum sets *overflow (reported by the
+ * caller). */
+static SimTime ops_price(const WlPmMergeCosts *c, const OpList *o,
+                         gboolean *overflow)
+{
+    SimTime t = wl_pm_price(c, merge_units, o->op, o->n);
     if (t == SIM_TIME_MAX)
         *overflow = TRUE;
     return t;
@@ -54,8 +79,6 @@ static void rstep_init(RStep *s, guint n, gboolean exchange)
     s->exchange = exchange;
     s->dst = g_new0(uint32_t, n);
     s->bytes = g_new0(uint64_t, n);
-    s->pre = g_new0(SimTime, n);
-    s->post = g_new0(SimTime, n);
     s->pre_ops = g_new0(OpList, n);
     s->post_ops = g_new0(OpList, n);
 }
@@ -64,8 +87,6 @@ static void rstep_clear(RStep *s)
 {
     g_free(s->dst);
     g_free(s->bytes);
-    g_free(s->pre);
-    g_free(s->post);
     g_free(s->pre_ops);
     g_free(s->post_ops);
 }
@@ -81,54 +102,41 @@ static guint log2u(guint n)
 /* Recursive doubling of the per-scanline counts, then the partitioning
  * itself as post-compute of the last exchange (or a compute step). */
 static guint global_sum_steps(RStep *out, guint n, WlPmBalance bal,
-                              guint height, const WlPmMergeCosts *c,
-                              gboolean *ovf)
+                              guint height, uint32_t count_bytes)
 {
     if (bal == WL_PM_BAL_STRIPS)
         return 0;
     guint d = log2u(n), k = 0;
-    SimTime add = times(c->sum_elem, height, ovf);
     for (; k < d; k++) {
         rstep_init(&out[k], n, TRUE);
         for (guint p = 0; p < n; p++) {
             out[k].dst[p] = p ^ (1u << k);
-            out[k].bytes[p] = (uint64_t)height * c->count_bytes;
-            out[k].post[p] = add;
+            out[k].bytes[p] = (uint64_t)height * count_bytes;
             out[k].pre_ops[p] = (OpList){{{"sum_elem", 0}}, 1}; /* none */
             out[k].post_ops[p] = (OpList){{{"sum_elem", height}}, 1};
         }
     }
     rstep_init(&out[k], n, FALSE);
     uint64_t lg = MAX(1u, log2u(height));
-    SimTime t = bal == WL_PM_BAL_HBP
-                    ? times(c->sort_elem, (uint64_t)height * lg, ovf) +
-                          times(c->assign_step, (uint64_t)height * n, ovf)
-                    : times(c->sort_elem, (uint64_t)d * lg, ovf);
     OpList o = bal == WL_PM_BAL_HBP
                    ? (OpList){{{"sort_elem", (uint64_t)height * lg},
                                {"assign_step", (uint64_t)height * n}},
                               2}
                    : (OpList){{{"sort_elem", (uint64_t)d * lg}}, 1};
     for (guint p = 0; p < n; p++) {
-        out[k].post[p] = t;
         out[k].pre_ops[p] = (OpList){{{"sort_elem", 0}}, 1}; /* none */
         out[k].post_ops[p] = o;
     }
     return k + 1;
 }
 
-static void merge_step(RStep *r, const WlPmStep *st, guint n,
-                       const WlPmMergeCosts *c, gboolean *ovf)
+static void merge_step(RStep *r, const WlPmStep *st, guint n)
 {
     rstep_init(r, n, st->exchange);
     for (guint p = 0; p < n; p++) {
         const WlPmWork *w = &st->work[p];
         r->dst[p] = st->msg[p].dst;
         r->bytes[p] = st->msg[p].bytes;
-        r->pre[p] = times(c->pack, w->pack, ovf);
-        r->post[p] = times(c->scatter, w->scatter, ovf) +
-                     times(c->compare, w->compare, ovf) +
-                     times(c->gather, w->gather, ovf);
         r->pre_ops[p] = (OpList){{{"pack", w->pack}}, 1};
         r->post_ops[p] = (OpList){{{"scatter", w->scatter},
                                    {"compare", w->compare},
@@ -139,19 +147,22 @@ static void merge_step(RStep *r, const WlPmStep *st, guint n,
 
 static void proc_step(SimEngine *eng, void *ctx, void *arg);
 
-/* `cost` is the price of `ops`: a machine processor is given the counts
- * (a recording names them), plain engine events the time. */
-static void compute_then(Replay *r, guint p, SimTime cost, const OpList *ops,
-                         SimHandler next)
+/* Processor p computes `ops`, then next: charged once, to its machine
+ * processor, or without processors as an engine event at the rig's
+ * costs (its time into busy[p]). */
+static void compute_then(Replay *r, guint p, const OpList *ops, SimHandler next)
 {
-    if (!sim_busy_add(&r->busy[p], r->phase, cost))
-        r->overflow = TRUE;
-    if (r->procs) {
-        if (!mach_proc_compute_ops(r->procs[p], ops->op, ops->n, r->phase, next,
-                                   r, GUINT_TO_POINTER(p)))
+    const WlPmReplayRig *rig = r->rig;
+    if (rig->procs) {
+        if (!mach_proc_compute_ops(rig->procs[p], ops->op, ops->n, rig->phase,
+                                   next, r, GUINT_TO_POINTER(p)))
             r->overflow = TRUE;
-    } else
-        sim_schedule_in(r->eng, cost, next, r, GUINT_TO_POINTER(p));
+        return;
+    }
+    SimTime cost = ops_price(rig->costs, ops, &r->overflow);
+    if (!sim_busy_add(&rig->busy[p], rig->phase, cost))
+        r->overflow = TRUE;
+    sim_schedule_in(r->eng, cost, next, r, GUINT_TO_POINTER(p));
 }
 
 static void proc_post_done(SimEngine *eng, void *ctx, void *arg)
@@ -166,7 +177,7 @@ static void proc_post(Replay *r, guint p)
 {
     r->waiting[p] = FALSE;
     const RStep *st = &r->steps[r->cur[p]];
-    compute_then(r, p, st->post[p], &st->post_ops[p], proc_post_done);
+    compute_then(r, p, &st->post_ops[p], proc_post_done);
 }
 
 static void on_arrive(NetNet *net, const NetDelivery *d, void *ctx)
@@ -189,7 +200,7 @@ static void proc_send(SimEngine *eng, void *ctx, void *arg)
         proc_post(r, p);
         return;
     }
-    net_send(r->net, p, st->dst[p], st->bytes[p], GUINT_TO_POINTER(s),
+    net_send(r->rig->net, p, st->dst[p], st->bytes[p], GUINT_TO_POINTER(s),
              on_arrive, r);
     if (r->got[(gsize)s * r->n + p])
         proc_post(r, p);
@@ -206,18 +217,19 @@ static void proc_step(SimEngine *eng, void *ctx, void *arg)
         return;
     }
     const RStep *st = &r->steps[r->cur[p]];
-    compute_then(r, p, st->pre[p], &st->pre_ops[p], proc_send);
+    compute_then(r, p, &st->pre_ops[p], proc_send);
 }
 
-static void build_steps(Replay *r, const WlPmMerge *m, WlPmBalance bal,
-                        guint height, const WlPmMergeCosts *c)
+static void build_steps(Replay *r, const WlPmMerge *m)
 {
+    const WlPmReplayRig *rig = r->rig;
     guint max = log2u(r->n) + 1 + m->steps->len;
     r->steps = g_new0(RStep, max);
-    r->n_steps = global_sum_steps(r->steps, r->n, bal, height, c, &r->overflow);
+    r->n_steps = global_sum_steps(r->steps, r->n, rig->bal, rig->height,
+                                  rig->costs->count_bytes);
     for (guint s = 0; s < m->steps->len; s++)
         merge_step(&r->steps[r->n_steps++], g_ptr_array_index(m->steps, s),
-                   r->n, c, &r->overflow);
+                   r->n);
 }
 
 static void replay_clear(Replay *r)
@@ -230,30 +242,13 @@ static void replay_clear(Replay *r)
     g_free(r->got);
 }
 
-gboolean wl_pm_replay(NetNet *net, const WlPmMerge *m, WlPmBalance bal,
-                      guint height, const WlPmMergeCosts *costs,
-                      const SimTime *ready, SimBusy *busy, unsigned phase,
+gboolean wl_pm_replay(const WlPmReplayRig *rig, const WlPmMerge *m,
                       WlPmReplayOut *out, GError **err)
 {
-    return wl_pm_replay_procs(net, NULL, m, bal, height, costs, ready, busy,
-                              phase, out, err);
-}
-
-gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
-                            const WlPmMerge *m, WlPmBalance bal, guint height,
-                            const WlPmMergeCosts *costs, const SimTime *ready,
-                            SimBusy *busy, unsigned phase, WlPmReplayOut *out,
-                            GError **err)
-{
     guint n = m->n_procs;
-    g_assert(net_nodes(net) >= n);
-    Replay r = {.net = net,
-                .procs = procs,
-                .eng = net_engine(net),
-                .n = n,
-                .busy = busy,
-                .phase = phase};
-    build_steps(&r, m, bal, height, costs);
+    g_assert(net_nodes(rig->net) >= n && (rig->procs || rig->busy));
+    Replay r = {.rig = rig, .eng = net_engine(rig->net), .n = n};
+    build_steps(&r, m);
     r.cur = g_new0(guint, n);
     r.waiting = g_new0(gboolean, n);
     r.got = g_new0(guint8, (gsize)(r.n_steps + 1) * n);
@@ -261,7 +256,7 @@ gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
     r.done = out->done;
     SimTime now = sim_now(r.eng);
     for (guint p = 0; p < n; p++)
-        sim_schedule_at(r.eng, MAX(now, ready[p]), proc_step, &r,
+        sim_schedule_at(r.eng, MAX(now, rig->ready[p]), proc_step, &r,
                         GUINT_TO_POINTER(p));
     gboolean ok = sim_engine_run(r.eng, SIM_TIME_MAX, err);
     if (ok && r.overflow) {

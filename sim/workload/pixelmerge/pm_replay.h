@@ -38,31 +38,49 @@ typedef struct {
     uint32_t count_bytes; /* bytes of one scanline count in a message */
 } WlPmMergeCosts;
 
-/* The result of a replay: per processor, busy time in `phase` accumulated
- * into busy[p] and the time its merge finished, done[p]. */
+/* Where a cost struct (WlPmMergeCosts, WlPmCosts) keeps the price of
+ * one named operation: the offset of its SimTime.  Tables end with a
+ * NULL name. */
+typedef struct {
+    const char *name;
+    size_t off;
+} WlPmUnit;
+
+/* Named counts o[0 .. n-1] at the prices of `costs`, laid out as units
+ * says (every name must be there), saturating: the pricing of a frame
+ * run without machine processors. */
+SimTime wl_pm_price(const void *costs, const WlPmUnit *units, const MachOp *o,
+                    guint n);
+
+/* The result of a replay: the time each processor's merge finished,
+ * done[p]. */
 typedef struct {
     SimTime *done; /* n_procs */
     SimTime end;   /* max of done */
 } WlPmReplayOut;
 
-/* Replays merge m (borrowed) with balancing `bal` on `net` (its engine,
- * at time now): processor p starts at ready[p] (>= now).  Runs the
- * engine until the merge is over.  busy[p] receives the compute time in
- * `phase`.  `height` is the screen's scanline count.  FALSE with *err if
- * the engine failed (overflow). */
-gboolean wl_pm_replay(NetNet *net, const WlPmMerge *m, WlPmBalance bal,
-                      guint height, const WlPmMergeCosts *costs,
-                      const SimTime *ready, SimBusy *busy, unsigned phase,
+/* Where a merge is replayed and who does its computing.  With procs,
+ * every compute is charged once, to machine processor procs[p], priced
+ * by its kind's cost table (mach_proc_compute_ops): its busy time per
+ * phase is the record, and costs supplies only count_bytes.  Without
+ * procs (an engine and a network alone), computes are engine events
+ * priced by costs, and busy[p] receives their time in `phase`. */
+typedef struct {
+    NetNet *net;                 /* its engine, at time now */
+    MachProc *const *procs;      /* borrowed; NULL: engine events */
+    const WlPmMergeCosts *costs; /* prices without procs; count_bytes */
+    const SimTime *ready;        /* processor p starts at ready[p] (>= now) */
+    SimBusy *busy;               /* without procs; NULL with procs */
+    unsigned phase;              /* of every compute */
+    WlPmBalance bal;             /* the partition's global sum and setup */
+    guint height;                /* the screen's scanline count */
+} WlPmReplayRig;
+
+/* Replays merge m (borrowed) as rig says: runs the engine until the
+ * merge is over and fills *out (free with wl_pm_replay_out_clear).
+ * FALSE with *err if the engine failed (overflow). */
+gboolean wl_pm_replay(const WlPmReplayRig *rig, const WlPmMerge *m,
                       WlPmReplayOut *out, GError **err);
-/* The same, computing on machine processors: procs[p] (borrowed; NULL:
- * plain engine events) is charged every compute in `phase` through
- * mach_proc_compute(), so its busy time and trace spans are the
- * machine's as well as busy[p]'s. */
-gboolean wl_pm_replay_procs(NetNet *net, MachProc *const *procs,
-                            const WlPmMerge *m, WlPmBalance bal, guint height,
-                            const WlPmMergeCosts *costs, const SimTime *ready,
-                            SimBusy *busy, unsigned phase, WlPmReplayOut *out,
-                            GError **err);
 void wl_pm_replay_out_clear(WlPmReplayOut *out);
 
 #endif

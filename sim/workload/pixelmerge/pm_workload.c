@@ -32,8 +32,8 @@
 #include <string.h>
 
 const char *const wl_pm_cost_ops[] = {
-    "polygon",  "span",      "insert_step", "pixel",   "zcompare",
-    "scanline", "zbuf_init", "pack",        "scatter", "compare",
+    "polygon",  "span",      "insert_step", "pixel",       "zcompare",
+    "scanline", "zbuf_init", "pack",        "scatter",     "compare",
     "gather",   "sum_elem",  "sort_elem",   "assign_step", NULL};
 const MachNeed wl_pm_needs[] = {{"node", wl_pm_cost_ops}, {NULL, NULL}};
 
@@ -49,12 +49,13 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
     MachCosts *set = mach_costs_new(m, wl_pm_needs, err);
     if (!set)
         return FALSE;
-    SimTime *const dst[] = {
-        &c->polygon,         &c->span,          &c->insert_step,
-        &c->pixel,           &c->zcompare,      &c->scanline,
-        &c->zbuf_init,       &c->merge.pack,    &c->merge.scatter,
-        &c->merge.compare,   &c->merge.gather,  &c->merge.sum_elem,
-        &c->merge.sort_elem, &c->merge.assign_step};
+    SimTime *const dst[] = {&c->polygon,         &c->span,
+                            &c->insert_step,     &c->pixel,
+                            &c->zcompare,        &c->scanline,
+                            &c->zbuf_init,       &c->merge.pack,
+                            &c->merge.scatter,   &c->merge.compare,
+                            &c->merge.gather,    &c->merge.sum_elem,
+                            &c->merge.sort_elem, &c->merge.assign_step};
     G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_pm_cost_ops) - 1);
     mach_costs_fill(set, "node", wl_pm_cost_ops, dst);
     mach_costs_free(set);
@@ -78,17 +79,6 @@ WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
     }
     u.total = u.base + u.polygons + u.spans + u.zbuffer + u.buffers;
     return u;
-}
-
-char *wl_pm_memory_verdict(const WlPmMemUse *u, uint64_t memory)
-{
-    const double mb = 1048576.0; /* MiB */
-    return g_strdup_printf(
-        "%s %.2f of %.2f MiB (base %.2f, polygons %.2f, spans %.2f, "
-        "z-buffer/WPA %.2f, message buffers %.2f)",
-        u->total > memory ? "* out of memory:" : "fits:", u->total / mb,
-        memory / mb, u->base / mb, u->polygons / mb, u->spans / mb,
-        u->zbuffer / mb, u->buffers / mb);
 }
 
 static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
@@ -203,9 +193,8 @@ static WlPmMemUse peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
     WlPmMemUse peak;
     memset(&peak, 0, sizeof peak); /* all parts 0 until a node has bytes */
     for (guint q = 0; q < s->procs; q++) {
-        WlPmMemUse u =
-            wl_pm_memory_use(&p->mem, s, fo->counts[q].polygons,
-                             fo->counts[q].rc.spans, fo->active[q]);
+        WlPmMemUse u = wl_pm_memory_use(&p->mem, s, fo->counts[q].polygons,
+                                        fo->counts[q].rc.spans, fo->active[q]);
         if (u.total > peak.total)
             peak = u;
     }
@@ -277,26 +266,36 @@ static gboolean check_machine(MachMachine *m, const WlPmSetup *s,
     return FALSE;
 }
 
-static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
-                          const Scene *sc, WlPmSetup *s, const WlPmCosts *c,
-                          const WlContext *ctx, WlPmFrameOut *fo,
-                          SimResult *out, GError **err)
+/* One run: the machine's first P processors of kind "node" over the
+ * run's frames. */
+typedef struct {
+    const WlContext *ctx;
+    const WlPmParams *p;
+    WlPmSetup s; /* procs resolved against the machine */
+    WlPmCosts c; /* the machine's, for the serial reference */
+    MachProc **procs;
+    WlPmFrameOut fo; /* the last frame's */
+} PmRun;
+
+static gboolean run_frame(PmRun *r, int f, SimResult *out, GError **err)
 {
-    wl_pm_frame_out_clear(fo, s->procs);
-    s->keep_image = wl_wants_frame(ctx, f);
-    if (!wl_pm_frame_run_procs(mach_net(m), procs, (guint)f, sc, s, c, fo,
-                               err))
+    MachMachine *m = r->ctx->machine;
+    SimEngine *eng = mach_engine(m);
+    wl_pm_frame_out_clear(&r->fo, r->s.procs);
+    r->s.keep_image = wl_wants_frame(r->ctx, f);
+    if (!wl_pm_frame_run_procs(mach_net(m), r->procs, (guint)f, r->ctx->scene,
+                               &r->s, &r->c, &r->fo, err))
         return FALSE;
-    if (sim_engine_cut(mach_engine(m)))
+    if (sim_engine_cut(eng))
         return TRUE; /* run.until ended the run inside this frame */
-    if (fo->image && !wl_emit_frame(ctx, f, fo->image, err))
+    if (r->fo.image && !wl_emit_frame(r->ctx, f, r->fo.image, err))
         return FALSE;
     SimTime t;
-    if (!sim_time_from_s(fo->frame_ms * 1e-3, &t))
+    if (!sim_time_from_s(r->fo.frame_ms * 1e-3, &t))
         t = SIM_TIME_MAX;
     sim_result_add_frame(out, t);
-    wl_mark_frame(mach_engine(m), (guint)f, sim_now(mach_engine(m)));
-    if (fo->image_checked && !fo->image_ok) {
+    wl_mark_frame(eng, (guint)f, sim_now(eng));
+    if (r->fo.image_checked && !r->fo.image_ok) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
                     "pixelmerge: the merged image of frame %d differs "
                     "from the serial render",
@@ -306,61 +305,45 @@ static gboolean run_frame(MachMachine *m, MachProc **procs, int f,
     return TRUE;
 }
 
-gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc, const WlPmParams *p,
-                          const WlPmCosts *c, int frames, SimResult *out,
-                          GError **err)
+/* The run's figures after its last frame. */
+static void run_metrics(const PmRun *r, SimResult *out)
 {
-    return wl_pm_run_frames_at(m, sc, p, c, frames, NULL, NULL, out, err);
-}
-
-gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
-                             const WlPmParams *p, const WlPmCosts *c,
-                             int frames, const CfgNode *procs_at,
-                             const WlContext *ctx, SimResult *out,
-                             GError **err)
-{
-    WlPmSetup s = p->setup;
-    if (s.procs == 0) {
-        const MachKindInfo *k = mach_kind(m, "node");
-        s.procs = k ? k->count : 0;
-    }
-    if (!check_machine(m, &s, procs_at, err))
-        return FALSE;
-    MachProc **procs = g_new(MachProc *, s.procs);
-    for (guint q = 0; q < s.procs; q++)
-        procs[q] = mach_proc(m, "node", q);
-    WlPmFrameOut fo = {0};
-    gboolean ok = TRUE;
-    SimEngine *eng = mach_engine(m);
-    int done = 0; /* frames run.until did not cut */
-    for (; ok && done < frames && !sim_engine_cut(eng); done++)
-        ok = run_frame(m, procs, done, sc, &s, c, ctx, &fo, out, err);
-    if (ok && sim_engine_cut(eng)) {
-        mach_fill_result(m, out);
-        out->elapsed = sim_now(eng);
-    } else if (ok) {
-        mach_fill_result(m, out);
-        WlPmMemUse mem = peak_memory(&fo, p, &s);
-        double insert_ms = 0;
-        double serial_ms = wl_pm_serial_ms(sc, &s, c, &insert_ms);
-        fill_metrics(out, &fo, serial_ms, &s, &mem);
-        set(out, "serial_insert_ms", insert_ms, "ms");
-        out->elapsed = sim_now(mach_engine(m));
-    }
-    wl_pm_frame_out_clear(&fo, s.procs);
-    g_free(procs);
-    return ok;
+    WlPmMemUse mem = peak_memory(&r->fo, r->p, &r->s);
+    double insert_ms = 0;
+    double serial_ms = wl_pm_serial_ms(r->ctx->scene, &r->s, &r->c, &insert_ms);
+    fill_metrics(out, &r->fo, serial_ms, &r->s, &mem);
+    set(out, "serial_insert_ms", insert_ms, "ms");
 }
 
 static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
                        GError **err)
 {
-    WlPmCosts c;
-    WlPmParams *p = params;
-    return wl_pm_costs_from_machine(ctx->machine, p->count_bytes, &c, err) &&
-           wl_pm_run_frames_at(ctx->machine, ctx->scene, p, &c, ctx->frames,
-                               cfg_path(ctx->root, "workload.processors"), ctx,
-                               out, err);
+    MachMachine *m = ctx->machine;
+    PmRun r = {.ctx = ctx, .p = params, .s = ((WlPmParams *)params)->setup};
+    if (r.s.procs == 0) {
+        const MachKindInfo *k = mach_kind(m, "node");
+        r.s.procs = k ? k->count : 0;
+    }
+    if (!check_machine(m, &r.s, cfg_path(ctx->root, "workload.processors"),
+                       err) ||
+        !wl_pm_costs_from_machine(m, r.p->count_bytes, &r.c, err))
+        return FALSE;
+    r.procs = g_new(MachProc *, r.s.procs);
+    for (guint q = 0; q < r.s.procs; q++)
+        r.procs[q] = mach_proc(m, "node", q);
+    gboolean ok = TRUE;
+    SimEngine *eng = mach_engine(m);
+    for (int f = 0; ok && f < ctx->frames && !sim_engine_cut(eng); f++)
+        ok = run_frame(&r, f, out, err);
+    if (ok) {
+        mach_fill_result(m, out);
+        if (!sim_engine_cut(eng))
+            run_metrics(&r, out);
+        out->elapsed = sim_now(eng);
+    }
+    wl_pm_frame_out_clear(&r.fo, r.s.procs);
+    g_free(r.procs);
+    return ok;
 }
 
 static void pm_plan(const void *params, WlPlan *plan)

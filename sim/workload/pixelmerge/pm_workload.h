@@ -1,7 +1,7 @@
-/* pm_workload.h — the `pixelmerge` workload (WlOps row) and the pieces
- * the kurc96 reproduction shares with it: node costs from a machine
- * model, the workload's section parser and a multi-frame run that fills
- * a SimResult (Kurç, Aykanat, Özgüç, seed 003).
+/* pm_workload.h — the `pixelmerge` workload (WlOps row; Kurç, Aykanat,
+ * Özgüç, seed 003): its parameters, node costs from a machine model and
+ * the per-node memory model behind its memory metrics.  Everything else
+ * runs it through the runner (sim/run/run.h).
  *
  * Section keys and metrics: docs/workloads.md ("pixelmerge").
  */
@@ -61,26 +61,5 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
  * the merged output, active x bytes_per_pixel each). */
 WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
                             uint64_t polygons, uint64_t spans, uint64_t active);
-/* "* out of memory: 4.21 of 4.00 MiB (base ..., z-buffer ...)" or
- * "fits: ...": the verdict of use against `memory` bytes; g_free(). */
-char *wl_pm_memory_verdict(const WlPmMemUse *use, uint64_t memory);
-
-/* Runs `frames` frames of sc (frame f with the scene's camera of frame f)
- * with setup s on machine m (processors node0 .. node{P-1}, its network
- * and engine) and fills out (mach_fill_result plus the metrics listed in
- * docs/workloads.md).  FALSE with *err on failure (SIM_ERROR_INTERNAL if
- * the merged image differs from the serial render). */
-gboolean wl_pm_run_frames(MachMachine *m, const Scene *sc, const WlPmParams *p,
-                          const WlPmCosts *c, int frames, SimResult *out,
-                          GError **err);
-/* The same; a processor count the machine cannot hold is reported at
- * procs_at (the config's processors key; NULL: not located); ctx, when
- * not NULL, receives the merged frames the run wants as images
- * (wl_emit_frame). */
-gboolean wl_pm_run_frames_at(MachMachine *m, const Scene *sc,
-                             const WlPmParams *p, const WlPmCosts *c,
-                             int frames, const CfgNode *procs_at,
-                             const WlContext *ctx,
-                             SimResult *out, GError **err);
 
 #endif

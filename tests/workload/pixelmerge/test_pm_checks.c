@@ -73,8 +73,9 @@ static uint64_t ns(double ms)
 static void check_phases(const Scene *sc, WlPmScheme sch, guint P,
                          const WlPmCosts *c)
 {
-    WlPmSetup s = {sch, WL_PM_BAL_RS, P, N, WL_PM_SPLIT_CYCLIC, {8, 4, 2},
-                   FALSE, FALSE, RAST_SPAN_EXACT, FALSE};
+    WlPmSetup s = {
+        sch,   WL_PM_BAL_RS,    P,    N, WL_PM_SPLIT_CYCLIC, {8, 4, 2}, FALSE,
+        FALSE, RAST_SPAN_EXACT, FALSE};
     WlPmFrameOut out;
     frame(sc, &s, c, &out);
     int full = sch == WL_PM_ZBUF_EXC;
@@ -90,9 +91,8 @@ static void check_phases(const Scene *sc, WlPmScheme sch, guint P,
         ns(out.frame_ms) - ns(out.merge_ms) != barrier)
         fail_msg("scheme %d P %u: span %.6f zbuf %.6f frame-merge %.6f ms, "
                  "expected %.6f %.6f %.6f",
-                 sch, P, out.span_ms, out.zbuf_ms,
-                 out.frame_ms - out.merge_ms, span * 1e-9, zbuf * 1e-9,
-                 barrier * 1e-9);
+                 sch, P, out.span_ms, out.zbuf_ms, out.frame_ms - out.merge_ms,
+                 span * 1e-9, zbuf * 1e-9, barrier * 1e-9);
     assert_true(P == 1 || out.merge_ms > 0);
     wl_pm_frame_out_clear(&out, P);
 }
@@ -131,59 +131,70 @@ static void test_local_phases_follow_costs(void **state)
     scene_free(sc);
 }
 
-/* On a machine, each processor's busy time per phase (charged as named
- * operation counts, mach_proc_compute_ops) equals the time the cost
- * model gives the same counts (WlPmFrameOut.busy): the op lists name
- * every operation with its count. */
+/* The same frame on machine processors (work charged once, priced by
+ * the machine) and without them (wl_pm_frame_run at the costs read from
+ * the same machine, on a fresh copy of its network): every processor's
+ * busy time per phase and the frame's phase times agree, so the op lists
+ * name every operation with its count and the machine's frame is the
+ * cost model's, each piece of work counted once (a second charge would
+ * delay the machine's barrier and lengthen its frame). */
 static void test_machine_busy_matches_cost_model(void **state)
 {
     (void)state;
     GError *err = NULL;
     CfgNode *root =
         cfg_load_string("machine: {model: ipsc2}\n", "m.yaml", &err);
-    SimEngine *eng = sim_engine_new(1);
-    MachMachine *m =
-        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
-    assert_non_null(m);
-    WlPmCosts c;
-    assert_true(wl_pm_costs_from_machine(m, 4, &c, &err));
     Scene *sc = one_teapot();
     for (int sch = 0; sch < 3; sch++) {
+        SimEngine *eng[2] = {sim_engine_new(1), sim_engine_new(1)};
+        MachMachine *m[2];
+        for (int i = 0; i < 2; i++) {
+            m[i] = mach_new_from_cfg(eng[i], cfg_get(root, "machine"),
+                                     "analytic", &err);
+            assert_non_null(m[i]);
+        }
+        WlPmCosts c;
+        assert_true(wl_pm_costs_from_machine(m[0], 4, &c, &err));
         MachProc *procs[4];
         for (guint q = 0; q < 4; q++)
-            procs[q] = mach_proc(m, "node", q);
-        WlPmSetup s = {(WlPmScheme)sch, WL_PM_BAL_HBP, 4, N,
-                       WL_PM_SPLIT_CYCLIC, {8, 4, 2}, FALSE, FALSE,
-                       RAST_SPAN_EXACT, FALSE};
-        WlPmFrameOut out;
-        if (!wl_pm_frame_run_procs(mach_net(m), procs, 0, sc, &s, &c, &out,
-                                   &err))
+            procs[q] = mach_proc(m[0], "node", q);
+        WlPmSetup s = {(WlPmScheme)sch,    WL_PM_BAL_HBP, 4,     N,
+                       WL_PM_SPLIT_CYCLIC, {8, 4, 2},     FALSE, FALSE,
+                       RAST_SPAN_EXACT,    FALSE};
+        WlPmFrameOut on, off;
+        if (!wl_pm_frame_run_procs(mach_net(m[0]), procs, 0, sc, &s, &c, &on,
+                                   &err) ||
+            !wl_pm_frame_run(mach_net(m[1]), sc, &s, &c, &off, &err))
             fail_msg("%s", err->message);
-        SimResult *r = sim_result_new("pm", "");
-        mach_fill_result(m, r);
         const char *ph[] = {"span", "zbuf", "merge"};
-        for (guint q = 0; q < 4; q++) {
-            const SimNodeResult *nd = g_ptr_array_index(r->nodes, q);
+        for (guint q = 0; q < 4; q++)
             for (guint k = 0; k < 3; k++) {
-                unsigned id = sim_engine_phase(eng, ph[k]);
-                SimTime want = sim_busy_phase(&out.busy[q], id);
-                if (sim_busy_phase(&nd->busy, id) != want)
-                    fail_msg("scheme %d node %u phase %s: machine %" G_GUINT64_FORMAT
-                             " ps, cost model %" G_GUINT64_FORMAT " ps",
-                             sch, q, ph[k], sim_busy_phase(&nd->busy, id),
-                             want);
+                SimTime got = mach_proc_busy_phase(
+                    procs[q], sim_engine_phase(eng[0], ph[k]));
+                SimTime want = sim_busy_phase(&off.busy[q],
+                                              sim_engine_phase(eng[1], ph[k]));
+                if (got != want)
+                    fail_msg(
+                        "scheme %d node %u phase %s: machine %" G_GUINT64_FORMAT
+                        " ps, cost model %" G_GUINT64_FORMAT " ps",
+                        sch, q, ph[k], got, want);
+                assert_true(sim_busy_phase(&on.busy[q],
+                                           sim_engine_phase(eng[0], ph[k])) ==
+                            got);
                 assert_true(k == 2 || want > 0);
             }
+        assert_true(on.span_ms == off.span_ms && on.span_ms > 0);
+        assert_true(on.zbuf_ms == off.zbuf_ms && on.zbuf_ms > 0);
+        assert_true(on.merge_ms == off.merge_ms && on.merge_ms > 0);
+        assert_true(on.frame_ms == off.frame_ms);
+        wl_pm_frame_out_clear(&on, 4);
+        wl_pm_frame_out_clear(&off, 4);
+        for (int i = 0; i < 2; i++) {
+            mach_free(m[i]);
+            sim_engine_free(eng[i]);
         }
-        sim_result_free(r);
-        wl_pm_frame_out_clear(&out, 4);
-        mach_free(m); /* a fresh machine (idle processors) per scheme */
-        m = mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic",
-                              &err);
     }
     scene_free(sc);
-    mach_free(m);
-    sim_engine_free(eng);
     cfg_free(root);
 }
 
@@ -197,8 +208,11 @@ enum { H = 4 };
 static gboolean replay_sort(SimTime sort_elem, SimTime *end, GError **err)
 {
     const WlPmFormat fmt = {8, 5, 2};
-    NetParams np = {.bandwidth = 1e6, .channels = 1, .startup = SIM_US,
-                    .per_hop = SIM_US, .switching = NET_SW_CIRCUIT};
+    NetParams np = {.bandwidth = 1e6,
+                    .channels = 1,
+                    .startup = SIM_US,
+                    .per_hop = SIM_US,
+                    .switching = NET_SW_CIRCUIT};
     SimEngine *eng = sim_engine_new(1);
     NetTopo *topo = net_hypercube_new(0);
     NetNet *net = net_new(eng, topo, &np, NET_ANALYTIC);
@@ -215,8 +229,13 @@ static gboolean replay_sort(SimTime sort_elem, SimTime *end, GError **err)
     sim_busy_init(&busy[0]);
     SimTime ready[1] = {0};
     WlPmReplayOut out = {0};
-    gboolean ok = wl_pm_replay(net, m, WL_PM_BAL_HBP, H, &c, ready, busy, 0,
-                               &out, err);
+    WlPmReplayRig r = {.net = net,
+                       .costs = &c,
+                       .ready = ready,
+                       .busy = busy,
+                       .bal = WL_PM_BAL_HBP,
+                       .height = H};
+    gboolean ok = wl_pm_replay(&r, m, &out, err);
     *end = out.end;
     wl_pm_replay_out_clear(&out);
     sim_busy_clear(&busy[0]);

@@ -74,8 +74,13 @@ static void test_aapc_two(void **state)
     sim_busy_init(&busy[1]);
     SimTime ready[2] = {0, 50 * SIM_US};
     WlPmReplayOut out;
-    assert_true(wl_pm_replay(rig.net, m, WL_PM_BAL_STRIPS, H, &costs, ready,
-                             busy, 0, &out, NULL));
+    WlPmReplayRig r = {.net = rig.net,
+                       .costs = &costs,
+                       .ready = ready,
+                       .busy = busy,
+                       .bal = WL_PM_BAL_STRIPS,
+                       .height = H};
+    assert_true(wl_pm_replay(&r, m, &out, NULL));
     /* p0 owns rows 0-1, p1 rows 2-3.  p1 sends 2 rows x 2 pixels:
      * 4*8 + 2*2 = 36 B -> 100 + 10 + 36 us, sent at 50 us -> 196 us.
      * p0 then scatters its 2 own pixels, compares 4: 4 + 12 us = 212. */
@@ -114,8 +119,13 @@ static void test_rs_global_sum(void **state)
     sim_busy_init(&busy[1]);
     SimTime ready[2] = {0, 0};
     WlPmReplayOut out;
-    assert_true(wl_pm_replay(rig.net, m, WL_PM_BAL_RS, H, &costs, ready, busy,
-                             0, &out, NULL));
+    WlPmReplayRig r = {.net = rig.net,
+                       .costs = &costs,
+                       .ready = ready,
+                       .busy = busy,
+                       .bal = WL_PM_BAL_RS,
+                       .height = H};
+    assert_true(wl_pm_replay(&r, m, &out, NULL));
     /* Sum: 100 + 10 + 16 us = 126, + 4 x 7 = 154, + 2 x 11 = 176 us.
      * Rows split 2 | 2: p0 sends 2 rows x 1 px = 20 B (130 us) and p1
      * 2 x 2 = 36 B (146 us).  p0: 176 + 146 = 322, then scatter 2 (4),
@@ -134,8 +144,8 @@ static void test_rs_global_sum(void **state)
 /* Runs the replay of m with balancing `bal` from ready[] on a fresh
  * analytic hypercube of `dims`; fills done[] and busy[] (merge phase). */
 static void replay(const WlPmMerge *m, WlPmBalance bal, unsigned dims,
-                   const WlPmMergeCosts *c, const SimTime *ready,
-                   SimTime *done, SimTime *busy)
+                   const WlPmMergeCosts *c, const SimTime *ready, SimTime *done,
+                   SimTime *busy)
 {
     Rig rig;
     rig_init(&rig, dims);
@@ -145,7 +155,13 @@ static void replay(const WlPmMerge *m, WlPmBalance bal, unsigned dims,
     for (guint p = 0; p < n; p++)
         sim_busy_init(&b[p]);
     GError *err = NULL;
-    if (!wl_pm_replay(rig.net, m, bal, H, c, ready, b, 0, &out, &err))
+    WlPmReplayRig r = {.net = rig.net,
+                       .costs = c,
+                       .ready = ready,
+                       .busy = b,
+                       .bal = bal,
+                       .height = H};
+    if (!wl_pm_replay(&r, m, &out, &err))
         fail_msg("%s", err->message);
     SimTime end = 0;
     for (guint p = 0; p < n; p++) {

@@ -1,10 +1,10 @@
-/* test_pm_run.c — the pixelmerge run (wl_pm_run_frames_at, issue 21):
+/* test_pm_run.c — the pixelmerge run through the runner (issue 21):
  * every metric it prints equals the value recomputed from one frame run
  * by the test on a fresh machine (wl_pm_frame_run_procs with the same
  * setup and costs): phase times, speed-up and utilisation from their
  * definitions, the counts (themselves rebuilt from the local renders,
- * the partition, the merge and its replay), and the peak memory as the largest node's
- * wl_pm_memory_use() (P = 1 included); frames and elapsed time; a
+ * the partition, the merge and its replay), and the peak memory as the largest
+ * node's wl_pm_memory_use() (P = 1 included); frames and elapsed time; a
  * machine without a "node" kind refused with the exact message; and the
  * image written under an output directory. */
 #include <setjmp.h>
@@ -56,8 +56,8 @@ static void setup_clear(Setup *s)
 static MachMachine *machine(const Setup *s, SimEngine *eng, WlPmCosts *c)
 {
     GError *err = NULL;
-    MachMachine *m = mach_new_from_cfg(eng, cfg_get(s->root, "machine"),
-                                       "analytic", &err);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(s->root, "machine"), "analytic", &err);
     assert_non_null(m);
     assert_true(wl_pm_costs_from_machine(m, s->p->count_bytes, c, &err));
     return m;
@@ -76,9 +76,9 @@ static WlPmMemUse largest(const Setup *s, const WlPmFrameOut *fo)
 {
     WlPmMemUse best = {0};
     for (guint q = 0; q < s->p->setup.procs; q++) {
-        WlPmMemUse u = wl_pm_memory_use(&s->p->mem, &s->p->setup,
-                                        fo->counts[q].polygons,
-                                        fo->counts[q].rc.spans, fo->active[q]);
+        WlPmMemUse u =
+            wl_pm_memory_use(&s->p->mem, &s->p->setup, fo->counts[q].polygons,
+                             fo->counts[q].rc.spans, fo->active[q]);
         assert_true(u.total > 0);
         if (u.total > best.total)
             best = u;
@@ -166,10 +166,14 @@ static void check_glue(const Setup *s, const WlPmFrameOut *fo,
     for (guint q = 0; q < P; q++)
         sim_busy_init(&busy[q]);
     WlPmReplayOut ro = {0};
-    WlPmBalance bal =
-        su->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS : su->balance;
-    assert_true(wl_pm_replay(mach_net(mm), m, bal, N, &c->merge, ready, busy,
-                             0, &ro, NULL));
+    WlPmReplayRig rig = {.net = mach_net(mm),
+                         .costs = &c->merge,
+                         .ready = ready,
+                         .busy = busy,
+                         .bal = su->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS
+                                                             : su->balance,
+                         .height = N};
+    assert_true(wl_pm_replay(&rig, m, &ro, NULL));
     assert_true(fo->merge_ms == sim_time_to_ms(ro.end));
     wl_pm_replay_out_clear(&ro);
     for (guint q = 0; q < P; q++) {
@@ -183,26 +187,24 @@ static void check_glue(const Setup *s, const WlPmFrameOut *fo,
     scene_mesh_free(flat);
 }
 
-/* Runs `frames` frames through wl_pm_run_frames and checks the result
- * against one frame the test runs itself on a fresh machine. */
+/* Runs `frames` frames through the runner and checks the result against
+ * one frame the test runs itself on a fresh machine. */
 static void check_run(const char *scheme, guint P, int frames,
                       const char *extra)
 {
     Setup s = setup(scheme, P, extra);
+    SimTime now = 0;
+    SupportRun o = {.fidelity = "analytic", .frames = frames, .now = &now};
+    GError *err = NULL;
+    SimResult *r = support_run_tree(cfg_copy(s.root), &o, &err);
+    if (!r)
+        fail_msg("%s", err->message);
+    assert_int_equal(r->frame_times->len, frames);
+    assert_true(r->elapsed == now && r->elapsed > 0);
+
     SimEngine *eng = sim_engine_new(1);
     WlPmCosts c;
     MachMachine *m = machine(&s, eng, &c);
-    SimResult *r = sim_result_new("pixelmerge", "");
-    GError *err = NULL;
-    if (!wl_pm_run_frames(m, s.sc, s.p, &c, frames, r, &err))
-        fail_msg("%s", err->message);
-    assert_int_equal(r->frame_times->len, frames);
-    assert_true(r->elapsed == sim_now(mach_engine(m)) && r->elapsed > 0);
-    mach_free(m);
-    sim_engine_free(eng);
-
-    eng = sim_engine_new(1);
-    m = machine(&s, eng, &c);
     MachProc *procs[8];
     for (guint q = 0; q < P; q++)
         procs[q] = mach_proc(m, "node", q);
@@ -240,32 +242,23 @@ static void test_metrics_recomputed(void **state)
 }
 
 /* A machine with no node kind "node" (the CM-200: front_end and array)
- * and processors left to the machine: 0 processors, refused. */
+ * and processors left to the machine: 0 processors, refused before any
+ * cost is asked for. */
 static void test_machine_without_nodes(void **state)
 {
     (void)state;
-    Setup s = setup("pair", 4, "");
-    s.p->setup.procs = 0;
     GError *err = NULL;
-    CfgNode *root = cfg_load_string("machine: {model: cm200}\n", "m.yaml",
-                                    &err);
-    SimEngine *eng = sim_engine_new(1);
-    MachMachine *m =
-        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
-    assert_non_null(m);
-    WlPmCosts c = {.polygon = SIM_US, .merge = {.count_bytes = 4}};
-    SimResult *r = sim_result_new("pixelmerge", "");
-    assert_false(wl_pm_run_frames(m, s.sc, s.p, &c, 1, r, &err));
+    SupportRun o = {.fidelity = "analytic"};
+    SimResult *r = support_run_text(
+        "machine: {model: cm200}\n"
+        "workload: {type: pixelmerge, scheme: pair, resolution: 24}\n"
+        "scene: {generator: teapots, count: 1, polygons_per_teapot: 300}\n",
+        &o, &err);
+    assert_null(r);
     assert_string_equal(err->message,
                         "pixelmerge: found '0' processors, expected at most "
                         "the 0 nodes of kind 'node' of machine 'cm200'");
-    assert_int_equal(r->frame_times->len, 0);
     g_error_free(err);
-    sim_result_free(r);
-    mach_free(m);
-    sim_engine_free(eng);
-    cfg_free(root);
-    setup_clear(&s);
 }
 
 /* With an output directory the run writes the last frame's merged image
@@ -292,8 +285,8 @@ static void test_frame_png(void **state)
     v.cull_back = FALSE;
     RastSpanList *sl = rast_spanlist_new(24, 24);
     RastCounters rc = {0};
-    rast_draw_mesh(&v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
-                   0, rast_spanlist_sink(sl), &rc);
+    rast_draw_mesh(&v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+                   rast_spanlist_sink(sl), &rc);
     rast_spanlist_sort(sl);
     RastActive *a = rast_active_new(24, 24);
     rast_scanline_zbuffer(a, sl, &rc);
