@@ -38,7 +38,7 @@ TESTLIB := $(shell find tests -name '*.c' ! -name 'test_*.c' \
 TESTLOBJ := $(TESTLIB:%.c=$(BUILD)/obj/%.o)
 # libFuzzer harnesses (tests/fuzz/fuzz_<name>.c).  make test runs each as
 # replay_<name>, a gcc build that replays its corpus and past crashes.
-FUZZERS := cfg model obj ply render trace structdb plotcsv
+FUZZERS := cfg model obj ply render trace structdb plotcsv simgrid map
 FUZZBIN := $(FUZZERS:%=$(BUILD)/tests/fuzz/replay_%)
 SECONDS ?= 60
 SANITIZE := address,undefined,float-cast-overflow,pointer-overflow

@@ -20,6 +20,8 @@
 #include "sim/app/bench/bench.h"
 #include "sim/core/cfg.h"
 #include "sim/core/engine.h"
+#include "sim/core/evq.h"
+#include "sim/core/memlimit.h"
 #include "sim/core/rng.h"
 #include <stdio.h>
 #include <time.h>
@@ -123,6 +125,26 @@ static double bare_heap_rate(const Phold *ph, uint64_t pending, uint64_t seed)
     return (double)ph->target / cpu;
 }
 
+/* Bytes of one pending event in the engine (its queue keeps up to two
+ * records per event while growing) and in the bare heap. */
+#define PHOLD_EVENT_BYTES (2.0 * sizeof(SimEvKey) + sizeof(SimTime))
+
+/* The LPs and n x m pending events (engine, then the bare heap) fit the
+ * memory limit: checked before anything is allocated or seeded (doubles:
+ * the product of two counts cannot wrap). */
+static gboolean phold_fits(uint64_t n, uint64_t m, GError **err)
+{
+    double bytes = (double)n * sizeof(PholdLp) +
+                   (double)n * (double)m * PHOLD_EVENT_BYTES;
+    char *what = g_strdup_printf("%" G_GUINT64_FORMAT " LPs with %"
+                                 G_GUINT64_FORMAT " pending events each",
+                                 n, m);
+    gboolean ok = sim_mem_check(bytes, "phold: --lps, --pending-per-lp",
+                                what, err);
+    g_free(what);
+    return ok;
+}
+
 typedef struct {
     char *lps, *pending, *lookahead, *mean, *events;
     double remote;
@@ -162,14 +184,16 @@ static gboolean phold_parse(int *argc, char ***argv, PholdArgs *a, Phold *ph,
         (a->mean && !cfg_parse_time(a->mean, "--mean", &mean, err)) ||
         (a->events && !cfg_parse_count(a->events, "--events", &ev, err)))
         return FALSE;
-    if (n == 0 || m == 0 || ev == 0 || a->remote < 0 || a->remote > 1 ||
-        a->seed < 0) {
+    if (n == 0 || m == 0 || ev == 0 || !(a->remote >= 0 && a->remote <= 1) ||
+        a->seed < 0) { /* NaN is outside [0, 1] too */
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "phold: found a zero count, a negative seed or --remote "
                     "outside [0, 1], expected --lps, --pending-per-lp and "
                     "--events >= 1");
         return FALSE;
     }
+    if (!phold_fits(n, m, err))
+        return FALSE;
     *ph = (Phold){.n_lps = n,
                   .remote = a->remote,
                   .lookahead = la,

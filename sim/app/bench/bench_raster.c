@@ -67,7 +67,9 @@ static Scene *make_scene(const BenchRasterOpts *o, GError **err)
     if (g_strcmp0(o->scene, "isosurface") == 0) {
         SceneIsoParams p = scene_iso_defaults();
         p.grid = (guint)o->grid;
-        return scene_iso_new(&p);
+        return scene_iso_check(&p, "bench raster: --grid", err)
+                   ? scene_iso_new(&p)
+                   : NULL;
     }
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                 "bench raster: found --scene '%s', expected teapots or "

@@ -21,6 +21,7 @@
  * over the wait.
  */
 #include "sim/app/trace/trace_impl.h"
+#include "sim/core/memlimit.h"
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
@@ -51,6 +52,21 @@ typedef struct {
 
 static const SimTraceOps trc_ops; /* below: the hooks every format shares */
 
+/* Memory one recorded event keeps until the file is closed, about: a
+ * buffered Paje line, or a message's in-flight deltas and its links'. */
+#define TRC_EVENT_BYTES 256.0
+
+/* A --trace-cap whose events would not fit the memory limit is an input
+ * error now, not an abort part way through the run. */
+static gboolean cap_fits(uint64_t cap, GError **err)
+{
+    char *what = g_strdup_printf("a cap of %" G_GUINT64_FORMAT " events", cap);
+    gboolean ok = sim_mem_check((double)cap * TRC_EVENT_BYTES, "--trace-cap",
+                                what, err);
+    g_free(what);
+    return ok;
+}
+
 SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
 {
     const TrcFormat *fmt = format_for(path);
@@ -61,6 +77,8 @@ SimTrace *trc_open(const char *path, uint64_t max_events, GError **err)
                     path);
         return NULL;
     }
+    if (max_events && !cap_fits(max_events, err))
+        return NULL; /* before the .tmp file exists */
     TrcWriter *w = g_new0(TrcWriter, 1);
     w->tmp = g_strconcat(path, ".tmp", NULL);
     w->f = fopen(w->tmp, "w");
