@@ -228,26 +228,43 @@ gboolean scene_db_is_primitive(const SceneDb *db, guint sid)
 
 /* ---- cycle check ------------------------------------------------------ */
 
-/* Depth-first search from `from` for `target` along executes; on success
- * `path` holds the chain from `from` to `target`. */
+typedef struct {
+    guint sid, next; /* a structure on the search path, its next element */
+} DfsFrame;
+
+/* Depth-first search from `from` for `target` along executes, on an
+ * explicit stack (a chain may be deeper than the C stack allows); on
+ * success `path` holds the chain from `from` to `target`. */
 static gboolean reaches(const SceneDb *db, guint from, guint target,
                         GArray *path, guint8 *seen)
 {
-    g_array_append_val(path, from);
-    if (from == target)
-        return TRUE;
-    if (!seen[from]) {
-        seen[from] = 1;
-        const SceneStruct *s = get(db, from);
-        for (guint i = 0; i < s->elems->len; i++) {
-            const SceneElem *e = &g_array_index(s->elems, SceneElem, i);
-            if (e->kind == SCENE_EL_EXECUTE &&
-                reaches(db, e->child, target, path, seen))
-                return TRUE;
+    GArray *st = g_array_new(FALSE, FALSE, sizeof(DfsFrame));
+    DfsFrame f0 = {from, 0};
+    gboolean found = from == target;
+    seen[from] = 1;
+    g_array_append_val(st, f0);
+    while (!found && st->len) {
+        DfsFrame *f = &g_array_index(st, DfsFrame, st->len - 1);
+        const SceneStruct *s = get(db, f->sid);
+        while (f->next < s->elems->len &&
+               g_array_index(s->elems, SceneElem, f->next).kind !=
+                   SCENE_EL_EXECUTE)
+            f->next++;
+        if (f->next == s->elems->len) {
+            g_array_set_size(st, st->len - 1);
+            continue;
+        }
+        DfsFrame c = {g_array_index(s->elems, SceneElem, f->next++).child, 0};
+        found = c.sid == target;
+        if (found || !seen[c.sid]) {
+            seen[c.sid] = 1;
+            g_array_append_val(st, c);
         }
     }
-    g_array_set_size(path, path->len - 1);
-    return FALSE;
+    for (guint i = 0; found && i < st->len; i++)
+        g_array_append_val(path, g_array_index(st, DfsFrame, i).sid);
+    g_array_unref(st);
+    return found;
 }
 
 static gboolean check_execute(const SceneDb *db, guint sid, const SceneElem *e,
@@ -525,6 +542,53 @@ guint scene_db_execute_count(const SceneDb *db, guint sid, guint child)
         n += e->kind == SCENE_EL_EXECUTE && e->child == child;
     }
     return n;
+}
+
+void scene_db_shape(const SceneDb *db, SceneDbShape *out)
+{
+    guint n = db->structs->len;
+    guint *indeg = g_new0(guint, n), *depth = g_new0(guint, n);
+    double *inst = g_new0(double, n);
+    guint8 *posted = g_new0(guint8, n);
+    GArray *queue = g_array_new(FALSE, FALSE, sizeof(guint));
+    memset(out, 0, sizeof *out);
+    for (guint i = 0; i < db->posted->len; i++)
+        posted[g_array_index(db->posted, guint, i)] = 1;
+    for (guint sid = 0; sid < n; sid++) {
+        const SceneStruct *s = get(db, sid);
+        for (guint i = 0; i < s->elems->len; i++) {
+            const SceneElem *e = &g_array_index(s->elems, SceneElem, i);
+            indeg[e->child] += e->kind == SCENE_EL_EXECUTE;
+        }
+    }
+    for (guint sid = 0; sid < n; sid++) {
+        inst[sid] = indeg[sid] == 0 || posted[sid];
+        depth[sid] = 1;
+        if (indeg[sid] == 0)
+            g_array_append_val(queue, sid);
+    }
+    for (guint q = 0; q < queue->len; q++) { /* Kahn's topological order */
+        guint sid = g_array_index(queue, guint, q);
+        const SceneStruct *s = get(db, sid);
+        out->instances += inst[sid];
+        out->elements += inst[sid] * s->elems->len;
+        if (depth[sid] > out->depth)
+            out->depth = depth[sid], out->deepest = sid;
+        for (guint i = 0; i < s->elems->len; i++) {
+            const SceneElem *e = &g_array_index(s->elems, SceneElem, i);
+            if (e->kind != SCENE_EL_EXECUTE)
+                continue;
+            inst[e->child] += inst[sid];
+            depth[e->child] = MAX(depth[e->child], depth[sid] + 1);
+            if (--indeg[e->child] == 0)
+                g_array_append_val(queue, e->child);
+        }
+    }
+    g_array_unref(queue);
+    g_free(posted);
+    g_free(indeg);
+    g_free(depth);
+    g_free(inst);
 }
 
 guint scene_db_height(const SceneDb *db, guint sid)

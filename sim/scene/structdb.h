@@ -162,6 +162,21 @@ GArray *scene_db_maxset(const SceneDb *db);
  * number of executes of `child` in `sid`. */
 GArray *scene_db_children(const SceneDb *db, guint sid);
 guint scene_db_execute_count(const SceneDb *db, guint sid, guint child);
+/* The network's shape, found without expanding it: roots are the
+ * posted structures and every structure nothing executes (an edit may
+ * post any of them); counts are doubles, since shared executes multiply
+ * (each of 40 levels executing the next twice makes 2^40 instances).
+ * Iterative (Kahn's topological order), O(structures + executes). */
+typedef struct {
+    guint depth;       /* levels of the longest execute chain (1: none) */
+    guint deepest;     /* the structure at its end */
+    double instances;  /* max-set structure instances */
+    double elements;   /* max-set element instances */
+} SceneDbShape;
+void scene_db_shape(const SceneDb *db, SceneDbShape *out);
+/* Execute chains a database may hold (scene_db_load refuses deeper
+ * ones): the traversals recurse once per level. */
+#define SCENE_DB_DEPTH_MAX 256
 /* Levels of nesting below and including sid (a leaf structure has 1). */
 guint scene_db_height(const SceneDb *db, guint sid);
 

@@ -2,6 +2,8 @@
  * format (structdb_file.h).
  */
 #include "sim/scene/structdb_file.h"
+#include "sim/core/memlimit.h"
+#include "sim/scene/scene_limits.h"
 #include <math.h>
 #include <string.h>
 
@@ -62,6 +64,13 @@ static Vec3 *vertices(const CfgNode *n, gboolean triangle, guint *count,
             g_free(v);
             return NULL;
         }
+        for (int k = 0; k < 3; k++)
+            if (!scene_coord_ok(xyz[k])) {
+                bad(err, cfg_seq_at(cfg_seq_at(n, i), (guint)k),
+                    "a coordinate within +-1e15");
+                g_free(v);
+                return NULL;
+            }
         v[i] = vec3(xyz[0], xyz[1], xyz[2]);
     }
     *count = len;
@@ -118,6 +127,10 @@ static gboolean matrix_elem(const CfgNode *n, const CfgNode *v, SceneElem *e,
     if (!numbers(v, 16, m, err) ||
         !cfg_get_enum(n, "mode", FALSE, modes, &mode, err))
         return FALSE;
+    for (int k = 0; k < 16; k++)
+        if (fabs(m[k]) > SCENE_COORD_MAX)
+            return bad(err, cfg_seq_at(v, (guint)k),
+                       "a matrix entry within +-1e15");
     Mat4 mat;
     for (int r = 0; r < 4; r++)
         for (int c = 0; c < 4; c++)
@@ -235,6 +248,49 @@ static gboolean add_posted(SceneDb *db, const CfgNode *root, GError **err)
     return TRUE;
 }
 
+/* The network can be walked and held: execute chains at most
+ * SCENE_DB_DEPTH_MAX deep (the traversals recurse per level), shared
+ * executes expanded within the memory limit, and posted structures'
+ * boxes finite and within +-1e15 once their matrices are applied.  All
+ * found before anything expands the network. */
+static gboolean check_shape(const SceneDb *db, const CfgNode *root,
+                            const CfgNode *list, GError **err)
+{
+    SceneDbShape sh;
+    scene_db_shape(db, &sh);
+    if (sh.depth > SCENE_DB_DEPTH_MAX) {
+        char *found = g_strdup_printf("structure '%s' %u levels down an "
+                                      "execute chain",
+                                      scene_db_struct_name(db, sh.deepest),
+                                      sh.depth);
+        cfg_error(err, cfg_seq_at(list, sh.deepest), found,
+                  "at most 256 levels of executes");
+        g_free(found);
+        return FALSE;
+    }
+    const CfgNode *at = cfg_has(root, "posted") ? cfg_get(root, "posted") : list;
+    char *where = g_strdup_printf("%s:%d:%d", cfg_file(at), cfg_line(at),
+                                  cfg_col(at));
+    char *what = g_strdup_printf("a network of %.3g structure instances and "
+                                 "%.3g element instances (executes expanded)",
+                                 sh.instances, sh.elements);
+    gboolean ok = sim_mem_check(sh.elements * SCENE_POLY_BYTES, where, what,
+                                err);
+    g_free(where);
+    g_free(what);
+    for (guint i = 0; ok && i < scene_db_posted_count(db); i++) {
+        SceneBox b = scene_db_struct_bbox(db, scene_db_posted_at(db, i));
+        if (!scene_box_is_empty(b) &&
+            !(scene_coord_ok(b.min.x) && scene_coord_ok(b.min.y) &&
+              scene_coord_ok(b.min.z) && scene_coord_ok(b.max.x) &&
+              scene_coord_ok(b.max.y) && scene_coord_ok(b.max.z)))
+            ok = bad(err, cfg_seq_at(at, i),
+                     "a posted structure whose matrices keep its "
+                     "coordinates within +-1e15");
+    }
+    return ok;
+}
+
 SceneDb *scene_db_from_cfg(const CfgNode *root, GError **err)
 {
     int64_t version = 0;
@@ -257,7 +313,8 @@ SceneDb *scene_db_from_cfg(const CfgNode *root, GError **err)
     }
     SceneDb *db = scene_db_new();
     if (add_names(db, list, err) && add_elements(db, list, err) &&
-        add_posted(db, root, err) && cfg_check_unused(root, err))
+        add_posted(db, root, err) && cfg_check_unused(root, err) &&
+        check_shape(db, root, list, err))
         return db;
     scene_db_free(db);
     return NULL;

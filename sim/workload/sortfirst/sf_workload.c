@@ -446,6 +446,29 @@ static gboolean check_procs(MachMachine *m, const WlSfSetup *s,
     return FALSE;
 }
 
+/* A database file that posts nothing, or whose posted structures hold
+ * no primitive, has nothing to sort: every per-primitive metric would be
+ * 0 / 0.  Located at the `database` key. */
+static gboolean db_renders(const SceneDb *db, const CfgNode *root,
+                           const char *path, GError **err)
+{
+    SceneDbStats st;
+    scene_db_stats(db, &st);
+    if (st.primitives > 0)
+        return TRUE;
+    char *found = g_strdup_printf(
+        "database file '%s' %s", path,
+        scene_db_posted_count(db) ? "whose posted structures hold no "
+                                    "primitive"
+                                  : "with nothing posted");
+    const CfgNode *at = cfg_get(cfg_get(root, "workload"), "database");
+    cfg_error(err, at ? at : root, found,
+              "a structure database that posts at least one structure "
+              "holding primitives (posted: [...])");
+    g_free(found);
+    return FALSE;
+}
+
 /* The runner's scene (its camera) with the database rendered: the
  * scene's, or the `database` file's in its place; written to `dump_db`
  * when asked. */
@@ -454,8 +477,10 @@ static gboolean load_db(const CfgNode *root, Scene *sc, const WlSfParams *p,
 {
     if (p->database) {
         SceneDb *db = scene_db_load(p->database, err);
-        if (!db)
+        if (!db || !db_renders(db, root, p->database, err)) {
+            scene_db_free(db);
             return FALSE;
+        }
         scene_set_db(sc, db);
     }
     if (sc->db && p->dump_db && !scene_db_save(sc->db, p->dump_db, err))
