@@ -12,10 +12,9 @@
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/raster/scan.h"
 #include "sim/workload/dpscan/dp_model.h"
+#include "sim/machine/model.h"
 #include <math.h>
 #include <stdio.h>
-
-#define MODELS_DIR "models"
 
 typedef struct {
     const RpContext *ctx;
@@ -56,8 +55,12 @@ static gboolean table_machines(const CfgNode *t, GArray *ms, GError **err)
 {
     const char *mname = NULL;
     WlDpMachine m = {0};
-    if (!cfg_get_str(t, "machine", TRUE, &mname, err) ||
-        !wl_dp_machine_load(MODELS_DIR, mname, &m, err))
+    if (!cfg_get_str(t, "machine", TRUE, &mname, err))
+        return FALSE;
+    CfgNode *model = mach_load_model(mname, err);
+    gboolean ok = model && wl_dp_machine_from_model(model, NULL, &m, err);
+    cfg_free(model);
+    if (!ok)
         return FALSE;
     const CfgNode *parts = cfg_get(t, "partitions");
     if (cfg_kind(parts) != CFG_SEQ || cfg_seq_len(parts) == 0) {

@@ -20,6 +20,7 @@
 #include "sim/core/memlimit.h"
 #include "sim/output/progress.h"
 #include "sim/machine/machine.h"
+#include "sim/machine/model.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/metrics.h"
 #include <string.h>
@@ -228,11 +229,36 @@ static CfgNode *machine_section(const CfgRun *r, const WlPlan *plan,
     return sec;
 }
 
+/* The workload's model-dependent overrides (WlOps.plan_machine), applied
+ * to sec. */
+static gboolean plan_machine(const CfgRun *r, CfgNode *sec, GError **err)
+{
+    if (!r->wl->plan_machine)
+        return TRUE;
+    const char *const *dirs = (const char *const *)r->model_dirs->pdata;
+    char *model_file = NULL;
+    CfgNode *tree = mach_section_tree_in(sec, dirs, &model_file, err);
+    GPtrArray *set = g_ptr_array_new_with_free_func(g_free);
+    gboolean ok = tree && mach_model_check(tree, model_file, err) &&
+                  r->wl->plan_machine(r->wl_params, r->machine, tree, set,
+                                      err);
+    for (guint i = 0; ok && i < set->len; i++)
+        ok = cfg_set_override(sec, set->pdata[i], err);
+    g_ptr_array_free(set, TRUE);
+    cfg_free(tree);
+    g_free(model_file);
+    return ok;
+}
+
 static gboolean build_machine(CfgRun *r, const WlPlan *plan, GError **err)
 {
     CfgNode *sec = machine_section(r, plan, err);
     if (!sec)
         return FALSE;
+    if (!plan_machine(r, sec, err)) {
+        cfg_free(sec);
+        return FALSE;
+    }
     r->machine_built =
         mach_new_from_cfg_in(r->eng, sec, r->fidelity,
                              (const char *const *)r->model_dirs->pdata, err);

@@ -100,6 +100,17 @@ typedef struct {
      * which sections the runner builds, and refuses when present and
      * unread.  NULL: the workload reads no section but its own. */
     void (*plan)(const void *params, WlPlan *plan);
+    /* Optional, with WL_READS_MACHINE: once the model is known, the
+     * machine overrides that depend on it (dpscan's `processors` are a
+     * SIMD array's lanes or an SPMD machine's nodes).  `given` is the
+     * config's machine: section (NULL: the plan's default model), `model`
+     * that section merged over its model and checked (model.h); both
+     * borrowed.
+     * Appends "key.path=value" strings (g_free) to machine_set, or
+     * returns FALSE with a located *err (a machine it cannot run on). */
+    gboolean (*plan_machine)(const void *params, const CfgNode *given,
+                             const CfgNode *model, GPtrArray *machine_set,
+                             GError **err);
     /* Runs the workload and fills `out`; FALSE with *err on failure.
      * The runner (cfg_run_exec) fills seed, fidelity, events, wall time
      * and, if left 0, elapsed: workloads need not. */

@@ -1,82 +1,69 @@
-/* dp_model.c — the data-parallel cost model of a machine, from YAML.
- *
- * Each parameter is a map holding `value` and one provenance key
- * (source, assumption or calibrated); a note is allowed.  The value is
- * converted with the typed getters of cfg.h, so errors are located
- * ("file:line:column: found ..., expected ...").  O(keys).
+/* dp_model.c — the data-parallel cost model of a machine (dp_model.h):
+ * the `dpscan:` section of the machine the runner built, read into a
+ * WlDpMachine.  The machine layer found the model on the search path and
+ * checked every entry's value and provenance (model.h); this file only
+ * reads the values, with the typed getters of cfg.h, so errors are
+ * located ("file:line:column: found ..., expected ...").  O(keys).
  */
 #include "sim/workload/dpscan/dp_model.h"
+#include "sim/machine/model_param.h"
 
-static const char *const provenance[] = {"source", "assumption", "calibrated",
-                                         NULL};
+/* The (container, key) holding a parameter's value: its provenance map
+ * {value: ...} or, for an override, the section itself. */
+static const CfgNode *holder(const CfgNode *sec, const char **key)
+{
+    const CfgNode *p = cfg_get(sec, *key);
+    if (p && cfg_kind(p) == CFG_MAP) {
+        *key = "value";
+        return p;
+    }
+    return p ? sec : NULL;
+}
 
-/* The parameter map `key` after checking its provenance; NULL when absent
- * (error set if required). */
-static const CfgNode *param(const CfgNode *sec, const char *key,
+/* The holder of `key`; NULL when absent (with *err set if required). */
+static const CfgNode *param(const CfgNode *sec, const char **key,
                             gboolean required, GError **err)
 {
-    const CfgNode *p = cfg_get(sec, key);
-    if (!p) {
-        if (required) {
-            char *found = g_strdup_printf("no '%s'", key);
-            cfg_error(err, sec, found, "the parameter in the section");
-            g_free(found);
-        }
-        return NULL;
+    const char *name = *key;
+    const CfgNode *h = holder(sec, key);
+    if (!h && required) {
+        char *found = g_strdup_printf("no '%s'", name);
+        cfg_error(err, sec, found, "the parameter in the section");
+        g_free(found);
     }
-    if (cfg_kind(p) != CFG_MAP || !cfg_get(p, "value")) {
-        cfg_error(err, p, "a bare value", "{value: ..., source: ...}");
-        return NULL;
-    }
-    int found = 0;
-    for (int i = 0; provenance[i]; i++)
-        found += cfg_get(p, provenance[i]) != NULL;
-    (void)cfg_get(p, "note");
-    if (found != 1) {
-        cfg_error(err, p, "a value without exactly one provenance",
-                  "one of source, assumption, calibrated");
-        return NULL;
-    }
-    return p;
+    return h;
 }
 
 static gboolean get_time(const CfgNode *sec, const char *key, gboolean required,
                          SimTime *out, GError **err)
 {
-    GError *e = NULL;
-    const CfgNode *p = param(sec, key, required, &e);
-    if (!p) {
-        if (e)
-            g_propagate_error(err, e);
-        return e == NULL;
-    }
-    return cfg_get_time(p, "value", TRUE, out, err);
+    const CfgNode *h = param(sec, &key, required, err);
+    return h ? cfg_get_time(h, key, TRUE, out, err) : !required;
 }
 
 /* Optional boolean parameter; FALSE (the default) when absent. */
 static gboolean get_flag(const CfgNode *sec, const char *key, gboolean *out,
                          GError **err)
 {
-    GError *e = NULL;
-    const CfgNode *p = param(sec, key, FALSE, &e);
+    const CfgNode *h = param(sec, &key, FALSE, err);
     *out = FALSE;
-    if (!p) {
-        if (e)
-            g_propagate_error(err, e);
-        return e == NULL;
-    }
-    return cfg_get_bool(p, "value", TRUE, out, err);
+    return !h || cfg_get_bool(h, key, TRUE, out, err);
+}
+
+static gboolean get_count(const CfgNode *sec, const char *key, uint64_t min,
+                          uint64_t max, uint64_t *out, GError **err)
+{
+    const CfgNode *h = param(sec, &key, TRUE, err);
+    return h && cfg_get_count(h, key, TRUE, min, max, out, err);
 }
 
 static gboolean get_levels(const CfgNode *sec, WlDpMachine *m, GError **err)
 {
-    GError *e = NULL;
-    const CfgNode *p = param(sec, "level_bandwidth", TRUE, &e);
-    if (!p) {
-        g_propagate_error(err, e);
+    const char *key = "level_bandwidth";
+    const CfgNode *h = param(sec, &key, TRUE, err);
+    if (!h)
         return FALSE;
-    }
-    const CfgNode *seq = cfg_get(p, "value");
+    const CfgNode *seq = cfg_get(h, key);
     guint n = cfg_kind(seq) == CFG_SEQ ? cfg_seq_len(seq) : 0;
     if (n == 0 || n > NET_MAX_LEVELS) {
         cfg_error(err, seq, "not a list of 1 to 8 bandwidths",
@@ -99,35 +86,21 @@ static gboolean get_levels(const CfgNode *sec, WlDpMachine *m, GError **err)
     return TRUE;
 }
 
-static gboolean get_count(const CfgNode *sec, const char *key, uint64_t min,
-                          uint64_t max, uint64_t *out, GError **err)
-{
-    GError *e = NULL;
-    const CfgNode *p = param(sec, key, TRUE, &e);
-    if (!p) {
-        g_propagate_error(err, e);
-        return FALSE;
-    }
-    return cfg_get_count(p, "value", TRUE, min, max, out, err);
-}
-
 static gboolean spmd_params(const CfgNode *sec, WlDpMachine *m, GError **err)
 {
     uint64_t arity = 4, bytes = 0;
-    GError *e = NULL;
-    const CfgNode *mb = param(sec, "msg_bytes", TRUE, &e);
-    if (!mb) {
-        g_propagate_error(err, e);
+    const char *key = "msg_bytes";
+    const CfgNode *mb = param(sec, &key, TRUE, err);
+    if (!mb)
         return FALSE;
-    }
     if (!get_time(sec, "net_latency", TRUE, &m->net_latency, err) ||
         !get_time(sec, "msg_overhead", TRUE, &m->msg_overhead, err) ||
-        !cfg_get_size(mb, "value", TRUE, &bytes, err) ||
+        !cfg_get_size(mb, key, TRUE, &bytes, err) ||
         !get_count(sec, "arity", 2, 64, &arity, err) ||
         !get_levels(sec, m, err))
         return FALSE;
     if (bytes == 0 || bytes > 65536) {
-        cfg_error(err, cfg_get(mb, "value"), "a size out of range",
+        cfg_error(err, cfg_get(mb, key), "a size out of range",
                   "1 B to 64 KiB");
         return FALSE;
     }
@@ -160,10 +133,10 @@ static const char *const spmd_keys[] = {
 static const WlNeed simd_needs[] = {{"dpscan", simd_keys}, {NULL, NULL}};
 static const WlNeed spmd_needs[] = {{"dpscan", spmd_keys}, {NULL, NULL}};
 const WlNeedAlt wl_dp_model_needs[] = {
-    {"from its model's dpscan: section (models/<workload.model>.yaml), "
-     "arch: simd",
+    {"from its machine model's dpscan: section, arch: simd (the "
+     "partition is nodes.array.lanes)",
      simd_needs},
-    {"the same, arch: spmd", spmd_needs},
+    {"the same, arch: spmd (the partition is nodes.node.count)", spmd_needs},
     {NULL, NULL}};
 
 gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
@@ -174,14 +147,12 @@ gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
         cfg_error(err, sec, "not a map", "a dpscan: section");
         return FALSE;
     }
-    GError *e = NULL;
-    const CfgNode *a = param(sec, "arch", TRUE, &e);
+    const char *key = "arch";
+    const CfgNode *a = param(sec, &key, TRUE, err);
     int kind = 0;
-    if (!a) {
-        g_propagate_error(err, e);
+    if (!a)
         return FALSE;
-    }
-    if (!cfg_get_enum(a, "value", TRUE, arch, &kind, err) ||
+    if (!cfg_get_enum(a, key, TRUE, arch, &kind, err) ||
         !get_time(sec, "op", TRUE, &m->op, err) ||
         !get_time(sec, "step", TRUE, &m->step, err) ||
         !get_time(sec, "scan_slice", TRUE, &m->scan_slice, err) ||
@@ -198,25 +169,52 @@ gboolean wl_dp_machine_from_cfg(const CfgNode *sec, WlDpMachine *m,
     return spmd_params(sec, m, err);
 }
 
-gboolean wl_dp_machine_load(const char *models_dir, const char *name,
-                            WlDpMachine *m, GError **err)
+const char *wl_dp_partition_kind(WlDpArch arch)
 {
-    char *file = g_strdup_printf("%s.yaml", name);
-    char *path = g_build_filename(models_dir, file, NULL);
-    CfgNode *root = cfg_load_file(path, err);
-    gboolean ok = root != NULL;
-    if (ok) {
-        const CfgNode *sec = cfg_get(root, "dpscan");
-        if (!sec) {
-            cfg_error(err, root, "no dpscan: section",
-                      "the data-parallel costs of the machine");
-            ok = FALSE;
-        } else {
-            ok = wl_dp_machine_from_cfg(sec, m, err);
-        }
+    return arch == WL_DP_SIMD ? "array" : "node";
+}
+
+gboolean wl_dp_machine_from_model(const CfgNode *model, const CfgNode *at,
+                                  WlDpMachine *m, GError **err)
+{
+    const CfgNode *sec = cfg_get(model, "dpscan");
+    if (sec)
+        return wl_dp_machine_from_cfg(sec, m, err);
+    const char *name = cfg_scalar(cfg_get(model, "model"));
+    if (!name)
+        name = cfg_scalar(cfg_get(model, "name"));
+    char *found = g_strdup_printf("machine '%s' without a dpscan: section",
+                                  name ? name : "(inline)");
+    cfg_error(err, at ? at : model, found,
+              "a model with the data-parallel costs of dpscan (arch, op, "
+              "step, scan_slice ...: pgsim help run; models/cm200.yaml)");
+    g_free(found);
+    return FALSE;
+}
+
+gboolean wl_dp_machine_from_mach(const MachMachine *mach, WlDpMachine *m,
+                                 GError **err)
+{
+    const CfgNode *model = mach_model_cfg(mach);
+    if (!wl_dp_machine_from_model(model, cfg_get(model, "model"), m, err))
+        return FALSE;
+    const char *kind = wl_dp_partition_kind(m->arch);
+    const MachKindInfo *k = mach_kind(mach, kind);
+    if (!k) {
+        char *found = g_strdup_printf("a %s machine '%s' without '%s' "
+                                      "processors",
+                                      m->arch == WL_DP_SIMD ? "SIMD" : "SPMD",
+                                      mach_name(mach), kind);
+        char *exp = g_strdup_printf("nodes.%s (the partition dpscan runs "
+                                    "on)",
+                                    kind);
+        cfg_error(err, cfg_get(model, "nodes") ? cfg_get(model, "nodes")
+                                               : model,
+                  found, exp);
+        g_free(found);
+        g_free(exp);
+        return FALSE;
     }
-    cfg_free(root);
-    g_free(path);
-    g_free(file);
-    return ok;
+    m->procs = m->arch == WL_DP_SIMD ? k->lanes : k->count;
+    return TRUE;
 }

@@ -1,5 +1,8 @@
-/* dp_workload.c — workload `dpscan` (dp_workload.h): parses its section, renders
- * each frame with the data-parallel renderer on the array layer
+/* dp_workload.c — workload `dpscan` (dp_workload.h): parses its section,
+ * plans its machine (workload.model and workload.processors as
+ * shorthands for the machine: section), reads the costs from the dpscan:
+ * section of the machine the runner built (dp_model.h), renders each
+ * frame with the data-parallel renderer on the array layer
  * (dp_render.h), writes the image under --out, and plays the frame's
  * counted phase times on the machine (one piece of work per phase on the
  * SIMD array, or on every SPMD node) so the result has its busy times.
@@ -13,9 +16,15 @@
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/raster/scan.h"
 
+/* The partition when neither workload.processors nor a machine: section
+ * gives one (seed 004's smallest CM-200). */
+#define DP_DEFAULT_PROCS 16384
+
 typedef struct {
     const char *model;
-    uint64_t procs;
+    const CfgNode *model_at; /* workload.model, borrowed while the runner
+                                loads; NULL when not given */
+    uint64_t procs;          /* workload.processors; 0 when not given */
     int64_t width, height;
     WlDpRenderOpts ro;
     float pal[WL_DP_COLORS][3];
@@ -45,7 +54,7 @@ static void *dp_parse(const CfgNode *sec, GError **err)
 {
     DpParams *p = g_new0(DpParams, 1);
     p->model = "cm200";
-    p->procs = 16384;
+    p->model_at = cfg_get(sec, "model");
     p->width = 1280;
     p->height = 1024;
     p->ro.buffer_factor = 0.25; /* configs/papers/ortega93/setup.yaml */
@@ -75,10 +84,11 @@ static void dp_free_params(void *p)
 static double dp_mem_bytes(const void *params, GString *what)
 {
     const DpParams *p = params;
+    uint64_t procs = p->procs ? p->procs : DP_DEFAULT_PROCS;
     g_string_append_printf(what, "%" G_GUINT64_FORMAT " processors, %"
                            G_GINT64_FORMAT " x %" G_GINT64_FORMAT " pixels",
-                           p->procs, p->width, p->height);
-    return (double)p->width * (double)p->height * 12.0 + (double)p->procs * 12.0;
+                           procs, p->width, p->height);
+    return (double)p->width * (double)p->height * 12.0 + (double)procs * 12.0;
 }
 
 static void add_metrics(SimResult *out, const WlDpTarget *t,
@@ -107,28 +117,6 @@ static void add_metrics(SimResult *out, const WlDpTarget *t,
         sim_result_set_metric(out, "router_soft_s",
                               sim_time_to_s(t->soft_total), "s");
     }
-}
-
-/* A new machine for the dpscan model: the array (SIMD) or p nodes. */
-static MachMachine *dp_machine(SimEngine *eng, const char *model,
-                               const WlDpMachine *m, const char *fidelity,
-                               GError **err)
-{
-    char *text;
-    if (m->arch == WL_DP_SIMD)
-        text = g_strdup_printf("model: %s\nnodes: {array: {lanes: %" G_GUINT64_FORMAT
-                               "}}\nnetwork: {router_nodes: %" G_GUINT64_FORMAT
-                               "}\n",
-                               model, m->procs, MAX(m->procs / 16, 1));
-    else
-        text = g_strdup_printf("model: %s\nnodes: {node: {count: %" G_GUINT64_FORMAT
-                               "}}\n",
-                               model, m->procs);
-    CfgNode *sec = cfg_load_string(text, "dpscan machine", err);
-    g_free(text);
-    MachMachine *mach = sec ? mach_new_from_cfg(eng, sec, fidelity, err) : NULL;
-    cfg_free(sec);
-    return mach;
 }
 
 /* The machine's data network at the run's fidelity, on a private engine:
@@ -292,12 +280,11 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
 {
     DpParams *p = params;
     WlDpMachine m = {0};
-    if (!wl_dp_machine_load("models", p->model, &m, err))
+    MachMachine *mach = ctx->machine;
+    if (!wl_dp_machine_from_mach(mach, &m, err))
         return FALSE;
-    m.procs = p->procs;
     const Scene *s = ctx->scene;
-    MachMachine *mach = dp_machine(ctx->eng, p->model, &m, ctx->fidelity, err);
-    gboolean ok = mach != NULL;
+    gboolean ok = TRUE;
     DpWire *wire = ok && !p->formula ? dp_wire_new(mach, &m) : NULL;
     for (int fr = 0; ok && fr < ctx->frames && !sim_engine_cut(ctx->eng); fr++)
         ok = one_frame(ctx, p, &m, mach, wire, s, fr, out, err);
@@ -310,7 +297,6 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
             net_fill_result(wire->net, out);
     }
     dp_wire_free(wire);
-    mach_free(mach);
     return ok;
 }
 
@@ -337,12 +323,70 @@ static const WlMetric dp_metrics[] = {
     {NULL, NULL, NULL},
 };
 
-/* The machine is workload.model at workload.processors (dp_machine);
- * a machine: section would be ignored, so the runner refuses it. */
+/* The machine is the config's machine: section, or workload.model
+ * (default cm200) when it has none; workload.processors sets its
+ * partition (dp_plan_machine). */
 static void dp_plan(const void *params, WlPlan *plan)
 {
-    (void)params;
-    plan->reads = WL_READS_SCENE;
+    const DpParams *p = params;
+    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
+    plan->default_model = p->model;
+}
+
+/* workload.model beside a machine: section naming another model (or an
+ * inline machine): one of them would be ignored. */
+static gboolean model_conflict(const DpParams *p, const CfgNode *given,
+                               GError **err)
+{
+    const CfgNode *mm = cfg_get(given, "model");
+    const char *name = cfg_scalar(mm);
+    if (!p->model_at || (name && !g_strcmp0(name, p->model)))
+        return FALSE;
+    char *found = mm ? g_strdup_printf("workload.model '%s' beside "
+                                       "machine.model '%s' (%s:%d:%d)",
+                                       p->model, name ? name : "?",
+                                       cfg_file(mm), cfg_line(mm), cfg_col(mm))
+                     : g_strdup_printf("workload.model '%s' beside an inline "
+                                       "machine: section",
+                                       p->model);
+    cfg_error(err, p->model_at, found,
+              "one of them (workload.model is a shorthand for machine.model)");
+    g_free(found);
+    return TRUE;
+}
+
+/* workload.processors as the machine's partition (DP_DEFAULT_PROCS on the
+ * default machine): the SIMD array's lanes and router nodes (16
+ * processors each, when the model counts them), or the SPMD nodes.  The
+ * model's dpscan: section is read here too, so a machine dpscan cannot
+ * run on is refused before anything is built. */
+static gboolean dp_plan_machine(const void *params, const CfgNode *given,
+                                const CfgNode *model, GPtrArray *set,
+                                GError **err)
+{
+    const DpParams *p = params;
+    if (given && model_conflict(p, given, err))
+        return FALSE;
+    const CfgNode *at = cfg_get(given, "model") ? cfg_get(given, "model")
+                        : given                 ? given
+                                                : p->model_at;
+    WlDpMachine m = {0};
+    if (!wl_dp_machine_from_model(model, at, &m, err))
+        return FALSE;
+    uint64_t procs = p->procs ? p->procs : given ? 0 : DP_DEFAULT_PROCS;
+    if (!procs)
+        return TRUE;
+    if (m.arch == WL_DP_SPMD) {
+        g_ptr_array_add(set, g_strdup_printf("nodes.node.count=%" G_GUINT64_FORMAT,
+                                             procs));
+        return TRUE;
+    }
+    g_ptr_array_add(set, g_strdup_printf("nodes.array.lanes=%" G_GUINT64_FORMAT,
+                                         procs));
+    if (cfg_path(model, "network.router_nodes"))
+        g_ptr_array_add(set, g_strdup_printf("network.router_nodes=%" G_GUINT64_FORMAT,
+                                             MAX(procs / 16, 1)));
+    return TRUE;
 }
 
 const WlOps wl_dpscan_ops = {
@@ -352,6 +396,7 @@ const WlOps wl_dpscan_ops = {
     .parse = dp_parse,
     .free_params = dp_free_params,
     .plan = dp_plan,
+    .plan_machine = dp_plan_machine,
     .run = dp_run,
     .needs_alt = wl_dp_model_needs,
     .mem_bytes = dp_mem_bytes,

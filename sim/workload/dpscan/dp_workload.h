@@ -1,9 +1,15 @@
 /* dp_workload.h — workload `dpscan`: seed 004's data-parallel renderer.
  *
+ *   machine: {model: cm200}   # a model with a dpscan: section (dp_model.h)
  *   workload:
  *     type: dpscan
- *     model: cm200            # models/<model>.yaml, section dpscan:
- *     processors: 16384       # partition: lanes (SIMD) or nodes (SPMD)
+ *     model: cm200            # optional shorthand for machine.model (the
+ *                             # default machine); both given must agree
+ *     processors: 16384       # partition: nodes.array.lanes (and
+ *                             # network.router_nodes = /16) on a SIMD
+ *                             # model, nodes.node.count on an SPMD one;
+ *                             # default: the machine's own, 16384 on the
+ *                             # default machine
  *     width: 1280
  *     height: 1024
  *     buffer_factor: 0.25     # segment buffer slots / polygons

@@ -11,7 +11,7 @@
 #include "sim/app/replay/rpl_record.h"
 #include "sim/app/replay/rpl_replay.h"
 #include "sim/machine/machine.h"
-#include "sim/workload/dpscan/dp_model.h"
+#include "tests/workload/dpscan/dp_test_model.h"
 #include <glib/gstdio.h>
 #include <inttypes.h>
 #include <setjmp.h>
@@ -198,7 +198,7 @@ static void rewrite(const char *src, const char *dst, gboolean w_times)
 {
     GError *e = NULL;
     WlDpMachine m = {0};
-    assert_true(wl_dp_machine_load("models", "cm200", &m, &e));
+    assert_true(dp_test_model("cm200", &m, &e));
     RplReader *r = rpl_reader_open(src, &e);
     RplWriter *w = rpl_writer_open(dst, &e);
     g_assert_no_error(e);
@@ -270,7 +270,7 @@ static void test_target_lacking_costs(void **s)
         const char *m = strstr(e->message, missing[i]);
         /* "  DIR/t.pgt:LINE:COL: dpscan.send_setup" */
         if (!m || m - e->message < 8 || strncmp(m - 2, ": ", 2) ||
-            !strstr(e->message, "t.pgt:14:"))
+            !strstr(e->message, "t.pgt:17:"))
             fail_msg("'%s' not listed, located, in: %s", missing[i],
                      e->message);
     }

@@ -130,7 +130,7 @@ static const Case dpscan = {
  * fat-tree formula: the network variant's messages are not in the trace. */
 static const Case dpscan_cm5 = {
     "configs/dpscan-cm200.yaml",
-    {"workload.model=cm5", "workload.processors=32", "workload.wire=formula",
+    {"machine.model=cm5", "workload.processors=32", "workload.wire=formula",
      "scene.grid=16", "workload.width=256", "workload.height=256"}};
 static const Case argus = {"configs/argus-nurbs.yaml", {NULL}};
 static const Case march = {"configs/argus-march.yaml", {NULL}};

@@ -78,7 +78,7 @@ static void test_variants(void **st)
     const char *ph_edits[] = {"workload.edits={append: 1, insert: 1, "
                               "delete: 1, unpost: 1, post: 1}",
                               "run.frames=2", NULL};
-    const char *dp_cm5[] = {"workload.model=cm5", "workload.processors=32",
+    const char *dp_cm5[] = {"machine.model=cm5", "workload.processors=32",
                             "workload.width=256", "workload.height=256",
                             "run.fidelity=flow", NULL};
     const char *pn_pp5[] = {"machine.model=pixel-planes-5", NULL};

@@ -13,7 +13,7 @@
 
 #include "sim/workload/dpscan/dp_color.h"
 #include "sim/workload/dpscan/dp_cost.h"
-#include "sim/workload/dpscan/dp_model.h"
+#include "tests/workload/dpscan/dp_test_model.h"
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/scene/teapots.h"
 
@@ -101,11 +101,11 @@ static void test_router_procs_default(void **state)
     (void)state;
     GError *err = NULL;
     WlDpMachine m = {0};
-    if (!wl_dp_machine_load("models", "cm5", &m, &err))
+    if (!dp_test_model("cm5", &m, &err))
         fail_msg("%s", err->message);
     assert_int_equal(m.router_procs, 1);
     WlDpMachine c = {0};
-    assert_true(wl_dp_machine_load("models", "cm200", &c, &err));
+    assert_true(dp_test_model("cm200", &c, &err));
     assert_true(c.router_procs > 1);
 }
 

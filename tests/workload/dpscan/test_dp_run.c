@@ -16,7 +16,7 @@
 
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/dpscan/dp_color.h"
-#include "sim/workload/dpscan/dp_model.h"
+#include "tests/workload/dpscan/dp_test_model.h"
 #include "sim/workload/dpscan/dp_render.h"
 #include "sim/workload/dpscan/dp_workload.h"
 #include "tests/support.h"
@@ -61,7 +61,7 @@ static void check_against_layer(const char *model, uint64_t procs,
     if (!r)
         fail_msg("%s: %s", w, err->message);
     WlDpMachine m = {0};
-    assert_true(wl_dp_machine_load("models", model, &m, &err));
+    assert_true(dp_test_model(model, &m, &err));
     m.procs = procs;
     CfgNode *root = cfg_load_string(scene_yaml, "s.yaml", &err);
     Scene *s = scene_from_cfg(cfg_get(root, "scene"), &err);
