@@ -1,34 +1,38 @@
 /* mueller97.c — `pgsim reproduce mueller97` (mueller97.h): seed 000's
  * test runs (§4.1: chunk sizes 1, 5, 12, 26; 4 to 20 processors; min-set
  * and max-set; the chunking strategies) on the vehicle database, each a
- * run of the sortfirst workload (sim/workload/sortfirst/sf_frame.h) on
- * the setup's machine model.  What runs is configs/papers/mueller97/
- * setup.yaml; nothing here is a published value.  The scene is built
- * once, and each frame of it rasterised once (sim/raster/prerender.h:
- * every case renders the same frames at the same resolution, and counts
- * its regions' spans and pixels from that render); consecutive cases of
- * one chunking and chunk size share a chunk database, each case builds
- * its machine.  Cost: per case O(frames x (P x chunk
- * instances + polygons rendered + their spans)).
+ * run of the sortfirst workload through the runner (sim/run/run.h):
+ * setup.yaml's `cell` with the case's processors, chunk size,
+ * bookkeeping and chunking set, read through the workload's declared
+ * metrics.  What runs is configs/papers/mueller97/setup.yaml; nothing
+ * here is a published value.  The cases hand the runner one share
+ * (sim/workload/share.h): the workload rasterises each frame of the
+ * scene once for all of them and keeps the chunk database of consecutive
+ * cases of one chunking and chunk size.  Cost: per case O(frames x (P x
+ * chunk instances + polygons rendered + their spans)) plus building the
+ * scene.
  */
 #include "sim/reproduce/mueller97.h"
-#include "sim/scene/scene_cfg.h"
+#include "sim/run/run.h"
 #include "sim/workload/metrics.h"
-#include "sim/workload/sortfirst/sf_workload.h"
 #include <math.h>
+#include <string.h>
 
-enum { MAX_LIST = 16 };
+enum { MAX_LIST = 16, MAX_COUNT = 65536, MINSET = 0, MAXSET = 1 };
+
+const char *const rp_mu_chunking_names[] = {"sorted", "unsorted",
+                                            "partially_sorted", NULL};
+static const char *const bk_names[] = {"minset", "maxset", NULL};
 
 typedef struct {
     CfgNode *root;
-    const char *model, *scene;
-    uint64_t frames, resolution;
+    const CfgNode *cell;       /* a sortfirst run config but its scene */
+    CfgNode *scene;            /* the scene file: {scene: {...}} */
     guint gran[MAX_LIST], n_gran, procs[MAX_LIST], n_procs;
     gboolean bk[2];            /* bookkeeping run: [minset, maxset] */
     guint c1_procs;            /* Chart 1's processor count */
     int c1_bk;                 /* Chart 1's bookkeeping */
-    gboolean chunking[3];      /* Chart 1's strategies, by WlSfChunking */
-    WlSfSizes sizes;
+    gboolean chunking[3];      /* Chart 1's strategies, by RpMuChunking */
 } MuSetup;
 
 /* ---- setup ---------------------------------------------------------------
@@ -52,7 +56,7 @@ static gboolean counts(const CfgNode *root, const char *key, guint *out,
         const CfgNode *e = cfg_seq_at(seq, *n);
         if (!cfg_parse_count(cfg_scalar(e), key, &v, err))
             return FALSE;
-        if (v < 1 || v > WL_SF_MAX_PROCS * 1024) {
+        if (v < 1 || v > MAX_COUNT) {
             cfg_error(err, e, cfg_scalar(e), "a count of 1 .. 65536");
             return FALSE;
         }
@@ -88,49 +92,57 @@ static gboolean words(const CfgNode *map, const char *key,
     return TRUE;
 }
 
-static gboolean read_bytes(MuSetup *s, GError **err)
-{
-    const CfgNode *b;
-    return cfg_get_map(s->root, "bytes", TRUE,
-                       "a map {message, chunk, triangle, instance} of sizes",
-                       &b, err) &&
-           cfg_get_size(b, "message", TRUE, &s->sizes.message, err) &&
-           cfg_get_size(b, "chunk", TRUE, &s->sizes.chunk, err) &&
-           cfg_get_size(b, "triangle", TRUE, &s->sizes.triangle, err) &&
-           cfg_get_size(b, "instance", TRUE, &s->sizes.instance, err);
-}
-
 static gboolean read_chart1(MuSetup *s, GError **err)
 {
     const CfgNode *c;
     uint64_t p = 16;
     if (!cfg_get_map(s->root, "chart1", TRUE,
                      "a map {processors, bookkeeping, chunking}", &c, err) ||
-        !cfg_get_count(c, "processors", TRUE, 1, WL_SF_MAX_PROCS, &p, err) ||
-        !cfg_get_enum(c, "bookkeeping", TRUE, wl_sf_bookkeeping_names,
-                      &s->c1_bk, err) ||
-        !words(c, "chunking", wl_sf_chunking_names, s->chunking, err))
+        !cfg_get_count(c, "processors", TRUE, 1, MAX_COUNT, &p, err) ||
+        !cfg_get_enum(c, "bookkeeping", TRUE, bk_names, &s->c1_bk, err) ||
+        !words(c, "chunking", rp_mu_chunking_names, s->chunking, err))
         return FALSE;
     s->c1_procs = (guint)p;
     return TRUE;
 }
 
+/* The scene file named by `scene`: a map holding only `scene:`, which
+ * becomes every case's scene section (the cell has none of its own). */
+static gboolean read_scene(MuSetup *s, GError **err)
+{
+    static const char *const scene_only[] = {"scene", NULL};
+    const char *path = NULL;
+    const CfgNode *sec = NULL;
+    if (cfg_has(s->cell, "scene")) {
+        cfg_error(err, cfg_get(s->cell, "scene"), "a scene in cell",
+                  "the scene of the top-level `scene:` file only");
+        return FALSE;
+    }
+    if (!cfg_get_str(s->root, "scene", TRUE, &path, err) ||
+        !(s->scene = cfg_load_file(path, err)))
+        return FALSE;
+    if (cfg_kind(s->scene) != CFG_MAP) {
+        cfg_error(err, s->scene, "a non-map", "a scene file {scene: {...}}");
+        return FALSE;
+    }
+    return cfg_get_map(s->scene, "scene", TRUE, "a scene map", &sec, err) &&
+           cfg_check_unused_except(s->scene, scene_only, err);
+}
+
+/* setup.yaml; the cell's keys are the runner's to check (every run). */
 static gboolean setup_load(MuSetup *s, const char *path, GError **err)
 {
+    static const char *const runner_reads[] = {"cell", NULL};
     s->root = cfg_load_file(path, err);
-    s->frames = 12;
-    s->resolution = 256;
-    return s->root && cfg_get_str(s->root, "model", TRUE, &s->model, err) &&
-           cfg_get_str(s->root, "scene", TRUE, &s->scene, err) &&
-           cfg_get_count(s->root, "frames", TRUE, 1, 1000, &s->frames, err) &&
-           cfg_get_count(s->root, "resolution", TRUE, 16, 4096,
-                         &s->resolution, err) &&
+    return s->root &&
+           cfg_get_map(s->root, "cell", TRUE, "a sortfirst run config",
+                       &s->cell, err) &&
+           read_scene(s, err) &&
            counts(s->root, "granularities", s->gran, &s->n_gran, err) &&
            counts(s->root, "processors", s->procs, &s->n_procs, err) &&
-           words(s->root, "bookkeeping", wl_sf_bookkeeping_names, s->bk,
-                 err) &&
-           read_chart1(s, err) && read_bytes(s, err) &&
-           cfg_check_unused(s->root, err);
+           words(s->root, "bookkeeping", bk_names, s->bk, err) &&
+           read_chart1(s, err) &&
+           cfg_check_unused_except(s->root, runner_reads, err);
 }
 
 /* ---- one case ------------------------------------------------------------
@@ -146,85 +158,58 @@ static void point_from(RpMuellerPoint *pt, const SimResult *r)
     pt->fresh = wl_metric(r, "new_boxes_per_frame");
     pt->polys = wl_metric(r, "polygons_rendered_per_frame");
     pt->transforms = wl_metric(r, "transforms_per_frame");
+    /* max-set instances of the root: chunk instances per chunk, rounded */
+    guint chunks = (guint)wl_metric(r, "chunks");
+    guint insts = (guint)wl_metric(r, "chunk_instances");
+    pt->instances = (insts + chunks / 2) / MAX(chunks, 1);
 }
 
-/* What the cases share: each frame rasterised once, and the last chunk
- * database with its instances' screen rectangles per frame (cases come
- * grouped by chunking and chunk size, and P changes a database only
- * through its masters: wl_sf_db_set_procs()). */
-typedef struct {
-    RastPrerenderSet *pre;
-    WlSfDb *db;
-    WlSfScreenSet *screens;
-} MuShared;
-
-static WlSfDb *shared_db(MuShared *sh, const Scene *sc,
-                         const RpMuellerPoint *pt, GError **err)
+/* The run of the cell for one case: a new result, or NULL with *err;
+ * notes the machine's fidelity. */
+static SimResult *run_cell(const RpContext *ctx, const MuSetup *s,
+                           WlShare *share, const RpMuellerPoint *pt,
+                           GError **err)
 {
-    WlSfDb *d = sh->db;
-    if (d && d->granularity == pt->granularity &&
-        d->chunking == pt->chunking) {
-        wl_sf_db_set_procs(d, pt->procs);
-        return d;
+    char *set[] = {
+        g_strdup_printf("workload.processors=%u", pt->procs),
+        g_strdup_printf("workload.granularity=%u", pt->granularity),
+        g_strdup_printf("workload.bookkeeping=%s",
+                        bk_names[pt->minset ? MINSET : MAXSET]),
+        g_strdup_printf("workload.chunking=%s",
+                        rp_mu_chunking_names[pt->chunking]),
+        g_strdup_printf("run.fidelity=%s",
+                        ctx->fidelity ? ctx->fidelity : "analytic"),
+        g_strdup_printf("run.seed=%d", (int)RP_SEED), NULL};
+    CfgNode *tree = cfg_copy(s->cell);
+    cfg_merge(tree, s->scene); /* adds its scene: section */
+    CfgRun *r = cfg_run_from_tree(tree, (const char *const *)set, err);
+    for (guint i = 0; set[i]; i++)
+        g_free(set[i]);
+    CfgRunOpts o = {.quiet = TRUE, .share = share};
+    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+    if (res) {
+        const char *model = cfg_scalar(cfg_path(r->root, "machine.model"));
+        rp_note_fidelity(ctx, model ? model : mach_name(r->machine_built),
+                         mach_fidelity(r->machine_built));
     }
-    wl_sf_db_free(d);
-    wl_sf_screen_set_clear(sh->screens);
-    sh->db = wl_sf_db_new(sc->db, pt->procs, pt->granularity, pt->chunking,
-                          err);
-    return sh->db;
+    cfg_run_free(r);
+    return res;
 }
 
-static gboolean run_on(MachMachine *m, const Scene *sc, const MuSetup *s,
-                       MuShared *sh, RpMuellerPoint *pt, GError **err)
-{
-    WlSfCosts c;
-    if (!wl_sf_costs_from_machine(m, &c, err))
-        return FALSE;
-    const WlSfDb *db = shared_db(sh, sc, pt, err);
-    if (!db)
-        return FALSE;
-    WlSfSetup st = {.procs = pt->procs,
-                    .resolution = (int)s->resolution,
-                    .bk = pt->minset ? WL_SF_MINSET : WL_SF_MAXSET,
-                    .sizes = s->sizes,
-                    .cull_back = TRUE,
-                    .pre = sh->pre,
-                    .screens = sh->screens};
-    WlSfRun *r = wl_sf_run_new(m, sc, db, &st, &c);
-    gboolean ok = wl_sf_run_frames(r, (int)s->frames, SIM_TIME_MAX, err);
-    if (ok) {
-        SimResult *res = sim_result_new("sortfirst", s->model);
-        wl_sf_fill_metrics(res, wl_sf_run_stats(r), db, &st);
-        point_from(pt, res);
-        sim_result_free(res);
-        pt->instances = (wl_sf_n_insts(db) + wl_sf_n_chunks(db) / 2) /
-                        MAX(wl_sf_n_chunks(db), 1);
-    }
-    wl_sf_run_free(r);
-    return ok;
-}
-
-static gboolean run_case(const RpContext *ctx, const Scene *sc,
-                         const MuSetup *s, MuShared *sh, RpMuellerPoint *pt,
-                         GError **err)
+static gboolean run_case(const RpContext *ctx, const MuSetup *s,
+                         WlShare *share, RpMuellerPoint *pt, GError **err)
 {
     char *what = g_strdup_printf("%s %s g=%u P=%u",
-                                 wl_sf_chunking_names[pt->chunking],
+                                 rp_mu_chunking_names[pt->chunking],
                                  pt->minset ? "minset" : "maxset",
                                  pt->granularity, pt->procs);
     rp_step(ctx, what);
     g_free(what);
-    SimEngine *eng = sim_engine_new(RP_SEED);
-    const char *fid = ctx->fidelity ? ctx->fidelity : "analytic";
-    MachMachine *m = mach_new_from_model(eng, s->model, fid, err);
-    gboolean ok = m != NULL;
-    if (ok) {
-        rp_note_fidelity(ctx, s->model, mach_fidelity(m));
-        ok = run_on(m, sc, s, sh, pt, err);
-    }
-    mach_free(m);
-    sim_engine_free(eng);
-    return ok;
+    SimResult *res = run_cell(ctx, s, share, pt, err);
+    if (res)
+        point_from(pt, res);
+    sim_result_free(res);
+    return res != NULL;
 }
 
 /* Every case: sorted chunking over the grid of processors, chunk sizes
@@ -238,9 +223,9 @@ static GArray *cases(const MuSetup *s)
                 for (int bk = 0; bk < 2; bk++) {
                     RpMuellerPoint pt = {.procs = s->procs[p],
                                          .granularity = s->gran[g],
-                                         .minset = bk == WL_SF_MINSET,
-                                         .chunking = (WlSfChunking)ch};
-                    gboolean sorted = ch == WL_SF_CHUNK_SORTED;
+                                         .minset = bk == MINSET,
+                                         .chunking = (RpMuChunking)ch};
+                    gboolean sorted = ch == RP_MU_SORTED;
                     gboolean grid = sorted && s->bk[bk];
                     gboolean c1 = !sorted && s->chunking[ch] &&
                                   pt.procs == s->c1_procs && bk == s->c1_bk;
@@ -267,15 +252,15 @@ static void chart_rows(const RpMuellerPoint *pt, const MuSetup *s,
     if (pt->procs == s->c1_procs && (int)!pt->minset == s->c1_bk) {
         char r1[64];
         g_snprintf(r1, sizeof r1, "%s/g%u",
-                   wl_sf_chunking_names[pt->chunking], pt->granularity);
+                   rp_mu_chunking_names[pt->chunking], pt->granularity);
         add(rows, "1", r1, "box_region_ratio", pt->ratio);
         add(rows, "1", r1, "chunk_overlap", pt->overlap);
     }
-    if (pt->chunking != WL_SF_CHUNK_SORTED)
+    if (pt->chunking != RP_MU_SORTED)
         return;
     add(rows, "2", row, pt->minset ? "bytes_minset" : "bytes_maxset",
         pt->bytes);
-    if (!pt->minset || !s->bk[WL_SF_MAXSET]) {
+    if (!pt->minset || !s->bk[MAXSET]) {
         add(rows, "3", row, "chunk_overlap", pt->overlap);
         add(rows, "3", row, "box_region_ratio", pt->ratio);
     }
@@ -292,23 +277,12 @@ static gboolean mueller97_rows(const RpContext *ctx, GPtrArray *rows,
 {
     MuSetup s = {0};
     gboolean ok = setup_load(&s, ctx->setup, err);
-    Scene *sc = ok ? scene_load(s.scene, err) : NULL;
-    if (ok && sc && !sc->db) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "%s: found a scene without a structure database, "
-                    "expected a hierarchical scene (generator: vehicle)",
-                    s.scene);
-        ok = FALSE;
-    }
-    ok = ok && sc;
     GArray *pts = cases(&s);
-    MuShared sh = {rast_prerender_set_new(), NULL, wl_sf_screen_set_new()};
+    WlShare *share = wl_share_new();
     for (guint i = 0; ok && i < pts->len; i++)
-        ok = run_case(ctx, sc, &s, &sh,
-                      &g_array_index(pts, RpMuellerPoint, i), err);
-    rast_prerender_set_free(sh.pre);
-    wl_sf_db_free(sh.db);
-    wl_sf_screen_set_free(sh.screens);
+        ok = run_case(ctx, &s, share, &g_array_index(pts, RpMuellerPoint, i),
+                      err);
+    wl_share_free(share);
     const RpMuellerPoint *p = (const RpMuellerPoint *)(void *)pts->data;
     for (guint i = 0; ok && i < pts->len; i++)
         chart_rows(&p[i], &s, rows);
@@ -317,7 +291,7 @@ static gboolean mueller97_rows(const RpContext *ctx, GPtrArray *rows,
     if (ok && ctx->out_dir)
         rp_mueller97_charts(p, pts->len, s.c1_procs, ctx->out_dir);
     g_array_unref(pts);
-    scene_free(sc);
+    cfg_free(s.scene);
     cfg_free(s.root);
     return ok;
 }

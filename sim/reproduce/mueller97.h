@@ -23,13 +23,17 @@
 #define PGSIM_REPRODUCE_MUELLER97_H
 
 #include "sim/reproduce/reproduce.h"
-#include "sim/workload/sortfirst/sf_db.h"
+
+/* Chunking strategies (§4.1), named as the workload's `chunking` key. */
+typedef enum { RP_MU_SORTED, RP_MU_UNSORTED, RP_MU_PARTIAL } RpMuChunking;
+/* "sorted", "unsorted", "partially_sorted", NULL */
+extern const char *const rp_mu_chunking_names[];
 
 /* One simulated case, the figures the charts and claims read. */
 typedef struct {
     guint procs, granularity;
     gboolean minset; /* bookkeeping: min-set (else max-set) */
-    WlSfChunking chunking;
+    RpMuChunking chunking;
     guint instances; /* max-set instances of the database's root */
     double bytes, overlap, ratio; /* per frame; overlap; box / region */
     double master, slave, fresh, polys, transforms; /* per frame */

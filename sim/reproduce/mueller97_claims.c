@@ -37,7 +37,7 @@ typedef struct {
 } Pts;
 
 static const RpMuellerPoint *find_ch(Pts a, guint procs, guint g,
-                                     gboolean minset, WlSfChunking ch)
+                                     gboolean minset, RpMuChunking ch)
 {
     for (guint i = 0; i < a.n; i++)
         if (a.pts[i].procs == procs && a.pts[i].granularity == g &&
@@ -51,12 +51,12 @@ static const RpMuellerPoint *find(Pts a, guint procs, guint g, gboolean minset,
                                   gboolean sorted)
 {
     return find_ch(a, procs, g, minset,
-                   sorted ? WL_SF_CHUNK_SORTED : WL_SF_CHUNK_UNSORTED);
+                   sorted ? RP_MU_SORTED : RP_MU_UNSORTED);
 }
 
 static gboolean is_sorted(const RpMuellerPoint *p)
 {
-    return p->chunking == WL_SF_CHUNK_SORTED;
+    return p->chunking == RP_MU_SORTED;
 }
 
 /* Distinct values of procs (by_procs) or granularity, ascending. */
@@ -286,12 +286,12 @@ static void claim_chunking(Pts a, GPtrArray *rows)
     double box = 0, ovl = 0, pbox = 0, povl = 0;
     for (guint i = 0; i < a.n; i++) {
         const RpMuellerPoint *u = &a.pts[i];
-        if (u->chunking != WL_SF_CHUNK_UNSORTED || u->granularity < 2)
+        if (u->chunking != RP_MU_UNSORTED || u->granularity < 2)
             continue;
         const RpMuellerPoint *s =
             find(a, u->procs, u->granularity, u->minset, TRUE);
         const RpMuellerPoint *p = find_ch(a, u->procs, u->granularity,
-                                          u->minset, WL_SF_CHUNK_PARTIAL);
+                                          u->minset, RP_MU_PARTIAL);
         if (!s || u->ratio <= 0 || u->overlap <= 0)
             continue;
         cases++;

@@ -21,20 +21,20 @@ static gboolean point_of(Chart c, const RpMuellerPoint *p, guint c1_procs,
     *x = p->granularity;
     switch (c) {
     case C1:
-        g_snprintf(series, len, "%s", wl_sf_chunking_names[p->chunking]);
+        g_snprintf(series, len, "%s", rp_mu_chunking_names[p->chunking]);
         *y = p->overlap;
         return p->procs == c1_procs && p->minset == c1_minset;
     case C2:
         *y = p->bytes;
-        return p->chunking == WL_SF_CHUNK_SORTED && !p->minset;
+        return p->chunking == RP_MU_SORTED && !p->minset;
     case C3:
         *x = p->ratio;
         *y = p->overlap;
-        return p->chunking == WL_SF_CHUNK_SORTED && !p->minset;
+        return p->chunking == RP_MU_SORTED && !p->minset;
     case C4:
     case C5:
         *y = p->transforms;
-        return p->chunking == WL_SF_CHUNK_SORTED && p->minset == (c == C4) &&
+        return p->chunking == RP_MU_SORTED && p->minset == (c == C4) &&
                p->granularity > 1;
     }
     return FALSE;
@@ -61,7 +61,7 @@ static void chart(Chart c, const RpMuellerPoint *pts, guint n,
     gboolean c1_minset = FALSE; /* Chart 1's bookkeeping: the other
                                    strategies' (max-set when none ran) */
     for (guint i = 0; i < n; i++)
-        if (pts[i].chunking != WL_SF_CHUNK_SORTED)
+        if (pts[i].chunking != RP_MU_SORTED)
             c1_minset = pts[i].minset;
     for (guint i = 0; i < n; i++) {
         double x, y;

@@ -415,7 +415,8 @@ SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
                      .frames = r->frames,
                      .out_dir = opts ? opts->out_dir : NULL,
                      .quiet = opts ? opts->quiet : TRUE,
-                     .all_frames = opts && opts->all_frames};
+                     .all_frames = opts && opts->all_frames,
+                     .share = opts ? opts->share : NULL};
     RptProgress *p = opts && opts->progress && !opts->quiet
                          ? rpt_progress_new(0, r->wl->name)
                          : NULL;

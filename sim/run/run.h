@@ -76,6 +76,8 @@ typedef struct {
                             NULL with SIM_ERROR_DRY_RUN means "would run" */
     gboolean all_frames; /* with out_dir: an image of every frame */
     SimRecorder *recorder; /* --record (sim/core/record.h); NULL: none */
+    WlShare *share; /* what this run may share with the caller's other
+                       runs (sim/workload/share.h); NULL: nothing */
 } CfgRunOpts;
 
 /* Runs the config's workload on the engine, machine and scene the load

@@ -20,6 +20,7 @@
 #include "sim/machine/machine.h"
 #include "sim/raster/image.h"
 #include "sim/scene/scene.h"
+#include "sim/workload/share.h"
 
 typedef struct {
     SimEngine *eng;      /* fresh engine seeded with `seed`; borrowed */
@@ -37,6 +38,8 @@ typedef struct {
     const char *out_dir;  /* where images etc. may go; NULL: none */
     gboolean quiet;       /* no progress output */
     gboolean all_frames;  /* with out_dir: an image of every frame */
+    WlShare *share;       /* what consecutive runs may share (share.h);
+                             NULL: nothing; borrowed */
 } WlContext;
 
 /* Frame images (pgsim run --out DIR): a workload that renders a picture

@@ -32,7 +32,7 @@ static guint make_points(RpMuellerPoint *pts)
                 double ratio = procs[p] * grans[g] / 100.0;
                 pts[n++] = (RpMuellerPoint){
                     .procs = procs[p], .granularity = grans[g],
-                    .minset = minset, .chunking = WL_SF_CHUNK_SORTED,
+                    .minset = minset, .chunking = RP_MU_SORTED,
                     .instances = 3,
                     .bytes = bytes[p][g], .ratio = ratio,
                     .overlap = 1 + ratio, .slave = minset ? 300 : 100,
@@ -40,11 +40,11 @@ static guint make_points(RpMuellerPoint *pts)
             }
     for (guint g = 0; g < NG; g++) {
         RpMuellerPoint u = pts[2 * g], h = pts[2 * g]; /* P = 4, max-set */
-        u.chunking = WL_SF_CHUNK_UNSORTED;
+        u.chunking = RP_MU_UNSORTED;
         u.ratio *= 1.5;
         u.overlap *= 1.2;
         pts[n++] = u;
-        h.chunking = WL_SF_CHUNK_PARTIAL;
+        h.chunking = RP_MU_PARTIAL;
         h.ratio *= 1.25;
         h.overlap *= 1.1;
         pts[n++] = h;
@@ -69,7 +69,7 @@ static double holds(const RpMuellerPoint *pts, guint n, const char *claim)
 static RpMuellerPoint *at(RpMuellerPoint *pts, guint n, guint p, guint g,
                           gboolean minset, gboolean sorted)
 {
-    WlSfChunking ch = sorted ? WL_SF_CHUNK_SORTED : WL_SF_CHUNK_UNSORTED;
+    RpMuChunking ch = sorted ? RP_MU_SORTED : RP_MU_UNSORTED;
     for (guint i = 0; i < n; i++)
         if (pts[i].procs == p && pts[i].granularity == g &&
             pts[i].minset == minset && pts[i].chunking == ch)
@@ -101,12 +101,12 @@ static void breaks(RpMuellerPoint *pts, guint n, int k)
         break;
     case 4: /* unsorted boxes smaller than sorted ones */
         for (guint i = 0; i < n; i++)
-            if (pts[i].chunking == WL_SF_CHUNK_UNSORTED)
+            if (pts[i].chunking == RP_MU_UNSORTED)
                 pts[i].ratio /= 2;
         break;
     case 5: /* partially sorted overlap below sorted's: sorted not chosen */
         for (guint i = 0; i < n; i++)
-            if (pts[i].chunking == WL_SF_CHUNK_PARTIAL)
+            if (pts[i].chunking == RP_MU_PARTIAL)
                 pts[i].overlap /= 1.2;
         break;
     }
@@ -132,7 +132,7 @@ static void test_claims_can_fail(void **state)
      * the paper's claim: C5 still holds, cases_partial_between drops */
     guint n = make_points(pts);
     for (guint i = 0; i < n; i++)
-        if (pts[i].chunking == WL_SF_CHUNK_PARTIAL)
+        if (pts[i].chunking == RP_MU_PARTIAL)
             pts[i].overlap *= 2;
     assert_true(holds(pts, n, "C5") == 1);
     /* no unsorted nor partially sorted case: C5 cannot be decided */
@@ -173,13 +173,19 @@ static const char *scene =
 static char *setup_text(const char *scene_path, const char *extra)
 {
     return g_strdup_printf(
-        "model: cluster-ib\nscene: %s\nframes: 3\nresolution: 64\n"
+        "cell:\n"
+        "  schema_version: 1\n"
+        "  machine: {model: cluster-ib}\n"
+        "  workload: {type: sortfirst, regions: static, check_image: false,\n"
+        "    cull_back: true, resolution: 64,\n"
+        "    bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, "
+        "instance: 8 B}}\n"
+        "  run: {frames: 3}\n"
+        "scene: %s\n"
         "granularities: [1, 5]\nprocessors: [2, 4]\n"
         "bookkeeping: [minset, maxset]\n"
         "chart1: {processors: 4, bookkeeping: maxset,\n"
-        "         chunking: [sorted, partially_sorted, unsorted]}\n"
-        "bytes: {message: 64 B, chunk: 40 B, triangle: 36 B, "
-        "instance: 8 B}\n%s",
+        "         chunking: [sorted, partially_sorted, unsorted]}\n%s",
         scene_path, extra);
 }
 

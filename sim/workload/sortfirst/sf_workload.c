@@ -46,8 +46,15 @@
  * `machine:` section (normally `model: cluster-ib`); its `node` kind
  * must have the costs of sf_frame.h.  Frames: sf_frame.h; bookkeeping:
  * sf_book.h; chunks: sf_db.h.
+ *
+ * Runs handed one share (WlContext.share, share.h; `pgsim reproduce
+ * mueller97`'s cases) that render no image and edit nothing keep there
+ * each frame rasterised once (per scene, resolution and culling) and the
+ * last chunk database with its screen rectangles (per scene, chunk size,
+ * chunking and resolution): the same figures as alone, computed once.
  */
 #include "sim/workload/sortfirst/sf_workload.h"
+#include "sim/output/provenance.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/scene/structdb_file.h"
 #include <glib/gstdio.h>
@@ -515,6 +522,87 @@ static gboolean emit_frame(void *ctx, int frame, const RastZBuffer *zb,
     return ok;
 }
 
+/* ---- what runs of one scene share (share.h) ----------------------------- */
+
+/* The chunk database kept for the next run, with its instances' screen
+ * rectangles per frame: valid for runs of one scene, granularity,
+ * chunking and resolution (P changes it only through its masters,
+ * wl_sf_db_set_procs). */
+typedef struct {
+    char *key;
+    WlSfDb *db;
+    WlSfScreenSet *screens;
+} SfKept;
+
+static void kept_free(gpointer p)
+{
+    SfKept *k = p;
+    g_free(k->key);
+    wl_sf_db_free(k->db);
+    wl_sf_screen_set_free(k->screens);
+    g_free(k);
+}
+
+/* A run may use what earlier runs kept when it renders no image and
+ * edits nothing (both change what a frame draws) and draws the scene's
+ * own database. */
+static gboolean shares(const WlContext *ctx, const WlSfParams *p)
+{
+    return ctx->share && !ctx->out_dir && !p->setup.edits &&
+           !p->setup.check_image && !p->database;
+}
+
+/* The scene as configured, the resolution and culling: what each
+ * frame's render depends on. */
+static char *scene_key(const WlContext *ctx, const WlSfParams *p)
+{
+    const CfgNode *sec = cfg_get(ctx->root, "scene");
+    char *json = prov_cfg_json(sec);
+    char *key = g_strdup_printf("sortfirst %s %s res %d cull %d",
+                                cfg_file(sec), json, p->setup.resolution,
+                                p->setup.cull_back);
+    g_free(json);
+    return key;
+}
+
+/* The chunk database of this run: kept from an earlier run of the same
+ * key (masters re-dealt for P), or new (and then kept when sharing). */
+static WlSfDb *run_db(const WlContext *ctx, const WlSfParams *p,
+                      const char *skey, WlSfSetup *st, GError **err)
+{
+    if (!skey)
+        return wl_sf_db_new(ctx->scene->db, p->setup.procs, p->granularity,
+                            p->chunking, err);
+    char *key = g_strdup_printf("%s gran %u chunking %d", skey,
+                                p->granularity, (int)p->chunking);
+    SfKept *k = wl_share_get(ctx->share, "sortfirst db");
+    if (!k || strcmp(k->key, key) != 0) {
+        WlSfDb *db = wl_sf_db_new(ctx->scene->db, p->setup.procs,
+                                  p->granularity, p->chunking, err);
+        if (!db) {
+            g_free(key);
+            return NULL;
+        }
+        k = g_new0(SfKept, 1);
+        *k = (SfKept){key, db, wl_sf_screen_set_new()};
+        wl_share_put(ctx->share, "sortfirst db", k, kept_free);
+    } else {
+        g_free(key);
+        wl_sf_db_set_procs(k->db, p->setup.procs);
+    }
+    st->screens = k->screens;
+    RastPrerenderSet *pre = wl_share_get(ctx->share, skey);
+    if (!pre) {
+        pre = rast_prerender_set_new();
+        wl_share_put(ctx->share, skey, pre,
+                     (GDestroyNotify)rast_prerender_set_free);
+    }
+    st->pre = pre;
+    return k->db;
+}
+
+/* ---- running ------------------------------------------------------------- */
+
 static gboolean run_frames(const WlContext *ctx, MachMachine *m,
                            const Scene *sc, const WlSfParams *p, SimResult *out,
                            GError **err)
@@ -524,11 +612,14 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
         !check_procs(m, &p->setup, cfg_path(ctx->root, "workload.processors"),
                      err))
         return FALSE;
-    WlSfDb *db =
-        wl_sf_db_new(sc->db, p->setup.procs, p->granularity, p->chunking, err);
+    WlSfSetup st = p->setup;
+    char *skey = shares(ctx, p) ? scene_key(ctx, p) : NULL;
+    WlSfDb *db = run_db(ctx, p, skey, &st, err);
+    g_free(skey);
+    gboolean own = !st.screens; /* not kept for the next run */
     if (!db)
         return FALSE;
-    WlSfRun *r = wl_sf_run_new(m, sc, db, &p->setup, &c);
+    WlSfRun *r = wl_sf_run_new(m, sc, db, &st, &c);
     WlSfEdit *ed = NULL;
     if (p->setup.edits) {
         SimEngine *eng = mach_engine(m);
@@ -537,27 +628,29 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
         wl_sf_run_set_edit(r, ed);
     }
     FrameOut fo = {ctx, sc};
-    wl_sf_run_set_hook(r, emit_frame, &fo);
+    if (ctx->out_dir) /* a hook renders every frame's image */
+        wl_sf_run_set_hook(r, emit_frame, &fo);
     gboolean ok = wl_sf_run_frames(r, ctx->frames, ctx->until, err);
-    const GArray *st = wl_sf_run_stats(r);
-    for (guint f = 0; ok && f < st->len; f++) {
-        const WlSfFrameStats *t = &g_array_index(st, WlSfFrameStats, f);
+    const GArray *stats = wl_sf_run_stats(r);
+    for (guint f = 0; ok && f < stats->len; f++) {
+        const WlSfFrameStats *t = &g_array_index(stats, WlSfFrameStats, f);
         sim_result_add_frame(out, t->end - t->start);
         wl_mark_frame(mach_engine(m), f, t->end);
     }
-    if (ok) { /* frames run.until cut are not in st */
+    if (ok) { /* frames run.until cut are not in stats */
         mach_fill_result(m, out);
         out->elapsed = sim_now(mach_engine(m));
     }
-    if (ok && st->len)
-        wl_sf_fill_metrics(out, st, db, &p->setup);
+    if (ok && stats->len)
+        wl_sf_fill_metrics(out, stats, db, &p->setup);
     char *log = wl_frame_log_path(ctx, p->frame_log, "sortfirst_frames.csv");
     if (ok && log)
-        ok = write_log(log, st, err);
+        ok = write_log(log, stats, err);
     g_free(log);
     wl_sf_run_free(r);
     wl_sf_edit_free(ed);
-    wl_sf_db_free(db);
+    if (own)
+        wl_sf_db_free(db);
     return ok;
 }
 
