@@ -19,7 +19,11 @@
  *   posted: [world]               # traversal roots, in order
  *
  * Executes may name structures defined later; one closing a cycle is
- * refused.  Priorities' deltas (distributed ODP portions) are not part
+ * refused, and so are chains over SCENE_DB_DEPTH_MAX levels, networks
+ * whose shared executes expand past the memory limit (512 B an element,
+ * counted without expanding: scene_db_shape), matrix entries and
+ * vertices beyond +-1e15 and posted structures whose matrices carry
+ * their boxes beyond it (docs/config.md, Limits).  Priorities' deltas (distributed ODP portions) are not part
  * of the format: elements get the constructors' deltas.  Errors are
  * located (file:line:column: found ..., expected ...) through the cfg
  * reader (libyaml); nothing is returned on error.  Numbers are written

@@ -34,6 +34,7 @@ typedef struct {
     uint32_t proc, peer; /* target processors */
     unsigned phase;      /* engine phase id */
     guint slot;          /* a `swap` wait: its frame's slot in ends, +1 */
+    guint line;          /* where the trace gives it */
     uint64_t id;
     uint64_t value; /* cost (ps), bytes or a refresh period */
 } Act;
@@ -115,6 +116,7 @@ static void add_act(Replay *rp, Group *g, const RplItem *it)
                          : 0,
              .phase = work ? t->phase[it->phase] : 0,
              .id = it->id,
+             .line = it->line,
              .value = work ? rpl_target_price(t, it) : it->value};
     if (it->swap) {
         SimTime none = 0;
@@ -310,11 +312,29 @@ static void transfer(Replay *rp, const Act *a)
                  (void *)(uintptr_t)a->id, delivered, rp);
 }
 
+/* Work or a wait ending at `end` (SIM_TIME_MAX: past the 64-bit clock,
+ * saturated) stops the replay with an error at its line, rather than a
+ * result that ends at the end of time.  TRUE when it fits. */
+static gboolean fits_clock(Replay *rp, const Act *a, SimTime end)
+{
+    if (end < SIM_TIME_MAX)
+        return TRUE;
+    stop(rp, g_error_new(SIM_ERROR, SIM_ERROR_INPUT,
+                         "%s:%u:1: found %s ending past the simulated clock's "
+                         "end (%.0f s), expected actions that end within it",
+                         rpl_reader_path(rp->r), a->line,
+                         a->type == RPL_REFRESH ? "a refresh wait" : "work",
+                         sim_time_to_s(SIM_TIME_MAX)));
+    return FALSE;
+}
+
 /* A `v` wait: done at the next refresh; a `swap` ends its frame then. */
 static void refresh(Replay *rp, const Act *a, Flight *f)
 {
     SimEngine *eng = rp->t->eng;
     SimTime t = sim_refresh_at(sim_now(eng), a->value);
+    if (!fits_clock(rp, a, t))
+        return;
     rp->max_wait = MAX(rp->max_wait, t);
     if (a->slot)
         g_array_index(rp->ends, SimTime, a->slot - 1) = t;
@@ -343,6 +363,9 @@ static void issue(Replay *rp, const Act *a)
         return;
     }
     MachProc *p = mach_proc_at(m, a->proc);
+    SimTime start = MAX(sim_now(rp->t->eng), mach_proc_free_at(p));
+    if (!fits_clock(rp, a, sim_time_add_sat(start, a->value)))
+        return;
     mach_proc_compute(p, a->value, a->phase, f ? work_done : NULL, rp, f);
     rp->max_end = MAX(rp->max_end, mach_proc_free_at(p));
     note_done(rp, a->id, mach_proc_free_at(p));
