@@ -39,6 +39,16 @@ typedef struct {
     unsigned n_ops;
 } SimOpTerm;
 
+/* The counts of one piece of work as a recorder hears of them: its own
+ * operations and, for overlapped work, its further terms (a `c` line's
+ * `|` terms, docs/traces.md).  All borrowed. */
+typedef struct {
+    const SimOp *ops;
+    unsigned n_ops;
+    const SimOpTerm *terms;
+    unsigned n_terms;
+} SimWork;
+
 typedef struct {
     /* `node` was given `cost` in `phase`, to end at `end`; `handled`: a
      * handler runs when it completes.  ops[0 .. n_ops-1]: the named counts
@@ -47,9 +57,7 @@ typedef struct {
      * longest of all).  Returns the action's id. */
     uint64_t (*compute)(SimRecorder *r, SimTime now, uint32_t node,
                         unsigned phase, SimTime cost, SimTime end,
-                        const SimOp *ops, unsigned n_ops,
-                        const SimOpTerm *terms, unsigned n_terms,
-                        gboolean handled);
+                        const SimWork *w, gboolean handled);
     /* A message of `bytes` from src to dst was sent. */
     uint64_t (*send)(SimRecorder *r, SimTime now, uint32_t src, uint32_t dst,
                      uint64_t bytes, gboolean handled);

@@ -62,6 +62,7 @@ gboolean mach_proc_compute_overlap(MachProc *p, const MachOverlap *o,
                            .ops = m->ops.op,
                            .n_ops = m->bus ? 0 : m->ops.n};
     }
-    return mach_proc_compute_terms(p, mach_overlap_cost(p, o), o->own.op,
-                                   o->own.n, t, o->n, phase, done, ctx, arg);
+    SimWork w = {o->own.op, o->own.n, t, o->n};
+    return mach_proc_compute_terms(p, mach_overlap_cost(p, o), &w, phase, done,
+                                   ctx, arg);
 }

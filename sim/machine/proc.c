@@ -58,10 +58,8 @@ static void fail_overflow(SimEngine *eng, MachProc *p, const char *what)
                                      what, mach_proc_name(p)));
 }
 
-/* Submits `cost`; ops (n_ops of them, or none) and terms go to a
- * recorder. */
-static gboolean submit_terms(MachProc *p, SimTime cost, const MachOp *ops,
-                             guint n_ops, const SimOpTerm *terms, guint n_terms,
+/* Submits `cost`; its counts w (none: n_ops 0) go to a recorder. */
+static gboolean submit_terms(MachProc *p, SimTime cost, const SimWork *w,
                              unsigned phase, SimHandler done, void *ctx,
                              void *arg)
 {
@@ -87,11 +85,11 @@ static gboolean submit_terms(MachProc *p, SimTime cost, const MachOp *ops,
     trace_span(p, phase, start, end);
     SimRecorder *rec = sim_engine_recorder(eng);
     if (rec) /* `pgsim run --record`: the trace hears of it (record.h) */
-        return sim_record_schedule_done(
-            eng, rec,
-            rec->ops->compute(rec, now, p->id, phase, cost, end, ops, n_ops,
-                              terms, n_terms, done != NULL),
-            end, done, ctx, arg);
+        return sim_record_schedule_done(eng, rec,
+                                        rec->ops->compute(rec, now, p->id,
+                                                          phase, cost, end, w,
+                                                          done != NULL),
+                                        end, done, ctx, arg);
     return done ? sim_schedule_at(eng, end, done, ctx, arg) : TRUE;
 }
 
@@ -99,17 +97,16 @@ static gboolean submit(MachProc *p, SimTime cost, const MachOp *ops,
                        guint n_ops, unsigned phase, SimHandler done, void *ctx,
                        void *arg)
 {
-    return submit_terms(p, cost, ops, n_ops, NULL, 0, phase, done, ctx, arg);
+    SimWork w = {ops, n_ops, NULL, 0};
+    return submit_terms(p, cost, &w, phase, done, ctx, arg);
 }
 
-gboolean mach_proc_compute_terms(MachProc *p, SimTime cost, const MachOp *ops,
-                                 guint n_ops, const SimOpTerm *terms,
-                                 guint n_terms, unsigned phase, SimHandler done,
-                                 void *ctx, void *arg)
+gboolean mach_proc_compute_terms(MachProc *p, SimTime cost, const SimWork *w,
+                                 unsigned phase, SimHandler done, void *ctx,
+                                 void *arg)
 {
-    g_assert(n_ops > 0);
-    return submit_terms(p, cost, ops, n_ops, terms, n_terms, phase, done, ctx,
-                        arg);
+    g_assert(w->n_ops > 0);
+    return submit_terms(p, cost, w, phase, done, ctx, arg);
 }
 
 gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
@@ -145,8 +142,8 @@ gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
 }
 
 gboolean mach_proc_compute_priced(MachProc *p, SimTime cost, const MachOp *ops,
-                                  guint n_ops, unsigned phase,
-                                  SimHandler done, void *ctx, void *arg)
+                                  guint n_ops, unsigned phase, SimHandler done,
+                                  void *ctx, void *arg)
 {
     g_assert(n_ops > 0);
     return submit(p, cost, ops, n_ops, phase, done, ctx, arg);

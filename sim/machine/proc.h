@@ -63,8 +63,8 @@ gboolean mach_proc_compute_ops(MachProc *p, const MachOp *ops, guint n_ops,
  * mach_proc_compute() of cost, but a recording writes the names and
  * counts, not the time. */
 gboolean mach_proc_compute_priced(MachProc *p, SimTime cost, const MachOp *ops,
-                                  guint n_ops, unsigned phase,
-                                  SimHandler done, void *ctx, void *arg);
+                                  guint n_ops, unsigned phase, SimHandler done,
+                                  void *ctx, void *arg);
 
 /* Named counts gathered for one piece of work: mach_ops_add() adds to
  * the entry of that name (a static string) or appends one. */
@@ -83,11 +83,11 @@ gboolean mach_proc_compute_list(MachProc *p, const MachOps *o, unsigned phase,
 
 /* For sim/machine/overlap.c: work of `cost` (the longest of its terms,
  * priced by the caller) that a recording writes as the worker's counts
- * ops (n_ops >= 1) and the further terms (a `c` line with `|` terms). */
-gboolean mach_proc_compute_terms(MachProc *p, SimTime cost, const MachOp *ops,
-                                 guint n_ops, const SimOpTerm *terms,
-                                 guint n_terms, unsigned phase, SimHandler done,
-                                 void *ctx, void *arg);
+ * w->ops (n_ops >= 1) and the further terms (a `c` line with `|`
+ * terms). */
+gboolean mach_proc_compute_terms(MachProc *p, SimTime cost, const SimWork *w,
+                                 unsigned phase, SimHandler done, void *ctx,
+                                 void *arg);
 
 /* The time at which all work submitted so far completes (<= now: idle). */
 SimTime mach_proc_free_at(const MachProc *p);

@@ -50,16 +50,15 @@ SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes)
     sh->busy += occ;
     sh->bytes += bytes;
     sh->transfers++;
-    return sh->free_at + sh->latency;
+    sh->last_end = sh->free_at + sh->latency;
+    return sh->last_end;
 }
 
 gboolean mach_shmem_send(MachShmem *sh, SimEngine *eng, uint32_t src,
                          uint32_t dst, uint64_t bytes, SimHandler done,
-                         void *ctx, void *arg, SimTime *end)
+                         void *ctx, void *arg)
 {
     SimTime now = sim_now(eng), t = mach_shmem_transfer(sh, now, bytes);
-    if (end)
-        *end = t;
     SimRecorder *rec = sim_engine_recorder(eng);
     if (rec)
         return sim_record_schedule_done(

@@ -27,6 +27,7 @@ typedef struct MachShmem {
     SimTime busy;   /* total occupancy */
     uint64_t bytes; /* total bytes moved */
     uint64_t transfers;
+    SimTime last_end; /* completion time of the latest transfer booked */
 } MachShmem;
 
 /* Reads bandwidth and startup from m's network section; FALSE with *err
@@ -43,11 +44,11 @@ SimTime mach_shmem_transfer(MachShmem *sh, SimTime now, uint64_t bytes);
 /* mach_shmem_transfer() of `bytes` from processor src to dst (global
  * ids) requested now, then done(eng, ctx, arg) at its completion (done
  * may be NULL); a recording (`--record`) writes it as a `b` action
- * (docs/traces.md).  *end (may be NULL) gets the completion time.
- * FALSE if it overflows SimTime (the engine is then stopped). */
+ * (docs/traces.md).  Its completion time is then sh->last_end.  FALSE if
+ * it overflows SimTime (the engine is then stopped). */
 gboolean mach_shmem_send(MachShmem *sh, SimEngine *eng, uint32_t src,
                          uint32_t dst, uint64_t bytes, SimHandler done,
-                         void *ctx, void *arg, SimTime *end);
+                         void *ctx, void *arg);
 /* Occupied fraction of [0, elapsed] (0 when elapsed is 0). */
 double mach_shmem_utilisation(const MachShmem *sh, SimTime elapsed);
 

@@ -277,8 +277,8 @@ static void draw_poly(const MeshCtx *k, guint poly, uint32_t prim,
 }
 
 void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
-                    SceneColor tint, uint32_t id_base, const uint32_t *subset,
-                    guint n_subset, RastSpanSink sink, RastCounters *c)
+                    SceneColor tint, uint32_t id_base, const RastSubset *subset,
+                    RastSpanSink sink, RastCounters *c)
 {
     MeshCtx k = {v,
                  m,
@@ -288,9 +288,11 @@ void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
                  m->normals->len == m->pos->len && m->pos->len > 0,
                  m->colors->len == m->pos->len && m->pos->len > 0};
     guint np = scene_mesh_n_polys(m);
-    guint count = subset ? n_subset : np;
+    if (subset && !subset->ids)
+        subset = NULL; /* no list: every polygon */
+    guint count = subset ? subset->n : np;
     for (guint i = 0; i < count; i++) {
-        guint poly = subset ? subset[i] : i;
+        guint poly = subset ? subset->ids[i] : i;
         g_assert(poly < np);
         draw_poly(&k, poly, id_base + poly, sink, c);
     }
@@ -303,7 +305,7 @@ void rast_draw_scene(const RastView *v, const Scene *s, RastSpanSink sink,
     for (guint i = 0; i < scene_n_instances(s); i++) {
         const SceneInstance *in = scene_instance(s, i);
         const SceneMesh *m = scene_instance_mesh(s, i);
-        rast_draw_mesh(v, m, in->xform, in->color, base, NULL, 0, sink, c);
+        rast_draw_mesh(v, m, in->xform, in->color, base, NULL, sink, c);
         base += scene_mesh_n_polys(m);
     }
 }

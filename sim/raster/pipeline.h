@@ -55,14 +55,20 @@ RastView rast_view_make(Mat4 view_proj, int width, int height);
  * width / height, and a light over the viewer's right shoulder. */
 RastView rast_view_for_camera(const SceneCamera *cam, int width, int height);
 
+/* Some polygons of a mesh, by index (borrowed). */
+typedef struct {
+    const uint32_t *ids;
+    guint n;
+} RastSubset;
+
 /* Rasterises polygons of `m` placed by `model` (object -> world), colours
- * multiplied by `tint`.  `subset` lists polygon indices (NULL: all
- * n_subset = every polygon is ignored, all polygons are drawn);
+ * multiplied by `tint`.  `subset` lists the polygons drawn (NULL, or a
+ * NULL ids: all);
  * primitive id = id_base + polygon index.  Spans go to `sink`; work is
  * added to *c. */
 void rast_draw_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
-                    SceneColor tint, uint32_t id_base, const uint32_t *subset,
-                    guint n_subset, RastSpanSink sink, RastCounters *c);
+                    SceneColor tint, uint32_t id_base, const RastSubset *subset,
+                    RastSpanSink sink, RastCounters *c);
 
 /* Rasterises every instance of a scene; ids are consecutive over the
  * instances' polygons in instance order (the order of scene_flatten()). */

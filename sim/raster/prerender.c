@@ -49,7 +49,7 @@ RastPrerender *rast_prerender_new(const RastView *v, const SceneMesh *m)
     p->spans = g_array_new(FALSE, FALSE, sizeof(PreSpan));
     Builder b = {p, 0};
     RastCounters c = {0};
-    rast_draw_mesh(v, m, mat4_identity(), (SceneColor){1, 1, 1}, 0, NULL, 0,
+    rast_draw_mesh(v, m, mat4_identity(), (SceneColor){1, 1, 1}, 0, NULL,
                    (RastSpanSink){keep_span, &b}, &c);
     g_assert(c.spans == p->spans->len && c.spans <= G_MAXUINT32);
     for (; b.next <= p->n_polys; b.next++)
@@ -117,8 +117,8 @@ struct RastPrerenderSet {
 RastPrerenderSet *rast_prerender_set_new(void)
 {
     RastPrerenderSet *s = g_new0(RastPrerenderSet, 1);
-    s->by_key = g_ptr_array_new_with_free_func(
-        (GDestroyNotify)rast_prerender_free);
+    s->by_key =
+        g_ptr_array_new_with_free_func((GDestroyNotify)rast_prerender_free);
     return s;
 }
 

@@ -72,13 +72,19 @@ typedef struct {
     double c[3], dcdx[3], dcdy[3];
 } Planes;
 
+/* A triangle's pixel-unit edge vectors from vertex 0 and the inverse of
+ * their cross product. */
+typedef struct {
+    double e1x, e1y, e2x, e2y, inv;
+} Basis;
+
 /* The value of one attribute plane: gradients from the three vertex
- * values f0, f1, f2 and the pixel-unit edge vectors. */
-static void plane(double f0, double f1, double f2, double e1x, double e1y,
-                  double e2x, double e2y, double inv, double *dx, double *dy)
+ * values f0, f1, f2 over basis b. */
+static void plane(double f0, double f1, double f2, const Basis *b, double *dx,
+                  double *dy)
 {
-    *dx = ((f1 - f0) * e2y - (f2 - f0) * e1y) * inv;
-    *dy = ((f2 - f0) * e1x - (f1 - f0) * e2x) * inv;
+    *dx = ((f1 - f0) * b->e2y - (f2 - f0) * b->e1y) * b->inv;
+    *dy = ((f2 - f0) * b->e1x - (f1 - f0) * b->e2x) * b->inv;
 }
 
 static void setup_planes(const RastScreenVert v[3], Planes *p)
@@ -86,18 +92,17 @@ static void setup_planes(const RastScreenVert v[3], Planes *p)
     const double s = 1.0 / RAST_SUBPIX;
     p->x = v[0].x * s;
     p->y = v[0].y * s;
-    double e1x = (v[1].x - v[0].x) * s, e1y = (v[1].y - v[0].y) * s;
-    double e2x = (v[2].x - v[0].x) * s, e2y = (v[2].y - v[0].y) * s;
-    double inv = 1.0 / (e1x * e2y - e1y * e2x);
+    Basis b = {(v[1].x - v[0].x) * s, (v[1].y - v[0].y) * s,
+               (v[2].x - v[0].x) * s, (v[2].y - v[0].y) * s, 0};
+    b.inv = 1.0 / (b.e1x * b.e2y - b.e1y * b.e2x);
     p->z = v[0].z;
-    plane(v[0].z, v[1].z, v[2].z, e1x, e1y, e2x, e2y, inv, &p->dzdx, &p->dzdy);
+    plane(v[0].z, v[1].z, v[2].z, &b, &p->dzdx, &p->dzdy);
     p->zlo = fmin(v[0].z, fmin(v[1].z, v[2].z));
     p->zhi = fmax(v[0].z, fmax(v[1].z, v[2].z));
     const float *c0 = &v[0].col.r, *c1 = &v[1].col.r, *c2 = &v[2].col.r;
     for (int k = 0; k < 3; k++) {
         p->c[k] = c0[k];
-        plane(c0[k], c1[k], c2[k], e1x, e1y, e2x, e2y, inv, &p->dcdx[k],
-              &p->dcdy[k]);
+        plane(c0[k], c1[k], c2[k], &b, &p->dcdx[k], &p->dcdy[k]);
     }
 }
 
@@ -165,15 +170,23 @@ static void row_range(int64_t ymin, int64_t ymax, int height, int64_t *r0,
         *r1 = height;
 }
 
-/* Emits the rows of the convex polygon bounded by e[0..ne) (E > 0
- * inside) between fixed-point heights ymin and ymax. */
-static uint64_t scan_rows(const Edge *e, int ne, const Planes *p, int64_t ymin,
-                          int64_t ymax, uint32_t prim, int width, int height,
-                          RastSpanRule rule, RastSpanSink sink,
-                          RastCounters *c)
+/* A convex polygon's edges e[0..ne) (E > 0 inside) and its fixed-point
+ * height range. */
+typedef struct {
+    Edge e[RAST_SCAN_MAX];
+    int ne;
+    int64_t ymin, ymax;
+} Outline;
+
+/* Emits the rows of the convex polygon o. */
+static uint64_t scan_rows(const Outline *o, const Planes *p, uint32_t prim,
+                          int width, int height, RastSpanRule rule,
+                          RastSpanSink sink, RastCounters *c)
 {
+    const Edge *e = o->e;
+    int ne = o->ne;
     int64_t r0, r1;
-    row_range(ymin, ymax, height, &r0, &r1);
+    row_range(o->ymin, o->ymax, height, &r0, &r1);
     uint64_t n = 0;
     for (int64_t y = r0; y < r1; y++) {
         int64_t py = y * RAST_SUBPIX + RAST_SUBPIX / 2, lo = 0, hi = width;
@@ -188,23 +201,21 @@ static uint64_t scan_rows(const Edge *e, int ne, const Planes *p, int64_t ymin,
     return n;
 }
 
-/* The edges of t[0..n) into e; returns how many.  A corner repeated
- * next to itself (clipping emits a corner lying on a plane twice, and
- * snapping can merge close ones) makes an edge of length zero, which
- * bounds nothing: it is left out (as an edge it would empty every row). */
-static int edges_of(const RastScreenVert *t, int n, Edge *e, int64_t *ymin,
-                    int64_t *ymax)
+/* The outline of t[0..n) into o.  A corner repeated next to itself
+ * (clipping emits a corner lying on a plane twice, and snapping can merge
+ * close ones) makes an edge of length zero, which bounds nothing: it is
+ * left out (as an edge it would empty every row). */
+static void outline_of(const RastScreenVert *t, int n, Outline *o)
 {
-    int ne = 0;
-    *ymin = *ymax = t[0].y;
+    o->ne = 0;
+    o->ymin = o->ymax = t[0].y;
     for (int i = 0; i < n; i++) {
         const RastScreenVert *a = &t[i], *b = &t[(i + 1) % n];
         if (a->x != b->x || a->y != b->y)
-            e[ne++] = (Edge){a->x, a->y, b->x - a->x, b->y - a->y};
-        *ymin = MIN(*ymin, a->y);
-        *ymax = MAX(*ymax, a->y);
+            o->e[o->ne++] = (Edge){a->x, a->y, b->x - a->x, b->y - a->y};
+        o->ymin = MIN(o->ymin, a->y);
+        o->ymax = MAX(o->ymax, a->y);
     }
-    return ne;
 }
 
 uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
@@ -218,13 +229,11 @@ uint64_t rast_scan_triangle(const RastScreenVert v[3], uint32_t prim, int width,
         t[1] = v[2];
         t[2] = v[1];
     }
-    Edge e[3];
-    int64_t ymin, ymax;
-    int ne = edges_of(t, 3, e, &ymin, &ymax);
+    Outline o;
+    outline_of(t, 3, &o);
     Planes p;
     setup_planes(t, &p);
-    return scan_rows(e, ne, &p, ymin, ymax, prim, width, height,
-                     RAST_SPAN_EXACT, sink, c);
+    return scan_rows(&o, &p, prim, width, height, RAST_SPAN_EXACT, sink, c);
 }
 
 /* Index i of the fan triangle (0, i, i+1) of largest |area|: the best
@@ -258,9 +267,8 @@ uint64_t rast_scan_polygon(const RastScreenVert *v, int n, uint32_t prim,
     RastScreenVert t[RAST_SCAN_MAX];
     for (int i = 0; i < n; i++) /* reversed when counter-clockwise */
         t[i] = a2 > 0 ? v[(n - i) % n] : v[i];
-    Edge e[RAST_SCAN_MAX];
-    int64_t ymin, ymax;
-    int ne = edges_of(t, n, e, &ymin, &ymax);
+    Outline o;
+    outline_of(t, n, &o);
     int k = widest_fan(t, n);
     RastScreenVert tri[3] = {t[0], t[k], t[k + 1]};
     Planes p;
@@ -269,6 +277,5 @@ uint64_t rast_scan_polygon(const RastScreenVert *v, int n, uint32_t prim,
         p.zlo = fmin(p.zlo, t[i].z);
         p.zhi = fmax(p.zhi, t[i].z);
     }
-    return scan_rows(e, ne, &p, ymin, ymax, prim, width, height, rule, sink,
-                     c);
+    return scan_rows(&o, &p, prim, width, height, rule, sink, c);
 }

@@ -106,15 +106,21 @@ static gboolean after(Vec3 a, Vec3 b)
     return a.z > b.z;
 }
 
-/* The point `sb` steps of `steps` from (pa, na) towards (pb, nb) on the
+/* One end of an edge: its corner and the corner's normal. */
+typedef struct {
+    Vec3 p, n;
+} EdgeEnd;
+
+/* The point `sb` steps of `steps` from end a towards end b on the
  * edge's cubic, and its normal: computed from the edge alone. */
-static void edge_eval(Vec3 pa, Vec3 na, Vec3 pb, Vec3 nb, guint sb, guint steps,
+static void edge_eval(EdgeEnd a, EdgeEnd b, guint sb, guint steps,
                       ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
 {
-    if (after(pa, pb)) {
-        edge_eval(pb, nb, pa, na, steps - sb, steps, kind, pos, nrm);
+    if (after(a.p, b.p)) {
+        edge_eval(b, a, steps - sb, steps, kind, pos, nrm);
         return;
     }
+    Vec3 pa = a.p, na = a.n, pb = b.p, nb = b.n;
     double t = (double)sb / steps, s = 1 - t;
     Vec3 bab = tangent_point(pa, na, pb), bba = tangent_point(pb, nb, pa);
     Vec3 r = vec3_scale(pa, s * s * s);
@@ -138,14 +144,14 @@ static void grid_eval(const ScenePnPatch *pt, ScenePnNormals kind, guint i,
         *pos = pt->p[c];
         *nrm = pt->n[c];
     } else if (k == 0) {
-        edge_eval(pt->p[0], pt->n[0], pt->p[1], pt->n[1], j, steps, kind, pos,
-                  nrm);
+        edge_eval((EdgeEnd){pt->p[0], pt->n[0]}, (EdgeEnd){pt->p[1], pt->n[1]},
+                  j, steps, kind, pos, nrm);
     } else if (i == 0) {
-        edge_eval(pt->p[1], pt->n[1], pt->p[2], pt->n[2], k, steps, kind, pos,
-                  nrm);
+        edge_eval((EdgeEnd){pt->p[1], pt->n[1]}, (EdgeEnd){pt->p[2], pt->n[2]},
+                  k, steps, kind, pos, nrm);
     } else if (j == 0) {
-        edge_eval(pt->p[2], pt->n[2], pt->p[0], pt->n[0], i, steps, kind, pos,
-                  nrm);
+        edge_eval((EdgeEnd){pt->p[2], pt->n[2]}, (EdgeEnd){pt->p[0], pt->n[0]},
+                  i, steps, kind, pos, nrm);
     } else {
         double u = (double)j / steps, v = (double)k / steps;
         *pos = scene_pn_point(pt, u, v);

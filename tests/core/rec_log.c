@@ -17,10 +17,12 @@ static uint64_t next(RecLog *log)
 
 static uint64_t on_compute(SimRecorder *r, SimTime now, uint32_t node,
                            unsigned phase, SimTime cost, SimTime end,
-                           const SimOp *ops, unsigned n_ops,
-                           const SimOpTerm *terms, unsigned n_terms,
-                           gboolean handled)
+                           const SimWork *w, gboolean handled)
 {
+    const SimOp *ops = w->ops;
+    unsigned n_ops = w->n_ops;
+    const SimOpTerm *terms = w->terms;
+    unsigned n_terms = w->n_terms;
     RecLog *log = (RecLog *)r;
     GString *o = g_string_new("");
     for (unsigned i = 0; i < n_ops; i++)

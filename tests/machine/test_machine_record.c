@@ -61,12 +61,12 @@ static void test_terms_and_priced_recorded(void **state)
     Fix *f = *state;
     MachProc *p = mach_proc(f->m, "cpu", 3);
     const MachOp ops[] = {{"tiny_op", 4}};
-    const SimOpTerm terms[] = {{.node = 2, .bus = TRUE, .bytes = 64,
-                                .ops = ops, .n_ops = 1}};
-    assert_true(mach_proc_compute_terms(p, 500, ops, 1, terms, 1, 0, noted,
-                                        &f->log, "t"));
-    assert_true(mach_proc_compute_priced(p, 40, ops, 1, 0, noted, &f->log,
-                                         "q"));
+    const SimOpTerm terms[] = {
+        {.node = 2, .bus = TRUE, .bytes = 64, .ops = ops, .n_ops = 1}};
+    const SimWork w = {ops, 1, terms, 1};
+    assert_true(mach_proc_compute_terms(p, 500, &w, 0, noted, &f->log, "t"));
+    assert_true(
+        mach_proc_compute_priced(p, 40, ops, 1, 0, noted, &f->log, "q"));
     run(f);
     assert_string_equal(f->log.text->str,
                         "compute @0 n3 p0 cost=500 end=500 tiny_op*4 "
@@ -119,11 +119,10 @@ static void test_shmem_send_recorded(void **state)
     MachShmem sh;
     mach_shmem_init_with(&sh, 1e9, 100 * SIM_NS); /* 1 B per ns */
     SimTime end = 0;
-    assert_true(mach_shmem_send(&sh, f->eng, 2, 3, 1000, noted, &f->log, "s",
-                                &end));
+    assert_true(mach_shmem_send(&sh, f->eng, 2, 3, 1000, noted, &f->log, "s"));
+    end = sh.last_end;
     assert_int_equal(end, 1100 * SIM_NS);
-    assert_true(mach_shmem_send(&sh, f->eng, 0, 1, 500, NULL, NULL, NULL,
-                                NULL));
+    assert_true(mach_shmem_send(&sh, f->eng, 0, 1, 500, NULL, NULL, NULL));
     run(f);
     assert_string_equal(f->log.text->str,
                         "transfer @0 2->3 1000 B end=1100000 -> 1\n"
@@ -149,8 +148,8 @@ static void test_shmem_send_plain(void **state)
     rec_log_init(&log);
     MachShmem sh;
     mach_shmem_init_with(&sh, 2e9, 5 * SIM_NS);
-    assert_true(mach_shmem_send(&sh, eng, 0, 1, 4000, noted, &log, "p", NULL));
-    assert_true(mach_shmem_send(&sh, eng, 0, 1, 4000, NULL, NULL, NULL, NULL));
+    assert_true(mach_shmem_send(&sh, eng, 0, 1, 4000, noted, &log, "p"));
+    assert_true(mach_shmem_send(&sh, eng, 0, 1, 4000, NULL, NULL, NULL));
     assert_int_equal(sim_engine_pending(eng), 1);
     assert_true(sim_engine_run(eng, SIM_TIME_MAX, NULL));
     assert_string_equal(log.text->str, "done p @2005000\n");

@@ -83,12 +83,12 @@ void tu_render_both(const RastView *view, const SceneMesh *m,
 {
     int w = view->width, h = view->height;
     RastZBuffer *zb = rast_zbuffer_new(w, h);
-    rast_draw_mesh(view, m, mat4_identity(), scene_color(1, 1, 1), 0, subset,
-                   n_subset, rast_zbuffer_sink(zb), cf);
+    rast_draw_mesh(view, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                   &(RastSubset){subset, n_subset}, rast_zbuffer_sink(zb), cf);
     cf->winners += rast_zbuffer_covered(zb);
     RastSpanList *sl = rast_spanlist_new(w, h);
-    rast_draw_mesh(view, m, mat4_identity(), scene_color(1, 1, 1), 0, subset,
-                   n_subset, rast_spanlist_sink(sl), cs);
+    rast_draw_mesh(view, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                   &(RastSubset){subset, n_subset}, rast_spanlist_sink(sl), cs);
     rast_spanlist_sort(sl);
     RastActive *a = rast_active_new(w, h);
     rast_scanline_zbuffer(a, sl, cs);

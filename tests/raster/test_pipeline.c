@@ -21,7 +21,7 @@ static TuCoverage *cover_mesh(const RastView *v, const SceneMesh *m, Mat4 model,
                               RastCounters *c)
 {
     TuCoverage *cv = tu_coverage_new(v->width, v->height);
-    rast_draw_mesh(v, m, model, scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(v, m, model, scene_color(1, 1, 1), 0, NULL,
                    tu_coverage_sink(cv), c);
     return cv;
 }
@@ -205,7 +205,7 @@ static RastImage *render(const RastView *v, const SceneMesh *m, Mat4 model)
 {
     RastZBuffer *zb = rast_zbuffer_new(v->width, v->height);
     RastCounters c = {0};
-    rast_draw_mesh(v, m, model, scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(v, m, model, scene_color(1, 1, 1), 0, NULL,
                    rast_zbuffer_sink(zb), &c);
     RastImage *img = rast_image_new(v->width, v->height);
     rast_image_from_zbuffer(img, zb, (RastColor){0, 0, 0});
@@ -472,7 +472,7 @@ static void test_counters(void **state)
     assert_int_equal(c.clipped + c.rejected, 0);
     RastZBuffer *zb = rast_zbuffer_new(64, 64);
     RastCounters cz = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    rast_zbuffer_sink(zb), &cz);
     assert_int_equal(rast_zbuffer_covered(zb), c.pixels);
     assert_int_equal(cz.zcompares, c.pixels);

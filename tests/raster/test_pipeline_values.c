@@ -107,38 +107,36 @@ static void test_flat_colour(void **state)
     SceneColor tint = scene_color(1.0f, 0.5f, 0.8f);
     Spans k;
     RastCounters c = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.425f, 0.17f, 0.68f);
     /* a translated model: normals ignore translation */
-    rast_draw_mesh(&v, m, mat4_translate(0.1, -0.05, 0.2), tint, 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_translate(0.1, -0.05, 0.2), tint, 0, NULL,
                    sink_of(&k), &c);
     assert_flat(&k, 0.425f, 0.17f, 0.68f);
     /* Gouraud without vertex normals uses the face normal: the same */
     v.shading = RAST_SHADE_GOURAUD;
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.425f, 0.17f, 0.68f);
     /* other ambient and diffuse weights: 0.1 + 0.5 * 0.8 = 0.5 */
     v.ambient = 0.1f;
     v.diffuse = 0.5f;
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.25f, 0.1f, 0.4f);
     /* unlit: the colour times the tint */
     v.lighting = FALSE;
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.5f, 0.2f, 0.8f);
     v.shading = RAST_SHADE_FLAT;
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.5f, 0.2f, 0.8f);
     /* the back face, not culled, is lit from both sides: the same k */
     v.lighting = TRUE;
     v.ambient = 0.25f;
     v.diffuse = 0.75f;
     v.cull_back = FALSE;
-    rast_draw_mesh(&v, m, mat4_scale(1, 1, -1), tint, 0, NULL, 0, sink_of(&k),
-                   &c);
+    rast_draw_mesh(&v, m, mat4_scale(1, 1, -1), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.425f, 0.17f, 0.68f);
-    rast_draw_mesh(&v, m, mat4_scale(-1, 1, 1), tint, 0, NULL, 0, sink_of(&k),
-                   &c);
+    rast_draw_mesh(&v, m, mat4_scale(-1, 1, 1), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 0.425f, 0.17f, 0.68f);
     scene_mesh_free(m);
 }
@@ -182,25 +180,25 @@ static void test_gouraud_vertices(void **state)
     Spans k;
     RastCounters c = {0};
     SceneColor tint = scene_color(1.0f, 0.5f, 0.5f);
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_colour_at(&k, 16, 48, 1, 0, 0);
     assert_colour_at(&k, 48, 48, 0, 0.125, 0);
     assert_colour_at(&k, 16, 16, 0, 0, 0.425);
     /* unlit Gouraud: the vertex colours times the tint */
     v.lighting = FALSE;
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_colour_at(&k, 16, 48, 1, 0, 0);
     assert_colour_at(&k, 48, 48, 0, 0.5, 0);
     assert_colour_at(&k, 16, 16, 0, 0, 0.5);
     /* flat: the polygon colour (white) with the face normal, k = 1 */
     v.lighting = TRUE;
     v.shading = RAST_SHADE_FLAT;
-    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, 0, sink_of(&k), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), tint, 0, NULL, sink_of(&k), &c);
     assert_flat(&k, 1.0f, 0.5f, 0.5f);
     /* vertex normals, no vertex colours: the polygon colour per vertex */
     g_array_set_size(m->colors, 0);
     v.shading = RAST_SHADE_GOURAUD;
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    sink_of(&k), &c);
     assert_colour_at(&k, 16, 48, 1, 1, 1);
     assert_colour_at(&k, 48, 48, 0.25, 0.25, 0.25);
@@ -209,7 +207,7 @@ static void test_gouraud_vertices(void **state)
      * vertex 1's normal (0, 1, 0) to (-1, 0, 0), still at right angles
      * to the light, and vertex 2's (0.6, 0, 0.8) to (0, 0.6, 0.8) */
     rast_draw_mesh(&v, m, mat4_rotate(vec3(0, 0, 1), G_PI / 2),
-                   scene_color(1, 1, 1), 0, NULL, 0, sink_of(&k), &c);
+                   scene_color(1, 1, 1), 0, NULL, sink_of(&k), &c);
     assert_true(k.n > 0);
     for (int i = 0; i < k.n; i++) /* every colour in [0.25, 1] */
         assert_true(k.s[i].c0[0] >= 0.249f && k.s[i].c0[0] <= 1.0001f);
@@ -247,7 +245,7 @@ static void test_counters_each_fate(void **state)
     v.lighting = FALSE;
     Spans k;
     RastCounters c = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 100, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 100, NULL,
                    sink_of(&k), &c);
     assert_int_equal(c.verts, 6 * 3 + 4);
     assert_int_equal(c.prims, 7);
@@ -273,7 +271,7 @@ static void test_counters_each_fate(void **state)
      * triangle stops before the scan, which needs a non-zero area) */
     v.span_rule = RAST_SPAN_ENDPOINTS;
     RastCounters e0 = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 100, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 100, NULL,
                    sink_of(&k), &e0);
     assert_int_equal(e0.prims, 7);
     assert_int_equal(e0.culled, 1);
@@ -284,7 +282,7 @@ static void test_counters_each_fate(void **state)
     /* the same without culling: the back face is drawn too */
     v.cull_back = FALSE;
     RastCounters d = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    sink_of(&k), &d);
     assert_int_equal(d.culled, 0);
     assert_int_equal(d.degenerate, 1);
@@ -295,8 +293,8 @@ static void test_counters_each_fate(void **state)
     /* a subset: only polygons 6 and 1 (ids id_base + index) */
     const uint32_t sub[2] = {6, 1};
     RastCounters e = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 7, sub, 2,
-                   sink_of(&k), &e);
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 7,
+                   &(RastSubset){sub, 2}, sink_of(&k), &e);
     assert_int_equal(e.prims, 2);
     assert_int_equal(e.verts, 7);
     for (int i = 0; i < k.n; i++)
@@ -321,13 +319,13 @@ static void test_span_rule_through_pipeline(void **state)
     RastView v = rast_view_make(mat4_identity(), 64, 64);
     Spans k;
     RastCounters c = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    sink_of(&k), &c);
     assert_int_equal(k.n, 15);
     assert_int_equal(c.pixels, 64);
     v.span_rule = RAST_SPAN_ENDPOINTS;
     RastCounters d = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    sink_of(&k), &d);
     assert_int_equal(k.n, 8);
     for (int i = 0; i < k.n; i++) {
@@ -394,7 +392,7 @@ static void test_endpoints_clipped_repeat(void **state)
     v.span_rule = RAST_SPAN_ENDPOINTS;
     Spans k;
     RastCounters c = {0};
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    sink_of(&k), &c);
     assert_int_equal(c.clipped, 1);
     assert_int_equal(k.n, 32);
@@ -423,7 +421,7 @@ static void test_nonagon_whole(void **state)
         Spans k;
         RastCounters c = {0};
         rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
-                       0, sink_of(&k), &c);
+                       sink_of(&k), &c);
         assert_int_equal(c.prims, 1);
         assert_int_equal(c.verts, 9);
         assert_flat(&k, 1, 1, 1);

@@ -77,8 +77,9 @@ static void compare(const RastPrerender *p, const RastView *v,
     }
     RastCounters want = {0}, got = {0};
     RectSink k = {r, 0, 0};
-    rast_draw_mesh(v, m, mat4_identity(), (SceneColor){1, 1, 1}, 0, subset, n,
-                   (RastSpanSink){rect_span, &k}, &want);
+    rast_draw_mesh(v, m, mat4_identity(), (SceneColor){1, 1, 1}, 0,
+                   &(RastSubset){subset, n}, (RastSpanSink){rect_span, &k},
+                   &want);
     uint64_t spans = 0, pixels = 0;
     rast_prerender_count(p, m, subset, n, r, &got, &spans, &pixels);
     assert_int_equal(spans, k.spans);
@@ -121,8 +122,9 @@ static void test_counts_equal_a_redraw(void **state)
     assert_true(seen > 1000); /* the rectangles held pixels */
     RastCounters big = {0}; /* the 12-gon: 10 fan triangles, clipped */
     subset[0] = np - 1;
-    rast_draw_mesh(&v, m, mat4_identity(), (SceneColor){1, 1, 1}, 0, subset,
-                   1, (RastSpanSink){rect_span, &(RectSink){{0, 0, W, H}, 0, 0}},
+    rast_draw_mesh(&v, m, mat4_identity(), (SceneColor){1, 1, 1}, 0,
+                   &(RastSubset){subset, 1},
+                   (RastSpanSink){rect_span, &(RectSink){{0, 0, W, H}, 0, 0}},
                    &big);
     assert_true(big.prims == 10 && big.clipped > 0 && big.clipped < 10);
     assert_true(big.spans > 10);

@@ -138,7 +138,7 @@ static void test_fan_split_counts(void **state)
         RastCounters c = {0};
         TuCoverage *cv = tu_coverage_new(96, 96);
         rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
-                       0, tu_coverage_sink(cv), &c);
+                       tu_coverage_sink(cv), &c);
         gboolean whole = n <= RAST_POLY_MAX;
         assert_int_equal(c.prims, whole ? 1 : (uint64_t)(n - 2));
         assert_int_equal(c.verts, whole ? (uint64_t)n : 3 * (uint64_t)(n - 2));

@@ -120,8 +120,7 @@ static void test_full_equals_scanline(void **state)
          * covered pixel; counters add field by field */
         RastSpanList *sl = rast_spanlist_new(97, 83);
         RastCounters c = {0}, sum = cf;
-        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
-                       0, rast_spanlist_sink(sl), &c);
+        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, rast_spanlist_sink(sl), &c);
         rast_spanlist_sort(sl);
         assert_int_equal(rast_spanlist_len(sl), c.spans);
         RastZBuffer *zb = rast_zbuffer_new(97, 83);
@@ -180,8 +179,8 @@ static void test_subsets_merge(void **state)
         uint32_t *sub = g_new(uint32_t, np);
         for (guint i = (guint)p; i < np; i += 2)
             sub[k++] = ids[i];
-        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, sub, k,
-                       rast_spanlist_sink(sl), &c);
+        rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                       &(RastSubset){sub, k}, rast_spanlist_sink(sl), &c);
         rast_spanlist_sort(sl);
         RastActive *a = rast_active_new(W, H);
         rast_scanline_zbuffer(a, sl, &c);
@@ -231,12 +230,12 @@ static void test_zbuffer_merge(void **state)
         lo[i] = i;
         hi[i] = np - 1 - i;
     }
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    rast_zbuffer_sink(all), &c);
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, lo, 100,
-                   rast_zbuffer_sink(a), &c);
-    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0, hi, 100,
-                   rast_zbuffer_sink(b), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                   &(RastSubset){lo, 100}, rast_zbuffer_sink(a), &c);
+    rast_draw_mesh(&v, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                   &(RastSubset){hi, 100}, rast_zbuffer_sink(b), &c);
     rast_zbuffer_merge(a, b, &c);
     assert_memory_equal(a->prim, all->prim, sizeof(uint32_t) * 1600);
     assert_memory_equal(a->rgba, all->rgba, sizeof(uint32_t) * 1600);

@@ -118,10 +118,12 @@ static RecAct keep_ops(RplRecorder *r, const SimOp *ops, unsigned n_ops,
 
 static uint64_t on_compute(SimRecorder *h, SimTime now, uint32_t node,
                            unsigned phase, SimTime cost, SimTime end,
-                           const SimOp *ops, unsigned n_ops,
-                           const SimOpTerm *terms, unsigned n_terms,
-                           gboolean handled)
+                           const SimWork *w, gboolean handled)
 {
+    const SimOp *ops = w->ops;
+    unsigned n_ops = w->n_ops;
+    const SimOpTerm *terms = w->terms;
+    unsigned n_terms = w->n_terms;
     (void)handled;
     g_assert(phase <= G_MAXUINT16);
     RplRecorder *r = h->state;

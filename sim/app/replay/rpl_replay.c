@@ -306,7 +306,7 @@ static void transfer(Replay *rp, const Act *a)
     rp->sending++;
     if (t->has_shm)
         mach_shmem_send(&t->shm, t->eng, a->proc, a->peer, a->value,
-                        transferred, rp, (void *)(uintptr_t)a->id, NULL);
+                        transferred, rp, (void *)(uintptr_t)a->id);
     else
         net_send(mach_net(t->m), a->proc, a->peer, a->value,
                  (void *)(uintptr_t)a->id, delivered, rp);

@@ -88,7 +88,8 @@ void wl_ag_frame_present_tile(AgFrame *f, guint t)
     tile_rect(f, t, r);
     for (int y = r[1]; y < r[3]; y++) {
         gsize i = 3 * ((gsize)y * f->width + r[0]);
-        memcpy(&f->front[i], &f->rgb[i], 3 * sizeof(float) * (gsize)(r[2] - r[0]));
+        memcpy(&f->front[i], &f->rgb[i],
+               3 * sizeof(float) * (gsize)(r[2] - r[0]));
     }
 }
 
@@ -142,8 +143,8 @@ uint64_t wl_ag_draw(AgFrame *f, guint t, const RastView *v, const SceneMesh *m,
     RastCounters c = {0};
     RastSpanSink sink = {crop_span, &k};
     if (n)
-        rast_draw_mesh(v, m, mat4_identity(), scene_color(1, 1, 1), 0, tris, n,
-                       sink, &c);
+        rast_draw_mesh(v, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                       &(RastSubset){tris, n}, sink, &c);
     return k.pixels;
 }
 

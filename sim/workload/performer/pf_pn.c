@@ -132,9 +132,10 @@ static void smp_frame(void *run)
     mach_proc_compute_list(cpu, &oc, 0, proc_done, r, NULL);
     mach_proc_compute_list(pipe, &op, 0, proc_done, r, NULL);
     SimEngine *eng = mach_engine(m);
-    SimTime now = sim_now(eng), end;
+    SimTime now = sim_now(eng);
     mach_shmem_send(&r->bus_mem, eng, mach_proc_id(cpu), mach_proc_id(pipe),
-                    bytes, proc_done, r, NULL, &end);
+                    bytes, proc_done, r, NULL);
+    SimTime end = r->bus_mem.last_end;
     r->bus = end - now;
     sim_trace_flow(sim_engine_trace(eng), mach_proc_id(cpu),
                    mach_proc_name(cpu), mach_proc_id(pipe),
@@ -202,8 +203,7 @@ static void gp_arrived(NetNet *net, const NetDelivery *d, void *ctx)
     mach_ops_add(&o, "polygon", fine);
     mach_ops_add(&o, "vertex", 3 * fine);
     mach_ops_add(&o, "send_primitive", fine);
-    mach_ops_add(&o, "pn_vertex",
-                 tess ? share(r->mesh.fine_points, g, ng) : 0);
+    mach_ops_add(&o, "pn_vertex", tess ? share(r->mesh.fine_points, g, ng) : 0);
     r->gp = MAX(r->gp, mach_proc_ops_cost(gp, &o));
     mach_proc_compute_list(gp, &o, 0, gp_computed, r, GUINT_TO_POINTER(g));
 }
@@ -239,10 +239,10 @@ static const char *const pipe_ops[] = {"triangle", "pn_vertex", NULL};
 static const char *const gp_ops[] = {"polygon", "vertex", "send_primitive",
                                      "pn_vertex", NULL};
 static const char *const rd_ops[] = {"primitive", NULL};
-static const WlNeed smp_needs[] = {{"cpu", smp_ops}, {"pipe", pipe_ops},
-                                   {NULL, NULL}};
-static const WlNeed pp5_needs[] = {{"gp", gp_ops}, {"renderer", rd_ops},
-                                   {NULL, NULL}};
+static const WlNeed smp_needs[] = {
+    {"cpu", smp_ops}, {"pipe", pipe_ops}, {NULL, NULL}};
+static const WlNeed pp5_needs[] = {
+    {"gp", gp_ops}, {"renderer", rd_ops}, {NULL, NULL}};
 const WlNeedAlt wl_pf_pn_needs[] = {
     {"with pn:, on a cpu + pipe machine", smp_needs},
     {"with pn:, on Pixel-Planes 5 (host + gp + renderer)", pp5_needs},

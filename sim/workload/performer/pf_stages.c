@@ -7,21 +7,24 @@
 #include "sim/core/trace.h"
 
 static const char *const cpu_ops[] = {
-    "app_frame",   "app_dcs",     "cull_node",   "cull_lod",
-    "cull_billboard", "cull_item", "draw_geoset", "draw_state",
-    "draw_matrix", "draw_vertex", "isect_node",  "isect_triangle", NULL};
+    "app_frame",   "app_dcs",        "cull_node",
+    "cull_lod",    "cull_billboard", "cull_item",
+    "draw_geoset", "draw_state",     "draw_matrix",
+    "draw_vertex", "isect_node",     "isect_triangle",
+    NULL};
 static const char *const pipe_ops[] = {"triangle", "state", NULL};
-const WlNeed wl_pf_town_needs[] = {{"cpu", cpu_ops}, {"pipe", pipe_ops},
-                                   {NULL, NULL}};
+const WlNeed wl_pf_town_needs[] = {
+    {"cpu", cpu_ops}, {"pipe", pipe_ops}, {NULL, NULL}};
 
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err)
 {
     *c = (WlPfCosts){.vertex_bytes = vertex_bytes};
     SimTime *const cpu[] = {
-        &c->app_frame,   &c->app_dcs,     &c->cull_node,   &c->cull_lod,
-        &c->cull_billboard, &c->cull_item, &c->draw_geoset, &c->draw_state,
-        &c->draw_matrix, &c->draw_vertex, &c->isect_node,  &c->isect_triangle};
+        &c->app_frame,   &c->app_dcs,        &c->cull_node,
+        &c->cull_lod,    &c->cull_billboard, &c->cull_item,
+        &c->draw_geoset, &c->draw_state,     &c->draw_matrix,
+        &c->draw_vertex, &c->isect_node,     &c->isect_triangle};
     SimTime *const pipe[] = {&c->pipe_triangle, &c->pipe_state};
     G_STATIC_ASSERT(G_N_ELEMENTS(cpu) == G_N_ELEMENTS(cpu_ops) - 1);
     G_STATIC_ASSERT(G_N_ELEMENTS(pipe) == G_N_ELEMENTS(pipe_ops) - 1);
@@ -158,9 +161,10 @@ static SimTime feed_pipe(WlPfStages *s, MachOverlap *o, uint64_t bytes,
     mach_proc_compute_list(pipe, &po, sim_engine_phase(s->eng, "pipe"), NULL,
                            NULL, NULL);
     mach_overlap_ops(o, pipe, &po);
-    SimTime now = sim_now(s->eng), end;
+    SimTime now = sim_now(s->eng);
     mach_shmem_send(&s->bus, s->eng, mach_proc_id(s->draw_cpu),
-                    mach_proc_id(pipe), bytes, NULL, NULL, NULL, &end);
+                    mach_proc_id(pipe), bytes, NULL, NULL, NULL);
+    SimTime end = s->bus.last_end;
     mach_overlap_bus(o, &s->bus, pipe, bytes);
     trace_bus(s, bytes, now, end);
     return end - now;

@@ -74,8 +74,8 @@ WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat, guint p,
     c->polygons = k;
     RastSpanList *sl = rast_spanlist_new(v->width, v->height);
     if (k > 0)
-        rast_draw_mesh(v, flat, mat4_identity(), scene_color(1, 1, 1), 0, ids,
-                       k, rast_spanlist_sink(sl), &c->rc);
+        rast_draw_mesh(v, flat, mat4_identity(), scene_color(1, 1, 1), 0,
+                       &(RastSubset){ids, k}, rast_spanlist_sink(sl), &c->rc);
     rast_spanlist_sort(sl);
     count_rows(sl, c);
     RastActive *a = rast_active_new(v->width, v->height);

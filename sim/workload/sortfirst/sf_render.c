@@ -57,7 +57,7 @@ void wl_sf_render_serial(const Scene *scene, const WlSfDb *db,
     RastCounters c = {0};
     rast_zbuffer_clear(zb);
     rast_draw_mesh(&v, db->flat, mat4_identity(), (SceneColor){1, 1, 1}, 0,
-                   NULL, 0, rast_zbuffer_sink(zb), &c);
+                   NULL, rast_zbuffer_sink(zb), &c);
 }
 
 /* Counts from the frame rendered once (setup `pre`) when no image is
@@ -71,8 +71,8 @@ gboolean wl_sf_prerendered(const WlSfRun *r)
  * instance (no subset gathered). */
 static void count_region(WlSfRun *r, WlSfProc *pr)
 {
-    const RastPrerender *pre = rast_prerender_set_get(
-        r->s.pre, (guint)r->frame, &r->view, r->db->flat);
+    const RastPrerender *pre = rast_prerender_set_get(r->s.pre, (guint)r->frame,
+                                                      &r->view, r->db->flat);
     WlSfRect q = wl_sf_region_rect(&r->regions, pr->p);
     RastRect rect = {q.x0, q.y0, q.x1, q.y1};
     pr->polys = pr->spans = pr->pixels = 0;
@@ -104,8 +104,9 @@ void wl_sf_render_region(WlSfRun *r, WlSfProc *pr)
     if (r->subset->len)
         rast_draw_mesh(&r->view, r->db->flat, mat4_identity(),
                        (SceneColor){1, 1, 1}, 0,
-                       (const uint32_t *)(void *)r->subset->data,
-                       r->subset->len, sink, &pr->rc);
+                       &(RastSubset){(const uint32_t *)(void *)r->subset->data,
+                                     r->subset->len},
+                       sink, &pr->rc);
     pr->spans = k.spans;
     pr->pixels = k.pixels;
 }

@@ -97,8 +97,9 @@ static gboolean record_work(SimEngine *eng, uint64_t i, unsigned phase,
         return FALSE;
     SimOp tick = {"tick", t};
     SimTime now = sim_now(eng), end = sim_time_add_sat(now, t);
-    uint64_t id = rec->ops->compute(rec, now, (uint32_t)i, phase, t, end, &tick,
-                                    1, NULL, 0, then != NULL);
+    SimWork w = {&tick, 1, NULL, 0};
+    uint64_t id = rec->ops->compute(rec, now, (uint32_t)i, phase, t, end, &w,
+                                    then != NULL);
     sim_record_schedule_done(eng, rec, id, end, then, s, arg);
     return TRUE;
 }

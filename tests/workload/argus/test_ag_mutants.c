@@ -449,8 +449,9 @@ static void test_gouraud_as_zbuffer(void **state)
         px += wl_ag_draw(f, t, &view, m, &tri, 1);
     RastZBuffer *zb = rast_zbuffer_new(24, 20);
     RastCounters c = {0};
-    rast_draw_mesh(&view, m, mat4_identity(), scene_color(1, 1, 1), 0, &tri,
-                   1, rast_zbuffer_sink(zb), &c);
+    rast_draw_mesh(&view, m, mat4_identity(), scene_color(1, 1, 1), 0,
+                   &(RastSubset){&tri, 1},
+                   rast_zbuffer_sink(zb), &c);
     assert_int_equal(px, rast_zbuffer_covered(zb));
     assert_true(px > 100);
     RastImage *img = wl_ag_frame_image(f);

@@ -206,10 +206,12 @@ typedef struct {
 
 static uint64_t r_compute(SimRecorder *r, SimTime now, uint32_t node,
                           unsigned phase, SimTime cost, SimTime end,
-                          const SimOp *ops, unsigned n_ops,
-                          const SimOpTerm *terms, unsigned n_terms,
-                          gboolean handled)
+                          const SimWork *w, gboolean handled)
 {
+    const SimOp *ops = w->ops;
+    unsigned n_ops = w->n_ops;
+    const SimOpTerm *terms = w->terms;
+    unsigned n_terms = w->n_terms;
     (void)now, (void)node, (void)phase, (void)cost, (void)end, (void)ops;
     (void)n_ops, (void)terms, (void)n_terms, (void)handled;
     return ++((Rec *)r->state)->id;

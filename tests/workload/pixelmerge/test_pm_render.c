@@ -1,10 +1,10 @@
 /* test_pm_render.c — the local rendering of pixel merging (pm_render.h)
  * checked against the raster library itself (issue 21): on one processor
  * wl_pm_render_local's pixels (x, y, depth, id, colour) and raster counts
- * equal rast_draw_mesh's of the flattened scene into a span list and the modified scanline
- * z-buffer, span_rows and insert_steps are recomputed from that span list
- * (s (s - 1) / 4 per row of s spans), each processor's share is the ids
- * worked out by hand for both splits (and draws as rast_draw_mesh of
+ * equal rast_draw_mesh's of the flattened scene into a span list and the
+ * modified scanline z-buffer, span_rows and insert_steps are recomputed from
+ * that span list (s (s - 1) / 4 per row of s spans), each processor's share is
+ * the ids worked out by hand for both splits (and draws as rast_draw_mesh of
  * those ids), and the merged frame image equals the raster library's
  * image, channel order included. */
 #include <setjmp.h>
@@ -63,7 +63,7 @@ static void ref_finish(Ref *r)
 static Ref whole(const RastView *v, const SceneMesh *flat)
 {
     Ref r = {rast_spanlist_new(N, N), NULL, {0}};
-    rast_draw_mesh(v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    rast_spanlist_sink(r.sl), &r.rc);
     ref_finish(&r);
     return r;
@@ -153,7 +153,7 @@ static void check_shares(const Scene *sc, WlPmSplit split, guint P)
         guint n = share_ids(split, p, P, ids);
         Ref r = {rast_spanlist_new(N, N), NULL, {0}};
         rast_draw_mesh(&v, flat, mat4_identity(), scene_color(1, 1, 1), 0,
-                       ids, n, rast_spanlist_sink(r.sl), &r.rc);
+                       &(RastSubset){ids, n}, rast_spanlist_sink(r.sl), &r.rc);
         ref_finish(&r);
         WlPmCounts k;
         WlPmWpa *w = wl_pm_render_local(&v, flat, p, P, split, &k);

@@ -285,7 +285,7 @@ static void test_frame_png(void **state)
     v.cull_back = FALSE;
     RastSpanList *sl = rast_spanlist_new(24, 24);
     RastCounters rc = {0};
-    rast_draw_mesh(&v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL, 0,
+    rast_draw_mesh(&v, flat, mat4_identity(), scene_color(1, 1, 1), 0, NULL,
                    rast_spanlist_sink(sl), &rc);
     rast_spanlist_sort(sl);
     RastActive *a = rast_active_new(24, 24);

@@ -95,7 +95,7 @@ static RastZBuffer *serial_of(const Scene *scene, const SceneDb *db, int f)
     RastCounters c = {0};
     rast_zbuffer_clear(zb);
     rast_draw_mesh(&v, mesh, mat4_identity(), (SceneColor){1, 1, 1}, 0, NULL,
-                   0, rast_zbuffer_sink(zb), &c);
+                   rast_zbuffer_sink(zb), &c);
     scene_mesh_free(mesh);
     return zb;
 }
