@@ -18,13 +18,13 @@
 #include "sim/workload/metrics.h"
 #include <math.h>
 
-gboolean rp_igehy98_rate(const char *path, const char *const *sets,
-                         double *hz, GError **err)
+gboolean rp_igehy98_rate(const RpContext *ctx, const char *path,
+                         const char *const *sets, double *hz, GError **err)
 {
     GPtrArray *ov = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 0; sets && sets[i]; i++)
         g_ptr_array_add(ov, g_strdup(sets[i]));
-    g_ptr_array_add(ov, g_strdup("run.fidelity=analytic"));
+    g_ptr_array_add(ov, g_strdup_printf("run.fidelity=%s", ctx->fidelity));
     g_ptr_array_add(ov, g_strdup("run.frames=1"));
     g_ptr_array_add(ov, g_strdup_printf("run.seed=%d", (int)RP_SEED));
     g_ptr_array_add(ov, NULL);
@@ -32,6 +32,9 @@ gboolean rp_igehy98_rate(const char *path, const char *const *sets,
     g_ptr_array_free(ov, TRUE);
     CfgRunOpts o = {.quiet = TRUE};
     SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+    if (res)
+        rp_note_fidelity(ctx, mach_name(r->machine_built),
+                         mach_fidelity(r->machine_built));
     gboolean ok = res && wl_get_metric(res, "frame_hz", hz);
     sim_result_free(res);
     cfg_run_free(r);
@@ -67,6 +70,7 @@ static const char *const role_notes[] = {"calibration (fitted)",
                                          "prediction", NULL};
 
 typedef struct {
+    const RpContext *ctx;
     char *dir;        /* of setup.yaml */
     const CfgNode *apps;
     GPtrArray *rows;  /* RpRow * */
@@ -105,7 +109,8 @@ static gboolean app_cell(IgRun *r, const char *row, const char *app,
         return FALSE;
     char *path = g_build_filename(r->dir, rel, NULL);
     double hz = NAN;
-    gboolean ok = rp_igehy98_rate(path, (const char *const *)sets, &hz, err);
+    gboolean ok =
+        rp_igehy98_rate(r->ctx, path, (const char *const *)sets, &hz, err);
     g_free(path);
     if (!ok)
         return FALSE;
@@ -176,7 +181,8 @@ static gboolean igehy98_run(const RpContext *ctx, GPtrArray *rows,
     CfgNode *root = cfg_load_file(ctx->setup, err);
     if (!root)
         return FALSE;
-    IgRun r = {g_path_get_dirname(ctx->setup), NULL, rows, chart_table()};
+    IgRun r = {ctx, g_path_get_dirname(ctx->setup), NULL, rows,
+               chart_table()};
     const CfgNode *rs = NULL;
     gboolean ok = cfg_get_map(root, "applications", TRUE,
                               "a map {nurbs: config, march: config}",

@@ -15,9 +15,11 @@
 
 extern const RpPaperOps rp_igehy98;
 
-/* The frame rate of one run: config file `path` with the overrides
- * (NULL-terminated `--set` assignments).  FALSE with *err on failure. */
-gboolean rp_igehy98_rate(const char *path, const char *const *sets,
-                         double *hz, GError **err);
+/* The frame rate of one run through the runner: config file `path` with
+ * the overrides (NULL-terminated `--set` assignments), at the pass's
+ * network fidelity (ctx->fidelity, noted in the table's header).  FALSE
+ * with *err on failure. */
+gboolean rp_igehy98_rate(const RpContext *ctx, const char *path,
+                         const char *const *sets, double *hz, GError **err);
 
 #endif

@@ -35,26 +35,33 @@ static char *write_tmp(void)
 static void test_rate_and_overrides(void **state)
 {
     (void)state;
+    GString *used = g_string_new(NULL);
+    RpContext ctx_ = {.fidelity = "faithful", .quiet = TRUE,
+                      .fidelity_used = used};
+    const RpContext *ctx = &ctx_;
     char *path = write_tmp();
     GError *e = NULL;
     double with_app = 0, issue_only = 0;
-    assert_true(rp_igehy98_rate(path, NULL, &with_app, &e));
+    assert_true(rp_igehy98_rate(ctx, path, NULL, &with_app, &e));
     const char *none[] = {"workload.application=none", NULL};
-    assert_true(rp_igehy98_rate(path, none, &issue_only, &e));
+    assert_true(rp_igehy98_rate(ctx, path, none, &issue_only, &e));
     assert_true(with_app > 0 && isfinite(with_app));
     assert_true(issue_only > with_app);
     /* the leave-one-out rows' override: a cost of the model, per cell */
     const char *slow[] = {"machine.nodes.cpu.costs.nurbs_vertex=5us", NULL};
     double slower = 0;
-    assert_true(rp_igehy98_rate(path, slow, &slower, &e));
+    assert_true(rp_igehy98_rate(ctx, path, slow, &slower, &e));
     assert_true(slower < 0.8 * with_app);
     const char *bad[] = {"workload.contexts=zero", NULL};
     double hz = -1;
-    assert_false(rp_igehy98_rate(path, bad, &hz, &e));
+    assert_false(rp_igehy98_rate(ctx, path, bad, &hz, &e));
     assert_non_null(e);
     g_clear_error(&e);
-    assert_false(rp_igehy98_rate("/nonexistent/argus.yaml", NULL, &hz, &e));
+    assert_false(rp_igehy98_rate(ctx, "/nonexistent/argus.yaml", NULL, &hz, &e));
     g_clear_error(&e);
+    /* the pass's fidelity reaches the run and the table's header */
+    assert_non_null(strstr(used->str, "origin2000"));
+    g_string_free(used, TRUE);
     g_unlink(path);
     g_free(path);
 }
