@@ -1,18 +1,20 @@
 /* ortega93.c — seed 004's Tables 1-4 from the simulator (ortega93.h).
  *
- * For each data set and resolution the scene is scan converted once
- * (dp_geom.h); each table then costs that geometry on each of its
- * partitions with its machine's model (dp_frame.h).  Nothing is read
- * from the published tables here.  Cost: 6 geometry builds (O(spans)
- * each) plus O(segments) per cell.
+ * For each data set, resolution and table, one run of workload dpscan
+ * through the runner (sim/run/run.h) on the table's machine model, its
+ * first partition the machine's and every partition costed from the same
+ * render (workload.partitions); the cells are read from the run's
+ * declared metrics (time_s@P, polygons).  On a SIMD machine a second run
+ * with dpscan.send_slice overridden to 0 gives each cell's time as a
+ * line in send_slice (ortega93_cv.c).  Nothing is read from the
+ * published tables here.  Cost: 12 runs plus 6 for the fit, each O(spans
+ * + segments x partitions).
  */
 #include "sim/reproduce/ortega93.h"
-#include "sim/scene/scene_cfg.h"
-#include "sim/workload/dpscan/dp_color.h"
-#include "sim/workload/dpscan/dp_render.h"
+#include "sim/machine/model_param.h"
 #include "sim/raster/scan.h"
-#include "sim/workload/dpscan/dp_model.h"
-#include "sim/machine/model.h"
+#include "sim/run/run.h"
+#include "sim/workload/metrics.h"
 #include <math.h>
 #include <stdio.h>
 
@@ -23,11 +25,10 @@ typedef struct {
     GPtrArray *rows; /* RpRow * */
     FILE *coef;      /* PGSIM_DP_COEF or NULL */
     GArray *simd;    /* RpOrCell of every SIMD cell, for table "cv" */
-    double buffer_factor; /* segment buffer slots per polygon */
 } OrRun;
 
-/* Loads the scene file named by scenes.<key>. */
-static Scene *load_scene(OrRun *r, const char *key, GError **err)
+/* Loads the scene file named by scenes.<key>: its whole document. */
+static CfgNode *load_scene(OrRun *r, const char *key, GError **err)
 {
     const char *rel = NULL;
     if (!cfg_get_str(cfg_get(r->root, "scenes"), key, TRUE, &rel, err))
@@ -35,11 +36,12 @@ static Scene *load_scene(OrRun *r, const char *key, GError **err)
     char *path = g_build_filename(r->dir, rel, NULL);
     CfgNode *doc = cfg_load_file(path, err);
     g_free(path);
-    if (!doc)
+    if (doc && !cfg_get(doc, "scene")) {
+        cfg_error(err, doc, "no scene: section", "a scene file");
+        cfg_free(doc);
         return NULL;
-    Scene *s = scene_from_cfg(cfg_get(doc, "scene"), err);
-    cfg_free(doc);
-    return s;
+    }
+    return doc;
 }
 
 static void partition_name(uint64_t p, char *buf, size_t n)
@@ -50,105 +52,168 @@ static void partition_name(uint64_t p, char *buf, size_t n)
         g_snprintf(buf, n, "%" G_GUINT64_FORMAT, p);
 }
 
-/* A table's machine at each of its partitions, appended to ms. */
-static gboolean table_machines(const CfgNode *t, GArray *ms, GError **err)
+/* The run config of one table at w x h: its machine model at its first
+ * partition, every partition costed, the scene `scene` (a section of
+ * another file, copied with its locations). */
+static CfgNode *table_tree(const OrRun *r, const CfgNode *tab,
+                           const CfgNode *scene, int w, int h, GError **err)
 {
-    const char *mname = NULL;
-    WlDpMachine m = {0};
-    if (!cfg_get_str(t, "machine", TRUE, &mname, err))
-        return FALSE;
-    CfgNode *model = mach_load_model(mname, err);
-    gboolean ok = model && wl_dp_machine_from_model(model, NULL, &m, err);
-    cfg_free(model);
-    if (!ok)
-        return FALSE;
-    const CfgNode *parts = cfg_get(t, "partitions");
-    if (cfg_kind(parts) != CFG_SEQ || cfg_seq_len(parts) == 0) {
-        cfg_error(err, parts ? parts : t, "no partition list",
-                  "partitions: [n, ...]");
+    const CfgNode *parts = cfg_get(tab, "partitions");
+    if (!cfg_get(tab, "machine") || cfg_kind(parts) != CFG_SEQ ||
+        cfg_seq_len(parts) == 0) {
+        cfg_error(err, parts ? parts : tab, "no machine or partition list",
+                  "machine: NAME, partitions: [n, ...]");
+        return NULL;
+    }
+    char *text = g_strdup_printf("schema_version: 1\n"
+                                 "machine: {}\n"
+                                 "workload: {type: dpscan, width: %d, "
+                                 "height: %d, wire: formula}\n",
+                                 w, h);
+    CfgNode *root = cfg_load_string(text, "<ortega93 run>", err);
+    g_free(text);
+    if (!root)
+        return NULL;
+    CfgNode *wl = (CfgNode *)cfg_get(root, "workload");
+    cfg_map_put((CfgNode *)cfg_get(root, "machine"), "model",
+                cfg_copy(cfg_get(tab, "machine")));
+    cfg_map_put(wl, "processors", cfg_copy(cfg_seq_at(parts, 0)));
+    cfg_map_put(wl, "partitions", cfg_copy(parts));
+    const CfgNode *bf = cfg_get(r->root, "buffer_factor");
+    cfg_map_put(wl, "buffer_factor",
+                bf ? cfg_copy(bf) : cfg_load_string("1", "<ortega93>", NULL));
+    cfg_map_put(root, "scene", cfg_copy(scene));
+    return root;
+}
+
+/* Runs `tree` (taken) with `set` (may be NULL): the result, and in *send
+ * the machine's dpscan.send_slice on a SIMD machine (else 0). */
+static SimResult *run_tree(CfgNode *tree, const char *set, SimTime *send,
+                           GError **err)
+{
+    const char *const sets[] = {set, NULL};
+    CfgRun *run = cfg_run_from_tree(tree, sets, err);
+    CfgRunOpts o = {.quiet = TRUE};
+    SimResult *res = run ? cfg_run_exec(run, &o, err) : NULL;
+    const CfgNode *sec =
+        res ? cfg_get(mach_model_cfg(run->machine_built), "dpscan") : NULL;
+    *send = 0;
+    if (sec && !g_strcmp0(mach_param_word(sec, "arch"), "simd") &&
+        !mach_param_time(sec, "send_slice", TRUE, send, err)) {
+        sim_result_free(res);
+        res = NULL;
+    }
+    cfg_run_free(run);
+    return res;
+}
+
+/* Metric NAME@P of res. */
+static double at_p(const SimResult *res, const char *name, uint64_t p)
+{
+    char *full = g_strdup_printf("%s@%" G_GUINT64_FORMAT, name, p);
+    double v = wl_metric(res, full);
+    g_free(full);
+    return v;
+}
+
+/* A time in seconds back in picoseconds (exact below 2^53 ps). */
+static int64_t ps_of(double s)
+{
+    return (int64_t)llround(s * 1e12);
+}
+
+/* Cell (table, row) at partition p as a line a + s * b in send_slice s:
+ * b from the run at the model's send_slice (res) and the run at 0
+ * (zero); exact, or FALSE with *err when the time is not linear in it. */
+static gboolean simd_cell(OrRun *r, const char *table, const char *row,
+                          uint64_t p, const SimResult *res,
+                          const SimResult *zero, SimTime send, GError **err)
+{
+    double t = at_p(res, "time_s", p);
+    int64_t d = ps_of(t) - ps_of(at_p(zero, "time_s", p));
+    if (send == 0 || d < 0 || d % (int64_t)send != 0) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INTERNAL,
+                    "ortega93: table %s row %s: the time is not linear in "
+                    "dpscan.send_slice (%" G_GINT64_FORMAT " ps at 0)",
+                    table, row, d);
         return FALSE;
     }
-    for (guint i = 0; i < cfg_seq_len(parts); i++) {
-        uint64_t p = 0;
-        GError *e = NULL;
-        const char *s = cfg_scalar(cfg_seq_at(parts, i));
-        if (!s || !cfg_parse_count(s, "partition", &p, &e) || p == 0 ||
-            p > G_MAXUINT32) {
-            g_clear_error(&e);
-            cfg_error(err, cfg_seq_at(parts, i), s ? s : "a non-scalar",
-                      "a processor count > 0");
-            return FALSE;
-        }
-        m.procs = p;
-        g_array_append_val(ms, m);
-    }
+    RpOrCell c = {.b = (double)(d / (int64_t)send),
+                  .s = sim_time_to_s(send)};
+    g_strlcpy(c.table, table, sizeof c.table);
+    g_strlcpy(c.row, row, sizeof c.row);
+    c.a = t - c.s * c.b;
+    g_array_append_val(r->simd, c);
     return TRUE;
 }
 
-static void cell_rows(OrRun *r, const char *table, const WlDpTarget *t,
-                      const WlDpImage *img, uint64_t n_polys)
+/* The linear coefficients of a SIMD cell (PGSIM_DP_COEF, for
+ * scripts/fit-ortega93.py). */
+static void coef_line(OrRun *r, const char *table, const char *row,
+                      const SimResult *res, uint64_t p)
 {
-    char part[32], row[64];
-    partition_name(t->m.procs, part, sizeof part);
-    g_snprintf(row, sizeof row, "%s/%dx%d", part, img->width, img->height);
-    double s = sim_time_to_s(t->total);
-    g_ptr_array_add(r->rows, rp_row_new(table, row, "time_s", s, NULL));
-    g_ptr_array_add(r->rows, rp_row_new(table, row, "polygons_per_s",
-                                        (double)n_polys / s, NULL));
-    const WlDpCoef *k = &t->coef;
-    if (t->m.arch == WL_DP_SIMD) {
-        RpOrCell c = {.b = k->slices, .s = sim_time_to_s(t->m.send_slice)};
-        g_strlcpy(c.table, table, sizeof c.table);
-        g_strlcpy(c.row, row, sizeof c.row);
-        c.a = s - c.s * c.b;
-        g_array_append_val(r->simd, c);
+    static const char *const keys[] = {"op", "step", "scan_slice",
+                                       "send_setup", "send_slice", "send_vp",
+                                       "news_slice", "send_msg"};
+    fprintf(r->coef, "%s,%s", table, row);
+    for (guint k = 0; k < G_N_ELEMENTS(keys); k++) {
+        char *name = g_strdup_printf("%s_count", keys[k]);
+        fprintf(r->coef, ",%.0f", at_p(res, name, p));
+        g_free(name);
     }
-    if (r->coef && t->m.arch == WL_DP_SIMD)
-        fprintf(r->coef,
-                "%s,%s,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%" G_GUINT64_FORMAT
-                ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT "\n",
-                table, row, k->op_slices, k->steps, k->scan_slices, k->sends,
-                k->slices, k->vp_slices, k->news_slices, k->msg_slices,
-                img->scan_iters,
-                img->pixel_iters, img->flushes);
+    fprintf(r->coef, ",%.0f,%.0f,%.0f\n", wl_metric(res, "scan_iters"),
+            wl_metric(res, "pixel_iters"), wl_metric(res, "flushes"));
 }
 
-/* Renders scene s once at w x h and costs it on every partition of
- * every table that uses it. */
-static gboolean render_tables(OrRun *r, const char *key, const Scene *s,
+/* Table `table` at w x h on scene `scene`: its rows (and SIMD cells). */
+static gboolean table_cells(OrRun *r, const char *table, const CfgNode *tab,
+                            const CfgNode *scene, int w, int h, GError **err)
+{
+    CfgNode *tree = table_tree(r, tab, scene, w, h, err);
+    SimTime send = 0, zs = 0;
+    SimResult *res = tree ? run_tree(tree, NULL, &send, err) : NULL;
+    SimResult *zero =
+        res && send ? run_tree(table_tree(r, tab, scene, w, h, err),
+                               "machine.dpscan.send_slice=0 us", &zs, err)
+                    : NULL;
+    gboolean ok = res && (!send || zero);
+    const CfgNode *parts = cfg_get(tab, "partitions");
+    for (guint i = 0; ok && i < cfg_seq_len(parts); i++) {
+        uint64_t p = 0;
+        if (!(ok = cfg_parse_count(cfg_scalar(cfg_seq_at(parts, i)),
+                                   "partition", &p, err)))
+            break;
+        char part[32], row[64];
+        partition_name(p, part, sizeof part);
+        g_snprintf(row, sizeof row, "%s/%dx%d", part, w, h);
+        double t = at_p(res, "time_s", p);
+        g_ptr_array_add(r->rows, rp_row_new(table, row, "time_s", t, NULL));
+        g_ptr_array_add(r->rows,
+                        rp_row_new(table, row, "polygons_per_s",
+                                   wl_metric(res, "polygons") / t, NULL));
+        if (ok && send)
+            ok = simd_cell(r, table, row, p, res, zero, send, err);
+        if (ok && send && r->coef)
+            coef_line(r, table, row, res, p);
+    }
+    sim_result_free(res);
+    sim_result_free(zero);
+    return ok;
+}
+
+/* Every table that uses scene `key` at w x h, in table order. */
+static gboolean render_tables(OrRun *r, const char *key, const CfgNode *scene,
                               int w, int h, GError **err)
 {
     const CfgNode *tabs = cfg_get(r->root, "tables");
-    GArray *ms = g_array_new(FALSE, FALSE, sizeof(WlDpMachine));
-    GPtrArray *names = g_ptr_array_new();
     gboolean ok = TRUE;
     for (guint t = 0; ok && t < cfg_map_len(tabs); t++) {
         const CfgNode *tab = cfg_map_value(tabs, t);
         const char *sk = NULL;
-        guint before = ms->len;
         ok = cfg_get_str(tab, "scene", TRUE, &sk, err) &&
-             (g_strcmp0(sk, key) != 0 || table_machines(tab, ms, err));
-        for (guint i = before; ok && i < ms->len; i++)
-            g_ptr_array_add(names, (gpointer)cfg_map_key(tabs, t));
+             (g_strcmp0(sk, key) != 0 ||
+              table_cells(r, cfg_map_key(tabs, t), tab, scene, w, h, err));
     }
-    if (ok && ms->len > 0) {
-        float pal[WL_DP_COLORS][3];
-        wl_dp_palette_default(pal);
-        WlDpRenderOpts o = {.mode = WL_DP_MODE_GOURAUD,
-                            .buffer_factor = r->buffer_factor,
-                            .ops = wl_dp_ops_defaults()};
-        WlDpPolys *p = wl_dp_polys_new(s, 0.0, w, h, o.mode, pal);
-        WlDpVm *vm = wl_dp_vm_new((WlDpMachine *)ms->data, ms->len,
-                                  (uint32_t)w, (uint32_t)h);
-        WlDpImage *img = wl_dp_render(vm, p, w, h, &o);
-        for (guint i = 0; i < ms->len; i++)
-            cell_rows(r, names->pdata[i], wl_dp_vm_target(vm, i), img, p->n);
-        wl_dp_image_free(img);
-        wl_dp_vm_free(vm);
-        wl_dp_polys_free(p);
-    }
-    g_ptr_array_free(names, TRUE);
-    g_array_free(ms, TRUE);
     return ok;
 }
 
@@ -174,8 +239,8 @@ static gboolean read_res(const CfgNode *res, int *w, int *h, GError **err)
 /* Every table that uses scene `key`, at every resolution. */
 static gboolean scene_cells(OrRun *r, const char *key, GError **err)
 {
-    Scene *s = load_scene(r, key, err);
-    if (!s)
+    CfgNode *doc = load_scene(r, key, err);
+    if (!doc)
         return FALSE;
     const CfgNode *res = cfg_get(r->root, "resolutions");
     gboolean ok = TRUE;
@@ -186,9 +251,9 @@ static gboolean scene_cells(OrRun *r, const char *key, GError **err)
         char what[96];
         g_snprintf(what, sizeof what, "%s at %dx%d", key, w, h);
         rp_step(r->ctx, what);
-        ok = render_tables(r, key, s, w, h, err);
+        ok = render_tables(r, key, cfg_get(doc, "scene"), w, h, err);
     }
-    scene_free(s);
+    cfg_free(doc);
     return ok;
 }
 
@@ -243,10 +308,9 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
                .root = root,
                .dir = g_path_get_dirname(ctx->setup),
                .rows = rows,
-               .simd = g_array_new(FALSE, FALSE, sizeof(RpOrCell)),
-               .buffer_factor = 1.0};
-    if (!cfg_get_double(root, "buffer_factor", FALSE, 1e-3, 1e3,
-                        &r.buffer_factor, err)) {
+               .simd = g_array_new(FALSE, FALSE, sizeof(RpOrCell))};
+    double bf = 1.0; /* checked here, read by dpscan */
+    if (!cfg_get_double(root, "buffer_factor", FALSE, 1e-3, 1e3, &bf, err)) {
         g_array_free(r.simd, TRUE);
         g_free(r.dir);
         cfg_free(root);

@@ -12,10 +12,11 @@
  * "<partition>/<width>x<height>" (e.g. "16K/1280x1024", "512/640x480");
  * columns `time_s` (frame time, seconds) and `polygons_per_s` (polygons
  * in the data set / frame time), as the paper's two halves of a table.
- * Each scene is rendered once per resolution by the data-parallel
- * renderer (sim/workload/dpscan/dp_render.h) and that one execution is
- * costed on every partition of every table at once (one array-layer
- * target per partition); about 20 s in all.  Table "text" holds the two
+ * Each table at each resolution is one run of workload dpscan through
+ * the runner (sim/run/run.h) on its machine model, the one render costed
+ * on every partition of the table (workload.partitions; metrics
+ * time_s@P, polygons); a CM-200 table is run again with
+ * machine.dpscan.send_slice=0 us for table "cv".  Table "text" holds the two
  * sentences of §6 (the fastest small-polygon rate of the 64K CM-200 and
  * of the 512-node CM-5); table "claims" decides §6's other sentences
  * from the simulated cells; table "cv" gives the CM-200 fit's in-sample
@@ -43,8 +44,9 @@ void rp_ortega93_charts(GPtrArray *rows, const char *dir);
 void rp_ortega93_claims(GPtrArray *rows);
 
 /* One CM-200 time cell as a line in send_slice s (ortega93_cv.c): the
- * simulated time is a + s * b exactly (dp_cost.h), pub its published
- * time (filled by rp_ortega93_cv). */
+ * simulated time is a + s * b exactly, a the cell's time in a run with
+ * send_slice overridden to 0; pub its published time (filled by
+ * rp_ortega93_cv). */
 typedef struct {
     char table[8], row[48];
     double a, b, s, pub;

@@ -4,10 +4,26 @@
 #include "sim/core/error.h"
 #include <string.h>
 
+/* Does `name` match the declaration `decl`: the same name, or for a
+ * family "NAME@P" any "NAME@<digits>"? */
+static gboolean matches(const char *decl, const char *name)
+{
+    if (strcmp(decl, name) == 0)
+        return TRUE;
+    size_t n = strlen(decl);
+    if (n < 2 || strcmp(decl + n - 2, "@P") != 0 ||
+        strncmp(decl, name, n - 1) != 0 || !name[n - 1])
+        return FALSE;
+    for (const char *c = name + n - 1; *c; c++)
+        if (!g_ascii_isdigit(*c))
+            return FALSE;
+    return TRUE;
+}
+
 const WlMetric *wl_metric_decl(const WlOps *ops, const char *name)
 {
     for (const WlMetric *m = ops->metrics; m && m->name; m++)
-        if (strcmp(m->name, name) == 0)
+        if (matches(m->name, name))
             return m;
     return NULL;
 }

@@ -14,7 +14,9 @@
 #include "sim/core/result.h"
 #include "sim/workload/workload.h"
 
-/* ops' declaration of `name`; NULL when ops does not declare it. */
+/* ops' declaration of `name`; NULL when ops does not declare it.  A
+ * declared name ending in "@P" declares a family: NAME@16384, NAME@32
+ * (one per processor count the run was asked for, dpscan's partitions). */
 const WlMetric *wl_metric_decl(const WlOps *ops, const char *name);
 
 /* TRUE when every metric of r is declared by ops with the unit it was

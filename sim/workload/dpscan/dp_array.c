@@ -18,6 +18,12 @@ struct WlDpVm {
     uint32_t *stamp, *depth; /* per destination element */
     uint64_t n_stamp;
     uint32_t send_no;
+    /* per message of the current send: a screen destination's x and y
+     * (the same on every target), then one target's source and
+     * destination processors (so its counters are reset without
+     * recomputing them) */
+    uint32_t *mx, *my, *sp, *dp;
+    uint64_t n_msg; /* length of the four */
 };
 
 static const char *const phase_names[WL_DP_N_PHASES] = {
@@ -60,6 +66,7 @@ void wl_dp_vm_free(WlDpVm *vm)
     g_free(vm->t);
     g_free(vm->stamp);
     g_free(vm->depth);
+    g_free(vm->mx), g_free(vm->my), g_free(vm->sp), g_free(vm->dp);
     g_free(vm);
 }
 
@@ -195,22 +202,46 @@ static uint64_t dst_proc(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s,
                               (uint32_t)(d / vm->width));
 }
 
-/* Most messages one processor injects or receives in this send. */
+/* The per-message buffers for a send of s->count messages, with a
+ * screen destination's x and y filled (target-independent). */
+static void msg_buffers(WlDpVm *vm, const WlDpSend *s)
+{
+    if (s->count > vm->n_msg) {
+        vm->n_msg = s->count;
+        vm->mx = g_renew(uint32_t, vm->mx, s->count);
+        vm->my = g_renew(uint32_t, vm->my, s->count);
+        vm->sp = g_renew(uint32_t, vm->sp, s->count);
+        vm->dp = g_renew(uint32_t, vm->dp, s->count);
+    }
+    if (s->lay == WL_DP_LAYOUT_SCREEN)
+        for (uint64_t k = 0; k < s->count; k++) {
+            vm->mx[k] = (uint32_t)(s->dst[k] % vm->width);
+            vm->my[k] = (uint32_t)(s->dst[k] / vm->width);
+        }
+}
+
+/* Most messages one processor injects or receives in this send
+ * (msg_buffers() filled for it).  floor(floor(e / v) / g) is
+ * floor(e / (v g)): one division a message and end. */
 static uint64_t target_load(WlDpVm *vm, WlDpTarget *t, const WlDpSend *s)
 {
-    uint64_t vs = wl_dp_vp_ratio(&t->m, s->n_src);
+    uint64_t vs = wl_dp_vp_ratio(&t->m, s->n_src) * MAX(t->m.router_procs, 1);
     uint64_t vd = wl_dp_vp_ratio(&t->m, s->n_dst), load = 0;
     uint64_t g = MAX(t->m.router_procs, 1);
+    WlDpLayout *l = s->lay == WL_DP_LAYOUT_SCREEN ? screen_of(vm, t) : NULL;
     for (uint64_t k = 0; k < s->count; k++) {
-        uint64_t sp = (s->src ? s->src[k] : k) / vs / g;
-        uint64_t dp = dst_proc(vm, t, s, vd, s->dst[k]) / g;
+        uint64_t sp = (s->src ? s->src[k] : k) / vs;
+        uint64_t dp = l ? wl_dp_layout_owner(l, vm->mx[k], vm->my[k]) / g
+                        : s->dst[k] / (vd * g);
         g_assert(sp < t->m.procs && dp < t->m.procs);
+        vm->sp[k] = (uint32_t)sp;
+        vm->dp[k] = (uint32_t)dp;
         uint32_t a = ++t->inj[sp], b = ++t->recv[dp];
         load = MAX(load, MAX(a, b));
     }
     for (uint64_t k = 0; k < s->count; k++) {
-        t->inj[(s->src ? s->src[k] : k) / vs / g] = 0;
-        t->recv[dst_proc(vm, t, s, vd, s->dst[k]) / g] = 0;
+        t->inj[vm->sp[k]] = 0;
+        t->recv[vm->dp[k]] = 0;
     }
     return load;
 }
@@ -290,6 +321,8 @@ uint64_t wl_dp_send(WlDpVm *vm, const WlDpSend *s)
     vm->c.messages += s->count;
     vm->c.words += s->count * s->words;
     vm->c.collisions += coll;
+    if (s->count > 0)
+        msg_buffers(vm, s);
     for (guint i = 0; i < vm->nt && s->count > 0; i++) {
         WlDpTarget *t = &vm->t[i];
         uint64_t load = target_load(vm, t, s);

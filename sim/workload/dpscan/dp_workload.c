@@ -25,6 +25,9 @@ typedef struct {
     const CfgNode *model_at; /* workload.model, borrowed while the runner
                                 loads; NULL when not given */
     uint64_t procs;          /* workload.processors; 0 when not given */
+    const CfgNode *parts_at; /* workload.partitions, as model_at; NULL */
+    GArray *parts;           /* uint64_t: workload.partitions (may be
+                                empty), each costed too */
     int64_t width, height;
     WlDpRenderOpts ro;
     float pal[WL_DP_COLORS][3];
@@ -50,9 +53,43 @@ static gboolean parse_mode(const CfgNode *sec, DpParams *p, GError **err)
     return !pal || wl_dp_palette_from_cfg(pal, p->pal, err);
 }
 
+/* workload.partitions: a list of processor counts in [1, 2^32 - 1]. */
+static gboolean parse_parts(const CfgNode *sec, DpParams *p, GError **err)
+{
+    const CfgNode *l = p->parts_at = cfg_get(sec, "partitions");
+    if (!l)
+        return TRUE;
+    if (cfg_kind(l) != CFG_SEQ || cfg_seq_len(l) == 0) {
+        cfg_error(err, l, "no list of partitions", "partitions: [n, ...]");
+        return FALSE;
+    }
+    for (guint i = 0; i < cfg_seq_len(l); i++) {
+        uint64_t n = 0;
+        GError *e = NULL;
+        const char *v = cfg_scalar(cfg_seq_at(l, i));
+        if (!v || !cfg_parse_count(v, "partition", &n, &e) || n == 0 ||
+            n > G_MAXUINT32) {
+            g_clear_error(&e);
+            cfg_error(err, cfg_seq_at(l, i), v ? v : "a non-scalar",
+                      "a processor count in [1, 4294967295]");
+            return FALSE;
+        }
+        g_array_append_val(p->parts, n);
+    }
+    return TRUE;
+}
+
+static void dp_free_params(void *params)
+{
+    DpParams *p = params;
+    g_array_free(p->parts, TRUE);
+    g_free(p);
+}
+
 static void *dp_parse(const CfgNode *sec, GError **err)
 {
     DpParams *p = g_new0(DpParams, 1);
+    p->parts = g_array_new(FALSE, FALSE, sizeof(uint64_t));
     p->model = "cm200";
     p->model_at = cfg_get(sec, "model");
     p->width = 1280;
@@ -66,16 +103,11 @@ static void *dp_parse(const CfgNode *sec, GError **err)
         !cfg_get_int(sec, "height", FALSE, 1, RAST_MAX_SIDE, &p->height, err) ||
         !cfg_get_double(sec, "buffer_factor", FALSE, 1e-6, 1e6,
                         &p->ro.buffer_factor, err) ||
-        !parse_mode(sec, p, err)) {
-        g_free(p);
+        !parse_mode(sec, p, err) || !parse_parts(sec, p, err)) {
+        dp_free_params(p);
         return NULL;
     }
     return p;
-}
-
-static void dp_free_params(void *p)
-{
-    g_free(p);
 }
 
 /* Own memory (WlOps.mem_bytes): the z-buffer and colour index (9 B a
@@ -88,6 +120,8 @@ static double dp_mem_bytes(const void *params, GString *what)
     g_string_append_printf(what, "%" G_GUINT64_FORMAT " processors, %"
                            G_GINT64_FORMAT " x %" G_GINT64_FORMAT " pixels",
                            procs, p->width, p->height);
+    for (guint i = 0; i < p->parts->len; i++)
+        procs += g_array_index(p->parts, uint64_t, i);
     return (double)p->width * (double)p->height * 12.0 + (double)procs * 12.0;
 }
 
@@ -101,6 +135,7 @@ static void add_metrics(SimResult *out, const WlDpTarget *t,
         g_free(name);
     }
     double s = sim_time_to_s(t->total);
+    sim_result_set_metric(out, "polygons", (double)n_polys, "");
     sim_result_set_metric(out, "polygons_per_s", (double)n_polys / s, "1/s");
     sim_result_set_metric(out, "steps", (double)c->steps, "");
     sim_result_set_metric(out, "scan_iters", (double)img->scan_iters, "");
@@ -116,6 +151,31 @@ static void add_metrics(SimResult *out, const WlDpTarget *t,
                               sim_time_to_s(t->wire_total), "s");
         sim_result_set_metric(out, "router_soft_s",
                               sim_time_to_s(t->soft_total), "s");
+    }
+}
+
+/* Per workload.partitions entry P (target[i]: the machine's own, 0, when
+ * P is its partition): time_s@P and, per
+ * model constant KEY, KEY_count@P (dp_cost.h: the frame time is the sum
+ * of count x constant, plus the SPMD wire time). */
+static void add_partition_metrics(SimResult *out, const WlDpVm *vm,
+                                  const GArray *parts, const guint *target)
+{
+    for (guint i = 0; i < parts->len; i++) {
+        const WlDpTarget *t = wl_dp_vm_target(vm, target[i]);
+        uint64_t P = g_array_index(parts, uint64_t, i);
+        char *name = g_strdup_printf("time_s@%" G_GUINT64_FORMAT, P);
+        sim_result_set_metric(out, name, sim_time_to_s(t->total), "s");
+        g_free(name);
+        for (int c = 0; c < WL_DP_N_COSTS; c++) {
+            uint64_t n = 0;
+            for (int ph = 0; ph < WL_DP_N_PHASES; ph++)
+                n += t->count[ph].n[c];
+            name = g_strdup_printf("%s_count@%" G_GUINT64_FORMAT,
+                                   wl_dp_cost_name((WlDpCost)c), P);
+            sim_result_set_metric(out, name, (double)n, "");
+            g_free(name);
+        }
     }
 }
 
@@ -243,14 +303,28 @@ static gboolean write_image(const WlContext *ctx, const DpParams *p,
     return ok;
 }
 
-static gboolean one_frame(const WlContext *ctx, const DpParams *p,
-                          const WlDpMachine *m, MachMachine *mach,
-                          DpWire *wire, const Scene *s, int fr, SimResult *out,
+/* One run's fixed parts: the machine, its dpscan costs at the machine's
+ * partition and at each of workload.partitions (ms, targets in order),
+ * the network pricing the sends (or NULL). */
+typedef struct {
+    const WlContext *ctx;
+    const DpParams *p;
+    MachMachine *mach;
+    GArray *ms;    /* WlDpMachine */
+    guint *target; /* per workload.partitions entry, its index in ms */
+    DpWire *wire;
+} DpRun;
+
+static gboolean one_frame(const DpRun *r, int fr, SimResult *out,
                           GError **err)
 {
+    const WlContext *ctx = r->ctx;
+    const DpParams *p = r->p;
+    DpWire *wire = r->wire;
     int w = (int)p->width, h = (int)p->height;
-    WlDpPolys *poly = wl_dp_polys_new(s, fr, w, h, p->ro.mode, p->pal);
-    WlDpVm *vm = wl_dp_vm_new(m, 1, (uint32_t)w, (uint32_t)h);
+    WlDpPolys *poly = wl_dp_polys_new(ctx->scene, fr, w, h, p->ro.mode, p->pal);
+    WlDpVm *vm = wl_dp_vm_new((const WlDpMachine *)r->ms->data, r->ms->len,
+                              (uint32_t)w, (uint32_t)h);
     if (wire)
         wl_dp_vm_set_wire(vm, 0, dp_wire, wire);
     WlDpImage *img = wl_dp_render(vm, poly, w, h, &p->ro);
@@ -261,13 +335,14 @@ static gboolean one_frame(const WlContext *ctx, const DpParams *p,
         wire->err = NULL;
         ok = FALSE;
     }
-    ok = ok && play(ctx->eng, mach, t, err);
+    ok = ok && play(ctx->eng, r->mach, t, err);
     gboolean cut = sim_engine_cut(ctx->eng); /* run.until ended it */
     ok = ok && (cut || write_image(ctx, p, img, fr, err));
     if (ok && !cut) {
         sim_result_add_frame(out, t->total);
         wl_mark_frame(ctx->eng, (guint)fr, sim_now(ctx->eng));
         add_metrics(out, t, img, wl_dp_vm_counts(vm), poly->n);
+        add_partition_metrics(out, vm, p->parts, r->target);
     }
     wl_dp_image_free(img);
     wl_dp_vm_free(vm);
@@ -283,11 +358,22 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
     MachMachine *mach = ctx->machine;
     if (!wl_dp_machine_from_mach(mach, &m, err))
         return FALSE;
-    const Scene *s = ctx->scene;
+    DpRun r = {.ctx = ctx, .p = p, .mach = mach,
+               .ms = g_array_new(FALSE, FALSE, sizeof(WlDpMachine))};
+    g_array_append_val(r.ms, m);
+    r.target = g_new0(guint, p->parts->len + 1);
+    for (guint i = 0; i < p->parts->len; i++) {
+        WlDpMachine mp = m;
+        mp.procs = g_array_index(p->parts, uint64_t, i);
+        if (mp.procs != m.procs) {
+            r.target[i] = r.ms->len;
+            g_array_append_val(r.ms, mp);
+        }
+    }
+    DpWire *wire = r.wire = !p->formula ? dp_wire_new(mach, &m) : NULL;
     gboolean ok = TRUE;
-    DpWire *wire = ok && !p->formula ? dp_wire_new(mach, &m) : NULL;
     for (int fr = 0; ok && fr < ctx->frames && !sim_engine_cut(ctx->eng); fr++)
-        ok = one_frame(ctx, p, &m, mach, wire, s, fr, out, err);
+        ok = one_frame(&r, fr, out, err);
     if (ok) {
         mach_fill_result(mach, out);
         out->elapsed = sim_now(ctx->eng);
@@ -297,6 +383,8 @@ static gboolean dp_run(const WlContext *ctx, void *params, SimResult *out,
             net_fill_result(wire->net, out);
     }
     dp_wire_free(wire);
+    g_array_free(r.ms, TRUE);
+    g_free(r.target);
     return ok;
 }
 
@@ -308,6 +396,7 @@ static const WlMetric dp_metrics[] = {
     {"pixel_s", "s", "phase pixel: the frame's counted time"},
     {"router_s", "s", "phase router: the frame's counted time"},
     {"display_s", "s", "phase display: the frame's counted time"},
+    {"polygons", "", "polygons in the frame"},
     {"polygons_per_s", "1/s", "polygons / the frame's counted time"},
     {"steps", "", "data-parallel operations issued"},
     {"scan_iters", "", "scan-line iterations (one per scan line)"},
@@ -320,6 +409,18 @@ static const WlMetric dp_metrics[] = {
     {"max_load", "", "largest load of any router send"},
     {"router_wire_s", "s", "SPMD: the data network's time of all sends"},
     {"router_soft_s", "s", "SPMD: per-message software time of all sends"},
+    /* with workload.partitions, per partition P (metrics.h: "@P") */
+    {"time_s@P", "s", "the frame's counted time at P processors"},
+    {"step_count@P", "", "at P: steps issued (x dpscan.step)"},
+    {"op_count@P", "", "at P: VP slices x ops (x dpscan.op)"},
+    {"scan_slice_count@P", "", "at P: VP slices of scans (x dpscan.scan_slice)"},
+    {"news_slice_count@P", "", "at P: VP slices of NEWS moves (x dpscan.news_slice)"},
+    {"send_setup_count@P", "", "at P, SIMD: arrays sent (x dpscan.send_setup)"},
+    {"send_vp_count@P", "", "at P, SIMD: VP slices of arrays sent (x dpscan.send_vp)"},
+    {"send_msg_count@P", "", "at P, SIMD: mean router loads (x dpscan.send_msg)"},
+    {"send_slice_count@P", "", "at P, SIMD: router loads (x dpscan.send_slice)"},
+    {"net_latency_count@P", "", "at P, SPMD: arrays sent (x dpscan.net_latency)"},
+    {"msg_overhead_count@P", "", "at P, SPMD: loads the software bounds (x dpscan.msg_overhead)"},
     {NULL, NULL, NULL},
 };
 
@@ -373,6 +474,13 @@ static gboolean dp_plan_machine(const void *params, const CfgNode *given,
     WlDpMachine m = {0};
     if (!wl_dp_machine_from_model(model, at, &m, err))
         return FALSE;
+    if (m.arch == WL_DP_SPMD && p->parts->len && !p->formula) {
+        cfg_error(err, p->parts_at,
+                  "partitions with SPMD sends on the machine's network",
+                  "wire: formula (the network is the machine's, at its own "
+                  "node count)");
+        return FALSE;
+    }
     uint64_t procs = p->procs ? p->procs : given ? 0 : DP_DEFAULT_PROCS;
     if (!procs)
         return TRUE;

@@ -16,6 +16,10 @@
  *     mode: gouraud           # flat | gouraud | wireframe | hidden_line
  *                             # | contour | points | lines (seed 004 §5)
  *     wire: network           # SPMD sends: network | formula (below)
+ *     partitions: [16384, 65536] # optional: the same render also costed
+ *                             # at these processor counts (SPMD: with
+ *                             # wire: formula); metrics time_s@P and
+ *                             # KEY_count@P per model constant KEY
  *     palette: [...]          # optional: 15 colours, [r, g, b] in 0..1
  *                             # or "#rrggbb" (dp_color.h)
  *   scene: {...}              # sim/scene/scene_cfg.h
@@ -24,7 +28,8 @@
  * DIR/frame.png (`--frames all`: DIR/frame-NNNN.png for every frame)
  * through the generic hook wl_emit_frame(), in the 8-bit colour table of
  * §5.  Metrics per run (mean over frames): time per phase
- * (transform_s, scan_s, pixel_s, router_s, display_s), polygons_per_s,
+ * (transform_s, scan_s, pixel_s, router_s, display_s), polygons,
+ * polygons_per_s,
  * steps, scan_iters, pixel_iters, flushes, segments, pixels, collisions,
  * messages, max_load; on an SPMD machine also router_wire_s and
  * router_soft_s (the data network's and the per-message software's time

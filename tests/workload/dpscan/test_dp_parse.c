@@ -13,6 +13,7 @@
 
 #include "sim/raster/scan.h"
 #include "sim/workload/dpscan/dp_workload.h"
+#include "sim/workload/metrics.h"
 #include "tests/support.h"
 
 static const char *scene_yaml = "scene: {generator: isosurface, grid: 5}\n";
@@ -184,6 +185,31 @@ static void test_run_refusals(void **state)
             "nosuch.yaml");
 }
 
+/* workload.partitions: the frame costed at each P (time_s@P): at the
+ * machine's own partition the frame's time, at four times as many
+ * processors less; the counts are declared (the runner checks them);
+ * an SPMD machine pricing its sends on its own network refuses them. */
+static void test_partitions(void **state)
+{
+    (void)state;
+    SimResult *r = run(", partitions: [64, 256]");
+    double own = wl_metric(r, "time_s@64"), big = wl_metric(r, "time_s@256");
+    assert_true(own == sim_time_to_s(g_array_index(r->frame_times, SimTime,
+                                                   0)));
+    assert_true(big > 0 && big < own);
+    assert_true(wl_metric(r, "send_slice_count@256") > 0);
+    assert_true(wl_metric(r, "polygons") > 0);
+    sim_result_free(r);
+    refused("workload: {type: dpscan, model: cm5, processors: 16, "
+            "partitions: [16, 32]}\n"
+            "scene: {generator: isosurface, grid: 4}\n",
+            "dp.yaml:1:66: found partitions with SPMD sends on the "
+            "machine's network, expected wire: formula");
+    refused("workload: {type: dpscan, partitions: [16, 0]}\n"
+            "scene: {generator: isosurface, grid: 4}\n",
+            "dp.yaml:1:43: found 0, expected a processor count");
+}
+
 int main(void)
 {
     g_log_set_always_fatal(G_LOG_LEVEL_WARNING | G_LOG_LEVEL_CRITICAL);
@@ -192,6 +218,7 @@ int main(void)
         cmocka_unit_test(test_default_words),
         cmocka_unit_test(test_ranges),
         cmocka_unit_test(test_run_refusals),
+        cmocka_unit_test(test_partitions),
     };
     return cmocka_run_group_tests_name("dp_parse", tests, NULL, NULL);
 }
