@@ -17,6 +17,7 @@ typedef struct {
     GArray *elems; /* SceneElem */
     int64_t end_delta;
     gboolean primitive;
+    gboolean posted; /* in db->posted (O(1) post and is_posted) */
     SceneBox bbox;
     uint64_t bbox_gen; /* 0: never computed */
 } SceneStruct;
@@ -151,7 +152,8 @@ SceneDb *scene_db_copy(const SceneDb *db)
             g_array_append_val(d->elems, e);
         }
     }
-    g_array_append_vals(c->posted, db->posted->data, db->posted->len);
+    for (guint i = 0; i < db->posted->len; i++)
+        scene_db_post(c, g_array_index(db->posted, guint, i));
     return c;
 }
 
@@ -363,23 +365,25 @@ static gint posted_index(const SceneDb *db, guint sid)
 
 void scene_db_post(SceneDb *db, guint sid)
 {
-    (void)get(db, sid);
-    if (posted_index(db, sid) < 0)
+    SceneStruct *s = get(db, sid);
+    if (!s->posted)
         g_array_append_val(db->posted, sid);
+    s->posted = TRUE;
 }
 
 gboolean scene_db_unpost(SceneDb *db, guint sid)
 {
-    gint i = posted_index(db, sid);
+    gint i = scene_db_is_posted(db, sid) ? posted_index(db, sid) : -1;
     if (i < 0)
         return FALSE;
     g_array_remove_index(db->posted, (guint)i);
+    get(db, sid)->posted = FALSE;
     return TRUE;
 }
 
 gboolean scene_db_is_posted(const SceneDb *db, guint sid)
 {
-    return posted_index(db, sid) >= 0;
+    return sid < db->structs->len && get(db, sid)->posted;
 }
 
 guint scene_db_posted_count(const SceneDb *db)
@@ -549,11 +553,8 @@ void scene_db_shape(const SceneDb *db, SceneDbShape *out)
     guint n = db->structs->len;
     guint *indeg = g_new0(guint, n), *depth = g_new0(guint, n);
     double *inst = g_new0(double, n);
-    guint8 *posted = g_new0(guint8, n);
     GArray *queue = g_array_new(FALSE, FALSE, sizeof(guint));
     memset(out, 0, sizeof *out);
-    for (guint i = 0; i < db->posted->len; i++)
-        posted[g_array_index(db->posted, guint, i)] = 1;
     for (guint sid = 0; sid < n; sid++) {
         const SceneStruct *s = get(db, sid);
         for (guint i = 0; i < s->elems->len; i++) {
@@ -562,7 +563,7 @@ void scene_db_shape(const SceneDb *db, SceneDbShape *out)
         }
     }
     for (guint sid = 0; sid < n; sid++) {
-        inst[sid] = indeg[sid] == 0 || posted[sid];
+        inst[sid] = indeg[sid] == 0 || get(db, sid)->posted;
         depth[sid] = 1;
         if (indeg[sid] == 0)
             g_array_append_val(queue, sid);
@@ -585,7 +586,6 @@ void scene_db_shape(const SceneDb *db, SceneDbShape *out)
         }
     }
     g_array_unref(queue);
-    g_free(posted);
     g_free(indeg);
     g_free(depth);
     g_free(inst);
