@@ -163,3 +163,17 @@ double sim_result_node_util(const SimResult *r, const SimNodeResult *n)
 {
     return r->elapsed ? (double)n->busy.total / (double)r->elapsed : 0.0;
 }
+
+SimUtilUsed sim_result_util_used(const SimResult *r)
+{
+    SimUtilUsed u = {r->nodes->len, sim_result_n_idle(r), 0.0, 0.0};
+    SimSum sum = {0};
+    for (guint i = 0; i < r->nodes->len; i++) {
+        double v = sim_result_node_util(r, g_ptr_array_index(r->nodes, i));
+        sim_sum_add(&sum, v);
+        u.max = MAX(u.max, v);
+    }
+    if (u.used)
+        u.mean = sim_sum_value(&sum) / (double)u.used;
+    return u;
+}

@@ -84,4 +84,17 @@ double sim_result_mean_frame_s(const SimResult *r);
 /* busy / elapsed for a node, 0 when elapsed is 0. */
 double sim_result_node_util(const SimResult *r, const SimNodeResult *n);
 
+/* Utilisation over the processors the workload used (busy at all, the
+ * entries of r->nodes): the idle ones (sim_result_n_idle) are counted
+ * apart, not averaged in as zeros, so a run on 2 of a machine's 64 nodes
+ * reads its 2 nodes' utilisation.  All 0 when no processor was busy. */
+typedef struct {
+    uint64_t used; /* processors busy at some time */
+    uint64_t idle; /* processors never busy */
+    double mean;   /* mean of busy / elapsed over the used ones */
+    double max;
+} SimUtilUsed;
+
+SimUtilUsed sim_result_util_used(const SimResult *r);
+
 #endif

@@ -158,6 +158,14 @@ static void json_nodes(JsonBuilder *b, const SimResult *r)
         json_builder_end_object(b);
     }
     json_builder_end_array(b);
+    SimUtilUsed u = sim_result_util_used(r);
+    json_builder_set_member_name(b, "utilisation");
+    json_builder_begin_object(b);
+    js_set_int(b, "used", (gint64)u.used);
+    js_set_int(b, "idle", (gint64)u.idle);
+    js_set_num(b, "mean_used", u.mean);
+    js_set_num(b, "max_used", u.max);
+    json_builder_end_object(b);
 }
 
 static void json_comm(JsonBuilder *b, const SimResult *r)
@@ -288,6 +296,11 @@ static void csv_nodes(GString *s, const SimResult *r)
         g_snprintf(buf, sizeof buf, "%" G_GUINT64_FORMAT, e->count);
         csv_row(s, "idle", e->kind, NULL, "count", buf, NULL);
     }
+    SimUtilUsed u = sim_result_util_used(r);
+    csv_u64(s, "utilisation", "used", u.used, NULL);
+    csv_u64(s, "utilisation", "idle", u.idle, NULL);
+    csv_num(s, "utilisation", NULL, NULL, "mean_used", u.mean, NULL);
+    csv_num(s, "utilisation", NULL, NULL, "max_used", u.max, NULL);
 }
 
 static void csv_rest(GString *s, const SimResult *r, gboolean timing)
@@ -512,6 +525,13 @@ static void text_nodes(GString *s, const SimResult *r)
     else
         text_kinds(s, r);
     text_idle(s, r);
+    SimUtilUsed u = sim_result_util_used(r);
+    char a[32];
+    g_string_append_printf(s,
+                           "  mean busy over the %" G_GUINT64_FORMAT
+                           " processors used: %s (%" G_GUINT64_FORMAT
+                           " idle, not in it)\n",
+                           u.used, pct(a, u.mean), u.idle);
 }
 
 static void text_rest(GString *s, const SimResult *r, gboolean timing)

@@ -63,21 +63,17 @@ char *sweep_point_error_line(const SweepSpec *s, guint i, const char *msg)
 
 static void put_result(JsonBuilder *b, const SimResult *r)
 {
-    double umean = 0.0, umax = 0.0; /* idle processors count as 0 */
-    double all = (double)r->nodes->len + (double)sim_result_n_idle(r);
-    for (guint n = 0; n < r->nodes->len; n++) {
-        double u = sim_result_node_util(r, g_ptr_array_index(r->nodes, n));
-        umean += u / all;
-        umax = MAX(umax, u);
-    }
+    SimUtilUsed u = sim_result_util_used(r); /* idle ones apart */
     js_set_num(b, "frames", r->frame_times->len);
     js_set_num(b, "mean_frame_s", sim_result_mean_frame_s(r));
     js_set_num(b, "elapsed_s", sim_time_to_s(r->elapsed));
     js_set_num(b, "events", (double)r->events);
     js_set_num(b, "comm_bytes", (double)r->comm_bytes);
     js_set_num(b, "comm_messages", (double)r->comm_messages);
-    js_set_num(b, "util_mean", umean);
-    js_set_num(b, "util_max", umax);
+    js_set_num(b, "util_mean", u.mean);
+    js_set_num(b, "util_max", u.max);
+    js_set_num(b, "nodes_used", (double)u.used);
+    js_set_num(b, "nodes_idle", (double)u.idle);
     for (guint m = 0; m < r->metrics->len; m++) {
         const SimMetric *sm = g_ptr_array_index(r->metrics, m);
         js_set_num(b, sm->name, sm->value);

@@ -5,7 +5,8 @@
  * runs one point in this process and formats its JSON line: point,
  * repetition, seed, every parameter, status ("ok"/"error"), error, then
  * the metrics (frames, mean_frame_s, elapsed_s, events, comm_bytes,
- * comm_messages, util_mean, util_max and every workload metric).  Wall
+ * comm_messages, util_mean, util_max over the processors used,
+ * nodes_used, nodes_idle and every workload metric).  Wall
  * time is left out so that rows are identical however the sweep is run.
  *
  * Locally, points run in forked worker processes (at most `jobs` at a

@@ -95,7 +95,8 @@ static gboolean sweep_column(const WlOps *w, const char *y)
 {
     static const char *const fixed[] = {
         "frames",        "mean_frame_s", "elapsed_s", "events", "comm_bytes",
-        "comm_messages", "util_mean",    "util_max",  NULL};
+        "comm_messages", "util_mean",    "util_max",  "nodes_used",
+        "nodes_idle",    NULL};
     for (guint i = 0; fixed[i]; i++)
         if (strcmp(fixed[i], y) == 0)
             return TRUE;

@@ -349,6 +349,39 @@ static void test_resume(void **state)
     sweep_test_rm_out(d);
 }
 
+/* A point that used 2 of a machine's 64 processors, each 99 % busy. */
+static gboolean two_of_64(const CfgNode *cfg, uint64_t seed, SimResult **out,
+                          GError **err)
+{
+    (void)cfg, (void)seed, (void)err;
+    SimResult *r = sim_result_new("fake", "none");
+    r->elapsed = 100 * SIM_US;
+    for (int i = 0; i < 2; i++)
+        sim_busy_add(&sim_result_add_node(r, i ? "n1" : "n0", "node")->busy,
+                     0, 99 * SIM_US);
+    sim_result_add_idle(r, "node", 62);
+    *out = r;
+    return TRUE;
+}
+
+/* util_mean is over the processors the point used (0.99, not 0.03 with
+ * the 62 idle ones averaged in as zeros); they are counted apart. */
+static void test_util_over_used(void **state)
+{
+    (void)state;
+    SweepSpec *s = parse_ok("base: {a: 0}\nparameters:\n  a: [1]\n");
+    char *line = sweep_point_line(s, 0, two_of_64);
+    JsonNode *n = js_parse(line, -1, NULL, NULL);
+    JsonObject *o = json_node_get_object(n);
+    assert_true(fabs(json_object_get_double_member(o, "util_mean") - 0.99) <
+                1e-12);
+    assert_int_equal(json_object_get_int_member(o, "nodes_used"), 2);
+    assert_int_equal(json_object_get_int_member(o, "nodes_idle"), 62);
+    json_node_unref(n);
+    g_free(line);
+    sweep_spec_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -360,6 +393,7 @@ int main(void)
         cmocka_unit_test(test_results_provenance),
         cmocka_unit_test(test_failures_recorded),
         cmocka_unit_test(test_resume),
+        cmocka_unit_test(test_util_over_used),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }
