@@ -1,5 +1,5 @@
-/* record.c — the completion trampoline of recorded work, and waits for
- * a display refresh (record.h).
+/* record.c — the completion trampoline of recorded work, waits for a
+ * display refresh, and joins (record.h).
  *
  * One small record per recorded completion, freed when it runs; nothing
  * is allocated when no recorder is attached.
@@ -53,4 +53,17 @@ gboolean sim_wait_refresh(SimEngine *eng, uint32_t node, SimTime period,
             eng, rec, rec->ops->refresh(rec, now, node, period), t, done, ctx,
             arg);
     return done ? sim_schedule_at(eng, t, done, ctx, arg) : TRUE;
+}
+
+uint64_t sim_record_cause(SimEngine *eng)
+{
+    SimRecorder *rec = sim_engine_recorder(eng);
+    return rec && rec->ops->cause ? rec->ops->cause(rec) : SIM_RECORD_NONE;
+}
+
+void sim_record_after(SimEngine *eng, uint64_t id)
+{
+    SimRecorder *rec = sim_engine_recorder(eng);
+    if (rec && rec->ops->after && id != SIM_RECORD_NONE)
+        rec->ops->after(rec, id);
 }

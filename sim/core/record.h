@@ -73,6 +73,13 @@ typedef struct {
      * handled action, its handler runs between begin and end. */
     void (*begin)(SimRecorder *r, uint64_t id, SimTime t);
     void (*end)(SimRecorder *r, uint64_t id);
+    /* Optional (NULL: joins are not recorded).  cause: the action whose
+     * completion handler runs now, or SIM_RECORD_NONE.  after: the next
+     * action issued waits also for action `id`'s completion (a join:
+     * work that needs two earlier completions, e.g. its own send done
+     * and its partner's message arrived; docs/traces.md `after`). */
+    uint64_t (*cause)(SimRecorder *r);
+    void (*after)(SimRecorder *r, uint64_t id);
 } SimRecorderOps;
 
 struct SimRecorder {
@@ -86,6 +93,19 @@ struct SimRecorder {
 gboolean sim_record_schedule_done(SimEngine *eng, SimRecorder *r, uint64_t id,
                                   SimTime t, SimHandler done, void *ctx,
                                   void *arg);
+
+#define SIM_RECORD_NONE G_MAXUINT64
+
+/* The recorded action whose completion handler runs now
+ * (SIM_RECORD_NONE without a recorder, outside a handler, or with a
+ * recorder that keeps no joins).  O(1). */
+uint64_t sim_record_cause(SimEngine *eng);
+/* The next action issued on eng also waits for recorded action `id`
+ * (a no-op for SIM_RECORD_NONE or without a recorder).  A workload whose
+ * work needs two completions (whichever came last runs its handler)
+ * keeps the first one's sim_record_cause() and calls this before issuing
+ * the work from the second's handler, so that a replay waits for both. */
+void sim_record_after(SimEngine *eng, uint64_t id);
 
 /* A wait for a display refresh: done(eng, ctx, arg) runs at the first
  * multiple of `period` (>= 1 ps) at or after now, for `node` (a

@@ -1,9 +1,10 @@
-/* rpl_format.c — reading and writing version-1 to -3 traces (rpl_format.h).
+/* rpl_format.c — reading and writing version-1 to -4 traces (rpl_format.h).
  *
  * The reader is a loop over lines: header keywords until the first group
  * or action, then body items.  State: the header, the number of actions
- * read, whether a group is open, and the set of `+` actions still
- * awaiting their `on` group.  Cost: O(length of the line) per item.
+ * read, whether a group is open, the set of `+` actions still awaiting
+ * their `on` group and the set of `&` actions still awaiting the action
+ * `after` them.  Cost: O(length of the line) per item.
  */
 #include "sim/app/replay/rpl_format.h"
 #include "sim/core/error.h"
@@ -17,8 +18,10 @@ struct RplReader {
     uint64_t actions;         /* actions read so far */
     gboolean in_group;        /* a group line has been read */
     GHashTable *await;        /* uint64 id -> itself: `+` without `on` yet */
+    GHashTable *joins;        /* the same for `&` without `after ID` yet */
     gboolean pending;         /* the current line is a body line not yet used */
-    uint64_t version;         /* 1, 2 (b, v and swap) or 3 (`|` terms) */
+    uint64_t version;         /* 1, 2 (b, v and swap), 3 (`|` terms) or 4
+                                 (`after`, `&`) */
     gboolean framed, swapped; /* a `frame` / `swap` flag was read */
 };
 
@@ -183,11 +186,11 @@ static gboolean read_header(RplReader *r, GError **err)
     if (n == 0 || strcmp(rpl_lines_word(r->l, 0), "pgsim-trace"))
         return fail(r, 0, "'pgsim-trace 1' on the first line", err);
     if (!rpl_lines_u64(r->l, 1, G_MAXUINT32, &v,
-                       "trace format version 1, 2 or 3", err))
+                       "trace format version 1, 2, 3 or 4", err))
         return FALSE;
     if (v < 1 || v > RPL_VERSION || n != 2)
         return fail(r, v < 1 || v > RPL_VERSION ? 1 : 2,
-                    "trace format version 1, 2 or 3 alone", err);
+                    "trace format version 1, 2, 3 or 4 alone", err);
     r->version = v;
     for (;;) {
         gboolean body;
@@ -213,6 +216,7 @@ RplReader *rpl_reader_open(const char *path, GError **err)
     r->h.phases = g_ptr_array_new_with_free_func(g_free);
     r->h.kinds = g_array_new(FALSE, FALSE, sizeof(RplKind));
     r->await = g_hash_table_new(g_int64_hash, g_int64_equal);
+    r->joins = g_hash_table_new(g_int64_hash, g_int64_equal);
     if (!read_header(r, err)) {
         rpl_reader_free(r);
         return NULL;
@@ -228,12 +232,15 @@ void rpl_reader_free(RplReader *r)
         return;
     rpl_lines_free(r->l);
     rpl_header_clear(&r->h);
-    GHashTableIter it;
-    gpointer key;
-    g_hash_table_iter_init(&it, r->await);
-    while (g_hash_table_iter_next(&it, &key, NULL))
-        g_free(key);
-    g_hash_table_destroy(r->await);
+    GHashTable *sets[] = {r->await, r->joins};
+    for (int s = 0; s < 2; s++) {
+        GHashTableIter it;
+        gpointer key;
+        g_hash_table_iter_init(&it, sets[s]);
+        while (g_hash_table_iter_next(&it, &key, NULL))
+            g_free(key);
+        g_hash_table_destroy(sets[s]);
+    }
     g_free(r);
 }
 
@@ -249,7 +256,7 @@ const char *rpl_reader_path(const RplReader *r)
 
 guint rpl_reader_awaited(const RplReader *r)
 {
-    return g_hash_table_size(r->await);
+    return g_hash_table_size(r->await) + g_hash_table_size(r->joins);
 }
 
 /* `swap` (version 2): on a `v` action, in a trace without `frame`. */
@@ -264,14 +271,39 @@ static gboolean swap_flag(RplReader *r, int i, RplItem *it, GError **err)
     return TRUE;
 }
 
-/* Trailing `+`, `frame` and `swap` from word i on. */
+/* `after ID` at word i (version 4): ID an earlier action marked `&`
+ * that no other `after` names. */
+static gboolean after_word(RplReader *r, int i, RplItem *it, GError **err)
+{
+    if (!rpl_lines_u64(r->l, i + 1, G_MAXUINT64, &it->after,
+                       "an action id after 'after'", err))
+        return FALSE;
+    gpointer key = NULL;
+    if (it->after >= r->actions ||
+        !g_hash_table_steal_extended(r->joins, &it->after, &key, NULL))
+        return fail(r, i + 1,
+                    "an earlier action marked '&' that no other 'after' "
+                    "names",
+                    err);
+    g_free(key);
+    it->has_after = TRUE;
+    return TRUE;
+}
+
+/* Trailing `after ID`, `+`, `&`, `frame` and `swap` from word i on. */
 static gboolean flags(RplReader *r, int i, RplItem *it, GError **err)
 {
     for (; i < rpl_lines_count(r->l); i++) {
         const char *w = rpl_lines_word(r->l, i);
+        gboolean v4 = r->version >= 4;
         if (!strcmp(w, "+") && !it->handled)
             it->handled = TRUE;
-        else if (!strcmp(w, "frame") && !it->frame && !r->swapped)
+        else if (v4 && !strcmp(w, "&") && !it->joined)
+            it->joined = TRUE;
+        else if (v4 && !strcmp(w, "after") && !it->has_after) {
+            if (!after_word(r, i++, it, err))
+                return FALSE;
+        } else if (!strcmp(w, "frame") && !it->frame && !r->swapped)
             it->frame = r->framed = TRUE;
         else if (!strcmp(w, "swap") && !it->swap) {
             if (!swap_flag(r, i, it, err))
@@ -280,7 +312,9 @@ static gboolean flags(RplReader *r, int i, RplItem *it, GError **err)
             return fail(r, i,
                         r->swapped ? "'+', 'swap' or the end of the line "
                                      "(a trace with 'swap' has no 'frame')"
-                                   : "'+', 'frame' or the end of the line",
+                        : v4 ? "'+', '&', 'after ID', 'frame' or the end of "
+                               "the line"
+                             : "'+', 'frame' or the end of the line",
                         err);
     }
     return TRUE;
@@ -396,11 +430,12 @@ static gboolean ops(RplReader *r, RplItem *it, GError **err)
  * Checked every 65,536 entries; O(1). */
 static gboolean await_fits(RplReader *r, GError **err)
 {
-    guint n = g_hash_table_size(r->await);
+    guint n = rpl_reader_awaited(r);
     if (n % 65536)
         return TRUE;
     char *where = g_strdup_printf("%s:%u:1", rpl_lines_path(r->l),
                                   rpl_lines_number(r->l));
+    /* `&` actions awaiting their `after` count too */
     char *what = g_strdup_printf("%u actions marked '+' whose 'on' groups "
                                  "have not come",
                                  n);
@@ -446,10 +481,12 @@ static gboolean action(RplReader *r, RplItem *it, GError **err)
                                : ops(r, it, err);
     if (!ok)
         return FALSE;
-    if (it->handled) {
+    for (int s = 0; s < 2; s++) {
+        if (!(s ? it->joined : it->handled))
+            continue;
         uint64_t *key = g_new(uint64_t, 1);
         *key = it->id;
-        g_hash_table_add(r->await, key);
+        g_hash_table_add(s ? r->joins : r->await, key);
         if (!await_fits(r, err))
             return FALSE;
     }
@@ -490,19 +527,23 @@ static gboolean at_end(RplReader *r, GError **err)
                     rpl_lines_path(r->l), rpl_lines_number(r->l) + 1);
         return FALSE;
     }
-    if (g_hash_table_size(r->await) == 0)
+    gboolean on = g_hash_table_size(r->await) > 0;
+    GHashTable *set = on ? r->await : r->joins;
+    if (g_hash_table_size(set) == 0)
         return FALSE;
     GHashTableIter i;
     gpointer key;
     uint64_t first = G_MAXUINT64;
-    g_hash_table_iter_init(&i, r->await);
+    g_hash_table_iter_init(&i, set);
     while (g_hash_table_iter_next(&i, &key, NULL))
         first = MIN(first, *(uint64_t *)key);
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "%s:%u:1: found the end of the trace, expected 'on %" PRIu64
-                "' (action %" PRIu64 " is marked '+'; %u such groups missing)",
-                rpl_lines_path(r->l), rpl_lines_number(r->l) + 1, first, first,
-                g_hash_table_size(r->await));
+                "%s:%u:1: found the end of the trace, expected %s %" PRIu64
+                "%s (action %" PRIu64 " is marked '%s'; %u such %s missing)",
+                rpl_lines_path(r->l), rpl_lines_number(r->l) + 1,
+                on ? "'on" : "an action 'after", first, "'", first,
+                on ? "+" : "&", g_hash_table_size(set),
+                on ? "groups" : "actions");
     return FALSE;
 }
 
@@ -607,6 +648,10 @@ void rpl_write_item(RplWriter *w, const RplItem *it)
         n = g_snprintf(buf, sizeof buf, "v %u %" PRIu64, it->proc, it->value);
         break;
     }
-    rpl_writer_printf(w, "%s%s%s%s\n", buf, it->handled ? " +" : "",
-                      it->frame ? " frame" : "", it->swap ? " swap" : "");
+    if (it->has_after && n < RPL_LINE_MAX)
+        n += g_snprintf(buf + n, RPL_LINE_MAX - n, " after %" PRIu64,
+                        it->after);
+    rpl_writer_printf(w, "%s%s%s%s%s\n", buf, it->handled ? " +" : "",
+                      it->joined ? " &" : "", it->frame ? " frame" : "",
+                      it->swap ? " swap" : "");
 }

@@ -1,10 +1,11 @@
-/* rpl_format.h — pgsim's time-independent trace format, version 3
- * (docs/traces.md; version 2 is version 3 without `|` terms, version 1
- * is version 2 without b, v and swap).
+/* rpl_format.h — pgsim's time-independent trace format, version 4
+ * (docs/traces.md; version 3 is version 4 without `after` and `&`,
+ * version 2 is version 3 without `|` terms, version 1 is version 2
+ * without b, v and swap).
  *
  * A trace is text, one item per line, '#' starts a comment:
  *
- *     pgsim-trace 3                       first line: the version
+ *     pgsim-trace 4                       first line: the version
  *     machine ipsc2                       recording machine (a model name)
  *     fidelity packet                     its transport when recorded
  *     procs 17                            processors 0 .. 16
@@ -35,6 +36,9 @@
  * Actions (c, w, s) are numbered 0, 1, ... in file order; `+` says an
  * `on ID` group for this action follows later; `frame` says a frame ends
  * when it completes.  Every action belongs to the group above it.
+ * `after ID` before the flags (version 4): the action is issued when its
+ * group is and action ID has completed (a join); ID is an earlier action
+ * marked `&`, named by exactly one `after`.
  *
  * The reader checks everything a replay relies on (ranges, that `on`
  * names an earlier action marked `+`, once) with located errors, and
@@ -47,7 +51,7 @@
 #include "sim/app/replay/rpl_lines.h"
 #include "sim/core/time.h"
 
-#define RPL_VERSION 3
+#define RPL_VERSION 4
 #define RPL_MAX_OPS 30
 #define RPL_MAX_TERMS 3 /* `|` terms of a `c` line (version 3) */
 #define RPL_TERM_OPS 8  /* OP=COUNT words in one `|` term */
@@ -108,6 +112,9 @@ typedef struct {
     uint64_t value; /* RPL_WORK: ps; RPL_SEND, RPL_BUS: bytes;
                        RPL_REFRESH: the period (ps) */
     gboolean handled, frame, swap;
+    gboolean joined;    /* `&` (version 4): a later action is `after` it */
+    gboolean has_after; /* `after ID` (version 4): it waits also for ID */
+    uint64_t after;
     guint n_ops;   /* RPL_COMPUTE: op names (borrowed until the next item) */
     guint n_terms; /* RPL_COMPUTE: `|` terms (version 3), else 0 */
     const char *op[RPL_MAX_OPS];
@@ -126,7 +133,8 @@ const char *rpl_reader_path(const RplReader *r);
 /* The next body item: TRUE and *it, or FALSE at the end (*err NULL) or
  * on an error (*err set, located). */
 gboolean rpl_reader_next(RplReader *r, RplItem *it, GError **err);
-/* Actions marked `+` whose `on` group has not been read yet. */
+/* Actions marked `+` whose `on` group, or `&` whose `after`, has not
+ * been read yet. */
 guint rpl_reader_awaited(const RplReader *r);
 
 /* The kind (borrowed) that holds recording processor p, or NULL;

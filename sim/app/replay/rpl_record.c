@@ -19,11 +19,12 @@ typedef struct {
     uint64_t value; /* ps of work, bytes or a period; RPL_COMPUTE: first in
                        ops */
     SimTime done;   /* completion time (SIM_TIME_MAX: never completed) */
+    uint64_t after; /* a join: it waits also for this action (NO_ACTION) */
     uint32_t proc, peer;
     uint16_t phase;
     uint8_t type;  /* RPL_WORK, RPL_COMPUTE, RPL_SEND, RPL_BUS, RPL_REFRESH */
     uint8_t n_ops; /* RPL_COMPUTE: its counts, ops[value ..] */
-    uint8_t handled : 1, frame : 1, swap : 1;
+    uint8_t handled : 1, frame : 1, swap : 1, joined : 1;
 } RecAct;
 
 typedef struct {
@@ -39,6 +40,7 @@ struct RplRecorder {
     GArray *groups;    /* RecGroup */
     GArray *ops;       /* SimOp of RPL_COMPUTE actions, names interned */
     uint64_t cur;      /* the action whose handler runs, or NO_ACTION */
+    uint64_t after;    /* the next action's join (sim_record_after) */
     SimTime max_end;   /* latest end of the work given so far */
     uint64_t inflight; /* messages and transfers not yet delivered */
 };
@@ -66,6 +68,8 @@ static uint64_t add(RplRecorder *r, SimTime now, RecAct a)
 {
     group_for(r, now);
     a.done = SIM_TIME_MAX;
+    a.after = r->after;
+    r->after = NO_ACTION;
     g_array_append_val(r->acts, a);
     return r->acts->len - 1;
 }
@@ -180,11 +184,31 @@ static void on_begin(SimRecorder *h, uint64_t id, SimTime t)
 static void on_end(SimRecorder *h, uint64_t id)
 {
     (void)id;
-    ((RplRecorder *)h->state)->cur = NO_ACTION;
+    RplRecorder *r = h->state;
+    r->cur = NO_ACTION;
+    r->after = NO_ACTION;
+}
+
+static uint64_t on_cause(SimRecorder *h)
+{
+    return ((RplRecorder *)h->state)->cur;
+}
+
+/* The next action waits also for action id (an `after ID` word; id is
+ * marked `&`). */
+static void on_after(SimRecorder *h, uint64_t id)
+{
+    RplRecorder *r = h->state;
+    g_assert(id < r->acts->len);
+    RecAct *a = &g_array_index(r->acts, RecAct, id);
+    g_assert(!a->joined); /* one join names each action */
+    a->joined = 1;
+    r->after = id;
 }
 
 static const SimRecorderOps rec_ops = {on_compute, on_send,  on_transfer,
-                                       on_refresh, on_begin, on_end};
+                                       on_refresh, on_begin, on_end,
+                                       on_cause,   on_after};
 
 RplRecorder *rpl_recorder_new(void)
 {
@@ -194,6 +218,7 @@ RplRecorder *rpl_recorder_new(void)
     r->groups = g_array_new(FALSE, FALSE, sizeof(RecGroup));
     r->ops = g_array_new(FALSE, FALSE, sizeof(SimOp));
     r->cur = NO_ACTION;
+    r->after = NO_ACTION;
     return r;
 }
 
@@ -346,7 +371,10 @@ static RplItem act_item(const RplRecorder *r, const RecAct *a, uint64_t id)
                   .value = a->value,
                   .handled = a->handled,
                   .frame = a->frame,
-                  .swap = a->swap};
+                  .swap = a->swap,
+                  .joined = a->joined,
+                  .has_after = a->after != NO_ACTION,
+                  .after = a->after};
     if (a->type != RPL_COMPUTE)
         return it;
     const SimOp *o = &g_array_index(r->ops, SimOp, a->value);

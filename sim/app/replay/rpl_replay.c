@@ -9,8 +9,10 @@
  * When an awaited action completes and its group has not been read yet,
  * the reader reads on to it, attaching the groups it passes.
  *
- * Flights: one record per action marked `+`, from when it is read until
- * it completes; other actions are issued and forgotten.
+ * Flights: one record per action marked `+` or `&`, from when it is
+ * read until it completes (`&`: until the action `after` it is issued,
+ * which is parked on the flight while the join has not completed);
+ * other actions are issued and forgotten.
  *
  * Frames: frame k ends when every action up to its mark (in file order)
  * has completed; in a trace whose frames end at refreshes, when its
@@ -30,7 +32,8 @@
 
 typedef struct {
     uint8_t type;
-    gboolean handled, frame;
+    gboolean handled, frame, joined, has_after;
+    uint64_t after; /* has_after: issued once this action has completed */
     uint32_t proc, peer; /* target processors */
     unsigned phase;      /* engine phase id */
     guint slot;          /* a `swap` wait: its frame's slot in ends, +1 */
@@ -47,6 +50,9 @@ typedef struct {
     uint64_t id;
     Group *group; /* attached `on id` group, or NULL */
     gboolean handled;
+    gboolean joined, done; /* `&`; it completed (kept for its `after`) */
+    gboolean has_parked;   /* parked: the action `after` it, waiting */
+    Act parked;
 } Flight;
 
 typedef struct {
@@ -110,6 +116,9 @@ static void add_act(Replay *rp, Group *g, const RplItem *it)
     Act a = {.type = it->type,
              .handled = it->handled,
              .frame = it->frame,
+             .joined = it->joined,
+             .has_after = it->has_after,
+             .after = it->after,
              .proc = rpl_target_map(t, it->proc),
              .peer = it->type == RPL_SEND || it->type == RPL_BUS
                          ? rpl_target_map(t, it->peer)
@@ -129,10 +138,11 @@ static void add_act(Replay *rp, Group *g, const RplItem *it)
         g_array_append_val(rp->ends, rp->tail);
         rp->tail = 0;
     }
-    if (a.handled) {
+    if (a.handled || a.joined) {
         Flight *f = g_new0(Flight, 1);
         f->id = a.id;
         f->handled = a.handled;
+        f->joined = a.joined;
         g_hash_table_insert(rp->flights, &f->id, f);
     }
 }
@@ -233,18 +243,51 @@ static void seek(Replay *rp, Flight *f)
         place_group(rp);
 }
 
+static void issue(Replay *rp, const Act *a);
+
+/* Flight f completed: its `on` group is issued, then the action parked
+ * `after` it; a joined flight with none parked yet stays, done. */
 static void completed(Replay *rp, Flight *f)
 {
     if (f->handled)
         seek(rp, f);
-    g_hash_table_steal(rp->flights, &f->id);
     Group *g = f->group;
-    g_free(f);
+    f->group = NULL;
+    gboolean parked = f->has_parked;
+    Act a = f->parked;
+    if (f->joined && !parked) {
+        f->done = TRUE;
+    } else {
+        g_hash_table_steal(rp->flights, &f->id);
+        g_free(f);
+    }
     if (g) {
         rp->waiting--;
         issue_group(rp, g);
     }
+    if (parked) {
+        rp->waiting--;
+        issue(rp, &a);
+    }
     progress(rp);
+}
+
+/* An action `after` J: TRUE when J has completed (its flight goes),
+ * else it is parked on J's flight until then. */
+static gboolean join_done(Replay *rp, const Act *a)
+{
+    Flight *j = flight_for(rp, a->after);
+    g_assert(j && j->joined && !j->has_parked); /* the reader checked */
+    if (!j->done) {
+        j->parked = *a;
+        j->parked.has_after = FALSE;
+        j->has_parked = TRUE;
+        rp->waiting++;
+        return FALSE;
+    }
+    g_hash_table_steal(rp->flights, &j->id);
+    g_free(j);
+    return TRUE;
 }
 
 static void work_done(SimEngine *eng, void *ctx, void *arg)
@@ -345,8 +388,10 @@ static void refresh(Replay *rp, const Act *a, Flight *f)
 
 static void issue(Replay *rp, const Act *a)
 {
+    if (a->has_after && !join_done(rp, a))
+        return;
     MachMachine *m = rp->t->m;
-    Flight *f = a->handled ? flight_for(rp, a->id) : NULL;
+    Flight *f = a->handled || a->joined ? flight_for(rp, a->id) : NULL;
     rp->actions++;
     if (a->type == RPL_SEND) {
         rp->sending++;

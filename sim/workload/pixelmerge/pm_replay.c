@@ -6,9 +6,14 @@
  * step's message (waiting[p]), or done.  got[s * n + p] records that the
  * message of step s for p has arrived, so an early arrival is never lost.
  * Invariant: cur[p] only increases; p's post-compute of step s starts at
- * max(own send, arrival of its step-s message).
+ * max(own send, arrival of its step-s message).  That is a join of two
+ * completions: whichever comes last issues the post-compute, and the
+ * first one's recorded action (first[s * n + p]) is named to the
+ * recorder with sim_record_after(), so that a replay on another network
+ * waits for both (docs/traces.md, `after`).
  */
 #include "sim/workload/pixelmerge/pm_replay.h"
+#include "sim/core/record.h"
 #include <string.h>
 
 /* A compute as named counts (wl_pm_cost_ops): the one description of
@@ -34,6 +39,7 @@ typedef struct {
     guint *cur;
     gboolean *waiting;
     guint8 *got;
+    uint64_t *first; /* the recorded completion that came first (join) */
     SimTime *done;
     gboolean overflow;
 } Replay;
@@ -173,10 +179,13 @@ static void proc_post_done(SimEngine *eng, void *ctx, void *arg)
     proc_step(eng, ctx, arg);
 }
 
-static void proc_post(Replay *r, guint p)
+/* p's post-compute of its step; `join`: the other completion it waits
+ * for, as the recorder knows it (SIM_RECORD_NONE: none). */
+static void proc_post(Replay *r, guint p, uint64_t join)
 {
     r->waiting[p] = FALSE;
     const RStep *st = &r->steps[r->cur[p]];
+    sim_record_after(r->eng, join);
     compute_then(r, p, &st->post_ops[p], proc_post_done);
 }
 
@@ -185,27 +194,33 @@ static void on_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     (void)net;
     Replay *r = ctx;
     guint s = GPOINTER_TO_UINT(d->payload);
-    r->got[(gsize)s * r->n + d->dst] = 1;
+    gsize at = (gsize)s * r->n + d->dst;
+    r->got[at] = 1;
     if (r->waiting[d->dst] && r->cur[d->dst] == s)
-        proc_post(r, d->dst);
+        proc_post(r, d->dst, r->first[at]);
+    else
+        r->first[at] = sim_record_cause(r->eng);
 }
 
 static void proc_send(SimEngine *eng, void *ctx, void *arg)
 {
-    (void)eng;
     Replay *r = ctx;
     guint p = GPOINTER_TO_UINT(arg), s = r->cur[p];
     const RStep *st = &r->steps[s];
     if (!st->exchange) {
-        proc_post(r, p);
+        proc_post(r, p, SIM_RECORD_NONE);
         return;
     }
+    gsize at = (gsize)s * r->n + p;
+    uint64_t pre = sim_record_cause(eng); /* before the send is issued */
     net_send(r->rig->net, p, st->dst[p], st->bytes[p], GUINT_TO_POINTER(s),
              on_arrive, r);
-    if (r->got[(gsize)s * r->n + p])
-        proc_post(r, p);
-    else
+    if (r->got[at]) {
+        proc_post(r, p, r->first[at]);
+    } else {
         r->waiting[p] = TRUE;
+        r->first[at] = pre;
+    }
 }
 
 static void proc_step(SimEngine *eng, void *ctx, void *arg)
@@ -240,6 +255,7 @@ static void replay_clear(Replay *r)
     g_free(r->cur);
     g_free(r->waiting);
     g_free(r->got);
+    g_free(r->first);
 }
 
 gboolean wl_pm_replay(const WlPmReplayRig *rig, const WlPmMerge *m,
@@ -252,6 +268,7 @@ gboolean wl_pm_replay(const WlPmReplayRig *rig, const WlPmMerge *m,
     r.cur = g_new0(guint, n);
     r.waiting = g_new0(gboolean, n);
     r.got = g_new0(guint8, (gsize)(r.n_steps + 1) * n);
+    r.first = g_new(uint64_t, (gsize)(r.n_steps + 1) * n);
     out->done = g_new0(SimTime, n);
     r.done = out->done;
     SimTime now = sim_now(r.eng);

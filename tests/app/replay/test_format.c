@@ -99,7 +99,22 @@ typedef struct {
 } Bad;
 
 static const Bad bads[] = {
-    {"pgsim-trace 4\n", "t.pgt:1:13:", "found '4'"},
+    {"pgsim-trace 5\n", "t.pgt:1:13:", "found '5'"},
+    /* version 4's joins: `after ID` names an earlier `&` action, once;
+     * a `&` nobody is after; neither before version 4 */
+    {"pgsim-trace 3\nprocs 2\nat 0\nw 0 0 5 &\n", "t.pgt:4:9:",
+     "'+', 'frame'"},
+    {"pgsim-trace 4\nprocs 2\nat 0\nw 0 0 5\nw 1 0 5 after 0\n",
+     "t.pgt:5:15:", "an earlier action marked '&'"},
+    {"pgsim-trace 4\nprocs 2\nat 0\nw 0 0 5 &\nw 1 0 5 after 0\n"
+     "w 1 0 5 after 0\n",
+     "t.pgt:6:15:", "no other 'after'"},
+    {"pgsim-trace 4\nprocs 2\nat 0\nw 0 0 5 after 0 &\n", "t.pgt:4:15:",
+     "an earlier action"},
+    {"pgsim-trace 4\nprocs 2\nat 0\nw 0 0 5 after x\n", "t.pgt:4:15:",
+     "an action id"},
+    {"pgsim-trace 4\nprocs 2\nat 0\nw 0 0 5 &\n", "t.pgt:5:1:",
+     "expected an action 'after 0'"},
     /* version 2's actions: b and v not in version 1; swap only on v, and
      * not with frame */
     {"pgsim-trace 1\nprocs 2\nat 0\nb 0 1 5\n", "t.pgt:4:1:",
