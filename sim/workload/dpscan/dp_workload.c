@@ -335,11 +335,12 @@ static gboolean one_frame(const DpRun *r, int fr, SimResult *out,
         wire->err = NULL;
         ok = FALSE;
     }
+    SimTime start = sim_now(ctx->eng);
     ok = ok && play(ctx->eng, r->mach, t, err);
     gboolean cut = sim_engine_cut(ctx->eng); /* run.until ended it */
     ok = ok && (cut || write_image(ctx, p, img, fr, err));
-    if (ok && !cut) {
-        sim_result_add_frame(out, t->total);
+    if (ok && !cut) { /* the frame is the engine's: played, not summed */
+        sim_result_add_frame(out, sim_now(ctx->eng) - start);
         wl_mark_frame(ctx->eng, (guint)fr, sim_now(ctx->eng));
         add_metrics(out, t, img, wl_dp_vm_counts(vm), poly->n);
         add_partition_metrics(out, vm, p->parts, r->target);
