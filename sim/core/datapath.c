@@ -7,14 +7,26 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+char **sim_env_dirs(const char *var)
+{
+    const char *env = g_getenv(var);
+    char **list = g_strsplit(env ? env : "", ":", -1);
+    guint n = 0;
+    for (char **d = list; *d; d++)
+        if (**d)
+            list[n++] = *d;
+        else
+            g_free(*d);
+    list[n] = NULL;
+    return list;
+}
+
 GPtrArray *sim_data_roots(void)
 {
     GPtrArray *roots = g_ptr_array_new_with_free_func(g_free);
-    const char *env = g_getenv("PGSIM_DATA");
-    char **dirs = g_strsplit(env ? env : "", ":", -1);
+    char **dirs = sim_env_dirs("PGSIM_DATA");
     for (char **r = dirs; *r; r++)
-        if (**r)
-            g_ptr_array_add(roots, g_strdup(*r));
+        g_ptr_array_add(roots, g_strdup(*r));
     g_strfreev(dirs);
     char *exe = g_file_read_link("/proc/self/exe", NULL);
     if (exe) {

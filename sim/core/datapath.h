@@ -21,6 +21,9 @@ char *sim_data_path(const char *name);
 /* The roots of steps 2-4 in order (a new array of strings; free with
  * g_ptr_array_free(roots, TRUE)), for searches that want every hit. */
 GPtrArray *sim_data_roots(void);
+/* The non-empty entries of the colon-separated folder list in
+ * environment variable var, in order (g_strfreev; empty when unset). */
+char **sim_env_dirs(const char *var);
 
 /* Reads a whole input file in one pass into *text (g_free;
  * NUL-terminated), its length into *len if not NULL.  The file must be a

@@ -55,11 +55,9 @@ GPtrArray *mach_model_dirs_in(const char *const *extra)
 {
     GPtrArray *dirs = g_ptr_array_new_with_free_func(g_free);
     add_dir(dirs, g_strdup("models"));
-    const char *env = g_getenv("PGSIM_MODELS");
-    char **list = g_strsplit(env ? env : "", ":", -1);
+    char **list = sim_env_dirs("PGSIM_MODELS");
     for (char **d = list; *d; d++)
-        if (**d)
-            add_dir(dirs, g_strdup(*d));
+        add_dir(dirs, g_strdup(*d));
     g_strfreev(list);
     for (const char *const *d = extra; d && *d; d++)
         if (**d)

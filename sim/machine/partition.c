@@ -43,6 +43,38 @@ static gboolean set(CfgNode *root, GError **err, const char *fmt, ...)
     return ok;
 }
 
+static gboolean machine_sets(CfgNode *root, const char *who,
+                             const char *const *sets, GError **err)
+{
+    for (; sets && *sets; sets++) {
+        if (!g_str_has_prefix(*sets, "machine.")) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "%s: found --set %s, expected --set "
+                        "machine.KEY=VALUE",
+                        who, *sets);
+            return FALSE;
+        }
+        if (!cfg_set_override(root, *sets, err))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+CfgNode *mach_partition_root(const char *who, const char *model,
+                             const char *const *sets, guint nodes,
+                             char **desc, GError **err)
+{
+    CfgNode *root = cfg_load_string("machine: {}\n", who, err);
+    char *path = root ? mach_model_path(model, err) : NULL;
+    gboolean ok = path && set(root, err, "machine.model=%s", model) &&
+                  machine_sets(root, who, sets, err) &&
+                  (!nodes || mach_partition(root, nodes, desc, err));
+    g_free(path);
+    if (!ok)
+        g_clear_pointer(&root, cfg_free);
+    return root;
+}
+
 static GArray *read_kinds(const CfgNode *tree)
 {
     const CfgNode *nodes = cfg_get(tree, "nodes");

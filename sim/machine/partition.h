@@ -34,4 +34,15 @@
  * FALSE with *err if the section is unusable or N cannot be met. */
 gboolean mach_partition(CfgNode *root, guint nodes, char **desc, GError **err);
 
+/* A new run-config tree holding only `machine: {model: <model>}` with the
+ * user's overrides `sets` (NULL-terminated, each "machine.KEY=VALUE",
+ * applied in order) and, when nodes > 0, the partition for `nodes`
+ * endpoints (*desc as for mach_partition()); for tools that run a machine
+ * without a workload (`pgsim bench net`, `pgsim replay`).  `who` names
+ * the tool in the error for an override outside machine.  NULL with *err
+ * on an unknown model or a bad override (free with cfg_free()). */
+CfgNode *mach_partition_root(const char *who, const char *model,
+                             const char *const *sets, guint nodes,
+                             char **desc, GError **err);
+
 #endif

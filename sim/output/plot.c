@@ -639,22 +639,24 @@ static gboolean draw(const char *dir, const char *name, const GString *dat,
 
 DataTable *plot_xy_table_new(void)
 {
-    GPtrArray *cols = g_ptr_array_new();
-    g_ptr_array_add(cols, "x");
-    g_ptr_array_add(cols, "y");
-    g_ptr_array_add(cols, "series");
-    DataTable *t = dt_new(cols);
-    g_ptr_array_free(cols, TRUE);
-    return t;
+    static const char *const cols[] = {"x", "y", "series", NULL};
+    return dt_new_named(cols);
+}
+
+void plot_xy_add_label(DataTable *t, const char *x, double y,
+                       const char *series)
+{
+    char ys[40];
+    g_snprintf(ys, sizeof ys, "%.17g", y);
+    char *row[] = {(char *)x, ys, (char *)series};
+    dt_add_row(t, row);
 }
 
 void plot_xy_add(DataTable *t, double x, double y, const char *series)
 {
-    char xs[40], ys[40];
+    char xs[40];
     g_snprintf(xs, sizeof xs, "%.17g", x);
-    g_snprintf(ys, sizeof ys, "%.17g", y);
-    char *row[] = {xs, ys, (char *)series};
-    dt_add_row(t, row);
+    plot_xy_add_label(t, xs, y, series);
 }
 
 /* Skips a comment to its line end; returns the last byte of it. */

@@ -72,6 +72,9 @@ gboolean plot_check_columns(const PlotSpec *p, const DataTable *t,
  * take, and one row of it (numbers written so they read back exactly). */
 DataTable *plot_xy_table_new(void);
 void plot_xy_add(DataTable *t, double x, double y, const char *series);
+/* The same with x as given (a category, or a number already written). */
+void plot_xy_add_label(DataTable *t, const char *x, double y,
+                       const char *series);
 /* Writes NAME.dat and NAME.gp and runs gnuplot on them in a private
  * folder inside dir, then renames the four files into dir: a failure
  * leaves dir as it was.  Rows whose x or y is empty or not a number are

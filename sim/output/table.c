@@ -22,6 +22,16 @@ DataTable *dt_new(const GPtrArray *cols)
     return t;
 }
 
+DataTable *dt_new_named(const char *const *names)
+{
+    GPtrArray *cols = g_ptr_array_new();
+    for (guint i = 0; names[i]; i++)
+        g_ptr_array_add(cols, (gpointer)names[i]);
+    DataTable *t = dt_new(cols);
+    g_ptr_array_free(cols, TRUE);
+    return t;
+}
+
 char *dt_col_names(const DataTable *t)
 {
     GString *s = g_string_new(NULL);

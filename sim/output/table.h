@@ -17,6 +17,8 @@ typedef struct {
 /* Returns a new table with the given columns (copied); free with
  * dt_free(). */
 DataTable *dt_new(const GPtrArray *cols);
+/* The same from a NULL-terminated list of column names. */
+DataTable *dt_new_named(const char *const *names);
 void dt_free(DataTable *t);
 /* Appends a row of cols->len strings (copied). */
 void dt_add_row(DataTable *t, char *const *cells);

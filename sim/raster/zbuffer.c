@@ -42,10 +42,16 @@ void rast_zbuffer_clear(RastZBuffer *zb)
 
 void rast_zbuffer_span(RastZBuffer *zb, const RastSpan *s, RastCounters *c)
 {
+    rast_zbuffer_span_part(zb, s, s->x0, s->x1, c);
+}
+
+void rast_zbuffer_span_part(RastZBuffer *zb, const RastSpan *s, int x0,
+                            int x1, RastCounters *c)
+{
     g_assert(s->y >= 0 && s->y < zb->height);
-    g_assert(s->x0 >= 0 && s->x1 <= zb->width);
+    g_assert(x0 >= 0 && x1 <= zb->width);
     size_t row = (size_t)s->y * (size_t)zb->width;
-    for (int x = s->x0; x < s->x1; x++) {
+    for (int x = x0; x < x1; x++) {
         size_t i = row + (size_t)x;
         double z = rast_span_z(s, x);
         c->zcompares++;

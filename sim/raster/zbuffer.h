@@ -30,6 +30,10 @@ void rast_zbuffer_clear(RastZBuffer *zb);
 
 /* Z-buffers one span: counts z-comparisons and writes in *c. */
 void rast_zbuffer_span(RastZBuffer *zb, const RastSpan *s, RastCounters *c);
+/* The same for the span's pixels x0 <= x < x1 only (a region's part of
+ * it: sort-first), with the same formulas, so the pixels are the same. */
+void rast_zbuffer_span_part(RastZBuffer *zb, const RastSpan *s, int x0,
+                            int x1, RastCounters *c);
 /* A sink that z-buffers spans as they are generated (immediate mode). */
 RastSpanSink rast_zbuffer_sink(RastZBuffer *zb);
 /* Z-buffers every span of a sorted list, row by row. */

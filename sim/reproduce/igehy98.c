@@ -164,25 +164,15 @@ static void draw(const DataTable *t, const char *dir)
     plot_spec_free(p);
 }
 
-static DataTable *chart_table(void)
-{
-    GPtrArray *cols = g_ptr_array_new();
-    g_ptr_array_add(cols, "row");
-    g_ptr_array_add(cols, "hz");
-    g_ptr_array_add(cols, "application");
-    DataTable *t = dt_new(cols);
-    g_ptr_array_free(cols, TRUE);
-    return t;
-}
-
 static gboolean igehy98_run(const RpContext *ctx, GPtrArray *rows,
                             GError **err)
 {
     CfgNode *root = cfg_load_file(ctx->setup, err);
     if (!root)
         return FALSE;
+    static const char *const chart_cols[] = {"row", "hz", "application", NULL};
     IgRun r = {ctx, g_path_get_dirname(ctx->setup), NULL, rows,
-               chart_table()};
+               dt_new_named(chart_cols)};
     const CfgNode *rs = NULL;
     gboolean ok = cfg_get_map(root, "applications", TRUE,
                               "a map {nurbs: config, march: config}",

@@ -22,25 +22,6 @@ void rp_kurc96_figs_clear(RpKurcFigs *f)
     f->n_a = f->n_b = 0;
 }
 
-static DataTable *table_new(void)
-{
-    GPtrArray *cols = g_ptr_array_new();
-    g_ptr_array_add(cols, "x");
-    g_ptr_array_add(cols, "y");
-    g_ptr_array_add(cols, "series");
-    DataTable *t = dt_new(cols);
-    g_ptr_array_free(cols, TRUE);
-    return t;
-}
-
-static void add_row(DataTable *t, const char *x, double y, const char *series)
-{
-    char ys[40];
-    g_snprintf(ys, sizeof ys, "%.17g", y);
-    char *row[] = {(char *)x, ys, (char *)series};
-    dt_add_row(t, row);
-}
-
 /* x of a point: the processor count for (a), the row key minus "b/" for
  * (b); into buf. */
 static const char *x_of(const RpKurcPoint *p, gboolean by_procs, char *buf,
@@ -57,14 +38,16 @@ static const char *x_of(const RpKurcPoint *p, gboolean by_procs, char *buf,
 static DataTable *fig_table(const RpKurcPoint *pts, guint n, gboolean by_procs,
                             gboolean volume)
 {
-    DataTable *t = table_new();
+    DataTable *t = plot_xy_table_new();
     guint k = volume ? 4 : 2;
     for (guint s = 0; s < k; s++)
         for (guint i = 0; i < n; i++) {
             char x[64];
             x_of(&pts[i], by_procs, x, sizeof x);
-            add_row(t, x, volume ? pts[i].volume[s] : pts[i].imbalance[s],
-                    volume ? volume_series[s] : imbalance_series[s]);
+            plot_xy_add_label(t, x,
+                              volume ? pts[i].volume[s]
+                                     : pts[i].imbalance[s],
+                              volume ? volume_series[s] : imbalance_series[s]);
         }
     return t;
 }

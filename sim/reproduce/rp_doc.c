@@ -28,12 +28,8 @@ void rp_doc_head(GString *md, const char *fidelity)
 
 static DataTable *scatter_table(const RpTable *t)
 {
-    const char *cols[] = {"published", "sim", "table"};
-    GPtrArray *names = g_ptr_array_new();
-    for (int c = 0; c < 3; c++)
-        g_ptr_array_add(names, (char *)cols[c]);
-    DataTable *d = dt_new(names);
-    g_ptr_array_free(names, TRUE);
+    static const char *const cols[] = {"published", "sim", "table", NULL};
+    DataTable *d = dt_new_named(cols);
     for (guint i = 0; i < t->cells->len; i++) {
         const RpJoined *j = g_ptr_array_index(t->cells, i);
         if (j->status != RP_COMPARED || !(j->published > 0) || !(j->sim > 0))

@@ -125,12 +125,9 @@ void rp_speed_json(const GPtrArray *passes, GString *out)
 
 static DataTable *speed_table(const GPtrArray *passes)
 {
-    const char *cols[] = {"fidelity", "wall_s", "mean_abs_error", "against"};
-    GPtrArray *names = g_ptr_array_new();
-    for (int c = 0; c < 4; c++)
-        g_ptr_array_add(names, (char *)cols[c]);
-    DataTable *d = dt_new(names);
-    g_ptr_array_free(names, TRUE);
+    static const char *const cols[] = {"fidelity", "wall_s", "mean_abs_error",
+                                       "against", NULL};
+    DataTable *d = dt_new_named(cols);
     const RpTable *ref = ref_of(passes);
     for (guint p = 0; p < passes->len; p++) {
         const RpTable *t = g_ptr_array_index(passes, p);

@@ -36,40 +36,6 @@ struct BenchNet {
 
 /* ---- building ---------------------------------------------------------- */
 
-static gboolean apply_sets(CfgNode *root, const char *const *sets, GError **err)
-{
-    for (; sets && *sets; sets++) {
-        if (!g_str_has_prefix(*sets, "machine.")) {
-            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                        "bench net: found --set %s, expected --set "
-                        "machine.KEY=VALUE",
-                        *sets);
-            return FALSE;
-        }
-        if (!cfg_set_override(root, *sets, err))
-            return FALSE;
-    }
-    return TRUE;
-}
-
-static CfgNode *make_root(const BenchNetSpec *s, char **part, GError **err)
-{
-    CfgNode *root = cfg_load_string("machine: {}\n", "bench net", err);
-    char *model = g_strdup_printf("machine.model=%s", s->machine);
-    char *path = root ? mach_model_path(s->machine, err) : NULL;
-    gboolean ok = path && cfg_set_override(root, model, err) &&
-                  apply_sets(root, s->sets, err);
-    if (ok && s->nodes)
-        ok = mach_partition(root, s->nodes, part, err);
-    g_free(model);
-    g_free(path);
-    if (!ok) {
-        cfg_free(root);
-        return NULL;
-    }
-    return root;
-}
-
 static MachMachine *build(const BenchNet *b, SimEngine *eng, NetFidelity f,
                           GError **err)
 {
@@ -134,7 +100,8 @@ BenchNet *bench_net_new(const BenchNetSpec *spec, GError **err)
     BenchNet *b = g_new0(BenchNet, 1);
     char *part = NULL;
     b->spec = *spec;
-    b->root = make_root(spec, &part, err);
+    b->root = mach_partition_root("bench net", spec->machine, spec->sets,
+                                  spec->nodes, &part, err);
     gboolean ok = b->root && probe(b, part, err);
     g_free(part);
     if (!ok) {

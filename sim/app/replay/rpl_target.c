@@ -22,22 +22,6 @@ guint rpl_map_cyclic(guint p, guint n, guint t)
     return p % t;
 }
 
-static gboolean apply_sets(CfgNode *root, const char *const *sets, GError **err)
-{
-    for (; sets && *sets; sets++) {
-        if (!g_str_has_prefix(*sets, "machine.")) {
-            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                        "replay: found --set %s, expected --set "
-                        "machine.KEY=VALUE",
-                        *sets);
-            return FALSE;
-        }
-        if (!cfg_set_override(root, *sets, err))
-            return FALSE;
-    }
-    return TRUE;
-}
-
 /* The model tree with the overrides of root's machine section, kept for
  * the costs named by a model path (`dpscan.op`); NULL if it fails. */
 static CfgNode *model_tree(const CfgNode *root)
@@ -55,20 +39,14 @@ static MachMachine *build(SimEngine *eng, char **desc, CfgNode **tree,
                           const RplReplayOpts *o, const char *fid,
                           GError **err)
 {
-    CfgNode *root = cfg_load_string("machine: {}\n", "replay", err);
-    char *model = g_strdup_printf("machine.model=%s", o->machine);
-    char *path = root ? mach_model_path(o->machine, err) : NULL;
-    gboolean ok = path && cfg_set_override(root, model, err) &&
-                  apply_sets(root, o->sets, err) &&
-                  (!o->nodes || mach_partition(root, o->nodes, desc, err));
+    CfgNode *root = mach_partition_root("replay", o->machine, o->sets,
+                                        o->nodes, desc, err);
     MachMachine *m =
-        ok ? mach_new_from_cfg(eng, cfg_get(root, "machine"),
-                               fid ? fid : MACH_FIDELITY_FAITHFUL, err)
-           : NULL;
+        root ? mach_new_from_cfg(eng, cfg_get(root, "machine"),
+                                 fid ? fid : MACH_FIDELITY_FAITHFUL, err)
+             : NULL;
     if (m && tree)
         *tree = model_tree(root);
-    g_free(model);
-    g_free(path);
     cfg_free(root);
     return m;
 }

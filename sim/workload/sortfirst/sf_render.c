@@ -15,8 +15,8 @@ typedef struct {
     uint64_t spans, pixels;
 } RegionSink;
 
-/* Z-buffers the part of a span inside the region, pixel by pixel with the
- * formulas of rast_zbuffer_span(), so the pixels equal the serial ones. */
+/* Z-buffers the part of a span inside the region with
+ * rast_zbuffer_span_part(), so the pixels equal the serial ones. */
 static void region_span(void *ctx, const RastSpan *s, RastCounters *c)
 {
     RegionSink *k = ctx;
@@ -25,21 +25,9 @@ static void region_span(void *ctx, const RastSpan *s, RastCounters *c)
     int x0 = MAX(s->x0, k->r.x0), x1 = MIN(s->x1, k->r.x1);
     if (x0 >= x1)
         return;
-    RastZBuffer *zb = k->zb;
-    size_t row = (size_t)s->y * (size_t)zb->width;
     k->spans++;
     k->pixels += (uint64_t)(x1 - x0);
-    for (int x = x0; x < x1; x++) {
-        size_t i = row + (size_t)x;
-        double z = rast_span_z(s, x);
-        c->zcompares++;
-        if (rast_depth_wins(z, s->prim, zb->depth[i], zb->prim[i])) {
-            zb->depth[i] = z;
-            zb->prim[i] = s->prim;
-            zb->rgba[i] = rast_span_rgba(s, x);
-            c->zwrites++;
-        }
-    }
+    rast_zbuffer_span_part(k->zb, s, x0, x1, c);
 }
 
 RastView wl_sf_frame_view(const Scene *scene, const WlSfSetup *s, guint frame)
