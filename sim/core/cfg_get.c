@@ -224,33 +224,33 @@ gboolean cfg_get_enum(const CfgNode *map, const char *key, gboolean required,
     return ok;
 }
 
-/* Looks up a scalar and converts it with the units module. */
-static gboolean get_u64(const CfgNode *map, const char *key, gboolean required,
-                        CfgUnitKind kind, uint64_t *out, GError **err)
+/* Looks up a scalar and converts it with the units module: into *u, or
+ * into *d when u is NULL. */
+static gboolean get_unit(const CfgNode *map, const char *key,
+                         gboolean required, CfgUnitKind kind, uint64_t *u,
+                         double *d, GError **err)
 {
     const CfgNode *v;
     const char *exp = cfg_units_expected(kind);
     if (!lookup(map, key, required, exp, &v, err))
         return FALSE;
-    if (v && !cfg_units_u64(v->text, kind, out, &exp)) {
+    gboolean ok = !v || (u ? cfg_units_u64(v->text, kind, u, &exp)
+                           : cfg_units_double(v->text, kind, d, &exp));
+    if (!ok)
         error_at(err, v, exp);
-        return FALSE;
-    }
-    return TRUE;
+    return ok;
+}
+
+static gboolean get_u64(const CfgNode *map, const char *key, gboolean required,
+                        CfgUnitKind kind, uint64_t *out, GError **err)
+{
+    return get_unit(map, key, required, kind, out, NULL, err);
 }
 
 static gboolean get_real(const CfgNode *map, const char *key, gboolean required,
                          CfgUnitKind kind, double *out, GError **err)
 {
-    const CfgNode *v;
-    const char *exp = cfg_units_expected(kind);
-    if (!lookup(map, key, required, exp, &v, err))
-        return FALSE;
-    if (v && !cfg_units_double(v->text, kind, out, &exp)) {
-        error_at(err, v, exp);
-        return FALSE;
-    }
-    return TRUE;
+    return get_unit(map, key, required, kind, NULL, out, err);
 }
 
 gboolean cfg_get_time(const CfgNode *map, const char *key, gboolean required,

@@ -27,19 +27,6 @@ guint scene_march_cells(const SceneMarchParams *p)
 
 Scene *scene_march_new(const SceneMarchParams *p)
 {
-    Scene *s = scene_new("march");
-    SceneMesh *m = scene_iso_mesh_cells(&p->iso, p->cell);
-    guint id = scene_add_mesh(s, m);
-    scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
-    s->width = 1200;
-    s->height = 1000;
-    s->two_sided = TRUE;
-    SceneView v = scene_view_default();
-    v.azimuth_deg = 45;
-    v.elevation_deg = atan(1 / sqrt(2.0)) * 180 / G_PI;
-    v.aspect = 1.2;
-    v.fill = p->fill;
-    v.fit_vertices = TRUE;
-    scene_apply_view(s, &v);
-    return s;
+    return scene_new_app("march", scene_iso_mesh_cells(&p->iso, p->cell), 45,
+                         atan(1 / sqrt(2.0)) * 180 / G_PI, p->fill);
 }

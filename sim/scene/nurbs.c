@@ -150,18 +150,5 @@ SceneMesh *scene_nurbs_mesh(const SceneNurbsParams *p)
 
 Scene *scene_nurbs_new(const SceneNurbsParams *p)
 {
-    Scene *s = scene_new("nurbs");
-    guint id = scene_add_mesh(s, scene_nurbs_mesh(p));
-    scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
-    s->width = 1200;
-    s->height = 1000;
-    s->two_sided = TRUE;
-    SceneView v = scene_view_default();
-    v.azimuth_deg = 20;
-    v.elevation_deg = 35;
-    v.aspect = 1.2;
-    v.fill = 0.95;
-    v.fit_vertices = TRUE;
-    scene_apply_view(s, &v);
-    return s;
+    return scene_new_app("nurbs", scene_nurbs_mesh(p), 20, 35, 0.95);
 }

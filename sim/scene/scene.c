@@ -18,6 +18,25 @@ Scene *scene_new(const char *name)
     return s;
 }
 
+Scene *scene_new_app(const char *name, SceneMesh *m, double azimuth_deg,
+                     double elevation_deg, double fill)
+{
+    Scene *s = scene_new(name);
+    guint id = scene_add_mesh(s, m);
+    scene_add_instance(s, id, mat4_identity(), scene_color(1, 1, 1), 0);
+    s->width = 1200;
+    s->height = 1000;
+    s->two_sided = TRUE;
+    SceneView v = scene_view_default();
+    v.azimuth_deg = azimuth_deg;
+    v.elevation_deg = elevation_deg;
+    v.aspect = 1.2;
+    v.fill = fill;
+    v.fit_vertices = TRUE;
+    scene_apply_view(s, &v);
+    return s;
+}
+
 void scene_free(Scene *s)
 {
     if (!s)

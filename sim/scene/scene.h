@@ -62,6 +62,12 @@ void scene_apply_view(Scene *s, const SceneView *v);
  * scene_free().  `name` is copied. */
 Scene *scene_new(const char *name);
 void scene_free(Scene *s);
+/* The scene of an Argus application (seed 002: march, nurbs): mesh m
+ * (taken) drawn once, white, two-sided, on a 1200 x 1000 screen, seen
+ * from azimuth_deg and elevation_deg with the view fitted to its
+ * vertices to cover `fill` of it. */
+Scene *scene_new_app(const char *name, SceneMesh *m, double azimuth_deg,
+                     double elevation_deg, double fill);
 
 /* Takes ownership of m; returns its index. */
 guint scene_add_mesh(Scene *s, SceneMesh *m);
