@@ -62,6 +62,7 @@ SimResult *sim_result_new(const char *workload, const char *machine)
     r->idle = g_ptr_array_new_with_free_func(idle_free);
     r->metrics = g_ptr_array_new_with_free_func(metric_free);
     r->overrides = g_ptr_array_new_with_free_func(g_free);
+    r->mem_peak = NAN;
     return r;
 }
 
@@ -82,6 +83,7 @@ void sim_result_free(SimResult *r)
     g_free(r->config_path);
     g_free(r->config_sha256);
     g_free(r->config_effective);
+    g_free(r->mem_kind);
     g_free(r);
 }
 
@@ -176,4 +178,22 @@ SimUtilUsed sim_result_util_used(const SimResult *r)
     if (u.used)
         u.mean = sim_sum_value(&sum) / (double)u.used;
     return u;
+}
+
+gboolean sim_result_mem_exceeds(const SimResult *r)
+{
+    return isfinite(r->mem_peak) && r->mem_node > 0 &&
+           r->mem_peak > (double)r->mem_node;
+}
+
+char *sim_result_mem_note(const SimResult *r)
+{
+    if (!sim_result_mem_exceeds(r))
+        return NULL;
+    const double mib = 1048576.0;
+    return g_strdup_printf("per-node memory %.2f MiB exceeds the %.2f MiB of "
+                           "a node (kind %s): this configuration does not "
+                           "fit on %s",
+                           r->mem_peak / mib, (double)r->mem_node / mib,
+                           r->mem_kind ? r->mem_kind : "?", r->machine);
 }

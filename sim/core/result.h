@@ -56,6 +56,14 @@ typedef struct {
     char *config_sha256;
     char *config_effective;
     GPtrArray *overrides;
+    /* Feasibility, filled by the runner (sim/run/): the per-node memory
+     * footprint the workload reported (its declared `peak_memory` metric,
+     * bytes; NAN when it reports none) and the memory of one node of the
+     * processors it used (the smallest over their kinds, mem_kind; 0 when
+     * the model gives none). */
+    double mem_peak;
+    uint64_t mem_node;
+    char *mem_kind;
 } SimResult;
 
 /* Returns a new empty result; free with sim_result_free(). */
@@ -96,5 +104,17 @@ typedef struct {
 } SimUtilUsed;
 
 SimUtilUsed sim_result_util_used(const SimResult *r);
+
+/* The metric a workload declares for its largest per-node footprint. */
+#define SIM_PEAK_MEMORY_METRIC "peak_memory"
+
+/* TRUE when the run's per-node footprint is known, the node memory is
+ * known and the footprint exceeds it: the configuration would not fit
+ * on the machine it was simulated on. */
+gboolean sim_result_mem_exceeds(const SimResult *r);
+/* "per-node memory 14.02 MiB exceeds the 4.00 MiB of a node (kind node):
+ * this configuration does not fit on MACHINE" (g_free), or NULL when it
+ * fits or is unknown. */
+char *sim_result_mem_note(const SimResult *r);
 
 #endif

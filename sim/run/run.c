@@ -390,6 +390,23 @@ static void fill_provenance(SimResult *res, const CfgRun *r)
         g_ptr_array_add(res->overrides, g_strdup(r->overrides->pdata[i]));
 }
 
+/* The feasibility figures (result.h): the workload's per-node peak and
+ * the smallest node memory over the kinds of the processors it used.
+ * O(used processors x kinds). */
+static void fill_memory(SimResult *res, const MachMachine *m)
+{
+    res->mem_peak = sim_result_metric(res, SIM_PEAK_MEMORY_METRIC);
+    for (guint i = 0; m && i < res->nodes->len; i++) {
+        const SimNodeResult *n = g_ptr_array_index(res->nodes, i);
+        const MachKindInfo *k = mach_kind(m, n->kind);
+        if (k && k->memory && (!res->mem_node || k->memory < res->mem_node)) {
+            res->mem_node = k->memory;
+            g_free(res->mem_kind);
+            res->mem_kind = g_strdup(k->name);
+        }
+    }
+}
+
 SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
 {
     g_assert(!r->executed); /* the built objects carry one run's state */
@@ -433,5 +450,6 @@ SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
         sim_result_free(res);
         return NULL;
     }
+    fill_memory(res, r->machine_built);
     return res;
 }

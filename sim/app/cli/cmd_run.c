@@ -1,11 +1,14 @@
 /* cmd_run.c — `pgsim run CONFIG [--set k=v]... [--fidelity F] [--seed N] [--out DIR]
- * [--format text|json|csv] [--timing] [--trace FILE] [--record FILE] [--quiet]`.
+ * [--format text|json|csv] [--timing] [--trace FILE] [--record FILE] [--quiet]
+ * [--strict]`.
  *
  * Loads and checks the config (config.h), runs it, prints the report on
  * stdout in the chosen format and, with --out, writes summary.txt,
  * result.json and result.csv into DIR atomically.  Wall-clock figures
  * appear in the text on stdout, and in files only with --timing, so the
  * files are byte-identical across runs with the same config and seed.
+ * A run whose per-node memory footprint exceeds the model's node memory
+ * is warned about on stderr; with --strict it is an error (exit 2).
  */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
@@ -20,7 +23,7 @@ typedef struct {
     char **sets;
     char *seed, *out, *format, *trace, *fidelity, *frames, *record;
     int trace_cap;
-    gboolean quiet, timing;
+    gboolean quiet, timing, strict;
 } RunOpts;
 
 #define TRACE_CAP_UNSET G_MININT /* --trace-cap not given */
@@ -150,6 +153,21 @@ static int report(const SimResult *res, const RunOpts *o, RptFormat fmt)
     return 0;
 }
 
+/* A per-node footprint above the node memory: a warning on stderr (even
+ * with --quiet), or with --strict an error (FALSE: exit 2, no report). */
+static gboolean feasible(const char *path, const SimResult *res,
+                         gboolean strict)
+{
+    char *note = sim_result_mem_note(res);
+    if (note)
+        fprintf(stderr, "pgsim run: %s: %s: %s\n",
+                strict ? "error" : "warning", path, note);
+    if (note && !strict)
+        fprintf(stderr, "pgsim run: (--strict makes this an error)\n");
+    g_free(note);
+    return !note || !strict;
+}
+
 static int run(const char *path, const RunOpts *o)
 {
     guint64 seed = 0;
@@ -200,6 +218,10 @@ static int run(const char *path, const RunOpts *o)
         sim_result_free(res);
         return cli_fail(e);
     }
+    if (!feasible(path, res, o->strict)) {
+        sim_result_free(res);
+        return 2;
+    }
     int status = report(res, o, fmt);
     sim_result_free(res);
     return status;
@@ -238,6 +260,10 @@ int cmd_run(int argc, char **argv)
          "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o.quiet,
          "no progress display or notes on stderr", NULL},
+        {"strict", 0, 0, G_OPTION_ARG_NONE, &o.strict,
+         "a configuration that does not fit the machine (per-node memory "
+         "above the model's) is an error (exit 2), not a warning",
+         NULL},
         G_OPTION_ENTRY_NULL,
     };
     int status;

@@ -1,5 +1,5 @@
 /* cmd_sweep.c — `pgsim sweep SWEEP.yaml [-j N] [--out DIR] [--resume]
- * [--quiet]`.
+ * [--quiet] [--strict]`.
  *
  * Expands the sweep (sweep_spec.c), runs the points not yet done locally
  * in up to N worker processes (default: the number of cores) or, under
@@ -24,7 +24,13 @@ typedef struct {
     char *out_dir;
     gboolean resume;
     gboolean quiet;
+    gboolean strict;
 } SweepOpts;
+
+/* --strict: a point that does not fit the machine is that point's error.
+ * A process-wide flag because a SweepRunFn takes no context; forked and
+ * MPI workers parse the same options. */
+static gboolean strict_memory;
 
 /* Runs one point's config through the run-config loader (the same
  * checks as `pgsim run`, so a bad value is that point's located error). */
@@ -38,6 +44,12 @@ static gboolean run_config(const CfgNode *cfg, uint64_t seed, SimResult **out,
     CfgRunOpts opts = {.out_dir = NULL, .quiet = TRUE, .progress = FALSE};
     *out = cfg_run_exec(run, &opts, err);
     cfg_run_free(run);
+    char *note = *out && strict_memory ? sim_result_mem_note(*out) : NULL;
+    if (note) {
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "%s (--strict)", note);
+        g_clear_pointer(out, sim_result_free);
+        g_free(note);
+    }
     return *out != NULL;
 }
 
@@ -52,6 +64,10 @@ static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv, int *status)
         {"resume", 0, 0, G_OPTION_ARG_NONE, &o->resume,
          "continue an interrupted sweep in DIR", NULL},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress bar",
+         NULL},
+        {"strict", 0, 0, G_OPTION_ARG_NONE, &o->strict,
+         "a point that does not fit the machine (per-node memory above the "
+         "model's) fails, instead of memory_fits 0 in its row",
          NULL},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
     if (!cli_parse("sweep", "SWEEP.yaml",
@@ -71,6 +87,7 @@ static gboolean parse_opts(SweepOpts *o, int *argc, char ***argv, int *status)
     }
     if (o->jobs == 0)
         o->jobs = (int)g_get_num_processors();
+    strict_memory = o->strict;
     return TRUE;
 }
 

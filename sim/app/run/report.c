@@ -12,6 +12,7 @@
 #include "sim/output/provenance.h"
 #include "sim/output/table.h"
 #include <errno.h>
+#include <math.h>
 #include <glib/gstdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -202,6 +203,27 @@ static void json_metrics(JsonBuilder *b, const SimResult *r, gboolean timing)
     json_builder_end_object(b);
 }
 
+/* "memory": only when the workload reports a per-node footprint; node_B
+ * and fits are null when the model gives no node memory. */
+static void json_memory(JsonBuilder *b, const SimResult *r)
+{
+    if (!isfinite(r->mem_peak))
+        return;
+    json_builder_set_member_name(b, "memory");
+    json_builder_begin_object(b);
+    js_set_num(b, "peak_per_node_B", r->mem_peak);
+    if (r->mem_node) {
+        js_set_int(b, "node_B", (gint64)r->mem_node);
+        js_set_str(b, "kind", r->mem_kind);
+        js_set_bool(b, "fits", !sim_result_mem_exceeds(r));
+    } else {
+        js_set_str(b, "node_B", NULL);
+        js_set_str(b, "kind", NULL);
+        js_set_str(b, "fits", NULL);
+    }
+    json_builder_end_object(b);
+}
+
 static char *render_json(const SimResult *r, gboolean timing)
 {
     JsonBuilder *b = json_builder_new();
@@ -210,6 +232,7 @@ static char *render_json(const SimResult *r, gboolean timing)
     json_frames(b, r);
     json_nodes(b, r);
     json_comm(b, r);
+    json_memory(b, r);
     json_metrics(b, r, timing);
     json_builder_end_object(b);
     return js_finish(b, TRUE);
@@ -320,11 +343,25 @@ static void csv_rest(GString *s, const SimResult *r, gboolean timing)
     }
 }
 
+static void csv_memory(GString *s, const SimResult *r)
+{
+    if (!isfinite(r->mem_peak))
+        return;
+    csv_num(s, "memory", NULL, NULL, "peak_per_node", r->mem_peak, "B");
+    if (!r->mem_node)
+        return;
+    csv_u64(s, "memory", "node", r->mem_node, "B");
+    csv_row(s, "memory", NULL, NULL, "kind", r->mem_kind, NULL);
+    csv_row(s, "memory", NULL, NULL, "fits",
+            sim_result_mem_exceeds(r) ? "false" : "true", NULL);
+}
+
 static char *render_csv(const SimResult *r, gboolean timing)
 {
     GString *s = g_string_new(NULL);
     csv_run(s, r);
     csv_nodes(s, r);
+    csv_memory(s, r);
     csv_rest(s, r, timing);
     return g_string_free(s, FALSE);
 }
@@ -561,11 +598,32 @@ static void text_rest(GString *s, const SimResult *r, gboolean timing)
     g_string_append_c(s, '\n');
 }
 
+/* The footprint against the node memory, when the workload reports one. */
+static void text_memory(GString *s, const SimResult *r)
+{
+    if (!isfinite(r->mem_peak))
+        return;
+    const double mib = 1048576.0;
+    g_string_append_printf(s, "memory        %.2f MiB per node (largest)",
+                           r->mem_peak / mib);
+    if (r->mem_node)
+        g_string_append_printf(
+            s, " of %.2f MiB (kind %s): %s", (double)r->mem_node / mib,
+            r->mem_kind,
+            sim_result_mem_exceeds(r) ? "DOES NOT FIT, infeasible on "
+                                        "this machine"
+                                      : "fits");
+    else
+        g_string_append(s, "; the model gives no node memory");
+    g_string_append_c(s, '\n');
+}
+
 static char *render_text(const SimResult *r, gboolean timing)
 {
     GString *s = g_string_new(NULL);
     text_frames(s, r);
     text_nodes(s, r);
+    text_memory(s, r);
     text_rest(s, r, timing);
     return g_string_free(s, FALSE);
 }

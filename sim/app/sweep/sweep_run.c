@@ -10,6 +10,7 @@
 #include "sim/app/sweep/sweep_run.h"
 #include "sim/app/pool/pool.h"
 #include "sim/output/json.h"
+#include <math.h>
 #include <string.h>
 
 /* ---- lines ----------------------------------------------------------- */
@@ -61,6 +62,20 @@ char *sweep_point_error_line(const SweepSpec *s, guint i, const char *msg)
     return line_finish(b);
 }
 
+/* node_memory (B) and memory_fits (1 or 0): null where the model gives
+ * no node memory or the workload reports no per-node footprint. */
+static void put_memory(JsonBuilder *b, const SimResult *r)
+{
+    if (r->mem_node)
+        js_set_num(b, "node_memory", (double)r->mem_node);
+    else
+        js_set_str(b, "node_memory", NULL);
+    if (r->mem_node && isfinite(r->mem_peak))
+        js_set_num(b, "memory_fits", sim_result_mem_exceeds(r) ? 0 : 1);
+    else
+        js_set_str(b, "memory_fits", NULL);
+}
+
 static void put_result(JsonBuilder *b, const SimResult *r)
 {
     SimUtilUsed u = sim_result_util_used(r); /* idle ones apart */
@@ -74,6 +89,7 @@ static void put_result(JsonBuilder *b, const SimResult *r)
     js_set_num(b, "util_max", u.max);
     js_set_num(b, "nodes_used", (double)u.used);
     js_set_num(b, "nodes_idle", (double)u.idle);
+    put_memory(b, r);
     for (guint m = 0; m < r->metrics->len; m++) {
         const SimMetric *sm = g_ptr_array_index(r->metrics, m);
         js_set_num(b, sm->name, sm->value);
