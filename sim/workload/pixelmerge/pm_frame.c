@@ -204,6 +204,22 @@ static void procs_busy(MachProc *const *procs, guint n, const unsigned *ph,
         }
 }
 
+/* Pixels z-buffered per owner: the partition's, or without one (the
+ * compositing schemes) the pixels each process holds at the end. */
+static double owner_imbalance(const Local *l, const WlPmMerge *m,
+                              const WlPmPartition *part)
+{
+    guint n = m->n_procs;
+    uint64_t *load = g_new(uint64_t, n);
+    if (part)
+        wl_pm_partition_loads(part, l->rows, load);
+    for (guint p = 0; !part && p < n; p++)
+        load[p] = wl_pm_wpa_len(m->held[p]);
+    double v = wl_pm_load_imbalance(load, n);
+    g_free(load);
+    return v;
+}
+
 static void merge_metrics(const Local *l, const WlPmSetup *s,
                           const WlPmMerge *m, const WlPmPartition *part,
                           WlPmFrameOut *out)
@@ -219,11 +235,47 @@ static void merge_metrics(const Local *l, const WlPmSetup *s,
     out->tpf = wl_pm_frame_count(m->image);
     out->concurrent_volume = m->concurrent_volume;
     out->merge_bytes = m->total_bytes;
+    out->merge_msgs = m->total_msgs;
+    for (guint i = 0; i < m->steps->len; i++) {
+        const WlPmStep *st = g_ptr_array_index(m->steps, i);
+        for (guint j = 0; st->exchange && j < st->n_msgs; j++)
+            out->merge_records += st->msg[j].pixels;
+    }
     out->load_imbalance = wl_pm_load_imbalance(m->merge_ops, n);
-    uint64_t *load = g_new(uint64_t, n);
-    wl_pm_partition_loads(part, l->rows, load);
-    out->partition_imbalance = wl_pm_load_imbalance(load, n);
-    g_free(load);
+    out->partition_imbalance = owner_imbalance(l, m, part);
+}
+
+/* The merge of the frame's local images: Kurç's scheme on a scanline
+ * partition (*part), or a compositing scheme (*comp, *part NULL); the
+ * image checked as check_image says. */
+static WlPmMerge *merge_frame(const Local *l, const WlPmSetup *s,
+                              WlPmPartition **part, WlPmComposite **comp,
+                              WlPmFrameOut *out)
+{
+    guint n = s->procs;
+    WlPmMerge *m;
+    *part = NULL;
+    *comp = NULL;
+    if (wl_pm_scheme_composites(s->scheme)) {
+        *comp = wl_pm_composite_run(s->scheme, &s->comp, l->local, n, &s->fmt);
+        m = (*comp)->merge;
+        out->stages = (*comp)->stages;
+    } else {
+        *part = wl_pm_partition_new(s->balance, n, l->rows, s->resolution);
+        m = wl_pm_merge_run(s->scheme, l->local, n, *part, &s->fmt);
+    }
+    if (!s->check_image)
+        return m;
+    out->image_checked = TRUE;
+    if (*comp && s->comp.op == WL_PM_OP_OVER) {
+        double *ref = wl_pm_over_serial(l->local, n, s->comp.opacity);
+        gsize len = (gsize)s->resolution * s->resolution * 4;
+        out->image_ok = wl_pm_over_diff(ref, (*comp)->rgba, len) < 0;
+        g_free(ref);
+    } else {
+        out->image_ok = image_matches(l, m->image);
+    }
+    return m;
 }
 
 gboolean wl_pm_frame_run(NetNet *net, const Scene *scene, const WlPmSetup *s,
@@ -245,14 +297,10 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
         sim_busy_init(&out->busy[p]);
     Local l;
     render_all(&l, scene, frame, s);
-    WlPmPartition *part =
-        wl_pm_partition_new(s->balance, n, l.rows, s->resolution);
-    WlPmMerge *m = wl_pm_merge_run(s->scheme, l.local, n, part, &s->fmt);
+    WlPmPartition *part;
+    WlPmComposite *comp;
+    WlPmMerge *m = merge_frame(&l, s, &part, &comp, out);
     merge_metrics(&l, s, m, part, out);
-    if (s->check_image) {
-        out->image_checked = TRUE;
-        out->image_ok = image_matches(&l, m->image);
-    }
     if (s->keep_image)
         out->image = frame_image(m->image);
     const unsigned ph[N_PH] = {sim_engine_phase(eng, "span"),
@@ -272,8 +320,9 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
                          .ready = ready,
                          .busy = procs ? NULL : out->busy,
                          .phase = ph[PH_MERGE],
-                         .bal = s->scheme == WL_PM_ZBUF_EXC ? WL_PM_BAL_STRIPS
-                                                            : s->balance,
+                         .bal = part && s->scheme != WL_PM_ZBUF_EXC
+                                    ? s->balance
+                                    : WL_PM_BAL_STRIPS,
                          .height = s->resolution};
     gboolean ok = wl_pm_replay(&rig, m, &ro, err);
     procs_busy(procs, n, ph, start, out);
@@ -284,7 +333,10 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
     g_free(start);
     wl_pm_replay_out_clear(&ro);
     g_free(ready);
-    wl_pm_merge_free(m);
+    if (comp)
+        wl_pm_composite_free(comp);
+    else
+        wl_pm_merge_free(m);
     wl_pm_partition_free(part);
     local_clear(&l, n);
     return ok;

@@ -5,6 +5,11 @@
  * (pm_replay.h).  The engine-free parts are real: pixels, counts, the
  * merged image; time comes from counts x costs and from the network.
  *
+ * The compositing schemes (pm_composite.h) take the place of the merge:
+ * no scanline partition and no global sum; P need not be a power of
+ * two; with the over operator the image is checked against the serial
+ * front-to-back blend of the processors' local images.
+ *
  * Phases are separated by a barrier, as the per-phase times of Table 2
  * imply: span_ms and zbuf_ms are the largest processor's busy time in the
  * phase, merge_ms runs from the end of the slowest local z-buffer to the
@@ -21,13 +26,14 @@
 #include "sim/raster/image.h"
 
 #include "sim/scene/scene.h"
+#include "sim/workload/pixelmerge/pm_composite.h"
 #include "sim/workload/pixelmerge/pm_render.h"
 #include "sim/workload/pixelmerge/pm_replay.h"
 
 typedef struct {
     WlPmScheme scheme;
     WlPmBalance balance;
-    guint procs;      /* P, a power of two */
+    guint procs;      /* P, a power of two for Kurç's schemes */
     guint resolution; /* N: the screen is N x N */
     WlPmSplit split;
     WlPmFormat fmt;
@@ -35,6 +41,7 @@ typedef struct {
     gboolean cull_back;   /* drop back-facing polygons before scanning */
     RastSpanRule span_rule; /* exact coverage or both end points (scan.h) */
     gboolean keep_image;  /* return the merged image (WlPmFrameOut.image) */
+    WlPmCompose comp;     /* the compositing schemes' options */
 } WlPmSetup;
 
 /* Node costs of the local phases, per counted operation. */
@@ -54,6 +61,9 @@ typedef struct {
     uint64_t polygons, tpg, tpf; /* Table 1 counts of the whole scene */
     uint64_t concurrent_volume;  /* bytes, Fig. 1 */
     uint64_t merge_bytes;        /* pixel bytes sent in the merge */
+    uint64_t merge_msgs;         /* messages sent in the merge */
+    uint64_t merge_records;      /* pixel records (or locations) sent */
+    guint stages;                /* compositing stages (0: Kurç's) */
     double load_imbalance;       /* merge operations, Fig. 2 */
     double partition_imbalance;  /* pixels z-buffered per owner (AAPC) */
     gboolean image_checked, image_ok;

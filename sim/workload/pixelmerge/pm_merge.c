@@ -10,13 +10,18 @@
 #include "sim/workload/pixelmerge/pm_merge.h"
 #include <string.h>
 
-const char *const wl_pm_scheme_names[] = {"zbuf-exc", "pair", "aapc", NULL};
+const char *const wl_pm_scheme_names[] = {
+    "zbuf-exc",    "pair",    "aapc",           "binary_swap",
+    "direct_send", "radix_k", "two_three_swap", NULL};
 
-static WlPmStep *step_new(guint n, gboolean exchange)
+WlPmStep *wl_pm_step_new(guint n, gboolean exchange)
 {
     WlPmStep *s = g_new0(WlPmStep, 1);
     s->exchange = exchange;
     s->msg = g_new0(WlPmMsg, n);
+    s->n_msgs = n;
+    for (guint p = 0; p < n; p++)
+        s->msg[p].src = p;
     s->work = g_new0(WlPmWork, n);
     return s;
 }
@@ -139,7 +144,7 @@ static void pair_stage(WlPmMerge *m, WlPmWpa **held, guint i, const PairCfg *c,
                        int32_t *msa)
 {
     guint n = m->n_procs, h = c->part->height;
-    WlPmStep *st = step_new(n, TRUE);
+    WlPmStep *st = wl_pm_step_new(n, TRUE);
     WlPmWpa **out = g_new0(WlPmWpa *, n), **keep = g_new0(WlPmWpa *, n);
     guint8 *send = g_new(guint8, h), *kept = g_new(guint8, h);
     for (guint p = 0; p < n; p++) {
@@ -203,7 +208,7 @@ static void aapc_messages(WlPmMerge *m, const uint64_t *cnt,
     for (guint y = 0; y < part->height; y++)
         rows[part->owner[y]]++;
     for (guint j = 1; j < n; j++) {
-        WlPmStep *st = step_new(n, TRUE);
+        WlPmStep *st = wl_pm_step_new(n, TRUE);
         for (guint p = 0; p < n; p++) {
             guint k = p ^ j;
             WlPmMsg *msg = &st->msg[p];
@@ -225,7 +230,7 @@ static void aapc_zbuffer(WlPmMerge *m, WlPmWpa *const *local,
                          int32_t *msa)
 {
     guint n = m->n_procs;
-    WlPmStep *st = step_new(n, FALSE);
+    WlPmStep *st = wl_pm_step_new(n, FALSE);
     guint8 *mine = g_new(guint8, part->height);
     for (guint p = 0; p < n; p++) {
         for (guint y = 0; y < part->height; y++)
@@ -255,22 +260,34 @@ static void run_aapc(WlPmMerge *m, WlPmWpa *const *local,
     g_free(cnt);
 }
 
-static void summarise(WlPmMerge *m)
+void wl_pm_merge_summarise(WlPmMerge *m)
 {
     guint n = m->n_procs;
     for (guint s = 0; s < m->steps->len; s++) {
         const WlPmStep *st = g_ptr_array_index(m->steps, s);
-        for (guint p = 0; p < n; p++) {
+        for (guint p = 0; p < n; p++)
             m->merge_ops[p] += st->work[p].scatter + st->work[p].compare;
-            if (st->exchange) {
-                m->total_bytes += st->msg[p].bytes;
-                m->total_msgs++;
-            }
+        for (guint i = 0; st->exchange && i < st->n_msgs; i++) {
+            m->total_bytes += st->msg[i].bytes;
+            m->total_msgs++;
         }
     }
     m->concurrent_volume = wl_pm_concurrent_volume(m->steps, n);
     for (guint p = 0; p < n; p++)
         wl_pm_frame_put_wpa(m->image, m->held[p]);
+}
+
+WlPmMerge *wl_pm_merge_new(WlPmScheme scheme, guint n_procs, guint width,
+                           guint height)
+{
+    WlPmMerge *m = g_new0(WlPmMerge, 1);
+    m->scheme = scheme;
+    m->n_procs = n_procs;
+    m->steps = g_ptr_array_new_with_free_func(step_free);
+    m->image = wl_pm_frame_new(width, height);
+    m->held = g_new0(WlPmWpa *, n_procs);
+    m->merge_ops = g_new0(uint64_t, n_procs);
+    return m;
 }
 
 WlPmMerge *wl_pm_merge_run(WlPmScheme scheme, WlPmWpa *const *local,
@@ -280,13 +297,7 @@ WlPmMerge *wl_pm_merge_run(WlPmScheme scheme, WlPmWpa *const *local,
     g_assert(n_procs > 0 && (n_procs & (n_procs - 1)) == 0);
     g_assert(scheme == WL_PM_ZBUF_EXC || part->n_procs == n_procs);
     guint w = local[0]->width, h = local[0]->height;
-    WlPmMerge *m = g_new0(WlPmMerge, 1);
-    m->scheme = scheme;
-    m->n_procs = n_procs;
-    m->steps = g_ptr_array_new_with_free_func(step_free);
-    m->image = wl_pm_frame_new(w, h);
-    m->held = g_new0(WlPmWpa *, n_procs);
-    m->merge_ops = g_new0(uint64_t, n_procs);
+    WlPmMerge *m = wl_pm_merge_new(scheme, n_procs, w, h);
     int32_t *msa = g_new(int32_t, w);
     memset(msa, 0xff, w * sizeof *msa); /* all -1 */
     WlPmPartition *strips = NULL;
@@ -297,7 +308,7 @@ WlPmMerge *wl_pm_merge_run(WlPmScheme scheme, WlPmWpa *const *local,
         run_aapc(m, local, part, fmt, msa);
     else
         run_pair(m, local, &c, msa);
-    summarise(m);
+    wl_pm_merge_summarise(m);
     wl_pm_partition_free(strips);
     g_free(msa);
     return m;
@@ -318,14 +329,15 @@ void wl_pm_merge_free(WlPmMerge *m)
 
 uint64_t wl_pm_concurrent_volume(const GPtrArray *steps, guint n_procs)
 {
+    (void)n_procs;
     uint64_t vol = 0;
     for (guint s = 0; s < steps->len; s++) {
         const WlPmStep *st = g_ptr_array_index(steps, s);
         if (!st->exchange)
             continue;
         uint64_t mx = 0;
-        for (guint p = 0; p < n_procs; p++)
-            mx = MAX(mx, st->msg[p].bytes);
+        for (guint i = 0; i < st->n_msgs; i++)
+            mx = MAX(mx, st->msg[i].bytes);
         vol += mx;
     }
     return vol;

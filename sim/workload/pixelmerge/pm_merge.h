@@ -35,7 +35,22 @@
 #include "sim/workload/pixelmerge/pm_balance.h"
 #include "sim/workload/pixelmerge/pm_pixels.h"
 
-typedef enum { WL_PM_ZBUF_EXC, WL_PM_PAIR, WL_PM_AAPC } WlPmScheme;
+/* Kurç's three, then the compositing schemes of pm_composite.h. */
+typedef enum {
+    WL_PM_ZBUF_EXC,
+    WL_PM_PAIR,
+    WL_PM_AAPC,
+    WL_PM_BINARY_SWAP,
+    WL_PM_DIRECT_SEND,
+    WL_PM_RADIX_K,
+    WL_PM_TWO_THREE_SWAP
+} WlPmScheme;
+
+/* TRUE for the compositing schemes (pm_composite.h). */
+static inline gboolean wl_pm_scheme_composites(WlPmScheme s)
+{
+    return s >= WL_PM_BINARY_SWAP;
+}
 
 /* NULL-terminated names, indexed by WlPmScheme. */
 extern const char *const wl_pm_scheme_names[];
@@ -44,10 +59,12 @@ typedef struct {
     guint bytes_per_pixel;    /* active pixel record (x, z, shade) */
     guint bytes_per_location; /* ZBUF-EXC record (z, shade; x implicit) */
     guint bytes_per_scanline; /* per-scanline pixel count in a message */
+    guint bytes_per_run;      /* compositing: one run-length header */
+    guint bytes_per_rect;     /* compositing: one bounding rectangle */
 } WlPmFormat;
 
 typedef struct {
-    uint32_t dst;
+    uint32_t src, dst;
     uint64_t pixels; /* records carried */
     uint64_t bytes;
 } WlPmMsg;
@@ -60,9 +77,14 @@ typedef struct {
     uint64_t gather;  /* copied back into consecutive storage */
 } WlPmWork;
 
+/* A step's messages: Kurç's schemes send exactly one per processor
+ * (msg[p] is p's, n_msgs == n_procs); the compositing schemes send any
+ * number, in sender order.  A processor's receives in a step are the
+ * messages addressed to it. */
 typedef struct {
     gboolean exchange; /* FALSE: a compute-only step (msg unused) */
-    WlPmMsg *msg;      /* n_procs, indexed by sender */
+    WlPmMsg *msg;      /* n_msgs, in nondecreasing src */
+    guint n_msgs;
     WlPmWork *work;    /* n_procs */
 } WlPmStep;
 
@@ -85,6 +107,15 @@ WlPmMerge *wl_pm_merge_run(WlPmScheme scheme, WlPmWpa *const *local,
                            guint n_procs, const WlPmPartition *part,
                            const WlPmFormat *fmt);
 void wl_pm_merge_free(WlPmMerge *m);
+
+/* For the compositing schemes: a new empty result for n_procs on a
+ * width x height screen, a new step of n_procs with one message slot per
+ * processor (src set; the caller may replace msg and n_msgs), and the
+ * totals, merge_ops and image once the steps and held are filled. */
+WlPmMerge *wl_pm_merge_new(WlPmScheme scheme, guint n_procs, guint width,
+                           guint height);
+WlPmStep *wl_pm_step_new(guint n_procs, gboolean exchange);
+void wl_pm_merge_summarise(WlPmMerge *m);
 
 /* Sum over exchange steps of the largest message in the step (bytes): the
  * "total volume of concurrent communication" of Fig. 1. */

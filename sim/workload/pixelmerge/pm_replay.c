@@ -1,16 +1,22 @@
 /* pm_replay.c — event-driven replay of the merge steps (seed 003 §3–4).
  *
- * The steps are flattened into RStep records (one message per processor
- * per exchange step, pre- and post-compute per processor).  A processor
- * is in exactly one of: computing (an event pending), waiting for its
- * step's message (waiting[p]), or done.  got[s * n + p] records that the
- * message of step s for p has arrived, so an early arrival is never lost.
+ * The steps are flattened into RStep records (per exchange step, each
+ * processor's messages -- one in Kurç's schemes, any number in the
+ * compositing schemes -- and the count it receives; pre- and
+ * post-compute per processor).  A processor is in exactly one of:
+ * computing (an event pending), waiting for its step's messages
+ * (waiting[p]), or done.  got[s * n + p] counts the messages of step s
+ * for p that have arrived, so an early arrival is never lost.
  * Invariant: cur[p] only increases; p's post-compute of step s starts at
- * max(own send, arrival of its step-s message).  That is a join of two
- * completions: whichever comes last issues the post-compute, and the
- * first one's recorded action (first[s * n + p]) is named to the
- * recorder with sim_record_after(), so that a replay on another network
- * waits for both (docs/traces.md, `after`).
+ * max(own sends, arrival of its last step-s message).  In Kurç's schemes
+ * that is a join of two completions: whichever comes last issues the
+ * post-compute, and the first one's recorded action (first[s * n + p])
+ * is named to the recorder with sim_record_after(), so that a replay on
+ * another network waits for both (docs/traces.md, `after`).  With more
+ * messages the recorder keeps two-way joins only: the last completion
+ * and the one before it (first[] holds the latest earlier one), so a
+ * recorded compositing merge replays exactly on the same machine but a
+ * what-if may start a post-compute before an earlier message's arrival.
  */
 #include "sim/workload/pixelmerge/pm_replay.h"
 #include "sim/core/record.h"
@@ -26,8 +32,10 @@ typedef struct {
 
 typedef struct {
     gboolean exchange;
-    uint32_t *dst;
-    uint64_t *bytes;
+    guint *first;    /* n + 1: p's messages are first[p] .. first[p + 1] */
+    uint32_t *dst;   /* per message */
+    uint64_t *bytes; /* per message */
+    guint *expect;   /* n: messages p receives */
     OpList *pre_ops, *post_ops;
 } RStep;
 
@@ -38,7 +46,7 @@ typedef struct {
     RStep *steps;
     guint *cur;
     gboolean *waiting;
-    guint8 *got;
+    guint *got;
     uint64_t *first; /* the recorded completion that came first (join) */
     SimTime *done;
     gboolean overflow;
@@ -80,17 +88,24 @@ static SimTime ops_price(const WlPmMergeCosts *c, const OpList *o,
     return t;
 }
 
-static void rstep_init(RStep *s, guint n, gboolean exchange)
+/* n processors, n_msgs messages; with n_msgs == n, message p is p's. */
+static void rstep_init(RStep *s, guint n, guint n_msgs, gboolean exchange)
 {
     s->exchange = exchange;
-    s->dst = g_new0(uint32_t, n);
-    s->bytes = g_new0(uint64_t, n);
+    s->first = g_new0(guint, n + 1);
+    for (guint p = 0; n_msgs == n && p <= n; p++)
+        s->first[p] = p;
+    s->dst = g_new0(uint32_t, n_msgs);
+    s->bytes = g_new0(uint64_t, n_msgs);
+    s->expect = g_new0(guint, n);
     s->pre_ops = g_new0(OpList, n);
     s->post_ops = g_new0(OpList, n);
 }
 
 static void rstep_clear(RStep *s)
 {
+    g_free(s->first);
+    g_free(s->expect);
     g_free(s->dst);
     g_free(s->bytes);
     g_free(s->pre_ops);
@@ -114,15 +129,16 @@ static guint global_sum_steps(RStep *out, guint n, WlPmBalance bal,
         return 0;
     guint d = log2u(n), k = 0;
     for (; k < d; k++) {
-        rstep_init(&out[k], n, TRUE);
+        rstep_init(&out[k], n, n, TRUE);
         for (guint p = 0; p < n; p++) {
             out[k].dst[p] = p ^ (1u << k);
+            out[k].expect[p] = 1;
             out[k].bytes[p] = (uint64_t)height * count_bytes;
             out[k].pre_ops[p] = (OpList){{{"sum_elem", 0}}, 1}; /* none */
             out[k].post_ops[p] = (OpList){{{"sum_elem", height}}, 1};
         }
     }
-    rstep_init(&out[k], n, FALSE);
+    rstep_init(&out[k], n, n, FALSE);
     uint64_t lg = MAX(1u, log2u(height));
     OpList o = bal == WL_PM_BAL_HBP
                    ? (OpList){{{"sort_elem", (uint64_t)height * lg},
@@ -138,11 +154,22 @@ static guint global_sum_steps(RStep *out, guint n, WlPmBalance bal,
 
 static void merge_step(RStep *r, const WlPmStep *st, guint n)
 {
-    rstep_init(r, n, st->exchange);
+    guint nm = st->exchange ? st->n_msgs : 0;
+    rstep_init(r, n, nm, st->exchange);
+    memset(r->first, 0, (n + 1) * sizeof *r->first);
+    for (guint i = 0; i < nm; i++) { /* messages come in sender order */
+        const WlPmMsg *msg = &st->msg[i];
+        g_assert(msg->src < n && msg->dst < n);
+        g_assert(i == 0 || st->msg[i - 1].src <= msg->src);
+        r->first[msg->src + 1]++;
+        r->dst[i] = msg->dst;
+        r->bytes[i] = msg->bytes;
+        r->expect[msg->dst]++;
+    }
+    for (guint p = 0; p < n; p++)
+        r->first[p + 1] += r->first[p];
     for (guint p = 0; p < n; p++) {
         const WlPmWork *w = &st->work[p];
-        r->dst[p] = st->msg[p].dst;
-        r->bytes[p] = st->msg[p].bytes;
         r->pre_ops[p] = (OpList){{{"pack", w->pack}}, 1};
         r->post_ops[p] = (OpList){{{"scatter", w->scatter},
                                    {"compare", w->compare},
@@ -195,8 +222,9 @@ static void on_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     Replay *r = ctx;
     guint s = GPOINTER_TO_UINT(d->payload);
     gsize at = (gsize)s * r->n + d->dst;
-    r->got[at] = 1;
-    if (r->waiting[d->dst] && r->cur[d->dst] == s)
+    guint got = ++r->got[at];
+    if (r->waiting[d->dst] && r->cur[d->dst] == s &&
+        got == r->steps[s].expect[d->dst])
         proc_post(r, d->dst, r->first[at]);
     else
         r->first[at] = sim_record_cause(r->eng);
@@ -213,10 +241,11 @@ static void proc_send(SimEngine *eng, void *ctx, void *arg)
     }
     gsize at = (gsize)s * r->n + p;
     uint64_t pre = sim_record_cause(eng); /* before the send is issued */
-    net_send(r->rig->net, p, st->dst[p], st->bytes[p], GUINT_TO_POINTER(s),
-             on_arrive, r);
-    if (r->got[at]) {
-        proc_post(r, p, r->first[at]);
+    for (guint i = st->first[p]; i < st->first[p + 1]; i++)
+        net_send(r->rig->net, p, st->dst[i], st->bytes[i],
+                 GUINT_TO_POINTER(s), on_arrive, r);
+    if (r->got[at] >= st->expect[p]) {
+        proc_post(r, p, st->expect[p] ? r->first[at] : SIM_RECORD_NONE);
     } else {
         r->waiting[p] = TRUE;
         r->first[at] = pre;
@@ -267,7 +296,7 @@ gboolean wl_pm_replay(const WlPmReplayRig *rig, const WlPmMerge *m,
     build_steps(&r, m);
     r.cur = g_new0(guint, n);
     r.waiting = g_new0(gboolean, n);
-    r.got = g_new0(guint8, (gsize)(r.n_steps + 1) * n);
+    r.got = g_new0(guint, (gsize)(r.n_steps + 1) * n);
     r.first = g_new(uint64_t, (gsize)(r.n_steps + 1) * n);
     out->done = g_new0(SimTime, n);
     r.done = out->done;

@@ -4,10 +4,11 @@
  * fidelity and compute times from counted pixel operations.
  *
  * Each processor, step after step: computes the step's "pre" work (packing
- * pixels into a send buffer), sends its one message of the step
- * (net_send), waits until the message addressed to it in that step has
+ * pixels into a send buffer), sends its messages of the step (net_send;
+ * one in Kurç's schemes, any number, maybe none, in the compositing
+ * schemes), waits until every message addressed to it in that step has
  * arrived, computes the "post" work (scatter, compare, gather) and goes
- * on.  Messages that arrive early are remembered per (step, receiver).
+ * on.  Messages that arrive early are counted per (step, receiver).
  *
  * With RS and HBP the merge starts with the global sum of the
  * per-scanline counts (seed 003 §4.1) by recursive doubling: d exchanges

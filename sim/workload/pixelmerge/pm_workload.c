@@ -5,9 +5,19 @@
  *   workload:
  *     type: pixelmerge
  *     scheme: pair            # zbuf_exc (or zbuf-exc) | pair | aapc
+ *                             # | binary_swap | direct_send | radix_k
+ *                             # | two_three_swap        (pm_composite.h)
  *     balance: rs             # strips | rs | hbp               (§4)
- *     processors: 16          # P, a power of two <= machine nodes
- *                             # (default: all of the machine's nodes)
+ *     processors: 16          # P <= machine nodes, a power of two for
+ *                             # Kurç's schemes, any for the compositing
+ *                             # ones (default: all of the machine's nodes)
+ *     radices: [4, 2]         # radix_k: product P (default pm_stages.h)
+ *     bounding_rect: false    # compositing: send bounding boxes only
+ *     rle: false              # compositing: run-length encode
+ *     operator: z             # compositing: z | over
+ *     opacity: 0.5            # over: every active pixel's alpha
+ *     bytes_per_run: 4        # compositing: a run-length header
+ *     bytes_per_rect: 8       # compositing: a bounding rectangle
  *     resolution: 400         # N: an N x N screen
  *     polygon_split: cyclic   # cyclic | block
  *     bytes_per_pixel: 8      # active pixel record in a message
@@ -37,9 +47,11 @@ const char *const wl_pm_cost_ops[] = {
     "gather",   "sum_elem",  "sort_elem",   "assign_step", NULL};
 const MachNeed wl_pm_needs[] = {{"node", wl_pm_cost_ops}, {NULL, NULL}};
 
-/* Scheme words: the library's names plus "zbuf_exc" (underscore). */
-static const char *const scheme_words[] = {"zbuf-exc", "pair", "aapc",
-                                           "zbuf_exc", NULL};
+/* Scheme words: the library's names plus "zbuf_exc" (underscore, last). */
+static const char *const scheme_words[] = {
+    "zbuf-exc",    "pair",    "aapc",           "binary_swap",
+    "direct_send", "radix_k", "two_three_swap", "zbuf_exc",
+    NULL};
 /* Indexed by RastSpanRule. */
 static const char *const span_rules[] = {"exact", "endpoints", NULL};
 
@@ -83,13 +95,16 @@ WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
 
 static gboolean parse_sizes(const CfgNode *sec, WlPmParams *p, GError **err)
 {
-    uint64_t bpp = 8, bpl = 4, bps = 2, bpc = 4;
+    uint64_t bpp = 8, bpl = 4, bps = 2, bpc = 4, bpr = 4, bpb = 8;
     if (!cfg_get_count(sec, "bytes_per_pixel", FALSE, 1, 256, &bpp, err) ||
         !cfg_get_count(sec, "bytes_per_location", FALSE, 1, 256, &bpl, err) ||
         !cfg_get_count(sec, "bytes_per_scanline", FALSE, 0, 256, &bps, err) ||
-        !cfg_get_count(sec, "bytes_per_count", FALSE, 1, 16, &bpc, err))
+        !cfg_get_count(sec, "bytes_per_count", FALSE, 1, 16, &bpc, err) ||
+        !cfg_get_count(sec, "bytes_per_run", FALSE, 0, 256, &bpr, err) ||
+        !cfg_get_count(sec, "bytes_per_rect", FALSE, 0, 256, &bpb, err))
         return FALSE;
-    p->setup.fmt = (WlPmFormat){(guint)bpp, (guint)bpl, (guint)bps};
+    p->setup.fmt = (WlPmFormat){(guint)bpp, (guint)bpl, (guint)bps,
+                                (guint)bpr, (guint)bpb};
     p->count_bytes = (uint32_t)bpc;
     return TRUE;
 }
@@ -113,9 +128,11 @@ static gboolean parse_memory(const CfgNode *sec, WlPmMemory *m, GError **err)
            cfg_get_size(n, "index", FALSE, &m->index, err);
 }
 
-static gboolean check_procs(const CfgNode *sec, uint64_t procs, GError **err)
+/* Kurç's schemes run on a hypercube's address bits: P a power of two. */
+static gboolean check_procs(const CfgNode *sec, const WlPmSetup *s,
+                            uint64_t procs, GError **err)
 {
-    if ((procs & (procs - 1)) == 0)
+    if ((procs & (procs - 1)) == 0 || wl_pm_scheme_composites(s->scheme))
         return TRUE;
     char *found = g_strdup_printf("'%" G_GUINT64_FORMAT "'", procs);
     cfg_error(err, cfg_get(sec, "processors"), found,
@@ -134,11 +151,101 @@ static gboolean parse_words(const CfgNode *sec, WlPmSetup *s, GError **err)
         !cfg_get_enum(sec, "polygon_split", FALSE, wl_pm_split_names, &split,
                       err))
         return FALSE;
-    s->scheme = scheme == 3 ? WL_PM_ZBUF_EXC : (WlPmScheme)scheme;
+    s->scheme = scheme == 7 ? WL_PM_ZBUF_EXC : (WlPmScheme)scheme;
     s->balance = bal;
     s->split = split;
     s->span_rule = (RastSpanRule)rule;
     return TRUE;
+}
+
+/* workload.radices: a list of counts >= 2, with scheme radix_k only. */
+static gboolean parse_radices(const CfgNode *sec, WlPmSetup *s, GError **err)
+{
+    const CfgNode *r = cfg_get(sec, "radices");
+    if (!r)
+        return TRUE;
+    guint n = cfg_kind(r) == CFG_SEQ ? cfg_seq_len(r) : 0;
+    if (s->scheme != WL_PM_RADIX_K) {
+        char *found = g_strdup_printf("'radices' with scheme '%s'",
+                                      wl_pm_scheme_names[s->scheme]);
+        cfg_error(err, r, found, "scheme radix_k for radices");
+        g_free(found);
+        return FALSE;
+    }
+    if (n == 0 || n > WL_PM_MAX_RADICES) {
+        cfg_error(err, r, "'radices'",
+                  "a list of 1 to 32 radices, e.g. [4, 2]");
+        return FALSE;
+    }
+    for (guint i = 0; i < n; i++) {
+        const CfgNode *v = cfg_seq_at(r, i);
+        const char *t = cfg_scalar(v);
+        uint64_t k = 0;
+        if (!t || !cfg_parse_count(t, "radix", &k, NULL) || k < 2 ||
+            k > 1024) {
+            char *found = g_strdup_printf("'%s'", t ? t : "a collection");
+            cfg_error(err, v, found, "a radix, a count from 2 to 1024");
+            g_free(found);
+            return FALSE;
+        }
+        s->comp.radices[i] = (guint)k;
+    }
+    s->comp.n_radices = n;
+    return TRUE;
+}
+
+/* The compositing schemes' options (pm_composite.h). */
+static gboolean parse_compose(const CfgNode *sec, WlPmSetup *s, GError **err)
+{
+    int op = WL_PM_OP_Z;
+    double opacity = 0.5;
+    gboolean rect = FALSE, rle = FALSE;
+    if (!parse_radices(sec, s, err) ||
+        !cfg_get_bool(sec, "bounding_rect", FALSE, &rect, err) ||
+        !cfg_get_bool(sec, "rle", FALSE, &rle, err) ||
+        !cfg_get_enum(sec, "operator", FALSE, wl_pm_operator_names, &op,
+                      err) ||
+        !cfg_get_double(sec, "opacity", FALSE, 1e-6, 1.0, &opacity, err))
+        return FALSE;
+    const char *const keys[] = {"bounding_rect", "rle", "operator",
+                                "opacity"};
+    for (guint i = 0; i < G_N_ELEMENTS(keys); i++)
+        if (!wl_pm_scheme_composites(s->scheme) && cfg_has(sec, keys[i])) {
+            char *found = g_strdup_printf("'%s' with scheme '%s'", keys[i],
+                                          wl_pm_scheme_names[s->scheme]);
+            cfg_error(err, cfg_get(sec, keys[i]), found,
+                      "a compositing scheme (binary_swap, direct_send, "
+                      "radix_k, two_three_swap) for this key");
+            g_free(found);
+            return FALSE;
+        }
+    s->comp.bounding_rect = rect;
+    s->comp.rle = rle;
+    s->comp.op = (WlPmOperator)op;
+    s->comp.opacity = opacity;
+    return TRUE;
+}
+
+/* Radix-k's radices multiply to P (checked when parsed if processors
+ * is given, else once the machine is known; procs 0: not yet). */
+static gboolean check_radices(const WlPmCompose *c, guint procs,
+                              const CfgNode *at, GError **err)
+{
+    if (procs == 0 || c->n_radices == 0 ||
+        wl_pm_radices_ok(c->radices, c->n_radices, procs))
+        return TRUE;
+    uint64_t prod = 1;
+    for (guint i = 0; i < c->n_radices; i++)
+        prod *= c->radices[i];
+    char *found = g_strdup_printf("radices of product %" G_GUINT64_FORMAT,
+                                  prod);
+    char *exp = g_strdup_printf("radices whose product is the %u "
+                                "processors",
+                                procs);
+    cfg_error(err, at, found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
 }
 
 static void *pm_parse(const CfgNode *sec, GError **err)
@@ -149,7 +256,10 @@ static void *pm_parse(const CfgNode *sec, GError **err)
     gboolean ok =
         parse_words(sec, &p->setup, err) &&
         cfg_get_count(sec, "processors", FALSE, 1, 1024, &procs, err) &&
-        check_procs(sec, procs, err) &&
+        check_procs(sec, &p->setup, procs, err) &&
+        parse_compose(sec, &p->setup, err) &&
+        check_radices(&p->setup.comp, (guint)procs, cfg_get(sec, "radices"),
+                      err) &&
         cfg_get_count(sec, "resolution", FALSE, 2, 4096, &res, err) &&
         cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
         cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
@@ -173,7 +283,8 @@ static void pm_free_params(void *p)
 /* Own memory (WlOps.mem_bytes): a WlPmPixel a screen pixel for the
  * merged frame, one more for the processors' active-pixel arrays
  * together and one for the serial reference (check_image), the output
- * image (3 B), each processor's row offsets and the P x P message counts.
+ * image (3 B), each processor's row offsets and the P x P message counts;
+ * the compositing schemes more (below).
  * Processors 0 (the machine's count) counts as 1: a lower bound.  The
  * quickstart at 1600 x 1600 peaked at 156 MB RSS (estimate 183 MiB). */
 static double pm_mem_bytes(const void *params, GString *what)
@@ -183,8 +294,12 @@ static double pm_mem_bytes(const void *params, GString *what)
     g_string_append_printf(what, "%u processors, %.0f x %.0f pixels",
                            p->setup.procs, n, n);
     double copies = p->setup.check_image ? 3 : 2;
-    return n * n * (copies * sizeof(WlPmPixel) + 3.0) + procs * (n + 1) * 4.0 +
-           procs * procs * 8.0;
+    double comp = 0; /* compositing: a stage's pixels, old and new (~48 B
+                      * each), the over blend and its serial reference */
+    if (wl_pm_scheme_composites(p->setup.scheme))
+        comp = 2 * 48.0 + (p->setup.comp.op == WL_PM_OP_OVER ? 64.0 : 0.0);
+    return n * n * (copies * sizeof(WlPmPixel) + 3.0 + comp) +
+           procs * (n + 1) * 4.0 + procs * procs * 8.0;
 }
 
 static WlPmMemUse peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,
@@ -239,6 +354,11 @@ static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
         set(out, part[i], (double)bytes[i], "B");
     if (fo->image_checked)
         set(out, "image_matches_serial", fo->image_ok, "");
+    if (!wl_pm_scheme_composites(s->scheme))
+        return; /* Kurç's results keep their columns */
+    set(out, "composite_stages", fo->stages, "");
+    set(out, "merge_messages", (double)fo->merge_msgs, "");
+    set(out, "merge_records", (double)fo->merge_records, "");
 }
 
 /* `at`: the processors key, for a located error (may be NULL). */
@@ -326,6 +446,8 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
     }
     if (!check_machine(m, &r.s, cfg_path(ctx->root, "workload.processors"),
                        err) ||
+        !check_radices(&r.s.comp, r.s.procs,
+                       cfg_path(ctx->root, "workload.radices"), err) ||
         !wl_pm_costs_from_machine(m, r.p->count_bytes, &r.c, err))
         return FALSE;
     r.procs = g_new(MachProc *, r.s.procs);
@@ -383,6 +505,11 @@ static const WlMetric pm_metrics[] = {
      "1 when the merged image equals the serial render (check_image)"},
     {"serial_insert_ms", "ms",
      "of serial_ms, the span-list insertion steps (docs/validation.md)"},
+    {"composite_stages", "",
+     "compositing schemes: stages (binary swap's fold counts as one)"},
+    {"merge_messages", "", "compositing schemes: messages sent in the merge"},
+    {"merge_records", "",
+     "compositing schemes: pixel records (or locations) the messages carry"},
     {NULL, NULL, NULL},
 };
 

@@ -62,6 +62,14 @@ static const BadCase bad[] = {
     {"dpscan_bad_palette.yaml", "4:12: found 2 colours, expected 15 "
                                 "colours, each [r, g, b] in 0..1 or "
                                 "\"#rrggbb\""},
+    {"pixelmerge_radices_product.yaml", "6:12: found radices of product 16, "
+                                        "expected radices whose product is "
+                                        "the 12 processors"},
+    {"pixelmerge_radices_scheme.yaml", "5:12: found 'radices' with scheme "
+                                       "'binary_swap', expected scheme "
+                                       "radix_k for radices"},
+    {"pixelmerge_bad_operator.yaml", "5:13: found 'under', expected one "
+                                     "of: z, over"},
 };
 
 static char *bad_path(const BadCase *c)

@@ -74,8 +74,8 @@ static void check_phases(const Scene *sc, WlPmScheme sch, guint P,
                          const WlPmCosts *c)
 {
     WlPmSetup s = {
-        sch,   WL_PM_BAL_RS,    P,    N, WL_PM_SPLIT_CYCLIC, {8, 4, 2}, FALSE,
-        FALSE, RAST_SPAN_EXACT, FALSE};
+        sch,   WL_PM_BAL_RS,    P,    N, WL_PM_SPLIT_CYCLIC, {8, 4, 2, 0, 0}, FALSE,
+        FALSE, RAST_SPAN_EXACT, FALSE, {{0}, 0, FALSE, FALSE, 0, 0}};
     WlPmFrameOut out;
     frame(sc, &s, c, &out);
     int full = sch == WL_PM_ZBUF_EXC;
@@ -159,8 +159,9 @@ static void test_machine_busy_matches_cost_model(void **state)
         for (guint q = 0; q < 4; q++)
             procs[q] = mach_proc(m[0], "node", q);
         WlPmSetup s = {(WlPmScheme)sch,    WL_PM_BAL_HBP, 4,     N,
-                       WL_PM_SPLIT_CYCLIC, {8, 4, 2},     FALSE, FALSE,
-                       RAST_SPAN_EXACT,    FALSE};
+                       WL_PM_SPLIT_CYCLIC, {8, 4, 2, 0, 0},     FALSE, FALSE,
+                       RAST_SPAN_EXACT,    FALSE,
+                       {{0}, 0, FALSE, FALSE, 0, 0}};
         WlPmFrameOut on, off;
         if (!wl_pm_frame_run_procs(mach_net(m[0]), procs, 0, sc, &s, &c, &on,
                                    &err) ||
@@ -207,7 +208,7 @@ enum { H = 4 };
  * 8 x sort_elem (no message, no other cost). */
 static gboolean replay_sort(SimTime sort_elem, SimTime *end, GError **err)
 {
-    const WlPmFormat fmt = {8, 5, 2};
+    const WlPmFormat fmt = {8, 5, 2, 0, 0};
     NetParams np = {.bandwidth = 1e6,
                     .channels = 1,
                     .startup = SIM_US,

@@ -42,7 +42,7 @@ static void synth(guint n, uint64_t seed, WlPmWpa **local, WlPmFrame **serial)
     g_free(lf);
 }
 
-static const WlPmFormat fmt = {8, 5, 2};
+static const WlPmFormat fmt = {8, 5, 2, 0, 0};
 
 static WlPmPartition *partition_for(WlPmBalance b, WlPmWpa **local, guint n)
 {
@@ -173,10 +173,10 @@ static void test_concurrent_volume(void **state)
 {
     (void)state;
     GPtrArray *steps = g_ptr_array_new();
-    WlPmMsg m1[2] = {{1, 0, 100}, {0, 0, 40}};
-    WlPmMsg m2[2] = {{1, 0, 10}, {0, 0, 70}};
-    WlPmStep s1 = {TRUE, m1, NULL}, s2 = {TRUE, m2, NULL};
-    WlPmStep s3 = {FALSE, m1, NULL};
+    WlPmMsg m1[2] = {{0, 1, 0, 100}, {1, 0, 0, 40}};
+    WlPmMsg m2[2] = {{0, 1, 0, 10}, {1, 0, 0, 70}};
+    WlPmStep s1 = {TRUE, m1, 2, NULL}, s2 = {TRUE, m2, 2, NULL};
+    WlPmStep s3 = {FALSE, m1, 2, NULL};
     g_ptr_array_add(steps, &s1);
     g_ptr_array_add(steps, &s2);
     g_ptr_array_add(steps, &s3);

@@ -14,7 +14,7 @@
 
 enum { W = 4, H = 5 };
 
-static const WlPmFormat fmt = {8, 5, 2};
+static const WlPmFormat fmt = {8, 5, 2, 0, 0};
 
 static void put(WlPmWpa *w, guint x, guint y, double z, uint32_t id)
 {

@@ -139,6 +139,75 @@ static void test_count_ranges(void **st)
     expect_refused("processors", 3);
 }
 
+/* Refused with this text at pm.yaml:1:<col>, col where `value` (the
+ * last occurrence in extra) stands. */
+static void expect_refused_at(const char *extra, const char *value,
+                              const char *text)
+{
+    const char *v = g_strrstr(extra, value);
+    assert_non_null(v);
+    int col = (int)(strlen("workload: {type: pixelmerge") + (v - extra) + 1);
+    GError *e = NULL;
+    assert_null(parse(extra, &e));
+    assert_non_null(e);
+    char *at = g_strdup_printf("pm.yaml:1:%d: %s", col, text);
+    if (!strstr(e->message, at))
+        fail_msg("%s: '%s' lacks '%s'", extra, e->message, at);
+    g_free(at);
+    g_clear_error(&e);
+}
+
+/* The compositing schemes: their words, any processor count, radices,
+ * the options and their defaults; the options refused with Kurç's
+ * schemes, radices refused with any other scheme and below 2. */
+static void test_compositing_keys(void **st)
+{
+    (void)st;
+    static const char *const words[] = {"binary_swap", "direct_send",
+                                        "radix_k", "two_three_swap"};
+    for (guint i = 0; i < G_N_ELEMENTS(words); i++) {
+        char *extra = g_strdup_printf(", scheme: %s, processors: 12", words[i]);
+        WlPmParams *p = parse_ok(extra);
+        assert_int_equal(p->setup.scheme, WL_PM_BINARY_SWAP + i);
+        assert_int_equal(p->setup.procs, 12);
+        assert_int_equal(p->setup.comp.op, WL_PM_OP_Z);
+        assert_false(p->setup.comp.rle || p->setup.comp.bounding_rect);
+        assert_int_equal(p->setup.comp.n_radices, 0);
+        assert_true(p->setup.comp.opacity == 0.5);
+        assert_int_equal(p->setup.fmt.bytes_per_run, 4);
+        assert_int_equal(p->setup.fmt.bytes_per_rect, 8);
+        wl_pixelmerge_ops.free_params(p);
+        g_free(extra);
+    }
+    WlPmParams *p = parse_ok(", scheme: radix_k, radices: [4, 3], rle: true,"
+                             " bounding_rect: true, operator: over,"
+                             " opacity: 0.25, bytes_per_run: 2,"
+                             " bytes_per_rect: 0");
+    assert_int_equal(p->setup.comp.n_radices, 2);
+    assert_int_equal(p->setup.comp.radices[0] * 10 + p->setup.comp.radices[1],
+                     43);
+    assert_true(p->setup.comp.rle && p->setup.comp.bounding_rect);
+    assert_int_equal(p->setup.comp.op, WL_PM_OP_OVER);
+    assert_true(p->setup.comp.opacity == 0.25);
+    assert_int_equal(p->setup.fmt.bytes_per_run, 2);
+    assert_int_equal(p->setup.fmt.bytes_per_rect, 0);
+    wl_pixelmerge_ops.free_params(p);
+    expect_refused_at(", scheme: pair, radices: [2]", "[2]",
+                      "found 'radices' with scheme 'pair', expected scheme "
+                      "radix_k");
+    expect_refused_at(", scheme: radix_k, radices: [4, 1]", "1]",
+                      "found '1', expected a radix");
+    expect_refused_at(", scheme: radix_k, radices: 4", "4",
+                      "found 'radices', expected a list of 1 to 32");
+    expect_refused_at(", scheme: aapc, rle: true", "true",
+                      "found 'rle' with scheme 'aapc', expected a "
+                      "compositing scheme");
+    expect_refused_at(", scheme: direct_send, operator: under", "under",
+                      "found 'under', expected one of: z, over");
+    expect_refused_at(", scheme: pair, processors: 12", "12",
+                      "found '12', expected a power of two");
+}
+
 /* mem_bytes: N^2 (copies x sizeof(WlPmPixel) + 3) + P (N + 1) 4 + P^2 8,
  * copies 3 with the serial check, 2 without; P = 0 counts as 1. */
 static void test_mem_bytes(void **st)
@@ -190,6 +259,7 @@ int main(void)
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_words_and_values),
         cmocka_unit_test(test_count_ranges),
+        cmocka_unit_test(test_compositing_keys),
         cmocka_unit_test(test_mem_bytes),
         cmocka_unit_test(test_memory_use),
     };

@@ -11,7 +11,7 @@
 
 enum { W = 8, H = 4 };
 
-static const WlPmFormat fmt = {8, 5, 2};
+static const WlPmFormat fmt = {8, 5, 2, 0, 0};
 static const WlPmMergeCosts costs = {.pack = 1 * SIM_US,
                                      .scatter = 2 * SIM_US,
                                      .compare = 3 * SIM_US,
