@@ -652,7 +652,7 @@ Scene *scene_from_cfg(const CfgNode *sec, GError **err)
 
 /* ---- scene files ------------------------------------------------------- */
 
-/* Top-level sections of a run config (sim/app/run/config.c) that a scene
+/* Top-level sections of a run config (sim/run/run.c) that a scene
  * file reader skips; a plain scene file has only `scene:`. */
 static const char *const run_sections[] = {
     "schema_version", "machine", "workload", "run", "sweep", NULL};
