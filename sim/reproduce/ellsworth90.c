@@ -12,7 +12,7 @@
  * structure), each a distribution and a frame, O(n P).
  */
 #include "sim/reproduce/ellsworth90.h"
-#include "sim/run/run.h"
+#include "sim/reproduce/rp_driver.h"
 #include "sim/workload/metrics.h"
 
 enum { MAX_ROWS = 16, MAX_GPS = 16 };
@@ -26,13 +26,11 @@ static SimResult *run_cell(const RpEllRig *rig, const char *db, guint gps,
 {
     char *set[] = {g_strdup_printf("workload.database=%s", db),
                    g_strdup_printf("workload.gps=%u", gps),
-                   g_strdup_printf("workload.algorithm=%s", algo),
-                   g_strdup_printf("run.fidelity=%s", rig->fidelity),
-                   g_strdup_printf("run.seed=%d", (int)RP_SEED), NULL};
-    CfgRun *r = cfg_run_from_tree(cfg_copy(rig->cell),
-                                  (const char *const *)set, err);
-    CfgRunOpts o = {.quiet = TRUE};
-    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+                   g_strdup_printf("workload.algorithm=%s", algo), NULL};
+    RpContext c = {.fidelity = rig->fidelity}; /* the label names none */
+    CfgRun *r = rp_run_build(&c, cfg_copy(rig->cell), NULL,
+                             (const char *const *)set, err);
+    SimResult *res = r ? rp_run_exec(&c, r, NULL, err) : NULL;
     cfg_run_free(r);
     for (guint i = 0; set[i]; i++)
         g_free(set[i]);

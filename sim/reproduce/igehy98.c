@@ -14,7 +14,7 @@
  */
 #include "sim/reproduce/igehy98.h"
 #include "sim/output/plot.h"
-#include "sim/run/run.h"
+#include "sim/reproduce/rp_driver.h"
 #include "sim/workload/metrics.h"
 #include <math.h>
 
@@ -24,17 +24,12 @@ gboolean rp_igehy98_rate(const RpContext *ctx, const char *path,
     GPtrArray *ov = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 0; sets && sets[i]; i++)
         g_ptr_array_add(ov, g_strdup(sets[i]));
-    g_ptr_array_add(ov, g_strdup_printf("run.fidelity=%s", ctx->fidelity));
     g_ptr_array_add(ov, g_strdup("run.frames=1"));
-    g_ptr_array_add(ov, g_strdup_printf("run.seed=%d", (int)RP_SEED));
     g_ptr_array_add(ov, NULL);
-    CfgRun *r = cfg_run_load(path, (const char *const *)ov->pdata, err);
+    CfgRun *r =
+        rp_run_build(ctx, NULL, path, (const char *const *)ov->pdata, err);
     g_ptr_array_free(ov, TRUE);
-    CfgRunOpts o = {.quiet = TRUE};
-    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
-    if (res)
-        rp_note_fidelity(ctx, mach_name(r->machine_built),
-                         mach_fidelity(r->machine_built));
+    SimResult *res = r ? rp_run_exec(ctx, r, NULL, err) : NULL;
     gboolean ok = res && wl_get_metric(res, "frame_hz", hz);
     sim_result_free(res);
     cfg_run_free(r);

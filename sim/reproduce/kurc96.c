@@ -29,7 +29,6 @@
 #include "sim/reproduce/kurc96.h"
 #include "sim/machine/machine.h"
 #include "sim/reproduce/rp_driver.h"
-#include "sim/run/run.h"
 #include "sim/workload/metrics.h"
 #include <math.h>
 
@@ -133,9 +132,7 @@ static GPtrArray *run_overrides(const Kurc *k, const RpKurcSpec *sp,
     g_ptr_array_add(o, g_strdup_printf("workload.processors=%u", sp->procs));
     g_ptr_array_add(o,
                     g_strdup_printf("workload.resolution=%u", sp->resolution));
-    g_ptr_array_add(o, g_strdup_printf("run.seed=%d", RP_SEED));
     g_ptr_array_add(o, g_strdup("run.frames=1"));
-    g_ptr_array_add(o, g_strdup_printf("run.fidelity=%s", k->ctx->fidelity));
     for (int g = 0; scale && g < RP_KURC_GROUPS; g++)
         for (int j = 0; j < 2 && group_ops[g][j] && scale[g] != 1; j++) {
             SimTime t = (SimTime)llround((double)k->cost[g][j] * scale[g]);
@@ -166,7 +163,8 @@ static CfgRun *build(Kurc *k, const RpKurcSpec *sp, const double *scale,
     if (!root)
         return NULL;
     GPtrArray *ov = run_overrides(k, sp, scale);
-    CfgRun *r = cfg_run_from_tree(root, (const char *const *)ov->pdata, err);
+    CfgRun *r =
+        rp_run_build(k->ctx, root, NULL, (const char *const *)ov->pdata, err);
     g_ptr_array_unref(ov);
     return r;
 }
@@ -205,14 +203,10 @@ static gboolean simulate(Kurc *k, const RpKurcSpec *sp, const double *scale,
             return FALSE;
     }
     CfgRun *r = build(k, sp, scale, err);
-    CfgRunOpts o = {.quiet = TRUE};
-    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
+    SimResult *res = r ? rp_run_exec(k->ctx, r, NULL, err) : NULL;
     gboolean ok = res && (scale || read_costs(k, r->machine_built, err));
-    if (ok) {
-        const MachMachine *m = r->machine_built;
-        rp_note_fidelity(k->ctx, mach_name(m), mach_fidelity(m));
-        run_from_result(run, res, m);
-    }
+    if (ok)
+        run_from_result(run, res, r->machine_built);
     sim_result_free(res);
     cfg_run_free(r);
     return ok;

@@ -13,7 +13,7 @@
  * scene.
  */
 #include "sim/reproduce/mueller97.h"
-#include "sim/run/run.h"
+#include "sim/reproduce/rp_driver.h"
 #include "sim/workload/metrics.h"
 #include <math.h>
 #include <string.h>
@@ -177,21 +177,13 @@ static SimResult *run_cell(const RpContext *ctx, const MuSetup *s,
                         bk_names[pt->minset ? MINSET : MAXSET]),
         g_strdup_printf("workload.chunking=%s",
                         rp_mu_chunking_names[pt->chunking]),
-        g_strdup_printf("run.fidelity=%s",
-                        ctx->fidelity ? ctx->fidelity : "analytic"),
-        g_strdup_printf("run.seed=%d", (int)RP_SEED), NULL};
+        NULL};
     CfgNode *tree = cfg_copy(s->cell);
     cfg_merge(tree, s->scene); /* adds its scene: section */
-    CfgRun *r = cfg_run_from_tree(tree, (const char *const *)set, err);
+    CfgRun *r = rp_run_build(ctx, tree, NULL, (const char *const *)set, err);
     for (guint i = 0; set[i]; i++)
         g_free(set[i]);
-    CfgRunOpts o = {.quiet = TRUE, .share = share};
-    SimResult *res = r ? cfg_run_exec(r, &o, err) : NULL;
-    if (res) {
-        const char *model = cfg_scalar(cfg_path(r->root, "machine.model"));
-        rp_note_fidelity(ctx, model ? model : mach_name(r->machine_built),
-                         mach_fidelity(r->machine_built));
-    }
+    SimResult *res = r ? rp_run_exec(ctx, r, share, err) : NULL;
     cfg_run_free(r);
     return res;
 }

@@ -106,6 +106,37 @@ GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
     return out;
 }
 
+CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
+                     const char *const *sets, GError **err)
+{
+    GPtrArray *ov = g_ptr_array_new_with_free_func(g_free);
+    for (guint i = 0; sets && sets[i]; i++)
+        g_ptr_array_add(ov, g_strdup(sets[i]));
+    g_ptr_array_add(ov, g_strdup_printf("run.fidelity=%s",
+                                        ctx->fidelity ? ctx->fidelity
+                                                      : "analytic"));
+    g_ptr_array_add(ov, g_strdup_printf("run.seed=%d", (int)RP_SEED));
+    g_ptr_array_add(ov, NULL);
+    const char *const *all = (const char *const *)ov->pdata;
+    CfgRun *r = tree ? cfg_run_from_tree(tree, all, err)
+                     : cfg_run_load(path, all, err);
+    g_ptr_array_free(ov, TRUE);
+    return r;
+}
+
+SimResult *rp_run_exec(const RpContext *ctx, CfgRun *r, WlShare *share,
+                       GError **err)
+{
+    CfgRunOpts o = {.quiet = TRUE, .share = share};
+    SimResult *res = cfg_run_exec(r, &o, err);
+    if (res) {
+        const char *model = cfg_scalar(cfg_path(r->root, "machine.model"));
+        rp_note_fidelity(ctx, model ? model : mach_name(r->machine_built),
+                         mach_fidelity(r->machine_built));
+    }
+    return res;
+}
+
 void rp_step(const RpContext *ctx, const char *what)
 {
     if (!ctx || !ctx->progress)

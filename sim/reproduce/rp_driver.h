@@ -12,6 +12,7 @@
 #define PGSIM_REPRODUCE_RP_DRIVER_H
 
 #include "sim/reproduce/rp_table.h"
+#include "sim/run/run.h"
 
 #define RP_PAPERS_DIR "configs/papers"
 /* Each machine at the transport its model names (machine.h). */
@@ -32,5 +33,18 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
  * entry of rp_fidelities, array frees them) or NULL with *err set. */
 GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
                                const RpContext *ctx, GError **err);
+
+/* A paper's run through the runner: tree (taken) or, when it is NULL,
+ * the config file `path`, with the paper's overrides `sets`
+ * (NULL-terminated; may be NULL) and then run.fidelity (ctx->fidelity;
+ * "analytic" when it has none) and run.seed=RP_SEED.  A new run
+ * (cfg_run_free), or NULL with *err. */
+CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
+                     const char *const *sets, GError **err);
+/* Executes r quietly with share (may be NULL) and notes the transport of
+ * its machine (rp_note_fidelity: the config's machine.model, else the
+ * model's name).  A new result, or NULL with *err. */
+SimResult *rp_run_exec(const RpContext *ctx, CfgRun *r, WlShare *share,
+                       GError **err);
 
 #endif
