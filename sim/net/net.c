@@ -280,7 +280,7 @@ SimTime net_ideal_time(const NetNet *n, uint32_t src, uint32_t dst,
     }
     SimTime t = latency(&n->par, h, bytes);
     if (h > 0 && bytes > 0)
-        t += sim_time_for_bytes((double)bytes, bw);
+        t = sim_time_add_sat(t, sim_time_for_bytes((double)bytes, bw));
     return t;
 }
 

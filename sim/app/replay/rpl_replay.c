@@ -26,6 +26,8 @@
 #include "sim/app/replay/rpl_simgrid.h"
 #include "sim/app/replay/rpl_target.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
+#include <math.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <string.h>
@@ -341,20 +343,6 @@ static void transferred(SimEngine *eng, void *ctx, void *arg)
     arrived(rp, (uintptr_t)arg, sim_now(eng));
 }
 
-/* A `b` transfer: through the target's shared memory if it has one,
- * else the network, as a message. */
-static void transfer(Replay *rp, const Act *a)
-{
-    RplTarget *t = rp->t;
-    rp->sending++;
-    if (t->has_shm)
-        mach_shmem_send(&t->shm, t->eng, a->proc, a->peer, a->value,
-                        transferred, rp, (void *)(uintptr_t)a->id);
-    else
-        net_send(mach_net(t->m), a->proc, a->peer, a->value,
-                 (void *)(uintptr_t)a->id, delivered, rp);
-}
-
 /* Work or a wait ending at `end` (SIM_TIME_MAX: past the 64-bit clock,
  * saturated) stops the replay with an error at its line, rather than a
  * result that ends at the end of time.  TRUE when it fits. */
@@ -366,9 +354,58 @@ static gboolean fits_clock(Replay *rp, const Act *a, SimTime end)
                          "%s:%u:1: found %s ending past the simulated clock's "
                          "end (%.0f s), expected actions that end within it",
                          rpl_reader_path(rp->r), a->line,
-                         a->type == RPL_REFRESH ? "a refresh wait" : "work",
+                         a->type == RPL_REFRESH ? "a refresh wait"
+                         : a->type == RPL_SEND || a->type == RPL_BUS
+                             ? "a message"
+                             : "work",
                          sim_time_to_s(SIM_TIME_MAX)));
     return FALSE;
+}
+
+/* A message over the network: its contention-free time from now must fit
+ * the clock (a send of 2^64 - 1 bytes would otherwise stop the engine
+ * with an unlocated overflow). */
+static gboolean send_fits(Replay *rp, const Act *a)
+{
+    NetNet *net = mach_net(rp->t->m);
+    SimTime d = net_ideal_time(net, a->proc, a->peer, a->value);
+    if (!fits_clock(rp, a, sim_time_add_sat(sim_now(rp->t->eng), d)))
+        return FALSE;
+    const NetParams *par = net_params(net);
+    gboolean packets = net_fidelity(net) == NET_PACKET &&
+                       par->packet_bytes > 0 &&
+                       (par->switching == NET_SW_CUT_THROUGH ||
+                        par->switching == NET_SW_STORE_FORWARD);
+    if (!packets)
+        return TRUE;
+    /* the packet transport holds a message's packets at once (assumption:
+     * 64 bytes each, sim/net/packet.c's NetPkt) */
+    double n = ceil((double)a->value / par->packet_bytes);
+    char *where = g_strdup_printf("%s:%u:1", rpl_reader_path(rp->r), a->line);
+    char *what = g_strdup_printf("a message of %.0f packets", n);
+    GError *e = NULL;
+    gboolean ok = sim_mem_check(n * 64.0, where, what, &e);
+    if (!ok)
+        stop(rp, e);
+    g_free(what);
+    g_free(where);
+    return ok;
+}
+
+/* A `b` transfer: through the target's shared memory if it has one,
+ * else the network, as a message. */
+static void transfer(Replay *rp, const Act *a)
+{
+    RplTarget *t = rp->t;
+    if (!t->has_shm && !send_fits(rp, a))
+        return;
+    rp->sending++;
+    if (t->has_shm)
+        mach_shmem_send(&t->shm, t->eng, a->proc, a->peer, a->value,
+                        transferred, rp, (void *)(uintptr_t)a->id);
+    else
+        net_send(mach_net(t->m), a->proc, a->peer, a->value,
+                 (void *)(uintptr_t)a->id, delivered, rp);
 }
 
 /* A `v` wait: done at the next refresh; a `swap` ends its frame then. */
@@ -394,6 +431,8 @@ static void issue(Replay *rp, const Act *a)
     Flight *f = a->handled || a->joined ? flight_for(rp, a->id) : NULL;
     rp->actions++;
     if (a->type == RPL_SEND) {
+        if (!send_fits(rp, a))
+            return;
         rp->sending++;
         net_send(mach_net(m), a->proc, a->peer, a->value,
                  (void *)(uintptr_t)a->id, delivered, rp);

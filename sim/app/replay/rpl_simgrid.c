@@ -263,6 +263,27 @@ static gboolean all_complete(const SgRank *r)
     return TRUE;
 }
 
+/* Work or a sleep of d from `from` ends within the 64-bit clock; else
+ * the run stops with an error located at the action's argument (a
+ * saturated end would report the end of time as a result). */
+static gboolean fits_clock(Sg *sg, const SgAct *a, SimTime from, SimTime d)
+{
+    SimTime end;
+    from = MAX(from, sim_now(sg->t->eng));
+    if (d < SIM_TIME_MAX && sim_time_add(from, d, &end))
+        return TRUE;
+    fail(sg, g_error_new(SIM_ERROR, SIM_ERROR_INPUT,
+                         "%s:%u:%d: found %s ending past the simulated clock's "
+                         "end (%.0f s) at %.6g s, expected work and sleeps "
+                         "that end within it",
+                         rpl_lines_path(sg->l), a->line, a->arg_col,
+                         a->type == SG_SLEEP     ? "a sleep"
+                         : a->type == SG_COMPUTE ? "a compute"
+                                                 : "a reduction's compute",
+                         sim_time_to_s(SIM_TIME_MAX), sim_time_to_s(from)));
+    return FALSE;
+}
+
 static void coll_done(NetNet *net, void *ctx)
 {
     (void)net;
@@ -272,10 +293,13 @@ static void coll_done(NetNet *net, void *ctx)
     sg->entered = 0;
     for (guint i = 0; i < sg->n; i++) {
         SgRank *r = &sg->ranks[i];
-        if (comp && flops > 0)
-            mach_proc_compute(proc_of(sg, r), flops_cost(sg, r, flops), 0, resume,
-                              sg, r);
-        else
+        if (comp && flops > 0) {
+            SimTime d = flops_cost(sg, r, flops);
+            if (!fits_clock(sg, &sg->coll, mach_proc_free_at(proc_of(sg, r)),
+                            d))
+                return;
+            mach_proc_compute(proc_of(sg, r), d, 0, resume, sg, r);
+        } else
             step(sg, r);
     }
 }
@@ -316,25 +340,6 @@ static void coll_enter(Sg *sg, SgRank *r, const SgAct *a)
     }
     if (++sg->entered == sg->n)
         coll_start(sg, r);
-}
-
-/* Work or a sleep of d from `from` ends within the 64-bit clock; else
- * the run stops with an error located at the action's argument (a
- * saturated end would report the end of time as a result). */
-static gboolean fits_clock(Sg *sg, const SgAct *a, SimTime from, SimTime d)
-{
-    SimTime end;
-    from = MAX(from, sim_now(sg->t->eng));
-    if (d < SIM_TIME_MAX && sim_time_add(from, d, &end))
-        return TRUE;
-    fail(sg, g_error_new(SIM_ERROR, SIM_ERROR_INPUT,
-                         "%s:%u:%d: found %s ending past the simulated clock's "
-                         "end (%.0f s) at %.6g s, expected work and sleeps "
-                         "that end within it",
-                         rpl_lines_path(sg->l), a->line, a->arg_col,
-                         a->type == SG_SLEEP ? "a sleep" : "a compute",
-                         sim_time_to_s(SIM_TIME_MAX), sim_time_to_s(from)));
-    return FALSE;
 }
 
 /* Runs action a of rank r; TRUE when r must wait. */
