@@ -32,6 +32,11 @@ typedef struct {
     guint msgs; /* end marker: batches this GP sent to the renderer */
 } Msg;
 
+/* A renderer's request for a GP's bin of a region (dynamic regions). */
+typedef struct {
+    guint gp, region;
+} Req;
+
 typedef struct WlPphigsFrame WlPphigsFrame;
 
 typedef struct {
@@ -41,6 +46,7 @@ typedef struct {
     GArray *steps; /* Step */
     guint next;
     GArray **buf;   /* per region: commands buffered (NULL: none) */
+    GArray **held;  /* per region: batches kept until it is handed out */
     guint *sent;    /* per renderer: batches sent */
     uint64_t edits; /* elements the host sends before this frame */
 } Gp;
@@ -49,10 +55,7 @@ typedef struct {
     WlPphigsFrame *f;
     guint id;
     MachProc *p;
-    guint nreg;     /* its regions: id, id + R, id + 2R ... */
-    guint cur;      /* local index of the region being rasterised */
-    GArray **pending; /* per local region: commands not yet rasterised */
-    WlPphigsRegion **reg; /* per local region: its pixels once begun */
+    guint cur;      /* the region being rasterised (NONE: none) */
     guint *got, *expect; /* per GP: batches received / announced */
     guint gps_done;
 } Rend;
@@ -67,6 +70,10 @@ struct WlPphigsFrame {
     guint ngp, nrend, nx, ny, nregions;
     Gp *gp;
     Rend *rend;
+    GArray **pending;     /* per region: commands not yet rasterised */
+    WlPphigsRegion **reg; /* per region: its pixels once begun */
+    guint *owner;         /* per region: its renderer (NONE: not yet) */
+    guint next_region;    /* dynamic: the next region to hand out */
     MachProc *fb, *host;
     guint stored;
     SimTime start, end;
@@ -165,8 +172,6 @@ static void plan_step(Plan *pl, guint region, GArray *cmds)
     g_array_append_val(pl->g->steps, st);
     pl->trav.n = pl->xform.n = 0;
     pl->send = 0;
-    if (region != NONE)
-        pl->g->sent[region % pl->f->nrend]++;
 }
 
 static void plan_command(Plan *pl, guint region, const WlPphigsCmd *c)
@@ -260,14 +265,16 @@ static guint region_bytes(const WlPphigsFrame *f, guint k)
     return w * h * f->s.pixel_bytes;
 }
 
+static void rend_take(Rend *r);
+
 static void rend_region_done(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     Rend *r = ctx;
     WlPphigsFrame *f = r->f;
-    guint j = GPOINTER_TO_UINT(arg), k = j * f->nrend + r->id;
-    WlPphigsRegion *pixels = r->reg[j];
-    r->reg[j] = NULL;
+    guint k = GPOINTER_TO_UINT(arg);
+    WlPphigsRegion *pixels = f->reg[k];
+    f->reg[k] = NULL;
     net_send(f->net, mach_proc_id(r->p), mach_proc_id(f->fb),
              region_bytes(f, k), pixels, fb_arrive, f);
 }
@@ -279,24 +286,24 @@ static WlPphigsRegion *region_pixels(const WlPphigsFrame *f, guint k)
                                 (int)MIN(R, f->s.height - y), 0xff000000u);
 }
 
-/* Every pixel of the region evaluates each pending command's
+/* Every pixel of region k evaluates each pending command's
  * expressions: the renderer's time is the expressions it evaluated and
  * one compare-and-store per command. */
-static void rend_raster(Rend *r, guint j)
+static void rend_raster(Rend *r, guint k)
 {
     WlPphigsFrame *f = r->f;
-    if (!r->reg[j]) {
-        r->reg[j] = region_pixels(f, j * f->nrend + r->id);
+    if (!f->reg[k]) {
+        f->reg[k] = region_pixels(f, k);
         static const MachOp begin = {"region_begin", 1};
         mach_proc_compute_ops(r->p, &begin, 1, f->ph_rast, NULL, NULL, NULL);
     }
-    GArray *cmds = r->pending[j];
+    GArray *cmds = f->pending[k];
     if (!cmds || !cmds->len)
         return;
     uint64_t exprs = 0;
     for (guint i = 0; i < cmds->len; i++) {
         const WlPphigsCmd *c = &g_array_index(cmds, WlPphigsCmd, i);
-        wl_pphigs_region_draw(r->reg[j], c);
+        wl_pphigs_region_draw(f->reg[k], c);
         exprs += wl_pphigs_cmd_exprs(c);
     }
     f->exprs += exprs;
@@ -305,16 +312,50 @@ static void rend_raster(Rend *r, guint j)
     g_array_set_size(cmds, 0);
 }
 
-/* Every GP is done with this renderer: complete its regions in order. */
+static void rend_shade(Rend *r, guint k)
+{
+    static const MachOp shade = {"region_shade", 1};
+    mach_proc_compute_ops(r->p, &shade, 1, r->f->ph_shade, rend_region_done,
+                          r, GUINT_TO_POINTER(k));
+}
+
+/* Dynamic: region k is rasterised; the renderer asks for its next
+ * region, whose commands travel while it shades this one. */
+static void rend_rasterised(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    Rend *r = ctx;
+    rend_shade(r, GPOINTER_TO_UINT(arg));
+    rend_take(r);
+}
+
+static void rend_complete(Rend *r, guint k)
+{
+    rend_raster(r, k);
+    if (r->f->s.dynamic_regions)
+        mach_proc_compute(r->p, 0, r->f->ph_shade, rend_rasterised, r,
+                          GUINT_TO_POINTER(k));
+    else
+        rend_shade(r, k);
+}
+
+/* Every GP is done with this renderer's region(s): static, complete its
+ * regions in order (id, id + R ...); dynamic, complete the one it holds
+ * (rend_region_done then takes the next), or take one if it has none. */
 static void rend_finish(Rend *r)
 {
     WlPphigsFrame *f = r->f;
-    for (; r->cur < r->nreg; r->cur++) {
-        rend_raster(r, r->cur);
-        static const MachOp shade = {"region_shade", 1};
-        mach_proc_compute_ops(r->p, &shade, 1, f->ph_shade, rend_region_done,
-                              r, GUINT_TO_POINTER(r->cur));
+    guint k = r->cur;
+    r->cur = NONE;
+    if (f->s.dynamic_regions) {
+        if (k == NONE)
+            rend_take(r);
+        else
+            rend_complete(r, k);
+        return;
     }
+    for (; k < f->nregions; k += f->nrend)
+        rend_complete(r, k);
 }
 
 static void rend_check_gp(Rend *r, guint g)
@@ -323,26 +364,78 @@ static void rend_check_gp(Rend *r, guint g)
         rend_finish(r);
 }
 
+/* A batch, a GP's end marker, or (dynamic) a GP's bin of a region. */
 static void rend_arrive(NetNet *net, const NetDelivery *d, void *ctx)
 {
     (void)net;
     WlPphigsFrame *f = ctx;
     Msg *m = d->payload;
     Rend *r = &f->rend[d->dst - mach_proc_id(f->rend[0].p)];
-    if (m->end) {
-        r->expect[m->gp] = m->msgs;
-    } else {
-        guint j = m->region / f->nrend;
-        if (!r->pending[j])
-            r->pending[j] = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
-        g_array_append_vals(r->pending[j], m->cmds->data, m->cmds->len);
+    if (m->cmds) {
+        guint k = m->region;
+        if (!f->pending[k])
+            f->pending[k] = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+        g_array_append_vals(f->pending[k], m->cmds->data, m->cmds->len);
         g_array_unref(m->cmds);
         r->got[m->gp]++;
-        if (j == r->cur)
-            rend_raster(r, j);
+        if (k == r->cur)
+            rend_raster(r, k);
     }
+    if (m->end)
+        r->expect[m->gp] = m->msgs;
     rend_check_gp(r, m->gp);
     g_free(m);
+}
+
+/* ---- dynamic regions (Fuchs 89: renderers "can be independently
+ * reassigned to any part of the screen") ---------------------------------
+ *
+ * At the frame's start renderer r holds region r; the GPs send batches
+ * of held regions as they fill and keep the others' in bins.  Regions
+ * are handed out only once every GP has finished (a renderer's first
+ * region completes after every GP's end marker), so a renderer that has
+ * shaded its region takes the next one in row-major order and asks each
+ * GP for its bin (a ring message of end_bytes); each GP answers with one
+ * message: its bin's commands (end_bytes when empty). */
+
+static void gp_bin_request(NetNet *net, const NetDelivery *d, void *ctx)
+{
+    (void)net;
+    WlPphigsFrame *f = ctx;
+    Req *q = d->payload;
+    Gp *g = &f->gp[q->gp];
+    Msg *m = g_new0(Msg, 1);
+    m->gp = q->gp;
+    m->region = q->region;
+    m->cmds = g->held[q->region];
+    g->held[q->region] = NULL;
+    m->end = TRUE;
+    m->msgs = m->cmds ? 1 : 0;
+    uint64_t bytes = m->cmds ? (uint64_t)m->cmds->len * f->s.cmd_bytes
+                             : f->s.end_bytes;
+    net_send(f->net, mach_proc_id(g->p),
+             mach_proc_id(f->rend[f->owner[q->region]].p), bytes, m,
+             rend_arrive, f);
+    g_free(q);
+}
+
+static void rend_take(Rend *r)
+{
+    WlPphigsFrame *f = r->f;
+    if (f->next_region >= f->nregions)
+        return;
+    guint k = f->next_region++;
+    f->owner[k] = r->id;
+    r->cur = k;
+    r->gps_done = 0;
+    memset(r->got, 0, f->ngp * sizeof *r->got);
+    for (guint g = 0; g < f->ngp; g++) {
+        r->expect[g] = NONE;
+        Req *q = g_new(Req, 1);
+        *q = (Req){g, k};
+        net_send(f->net, mach_proc_id(r->p), mach_proc_id(f->gp[g].p),
+                 f->s.end_bytes, q, gp_bin_request, f);
+    }
 }
 
 /* ---- GPs -------------------------------------------------------------- */
@@ -359,6 +452,27 @@ static void gp_send_ends(WlPphigsFrame *f, Gp *g)
     }
 }
 
+/* A full (or last) buffer of region k: to its renderer, or into the
+ * region's bin while no renderer holds it (dynamic regions). */
+static void gp_batch(WlPphigsFrame *f, Gp *g, guint k, GArray *cmds)
+{
+    guint to = f->owner[k];
+    if (to == NONE) {
+        if (!g->held[k])
+            g->held[k] = g_array_new(FALSE, FALSE, sizeof(WlPphigsCmd));
+        g_array_append_vals(g->held[k], cmds->data, cmds->len);
+        g_array_unref(cmds);
+        return;
+    }
+    Msg *m = g_new0(Msg, 1);
+    m->gp = g->id;
+    m->region = k;
+    m->cmds = cmds;
+    g->sent[to]++;
+    net_send(f->net, mach_proc_id(g->p), mach_proc_id(f->rend[to].p),
+             (uint64_t)cmds->len * f->s.cmd_bytes, m, rend_arrive, f);
+}
+
 static void gp_next(Gp *g);
 
 static void gp_step_done(SimEngine *eng, void *ctx, void *arg)
@@ -366,17 +480,9 @@ static void gp_step_done(SimEngine *eng, void *ctx, void *arg)
     (void)eng;
     (void)arg;
     Gp *g = ctx;
-    WlPphigsFrame *f = g->f;
     const Step *st = &g_array_index(g->steps, Step, g->next);
-    if (st->region != NONE) {
-        Msg *m = g_new0(Msg, 1);
-        m->gp = g->id;
-        m->region = st->region;
-        m->cmds = st->cmds;
-        net_send(f->net, mach_proc_id(g->p),
-                 mach_proc_id(f->rend[st->region % f->nrend].p),
-                 (uint64_t)st->cmds->len * f->s.cmd_bytes, m, rend_arrive, f);
-    }
+    if (st->region != NONE)
+        gp_batch(g->f, g, st->region, st->cmds);
     g->next++;
     gp_next(g);
 }
@@ -458,10 +564,6 @@ static void rend_init(WlPphigsFrame *f, Rend *r, guint id)
     r->f = f;
     r->id = id;
     r->p = mach_proc(f->m, "renderer", id);
-    r->nreg =
-        f->nregions > id ? (f->nregions - id + f->nrend - 1) / f->nrend : 0;
-    r->pending = g_new0(GArray *, MAX(r->nreg, 1));
-    r->reg = g_new0(WlPphigsRegion *, MAX(r->nreg, 1));
     r->got = g_new0(guint, f->ngp);
     r->expect = g_new0(guint, f->ngp);
 }
@@ -473,6 +575,7 @@ static void gp_init(WlPphigsFrame *f, Gp *g, guint id)
     g->p = mach_proc(f->m, "gp", id);
     g->steps = g_array_new(FALSE, FALSE, sizeof(Step));
     g->buf = g_new0(GArray *, f->nregions);
+    g->held = g_new0(GArray *, f->nregions);
     g->sent = g_new0(guint, f->nrend);
 }
 
@@ -521,6 +624,9 @@ WlPphigsFrame *wl_pphigs_frame_new(MachMachine *m,
     f->host = mach_proc(m, "host", 0);
     f->gp_us = g_new0(double, f->ngp);
     f->busy0 = g_new0(SimTime, f->ngp);
+    f->pending = g_new0(GArray *, f->nregions);
+    f->reg = g_new0(WlPphigsRegion *, f->nregions);
+    f->owner = g_new0(guint, f->nregions);
     f->gp = g_new0(Gp, f->ngp);
     for (guint g = 0; g < f->ngp; g++)
         gp_init(f, &f->gp[g], g);
@@ -536,21 +642,25 @@ void wl_pphigs_frame_free(WlPphigsFrame *f)
         return;
     for (guint g = 0; g < f->ngp; g++) {
         g_array_unref(f->gp[g].steps);
+        for (guint k = 0; k < f->nregions; k++)
+            if (f->gp[g].held[k])
+                g_array_unref(f->gp[g].held[k]);
         g_free(f->gp[g].buf);
+        g_free(f->gp[g].held);
         g_free(f->gp[g].sent);
     }
-    for (guint r = 0; r < f->nrend; r++) {
-        Rend *x = &f->rend[r];
-        for (guint j = 0; j < MAX(x->nreg, 1); j++) {
-            if (x->pending[j])
-                g_array_unref(x->pending[j]);
-            wl_pphigs_region_free(x->reg[j]);
-        }
-        g_free(x->pending);
-        g_free(x->reg);
-        g_free(x->got);
-        g_free(x->expect);
+    for (guint k = 0; k < f->nregions; k++) {
+        if (f->pending[k])
+            g_array_unref(f->pending[k]);
+        wl_pphigs_region_free(f->reg[k]);
     }
+    for (guint r = 0; r < f->nrend; r++) {
+        g_free(f->rend[r].got);
+        g_free(f->rend[r].expect);
+    }
+    g_free(f->pending);
+    g_free(f->reg);
+    g_free(f->owner);
     g_free(f->gp);
     g_free(f->rend);
     g_free(f->gp_us);
@@ -584,11 +694,17 @@ static SimTime gp_busy(const WlPphigsFrame *f, guint g)
            mach_proc_busy_phase(p, f->ph_xform);
 }
 
+/* Static: region k is renderer k mod R's; dynamic: renderer r holds
+ * region r, the rest wait to be handed out (rend_take). */
 static void frame_reset(WlPphigsFrame *f)
 {
+    gboolean dyn = f->s.dynamic_regions;
+    for (guint k = 0; k < f->nregions; k++)
+        f->owner[k] = dyn && k >= f->nrend ? NONE : k % f->nrend;
+    f->next_region = MIN(f->nrend, f->nregions);
     for (guint r = 0; r < f->nrend; r++) {
         Rend *x = &f->rend[r];
-        x->cur = 0;
+        x->cur = r < f->nregions ? r : NONE;
         x->gps_done = 0;
         memset(x->got, 0, f->ngp * sizeof *x->got);
         for (guint g = 0; g < f->ngp; g++)
@@ -642,4 +758,15 @@ void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,
         rs += (double)mach_proc_busy(f->rend[i].p) / e;
     *gp_util = gs / f->ngp;
     *rend_util = rs / f->nrend;
+}
+
+void wl_pphigs_frame_rend_range(const WlPphigsFrame *f, SimTime elapsed,
+                                double *lo, double *hi)
+{
+    double e = (double)MAX(elapsed, 1);
+    *lo = 1e300, *hi = 0;
+    for (guint i = 0; i < f->nrend; i++) {
+        double u = (double)mach_proc_busy(f->rend[i].p) / e;
+        *lo = MIN(*lo, u), *hi = MAX(*hi, u);
+    }
 }

@@ -9,8 +9,14 @@
  * The machine (sim/machine/machine.h) supplies everything hardware: its
  * `gp`, `renderer` and `frame_buffer` processors (FIFO, busy time per
  * phase), their cost tables, and the ring (mach_net(), at the run's
- * fidelity; stations are processor ids).  Region k (row-major over the
- * screen) belongs to renderer k mod R.
+ * fidelity; stations are processor ids).  Regions are row-major over
+ * the screen.  Static assignment: region k belongs to renderer k mod R.
+ * Dynamic (spec.dynamic_regions): renderer r starts with region r; the
+ * GPs keep the other regions' batches in bins; once every GP has ended,
+ * a renderer that has rasterised its region takes the next one and asks
+ * every GP for its bin (end_bytes each way at least), the request and
+ * the bins travelling while it shades (seed 001 §1.1; fuchs89: renderers
+ * "can be independently reassigned to any part of the screen").
  *
  *   GP g      phase "traverse": its attributes and executes (the max-set
  *             walk), then its primitives in traversal order, phase
@@ -24,7 +30,8 @@
  *             expression evaluated, `compare` per command, `region_begin`
  *             when a region is begun; phase "rasterise"); batches for its other regions
  *             wait.  When every GP has finished with it, it completes its
- *             regions in order: begin, rasterise, `region_shade` (phase
+ *             regions in order (static) or its one region (dynamic, then
+ *             takes the next): begin, rasterise, `region_shade` (phase
  *             "shade"), send the pixels to the frame buffer.
  *   frame buf `store_region` per region (phase "store"), copying the
  *             region's pixels into the frame; the frame ends with the
@@ -58,6 +65,9 @@ typedef struct {
     guint width, height; /* screen, pixels */
     guint region;        /* region side, pixels (128 on Pixel-Planes 5) */
     guint element_bytes; /* one display-list element, host to GP */
+    gboolean dynamic_regions; /* TRUE: a renderer takes the next region
+                                 when it finishes one; FALSE: region k is
+                                 renderer k mod R's (frame.c) */
 } WlPphigsFrameSpec;
 
 typedef struct WlPphigsFrame WlPphigsFrame;
@@ -112,6 +122,11 @@ void wl_pphigs_frame_host_scan(WlPphigsFrame *f, uint64_t elements);
  * renderers. */
 void wl_pphigs_frame_util(const WlPphigsFrame *f, SimTime elapsed,
                           double *gp_util, double *rend_util);
+
+/* The least and the most busy / elapsed over the renderers (the
+ * renderers' balance, region_assignment). */
+void wl_pphigs_frame_rend_range(const WlPphigsFrame *f, SimTime elapsed,
+                                double *lo, double *hi);
 
 /* The frame buffer's image after the last frame run (the regions the
  * renderers drew and sent over the ring).  Borrowed. */

@@ -19,6 +19,12 @@
  *   edits_per_frame: matrix modifies per frame (default 0)
  *   edit_angle_deg: rotation each edit applies (default 0)
  *   rebalance: {enabled, threshold, frames, fraction, max_moves}
+ *   region_assignment: dynamic | static (default dynamic: a renderer
+ *                      takes the next 128x128 region when it finishes
+ *                      one, as Pixel-Planes 5's renderers "can be
+ *                      independently reassigned to any part of the
+ *                      screen", fuchs89 abstract; static: region k is
+ *                      renderer k mod R's; pphigs_frame.h)
  *   attr_cache_every: §3.4's attribute states saved every N dealt
  *                     elements of a structure (complex; default 0: no
  *                     cache, the step back stops only as §3.5 says)
@@ -59,6 +65,7 @@ static const char *const edit_names[ED_N] = {"modify", "append", "insert",
 
 typedef struct {
     int algo;
+    int regions; /* 0: dynamic, 1: static (region_assignment) */
     int64_t gps; /* 0: the machine's count */
     ScenePphigsSpec spec;
     SceneDb *file_db; /* workload.database as a file (owned), else NULL */
@@ -193,12 +200,15 @@ static void *parse(const CfgNode *sec, GError **err)
 {
     static const char *const algos[] = {"simple", "complex", "by_structure",
                                         NULL};
+    static const char *const assign[] = {"dynamic", "static", NULL};
     Params *p = g_new0(Params, 1);
     p->algo = WL_PPHIGS_COMPLEX;
     p->rebalance = TRUE;
     p->rb = (WlPphigsRebalParams){0.10, 3, 0.5, 16, 1};
     gboolean ok = cfg_get_enum(sec, "algorithm", FALSE, algos, &p->algo, err) &&
                   cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
+                  cfg_get_enum(sec, "region_assignment", FALSE, assign,
+                               &p->regions, err) &&
                   parse_edits(sec, p, err) &&
                   cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                                  &p->edit_angle, err) &&
@@ -292,7 +302,9 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
     r->m = ctx->machine;
     if (!check_gps(ctx, cfg_get(ctx->root, "machine"), r->p->gps, err))
         return FALSE;
-    r->frame = wl_pphigs_frame_new(r->m, &r->p->setup.frame, err);
+    WlPphigsFrameSpec fs = r->p->setup.frame;
+    fs.dynamic_regions = r->p->regions == 0;
+    r->frame = wl_pphigs_frame_new(r->m, &fs, err);
     if (!r->frame || !make_db(r, err))
         return FALSE;
     r->ngp = wl_pphigs_frame_gps(r->frame);
@@ -582,6 +594,10 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "image_matches_serial", r->image_ok, "");
     fill_edits(r, ctx, out);
     fill_db(r, out);
+    double rlo, rhi;
+    wl_pphigs_frame_rend_range(r->frame, now, &rlo, &rhi);
+    sim_result_set_metric(out, "renderer_util_min_pct", 100 * rlo, "%");
+    sim_result_set_metric(out, "renderer_util_max_pct", 100 * rhi, "%");
 }
 
 /* The last frame against a serial render of the host's list. */
@@ -656,6 +672,8 @@ static const WlMetric pphigs_metrics[] = {
     {"db_attributes", "", "attribute instances of the database (max-set)"},
     {"db_offscreen_pct", "%",
      "share of the database's polygons wholly outside the view"},
+    {"renderer_util_min_pct", "%", "busy / simulated time, least renderer"},
+    {"renderer_util_max_pct", "%", "busy / simulated time, busiest renderer"},
     {NULL, NULL, NULL},
 };
 

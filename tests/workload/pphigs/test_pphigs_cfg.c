@@ -198,7 +198,8 @@ static void run_flock(const char *const *sets, Out *o)
         fail_msg("%s", err->message);
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
-    assert_int_equal(r->metrics->len, 21); /* 16 + the database's 5 */
+    /* 16 + the database's 5 + the renderers' range 2 */
+    assert_int_equal(r->metrics->len, 23);
     assert_true(((SimMetric *)g_ptr_array_index(r->metrics, 14))->value == 1);
     for (guint i = 0; i < 15; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
