@@ -6,6 +6,7 @@
  * pass, which is negligible next to the simulation.  O(rows + cells).
  */
 #include "sim/reproduce/rp_driver.h"
+#include "sim/reproduce/rp_labels.h"
 #include "sim/output/provenance.h"
 #include <string.h>
 
@@ -51,6 +52,23 @@ static void note_setup(RpTable *t, const char *setup, const char *name)
     cfg_free(root);
 }
 
+/* Labels t from <dir>/<name>/labels.yaml when the paper has one. */
+static gboolean apply_labels(RpTable *t, const char *dir, const char *name,
+                      GError **err)
+{
+    char *path = rp_paper_file(dir, name, RP_LABELS_FILE);
+    gboolean ok = TRUE;
+    if (g_file_test(path, G_FILE_TEST_EXISTS)) {
+        RpLabels *l = rp_labels_load(path, err);
+        ok = l != NULL;
+        if (l)
+            rp_labels_apply(l, t);
+        rp_labels_free(l);
+    }
+    g_free(path);
+    return ok;
+}
+
 RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
                   const RpContext *ctx, GError **err)
 {
@@ -77,6 +95,11 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
     RpTable *t = ok ? rp_table_join(paper, rows, label, wall) : NULL;
     if (t)
         note_setup(t, c.setup, ctx->setup ? ctx->setup : setup_name);
+    if (t && !apply_labels(t, dir, rp->name, err)) {
+        rp_table_free(t);
+        t = NULL;
+        ok = TRUE; /* the error is the labels file's, unprefixed */
+    }
     g_free(label);
     g_string_free(used, TRUE);
     if (!ok)

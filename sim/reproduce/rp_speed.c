@@ -81,10 +81,10 @@ void rp_speed_csv(const GPtrArray *passes, gboolean header, GString *out)
         const RpTable *t = g_ptr_array_index(passes, p);
         SimProvenance pv = rp_table_provenance(t);
         prov_comment_lines(out, &pv);
-        if (header && p == 0)
-            g_string_append(out, "paper,table,row,column,sim,published,"
-                                 "rel_error,fidelity,wall_s,"
-                                 "rel_error_vs_packet\n");
+        if (header && p == 0) {
+            rp_table_csv_head(t, out);
+            g_string_append(out, ",fidelity,wall_s,rel_error_vs_packet\n");
+        }
         GString *one = g_string_new(NULL);
         rp_table_csv_rows(t, one);
         char **lines = g_strsplit(one->str, "\n", -1);

@@ -18,6 +18,7 @@ static void joined_free(gpointer p)
     g_free(j->column);
     g_free(j->unit);
     g_free(j->note);
+    g_free(j->fitted_by);
     g_free(j);
 }
 
@@ -50,6 +51,7 @@ static RpJoined *joined_new(const char *t, const char *r, const char *c)
     j->row = g_strdup(r);
     j->column = g_strdup(c);
     j->sim = j->published = j->rel_error = NAN;
+    j->loo_sim = j->loo_rel_error = j->lo = j->hi = NAN;
     j->unit = g_strdup("");
     return j;
 }
@@ -159,6 +161,7 @@ enum {
     COL_PUB,
     COL_SIM,
     COL_ERR,
+    COL_LABEL,
     COL_NOTE,
     N_COLS
 };
@@ -197,13 +200,18 @@ static char **text_fields(const RpJoined *j)
     f[COL_PUB] = g_strdup(pub);
     f[COL_SIM] = g_strdup(sim);
     f[COL_ERR] = g_strdup(err);
+    f[COL_LABEL] = rp_label_text(j);
     f[COL_NOTE] = note;
     return f;
 }
 
-static void text_line(GString *out, char *const *f, const int *w)
+/* One line; the label column only when `labels`. */
+static void text_line(GString *out, char *const *f, const int *w,
+                      gboolean labels)
 {
     for (int c = 0; c < N_COLS; c++) {
+        if (c == COL_LABEL && !labels)
+            continue;
         gboolean right = c == COL_PUB || c == COL_SIM || c == COL_ERR;
         int pad = w[c] - (int)g_utf8_strlen(f[c], -1);
         if (c == COL_NOTE) {
@@ -220,8 +228,60 @@ static void text_line(GString *out, char *const *f, const int *w)
     g_string_append_c(out, '\n');
 }
 
+/* " (table T, R, C)", with ", left out" when `oos` and cross-validated. */
+static void where(GString *out, const RpTable *t, int i, gboolean oos)
+{
+    const RpJoined *w = g_ptr_array_index(t->cells, i);
+    gboolean left = oos && w->label == RP_LABEL_CV;
+    g_string_append_printf(out, " (table %s, %s, %s%s)", w->table, w->row,
+                           w->column, left ? ", left out" : "");
+}
+
+/* The labelled headline: out of sample, in sample, intervals, joined
+ * by sep. */
+static void headline(const RpTable *t, const char *sep, GString *out)
+{
+    if (t->oos_n) {
+        g_string_append_printf(out,
+                               "out-of-sample mean |rel_error| %.1f%% over %u "
+                               "cells (%u cross-validated, %u predicted), "
+                               "worst %.1f%%",
+                               100.0 * t->oos_mean, t->oos_n, t->oos_cv,
+                               t->oos_n - t->oos_cv, 100.0 * t->oos_worst);
+        where(out, t, t->oos_worst_i, TRUE);
+    } else {
+        g_string_append(out, "out-of-sample: no visible cell is predicted or "
+                             "cross-validated");
+    }
+    g_string_append(out, sep);
+    if (t->ins_n) {
+        g_string_append_printf(out,
+                               "in-sample (fitted cells) mean |rel_error| "
+                               "%.1f%% over %u cells, worst %.1f%%",
+                               100.0 * t->ins_mean, t->ins_n,
+                               100.0 * t->ins_worst);
+        where(out, t, t->ins_worst_i, FALSE);
+    } else {
+        g_string_append(out, "in-sample: no visible cell was fitted");
+    }
+    g_string_append(out, sep);
+    if (isfinite(t->loo_min))
+        g_string_append_printf(out,
+                               "%u of %u visible cells inside their own "
+                               "leave-one-out interval (leave-one-out errors "
+                               "%+.1f%% to %+.1f%% over %u cells)",
+                               t->inside, t->inside_of, 100.0 * t->loo_min,
+                               100.0 * t->loo_max, t->loo_n);
+    else
+        g_string_append(out, "no leave-one-out values: no intervals");
+}
+
 void rp_table_summary(const RpTable *t, GString *out)
 {
+    if (t->labelled) {
+        headline(t, "; ", out);
+        return;
+    }
     if (!t->compared) {
         g_string_append(out, "no cell compared with a published value");
         return;
@@ -243,7 +303,7 @@ SimProvenance rp_table_provenance(const RpTable *t)
 void rp_table_text(const RpTable *t, GString *out)
 {
     static char *const head[] = {"table", "row",   "column", "published",
-                                 "sim",   "error", "note",   NULL};
+                                 "sim",   "error", "label",  "note", NULL};
     GPtrArray *lines =
         g_ptr_array_new_with_free_func((GDestroyNotify)g_strfreev);
     int w[N_COLS];
@@ -260,24 +320,46 @@ void rp_table_text(const RpTable *t, GString *out)
     SimProvenance p = rp_table_provenance(t);
     prov_text_line(out, &p);
     g_string_append_c(out, '\n');
-    text_line(out, head, w);
+    text_line(out, head, w, t->labelled);
     for (guint i = 0; i < lines->len; i++)
-        text_line(out, g_ptr_array_index(lines, i), w);
-    rp_table_summary(t, out);
+        text_line(out, g_ptr_array_index(lines, i), w, t->labelled);
+    if (t->labelled)
+        headline(t, "\n", out);
+    else
+        rp_table_summary(t, out);
     g_string_append_c(out, '\n');
     g_ptr_array_free(lines, TRUE);
 }
 
 /* ---- CSV and JSON ---------------------------------------------------- */
 
+void rp_table_csv_head(const RpTable *t, GString *out)
+{
+    g_string_append(out, "paper,table,row,column,sim,published,rel_error");
+    if (t->labelled)
+        g_string_append(out, ",label,fitted_by,loo_sim,loo_rel_error,"
+                             "interval_lo,interval_hi");
+}
+
 void rp_table_csv(const RpTable *t, gboolean header, GString *out)
 {
     SimProvenance p = rp_table_provenance(t);
     prov_comment_lines(out, &p);
-    if (header)
-        g_string_append(out, "paper,table,row,column,sim,published,"
-                             "rel_error\n");
+    if (header) {
+        rp_table_csv_head(t, out);
+        g_string_append_c(out, '\n');
+    }
     rp_table_csv_rows(t, out);
+}
+
+static void csv_labels(const RpJoined *j, GString *out)
+{
+    char buf[32];
+    g_string_append_printf(out, ",%s,", rp_label_name(j->label));
+    dt_csv_field(out, j->fitted_by ? j->fitted_by : "");
+    const double v[] = {j->loo_sim, j->loo_rel_error, j->lo, j->hi};
+    for (int k = 0; k < 4; k++)
+        g_string_append_printf(out, ",%s", js_fmt_num(buf, v[k]));
 }
 
 void rp_table_csv_rows(const RpTable *t, GString *out)
@@ -292,7 +374,10 @@ void rp_table_csv_rows(const RpTable *t, GString *out)
         }
         g_string_append_printf(out, "%s,", js_fmt_num(buf, j->sim));
         g_string_append_printf(out, "%s,", js_fmt_num(buf, j->published));
-        g_string_append_printf(out, "%s\n", js_fmt_num(buf, j->rel_error));
+        g_string_append(out, js_fmt_num(buf, j->rel_error));
+        if (t->labelled)
+            csv_labels(j, out);
+        g_string_append_c(out, '\n');
     }
 }
 
@@ -308,7 +393,32 @@ static void json_cell(JsonBuilder *b, const RpJoined *j)
     js_set_num(b, "rel_error", j->rel_error);
     js_set_str(b, "status", rp_status_name(j->status));
     js_set_str(b, "note", j->note);
+    if (j->label != RP_LABEL_NONE) {
+        js_set_str(b, "label", rp_label_name(j->label));
+        js_set_str(b, "fitted_by", j->fitted_by);
+        js_set_num(b, "loo_sim", j->loo_sim);
+        js_set_num(b, "loo_rel_error", j->loo_rel_error);
+        js_set_num(b, "interval_lo", j->lo);
+        js_set_num(b, "interval_hi", j->hi);
+    }
     json_builder_end_object(b);
+}
+
+/* The labelled headline's members (rp_table.h). */
+static void json_headline(JsonBuilder *b, const RpTable *t)
+{
+    js_set_int(b, "out_of_sample_cells", t->oos_n);
+    js_set_int(b, "out_of_sample_cross_validated", t->oos_cv);
+    js_set_num(b, "out_of_sample_mean_abs_rel_error", t->oos_mean);
+    js_set_num(b, "out_of_sample_worst_abs_rel_error", t->oos_worst);
+    js_set_int(b, "in_sample_cells", t->ins_n);
+    js_set_num(b, "in_sample_mean_abs_rel_error", t->ins_mean);
+    js_set_num(b, "in_sample_worst_abs_rel_error", t->ins_worst);
+    js_set_int(b, "leave_one_out_cells", t->loo_n);
+    js_set_num(b, "leave_one_out_min_rel_error", t->loo_min);
+    js_set_num(b, "leave_one_out_max_rel_error", t->loo_max);
+    js_set_int(b, "inside_own_interval", t->inside);
+    js_set_int(b, "inside_own_interval_of", t->inside_of);
 }
 
 static void json_summary(JsonBuilder *b, const RpTable *t)
@@ -318,6 +428,8 @@ static void json_summary(JsonBuilder *b, const RpTable *t)
     js_set_int(b, "compared", t->compared);
     js_set_num(b, "mean_abs_rel_error", t->mean_abs);
     js_set_num(b, "worst_abs_rel_error", t->worst_abs);
+    if (t->labelled)
+        json_headline(b, t);
     json_builder_end_object(b);
 }
 

@@ -30,6 +30,15 @@ typedef enum {
     RP_MISSING   /* published, but the reproduction did not produce it */
 } RpStatus;
 
+typedef enum {
+    RP_LABEL_NONE,      /* the paper has no labels file */
+    RP_LABEL_FITTED,    /* used in a fit, no leave-one-out value */
+    RP_LABEL_CV,        /* used in a fit, leave-one-out value beside it */
+    RP_LABEL_PREDICTED, /* withheld, or never used in any fit */
+    RP_LABEL_CLAIM,     /* a claim computed on the simulated data */
+    RP_LABEL_LOO        /* a leave-one-out value shown beside its cell */
+} RpLabel;
+
 typedef struct {
     char *table, *row, *column;
     double sim;       /* NAN when not produced */
@@ -38,6 +47,12 @@ typedef struct {
     RpStatus status;
     char *unit; /* from the paper file; "" if none */
     char *note; /* row note, else cell note; NULL if none */
+    /* rp_labels.h: what the cell is (RP_LABEL_NONE until labelled) */
+    RpLabel label;
+    char *fitted_by;      /* the constants fitted on it; NULL if none */
+    double loo_sim;       /* its leave-one-out value; NAN if none */
+    double loo_rel_error; /* (loo_sim - published) / published; or NAN */
+    double lo, hi;        /* its interval for the published value; NAN */
 } RpJoined;
 
 typedef struct {
@@ -53,6 +68,20 @@ typedef struct {
     /* provenance (rp_driver.c): the setup file, its SHA-256 and its tree
      * as JSON text; NULL when the table was joined without a setup */
     char *setup, *setup_sha256, *setup_json;
+    /* rp_labels_apply(): the headline.  Out of sample: predicted cells at
+     * their error and cross-validated ones at their leave-one-out error;
+     * in sample: fitted and cross-validated cells at the printed error.
+     * Intervals: the range [loo_min, loo_max] of the cross-validated
+     * cells' leave-one-out errors; a visible cell is inside its own
+     * interval when its out-of-sample error lies in the range of the
+     * other cells' leave-one-out errors. */
+    gboolean labelled;
+    guint oos_n, oos_cv, ins_n; /* cells in each mean */
+    double oos_mean, oos_worst, ins_mean, ins_worst; /* NAN when none */
+    int oos_worst_i, ins_worst_i;                    /* -1 when none */
+    guint loo_n;                /* leave-one-out errors in the range */
+    double loo_min, loo_max;    /* NAN when loo_n < 2 */
+    guint inside, inside_of;    /* visible cells in their own interval */
 } RpTable;
 
 /* Joins rows (RpRow *, borrowed) to the paper; returns a new table (free
@@ -64,6 +93,13 @@ void rp_table_free(RpTable *t);
 const RpJoined *rp_table_find(const RpTable *t, const char *table,
                               const char *row, const char *column);
 const char *rp_status_name(RpStatus s);
+/* "fitted", "cross-validated", "predicted", "claim", "leave-one-out";
+ * "" for RP_LABEL_NONE. */
+const char *rp_label_name(RpLabel l);
+/* The cell's label as printed: "fitted (ipsc2 node costs)",
+ * "cross-validated: left out 258.2 (-19.8%)", "predicted, in [a, b]";
+ * new string (g_free). */
+char *rp_label_text(const RpJoined *j);
 
 /* The table's provenance: its setup file as the config, its SHA-256 and
  * tree, RP_SEED and its fidelity (pointers borrowed from t). */
@@ -73,6 +109,9 @@ void rp_table_text(const RpTable *t, GString *out);
  * then the rows; rp_table_csv_rows() writes the rows alone. */
 void rp_table_csv(const RpTable *t, gboolean header, GString *out);
 void rp_table_csv_rows(const RpTable *t, GString *out);
+/* The column header without its newline (labelled tables add label,
+ * fitted_by, loo_sim, loo_rel_error, interval_lo, interval_hi). */
+void rp_table_csv_head(const RpTable *t, GString *out);
 /* JSON (json-glib): paper, citation, fidelity, wall_s, provenance,
  * cells, summary; rp_table_node() is the same tree (json_node_unref). */
 void rp_table_json(const RpTable *t, GString *out);
