@@ -35,6 +35,12 @@ typedef struct {
     guint *blk, n_blk; /* block starts, blk[n_blk] == n */
 } Comp;
 
+/* The processor of rank r. */
+static guint proc_of(const Comp *k, guint r)
+{
+    return k->c->order ? k->c->order[r] : r;
+}
+
 /* One active process of a group, as its new share is chosen. */
 typedef struct {
     uint64_t lo;
@@ -201,11 +207,11 @@ static void send_fragments(const Comp *k, guint q, const Owner *own,
         if (r == q || a >= b)
             continue;
         guint s = lower(p->px, a), e = lower(p->px, b);
-        WlPmMsg m = {.src = q, .dst = r};
+        WlPmMsg m = {.src = proc_of(k, q), .dst = proc_of(k, r)};
         fragment_cost(k, &g_array_index(p->px, CPx, s), e - s, a, b, &m);
         g_array_append_val(msgs, m);
-        work[q].pack += m.pixels;
-        work[r].compare += m.pixels;
+        work[m.src].pack += m.pixels;
+        work[m.dst].compare += m.pixels;
     }
 }
 
@@ -247,6 +253,24 @@ static void run_group(Comp *k, guint b0, guint nb, gboolean fold, GArray *msgs,
     g_free(own);
 }
 
+/* The messages (freed) in sender order, stably (the replay's order). */
+static WlPmMsg *by_sender(GArray *msgs, guint n)
+{
+    guint *at = g_new0(guint, n + 1);
+    for (guint i = 0; i < msgs->len; i++)
+        at[g_array_index(msgs, WlPmMsg, i).src + 1]++;
+    for (guint p = 0; p < n; p++)
+        at[p + 1] += at[p];
+    WlPmMsg *out = g_new(WlPmMsg, MAX(msgs->len, 1u));
+    for (guint i = 0; i < msgs->len; i++) {
+        const WlPmMsg *m = &g_array_index(msgs, WlPmMsg, i);
+        out[at[m->src]++] = *m;
+    }
+    g_array_free(msgs, TRUE);
+    g_free(at);
+    return out;
+}
+
 /* One stage: its groups, one exchange step, the merged block list. */
 static WlPmStep *run_stage(Comp *k, const WlPmStage *st)
 {
@@ -264,7 +288,7 @@ static WlPmStep *run_stage(Comp *k, const WlPmStage *st)
     k->blk[k->n_blk] = k->n;
     g_free(step->msg);
     step->n_msgs = msgs->len;
-    step->msg = (WlPmMsg *)(void *)g_array_free(msgs, FALSE);
+    step->msg = by_sender(msgs, k->n);
     return step;
 }
 
@@ -306,7 +330,7 @@ static void comp_init(Comp *k, WlPmWpa *const *local)
     for (guint p = 0; p <= k->n; p++)
         k->blk[p] = p;
     for (guint p = 0; p < k->n; p++) {
-        const WlPmWpa *l = local[p];
+        const WlPmWpa *l = local[proc_of(k, p)];
         GArray *px = g_array_sized_new(FALSE, FALSE, sizeof(CPx), l->px->len);
         for (guint i = 0; i < l->px->len; i++) {
             CPx q = to_cpx(&g_array_index(l->px, WlPmPixel, i), k->w,
@@ -321,6 +345,7 @@ WlPmComposite *wl_pm_composite_run(WlPmScheme scheme, const WlPmCompose *c,
                                    WlPmWpa *const *local, guint n_procs,
                                    const WlPmFormat *fmt)
 {
+    g_assert(!c->order || wl_pm_order_ok(c->order, n_procs));
     Comp k = {.c = c, .fmt = fmt, .n = n_procs};
     comp_init(&k, local);
     WlPmComposite *out = g_new0(WlPmComposite, 1);
@@ -333,9 +358,9 @@ WlPmComposite *wl_pm_composite_run(WlPmScheme scheme, const WlPmCompose *c,
     g_assert(k.n_blk == 1);
     if (c->op == WL_PM_OP_OVER)
         out->rgba = g_new0(double, k.npix * 4);
-    for (guint p = 0; p < n_procs; p++) {
-        out->merge->held[p] = held_wpa(&k, &k.pr[p], out->rgba);
-        g_array_free(k.pr[p].px, TRUE);
+    for (guint r = 0; r < n_procs; r++) {
+        out->merge->held[proc_of(&k, r)] = held_wpa(&k, &k.pr[r], out->rgba);
+        g_array_free(k.pr[r].px, TRUE);
     }
     wl_pm_merge_summarise(out->merge);
     wl_pm_plan_free(plan);
@@ -353,19 +378,33 @@ void wl_pm_composite_free(WlPmComposite *c)
     g_free(c);
 }
 
+gboolean wl_pm_order_ok(const guint *order, guint n)
+{
+    guint8 *seen = g_new0(guint8, n);
+    gboolean ok = TRUE;
+    for (guint r = 0; ok && r < n; r++) {
+        ok = order[r] < n && !seen[order[r]];
+        if (ok)
+            seen[order[r]] = 1;
+    }
+    g_free(seen);
+    return ok;
+}
+
 double *wl_pm_over_serial(WlPmWpa *const *local, guint n_procs,
-                          double opacity)
+                          const guint *order, double opacity)
 {
     guint w = local[0]->width;
     double *acc = g_new0(double, (gsize)w * local[0]->height * 4);
-    for (guint p = 0; p < n_procs; p++)
-        for (guint i = 0; i < local[p]->px->len; i++) {
-            CPx q = to_cpx(&g_array_index(local[p]->px, WlPmPixel, i), w,
-                           opacity);
+    for (guint r = 0; r < n_procs; r++) {
+        const WlPmWpa *l = local[order ? order[r] : r];
+        for (guint i = 0; i < l->px->len; i++) {
+            CPx q = to_cpx(&g_array_index(l->px, WlPmPixel, i), w, opacity);
             double *a = &acc[(gsize)q.idx * 4], t = 1.0 - a[3];
             for (int j = 0; j < 4; j++)
                 a[j] += t * q.c[j];
         }
+    }
     return acc;
 }
 

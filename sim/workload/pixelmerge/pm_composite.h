@@ -9,7 +9,9 @@
  * pixels, local[p].  The image is a linear array of width x height
  * pixels in row-major order; a stage splits it into pieces of
  * consecutive pixels (as IceT does).  Rank r of the visibility order
- * (nearest first) is processor r.
+ * (nearest first) is processor order[r] (processor r without an order);
+ * the schemes group ranks, so the processes that combine first are the
+ * ones adjacent in visibility.
  *
  * Operators.  z: the nearer pixel (pm_pixels.h order, ties by polygon
  * id) wins, so the result equals the serial z-buffer exactly.  over:
@@ -59,6 +61,8 @@ typedef struct {
     gboolean bounding_rect, rle;
     WlPmOperator op;
     double opacity; /* over: alpha of every active pixel, (0, 1] */
+    const guint *order; /* rank -> processor, a permutation of n_procs
+                         * (borrowed); NULL: processor order */
 } WlPmCompose;
 
 /* Runs a compositing scheme on local[n_procs] (borrowed, all one size).
@@ -77,10 +81,14 @@ WlPmComposite *wl_pm_composite_run(WlPmScheme scheme, const WlPmCompose *c,
                                    const WlPmFormat *fmt);
 void wl_pm_composite_free(WlPmComposite *c);
 
-/* The serial front-to-back blend of local[0 .. n_procs-1] at opacity:
- * width x height x 4 premultiplied doubles (free with g_free). */
+/* The serial front-to-back blend of local[order[0]], local[order[1]]
+ * ... (order NULL: local[0], local[1] ...) at opacity: width x height x 4
+ * premultiplied doubles (free with g_free). */
 double *wl_pm_over_serial(WlPmWpa *const *local, guint n_procs,
-                          double opacity);
+                          const guint *order, double opacity);
+
+/* TRUE when order[n] is a permutation of 0 .. n - 1. */
+gboolean wl_pm_order_ok(const guint *order, guint n);
 
 /* The first component where a and b (n doubles each) differ by more
  * than 1e-9 (the blends' rounding is ~1e-15 per stage), or -1. */

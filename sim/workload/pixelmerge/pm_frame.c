@@ -268,7 +268,8 @@ static WlPmMerge *merge_frame(const Local *l, const WlPmSetup *s,
         return m;
     out->image_checked = TRUE;
     if (*comp && s->comp.op == WL_PM_OP_OVER) {
-        double *ref = wl_pm_over_serial(l->local, n, s->comp.opacity);
+        double *ref =
+            wl_pm_over_serial(l->local, n, s->comp.order, s->comp.opacity);
         gsize len = (gsize)s->resolution * s->resolution * 4;
         out->image_ok = wl_pm_over_diff(ref, (*comp)->rgba, len) < 0;
         g_free(ref);

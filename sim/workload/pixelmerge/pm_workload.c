@@ -18,6 +18,8 @@
  *     opacity: 0.5            # over: every active pixel's alpha
  *     bytes_per_run: 4        # compositing: a run-length header
  *     bytes_per_rect: 8       # compositing: a bounding rectangle
+ *     visibility: [2, 0, 1]   # compositing: processors nearest first
+ *                             # (default 0, 1, ..., P-1)
  *     resolution: 400         # N: an N x N screen
  *     polygon_split: cyclic   # cyclic | block
  *     bytes_per_pixel: 8      # active pixel record in a message
@@ -194,6 +196,55 @@ static gboolean parse_radices(const CfgNode *sec, WlPmSetup *s, GError **err)
     return TRUE;
 }
 
+/* workload.visibility: a list of processors, nearest first (checked to
+ * be a permutation of P by check_order once P is known). */
+static gboolean parse_order(const CfgNode *sec, WlPmParams *p, GError **err)
+{
+    const CfgNode *v = cfg_get(sec, "visibility");
+    if (!v)
+        return TRUE;
+    guint n = cfg_kind(v) == CFG_SEQ ? cfg_seq_len(v) : 0;
+    if (n == 0 || n > 1024) {
+        cfg_error(err, v, "'visibility'",
+                  "a list of 1 to 1024 processors, nearest first");
+        return FALSE;
+    }
+    p->order = g_new(guint, n);
+    p->n_order = n;
+    for (guint i = 0; i < n; i++) {
+        const char *t = cfg_scalar(cfg_seq_at(v, i));
+        uint64_t k = 0;
+        if (!t || !cfg_parse_count(t, "processor", &k, NULL) || k >= 1024) {
+            char *found = g_strdup_printf("'%s'", t ? t : "a collection");
+            cfg_error(err, cfg_seq_at(v, i), found,
+                      "a processor number from 0 to 1023");
+            g_free(found);
+            return FALSE;
+        }
+        p->order[i] = (guint)k;
+    }
+    p->setup.comp.order = p->order;
+    return TRUE;
+}
+
+/* The visibility order is a permutation of the P processors (procs 0:
+ * not known yet). */
+static gboolean check_order(const WlPmParams *p, guint procs,
+                            const CfgNode *at, GError **err)
+{
+    if (!p->order || procs == 0 ||
+        (p->n_order == procs && wl_pm_order_ok(p->order, procs)))
+        return TRUE;
+    char *found = g_strdup_printf("a visibility order of %u processors%s",
+                                  p->n_order,
+                                  p->n_order == procs ? " with repeats" : "");
+    char *exp = g_strdup_printf("each of the %u processors once", procs);
+    cfg_error(err, at, found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
 /* The compositing schemes' options (pm_composite.h). */
 static gboolean parse_compose(const CfgNode *sec, WlPmSetup *s, GError **err)
 {
@@ -208,7 +259,7 @@ static gboolean parse_compose(const CfgNode *sec, WlPmSetup *s, GError **err)
         !cfg_get_double(sec, "opacity", FALSE, 1e-6, 1.0, &opacity, err))
         return FALSE;
     const char *const keys[] = {"bounding_rect", "rle", "operator",
-                                "opacity"};
+                                "opacity", "visibility"};
     for (guint i = 0; i < G_N_ELEMENTS(keys); i++)
         if (!wl_pm_scheme_composites(s->scheme) && cfg_has(sec, keys[i])) {
             char *found = g_strdup_printf("'%s' with scheme '%s'", keys[i],
@@ -248,6 +299,14 @@ static gboolean check_radices(const WlPmCompose *c, guint procs,
     return FALSE;
 }
 
+static void pm_free_params(void *params)
+{
+    WlPmParams *p = params;
+    if (p)
+        g_free(p->order);
+    g_free(p);
+}
+
 static void *pm_parse(const CfgNode *sec, GError **err)
 {
     WlPmParams *p = g_new0(WlPmParams, 1);
@@ -260,12 +319,14 @@ static void *pm_parse(const CfgNode *sec, GError **err)
         parse_compose(sec, &p->setup, err) &&
         check_radices(&p->setup.comp, (guint)procs, cfg_get(sec, "radices"),
                       err) &&
+        parse_order(sec, p, err) &&
+        check_order(p, (guint)procs, cfg_get(sec, "visibility"), err) &&
         cfg_get_count(sec, "resolution", FALSE, 2, 4096, &res, err) &&
         cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
         cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
         parse_sizes(sec, p, err) && parse_memory(sec, &p->mem, err);
     if (!ok) {
-        g_free(p);
+        pm_free_params(p);
         return NULL;
     }
     p->setup.procs = (guint)procs;
@@ -273,11 +334,6 @@ static void *pm_parse(const CfgNode *sec, GError **err)
     p->setup.check_image = check;
     p->setup.cull_back = cull;
     return p;
-}
-
-static void pm_free_params(void *p)
-{
-    g_free(p);
 }
 
 /* Own memory (WlOps.mem_bytes): a WlPmPixel a screen pixel for the
@@ -448,6 +504,8 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
                        err) ||
         !check_radices(&r.s.comp, r.s.procs,
                        cfg_path(ctx->root, "workload.radices"), err) ||
+        !check_order(r.p, r.s.procs, cfg_path(ctx->root, "workload.visibility"),
+                     err) ||
         !wl_pm_costs_from_machine(m, r.p->count_bytes, &r.c, err))
         return FALSE;
     r.procs = g_new(MachProc *, r.s.procs);

@@ -38,6 +38,8 @@ typedef struct {
     WlPmSetup setup;      /* setup.procs == 0: all of the machine's nodes */
     uint32_t count_bytes; /* global-sum element */
     WlPmMemory mem;
+    guint *order;  /* workload.visibility (setup.comp.order points here) */
+    guint n_order; /* its length; 0: processor order */
 } WlPmParams;
 
 /* The node cost operations, NULL-terminated (models/ipsc2.yaml

@@ -1,7 +1,8 @@
 /* test_pm_composite.c — the compositing schemes (pm_composite.h,
  * pm_stages.h): for binary swap, direct send, radix-k (several radix
  * vectors) and 2-3 swap at 1, 2, 3, 5, 8, 12, 16 and 64 processes, with
- * and without bounding rectangles and run-length encoding, the z image
+ * and without bounding rectangles and run-length encoding, in processor
+ * order and in a shuffled visibility order, the z image
  * equals the serial z-buffer and the over image the serial front-to-back
  * blend; the checks are shown to fail on a wrong image; radix-k with
  * radices 2, 2, 2 is binary swap and with radix P direct send, message
@@ -63,7 +64,7 @@ static gboolean matches(const WlPmComposite *c, WlPmWpa *const *l, guint n,
                         const WlPmCompose *o)
 {
     if (o->op == WL_PM_OP_OVER) {
-        double *ref = wl_pm_over_serial(l, n, o->opacity);
+        double *ref = wl_pm_over_serial(l, n, o->order, o->opacity);
         gboolean ok = wl_pm_over_diff(ref, c->rgba, W * H * 4) < 0;
         g_free(ref);
         return ok;
@@ -109,13 +110,30 @@ static void check_one(WlPmScheme s, const WlPmCompose *o, WlPmWpa **l,
     wl_pm_composite_free(c);
 }
 
+/* A seeded permutation of 0 .. n - 1 (a visibility order). */
+static guint *shuffled(guint n, guint32 seed)
+{
+    GRand *r = g_rand_new_with_seed(seed);
+    guint *o = g_new(guint, n);
+    for (guint i = 0; i < n; i++)
+        o[i] = i;
+    for (guint i = n; i > 1; i--) {
+        guint j = g_rand_int_range(r, 0, i), t = o[i - 1];
+        o[i - 1] = o[j];
+        o[j] = t;
+    }
+    g_rand_free(r);
+    return o;
+}
+
 static void test_every_scheme_matches_serial(void **st)
 {
     (void)st;
     for (guint i = 0; i < G_N_ELEMENTS(counts); i++) {
         guint n = counts[i];
         WlPmWpa **l = random_locals(n, 7 + n);
-        for (int opt = 0; opt < 8; opt++) {
+        guint *order = shuffled(n, 5 + n);
+        for (int opt = 0; opt < 16; opt++) {
             WlPmCompose sets[5] = {0};
             guint ns = radix_sets(n, sets);
             for (guint s = WL_PM_BINARY_SWAP; s <= WL_PM_TWO_THREE_SWAP; s++)
@@ -124,10 +142,12 @@ static void test_every_scheme_matches_serial(void **st)
                     o.op = opt & 1 ? WL_PM_OP_OVER : WL_PM_OP_Z;
                     o.bounding_rect = (opt & 2) != 0;
                     o.rle = (opt & 4) != 0;
+                    o.order = opt & 8 ? order : NULL;
                     o.opacity = 0.375;
                     check_one((WlPmScheme)s, &o, l, n);
                 }
         }
+        g_free(order);
         free_locals(l, n);
     }
 }
@@ -138,9 +158,9 @@ static void test_checks_can_fail(void **st)
 {
     (void)st;
     WlPmWpa **l = random_locals(3, 11);
-    double *ref = wl_pm_over_serial(l, 3, 0.5);
+    double *ref = wl_pm_over_serial(l, 3, NULL, 0.5);
     WlPmWpa *rev[3] = {l[2], l[1], l[0]};
-    double *wrong = wl_pm_over_serial(rev, 3, 0.5);
+    double *wrong = wl_pm_over_serial(rev, 3, NULL, 0.5);
     assert_true(wl_pm_over_diff(ref, wrong, W * H * 4) >= 0);
     assert_true(wl_pm_over_diff(ref, ref, W * H * 4) < 0);
     WlPmFrame *all = serial_z(l, 3), *two = serial_z(l, 2);
@@ -227,6 +247,21 @@ static void test_message_bytes_by_hand(void **st)
         assert_int_equal(s->work[1].compare, s->msg[0].pixels);
         wl_pm_composite_free(c);
     }
+    /* visibility order 1, 0: rank 0 is processor 1 and owns 0 .. 15, so
+     * processor 0 sends it its three pixels there */
+    const guint order[] = {1, 0};
+    WlPmCompose o = {.rle = TRUE, .order = order};
+    WlPmComposite *c = wl_pm_composite_run(WL_PM_DIRECT_SEND, &o, l, 2, &fmt);
+    const WlPmStep *s = g_ptr_array_index(c->merge->steps, 0);
+    assert_int_equal(s->msg[0].src * 10 + s->msg[0].dst, 1);
+    assert_int_equal(s->msg[0].bytes, 3 * 4 + 2 * 4);
+    assert_int_equal(wl_pm_wpa_len(c->merge->held[1]), 3);
+    assert_int_equal(wl_pm_wpa_len(c->merge->held[0]), 1);
+    wl_pm_composite_free(c);
+    const guint dup[] = {1, 1}, big[] = {0, 2};
+    assert_true(wl_pm_order_ok(order, 2));
+    assert_false(wl_pm_order_ok(dup, 2));
+    assert_false(wl_pm_order_ok(big, 2));
     wl_pm_wpa_free(l[0]);
     wl_pm_wpa_free(l[1]);
 }

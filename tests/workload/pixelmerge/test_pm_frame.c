@@ -100,7 +100,7 @@ static void test_images_match_serial(void **state)
                                n == 4,
                                RAST_SPAN_EXACT,
                                FALSE,
-                               {{0}, 0, FALSE, FALSE, 0, 0}};
+                               {{0}, 0, FALSE, FALSE, 0, 0, NULL}};
                 WlPmFrameOut out;
                 run(sc, &s, &out);
                 assert_true(out.image_checked);
@@ -125,7 +125,7 @@ static void test_zbuf_exc_costs_more(void **state)
     WlPmSetup s = {WL_PM_PAIR,         WL_PM_BAL_RS, 8,     N,
                    WL_PM_SPLIT_CYCLIC, {8, 4, 2, 0, 0},    FALSE, TRUE,
                    RAST_SPAN_EXACT,    FALSE,
-                   {{0}, 0, FALSE, FALSE, 0, 0}};
+                   {{0}, 0, FALSE, FALSE, 0, 0, NULL}};
     WlPmFrameOut pair, full;
     run(sc, &s, &pair);
     s.scheme = WL_PM_ZBUF_EXC;
@@ -202,6 +202,10 @@ static void test_images_on_the_machine(void **state)
                 WlPmSetup s = comp_setup((WlPmScheme)sch, n, (WlPmOperator)op);
                 s.comp.rle = (i % 2) == 1;
                 s.comp.bounding_rect = (i % 4) >= 2;
+                guint order[64]; /* the far half first, then the near */
+                for (guint r = 0; r < n; r++)
+                    order[r] = (r + n / 2) % n;
+                s.comp.order = op ? order : NULL;
                 WlPmFrameOut out;
                 uint64_t bytes, msgs;
                 run_on(sc, &s, 6, &out, &bytes, &msgs);

@@ -204,6 +204,17 @@ static void test_compositing_keys(void **st)
                       "compositing scheme");
     expect_refused_at(", scheme: direct_send, operator: under", "under",
                       "found 'under', expected one of: z, over");
+    p = parse_ok(", scheme: binary_swap, processors: 3, visibility: [2, 0, 1]");
+    assert_int_equal(p->n_order, 3);
+    assert_true(p->setup.comp.order == p->order);
+    assert_int_equal(p->order[0] * 100 + p->order[1] * 10 + p->order[2], 201);
+    wl_pixelmerge_ops.free_params(p);
+    expect_refused_at(", scheme: binary_swap, processors: 3, visibility: "
+                      "[2, 2, 1]",
+                      "[2, 2", "found a visibility order of 3 processors "
+                               "with repeats, expected each of the 3");
+    expect_refused_at(", scheme: direct_send, visibility: [0, x]", "x]",
+                      "found 'x', expected a processor number");
     expect_refused_at(", scheme: pair, processors: 12", "12",
                       "found '12', expected a power of two");
 }
