@@ -7,6 +7,7 @@
  */
 #include "sim/output/plot.h"
 #include "sim/core/datapath.h"
+#include "sim/core/memlimit.h"
 #include <errno.h>
 #include <glib/gstdio.h>
 #include <math.h>
@@ -130,23 +131,47 @@ gboolean plot_specs_read(GPtrArray *specs, const CfgNode *seq, GError **err)
     return TRUE;
 }
 
-static gboolean need_col(const char *what, const char *name, const DataTable *t,
-                         GError **err)
+/* An input error about cell (r, c) of t (r G_MAXUINT: column c's header,
+ * c -1: the header's first cell): at its place in the file t was read
+ * from (dt_where), else under the chart's name with the data row. */
+static void data_error(GError **err, const DataTable *t, guint r, int c,
+                       const PlotSpec *p, const char *found,
+                       const char *expected)
+{
+    char *where = dt_where(t, r, c < 0 ? 0 : c);
+    if (where)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "%s: found %s, expected %s", where, found, expected);
+    else if (r != G_MAXUINT)
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "plot %s: found %s (data row %u), expected %s", p->name,
+                    found, r + 1, expected);
+    else
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "plot %s: found %s, expected %s", p->name, found,
+                    expected);
+    g_free(where);
+}
+
+static gboolean need_col(const PlotSpec *p, const char *what, const char *name,
+                         const DataTable *t, GError **err)
 {
     if (!name || dt_col(t, name) >= 0)
         return TRUE;
     char *cols = dt_col_names(t);
-    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "plot %s: found column '%s', expected one of: %s", what, name,
-                cols);
+    char *found = g_strdup_printf("no column '%s' for %s", name, what);
+    char *expected = g_strdup_printf("a column of: %s", cols);
+    data_error(err, t, G_MAXUINT, -1, p, found, expected);
+    g_free(expected);
+    g_free(found);
     g_free(cols);
     return FALSE;
 }
 
 gboolean plot_check_columns(const PlotSpec *p, const DataTable *t, GError **err)
 {
-    return need_col("x", p->x, t, err) && need_col("y", p->y, t, err) &&
-           need_col("series", p->series, t, err);
+    return need_col(p, "x", p->x, t, err) && need_col(p, "y", p->y, t, err) &&
+           need_col(p, "series", p->series, t, err);
 }
 
 /* ---- grouping -------------------------------------------------------- */
@@ -249,23 +274,52 @@ static const PlotLimit series_limit = {"series", "series", PLOT_MAX_SERIES};
 static const PlotLimit category_limit = {"category", "categories",
                                          PLOT_MAX_CATEGORIES};
 
-/* TRUE with *err when `value` would be the (limit+1)-th distinct one of
- * `seen` (series names or categories, from column col). */
+/* TRUE with *err when cell (row, col) of t would be the (limit+1)-th
+ * distinct value of `seen` (series names or categories). */
 static gboolean over_limit(const PlotSpec *p, GHashTable *seen,
-                           const PlotLimit *lim, const char *col,
-                           const char *value, guint row, GError **err)
+                           const PlotLimit *lim, const DataTable *t,
+                           guint row, int col, GError **err)
 {
+    const char *value = dt_cell(t, row, col);
     if (g_hash_table_size(seen) < (guint)lim->limit ||
         g_hash_table_contains(seen, value))
         return FALSE;
     char *shown = plot_printable(value);
-    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "plot %s: found a %s number %d, '%s' in column '%s' (data "
-                "row %u), expected at most %d %s in a chart",
-                p->name, lim->one, lim->limit + 1, shown, col, row + 1,
-                lim->limit, lim->many);
+    char *found = g_strdup_printf("a %s number %d, '%s' in column '%s'",
+                                  lim->one, lim->limit + 1, shown,
+                                  (const char *)g_ptr_array_index(t->cols, col));
+    char *expected = g_strdup_printf("at most %d %s in chart '%s'",
+                                     lim->limit, lim->many, p->name);
+    data_error(err, t, row, col, p, found, expected);
+    g_free(expected);
+    g_free(found);
     g_free(shown);
     return TRUE;
+}
+
+/* What a chart of t holds at once within the memory limit (memlimit.h):
+ * per row a point, its label and its line of the .dat text (assumption:
+ * 160 bytes and the label three times); per distinct series (at most
+ * PLOT_MAX_SERIES) its name three times and two plot clauses.  O(rows). */
+static gboolean chart_fits(const PlotSpec *p, const DataTable *t,
+                           GError **err)
+{
+    int xc = dt_col(t, p->x), sc = p->series ? dt_col(t, p->series) : -1;
+    double bytes = 0, series = 0;
+    for (guint r = 0; r < t->rows->len; r++) {
+        double s = sc >= 0 ? (double)strlen(dt_cell(t, r, sc)) : 0;
+        bytes += 160.0 + 3.0 * (double)strlen(dt_cell(t, r, xc)) + 3.0 * s;
+        series = MAX(series, s);
+    }
+    bytes += MIN(t->rows->len, PLOT_MAX_SERIES) * (3.0 * series + 400.0);
+    char *what = g_strdup_printf("a chart of %u rows", t->rows->len);
+    char *where = dt_where(t, G_MAXUINT, dt_col(t, p->y));
+    char *named = where ? NULL : g_strdup_printf("plot %s", p->name);
+    gboolean ok = sim_mem_check(bytes, where ? where : named, what, err);
+    g_free(named);
+    g_free(where);
+    g_free(what);
+    return ok;
 }
 
 static GPtrArray *group_rows(const PlotSpec *p, const DataTable *t,
@@ -283,9 +337,9 @@ static GPtrArray *group_rows(const PlotSpec *p, const DataTable *t,
         const char *sn = sc >= 0 ? dt_cell(t, r, sc) : "";
         if (!number(dt_cell(t, r, yc), &y) || !*xs)
             continue;
-        if (over_limit(p, g.index, &series_limit, p->series, sn, r, err) ||
+        if ((sc >= 0 && over_limit(p, g.index, &series_limit, t, r, sc, err)) ||
             (*categorical &&
-             over_limit(p, g.cats, &category_limit, p->x, xs, r, err))) {
+             over_limit(p, g.cats, &category_limit, t, r, xc, err))) {
             g_ptr_array_free(g.all, TRUE);
             g.all = NULL;
             break;
@@ -703,7 +757,7 @@ gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
         g_free(shown);
         return FALSE;
     }
-    if (!plot_check_columns(p, t, err))
+    if (!plot_check_columns(p, t, err) || !chart_fits(p, t, err))
         return FALSE;
     gboolean cat;
     GPtrArray *all = group_rows(p, t, &cat, err);
@@ -715,9 +769,11 @@ gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
         *gp = script_text(p, all, cat);
         g_assert(plot_script_safe((*gp)->str)); /* put_quoted's promise */
     } else {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "plot %s: no row has a number in both '%s' and '%s'",
-                    p->name, p->x, p->y);
+        char *found = g_strdup_printf("no row with a number in both '%s' "
+                                      "and '%s'", p->x, p->y);
+        data_error(err, t, G_MAXUINT, dt_col(t, p->y), p, found,
+                   "at least one for the chart");
+        g_free(found);
     }
     g_ptr_array_free(all, TRUE);
     return ok;

@@ -6,11 +6,15 @@
  * is a comment and is skipped (provenance headers, provenance.h); the
  * writer quotes a field starting with '#', so no record reads as one.
  * Invariant: every row has exactly cols->len cells (a record with
- * another count is an error naming its line).  O(n).
+ * another count is an error naming its line).  A file's table is
+ * estimated against the memory limit before it is built.  O(n).
  */
 #include "sim/output/table.h"
 #include "sim/core/datapath.h"
+#include "sim/core/memlimit.h"
+#include <glib/gstdio.h>
 #include <string.h>
+#include <sys/stat.h>
 
 DataTable *dt_new(const GPtrArray *cols)
 {
@@ -47,7 +51,44 @@ void dt_free(DataTable *t)
         return;
     g_ptr_array_free(t->cols, TRUE);
     g_ptr_array_free(t->rows, TRUE);
+    if (t->pos)
+        g_ptr_array_free(t->pos, TRUE);
+    g_free(t->head_pos);
+    g_free(t->path);
     g_free(t);
+}
+
+DataTable *dt_new_like(const DataTable *src)
+{
+    DataTable *t = dt_new(src->cols);
+    if (src->pos) {
+        t->path = g_strdup(src->path);
+        t->head_pos = g_memdup2(src->head_pos, src->cols->len * sizeof(DtPos));
+        t->pos = g_ptr_array_new_with_free_func(g_free);
+    }
+    return t;
+}
+
+void dt_copy_row(DataTable *dst, const DataTable *src, guint r)
+{
+    dt_add_row(dst, g_ptr_array_index(src->rows, r));
+    const DtPos *at = src->pos ? g_ptr_array_index(src->pos, r) : NULL;
+    if (dst->pos && at)
+        dst->pos->pdata[dst->pos->len - 1] =
+            g_memdup2(at, src->cols->len * sizeof(DtPos));
+}
+
+char *dt_where(const DataTable *t, guint r, int c)
+{
+    if (!t->pos || c < 0 || (guint)c >= t->cols->len ||
+        (r != G_MAXUINT && r >= t->pos->len))
+        return NULL;
+    const DtPos *at = r == G_MAXUINT
+                          ? t->head_pos
+                          : (const DtPos *)g_ptr_array_index(t->pos, r);
+    if (!at)
+        return NULL;
+    return g_strdup_printf("%s:%d:%d", t->path, at[c].line, at[c].col);
 }
 
 void dt_add_row(DataTable *t, char *const *cells)
@@ -56,6 +97,8 @@ void dt_add_row(DataTable *t, char *const *cells)
     for (guint i = 0; i < t->cols->len; i++)
         row[i] = g_strdup(cells[i] ? cells[i] : "");
     g_ptr_array_add(t->rows, row);
+    if (t->pos)
+        g_ptr_array_add(t->pos, NULL); /* a row of no known place */
 }
 
 int dt_col(const DataTable *t, const char *name)
@@ -149,15 +192,21 @@ static gboolean quoted_field(CsvReader *r, GString *f, GError **err)
     }
 }
 
-/* Reads one record into a new strv; *eof when the text is exhausted. */
-static GPtrArray *read_record(CsvReader *r, GError **err)
+/* Reads one record into a new strv, and where each field starts into
+ * *at (a new array); NULL with *err on a bad field. */
+static GPtrArray *read_record(CsvReader *r, GArray **at, GError **err)
 {
     GPtrArray *cells = g_ptr_array_new_with_free_func(g_free);
+    *at = g_array_new(FALSE, FALSE, sizeof(DtPos));
     for (;;) {
+        DtPos here = {r->line, r->col};
+        g_array_append_val(*at, here);
         GString *f = g_string_new(NULL);
         if (r->s[r->pos] == '"' && !quoted_field(r, f, err)) {
             g_string_free(f, TRUE);
             g_ptr_array_free(cells, TRUE);
+            g_array_free(*at, TRUE);
+            *at = NULL;
             return NULL;
         }
         while (r->s[r->pos] && !strchr(",\r\n", r->s[r->pos])) {
@@ -176,9 +225,10 @@ static GPtrArray *read_record(CsvReader *r, GError **err)
     return cells;
 }
 
-static gboolean add_record(DataTable *t, GPtrArray *cells, CsvReader *r,
-                           int line, GError **err)
+static gboolean add_record(DataTable *t, GPtrArray *cells, GArray *at,
+                           CsvReader *r, GError **err)
 {
+    int line = g_array_index(at, DtPos, 0).line;
     if (cells->len != t->cols->len) {
         char *f = g_strdup_printf("%u fields", cells->len);
         char *e = g_strdup_printf("%u, as in the header", t->cols->len);
@@ -189,6 +239,7 @@ static gboolean add_record(DataTable *t, GPtrArray *cells, CsvReader *r,
     }
     g_ptr_array_add(cells, NULL);
     g_ptr_array_add(t->rows, g_ptr_array_free(cells, FALSE));
+    g_ptr_array_add(t->pos, g_array_free(at, FALSE));
     return TRUE;
 }
 
@@ -206,21 +257,27 @@ static void skip_comments(CsvReader *r)
 DataTable *dt_parse_csv(const char *text, const char *name, GError **err)
 {
     CsvReader r = {text, 0, 1, 1, name};
+    GArray *at = NULL;
     skip_comments(&r);
-    GPtrArray *head = read_record(&r, err);
+    GPtrArray *head = read_record(&r, &at, err);
     if (!head)
         return NULL;
     DataTable *t = dt_new(head);
     g_ptr_array_free(head, TRUE);
+    t->path = g_strdup(name);
+    t->head_pos = (DtPos *)g_array_free(at, FALSE);
+    t->pos = g_ptr_array_new_with_free_func(g_free);
     for (skip_comments(&r); r.s[r.pos]; skip_comments(&r)) {
-        int line = r.line;
-        GPtrArray *cells = read_record(&r, err);
+        GPtrArray *cells = read_record(&r, &at, err);
         gboolean ok = cells != NULL;
-        if (ok && cells->len == 1 && !*(char *)cells->pdata[0])
+        if (ok && cells->len == 1 && !*(char *)cells->pdata[0]) {
             g_ptr_array_free(cells, TRUE); /* blank line */
-        else if (!ok || !add_record(t, cells, &r, line, err)) {
-            if (cells && ok)
+            g_array_free(at, TRUE);
+        } else if (!ok || !add_record(t, cells, at, &r, err)) {
+            if (cells && ok) {
                 g_ptr_array_free(cells, TRUE);
+                g_array_free(at, TRUE);
+            }
             dt_free(t);
             return NULL;
         }
@@ -248,13 +305,42 @@ static gboolean check_text(const char *text, gsize len, const char *name,
     return FALSE;
 }
 
+/* The table of a CSV text within the memory limit (memlimit.h): the
+ * text, and per cell its copy, pointer, place and allocation (assumption:
+ * 32 bytes of allocator overhead a cell).  O(n). */
+static gboolean csv_fits(const char *text, gsize len, const char *path,
+                         GError **err)
+{
+    double cells = 1;
+    for (gsize i = 0; i < len; i++)
+        cells += text[i] == ',' || text[i] == '\n';
+    double bytes = 2.0 * (double)len +
+                   cells * (sizeof(char *) + sizeof(DtPos) + 32);
+    char *where = g_strdup_printf("%s:1:1", path);
+    char *what = g_strdup_printf("a CSV file of %.0f cells", cells);
+    gboolean ok = sim_mem_check(bytes, where, what, err);
+    g_free(what);
+    g_free(where);
+    return ok;
+}
+
 DataTable *dt_read_csv(const char *path, GError **err)
 {
     char *text = NULL;
     gsize len = 0;
+    GStatBuf st;
+    if (g_stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+        char *where = g_strdup_printf("%s:1:1", path);
+        gboolean ok = sim_mem_check((double)st.st_size, where,
+                                    "a CSV file's text", err);
+        g_free(where);
+        if (!ok)
+            return NULL;
+    }
     if (!sim_file_read(path, &text, &len, err))
         return NULL;
-    DataTable *t = check_text(text, len, path, err)
+    DataTable *t = check_text(text, len, path, err) &&
+                           csv_fits(text, len, path, err)
                        ? dt_parse_csv(text, path, err)
                        : NULL;
     g_free(text);

@@ -9,9 +9,20 @@
 
 #include "sim/core/error.h"
 
+/* Where a cell starts in the file it was read from (1-based). */
+typedef struct {
+    int line, col;
+} DtPos;
+
 typedef struct {
     GPtrArray *cols; /* char * */
     GPtrArray *rows; /* char ** (cols->len strings each) */
+    /* Read from a file (dt_parse_csv): its name, the header's cells'
+     * places and per row a DtPos[cols->len] (parallel to rows); NULL in a
+     * table built in memory. */
+    char *path;
+    DtPos *head_pos;
+    GPtrArray *pos;
 } DataTable;
 
 /* Returns a new table with the given columns (copied); free with
@@ -22,6 +33,14 @@ DataTable *dt_new_named(const char *const *names);
 void dt_free(DataTable *t);
 /* Appends a row of cols->len strings (copied). */
 void dt_add_row(DataTable *t, char *const *cells);
+/* A new empty table with src's columns and, when src was read from a
+ * file, its path and header places; dt_copy_row() appends src's row r
+ * with its places (a filtered table keeps its errors located). */
+DataTable *dt_new_like(const DataTable *src);
+void dt_copy_row(DataTable *dst, const DataTable *src, guint r);
+/* "path:line:col" of cell (r, c), or of column c's header when r is
+ * G_MAXUINT (g_free); NULL when t was not read from a file. */
+char *dt_where(const DataTable *t, guint r, int c);
 /* The column names joined with ", " for messages (g_free). */
 char *dt_col_names(const DataTable *t);
 /* Column index, or -1. */

@@ -16,6 +16,7 @@
  */
 #include "sim/app/bench/bench.h"
 #include "sim/core/error.h"
+#include "sim/core/memlimit.h"
 #include "sim/raster/image.h"
 #include "sim/raster/pipeline.h"
 #include "sim/scene/isosurface.h"
@@ -135,6 +136,22 @@ static void run(const BenchRasterOpts *o, const Scene *s)
     rast_active_free(a);
 }
 
+/* The image buffers and timings within the memory limit before they
+ * exist: a z-buffer's depth, primitive and colour (16 bytes a pixel; the
+ * scanline buffer's active pixels and row offsets are estimated the
+ * same) and two doubles a frame. */
+static gboolean buffers_fit(const BenchRasterOpts *o, GError **err)
+{
+    double px = (double)o->size * o->size;
+    char *what = g_strdup_printf("a %dx%d image and %d frames", o->size,
+                                 o->size, o->frames);
+    gboolean ok = sim_mem_check(16.0 * px + 16.0 * o->frames,
+                                "bench raster: --size, --frames", what,
+                                err);
+    g_free(what);
+    return ok;
+}
+
 int bench_raster_main(int argc, char **argv)
 {
     BenchRasterOpts o = {NULL, NULL, 640, 20, 8, 80};
@@ -165,7 +182,7 @@ int bench_raster_main(int argc, char **argv)
                     "bench raster: found a bad option value, expected "
                     "--size 1..16384, --frames/--count >= 1, --grid >= 2, "
                     "--zbuffer full|scanline");
-    else
+    else if (buffers_fit(&o, &err))
         s = make_scene(&o, &err);
     if (s)
         run(&o, s);

@@ -1,5 +1,6 @@
 /* cmd_bench.c — `pgsim bench NAME [options]`: dispatch to benchmarks. */
 #include "sim/app/bench/bench.h"
+#include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
 #include "sim/core/error.h"
 #include <stdio.h>
@@ -33,6 +34,7 @@ gboolean bench_parse_options(const char *name, const char *summary,
     char *title = g_strdup_printf("%s %s", name, summary);
     GOptionContext *ctx = g_option_context_new(title);
     g_option_context_add_main_entries(ctx, entries, NULL);
+    cli_add_common(ctx); /* --mem-limit */
     GError *e = NULL;
     gboolean ok = g_option_context_parse(ctx, argc, argv, &e);
     if (ok && *argc > 1) {

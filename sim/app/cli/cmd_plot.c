@@ -127,6 +127,17 @@ static gboolean same_value(const char *cell, const char *want)
     return *cell && *want && !*e1 && !*e2 && a == b;
 }
 
+/* An input error at the header of column c of t (its first cell when c
+ * is -1): "file:line:col: found ..., expected ...". */
+static void header_error(GError **err, const DataTable *t, int c,
+                         const char *found, const char *expected)
+{
+    char *where = dt_where(t, G_MAXUINT, c < 0 ? 0 : c);
+    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT, "%s: found %s, expected %s",
+                where ? where : "pgsim plot", found, expected);
+    g_free(where);
+}
+
 /* Keeps the rows of *t that satisfy one "K=V"; FALSE with *err when the
  * item or the column is bad. */
 static gboolean keep_where(DataTable **t, const char *item, GError **err)
@@ -136,42 +147,41 @@ static gboolean keep_where(DataTable **t, const char *item, GError **err)
     int c = key && *key ? dt_col(*t, key) : -1;
     if (c < 0) {
         char *cols = dt_col_names(*t);
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "--where %s: found %s '%s', expected COLUMN=VALUE with "
-                    "a column of: %s",
-                    item, eq ? "no column" : "no '=' in", eq ? key : item,
-                    cols);
+        char *found = g_strdup_printf("%s '%s' (--where %s)",
+                                      eq ? "no column" : "no '=' in",
+                                      eq ? key : item, item);
+        char *expected =
+            g_strdup_printf("--where COLUMN=VALUE with a column of: %s", cols);
+        header_error(err, *t, -1, found, expected);
+        g_free(expected);
+        g_free(found);
         g_free(cols);
         g_free(key);
         return FALSE;
     }
-    DataTable *kept = dt_new((*t)->cols);
+    DataTable *kept = dt_new_like(*t);
     for (guint r = 0; r < (*t)->rows->len; r++)
         if (same_value(dt_cell(*t, r, c), eq + 1))
-            dt_add_row(kept, g_ptr_array_index((*t)->rows, r));
+            dt_copy_row(kept, *t, r);
+    if (kept->rows->len == 0) {
+        char *found = g_strdup_printf("no row with %s", item);
+        header_error(err, *t, c, found, "at least one (--where)");
+        g_free(found);
+        dt_free(kept);
+        kept = NULL;
+    }
     dt_free(*t);
     *t = kept;
     g_free(key);
-    return TRUE;
+    return kept != NULL;
 }
 
 static DataTable *read_rows(const PlotOpts *o, const char *csv, GError **err)
 {
     DataTable *t = dt_read_csv(csv, err);
     for (int i = 0; t && o->where && o->where[i]; i++)
-        if (!keep_where(&t, o->where[i], err)) {
-            dt_free(t);
+        if (!keep_where(&t, o->where[i], err))
             return NULL;
-        }
-    if (t && o->where && t->rows->len == 0) {
-        char *w = g_strjoinv(" ", o->where);
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "--where %s: found no row of %s, expected at least one",
-                    w, csv);
-        g_free(w);
-        dt_free(t);
-        return NULL;
-    }
     return t;
 }
 

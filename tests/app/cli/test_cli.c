@@ -265,8 +265,8 @@ static void test_plot_where_and_labels(void **state)
     const char *bad[] = {"plot", csv, "--x", "n", "--y", "frame_s",
                          "--where", "colour=red", "-o", png, NULL};
     assert_int_equal(test_pgsim(bad, &out, &err), 2);
-    assert_non_null(strstr(err, "--where colour=red: found no column "
-                                "'colour'"));
+    assert_non_null(strstr(err, "r.csv:1:1: found no column 'colour' "
+                                "(--where colour=red), expected"));
     g_free(out);
     g_free(err);
     const char *files[] = {"c.png", "c.svg", "r.csv"};

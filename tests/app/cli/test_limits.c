@@ -2,7 +2,8 @@
  * on the command line (issue 32), through the pgsim binary.
  *
  * Each used to abort in an allocation, run for hours or exit 0: `bench
- * raster --grid=100000`, `bench phold` with 4000M LPs or 4e9 pending
+ * raster --grid=100000`, `--size 16384` or 2e9 `--frames` (the image
+ * buffers and timings are estimated), `bench phold` with 4000M LPs or 4e9 pending
  * events per LP, `--remote=nan`, and `run --trace-cap` large enough to
  * exhaust memory (which also left FILE.tmp).  Now each exits 2 at once
  * with its message, under a 4 GiB limit, prints nothing on stdout and
@@ -34,6 +35,11 @@ static const Case cases[] = {
     {"bench phold --lps=4000M --pending-per-lp=4000M",
      "expected at most 4096 MiB"},
     {"bench phold --remote=nan", "--remote outside [0, 1]"},
+    {"bench raster --size 16384 --zbuffer full --mem-limit 1G",
+     "--size, --frames: found a 16384x16384 image and 20 frames needing "
+     "about 4096 MiB, expected at most 1024 MiB"},
+    {"bench raster --frames 2000000000",
+     "found a 640x640 image and 2000000000 frames needing about"},
     {"run configs/tokenring.yaml --trace {} --trace-cap 2000000000",
      "--trace-cap: found a cap of 2000000000 events needing about"},
 };

@@ -149,12 +149,84 @@ static void test_sweep_plot_runs_nothing(void **state)
     g_free(top);
 }
 
+/* Every bad CSV is refused at its place in the file, "file:line:col:
+ * found ..., expected ...", with exit 2 and nothing written: too many
+ * series or categories (the line counted through a comment and a quoted
+ * field over two lines), a missing column, no numeric row, a --where
+ * that keeps nothing, and a file or chart over the memory limit.  Needs
+ * no gnuplot (all are refused before it runs). */
+static void test_bad_csv_located(void **state)
+{
+    (void)state;
+    char *dir = g_dir_make_tmp("pgsim-plotcsv-XXXXXX", NULL);
+    GString *ser = g_string_new("# provenance\nx,y,s\n1,2,\"two\nlines\"\n");
+    for (int i = 1; i < 600; i++)
+        g_string_append_printf(ser, "1,2,s%d\n", i);
+    GString *cat = g_string_new("x,y\n");
+    for (int i = 0; i < 1200; i++)
+        g_string_append_printf(cat, "c%d,2\n", i);
+    GString *big = g_string_new("x,y\n");
+    for (int i = 0; i < 20000; i++)
+        g_string_append_printf(big, "%050d,2\n", i);
+    const GString *texts[] = {ser, cat, big};
+    const char *names[] = {"ser.csv", "cat.csv", "big.csv"};
+    for (int i = 0; i < 3; i++) {
+        char *path = g_build_filename(dir, names[i], NULL);
+        assert_true(g_file_set_contents(path, texts[i]->str, -1, NULL));
+        g_free(path);
+    }
+    static const struct {
+        const char *csv, *x, *y, *more, *more_value, *want;
+    } cases[] = {
+        {"ser.csv", "x", "y", "--series", "s",
+         "ser.csv:504:5: found a series number 501, 's500' in column 's', "
+         "expected at most 500 series in chart 'y-vs-x'"},
+        {"cat.csv", "x", "y", NULL, NULL,
+         "cat.csv:1002:1: found a category number 1001, 'c1000' in column "
+         "'x', expected at most 1000 categories in chart 'y-vs-x'"},
+        {"cat.csv", "x", "nope", NULL, NULL,
+         "cat.csv:1:1: found no column 'nope' for y, expected a column of: "
+         "x, y"},
+        {"cat.csv", "y", "x", NULL, NULL,
+         "cat.csv:1:1: found no row with a number in both 'y' and 'x', "
+         "expected at least one"},
+        {"cat.csv", "x", "y", "--where", "y=3",
+         "cat.csv:1:3: found no row with y=3, expected at least one"},
+        {"big.csv", "x", "y", "--mem-limit", "2M",
+         "big.csv:1:1: found a CSV file of 40003 cells needing about 4 MiB, "
+         "expected at most 2 MiB (--mem-limit"},
+        {"big.csv", "x", "y", "--mem-limit", "5500k",
+         "big.csv:1:3: found a chart of 20000 rows needing about 6 MiB, "
+         "expected at most 5 MiB (--mem-limit"},
+    };
+    for (guint i = 0; i < G_N_ELEMENTS(cases); i++) {
+        char *csv = g_build_filename(dir, cases[i].csv, NULL);
+        const char *args[] = {"plot", csv, "--x", cases[i].x, "--y",
+                              cases[i].y, cases[i].more, cases[i].more_value,
+                              NULL};
+        char *err = NULL;
+        int st = plot(args, &err);
+        if (st != 2 || !strstr(err, cases[i].want))
+            fail_msg("case %u: exit %d, stderr '%s', expected 2 and '%s'", i,
+                     st, err, cases[i].want);
+        assert_int_equal(entries(dir), 3); /* nothing written */
+        g_free(err);
+        g_free(csv);
+    }
+    g_string_free(ser, TRUE);
+    g_string_free(cat, TRUE);
+    g_string_free(big, TRUE);
+    support_rm_tree(dir);
+    g_free(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_backquoted_series_runs_nothing),
         cmocka_unit_test(test_bad_output_names_refused),
         cmocka_unit_test(test_sweep_plot_runs_nothing),
+        cmocka_unit_test(test_bad_csv_located),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
