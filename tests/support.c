@@ -31,6 +31,17 @@ int support_camera_equal(const SceneCamera *a, const SceneCamera *b)
            a->near == b->near && a->far == b->far && a->aspect == b->aspect;
 }
 
+int support_entries(const char *dir)
+{
+    GDir *d = g_dir_open(dir, 0, NULL);
+    int n = 0;
+    while (d && g_dir_read_name(d))
+        n++;
+    if (d)
+        g_dir_close(d);
+    return n;
+}
+
 void support_rm_tree(const char *path)
 {
     GDir *d = g_dir_open(path, 0, NULL);

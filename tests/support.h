@@ -18,6 +18,8 @@ int support_test_models(void **state);
 int support_camera_equal(const SceneCamera *a, const SceneCamera *b);
 /* Removes a file, or a folder and everything in it (test scratch). */
 void support_rm_tree(const char *path);
+/* How many entries a folder holds (0 when it cannot be read). */
+int support_entries(const char *dir);
 
 /* A test run through the runner (sim/run/run.h), as `pgsim run` makes
  * it.  Zero fields keep the config's own settings. */

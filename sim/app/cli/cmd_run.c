@@ -14,6 +14,7 @@
 #include "sim/app/cli/commands.h"
 #include "sim/run/run.h"
 #include "sim/app/replay/rpl_record.h"
+#include "sim/app/run/outdir.h"
 #include "sim/app/run/report.h"
 #include "sim/app/trace/trace_file.h"
 #include "sim/core/error.h"
@@ -133,14 +134,21 @@ static char *frame_note(const char *dir, const char *workload)
     return note;
 }
 
-static int report(const SimResult *res, const RunOpts *o, RptFormat fmt)
+/* Prints the report; with --out, writes its files into the staging
+ * folder beside the run's images and moves them all into place. */
+static int report(const SimResult *res, const RunOpts *o, RptFormat fmt,
+                  const char *stage)
 {
     char *text = rpt_render(res, fmt, o->timing || fmt == RPT_TEXT);
     fputs(text, stdout);
     fflush(stdout);
     g_free(text);
     GError *e = NULL;
-    if (o->out && !rpt_write_dir(res, o->out, o->timing, &e))
+    if (stage && !rpt_write_dir(res, stage, o->timing, &e)) {
+        out_stage_discard(stage);
+        return cli_fail(e);
+    }
+    if (stage && !out_stage_commit(stage, o->out, &e))
         return cli_fail(e);
     if (o->out && !o->quiet) {
         char *note = frame_note(o->out, res->workload);
@@ -198,7 +206,15 @@ static int run(const char *path, const RunOpts *o)
         cfg_run_free(r);
         return cli_fail(e);
     }
-    CfgRunOpts ro = {.out_dir = o->out,
+    /* everything the run writes goes to a staging folder first, so a
+     * failure leaves an earlier run's --out folder as it was (outdir.h) */
+    char *stage = o->out ? out_stage_new(o->out, &e) : NULL;
+    if (o->out && !stage) {
+        trc_discard(tr);
+        cfg_run_free(r);
+        return cli_fail(e);
+    }
+    CfgRunOpts ro = {.out_dir = stage,
                      .quiet = o->quiet,
                      .progress = TRUE,
                      .trace = tr,
@@ -210,20 +226,24 @@ static int run(const char *path, const RunOpts *o)
         g_clear_pointer(&res, sim_result_free);
     rpl_recorder_free(rec);
     cfg_run_free(r);
-    if (!res) {
-        trc_discard(tr); /* a failed run leaves no trace file */
-        return cli_fail(e);
-    }
-    if (!trc_close(tr, &e)) {
-        sim_result_free(res);
+    if (!res || !trc_close(tr, &e)) {
+        if (!res)
+            trc_discard(tr); /* a failed run leaves no trace file */
+        out_stage_discard(stage);
+        g_free(stage);
+        if (res)
+            sim_result_free(res);
         return cli_fail(e);
     }
     if (!feasible(path, res, o->strict)) {
+        out_stage_discard(stage);
+        g_free(stage);
         sim_result_free(res);
         return 2;
     }
-    int status = report(res, o, fmt);
+    int status = report(res, o, fmt, stage);
     sim_result_free(res);
+    g_free(stage);
     return status;
 }
 

@@ -16,17 +16,6 @@
 
 #include "tests/app/cli/pgsim_spawn.h"
 
-static int entries(const char *dir)
-{
-    GDir *d = g_dir_open(dir, 0, NULL);
-    int n = 0;
-    while (d && g_dir_read_name(d))
-        n++;
-    if (d)
-        g_dir_close(d);
-    return n;
-}
-
 static int plot(const char *const *args, char **err)
 {
     char *out = NULL;
@@ -65,8 +54,8 @@ static void test_backquoted_series_runs_nothing(void **state)
     g_free(err);
     assert_false(g_file_test(mark, G_FILE_TEST_EXISTS));
     /* the chart, named from the columns with '_' for the rest, is in d/ */
-    assert_int_equal(entries(top), 1);
-    assert_int_equal(entries(dir), 5);
+    assert_int_equal(support_entries(top), 1);
+    assert_int_equal(support_entries(dir), 5);
     GDir *d = g_dir_open(dir, 0, NULL);
     const char *e;
     while ((e = g_dir_read_name(d)))
@@ -103,7 +92,7 @@ static void test_bad_output_names_refused(void **state)
         g_free(err);
         g_free(out);
     }
-    assert_int_equal(entries(top), 1);
+    assert_int_equal(support_entries(top), 1);
     g_free(csv);
     support_rm_tree(top);
     g_free(top);
@@ -209,7 +198,7 @@ static void test_bad_csv_located(void **state)
         if (st != 2 || !strstr(err, cases[i].want))
             fail_msg("case %u: exit %d, stderr '%s', expected 2 and '%s'", i,
                      st, err, cases[i].want);
-        assert_int_equal(entries(dir), 3); /* nothing written */
+        assert_int_equal(support_entries(dir), 3); /* nothing written */
         g_free(err);
         g_free(csv);
     }
