@@ -84,7 +84,9 @@ WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
     WlPmMemUse u = {.base = mem->base,
                     .polygons = polygons * mem->polygon,
                     .spans = spans * mem->span}; /* the rest set below */
-    if (s->scheme == WL_PM_ZBUF_EXC) {
+    gboolean full = s->scheme == WL_PM_ZBUF_EXC ||
+                    (wl_pm_scheme_composites(s->scheme) && !s->comp.rle);
+    if (full) {
         u.zbuffer = n2 * mem->location;
         u.buffers = n2 * s->fmt.bytes_per_location;
     } else {

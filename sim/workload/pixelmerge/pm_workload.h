@@ -60,7 +60,10 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
  * send and receive buffers of the first halving (N^2 / 2 locations each
  * at bytes_per_location), for the active schemes the WPA (active x
  * pixel), the MSA (N x index) and two merge buffers (received pixels and
- * the merged output, active x bytes_per_pixel each). */
+ * the merged output, active x bytes_per_pixel each).  A compositing
+ * scheme counts as ZBUF-EXC (a full local image and at most the image's
+ * locations in flight) unless it run-length encodes, then as an active
+ * scheme. */
 WlPmMemUse wl_pm_memory_use(const WlPmMemory *mem, const WlPmSetup *s,
                             uint64_t polygons, uint64_t spans, uint64_t active);
 

@@ -249,7 +249,7 @@ static void test_memory_use(void **st)
     (void)st;
     const WlPmMemory mem = {1000, 200, 30, 8, 12, 4};
     WlPmSetup s = {.scheme = WL_PM_ZBUF_EXC, .resolution = 10,
-                   .fmt = {8, 5, 2}};
+                   .fmt = {8, 5, 2, 0, 0}};
     WlPmMemUse u = wl_pm_memory_use(&mem, &s, 3, 7, 50);
     assert_int_equal(u.base, 1000);
     assert_int_equal(u.polygons, 600);
@@ -262,6 +262,15 @@ static void test_memory_use(void **st)
     assert_int_equal(u.zbuffer, 50 * 12 + 10 * 4);
     assert_int_equal(u.buffers, 2 * 50 * 8);
     assert_int_equal(u.total, 1000 + 600 + 210 + 640 + 800);
+    /* compositing: a full image unless run-length encoded */
+    s.scheme = WL_PM_RADIX_K;
+    u = wl_pm_memory_use(&mem, &s, 3, 7, 50);
+    assert_int_equal(u.zbuffer, 800);
+    assert_int_equal(u.buffers, 500);
+    s.comp.rle = TRUE;
+    u = wl_pm_memory_use(&mem, &s, 3, 7, 50);
+    assert_int_equal(u.zbuffer, 50 * 12 + 10 * 4);
+    assert_int_equal(u.buffers, 2 * 50 * 8);
 }
 
 int main(void)
