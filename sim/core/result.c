@@ -63,6 +63,7 @@ SimResult *sim_result_new(const char *workload, const char *machine)
     r->metrics = g_ptr_array_new_with_free_func(metric_free);
     r->overrides = g_ptr_array_new_with_free_func(g_free);
     r->mem_peak = NAN;
+    r->notes = g_ptr_array_new_with_free_func(g_free);
     return r;
 }
 
@@ -84,6 +85,7 @@ void sim_result_free(SimResult *r)
     g_free(r->config_sha256);
     g_free(r->config_effective);
     g_free(r->mem_kind);
+    g_ptr_array_free(r->notes, TRUE);
     g_free(r);
 }
 
@@ -196,4 +198,9 @@ char *sim_result_mem_note(const SimResult *r)
                            "fit on %s",
                            r->mem_peak / mib, (double)r->mem_node / mib,
                            r->mem_kind ? r->mem_kind : "?", r->machine);
+}
+
+void sim_result_add_note(SimResult *r, const char *text)
+{
+    g_ptr_array_add(r->notes, g_strdup(text));
 }

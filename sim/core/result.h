@@ -64,6 +64,10 @@ typedef struct {
     double mem_peak;
     uint64_t mem_node;
     char *mem_kind;
+    /* char *: sentences a reader needs beside the numbers, set by the
+     * workload or the runner (why a speed-up is above P ...); printed
+     * after the metrics, in JSON `notes` (only when there are some). */
+    GPtrArray *notes;
 } SimResult;
 
 /* Returns a new empty result; free with sim_result_free(). */
@@ -104,6 +108,9 @@ typedef struct {
 } SimUtilUsed;
 
 SimUtilUsed sim_result_util_used(const SimResult *r);
+
+/* Appends a note (copied). */
+void sim_result_add_note(SimResult *r, const char *text);
 
 /* The metric a workload declares for its largest per-node footprint. */
 #define SIM_PEAK_MEMORY_METRIC "peak_memory"

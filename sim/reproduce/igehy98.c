@@ -185,7 +185,7 @@ static gboolean igehy98_run(const RpContext *ctx, GPtrArray *rows,
 
 const RpPaperOps rp_igehy98 = {
     .name = "igehy98",
-    .citation = "seed 002: the parallel graphics API on Argus, a 24-processor "
+    .citation = "igehy98: the parallel graphics API on Argus, a 24-processor "
                 "shared-memory machine (Performance of Argus)",
     .setup = "setup.yaml",
     .rows = igehy98_run,

@@ -513,7 +513,7 @@ static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows, GError **err)
 const RpPaperOps rp_kurc96 = {
     .name = "kurc96",
     .citation = "Kurç, Aykanat, Özgüç: active pixel merging on the iPSC/2 "
-                "hypercube (seed 003): Tables 1-2, Figs. 1-2, speed-up",
+                "hypercube (kurc96): Tables 1-2, Figs. 1-2, speed-up",
     .setup = "setup.yaml",
     .rows = kurc96_run,
     .cost_s = 12, /* measured: user time of `pgsim reproduce kurc96` */

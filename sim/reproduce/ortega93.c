@@ -339,7 +339,7 @@ static gboolean ortega93_run(const RpContext *ctx, GPtrArray *rows,
 
 const RpPaperOps rp_ortega93 = {
     .name = "ortega93",
-    .citation = "seed 004: data-parallel polygon rendering, CM-200 and "
+    .citation = "ortega93: data-parallel polygon rendering, CM-200 and "
                "CM-5 (Tables 1-4)",
     .setup = "setup.yaml",
     .rows = ortega93_run,

@@ -407,6 +407,24 @@ static void fill_memory(SimResult *res, const MachMachine *m)
     }
 }
 
+/* A speed-up above the processors metric that the workload did not
+ * explain: say that the serial reference is not the parallel run on one
+ * processor, so the figure is not read as more than linear scaling. */
+static void note_speedup(SimResult *res)
+{
+    double sp = sim_result_metric(res, "speedup");
+    double p = sim_result_metric(res, "processors");
+    if (res->notes->len || !(sp > p))
+        return;
+    char *t = g_strdup_printf("speed-up %.1f is above P = %.0f: the "
+                              "workload's serial reference is not its "
+                              "parallel run on one processor "
+                              "(docs/workloads.md says how it is made)",
+                              sp, p);
+    sim_result_add_note(res, t);
+    g_free(t);
+}
+
 SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
 {
     g_assert(!r->executed); /* the built objects carry one run's state */
@@ -451,5 +469,6 @@ SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
         return NULL;
     }
     fill_memory(res, r->machine_built);
+    note_speedup(res);
     return res;
 }

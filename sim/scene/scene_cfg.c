@@ -261,7 +261,7 @@ static Scene *gen_march(const CfgNode *sec, GError **err)
     if (p.iso.grid % p.cell != 0) {
         cfg_error(err, cfg_get(sec, "cell") ? cfg_get(sec, "cell") : sec,
                   "a cell size that does not divide the grid",
-                  "a cell size dividing grid (64 / 16 in seed 002)");
+                  "a cell size dividing grid (64 / 16 in igehy98)");
         return NULL;
     }
     return scene_march_new(&p);

@@ -262,7 +262,7 @@ static void test_section_errors(void **st)
                "002)");
     fails_with("scene: {generator: march, grid: 63}\n",
                "t.yaml:1:8: found a cell size that does not divide the grid, "
-               "expected a cell size dividing grid (64 / 16 in seed 002)");
+               "expected a cell size dividing grid (64 / 16 in igehy98)");
     fails_with("scene: {generator: large_polygons, min_size: 0.5, "
                "max_size: 0.25}\n",
                "t.yaml:1:61: found max_size < min_size, expected max_size >= "

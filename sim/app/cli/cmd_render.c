@@ -245,7 +245,7 @@ int cmd_render(int argc, char **argv)
         {"frame", 0, 0, G_OPTION_ARG_DOUBLE, &o.frame,
          "frame of the scene's camera path (0)", "N"},
         {"teapots", 0, 0, G_OPTION_ARG_INT, &o.teapots,
-         "built-in scene of N teapots (seed 003)", "N"},
+         "built-in scene of N teapots (kurc96)", "N"},
         {"isosurface", 0, 0, G_OPTION_ARG_INT, &o.iso_grid,
          "built-in gyroid isosurface on a GRID^3 lattice", "GRID"},
         {"layout", 0, 0, G_OPTION_ARG_STRING, &o.layout,

@@ -14,6 +14,8 @@ const CliCommand cli_commands[] = {
     {"replay", cmd_replay,
      "replay a recorded trace on any machine model (docs/traces.md)"},
     {"plot", cmd_plot, "chart two columns of a results CSV with gnuplot"},
+    {"models", cmd_models,
+     "list the machine models, or print docs/models.md's tables"},
     {"help", cmd_help, "list the commands, or show one's options"},
     {NULL, NULL, NULL},
 };

@@ -30,5 +30,6 @@ int cmd_reproduce(int argc, char **argv);
 int cmd_sweep(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
+int cmd_models(int argc, char **argv);
 
 #endif

@@ -224,6 +224,17 @@ static void json_memory(JsonBuilder *b, const SimResult *r)
     json_builder_end_object(b);
 }
 
+static void json_notes(JsonBuilder *b, const SimResult *r)
+{
+    if (!r->notes->len)
+        return;
+    json_builder_set_member_name(b, "notes");
+    json_builder_begin_array(b);
+    for (guint i = 0; i < r->notes->len; i++)
+        js_add_str(b, g_ptr_array_index(r->notes, i));
+    json_builder_end_array(b);
+}
+
 static char *render_json(const SimResult *r, gboolean timing)
 {
     JsonBuilder *b = json_builder_new();
@@ -234,6 +245,7 @@ static char *render_json(const SimResult *r, gboolean timing)
     json_comm(b, r);
     json_memory(b, r);
     json_metrics(b, r, timing);
+    json_notes(b, r);
     json_builder_end_object(b);
     return js_finish(b, TRUE);
 }
@@ -363,6 +375,9 @@ static char *render_csv(const SimResult *r, gboolean timing)
     csv_nodes(s, r);
     csv_memory(s, r);
     csv_rest(s, r, timing);
+    for (guint i = 0; i < r->notes->len; i++)
+        csv_row(s, "note", NULL, NULL, "text", g_ptr_array_index(r->notes, i),
+                NULL);
     return g_string_free(s, FALSE);
 }
 
@@ -571,6 +586,32 @@ static void text_nodes(GString *s, const SimResult *r)
                            u.used, pct(a, u.mean), u.idle);
 }
 
+/* "note          " then the text in lines of at most 78 columns, each
+ * indented like the first (a word longer than a line stays whole). */
+static void text_note(GString *s, const char *text)
+{
+    enum { INDENT = 14, WIDTH = 78 };
+    g_string_append_printf(s, "%-*s", INDENT, "note");
+    guint col = INDENT;
+    char **words = g_strsplit(text, " ", -1);
+    for (guint w = 0; words[w]; w++) {
+        guint len = (guint)strlen(words[w]);
+        if (!len)
+            continue;
+        if (col > INDENT && col + 1 + len > WIDTH) {
+            g_string_append_printf(s, "\n%*s", INDENT, "");
+            col = INDENT;
+        } else if (col > INDENT) {
+            g_string_append_c(s, ' ');
+            col++;
+        }
+        g_string_append(s, words[w]);
+        col += len;
+    }
+    g_strfreev(words);
+    g_string_append_c(s, '\n');
+}
+
 static void text_rest(GString *s, const SimResult *r, gboolean timing)
 {
     char a[32], b[48];
@@ -588,6 +629,8 @@ static void text_rest(GString *s, const SimResult *r, gboolean timing)
         char h[48];
         g_string_append_printf(s, "  %-28s %s\n", m->name, human(h, m));
     }
+    for (guint i = 0; i < r->notes->len; i++)
+        text_note(s, g_ptr_array_index(r->notes, i));
     g_string_append_printf(s, "simulator     %" G_GUINT64_FORMAT " events",
                            r->events);
     if (timing)

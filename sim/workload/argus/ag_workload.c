@@ -397,7 +397,7 @@ static const WlMetric ag_metrics[] = {
 
 const WlOps wl_argus_ops = {
     .name = "argus",
-    .summary = "seed 002: the parallel graphics API (glpBarrier, glpPSema/"
+    .summary = "igehy98: the parallel graphics API (glpBarrier, glpPSema/"
                "VSema) on Argus, a sort-middle tiled renderer of "
                "application, geometry and rasterisation threads on a "
                "shared-memory multiprocessor",

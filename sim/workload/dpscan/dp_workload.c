@@ -500,7 +500,7 @@ static gboolean dp_plan_machine(const void *params, const CfgNode *given,
 
 const WlOps wl_dpscan_ops = {
     .name = "dpscan",
-    .summary = "seed 004: data-parallel scan conversion on SIMD/SPMD "
+    .summary = "ortega93: data-parallel scan conversion on SIMD/SPMD "
                "machines (CM-200, CM-5)",
     .parse = dp_parse,
     .free_params = dp_free_params,

@@ -680,7 +680,7 @@ static const WlMetric pphigs_metrics[] = {
 const WlOps wl_pphigs_ops = {
     .name = "pphigs",
     .summary = "PPHIGS display list distributed by primitive over the "
-               "GPs of Pixel-Planes 5 (seed 001)",
+               "GPs of Pixel-Planes 5 (ellsworth90)",
     .parse = parse,
     .free_params = params_free,
     .plan = plan,

@@ -120,14 +120,14 @@ static gboolean check_pull(const CfgNode *sec, const WlSfSetup *s,
     if (s->mig != WL_SF_PULL)
         return TRUE;
     if (s->bk != WL_SF_MINSET)
-        exp = "bookkeeping: minset (seed 000 §3.3.2.2 pulls min-set chunks)";
+        exp = "bookkeeping: minset (mueller97 §3.3.2.2 pulls min-set chunks)";
     else if (s->ms != WL_SF_FIXED)
         exp = "mastership: fixed (a pull asks a known, fixed master)";
     else if (s->adaptive)
         exp = "regions: static (the adaptive estimate rides on the push "
               "exchange)";
     else if (s->trav != WL_SF_TRAV_PLAIN)
-        exp = "traversal: plain (seed 000 §3.3.2.2: with pull no portion "
+        exp = "traversal: plain (mueller97 §3.3.2.2: with pull no portion "
               "of the hierarchy can be skipped over)";
     if (!exp)
         return TRUE;
@@ -745,7 +745,7 @@ static const WlMetric sf_metrics[] = {
 
 const WlOps wl_sortfirst_ops = {
     .name = "sortfirst",
-    .summary = "seed 000: sort-first rendering of a hierarchical database "
+    .summary = "mueller97: sort-first rendering of a hierarchical database "
                "with migrating primitive chunks, min-set or max-set "
                "bookkeeping",
     .parse = sf_parse,
