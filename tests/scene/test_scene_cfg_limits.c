@@ -258,8 +258,8 @@ static void test_section_errors(void **st)
                "t.yaml:1:37: found 'grid', expected one of: spread, depth");
     fails_with("scene: {generator: march, grid: 64, cell: 24}\n",
                "t.yaml:1:43: found a cell size that does not divide the "
-               "grid, expected a cell size dividing grid (64 / 16 in seed "
-               "002)");
+               "grid, expected a cell size dividing grid (64 / 16 in "
+               "igehy98)");
     fails_with("scene: {generator: march, grid: 63}\n",
                "t.yaml:1:8: found a cell size that does not divide the grid, "
                "expected a cell size dividing grid (64 / 16 in igehy98)");
