@@ -1,7 +1,7 @@
-# pgsim chart: edit and rerun `gnuplot kurc96-vs-published.gp`
-set title "kurc96: simulated against published (fidelity faithful: ipsc2 packet)"
-set xlabel "published"
-set ylabel "sim"
+# pgsim chart: edit and rerun 'gnuplot kurc96-vs-published.gp'
+set title 'kurc96: simulated against published (fidelity faithful: ipsc2 packet)'
+set xlabel 'published'
+set ylabel 'sim'
 set grid
 set key top left
 set datafile separator "\t"
@@ -11,13 +11,13 @@ set offsets graph 0.02, graph 0.02, 0, 0
 set logscale y
 set autoscale yfix
 set terminal pngcairo size 900,560 noenhanced font "sans,10"
-set output "kurc96-vs-published.png"
-plot  "kurc96-vs-published.dat" index 0 using 1:2:3:4 with yerrorbars title "table=1", \
-     "kurc96-vs-published.dat" index 1 using 1:2:3:4 with yerrorbars title "table=2", \
+set output 'kurc96-vs-published.png'
+plot  'kurc96-vs-published.dat' index 0 using 1:2:3:4 with yerrorbars title 'table=1', \
+     'kurc96-vs-published.dat' index 1 using 1:2:3:4 with yerrorbars title 'table=2', \
     x with lines dashtype 2 lc rgb "gray" title "y = x"
 set terminal svg size 900,560 noenhanced font "sans,10"
-set output "kurc96-vs-published.svg"
-plot  "kurc96-vs-published.dat" index 0 using 1:2:3:4 with yerrorbars title "table=1", \
-     "kurc96-vs-published.dat" index 1 using 1:2:3:4 with yerrorbars title "table=2", \
+set output 'kurc96-vs-published.svg'
+plot  'kurc96-vs-published.dat' index 0 using 1:2:3:4 with yerrorbars title 'table=1', \
+     'kurc96-vs-published.dat' index 1 using 1:2:3:4 with yerrorbars title 'table=2', \
     x with lines dashtype 2 lc rgb "gray" title "y = x"
 set output

@@ -503,6 +503,8 @@ static gboolean kurc96_run(const RpContext *ctx, GPtrArray *rows, GError **err)
     gboolean ok = kurc_init(&k, ctx, err) && table1(&k, rows, err) &&
                   table2(&k, rows, err) && cross_validate(&k, rows, err) &&
                   figures(&k, rows, &figs, err) && speedup(&k, rows, err);
+    if (ok)
+        rp_kurc96_claims(&figs, rows);
     if (ok && ctx->out_dir)
         rp_kurc96_charts(&figs, ctx->out_dir, ctx->fidelity);
     rp_kurc96_figs_clear(&figs);

@@ -77,6 +77,10 @@ typedef struct {
 } RpKurcFigs;
 
 void rp_kurc96_figs_clear(RpKurcFigs *f);
+/* The paper's statements about Table 2, Figs. 1-2 and the recommended
+ * scheme, computed from f and the Table 2 rows, appended to rows as
+ * table "claims" (kurc96_claims.c). */
+void rp_kurc96_claims(const RpKurcFigs *f, GPtrArray *rows);
 
 /* Writes kurc96-fig1a/1b/2a/2b.{dat,gp,png,svg} into dir through gnuplot;
  * a chart that cannot be drawn prints a warning and is skipped (the

@@ -122,8 +122,10 @@ static void test_rows_complete(void **state)
     }
     check_tables(t);
     check_figs(t);
-    /* 6 x 6 + 12 x 6 + 36 + 4 (cross-validation) + 16 x 6 (fig rows) + 1 */
-    assert_int_equal(t->cells->len, 36 + 72 + 40 + 96 + 1);
+    /* 6 x 6 + 12 x 6 + 36 + 4 (cross-validation) + 16 x 6 (fig rows) + 1
+     * + 10 claims x (cases, cases_holding, holds) */
+    assert_int_equal(t->cells->len, 36 + 72 + 40 + 96 + 1 + 30);
+    assert_true(isfinite(cell(t, "claims", "recommended", "holds")->sim));
     for (int i = 0; rp_kurc96_scenes[i]; i++) /* end points: below 2.56 */
         assert_true(cell(t, "1", rp_kurc96_scenes[i], "tpg_640_over_400")->sim <
                     2.56);
