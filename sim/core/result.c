@@ -86,6 +86,7 @@ void sim_result_free(SimResult *r)
     g_free(r->config_effective);
     g_free(r->mem_kind);
     g_ptr_array_free(r->notes, TRUE);
+    sim_inputs_free(r->inputs);
     g_free(r);
 }
 

@@ -9,6 +9,7 @@
 #ifndef PGSIM_CORE_RESULT_H
 #define PGSIM_CORE_RESULT_H
 
+#include "sim/core/inputs.h"
 #include "sim/core/engine.h"
 #include "sim/core/stats.h"
 
@@ -68,6 +69,8 @@ typedef struct {
      * workload or the runner (why a speed-up is above P ...); printed
      * after the metrics, in JSON `notes` (only when there are some). */
     GPtrArray *notes;
+    SimInputs *inputs; /* the model, scene, mesh, database and trace
+                          files read (inputs.h); NULL: none noted */
 } SimResult;
 
 /* Returns a new empty result; free with sim_result_free(). */

@@ -14,6 +14,7 @@
  * except for a missing required key.  Cost: O(size of the tree).
  */
 #include "sim/machine/model.h"
+#include "sim/core/inputs.h"
 #include "sim/core/datapath.h"
 #include "sim/core/error.h"
 #include <string.h>
@@ -595,6 +596,8 @@ CfgNode *mach_load_model_in(const char *name, const char *const *extra,
     if (!path)
         return NULL;
     CfgNode *root = cfg_load_file(path, err);
+    if (root)
+        sim_inputs_note_file("model", path);
     if (root && !mach_model_check(root, cfg_file(root), err)) {
         cfg_free(root);
         root = NULL;

@@ -10,6 +10,7 @@
  */
 #include "sim/machine/model_find.h"
 #include "sim/core/datapath.h"
+#include "sim/core/inputs.h"
 #include "sim/core/error.h"
 #include <string.h>
 
@@ -54,7 +55,8 @@ static void add_dir(GPtrArray *dirs, char *dir)
 GPtrArray *mach_model_dirs_in(const char *const *extra)
 {
     GPtrArray *dirs = g_ptr_array_new_with_free_func(g_free);
-    add_dir(dirs, g_strdup("models"));
+    if (!sim_inputs_dir_shipped("models")) /* else with the shipped ones */
+        add_dir(dirs, g_strdup("models"));
     char **list = sim_env_dirs("PGSIM_MODELS");
     for (char **d = list; *d; d++)
         add_dir(dirs, g_strdup(*d));

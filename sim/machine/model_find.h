@@ -4,7 +4,8 @@
  * in the first folder of the search path that has it.  The path is a
  * union, the user's folders first (docs/models.md):
  *
- *     1. ./models
+ *     1. ./models, unless it is a shipped folder of step 4 (pgsim run
+ *        from its own checkout), which is searched there
  *     2. each directory of $PGSIM_MODELS (colon-separated; a user setting)
  *     3. the caller's extra folders, in order (e.g. the models/ of the
  *        repository that holds a run config, the install's models)

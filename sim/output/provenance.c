@@ -57,6 +57,22 @@ char *prov_cfg_json(const CfgNode *n)
     return js_finish(b, FALSE);
 }
 
+void prov_inputs_json(JsonBuilder *b, const SimInputs *inputs)
+{
+    json_builder_begin_array(b);
+    for (guint i = 0; i < sim_inputs_len(inputs); i++) {
+        const SimInput *in = sim_inputs_at(inputs, i);
+        json_builder_begin_object(b);
+        js_set_str(b, "kind", in->kind);
+        js_set_str(b, "path", in->path);
+        js_set_str(b, "sha256", in->sha256);
+        json_builder_set_member_name(b, "shipped");
+        json_builder_add_boolean_value(b, in->shipped);
+        json_builder_end_object(b);
+    }
+    json_builder_end_array(b);
+}
+
 void prov_json(JsonBuilder *b, const SimProvenance *p)
 {
     json_builder_set_member_name(b, "provenance");
@@ -77,6 +93,8 @@ void prov_json(JsonBuilder *b, const SimProvenance *p)
     js_set_node(b, "effective_config", eff);
     if (eff)
         json_node_unref(eff);
+    json_builder_set_member_name(b, "inputs");
+    prov_inputs_json(b, p->inputs);
     json_builder_end_object(b);
 }
 
@@ -107,6 +125,14 @@ void prov_csv_rows(GString *out, const SimProvenance *p)
     csv_row(out, NULL, "seed", seed);
     csv_row(out, NULL, "fidelity", p->fidelity);
     csv_row(out, NULL, "effective_config", p->effective_config);
+    for (guint i = 0; i < sim_inputs_len(p->inputs); i++) {
+        const SimInput *in = sim_inputs_at(p->inputs, i);
+        char idx[16];
+        g_snprintf(idx, sizeof idx, "%u", i);
+        csv_row(out, idx, "input_kind", in->kind);
+        csv_row(out, idx, "input_path", in->path);
+        csv_row(out, idx, "input_sha256", in->sha256);
+    }
 }
 
 /* Appends s with line breaks escaped ("\n", "\r"); NULL as "-". */
@@ -145,6 +171,13 @@ void prov_comment_lines(GString *out, const SimProvenance *p)
     comment(out, "seed", seed);
     comment(out, "fidelity", p->fidelity);
     comment(out, "effective_config", p->effective_config);
+    for (guint i = 0; i < sim_inputs_len(p->inputs); i++) {
+        const SimInput *in = sim_inputs_at(p->inputs, i);
+        g_string_append_printf(out, "# input: %s ", in->kind);
+        one_line(out, in->path);
+        g_string_append_printf(out, " sha256 %s%s\n", in->sha256,
+                               in->shipped ? "" : " (not shipped)");
+    }
 }
 
 void prov_text_line(GString *out, const SimProvenance *p)
@@ -165,4 +198,23 @@ void prov_text_line(GString *out, const SimProvenance *p)
     g_string_append_printf(out, "; seed %" G_GUINT64_FORMAT "; fidelity ",
                            p->seed);
     one_line(out, p->fidelity);
+    for (guint i = 0; i < sim_inputs_len(p->inputs); i++) {
+        const SimInput *in = sim_inputs_at(p->inputs, i);
+        g_string_append_printf(out, "%s %s ", i ? "," : "; inputs", in->kind);
+        one_line(out, in->path);
+        g_string_append_printf(out, " (sha256 %s)", in->sha256);
+    }
+}
+
+void prov_text_notes(GString *out, const SimProvenance *p)
+{
+    for (guint i = 0; i < sim_inputs_len(p->inputs); i++) {
+        const SimInput *in = sim_inputs_at(p->inputs, i);
+        if (in->shipped)
+            continue;
+        g_string_append(out, "note: machine model ");
+        one_line(out, in->path);
+        g_string_append_printf(out, " is not a shipped model (sha256 %s)\n",
+                               in->sha256);
+    }
 }

@@ -27,7 +27,9 @@ static SimResult *run_cell(const RpEllRig *rig, const char *db, guint gps,
     char *set[] = {g_strdup_printf("workload.database=%s", db),
                    g_strdup_printf("workload.gps=%u", gps),
                    g_strdup_printf("workload.algorithm=%s", algo), NULL};
-    RpContext c = {.fidelity = rig->fidelity}; /* the label names none */
+    RpContext c = {.fidelity = rig->fidelity, /* the label names none */
+                   .sets = rig->ctx ? rig->ctx->sets : NULL,
+                   .models = rig->ctx ? rig->ctx->models : NULL};
     CfgRun *r = rp_run_build(&c, cfg_copy(rig->cell), NULL,
                              (const char *const *)set, err);
     SimResult *res = r ? rp_run_exec(&c, r, NULL, err) : NULL;
@@ -199,7 +201,7 @@ static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
     gboolean ok = setup_load(&s, ctx->setup, err);
     if (ok) {
         RpEllRig rig = {s.cell, ctx->fidelity ? ctx->fidelity : "analytic",
-                        s.gp_counts, s.n_gp};
+                        s.gp_counts, s.n_gp, ctx};
         ok = rp_ellsworth90_table1(&rig, s.dbs, s.n_dbs, rows, err);
     }
     cfg_free(s.root);

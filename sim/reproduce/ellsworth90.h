@@ -21,6 +21,8 @@ typedef struct {
     const char *fidelity;    /* run.fidelity of every cell */
     const guint *gp_counts;  /* the table's GP columns */
     guint n_gp;
+    const RpContext *ctx;    /* the user's overrides and model folders
+                                (rp_run_build); NULL: none */
 } RpEllRig;
 
 /* Appends RpRow * for the n databases named (`workload.database` of the

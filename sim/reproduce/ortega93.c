@@ -11,6 +11,7 @@
  * + segments x partitions).
  */
 #include "sim/reproduce/ortega93.h"
+#include "sim/reproduce/rp_driver.h"
 #include "sim/machine/model_param.h"
 #include "sim/raster/scan.h"
 #include "sim/run/run.h"
@@ -88,11 +89,11 @@ static CfgNode *table_tree(const OrRun *r, const CfgNode *tab,
 
 /* Runs `tree` (taken) with `set` (may be NULL): the result, and in *send
  * the machine's dpscan.send_slice on a SIMD machine (else 0). */
-static SimResult *run_tree(CfgNode *tree, const char *set, SimTime *send,
-                           GError **err)
+static SimResult *run_tree(const OrRun *r, CfgNode *tree, const char *set,
+                           SimTime *send, GError **err)
 {
     const char *const sets[] = {set, NULL};
-    CfgRun *run = cfg_run_from_tree(tree, sets, err);
+    CfgRun *run = rp_run_build_as_is(r->ctx, tree, sets, err);
     CfgRunOpts o = {.quiet = TRUE};
     SimResult *res = run ? cfg_run_exec(run, &o, err) : NULL;
     const CfgNode *sec =
@@ -171,9 +172,9 @@ static gboolean table_cells(OrRun *r, const char *table, const CfgNode *tab,
 {
     CfgNode *tree = table_tree(r, tab, scene, w, h, err);
     SimTime send = 0, zs = 0;
-    SimResult *res = tree ? run_tree(tree, NULL, &send, err) : NULL;
+    SimResult *res = tree ? run_tree(r, tree, NULL, &send, err) : NULL;
     SimResult *zero =
-        res && send ? run_tree(table_tree(r, tab, scene, w, h, err),
+        res && send ? run_tree(r, table_tree(r, tab, scene, w, h, err),
                                "machine.dpscan.send_slice=0 us", &zs, err)
                     : NULL;
     gboolean ok = res && (!send || zero);

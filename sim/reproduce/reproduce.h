@@ -42,6 +42,12 @@ typedef struct {
     gboolean quiet;       /* no progress output */
     RptProgress *progress; /* the caller's progress line; NULL: none */
     GString *fidelity_used; /* the driver's: see rp_note_fidelity() */
+    const char *const *sets; /* the user's machine.KEY=VALUE overrides,
+                                NULL-terminated, applied after a paper's
+                                own to every run it makes (rp_run_build);
+                                NULL: none */
+    const char *const *models; /* more model folders, searched before the
+                                  usual extra folders (run.h); NULL: none */
 } RpContext;
 
 /* A paper reports that it is about to simulate `what` ("2POT N=400

@@ -85,16 +85,26 @@ RpTable *rp_drive(const RpPaperOps *rp, const char *papers_dir,
     GString *used = g_string_new(NULL);
     c.fidelity_used = used;
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    SimInputs *inputs = sim_inputs_new();
+    sim_inputs_push(inputs);
     gint64 t0 = g_get_monotonic_time();
     gboolean ok = rp->rows(&c, rows, err);
     double wall = (double)(g_get_monotonic_time() - t0) * 1e-6;
+    sim_inputs_pop(inputs);
     gboolean faithful = strcmp(ctx->fidelity, RP_DEFAULT_FIDELITY) == 0;
     char *label = faithful && used->len ? g_strdup_printf("%s: %s", ctx->fidelity,
                                               used->str)
                             : g_strdup(ctx->fidelity);
     RpTable *t = ok ? rp_table_join(paper, rows, label, wall) : NULL;
-    if (t)
+    if (t) {
         note_setup(t, c.setup, ctx->setup ? ctx->setup : setup_name);
+        t->inputs = inputs;
+        inputs = NULL;
+        t->overrides = g_ptr_array_new_with_free_func(g_free);
+        for (int i = 0; ctx && ctx->sets && ctx->sets[i]; i++)
+            g_ptr_array_add(t->overrides, g_strdup(ctx->sets[i]));
+    }
+    sim_inputs_free(inputs);
     if (t && !apply_labels(t, dir, rp->name, err)) {
         rp_table_free(t);
         t = NULL;
@@ -129,22 +139,44 @@ GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
     return out;
 }
 
-CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
-                     const char *const *sets, GError **err)
+/* The run of tree or path with ov (char *, taken) and then the user's
+ * ctx->sets, on ctx->models. */
+static CfgRun *build_with_user(const RpContext *ctx, CfgNode *tree,
+                               const char *path, GPtrArray *ov, GError **err)
+{
+    for (int i = 0; ctx->sets && ctx->sets[i]; i++)
+        g_ptr_array_add(ov, g_strdup(ctx->sets[i]));
+    g_ptr_array_add(ov, NULL);
+    const char *const *all = (const char *const *)ov->pdata;
+    CfgRun *r = tree ? cfg_run_from_tree_in(tree, all, ctx->models, err)
+                     : cfg_run_load_in(path, all, ctx->models, err);
+    g_ptr_array_free(ov, TRUE);
+    return r;
+}
+
+static GPtrArray *copy_sets(const char *const *sets)
 {
     GPtrArray *ov = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 0; sets && sets[i]; i++)
         g_ptr_array_add(ov, g_strdup(sets[i]));
+    return ov;
+}
+
+CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
+                     const char *const *sets, GError **err)
+{
+    GPtrArray *ov = copy_sets(sets);
     g_ptr_array_add(ov, g_strdup_printf("run.fidelity=%s",
                                         ctx->fidelity ? ctx->fidelity
                                                       : "analytic"));
     g_ptr_array_add(ov, g_strdup_printf("run.seed=%d", (int)RP_SEED));
-    g_ptr_array_add(ov, NULL);
-    const char *const *all = (const char *const *)ov->pdata;
-    CfgRun *r = tree ? cfg_run_from_tree(tree, all, err)
-                     : cfg_run_load(path, all, err);
-    g_ptr_array_free(ov, TRUE);
-    return r;
+    return build_with_user(ctx, tree, path, ov, err);
+}
+
+CfgRun *rp_run_build_as_is(const RpContext *ctx, CfgNode *tree,
+                           const char *const *sets, GError **err)
+{
+    return build_with_user(ctx, tree, NULL, copy_sets(sets), err);
 }
 
 SimResult *rp_run_exec(const RpContext *ctx, CfgRun *r, WlShare *share,

@@ -37,10 +37,16 @@ GPtrArray *rp_drive_fidelities(const RpPaperOps *rp, const char *papers_dir,
 /* A paper's run through the runner: tree (taken) or, when it is NULL,
  * the config file `path`, with the paper's overrides `sets`
  * (NULL-terminated; may be NULL) and then run.fidelity (ctx->fidelity;
- * "analytic" when it has none) and run.seed=RP_SEED.  A new run
- * (cfg_run_free), or NULL with *err. */
+ * "analytic" when it has none) and run.seed=RP_SEED, and last the user's
+ * what-if ctx->sets (`reproduce --set`), with ctx->models as extra model
+ * folders (cfg_run_from_tree_in).  A new run (cfg_run_free), or NULL
+ * with *err. */
 CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
                      const char *const *sets, GError **err);
+/* The same for a tree whose run: section the paper sets itself: no
+ * run.fidelity or run.seed added. */
+CfgRun *rp_run_build_as_is(const RpContext *ctx, CfgNode *tree,
+                           const char *const *sets, GError **err);
 /* Executes r quietly with share (may be NULL) and notes the transport of
  * its machine (rp_note_fidelity: the config's machine.model, else the
  * model's name).  A new result, or NULL with *err. */

@@ -32,6 +32,9 @@ void rp_table_free(RpTable *t)
     g_free(t->setup);
     g_free(t->setup_sha256);
     g_free(t->setup_json);
+    if (t->overrides)
+        g_ptr_array_free(t->overrides, TRUE);
+    sim_inputs_free(t->inputs);
     g_ptr_array_free(t->cells, TRUE);
     g_free(t);
 }
@@ -296,8 +299,9 @@ void rp_table_summary(const RpTable *t, GString *out)
 
 SimProvenance rp_table_provenance(const RpTable *t)
 {
-    return (SimProvenance){t->setup, t->setup_sha256, NULL,
-                           RP_SEED,  t->fidelity,     t->setup_json};
+    return (SimProvenance){t->setup,     t->setup_sha256, t->overrides,
+                           RP_SEED,      t->fidelity,     t->setup_json,
+                           t->inputs};
 }
 
 void rp_table_text(const RpTable *t, GString *out)
@@ -315,9 +319,10 @@ void rp_table_text(const RpTable *t, GString *out)
             w[c] = MAX(w[c], (int)g_utf8_strlen(f[c], -1));
         g_ptr_array_add(lines, f);
     }
+    SimProvenance p = rp_table_provenance(t);
+    prov_text_notes(out, &p);
     g_string_append_printf(out, "%s (fidelity %s)%s%s\n", t->paper, t->fidelity,
                            *t->citation ? ": " : "", t->citation);
-    SimProvenance p = rp_table_provenance(t);
     prov_text_line(out, &p);
     g_string_append_c(out, '\n');
     text_line(out, head, w, t->labelled);

@@ -82,6 +82,8 @@ typedef struct {
     guint loo_n;                /* leave-one-out errors in the range */
     double loo_min, loo_max;    /* NAN when loo_n < 2 */
     guint inside, inside_of;    /* visible cells in their own interval */
+    GPtrArray *overrides; /* char *: the user's --set items; NULL: none */
+    SimInputs *inputs;    /* the files the paper's runs read; NULL: none */
 } RpTable;
 
 /* Joins rows (RpRow *, borrowed) to the paper; returns a new table (free

@@ -67,9 +67,11 @@ static void add_dir(GPtrArray *dirs, char *dir)
 
 /* The extra model folders of a config at `path` (NULL: a tree with no
  * file), NULL-terminated. */
-static GPtrArray *model_dirs(const char *path)
+static GPtrArray *model_dirs(const char *path, const char *const *models)
 {
     GPtrArray *dirs = g_ptr_array_new_with_free_func(g_free);
+    for (int i = 0; models && models[i]; i++)
+        g_ptr_array_add(dirs, g_strdup(models[i]));
     if (path)
         add_dir(dirs, repo_models_dir(path));
     add_dir(dirs, g_strdup(PGSIM_PREFIX "/share/pgsim/models"));
@@ -319,12 +321,15 @@ static gboolean apply_overrides(CfgNode *root, const char *const *ov,
 
 /* Loads a tree (taken) read from `path` (NULL: none). */
 static CfgRun *run_new(CfgNode *root, const char *const *overrides,
-                       const char *path, GError **err)
+                       const char *path, const char *const *models,
+                       GError **err)
 {
     CfgRun *r = g_new0(CfgRun, 1);
     r->root = root;
     r->path = g_strdup(path);
-    r->model_dirs = model_dirs(path);
+    r->model_dirs = model_dirs(path, models);
+    r->inputs = sim_inputs_new();
+    sim_inputs_push(r->inputs);
     r->overrides = g_ptr_array_new_with_free_func(g_free);
     for (int i = 0; overrides && overrides[i]; i++)
         g_ptr_array_add(r->overrides, g_strdup(overrides[i]));
@@ -333,6 +338,7 @@ static CfgRun *run_new(CfgNode *root, const char *const *overrides,
         check_schema(root, err) && read_run(r, err) &&
         read_workload(r, err) && check_workload_memory(r, err) &&
         build(r, err) && cfg_check_unused(root, err);
+    sim_inputs_pop(r->inputs);
     if (!ok) {
         cfg_run_free(r);
         return NULL;
@@ -340,20 +346,32 @@ static CfgRun *run_new(CfgNode *root, const char *const *overrides,
     return r;
 }
 
+CfgRun *cfg_run_from_tree_in(CfgNode *root, const char *const *overrides,
+                             const char *const *models, GError **err)
+{
+    return run_new(root, overrides, NULL, models, err);
+}
+
 CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
                           GError **err)
 {
-    return run_new(root, overrides, NULL, err);
+    return run_new(root, overrides, NULL, NULL, err);
+}
+
+CfgRun *cfg_run_load_in(const char *path, const char *const *overrides,
+                        const char *const *models, GError **err)
+{
+    CfgNode *root = cfg_load_file(path, err);
+    CfgRun *r = root ? run_new(root, overrides, path, models, err) : NULL;
+    if (r)
+        r->sha256 = prov_file_sha256(path);
+    return r;
 }
 
 CfgRun *cfg_run_load(const char *path, const char *const *overrides,
                      GError **err)
 {
-    CfgNode *root = cfg_load_file(path, err);
-    CfgRun *r = root ? run_new(root, overrides, path, err) : NULL;
-    if (r)
-        r->sha256 = prov_file_sha256(path);
-    return r;
+    return cfg_run_load_in(path, overrides, NULL, err);
 }
 
 void cfg_run_free(CfgRun *r)
@@ -370,6 +388,7 @@ void cfg_run_free(CfgRun *r)
         g_ptr_array_free(r->model_dirs, TRUE);
     g_free(r->path);
     g_free(r->sha256);
+    sim_inputs_free(r->inputs);
     if (r->overrides)
         g_ptr_array_free(r->overrides, TRUE);
     g_free(r);
@@ -388,6 +407,8 @@ static void fill_provenance(SimResult *res, const CfgRun *r)
     res->config_effective = prov_cfg_json(r->root);
     for (guint i = 0; r->overrides && i < r->overrides->len; i++)
         g_ptr_array_add(res->overrides, g_strdup(r->overrides->pdata[i]));
+    res->inputs = sim_inputs_new();
+    sim_inputs_merge(res->inputs, r->inputs);
 }
 
 /* The feasibility figures (result.h): the workload's per-node peak and
@@ -457,8 +478,11 @@ SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
                          : NULL;
     rpt_progress_attach(p, eng);
     gint64 t0 = g_get_monotonic_time();
+    sim_inputs_push(r->inputs);
     gboolean ok = r->wl->run(&ctx, r->wl_params, res, err) &&
                   wl_check_metrics(r->wl, res, err);
+    sim_inputs_pop(r->inputs);
+    sim_inputs_merge(res->inputs, r->inputs);
     res->wall_s = (double)(g_get_monotonic_time() - t0) * 1e-6;
     rpt_progress_finish(p);
     res->events = sim_engine_events(eng);

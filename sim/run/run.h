@@ -53,6 +53,8 @@ typedef struct {
                               the install prefix's) */
     char *sha256;         /* of the file's bytes; NULL for a tree */
     GPtrArray *overrides; /* char *: the overrides applied, in order */
+    SimInputs *inputs;    /* owned: the files the load and the run read
+                             (sim/core/inputs.h), for the provenance */
 } CfgRun;
 
 /* Loads and checks a run config; `overrides` is a NULL-terminated list of
@@ -64,6 +66,13 @@ CfgRun *cfg_run_load(const char *path, const char *const *overrides,
  * failure); overrides are applied first.  For sweeps. */
 CfgRun *cfg_run_from_tree(CfgNode *root, const char *const *overrides,
                           GError **err);
+/* The same two with more model folders (`models`, NULL-terminated,
+ * borrowed; NULL: none) searched before the usual extra folders:
+ * `pgsim reproduce --models DIR`. */
+CfgRun *cfg_run_load_in(const char *path, const char *const *overrides,
+                        const char *const *models, GError **err);
+CfgRun *cfg_run_from_tree_in(CfgNode *root, const char *const *overrides,
+                             const char *const *models, GError **err);
 void cfg_run_free(CfgRun *run);
 
 /* Options for one execution of a loaded config. */

@@ -7,6 +7,7 @@
  * (.obj)", Advanced Visualizer manual, appendix B1).  O(file size).
  */
 #include "sim/scene/obj.h"
+#include "sim/core/inputs.h"
 #include "sim/core/datapath.h"
 #include "sim/scene/scene_limits.h"
 
@@ -342,6 +343,7 @@ SceneMesh *scene_obj_load(const char *path, GError **err)
     gsize len;
     if (!sim_file_read(path, &text, &len, err))
         return NULL;
+    sim_inputs_note_bytes("mesh", path, text, len);
     SceneMesh *m = scene_obj_parse(text, len, path, err);
     g_free(text);
     return m;

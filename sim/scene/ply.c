@@ -7,6 +7,7 @@
  * error can say where it happened.  Format: Turk 1994.  O(file size).
  */
 #include "sim/scene/ply.h"
+#include "sim/core/inputs.h"
 #include "sim/core/datapath.h"
 #include "sim/scene/scene_limits.h"
 
@@ -627,6 +628,7 @@ SceneMesh *scene_ply_load(const char *path, GError **err)
     gsize len;
     if (!sim_file_read(path, &data, &len, err))
         return NULL;
+    sim_inputs_note_bytes("mesh", path, data, len);
     SceneMesh *m = scene_ply_parse((const guchar *)data, len, path, err);
     g_free(data);
     return m;

@@ -7,6 +7,7 @@
  */
 #include "sim/scene/scene_cfg.h"
 
+#include "sim/core/inputs.h"
 #include "sim/scene/isosurface.h"
 #include "sim/scene/march.h"
 #include "sim/scene/nurbs.h"
@@ -662,6 +663,7 @@ static Scene *scene_from_yaml(const char *path, GError **err)
     CfgNode *root = cfg_load_file(path, err);
     if (!root)
         return NULL;
+    sim_inputs_note_file("scene", path);
     Scene *s = NULL;
     const CfgNode *sec = NULL;
     if (cfg_kind(root) != CFG_MAP)

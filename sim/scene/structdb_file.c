@@ -2,6 +2,7 @@
  * format (structdb_file.h).
  */
 #include "sim/scene/structdb_file.h"
+#include "sim/core/inputs.h"
 #include "sim/core/memlimit.h"
 #include "sim/scene/scene_limits.h"
 #include <math.h>
@@ -325,6 +326,7 @@ SceneDb *scene_db_load(const char *path, GError **err)
     CfgNode *root = cfg_load_file(path, err);
     if (!root)
         return NULL;
+    sim_inputs_note_file("database", path);
     SceneDb *db = scene_db_from_cfg(root, err);
     cfg_free(root);
     return db;

@@ -74,7 +74,7 @@ static void test_table_rows(void **state)
 {
     Fix *f = *state;
     const guint gps[] = {4, 16};
-    RpEllRig rig = {f->cell, "analytic", gps, 2};
+    RpEllRig rig = {f->cell, "analytic", gps, 2, NULL};
     const char *dbs[] = {"flock", "humans", "too_deep"};
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
     assert_true(rp_ellsworth90_table1(&rig, dbs, 2, rows, NULL));
@@ -97,6 +97,50 @@ static void test_table_rows(void **state)
     g_ptr_array_unref(rows);
 }
 
+/* The cells of the flock database, run with ctx (NULL: none). */
+static GPtrArray *flock_rows(const Fix *f, const RpContext *ctx,
+                             GError **err)
+{
+    static const guint gps[] = {4};
+    RpEllRig rig = {f->cell, "analytic", gps, 1, ctx};
+    const char *dbs[] = {"flock"};
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    if (!rp_ellsworth90_table1(&rig, dbs, 1, rows, err)) {
+        g_ptr_array_unref(rows);
+        return NULL;
+    }
+    return rows;
+}
+
+/* `reproduce --set machine...` reaches every run: a dearer polygon on
+ * the GPs moves the efficiency cells; a bad machine key is an error. */
+static void test_what_if_set(void **state)
+{
+    Fix *f = *state;
+    const char *const sets[] = {"machine.nodes.gp.costs.polygon=40 us", NULL};
+    const char *const bad[] = {"machine.nodes.gp.costs.polygon=fast", NULL};
+    RpContext what_if = {.fidelity = "analytic", .sets = sets};
+    RpContext broken = {.fidelity = "analytic", .sets = bad};
+    GPtrArray *a = flock_rows(f, NULL, NULL), *b = flock_rows(f, &what_if,
+                                                               NULL);
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_int_equal(a->len, b->len);
+    guint moved = 0;
+    for (guint i = 0; i < a->len; i++) {
+        const RpRow *x = g_ptr_array_index(a, i), *y = g_ptr_array_index(b, i);
+        assert_string_equal(x->column, y->column);
+        moved += x->sim != y->sim;
+    }
+    assert_true(moved > 0);
+    GError *err = NULL;
+    assert_null(flock_rows(f, &broken, &err));
+    assert_non_null(err);
+    g_clear_error(&err);
+    g_ptr_array_unref(a);
+    g_ptr_array_unref(b);
+}
+
 /* A misspelt key of the cell: the runner refuses it, located. */
 static void test_cell_unknown_key(void **state)
 {
@@ -104,7 +148,7 @@ static void test_cell_unknown_key(void **state)
     CfgNode *cell = cfg_copy(f->cell);
     assert_true(cfg_set_override(cell, "workload.rebalnce=1", NULL));
     const guint gps[] = {4};
-    RpEllRig rig = {cell, "analytic", gps, 1};
+    RpEllRig rig = {cell, "analytic", gps, 1, NULL};
     const char *dbs[] = {"flock"};
     GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
     GError *err = NULL;
@@ -121,6 +165,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_table_rows),
         cmocka_unit_test(test_cell_unknown_key),
+        cmocka_unit_test(test_what_if_set),
     };
     return cmocka_run_group_tests_name("ellsworth90", tests, setup, teardown);
 }

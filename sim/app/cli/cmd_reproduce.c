@@ -1,6 +1,15 @@
 /* cmd_reproduce.c — `pgsim reproduce NAME|all [--format text|csv|json]
  * [--out DIR] [--fidelity faithful|analytic|flow|packet|all] [--papers DIR]
- * [--quiet]`.
+ * [--quiet] [--set machine.KEY=VALUE]... [--models DIR]...`.
+ *
+ * --set changes the machine of every run a paper makes (after the
+ * paper's own overrides: a what-if on the paper's machine); only
+ * machine.* keys, since the workloads and scenes are the paper's.
+ * --models DIR adds a model folder, searched before the shipped models
+ * (after ./models and $PGSIM_MODELS; sim/machine/model_find.h).  Both are
+ * in every table's provenance with each model and scene file read, by
+ * path and SHA-256; a model from outside the shipped folder is named in
+ * the first lines of the text table.
  *
  * Runs paper reproductions (sim/reproduce/reproduce.h), joins them to the
  * published values in configs/papers/<name>/published.yaml and prints the
@@ -43,6 +52,8 @@ typedef struct {
     char *doc;
     gboolean quiet;
     int jobs;
+    char **sets;   /* --set machine.KEY=VALUE, NULL-terminated */
+    char **models; /* --models DIR, NULL-terminated */
     RpFormat fmt;
     const RpPaperOps **list; /* `all` or NAME,NAME...: the papers, in order */
     int n_list;
@@ -80,6 +91,11 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
          "--out: DIR/reproduction.md; else none)",
          "FILE"},
         {"quiet", 'q', 0, G_OPTION_ARG_NONE, &o->quiet, "no progress", NULL},
+        {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &o->sets,
+         "change the machine of every run (repeatable)",
+         "machine.KEY=VALUE"},
+        {"models", 0, 0, G_OPTION_ARG_FILENAME_ARRAY, &o->models,
+         "also look for machine models in DIR (repeatable)", "DIR"},
         {"jobs", 'j', 0, G_OPTION_ARG_INT, &o->jobs,
          "with 'all' or a list: papers run at once (default: the cores)", "N"},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
@@ -90,6 +106,30 @@ static gboolean parse_opts(RpOpts *o, int *argc, char ***argv, int *status)
         return FALSE;
     *status = 2;
     return cli_want_args("reproduce", "NAME|all|NAME,NAME...", *argc, *argv, 1);
+}
+
+/* --set takes machine keys only, --models existing folders. */
+static gboolean check_sets(const RpOpts *o, GError **err)
+{
+    for (int i = 0; o->sets && o->sets[i]; i++)
+        if (!g_str_has_prefix(o->sets[i], "machine.") ||
+            !strchr(o->sets[i], '=')) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "--set: found '%s', expected machine.KEY=VALUE (a "
+                        "reproduction's workloads and scenes are the "
+                        "paper's)",
+                        o->sets[i]);
+            return FALSE;
+        }
+    for (int i = 0; o->models && o->models[i]; i++)
+        if (!g_file_test(o->models[i], G_FILE_TEST_IS_DIR)) {
+            g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                        "--models: found '%s', expected a folder of machine "
+                        "models",
+                        o->models[i]);
+            return FALSE;
+        }
+    return TRUE;
 }
 
 static gboolean check_opts(RpOpts *o, GError **err)
@@ -112,7 +152,7 @@ static gboolean check_opts(RpOpts *o, GError **err)
                     o->fidelity);
         return FALSE;
     }
-    return parse_format(o, err);
+    return check_sets(o, err) && parse_format(o, err);
 }
 
 /* passes: one RpTable, or one per fidelity for --fidelity all. */
@@ -179,7 +219,9 @@ static GPtrArray *run_passes(const RpPaperOps *rp, const RpOpts *o,
     RpContext ctx = {.fidelity = o->fidelity,
                      .out_dir = o->out_dir,
                      .quiet = o->quiet || !bar,
-                     .progress = bar};
+                     .progress = bar,
+                     .sets = (const char *const *)o->sets,
+                     .models = (const char *const *)o->models};
     if (strcmp(o->fidelity, "all") == 0)
         return rp_drive_fidelities(rp, o->papers, &ctx, err);
     RpTable *t = rp_drive(rp, o->papers, &ctx, err);
@@ -493,6 +535,8 @@ int cmd_reproduce(int argc, char **argv)
     g_free(o.fidelity);
     g_free(o.papers);
     g_free(o.doc);
+    g_strfreev(o.sets);
+    g_strfreev(o.models);
     g_free(o.list);
     return status;
 }

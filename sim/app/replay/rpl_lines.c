@@ -6,6 +6,7 @@
  * bytes: memory is constant whatever the file's length.  Cost: O(bytes).
  */
 #include "sim/app/replay/rpl_lines.h"
+#include "sim/core/inputs.h"
 #include "sim/app/replay/rpl_gunzip.h"
 #include "sim/core/error.h"
 #include <errno.h>
@@ -61,6 +62,7 @@ RplLines *rpl_lines_open(const char *path, GError **err)
 {
     if (!regular(path, err))
         return NULL;
+    sim_inputs_note_file("trace", path);
     GFile *f = g_file_new_for_path(path);
     GError *e = NULL;
     GInputStream *in = G_INPUT_STREAM(g_file_read(f, NULL, &e));

@@ -82,7 +82,8 @@ static void set_time(JsonBuilder *b, const char *key, SimTime t)
 static SimProvenance provenance_of(const SimResult *r)
 {
     SimProvenance p = {r->config_path, r->config_sha256, r->overrides,
-                       r->seed,        r->fidelity,     r->config_effective};
+                       r->seed,        r->fidelity,     r->config_effective,
+                       r->inputs};
     return p;
 }
 
@@ -664,6 +665,8 @@ static void text_memory(GString *s, const SimResult *r)
 static char *render_text(const SimResult *r, gboolean timing)
 {
     GString *s = g_string_new(NULL);
+    SimProvenance p = provenance_of(r);
+    prov_text_notes(s, &p);
     text_frames(s, r);
     text_nodes(s, r);
     text_memory(s, r);

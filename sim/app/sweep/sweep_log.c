@@ -224,7 +224,7 @@ static void add_columns(GPtrArray *cols, JsonNode *row)
 {
     GList *keys = json_object_get_members(json_node_get_object(row));
     for (GList *k = keys; k; k = k->next)
-        if (!has_col(cols, k->data))
+        if (!has_col(cols, k->data) && strcmp(k->data, SWEEP_INPUTS_KEY))
             g_ptr_array_add(cols, g_strdup(k->data));
     g_list_free(keys);
 }
@@ -268,20 +268,52 @@ typedef struct {
     SimProvenance p;
     CfgNode *base;
     char *sha, *eff;
+    SimInputs *inputs; /* the union of the points' inputs, in point order */
 } SweepProv;
 
-static void sweep_prov_init(SweepProv *s, const SweepSpec *spec)
+/* Adds the files of a point's line (its SWEEP_INPUTS_KEY array). */
+static void add_inputs(SimInputs *in, JsonNode *row)
+{
+    JsonNode *a = row ? js_get(row, SWEEP_INPUTS_KEY) : NULL;
+    if (!a || !JSON_NODE_HOLDS_ARRAY(a))
+        return;
+    JsonArray *arr = json_node_get_array(a);
+    for (guint i = 0; i < json_array_get_length(arr); i++) {
+        JsonNode *e = json_array_get_element(arr, i);
+        if (!JSON_NODE_HOLDS_OBJECT(e))
+            continue;
+        JsonObject *o = json_node_get_object(e);
+        const char *kind = json_object_get_string_member_with_default(
+            o, "kind", NULL);
+        const char *path = json_object_get_string_member_with_default(
+            o, "path", NULL);
+        const char *sha = json_object_get_string_member_with_default(
+            o, "sha256", NULL);
+        if (kind && path && sha)
+            sim_inputs_add(in, kind, path, sha,
+                           json_object_get_boolean_member_with_default(
+                               o, "shipped", TRUE));
+    }
+}
+
+static void sweep_prov_init(SweepProv *s, const SweepSpec *spec,
+                            JsonNode **rows, guint n)
 {
     s->base = cfg_copy(spec->base);
     s->sha = prov_file_sha256(spec->path);
     s->eff = prov_cfg_json(s->base);
+    s->inputs = sim_inputs_new();
+    for (guint i = 0; i < n; i++)
+        add_inputs(s->inputs, rows[i]);
     const char *fid =
         cfg_scalar(cfg_get(cfg_get(s->base, "run"), "fidelity"));
-    s->p = (SimProvenance){spec->path, s->sha, NULL, spec->seed, fid, s->eff};
+    s->p = (SimProvenance){spec->path, s->sha, NULL, spec->seed,
+                           fid,        s->eff, s->inputs};
 }
 
 static void sweep_prov_clear(SweepProv *s)
 {
+    sim_inputs_free(s->inputs);
     g_free(s->eff);
     g_free(s->sha);
     cfg_free(s->base);
@@ -316,7 +348,7 @@ static gboolean write_outputs(const char *dir, const SweepSpec *spec,
             g_string_append_printf(jl, "%s\n", lines[i]);
     DataTable *t = build_table(spec, rows, n);
     SweepProv prov;
-    sweep_prov_init(&prov, spec);
+    sweep_prov_init(&prov, spec, rows, n);
     prov_comment_lines(csv, &prov.p);
     dt_write_csv(t, csv);
     gboolean ok = write_atomic(dir, LOG_NAME, jl, err) &&

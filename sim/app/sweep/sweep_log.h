@@ -9,13 +9,18 @@
  *
  * sweep_log_finish() rewrites results.jsonl ordered by point index (the
  * last line per point) and writes results.csv, both atomically, so the
- * final files do not depend on -j, ranks or interruptions.
+ * final files do not depend on -j, ranks or interruptions.  A point's
+ * line carries the files its run read under SWEEP_INPUTS_KEY (kind,
+ * path, sha256, shipped); their union, in point order, is the inputs of
+ * the sweep's provenance, not a column of results.csv.
  */
 #ifndef PGSIM_APP_SWEEP_SWEEP_LOG_H
 #define PGSIM_APP_SWEEP_SWEEP_LOG_H
 
 #include "sim/app/sweep/sweep_spec.h"
 #include "sim/output/table.h"
+
+#define SWEEP_INPUTS_KEY "inputs"
 
 typedef struct SweepLog SweepLog;
 

@@ -11,6 +11,7 @@
 #include "sim/app/pool/pool.h"
 #include "sim/output/json.h"
 #include <math.h>
+#include "sim/output/provenance.h"
 #include <string.h>
 
 /* ---- lines ----------------------------------------------------------- */
@@ -94,6 +95,8 @@ static void put_result(JsonBuilder *b, const SimResult *r)
         const SimMetric *sm = g_ptr_array_index(r->metrics, m);
         js_set_num(b, sm->name, sm->value);
     }
+    json_builder_set_member_name(b, SWEEP_INPUTS_KEY); /* not a column */
+    prov_inputs_json(b, r->inputs);
 }
 
 char *sweep_point_line(const SweepSpec *s, guint i, SweepRunFn fn)

@@ -2,6 +2,7 @@
  * Every reader marks what it reads and rejects unknown keys.
  */
 #include "sim/workload/pphigs/pphigs_cfg.h"
+#include "sim/core/inputs.h"
 #include "sim/scene/structdb_file.h"
 #include <string.h>
 
@@ -84,6 +85,7 @@ gboolean wl_pphigs_spec_load(const char *path, const char *name,
     CfgNode *root = cfg_load_file(path, err);
     if (!root)
         return FALSE;
+    sim_inputs_note_file("database", path);
     const CfgNode *m = cfg_kind(root) == CFG_MAP ? cfg_get(root, name) : NULL;
     gboolean ok = m && wl_pphigs_spec_from_cfg(m, out, err);
     if (!m)
