@@ -121,9 +121,12 @@ void wl_sf_book_need_from(WlSfBook *b, const WlSfScreen *scr)
     if (!b->remapped)
         memset(b->fresh, 0, wl_sf_n_insts(b->db));
     b->remapped = FALSE;
-    for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
-        b->need[i] = wl_sf_screen_regions(&b->regions, &scr[i]);
-        b->used[wl_sf_inst(b->db, i)->chunk] |= b->need[i];
+    for (guint c = 0; c < nc; c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
+            b->need[i] = wl_sf_screen_regions(&b->regions, &scr[i]);
+            b->used[c] |= b->need[i];
+        }
     }
 }
 
@@ -478,17 +481,47 @@ uint64_t wl_sf_book_memory(const WlSfBook *b, guint p)
     return bytes;
 }
 
+/* Adds `bytes` to each processor in bits. */
+static void add_to(uint64_t *per, uint64_t bits, uint64_t bytes)
+{
+    for (; bits; bits &= bits - 1)
+        per[__builtin_ctzll(bits)] += bytes;
+}
+
+uint64_t wl_sf_book_peak_memory(const WlSfBook *b)
+{
+    uint64_t per[WL_SF_MAX_PROCS] = {0}, peak = 0;
+    uint64_t vec = (b->regions.procs + 7) / 8;
+    gboolean maxset = b->bk == WL_SF_MAXSET;
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        uint64_t data = b->held_data[c];
+        per[b->master[c]] += vec * (1 + (maxset ? ch->n_inst : 0));
+        add_to(per, data, b->sizes.chunk + ch->polys * b->sizes.triangle);
+        for (guint i = ch->inst_first;
+             maxset && i < ch->inst_first + ch->n_inst; i++)
+            add_to(per, b->held_inst[i] & data, b->sizes.instance);
+    }
+    for (guint p = 0; p < b->regions.procs; p++)
+        peak = MAX(peak, per[p]);
+    return peak;
+}
+
 gboolean wl_sf_book_check(const WlSfBook *b, guint *inst, guint *proc)
 {
-    for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
-        guint c = wl_sf_inst(b->db, i)->chunk;
-        uint64_t miss = b->need[i] & ~b->held_data[c];
-        if (b->bk == WL_SF_MAXSET)
-            miss |= b->need[i] & ~b->held_inst[i];
-        if (miss) {
-            *inst = i;
-            *proc = (guint)__builtin_ctzll(miss);
-            return FALSE;
+    /* by chunk (instances are grouped by chunk in chunk order): the
+     * first miss is the lowest-numbered instance missing */
+    for (guint c = 0; c < wl_sf_n_chunks(b->db); c++) {
+        const WlSfChunk *ch = wl_sf_chunk(b->db, c);
+        for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
+            uint64_t miss = b->need[i] & ~b->held_data[c];
+            if (b->bk == WL_SF_MAXSET)
+                miss |= b->need[i] & ~b->held_inst[i];
+            if (miss) {
+                *inst = i;
+                *proc = (guint)__builtin_ctzll(miss);
+                return FALSE;
+            }
         }
     }
     return TRUE;

@@ -196,6 +196,9 @@ void wl_sf_book_render_set(WlSfBook *b, guint p, const GArray *fresh,
                            GArray *render, WlSfBookWork *w);
 /* Bytes processor p stores: chunk data, pointers, master bit vectors. */
 uint64_t wl_sf_book_memory(const WlSfBook *b, guint p);
+/* The largest wl_sf_book_memory() over the processors, in one pass
+ * over the chunks (O(chunks + instances), not P times that). */
+uint64_t wl_sf_book_peak_memory(const WlSfBook *b);
 /* TRUE when every instance overlapping a region is held by its
  * processor (the migration invariant); else names the first miss. */
 gboolean wl_sf_book_check(const WlSfBook *b, guint *inst, guint *proc);

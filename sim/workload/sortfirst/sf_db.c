@@ -296,6 +296,7 @@ static void add_instances(WlSfDb *d, const Walk *w, guint c, GArray *nodes)
             }
         }
         g_array_append_val(d->insts, in);
+        g_array_append_val(d->inst_nodes, node);
     }
 }
 
@@ -338,6 +339,7 @@ gboolean wl_sf_db_reinstance(WlSfDb *d, const SceneDb *db, GError **err)
         return FALSE;
     }
     g_array_set_size(d->insts, 0);
+    g_array_set_size(d->inst_nodes, 0);
     g_array_set_size(d->inst_polys, 0);
     scene_mesh_free(d->flat);
     d->flat = scene_db_flatten(db);
@@ -363,6 +365,7 @@ WlSfDb *wl_sf_db_new(const SceneDb *db, guint procs, guint granularity,
     d->chunking = chunking;
     d->chunks = g_array_new(FALSE, FALSE, sizeof(WlSfChunk));
     d->insts = g_array_new(FALSE, FALSE, sizeof(WlSfInst));
+    d->inst_nodes = g_array_new(FALSE, FALSE, sizeof(guint));
     d->prims = g_array_new(FALSE, FALSE, sizeof(guint));
     d->inst_polys = g_array_new(FALSE, FALSE, sizeof(uint32_t));
     d->n_structs = scene_db_struct_count(db);
@@ -388,6 +391,7 @@ void wl_sf_db_free(WlSfDb *d)
         return;
     g_array_unref(d->chunks);
     g_array_unref(d->insts);
+    g_array_unref(d->inst_nodes);
     g_array_unref(d->prims);
     g_array_unref(d->inst_polys);
     scene_mesh_free(d->flat);

@@ -80,6 +80,8 @@ typedef struct {
     WlSfChunking chunking;
     GArray *chunks;     /* WlSfChunk */
     GArray *insts;      /* WlSfInst, grouped by chunk */
+    GArray *inst_nodes; /* guint WlSfInst.node of each, packed for the
+                         * per-frame sweeps (sf_trav.c) */
     GArray *prims;      /* guint element positions, grouped by chunk */
     GArray *inst_polys; /* uint32_t polygon indices of `flat` */
     SceneMesh *flat;    /* the posted network in world space (owned) */
@@ -116,6 +118,11 @@ static inline const WlSfChunk *wl_sf_chunk(const WlSfDb *d, guint c)
 static inline const WlSfInst *wl_sf_inst(const WlSfDb *d, guint i)
 {
     return &g_array_index(d->insts, WlSfInst, i);
+}
+/* WlSfInst.node of instance i, from the packed copy. */
+static inline guint wl_sf_inst_node(const WlSfDb *d, guint i)
+{
+    return g_array_index(d->inst_nodes, guint, i);
 }
 static inline guint wl_sf_n_chunks(const WlSfDb *d)
 {

@@ -110,9 +110,9 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
         st->pixels += pr->pixels;
         st->load_max = MAX(st->load_max, pr->polys);
         st->load_min = MIN(st->load_min, pr->polys);
-        st->peak_memory = MAX(st->peak_memory, wl_sf_book_memory(r->book, p));
         total += pr->polys;
     }
+    st->peak_memory = wl_sf_book_peak_memory(r->book);
     st->messages = (uint64_t)r->s.procs * (r->s.procs - 1);
     if (r->s.mig == WL_SF_PULL) {
         st->messages = 0;

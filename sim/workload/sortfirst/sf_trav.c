@@ -24,7 +24,7 @@ static void mark(const WlSfBook *b, Marks *m)
         uint64_t data = mine | b->held_data[c];
         m->sflag[ch->sid] |= data;
         for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
-            guint node = wl_sf_inst(d, i)->node;
+            guint node = wl_sf_inst_node(d, i);
             m->local[node] |=
                 mine | (b->bk == WL_SF_MAXSET ? b->held_inst[i] : data);
             m->on[node] |= b->need[i] != 0;
@@ -76,7 +76,7 @@ static void count_boxes(const WlSfBook *b, const Marks *m, gboolean priced,
         const WlSfChunk *ch = wl_sf_chunk(d, c);
         uint64_t mine = wl_sf_bit(wl_sf_book_master(b, c));
         for (guint i = ch->inst_first; i < ch->inst_first + ch->n_inst; i++) {
-            if (m->on[wl_sf_inst(d, i)->node])
+            if (m->on[wl_sf_inst_node(d, i)])
                 continue;
             uint64_t slaves = (b->bk == WL_SF_MAXSET ? b->held_inst[i]
                                                      : b->held_data[c]) &

@@ -36,6 +36,7 @@ static void test_memory(void **st)
     b = wl_sf_book_new(db, &r, WL_SF_MINSET, &Z);
     assert_int_equal(wl_sf_book_memory(b, 0), 113);
     assert_int_equal(wl_sf_book_memory(b, 1), 77);
+    assert_int_equal(wl_sf_book_peak_memory(b), 113);
     wl_sf_book_free(b);
     wl_sf_db_free(db);
     scene_db_free(src);
@@ -45,6 +46,7 @@ static void test_memory(void **st)
     assert_int_equal(wl_sf_book_memory(b, 0), 2 * 2 + 40 + 72 + 8);
     assert_int_equal(wl_sf_book_memory(b, 1), 2 * 2 + 40 + 36 + 8);
     assert_int_equal(wl_sf_book_memory(b, 2), 0);
+    assert_int_equal(wl_sf_book_peak_memory(b), 2 * 2 + 40 + 72 + 8);
     wl_sf_book_free(b);
     wl_sf_db_free(db);
     scene_db_free(src);
