@@ -295,5 +295,5 @@ const RpPaperOps rp_mueller97 = {
                 "instanced three times",
     .setup = "setup.yaml",
     .rows = mueller97_rows,
-    .cost_s = 8, /* measured: user time of `pgsim reproduce mueller97` */
+    .cost_s = 32, /* measured: user time of `pgsim reproduce mueller97` */
 };

@@ -66,6 +66,24 @@ static double holds(const RpMuellerPoint *pts, guint n, const char *claim)
     return v;
 }
 
+/* The note of claim `claim`'s holds row (a copy; "" when none). */
+static char *holds_note(const RpMuellerPoint *pts, guint n, const char *claim)
+{
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    rp_mueller97_claims(pts, n, rows);
+    char *note = g_strdup("");
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = g_ptr_array_index(rows, i);
+        if (g_str_has_prefix(r->row, claim) && !strcmp(r->column, "holds") &&
+            r->note) {
+            g_free(note);
+            note = g_strdup(r->note);
+        }
+    }
+    g_ptr_array_unref(rows);
+    return note;
+}
+
 static RpMuellerPoint *at(RpMuellerPoint *pts, guint n, guint p, guint g,
                           gboolean minset, gboolean sorted)
 {
@@ -138,6 +156,35 @@ static void test_claims_can_fail(void **state)
     /* no unsorted nor partially sorted case: C5 cannot be decided */
     n = make_points(pts);
     assert_true(isnan(holds(pts, n - 2 * NG, "C5")));
+}
+
+/* C2 read across P: overlap rising with the ratio within each P but
+ * by a different amount per unit of ratio at each P ranks the pooled
+ * cases apart (rho 0.6 here): no, and the note says it is the processor
+ * count; overlap falling with the ratio is a no without that reason. */
+static void test_overlap_reason(void **state)
+{
+    (void)state;
+    RpMuellerPoint pts[NP * NG * 2 + 2 * NG];
+    guint n = make_points(pts);
+    char *note = holds_note(pts, n, "C2");
+    assert_null(strstr(note, "does not hold"));
+    g_free(note);
+    for (guint i = 0; i < n; i++)
+        pts[i].overlap = 1 + pts[i].ratio * (pts[i].procs == 4 ? 10 : 1);
+    assert_true(holds(pts, n, "C2") == 0);
+    note = holds_note(pts, n, "C2");
+    assert_non_null(strstr(note, "because the overlap at one ratio depends "
+                                 "on the processor count"));
+    assert_non_null(strstr(note, "(2 of 2)"));
+    assert_non_null(strstr(note, "1.00 overlap at P = 20 and 10.00 at P = 4"));
+    g_free(note);
+    breaks(pts, n, 1);
+    assert_true(holds(pts, n, "C2") == 0);
+    note = holds_note(pts, n, "C2");
+    assert_null(strstr(note, "because"));
+    assert_non_null(strstr(note, "in 0 of 2"));
+    g_free(note);
 }
 
 static void test_spearman(void **state)
@@ -252,6 +299,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_claims_can_fail),
+        cmocka_unit_test(test_overlap_reason),
         cmocka_unit_test(test_spearman),
         cmocka_unit_test(test_reduced_run),
     };
