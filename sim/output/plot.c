@@ -50,6 +50,7 @@ void plot_spec_free(gpointer spec)
     g_free(p->xlabel);
     g_free(p->ylabel);
     g_free(p->style);
+    g_free(p->where);
     g_free(p);
 }
 
@@ -457,48 +458,42 @@ static GString *data_text(const PlotSpec *p, const GPtrArray *all)
     return o;
 }
 
-/* Unit suffixes of pgsim's column names ("mean_frame_s", "comm_bytes"). */
-static const struct {
-    const char *suffix, *unit;
-} col_units[] = {/* longer suffixes first: "_per_s" before "_s" */
-                 {"_per_s", "1/s"}, {"_bytes", "B"}, {"_fps", "frames/s"},
-                 {"_pct", "%"},     {"_ms", "ms"},   {"_us", "us"},
-                 {"_ns", "ns"},     {"_kb", "kB"},   {"_mb", "MB"},
-                 {"_hz", "Hz"},     {"_s", "s"}};
-
-char *plot_label(const char *col)
-{
-    for (guint i = 0; i < G_N_ELEMENTS(col_units); i++) {
-        const char *suf = col_units[i].suffix;
-        gsize n = strlen(col), k = strlen(suf);
-        if (n <= k || strcmp(col + n - k, suf) != 0)
-            continue;
-        char *stem = g_strndup(col, n - (suf[0] == '_' ? k : 0));
-        g_strdelimit(stem, "_", ' ');
-        char *label = g_strdup_printf("%s (%s)", stem, col_units[i].unit);
-        g_free(stem);
-        return label;
-    }
-    char *label = g_strdup(col);
-    g_strdelimit(label, "_", ' ');
-    return label;
-}
-
 /* Title: the spec's, else "<y> against <x>[, by <series>]" from the
  * labels (never the file stem). */
 static char *chart_title(const PlotSpec *p, const char *xl, const char *yl)
 {
-    if (p->title)
-        return g_strdup(p->title);
-    if (!p->series)
-        return g_strdup_printf("%s against %s", yl, xl);
-    char *sl = plot_label(p->series);
-    char *t = g_strdup_printf("%s against %s, by %s", yl, xl, sl);
+    char *sl = p->series ? plot_label(p->series) : NULL;
+    char *t = p->title ? g_strdup(p->title)
+              : sl     ? g_strdup_printf("%s against %s, by %s", yl, xl, sl)
+                       : g_strdup_printf("%s against %s", yl, xl);
     g_free(sl);
-    return t;
+    if (!p->where)
+        return t;
+    char *w = g_strdup_printf("%s (rows where %s)", t, p->where);
+    g_free(t);
+    return w;
 }
 
-static void script_head(GString *o, const PlotSpec *p, gboolean cat)
+/* The data's extent: x over the points, y over the bars. */
+static void extent(const GPtrArray *all, double x[2], double y[2])
+{
+    x[0] = y[0] = INFINITY;
+    x[1] = y[1] = -INFINITY;
+    for (guint i = 0; i < all->len; i++) {
+        const PlotSeries *s = g_ptr_array_index(all, i);
+        for (guint k = 0; k < s->groups->len; k++) {
+            const PlotGroup *g = &g_array_index(s->groups, PlotGroup, k);
+            if (g->x > 0)
+                x[0] = MIN(x[0], g->x), x[1] = MAX(x[1], g->x);
+            if (g->min > 0)
+                y[0] = MIN(y[0], g->min);
+            y[1] = MAX(y[1], g->max);
+        }
+    }
+}
+
+static void script_head(GString *o, const PlotSpec *p, const GPtrArray *all,
+                        gboolean cat)
 {
     char *xl = p->xlabel ? g_strdup(p->xlabel) : plot_label(p->x);
     char *yl = p->ylabel ? g_strdup(p->ylabel) : plot_label(p->y);
@@ -510,14 +505,19 @@ static void script_head(GString *o, const PlotSpec *p, gboolean cat)
     put_quoted(o, xl);
     g_string_append(o, "\nset ylabel ");
     put_quoted(o, yl);
-    g_string_append(o, "\nset grid\nset key top left\n"
+    /* the key below the plot, where it covers no data */
+    g_string_append(o, "\nset grid\nset key below left\n"
                        "set datafile separator \"\\t\"\n");
-    /* log axes end at the data, not at the enclosing decades */
-    if (p->logx && !cat)
-        g_string_append(o, "set logscale x\nset autoscale xfix\n"
-                           "set offsets graph 0.02, graph 0.02, 0, 0\n");
-    if (p->logy)
-        g_string_append(o, "set logscale y\nset autoscale yfix\n");
+    double x[2], y[2];
+    extent(all, x, y);
+    if (p->logx && !cat) {
+        g_string_append(o, "set logscale x\n");
+        plot_log_axis(o, "x", x[0], x[1]);
+    }
+    if (p->logy) {
+        g_string_append(o, "set logscale y\n");
+        plot_log_axis(o, "y", y[0], y[1]);
+    }
     if (cat)
         g_string_append(o, "set offsets 0.5, 0.5, 0, 0\n"
                            "set xtics rotate by -30 nomirror\n");
@@ -526,8 +526,16 @@ static void script_head(GString *o, const PlotSpec *p, gboolean cat)
     g_free(yl);
 }
 
+/* What min..max bars span: a sweep's repetitions (a chart of a sweep
+ * averages nothing else, plot_unplotted), or any rows sharing x. */
+static const char *bars_meaning(gboolean sweep)
+{
+    return sweep ? "bars: min to max over the repetitions (point: mean)"
+                 : "bars: min to max over the rows with that x (point: mean)";
+}
+
 static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
-                        gboolean cat, gboolean bars)
+                        gboolean cat, int bars)
 {
     g_string_append(o, "plot");
     for (guint i = 0; i < all->len; i++) {
@@ -553,16 +561,22 @@ static void script_plot(GString *o, const PlotSpec *p, const GPtrArray *all,
     if (p->diagonal)
         g_string_append(o, ", \\\n    x with lines dashtype 2 lc rgb "
                            "\"gray\" title \"y = x\"");
+    if (bars) {
+        g_string_append(o, ", \\\n    keyentry with yerrorbars lc rgb "
+                           "\"black\" title ");
+        put_quoted(o, bars_meaning(bars > 1));
+    }
     g_string_append_c(o, '\n');
 }
 
+/* sweep: the rows are a sweep's (bars are its repetitions). */
 static GString *script_text(const PlotSpec *p, const GPtrArray *all,
-                            gboolean cat)
+                            gboolean cat, gboolean sweep)
 {
     GString *o = g_string_new(NULL);
     GString *plot = g_string_new(NULL);
-    script_head(o, p, cat);
-    script_plot(plot, p, all, cat, has_spread(all));
+    script_head(o, p, all, cat);
+    script_plot(plot, p, all, cat, has_spread(all) ? 1 + sweep : 0);
     g_string_append_printf(o,
                            "set terminal pngcairo size 900,560 "
                            "noenhanced font \"sans,10\"\n"
@@ -691,28 +705,6 @@ static gboolean draw(const char *dir, const char *name, const GString *dat,
     return ok;
 }
 
-DataTable *plot_xy_table_new(void)
-{
-    static const char *const cols[] = {"x", "y", "series", NULL};
-    return dt_new_named(cols);
-}
-
-void plot_xy_add_label(DataTable *t, const char *x, double y,
-                       const char *series)
-{
-    char ys[40];
-    g_snprintf(ys, sizeof ys, "%.17g", y);
-    char *row[] = {(char *)x, ys, (char *)series};
-    dt_add_row(t, row);
-}
-
-void plot_xy_add(DataTable *t, double x, double y, const char *series)
-{
-    char xs[40];
-    g_snprintf(xs, sizeof xs, "%.17g", x);
-    plot_xy_add_label(t, xs, y, series);
-}
-
 /* Skips a comment to its line end; returns the last byte of it. */
 static const char *comment_end(const char *c)
 {
@@ -746,6 +738,9 @@ gboolean plot_script_safe(const char *gp)
     return !quote;
 }
 
+static gboolean chart_texts(const PlotSpec *p, const DataTable *t,
+                            GString **dat, GString **gp, GError **err);
+
 gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
                     GString **gp, GError **err)
 {
@@ -759,6 +754,18 @@ gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
     }
     if (!plot_check_columns(p, t, err) || !chart_fits(p, t, err))
         return FALSE;
+    PlotSpec q = *p; /* p, or with a series per value of the parameter */
+    if (!plot_split_unplotted(&q, t, err))
+        return FALSE;
+    gboolean ok = chart_texts(&q, t, dat, gp, err);
+    if (q.series != p->series)
+        g_free(q.series);
+    return ok;
+}
+
+static gboolean chart_texts(const PlotSpec *p, const DataTable *t,
+                            GString **dat, GString **gp, GError **err)
+{
     gboolean cat;
     GPtrArray *all = group_rows(p, t, &cat, err);
     if (!all)
@@ -766,7 +773,7 @@ gboolean plot_texts(const PlotSpec *p, const DataTable *t, GString **dat,
     gboolean ok = all->len > 0;
     if (ok) {
         *dat = data_text(p, all);
-        *gp = script_text(p, all, cat);
+        *gp = script_text(p, all, cat, dt_col(t, "repetition") >= 0);
         g_assert(plot_script_safe((*gp)->str)); /* put_quoted's promise */
     } else {
         char *found = g_strdup_printf("no row with a number in both '%s' "

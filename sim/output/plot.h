@@ -41,6 +41,8 @@ typedef struct {
     char *title, *xlabel, *ylabel; /* NULL: from the columns (plot_label) */
     char *style;       /* "linespoints" (default), "points", "lines" */
     gboolean diagonal; /* also draw y = x (simulated against published) */
+    char *where;       /* the rows kept ("K=V, K=V"), shown in the title;
+                          NULL: every row */
 } PlotSpec;
 
 /* An axis label from a column name: underscores as spaces and a known
@@ -57,6 +59,24 @@ gboolean plot_cfg_name_ok(const CfgNode *at, const char *what,
                           const char *name, GError **err);
 /* A copy of s with control bytes as spaces, for messages (g_free). */
 char *plot_printable(const char *s);
+
+/* The swept parameters (a sweep table's columns between seed and
+ * status) other than x and series whose values differ among rows that
+ * share x and series, so a chart would average over them: how many, the
+ * first one's name in *first (g_free) and "'K' ('a' and 'b' where X = x),
+ * ..." appended to why (plot_params.c). */
+guint plot_unplotted(const PlotSpec *p, const DataTable *t, char **first,
+                     GString *why);
+
+/* A chart of a sweep without series that would average over one swept
+ * parameter gets q->series = that parameter (g_free it when it is not
+ * the caller's); more such parameters, or one beside a series, are an
+ * input error that names them (plot_params.c). */
+gboolean plot_split_unplotted(PlotSpec *q, const DataTable *t, GError **err);
+/* Appends gnuplot commands for a log axis ("x" or "y") over data in
+ * [lo, hi]: its range the decades around them and a labelled tick at each
+ * decade (also at 2 and 5 times them when they span one). */
+void plot_log_axis(GString *o, const char *axis, double lo, double hi);
 
 /* Returns a new spec with x and y set; free with plot_spec_free(). */
 PlotSpec *plot_spec_new(const char *name, const char *x, const char *y);

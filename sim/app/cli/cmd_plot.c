@@ -195,6 +195,7 @@ static gboolean plot_csv(const PlotOpts *o, const char *csv, GError **err)
     PlotSpec *p = plot_spec_new(stem, o->x, o->y);
     p->series = g_strdup(o->series);
     p->title = g_strdup(o->title);
+    p->where = o->where ? g_strjoinv(", ", o->where) : NULL;
     p->logx = o->logx;
     p->logy = o->logy;
     gboolean ok = plot_render(p, t, dir, err);
