@@ -228,7 +228,7 @@ static char *read_text(const char *dir, const char *name)
     return text;
 }
 
-/* plot --where keeps the matching rows; labels come from the columns
+/* plot --where keeps the matching rows (and says so in the title); labels come from the columns
  * with their units; a categorical x gets points, not joining lines. */
 static void test_plot_where_and_labels(void **state)
 {
@@ -248,7 +248,7 @@ static void test_plot_where_and_labels(void **state)
     assert_non_null(strstr(dat, "\n1\t5\t5\t5\t"));
     assert_non_null(strstr(dat, "\n2\t7\t7\t7\t"));
     assert_null(strstr(dat, "\n1\t2\t"));
-    assert_non_null(strstr(gp, "set title 'frame (s) against n'"));
+    assert_non_null(strstr(gp, "set title 'frame (s) against n (rows where scene=b)'"));
     assert_non_null(strstr(gp, "set ylabel 'frame (s)'"));
     g_free(dat);
     g_free(gp);
