@@ -26,6 +26,12 @@ const WlOps *wl_find(const char *name)
     return NULL;
 }
 
+void wl_plan_machine_scene(const void *params, WlPlan *plan)
+{
+    (void)params;
+    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
+}
+
 char *wl_frame_log_path(const WlContext *ctx, const char *path,
                         const char *name)
 {

@@ -154,6 +154,10 @@ char *wl_frame_log_path(const WlContext *ctx, const char *path,
 gboolean wl_frame_log_write(const char *path, const GString *text,
                             const char *workload, GError **err);
 
+/* WlOps.plan of a workload that always reads the machine and the scene
+ * (pixelmerge, sortfirst, argus). */
+void wl_plan_machine_scene(const void *params, WlPlan *plan);
+
 /* Looks a workload up by name; NULL if unknown. */
 const WlOps *wl_find(const char *name);
 /* NULL-terminated list of every workload, for help and errors. */

@@ -33,7 +33,8 @@ static const Shipped shipped[] = {
     {"tokenring.yaml", none},       {"quickstart.yaml", pm_small},
     {"pixelmerge-2pot.yaml", none}, {"pphigs-flock.yaml", none},
     {"dpscan-cm200.yaml", dp_small}, {"sortfirst-vehicle.yaml", none},
-    {"argus-march.yaml", none},     {"performer-town.yaml", none},
+    {"argus-march.yaml", none},     {"argus-nurbs.yaml", none},
+    {"performer-town.yaml", none},
     {"pn-onyx.yaml", none},
 };
 

@@ -361,12 +361,6 @@ static gboolean ag_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
-static void ag_plan(const void *params, WlPlan *plan)
-{
-    (void)params;
-    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
-}
-
 /* Every metric ag_run sets, in order (docs/workloads.md, "argus");
  * per-frame figures of the first frame unless said. */
 static const WlMetric ag_metrics[] = {
@@ -403,7 +397,7 @@ const WlOps wl_argus_ops = {
                "shared-memory multiprocessor",
     .parse = ag_parse,
     .free_params = ag_free_params,
-    .plan = ag_plan,
+    .plan = wl_plan_machine_scene,
     .run = ag_run,
     .mem_bytes = ag_mem_bytes,
     .needs = wl_ag_needs,

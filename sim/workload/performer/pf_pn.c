@@ -261,11 +261,19 @@ static gboolean pick_machine(PnRun *r, GError **err)
         r->start = pp5_frame;
         return mach_require_net(m, err) && mach_costs_check(m, pp5_needs, err);
     }
-    g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "machine '%s': found no kinds cpu + pipe or host + gp + "
-                "renderer, expected a shared-memory machine with a pipe "
-                "(models/sgi-onyx.yaml) or Pixel-Planes 5",
-                mach_name(m));
+    /* located at the config's machine section (the runner built it) */
+    const CfgNode *at = cfg_get(r->ctx->root, "machine");
+    char *found = g_strdup_printf("machine '%s' with no node kinds cpu + "
+                                  "pipe or host + gp + renderer",
+                                  mach_name(m));
+    const char *exp = "a shared-memory machine with a pipe "
+                      "(models/sgi-onyx.yaml) or Pixel-Planes 5";
+    if (at)
+        cfg_error(err, at, found, exp);
+    else
+        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
+                    "performer: found %s, expected %s", found, exp);
+    g_free(found);
     return FALSE;
 }
 

@@ -553,12 +553,6 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
     return ok;
 }
 
-static void pm_plan(const void *params, WlPlan *plan)
-{
-    (void)params;
-    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
-}
-
 /* Every metric pm_run sets (docs/workloads.md, "pixelmerge"). */
 static const WlMetric pm_metrics[] = {
     {"processors", "", "P, the processors run"},
@@ -604,7 +598,7 @@ const WlOps wl_pixelmerge_ops = {
                "pixel merging on a hypercube (iPSC/2)",
     .parse = pm_parse,
     .free_params = pm_free_params,
-    .plan = pm_plan,
+    .plan = wl_plan_machine_scene,
     .run = pm_run,
     .mem_bytes = pm_mem_bytes,
     .needs = wl_pm_needs,

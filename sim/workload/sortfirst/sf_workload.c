@@ -661,12 +661,6 @@ static gboolean sf_run(const WlContext *ctx, void *params, SimResult *out,
            run_frames(ctx, ctx->machine, ctx->scene, params, out, err);
 }
 
-static void sf_plan(const void *params, WlPlan *plan)
-{
-    (void)params;
-    plan->reads = WL_READS_MACHINE | WL_READS_SCENE;
-}
-
 /* Every metric wl_sf_fill_metrics sets, in order; per-frame figures are
  * means over the frames after the first (docs/workloads.md, "sortfirst"). */
 static const WlMetric sf_metrics[] = {
@@ -750,7 +744,7 @@ const WlOps wl_sortfirst_ops = {
                "bookkeeping",
     .parse = sf_parse,
     .free_params = sf_free_params,
-    .plan = sf_plan,
+    .plan = wl_plan_machine_scene,
     .run = sf_run,
     .mem_bytes = sf_mem_bytes,
     .needs = wl_sf_needs,

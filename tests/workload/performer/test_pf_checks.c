@@ -282,8 +282,9 @@ static void test_pn_engine_error(void **st)
     dry = FALSE;
 }
 
-/* pn: refuses a machine of neither kind set and a scene that is already
- * tessellated, saying what it expected. */
+/* pn: refuses a machine of neither kind set (located at the machine
+ * section) and a scene that is already tessellated, saying what it
+ * expected. */
 static void test_pn_refusals(void **st)
 {
     (void)st;
@@ -291,9 +292,9 @@ static void test_pn_refusals(void **st)
         const char *machine, *scene, *want;
     } bad[] = {
         {"machine: {model: ipsc2}\n", pp5_scene,
-         "machine 'ipsc2': found no kinds cpu + pipe or host + gp + renderer, "
-         "expected a shared-memory machine with a pipe (models/sgi-onyx.yaml) "
-         "or Pixel-Planes 5"},
+         "pf.yaml:1:10: found machine 'ipsc2' with no node kinds cpu + pipe "
+         "or host + gp + renderer, expected a shared-memory machine with a pipe "
+         "(models/sgi-onyx.yaml) or Pixel-Planes 5"},
         {"machine: {model: pixel-planes-5}\n",
          "scene: {generator: teapots, count: 1, polygons_per_teapot: 300,\n"
          "  pn_triangles: {level: 1}}\n",
