@@ -200,12 +200,43 @@ static void draw_done(SimEngine *eng, void *ctx, void *arg)
                      NULL);
 }
 
+/* With a graphics pipe: DRAW's CPU wrote frame n's last command. */
+static void piped_cpu_done(void *ctx, guint n)
+{
+    Pipe *s = ctx;
+    rec(s, n)->draw_end = sim_now(s->eng);
+    s->draw_done = n + 1;
+    s->draw_busy = FALSE;
+    if (s->proc[ST_DRAW] == s->proc[ST_APP])
+        app_sync(s, n); /* one process: pfSync after the whole frame */
+    try_cull(s);
+    try_draw(s);
+}
+
+/* With a graphics pipe: frame n swapped in now; the load of the stress
+ * filter is DRAW's start to the pipe's last command. */
+static void piped_swapped(void *ctx, guint n)
+{
+    Pipe *s = ctx;
+    WlPfFrameRec *r = rec(s, n), load = *r;
+    r->swap = sim_now(s->eng);
+    load.draw_end = wl_pf_gpipe_frame_end(s->p->gpipe, n);
+    update_stress(s, &load);
+}
+
 static void draw_start(SimEngine *eng, void *ctx, void *arg)
 {
     Pipe *s = ctx;
     guint n = GPOINTER_TO_UINT(arg);
     rec(s, n)->draw_start = sim_now(eng);
-    stage_compute(s, ST_DRAW, s->f->draw(s->ctx, n), draw_done, arg);
+    SimTime c = s->f->draw(s->ctx, n);
+    if (!s->p->gpipe) {
+        stage_compute(s, ST_DRAW, c, draw_done, arg);
+        return;
+    }
+    WlPfDrawWork w;
+    s->f->draw_work(s->ctx, n, &w);
+    wl_pf_gpipe_frame(s->p->gpipe, n, &w);
 }
 
 static void try_draw(Pipe *s)
@@ -216,7 +247,7 @@ static void try_draw(Pipe *s)
     s->draw_busy = TRUE;
     s->draw_next++;
     SimTime t = sim_now(s->eng);
-    if (n > 0)
+    if (n > 0 && !s->p->gpipe)
         t = MAX(t, rec(s, n - 1)->swap); /* double-buffered frame buffer */
     if (s->p->locked)
         t = ceil_to(t, frame_period(s));
@@ -247,6 +278,12 @@ gboolean wl_pf_pipe_run(SimEngine *eng, MachProc *const *procs,
     for (int i = 0; i < ST_N; i++)
         s.phase[i] = sim_engine_phase(eng, names[i]);
     map_procs(&s, procs);
+    if (p->gpipe) {
+        g_assert(f->draw_work);
+        wl_pf_gpipe_set_swap(p->gpipe,
+                             p->locked ? p->video * p->per_frame : p->video,
+                             piped_cpu_done, piped_swapped, &s);
+    }
     g_array_set_size(recs, p->frames);
     memset(recs->data, 0, sizeof(WlPfFrameRec) * p->frames);
     sim_schedule_at(eng, 0, app_start, &s, GUINT_TO_POINTER(0));

@@ -32,6 +32,7 @@
 #define PGSIM_WORKLOAD_PERFORMER_PF_PIPELINE_H
 
 #include "sim/machine/overlap.h"
+#include "sim/workload/performer/pf_gpipe.h"
 
 typedef enum {
     WL_PF_MP_APPCULLDRAW,   /* one process */
@@ -51,6 +52,9 @@ typedef struct {
      * own counts, or the longest of overlapping terms), or NULL / none:
      * its work is a time.  NULL: stages give times. */
     const MachOverlap *(*ops)(void *ctx);
+    /* With a graphics pipe (WlPfPipeParams.gpipe): the work of the frame
+     * the last draw() call counted, for the pipe to run. */
+    void (*draw_work)(void *ctx, guint frame, WlPfDrawWork *w);
 } WlPfStageFns;
 
 typedef struct {
@@ -62,6 +66,12 @@ typedef struct {
     double low, high; /* load band */
     double gain, max_stress;
     guint frames;
+    /* NULL: DRAW is one piece of work on its processor and the frame
+     * swaps at the refresh after it; else DRAW's CPU feeds this pipe
+     * (pf_gpipe.h, on DRAW's processor) and the pipe swaps the frame:
+     * DRAW of frame n waits for its CULL (and, locked, a boundary) but
+     * not for the swap of n - 1, which the pipe does in order. */
+    WlPfGpipe *gpipe;
 } WlPfPipeParams;
 
 typedef struct {

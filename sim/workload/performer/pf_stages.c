@@ -191,10 +191,22 @@ static SimTime draw(void *ctx, guint n)
     f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
     draw_ops(ops_reset(s), &f->draw, states);
     double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
-    f->bus = feed_pipe(s, &s->over, (uint64_t)bytes, f->draw.tris, states);
+    f->bytes = (uint64_t)bytes;
     f->pipe = sum(sim_time_mul_sat(c->pipe_triangle, f->draw.tris),
                   sim_time_mul_sat(c->pipe_state, states));
+    if (s->piped) { /* the pipe runs it (draw_work); an idle bus's time */
+        f->bus = mach_shmem_time(&s->bus, f->bytes);
+        return f->cpu;
+    }
+    f->bus = feed_pipe(s, &s->over, f->bytes, f->draw.tris, states);
     return MAX(f->cpu, MAX(f->bus, f->pipe));
+}
+
+/* The last DRAW's work for the graphics pipe (pf_gpipe.h). */
+static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
+{
+    const WlPfFrameStats *f = wl_pf_frame_stats(ctx, n);
+    *w = (WlPfDrawWork){.cpu = f->cpu, .bytes = f->bytes, .pipe = f->pipe};
 }
 
 static SimTime isect(void *ctx, guint n)
@@ -214,5 +226,6 @@ static SimTime isect(void *ctx, guint n)
 
 WlPfStageFns wl_pf_stage_fns(gboolean with_isect)
 {
-    return (WlPfStageFns){app, cull, draw, with_isect ? isect : NULL, ops};
+    return (WlPfStageFns){app, cull, draw, with_isect ? isect : NULL, ops,
+                          draw_work};
 }

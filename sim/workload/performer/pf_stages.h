@@ -47,6 +47,7 @@ typedef struct {
     WlPfIsectStats isect;
     guint dl_items;
     SimTime cpu, bus, pipe; /* DRAW's three times */
+    uint64_t bytes;         /* DRAW's command bytes to the pipe */
     double ground;          /* the ground height APP used */
 } WlPfFrameStats;
 
@@ -65,6 +66,8 @@ typedef struct {
                            machine cost: APP's work is a time */
     MachOps last;       /* the named counts of the last stage called */
     MachOverlap over;   /* its overlapping terms (DRAW's pipe and bus) */
+    gboolean piped;     /* a graphics pipe process (pf_gpipe.h) runs
+                           DRAW's streams: draw() gives the CPU's time */
 } WlPfStages;
 
 /* Reads the costs from m (kinds cpu and pipe); FALSE with a located

@@ -11,6 +11,7 @@
  *     cull: true  flatten: true  lazy_state: true  isect: true
  *     app_work: 2 ms          # overrides the model's cpu app_frame
  *     vertex_bytes: 32 B      # per vertex sent to the pipe
+ *     fifo: {depth: 64 KB, chunk: 8 KB}  # the pipe's command FIFO
  *     town: {blocks, houses, trees, cars, block, lod_ranges, speed,
  *            eye_height, fov, seed}
  *     frame_log: frames.csv   # else <out>/performer_frames.csv
@@ -33,6 +34,7 @@ typedef struct {
     gboolean cull, flatten, lazy, isect, has_app_work;
     SimTime app_work;
     uint64_t vertex_bytes;
+    uint64_t fifo_depth, fifo_chunk; /* pf_gpipe.h */
     WlPfTownParams town;
     const char *frame_log; /* borrowed from the config */
     WlPfPnParams *pn;      /* NULL: the Performer pipeline */
@@ -135,6 +137,21 @@ static gboolean parse_flags(const CfgNode *sec, PfParams *p, GError **err)
            cfg_get_str(sec, "frame_log", FALSE, &p->frame_log, err);
 }
 
+/* fifo: {depth, chunk}: the graphics pipe's command FIFO (pf_gpipe.h). */
+static gboolean parse_fifo(const CfgNode *sec, PfParams *p, GError **err)
+{
+    const CfgNode *n = NULL;
+    if (!cfg_get_map(sec, "fifo", FALSE, "a map {depth, chunk}", &n, err) ||
+        !cfg_get_size(n, "depth", FALSE, &p->fifo_depth, err) ||
+        !cfg_get_size(n, "chunk", FALSE, &p->fifo_chunk, err))
+        return FALSE;
+    if (p->fifo_chunk >= 1 && p->fifo_chunk <= p->fifo_depth)
+        return TRUE;
+    cfg_error(err, n, "a chunk of 0 or larger than the depth",
+              "1 B <= chunk <= depth");
+    return FALSE;
+}
+
 static void pf_free(void *params)
 {
     PfParams *p = params;
@@ -174,11 +191,15 @@ static void *pf_parse(const CfgNode *sec, GError **err)
     p->video_hz = 60, p->frame_hz = 30;
     p->cull = p->flatten = p->lazy = p->isect = TRUE;
     p->vertex_bytes = 32;
+    /* assumptions (docs/workloads.md, "performer"): no source gives the
+     * RealityEngine2's command FIFO; 64 KB written in 8 KB blocks */
+    p->fifo_depth = 64 * 1024, p->fifo_chunk = 8 * 1024;
     p->town = wl_pf_town_defaults();
     p->at = sec;
     const CfgNode *pn = cfg_get(sec, "pn");
     if ((pn && !(p->pn = wl_pf_pn_params_parse(pn, err))) ||
-        !parse_flags(sec, p, err) || !parse_rates(sec, p, err) ||
+        !parse_flags(sec, p, err) || !parse_fifo(sec, p, err) ||
+        !parse_rates(sec, p, err) ||
         !parse_stress(sec, &p->pipe, err) || !parse_town(sec, &p->town, err)) {
         pf_free(p);
         return NULL;
@@ -291,6 +312,23 @@ static Means means(const GArray *recs, WlPfStages *st, guint skip)
     return m;
 }
 
+/* Busy, blocked and idle time of DRAW's CPU and of the pipe, per frame
+ * over the whole run (idle: the rest of the mean frame interval). */
+static void set_pipe_metrics(SimResult *out, const WlPfGpipeStats *g,
+                             guint frames, SimTime elapsed)
+{
+    double per = 1.0 / frames, T = ms(elapsed) * per;
+    double v[] = {ms(g->cpu_busy) * per, ms(g->cpu_blocked) * per,
+                  ms(g->pipe_busy) * per, ms(g->pipe_blocked) * per};
+    sim_result_set_metric(out, "draw_busy_ms", v[0], "ms");
+    sim_result_set_metric(out, "draw_blocked_ms", v[1], "ms");
+    sim_result_set_metric(out, "draw_idle_ms", MAX(T - v[0] - v[1], 0), "ms");
+    sim_result_set_metric(out, "pipe_busy_ms", v[2], "ms");
+    sim_result_set_metric(out, "pipe_blocked_ms", v[3], "ms");
+    sim_result_set_metric(out, "pipe_idle_ms", MAX(T - v[2] - v[3], 0), "ms");
+    sim_result_set_metric(out, "fifo_peak_bytes", (double)g->max_used, "B");
+}
+
 static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
                         WlPfStages *st, guint flattened)
 {
@@ -361,7 +399,7 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
         bytes += 3 * wl_pf_frame_stats(st, n)->draw.tris * st->c.vertex_bytes;
     }
     mach_fill_result(m, out);
-    out->comm_bytes = bytes;
+    out->comm_bytes = bytes; /* messages: frames, not the FIFO's chunks */
     out->comm_messages = recs->len;
     out->elapsed = recs->len && !sim_engine_cut(mach_engine(m))
                        ? g_array_index(recs, WlPfFrameRec, recs->len - 1).swap
@@ -378,15 +416,24 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
         return FALSE;
     WlPfStageFns fns = wl_pf_stage_fns(p->isect);
     st->draw_cpu = procs[wl_pf_mp_procs(p->pipe.mode) - 1];
+    st->piped = TRUE;
+    WlPfGpipe *gp =
+        wl_pf_gpipe_new(ctx->eng, st->draw_cpu, mach_proc(m, "pipe", 0),
+                        &st->bus, p->fifo_depth, p->fifo_chunk);
+    WlPfPipeParams pp = p->pipe;
+    pp.gpipe = gp;
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
-    gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &p->pipe, &fns, st, recs,
+    gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &pp, &fns, st, recs,
                                  ctx->until, err);
     if (ok) {
         fill_result(out, m, recs, st);
         sim_result_set_phases(out, ctx->eng);
     }
-    if (ok && !sim_engine_cut(ctx->eng)) /* whole runs only (run.until) */
+    if (ok && !sim_engine_cut(ctx->eng)) { /* whole runs only (run.until) */
         set_metrics(out, p, recs, st, flattened);
+        set_pipe_metrics(out, wl_pf_gpipe_stats(gp), recs->len, out->elapsed);
+    }
+    wl_pf_gpipe_free(gp);
     char *log =
         ok ? wl_frame_log_path(ctx, p->frame_log, "performer_frames.csv")
            : NULL;
@@ -447,6 +494,13 @@ static const WlMetric pf_metrics[] = {
     {"draw_cpu_ms", "ms", "DRAW's CPU issuing stream, mean"},
     {"draw_bus_ms", "ms", "DRAW's bus-to-pipe stream, mean"},
     {"draw_pipe_ms", "ms", "DRAW's graphics-pipe stream, mean"},
+    {"draw_busy_ms", "ms", "DRAW's CPU busy per frame (whole run)"},
+    {"draw_blocked_ms", "ms", "DRAW's CPU blocked on a full FIFO per frame"},
+    {"draw_idle_ms", "ms", "DRAW's CPU idle per frame"},
+    {"pipe_busy_ms", "ms", "graphics pipe busy per frame (whole run)"},
+    {"pipe_blocked_ms", "ms", "graphics pipe holding a swap per frame"},
+    {"pipe_idle_ms", "ms", "graphics pipe idle (no commands) per frame"},
+    {"fifo_peak_bytes", "B", "highest fill of the pipe's command FIFO"},
     {"tris_per_frame", "", "triangles drawn per frame"},
     {"tris_culled_per_frame", "", "triangles culled per frame"},
     {"state_changes_per_frame", "", "graphics state changes per frame"},
