@@ -42,8 +42,6 @@ WlPfGpipe *wl_pf_gpipe_new(SimEngine *eng, MachProc *cpu, MachProc *pipe,
     WlPfGpipe *g = g_new0(WlPfGpipe, 1);
     g->eng = eng, g->cpu = cpu, g->pipe = pipe, g->bus = bus;
     g->depth = depth, g->chunk = chunk, g->step = 1;
-    g->ph_draw = sim_engine_phase(eng, "draw");
-    g->ph_pipe = sim_engine_phase(eng, "pipe");
     g_queue_init(&g->queue);
     g->ends = g_array_new(FALSE, TRUE, sizeof(SimTime));
     return g;
@@ -63,6 +61,9 @@ void wl_pf_gpipe_set_swap(WlPfGpipe *g, SimTime step, WlPfGpipeFn cpu_done,
                           WlPfGpipeFn swapped, void *ctx)
 {
     g->step = MAX(step, 1);
+    /* here, not in _new: the pipeline's phases come first in reports */
+    g->ph_draw = sim_engine_phase(g->eng, "draw");
+    g->ph_pipe = sim_engine_phase(g->eng, "pipe");
     g->cpu_done = cpu_done, g->swapped = swapped, g->ctx = ctx;
 }
 

@@ -57,7 +57,8 @@ typedef void (*WlPfGpipeFn)(void *ctx, guint n);
 WlPfGpipe *wl_pf_gpipe_new(SimEngine *eng, MachProc *cpu, MachProc *pipe,
                            MachShmem *bus, uint64_t depth, uint64_t chunk);
 void wl_pf_gpipe_free(WlPfGpipe *g);
-/* Swaps fall on multiples of step (a retrace, or a frame boundary). */
+/* Swaps fall on multiples of step (a retrace, or a frame boundary);
+ * call before the first frame (wl_pf_pipe_run does). */
 void wl_pf_gpipe_set_swap(WlPfGpipe *g, SimTime step, WlPfGpipeFn cpu_done,
                           WlPfGpipeFn swapped, void *ctx);
 /* DRAW's CPU starts issuing frame n (frames in order, one at a time:

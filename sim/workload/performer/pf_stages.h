@@ -11,15 +11,17 @@
  *
  * Costs are counted operations times the model's per-operation costs
  * (models/sgi-onyx.yaml: cpu app_* cull_* draw_* isect_*, pipe triangle
- * and state, network bandwidth and startup).  DRAW streams to the pipe
- * through a FIFO, so its time is the slowest of three rates: the CPU
- * issuing (geosets, state changes, matrix operations, vertices), the bus
- * carrying 3 x vertex_bytes per triangle (booked on the machine's shared
- * memory, sim/machine/shmem.h, so it also queues), and the pipe (triangles,
- * state changes): its counts are the CPU's own with the pipe's counts and
- * the bus stream as overlapping terms (sim/machine/overlap.h; the stream
- * never queues: the previous frame's ended before this DRAW started).
- * Each frame's counts are kept for the per-frame log.
+ * and state, network bandwidth and startup).  DRAW counts three streams:
+ * the CPU issuing (geosets, state changes, matrix operations, vertices),
+ * the bus carrying 3 x vertex_bytes per triangle, and the pipe
+ * (triangles, state changes).  With `piped` (the workload's run) draw()
+ * returns the CPU's time and draw_work() hands the three to the graphics
+ * pipe process (pf_gpipe.h), which runs them through its FIFO; without
+ * it (the closed form, kept for callers of the stage functions alone)
+ * DRAW's time is the slowest of the three, the CPU's counts with the
+ * pipe's counts and the bus stream as overlapping terms
+ * (sim/machine/overlap.h).  Each frame's counts are kept for the
+ * per-frame log.
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H

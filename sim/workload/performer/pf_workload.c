@@ -490,7 +490,7 @@ static const WlMetric pf_metrics[] = {
     {"latency_ms", "ms", "mean time from APP's start to the swap"},
     {"app_ms", "ms", "mean APP stage time"},
     {"cull_ms", "ms", "mean CULL stage time"},
-    {"draw_ms", "ms", "mean DRAW stage time"},
+    {"draw_ms", "ms", "mean DRAW stage time (start to its last write)"},
     {"draw_cpu_ms", "ms", "DRAW's CPU issuing stream, mean"},
     {"draw_bus_ms", "ms", "DRAW's bus-to-pipe stream, mean"},
     {"draw_pipe_ms", "ms", "DRAW's graphics-pipe stream, mean"},

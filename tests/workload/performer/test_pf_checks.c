@@ -979,7 +979,8 @@ static void keep_flow(SimTrace *tr, uint32_t src, const char *src_name,
 
 /* DRAW streams each frame's vertices from the cpu that runs DRAW (the
  * last of the mode's processes: cpu 2 of three, cpu 1 of two) to the
- * pipe, one flow a frame of 3 vertices of vertex_bytes a triangle. */
+ * pipe, one flow per FIFO chunk (pf_gpipe.h), 3 vertices of vertex_bytes
+ * a triangle in all. */
 static void test_draw_stream_source(void **st)
 {
     (void)st;
@@ -1002,9 +1003,10 @@ static void test_draw_stream_source(void **st)
         uint32_t src = mach_proc_id(mach_proc(m, "cpu", 2 - k));
         uint32_t dst = mach_proc_id(mach_proc(m, "pipe", 0));
         gchar **flows = g_strsplit(((GString *)tr.state)->str, ";", -1);
-        assert_int_equal(g_strv_length(flows), 3 + 1);
+        guint nf = g_strv_length(flows) - 1;
+        assert_true(nf >= 3);
         uint64_t sum = 0;
-        for (guint f = 0; f < 3; f++) {
+        for (guint f = 0; f < nf; f++) {
             guint a, b;
             guint64 bytes;
             assert_int_equal(sscanf(flows[f], "%u>%u:%" G_GUINT64_FORMAT, &a,
@@ -1012,10 +1014,11 @@ static void test_draw_stream_source(void **st)
                              3);
             assert_int_equal(a, src);
             assert_int_equal(b, dst);
-            assert_true(bytes > 0 && bytes % (3 * 32) == 0);
+            assert_true(bytes > 0);
             sum += bytes;
         }
         assert_int_equal(sum, r->comm_bytes);
+        assert_true(sum > 0 && sum % (3 * 32) == 0);
         g_strfreev(flows);
         mach_free(m);
         sim_engine_free(eng);
