@@ -10,7 +10,9 @@ typedef struct {
     guint frame;
     uint64_t bytes;
     SimTime pipe;
+    MachOps ops; /* the pipe's counts (empty: the time) */
     gboolean last;
+    uint64_t cause; /* its arrival, for a recording's join */
 } Chunk;
 
 struct WlPfGpipe {
@@ -27,10 +29,12 @@ struct WlPfGpipe {
     WlPfDrawWork w;
     Chunk *pending;    /* computed, waiting for FIFO space */
     SimTime blocked_at;
+    uint64_t cpu_cause; /* the pending chunk's computation (a recording) */
     /* pipe side */
     GQueue queue; /* Chunk *, arrived */
     gboolean pipe_busy;
     SimTime swap_wait_at;
+    uint64_t pipe_cause; /* the pipe's last action done (a recording) */
     GArray *ends; /* SimTime per frame: the pipe's last command */
     WlPfGpipeStats st;
 };
@@ -42,6 +46,7 @@ WlPfGpipe *wl_pf_gpipe_new(SimEngine *eng, MachProc *cpu, MachProc *pipe,
     WlPfGpipe *g = g_new0(WlPfGpipe, 1);
     g->eng = eng, g->cpu = cpu, g->pipe = pipe, g->bus = bus;
     g->depth = depth, g->chunk = chunk, g->step = 1;
+    g->pipe_cause = SIM_RECORD_NONE;
     g_queue_init(&g->queue);
     g->ends = g_array_new(FALSE, TRUE, sizeof(SimTime));
     return g;
@@ -84,6 +89,14 @@ static uint64_t share(uint64_t total, guint i, guint n)
                       (unsigned __int128)total * i / n);
 }
 
+/* Share i of n of every count of o. */
+static void share_ops(MachOps *out, const MachOps *o, guint i, guint n)
+{
+    *out = *o;
+    for (guint k = 0; k < o->n; k++)
+        out->op[k].count = share(o->op[k].count, i, n);
+}
+
 static void span(WlPfGpipe *g, MachProc *p, const char *phase, SimTime from)
 {
     SimTime now = sim_now(g->eng);
@@ -104,6 +117,7 @@ static void swap_done(SimEngine *eng, void *ctx, void *arg)
     WlPfGpipe *g = ctx;
     guint n = GPOINTER_TO_UINT(arg);
     g->st.pipe_blocked += sim_now(g->eng) - g->swap_wait_at;
+    g->pipe_cause = sim_record_cause(eng);
     span(g, g->pipe, "swap_wait", g->swap_wait_at);
     g->pipe_busy = FALSE;
     if (g->swapped)
@@ -116,6 +130,7 @@ static void chunk_done(SimEngine *eng, void *ctx, void *arg)
     WlPfGpipe *g = ctx;
     Chunk *c = arg;
     g->used -= c->bytes;
+    g->pipe_cause = sim_record_cause(eng);
     if (g->blocked_at) /* DRAW's CPU waits for room: try again */
         issue(g);
     if (!c->last) {
@@ -140,14 +155,23 @@ static void pipe_next(WlPfGpipe *g)
         return;
     Chunk *c = g_queue_pop_head(&g->queue);
     g->pipe_busy = TRUE;
+    /* a recording's join: the other of its arrival and the pipe's last */
+    uint64_t now = sim_record_cause(g->eng);
+    sim_record_after(g->eng, now == c->cause ? g->pipe_cause : c->cause);
+    if (c->ops.n) {
+        c->pipe = mach_proc_ops_cost(g->pipe, &c->ops);
+        g->st.pipe_busy += c->pipe;
+        mach_proc_compute_list(g->pipe, &c->ops, g->ph_pipe, chunk_done, g, c);
+        return;
+    }
     g->st.pipe_busy += c->pipe;
     mach_proc_compute(g->pipe, c->pipe, g->ph_pipe, chunk_done, g, c);
 }
 
 static void arrived(SimEngine *eng, void *ctx, void *arg)
 {
-    (void)eng;
     WlPfGpipe *g = ctx;
+    ((Chunk *)arg)->cause = sim_record_cause(eng);
     g_queue_push_tail(&g->queue, arg);
     pipe_next(g);
 }
@@ -161,8 +185,16 @@ static void compute_chunk(WlPfGpipe *g)
     c->frame = g->n;
     c->bytes = share(g->w.bytes, g->k, g->nchunks);
     c->pipe = share(g->w.pipe, g->k, g->nchunks);
+    share_ops(&c->ops, &g->w.pipe_ops, g->k, g->nchunks);
     c->last = g->k + 1 == g->nchunks;
     g->pending = c;
+    if (g->w.cpu_ops.n) {
+        MachOps o;
+        share_ops(&o, &g->w.cpu_ops, g->k, g->nchunks);
+        g->st.cpu_busy += mach_proc_ops_cost(g->cpu, &o);
+        mach_proc_compute_list(g->cpu, &o, g->ph_draw, computed, g, NULL);
+        return;
+    }
     SimTime t = share(g->w.cpu, g->k, g->nchunks);
     g->st.cpu_busy += t;
     mach_proc_compute(g->cpu, t, g->ph_draw, computed, g, NULL);
@@ -179,7 +211,8 @@ static void issue(WlPfGpipe *g)
             g->blocked_at = now + 1; /* +1: 0 means not blocked */
         return;
     }
-    if (g->blocked_at) {
+    if (g->blocked_at) { /* the write waits for its computation too */
+        sim_record_after(g->eng, g->cpu_cause);
         g->st.cpu_blocked += now - (g->blocked_at - 1);
         span(g, g->cpu, "fifo_full", g->blocked_at - 1);
         g->blocked_at = 0;
@@ -205,9 +238,10 @@ static void issue(WlPfGpipe *g)
 
 static void computed(SimEngine *eng, void *ctx, void *arg)
 {
-    (void)eng;
     (void)arg;
-    issue(ctx);
+    WlPfGpipe *g = ctx;
+    g->cpu_cause = sim_record_cause(eng);
+    issue(g);
 }
 
 void wl_pf_gpipe_frame(WlPfGpipe *g, guint n, const WlPfDrawWork *w)

@@ -25,7 +25,10 @@
  * work, its blocked time the wait for a swap, its idle time the rest.
  * Trace: busy spans in phases "draw" and "pipe", blocked spans in phases
  * "fifo_full" (DRAW's CPU) and "swap_wait" (the pipe), a flow per chunk.
- * O(1) per chunk, about four engine events per chunk.
+ * A recording (`--record`) gets each chunk's counts and the joins: a
+ * write after a full FIFO waits for the chunk's computation too, and a
+ * chunk's computation on the pipe for its arrival and the pipe's
+ * previous action.  O(1) per chunk, about four engine events per chunk.
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_GPIPE_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_GPIPE_H
@@ -34,11 +37,15 @@
 
 typedef struct WlPfGpipe WlPfGpipe;
 
-/* One frame's work through the pipe. */
+/* One frame's work through the pipe: as named counts priced on each
+ * processor's kind (cpu_ops, pipe_ops: each chunk gets its share of
+ * every count, and a recording writes them), or, where a list is empty,
+ * as the time beside it. */
 typedef struct {
     SimTime cpu;    /* DRAW CPU's issuing time */
     uint64_t bytes; /* command bytes over the bus */
     SimTime pipe;   /* the pipe's time */
+    MachOps cpu_ops, pipe_ops;
 } WlPfDrawWork;
 
 /* Where the FIFO's and the stages' time went, totals over the run. */

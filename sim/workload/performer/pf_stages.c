@@ -205,8 +205,13 @@ static SimTime draw(void *ctx, guint n)
 /* The last DRAW's work for the graphics pipe (pf_gpipe.h). */
 static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
 {
-    const WlPfFrameStats *f = wl_pf_frame_stats(ctx, n);
+    WlPfStages *s = ctx;
+    const WlPfFrameStats *f = wl_pf_frame_stats(s, n);
+    uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
     *w = (WlPfDrawWork){.cpu = f->cpu, .bytes = f->bytes, .pipe = f->pipe};
+    draw_ops(&w->cpu_ops, &f->draw, states);
+    mach_ops_add(&w->pipe_ops, "triangle", f->draw.tris);
+    mach_ops_add(&w->pipe_ops, "state", states);
 }
 
 static SimTime isect(void *ctx, guint n)

@@ -399,7 +399,7 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
         bytes += 3 * wl_pf_frame_stats(st, n)->draw.tris * st->c.vertex_bytes;
     }
     mach_fill_result(m, out);
-    out->comm_bytes = bytes; /* messages: frames, not the FIFO's chunks */
+    out->comm_bytes = bytes;
     out->comm_messages = recs->len;
     out->elapsed = recs->len && !sim_engine_cut(mach_engine(m))
                        ? g_array_index(recs, WlPfFrameRec, recs->len - 1).swap
@@ -427,6 +427,8 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
                                  ctx->until, err);
     if (ok) {
         fill_result(out, m, recs, st);
+        /* one message per FIFO chunk over the bus, as a replay counts */
+        out->comm_messages = wl_pf_gpipe_stats(gp)->chunks;
         sim_result_set_phases(out, ctx->eng);
     }
     if (ok && !sim_engine_cut(ctx->eng)) { /* whole runs only (run.until) */
