@@ -596,7 +596,10 @@ static void check_means(guint frames, guint skip)
     assert_true(metric(r, "scs_flattened") == 2 * 2 * 2);
     assert_true(metric(r, "matrix_ops_saved_per_frame") > 0);
     assert_true(r->comm_bytes == bytes);
-    assert_int_equal(r->comm_messages, frames);
+    /* one message per FIFO chunk of at most 8 KB, at least one a frame */
+    assert_true(r->comm_messages >= frames &&
+                r->comm_messages >= bytes / (8 * 1024) &&
+                r->comm_messages <= bytes / (8 * 1024) + frames);
     assert_true(fabs(r->elapsed * 1e-9 - swap1) < 1e-6);
     g_strfreev(rows);
     char *stages = g_build_filename(dir, "f_stages.csv", NULL);
