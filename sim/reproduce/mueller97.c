@@ -33,6 +33,8 @@ typedef struct {
     guint c1_procs;            /* Chart 1's processor count */
     int c1_bk;                 /* Chart 1's bookkeeping */
     gboolean chunking[3];      /* Chart 1's strategies, by RpMuChunking */
+    guint pull_procs;          /* the pull cases' P (sorted, min-set) */
+    guint pull_gran[MAX_LIST], n_pull_gran; /* and chunk sizes */
 } MuSetup;
 
 /* ---- setup ---------------------------------------------------------------
@@ -106,6 +108,22 @@ static gboolean read_chart1(MuSetup *s, GError **err)
     return TRUE;
 }
 
+/* `pull`: the min-set pull cases of "push beats pull" (§3.3.2.2). */
+static gboolean read_pull(MuSetup *s, GError **err)
+{
+    static const char *const keys[] = {"processors", "granularities", NULL};
+    const CfgNode *c;
+    uint64_t p = 16;
+    if (!cfg_get_map(s->root, "pull", TRUE,
+                     "a map {processors, granularities}", &c, err) ||
+        !cfg_get_count(c, "processors", TRUE, 1, MAX_COUNT, &p, err) ||
+        !counts(c, "granularities", s->pull_gran, &s->n_pull_gran, err) ||
+        !cfg_check_unused_except(c, keys, err))
+        return FALSE;
+    s->pull_procs = (guint)p;
+    return TRUE;
+}
+
 /* The scene file named by `scene`: a map holding only `scene:`, which
  * becomes every case's scene section (the cell has none of its own). */
 static gboolean read_scene(MuSetup *s, GError **err)
@@ -141,7 +159,7 @@ static gboolean setup_load(MuSetup *s, const char *path, GError **err)
            counts(s->root, "granularities", s->gran, &s->n_gran, err) &&
            counts(s->root, "processors", s->procs, &s->n_procs, err) &&
            words(s->root, "bookkeeping", bk_names, s->bk, err) &&
-           read_chart1(s, err) &&
+           read_chart1(s, err) && read_pull(s, err) &&
            cfg_check_unused_except(s->root, runner_reads, err);
 }
 
@@ -158,6 +176,10 @@ static void point_from(RpMuellerPoint *pt, const SimResult *r)
     pt->fresh = wl_metric(r, "new_boxes_per_frame");
     pt->polys = wl_metric(r, "polygons_rendered_per_frame");
     pt->transforms = wl_metric(r, "transforms_per_frame");
+    pt->messages = wl_metric(r, "messages_per_frame");
+    pt->requests = pt->pull ? wl_metric(r, "requests_per_frame") : 0;
+    pt->memory = wl_metric(r, "peak_memory");
+    pt->frame_ms = wl_metric(r, "frame_ms");
     /* max-set instances of the root: chunk instances per chunk, rounded */
     guint chunks = (guint)wl_metric(r, "chunks");
     guint insts = (guint)wl_metric(r, "chunk_instances");
@@ -177,6 +199,7 @@ static SimResult *run_cell(const RpContext *ctx, const MuSetup *s,
                         bk_names[pt->minset ? MINSET : MAXSET]),
         g_strdup_printf("workload.chunking=%s",
                         rp_mu_chunking_names[pt->chunking]),
+        g_strdup_printf("workload.migration=%s", pt->pull ? "pull" : "push"),
         NULL};
     CfgNode *tree = cfg_copy(s->cell);
     cfg_merge(tree, s->scene); /* adds its scene: section */
@@ -191,10 +214,11 @@ static SimResult *run_cell(const RpContext *ctx, const MuSetup *s,
 static gboolean run_case(const RpContext *ctx, const MuSetup *s,
                          WlShare *share, RpMuellerPoint *pt, GError **err)
 {
-    char *what = g_strdup_printf("%s %s g=%u P=%u",
+    char *what = g_strdup_printf("%s %s%s g=%u P=%u",
                                  rp_mu_chunking_names[pt->chunking],
                                  pt->minset ? "minset" : "maxset",
-                                 pt->granularity, pt->procs);
+                                 pt->pull ? " pull" : "", pt->granularity,
+                                 pt->procs);
     rp_step(ctx, what);
     g_free(what);
     SimResult *res = run_cell(ctx, s, share, pt, err);
@@ -224,6 +248,21 @@ static GArray *cases(const MuSetup *s)
                     if (grid || c1)
                         g_array_append_val(pts, pt);
                 }
+    return pts;
+}
+
+/* The pull cases: sorted, min-set, at `pull`'s P and chunk sizes. */
+static GArray *pull_cases(const MuSetup *s)
+{
+    GArray *pts = g_array_new(FALSE, TRUE, sizeof(RpMuellerPoint));
+    for (guint g = 0; g < s->n_pull_gran; g++) {
+        RpMuellerPoint pt = {.procs = s->pull_procs,
+                             .granularity = s->pull_gran[g],
+                             .minset = TRUE,
+                             .chunking = RP_MU_SORTED,
+                             .pull = TRUE};
+        g_array_append_val(pts, pt);
+    }
     return pts;
 }
 
@@ -269,20 +308,28 @@ static gboolean mueller97_rows(const RpContext *ctx, GPtrArray *rows,
 {
     MuSetup s = {0};
     gboolean ok = setup_load(&s, ctx->setup, err);
-    GArray *pts = cases(&s);
+    GArray *pts = cases(&s), *pull = pull_cases(&s);
     WlShare *share = wl_share_new();
     for (guint i = 0; ok && i < pts->len; i++)
         ok = run_case(ctx, &s, share, &g_array_index(pts, RpMuellerPoint, i),
                       err);
+    for (guint i = 0; ok && i < pull->len; i++)
+        ok = run_case(ctx, &s, share,
+                      &g_array_index(pull, RpMuellerPoint, i), err);
     wl_share_free(share);
     const RpMuellerPoint *p = (const RpMuellerPoint *)(void *)pts->data;
     for (guint i = 0; ok && i < pts->len; i++)
         chart_rows(&p[i], &s, rows);
     if (ok)
         rp_mueller97_claims(p, pts->len, rows);
+    if (ok)
+        rp_mueller97_claims_pull(
+            p, pts->len, (const RpMuellerPoint *)(void *)pull->data,
+            pull->len, rows);
     if (ok && ctx->out_dir)
         rp_mueller97_charts(p, pts->len, s.c1_procs, ctx->out_dir);
     g_array_unref(pts);
+    g_array_unref(pull);
     cfg_free(s.scene);
     cfg_free(s.root);
     return ok;

@@ -13,7 +13,8 @@
  *   "4"  Chart 4, min-set transformations: transforms, master_boxes,
  *        slave_boxes, new_boxes, polygons;
  *   "5"  Chart 5, the same for max-set;
- *   "claims"  one row per claim of §4.2 (mueller97_claims.c).
+ *   "claims"  one row per claim of §4.2 and §3.3.2.2 (mueller97_claims.c;
+ *        the pull cases, min-set at setup.yaml's `pull`, feed only it).
  * The paper's charts carry no numbers in the seed's text, so
  * configs/papers/mueller97/published.yaml lists captions only and every
  * row is printed as a prediction.  With an output directory the hook
@@ -37,12 +38,23 @@ typedef struct {
     guint instances; /* max-set instances of the database's root */
     double bytes, overlap, ratio; /* per frame; overlap; box / region */
     double master, slave, fresh, polys, transforms; /* per frame */
+    gboolean pull;        /* migration: pull (§3.3.2.2; min-set) */
+    double messages;      /* per frame */
+    double requests;      /* pull: chunks requested per frame, else 0 */
+    double memory;        /* peak_memory: the largest processor store */
+    double frame_ms;
 } RpMuellerPoint;
 
 extern const RpPaperOps rp_mueller97;
 
-/* Appends the claim rows (table "claims") computed from the points. */
+/* Appends the claim rows (table "claims") computed from the points
+ * (push cases only). */
 void rp_mueller97_claims(const RpMuellerPoint *pts, guint n, GPtrArray *rows);
+/* Appends the row of "push beats pull" (§3.3.2.2): each pull case
+ * against the push case of its P and chunk size in pts. */
+void rp_mueller97_claims_pull(const RpMuellerPoint *pts, guint n,
+                              const RpMuellerPoint *pull, guint n_pull,
+                              GPtrArray *rows);
 /* Spearman's rank correlation of x and y (ties averaged); NaN when
  * either is constant. */
 double rp_mueller97_spearman(const double *x, const double *y, guint n);
