@@ -169,7 +169,7 @@ def q(text):
     return '"%s"' % text
 
 
-def loo_yaml(results, pub, commit):
+def loo_yaml(results, pub, fitted, commit):
     """The text of loo.yaml: per left-out cell its value under the refit
     without it, the refit's constants and its predicted cells."""
     out = ["# Leave-one-out refits of ellsworth90's five fitted constants",
@@ -187,11 +187,14 @@ def loo_yaml(results, pub, commit):
            "# change to the fitted constants or the pphigs model with",
            "#     python3 scripts/ellsworth90/fit.py --loo",
            "# Read by sim/reproduce/ellsworth90.c as table cv rows",
-           "# (configs/papers/ellsworth90/labels.yaml `loo:`).",
+           "# (configs/papers/ellsworth90/labels.yaml `loo:`); `fitted` is",
+           "# the cell at the committed constants: when the reproduction no",
+           "# longer gives it, the file is stale and no loo row is made.",
            "refits:"]
     for key, (x, sim) in results:
         out.append("  - left_out: {table: \"1\", row: %s, column: %s}" % key)
         out.append("    published: %r" % pub[key])
+        out.append("    fitted: %.6g" % fitted[key])
         out.append("    loo: %.6g" % sim[key])
         out.append("    constants: {%s}" % ", ".join(
             "%s: %.4g" % (k, x[k]) for k in COSTS + ["cluster_scale"]))
@@ -203,6 +206,7 @@ def loo_yaml(results, pub, commit):
 
 
 def loo_all(pub, d):
+    fitted = run_at(current(), d)
     results = []
     for key in sorted(pub):
         x, sim = leave_out(pub, key, d)
@@ -214,7 +218,7 @@ def loo_all(pub, d):
                             cwd=ROOT, capture_output=True, text=True
                             ).stdout.strip()
     with open(LOO_FILE, "w") as f:
-        f.write(loo_yaml(results, pub, commit))
+        f.write(loo_yaml(results, pub, fitted, commit))
     print("wrote %s" % LOO_FILE)
 
 

@@ -202,7 +202,8 @@ static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
     if (ok) {
         RpEllRig rig = {s.cell, ctx->fidelity ? ctx->fidelity : "analytic",
                         s.gp_counts, s.n_gp, ctx};
-        ok = rp_ellsworth90_table1(&rig, s.dbs, s.n_dbs, rows, err);
+        ok = rp_ellsworth90_table1(&rig, s.dbs, s.n_dbs, rows, err) &&
+             rp_ellsworth90_loo(ctx->setup, rows, err);
     }
     cfg_free(s.root);
     return ok;

@@ -32,6 +32,13 @@ typedef struct {
 gboolean rp_ellsworth90_table1(const RpEllRig *rig, const char *const *dbs,
                                guint n, GPtrArray *rows, GError **err);
 
+/* Appends the cv rows of loo.yaml beside `setup` (ellsworth90_cv.c):
+ * cv/<db>/loo_<column> per left-out cell and refit_min_/refit_max_ of
+ * each predicted cell; none when there is no loo.yaml.  FALSE with a
+ * located *err on a bad file. */
+gboolean rp_ellsworth90_loo(const char *setup, GPtrArray *rows,
+                            GError **err);
+
 extern const RpPaperOps rp_ellsworth90;
 
 #endif
