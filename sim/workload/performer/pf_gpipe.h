@@ -37,6 +37,11 @@
 
 typedef struct WlPfGpipe WlPfGpipe;
 
+/* The FIFO's defaults (the workload's `fifo`): assumptions, no source at
+ * hand gives the RealityEngine2's command FIFO. */
+#define WL_PF_FIFO_DEPTH (64 * 1024)
+#define WL_PF_FIFO_CHUNK (8 * 1024)
+
 /* One frame's work through the pipe: as named counts priced on each
  * processor's kind (cpu_ops, pipe_ops: each chunk gets its share of
  * every count, and a recording writes them), or, where a list is empty,

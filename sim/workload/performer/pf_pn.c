@@ -8,6 +8,7 @@
 
 #include "sim/core/trace.h"
 #include "sim/machine/shmem.h"
+#include "sim/workload/performer/pf_gpipe.h"
 #include "sim/scene/scene_cfg.h"
 
 static const char *const normals[] = {"linear", "quadratic", NULL};
@@ -19,6 +20,7 @@ WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
     uint64_t level = 2;
     int nk = 0, send = 0;
     p->vertex_bytes = 32;
+    p->fifo_depth = WL_PF_FIFO_DEPTH, p->fifo_chunk = WL_PF_FIFO_CHUNK;
     p->command_bytes = 100;
     if (cfg_kind(pn) != CFG_MAP) {
         cfg_error(err, pn, "a non-map", "pn: {level, normals, send}");
@@ -83,6 +85,7 @@ typedef struct {
     uint64_t cmd_bytes;         /* Pixel-Planes 5: GPs to renderers */
     SimTime cpu, bus, pipe, gp; /* stage times of the last frame */
     MachShmem bus_mem;          /* shared-memory machine: CPU -> pipe */
+    WlPfGpipe *gpipe;           /* ... through the pipe's FIFO */
     void (*start)(void *run);
 } PnRun;
 
@@ -114,6 +117,17 @@ static uint64_t sent_tris(const PnRun *r)
 
 /* ---- shared-memory machine: CPU -> bus -> pipe ------------------------- */
 
+/* The pipe swapped the frame: it is done. */
+static void smp_swapped(void *ctx, guint n)
+{
+    (void)n;
+    part_done(ctx);
+}
+
+/* One frame through the graphics pipe process (pf_gpipe.h), as the town's
+ * DRAW: the CPU issues in chunks into the FIFO over the bus, the pipe
+ * tessellates and draws them; the frame ends at the pipe's last command
+ * (swaps on no retrace). */
 static void smp_frame(void *run)
 {
     PnRun *r = run;
@@ -121,25 +135,21 @@ static void smp_frame(void *run)
     uint64_t verts = 3 * sent_tris(r), bytes = verts * r->p->vertex_bytes;
     gboolean tess = !r->p->send_fine && r->p->pn.level > 0;
     MachProc *cpu = mach_proc(m, "cpu", 0), *pipe = mach_proc(m, "pipe", 0);
-    MachOps oc = {0}, op = {0}; /* named counts, for a recording */
-    mach_ops_add(&oc, "draw_vertex", verts);
-    mach_ops_add(&op, "pn_vertex", tess ? r->mesh.fine_points : 0);
-    mach_ops_add(&op, "triangle", r->mesh.fine_tris);
-    r->cpu = mach_proc_ops_cost(cpu, &oc);
-    r->pipe = mach_proc_ops_cost(pipe, &op);
-    r->pending = 3;
+    WlPfDrawWork w = {.bytes = bytes}; /* named counts, for a recording */
+    mach_ops_add(&w.cpu_ops, "draw_vertex", verts);
+    mach_ops_add(&w.pipe_ops, "pn_vertex", tess ? r->mesh.fine_points : 0);
+    mach_ops_add(&w.pipe_ops, "triangle", r->mesh.fine_tris);
+    r->cpu = mach_proc_ops_cost(cpu, &w.cpu_ops);
+    r->pipe = mach_proc_ops_cost(pipe, &w.pipe_ops);
+    r->bus = mach_shmem_time(&r->bus_mem, bytes);
+    r->pending = 1;
     r->link_bytes += bytes;
-    mach_proc_compute_list(cpu, &oc, 0, proc_done, r, NULL);
-    mach_proc_compute_list(pipe, &op, 0, proc_done, r, NULL);
-    SimEngine *eng = mach_engine(m);
-    SimTime now = sim_now(eng);
-    mach_shmem_send(&r->bus_mem, eng, mach_proc_id(cpu), mach_proc_id(pipe),
-                    bytes, proc_done, r, NULL);
-    SimTime end = r->bus_mem.last_end;
-    r->bus = end - now;
-    sim_trace_flow(sim_engine_trace(eng), mach_proc_id(cpu),
-                   mach_proc_name(cpu), mach_proc_id(pipe),
-                   mach_proc_name(pipe), bytes, now, end);
+    if (!r->gpipe) {
+        r->gpipe = wl_pf_gpipe_new(mach_engine(m), cpu, pipe, &r->bus_mem,
+                                   r->p->fifo_depth, r->p->fifo_chunk);
+        wl_pf_gpipe_set_swap(r->gpipe, 1, NULL, smp_swapped, r);
+    }
+    wl_pf_gpipe_frame(r->gpipe, r->out->frame_times->len, &w);
 }
 
 /* ---- Pixel-Planes 5: host -> ring -> GPs -> ring -> renderers ---------- */
@@ -311,6 +321,7 @@ gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
     r.frames_left = (guint)ctx->frames;
     sim_schedule_at(ctx->eng, 0, frame_start, &r, NULL);
     gboolean ok = sim_engine_run(ctx->eng, ctx->until, err);
+    wl_pf_gpipe_free(r.gpipe);
     if (!ok)
         return FALSE;
     mach_fill_result(m, out);

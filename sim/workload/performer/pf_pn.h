@@ -13,8 +13,10 @@
  *   shared-memory machine (kinds cpu, pipe): the CPU running DRAW issues
  *   the vertices (cpu draw_vertex each) and the bus carries them
  *   (vertex_bytes each) to the pipe, which tessellates (pipe pn_vertex
- *   per grid point) and draws (pipe triangle per fine triangle); the
- *   three stream through FIFOs, so a frame lasts as long as the slowest.
+ *   per grid point) and draws (pipe triangle per fine triangle), through
+ *   the graphics pipe process of the town's DRAW (pf_gpipe.h: chunks
+ *   into a bounded FIFO), so a frame lasts about as long as the slowest
+ *   of the three, plus filling and draining the FIFO.
  *
  *   Pixel-Planes 5 (kinds host, gp, renderer): the host sends each GP
  *   its share of the triangles over the ring; a GP tessellates (gp
@@ -40,6 +42,8 @@ typedef struct {
     gboolean send_fine;
     uint64_t vertex_bytes;  /* per vertex over the link */
     uint64_t command_bytes; /* Pixel-Planes 5 renderer command */
+    uint64_t fifo_depth, fifo_chunk; /* the pipe's FIFO (the workload's
+                                        `fifo`, pf_gpipe.h) */
 } WlPfPnParams;
 
 /* Reads the `pn:` map; NULL with a located error. */

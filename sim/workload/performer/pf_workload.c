@@ -191,9 +191,7 @@ static void *pf_parse(const CfgNode *sec, GError **err)
     p->video_hz = 60, p->frame_hz = 30;
     p->cull = p->flatten = p->lazy = p->isect = TRUE;
     p->vertex_bytes = 32;
-    /* assumptions (docs/workloads.md, "performer"): no source gives the
-     * RealityEngine2's command FIFO; 64 KB written in 8 KB blocks */
-    p->fifo_depth = 64 * 1024, p->fifo_chunk = 8 * 1024;
+    p->fifo_depth = WL_PF_FIFO_DEPTH, p->fifo_chunk = WL_PF_FIFO_CHUNK;
     p->town = wl_pf_town_defaults();
     p->at = sec;
     const CfgNode *pn = cfg_get(sec, "pn");
@@ -204,6 +202,8 @@ static void *pf_parse(const CfgNode *sec, GError **err)
         pf_free(p);
         return NULL;
     }
+    if (p->pn) /* the PN measurement runs through the same pipe */
+        p->pn->fifo_depth = p->fifo_depth, p->pn->fifo_chunk = p->fifo_chunk;
     return p;
 }
 
