@@ -183,7 +183,7 @@ def loo_yaml(results, pub, fitted, commit):
            "# Each refit starts from the committed optimum with steps x%.3g,"
            % LOO_STEP,
            "# x1.09, x1.04 (cluster_scale x2), not the full fit's x2 start:",
-           "# a full refit is ~150 reproductions.  Regenerate after any",
+           "# a refit is then about 80 reproductions.  Regenerate after any",
            "# change to the fitted constants or the pphigs model with",
            "#     python3 scripts/ellsworth90/fit.py --loo",
            "# Read by sim/reproduce/ellsworth90.c as table cv rows",

@@ -1,5 +1,7 @@
 /* test_ellsworth90_loo.c — ellsworth90's stored leave-one-out values
- * (ellsworth90_cv.c, configs/papers/ellsworth90/loo.yaml): a loo.yaml
+ * (ellsworth90_cv.c, configs/papers/ellsworth90/loo.yaml): the real
+ * paper's 12 fitted cells come out cross-validated with their
+ * leave-one-out value and the predicted cells with intervals; a loo.yaml
  * whose `fitted` values the reproduction no longer gives is stale and
  * yields no leave-one-out value; a bad file is a located error. */
 #include <setjmp.h>
@@ -12,6 +14,41 @@
 
 #include "sim/reproduce/ellsworth90.h"
 #include "sim/reproduce/rp_driver.h"
+
+static void test_real_labels(void **state)
+{
+    (void)state;
+    const RpPaperOps *rp = rp_find("ellsworth90");
+    RpContext ctx = {.fidelity = "analytic", .quiet = TRUE};
+    GError *err = NULL;
+    RpTable *t = rp_drive(rp, RP_PAPERS_DIR, &ctx, &err);
+    if (!t)
+        fail_msg("%s", err->message);
+    guint cv = 0, predicted = 0;
+    for (guint i = 0; i < t->cells->len; i++) {
+        const RpJoined *j = g_ptr_array_index(t->cells, i);
+        if (strcmp(j->table, "1") != 0 || !isfinite(j->published))
+            continue;
+        if (j->label == RP_LABEL_CV) {
+            cv++;
+            assert_true(isfinite(j->loo_sim));
+            assert_true(isfinite(j->loo_rel_error));
+            assert_true(isfinite(j->lo) && j->lo <= j->hi);
+        } else {
+            assert_int_equal(j->label, RP_LABEL_PREDICTED);
+            assert_string_equal(j->column, "speedup_4");
+            assert_true(isfinite(j->lo) && j->lo <= j->hi);
+            predicted++;
+        }
+    }
+    assert_int_equal(cv, 12);
+    assert_int_equal(predicted, 4);
+    assert_int_equal(t->oos_n, 16);
+    assert_int_equal(t->oos_cv, 12);
+    assert_int_equal(t->inside_of, 16);
+    printf("inside own interval %u of %u\n", t->inside, t->inside_of);
+    rp_table_free(t);
+}
 
 /* loo.yaml with `body` in a new directory; the setup path beside it. */
 static char *write_loo(const char *body, char **dir)
@@ -100,6 +137,7 @@ static void test_bad_file(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_real_labels),
         cmocka_unit_test(test_current_and_stale),
         cmocka_unit_test(test_bad_file),
     };

@@ -15,7 +15,9 @@
  * Pixel-Planes 5's matrix_concat at 5 us instead of its fitted 57.28 us
  * (a copy of models/pixel-planes-5.yaml shadowing the real one, found
  * first in the working directory; PGSIM_DATA points at the checkout for
- * the rest) moves its out-of-sample error from 4.2 % to 8.2 %.
+ * the rest) moves its out-of-sample error from 3.7 % over 16 cells to
+ * 8.2 % over its 4 predicted cells: the fitted cells move, so its
+ * loo.yaml is stale and gives no leave-one-out value.
  *
  * Cost: one faithful pass of every paper (about 65 s of CPU, half of it
  * mueller97's 120-frame revolution).
@@ -30,20 +32,27 @@
 #include <cmocka.h>
 
 /* How much worse the out-of-sample mean |rel_error| may get: one
- * percentage point. */
+ * percentage point, unless a paper's line says otherwise. */
 #define MARGIN 0.01
 
 typedef struct {
     const char *paper;
     guint cells;      /* out-of-sample cells today */
     double oos_mean;  /* today's out-of-sample mean |rel_error| */
+    double margin;    /* how much worse it may get; 0: MARGIN */
 } Bound;
 
 static const Bound bounds[] = {
-    {"ortega93", 18, 0.0754},    /* 18 cross-validated CM-200 times */
-    {"ellsworth90", 4, 0.0423},  /* 4 predicted speedup_4 cells */
-    {"kurc96", 36, 0.0498},      /* 36 cross-validated P=16 cells */
-    {"igehy98", 12, 0.1799},     /* 4 cross-validated, 8 predicted */
+    {"ortega93", 18, 0.0754, 0},    /* 18 cross-validated CM-200 times */
+    /* 12 cross-validated (stored loo.yaml; was 4 cells at 4.23 % before
+     * it) and 4 predicted speedup_4 cells.  The stored leave-one-out
+     * values cannot move (a change that moves a fitted cell makes
+     * loo.yaml stale and the cell count fails), so only the 4 predicted
+     * cells can: a quarter of a point over 16 cells is the old point
+     * over those 4. */
+    {"ellsworth90", 16, 0.0374, 0.0025},
+    {"kurc96", 36, 0.0498, 0},      /* 36 cross-validated P=16 cells */
+    {"igehy98", 12, 0.1799, 0},     /* 4 cross-validated, 8 predicted */
 };
 
 static RpTable *drive(const char *name)
@@ -71,10 +80,11 @@ static const Bound *bound_of(const char *name)
 /* TRUE when t is within its paper's bound. */
 static gboolean within(const RpTable *t, const Bound *b)
 {
+    double m = b->margin > 0 ? b->margin : MARGIN;
     printf("%s: out-of-sample %.2f%% over %u cells (bound %.2f%% over %u)\n",
-           t->paper, 100 * t->oos_mean, t->oos_n,
-           100 * (b->oos_mean + MARGIN), b->cells);
-    return t->oos_n == b->cells && t->oos_mean <= b->oos_mean + MARGIN;
+           t->paper, 100 * t->oos_mean, t->oos_n, 100 * (b->oos_mean + m),
+           b->cells);
+    return t->oos_n == b->cells && t->oos_mean <= b->oos_mean + m;
 }
 
 static void check(const char *name)
