@@ -16,8 +16,10 @@
 
 #include "sim/core/memlimit.h"
 #include <glib.h>
+#include <glib/gstdio.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -32,6 +34,39 @@ static inline void fuzz_setup(void)
 static inline char *fuzz_text(const uint8_t *data, size_t size)
 {
     return g_strndup((const char *)data, size);
+}
+
+/* The scratch file of fuzz_scratch() (one per harness). */
+static inline char **fuzz_scratch_slot(void)
+{
+    static char *path;
+    return &path;
+}
+
+static inline void fuzz_scratch_remove(void)
+{
+    char **path = fuzz_scratch_slot();
+    char *dir = g_path_get_dirname(*path);
+    g_remove(*path);
+    g_rmdir(dir);
+    g_free(dir);
+    g_free(*path);
+    *path = NULL;
+}
+
+/* A scratch file for readers that take a path: `name` in a temporary
+ * folder made on first use from `tmpl` (g_dir_make_tmp), both removed
+ * at exit.  Borrowed. */
+static inline const char *fuzz_scratch(const char *tmpl, const char *name)
+{
+    char **path = fuzz_scratch_slot();
+    if (!*path) {
+        char *dir = g_dir_make_tmp(tmpl, NULL);
+        *path = g_build_filename(dir, name, NULL);
+        g_free(dir);
+        atexit(fuzz_scratch_remove);
+    }
+    return *path;
 }
 
 #endif

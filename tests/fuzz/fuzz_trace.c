@@ -5,32 +5,11 @@
  * written to one scratch file first.  See fuzz.h. */
 #include "sim/app/replay/rpl_replay.h"
 #include "tests/fuzz/fuzz.h"
-#include <glib/gstdio.h>
-#include <stdlib.h>
-
-static char *scratch_dir;
-
-static void remove_scratch(void)
-{
-    g_rmdir(scratch_dir);
-    g_free(scratch_dir);
-}
-
-static char *scratch(void)
-{
-    static char *path;
-    if (!path) {
-        scratch_dir = g_dir_make_tmp("pgsim-fuzz-trace-XXXXXX", NULL);
-        path = g_build_filename(scratch_dir, "input.pgt", NULL);
-        atexit(remove_scratch);
-    }
-    return path;
-}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fuzz_setup();
-    const char *path = scratch();
+    const char *path = fuzz_scratch("pgsim-fuzz-trace-XXXXXX", "input.pgt");
     if (!g_file_set_contents(path, (const char *)data, (gssize)size, NULL))
         return 0;
     RplReplayOpts o = {.trace = path, .machine = "ipsc2",
