@@ -3,6 +3,7 @@
 #include "sim/core/error.h"
 
 #include <errno.h>
+#include <glib/gstdio.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -201,4 +202,21 @@ gboolean sim_file_write(const char *path, const void *data, gsize len,
                 "%s: found %s, expected a writable file", path, e->message);
     g_error_free(e);
     return FALSE;
+}
+
+gboolean sim_move_into(const char *stage, const char *dir, const char *name,
+                       GError **err)
+{
+    char *from = g_build_filename(stage, name, NULL);
+    char *to = g_build_filename(dir, name, NULL);
+    gboolean ok = g_rename(from, to) == 0;
+    if (!ok) {
+        int e = errno;
+        g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
+                    "%s: found %s, expected a writable file", to,
+                    g_strerror(e));
+    }
+    g_free(to);
+    g_free(from);
+    return ok;
 }

@@ -50,4 +50,9 @@ gboolean sim_file_write(const char *path, const void *data, gsize len,
 guint64 sim_file_limit(void);
 void sim_file_set_limit(guint64 bytes);
 
+/* Moves stage/name to dir/name (a rename: the same file system); FALSE
+ * with "DIR/NAME: found <reason>, expected a writable file" in *err. */
+gboolean sim_move_into(const char *stage, const char *dir, const char *name,
+                       GError **err);
+
 #endif

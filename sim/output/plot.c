@@ -657,17 +657,10 @@ static gboolean unstage(const char *stage, const char *dir, const char *name,
     gboolean ok = TRUE;
     for (guint i = 0; i < G_N_ELEMENTS(chart_exts); i++) {
         char *file = g_strconcat(name, chart_exts[i], NULL);
+        if (keep && ok)
+            ok = sim_move_into(stage, dir, file, err);
         char *from = g_build_filename(stage, file, NULL);
-        char *to = g_build_filename(dir, file, NULL);
-        if (keep && ok && g_rename(from, to) != 0) {
-            int e = errno;
-            g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
-                        "%s: found %s, expected a writable file", to,
-                        g_strerror(e));
-            ok = FALSE;
-        }
-        g_remove(from);
-        g_free(to);
+        g_remove(from); /* not moved: dropped */
         g_free(from);
         g_free(file);
     }

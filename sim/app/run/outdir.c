@@ -1,6 +1,7 @@
 /* outdir.c — staging a run's output folder and moving it into place
  * (outdir.h).  O(files in the folder). */
 #include "sim/app/run/outdir.h"
+#include "sim/core/datapath.h"
 #include "sim/core/error.h"
 
 #include <errno.h>
@@ -88,19 +89,8 @@ gboolean out_stage_commit(const char *stage, const char *dir, GError **err)
     }
     char **fresh = names_in(stage);
     gboolean ok = TRUE;
-    for (char **n = fresh; ok && *n; n++) {
-        char *from = g_build_filename(stage, *n, NULL);
-        char *to = g_build_filename(dir, *n, NULL);
-        if (g_rename(from, to) != 0) {
-            int e = errno;
-            g_set_error(err, SIM_ERROR, SIM_ERROR_IO,
-                        "%s: found %s, expected a writable file", to,
-                        g_strerror(e));
-            ok = FALSE;
-        }
-        g_free(to);
-        g_free(from);
-    }
+    for (char **n = fresh; ok && *n; n++)
+        ok = sim_move_into(stage, dir, *n, err);
     if (ok)
         remove_stale(dir, fresh);
     g_strfreev(fresh);
