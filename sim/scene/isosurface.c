@@ -142,9 +142,8 @@ static void do_tet(Iso *s, const guint64 id[4])
     emit(s, t2, m2, ref);
 }
 
-static void sample(Iso *s)
+Vec3 *scene_iso_centres(const SceneIsoParams *p)
 {
-    const SceneIsoParams *p = s->p;
     Vec3 *centres = g_new(Vec3, p->balls ? p->balls : 1);
     SimRng r;
     sim_rng_init(&r, p->seed, 0);
@@ -153,6 +152,13 @@ static void sample(Iso *s)
         double z = sim_rng_uniform(&r);
         centres[i] = vec3(1.2 * x - 0.6, 1.2 * y - 0.6, 1.2 * z - 0.6);
     }
+    return centres;
+}
+
+static void sample(Iso *s)
+{
+    const SceneIsoParams *p = s->p;
+    Vec3 *centres = scene_iso_centres(p);
     guint64 total = (guint64)s->n * s->n * s->n;
     s->val = g_new(double, total);
     for (guint64 id = 0; id < total; id++)

@@ -54,6 +54,9 @@ typedef struct {
 /* gyroid, grid 32, iso 0, 2 periods, 12 balls, seed 1, light blue. */
 SceneIsoParams scene_iso_defaults(void);
 double scene_iso_field(const SceneIsoParams *p, const Vec3 *centres, Vec3 x);
+/* The metaballs' centres (p->balls of them, from p->seed), a new array
+ * for scene_iso_field (g_free). */
+Vec3 *scene_iso_centres(const SceneIsoParams *p);
 /* A new mesh of triangles (free with scene_mesh_free()). */
 SceneMesh *scene_iso_mesh(const SceneIsoParams *p);
 /* The same surface polygonised cell by cell: the lattice is cut into

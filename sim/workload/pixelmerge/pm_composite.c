@@ -57,6 +57,15 @@ static CPx to_cpx(const WlPmPixel *p, guint w, double a)
     return q;
 }
 
+/* Pixel i of l at opacity a, or at its own colour when l has one. */
+static CPx local_cpx(const WlPmWpa *l, guint i, guint w, double a)
+{
+    CPx q = to_cpx(&g_array_index(l->px, WlPmPixel, i), w, a);
+    if (l->rgba)
+        memcpy(q.c, &g_array_index(l->rgba, double, 4 * (gsize)i), sizeof q.c);
+    return q;
+}
+
 /* f composited over (in front of) b at the same location. */
 static CPx blend(const CPx *f, const CPx *b, WlPmOperator op)
 {
@@ -333,8 +342,7 @@ static void comp_init(Comp *k, WlPmWpa *const *local)
         const WlPmWpa *l = local[proc_of(k, p)];
         GArray *px = g_array_sized_new(FALSE, FALSE, sizeof(CPx), l->px->len);
         for (guint i = 0; i < l->px->len; i++) {
-            CPx q = to_cpx(&g_array_index(l->px, WlPmPixel, i), k->w,
-                           k->c->opacity);
+            CPx q = local_cpx(l, i, k->w, k->c->opacity);
             g_array_append_val(px, q);
         }
         k->pr[p] = (CProc){px, 0, k->npix, TRUE};
@@ -399,7 +407,7 @@ double *wl_pm_over_serial(WlPmWpa *const *local, guint n_procs,
     for (guint r = 0; r < n_procs; r++) {
         const WlPmWpa *l = local[order ? order[r] : r];
         for (guint i = 0; i < l->px->len; i++) {
-            CPx q = to_cpx(&g_array_index(l->px, WlPmPixel, i), w, opacity);
+            CPx q = local_cpx(l, i, w, opacity);
             double *a = &acc[(gsize)q.idx * 4], t = 1.0 - a[3];
             for (int j = 0; j < 4; j++)
                 a[j] += t * q.c[j];

@@ -16,7 +16,8 @@
  * Operators.  z: the nearer pixel (pm_pixels.h order, ties by polygon
  * id) wins, so the result equals the serial z-buffer exactly.  over:
  * every active pixel is its colour at opacity `opacity`, premultiplied
- * (r a, g a, b a, a); a block nearer in visibility order is composited
+ * (r a, g a, b a, a), or its own premultiplied colour when its image
+ * carries one (WlPmWpa.rgba: block and volume images); a block nearer in visibility order is composited
  * over a farther one, front over back, c = f + (1 - f.a) b.  The serial
  * reference blends the processors front to back one after the other; a
  * scheme groups the same blends differently, so its result agrees with

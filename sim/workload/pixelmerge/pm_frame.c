@@ -64,7 +64,15 @@ double wl_pm_serial_ms(const Scene *scene, const WlPmSetup *s,
     v.cull_back = s->cull_back;
     v.span_rule = s->span_rule;
     WlPmCounts k;
-    WlPmWpa *w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
+    WlPmWpa *w = NULL;
+    if (s->images.kind != WL_PM_IMAGES_SCENE) {
+        WlPmImageSet *one = wl_pm_images_make(&s->images, &cam, &v, 1,
+                                              s->comp.op);
+        k = one->counts[0];
+        wl_pm_images_free(one);
+    } else {
+        w = wl_pm_render_local(&v, flat, 0, 1, WL_PM_SPLIT_BLOCK, &k);
+    }
     MachOp so[3], zo[4];
     SimTime t = add(local_price(c, so, span_ops(&k, TRUE, so)),
                     local_price(c, zo, zbuf_ops(&k, resolution, FALSE, zo)));
@@ -82,6 +90,8 @@ typedef struct {
     uint64_t *rows; /* global active pixels per scanline */
     SceneMesh *flat;
     RastView view;
+    SceneCamera cam;
+    WlPmImageSet *set; /* block images (local, counts borrowed), or NULL */
 } Local;
 
 static void render_all(Local *l, const Scene *scene, guint frame,
@@ -89,26 +99,39 @@ static void render_all(Local *l, const Scene *scene, guint frame,
 {
     guint n = s->procs, N = s->resolution;
     l->flat = scene_flatten(scene);
-    SceneCamera cam = scene_camera_at(scene, frame);
-    l->view = rast_view_for_camera(&cam, N, N);
+    l->cam = scene_camera_at(scene, frame);
+    l->view = rast_view_for_camera(&l->cam, N, N);
     l->view.cull_back = s->cull_back;
     l->view.span_rule = s->span_rule;
-    l->local = g_new0(WlPmWpa *, n);
-    l->counts = g_new0(WlPmCounts, n);
     l->rows = g_new0(uint64_t, N);
+    l->set = NULL;
+    if (s->images.kind != WL_PM_IMAGES_SCENE) {
+        l->set = wl_pm_images_make(&s->images, &l->cam, &l->view, n,
+                                   s->comp.op);
+        l->local = l->set->local;
+        l->counts = l->set->counts;
+    } else {
+        l->local = g_new0(WlPmWpa *, n);
+        l->counts = g_new0(WlPmCounts, n);
+    }
     for (guint p = 0; p < n; p++) {
-        l->local[p] = wl_pm_render_local(&l->view, l->flat, p, n, s->split,
-                                         &l->counts[p]);
+        if (!l->set)
+            l->local[p] = wl_pm_render_local(&l->view, l->flat, p, n,
+                                             s->split, &l->counts[p]);
         wl_pm_wpa_add_row_counts(l->local[p], l->rows);
     }
 }
 
 static void local_clear(Local *l, guint n)
 {
-    for (guint p = 0; p < n; p++)
+    for (guint p = 0; !l->set && p < n; p++)
         wl_pm_wpa_free(l->local[p]);
-    g_free(l->local);
-    g_free(l->counts);
+    if (l->set) {
+        wl_pm_images_free(l->set);
+    } else {
+        g_free(l->local);
+        g_free(l->counts);
+    }
     g_free(l->rows);
     scene_mesh_free(l->flat);
 }
@@ -225,10 +248,12 @@ static void merge_metrics(const Local *l, const WlPmSetup *s,
                           WlPmFrameOut *out)
 {
     guint n = s->procs;
-    out->polygons = scene_mesh_n_polys(l->flat);
+    out->polygons = l->set ? 0 : scene_mesh_n_polys(l->flat);
     out->counts = g_memdup2(l->counts, n * sizeof *l->counts);
     out->active = g_new(uint64_t, n);
     for (guint p = 0; p < n; p++) {
+        if (l->set) /* a block's polygons: its own, or the block itself */
+            out->polygons += l->counts[p].polygons;
         out->tpg += l->counts[p].rc.pixels;
         out->active[p] = wl_pm_wpa_len(l->local[p]);
     }
@@ -273,9 +298,12 @@ static WlPmMerge *merge_frame(const Local *l, const WlPmSetup *s,
         gsize len = (gsize)s->resolution * s->resolution * 4;
         out->image_ok = wl_pm_over_diff(ref, (*comp)->rgba, len) < 0;
         g_free(ref);
-    } else {
+    } else if (!l->set) {
         out->image_ok = image_matches(l, m->image);
     }
+    if (l->set && (out->image_ok || s->comp.op == WL_PM_OP_Z))
+        out->image_ok = wl_pm_images_match(&s->images, l->set, &l->cam,
+                                           &l->view, s->comp.op, *comp);
     return m;
 }
 
@@ -298,6 +326,10 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
         sim_busy_init(&out->busy[p]);
     Local l;
     render_all(&l, scene, frame, s);
+    WlPmSetup fs = *s; /* block images: their order from the view */
+    if (l.set)
+        fs.comp.order = l.set->order;
+    s = &fs;
     WlPmPartition *part;
     WlPmComposite *comp;
     WlPmMerge *m = merge_frame(&l, s, &part, &comp, out);

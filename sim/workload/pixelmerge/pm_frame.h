@@ -8,7 +8,10 @@
  * The compositing schemes (pm_composite.h) take the place of the merge:
  * no scanline partition and no global sum; P need not be a power of
  * two; with the over operator the image is checked against the serial
- * front-to-back blend of the processors' local images.
+ * front-to-back blend of the processors' local images.  With block
+ * images (pm_images.h) the local images are the blocks', composited in
+ * their visibility order from the view, and checked against the serial
+ * render too.
  *
  * Phases are separated by a barrier, as the per-phase times of Table 2
  * imply: span_ms and zbuf_ms are the largest processor's busy time in the
@@ -27,6 +30,7 @@
 
 #include "sim/scene/scene.h"
 #include "sim/workload/pixelmerge/pm_composite.h"
+#include "sim/workload/pixelmerge/pm_images.h"
 #include "sim/workload/pixelmerge/pm_render.h"
 #include "sim/workload/pixelmerge/pm_replay.h"
 
@@ -42,6 +46,7 @@ typedef struct {
     RastSpanRule span_rule; /* exact coverage or both end points (scan.h) */
     gboolean keep_image;  /* return the merged image (WlPmFrameOut.image) */
     WlPmCompose comp;     /* the compositing schemes' options */
+    WlPmImages images;    /* the local images: the scene's or blocks' */
 } WlPmSetup;
 
 /* Node costs of the local phases, per counted operation. */

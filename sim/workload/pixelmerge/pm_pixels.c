@@ -25,6 +25,8 @@ void wl_pm_wpa_free(WlPmWpa *w)
     if (!w)
         return;
     g_array_free(w->px, TRUE);
+    if (w->rgba)
+        g_array_free(w->rgba, TRUE);
     g_free(w->row_start);
     g_free(w);
 }
@@ -42,8 +44,22 @@ void wl_pm_wpa_push(WlPmWpa *w, const WlPmPixel *p)
 {
     g_assert(p->x < w->width && p->y < w->height);
     g_assert(p->y + 1u >= w->next_row);
+    g_assert(!w->rgba);
     close_rows_through(w, p->y);
     g_array_append_vals(w->px, p, 1);
+}
+
+void wl_pm_wpa_push_rgba(WlPmWpa *w, const WlPmPixel *p, const double *rgba)
+{
+    if (!w->rgba) {
+        g_assert(w->px->len == 0);
+        w->rgba = g_array_new(FALSE, FALSE, sizeof(double));
+    }
+    g_assert(p->x < w->width && p->y < w->height);
+    g_assert(p->y + 1u >= w->next_row);
+    close_rows_through(w, p->y);
+    g_array_append_vals(w->px, p, 1);
+    g_array_append_vals(w->rgba, rgba, 4);
 }
 
 void wl_pm_wpa_finish(WlPmWpa *w)

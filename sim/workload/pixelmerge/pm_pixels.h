@@ -46,6 +46,9 @@ typedef struct {
     GArray *px;          /* WlPmPixel, scanline order */
     uint32_t *row_start; /* height + 1 offsets into px */
     guint next_row;      /* first row whose start is not yet fixed */
+    GArray *rgba; /* NULL, or per pixel its premultiplied r, g, b, a (4
+                   * doubles): the over operator's value in place of the
+                   * colour at the compose opacity (wl_pm_wpa_push_rgba) */
 } WlPmWpa;
 
 /* Returns a new empty array for a width x height screen; free with
@@ -54,6 +57,9 @@ WlPmWpa *wl_pm_wpa_new(guint width, guint height);
 void wl_pm_wpa_free(WlPmWpa *w);
 /* Appends a pixel; scanlines must come in nondecreasing y (asserted). */
 void wl_pm_wpa_push(WlPmWpa *w, const WlPmPixel *p);
+/* Appends a pixel with its own premultiplied colour rgba[4] (an array
+ * takes either pushes or these, from its first pixel on; asserted). */
+void wl_pm_wpa_push_rgba(WlPmWpa *w, const WlPmPixel *p, const double *rgba);
 /* Closes the array after the last push (fixes the remaining rows). */
 void wl_pm_wpa_finish(WlPmWpa *w);
 static inline guint wl_pm_wpa_len(const WlPmWpa *w)

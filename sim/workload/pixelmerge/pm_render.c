@@ -68,9 +68,17 @@ static WlPmWpa *to_wpa(const RastActive *a)
 WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat, guint p,
                             guint n, WlPmSplit split, WlPmCounts *c)
 {
-    memset(c, 0, sizeof *c);
     guint k;
     uint32_t *ids = share(scene_mesh_n_polys(flat), p, n, split, &k);
+    WlPmWpa *w = wl_pm_render_ids(v, flat, ids, k, c);
+    g_free(ids);
+    return w;
+}
+
+WlPmWpa *wl_pm_render_ids(const RastView *v, const SceneMesh *flat,
+                          const uint32_t *ids, guint k, WlPmCounts *c)
+{
+    memset(c, 0, sizeof *c);
     c->polygons = k;
     RastSpanList *sl = rast_spanlist_new(v->width, v->height);
     if (k > 0)
@@ -83,6 +91,5 @@ WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat, guint p,
     WlPmWpa *w = to_wpa(a);
     rast_active_free(a);
     rast_spanlist_free(sl);
-    g_free(ids);
     return w;
 }

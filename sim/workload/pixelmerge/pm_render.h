@@ -39,4 +39,9 @@ typedef struct {
 WlPmWpa *wl_pm_render_local(const RastView *v, const SceneMesh *flat, guint p,
                             guint n, WlPmSplit split, WlPmCounts *c);
 
+/* The same for the polygons ids[k] of `flat` (any subset, e.g. a
+ * block's, pm_images.h). */
+WlPmWpa *wl_pm_render_ids(const RastView *v, const SceneMesh *flat,
+                          const uint32_t *ids, guint k, WlPmCounts *c);
+
 #endif

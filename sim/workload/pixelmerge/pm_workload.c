@@ -20,6 +20,8 @@
  *     bytes_per_rect: 8       # compositing: a bounding rectangle
  *     visibility: [2, 0, 1]   # compositing: processors nearest first
  *                             # (default 0, 1, ..., P-1)
+ *     images: scene           # compositing: scene | blocks | volume
+ *     volume: {...}           # blocks, volume: pm_images.h, pm_volume.h
  *     resolution: 400         # N: an N x N screen
  *     polygon_split: cyclic   # cyclic | block
  *     bytes_per_pixel: 8      # active pixel record in a message
@@ -323,6 +325,8 @@ static void *pm_parse(const CfgNode *sec, GError **err)
                       err) &&
         parse_order(sec, p, err) &&
         check_order(p, (guint)procs, cfg_get(sec, "visibility"), err) &&
+        wl_pm_images_parse(sec, wl_pm_scheme_composites(p->setup.scheme),
+                           p->order != NULL, &p->setup.images, err) &&
         cfg_get_count(sec, "resolution", FALSE, 2, 4096, &res, err) &&
         cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
         cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&

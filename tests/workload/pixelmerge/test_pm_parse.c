@@ -1,6 +1,7 @@
 /* test_pm_parse.c — the pixelmerge section parser field by field: every
  * default, every word, each count key at both ends of its range (the
- * value one past either end refused with its file:line:column), and the
+ * value one past either end refused with its file:line:column), the
+ * block images' keys (images, volume) and their refusals, and the
  * own-memory estimate (mem_bytes) worked out from its formula. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -273,6 +274,55 @@ static void test_memory_use(void **st)
     assert_int_equal(u.buffers, 2 * 50 * 8);
 }
 
+/* workload.images and workload.volume (pm_images.h, pm_volume.h). */
+static void test_block_images(void **st)
+{
+    (void)st;
+    GError *e = NULL;
+    WlPmParams *p = parse(", scheme: radix_k, images: volume, volume: "
+                          "{field: metaballs, grid: 20, step: 0.01, "
+                          "density: 5, width: 0.5, iso: 1.5, balls: 3}",
+                          &e);
+    assert_non_null(p);
+    const WlPmImages *im = &p->setup.images;
+    assert_int_equal(im->kind, WL_PM_IMAGES_VOLUME);
+    assert_int_equal(im->vol.iso.field, SCENE_FIELD_METABALLS);
+    assert_int_equal(im->vol.iso.grid, 20);
+    assert_int_equal(im->vol.iso.balls, 3);
+    assert_true(im->vol.step == 0.01 && im->vol.density == 5 &&
+                im->vol.width == 0.5 && im->vol.iso.iso == 1.5);
+    wl_pixelmerge_ops.free_params(p);
+    p = parse(", scheme: binary_swap, images: blocks, volume: {density: 3}",
+              &e);
+    assert_non_null(p);
+    assert_true(p->setup.images.kind == WL_PM_IMAGES_BLOCKS &&
+                p->setup.images.density == 3);
+    wl_pixelmerge_ops.free_params(p);
+    p = parse("", &e);
+    assert_int_equal(p->setup.images.kind, WL_PM_IMAGES_SCENE);
+    wl_pixelmerge_ops.free_params(p);
+    static const struct {
+        const char *extra, *where;
+    } bad[] = {
+        {", images: blocks", "pm.yaml:1:38:"}, /* Kurç's pair */
+        {", scheme: radix_k, volume: {density: 2}", "pm.yaml:1:55:"},
+        {", scheme: radix_k, images: blocks, visibility: [0]",
+         "pm.yaml:1:75:"},
+        {", scheme: radix_k, images: pixels", "pm.yaml:1:55:"},
+        {", scheme: radix_k, images: volume, volume: {field: cube}",
+         "pm.yaml:1:79:"},
+        {", scheme: radix_k, images: volume, volume: {step: 0}",
+         "pm.yaml:1:78:"},
+    };
+    for (guint i = 0; i < G_N_ELEMENTS(bad); i++) {
+        assert_null(parse(bad[i].extra, &e));
+        if (!strstr(e->message, bad[i].where))
+            fail_msg("%s: '%s' lacks %s", bad[i].extra, e->message,
+                     bad[i].where);
+        g_clear_error(&e);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -282,6 +332,7 @@ int main(void)
         cmocka_unit_test(test_compositing_keys),
         cmocka_unit_test(test_mem_bytes),
         cmocka_unit_test(test_memory_use),
+        cmocka_unit_test(test_block_images),
     };
     return cmocka_run_group_tests_name("pm_parse", tests, NULL, NULL);
 }
