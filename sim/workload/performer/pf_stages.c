@@ -52,8 +52,9 @@ WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town, const WlPfCosts *c,
     s->cull = cull;
     s->lazy = lazy;
     s->isect = isect;
-    for (int i = 0; i < WL_PF_NBUF; i++)
+    for (int i = 0; i < WL_PF_MAX_PIPES * WL_PF_NBUF; i++)
         s->dl[i] = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+    s->pipes = 1;
     s->frames = g_array_new(FALSE, TRUE, sizeof(WlPfFrameStats));
     g_array_set_size(s->frames, frames);
     s->ground = wl_pf_town_height(0, 0);
@@ -64,15 +65,58 @@ void wl_pf_stages_free(WlPfStages *s)
 {
     if (!s)
         return;
-    for (int i = 0; i < WL_PF_NBUF; i++)
+    for (int i = 0; i < WL_PF_MAX_PIPES * WL_PF_NBUF; i++)
         g_array_free(s->dl[i], TRUE);
     g_array_free(s->frames, TRUE);
     g_free(s);
 }
 
+void wl_pf_stages_set_pipes(WlPfStages *s, guint pipes)
+{
+    g_assert(pipes >= 1 && pipes <= WL_PF_MAX_PIPES);
+    s->pipes = pipes;
+}
+
 static SimTime sum(SimTime a, SimTime b)
 {
     return sim_time_add_sat(a, b);
+}
+
+/* Pipe i's display list for frame n. */
+static GArray *dlist(WlPfStages *s, guint i, guint n)
+{
+    return s->dl[i * WL_PF_NBUF + n % WL_PF_NBUF];
+}
+
+/* Channel i of s->pipes: a 1/N slice of c's horizontal field of view,
+ * turned about the vertical by its heading offset (one pipe: c). */
+static SceneCamera channel_camera(const WlPfStages *s, SceneCamera c, guint i)
+{
+    if (s->pipes <= 1)
+        return c;
+    double tv = tan(c.fov_deg * G_PI / 360.0), h = atan(c.aspect * tv);
+    double hi = h / s->pipes, yaw = -h + (2.0 * i + 1.0) * hi;
+    Vec3 d = vec3_sub(c.target, c.eye);
+    Vec3 r = vec3(d.x * cos(yaw) + d.z * sin(yaw), d.y,
+                  -d.x * sin(yaw) + d.z * cos(yaw));
+    c.target = vec3_add(c.eye, r);
+    c.aspect = tan(hi) / tv;
+    return c;
+}
+
+static void add_cull(WlPfCullStats *a, const WlPfCullStats *b)
+{
+    a->nodes_visited += b->nodes_visited, a->sphere_tests += b->sphere_tests;
+    a->nodes_culled += b->nodes_culled, a->lods += b->lods;
+    a->billboards += b->billboards, a->tris_culled += b->tris_culled;
+    a->lod_sum += b->lod_sum, a->matrix_saved += b->matrix_saved;
+}
+
+static void add_draw(WlPfDrawStats *a, const WlPfDrawStats *b)
+{
+    a->geosets += b->geosets, a->tris += b->tris;
+    a->matrix_ops += b->matrix_ops, a->state_changes += b->state_changes;
+    a->state_naive += b->state_naive;
 }
 
 /* ---- the stages -------------------------------------------------------- */
@@ -98,6 +142,7 @@ static SimTime app(void *ctx, guint n)
     WlPfStages *s = ctx;
     guint moved = wl_pf_town_update(s->town, n);
     wl_pf_frame_stats(s, n)->ground = s->ground;
+    wl_pf_frame_stats(s, n)->updates = moved + 1; /* the cars, the eye */
     MachOps *o = ops_reset(s);
     if (!s->app_timed) {
         mach_ops_add(o, "app_frame", 1);
@@ -110,21 +155,24 @@ static SimTime cull(void *ctx, guint n, double stress)
 {
     WlPfStages *s = ctx;
     WlPfFrameStats *f = wl_pf_frame_stats(s, n);
-    SceneCamera cam = wl_pf_town_camera(s->town, n, f->ground);
+    SceneCamera cam = channel_camera(
+        s, wl_pf_town_camera(s->town, n, f->ground), s->chan);
     WlPfView v = wl_pf_view(&cam, stress, s->cull);
-    GArray *dl = s->dl[n % WL_PF_NBUF];
+    GArray *dl = dlist(s, s->chan, n);
     g_array_set_size(dl, 0);
-    wl_pf_cull(s->town->g, &v, dl, &f->cull);
-    f->dl_items = dl->len;
+    WlPfCullStats cs = {0};
+    wl_pf_cull(s->town->g, &v, dl, &cs);
+    add_cull(&f->cull, &cs);
+    f->dl_items += dl->len;
     const WlPfCosts *c = &s->c;
     MachOps *o = ops_reset(s);
-    mach_ops_add(o, "cull_node", f->cull.nodes_visited);
-    mach_ops_add(o, "cull_lod", f->cull.lods);
-    mach_ops_add(o, "cull_billboard", f->cull.billboards);
+    mach_ops_add(o, "cull_node", cs.nodes_visited);
+    mach_ops_add(o, "cull_lod", cs.lods);
+    mach_ops_add(o, "cull_billboard", cs.billboards);
     mach_ops_add(o, "cull_item", dl->len);
-    SimTime t = sim_time_mul_sat(c->cull_node, f->cull.nodes_visited);
-    t = sum(t, sim_time_mul_sat(c->cull_lod, f->cull.lods));
-    t = sum(t, sim_time_mul_sat(c->cull_billboard, f->cull.billboards));
+    SimTime t = sim_time_mul_sat(c->cull_node, cs.nodes_visited);
+    t = sum(t, sim_time_mul_sat(c->cull_lod, cs.lods));
+    t = sum(t, sim_time_mul_sat(c->cull_billboard, cs.billboards));
     return sum(t, sim_time_mul_sat(c->cull_item, dl->len));
 }
 
@@ -186,17 +234,23 @@ static SimTime draw(void *ctx, guint n)
     WlPfStages *s = ctx;
     WlPfFrameStats *f = wl_pf_frame_stats(s, n);
     const WlPfCosts *c = &s->c;
-    wl_pf_draw(s->town->g, s->dl[n % WL_PF_NBUF], &f->draw);
-    uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
-    f->cpu = wl_pf_draw_cpu(c, &f->draw, s->lazy);
-    draw_ops(ops_reset(s), &f->draw, states);
-    double bytes = 3.0 * (double)f->draw.tris * (double)c->vertex_bytes;
-    f->bytes = (uint64_t)bytes;
-    f->pipe = sum(sim_time_mul_sat(c->pipe_triangle, f->draw.tris),
-                  sim_time_mul_sat(c->pipe_state, states));
+    guint i = s->chan;
+    WlPfDrawStats *d = &s->pdraw[i];
+    *d = (WlPfDrawStats){0};
+    wl_pf_draw(s->town->g, dlist(s, i, n), d);
+    add_draw(&f->draw, d);
+    uint64_t states = s->lazy ? d->state_changes : d->state_naive;
+    SimTime cpu = wl_pf_draw_cpu(c, d, s->lazy);
+    draw_ops(ops_reset(s), d, states);
+    double bytes = 3.0 * (double)d->tris * (double)c->vertex_bytes;
+    s->pcpu[i] = cpu, s->pbytes[i] = (uint64_t)bytes;
+    s->ppipe[i] = sum(sim_time_mul_sat(c->pipe_triangle, d->tris),
+                      sim_time_mul_sat(c->pipe_state, states));
+    f->cpu = MAX(f->cpu, cpu), f->bytes += s->pbytes[i];
+    f->pipe = MAX(f->pipe, s->ppipe[i]);
     if (s->piped) { /* the pipe runs it (draw_work); an idle bus's time */
-        f->bus = mach_shmem_time(&s->bus, f->bytes);
-        return f->cpu;
+        f->bus = MAX(f->bus, mach_shmem_time(&s->bus, s->pbytes[i]));
+        return cpu;
     }
     f->bus = feed_pipe(s, &s->over, f->bytes, f->draw.tris, states);
     return MAX(f->cpu, MAX(f->bus, f->pipe));
@@ -206,11 +260,14 @@ static SimTime draw(void *ctx, guint n)
 static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
 {
     WlPfStages *s = ctx;
-    const WlPfFrameStats *f = wl_pf_frame_stats(s, n);
-    uint64_t states = s->lazy ? f->draw.state_changes : f->draw.state_naive;
-    *w = (WlPfDrawWork){.cpu = f->cpu, .bytes = f->bytes, .pipe = f->pipe};
-    draw_ops(&w->cpu_ops, &f->draw, states);
-    mach_ops_add(&w->pipe_ops, "triangle", f->draw.tris);
+    (void)n;
+    guint i = s->chan;
+    const WlPfDrawStats *d = &s->pdraw[i];
+    uint64_t states = s->lazy ? d->state_changes : d->state_naive;
+    *w = (WlPfDrawWork){
+        .cpu = s->pcpu[i], .bytes = s->pbytes[i], .pipe = s->ppipe[i]};
+    draw_ops(&w->cpu_ops, d, states);
+    mach_ops_add(&w->pipe_ops, "triangle", d->tris);
     mach_ops_add(&w->pipe_ops, "state", states);
 }
 
@@ -229,8 +286,20 @@ static SimTime isect(void *ctx, guint n)
                sim_time_mul_sat(s->c.isect_triangle, f->isect.tris_tested));
 }
 
+static void channel(void *ctx, guint pipe)
+{
+    ((WlPfStages *)ctx)->chan = pipe;
+}
+
+/* A CULL process applies APP's update list of frame n (pfBuffer). */
+static SimTime update(void *ctx, guint n)
+{
+    WlPfStages *s = ctx;
+    return sim_time_mul_sat(s->c.update, wl_pf_frame_stats(s, n)->updates);
+}
+
 WlPfStageFns wl_pf_stage_fns(gboolean with_isect)
 {
-    return (WlPfStageFns){app, cull, draw, with_isect ? isect : NULL, ops,
-                          draw_work};
+    return (WlPfStageFns){app,  cull,      draw,    with_isect ? isect : NULL,
+                          ops,  draw_work, channel, update};
 }

@@ -22,6 +22,14 @@
  * pipe's counts and the bus stream as overlapping terms
  * (sim/machine/overlap.h).  Each frame's counts are kept for the
  * per-frame log.
+ *
+ * Several pipes (wl_pf_stages_set_pipes): pipe i of N culls its own
+ * channel, a 1/N slice of the horizontal field of view turned by a
+ * heading offset (pfChannel view offsets, channels side by side), into
+ * its own display lists, and draws them; a frame's counts add over the
+ * pipes and its cpu, bus and pipe times are the slowest pipe's.
+ * update() prices APP's update list of a frame (pfBuffer): one update per
+ * moved car's DCS plus the camera, at the workload's `update` cost.
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
@@ -41,6 +49,7 @@ typedef struct {
     SimTime isect_node, isect_triangle;
     SimTime pipe_triangle, pipe_state;
     uint64_t vertex_bytes;
+    SimTime update; /* apply one update-list entry (the workload's) */
 } WlPfCosts;
 
 typedef struct {
@@ -51,6 +60,7 @@ typedef struct {
     SimTime cpu, bus, pipe; /* DRAW's three times */
     uint64_t bytes;         /* DRAW's command bytes to the pipe */
     double ground;          /* the ground height APP used */
+    guint updates;          /* APP's update-list entries */
 } WlPfFrameStats;
 
 typedef struct {
@@ -60,7 +70,11 @@ typedef struct {
     SimEngine *eng;
     MachProc *draw_cpu;  /* the process running DRAW (set by the caller) */
     gboolean cull, lazy; /* frustum culling; lazy pfGeoState */
-    GArray *dl[WL_PF_NBUF];
+    GArray *dl[WL_PF_MAX_PIPES * WL_PF_NBUF]; /* pipe i: from i NBUF */
+    guint pipes, chan; /* pipes; the one the pipeline named last */
+    WlPfDrawStats pdraw[WL_PF_MAX_PIPES]; /* each pipe's last DRAW */
+    SimTime pcpu[WL_PF_MAX_PIPES], ppipe[WL_PF_MAX_PIPES];
+    uint64_t pbytes[WL_PF_MAX_PIPES];
     GArray *frames; /* WlPfFrameStats, one per frame */
     double ground;  /* the latest ISECT result */
     gboolean isect;
@@ -86,6 +100,9 @@ WlPfStages *wl_pf_stages_new(MachMachine *m, WlPfTown *town, const WlPfCosts *c,
                              gboolean cull, gboolean lazy, gboolean isect,
                              guint frames, GError **err);
 void wl_pf_stages_free(WlPfStages *s);
+/* Culls and draws for `pipes` channels (1 <= pipes <= WL_PF_MAX_PIPES;
+ * 1 by default). */
+void wl_pf_stages_set_pipes(WlPfStages *s, guint pipes);
 /* The stage functions (ctx: a WlPfStages). */
 WlPfStageFns wl_pf_stage_fns(gboolean isect);
 /* CPU time of DRAW's issuing work for the counts st (lazy or eager

@@ -3,7 +3,11 @@
  *
  *   workload:
  *     type: performer
- *     mode: app_cull_draw | appcull_draw | appculldraw
+ *     mode: app_cull_draw | appcull_draw | app_culldraw | appculldraw
+ *     pipes: 1                # graphics pipes, each with CULL and DRAW
+ *     fork_isect: true        # false: ISECT in the APP process
+ *     update_list: false      # pfBuffer hand-off at the frame boundary
+ *     update_cost: 1 us       # applying one update-list entry
  *     video_rate: 60          # Hz, retraces (assumption: a 60 Hz monitor)
  *     frame_rate: 30          # Hz, fixed frame rate; divides video_rate
  *     phase: locked | floating
@@ -17,8 +21,10 @@
  *     frame_log: frames.csv   # else <out>/performer_frames.csv
  *     pn: {...}               # the PN-triangle measurement (pf_pn.h)
  *
- * The machine needs node kinds `cpu` (one per process, plus one for
- * ISECT) and `pipe`, and a network bandwidth (models/sgi-onyx.yaml).
+ * The machine needs node kinds `cpu` (one per process, plus one for a
+ * forked ISECT) and `pipe` (one per pipe), and a network bandwidth
+ * (models/sgi-onyx.yaml).  Each pipe's FIFO stream has its own path of
+ * the network's bandwidth (the programmed I/O of its DRAW CPU).
  */
 #include "sim/workload/performer/pf_workload.h"
 
@@ -31,8 +37,8 @@
 typedef struct {
     WlPfPipeParams pipe;
     double video_hz, frame_hz;
-    gboolean cull, flatten, lazy, isect, has_app_work;
-    SimTime app_work;
+    gboolean cull, flatten, lazy, isect, has_app_work, fork_isect;
+    SimTime app_work, update_cost;
     uint64_t vertex_bytes;
     uint64_t fifo_depth, fifo_chunk; /* pf_gpipe.h */
     WlPfTownParams town;
@@ -122,19 +128,29 @@ static gboolean parse_rates(const CfgNode *sec, PfParams *p, GError **err)
 static gboolean parse_flags(const CfgNode *sec, PfParams *p, GError **err)
 {
     int mode = p->pipe.mode, phase = 0;
+    uint64_t pipes = 1;
     p->has_app_work = cfg_get(sec, "app_work") != NULL;
     if (!cfg_get_enum(sec, "mode", FALSE, wl_pf_mp_mode_names, &mode, err) ||
         !cfg_get_enum(sec, "phase", FALSE, phases, &phase, err))
         return FALSE;
     p->pipe.mode = (WlPfMpMode)mode;
     p->pipe.locked = phase == 0;
-    return cfg_get_bool(sec, "cull", FALSE, &p->cull, err) &&
+    gboolean ok = cfg_get_bool(sec, "cull", FALSE, &p->cull, err) &&
            cfg_get_bool(sec, "flatten", FALSE, &p->flatten, err) &&
            cfg_get_bool(sec, "lazy_state", FALSE, &p->lazy, err) &&
            cfg_get_bool(sec, "isect", FALSE, &p->isect, err) &&
+           cfg_get_bool(sec, "fork_isect", FALSE, &p->fork_isect, err) &&
+           cfg_get_bool(sec, "update_list", FALSE, &p->pipe.update_list,
+                        err) &&
+           cfg_get_time(sec, "update_cost", FALSE, &p->update_cost, err) &&
+           cfg_get_count(sec, "pipes", FALSE, 1, WL_PF_MAX_PIPES, &pipes,
+                         err) &&
            cfg_get_time(sec, "app_work", FALSE, &p->app_work, err) &&
            cfg_get_size(sec, "vertex_bytes", FALSE, &p->vertex_bytes, err) &&
            cfg_get_str(sec, "frame_log", FALSE, &p->frame_log, err);
+    p->pipe.pipes = (guint)pipes;
+    p->pipe.isect_in_app = !p->fork_isect;
+    return ok;
 }
 
 /* fifo: {depth, chunk}: the graphics pipe's command FIFO (pf_gpipe.h). */
@@ -189,7 +205,10 @@ static void *pf_parse(const CfgNode *sec, GError **err)
     PfParams *p = g_new0(PfParams, 1);
     p->pipe.mode = WL_PF_MP_APP_CULL_DRAW;
     p->video_hz = 60, p->frame_hz = 30;
-    p->cull = p->flatten = p->lazy = p->isect = TRUE;
+    p->cull = p->flatten = p->lazy = p->isect = p->fork_isect = TRUE;
+    /* assumption: copy one 64-byte matrix into CULL's pfBuffer, about
+     * 150 instructions at 150 MHz */
+    p->update_cost = SIM_US;
     p->vertex_bytes = 32;
     p->fifo_depth = WL_PF_FIFO_DEPTH, p->fifo_chunk = WL_PF_FIFO_CHUNK;
     p->town = wl_pf_town_defaults();
@@ -340,8 +359,9 @@ static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
         msaved += wl_pf_frame_stats(st, n)->cull.matrix_saved;
     sim_result_set_metric(out, "target_rate_hz", p->frame_hz, "Hz");
     sim_result_set_metric(out, "frame_rate_hz", iv > 0 ? 1 / iv : 0, "Hz");
-    sim_result_set_metric(out, "latency_ms",
-                          wl_pf_mean_latency_s(recs, skip) * 1e3, "ms");
+    double lat = wl_pf_mean_latency_s(recs, skip);
+    sim_result_set_metric(out, "latency_ms", lat * 1e3, "ms");
+    sim_result_set_metric(out, "latency_frames", lat * p->frame_hz, "");
     sim_result_set_metric(out, "app_ms", m.app, "ms");
     sim_result_set_metric(out, "cull_ms", m.cull, "ms");
     sim_result_set_metric(out, "draw_ms", m.draw, "ms");
@@ -362,20 +382,36 @@ static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
 
 /* ---- running ----------------------------------------------------------- */
 
+/* The processes the mode needs for its pipes, then a forked ISECT's. */
+static guint procs_needed(const PfParams *p)
+{
+    return wl_pf_mp_procs(p->pipe.mode, p->pipe.pipes) +
+           (p->isect && p->fork_isect ? 1 : 0);
+}
+
 static gboolean get_procs(MachMachine *m, const PfParams *p, MachProc **procs,
                           GError **err)
 {
-    guint need = wl_pf_mp_procs(p->pipe.mode) + (p->isect ? 1 : 0);
+    guint need = procs_needed(p), pipes = MAX(p->pipe.pipes, 1);
     /* run_pipeline calls this after wl_pf_costs_read found the costs of
      * both kinds (mach_costs_new fails on a missing kind) */
-    const MachKindInfo *k = mach_kind(m, "cpu");
-    g_assert(k && mach_kind(m, "pipe"));
-    if (k->count < need) {
-        char *found = g_strdup_printf("machine '%s' with %u cpu nodes",
-                                      mach_name(m), k->count);
-        char *exp = g_strdup_printf("%u cpus (mode %s%s) and a pipe", need,
-                                    wl_pf_mp_mode_names[p->pipe.mode],
-                                    p->isect ? " + isect" : "");
+    const MachKindInfo *k = mach_kind(m, "cpu"), *g = mach_kind(m, "pipe");
+    g_assert(k && g);
+    if (k->count < need || g->count < pipes) {
+        const char *isect = p->isect && p->fork_isect ? " + isect" : "";
+        char *found =
+            pipes > 1 ? g_strdup_printf("machine '%s' with %u cpu and %u "
+                                        "pipe nodes",
+                                        mach_name(m), k->count, g->count)
+                      : g_strdup_printf("machine '%s' with %u cpu nodes",
+                                        mach_name(m), k->count);
+        char *exp =
+            pipes > 1
+                ? g_strdup_printf("%u cpus (mode %s, %u pipes%s) and %u pipes",
+                                  need, wl_pf_mp_mode_names[p->pipe.mode],
+                                  pipes, isect, pipes)
+                : g_strdup_printf("%u cpus (mode %s%s) and a pipe", need,
+                                  wl_pf_mp_mode_names[p->pipe.mode], isect);
         cfg_error(err, p->at, found, exp);
         g_free(found);
         g_free(exp);
@@ -406,36 +442,59 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
                        : sim_now(mach_engine(m));
 }
 
+/* The graphics pipe processes, one per pipe: pipe i fed by its DRAW's
+ * CPU through its own stream path (buses[i], pipe 0's the stages' bus). */
+static void new_gpipes(const WlContext *ctx, MachMachine *m, const PfParams *p,
+                       WlPfStages *st, MachProc *const *procs,
+                       MachShmem *buses, WlPfGpipe **gp)
+{
+    for (guint i = 0; i < MAX(p->pipe.pipes, 1); i++) {
+        MachProc *cpu = procs[wl_pf_mp_proc(p->pipe.mode, i, TRUE)];
+        buses[i] = st->bus; /* unused yet: free from time 0 */
+        gp[i] = wl_pf_gpipe_new(ctx->eng, cpu, mach_proc(m, "pipe", i),
+                                i ? &buses[i] : &st->bus, p->fifo_depth,
+                                p->fifo_chunk);
+    }
+}
+
 /* Runs the frames over st and reports them. */
 static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
                            WlPfStages *st, guint flattened, SimResult *out,
                            GError **err)
 {
-    MachProc *procs[4];
+    MachProc *procs[2 + 2 * WL_PF_MAX_PIPES];
     if (!get_procs(m, p, procs, err))
         return FALSE;
+    guint np = MAX(p->pipe.pipes, 1);
     WlPfStageFns fns = wl_pf_stage_fns(p->isect);
-    st->draw_cpu = procs[wl_pf_mp_procs(p->pipe.mode) - 1];
+    st->draw_cpu = procs[wl_pf_mp_proc(p->pipe.mode, 0, TRUE)];
     st->piped = TRUE;
-    WlPfGpipe *gp =
-        wl_pf_gpipe_new(ctx->eng, st->draw_cpu, mach_proc(m, "pipe", 0),
-                        &st->bus, p->fifo_depth, p->fifo_chunk);
+    wl_pf_stages_set_pipes(st, np);
+    MachShmem buses[WL_PF_MAX_PIPES];
+    WlPfGpipe *gp[WL_PF_MAX_PIPES] = {NULL};
+    new_gpipes(ctx, m, p, st, procs, buses, gp);
     WlPfPipeParams pp = p->pipe;
-    pp.gpipe = gp;
+    pp.gpipe = gp[0];
+    pp.gpipes = gp;
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &pp, &fns, st, recs,
                                  ctx->until, err);
     if (ok) {
         fill_result(out, m, recs, st);
         /* one message per FIFO chunk over the bus, as a replay counts */
-        out->comm_messages = wl_pf_gpipe_stats(gp)->chunks;
+        out->comm_messages = 0;
+        for (guint i = 0; i < np; i++)
+            out->comm_messages += wl_pf_gpipe_stats(gp[i])->chunks;
         sim_result_set_phases(out, ctx->eng);
     }
     if (ok && !sim_engine_cut(ctx->eng)) { /* whole runs only (run.until) */
         set_metrics(out, p, recs, st, flattened);
-        set_pipe_metrics(out, wl_pf_gpipe_stats(gp), recs->len, out->elapsed);
+        set_pipe_metrics(out, wl_pf_gpipe_stats(gp[0]), recs->len,
+                         out->elapsed);
+        sim_result_set_metric(out, "processes", procs_needed(p), "");
     }
-    wl_pf_gpipe_free(gp);
+    for (guint i = 0; i < np; i++)
+        wl_pf_gpipe_free(gp[i]);
     char *log =
         ok ? wl_frame_log_path(ctx, p->frame_log, "performer_frames.csv")
            : NULL;
@@ -454,6 +513,7 @@ static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
         return FALSE;
     if (p->has_app_work)
         c.app_frame = p->app_work;
+    c.update = p->update_cost;
     WlPfTown *town = wl_pf_town_new(&p->town);
     guint flattened = p->flatten ? wl_pf_flatten(town->g) : 0;
     p->pipe.frames = (guint)ctx->frames;
@@ -490,6 +550,8 @@ static const WlMetric pf_metrics[] = {
     {"target_rate_hz", "Hz", "the frame rate asked for"},
     {"frame_rate_hz", "Hz", "1 / mean swap interval"},
     {"latency_ms", "ms", "mean time from APP's start to the swap"},
+    {"latency_frames", "", "latency_ms in frame periods (1 / frame_rate)"},
+    {"processes", "", "CPUs the process model uses (with a forked ISECT)"},
     {"app_ms", "ms", "mean APP stage time"},
     {"cull_ms", "ms", "mean CULL stage time"},
     {"draw_ms", "ms", "mean DRAW stage time (start to its last write)"},
