@@ -8,7 +8,7 @@
  * block.  O(blocks x tiles) bookkeeping per frame (empty blocks are
  * skipped in bulk), O(triangles + pixels) real work.
  */
-#include "sim/workload/argus/ag_pipe.h"
+#include "sim/workload/argus/ag_pipe_int.h"
 #include <string.h>
 
 const char *const wl_ag_app_names[] = {"none", "nurbs", "march", NULL};
@@ -26,52 +26,12 @@ const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
                                       "rast_clear",
                                       "lock",
                                       "sema",
+                                      "issue_state",
+                                      "geom_state",
                                       NULL};
+const char *const wl_ag_scheme_names[] = {"pixel", "geometry", NULL};
+const char *const wl_ag_sync_names[] = {"glp", "finish", NULL};
 const MachNeed wl_ag_needs[] = {{"cpu", wl_ag_cost_ops}, {NULL, NULL}};
-
-typedef struct {
-    gboolean done;
-    guint wait_upto; /* glpWaitContext: the context's blocks issued then */
-    guint n_tiles;
-    guint *tile_ids;   /* sorted */
-    guint *tile_start; /* n_tiles + 1 offsets into tris */
-    uint32_t *tris;
-} BlockState;
-
-struct AgPipe {
-    MachMachine *m;
-    SimEngine *eng;
-    AgSetup s;
-    const AgStreams *st;
-    AgFrame *f;
-    const SceneMesh *mesh;
-    const RastView *view;
-    MachShmem mem;
-    unsigned ph_app, ph_geom, ph_rast;
-    guint *ctx_off, nblocks;
-    BlockState *bs;
-    guint *app_next;
-    guint *app_bar;        /* per application barrier: threads arrived */
-    gboolean *app_arrived; /* per context: at its barrier's head block */
-    gboolean *app_parked;  /* per context: waiting there */
-    GQueue gq;
-    gboolean *g_busy;
-    guint *g_block;
-    guint ntiles, C;
-    guint *tnext; /* ntiles x C */
-    int32_t *sem; /* ntiles x (sems + barriers): semaphore counts, then
-                   * glpBarrier arrivals */
-    guint nsem;   /* sems + barriers */
-    guint *t_rr;  /* per tile: context to try first */
-    guint tiles_left;
-    gboolean *r_busy;
-    guint nw;          /* workers of the pool (workers: pool), else 0 */
-    gboolean *t_busy;  /* pool: a worker is drawing the tile */
-    guint pool_cursor; /* pool: the tile to try first */
-    guint *r_cursor, *r_tile, *r_block;
-    GArray **r_tiles; /* tiles of each rasteriser, in row-major order */
-    AgFrameStats *out;
-};
 
 gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
                                   GError **err)
@@ -84,19 +44,20 @@ gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
         &c->issue_vertex,  &c->issue_batch, &c->geom_vertex,
         &c->geom_triangle, &c->geom_tile,   &c->rast_triangle,
         &c->rast_pixel,    &c->rast_blend,  &c->rast_clear,
-        &c->lock,          &c->sema};
+        &c->lock,          &c->sema,        &c->issue_state,
+        &c->geom_state};
     G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_ag_cost_ops) - 1);
     mach_costs_fill(set, "cpu", wl_ag_cost_ops, dst);
     mach_costs_free(set);
     return TRUE;
 }
 
-static MachProc *thread_proc(AgPipe *p, guint thread)
+MachProc *wl_ag_thread_proc(AgPipe *p, guint thread)
 {
     return mach_proc(p->m, "cpu", thread % p->s.procs);
 }
 
-static const AgBlock *block_at(const AgPipe *p, guint b, guint *ctx)
+const AgBlock *wl_ag_block_at(const AgPipe *p, guint b, guint *ctx)
 {
     g_assert(b < p->nblocks);
     guint c = 0;
@@ -114,106 +75,16 @@ static const AgBlock *block_at(const AgPipe *p, guint b, guint *ctx)
 /* A lock or semaphore operation: none on a uniprocessor, where nothing
  * is shared between threads (the costs the machine gives are for the
  * multiprocessor's synchronisation). */
-static void sync_ops(const AgPipe *p, MachOps *o, const char *op, uint64_t n)
+void wl_ag_sync_ops(const AgPipe *p, MachOps *o, const char *op, uint64_t n)
 {
     mach_ops_add(o, op, p->s.uniprocessor ? 0 : n);
 }
 
-static void compute(MachProc *proc, const MachOps *o, unsigned phase,
+void wl_ag_compute(MachProc *proc, const MachOps *o, unsigned phase,
                     SimHandler done, AgPipe *p, guint arg, SimTime *busy)
 {
     *busy += mach_proc_ops_cost(proc, o);
     mach_proc_compute_list(proc, o, phase, done, p, GUINT_TO_POINTER(arg));
-}
-
-/* ---- application threads ---------------------------------------------- */
-
-static void app_work(const AgPipe *p, const AgBlock *b, MachOps *o)
-{
-    if (!b->opens)
-        return;
-    const AgBatch *x = &g_array_index(p->st->batches, AgBatch, b->batch);
-    if (p->s.app == WL_AG_APP_NURBS)
-        mach_ops_add(o, "nurbs_vertex", x->distinct);
-    if (p->s.app == WL_AG_APP_MARCH) {
-        mach_ops_add(o, "march_voxel", p->s.voxels_per_batch);
-        mach_ops_add(o, "march_triangle", x->n);
-    }
-}
-
-static void app_issue(SimEngine *eng, void *ctx, void *arg);
-
-static void enqueue(SimEngine *eng, void *ctx, void *arg);
-
-static void app_done(SimEngine *eng, void *ctx, void *arg)
-{
-    AgPipe *p = ctx;
-    guint c = GPOINTER_TO_UINT(arg);
-    guint b = p->ctx_off[c] + p->app_next[c]++;
-    const AgBlock *k = block_at(p, b, NULL);
-    SimTime t = mach_shmem_transfer(&p->mem, sim_now(eng),
-                                    k->verts * p->s.vertex_bytes);
-    sim_schedule_at(eng, t, enqueue, p, GUINT_TO_POINTER(b));
-    app_issue(eng, p, arg);
-}
-
-/* The application barrier before block b of context c (appBarrier of
- * Figure 2): TRUE when c may go on, FALSE when it parks until the last
- * thread arrives, which wakes the others. */
-static gboolean app_barrier(AgPipe *p, guint c, const AgBlock *b)
-{
-    for (guint i = 0; i < b->n_pre; i++) {
-        if (b->pre[i].kind != WL_AG_SYNC_APP_BARRIER)
-            continue;
-        guint id = b->pre[i].id;
-        if (!p->app_arrived[c]) {
-            p->app_arrived[c] = TRUE;
-            p->app_bar[id]++;
-        }
-        if (p->app_bar[id] < p->C) {
-            p->app_parked[c] = TRUE;
-            return FALSE;
-        }
-        for (guint o = 0; o < p->C; o++)
-            if (p->app_parked[o] && o != c) {
-                p->app_parked[o] = FALSE;
-                sim_schedule_at(p->eng, sim_now(p->eng), app_issue, p,
-                                GUINT_TO_POINTER(o));
-            }
-    }
-    p->app_arrived[c] = p->app_parked[c] = FALSE;
-    return TRUE;
-}
-
-/* glpWaitContext(m) in block b: the point of m's stream it waits for is
- * what m has issued now (the paper's semantics: commands issued by m
- * before the call). */
-static void resolve_waits(AgPipe *p, guint gb, const AgBlock *b)
-{
-    for (guint i = 0; i < b->n_pre; i++)
-        if (b->pre[i].kind == WL_AG_SYNC_WAIT_CONTEXT)
-            p->bs[gb].wait_upto = p->app_next[b->pre[i].id];
-}
-
-static void app_issue(SimEngine *eng, void *ctx, void *arg)
-{
-    (void)eng;
-    AgPipe *p = ctx;
-    guint c = GPOINTER_TO_UINT(arg);
-    GArray *blocks = wl_ag_ctx_blocks(p->st, c);
-    if (p->app_next[c] >= blocks->len)
-        return;
-    const AgBlock *b = &g_array_index(blocks, AgBlock, p->app_next[c]);
-    if (!app_barrier(p, c, b))
-        return;
-    resolve_waits(p, p->ctx_off[c] + p->app_next[c], b);
-    MachOps o = {0};
-    app_work(p, b, &o);
-    mach_ops_add(&o, "issue_vertex", b->verts);
-    mach_ops_add(&o, "issue_batch", b->opens ? 1 : 0);
-    sync_ops(p, &o, "lock", 1);
-    compute(thread_proc(p, c), &o, p->ph_app, app_done, p, c,
-            &p->out->app_busy);
 }
 
 /* ---- geometry threads --------------------------------------------------- */
@@ -279,7 +150,7 @@ static void pool_kick(AgPipe *p);
 static MachProc *worker_proc(AgPipe *p, int role, guint i)
 {
     guint base = p->C + (role == 1 && !p->nw ? p->s.geometry : 0);
-    return thread_proc(p, base + i);
+    return wl_ag_thread_proc(p, base + i);
 }
 
 static void block_ready(SimEngine *eng, void *ctx, void *arg)
@@ -289,10 +160,12 @@ static void block_ready(SimEngine *eng, void *ctx, void *arg)
     p->bs[GPOINTER_TO_UINT(arg)].done = TRUE;
     if (p->nw) {
         pool_kick(p);
+        wl_ag_finish_poll(p);
         return;
     }
     for (guint r = 0; r < p->s.rasterisers; r++)
         rast_kick(p, r);
+    wl_ag_finish_poll(p);
 }
 
 static void geom_done(SimEngine *eng, void *ctx, void *arg)
@@ -305,28 +178,32 @@ static void geom_done(SimEngine *eng, void *ctx, void *arg)
                                         p->s.triangle_bytes);
     sim_schedule_at(eng, t, block_ready, p, GUINT_TO_POINTER(b));
     p->g_busy[g] = FALSE;
+    wl_ag_issue_freed(p, b);
     geom_kick(p);
 }
 
 static void geom_start(AgPipe *p, guint g, guint b)
 {
-    const AgBlock *k = block_at(p, b, NULL);
+    const AgBlock *k = wl_ag_block_at(p, b, NULL);
     guint pairs = bucket_block(p, k, &p->bs[b]);
     p->out->bucketed += pairs;
     p->out->triangles += k->n;
     p->out->verts_issued += k->verts;
     MachOps o = {0};
-    sync_ops(p, &o, "lock", 1);
+    wl_ag_sync_ops(p, &o, "lock", 1);
     mach_ops_add(&o, "geom_vertex", k->verts);
     mach_ops_add(&o, "geom_triangle", k->n);
     mach_ops_add(&o, "geom_tile", pairs);
+    mach_ops_add(&o, "geom_state", k->n_state);
+    if (p->s.scheme == WL_AG_SCHEME_GEOMETRY && p->s.sync == WL_AG_SYNC_GLP)
+        wl_ag_sync_ops(p, &o, "sema", k->n_pre + k->n_post);
     p->g_busy[g] = TRUE;
     p->g_block[g] = b;
-    compute(worker_proc(p, 0, g), &o, p->ph_geom, geom_done, p, g,
+    wl_ag_compute(worker_proc(p, 0, g), &o, p->ph_geom, geom_done, p, g,
             &p->out->geom_busy);
 }
 
-static void enqueue(SimEngine *eng, void *ctx, void *arg)
+void wl_ag_enqueue(SimEngine *eng, void *ctx, void *arg)
 {
     (void)eng;
     AgPipe *p = ctx;
@@ -340,14 +217,19 @@ static void geom_kick(AgPipe *p)
         pool_kick(p);
         return;
     }
-    for (guint g = 0; g < p->s.geometry && !g_queue_is_empty(&p->gq); g++)
-        if (!p->g_busy[g])
-            geom_start(p, g, GPOINTER_TO_UINT(g_queue_pop_head(&p->gq)));
+    for (guint g = 0; g < p->s.geometry; g++) {
+        if (p->g_busy[g])
+            continue;
+        guint b = wl_ag_geom_pop(p);
+        if (b == G_MAXUINT)
+            return;
+        geom_start(p, g, b);
+    }
 }
 
 /* ---- tiles and rasterisation threads ----------------------------------- */
 
-static guint *tnext(AgPipe *p, guint t, guint c)
+guint *wl_ag_tnext(AgPipe *p, guint t, guint c)
 {
     return &p->tnext[(gsize)t * p->C + c];
 }
@@ -370,27 +252,51 @@ static const uint32_t *tile_tris(const BlockState *s, guint t, guint *n)
     return s->tris + s->tile_start[lo];
 }
 
-/* Skips, per context, done blocks with nothing for t; counts t finished
- * when every context is through. */
-static void tile_advance(AgPipe *p, guint t)
+/* Whether tile t may pass block gb (k) without drawing it: its geometry
+ * is done, it has nothing for t and no clear or swap, and no command
+ * the tile must honour. */
+static gboolean skippable(AgPipe *p, guint t, guint gb, const AgBlock *k)
 {
+    const BlockState *s = &p->bs[gb];
+    guint n;
+    if (!s->done || k->clear || k->swap || tile_tris(s, t, &n))
+        return FALSE;
+    return !wl_ag_tile_syncs(p) || (!k->n_pre && !k->n_post);
+}
+
+gboolean wl_ag_tile_busy(const AgPipe *p, guint t)
+{
+    if (p->nw)
+        return p->t_busy[t];
+    guint r = wl_ag_tile_owner(p->f, t, p->s.rasterisers);
+    return p->r_busy[r] && p->r_tile[r] == t;
+}
+
+/* Skips, per context (GEOMETRY: in the sequence), done blocks with
+ * nothing for t; counts t finished when every context is through. */
+void wl_ag_tile_advance(AgPipe *p, guint t)
+{
+    if (*wl_ag_tnext(p, t, 0) == G_MAXUINT)
+        return;
     gboolean all = TRUE;
+    for (guint b; p->s.scheme == WL_AG_SCHEME_GEOMETRY &&
+                  (b = wl_ag_seq_pick(p, t)) != G_MAXUINT;) {
+        guint c;
+        if (!skippable(p, t, b, wl_ag_block_at(p, b, &c)))
+            break;
+        wl_ag_tile_pass(p, t, c, b);
+    }
     for (guint c = 0; c < p->C; c++) {
-        guint *nx = tnext(p, t, c);
+        guint *nx = wl_ag_tnext(p, t, c);
         GArray *blocks = wl_ag_ctx_blocks(p->st, c);
-        while (*nx < blocks->len) {
-            const AgBlock *k = &g_array_index(blocks, AgBlock, *nx);
-            const BlockState *s = &p->bs[p->ctx_off[c] + *nx];
-            guint n;
-            if (!s->done || k->n_pre || k->n_post || k->clear || k->swap ||
-                tile_tris(s, t, &n))
-                break;
-            (*nx)++;
-        }
+        while (p->s.scheme == WL_AG_SCHEME_PIXEL && *nx < blocks->len &&
+               skippable(p, t, p->ctx_off[c] + *nx,
+                         &g_array_index(blocks, AgBlock, *nx)))
+            wl_ag_tile_pass(p, t, c, p->ctx_off[c] + *nx);
         all &= *nx == blocks->len;
     }
-    if (all && *tnext(p, t, 0) != G_MAXUINT) {
-        *tnext(p, t, 0) = G_MAXUINT; /* finished marker */
+    if (all) {
+        *wl_ag_tnext(p, t, 0) = G_MAXUINT; /* finished marker */
         if (--p->tiles_left == 0)
             p->out->end = sim_now(p->eng);
     }
@@ -398,11 +304,7 @@ static void tile_advance(AgPipe *p, guint t)
 
 static int32_t *sem_at(AgPipe *p, guint t, const AgSync *s)
 {
-    guint i = s->id + (s->kind == WL_AG_SYNC_P || s->kind == WL_AG_SYNC_V
-                           ? 0
-                           : p->st->sems);
-    g_assert(i < p->nsem);
-    return &p->sem[(gsize)t * p->nsem + i];
+    return wl_ag_count_at(&p->sem[(gsize)t * p->nsem], p->st, s);
 }
 
 /* Whether block gb (k) may be drawn at tile t now: every glpPSema has a
@@ -410,6 +312,8 @@ static int32_t *sem_at(AgPipe *p, guint t, const AgSync *s)
  * the tile has passed the blocks a glpWaitContext names. */
 static gboolean waits_met(AgPipe *p, guint t, guint gb, const AgBlock *k)
 {
+    if (!wl_ag_tile_syncs(p))
+        return TRUE;
     for (guint i = 0; i < k->n_pre; i++) {
         const AgSync *s = &k->pre[i];
         if (s->kind == WL_AG_SYNC_P && *sem_at(p, t, s) <= 0)
@@ -418,7 +322,7 @@ static gboolean waits_met(AgPipe *p, guint t, guint gb, const AgBlock *k)
             *sem_at(p, t, s) < (int32_t)p->st->barrier_parties)
             return FALSE;
         if (s->kind == WL_AG_SYNC_WAIT_CONTEXT &&
-            *tnext(p, t, s->id) < p->bs[gb].wait_upto)
+            *wl_ag_tnext(p, t, s->id) < p->bs[gb].wait_upto)
             return FALSE;
     }
     return TRUE;
@@ -427,12 +331,14 @@ static gboolean waits_met(AgPipe *p, guint t, guint gb, const AgBlock *k)
 /* A ready block of tile t (global index), or G_MAXUINT. */
 static guint tile_pick(AgPipe *p, guint t)
 {
-    if (*tnext(p, t, 0) == G_MAXUINT)
+    if (*wl_ag_tnext(p, t, 0) == G_MAXUINT)
         return G_MAXUINT;
+    if (p->s.scheme == WL_AG_SCHEME_GEOMETRY)
+        return wl_ag_seq_pick(p, t);
     for (guint i = 0; i < p->C; i++) {
         guint c = (p->t_rr[t] + i) % p->C;
         GArray *blocks = wl_ag_ctx_blocks(p->st, c);
-        guint nx = *tnext(p, t, c);
+        guint nx = *wl_ag_tnext(p, t, c);
         if (nx >= blocks->len || !p->bs[p->ctx_off[c] + nx].done)
             continue;
         if (waits_met(p, t, p->ctx_off[c] + nx,
@@ -448,6 +354,8 @@ static guint tile_pick(AgPipe *p, guint t)
  * arrival adds one. */
 static void sync_apply(AgPipe *p, guint t, const AgSync *s, guint n)
 {
+    if (!wl_ag_tile_syncs(p))
+        return;
     for (guint i = 0; i < n; i++) {
         if (s[i].kind == WL_AG_SYNC_P)
             (*sem_at(p, t, &s[i]))--;
@@ -461,19 +369,20 @@ static void rast_done(SimEngine *eng, void *ctx, void *arg)
     (void)eng;
     AgPipe *p = ctx;
     guint r = GPOINTER_TO_UINT(arg), t = p->r_tile[r], c;
-    const AgBlock *k = block_at(p, p->r_block[r], &c);
+    const AgBlock *k = wl_ag_block_at(p, p->r_block[r], &c);
     sync_apply(p, t, k->post, k->n_post);
-    (*tnext(p, t, c))++;
+    wl_ag_tile_pass(p, t, c, p->r_block[r]);
     p->r_busy[r] = FALSE;
     if (p->nw)
         p->t_busy[t] = FALSE;
-    tile_advance(p, t);
+    wl_ag_tile_advance(p, t);
     rast_kick(p, r);
+    wl_ag_finish_poll(p);
 }
 
 static void rast_start(AgPipe *p, guint r, guint t, guint b)
 {
-    const AgBlock *k = block_at(p, b, NULL);
+    const AgBlock *k = wl_ag_block_at(p, b, NULL);
     guint n;
     const uint32_t *tris = tile_tris(&p->bs[b], t, &n);
     sync_apply(p, t, k->pre, k->n_pre);
@@ -482,7 +391,8 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
     if (k->swap)
         wl_ag_frame_present_tile(p->f, t);
     p->out->pixels += px;
-    p->out->syncs += k->n_pre + k->n_post;
+    guint syncs = wl_ag_tile_syncs(p) ? k->n_pre + k->n_post : 0;
+    p->out->syncs += syncs;
     MachOps o = {0};
     mach_ops_add(&o, "rast_triangle", n);
     if (!p->s.fill_infinite) {
@@ -491,13 +401,13 @@ static void rast_start(AgPipe *p, guint r, guint t, guint b)
                      px);
         mach_ops_add(&o, "rast_clear", cleared);
     }
-    sync_ops(p, &o, "sema", k->n_pre + k->n_post);
+    wl_ag_sync_ops(p, &o, "sema", syncs);
     p->r_busy[r] = TRUE;
     p->r_tile[r] = t;
     p->r_block[r] = b;
     if (p->nw)
         p->t_busy[t] = TRUE;
-    compute(worker_proc(p, 1, r), &o, p->ph_rast, rast_done, p, r,
+    wl_ag_compute(worker_proc(p, 1, r), &o, p->ph_rast, rast_done, p, r,
             &p->out->rast_busy);
 }
 
@@ -513,7 +423,7 @@ static void rast_kick(AgPipe *p, guint r)
         return;
     for (guint i = 0; i < mine; i++) {
         guint t = g_array_index(own, guint, (p->r_cursor[r] + i) % mine);
-        tile_advance(p, t);
+        wl_ag_tile_advance(p, t);
         guint b = tile_pick(p, t);
         if (b != G_MAXUINT) {
             p->r_cursor[r] = (p->r_cursor[r] + i + 1) % mine;
@@ -538,7 +448,7 @@ static gboolean pool_tile(AgPipe *p, guint *t, guint *b)
         guint x = (p->pool_cursor + i) % p->ntiles;
         if (p->t_busy[x])
             continue;
-        tile_advance(p, x);
+        wl_ag_tile_advance(p, x);
         guint k = tile_pick(p, x);
         if (k != G_MAXUINT) {
             p->pool_cursor = (x + 1) % p->ntiles;
@@ -557,9 +467,9 @@ static void pool_kick(AgPipe *p)
     for (guint w = 0; w < p->nw; w++) {
         if (!worker_idle(p, w))
             continue;
-        guint t, b;
-        if (!g_queue_is_empty(&p->gq))
-            geom_start(p, w, GPOINTER_TO_UINT(g_queue_pop_head(&p->gq)));
+        guint t, b = wl_ag_geom_pop(p);
+        if (b != G_MAXUINT)
+            geom_start(p, w, b);
         else if (pool_tile(p, &t, &b))
             rast_start(p, w, t, b);
         else
@@ -619,6 +529,8 @@ AgPipe *wl_ag_pipe_new(MachMachine *m, const AgSetup *s, const AgStreams *st,
         guint r = wl_ag_tile_owner(f, t, s->rasterisers);
         g_array_append_val(p->r_tiles[r], t);
     }
+    wl_ag_issue_alloc(p);
+    wl_ag_order_alloc(p);
     return p;
 }
 
@@ -637,6 +549,8 @@ void wl_ag_pipe_free(AgPipe *p)
     if (!p)
         return;
     clear_blocks(p);
+    wl_ag_issue_free(p);
+    wl_ag_order_free(p);
     g_free(p->bs);
     g_free(p->ctx_off);
     g_free(p->app_next);
@@ -672,6 +586,8 @@ static void reset(AgPipe *p)
     memset(p->app_arrived, 0, p->C * sizeof(gboolean));
     memset(p->app_parked, 0, p->C * sizeof(gboolean));
     p->tiles_left = p->ntiles;
+    wl_ag_issue_reset(p);
+    wl_ag_order_reset(p);
 }
 
 gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,
@@ -684,12 +600,15 @@ gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,
     out->blocks = p->nblocks;
     uint64_t bytes0 = p->mem.bytes;
     for (guint c = 0; c < p->C; c++)
-        app_issue(p->eng, p, GUINT_TO_POINTER(c));
+        wl_ag_app_issue(p->eng, p, GUINT_TO_POINTER(c));
     for (guint t = 0; t < p->ntiles; t++)
-        tile_advance(p, t); /* a tile no context draws into */
+        wl_ag_tile_advance(p, t); /* a tile no context draws into */
     if (!sim_engine_run(p->eng, until, err))
         return FALSE;
     out->shmem_bytes = p->mem.bytes - bytes0;
+    out->order_violations = wl_ag_order_violations(p, p->st);
+    if (p->s.retained && !sim_engine_cut(p->eng))
+        p->compiled = TRUE;
     if (p->tiles_left && !sim_engine_cut(p->eng)) {
         g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
                     "argus: %u of %u tiles left undrawn at %.3f ms with "

@@ -10,8 +10,10 @@
  *       each distinct patch vertex; March: visit the cell's voxels and
  *       emit its triangles), the API issue cost of its vertices and
  *       batch, one lock to append the block to the shared geometry queue
- *       and the command bytes through shared memory.  Unbounded buffering
- *       (assumption): issue never blocks on the graphics streams.
+ *       and the command bytes through shared memory.  With a bounded
+ *       buffer (buffer_bytes) a thread whose context's blocks not yet
+ *       through geometry fill it waits (issue_blocked); state commands,
+ *       display lists and the glFinish baseline: ag_issue.c.
  *   geometry threads: pop blocks FIFO (one lock), transform and light
  *       each vertex, set up and bucket each triangle, write it to each
  *       overlapped tile's queue (bytes through shared memory).
@@ -62,10 +64,27 @@ typedef struct {
     SimTime geom_vertex, geom_triangle, geom_tile;
     SimTime rast_triangle, rast_pixel, rast_blend, rast_clear;
     SimTime lock, sema;
+    SimTime issue_state, geom_state;
 } AgCosts;
 extern const char *const wl_ag_cost_ops[];
 /* The same, declared for the machine (WlOps.needs; costs.h). */
 extern const MachNeed wl_ag_needs[];
+
+/* Where the parallel API's ordering is enforced (the Argus page's two
+ * schemes, ag_order.c): PIXEL within the pixel processors (each tile
+ * honours every command at that tile); GEOMETRY between the geometry
+ * processors (a block is sequenced when its waits are met there, and
+ * every tile draws blocks in that one sequence, the reclaim pointer
+ * skipping slots with nothing for it). */
+typedef enum { WL_AG_SCHEME_PIXEL, WL_AG_SCHEME_GEOMETRY } AgScheme;
+extern const char *const wl_ag_scheme_names[]; /* "pixel" "geometry" */
+/* How the program's ordering points are met (ag_issue.c): GLP by the
+ * parallel API's commands in the streams; FINISH by the baseline the
+ * paper compares with: the issuing thread glFinish()es (waits until
+ * every tile has passed its context's commands) and then signals the
+ * other application threads, which wait before issuing. */
+typedef enum { WL_AG_SYNC_GLP, WL_AG_SYNC_FINISH } AgSyncMode;
+extern const char *const wl_ag_sync_names[]; /* "glp" "finish" */
 
 typedef struct {
     guint procs, contexts, geometry, rasterisers;
@@ -77,6 +96,13 @@ typedef struct {
     guint vertex_bytes, triangle_bytes;
     double mem_bandwidth; /* bytes/s; 0: infinite */
     SimTime mem_latency;
+    AgScheme scheme;
+    AgSyncMode sync;
+    gboolean retained;     /* display lists: compiled in the first frame,
+                            * executed by reference after (ag_issue.c) */
+    uint64_t buffer_bytes; /* per context command buffer; 0: unbounded */
+    guint state_bytes;     /* one state command */
+    guint call_bytes;      /* one glCallList */
 } AgSetup;
 
 typedef struct {
@@ -84,6 +110,12 @@ typedef struct {
     uint64_t triangles, verts_issued, bucketed, pixels, syncs, blocks;
     SimTime app_busy, geom_busy, rast_busy; /* summed over threads */
     uint64_t shmem_bytes;
+    SimTime issue_blocked; /* application threads on a full buffer */
+    SimTime finish_wait;   /* on glFinish or another thread (sync: finish) */
+    uint64_t states;        /* state commands issued */
+    uint64_t command_bytes; /* written into the command buffers */
+    uint64_t order_violations; /* ag_order.c: 0 when every tile's order
+                                * honours every synchronisation command */
 } AgFrameStats;
 
 typedef struct AgPipe AgPipe;
@@ -96,6 +128,11 @@ void wl_ag_pipe_free(AgPipe *p);
  * on an engine error or a deadlock (blocks left undrawn). */
 gboolean wl_ag_pipe_frame(AgPipe *p, SimTime until, AgFrameStats *out,
                           GError **err);
+/* After a frame: the synchronisation commands of `st` (the pipe's
+ * streams, or the same blocks with more commands) that some tile's
+ * order of passing blocks broke (ag_order.c); 0 means command-
+ * sequential consistency held at every tile. */
+uint64_t wl_ag_pipe_order_check(const AgPipe *p, const AgStreams *st);
 gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
                                   GError **err);
 

@@ -9,6 +9,8 @@
 
 const char *const wl_ag_order_names[] = {"frame", "cells", "none", NULL};
 const char *const wl_ag_prim_names[] = {"strips", "triangles", NULL};
+const char *const wl_ag_state_names[] = {"none", "stateful", "stateless",
+                                         NULL};
 
 /* Vertices triangle i shares with triangle i - 1. */
 static guint shared(const SceneMesh *m, guint i)
@@ -302,4 +304,57 @@ guint64 wl_ag_count_syncs(const AgStreams *s, AgSyncKind k)
         }
     }
     return n;
+}
+
+static gboolean same_colour(SceneColor a, SceneColor b)
+{
+    return a.r == b.r && a.g == b.g && a.b == b.b;
+}
+
+/* Context c's stream under STATEFUL: its own state, set in full by its
+ * first block, then the colour wherever a batch changes it. */
+static uint64_t stateful_ctx(AgStreams *s, const SceneMesh *m, guint c)
+{
+    GArray *out = wl_ag_ctx_blocks(s, c);
+    SceneColor cur = {0, 0, 0};
+    for (guint i = 0; i < out->len; i++) { /* the colour set in full */
+        const AgBlock *b = &g_array_index(out, AgBlock, i);
+        if (b->opens && b->n > 0) {
+            cur = g_array_index(m->poly_color, SceneColor, b->first);
+            break;
+        }
+    }
+    uint64_t n = 0;
+    for (guint i = 0; i < out->len; i++) {
+        AgBlock *b = &g_array_index(out, AgBlock, i);
+        b->n_state = i == 0 ? WL_AG_STATE_ITEMS : 0;
+        if (b->opens && b->n > 0) {
+            SceneColor want =
+                g_array_index(m->poly_color, SceneColor, b->first);
+            if (i > 0 && !same_colour(want, cur))
+                b->n_state = 1;
+            cur = want;
+        }
+        n += b->n_state;
+    }
+    return n;
+}
+
+void wl_ag_streams_set_state(AgStreams *s, const SceneMesh *m,
+                             AgStateMode mode)
+{
+    s->states = 0;
+    for (guint c = 0; c < s->contexts; c++) {
+        GArray *out = wl_ag_ctx_blocks(s, c);
+        if (mode == WL_AG_STATE_STATEFUL) {
+            s->states += stateful_ctx(s, m, c);
+            continue;
+        }
+        for (guint i = 0; i < out->len; i++) {
+            AgBlock *b = &g_array_index(out, AgBlock, i);
+            b->n_state =
+                mode == WL_AG_STATE_STATELESS ? WL_AG_STATE_ITEMS * b->n : 0;
+            s->states += b->n_state;
+        }
+    }
 }

@@ -81,6 +81,8 @@ typedef struct {
     guint n_pre, n_post;
     AgSync pre[WL_AG_MAX_SYNC], post[WL_AG_MAX_SYNC];
     uint64_t verts; /* vertices issued for the block's triangles */
+    guint n_state;  /* state commands issued before its first primitive
+                     * (wl_ag_streams_set_state; 0 with state: none) */
 } AgBlock;
 
 typedef struct {
@@ -90,6 +92,22 @@ typedef struct {
     uint64_t distinct; /* distinct mesh vertices (patch evaluations) */
 } AgBatch;
 
+/* Graphics state in the streams (seed 002, "Three Issues of a Parallel
+ * API #1"): NONE issues no state command (its cost is the per-batch
+ * issue_batch, as calibrated); STATEFUL gives each context its own
+ * state (matrix, material, enables, colour): the context's first block
+ * sets all four (a context inherits nothing from another) and a block
+ * opening a batch whose colour differs from the context's current one
+ * sets the colour; STATELESS makes every primitive carry all four
+ * ("every command must include all information to execute"). */
+typedef enum {
+    WL_AG_STATE_NONE,
+    WL_AG_STATE_STATEFUL,
+    WL_AG_STATE_STATELESS
+} AgStateMode;
+extern const char *const wl_ag_state_names[]; /* "none" "stateful" "stateless" */
+#define WL_AG_STATE_ITEMS 4 /* matrix, material, enables, colour */
+
 typedef struct {
     GArray *batches; /* AgBatch, in mesh order */
     GPtrArray *ctx;  /* per context: GArray of AgBlock, in issue order */
@@ -98,6 +116,7 @@ typedef struct {
     guint barriers; /* glpBarrier ids are < barriers */
     guint barrier_parties;
     uint64_t syncs; /* synchronisation commands in all streams */
+    uint64_t states; /* state commands in all streams */
 } AgStreams;
 
 /* Builds the streams of `m` (triangles only) for `contexts` contexts.
@@ -109,6 +128,10 @@ AgStreams *wl_ag_streams_new(const SceneMesh *m, guint contexts, AgOrder ord,
                              AgPrim prim, guint block_tris, guint cells,
                              GError **err);
 void wl_ag_streams_free(AgStreams *s);
+/* Sets every block's n_state for `mode` (AgStateMode above; the batch
+ * colour is its first polygon's) and s->states.  O(blocks). */
+void wl_ag_streams_set_state(AgStreams *s, const SceneMesh *m,
+                             AgStateMode mode);
 static inline GArray *wl_ag_ctx_blocks(const AgStreams *s, guint c)
 {
     return g_ptr_array_index(s->ctx, c);

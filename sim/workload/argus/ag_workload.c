@@ -25,7 +25,12 @@
  *     fill_rate: infinite   # infinite (seed 002's footnote) | finite
  *     tile: 128             # tile side in pixels
  *     block: 64             # triangles per command block
- *     bytes: {vertex: 32 B, triangle: 64 B}
+ *     bytes: {vertex: 32 B, triangle: 64 B, state: 32 B, call: 8 B}
+ *     state: none           # none | stateful | stateless (ag_stream.h)
+ *     mode: immediate       # immediate | retained (display lists)
+ *     buffer: 0             # command buffer per context (0: unbounded)
+ *     sync: glp             # glp | finish (the glFinish baseline)
+ *     ordering: pixel       # pixel | geometry (ag_pipe.h AgScheme)
  *     width: 1200           # default: the scene's suggested viewport
  *     height: 1000
  *     check_image: true     # every frame equals the serial render
@@ -43,37 +48,54 @@
 
 static const char *const fills[] = {"infinite", "finite", NULL};
 static const char *const workers[] = {"split", "pool", NULL};
+static const char *const modes[] = {"immediate", "retained", NULL};
 
 static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
 {
     int app = WL_AG_APP_NONE, ord = WL_AG_ORDER_FRAME, prim = 0, pix = 0;
-    int fill = 0, work = 0;
+    int fill = 0, work = 0, state = 0, scheme = 0, sync = 0, mode = 0;
     gboolean ok =
         cfg_get_enum(sec, "application", FALSE, wl_ag_app_names, &app, err) &&
         cfg_get_enum(sec, "order", FALSE, wl_ag_order_names, &ord, err) &&
         cfg_get_enum(sec, "primitives", FALSE, wl_ag_prim_names, &prim, err) &&
         cfg_get_enum(sec, "pixels", FALSE, wl_ag_pixel_names, &pix, err) &&
         cfg_get_enum(sec, "fill_rate", FALSE, fills, &fill, err) &&
-        cfg_get_enum(sec, "workers", FALSE, workers, &work, err);
+        cfg_get_enum(sec, "workers", FALSE, workers, &work, err) &&
+        cfg_get_enum(sec, "state", FALSE, wl_ag_state_names, &state, err) &&
+        cfg_get_enum(sec, "ordering", FALSE, wl_ag_scheme_names, &scheme,
+                     err) &&
+        cfg_get_enum(sec, "sync", FALSE, wl_ag_sync_names, &sync, err) &&
+        cfg_get_enum(sec, "mode", FALSE, modes, &mode, err);
     p->setup.app = (AgApp)app;
     p->order = (AgOrder)ord;
     p->prim = (AgPrim)prim;
     p->pixels = (AgPixelMode)pix;
     p->setup.fill_infinite = fill == 0;
     p->setup.pool = work == 1;
+    p->state = (AgStateMode)state;
+    p->setup.scheme = (AgScheme)scheme;
+    p->setup.sync = (AgSyncMode)sync;
+    p->setup.retained = mode == 1;
     return ok;
 }
 
 static gboolean parse_bytes(const CfgNode *sec, WlAgParams *p, GError **err)
 {
-    uint64_t v = 32, t = 64;
+    uint64_t v = 32, t = 64, st = 32, call = 8, buf = 0;
     const CfgNode *n;
     if (!cfg_get_map(sec, "bytes", FALSE, "a map {vertex, triangle} of sizes",
                      &n, err))
         return FALSE;
     if (n && (!cfg_get_size(n, "vertex", FALSE, &v, err) ||
-              !cfg_get_size(n, "triangle", FALSE, &t, err)))
+              !cfg_get_size(n, "triangle", FALSE, &t, err) ||
+              !cfg_get_size(n, "state", FALSE, &st, err) ||
+              !cfg_get_size(n, "call", FALSE, &call, err)))
         return FALSE;
+    if (!cfg_get_size(sec, "buffer", FALSE, &buf, err))
+        return FALSE;
+    p->setup.state_bytes = (guint)MIN(st, 1u << 20);
+    p->setup.call_bytes = (guint)MIN(call, 1u << 20);
+    p->setup.buffer_bytes = buf;
     p->setup.vertex_bytes = (guint)MIN(v, 1u << 20);
     p->setup.triangle_bytes = (guint)MIN(t, 1u << 20);
     return TRUE;
@@ -232,6 +254,7 @@ static gboolean build(Run *r, const WlContext *ctx, WlAgParams *p, GError **err)
                               p->block_tris, p->cells, err);
     if (!r->st)
         return FALSE;
+    wl_ag_streams_set_state(r->st, r->mesh, p->state);
     int w =
         p->width ? p->width : (r->scene->width ? (int)r->scene->width : 1200);
     int h = p->height ? p->height
@@ -274,6 +297,7 @@ static void fill_metrics(SimResult *out, const Run *r, const WlAgParams *p)
 {
     const AgSetup *s = &p->setup;
     double n = r->stats->len, ms = 0, app = 0, geo = 0, ras = 0, px = 0;
+    double blocked = 0, waited = 0, bad = 0;
     const AgFrameStats *f0 = &g_array_index(r->stats, AgFrameStats, 0);
     for (guint i = 0; i < r->stats->len; i++) {
         const AgFrameStats *f = &g_array_index(r->stats, AgFrameStats, i);
@@ -282,7 +306,12 @@ static void fill_metrics(SimResult *out, const Run *r, const WlAgParams *p)
         geo += sim_time_to_ms(f->geom_busy);
         ras += sim_time_to_ms(f->rast_busy);
         px += (double)f->pixels;
+        blocked += sim_time_to_ms(f->issue_blocked);
+        waited += sim_time_to_ms(f->finish_wait);
+        bad += (double)f->order_violations;
     }
+    const AgFrameStats *fl =
+        &g_array_index(r->stats, AgFrameStats, r->stats->len - 1);
     set(out, "processors", s->procs, "");
     set(out, "contexts", s->contexts, "");
     set(out, "geometry_threads", s->geometry, "");
@@ -302,6 +331,14 @@ static void fill_metrics(SimResult *out, const Run *r, const WlAgParams *p)
     set(out, "geometry_ms", geo / n, "ms");
     set(out, "rasterisation_ms", ras / n, "ms");
     set(out, "shared_memory_bytes", (double)f0->shmem_bytes, "B");
+    set(out, "state_commands", (double)f0->states, "");
+    set(out, "command_bytes", (double)f0->command_bytes, "B");
+    set(out, "command_bytes_last", (double)fl->command_bytes, "B");
+    set(out, "application_ms_last", sim_time_to_ms(fl->app_busy), "ms");
+    set(out, "frame_ms_last", sim_time_to_ms(fl->end - fl->start), "ms");
+    set(out, "issue_blocked_ms", blocked / n, "ms");
+    set(out, "finish_wait_ms", waited / n, "ms");
+    set(out, "order_violations", bad, "");
 }
 
 /* The serial-render check of the last frame (check_image). */
@@ -383,6 +420,20 @@ static const WlMetric ag_metrics[] = {
     {"geometry_ms", "ms", "geometry busy time summed over threads"},
     {"rasterisation_ms", "ms", "rasteriser busy time summed over threads"},
     {"shared_memory_bytes", "B", "bytes booked on the shared memory"},
+    {"state_commands", "", "state commands the contexts issued"},
+    {"command_bytes", "B", "bytes written into the command buffers"},
+    {"command_bytes_last", "B",
+     "the same in the last frame (retained: display-list calls)"},
+    {"application_ms_last", "ms", "application busy time, last frame"},
+    {"frame_ms_last", "ms", "the last frame's time"},
+    {"issue_blocked_ms", "ms",
+     "application threads blocked on a full command buffer, summed, mean "
+     "over frames"},
+    {"finish_wait_ms", "ms",
+     "sync finish: application threads in glFinish or waiting for another "
+     "thread, summed, mean over frames"},
+    {"order_violations", "",
+     "synchronisation commands a tile's drawing order broke, all frames"},
     {"image_matches_serial", "",
      "check_image: 1 when the last frame equals the serial render"},
     {"pixels_differing", "", "check_image: pixels that differ from it"},

@@ -13,6 +13,7 @@ typedef struct {
     AgOrder order;
     AgPrim prim;
     AgPixelMode pixels;
+    AgStateMode state;
     guint block_tris, tile, cells;
     int width, height; /* 0: the scene's */
     double alpha;
