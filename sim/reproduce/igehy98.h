@@ -11,6 +11,7 @@
 #ifndef PGSIM_REPRODUCE_IGEHY98_H
 #define PGSIM_REPRODUCE_IGEHY98_H
 
+#include "sim/core/cfg.h"
 #include "sim/reproduce/reproduce.h"
 
 extern const RpPaperOps rp_igehy98;
@@ -21,5 +22,19 @@ extern const RpPaperOps rp_igehy98;
  * with *err on failure. */
 gboolean rp_igehy98_rate(const RpContext *ctx, const char *path,
                          const char *const *sets, double *hz, GError **err);
+
+/* The same run's metrics `names` (NULL-terminated; declared by the
+ * argus workload) into vals. */
+gboolean rp_igehy98_metrics(const RpContext *ctx, const char *path,
+                            const char *const *sets,
+                            const char *const *names, double *vals,
+                            GError **err);
+
+/* Table "claims" (igehy98_claims.c): the slides' "The API is scalable
+ * on a 24 processor system", decided on runs that setup.yaml's
+ * `claims:` describes (paths of `apps` relative to dir). */
+gboolean rp_igehy98_claims(const RpContext *ctx, const char *dir,
+                           const CfgNode *claims, const CfgNode *apps,
+                           GPtrArray *rows, GError **err);
 
 #endif

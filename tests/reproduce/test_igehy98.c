@@ -2,7 +2,9 @@
  * with `--set` overrides gives a frame rate, overrides reach the run
  * (one context issuing with no application work is faster than with
  * it; a dearer patch vertex, as the leave-one-out rows set, slower),
- * and a bad override or file is an error, not a number. */
+ * and a bad override or file is an error, not a number; the claim
+ * "scalable on 24 processors" (igehy98_claims.c) comes out 1 or 0 with
+ * its threshold, and its reason names the binding side. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -12,6 +14,7 @@
 #include <unistd.h>
 
 #include "sim/reproduce/igehy98.h"
+#include <string.h>
 
 static const char *small =
     "schema_version: 1\n"
@@ -66,10 +69,74 @@ static void test_rate_and_overrides(void **state)
     g_free(path);
 }
 
+/* The claim's holds row for efficiency `eff` on the small config;
+ * *speedup gets the nurbs speed-up, *note the reason (g_free). */
+static double claim(const RpContext *ctx, const char *path, double eff,
+                    double *speedup, char **note)
+{
+    char *dir = g_path_get_dirname(path), *base = g_path_get_basename(path);
+    char *text = g_strdup_printf(
+        "claims: {scales_24: {set: [workload.check_image=false],\n"
+        "  processors: [4, 8], contexts_per: 2, efficiency: %g,\n"
+        "  contexts: [1, 2, 6], shared: [workload.geometry=4,\n"
+        "  workload.rasterisers=4]}}\napps: {nurbs: %s}\n",
+        eff, base);
+    GError *e = NULL;
+    CfgNode *root = cfg_load_string(text, "c.yaml", &e);
+    assert_non_null(root);
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    if (!rp_igehy98_claims(ctx, dir, cfg_get(root, "claims"),
+                           cfg_get(root, "apps"), rows, &e))
+        fail_msg("%s", e->message);
+    double holds = -1;
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = rows->pdata[i];
+        assert_string_equal(r->table, "claims");
+        if (strcmp(r->column, "nurbs_speedup") == 0)
+            *speedup = r->sim;
+        if (strcmp(r->column, "holds") == 0) {
+            holds = r->sim;
+            *note = g_strdup(r->note);
+        }
+    }
+    g_ptr_array_free(rows, TRUE);
+    cfg_free(root);
+    g_free(text);
+    g_free(dir);
+    g_free(base);
+    return holds;
+}
+
+/* Twice the processors must give efficiency x 2 the rate: with 0.5 the
+ * small Nurbs holds, with 1 it cannot (its speed-up is below 2), and
+ * each verdict says so with the figures it was decided on. */
+static void test_claim_can_fail(void **state)
+{
+    (void)state;
+    GString *used = g_string_new(NULL);
+    RpContext ctx_ = {.fidelity = "faithful", .quiet = TRUE,
+                      .fidelity_used = used};
+    char *path = write_tmp(), *yes = NULL, *no = NULL;
+    double s = 0, s2 = 0;
+    assert_true(claim(&ctx_, path, 0.5, &s, &yes) == 1);
+    assert_true(s >= 1.0 && s < 2.0);
+    assert_true(claim(&ctx_, path, 1.0, &s2, &no) == 0);
+    assert_true(s2 == s);
+    assert_non_null(strstr(yes, "holds, because"));
+    assert_non_null(strstr(no, "does not hold, because"));
+    assert_non_null(strstr(yes, "binds"));
+    g_free(yes);
+    g_free(no);
+    g_string_free(used, TRUE);
+    g_unlink(path);
+    g_free(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rate_and_overrides),
+        cmocka_unit_test(test_claim_can_fail),
     };
     return cmocka_run_group_tests_name("igehy98", tests, NULL, NULL);
 }
