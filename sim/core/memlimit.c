@@ -85,15 +85,32 @@ guint64 sim_mem_limit(void)
     return physical();
 }
 
+/* "512.0 KiB", "38.0 GiB": one decimal in the largest binary unit that
+ * keeps the number at least 1 (g_format_size() puts a no-break space
+ * between number and unit, which a grep for "4.0 GiB" does not find). */
+static const char *size_text(double bytes, char buf[32])
+{
+    static const char *const unit[] = {"B", "KiB", "MiB", "GiB", "TiB",
+                                       "PiB", "EiB"};
+    guint u = 0;
+    while (bytes >= 1024.0 && u + 1 < G_N_ELEMENTS(unit)) {
+        bytes /= 1024.0;
+        u++;
+    }
+    g_snprintf(buf, 32, u ? "%.1f %s" : "%.0f %s", bytes, unit[u]);
+    return buf;
+}
+
 gboolean sim_mem_check(double bytes, const char *where, const char *what,
                        GError **err)
 {
     double limit = (double)sim_mem_limit();
     if (bytes <= limit)
         return TRUE;
+    char need[32], have[32];
     g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                "%s: found %s needing about %.0f MiB, expected at most %.0f "
-                "MiB (--mem-limit; docs/config.md, Limits)",
-                where, what, bytes / 1048576.0, limit / 1048576.0);
+                "%s: found %s needing about %s, expected at most %s "
+                "(--mem-limit; docs/config.md, Limits)",
+                where, what, size_text(bytes, need), size_text(limit, have));
     return FALSE;
 }

@@ -33,11 +33,11 @@ static const Case cases[] = {
     {"bench phold --pending-per-lp=4000000000",
      "found 1024 LPs with 4000000000 pending events each needing about"},
     {"bench phold --lps=4000M --pending-per-lp=4000M",
-     "expected at most 4096 MiB"},
+     "expected at most 4.0 GiB"},
     {"bench phold --remote=nan", "--remote outside [0, 1]"},
     {"bench raster --size 16384 --zbuffer full --mem-limit 1G",
      "--size, --frames: found a 16384x16384 image and 20 frames needing "
-     "about 4096 MiB, expected at most 1024 MiB"},
+     "about 4.0 GiB, expected at most 1.0 GiB"},
     {"bench raster --frames 2000000000",
      "found a 640x640 image and 2000000000 frames needing about"},
     {"run configs/tokenring.yaml --trace {} --trace-cap 2000000000",

@@ -182,11 +182,11 @@ static void test_bad_csv_located(void **state)
         {"cat.csv", "x", "y", "--where", "y=3",
          "cat.csv:1:3: found no row with y=3, expected at least one"},
         {"big.csv", "x", "y", "--mem-limit", "2M",
-         "big.csv:1:1: found a CSV file of 40003 cells needing about 4 MiB, "
-         "expected at most 2 MiB (--mem-limit"},
+         "big.csv:1:1: found a CSV file of 40003 cells needing about 3.9 MiB, "
+         "expected at most 2.0 MiB (--mem-limit"},
         {"big.csv", "x", "y", "--mem-limit", "5500k",
-         "big.csv:1:3: found a chart of 20000 rows needing about 6 MiB, "
-         "expected at most 5 MiB (--mem-limit"},
+         "big.csv:1:3: found a chart of 20000 rows needing about 6.1 MiB, "
+         "expected at most 5.4 MiB (--mem-limit"},
     };
     for (guint i = 0; i < G_N_ELEMENTS(cases); i++) {
         char *csv = g_build_filename(dir, cases[i].csv, NULL);

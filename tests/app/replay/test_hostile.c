@@ -260,7 +260,7 @@ static void test_huge_procs(void **s)
                              &err, &wait, NULL));
     if (!WIFEXITED(wait) || WEXITSTATUS(wait) != 2 || *out ||
         !strstr(err, "procs.pgt:3:7: found procs 1000000000 needing about "
-                     "15259 MiB, expected at most 3072 MiB"))
+                     "14.9 GiB, expected at most 3.0 GiB"))
         fail_msg("exit %d: '%s'", wait, err);
     g_strfreev(env);
     g_free(out);
