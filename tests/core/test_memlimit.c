@@ -76,15 +76,22 @@ static void test_check(void **state)
     assert_null(err);
     assert_false(sim_mem_check(2097153.0, "a.yaml:1:2", "a grid", &err));
     assert_string_equal(err->message,
-                        "a.yaml:1:2: found a grid needing about 2 MiB, "
-                        "expected at most 2 MiB (--mem-limit; "
+                        "a.yaml:1:2: found a grid needing about 2.0 MiB, "
+                        "expected at most 2.0 MiB (--mem-limit; "
                         "docs/config.md, Limits)");
     assert_int_equal(sim_error_exit_status(err), 2);
     g_clear_error(&err);
     assert_false(sim_mem_check(3.5 * 1048576, "x", "y", &err));
     assert_string_equal(err->message,
-                        "x: found y needing about 4 MiB, expected at most 2 "
-                        "MiB (--mem-limit; docs/config.md, Limits)");
+                        "x: found y needing about 3.5 MiB, expected at most "
+                        "2.0 MiB (--mem-limit; docs/config.md, Limits)");
+    g_clear_error(&err);
+    /* below a MiB the unit steps down: not "about 0 MiB" */
+    sim_mem_set_limit(1000);
+    assert_false(sim_mem_check(524288.0, "x", "y", &err));
+    assert_string_equal(err->message,
+                        "x: found y needing about 512.0 KiB, expected at "
+                        "most 1000 B (--mem-limit; docs/config.md, Limits)");
     g_clear_error(&err);
     sim_mem_set_limit(0);
 }
