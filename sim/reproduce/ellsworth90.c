@@ -19,10 +19,8 @@ enum { MAX_ROWS = 16, MAX_GPS = 16 };
 
 /* ---- one cell ---------------------------------------------------------- */
 
-/* One run of the cell with database `db` on `gps` GPs with `algo`: a
- * new result (sim_result_free), or NULL with *err. */
-static SimResult *run_cell(const RpEllRig *rig, const char *db, guint gps,
-                           const char *algo, GError **err)
+SimResult *rp_ellsworth90_run(const RpEllRig *rig, const char *db, guint gps,
+                              const char *algo, GError **err)
 {
     char *set[] = {g_strdup_printf("workload.database=%s", db),
                    g_strdup_printf("workload.gps=%u", gps),
@@ -104,15 +102,18 @@ static gboolean db_cells(const RpEllRig *rig, const char *db, GPtrArray *rows,
         for (int a = 0; a < 3; a++)
             sim_result_free(m[a]), m[a] = NULL;
         for (int a = 0; ok && a < 3; a++)
-            ok = (m[a] = run_cell(rig, db, rig->gp_counts[k], algos[a],
-                                  err)) != NULL;
+            ok = (m[a] = rp_ellsworth90_run(rig, db, rig->gp_counts[k],
+                                            algos[a], err)) != NULL;
         if (ok) {
             paper_rows(m[0], m[1], db, rig->gp_counts[k], rows);
             by_structure_rows(m[2], db, rig->gp_counts[k], rows);
         }
     }
-    if (ok)
+    if (ok) {
         db_rows(m[1], db, rows);
+        rp_ellsworth90_rate_rows(m[1], db, rig->gp_counts[rig->n_gp - 1],
+                                 rows);
+    }
     for (int a = 0; a < 3; a++)
         sim_result_free(m[a]);
     return ok;
@@ -134,6 +135,7 @@ typedef struct {
     const CfgNode *cell;
     const char *dbs[MAX_ROWS];
     guint n_dbs, gp_counts[MAX_GPS], n_gp;
+    RpEllClaims claims;
 } EllSetup;
 
 static gboolean seq_of(const CfgNode *root, const char *key, guint max,
@@ -182,6 +184,40 @@ static gboolean read_gp_counts(EllSetup *s, GError **err)
     return TRUE;
 }
 
+static gboolean count_of(const CfgNode *map, const char *key, guint max,
+                         guint *out, GError **err)
+{
+    uint64_t n = 0;
+    gboolean ok = cfg_get_count(map, key, TRUE, 1, max, &n, err);
+    *out = (guint)n;
+    return ok;
+}
+
+/* claims: {cube: {database, gps, algorithm, idle_gps}, mesh: {database,
+ * gps}, polygons_per_s}: the paper's figures (ellsworth90_claims.c). */
+static gboolean read_claims(EllSetup *s, GError **err)
+{
+    const CfgNode *c, *cube, *mesh;
+    RpEllClaims *cl = &s->claims;
+    return cfg_get_map(s->root, "claims", TRUE, "a map {cube, mesh, "
+                       "polygons_per_s}", &c, err) &&
+           cfg_get_map(c, "cube", TRUE, "a map {database, gps, algorithm, "
+                       "idle_gps}", &cube, err) &&
+           cfg_get_map(c, "mesh", TRUE, "a map {database, gps}", &mesh,
+                       err) &&
+           cfg_get_str(cube, "database", TRUE, &cl->cube, err) &&
+           count_of(cube, "gps", 64, &cl->cube_gps, err) &&
+           cfg_get_str(cube, "algorithm", TRUE, &cl->cube_algorithm, err) &&
+           count_of(cube, "idle_gps", 64, &cl->cube_idle, err) &&
+           cfg_check_unused(cube, err) &&
+           cfg_get_str(mesh, "database", TRUE, &cl->mesh, err) &&
+           count_of(mesh, "gps", 64, &cl->mesh_gps, err) &&
+           cfg_check_unused(mesh, err) &&
+           cfg_get_double(c, "polygons_per_s", TRUE, 1, 1e12,
+                          &cl->polygons_per_s, err) &&
+           cfg_check_unused(c, err);
+}
+
 /* setup.yaml; the cell's keys are the runner's to check (every run). */
 static gboolean setup_load(EllSetup *s, const char *path, GError **err)
 {
@@ -191,7 +227,7 @@ static gboolean setup_load(EllSetup *s, const char *path, GError **err)
            cfg_get_map(s->root, "cell", TRUE, "a pphigs run config",
                        &s->cell, err) &&
            read_rows(s, err) && read_gp_counts(s, err) &&
-           cfg_check_unused_except(s->root, runner_reads, err);
+           read_claims(s, err) && cfg_check_unused_except(s->root, runner_reads, err);
 }
 
 static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
@@ -203,7 +239,10 @@ static gboolean ellsworth90_rows(const RpContext *ctx, GPtrArray *rows,
         RpEllRig rig = {s.cell, ctx->fidelity ? ctx->fidelity : "analytic",
                         s.gp_counts, s.n_gp, ctx};
         ok = rp_ellsworth90_table1(&rig, s.dbs, s.n_dbs, rows, err) &&
-             rp_ellsworth90_loo(ctx->setup, rows, err);
+             rp_ellsworth90_loo(ctx->setup, rows, err) &&
+             rp_ellsworth90_example_rows(&rig, &s.claims, rows, err);
+        if (ok)
+            rp_ellsworth90_claims(rows, &s.claims);
     }
     cfg_free(s.root);
     return ok;

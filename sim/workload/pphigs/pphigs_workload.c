@@ -276,6 +276,9 @@ typedef struct {
     WlPphigsTraffic scan0; /* after the distribution */
     uint64_t scanned;      /* total_scan + cache_walk charged so far */
     double imbalance;
+    double rate_gp, rate_frame; /* on-screen primitives / s of the last
+                                   frame: over the busiest GP's time, over
+                                   the frame time */
     WlPphigsMetrics paper; /* seed 001 §6, of the last frame */
     SceneDbStats db_st;    /* the database as drawn, before any edit */
     double db_offscreen;   /* its off-screen share under the camera */
@@ -501,6 +504,9 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
     double t1 = sim_time_to_us(
         wl_pphigs_traversal_cost(wl_pphigs_dist_host(r->d), vp, c));
     wl_pphigs_metrics_from(t1, st.gp_time_us, r->ngp, &r->paper);
+    double drawn = (double)(st.primitives - st.offscreen);
+    r->rate_gp = r->paper.max > 0 ? drawn / (r->paper.max * 1e-6) : 0;
+    r->rate_frame = st.time > 0 ? drawn / sim_time_to_s(st.time) : 0;
     if (r->rb) {
         WlPphigsRebalStep rs;
         wl_pphigs_rebal_frame(r->rb, r->d, vp, wl_pphigs_frame_costs(r->frame),
@@ -563,6 +569,22 @@ static void fill_db(const Run *r, SimResult *out)
     sim_result_set_metric(out, "db_offscreen_pct", 100 * r->db_offscreen, "%");
 }
 
+/* GPs whose portion holds no primitive instance (seed 001 §2.2's
+ * cube: "the last 2 processors execute empty structures"), and the
+ * last frame's primitive rates. */
+static void fill_idle(const Run *r, SimResult *out)
+{
+    guint idle = 0;
+    for (guint g = 0; g < r->ngp; g++) {
+        SceneDbStats st;
+        scene_db_stats(wl_pphigs_dist_gp(r->d, g), &st);
+        idle += st.primitives == 0;
+    }
+    sim_result_set_metric(out, "gps_without_primitives", idle, "");
+    sim_result_set_metric(out, "gp_polygons_per_s", r->rate_gp, "1/s");
+    sim_result_set_metric(out, "frame_polygons_per_s", r->rate_frame, "1/s");
+}
+
 static void fill(Run *r, const WlContext *ctx, SimResult *out)
 {
     SimTime now = sim_now(ctx->eng);
@@ -598,6 +620,7 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     wl_pphigs_frame_rend_range(r->frame, now, &rlo, &rhi);
     sim_result_set_metric(out, "renderer_util_min_pct", 100 * rlo, "%");
     sim_result_set_metric(out, "renderer_util_max_pct", 100 * rhi, "%");
+    fill_idle(r, out);
 }
 
 /* The last frame against a serial render of the host's list. */
@@ -674,6 +697,12 @@ static const WlMetric pphigs_metrics[] = {
      "share of the database's polygons wholly outside the view"},
     {"renderer_util_min_pct", "%", "busy / simulated time, least renderer"},
     {"renderer_util_max_pct", "%", "busy / simulated time, busiest renderer"},
+    {"gps_without_primitives", "",
+     "GPs whose portion holds no primitive instance (sec. 2.2)"},
+    {"gp_polygons_per_s", "1/s",
+     "on-screen primitives of the last frame / the busiest GP's time"},
+    {"frame_polygons_per_s", "1/s",
+     "on-screen primitives of the last frame / its frame time"},
     {NULL, NULL, NULL},
 };
 
