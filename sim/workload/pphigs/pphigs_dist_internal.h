@@ -44,6 +44,8 @@ struct WlPphigsDist {
     double *gload;   /* global nominal load per GP */
     uint64_t next_id;
     WlPphigsTraffic traffic;
+    gboolean *broken; /* by structure: per structure, walked element by
+                         element (roots and broken-up ones); else NULL */
 };
 
 /* The host's current attribute elements known at a point (positions). */
@@ -121,5 +123,8 @@ void wl_pphigs_attr_cache_edit(WlPphigsDist *d, guint sid, guint pos, int delta,
 
 /* pphigs_bystruct.c: FALSE (nothing dealt) when the list cannot be. */
 gboolean wl_pphigs_dist_by_structure(WlPphigsDist *d);
+/* Precompute's state elements, once the deltas are final (no-op for the
+ * skeleton and the other algorithms). */
+void wl_pphigs_dist_by_structure_state(WlPphigsDist *d);
 
 #endif

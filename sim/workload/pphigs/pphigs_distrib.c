@@ -50,6 +50,7 @@ void wl_pphigs_dist_put(WlPphigsDist *d, guint sid, guint pos, guint g)
     g_assert(ok);
     *m |= (uint64_t)1 << g;
     d->traffic.elements_sent++;
+    d->traffic.attrs_sent += scene_elem_is_attr(dist_hel(d, sid, pos)->kind);
     d->traffic.sent_to[g]++;
 }
 
@@ -343,6 +344,7 @@ WlPphigsDist *wl_pphigs_dist_new(const SceneDb *src, guint ngp,
         for (guint s = 0; s < n; s++)
             wl_pphigs_dist_step2(d, s, 0, (gint)scene_db_len(d->host, s) - 1);
     wl_pphigs_dist_deltas(d);
+    wl_pphigs_dist_by_structure_state(d);
     return d;
 }
 
@@ -356,6 +358,7 @@ void wl_pphigs_dist_free(WlPphigsDist *d)
     scene_db_free(d->host);
     g_ptr_array_unref(d->meta);
     g_free(d->gload);
+    g_free(d->broken);
     g_free(d);
 }
 

@@ -16,12 +16,14 @@
  *           structures broadcast whole, each instance dealt to one GP
  *           like a primitive (§2.3.3).
  *
- *   BY_STRUCTURE (§2.1, rejected by the paper; pgsim's own row) every
- *           attribute to every GP; each primitive and each structure
- *           instance whole to the least-loaded GP (nominal weight of the
- *           instance's subtree); a structure instanced once and heavier
- *           than one GP's share is broken up (its execute to every GP,
- *           its elements dealt the same way).  A list whose posted
+ *   BY_STRUCTURE (§2.1, rejected by the paper; pgsim's own row) each
+ *           primitive and each structure instance whole to the
+ *           least-loaded GP (nominal weight of the instance's subtree);
+ *           a structure instanced once and heavier than one GP's share
+ *           is broken up (its execute to the GPs holding something in
+ *           it, its elements dealt the same way); the inherited
+ *           attributes by an ancestor skeleton on each GP or by the
+ *           host's pre-computed state (w.inherit, pphigs_bystruct.c).  A list whose posted
  *           structures are also executed elsewhere cannot be dealt by
  *           instance (they share one portion per GP) and is dealt by
  *           SIMPLE instead (wl_pphigs_dist_algo() says which).  No
@@ -63,6 +65,13 @@ typedef enum {
     WL_PPHIGS_BY_STRUCTURE /* §2.1, the paper's rejected alternative */
 } WlPphigsAlgo;
 
+/* Distribute-by-structure's two ways of giving a GP the attributes its
+ * pieces inherit (§2.1; pphigs_bystruct.c). */
+typedef enum {
+    WL_PPHIGS_INHERIT_SKELETON,  /* the ancestors' attribute elements */
+    WL_PPHIGS_INHERIT_PRECOMPUTE /* the host sends the inherited state */
+} WlPphigsInherit;
+
 /* Nominal weights (§2.3.4), per element kind; a polygon's weight is
  * w[kind] + w_vertex * nverts.  cluster is the clustering factor c. */
 typedef struct {
@@ -73,6 +82,7 @@ typedef struct {
                           pieces of at most this many; 0: never */
     guint attr_cache;  /* §3.4: attribute states saved every this many
                           dealt elements (complex); 0: no cache */
+    WlPphigsInherit inherit; /* by structure: skeleton (0) or precompute */
 } WlPphigsWeights;
 
 /* Host-to-GP traffic of the distribution and edits so far. */
@@ -80,6 +90,8 @@ typedef struct {
     uint64_t elements_sent; /* element copies sent to GPs (inserted or,
                                by modify, replaced) */
     uint64_t sent_to[64];   /* the same per GP */
+    uint64_t attrs_sent;    /* of them attribute elements (with
+                               precompute's state elements) */
     uint64_t elements_removed;
     uint64_t last_scan;  /* elements examined by the last backward scan */
     uint64_t max_scan;   /* the largest such scan */

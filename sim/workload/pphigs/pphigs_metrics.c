@@ -157,4 +157,6 @@ void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,
     w->w_vertex = sim_time_to_us(c->vertex);
     w->cluster = cluster;
     w->strip_split = 0; /* the caller's choice (frame.yaml strip_split) */
+    w->attr_cache = 0;  /* the caller's (attr_cache_every) */
+    w->inherit = WL_PPHIGS_INHERIT_SKELETON; /* the caller's (inheritance) */
 }

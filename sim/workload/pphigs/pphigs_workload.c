@@ -25,6 +25,9 @@
  *                      independently reassigned to any part of the
  *                      screen", fuchs89 abstract; static: region k is
  *                      renderer k mod R's; pphigs_frame.h)
+ *   inheritance: skeleton | precompute (by_structure only; default
+ *                skeleton): §2.1's two ways of giving a GP the
+ *                attributes its pieces inherit (pphigs_bystruct.c)
  *   attr_cache_every: §3.4's attribute states saved every N dealt
  *                     elements of a structure (complex; default 0: no
  *                     cache, the step back stops only as §3.5 says)
@@ -66,6 +69,7 @@ static const char *const edit_names[ED_N] = {"modify", "append", "insert",
 typedef struct {
     int algo;
     int regions; /* 0: dynamic, 1: static (region_assignment) */
+    int inherit; /* WlPphigsInherit (inheritance) */
     int64_t gps; /* 0: the machine's count */
     ScenePphigsSpec spec;
     SceneDb *file_db; /* workload.database as a file (owned), else NULL */
@@ -179,8 +183,15 @@ static gboolean parse_edits(const CfgNode *sec, Params *p, GError **err)
 static gboolean check_by_structure(const CfgNode *sec, Params *p,
                                    GError **err)
 {
-    if (p->algo != WL_PPHIGS_BY_STRUCTURE)
-        return TRUE;
+    if (p->algo != WL_PPHIGS_BY_STRUCTURE) {
+        if (!cfg_get(sec, "inheritance"))
+            return TRUE;
+        cfg_error(err, cfg_get(sec, "inheritance"),
+                  "inheritance without algorithm by_structure",
+                  "algorithm: by_structure (§2.1's inheritance methods; "
+                  "by primitive, attributes follow §2.3.1)");
+        return FALSE;
+    }
     uint64_t edits = 0;
     for (int k = 0; k < ED_N; k++)
         edits += p->edits[k];
@@ -201,6 +212,7 @@ static void *parse(const CfgNode *sec, GError **err)
     static const char *const algos[] = {"simple", "complex", "by_structure",
                                         NULL};
     static const char *const assign[] = {"dynamic", "static", NULL};
+    static const char *const inherit[] = {"skeleton", "precompute", NULL};
     Params *p = g_new0(Params, 1);
     p->algo = WL_PPHIGS_COMPLEX;
     p->rebalance = TRUE;
@@ -209,6 +221,8 @@ static void *parse(const CfgNode *sec, GError **err)
                   cfg_get_int(sec, "gps", FALSE, 1, 64, &p->gps, err) &&
                   cfg_get_enum(sec, "region_assignment", FALSE, assign,
                                &p->regions, err) &&
+                  cfg_get_enum(sec, "inheritance", FALSE, inherit,
+                               &p->inherit, err) &&
                   parse_edits(sec, p, err) &&
                   cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                                  &p->edit_angle, err) &&
@@ -317,6 +331,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
         wl_pphigs_cluster_factor(r->p->setup.cluster_scale, r->ngp), &w);
     w.strip_split = r->p->setup.strip_split;
     w.attr_cache = (guint)r->p->attr_cache;
+    w.inherit = (WlPphigsInherit)r->p->inherit;
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
     r->scan0 = *wl_pphigs_dist_traffic(r->d);
     r->scanned = r->scan0.total_scan + r->scan0.cache_walk;
@@ -583,6 +598,13 @@ static void fill_idle(const Run *r, SimResult *out)
     sim_result_set_metric(out, "gps_without_primitives", idle, "");
     sim_result_set_metric(out, "gp_polygons_per_s", r->rate_gp, "1/s");
     sim_result_set_metric(out, "frame_polygons_per_s", r->rate_frame, "1/s");
+    double bytes = r->p->setup.frame.element_bytes;
+    sim_result_set_metric(out, "distribution_elements",
+                          (double)r->scan0.elements_sent, "");
+    sim_result_set_metric(out, "distribution_attributes",
+                          (double)r->scan0.attrs_sent, "");
+    sim_result_set_metric(out, "distribution_bytes",
+                          bytes * (double)r->scan0.elements_sent, "B");
 }
 
 static void fill(Run *r, const WlContext *ctx, SimResult *out)
@@ -703,6 +725,12 @@ static const WlMetric pphigs_metrics[] = {
      "on-screen primitives of the last frame / the busiest GP's time"},
     {"frame_polygons_per_s", "1/s",
      "on-screen primitives of the last frame / its frame time"},
+    {"distribution_elements", "",
+     "element copies the host sent the GPs to distribute the list"},
+    {"distribution_attributes", "",
+     "of them attributes (sec. 2.3.1; by structure: sec. 2.1's inheritance)"},
+    {"distribution_bytes", "B",
+     "distribution_elements x element_bytes (frame.yaml)"},
     {NULL, NULL, NULL},
 };
 

@@ -185,25 +185,29 @@ static void test_complex_edits(void **st)
 
 /* Distribute-by-structure (§2.1): on random lists whose posted
  * structures are not executed elsewhere, the GPs' traversals add up to
- * the host's; whole instances go to one GP (an executed structure's
- * primitives are all on the GPs that hold its instance); a list whose
- * posted structure is also executed falls back to SIMPLE. */
+ * the host's, with either inheritance (the ancestor skeleton, the
+ * host's pre-computed state); whole instances go to one GP (an executed
+ * structure's primitives are all on the GPs that hold its instance); a
+ * list whose posted structure is also executed falls back to SIMPLE. */
 static void test_by_structure(void **st)
 {
     (void)st;
     static const guint gps[] = {1, 3, 4, 16};
-    for (guint t = 0; t < 4; t++) {
+    for (guint t = 0; t < 8; t++) {
+        WlPphigsWeights w = W;
+        w.inherit = t < 4 ? WL_PPHIGS_INHERIT_SKELETON
+                          : WL_PPHIGS_INHERIT_PRECOMPUTE;
         SimRng r;
-        sim_rng_init(&r, 7, t);
+        sim_rng_init(&r, 7, t % 4);
         SceneDb *db = rnd_db(&r, 6, 40);
         scene_db_unpost(db, 1); /* s1 may be executed by s0 */
-        WlPphigsDist *d = wl_pphigs_dist_new(db, gps[t], WL_PPHIGS_BY_STRUCTURE,
-                                             &W);
+        WlPphigsDist *d = wl_pphigs_dist_new(db, gps[t % 4],
+                                             WL_PPHIGS_BY_STRUCTURE, &w);
         assert_int_equal(wl_pphigs_dist_algo(d), WL_PPHIGS_BY_STRUCTURE);
         assert_same_render(d);
         wl_pphigs_dist_free(d);
         scene_db_post(db, 1);
-        d = wl_pphigs_dist_new(db, gps[t], WL_PPHIGS_BY_STRUCTURE, &W);
+        d = wl_pphigs_dist_new(db, gps[t % 4], WL_PPHIGS_BY_STRUCTURE, &w);
         gboolean executed = FALSE; /* is s1 executed anywhere? */
         for (guint s = 0; s < 6; s++)
             for (guint i = 0; i < scene_db_len(db, s); i++)
