@@ -37,6 +37,7 @@ struct WlPfGpipe {
     uint64_t pipe_cause; /* the pipe's last action done (a recording) */
     GArray *ends; /* SimTime per frame: the pipe's last command */
     WlPfGpipeStats st;
+    WlPfArena *arena; /* NULL: DRAW reads no arena bytes */
 };
 
 WlPfGpipe *wl_pf_gpipe_new(SimEngine *eng, MachProc *cpu, MachProc *pipe,
@@ -80,21 +81,6 @@ SimTime wl_pf_gpipe_frame_end(const WlPfGpipe *g, guint n)
 const WlPfGpipeStats *wl_pf_gpipe_stats(const WlPfGpipe *g)
 {
     return &g->st;
-}
-
-/* Share i of total split into n parts that sum to total exactly. */
-static uint64_t share(uint64_t total, guint i, guint n)
-{
-    return (uint64_t)((unsigned __int128)total * (i + 1) / n -
-                      (unsigned __int128)total * i / n);
-}
-
-/* Share i of n of every count of o. */
-static void share_ops(MachOps *out, const MachOps *o, guint i, guint n)
-{
-    *out = *o;
-    for (guint k = 0; k < o->n; k++)
-        out->op[k].count = share(o->op[k].count, i, n);
 }
 
 static void span(WlPfGpipe *g, MachProc *p, const char *phase, SimTime from)
@@ -178,24 +164,45 @@ static void arrived(SimEngine *eng, void *ctx, void *arg)
 
 /* ---- DRAW's CPU ---------------------------------------------------------- */
 
-/* DRAW's CPU computes chunk k of the frame; it is written when done. */
+void wl_pf_gpipe_set_arena(WlPfGpipe *g, WlPfArena *a)
+{
+    g->arena = a;
+}
+
+static void compute_pending(SimEngine *eng, void *ctx, void *arg);
+
+/* DRAW's CPU reads chunk k's share of the arena bytes (with an arena),
+ * then computes the chunk; it is written when done. */
 static void compute_chunk(WlPfGpipe *g)
 {
     Chunk *c = g_new0(Chunk, 1);
     c->frame = g->n;
-    c->bytes = share(g->w.bytes, g->k, g->nchunks);
-    c->pipe = share(g->w.pipe, g->k, g->nchunks);
-    share_ops(&c->ops, &g->w.pipe_ops, g->k, g->nchunks);
+    c->bytes = wl_pf_share(g->w.bytes, g->k, g->nchunks);
+    c->pipe = wl_pf_share(g->w.pipe, g->k, g->nchunks);
+    wl_pf_share_ops(&c->ops, &g->w.pipe_ops, g->k, g->nchunks);
     c->last = g->k + 1 == g->nchunks;
     g->pending = c;
+    uint64_t b = g->arena ? wl_pf_share(g->w.arena_bytes, g->k, g->nchunks)
+                          : 0;
+    if (b)
+        wl_pf_arena_move(g->arena, g->cpu, b, compute_pending, g, NULL);
+    else
+        compute_pending(g->eng, g, NULL);
+}
+
+static void compute_pending(SimEngine *eng, void *ctx, void *arg)
+{
+    (void)eng;
+    (void)arg;
+    WlPfGpipe *g = ctx;
     if (g->w.cpu_ops.n) {
         MachOps o;
-        share_ops(&o, &g->w.cpu_ops, g->k, g->nchunks);
+        wl_pf_share_ops(&o, &g->w.cpu_ops, g->k, g->nchunks);
         g->st.cpu_busy += mach_proc_ops_cost(g->cpu, &o);
         mach_proc_compute_list(g->cpu, &o, g->ph_draw, computed, g, NULL);
         return;
     }
-    SimTime t = share(g->w.cpu, g->k, g->nchunks);
+    SimTime t = wl_pf_share(g->w.cpu, g->k, g->nchunks);
     g->st.cpu_busy += t;
     mach_proc_compute(g->cpu, t, g->ph_draw, computed, g, NULL);
 }

@@ -33,7 +33,7 @@
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_GPIPE_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_GPIPE_H
 
-#include "sim/machine/shmem.h"
+#include "sim/workload/performer/pf_arena.h"
 
 typedef struct WlPfGpipe WlPfGpipe;
 
@@ -51,6 +51,7 @@ typedef struct {
     uint64_t bytes; /* command bytes over the bus */
     SimTime pipe;   /* the pipe's time */
     MachOps cpu_ops, pipe_ops;
+    uint64_t arena_bytes; /* DRAW's reads of the shared arena */
 } WlPfDrawWork;
 
 /* Where the FIFO's and the stages' time went, totals over the run. */
@@ -73,6 +74,9 @@ void wl_pf_gpipe_free(WlPfGpipe *g);
  * call before the first frame (wl_pf_pipe_run does). */
 void wl_pf_gpipe_set_swap(WlPfGpipe *g, SimTime step, WlPfGpipeFn cpu_done,
                           WlPfGpipeFn swapped, void *ctx);
+/* DRAW's CPU reads each chunk's share of the frame's arena_bytes over
+ * a's memory bus before computing it (NULL: no arena). */
+void wl_pf_gpipe_set_arena(WlPfGpipe *g, WlPfArena *a);
 /* DRAW's CPU starts issuing frame n (frames in order, one at a time:
  * after the previous cpu_done). */
 void wl_pf_gpipe_frame(WlPfGpipe *g, guint n, const WlPfDrawWork *w);

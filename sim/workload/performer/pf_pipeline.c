@@ -49,6 +49,7 @@ struct Pipe {
     gboolean cull_busy[NP], draw_busy[NP], isect_busy, app_blocked;
     guint *ncull, *ndraw, *nswap; /* per frame: pipes started / swapped */
     SimTime *dstart;              /* per frame and pipe: DRAW's start */
+    SimTime cstart[NP];           /* each pipe's CULL start */
     WlPfGpipe *gp[NP];
     Chan chan[NP];
 };
@@ -137,6 +138,12 @@ static void stage_compute(Pipe *s, MachProc *p, int st, SimTime c,
 {
     const MachOverlap *o =
         s->f->ops && st != ST_UPDATE ? s->f->ops(s->ctx) : NULL;
+    if (s->p->arena && s->f->arena_bytes) { /* pieces, each after its bytes */
+        gboolean own = o && o->own.n && !o->n;
+        wl_pf_arena_run(s->p->arena, p, s->phase[st], c, own ? &o->own : NULL,
+                        s->f->arena_bytes(s->ctx), done, s, arg);
+        return;
+    }
     if (!o || !o->own.n) {
         mach_proc_compute(p, c, s->phase[st], done, s, arg);
         return;
@@ -282,6 +289,7 @@ static void cull_done(SimEngine *eng, void *ctx, void *arg)
     guint n = arg_frame(arg), i = arg_pipe(arg);
     WlPfFrameRec *r = rec(s, n);
     r->cull_end = MAX(r->cull_end, sim_now(eng));
+    r->cull_ms += (sim_now(eng) - s->cstart[i]) / s->np;
     s->cull_done[i] = n + 1;
     s->cull_busy[i] = FALSE;
     if (s->draw_in_app) {
@@ -336,6 +344,7 @@ static void cull_begin(SimEngine *eng, void *ctx, void *arg)
     guint n = arg_frame(arg), i = arg_pipe(arg);
     WlPfFrameRec *r = rec(s, n);
     first_start(&s->ncull[n], &r->cull_start, sim_now(eng));
+    s->cstart[i] = sim_now(eng);
     if (i == 0)
         r->stress = s->stress[0];
     gboolean upd = s->p->update_list && !s->cull_in_app && s->f->update;
@@ -384,6 +393,7 @@ static void draw_released(Pipe *s, guint i, guint n)
 {
     WlPfFrameRec *r = rec(s, n);
     r->draw_end = MAX(r->draw_end, sim_now(s->eng));
+    r->draw_ms += (sim_now(s->eng) - s->dstart[n * s->np + i]) / s->np;
     s->draw_done[i] = n + 1;
     s->draw_busy[i] = FALSE;
     if (s->draw_in_app)

@@ -80,6 +80,9 @@ typedef struct {
     /* With update_list: a CULL process's time to apply APP's update list
      * of `frame` (NULL: none); priced as a time, in phase "update". */
     SimTime (*update)(void *ctx, guint frame);
+    /* With an arena: the shared-arena bytes of the stage just called
+     * (pf_arena.h; NULL: none). */
+    uint64_t (*arena_bytes)(void *ctx);
 } WlPfStageFns;
 
 typedef struct {
@@ -102,12 +105,17 @@ typedef struct {
                                  pipe (gpipe is then unused) */
     gboolean update_list;   /* pfBuffer hand-off at the frame boundary */
     gboolean isect_in_app;  /* ISECT after APP in the APP process */
+    WlPfArena *arena;       /* NULL: stages move no arena bytes; else
+                               each stage's work runs in pieces, each
+                               after its share of arena_bytes() */
 } WlPfPipeParams;
 
 typedef struct {
     SimTime app_start, app_end, cull_start, cull_end;
     SimTime draw_start, draw_end, swap;
     SimTime isect; /* ISECT time started with this frame (0: none) */
+    SimTime cull_ms, draw_ms; /* CULL's and DRAW's start to end, the mean
+                                 over the pipes (one pipe: end - start) */
     double stress; /* stress CULL used */
 } WlPfFrameRec;
 

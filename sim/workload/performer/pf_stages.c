@@ -144,6 +144,7 @@ static SimTime app(void *ctx, guint n)
     wl_pf_frame_stats(s, n)->ground = s->ground;
     wl_pf_frame_stats(s, n)->updates = moved + 1; /* the cars, the eye */
     MachOps *o = ops_reset(s);
+    s->last_bytes = s->arena.entry * (moved + 1); /* the update list */
     if (!s->app_timed) {
         mach_ops_add(o, "app_frame", 1);
         mach_ops_add(o, "app_dcs", moved);
@@ -170,6 +171,7 @@ static SimTime cull(void *ctx, guint n, double stress)
     mach_ops_add(o, "cull_lod", cs.lods);
     mach_ops_add(o, "cull_billboard", cs.billboards);
     mach_ops_add(o, "cull_item", dl->len);
+    s->last_bytes = s->arena.node * cs.nodes_visited + s->arena.item * dl->len;
     SimTime t = sim_time_mul_sat(c->cull_node, cs.nodes_visited);
     t = sum(t, sim_time_mul_sat(c->cull_lod, cs.lods));
     t = sum(t, sim_time_mul_sat(c->cull_billboard, cs.billboards));
@@ -260,7 +262,6 @@ static SimTime draw(void *ctx, guint n)
 static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
 {
     WlPfStages *s = ctx;
-    (void)n;
     guint i = s->chan;
     const WlPfDrawStats *d = &s->pdraw[i];
     uint64_t states = s->lazy ? d->state_changes : d->state_naive;
@@ -268,6 +269,9 @@ static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
         .cpu = s->pcpu[i], .bytes = s->pbytes[i], .pipe = s->ppipe[i]};
     draw_ops(&w->cpu_ops, d, states);
     mach_ops_add(&w->pipe_ops, "triangle", d->tris);
+    /* the display list and the geosets' vertices */
+    w->arena_bytes = s->arena.item * dlist(s, i, n)->len +
+                     3 * d->tris * s->c.vertex_bytes;
     mach_ops_add(&w->pipe_ops, "state", states);
 }
 
@@ -282,6 +286,9 @@ static SimTime isect(void *ctx, guint n)
     MachOps *o = ops_reset(s);
     mach_ops_add(o, "isect_node", f->isect.nodes_tested);
     mach_ops_add(o, "isect_triangle", f->isect.tris_tested);
+    /* nodes, and a triangle's three positions (36 B) */
+    s->last_bytes =
+        s->arena.node * f->isect.nodes_tested + 36 * f->isect.tris_tested;
     return sum(sim_time_mul_sat(s->c.isect_node, f->isect.nodes_tested),
                sim_time_mul_sat(s->c.isect_triangle, f->isect.tris_tested));
 }
@@ -295,11 +302,18 @@ static void channel(void *ctx, guint pipe)
 static SimTime update(void *ctx, guint n)
 {
     WlPfStages *s = ctx;
-    return sim_time_mul_sat(s->c.update, wl_pf_frame_stats(s, n)->updates);
+    guint u = wl_pf_frame_stats(s, n)->updates;
+    s->last_bytes = 2 * s->arena.entry * u; /* read it, write the copy */
+    return sim_time_mul_sat(s->c.update, u);
+}
+
+static uint64_t arena_bytes(void *ctx)
+{
+    return ((WlPfStages *)ctx)->last_bytes;
 }
 
 WlPfStageFns wl_pf_stage_fns(gboolean with_isect)
 {
-    return (WlPfStageFns){app,  cull,      draw,    with_isect ? isect : NULL,
-                          ops,  draw_work, channel, update};
+    return (WlPfStageFns){app,       cull,    draw,   with_isect ? isect : NULL,
+                          ops,       draw_work, channel, update, arena_bytes};
 }

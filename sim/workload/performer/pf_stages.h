@@ -30,6 +30,8 @@
  * pipes and its cpu, bus and pipe times are the slowest pipe's.
  * update() prices APP's update list of a frame (pfBuffer): one update per
  * moved car's DCS plus the camera, at the workload's `update` cost.
+ * Each stage also counts its shared-arena bytes (arena_bytes(); the
+ * per-operation sizes of `arena`, pf_arena.h).
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
 #define PGSIM_WORKLOAD_PERFORMER_PF_STAGES_H
@@ -75,6 +77,8 @@ typedef struct {
     WlPfDrawStats pdraw[WL_PF_MAX_PIPES]; /* each pipe's last DRAW */
     SimTime pcpu[WL_PF_MAX_PIPES], ppipe[WL_PF_MAX_PIPES];
     uint64_t pbytes[WL_PF_MAX_PIPES];
+    WlPfArenaParams arena; /* bytes per operation (pf_arena.h) */
+    uint64_t last_bytes;   /* the arena bytes of the last stage called */
     GArray *frames; /* WlPfFrameStats, one per frame */
     double ground;  /* the latest ISECT result */
     gboolean isect;

@@ -8,6 +8,8 @@
  *     fork_isect: true        # false: ISECT in the APP process
  *     update_list: false      # pfBuffer hand-off at the frame boundary
  *     update_cost: 1 us       # applying one update-list entry
+ *     arena: {node: 128 B, item: 16 B, entry: 64 B, pieces: 8}
+ *                             # shared-arena traffic (absent: none)
  *     video_rate: 60          # Hz, retraces (assumption: a 60 Hz monitor)
  *     frame_rate: 30          # Hz, fixed frame rate; divides video_rate
  *     phase: locked | floating
@@ -41,6 +43,8 @@ typedef struct {
     SimTime app_work, update_cost;
     uint64_t vertex_bytes;
     uint64_t fifo_depth, fifo_chunk; /* pf_gpipe.h */
+    gboolean has_arena;
+    WlPfArenaParams arena; /* pf_arena.h */
     WlPfTownParams town;
     const char *frame_log; /* borrowed from the config */
     WlPfPnParams *pn;      /* NULL: the Performer pipeline */
@@ -168,6 +172,28 @@ static gboolean parse_fifo(const CfgNode *sec, PfParams *p, GError **err)
     return FALSE;
 }
 
+/* arena: {node, item, entry, pieces}: the stages' shared-arena traffic
+ * on the memory bus (pf_arena.h); absent: none. */
+static gboolean parse_arena(const CfgNode *sec, PfParams *p, GError **err)
+{
+    const CfgNode *n = NULL;
+    uint64_t pieces = 8;
+    /* assumptions: a node's sphere, matrix and pointers in one 128-byte
+     * secondary-cache line of the R4400; a display-list item of 16 B (a
+     * token and a pointer); a 4 x 4 float matrix per update entry */
+    p->arena = (WlPfArenaParams){.node = 128, .item = 16, .entry = 64};
+    if (!cfg_get_map(sec, "arena", FALSE, "a map {node, item, entry, pieces}",
+                     &n, err) ||
+        !cfg_get_size(n, "node", FALSE, &p->arena.node, err) ||
+        !cfg_get_size(n, "item", FALSE, &p->arena.item, err) ||
+        !cfg_get_size(n, "entry", FALSE, &p->arena.entry, err) ||
+        !cfg_get_count(n, "pieces", FALSE, 1, 1024, &pieces, err))
+        return FALSE;
+    p->has_arena = n != NULL;
+    p->arena.pieces = (guint)pieces;
+    return TRUE;
+}
+
 static void pf_free(void *params)
 {
     PfParams *p = params;
@@ -216,6 +242,7 @@ static void *pf_parse(const CfgNode *sec, GError **err)
     const CfgNode *pn = cfg_get(sec, "pn");
     if ((pn && !(p->pn = wl_pf_pn_params_parse(pn, err))) ||
         !parse_flags(sec, p, err) || !parse_fifo(sec, p, err) ||
+        !parse_arena(sec, p, err) ||
         !parse_rates(sec, p, err) ||
         !parse_stress(sec, &p->pipe, err) || !parse_town(sec, &p->town, err)) {
         pf_free(p);
@@ -244,7 +271,7 @@ static void log_row(GString *s, guint n, const WlPfFrameRec *r,
         ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT ",%" G_GUINT64_FORMAT
         ",%.6f,%.6f,%.6f\n",
         n, ms(r->app_start), ms(r->app_end - r->app_start),
-        ms(r->cull_end - r->cull_start), ms(r->draw_end - r->draw_start),
+        ms(r->cull_ms), ms(r->draw_ms),
         ms(r->isect), ms(r->swap), ms(r->swap - r->app_start),
         prev ? ms(r->swap - prev->swap) : 0, r->stress, lod, f->draw.tris,
         f->draw.geosets, f->draw.state_changes,
@@ -284,7 +311,7 @@ static gboolean write_stages(const char *log, const GArray *recs, GError **err)
             "%u,app,%.6f\n%u,cull,%.6f\n%u,draw,%.6f\n%u,isect,%.6f\n"
             "%u,frame,%.6f\n",
             n, ms(r->app_end - r->app_start), n,
-            ms(r->cull_end - r->cull_start), n, ms(r->draw_end - r->draw_start),
+            ms(r->cull_ms), n, ms(r->draw_ms),
             n, ms(r->isect), n, ms(r->swap - prev));
     }
     char *stem = g_str_has_suffix(log, ".csv") ? g_strndup(log, strlen(log) - 4)
@@ -312,8 +339,8 @@ static Means means(const GArray *recs, WlPfStages *st, guint skip)
         const WlPfFrameRec *r = &g_array_index(recs, WlPfFrameRec, n);
         const WlPfFrameStats *f = wl_pf_frame_stats(st, n);
         m.app += ms(r->app_end - r->app_start);
-        m.cull += ms(r->cull_end - r->cull_start);
-        m.draw += ms(r->draw_end - r->draw_start);
+        m.cull += ms(r->cull_ms);
+        m.draw += ms(r->draw_ms);
         m.tris += f->draw.tris;
         m.states += f->draw.state_changes;
         m.saved += f->draw.state_naive - f->draw.state_changes;
@@ -457,18 +484,34 @@ static void new_gpipes(const WlContext *ctx, MachMachine *m, const PfParams *p,
     }
 }
 
+/* The shared arena's metrics: the memory bus's use, the time the
+ * stages' transfers waited for it and the bytes, per frame. */
+static void set_arena_metrics(SimResult *out, const WlPfArena *a,
+                              guint frames, SimTime elapsed)
+{
+    sim_result_set_metric(out, "arena_util_pct",
+                          100 * mach_shmem_utilisation(&a->bus, elapsed), "%");
+    sim_result_set_metric(out, "arena_wait_ms", ms(a->queued) / frames, "ms");
+    sim_result_set_metric(out, "arena_bytes_per_frame",
+                          (double)a->bus.bytes / frames, "B");
+}
+
 /* Runs the frames over st and reports them. */
 static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
                            WlPfStages *st, guint flattened, SimResult *out,
                            GError **err)
 {
     MachProc *procs[2 + 2 * WL_PF_MAX_PIPES];
-    if (!get_procs(m, p, procs, err))
+    WlPfArena arena = {0};
+    if (!get_procs(m, p, procs, err) ||
+        (p->has_arena &&
+         !wl_pf_arena_init(&arena, ctx->eng, m, &p->arena, err)))
         return FALSE;
     guint np = MAX(p->pipe.pipes, 1);
     WlPfStageFns fns = wl_pf_stage_fns(p->isect);
     st->draw_cpu = procs[wl_pf_mp_proc(p->pipe.mode, 0, TRUE)];
     st->piped = TRUE;
+    st->arena = p->arena;
     wl_pf_stages_set_pipes(st, np);
     MachShmem buses[WL_PF_MAX_PIPES];
     WlPfGpipe *gp[WL_PF_MAX_PIPES] = {NULL};
@@ -476,6 +519,9 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
     WlPfPipeParams pp = p->pipe;
     pp.gpipe = gp[0];
     pp.gpipes = gp;
+    pp.arena = p->has_arena ? &arena : NULL;
+    for (guint i = 0; i < np; i++)
+        wl_pf_gpipe_set_arena(gp[i], pp.arena);
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &pp, &fns, st, recs,
                                  ctx->until, err);
@@ -492,9 +538,12 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m, PfParams *p,
         set_pipe_metrics(out, wl_pf_gpipe_stats(gp[0]), recs->len,
                          out->elapsed);
         sim_result_set_metric(out, "processes", procs_needed(p), "");
+        if (pp.arena)
+            set_arena_metrics(out, &arena, recs->len, out->elapsed);
     }
     for (guint i = 0; i < np; i++)
         wl_pf_gpipe_free(gp[i]);
+    wl_pf_arena_clear(&arena);
     char *log =
         ok ? wl_frame_log_path(ctx, p->frame_log, "performer_frames.csv")
            : NULL;
@@ -552,6 +601,10 @@ static const WlMetric pf_metrics[] = {
     {"latency_ms", "ms", "mean time from APP's start to the swap"},
     {"latency_frames", "", "latency_ms in frame periods (1 / frame_rate)"},
     {"processes", "", "CPUs the process model uses (with a forked ISECT)"},
+    {"arena_util_pct", "%", "arena: memory bus busy / run time"},
+    {"arena_wait_ms", "ms", "arena: stages' transfers waiting for the bus, "
+                            "per frame"},
+    {"arena_bytes_per_frame", "B", "arena: bytes the stages moved per frame"},
     {"app_ms", "ms", "mean APP stage time"},
     {"cull_ms", "ms", "mean CULL stage time"},
     {"draw_ms", "ms", "mean DRAW stage time (start to its last write)"},
