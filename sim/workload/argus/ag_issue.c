@@ -21,12 +21,13 @@
  *       X"): the streams' glp commands are honoured by the threads, not
  *       the pipe.  After a block that signals (glpVSema, glpBarrier
  *       arrival) the thread calls glFinish — waits until every tile has
- *       passed its context's commands so far — then signals at the
+ *       passed the commands every context had issued (the whole pipe
+ *       drains; finish_context: its own context's only) — then signals at the
  *       application level; before a block that waits (glpPSema, the
  *       barrier, glpWaitContext(m): m's commands issued then, drained)
  *       the thread waits for that signal.  Both waits: finish_wait.
  *       The application barrier (appBarrier) is the same in both modes.
- * O(1) per block, plus O(tiles x contexts) per completion while a
+ * O(1) per block, plus O(tiles x contexts^2) per completion while a
  * thread waits on glFinish.
  */
 #include "sim/workload/argus/ag_pipe_int.h"
@@ -37,7 +38,7 @@ void wl_ag_issue_alloc(AgPipe *p)
     p->buf_used = g_new0(uint64_t, p->C);
     p->park = g_new0(AgPark, p->C);
     p->since = g_new0(SimTime, p->C);
-    p->finish_upto = g_new0(guint, p->C);
+    p->finish_upto = g_new0(guint, (gsize)p->C * p->C);
     p->app_sem = g_new0(int32_t, p->nsem);
     p->app_passed = g_new0(gboolean, p->C);
 }
@@ -56,7 +57,7 @@ void wl_ag_issue_reset(AgPipe *p)
 {
     memset(p->buf_used, 0, p->C * sizeof *p->buf_used);
     memset(p->park, 0, p->C * sizeof *p->park);
-    memset(p->finish_upto, 0, p->C * sizeof *p->finish_upto);
+    memset(p->finish_upto, 0, (gsize)p->C * p->C * sizeof *p->finish_upto);
     memset(p->app_sem, 0, p->nsem * sizeof *p->app_sem);
     memset(p->app_passed, 0, p->C * sizeof *p->app_passed);
 }
@@ -161,15 +162,33 @@ static gboolean signals(const AgBlock *b)
     return FALSE;
 }
 
+/* Whether context c's glFinish is over: every tile has passed the
+ * blocks it waits for, of its own context or of every one. */
+static gboolean finished(AgPipe *p, guint c)
+{
+    for (guint m = 0; m < p->C; m++)
+        if (p->finish_upto[(gsize)c * p->C + m] > 0 &&
+            drained(p, m) < p->finish_upto[(gsize)c * p->C + m])
+            return FALSE;
+    return TRUE;
+}
+
+/* glFinish by context c: what it waits for. */
+static void call_finish(AgPipe *p, guint c)
+{
+    for (guint m = 0; m < p->C; m++)
+        p->finish_upto[(gsize)c * p->C + m] =
+            m == c || !p->s.finish_context ? p->app_next[m] : 0;
+}
+
 void wl_ag_finish_poll(AgPipe *p)
 {
     if (p->s.sync != WL_AG_SYNC_FINISH)
         return;
     for (guint c = 0; c < p->C; c++)
-        if (p->park[c] == AG_PARK_FINISH &&
-            drained(p, c) >= p->finish_upto[c]) {
+        if (p->park[c] == AG_PARK_FINISH && finished(p, c)) {
             const AgBlock *b = wl_ag_block_at(
-                p, p->ctx_off[c] + p->finish_upto[c] - 1, NULL);
+                p, p->ctx_off[c] + p->app_next[c] - 1, NULL);
             app_apply(p, b->post, b->n_post);
             unpark(p, c, &p->out->finish_wait);
         }
@@ -201,7 +220,7 @@ static void app_done(SimEngine *eng, void *ctx, void *arg)
         k->verts * p->s.vertex_bytes + (uint64_t)k->n_state * p->s.state_bytes);
     sim_schedule_at(eng, t, wl_ag_enqueue, p, GUINT_TO_POINTER(b));
     if (p->s.sync == WL_AG_SYNC_FINISH && signals(k)) {
-        p->finish_upto[c] = p->app_next[c]; /* glFinish */
+        call_finish(p, c);
         park(p, c, AG_PARK_FINISH);
         return; /* wl_ag_finish_poll wakes it */
     }

@@ -81,8 +81,9 @@ extern const char *const wl_ag_scheme_names[]; /* "pixel" "geometry" */
 /* How the program's ordering points are met (ag_issue.c): GLP by the
  * parallel API's commands in the streams; FINISH by the baseline the
  * paper compares with: the issuing thread glFinish()es (waits until
- * every tile has passed its context's commands) and then signals the
- * other application threads, which wait before issuing. */
+ * every tile has passed the commands issued so far, every context's, or
+ * its own with finish_context) and then signals the other application
+ * threads, which wait before issuing. */
 typedef enum { WL_AG_SYNC_GLP, WL_AG_SYNC_FINISH } AgSyncMode;
 extern const char *const wl_ag_sync_names[]; /* "glp" "finish" */
 
@@ -98,6 +99,9 @@ typedef struct {
     SimTime mem_latency;
     AgScheme scheme;
     AgSyncMode sync;
+    gboolean finish_context; /* glFinish drains the caller's context only
+                              * (else every context's commands issued
+                              * before the call: the whole pipe) */
     gboolean retained;     /* display lists: compiled in the first frame,
                             * executed by reference after (ag_issue.c) */
     uint64_t buffer_bytes; /* per context command buffer; 0: unbounded */

@@ -65,7 +65,8 @@ struct AgPipe {
     uint64_t *buf_used; /* per context: bytes in its command buffer */
     AgPark *park;       /* per context */
     SimTime *since;     /* per context: when it parked */
-    guint *finish_upto; /* per context: glFinish until this many drained */
+    guint *finish_upto; /* C x C: context c's glFinish waits until every
+                         * tile has passed this many of m's blocks */
     int32_t *app_sem;   /* nsem: application-level counts (sync: finish) */
     gboolean *app_passed; /* per context: its next block is past the
                            * application barrier */

@@ -30,6 +30,7 @@
  *     mode: immediate       # immediate | retained (display lists)
  *     buffer: 0             # command buffer per context (0: unbounded)
  *     sync: glp             # glp | finish (the glFinish baseline)
+ *     finish: pipe          # sync finish: glFinish drains the pipe | context
  *     ordering: pixel       # pixel | geometry (ag_pipe.h AgScheme)
  *     width: 1200           # default: the scene's suggested viewport
  *     height: 1000
@@ -49,11 +50,13 @@
 static const char *const fills[] = {"infinite", "finite", NULL};
 static const char *const workers[] = {"split", "pool", NULL};
 static const char *const modes[] = {"immediate", "retained", NULL};
+static const char *const scopes[] = {"pipe", "context", NULL};
 
 static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
 {
     int app = WL_AG_APP_NONE, ord = WL_AG_ORDER_FRAME, prim = 0, pix = 0;
     int fill = 0, work = 0, state = 0, scheme = 0, sync = 0, mode = 0;
+    int scope = 0;
     gboolean ok =
         cfg_get_enum(sec, "application", FALSE, wl_ag_app_names, &app, err) &&
         cfg_get_enum(sec, "order", FALSE, wl_ag_order_names, &ord, err) &&
@@ -65,7 +68,8 @@ static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
         cfg_get_enum(sec, "ordering", FALSE, wl_ag_scheme_names, &scheme,
                      err) &&
         cfg_get_enum(sec, "sync", FALSE, wl_ag_sync_names, &sync, err) &&
-        cfg_get_enum(sec, "mode", FALSE, modes, &mode, err);
+        cfg_get_enum(sec, "mode", FALSE, modes, &mode, err) &&
+        cfg_get_enum(sec, "finish", FALSE, scopes, &scope, err);
     p->setup.app = (AgApp)app;
     p->order = (AgOrder)ord;
     p->prim = (AgPrim)prim;
@@ -76,6 +80,7 @@ static gboolean parse_words(const CfgNode *sec, WlAgParams *p, GError **err)
     p->setup.scheme = (AgScheme)scheme;
     p->setup.sync = (AgSyncMode)sync;
     p->setup.retained = mode == 1;
+    p->setup.finish_context = scope == 1;
     return ok;
 }
 
