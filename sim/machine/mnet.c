@@ -6,7 +6,12 @@
  * neither; the iPSC/2's NX protocol).
  * Switching: the `switching` word, else ring slots for a ring and
  * cut-through packets otherwise (circuit switching is never guessed).
- * Topologies: one small builder per word in topo_table.
+ * Topologies: one small builder per word in topo_table; a mesh or torus
+ * takes `extents` or one of its `shapes` (flattened, one per partition
+ * size) and is a mesh below `torus_min` nodes; `node_size` endpoints per
+ * node make it a two-level network (sim/net/group.c) with
+ * `node_bandwidth` inside a node and `node_ports` shared (one outer port
+ * per node) or per-endpoint.
  * Every number comes from the model; the only defaults are "absent means
  * zero" for start-up and per-hop, and sim/net's own default packet size.
  * Cost: O(1).
@@ -115,6 +120,8 @@ gboolean mach_net_params(const CfgNode *net, NetParams *out, GError **err)
         !read_long(net, out, err) ||
         !mach_param_time(net, "per_hop", FALSE, &out->per_hop, err) ||
         !mach_param_size(net, "packet_size", FALSE, &packet, err) ||
+        !mach_param_bandwidth(net, "node_bandwidth", FALSE, &out->node_bw,
+                              err) ||
         !read_switching(net, &out->switching, err) ||
         !read_levels(net, out, err) || !read_cm_levels(net, out, err))
         return FALSE;
@@ -218,39 +225,74 @@ static NetTopo *cm_new(const CfgNode *net, guint endpoints,
     return net_cm200_new(d, (uint32_t)group, nx, endpoints / nx);
 }
 
-/* Mesh / torus: `extents` (1 to 3 dimensions) whose product is the
- * processor count. */
+/* The shape for `nodes`: `extents` if their product is nodes, else the
+ * first of the flattened `shapes` (as many values per shape as extents)
+ * whose product is; e[] gets it.  Returns the dimension count, 0 with
+ * *err on unusable values or no shape of that size. */
+static guint grid_shape(const CfgNode *net, guint nodes, const CfgNode *count_at,
+                        uint32_t e[3], GError **err)
+{
+    GArray *ext = NULL, *shapes = NULL;
+    if (!mach_param_count_list(net, "extents", TRUE, &ext, err) ||
+        !mach_param_count_list(net, "shapes", FALSE, &shapes, err)) {
+        if (ext)
+            g_array_unref(ext);
+        return 0;
+    }
+    guint nd = ext->len;
+    gboolean ok = nd >= 1 && nd <= 3 && (!shapes || shapes->len % nd == 0);
+    GArray *all = g_array_new(FALSE, FALSE, sizeof(uint64_t));
+    g_array_append_vals(all, ext->data, ext->len);
+    if (shapes)
+        g_array_append_vals(all, shapes->data, shapes->len);
+    for (guint i = 0; ok && i < all->len; i++) {
+        uint64_t x = g_array_index(all, uint64_t, i);
+        ok = x >= 1 && x <= (1u << 24);
+    }
+    guint found = 0;
+    for (guint s = 0; ok && !found && s < all->len / nd; s++) {
+        uint64_t prod = 1;
+        for (guint k = 0; k < nd; k++)
+            prod *= g_array_index(all, uint64_t, s * nd + k);
+        if (prod != nodes)
+            continue;
+        for (guint k = 0; k < nd; k++)
+            e[k] = (uint32_t)g_array_index(all, uint64_t, s * nd + k);
+        found = nd;
+    }
+    g_array_unref(ext);
+    g_array_unref(all);
+    if (shapes)
+        g_array_unref(shapes);
+    if (!ok) {
+        cfg_error(err, mach_param_node(net, "extents"), "unusable mesh extents",
+                  "1 to 3 extents of 1 .. 2^24 (shapes: as many values "
+                  "per shape as extents)");
+    } else if (!found) {
+        char *found_s =
+            g_strdup_printf("%u nodes for a mesh or torus", nodes);
+        cfg_error(err, count_at, found_s,
+                  "the product of network.extents or of one of "
+                  "network.shapes");
+        g_free(found_s);
+    }
+    return found;
+}
+
+/* Mesh / torus: `extents` (1 to 3 dimensions), or one of `shapes`, whose
+ * product is the node count; a torus of fewer than `torus_min` nodes is
+ * a mesh (Blue Gene/P blocks under a midplane). */
 static NetTopo *grid_new(const CfgNode *net, guint endpoints,
                          const CfgNode *count_at, gboolean wrap, GError **err)
 {
-    GArray *ext = NULL;
     uint32_t e[3];
-    uint64_t prod = 1;
-    if (!mach_param_count_list(net, "extents", TRUE, &ext, err))
+    uint64_t torus_min = 0;
+    if (!mach_param_count(net, "torus_min", FALSE, &torus_min, err))
         return NULL;
-    gboolean ok = ext->len >= 1 && ext->len <= 3;
-    for (guint i = 0; ok && i < ext->len; i++) {
-        uint64_t x = g_array_index(ext, uint64_t, i);
-        ok = x >= 1 && x <= (1u << 24);
-        e[i] = (uint32_t)x;
-        prod *= x;
-    }
-    guint nd = ext->len;
-    g_array_unref(ext);
-    if (!ok) {
-        cfg_error(err, mach_param_node(net, "extents"), "unusable mesh extents",
-                  "1 to 3 extents of 1 .. 2^24");
+    guint nd = grid_shape(net, endpoints, count_at, e, err);
+    if (!nd)
         return NULL;
-    }
-    if (prod != endpoints) {
-        char *found = g_strdup_printf(
-            "%u processors on a mesh of %" G_GUINT64_FORMAT " nodes", endpoints,
-            prod);
-        cfg_error(err, count_at, found, "the product of network.extents");
-        g_free(found);
-        return NULL;
-    }
-    return net_mesh_new(nd, e, wrap);
+    return net_mesh_new(nd, e, wrap && endpoints >= torus_min);
 }
 
 static NetTopo *mesh_new(const CfgNode *net, guint endpoints,
@@ -309,13 +351,57 @@ gboolean mach_topo_supported(const char *topology)
     return topo_fn(topology) != NULL;
 }
 
+/* Two-level networks (sim/net/group.c): `node_size` endpoints per node,
+ * `node_ports` shared (the outer topology joins nodes) or per-endpoint
+ * (it joins endpoints).  *outer_n: the outer topology's node count. */
+static gboolean read_group(const CfgNode *net, guint endpoints,
+                           const CfgNode *count_at, uint64_t *size,
+                           gboolean *per_endpoint, guint *outer_n,
+                           GError **err)
+{
+    const char *ports = mach_param_word(net, "node_ports");
+    *size = 1;
+    *per_endpoint = g_strcmp0(ports, "per-endpoint") == 0;
+    if (!mach_param_count(net, "node_size", FALSE, size, err))
+        return FALSE;
+    if (ports && !*per_endpoint && strcmp(ports, "shared") != 0) {
+        char *found = g_strdup_printf("node_ports '%s'", ports);
+        cfg_error(err, mach_param_node(net, "node_ports"), found,
+                  "shared or per-endpoint");
+        g_free(found);
+        return FALSE;
+    }
+    if (*size == 0 || *size > endpoints || endpoints % *size) {
+        char *found = g_strdup_printf(
+            "%u endpoints in nodes of %" G_GUINT64_FORMAT, endpoints, *size);
+        cfg_error(err, *size == 0 ? mach_param_node(net, "node_size") : count_at,
+                  found, "a whole number of nodes (node_size >= 1)");
+        g_free(found);
+        return FALSE;
+    }
+    *outer_n = *per_endpoint ? endpoints : endpoints / (guint)*size;
+    return TRUE;
+}
+
 NetTopo *mach_topo_new(const CfgNode *net, guint endpoints,
                        const CfgNode *count_at, GError **err)
 {
     const char *topo = mach_param_word(net, "topology");
     MachTopoFn fn = topo_fn(topo);
-    if (fn)
-        return fn(net, endpoints, count_at ? count_at : net, err);
+    uint64_t size;
+    gboolean per_endpoint;
+    guint outer_n;
+    if (!count_at)
+        count_at = net;
+    if (fn) {
+        if (!read_group(net, endpoints, count_at, &size, &per_endpoint,
+                        &outer_n, err))
+            return NULL;
+        NetTopo *t = fn(net, outer_n, count_at, err);
+        if (t && size > 1)
+            t = net_group_new(t, (uint32_t)size, per_endpoint);
+        return t;
+    }
     char *found = g_strdup_printf("topology '%s' (not built by the machine "
                                   "layer)",
                                   topo ? topo : "");

@@ -11,6 +11,7 @@
 #include "sim/machine/partition.h"
 #include "sim/core/error.h"
 #include "sim/machine/machine.h"
+#include "sim/machine/mnet.h"
 #include "sim/machine/model.h"
 #include <string.h>
 
@@ -244,12 +245,32 @@ static gboolean by_lanes(CfgNode *root, const CfgNode *tree, guint nodes,
     return TRUE;
 }
 
+/* A model with partition `shapes` or several endpoints per node
+ * (`node_size`): the machine layer picks the shape (mnet.c), so N fits
+ * when that topology builds. */
+static gboolean by_shapes(CfgNode *root, const CfgNode *tree, guint nodes,
+                          const char *topo, char **desc, GError **err)
+{
+    NetTopo *t = mach_topo_new(cfg_get(tree, "network"), nodes, NULL, err);
+    if (!t)
+        return FALSE;
+    net_topo_free(t);
+    char *k = NULL;
+    gboolean ok = by_kinds(root, tree, nodes, topo, &k, err);
+    if (ok && desc)
+        *desc = g_strdup_printf("%s from the model's shapes; %s", topo, k);
+    g_free(k);
+    return ok;
+}
+
 /* Mesh/torus: the shape is the model's (or the user's override). */
 static gboolean by_extents(CfgNode *root, const CfgNode *tree, guint nodes,
                            const char *topo, char **desc, GError **err)
 {
     GArray *ext = NULL;
     const CfgNode *net = cfg_get(tree, "network");
+    if (mach_param_node(net, "shapes") || mach_param_node(net, "node_size"))
+        return by_shapes(root, tree, nodes, topo, desc, err);
     if (!mach_param_count_list(net, "extents", TRUE, &ext, err))
         return FALSE;
     uint64_t prod = 1;

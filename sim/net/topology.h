@@ -27,6 +27,9 @@
  *   mesh/torus dimension-order routing, up to 3 dimensions.
  *   crossbar   one input and one output port per node.
  *   bus        one shared link.
+ *   group      endpoints in groups (the GPUs or processes of one node)
+ *              joined by the group's switch, over any of the above
+ *              between groups (group.c).
  *
  * Bandwidth numbers are never here: link_bw() derives a link's channel
  * bandwidth from NetParams, which the machine layer fills from YAML.
@@ -70,6 +73,9 @@ typedef struct {
     /* Control network (CM-5): 0 = none; see collective.h. */
     uint64_t ctrl_latency; /* ps per combine / broadcast / barrier */
     double ctrl_bandwidth; /* B/s for the payload; 0 = latency only */
+    /* Group topology (group.c): B/s of one channel of a link between an
+     * endpoint and its group's switch; 0 = bandwidth. */
+    double node_bw;
 } NetParams;
 
 typedef struct {
@@ -104,6 +110,7 @@ extern const NetTopologyOps net_cm200_ops;
 extern const NetTopologyOps net_mesh_ops;
 extern const NetTopologyOps net_crossbar_ops;
 extern const NetTopologyOps net_bus_ops;
+extern const NetTopologyOps net_group_ops;
 
 /* Constructors: each returns a new topology; free with net_topo_free(). */
 NetTopo *net_hypercube_new(unsigned dims); /* 2^dims nodes */
@@ -118,6 +125,12 @@ NetTopo *net_cm200_new(unsigned cube_dims, uint32_t group, uint32_t news_x,
 NetTopo *net_mesh_new(unsigned ndims, const uint32_t *extent, gboolean wrap);
 NetTopo *net_crossbar_new(uint32_t nodes);
 NetTopo *net_bus_new(uint32_t nodes);
+/* Groups of `group` endpoints over `outer` (taken): per_endpoint, outer
+ * has one node per endpoint (its node count must be a multiple of
+ * group); otherwise one per group (group.c). */
+NetTopo *net_group_new(NetTopo *outer, uint32_t group, gboolean per_endpoint);
+/* The outer topology of a group topology (borrowed). */
+const NetTopo *net_group_outer(const NetTopo *t);
 void net_topo_free(NetTopo *t);
 
 /* The start-up a message of `bytes` pays under p. */
