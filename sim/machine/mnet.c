@@ -225,6 +225,41 @@ static NetTopo *cm_new(const CfgNode *net, guint endpoints,
     return net_cm200_new(d, (uint32_t)group, nx, endpoints / nx);
 }
 
+/* TRUE when every count of a is in 1 .. 2^24. */
+static gboolean extents_ok(const GArray *a)
+{
+    for (guint i = 0; i < a->len; i++) {
+        uint64_t x = g_array_index(a, uint64_t, i);
+        if (x < 1 || x > (1u << 24))
+            return FALSE;
+    }
+    return TRUE;
+}
+
+/* The product of shape s (nd values) of a. */
+static uint64_t shape_prod(const GArray *a, guint s, guint nd)
+{
+    uint64_t prod = 1;
+    for (guint k = 0; k < nd; k++)
+        prod *= g_array_index(a, uint64_t, s * nd + k);
+    return prod;
+}
+
+/* Copies into e[] the first shape of a (nd values each) whose product
+ * is nodes; FALSE if none. */
+static gboolean pick_shape(const GArray *a, guint nd, guint nodes,
+                           uint32_t e[3])
+{
+    for (guint s = 0; a && s < a->len / nd; s++) {
+        if (shape_prod(a, s, nd) != nodes)
+            continue;
+        for (guint k = 0; k < nd; k++)
+            e[k] = (uint32_t)g_array_index(a, uint64_t, s * nd + k);
+        return TRUE;
+    }
+    return FALSE;
+}
+
 /* The shape for `nodes`: `extents` if their product is nodes, else the
  * first of the flattened `shapes` (as many values per shape as extents)
  * whose product is; e[] gets it.  Returns the dimension count, 0 with
@@ -233,49 +268,37 @@ static guint grid_shape(const CfgNode *net, guint nodes, const CfgNode *count_at
                         uint32_t e[3], GError **err)
 {
     GArray *ext = NULL, *shapes = NULL;
-    if (!mach_param_count_list(net, "extents", TRUE, &ext, err) ||
-        !mach_param_count_list(net, "shapes", FALSE, &shapes, err)) {
-        if (ext)
-            g_array_unref(ext);
+    if (!mach_param_count_list(net, "extents", TRUE, &ext, err))
+        return 0;
+    if (!mach_param_count_list(net, "shapes", FALSE, &shapes, err)) {
+        g_array_unref(ext);
         return 0;
     }
-    guint nd = ext->len;
-    gboolean ok = nd >= 1 && nd <= 3 && (!shapes || shapes->len % nd == 0);
-    GArray *all = g_array_new(FALSE, FALSE, sizeof(uint64_t));
-    g_array_append_vals(all, ext->data, ext->len);
-    if (shapes)
-        g_array_append_vals(all, shapes->data, shapes->len);
-    for (guint i = 0; ok && i < all->len; i++) {
-        uint64_t x = g_array_index(all, uint64_t, i);
-        ok = x >= 1 && x <= (1u << 24);
-    }
-    guint found = 0;
-    for (guint s = 0; ok && !found && s < all->len / nd; s++) {
-        uint64_t prod = 1;
-        for (guint k = 0; k < nd; k++)
-            prod *= g_array_index(all, uint64_t, s * nd + k);
-        if (prod != nodes)
-            continue;
-        for (guint k = 0; k < nd; k++)
-            e[k] = (uint32_t)g_array_index(all, uint64_t, s * nd + k);
+    guint nd = ext->len, found = 0;
+    uint64_t prod = nd ? shape_prod(ext, 0, nd) : 0;
+    if (nd < 1 || nd > 3 || !extents_ok(ext))
+        cfg_error(err, mach_param_node(net, "extents"), "unusable mesh extents",
+                  "1 to 3 extents of 1 .. 2^24");
+    else if (shapes && (shapes->len % nd || !extents_ok(shapes)))
+        cfg_error(err, mach_param_node(net, "shapes"), "unusable shapes",
+                  "whole shapes of as many extents of 1 .. 2^24 as "
+                  "network.extents has");
+    else if (pick_shape(ext, nd, nodes, e) || pick_shape(shapes, nd, nodes, e))
         found = nd;
+    else {
+        char *f = shapes ? g_strdup_printf("%u processors on a mesh", nodes)
+                         : g_strdup_printf("%u processors on a mesh of "
+                                           "%" G_GUINT64_FORMAT " nodes",
+                                           nodes, prod);
+        cfg_error(err, count_at, f,
+                  shapes ? "the product of network.extents or of one of "
+                           "network.shapes"
+                         : "the product of network.extents");
+        g_free(f);
     }
     g_array_unref(ext);
-    g_array_unref(all);
     if (shapes)
         g_array_unref(shapes);
-    if (!ok) {
-        cfg_error(err, mach_param_node(net, "extents"), "unusable mesh extents",
-                  "1 to 3 extents of 1 .. 2^24 (shapes: as many values "
-                  "per shape as extents)");
-    } else if (!found) {
-        char *found_s =
-            g_strdup_printf("%u nodes for a mesh or torus", nodes);
-        cfg_error(err, count_at, found_s,
-                  "the product of network.extents or of one of "
-                  "network.shapes");
-        g_free(found_s);
-    }
     return found;
 }
 
@@ -371,7 +394,7 @@ static gboolean read_group(const CfgNode *net, guint endpoints,
         g_free(found);
         return FALSE;
     }
-    if (*size == 0 || *size > endpoints || endpoints % *size) {
+    if (*size != 1 && (*size == 0 || *size > endpoints || endpoints % *size)) {
         char *found = g_strdup_printf(
             "%u endpoints in nodes of %" G_GUINT64_FORMAT, endpoints, *size);
         cfg_error(err, *size == 0 ? mach_param_node(net, "node_size") : count_at,

@@ -172,7 +172,7 @@ static void expect_refused(guint n, const char *const *sets, const char *what)
 static void test_refused(void **state)
 {
     (void)state;
-    expect_refused(1000, NULL, "found 1000 nodes for a mesh or torus");
+    expect_refused(1000, NULL, "found 1000 processors on a mesh, expected");
     expect_refused(48, NULL, "one of network.shapes");
     const char *vn[] = {"machine.network.node_size=4", NULL};
     expect_refused(2050, vn, "2050 endpoints in nodes of 4");

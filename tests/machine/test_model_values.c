@@ -114,7 +114,8 @@ static void test_params_and_keys(void **state)
         "routing, switching, fidelity, duplex, bandwidth, total_bandwidth, "
         "aggregate_bandwidth, level_bandwidth, startup, startup_long, "
         "long_threshold, per_hop, word_time, router_cycle, control_latency, "
-        "packet_size, channels, arity, dimension, extents, procs_per_router, "
+        "packet_size, channels, arity, dimension, extents, shapes, torus_min, "
+        "node_size, node_bandwidth, node_ports, procs_per_router, "
         "router_nodes, router_link_bandwidth, news_bandwidth");
     expect("speed: {value: 1, source: s}", "",
            "m.yaml:3:53: found unknown key 'speed', expected one of: count, "
