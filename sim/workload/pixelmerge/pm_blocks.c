@@ -67,8 +67,8 @@ void wl_pm_grid_block(const WlPmGrid *g, guint p, Vec3 *lo, Vec3 *hi)
     guint k[3];
     index3(g, p, k);
     *lo = vec3(edge(g, 0, k[0]), edge(g, 1, k[1]), edge(g, 2, k[2]));
-    *hi = vec3(edge(g, 0, k[0] + 1), edge(g, 1, k[1] + 1),
-               edge(g, 2, k[2] + 1));
+    *hi =
+        vec3(edge(g, 0, k[0] + 1), edge(g, 1, k[1] + 1), edge(g, 2, k[2] + 1));
 }
 
 gboolean wl_pm_grid_inside(const WlPmGrid *g, Vec3 x)
@@ -144,13 +144,9 @@ void wl_pm_rays_init(WlPmRays *r, const SceneCamera *cam, guint width,
     double half = cam->proj == SCENE_PERSPECTIVE
                       ? tan(cam->fov_deg * G_PI / 360.0)
                       : cam->height / 2;
-    *r = (WlPmRays){cam->proj,
-                    cam->eye,
-                    f,
-                    vec3_scale(s, half * aspect),
-                    vec3_scale(u, half),
-                    width,
-                    height};
+    *r = (WlPmRays){
+        cam->proj,           cam->eye, f,     vec3_scale(s, half * aspect),
+        vec3_scale(u, half), width,    height};
 }
 
 void wl_pm_ray(const WlPmRays *r, guint x, guint y, Vec3 *org, Vec3 *dir)
@@ -205,8 +201,8 @@ gboolean wl_pm_block_rect(const WlPmGrid *g, const WlPmRays *r, guint p,
     double sx = vec3_dot(r->right, r->right), sy = vec3_dot(r->up, r->up);
     double px[2] = {INFINITY, -INFINITY}, py[2] = {INFINITY, -INFINITY};
     for (int c = 0; c < 8; c++) {
-        Vec3 q = vec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y,
-                      c & 4 ? hi.z : lo.z);
+        Vec3 q =
+            vec3(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
         Vec3 v = vec3_sub(q, r->eye);
         double d = r->proj == SCENE_PERSPECTIVE ? vec3_dot(v, r->fwd) : 1.0;
         if (!(d > 1e-12)) { /* a corner at or behind the eye */
@@ -227,8 +223,8 @@ void wl_pm_block_color(guint p, double *rgb)
 {
     double h = fmod(0.13 + p * 0.6180339887498949, 1.0) * 6.0;
     double f = h - floor(h), v = 0.9, s = 0.6;
-    double q[6][3] = {{1, f, 0}, {1 - f, 1, 0}, {0, 1, f},
-                      {0, 1 - f, 1}, {f, 0, 1}, {1, 0, 1 - f}};
+    double q[6][3] = {{1, f, 0},     {1 - f, 1, 0}, {0, 1, f},
+                      {0, 1 - f, 1}, {f, 0, 1},     {1, 0, 1 - f}};
     for (int i = 0; i < 3; i++)
         rgb[i] = v * (1 - s + s * q[(int)h % 6][i]);
 }

@@ -42,7 +42,7 @@
 #include "sim/workload/pixelmerge/pm_render.h"
 
 typedef struct {
-    guint dims[3]; /* blocks per axis; their product is the processes */
+    guint dims[3];       /* blocks per axis; their product is the processes */
     double lo[3], hi[3]; /* the volume's box */
 } WlPmGrid;
 
@@ -60,9 +60,9 @@ void wl_pm_grid_order(const WlPmGrid *g, const SceneCamera *cam, guint *order);
 
 typedef struct {
     SceneProjection proj;
-    Vec3 eye, fwd;      /* fwd: unit, towards the target */
-    Vec3 right, up;     /* NDC x = 1 and y = 1: at distance 1 (perspective)
-                         * or from the eye (orthographic) */
+    Vec3 eye, fwd;  /* fwd: unit, towards the target */
+    Vec3 right, up; /* NDC x = 1 and y = 1: at distance 1 (perspective)
+                     * or from the eye (orthographic) */
     guint width, height;
 } WlPmRays;
 
@@ -94,7 +94,8 @@ typedef gboolean (*WlPmRayFn)(void *ctx, Vec3 org, Vec3 dir, double *z,
 /* Block p's partial image: fn on every pixel of its footprint, row by
  * row (poly = p, colour rgba's colour in 8 bits); *c (cleared first) gets
  * fn's work, one polygon (the block), a span per row with a pixel and a
- * winner per pixel (fn returns TRUE only with rgba[3] > 0).  Free with wl_pm_wpa_free(). */
+ * winner per pixel (fn returns TRUE only with rgba[3] > 0).  Free with
+ * wl_pm_wpa_free(). */
 WlPmWpa *wl_pm_block_cast(const WlPmGrid *g, const WlPmRays *r, guint p,
                           WlPmRayFn fn, void *ctx, WlPmCounts *c);
 

@@ -33,21 +33,46 @@ gboolean wl_pm_images_parse(const CfgNode *sec, gboolean compose,
         return FALSE;
     im->kind = (WlPmImageKind)kind;
     if (kind == WL_PM_IMAGES_SCENE)
-        return !vol || refuse(cfg_get(sec, "volume"), "'volume' with images "
-                              "'scene'", "images: blocks or volume for a "
-                              "volume section", err);
+        return !vol || refuse(cfg_get(sec, "volume"),
+                              "'volume' with images "
+                              "'scene'",
+                              "images: blocks or volume for a "
+                              "volume section",
+                              err);
     if (!compose)
-        return refuse(cfg_get(sec, "images"), "block images with one of "
-                      "Kurç's schemes", "a compositing scheme (binary_swap, "
-                      "direct_send, radix_k, two_three_swap)", err);
+        return refuse(cfg_get(sec, "images"),
+                      "block images with one of "
+                      "Kurç's schemes",
+                      "a compositing scheme (binary_swap, "
+                      "direct_send, radix_k, two_three_swap)",
+                      err);
     if (has_order)
-        return refuse(cfg_get(sec, "visibility"), "'visibility' with block "
-                      "images", "no visibility list (the blocks' order "
-                      "comes from the view)", err);
+        return refuse(cfg_get(sec, "visibility"),
+                      "'visibility' with block "
+                      "images",
+                      "no visibility list (the blocks' order "
+                      "comes from the view)",
+                      err);
     if (kind == WL_PM_IMAGES_BLOCKS)
         return cfg_get_double(vol, "density", FALSE, 1e-9, 1e6, &im->density,
                               err);
     return wl_pm_volume_parse(vol, &im->vol, err);
+}
+
+double wl_pm_images_mem_bytes(const WlPmImages *im, guint n, guint N)
+{
+    if (im->kind == WL_PM_IMAGES_SCENE)
+        return 0;
+    guint layers = 1;
+    while ((uint64_t)layers * layers * layers < n)
+        layers++;
+    double lattice = 0;
+    if (im->kind == WL_PM_IMAGES_VOLUME) {
+        double g = im->vol.iso.grid + 1.0;
+        lattice = g * g * g * sizeof(double);
+    }
+    return (double)N * N * layers * (sizeof(WlPmPixel) + 4 * sizeof(double)) +
+           lattice;
 }
 
 /* The isosurface's polygons of each block: ids[p] (k[p] of them). */
@@ -91,14 +116,12 @@ WlPmImageSet *wl_pm_images_make(const WlPmImages *im, const SceneCamera *cam,
         surface(s, v, &im->vol);
         return s;
     }
-    WlPmField *f = im->kind == WL_PM_IMAGES_VOLUME
-                       ? wl_pm_field_new(&im->vol.iso)
-                       : NULL;
+    WlPmField *f =
+        im->kind == WL_PM_IMAGES_VOLUME ? wl_pm_field_new(&im->vol.iso) : NULL;
     for (guint p = 0; p < n; p++)
-        s->local[p] = f ? wl_pm_volume_image(f, &im->vol, &s->grid, &r, p,
-                                             &s->counts[p])
-                        : wl_pm_block_image(&s->grid, &r, p, im->density,
-                                            &s->counts[p]);
+        s->local[p] =
+            f ? wl_pm_volume_image(f, &im->vol, &s->grid, &r, p, &s->counts[p])
+              : wl_pm_block_image(&s->grid, &r, p, im->density, &s->counts[p]);
     wl_pm_field_free(f);
     return s;
 }
@@ -141,8 +164,8 @@ gboolean wl_pm_images_match(const WlPmImages *im, const WlPmImageSet *set,
     WlPmFrame *f = wl_pm_frame_new((guint)v->width, (guint)v->height);
     if (set->mesh) {
         WlPmCounts k;
-        WlPmWpa *w = wl_pm_render_local(v, set->mesh, 0, 1,
-                                        WL_PM_SPLIT_BLOCK, &k);
+        WlPmWpa *w =
+            wl_pm_render_local(v, set->mesh, 0, 1, WL_PM_SPLIT_BLOCK, &k);
         wl_pm_frame_put_wpa(f, w);
         wl_pm_wpa_free(w);
     } else {

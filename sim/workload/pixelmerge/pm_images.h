@@ -48,6 +48,14 @@ typedef struct {
 gboolean wl_pm_images_parse(const CfgNode *sec, gboolean compose,
                             gboolean has_order, WlPmImages *im, GError **err);
 
+/* The bytes block images add to the workload's own memory for n
+ * processes on an N x N screen (0 for the scene's images): their local
+ * images together hold up to L = ceil(cbrt(n)) layers of the screen
+ * (the blocks along a ray), each pixel a WlPmPixel and its 4 doubles
+ * (N^2 L (sizeof(WlPmPixel) + 32)), and the volume its lattice ((grid +
+ * 1)^3 doubles). */
+double wl_pm_images_mem_bytes(const WlPmImages *im, guint n, guint N);
+
 /* One frame's block images. */
 typedef struct {
     guint n;

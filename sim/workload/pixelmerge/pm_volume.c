@@ -30,8 +30,7 @@ gboolean wl_pm_volume_parse(const CfgNode *map, WlPmVolume *v, GError **err)
     if (!cfg_get_enum(map, "field", FALSE, fields, &field, err) ||
         !cfg_get_count(map, "grid", FALSE, 2, 256, &grid, err) ||
         !cfg_get_double(map, "iso", FALSE, -1e6, 1e6, &v->iso.iso, err) ||
-        !cfg_get_double(map, "periods", FALSE, 0, 1e3, &v->iso.periods,
-                        err) ||
+        !cfg_get_double(map, "periods", FALSE, 0, 1e3, &v->iso.periods, err) ||
         !cfg_get_count(map, "balls", FALSE, 1, 4096, &balls, err) ||
         !cfg_get_count(map, "seed", FALSE, 0, UINT64_MAX, &seed, err) ||
         !cfg_get_double(map, "step", FALSE, 1e-4, 1.0, &v->step, err) ||
@@ -49,7 +48,7 @@ WlPmField *wl_pm_field_new(const SceneIsoParams *iso)
 {
     WlPmField *f = g_new0(WlPmField, 1);
     guint n = f->n = iso->grid + 1;
-    f->val = g_new(double, (gsize)n * n * n);
+    f->val = g_new(double, (gsize)n *n *n);
     Vec3 *centres = scene_iso_centres(iso);
     double h = 2.0 / iso->grid;
     for (guint z = 0; z < n; z++)

@@ -346,7 +346,8 @@ static void *pm_parse(const CfgNode *sec, GError **err)
  * merged frame, one more for the processors' active-pixel arrays
  * together and one for the serial reference (check_image), the output
  * image (3 B), each processor's row offsets and the P x P message counts;
- * the compositing schemes more (below).
+ * the compositing schemes more (below), block images more
+ * (wl_pm_images_mem_bytes).
  * Processors 0 (the machine's count) counts as 1: a lower bound.  The
  * quickstart at 1600 x 1600 peaked at 156 MB RSS (estimate 183 MiB). */
 static double pm_mem_bytes(const void *params, GString *what)
@@ -361,7 +362,8 @@ static double pm_mem_bytes(const void *params, GString *what)
     if (wl_pm_scheme_composites(p->setup.scheme))
         comp = 2 * 48.0 + (p->setup.comp.op == WL_PM_OP_OVER ? 64.0 : 0.0);
     return n * n * (copies * sizeof(WlPmPixel) + 3.0 + comp) +
-           procs * (n + 1) * 4.0 + procs * procs * 8.0;
+           procs * (n + 1) * 4.0 + procs * procs * 8.0 +
+           wl_pm_images_mem_bytes(&p->setup.images, (guint)procs, (guint)n);
 }
 
 static WlPmMemUse peak_memory(const WlPmFrameOut *fo, const WlPmParams *p,

@@ -38,10 +38,9 @@ static SceneCamera camera(gboolean persp, Vec3 eye)
 static void test_grid_shapes(void **st)
 {
     (void)st;
-    static const guint want[][4] = {{1, 1, 1, 1},  {2, 2, 1, 1},
-                                    {8, 2, 2, 2},  {12, 3, 2, 2},
-                                    {64, 4, 4, 4}, {5, 5, 1, 1},
-                                    {16, 4, 2, 2}, {32768, 32, 32, 32}};
+    static const guint want[][4] = {
+        {1, 1, 1, 1},  {2, 2, 1, 1}, {8, 2, 2, 2},  {12, 3, 2, 2},
+        {64, 4, 4, 4}, {5, 5, 1, 1}, {16, 4, 2, 2}, {32768, 32, 32, 32}};
     for (guint i = 0; i < G_N_ELEMENTS(want); i++) {
         WlPmGrid g;
         wl_pm_grid_init(&g, want[i][0], lo, hi);
@@ -60,9 +59,9 @@ static void test_cells_half_open(void **st)
     wl_pm_grid_init(&g, 12, lo, hi);
     GRand *r = g_rand_new_with_seed(5);
     for (int i = 0; i < 20000; i++) {
-        Vec3 x = vec3(g_rand_double_range(r, -1, 1),
-                      g_rand_double_range(r, -1, 1),
-                      g_rand_double_range(r, -1, 1));
+        Vec3 x =
+            vec3(g_rand_double_range(r, -1, 1), g_rand_double_range(r, -1, 1),
+                 g_rand_double_range(r, -1, 1));
         if (i % 4 == 0) /* on a boundary of axis x */
             x.x = -1 + 2.0 * g_rand_int_range(r, 0, 3) / 3;
         guint p = wl_pm_grid_block_of(&g, x);
@@ -111,8 +110,11 @@ static guint order_faults(const WlPmGrid *g, const SceneCamera *c,
 static void test_order_front_to_back(void **st)
 {
     (void)st;
-    const Vec3 eyes[] = {{3.1, 2.2, 4.5},  {-4, 0.3, -2}, {0.2, 0.1, 4},
-                         {0.3, -0.4, 0.2}, {0, 5, 0.01}};
+    const Vec3 eyes[] = {{3.1, 2.2, 4.5},
+                         {-4, 0.3, -2},
+                         {0.2, 0.1, 4},
+                         {0.3, -0.4, 0.2},
+                         {0, 5, 0.01}};
     guint reversed_faults = 0;
     for (guint e = 0; e < G_N_ELEMENTS(eyes); e++)
         for (int persp = 0; persp < 2; persp++)
@@ -126,8 +128,8 @@ static void test_order_front_to_back(void **st)
                 wl_pm_grid_order(&g, &c, order);
                 assert_true(wl_pm_order_ok(order, n));
                 if (order_faults(&g, &c, order))
-                    fail_msg("eye %u persp %d P=%u: order not front to back",
-                             e, persp, n);
+                    fail_msg("eye %u persp %d P=%u: order not front to back", e,
+                             persp, n);
                 for (guint k = 0; k < n; k++)
                     rev[k] = order[n - 1 - k];
                 reversed_faults += order_faults(&g, &c, rev);
@@ -160,8 +162,8 @@ static void test_footprints(void **st)
                     if (!wl_pm_ray_box(o, d, a, b, &t0, &t1))
                         continue;
                     hits++;
-                    assert_true(on && x >= rc.x0 && x < rc.x1 &&
-                                y >= rc.y0 && y < rc.y1);
+                    assert_true(on && x >= rc.x0 && x < rc.x1 && y >= rc.y0 &&
+                                y < rc.y1);
                 }
             WlPmCounts k;
             WlPmWpa *w = wl_pm_block_image(&g, &r, p, 1.0, &k);
@@ -219,8 +221,8 @@ static void test_composites_equal_serial(void **st)
                                      .op = (WlPmOperator)op,
                                      .opacity = 0.5,
                                      .order = b.order};
-                    WlPmComposite *r = wl_pm_composite_run(
-                        (WlPmScheme)sch, &c, b.local, n, &fmt);
+                    WlPmComposite *r = wl_pm_composite_run((WlPmScheme)sch, &c,
+                                                           b.local, n, &fmt);
                     gboolean ok =
                         op == WL_PM_OP_Z
                             ? wl_pm_frame_diff(ref, r->merge->image) < 0
@@ -252,8 +254,7 @@ static void test_own_opacity(void **st)
     (void)st;
     Blocks b = blocks(1, 0.7);
     WlPmCompose c = {.op = WL_PM_OP_OVER, .opacity = 0.5};
-    WlPmComposite *r =
-        wl_pm_composite_run(WL_PM_RADIX_K, &c, b.local, 1, &fmt);
+    WlPmComposite *r = wl_pm_composite_run(WL_PM_RADIX_K, &c, b.local, 1, &fmt);
     const WlPmWpa *l = b.local[0];
     assert_true(l->rgba && wl_pm_wpa_len(l) > 100);
     gboolean thick = FALSE;

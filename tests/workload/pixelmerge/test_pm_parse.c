@@ -220,7 +220,8 @@ static void test_compositing_keys(void **st)
                       "found '12', expected a power of two");
 }
 
-/* mem_bytes: N^2 (copies x sizeof(WlPmPixel) + 3) + P (N + 1) 4 + P^2 8,
+/* mem_bytes: N^2 (copies x sizeof(WlPmPixel) + 3) + P (N + 1) 4 + P^2 8
+ * (block images: their layers and lattice),
  * copies 3 with the serial check, 2 without; P = 0 counts as 1. */
 static void test_mem_bytes(void **st)
 {
@@ -237,6 +238,14 @@ static void test_mem_bytes(void **st)
     assert_true(wl_pixelmerge_ops.mem_bytes(p, what) ==
                 49 * (2 * px + 3) + 1 * 8 * 4 + 1 * 8);
     assert_string_equal(what->str, "0 processors, 7 x 7 pixels");
+    wl_pixelmerge_ops.free_params(p);
+    /* block images: 2 layers at 8 blocks, and the volume's lattice */
+    p = parse_ok(", scheme: direct_send, processors: 8, resolution: 10, "
+                 "images: volume, volume: {grid: 20}");
+    const double comp = 2 * 48.0, layers = 100 * 2 * (px + 32);
+    assert_true(wl_pixelmerge_ops.mem_bytes(p, what) ==
+                100 * (3 * px + 3 + comp) + 8 * 11 * 4 + 64 * 8 + layers +
+                    21 * 21 * 21 * 8);
     wl_pixelmerge_ops.free_params(p);
     g_string_free(what, TRUE);
 }

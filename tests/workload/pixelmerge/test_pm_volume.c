@@ -1,12 +1,12 @@
 /* test_pm_volume.c — the volume workload (pm_volume.h, pm_images.h):
  * the lattice field is the isosurface's field at its points and
  * trilinear between them; the ray-cast samples split among the blocks
- * without loss or overlap; at 1, 2, 8, 12 and 64 processes the blocks'
- * partial images composited with over by binary swap, radix-k and
- * direct send in view order equal the whole volume cast by one process
- * to 1e-9, and the isosurface drawn by block and composited with z
- * equals it drawn whole, exactly (both checks shown failing: the
- * reversed order, a block left out); whole frames with block and volume
+ * without loss or overlap; at 1, 2, 8, 12 and 64 processes, perspective
+ * and orthographic, the blocks' partial images composited with over by
+ * binary swap, radix-k and direct send in view order equal the whole
+ * volume cast by one process to 1e-9, and the isosurface drawn by block and
+ * composited with z equals it drawn whole, exactly (both checks shown failing:
+ * the reversed order, a block left out); whole frames with block and volume
  * images on a 64-node hypercube pass their image check and send their
  * merge bytes over the network; the shipped configs
  * (configs/composite-blocks.yaml, composite-volume.yaml) run, made
@@ -27,12 +27,18 @@ static const WlPmFormat fmt = {8, 4, 2, 4, 8};
 static const WlPmScheme schemes[] = {WL_PM_BINARY_SWAP, WL_PM_RADIX_K,
                                      WL_PM_DIRECT_SEND};
 
-static SceneCamera camera(void)
+static SceneCamera camera_of(SceneProjection proj)
 {
     SceneCamera c = scene_camera_default();
+    c.proj = proj;
     c.eye = vec3(2.6, 1.9, 3.4);
     scene_camera_fit(&c, (SceneBox){{-1, -1, -1}, {1, 1, 1}}, 1.0);
     return c;
+}
+
+static SceneCamera camera(void)
+{
+    return camera_of(SCENE_PERSPECTIVE);
 }
 
 static WlPmImages volume(void)
@@ -94,9 +100,9 @@ static void test_samples_partition(void **st)
     wl_pm_images_free(one);
 }
 
-static void check_volume(WlPmOperator op)
+static void check_volume(WlPmOperator op, SceneProjection proj)
 {
-    SceneCamera c = camera();
+    SceneCamera c = camera_of(proj);
     RastView v = view_of(&c);
     WlPmImages im = volume();
     for (guint i = 0; i < G_N_ELEMENTS(counts); i++) {
@@ -141,13 +147,15 @@ static void check_volume(WlPmOperator op)
 static void test_volume_over(void **st)
 {
     (void)st;
-    check_volume(WL_PM_OP_OVER);
+    check_volume(WL_PM_OP_OVER, SCENE_PERSPECTIVE);
+    check_volume(WL_PM_OP_OVER, SCENE_ORTHOGRAPHIC);
 }
 
 static void test_volume_z(void **st)
 {
     (void)st;
-    check_volume(WL_PM_OP_Z);
+    check_volume(WL_PM_OP_Z, SCENE_PERSPECTIVE);
+    check_volume(WL_PM_OP_Z, SCENE_ORTHOGRAPHIC);
 }
 
 /* One frame on a 64-node hypercube. */
@@ -159,13 +167,12 @@ static void run_on(const Scene *sc, const WlPmSetup *s, WlPmFrameOut *out,
                     .startup = 350 * SIM_US,
                     .per_hop = 10 * SIM_US,
                     .switching = NET_SW_CIRCUIT};
-    static const WlPmCosts costs = {.pixel = SIM_US,
-                                    .scanline = SIM_US,
-                                    .polygon = SIM_US,
-                                    .span = SIM_US,
-                                    .merge = {.pack = SIM_US,
-                                              .compare = SIM_US,
-                                              .count_bytes = 4}};
+    static const WlPmCosts costs = {
+        .pixel = SIM_US,
+        .scanline = SIM_US,
+        .polygon = SIM_US,
+        .span = SIM_US,
+        .merge = {.pack = SIM_US, .compare = SIM_US, .count_bytes = 4}};
     SimEngine *eng = sim_engine_new(1);
     NetTopo *topo = net_hypercube_new(6);
     NetNet *net = net_new(eng, topo, &np, NET_FLOW);
