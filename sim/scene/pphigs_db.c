@@ -385,11 +385,23 @@ typedef struct {
     uint64_t off, all;
 } Offscreen;
 
+/* Corner k (0..7) of the box about sphere e (centre verts[0], radius
+ * the distance to verts[1]). */
+static Vec3 sphere_corner(const SceneElem *e, guint k)
+{
+    double r = vec3_len(vec3_sub(e->verts[1], e->verts[0]));
+    return vec3_add(e->verts[0], vec3(k & 1 ? r : -r, k & 2 ? r : -r,
+                                      k & 4 ? r : -r));
+}
+
 gboolean scene_pphigs_prim_offscreen(Mat4 m, const SceneElem *e)
 {
     guint mask = e->kind == SCENE_EL_POLYGON2D ? 0x0f : 0x3f;
-    for (guint v = 0; v < e->nverts && mask; v++) {
-        Vec4 q = mat4_apply_point(m, e->verts[v]);
+    gboolean sphere = e->kind == SCENE_EL_SPHERE && e->nverts >= 2;
+    guint n = sphere ? 8 : e->nverts;
+    for (guint v = 0; v < n && mask; v++) {
+        Vec4 q = mat4_apply_point(m, sphere ? sphere_corner(e, v)
+                                            : e->verts[v]);
         guint out = (q.x < -q.w) | (q.x > q.w) << 1 | (q.y < -q.w) << 2 |
                     (q.y > q.w) << 3 | (q.z < -q.w) << 4 | (q.z > q.w) << 5;
         mask &= out;

@@ -82,7 +82,8 @@ Scene *scene_pphigs_scene_new(const ScenePphigsSpec *spec, GError **err);
 void scene_pphigs_plane_basis(Vec3 n, Vec3 *u, Vec3 *v);
 
 /* TRUE when the primitive lies wholly outside one clip plane of `mvp`
- * (-w <= x, y, z <= w): trivially rejected, off-screen.  An
+ * (-w <= x, y, z <= w): trivially rejected, off-screen (a sphere: the
+ * box about it).  An
  * order-dependent (2-D) primitive is tested against x and y only: it is
  * drawn by priority, whatever its depth. */
 gboolean scene_pphigs_prim_offscreen(Mat4 mvp, const SceneElem *e);

@@ -30,8 +30,9 @@ struct SceneDb {
 };
 
 static const char *const kind_names[SCENE_EL_NKINDS] = {
-    "triangle", "polygon", "tristrip", "polygon2d",
-    "color",    "matrix",  "execute",
+    "triangle", "polygon", "tristrip",   "polygon2d",    "line",
+    "sphere",   "color",   "matrix",     "execute",      "line_color",
+    "sphere_color",
 };
 
 /* ---- elements ------------------------------------------------------- */
@@ -53,6 +54,27 @@ SceneElem scene_elem_prim(SceneElemKind kind, const Vec3 *verts, guint nverts)
     e.nverts = nverts;
     e.delta = kind == SCENE_EL_POLYGON2D ? 1 : 0;
     return e;
+}
+
+SceneElem scene_elem_kind_color(SceneElemKind kind, Vec3 rgb)
+{
+    g_assert(scene_elem_is_color(kind));
+    SceneElem e = elem_blank(kind);
+    e.color = rgb;
+    return e;
+}
+
+gboolean scene_elem_is_color(SceneElemKind k)
+{
+    return k == SCENE_EL_COLOR || k == SCENE_EL_LINE_COLOR ||
+           k == SCENE_EL_SPHERE_COLOR;
+}
+
+SceneElemKind scene_elem_color_of(SceneElemKind k)
+{
+    return k == SCENE_EL_LINE     ? SCENE_EL_LINE_COLOR
+           : k == SCENE_EL_SPHERE ? SCENE_EL_SPHERE_COLOR
+                                  : SCENE_EL_COLOR;
 }
 
 SceneElem scene_elem_color(Vec3 rgb)
@@ -79,12 +101,12 @@ SceneElem scene_elem_execute(guint child)
 
 gboolean scene_elem_is_prim(SceneElemKind k)
 {
-    return k <= SCENE_EL_POLYGON2D;
+    return k <= SCENE_EL_SPHERE;
 }
 
 gboolean scene_elem_is_attr(SceneElemKind k)
 {
-    return k == SCENE_EL_COLOR || k == SCENE_EL_MATRIX;
+    return scene_elem_is_color(k) || k == SCENE_EL_MATRIX;
 }
 
 const char *scene_elem_kind_name(SceneElemKind k)
@@ -414,7 +436,19 @@ typedef struct {
     guint instance; /* next max-set node number */
 } Walk;
 
-static void walk(Walk *w, guint sid, Mat4 g, Vec3 color, guint depth)
+/* The inherited colour of each primitive type (fill, line, sphere). */
+typedef struct {
+    Vec3 c[3];
+} Colours;
+
+static guint colour_slot(SceneElemKind colour_kind)
+{
+    return colour_kind == SCENE_EL_LINE_COLOR     ? 1
+           : colour_kind == SCENE_EL_SPHERE_COLOR ? 2
+                                                  : 0;
+}
+
+static void walk(Walk *w, guint sid, Mat4 g, Colours col, guint depth)
 {
     const SceneStruct *s = get(w->db, sid);
     Mat4 local = mat4_identity(), comp = g;
@@ -422,16 +456,16 @@ static void walk(Walk *w, guint sid, Mat4 g, Vec3 color, guint depth)
     for (guint i = 0; i < s->elems->len; i++) {
         const SceneElem *e = &g_array_index(s->elems, SceneElem, i);
         w->priority += e->delta;
-        if (e->kind == SCENE_EL_COLOR) {
-            color = e->color;
+        if (scene_elem_is_color(e->kind)) {
+            col.c[colour_slot(e->kind)] = e->color;
         } else if (e->kind == SCENE_EL_MATRIX) {
             local = local_after(local, e);
             comp = mat4_mul(g, local);
         } else if (e->kind == SCENE_EL_EXECUTE) {
-            walk(w, e->child, comp, color, depth + 1);
+            walk(w, e->child, comp, col, depth + 1);
         } else if (w->fn) {
-            ScenePrimInst pi = {sid,   i,           e,     comp,
-                                color, w->priority, depth, inst};
+            Vec3 c = col.c[colour_slot(scene_elem_color_of(e->kind))];
+            ScenePrimInst pi = {sid, i, e, comp, c, w->priority, depth, inst};
             w->fn(&pi, w->ud);
         }
     }
@@ -442,7 +476,7 @@ void scene_db_traverse_from(const SceneDb *db, guint sid, Mat4 g, Vec3 color,
                             int64_t *priority, ScenePrimFn fn, void *ud)
 {
     Walk w = {db, fn, ud, *priority, 0};
-    walk(&w, sid, g, color, 1);
+    walk(&w, sid, g, (Colours){{color, color, color}}, 1);
     *priority = w.priority;
 }
 
@@ -451,7 +485,7 @@ void scene_db_traverse(const SceneDb *db, ScenePrimFn fn, void *ud)
     Walk w = {db, fn, ud, 0, 0};
     for (guint i = 0; i < db->posted->len; i++)
         walk(&w, g_array_index(db->posted, guint, i), mat4_identity(),
-             vec3(1, 1, 1), 1);
+             (Colours){{vec3(1, 1, 1), vec3(1, 1, 1), vec3(1, 1, 1)}}, 1);
 }
 
 static void flatten_prim(const ScenePrimInst *pi, void *ud)
@@ -616,6 +650,16 @@ static Vec3 apply3(Mat4 m, Vec3 p)
 
 static void add_prim(SceneBox *b, const SceneElem *e, Mat4 local)
 {
+    if (e->kind == SCENE_EL_SPHERE && e->nverts >= 2) {
+        double r = vec3_len(vec3_sub(e->verts[1], e->verts[0]));
+        for (int k = 0; k < 8; k++) /* the box of the sphere, corners */
+            *b = scene_box_add_point(
+                *b, apply3(local, vec3_add(e->verts[0],
+                                           vec3(k & 1 ? r : -r,
+                                                k & 2 ? r : -r,
+                                                k & 4 ? r : -r))));
+        return;
+    }
     for (guint v = 0; v < e->nverts; v++)
         *b = scene_box_add_point(*b, apply3(local, e->verts[v]));
 }

@@ -3,15 +3,21 @@
  * A SceneDb holds numbered structures (ids 0, 1, 2 ... never reused while
  * the db lives); each is an ordered list of elements:
  *   primitives  triangle, polygon, triangle strip, 2-D order-dependent
- *               polygon (ODP; drawn in traversal order, seed 001 §4);
- *   attributes  colour; matrix in REPLACE or CONCATENATE mode;
+ *               polygon (ODP; drawn in traversal order, seed 001 §4),
+ *               line (2 vertices), sphere (centre and a point of its
+ *               surface: the radius is their distance after the matrix);
+ *   attributes  a colour per primitive type, as PHIGS has (seed 001
+ *               §2.3.1: the state holds "the colors ... for each type of
+ *               primitive"): fill colour (polygons, strips, ODPs), line
+ *               colour, sphere colour; matrix in REPLACE or CONCATENATE
+ *               mode;
  *   executes    of another structure (instancing).
  * Posted structures are the traversal roots, in posting order.  Edits are
  * modify (same kind only), append, insert and delete (seed 001 §3); an
  * execute that would close a cycle is rejected with a GError, so the
  * network (the min-set view, seed 000 §3.3) is always a DAG.
  *
- * Inherited state (PHIGS): a structure starts with the caller's colour and
+ * Inherited state (PHIGS): a structure starts with the caller's colours and
  * composite matrix G and a local matrix L = I.  REPLACE sets L = M,
  * CONCATENATE sets L = L M; primitives use G L.  Nothing a child sets is
  * seen by its parent after the execute returns.
@@ -44,9 +50,13 @@ typedef enum {
     SCENE_EL_POLYGON,
     SCENE_EL_TRISTRIP,
     SCENE_EL_POLYGON2D, /* order-dependent (ODP) */
-    SCENE_EL_COLOR,
+    SCENE_EL_LINE,      /* a segment: verts[0], verts[1] */
+    SCENE_EL_SPHERE,    /* centre verts[0], a surface point verts[1] */
+    SCENE_EL_COLOR,     /* fill colour: polygons, strips, ODPs */
     SCENE_EL_MATRIX,
     SCENE_EL_EXECUTE,
+    SCENE_EL_LINE_COLOR,   /* colour of lines */
+    SCENE_EL_SPHERE_COLOR, /* colour of spheres */
     SCENE_EL_NKINDS
 } SceneElemKind;
 
@@ -70,6 +80,13 @@ typedef struct SceneDb SceneDb;
  * it when the element is added).  Tags start at 0; set e.tag yourself. */
 SceneElem scene_elem_prim(SceneElemKind kind, const Vec3 *verts, guint nverts);
 SceneElem scene_elem_color(Vec3 rgb);
+/* A colour attribute of kind SCENE_EL_COLOR, _LINE_COLOR or
+ * _SPHERE_COLOR. */
+SceneElem scene_elem_kind_color(SceneElemKind kind, Vec3 rgb);
+/* The colour attribute kind that colours primitive kind k. */
+SceneElemKind scene_elem_color_of(SceneElemKind k);
+/* TRUE for the three colour kinds. */
+gboolean scene_elem_is_color(SceneElemKind k);
 SceneElem scene_elem_matrix(Mat4 m, SceneMatMode mode);
 SceneElem scene_elem_execute(guint child);
 gboolean scene_elem_is_prim(SceneElemKind k);
@@ -125,7 +142,8 @@ typedef struct {
     guint pos;           /* its position there */
     const SceneElem *el; /* the primitive */
     Mat4 matrix;         /* composite G L */
-    Vec3 color;          /* inherited colour (default 1, 1, 1) */
+    Vec3 color;          /* inherited colour of the primitive's type
+                            (default 1, 1, 1) */
     int64_t priority;    /* ODP priority (meaningful for ODPs) */
     guint depth;         /* 1 for a posted structure's own elements */
     guint instance;      /* max-set node (scene_db_maxset numbering) */
@@ -134,8 +152,9 @@ typedef struct {
 typedef void (*ScenePrimFn)(const ScenePrimInst *pi, void *ud);
 /* Traverses every posted structure in posting order. */
 void scene_db_traverse(const SceneDb *db, ScenePrimFn fn, void *ud);
-/* Traverses one structure as a root with the given inherited state;
- * *priority is the counter, updated. */
+/* Traverses one structure as a root with the given inherited state
+ * (`color` for every primitive type); *priority is the counter,
+ * updated. */
 void scene_db_traverse_from(const SceneDb *db, guint sid, Mat4 g, Vec3 color,
                             int64_t *priority, ScenePrimFn fn, void *ud);
 

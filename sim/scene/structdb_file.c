@@ -47,15 +47,20 @@ static gboolean numbers(const CfgNode *n, int want, double *out, GError **err)
     return TRUE;
 }
 
-/* Vertices [[x, y, z], ...]: exactly 3 for a triangle, else >= 3. */
-static Vec3 *vertices(const CfgNode *n, gboolean triangle, guint *count,
+/* Vertices [[x, y, z], ...]: exactly `exact` when it is not 0 (3 for a
+ * triangle, 2 for a line or a sphere's centre and surface point), else
+ * at least 3. */
+static Vec3 *vertices(const CfgNode *n, guint exact, guint *count,
                       GError **err)
 {
     guint len = cfg_seq_len(n);
-    if (cfg_kind(n) != CFG_SEQ || len < 3 || (triangle && len != 3)) {
+    if (cfg_kind(n) != CFG_SEQ || len < (exact ? exact : 3) ||
+        (exact && len != exact)) {
         bad(err, n,
-            triangle ? "three vertices [[x, y, z], [x, y, z], [x, y, z]]"
-                     : "a sequence of at least three [x, y, z] vertices");
+            exact == 3   ? "three vertices [[x, y, z], [x, y, z], [x, y, z]]"
+            : exact == 2 ? "two vertices [[x, y, z], [x, y, z]] (a line's "
+                           "ends; a sphere's centre and a surface point)"
+                         : "a sequence of at least three [x, y, z] vertices");
         return NULL;
     }
     Vec3 *v = g_new(Vec3, len);
@@ -78,13 +83,14 @@ static Vec3 *vertices(const CfgNode *n, gboolean triangle, guint *count,
     return v;
 }
 
-static const char *const kind_keys[] = {"triangle",  "polygon", "tristrip",
-                                        "polygon2d", "color",   "matrix",
-                                        "execute",   NULL};
+static const char *const kind_keys[] = {
+    "triangle", "polygon", "tristrip", "polygon2d",  "line",         "sphere",
+    "color",    "matrix",  "execute",  "line_color", "sphere_color", NULL};
 static const char *const modes[] = {"replace", "concat", NULL};
 
 #define ELEM_KEYS                                                              \
-    "one of triangle, polygon, tristrip, polygon2d, color, matrix, execute"
+    "one of triangle, polygon, tristrip, polygon2d, line, sphere, color, "     \
+    "matrix, execute, line_color, sphere_color"
 
 /* The element kind of map n: its one kind key (others: tag, mode). */
 static gboolean elem_kind(const CfgNode *n, SceneElemKind *kind,
@@ -112,7 +118,10 @@ static gboolean prim_elem(const CfgNode *v, SceneElemKind kind, SceneElem *e,
                           GError **err)
 {
     guint count = 0;
-    Vec3 *verts = vertices(v, kind == SCENE_EL_TRIANGLE, &count, err);
+    guint exact = kind == SCENE_EL_TRIANGLE ? 3
+                  : kind == SCENE_EL_LINE || kind == SCENE_EL_SPHERE ? 2
+                                                                      : 0;
+    Vec3 *verts = vertices(v, exact, &count, err);
     if (!verts)
         return FALSE;
     *e = scene_elem_prim(kind, verts, count);
@@ -143,11 +152,11 @@ static gboolean matrix_elem(const CfgNode *n, const CfgNode *v, SceneElem *e,
 static gboolean other_elem(const SceneDb *db, const CfgNode *v,
                            SceneElemKind kind, SceneElem *e, GError **err)
 {
-    if (kind == SCENE_EL_COLOR) {
+    if (scene_elem_is_color(kind)) {
         double c[3];
         if (!numbers(v, 3, c, err))
             return FALSE;
-        *e = scene_elem_color(vec3(c[0], c[1], c[2]));
+        *e = scene_elem_kind_color(kind, vec3(c[0], c[1], c[2]));
         return TRUE;
     }
     guint child;
@@ -398,8 +407,8 @@ static void put_elem(GString *s, const SceneDb *db, const SceneElem *e)
         put_prim(s, e);
     else if (e->kind == SCENE_EL_MATRIX)
         put_matrix(s, e);
-    else if (e->kind == SCENE_EL_COLOR) {
-        g_string_append(s, "{color: ");
+    else if (scene_elem_is_color(e->kind)) {
+        g_string_append_printf(s, "{%s: ", kind_keys[e->kind]);
         put_vec(s, e->color);
     } else {
         g_string_append(s, "{execute: ");

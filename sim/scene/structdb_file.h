@@ -14,6 +14,10 @@
  *         - polygon: [[x, y, z], ...]     # >= 3 vertices
  *         - tristrip: [[x, y, z], ...]    # >= 3 vertices
  *         - polygon2d: [[x, y, z], ...]   # order-dependent (ODP)
+ *         - line: [[x, y, z], [x, y, z]]  # a segment
+ *         - sphere: [[x, y, z], [x, y, z]] # centre, a surface point
+ *         - line_color: [r, g, b]         # colour of lines (color:
+ *         - sphere_color: [r, g, b]       #  of polygons, strips, ODPs)
  *         - execute: hub                  # a structure of this file
  *         - {triangle: [...], tag: 7}     # optional caller tag
  *   posted: [world]               # traversal roots, in order

@@ -38,13 +38,15 @@ static const Case bad[] = {
     {"structure_database: 1\nstructures: [{name: a, elements: 3}]\n",
      "t.yaml:2:34: found '3', expected a sequence of elements"},
     {"structure_database: 1\nstructures: [{name: a, elements: [3]}]\n",
-     "t.yaml:2:35: found '3', expected an element map {one of triangle, polygon, tristrip, polygon2d, color, matrix, execute: ...}"},
+     "t.yaml:2:35: found '3', expected an element map {one of triangle, polygon, tristrip, polygon2d, line, sphere, color, "
+     "matrix, execute, line_color, sphere_color: ...}"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{color: [1, 1, 1], execute: a}]}]\n",
      "t.yaml:2:63: found 'a', expected one element kind per list entry"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{triangle: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], color: [1, 1, 1]}]}]\n",
      "t.yaml:2:88: found a sequence, expected one element kind per list entry"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{tag: 3}]}]\n",
-     "t.yaml:2:35: found a map, expected an element with a key one of triangle, polygon, tristrip, polygon2d, color, matrix, execute"},
+     "t.yaml:2:35: found a map, expected an element with a key one of triangle, polygon, tristrip, polygon2d, line, sphere, color, "
+     "matrix, execute, line_color, sphere_color"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{color: [1, 1, 1], tag: -1}]}]\n",
      "t.yaml:2:59: found '-1', expected an integer >= 0"},
     {"structure_database: 1\nstructures: [{name: a, elements: [{color: [1, 1]}]}]\n",

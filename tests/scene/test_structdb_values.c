@@ -34,7 +34,7 @@ static void test_constructors(void **st)
 {
     (void)st;
     Vec3 v[2] = {vec3(1, 2, 3), vec3(4, 5, 6)};
-    for (SceneElemKind k = 0; k <= SCENE_EL_POLYGON2D; k++) {
+    for (SceneElemKind k = 0; k <= SCENE_EL_SPHERE; k++) {
         SceneElem e = scene_elem_prim(k, v, 2);
         assert_int_equal(e.kind, k);
         assert_ptr_equal(e.verts, v);
@@ -65,9 +65,19 @@ static void test_constructors(void **st)
     assert_false(scene_elem_is_prim(SCENE_EL_COLOR) ||
                  scene_elem_is_prim(SCENE_EL_MATRIX) ||
                  scene_elem_is_prim(SCENE_EL_EXECUTE));
-    const char *names[SCENE_EL_NKINDS] = {"triangle", "polygon", "tristrip",
-                                          "polygon2d", "color", "matrix",
-                                          "execute"};
+    const char *names[SCENE_EL_NKINDS] = {
+        "triangle", "polygon", "tristrip", "polygon2d",  "line",
+        "sphere",   "color",   "matrix",   "execute",    "line_color",
+        "sphere_color"};
+    /* a colour per primitive type (PHIGS; seed 001 §2.3.1) */
+    assert_true(scene_elem_is_attr(SCENE_EL_LINE_COLOR) &&
+                scene_elem_is_attr(SCENE_EL_SPHERE_COLOR));
+    assert_int_equal(scene_elem_color_of(SCENE_EL_LINE), SCENE_EL_LINE_COLOR);
+    assert_int_equal(scene_elem_color_of(SCENE_EL_SPHERE),
+                     SCENE_EL_SPHERE_COLOR);
+    assert_int_equal(scene_elem_color_of(SCENE_EL_TRISTRIP), SCENE_EL_COLOR);
+    SceneElem lc = scene_elem_kind_color(SCENE_EL_LINE_COLOR, vec3(1, 0, 0));
+    assert_true(lc.kind == SCENE_EL_LINE_COLOR && lc.color.x == 1);
     for (SceneElemKind k = 0; k < SCENE_EL_NKINDS; k++)
         assert_string_equal(scene_elem_kind_name(k), names[k]);
 }

@@ -28,10 +28,13 @@
  * needs one.  Memory: one state per N dealt elements.
  */
 #include "sim/workload/pphigs/pphigs_dist_internal.h"
+#include <string.h>
 
 void wl_pphigs_attr_init(AttrState *s)
 {
-    s->colour = s->replace = NONE;
+    for (guint k = 0; k < NSLOTS; k++)
+        s->colour[k] = NONE;
+    s->replace = NONE;
     s->concats = g_array_new(FALSE, FALSE, sizeof(gint));
 }
 
@@ -43,8 +46,8 @@ void wl_pphigs_attr_clear(AttrState *s)
 /* The host state after element i (forward direction). */
 void wl_pphigs_attr_step(AttrState *s, const SceneElem *e, gint i)
 {
-    if (e->kind == SCENE_EL_COLOR) {
-        s->colour = i;
+    if (scene_elem_is_color(e->kind)) {
+        s->colour[attr_slot(e->kind)] = i;
     } else if (e->kind == SCENE_EL_MATRIX && e->mode == SCENE_MAT_REPLACE) {
         s->replace = i;
         g_array_set_size(s->concats, 0);
@@ -53,12 +56,15 @@ void wl_pphigs_attr_step(AttrState *s, const SceneElem *e, gint i)
     }
 }
 
-/* Sends GP g every known current attribute it lacks. */
 void wl_pphigs_attr_ensure(WlPphigsDist *d, guint sid, const AttrState *s,
-                           guint g)
+                           guint g, const SceneElem *e)
 {
-    if (s->colour != NONE)
-        wl_pphigs_dist_put(d, sid, (guint)s->colour, g);
+    gboolean one = d->w.attr_send == WL_PPHIGS_SEND_BY_KIND && e &&
+                   scene_elem_is_prim(e->kind);
+    guint only = one ? attr_slot(scene_elem_color_of(e->kind)) : 0;
+    for (guint k = 0; k < NSLOTS; k++)
+        if (s->colour[k] != NONE && (!one || k == only))
+            wl_pphigs_dist_put(d, sid, (guint)s->colour[k], g);
     if (s->replace != NONE)
         wl_pphigs_dist_put(d, sid, (guint)s->replace, g);
     for (guint k = 0; k < s->concats->len; k++)
@@ -97,7 +103,7 @@ struct WlPphigsAttrCache {
 static void ck_copy(AttrCk *to, const AttrCk *from)
 {
     to->pos = from->pos;
-    to->st.colour = from->st.colour;
+    memcpy(to->st.colour, from->st.colour, sizeof to->st.colour);
     to->st.replace = from->st.replace;
     g_array_set_size(to->st.concats, 0);
     g_array_append_vals(to->st.concats, from->st.concats->data,
@@ -173,7 +179,8 @@ static void shift(gint *p, guint pos, int delta)
 static void ck_shift(AttrCk *k, guint pos, int delta)
 {
     k->pos += delta;
-    shift(&k->st.colour, pos, delta);
+    for (guint s = 0; s < NSLOTS; s++)
+        shift(&k->st.colour[s], pos, delta);
     shift(&k->st.replace, pos, delta);
     for (guint j = 0; j < k->st.concats->len; j++)
         shift(&g_array_index(k->st.concats, gint, j), pos, delta);
@@ -195,7 +202,9 @@ static void cache_truncate(WlPphigsAttrCache *c, guint pos)
         return;
     }
     c->front.pos = 0;
-    c->front.st.colour = c->front.st.replace = NONE;
+    for (guint k = 0; k < NSLOTS; k++)
+        c->front.st.colour[k] = NONE;
+    c->front.st.replace = NONE;
     g_array_set_size(c->front.st.concats, 0);
 }
 
@@ -222,8 +231,9 @@ void wl_pphigs_attr_cache_edit(WlPphigsDist *d, guint sid, guint pos, int delta,
  * between the checkpoint and its start. */
 static void merge(AttrState *s, const AttrCk *k, gboolean replace_found)
 {
-    if (s->colour == NONE)
-        s->colour = k->st.colour;
+    for (guint c = 0; c < NSLOTS; c++)
+        if (s->colour[c] == NONE)
+            s->colour[c] = k->st.colour[c];
     if (replace_found)
         return;
     s->replace = k->st.replace;
@@ -234,19 +244,38 @@ static void merge(AttrState *s, const AttrCk *k, gboolean replace_found)
  * attributes until every GP is known current, an ordinary execute
  * (every GP was flushed before it) or a checkpoint of the cache (whose
  * state completes the collection). */
+/* TRUE when the scan knows enough: every GP current (§3.5; every
+ * colour travels with every primitive); by kind, for the matrices and
+ * for each colour slot, the host's element found or every GP current
+ * for it (a primitive of that type dealt to it). */
+static gboolean scan_done(const WlPphigsDist *d, const AttrState *s,
+                          uint64_t cur, const uint64_t *cur_slot,
+                          gboolean replace_found)
+{
+    uint64_t all = dist_all_mask(d);
+    if (d->w.attr_send != WL_PPHIGS_SEND_BY_KIND)
+        return cur == all;
+    if (!replace_found && cur != all)
+        return FALSE;
+    for (guint k = 0; k < NSLOTS; k++)
+        if (s->colour[k] == NONE && cur_slot[k] != all)
+            return FALSE;
+    return TRUE;
+}
+
 void wl_pphigs_attr_backward(WlPphigsDist *d, guint sid, guint first,
                              AttrState *s)
 {
     const AttrCk *ck = cache_at(d, sid, first);
     gint stop = ck ? (gint)ck->pos : 0, j = (gint)first - 1;
-    uint64_t cur = 0, examined = 0;
-    gboolean replace_found = FALSE, flushed = FALSE;
-    for (; j >= stop && cur != dist_all_mask(d) && !flushed; j--) {
+    uint64_t cur = 0, examined = 0, cur_slot[NSLOTS] = {0};
+    gboolean replace_found = FALSE, flushed = FALSE, done = FALSE;
+    for (; j >= stop && !done && !flushed; j--) {
         const SceneElem *e = dist_hel(d, sid, (guint)j);
         examined++;
-        if (e->kind == SCENE_EL_COLOR) {
-            if (s->colour == NONE)
-                s->colour = j;
+        if (scene_elem_is_color(e->kind)) {
+            if (s->colour[attr_slot(e->kind)] == NONE)
+                s->colour[attr_slot(e->kind)] = j;
         } else if (e->kind == SCENE_EL_MATRIX) {
             if (replace_found)
                 continue;
@@ -259,10 +288,16 @@ void wl_pphigs_attr_backward(WlPphigsDist *d, guint sid, guint first,
         } else if (!dist_is_dealt(d, e)) {
             flushed = TRUE; /* every GP was flushed before this execute */
         } else {
-            cur |= *dist_mask_at(d, sid, (guint)j);
+            uint64_t m = *dist_mask_at(d, sid, (guint)j);
+            cur |= m;
+            for (guint k = 0; k < NSLOTS; k++) /* an execute: every colour */
+                if (e->kind == SCENE_EL_EXECUTE ||
+                    k == attr_slot(scene_elem_color_of(e->kind)))
+                    cur_slot[k] |= m;
         }
+        done = scan_done(d, s, cur, cur_slot, replace_found);
     }
-    if (ck && j < stop && cur != dist_all_mask(d) && !flushed)
+    if (ck && j < stop && !done && !flushed)
         merge(s, ck, replace_found);
     d->traffic.last_scan = examined;
     d->traffic.total_scan += examined;

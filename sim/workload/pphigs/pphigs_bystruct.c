@@ -20,8 +20,9 @@
  *               broken-up structures with their state and, before each
  *               element a GP holds there, sends that GP the state it
  *               lacks: a replace-mode matrix holding the local matrix
- *               (concatenations folded in) and the colour, each only
- *               when it differs from what the GP has.  These state
+ *               (concatenations folded in) and the colour of the
+ *               element's primitive type (an execute: every type's),
+ *               each only when it differs from what the GP has.  These state
  *               elements are not host elements: they are inserted into
  *               the GPs' lists after the masks and deltas are final
  *               (by-structure has no editing or moves that would read
@@ -134,9 +135,12 @@ static uint64_t bystruct_walk(WlPphigsDist *d, guint sid, ByStruct *b)
 
 typedef struct {
     Mat4 *local;  /* per GP: its local matrix in the structure */
-    Vec3 *colour; /* per GP: its colour there */
+    Vec3 *colour; /* per GP and colour slot: its colours there */
     guint *pos;   /* per GP: its position of the next host element */
 } GpState;
+
+static const SceneElemKind slot_kind[NSLOTS] = {
+    SCENE_EL_COLOR, SCENE_EL_LINE_COLOR, SCENE_EL_SPHERE_COLOR};
 
 /* A state element (replace matrix or colour) into GP g's sid at pos. */
 static void send_state(WlPphigsDist *d, guint sid, guint g, guint pos,
@@ -150,21 +154,26 @@ static void send_state(WlPphigsDist *d, guint sid, guint g, guint pos,
     d->traffic.sent_to[g]++;
 }
 
-/* Walks broken-up structure sid entered with colour c (the host's and,
- * by induction, every holder's), sending each holder the state it lacks
- * before each element it holds. */
-static void precompute_walk(WlPphigsDist *d, guint sid, Vec3 c,
+/* Walks broken-up structure sid entered with colours c (one per slot:
+ * the host's and, by induction, every holder's), sending each holder
+ * the state it lacks before each element it holds: the matrix, and the
+ * colour of the element's primitive type (an execute: every colour). */
+static void precompute_walk(WlPphigsDist *d, guint sid, const Vec3 *entry,
                             const ByStruct *b)
 {
-    GpState s = {g_new(Mat4, d->ngp), g_new(Vec3, d->ngp),
+    GpState s = {g_new(Mat4, d->ngp), g_new(Vec3, d->ngp * NSLOTS),
                  g_new0(guint, d->ngp)};
     Mat4 local = mat4_identity();
-    for (guint g = 0; g < d->ngp; g++)
-        s.local[g] = local, s.colour[g] = c;
+    Vec3 c[NSLOTS];
+    memcpy(c, entry, sizeof c);
+    for (guint g = 0; g < d->ngp; g++) {
+        s.local[g] = local;
+        memcpy(&s.colour[g * NSLOTS], c, sizeof c);
+    }
     for (guint i = 0; i < scene_db_len(d->host, sid); i++) {
         const SceneElem *e = dist_hel(d, sid, i);
-        if (e->kind == SCENE_EL_COLOR)
-            c = e->color;
+        if (scene_elem_is_color(e->kind))
+            c[attr_slot(e->kind)] = e->color;
         if (e->kind == SCENE_EL_MATRIX)
             local = e->mode == SCENE_MAT_REPLACE ? e->matrix
                                                  : mat4_mul(local, e->matrix);
@@ -177,9 +186,15 @@ static void precompute_walk(WlPphigsDist *d, guint sid, Vec3 c,
                            scene_elem_matrix(local, SCENE_MAT_REPLACE));
                 s.local[g] = local;
             }
-            if (memcmp(&s.colour[g], &c, sizeof c)) {
-                send_state(d, sid, g, s.pos[g]++, scene_elem_color(c));
-                s.colour[g] = c;
+            for (guint k = 0; k < NSLOTS; k++) {
+                Vec3 *have = &s.colour[g * NSLOTS + k];
+                if ((e->kind != SCENE_EL_EXECUTE &&
+                     k != attr_slot(scene_elem_color_of(e->kind))) ||
+                    !memcmp(have, &c[k], sizeof c[k]))
+                    continue;
+                send_state(d, sid, g, s.pos[g]++,
+                           scene_elem_kind_color(slot_kind[k], c[k]));
+                *have = c[k];
             }
             s.pos[g]++;
         }
@@ -237,6 +252,7 @@ void wl_pphigs_dist_by_structure_state(WlPphigsDist *d)
         d->w.inherit != WL_PPHIGS_INHERIT_PRECOMPUTE)
         return;
     ByStruct b = {.broken = d->broken};
+    const Vec3 white[NSLOTS] = {vec3(1, 1, 1), vec3(1, 1, 1), vec3(1, 1, 1)};
     for (guint i = 0; i < scene_db_posted_count(d->host); i++)
-        precompute_walk(d, scene_db_posted_at(d->host, i), vec3(1, 1, 1), &b);
+        precompute_walk(d, scene_db_posted_at(d->host, i), white, &b);
 }

@@ -48,9 +48,21 @@ struct WlPphigsDist {
                          element (roots and broken-up ones); else NULL */
 };
 
+/* Colour slots of an attribute state: fill (polygons, strips, ODPs),
+ * line, sphere (structdb.h: a colour per primitive type). */
+enum { SLOT_FILL, SLOT_LINE, SLOT_SPHERE, NSLOTS };
+
+/* The slot colour kind k (SCENE_EL_*COLOR) sets. */
+static inline guint attr_slot(SceneElemKind k)
+{
+    return k == SCENE_EL_LINE_COLOR     ? SLOT_LINE
+           : k == SCENE_EL_SPHERE_COLOR ? SLOT_SPHERE
+                                        : SLOT_FILL;
+}
+
 /* The host's current attribute elements known at a point (positions). */
 typedef struct {
-    gint colour, replace;
+    gint colour[NSLOTS], replace;
     GArray *concats; /* gint, in host order */
 } AttrState;
 
@@ -105,8 +117,12 @@ void wl_pphigs_dist_deltas(WlPphigsDist *d);
 void wl_pphigs_attr_init(AttrState *s);
 void wl_pphigs_attr_clear(AttrState *s);
 void wl_pphigs_attr_step(AttrState *s, const SceneElem *e, gint i);
+/* Sends GP g the attributes of s it lacks for element e placed there:
+ * every colour (§3.5: "as if each attribute affects all succeeding
+ * primitives"), or with w.attr_send by kind only the colour of e's
+ * primitive type (an execute, or e NULL: every colour). */
 void wl_pphigs_attr_ensure(WlPphigsDist *d, guint sid, const AttrState *s,
-                           guint g);
+                           guint g, const SceneElem *e);
 void wl_pphigs_attr_ensure_matrices(WlPphigsDist *d, guint sid,
                                     const AttrState *s);
 void wl_pphigs_attr_backward(WlPphigsDist *d, guint sid, guint first,

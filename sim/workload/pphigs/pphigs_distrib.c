@@ -132,7 +132,7 @@ static uint64_t complex_elem(WlPphigsDist *d, guint sid, guint i, AttrState *s)
     }
     if (!dist_is_dealt(d, e)) { /* ordinary execute: flush, then to all */
         for (guint g = 0; g < d->ngp; g++)
-            wl_pphigs_attr_ensure(d, sid, s, g);
+            wl_pphigs_attr_ensure(d, sid, s, g, NULL);
         wl_pphigs_dist_put_all(d, sid, i);
         return dist_all_mask(d);
     }
@@ -144,8 +144,13 @@ static uint64_t complex_elem(WlPphigsDist *d, guint sid, guint i, AttrState *s)
     } else {
         g = (guint)__builtin_ctzll(*m);
     }
-    wl_pphigs_attr_ensure(d, sid, s, g);
+    wl_pphigs_attr_ensure(d, sid, s, g, e);
     wl_pphigs_dist_put(d, sid, i, g);
+    /* by kind, one primitive brings its GP only its own type's colour:
+     * the walk after an edit checks on to an ordinary execute or the end */
+    if (d->w.attr_send == WL_PPHIGS_SEND_BY_KIND &&
+        e->kind != SCENE_EL_EXECUTE)
+        return 0;
     return (uint64_t)1 << g;
 }
 
@@ -411,7 +416,7 @@ gboolean wl_pphigs_dist_move(WlPphigsDist *d, guint sid, guint pos, guint to)
     wl_pphigs_attr_init(&s);
     if (d->algo == WL_PPHIGS_COMPLEX)
         wl_pphigs_attr_backward(d, sid, pos, &s);
-    wl_pphigs_attr_ensure(d, sid, &s, to);
+    wl_pphigs_attr_ensure(d, sid, &s, to, dist_hel(d, sid, pos));
     wl_pphigs_dist_put(d, sid, pos, to);
     wl_pphigs_attr_clear(&s);
     wl_pphigs_dist_deltas(d);

@@ -9,7 +9,9 @@
  *   SIMPLE  (§2.2) every attribute and execute to every GP, primitives
  *           one at a time to the least-loaded GP.
  *   COMPLEX (§2.3) per-GP attribute states: an attribute is sent to a GP
- *           only when a primitive placed there needs it; clusters of up
+ *           only when a primitive placed there needs it (w.attr_send:
+ *           every pending colour with any primitive, §3.5, or only the
+ *           colour of the primitive's type); clusters of up
  *           to c*maxw nominal weight to one GP; concatenate-mode matrices
  *           broadcast with the pending replace-mode matrix; the state is
  *           flushed to every GP before an ordinary execute; primitive
@@ -72,6 +74,13 @@ typedef enum {
     WL_PPHIGS_INHERIT_PRECOMPUTE /* the host sends the inherited state */
 } WlPphigsInherit;
 
+/* §3.5's choice for complex: each attribute goes with any primitive, "as
+ * if each attribute affects all succeeding primitives, regardless of
+ * their type" (ALL: the step back is bounded), or only with primitives
+ * of the type it affects (BY_KIND: fewer attributes sent, the step back
+ * goes on until each type's colour is found or current everywhere). */
+typedef enum { WL_PPHIGS_SEND_ALL, WL_PPHIGS_SEND_BY_KIND } WlPphigsAttrSend;
+
 /* Nominal weights (§2.3.4), per element kind; a polygon's weight is
  * w[kind] + w_vertex * nverts.  cluster is the clustering factor c. */
 typedef struct {
@@ -83,6 +92,7 @@ typedef struct {
     guint attr_cache;  /* §3.4: attribute states saved every this many
                           dealt elements (complex); 0: no cache */
     WlPphigsInherit inherit; /* by structure: skeleton (0) or precompute */
+    WlPphigsAttrSend attr_send; /* complex: all (0) or by kind */
 } WlPphigsWeights;
 
 /* Host-to-GP traffic of the distribution and edits so far. */

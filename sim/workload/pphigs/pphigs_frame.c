@@ -87,51 +87,12 @@ struct WlPphigsFrame {
     GArray *scratch;  /* one primitive's commands while planning */
 };
 
-/* ---- costs from the machine ------------------------------------------- */
-
-/* The costs a frame reads, declared once (`pgsim help run`; the machine
- * prices the named counts the frame hands it). */
-static const char *const gp_ops[] = {
-    "polygon",       "vertex",  "reject_vertex",  "color", "matrix_replace",
-    "matrix_concat", "execute", "send_primitive", NULL};
-static const char *const renderer_ops[] = {"expression", "compare",
-                                           "region_begin", "region_shade",
-                                           NULL};
-static const char *const fb_ops[] = {"store_region", NULL};
-static const char *const host_ops[] = {"send_element", "scan_element", NULL};
-const MachNeed wl_pphigs_needs[] = {{"gp", gp_ops},
-                                    {"renderer", renderer_ops},
-                                    {"frame_buffer", fb_ops},
-                                    {"host", host_ops},
-                                    {NULL, NULL}};
-static const MachNeed gp_needs[] = {{"gp", gp_ops}, {NULL, NULL}};
-
-/* The GP table and the send cost from a set that declared gp_ops. */
-static void fill_gp(const MachCosts *set, WlPphigsCosts *c, SimTime *send)
-{
-    SimTime *const dst[] = {&c->poly,   &c->vertex, &c->reject_vertex,
-                            &c->color,  &c->matrix, &c->concat,
-                            &c->execute, send};
-    G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(gp_ops) - 1);
-    mach_costs_fill(set, "gp", gp_ops, dst);
-}
-
-gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,
-                                      SimTime *send, GError **err)
-{
-    MachCosts *set = mach_costs_new(m, gp_needs, err);
-    if (set)
-        fill_gp(set, c, send);
-    mach_costs_free(set);
-    return set != NULL;
-}
-
 /* Every cost of wl_pphigs_needs, all missing ones in one error. */
 static gboolean hw_costs(WlPphigsFrame *f, GError **err)
 {
     MachCosts *set = mach_costs_new(f->m, wl_pphigs_needs, err);
     if (set)
-        fill_gp(set, &f->c, &f->gp_send);
+        wl_pphigs_costs_fill(set, &f->c, &f->gp_send);
     mach_costs_free(set);
     return set != NULL;
 }
@@ -287,8 +248,8 @@ static WlPphigsRegion *region_pixels(const WlPphigsFrame *f, guint k)
 }
 
 /* Every pixel of region k evaluates each pending command's
- * expressions: the renderer's time is the expressions it evaluated and
- * one compare-and-store per command. */
+ * expressions: the renderer's time is the linear and quadratic
+ * expressions it evaluated and one compare-and-store per command. */
 static void rend_raster(Rend *r, guint k)
 {
     WlPphigsFrame *f = r->f;
@@ -300,15 +261,17 @@ static void rend_raster(Rend *r, guint k)
     GArray *cmds = f->pending[k];
     if (!cmds || !cmds->len)
         return;
-    uint64_t exprs = 0;
+    uint64_t exprs = 0, quads = 0;
     for (guint i = 0; i < cmds->len; i++) {
         const WlPphigsCmd *c = &g_array_index(cmds, WlPphigsCmd, i);
         wl_pphigs_region_draw(f->reg[k], c);
         exprs += wl_pphigs_cmd_exprs(c);
+        quads += wl_pphigs_cmd_quads(c);
     }
     f->exprs += exprs;
-    MachOp o[] = {{"expression", exprs}, {"compare", cmds->len}};
-    mach_proc_compute_ops(r->p, o, 2, f->ph_rast, NULL, NULL, NULL);
+    MachOp o[] = {{"expression", exprs}, {"compare", cmds->len},
+                  {"quadratic", quads}};
+    mach_proc_compute_ops(r->p, o, 3, f->ph_rast, NULL, NULL, NULL);
     g_array_set_size(cmds, 0);
 }
 

@@ -86,6 +86,10 @@ typedef struct {
 /* The costs a frame reads, per kind (WlOps.needs; costs.h). */
 extern const MachNeed wl_pphigs_needs[];
 
+/* The GP cost table and the send cost from a cost set that declared
+ * wl_pphigs_needs' gp costs (pphigs_costs.c). */
+void wl_pphigs_costs_fill(const MachCosts *set, WlPphigsCosts *c,
+                          SimTime *send);
 /* The GP cost table and the per-command send cost of machine m (its
  * `gp` kind); FALSE with a located *err if one is missing. */
 gboolean wl_pphigs_costs_from_machine(const MachMachine *m, WlPphigsCosts *c,

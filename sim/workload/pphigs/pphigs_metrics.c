@@ -14,25 +14,28 @@ typedef struct {
 
 SimTime wl_pphigs_elem_cost(const WlPphigsCosts *c, const SceneElem *e)
 {
-    switch (e->kind) {
-    case SCENE_EL_COLOR:
+    if (scene_elem_is_color(e->kind))
         return c->color;
+    switch (e->kind) {
     case SCENE_EL_MATRIX:
         return e->mode == SCENE_MAT_REPLACE ? c->matrix : c->concat;
     case SCENE_EL_EXECUTE:
         return c->execute;
     default:
-        return sim_time_add_sat(c->poly,
+        return sim_time_add_sat(e->kind == SCENE_EL_LINE     ? c->line
+                                : e->kind == SCENE_EL_SPHERE ? c->sphere
+                                                             : c->poly,
                                 sim_time_mul_sat(c->vertex, e->nverts));
     }
 }
 
 void wl_pphigs_elem_ops(const SceneElem *e, MachOps *o)
 {
-    switch (e->kind) {
-    case SCENE_EL_COLOR:
+    if (scene_elem_is_color(e->kind)) {
         mach_ops_add(o, "color", 1);
         return;
+    }
+    switch (e->kind) {
     case SCENE_EL_MATRIX:
         mach_ops_add(o,
                      e->mode == SCENE_MAT_REPLACE ? "matrix_replace"
@@ -43,7 +46,11 @@ void wl_pphigs_elem_ops(const SceneElem *e, MachOps *o)
         mach_ops_add(o, "execute", 1);
         return;
     default:
-        mach_ops_add(o, "polygon", 1);
+        mach_ops_add(o,
+                     e->kind == SCENE_EL_LINE     ? "line"
+                     : e->kind == SCENE_EL_SPHERE ? "sphere"
+                                                  : "polygon",
+                     1);
         mach_ops_add(o, "vertex", e->nverts);
     }
 }
@@ -152,6 +159,10 @@ void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,
         w->w[k] =
             scene_elem_is_prim((SceneElemKind)k) ? sim_time_to_us(c->poly) : 0;
     w->w[SCENE_EL_COLOR] = sim_time_to_us(c->color);
+    w->w[SCENE_EL_LINE_COLOR] = sim_time_to_us(c->color);
+    w->w[SCENE_EL_SPHERE_COLOR] = sim_time_to_us(c->color);
+    w->w[SCENE_EL_LINE] = sim_time_to_us(c->line);
+    w->w[SCENE_EL_SPHERE] = sim_time_to_us(c->sphere);
     w->w[SCENE_EL_MATRIX] = sim_time_to_us(c->matrix);
     w->w[SCENE_EL_EXECUTE] = sim_time_to_us(c->execute);
     w->w_vertex = sim_time_to_us(c->vertex);
@@ -159,4 +170,5 @@ void wl_pphigs_weights_from_costs(const WlPphigsCosts *c, double cluster,
     w->strip_split = 0; /* the caller's choice (frame.yaml strip_split) */
     w->attr_cache = 0;  /* the caller's (attr_cache_every) */
     w->inherit = WL_PPHIGS_INHERIT_SKELETON; /* the caller's (inheritance) */
+    w->attr_send = WL_PPHIGS_SEND_ALL; /* the caller's (attribute_send) */
 }

@@ -3,7 +3,8 @@
  *
  * A GP's processor time is the sum, over every element instance its
  * traversal visits, of the element's actual cost: an on-screen polygon
- * costs poly + vertex * nverts; a trivially rejected (off-screen) one
+ * costs poly + vertex * nverts (a line line + 2 vertex, a sphere sphere
+ * + 2 vertex: its centre and a surface point); a trivially rejected (off-screen) one
  * reject_vertex * nverts — an invalidated weight (§5.2); colour, replace
  * and concatenate matrices and executes have their own costs.  The costs
  * are the GP cost table of the machine (models/pixel-planes-5.yaml,
@@ -25,7 +26,9 @@
 typedef struct {
     SimTime poly, vertex;  /* on-screen polygon, plus per vertex */
     SimTime reject_vertex; /* per vertex of a trivially rejected polygon */
-    SimTime color, matrix, concat, execute; /* per element */
+    SimTime color, matrix, concat, execute; /* per element (color: any of
+                                               the three colour kinds) */
+    SimTime line, sphere; /* on-screen line, sphere apart from vertices */
 } WlPphigsCosts;
 
 typedef struct {

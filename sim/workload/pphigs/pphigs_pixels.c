@@ -71,6 +71,18 @@ static WlPphigsLin z_plane(ScreenPt p0, ScreenPt p1, ScreenPt p2, double d)
     return (WlPphigsLin){a, b, p0.z - a * p0.x - b * p0.y};
 }
 
+/* colour x s, clamped, as 0xAABBGGRR. */
+static uint32_t rgba_of(Vec3 color, double s)
+{
+    double c[3] = {color.x * s, color.y * s, color.z * s};
+    uint32_t out = 0xff000000u;
+    for (int i = 0; i < 3; i++) {
+        double x = c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i];
+        out |= (uint32_t)lrint(x * 255) << (8 * i);
+    }
+    return out;
+}
+
 static uint32_t shade_rgba(Vec3 color, ScreenPt p0, ScreenPt p1, ScreenPt p2,
                            guint width, guint height)
 {
@@ -80,14 +92,7 @@ static uint32_t shade_rgba(Vec3 color, ScreenPt p0, ScreenPt p1, ScreenPt p2,
     Vec3 v = vec3(2 * (p2.x - p0.x) / width, -2 * (p2.y - p0.y) / height,
                   p2.z - p0.z);
     Vec3 n = vec3_cross(u, v); /* n.z = -4 d / (width height), d != 0 */
-    double s = 0.3 + 0.7 * fabs(n.z) / vec3_len(n);
-    double c[3] = {color.x * s, color.y * s, color.z * s};
-    uint32_t out = 0xff000000u;
-    for (int i = 0; i < 3; i++) {
-        double x = c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i];
-        out |= (uint32_t)lrint(x * 255) << (8 * i);
-    }
-    return out;
+    return rgba_of(color, 0.3 + 0.7 * fabs(n.z) / vec3_len(n));
 }
 
 static void edges(WlPphigsCmd *c, const ScreenPt *p, guint n, double sign)
@@ -123,6 +128,15 @@ static gboolean pixel_box(WlPphigsCmd *c, const ScreenPt *p, guint n,
     return c->x0 <= c->x1 && c->y0 <= c->y1;
 }
 
+/* What every command carries besides its geometry: visibility order. */
+static void cmd_order(WlPphigsCmd *c, const ScenePrimInst *pi)
+{
+    c->odp = pi->el->kind == SCENE_EL_POLYGON2D;
+    c->priority = pi->priority;
+    c->tag = (uint32_t)(pi->el->tag & 0x7fffffffu);
+    c->sphere = FALSE;
+}
+
 /* One convex polygon of n clip-space vertices; FALSE if it draws nothing. */
 static gboolean polygon_cmd(const ScenePrimInst *pi, const Vec4 *clip, guint n,
                             guint width, guint height, WlPphigsCmd *c)
@@ -141,9 +155,73 @@ static gboolean polygon_cmd(const ScenePrimInst *pi, const Vec4 *clip, guint n,
     edges(c, p, n, d > 0 ? 1 : -1);
     c->z = z_plane(p[0], p[f], p[f + 1], d);
     c->rgba = shade_rgba(pi->color, p[0], p[f], p[f + 1], width, height);
-    c->odp = pi->el->kind == SCENE_EL_POLYGON2D;
-    c->priority = pi->priority;
-    c->tag = (uint32_t)(pi->el->tag & 0x7fffffffu);
+    cmd_order(c, pi);
+    return TRUE;
+}
+
+/* A line: the quad one pixel wide about its projected segment. */
+static gboolean line_cmd(const ScenePrimInst *pi, Mat4 m, guint width,
+                         guint height, WlPphigsCmd *c)
+{
+    Vec4 a = mat4_apply_point(m, pi->el->verts[0]);
+    Vec4 b = mat4_apply_point(m, pi->el->verts[1]);
+    if (a.w <= W_EPS && b.w <= W_EPS)
+        return FALSE;
+    if (a.w <= W_EPS)
+        a = lerp4(a, b, (W_EPS - a.w) / (b.w - a.w));
+    else if (b.w <= W_EPS)
+        b = lerp4(b, a, (W_EPS - b.w) / (a.w - b.w));
+    ScreenPt p = to_screen(a, width, height), q = to_screen(b, width, height);
+    double dx = q.x - p.x, dy = q.y - p.y, len2 = dx * dx + dy * dy;
+    if (!(len2 > 1e-18))
+        return FALSE;
+    double h = 0.5 / sqrt(len2), nx = -dy * h, ny = dx * h;
+    ScreenPt quad[4] = {{p.x + nx, p.y + ny, p.z}, {q.x + nx, q.y + ny, q.z},
+                        {q.x - nx, q.y - ny, q.z}, {p.x - nx, p.y - ny, p.z}};
+    if (!pixel_box(c, quad, 4, width, height))
+        return FALSE;
+    edges(c, quad, 4, area2(quad[0], quad[1], quad[2]) > 0 ? 1 : -1);
+    double gx = (q.z - p.z) * dx / len2, gy = (q.z - p.z) * dy / len2;
+    c->z = (WlPphigsLin){gx, gy, p.z - gx * p.x - gy * p.y};
+    c->rgba = rgba_of(pi->color, 1);
+    cmd_order(c, pi);
+    return TRUE;
+}
+
+/* A sphere: its disc and quadratic z and shading (pphigs_pixels.h). */
+static gboolean sphere_cmd(const ScenePrimInst *pi, Mat4 m, guint width,
+                           guint height, WlPphigsCmd *c)
+{
+    Vec3 o = pi->el->verts[0];
+    double r = vec3_len(vec3_sub(pi->el->verts[1], o));
+    Vec4 h = mat4_apply_point(m, o);
+    if (h.w <= W_EPS)
+        return FALSE;
+    ScreenPt pc = to_screen(h, width, height);
+    double rs = 0, dz = 0;
+    for (int k = 0; k < 6; k++) {
+        double d = k & 1 ? r : -r;
+        Vec3 end = vec3_add(o, vec3(k / 2 == 0 ? d : 0, k / 2 == 1 ? d : 0,
+                                    k / 2 == 2 ? d : 0));
+        Vec4 e = mat4_apply_point(m, end);
+        if (e.w <= W_EPS)
+            return FALSE;
+        ScreenPt p = to_screen(e, width, height);
+        rs = MAX(rs, hypot(p.x - pc.x, p.y - pc.y));
+        dz = MAX(dz, fabs(p.z - pc.z));
+    }
+    if (!(rs > 1e-9))
+        return FALSE;
+    ScreenPt box[2] = {{pc.x - rs, pc.y - rs, 0}, {pc.x + rs, pc.y + rs, 0}};
+    if (!pixel_box(c, box, 2, width, height))
+        return FALSE;
+    cmd_order(c, pi);
+    c->nedges = 0;
+    c->sphere = TRUE;
+    c->cx = pc.x, c->cy = pc.y, c->r2 = rs * rs;
+    c->zc = pc.z, c->dz = dz;
+    c->color = pi->color;
+    c->rgba = 0;
     return TRUE;
 }
 
@@ -152,6 +230,15 @@ guint wl_pphigs_cmds(const ScenePrimInst *pi, Mat4 vp, guint width,
 {
     const SceneElem *e = pi->el;
     Mat4 m = mat4_mul(vp, pi->matrix);
+    if (e->kind == SCENE_EL_LINE || e->kind == SCENE_EL_SPHERE) {
+        WlPphigsCmd c;
+        if (e->nverts < 2 ||
+            !(e->kind == SCENE_EL_LINE ? line_cmd(pi, m, width, height, &c)
+                                       : sphere_cmd(pi, m, width, height, &c)))
+            return 0;
+        g_array_append_val(out, c);
+        return 1;
+    }
     gboolean strip = e->kind == SCENE_EL_TRISTRIP;
     guint n = strip ? 3 : e->nverts, count = 0;
     guint polys = strip ? (e->nverts >= 3 ? e->nverts - 2 : 0) : 1;
@@ -172,7 +259,12 @@ guint wl_pphigs_cmds(const ScenePrimInst *pi, Mat4 vp, guint width,
 
 guint wl_pphigs_cmd_exprs(const WlPphigsCmd *c)
 {
-    return c->nedges + 1 + 3;
+    return c->sphere ? 0 : c->nedges + 1 + 3;
+}
+
+guint wl_pphigs_cmd_quads(const WlPphigsCmd *c)
+{
+    return c->sphere ? 5 : 0;
 }
 
 /* ---- the region's pixel array ----------------------------------------- */
@@ -205,12 +297,20 @@ static gboolean inside(const WlPphigsLin *e, double x, double y)
     return v > 0 || (v == 0 && (e->a > 0 || (e->a == 0 && e->b >= 0)));
 }
 
+/* A sphere's quadratic Q / r^2 at (x, y): in [0, 1] inside its disc. */
+static double sphere_q(const WlPphigsCmd *c, double x, double y)
+{
+    double dx = x - c->cx, dy = y - c->cy;
+    return (c->r2 - dx * dx - dy * dy) / c->r2;
+}
+
 /* The pixel's key, 0 when it does not draw (z outside [-1, 1]). */
 static uint64_t pixel_key(const WlPphigsCmd *c, double x, double y)
 {
     if (c->odp)
         return KEY_ODP | ((uint64_t)c->priority & (KEY_ODP - 1));
-    double z = c->z.a * x + c->z.b * y + c->z.c;
+    double z = c->sphere ? c->zc - c->dz * sphere_q(c, x, y)
+                         : c->z.a * x + c->z.b * y + c->z.c;
     if (!(z >= -1 && z <= 1))
         return 0;
     uint64_t depth = (uint64_t)llrint((1 - z) / 2 * (double)UINT32_MAX);
@@ -219,6 +319,8 @@ static uint64_t pixel_key(const WlPphigsCmd *c, double x, double y)
 
 static gboolean pixel_covered(const WlPphigsCmd *c, double x, double y)
 {
+    if (c->sphere)
+        return sphere_q(c, x, y) >= 0;
     for (guint i = 0; i < c->nedges; i++)
         if (!inside(&c->edge[i], x, y))
             return FALSE;
@@ -239,7 +341,9 @@ uint64_t wl_pphigs_region_draw(WlPphigsRegion *r, const WlPphigsCmd *c)
             gsize i = (gsize)(y - r->y0) * r->w + (x - r->x0);
             if (k > r->key[i]) {
                 r->key[i] = k;
-                r->rgba[i] = c->rgba;
+                r->rgba[i] = c->sphere ? rgba_of(c->color,
+                                                 0.3 + 0.7 * sphere_q(c, px, py))
+                                       : c->rgba;
                 won++;
             }
         }

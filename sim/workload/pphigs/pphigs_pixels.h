@@ -28,6 +28,17 @@
  * Geometry: polygons are clipped against the near plane (w > 1e-6) in
  * homogeneous coordinates and treated as convex; a strip gives one
  * command per triangle; pixels with z outside [-1, 1] are not drawn.
+ * A line is a quad one pixel wide along its projected segment (clipped
+ * at the near plane), z linear along it, its colour unshaded: 4 edge, 1
+ * z and 3 colour linear expressions.  A sphere is drawn with the
+ * renderers' quadratic expression evaluator (fuchs89: "parallel
+ * quadratic expression evaluation for every pixel"): its screen disc
+ * Q = r^2 - (x - cx)^2 - (y - cy)^2 >= 0, r the largest screen distance
+ * from the projected centre to the projected ends of its three axes;
+ * z = z_c - dz Q / r^2 (dz the largest depth offset of those ends: the
+ * front bulges toward the eye); colour times 0.3 + 0.7 Q / r^2: five
+ * quadratic expressions, no linear one.  A sphere whose centre or axis
+ * ends are not in front of the near plane is not drawn.
  * Colour: the inherited colour, flat, times 0.3 + 0.7 |n_z| of the
  * polygon's normal in normalised device coordinates (a GP's shading).
  *
@@ -56,6 +67,10 @@ typedef struct {
     gboolean odp;        /* order-dependent: drawn by priority */
     int64_t priority;    /* ODP priority */
     uint32_t tag;        /* tie-break of equal depths */
+    gboolean sphere;     /* a sphere: the fields below, no edges */
+    double cx, cy, r2;   /* its screen disc: centre, radius^2 (pixels) */
+    double zc, dz;       /* z at the rim, its rise toward the centre */
+    Vec3 color;          /* its colour, shaded per pixel */
 } WlPphigsCmd;
 
 /* Appends to out (GArray of WlPphigsCmd) the commands of a primitive
@@ -68,8 +83,10 @@ guint wl_pphigs_cmds(const ScenePrimInst *pi, Mat4 vp, guint width,
                      guint height, GArray *out);
 
 /* The linear expressions a renderer evaluates for c: its edges, z and
- * three colour channels. */
+ * three colour channels (a sphere: none). */
 guint wl_pphigs_cmd_exprs(const WlPphigsCmd *c);
+/* The quadratic expressions it evaluates: a sphere's 5, else 0. */
+guint wl_pphigs_cmd_quads(const WlPphigsCmd *c);
 
 /* A region of the screen as one renderer holds it: keys and colours. */
 typedef struct {

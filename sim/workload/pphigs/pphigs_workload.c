@@ -28,6 +28,9 @@
  *   inheritance: skeleton | precompute (by_structure only; default
  *                skeleton): §2.1's two ways of giving a GP the
  *                attributes its pieces inherit (pphigs_bystruct.c)
+ *   attribute_send: all | by_kind (complex; default all): §3.5's choice,
+ *                   each attribute with any primitive or only with
+ *                   primitives of the type it affects
  *   attr_cache_every: §3.4's attribute states saved every N dealt
  *                     elements of a structure (complex; default 0: no
  *                     cache, the step back stops only as §3.5 says)
@@ -70,6 +73,7 @@ typedef struct {
     int algo;
     int regions; /* 0: dynamic, 1: static (region_assignment) */
     int inherit; /* WlPphigsInherit (inheritance) */
+    int attr_send; /* WlPphigsAttrSend (attribute_send) */
     int64_t gps; /* 0: the machine's count */
     ScenePphigsSpec spec;
     SceneDb *file_db; /* workload.database as a file (owned), else NULL */
@@ -213,6 +217,7 @@ static void *parse(const CfgNode *sec, GError **err)
                                         NULL};
     static const char *const assign[] = {"dynamic", "static", NULL};
     static const char *const inherit[] = {"skeleton", "precompute", NULL};
+    static const char *const send[] = {"all", "by_kind", NULL};
     Params *p = g_new0(Params, 1);
     p->algo = WL_PPHIGS_COMPLEX;
     p->rebalance = TRUE;
@@ -223,6 +228,8 @@ static void *parse(const CfgNode *sec, GError **err)
                                &p->regions, err) &&
                   cfg_get_enum(sec, "inheritance", FALSE, inherit,
                                &p->inherit, err) &&
+                  cfg_get_enum(sec, "attribute_send", FALSE, send,
+                               &p->attr_send, err) &&
                   parse_edits(sec, p, err) &&
                   cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
                                  &p->edit_angle, err) &&
@@ -332,6 +339,7 @@ static gboolean build(Run *r, const WlContext *ctx, GError **err)
     w.strip_split = r->p->setup.strip_split;
     w.attr_cache = (guint)r->p->attr_cache;
     w.inherit = (WlPphigsInherit)r->p->inherit;
+    w.attr_send = (WlPphigsAttrSend)r->p->attr_send;
     r->d = wl_pphigs_dist_new(r->db.db, r->ngp, (WlPphigsAlgo)r->p->algo, &w);
     r->scan0 = *wl_pphigs_dist_traffic(r->d);
     r->scanned = r->scan0.total_scan + r->scan0.cache_walk;
@@ -366,7 +374,7 @@ static gboolean is_matrix(const SceneElem *e)
 
 static gboolean is_prim(const SceneElem *e)
 {
-    return e->kind <= SCENE_EL_POLYGON2D;
+    return scene_elem_is_prim(e->kind);
 }
 
 /* A random element of the host list satisfying pred: FALSE if none. */

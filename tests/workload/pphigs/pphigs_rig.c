@@ -1,9 +1,15 @@
 /* pphigs_rig.c — the tests' rig (pphigs_rig.h): a fresh distribution
  * of a generated database followed by one event-driven frame on a fresh
  * Pixel-Planes 5 machine; the metrics are the GPs' busy times.
+ * Also one run of the flock config with overrides, through the runner.
  * Cost: per database and GP count, 2 distributions and 2 frames, O(n P)
  * each, plus one frame on one GP.
  */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
+
 #include "tests/workload/pphigs/pphigs_rig.h"
 #include <string.h>
 
@@ -105,4 +111,15 @@ void pphigs_rig_analytic(const ScenePphigsDb *db, guint ngp,
 {
     analytic_algo(db, ngp, WL_PPHIGS_SIMPLE, c, cluster_scale, simple);
     analytic_algo(db, ngp, WL_PPHIGS_COMPLEX, c, cluster_scale, complex);
+}
+
+SimResult *pphigs_rig_run_flock(const char *const *sets, CfgRun **run)
+{
+    GError *err = NULL;
+    *run = cfg_run_load("configs/pphigs-flock.yaml", sets, &err);
+    CfgRunOpts o = {.quiet = TRUE};
+    SimResult *r = *run ? cfg_run_exec(*run, &o, &err) : NULL;
+    if (!r)
+        fail_msg("%s", err->message);
+    return r;
 }

@@ -16,6 +16,7 @@
 #include "sim/scene/pphigs_db.h"
 #include "sim/workload/pphigs/pphigs_metrics.h"
 #include "sim/workload/pphigs/pphigs_cfg.h"
+#include "sim/run/run.h"
 
 /* What a reproduction cell runs on (all borrowed). */
 typedef struct {
@@ -44,5 +45,10 @@ void pphigs_rig_analytic(const ScenePphigsDb *db, guint ngp,
                                const WlPphigsCosts *c, double cluster_scale,
                                WlPphigsMetrics *simple,
                                WlPphigsMetrics *complex);
+
+/* One run of configs/pphigs-flock.yaml with the overrides `sets`
+ * (NULL-terminated), quiet; fails the test on an error.  Free with
+ * sim_result_free(); *run (cfg_run_free) holds what it borrows. */
+SimResult *pphigs_rig_run_flock(const char *const *sets, CfgRun **run);
 
 #endif

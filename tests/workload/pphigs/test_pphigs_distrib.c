@@ -70,10 +70,20 @@ static SceneElem rnd_elem(SimRng *r, guint nstruct, guint self, Vec3 *v)
 {
     for (int i = 0; i < 3; i++)
         v[i] = vec3(sim_rng_uniform(r), sim_rng_uniform(r), i);
-    switch (sim_rng_below(r, 8)) {
+    switch (sim_rng_below(r, 12)) {
     case 0:
     case 1:
         return scene_elem_color(vec3(sim_rng_uniform(r), 0, 1));
+    case 8:
+        return scene_elem_kind_color(SCENE_EL_LINE_COLOR,
+                                     vec3(sim_rng_uniform(r), 1, 0));
+    case 9:
+        return scene_elem_kind_color(SCENE_EL_SPHERE_COLOR,
+                                     vec3(0, sim_rng_uniform(r), 1));
+    case 10:
+        return scene_elem_prim(SCENE_EL_LINE, v, 2);
+    case 11:
+        return scene_elem_prim(SCENE_EL_SPHERE, v, 2);
     case 2:
         return scene_elem_matrix(mat4_translate(sim_rng_uniform(r), 1, 0),
                                  SCENE_MAT_REPLACE);
@@ -132,7 +142,7 @@ static void edit_some(WlPphigsDist *d, SimRng *r, guint nedits)
         } else if (op == 1 && len > 0) {
             guint p = (guint)sim_rng_below(r, len);
             SceneElem m = *scene_db_elem(h, s, p);
-            if (m.kind == SCENE_EL_COLOR)
+            if (scene_elem_is_color(m.kind))
                 m.color.y = sim_rng_uniform(r);
             if (m.kind == SCENE_EL_MATRIX)
                 m.matrix.m[0][3] += 1;
@@ -149,14 +159,16 @@ static void edit_some(WlPphigsDist *d, SimRng *r, guint nedits)
     wl_pphigs_dist_finish(d);
 }
 
-static void run_random(WlPphigsAlgo algo)
+static void run_random(WlPphigsAlgo algo, WlPphigsAttrSend send)
 {
     static const guint gps[] = {1, 3, 4, 16};
+    WlPphigsWeights w = W;
+    w.attr_send = send;
     for (guint t = 0; t < 4; t++) {
         SimRng r;
         sim_rng_init(&r, 42, t);
         SceneDb *db = rnd_db(&r, 6, 40);
-        WlPphigsDist *d = wl_pphigs_dist_new(db, gps[t], algo, &W);
+        WlPphigsDist *d = wl_pphigs_dist_new(db, gps[t], algo, &w);
         assert_same_render(d);
         for (int round = 0; round < 6; round++) {
             edit_some(d, &r, 12);
@@ -174,13 +186,15 @@ static void run_random(WlPphigsAlgo algo)
 static void test_simple_edits(void **st)
 {
     (void)st;
-    run_random(WL_PPHIGS_SIMPLE);
+    run_random(WL_PPHIGS_SIMPLE, WL_PPHIGS_SEND_ALL);
 }
 
 static void test_complex_edits(void **st)
 {
     (void)st;
-    run_random(WL_PPHIGS_COMPLEX);
+    run_random(WL_PPHIGS_COMPLEX, WL_PPHIGS_SEND_ALL);
+    /* §3.5's alternative: colours only with their primitive type */
+    run_random(WL_PPHIGS_COMPLEX, WL_PPHIGS_SEND_BY_KIND);
 }
 
 /* Distribute-by-structure (§2.1): on random lists whose posted

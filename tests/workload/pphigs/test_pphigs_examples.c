@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "sim/run/run.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 #include "sim/scene/structdb_file.h"
 #include "sim/workload/pphigs/pphigs_distrib.h"
 #include "sim/workload/pphigs/pphigs_metrics.h"
@@ -29,12 +30,8 @@ static guint cube_idle_gps(const char *db, const char *algo)
     const char *sets[] = {d, a, "workload.gps=8", "run.frames=1",
                           "workload.edits_per_frame=0",
                           "workload.rebalance.enabled=false", NULL};
-    GError *err = NULL;
-    CfgRun *run = cfg_run_load("configs/pphigs-flock.yaml", sets, &err);
-    CfgRunOpts o = {.quiet = TRUE};
-    SimResult *r = run ? cfg_run_exec(run, &o, &err) : NULL;
-    if (!r)
-        fail_msg("%s", err->message);
+    CfgRun *run = NULL;
+    SimResult *r = pphigs_rig_run_flock(sets, &run);
     unsigned ph = G_MAXUINT;
     for (guint i = 0; i < r->phases->len; i++)
         if (!strcmp(g_ptr_array_index(r->phases, i), "transform"))

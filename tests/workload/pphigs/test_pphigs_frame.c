@@ -25,7 +25,8 @@ static const char *const MACHINE =
     "nodes:\n"
     "  gp: {count: %u, costs: {polygon: 600 ns, vertex: 100 ns,\n"
     "       reject_vertex: 75 ns, color: 100 ns, matrix_replace: 300 ns,\n"
-    "       matrix_concat: 1 us, execute: 500 ns, send_primitive: 1 us}}\n"
+    "       matrix_concat: 1 us, execute: 500 ns, send_primitive: 1 us,\n"
+    "       line: 400 ns, sphere: 500 ns}}\n"
     "  renderer: {count: 4, costs: {primitive: 8 us, region_begin: 50 us,\n"
     "             region_shade: 200 us}}\n"
     "  frame_buffer: {costs: {store_region: 10 us}}\n"
@@ -37,7 +38,9 @@ static const WlPphigsCosts C = {.poly = 600 * SIM_NS,
                                 .color = 100 * SIM_NS,
                                 .matrix = 300 * SIM_NS,
                                 .concat = SIM_US,
-                                .execute = 500 * SIM_NS};
+                                .execute = 500 * SIM_NS,
+                                .line = 400 * SIM_NS,
+                                .sphere = 500 * SIM_NS};
 
 #define RENDERERS 4
 

@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "sim/run/run.h"
+#include "tests/workload/pphigs/pphigs_rig.h"
 
 typedef struct {
     double attrs, elems, bytes, eff, img;
@@ -30,12 +31,8 @@ static Inh run_inherit(const char *db, const char *inherit, const char *gps)
                           "run.frames=1", "run.fidelity=analytic",
                           "workload.edits_per_frame=0",
                           "workload.rebalance.enabled=false", NULL};
-    GError *err = NULL;
-    CfgRun *run = cfg_run_load("configs/pphigs-flock.yaml", sets, &err);
-    CfgRunOpts o = {.quiet = TRUE};
-    SimResult *r = run ? cfg_run_exec(run, &o, &err) : NULL;
-    if (!r)
-        fail_msg("%s", err->message);
+    CfgRun *run = NULL;
+    SimResult *r = pphigs_rig_run_flock(sets, &run);
     Inh out;
     assert_true(sim_result_get_metric(r, "distribution_attributes",
                                       &out.attrs));
