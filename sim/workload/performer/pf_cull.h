@@ -50,6 +50,7 @@ typedef struct {
 typedef struct {
     uint64_t geosets, tris, matrix_ops;
     uint64_t state_changes, state_naive; /* lazy, eager */
+    uint64_t vertices; /* sent (strips: pf_stages.h); 0: 3 per triangle */
 } WlPfDrawStats;
 
 typedef struct {

@@ -116,7 +116,7 @@ static void add_draw(WlPfDrawStats *a, const WlPfDrawStats *b)
 {
     a->geosets += b->geosets, a->tris += b->tris;
     a->matrix_ops += b->matrix_ops, a->state_changes += b->state_changes;
-    a->state_naive += b->state_naive;
+    a->state_naive += b->state_naive, a->vertices += b->vertices;
 }
 
 /* ---- the stages -------------------------------------------------------- */
@@ -182,10 +182,27 @@ SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
                        gboolean lazy)
 {
     uint64_t states = lazy ? st->state_changes : st->state_naive;
+    uint64_t v = st->vertices ? st->vertices : 3 * st->tris;
     SimTime t = sim_time_mul_sat(c->draw_geoset, st->geosets);
     t = sum(t, sim_time_mul_sat(c->draw_state, states));
     t = sum(t, sim_time_mul_sat(c->draw_matrix, st->matrix_ops));
-    return sum(t, sim_time_mul_sat(c->draw_vertex, 3 * st->tris));
+    return sum(t, sim_time_mul_sat(c->draw_vertex, v));
+}
+
+/* The vertices DRAW sends for the geosets of dl in strips of `strip`
+ * triangles: T + 2 ceil(T / L) a geoset (3 T when L <= 1). */
+static uint64_t strip_vertices(const WlPfGraph *g, const GArray *dl,
+                               guint strip)
+{
+    uint64_t v = 0, L = MAX(strip, 1);
+    for (guint i = 0; i < dl->len; i++) {
+        const WlPfDlItem *it = &g_array_index(dl, WlPfDlItem, i);
+        if (it->op != WL_PF_DL_GEOSET)
+            continue;
+        uint64_t t = wl_pf_geoset_tris(wl_pf_geoset(g, it->geoset));
+        v += L == 1 ? 3 * t : t + 2 * ((t + L - 1) / L);
+    }
+    return v;
 }
 
 /* The DRAW CPU's stream to the pipe as one traced message per frame. */
@@ -226,7 +243,7 @@ static void draw_ops(MachOps *o, const WlPfDrawStats *st, uint64_t states)
     mach_ops_add(o, "draw_geoset", st->geosets);
     mach_ops_add(o, "draw_state", states);
     mach_ops_add(o, "draw_matrix", st->matrix_ops);
-    mach_ops_add(o, "draw_vertex", 3 * st->tris);
+    mach_ops_add(o, "draw_vertex", st->vertices ? st->vertices : 3 * st->tris);
 }
 
 /* DRAW waits for the slowest of CPU, bus and pipe: the CPU's counts with
@@ -240,11 +257,12 @@ static SimTime draw(void *ctx, guint n)
     WlPfDrawStats *d = &s->pdraw[i];
     *d = (WlPfDrawStats){0};
     wl_pf_draw(s->town->g, dlist(s, i, n), d);
+    d->vertices = strip_vertices(s->town->g, dlist(s, i, n), c->strip);
     add_draw(&f->draw, d);
     uint64_t states = s->lazy ? d->state_changes : d->state_naive;
     SimTime cpu = wl_pf_draw_cpu(c, d, s->lazy);
     draw_ops(ops_reset(s), d, states);
-    double bytes = 3.0 * (double)d->tris * (double)c->vertex_bytes;
+    double bytes = (double)d->vertices * (double)c->vertex_bytes;
     s->pcpu[i] = cpu, s->pbytes[i] = (uint64_t)bytes;
     s->ppipe[i] = sum(sim_time_mul_sat(c->pipe_triangle, d->tris),
                       sim_time_mul_sat(c->pipe_state, states));
@@ -271,7 +289,7 @@ static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
     mach_ops_add(&w->pipe_ops, "triangle", d->tris);
     /* the display list and the geosets' vertices */
     w->arena_bytes = s->arena.item * dlist(s, i, n)->len +
-                     3 * d->tris * s->c.vertex_bytes;
+                     d->vertices * s->c.vertex_bytes;
     mach_ops_add(&w->pipe_ops, "state", states);
 }
 

@@ -30,6 +30,11 @@
  * pipes and its cpu, bus and pipe times are the slowest pipe's.
  * update() prices APP's update list of a frame (pfBuffer): one update per
  * moved car's DCS plus the camera, at the workload's `update` cost.
+ * Strips (the slides' pfuBuilder meshing): with `strip` = L > 1
+ * triangles per strip, a geoset of T triangles is ceil(T / L) strips
+ * and sends T + 2 ceil(T / L) vertices instead of 3 T; DRAW's vertex
+ * work, its bytes to the pipe and its arena reads count vertices (the
+ * pipe's work stays per triangle).
  * Each stage also counts its shared-arena bytes (arena_bytes(); the
  * per-operation sizes of `arena`, pf_arena.h).
  */
@@ -52,6 +57,7 @@ typedef struct {
     SimTime pipe_triangle, pipe_state;
     uint64_t vertex_bytes;
     SimTime update; /* apply one update-list entry (the workload's) */
+    guint strip;    /* triangles per strip (<= 1: independent) */
 } WlPfCosts;
 
 typedef struct {
@@ -110,7 +116,7 @@ void wl_pf_stages_set_pipes(WlPfStages *s, guint pipes);
 /* The stage functions (ctx: a WlPfStages). */
 WlPfStageFns wl_pf_stage_fns(gboolean isect);
 /* CPU time of DRAW's issuing work for the counts st (lazy or eager
- * state changes). */
+ * state changes; st->vertices, or 3 per triangle when 0). */
 SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
                        gboolean lazy);
 static inline WlPfFrameStats *wl_pf_frame_stats(WlPfStages *s, guint n)

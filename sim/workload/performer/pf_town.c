@@ -140,12 +140,13 @@ static void add_lamps(WlPfGraph *g, guint parent, double x0, double z0,
     add_geoset(g, geode, v, gs);
 }
 
-static void add_block(WlPfTown *t, guint bi, guint bj, SimRng *rng, guint gs0)
+static void add_block(WlPfTown *t, guint parent, guint bi, guint bj,
+                      SimRng *rng, guint gs0)
 {
     WlPfGraph *g = t->g;
     const WlPfTownParams *p = &t->p;
     double x0 = bi * p->block, z0 = bj * p->block;
-    guint grp = wl_pf_add_node(g, g->root, WL_PF_GROUP);
+    guint grp = wl_pf_add_node(g, parent, WL_PF_GROUP);
     add_terrain(g, grp, x0, z0, p->block, gs0);
     for (guint h = 0; h < p->houses; h++) {
         double x = x0 + 6 + (p->block - 12) * sim_rng_uniform(rng);
@@ -155,6 +156,39 @@ static void add_block(WlPfTown *t, guint bi, guint bj, SimRng *rng, guint gs0)
     }
     add_trees(g, grp, p, x0, z0, rng, gs0 + 1);
     add_lamps(g, grp, x0, z0, (bi + bj) % 2 == 0, gs0 + 2);
+}
+
+/* The quadtree of groups over blocks [i0, i1) x [j0, j1) under `node`:
+ * parent[i * blocks + j] gets the group block (i, j) goes under. */
+static void add_quadtree(WlPfTown *t, guint node, guint i0, guint i1,
+                         guint j0, guint j1, guint *parent)
+{
+    if (i1 - i0 <= 1 && j1 - j0 <= 1) {
+        parent[i0 * t->p.blocks + j0] = node;
+        return;
+    }
+    guint im = (i0 + i1 + 1) / 2, jm = (j0 + j1 + 1) / 2;
+    const guint r[4][4] = {
+        {i0, im, j0, jm}, {i0, im, jm, j1}, {im, i1, j0, jm}, {im, i1, jm, j1}};
+    for (int q = 0; q < 4; q++)
+        if (r[q][0] < r[q][1] && r[q][2] < r[q][3])
+            add_quadtree(t, wl_pf_add_node(t->g, node, WL_PF_GROUP), r[q][0],
+                         r[q][1], r[q][2], r[q][3], parent);
+}
+
+/* The blocks in row order (the placement's draws), each under the root
+ * (flat) or its quadtree group (deep). */
+static void add_blocks(WlPfTown *t, SimRng *rng, guint gs0)
+{
+    guint n = t->p.blocks, *parent = g_new(guint, n * n);
+    for (guint i = 0; i < n * n; i++)
+        parent[i] = t->g->root;
+    if (t->p.deep)
+        add_quadtree(t, t->g->root, 0, n, 0, n, parent);
+    for (guint i = 0; i < n; i++)
+        for (guint j = 0; j < n; j++)
+            add_block(t, parent[i * n + j], i, j, rng, gs0);
+    g_free(parent);
 }
 
 /* ---- cars -------------------------------------------------------------- */
@@ -196,9 +230,7 @@ WlPfTown *wl_pf_town_new(const WlPfTownParams *p)
     for (guint i = 0; i < 6; i++)
         gstate(t->g, 3 + i % 3, 3 + i % 2, i % 2);
     gstate(t->g, 6, 5, 0);
-    for (guint i = 0; i < p->blocks; i++)
-        for (guint j = 0; j < p->blocks; j++)
-            add_block(t, i, j, &rng, gs0);
+    add_blocks(t, &rng, gs0);
     add_cars(t, gs0 + 9);
     wl_pf_update_bounds(t->g, t->g->root);
     return t;

@@ -11,6 +11,12 @@
  * moved by APP every frame.  Geostates cycle over a few textures,
  * materials and mode words so that lazy state management has something
  * to save.  Deterministic: all placement comes from `seed`.
+ * Hierarchy (the slides' "efficiency depends on the depth and balance of
+ * the scene graph"): flat, every block a child of the root (shallow), or
+ * `deep`, the blocks under a balanced quadtree of groups (each group
+ * halves its range of blocks in both directions until one block), the
+ * same blocks with the same placement, so CULL can reject a quadrant at
+ * one sphere test.
  * Size O(blocks^2 * (houses + trees)).
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_TOWN_H
@@ -27,6 +33,7 @@ typedef struct {
     double eye_height;    /* metres above the terrain */
     double fov_deg;
     uint64_t seed;
+    gboolean deep; /* blocks under a quadtree of groups (else flat) */
 } WlPfTownParams;
 
 typedef struct {

@@ -17,6 +17,7 @@
  *     cull: true  flatten: true  lazy_state: true  isect: true
  *     app_work: 2 ms          # overrides the model's cpu app_frame
  *     vertex_bytes: 32 B      # per vertex sent to the pipe
+ *     strip_length: 1         # triangles per strip (1: independent)
  *     fifo: {depth: 64 KB, chunk: 8 KB}  # the pipe's command FIFO
  *     town: {blocks, houses, trees, cars, block, lod_ranges, speed,
  *            eye_height, fov, seed}
@@ -41,7 +42,7 @@ typedef struct {
     double video_hz, frame_hz;
     gboolean cull, flatten, lazy, isect, has_app_work, fork_isect;
     SimTime app_work, update_cost;
-    uint64_t vertex_bytes;
+    uint64_t vertex_bytes, strip;
     uint64_t fifo_depth, fifo_chunk; /* pf_gpipe.h */
     gboolean has_arena;
     WlPfArenaParams arena; /* pf_arena.h */
@@ -53,11 +54,14 @@ typedef struct {
 
 static const char *const phases[] = {"locked", "floating", NULL};
 
+static const char *const hierarchies[] = {"flat", "quadtree", NULL};
+
 static gboolean parse_town(const CfgNode *sec, WlPfTownParams *t, GError **err)
 {
     const CfgNode *n = cfg_get(sec, "town");
     uint64_t v[4] = {t->blocks, t->houses, t->trees, t->cars};
     uint64_t seed = t->seed;
+    int deep = t->deep ? 1 : 0;
     /* no town: every getter below finds no key, so the defaults stay */
     if (!cfg_get_count(n, "blocks", FALSE, 1, 256, &v[0], err) ||
         !cfg_get_count(n, "houses", FALSE, 0, 256, &v[1], err) ||
@@ -67,8 +71,10 @@ static gboolean parse_town(const CfgNode *sec, WlPfTownParams *t, GError **err)
         !cfg_get_double(n, "speed", FALSE, 0, 1e3, &t->speed, err) ||
         !cfg_get_double(n, "eye_height", FALSE, 0, 1e3, &t->eye_height, err) ||
         !cfg_get_double(n, "fov", FALSE, 1, 170, &t->fov_deg, err) ||
-        !cfg_get_count(n, "seed", FALSE, 0, UINT64_MAX, &seed, err))
+        !cfg_get_count(n, "seed", FALSE, 0, UINT64_MAX, &seed, err) ||
+        !cfg_get_enum(n, "hierarchy", FALSE, hierarchies, &deep, err))
         return FALSE;
+    t->deep = deep == 1;
     const CfgNode *r = cfg_get(n, "lod_ranges");
     if (r && (cfg_kind(r) != CFG_SEQ || cfg_seq_len(r) != 3)) {
         cfg_error(err, r, "not a list of 3", "[d01, d12, d2off] in metres");
@@ -151,6 +157,8 @@ static gboolean parse_flags(const CfgNode *sec, PfParams *p, GError **err)
                          err) &&
            cfg_get_time(sec, "app_work", FALSE, &p->app_work, err) &&
            cfg_get_size(sec, "vertex_bytes", FALSE, &p->vertex_bytes, err) &&
+           cfg_get_count(sec, "strip_length", FALSE, 1, 1u << 20, &p->strip,
+                         err) &&
            cfg_get_str(sec, "frame_log", FALSE, &p->frame_log, err);
     p->pipe.pipes = (guint)pipes;
     p->pipe.isect_in_app = !p->fork_isect;
@@ -236,6 +244,7 @@ static void *pf_parse(const CfgNode *sec, GError **err)
      * 150 instructions at 150 MHz */
     p->update_cost = SIM_US;
     p->vertex_bytes = 32;
+    p->strip = 1;
     p->fifo_depth = WL_PF_FIFO_DEPTH, p->fifo_chunk = WL_PF_FIFO_CHUNK;
     p->town = wl_pf_town_defaults();
     p->at = sec;
@@ -328,6 +337,7 @@ static gboolean write_stages(const char *log, const GArray *recs, GError **err)
 
 typedef struct {
     double app, cull, draw, tris, states, saved, mats, culled, stress, lod;
+    double verts, vsaved, nodes;
     double cpu, bus, pipe; /* DRAW's three rates */
 } Means;
 
@@ -342,6 +352,9 @@ static Means means(const GArray *recs, WlPfStages *st, guint skip)
         m.cull += ms(r->cull_ms);
         m.draw += ms(r->draw_ms);
         m.tris += f->draw.tris;
+        m.verts += f->draw.vertices;
+        m.vsaved += 3 * f->draw.tris - f->draw.vertices;
+        m.nodes += f->cull.nodes_visited;
         m.states += f->draw.state_changes;
         m.saved += f->draw.state_naive - f->draw.state_changes;
         m.mats += f->draw.matrix_ops;
@@ -396,7 +409,10 @@ static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
     sim_result_set_metric(out, "draw_bus_ms", m.bus, "ms");
     sim_result_set_metric(out, "draw_pipe_ms", m.pipe, "ms");
     sim_result_set_metric(out, "tris_per_frame", m.tris, "");
+    sim_result_set_metric(out, "vertices_per_frame", m.verts, "");
+    sim_result_set_metric(out, "vertices_saved_per_frame", m.vsaved, "");
     sim_result_set_metric(out, "tris_culled_per_frame", m.culled, "");
+    sim_result_set_metric(out, "cull_nodes_per_frame", m.nodes, "");
     sim_result_set_metric(out, "state_changes_per_frame", m.states, "");
     sim_result_set_metric(out, "state_changes_saved_per_frame", m.saved, "");
     sim_result_set_metric(out, "matrix_ops_per_frame", m.mats, "");
@@ -459,7 +475,7 @@ static void fill_result(SimResult *out, MachMachine *m, const GArray *recs,
             n ? g_array_index(recs, WlPfFrameRec, n - 1).swap : r->app_start;
         sim_result_add_frame(out, r->swap - prev);
         wl_mark_frame(mach_engine(m), n, r->swap);
-        bytes += 3 * wl_pf_frame_stats(st, n)->draw.tris * st->c.vertex_bytes;
+        bytes += wl_pf_frame_stats(st, n)->draw.vertices * st->c.vertex_bytes;
     }
     mach_fill_result(m, out);
     out->comm_bytes = bytes;
@@ -563,6 +579,7 @@ static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
     if (p->has_app_work)
         c.app_frame = p->app_work;
     c.update = p->update_cost;
+    c.strip = (guint)p->strip;
     WlPfTown *town = wl_pf_town_new(&p->town);
     guint flattened = p->flatten ? wl_pf_flatten(town->g) : 0;
     p->pipe.frames = (guint)ctx->frames;
@@ -619,7 +636,11 @@ static const WlMetric pf_metrics[] = {
     {"pipe_idle_ms", "ms", "graphics pipe idle (no commands) per frame"},
     {"fifo_peak_bytes", "B", "highest fill of the pipe's command FIFO"},
     {"tris_per_frame", "", "triangles drawn per frame"},
+    {"vertices_per_frame", "", "vertices DRAW sent per frame"},
+    {"vertices_saved_per_frame", "",
+     "vertices strips saved per frame (3 x triangles - vertices)"},
     {"tris_culled_per_frame", "", "triangles culled per frame"},
+    {"cull_nodes_per_frame", "", "nodes CULL visited per frame"},
     {"state_changes_per_frame", "", "graphics state changes per frame"},
     {"state_changes_saved_per_frame", "",
      "state changes lazy evaluation saved (eager - lazy)"},
