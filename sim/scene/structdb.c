@@ -240,6 +240,13 @@ void scene_db_set_delta(SceneDb *db, guint sid, guint pos, int64_t d)
     g_array_index(s->elems, SceneElem, pos).delta = d;
 }
 
+void scene_db_set_tag(SceneDb *db, guint sid, guint pos, uint64_t tag)
+{
+    SceneStruct *s = get(db, sid);
+    g_assert(pos < s->elems->len);
+    g_array_index(s->elems, SceneElem, pos).tag = tag;
+}
+
 void scene_db_set_primitive(SceneDb *db, guint sid, gboolean on)
 {
     get(db, sid)->primitive = on;

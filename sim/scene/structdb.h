@@ -111,6 +111,8 @@ const SceneElem *scene_db_elem(const SceneDb *db, guint sid, guint pos);
 int64_t scene_db_end_delta(const SceneDb *db, guint sid);
 void scene_db_set_end_delta(SceneDb *db, guint sid, int64_t d);
 void scene_db_set_delta(SceneDb *db, guint sid, guint pos, int64_t d);
+/* Sets element (sid, pos)'s caller tag (an identity, not an edit). */
+void scene_db_set_tag(SceneDb *db, guint sid, guint pos, uint64_t tag);
 /* User designation of primitive structures (seed 001 §2.3.3). */
 void scene_db_set_primitive(SceneDb *db, guint sid, gboolean on);
 gboolean scene_db_is_primitive(const SceneDb *db, guint sid);

@@ -7,6 +7,7 @@
  * memcpy and memset take, at least one).
  */
 #include "sim/workload/sortfirst/sf_book.h"
+#include "sim/workload/sortfirst/sf_bv.h"
 #include <string.h>
 
 const char *const wl_sf_bookkeeping_names[] = {"minset", "maxset", NULL};
@@ -99,8 +100,7 @@ void wl_sf_book_screens(const WlSfBook *b, Mat4 view_proj, WlSfScreen *out)
 {
     for (guint i = 0; i < wl_sf_n_insts(b->db); i++) {
         const WlSfInst *in = wl_sf_inst(b->db, i);
-        const WlSfChunk *ch = wl_sf_chunk(b->db, in->chunk);
-        out[i] = wl_sf_screen_of(&b->regions, ch->box,
+        out[i] = wl_sf_bv_screen(b->db, &b->regions, in->chunk,
                                  mat4_mul(view_proj, in->matrix));
     }
 }

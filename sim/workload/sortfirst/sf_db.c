@@ -276,6 +276,17 @@ static void chunk_struct(Builder *b)
     g_array_unref(ps);
 }
 
+uint32_t wl_sf_elem_polys(const SceneElem *e)
+{
+    return elem_polys(e);
+}
+
+void wl_sf_db_chunk_struct(WlSfDb *d, const SceneDb *db, guint sid)
+{
+    Builder b = {d, db, sid};
+    chunk_struct(&b);
+}
+
 /* ---- instances ---------------------------------------------------------- */
 
 static void add_instances(WlSfDb *d, const Walk *w, guint c, GArray *nodes)
@@ -397,5 +408,9 @@ void wl_sf_db_free(WlSfDb *d)
     scene_mesh_free(d->flat);
     if (d->nodes)
         g_array_unref(d->nodes);
+    if (d->bvs)
+        g_array_unref(d->bvs);
+    if (d->bv_verts)
+        g_array_unref(d->bv_verts);
     g_free(d);
 }

@@ -88,6 +88,10 @@ typedef struct {
     uint64_t min_prims; /* primitives stored once (min-set) */
     GArray *nodes;      /* SceneMaxNode: the max-set tree (pre-order) */
     guint n_structs;    /* structures of the database */
+    int bv;             /* WlSfBvKind of the chunks' volumes (sf_bv.h);
+                         * 0: the axis-aligned `box` alone */
+    GArray *bvs;        /* WlSfBv per chunk; NULL for boxes */
+    GArray *bv_verts;   /* Vec3: the polytopes' vertices (sf_bv.h) */
 } WlSfDb;
 
 /* Builds the chunk database of db's posted network for `procs` masters
@@ -106,6 +110,11 @@ void wl_sf_db_set_procs(WlSfDb *d, guint procs);
  * stay valid.  FALSE with *err (d unchanged but for its instances) on
  * a matrix between one structure's primitives.  O(max-set polygons). */
 gboolean wl_sf_db_reinstance(WlSfDb *d, const SceneDb *db, GError **err);
+/* Polygons the flattened network draws for one primitive element. */
+uint32_t wl_sf_elem_polys(const SceneElem *e);
+/* Appends the chunks of structure sid's primitives by d's strategy
+ * (masters: chunk number mod P); adds them to min_prims. */
+void wl_sf_db_chunk_struct(WlSfDb *d, const SceneDb *db, guint sid);
 /* The partial sort: order[0..n) gets the indices of pts in the
  * depth-first order of the octree over them (sf_db.c).  O(n) memory,
  * O(n * WL_SF_OCTREE_MAX_DEPTH) time. */

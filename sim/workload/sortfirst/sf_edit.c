@@ -2,25 +2,19 @@
  * match that carries bookkeeping across them (sf_edit.h; seed 000 §1.1,
  * §3.4.2-§3.4.3).
  */
-#include "sim/workload/sortfirst/sf_edit.h"
+#include "sim/workload/sortfirst/sf_edit_internal.h"
+#include "sim/workload/sortfirst/sf_db_edit.h"
 #include <math.h>
 #include <string.h>
 
-const char *const wl_sf_edit_names[] = {"matrix", "execute", "unpost",
-                                        "post", NULL};
+const char *const wl_sf_edit_names[] = {
+    "matrix",      "execute",     "unpost",      "post",
+    "create",      "add",         "close",       "prim_create",
+    "prim_change", "prim_delete", "color",       "execute_add",
+    "execute_delete", "delete",   NULL};
+G_STATIC_ASSERT(G_N_ELEMENTS(wl_sf_edit_names) == WL_SF_ED_N + 1);
 
 enum { MAX_EXEC_TRIES = 16 };
-
-struct WlSfEdit {
-    SceneDb *db;      /* owned: the edited copy */
-    WlSfDb *sf;       /* borrowed */
-    WlSfEditSpec spec;
-    SimRng *rng;      /* borrowed */
-    GArray *serial;   /* guint per posted root (posting order): its posting */
-    guint next_serial;
-    GArray *unposted; /* guint structure ids, last unposted at the end */
-    uint64_t applied[WL_SF_ED_N];
-};
 
 gboolean wl_sf_edit_any(const WlSfEditSpec *spec)
 {
@@ -40,6 +34,10 @@ WlSfEdit *wl_sf_edit_new(const SceneDb *db, WlSfDb *sf,
     e->rng = rng;
     e->serial = g_array_new(FALSE, FALSE, sizeof(guint));
     e->unposted = g_array_new(FALSE, FALSE, sizeof(guint));
+    e->open = WL_SF_NO_STRUCT;
+    e->deleted = g_array_new(FALSE, TRUE, sizeof(guint8));
+    e->dirty = g_array_new(FALSE, TRUE, sizeof(guint8));
+    wl_sf_edit_tag_all(e);
     for (guint i = 0; i < scene_db_posted_count(db); i++, e->next_serial++)
         g_array_append_val(e->serial, e->next_serial);
     return e;
@@ -52,6 +50,8 @@ void wl_sf_edit_free(WlSfEdit *e)
     scene_db_free(e->db);
     g_array_unref(e->serial);
     g_array_unref(e->unposted);
+    g_array_unref(e->deleted);
+    g_array_unref(e->dirty);
     g_free(e);
 }
 
@@ -67,8 +67,7 @@ const uint64_t *wl_sf_edit_applied(const WlSfEdit *e)
 
 /* ---- the edits ------------------------------------------------------ */
 
-/* Every (structure, position) holding an element of `kind`. */
-static GArray *elements_of(const SceneDb *db, SceneElemKind kind)
+GArray *wl_sf_edit_elements_of(const SceneDb *db, SceneElemKind kind)
 {
     GArray *at = g_array_new(FALSE, FALSE, sizeof(guint) * 2);
     for (guint s = 0; s < scene_db_struct_count(db); s++)
@@ -82,7 +81,7 @@ static GArray *elements_of(const SceneDb *db, SceneElemKind kind)
 
 static gboolean edit_matrix(WlSfEdit *e)
 {
-    GArray *at = elements_of(e->db, SCENE_EL_MATRIX);
+    GArray *at = wl_sf_edit_elements_of(e->db, SCENE_EL_MATRIX);
     gboolean any = at->len > 0;
     if (any) {
         guint *sp = (guint *)(void *)at->data +
@@ -107,7 +106,8 @@ static gboolean retarget(WlSfEdit *e, const guint *height, guint sid,
     guint old = x.child;
     for (guint k = 0; k < n; k++) {
         guint b = (from + k) % n;
-        if (b == old || height[b] != height[old])
+        if (b == old || height[b] != height[old] ||
+            (b < e->deleted->len && g_array_index(e->deleted, guint8, b)))
             continue;
         x.child = b;
         if (scene_db_modify(e->db, sid, pos, &x, NULL))
@@ -118,7 +118,7 @@ static gboolean retarget(WlSfEdit *e, const guint *height, guint sid,
 
 static gboolean edit_execute(WlSfEdit *e)
 {
-    GArray *at = elements_of(e->db, SCENE_EL_EXECUTE);
+    GArray *at = wl_sf_edit_elements_of(e->db, SCENE_EL_EXECUTE);
     guint n = scene_db_struct_count(e->db);
     guint *height = g_new(guint, n + 1);
     for (guint s = 0; s < n; s++)
@@ -134,17 +134,21 @@ static gboolean edit_execute(WlSfEdit *e)
     return done;
 }
 
-static gboolean edit_unpost(WlSfEdit *e)
+void wl_sf_edit_unpost_at(WlSfEdit *e, guint i)
 {
-    guint n = scene_db_posted_count(e->db);
-    if (!n)
-        return FALSE;
-    guint i = (guint)sim_rng_below(e->rng, n);
     guint sid = scene_db_posted_at(e->db, i);
     gboolean ok = scene_db_unpost(e->db, sid);
     g_assert(ok);
     g_array_remove_index(e->serial, i);
     g_array_append_val(e->unposted, sid);
+}
+
+static gboolean edit_unpost(WlSfEdit *e)
+{
+    guint n = scene_db_posted_count(e->db);
+    if (!n)
+        return FALSE;
+    wl_sf_edit_unpost_at(e, (guint)sim_rng_below(e->rng, n));
     return TRUE;
 }
 
@@ -157,9 +161,12 @@ static gboolean edit_post(WlSfEdit *e)
         g_array_set_size(e->unposted, e->unposted->len - 1);
     } else if (scene_db_posted_count(e->db) < n) {
         guint from = (guint)sim_rng_below(e->rng, n);
-        for (guint k = 0; k < n && sid == n; k++)
-            if (!scene_db_is_posted(e->db, (from + k) % n))
-                sid = (from + k) % n;
+        for (guint k = 0; k < n && sid == n; k++) {
+            guint b = (from + k) % n;
+            if (!scene_db_is_posted(e->db, b) &&
+                !(b < e->deleted->len && g_array_index(e->deleted, guint8, b)))
+                sid = b;
+        }
     }
     if (sid == n)
         return FALSE;
@@ -178,8 +185,10 @@ static gboolean edit_one(WlSfEdit *e, int kind)
         return edit_execute(e);
     case WL_SF_ED_UNPOST:
         return edit_unpost(e);
-    default:
+    case WL_SF_ED_POST:
         return edit_post(e);
+    default:
+        return wl_sf_edit_struct_one(e, kind);
     }
 }
 
@@ -231,35 +240,62 @@ static gint old_root(const GArray *nodes, const GArray *serial, guint want)
     return -1;
 }
 
-/* match[n]: the old node new node n continues, or -1. */
-static gint *match_nodes(const GArray *old, const GArray *old_serial,
-                         const GArray *now, const GArray *serial)
+/* The tag of the execute element that made each node (0 for a root):
+ * a node's k-th child comes from its structure's k-th execute. */
+static uint64_t *exec_tags(const SceneDb *db, const GArray *nodes)
 {
-    Kids ko, kn;
-    kids_build(old, &ko);
-    kids_build(now, &kn);
-    gint *match = g_new(gint, now->len + 1);
-    guint root = 0;
-    for (guint i = 0; i < now->len; i++) {
-        const SceneMaxNode *n = &g_array_index(now, SceneMaxNode, i);
-        gint o = -1;
-        if (n->parent < 0) {
-            o = old_root(old, old_serial,
-                         g_array_index(serial, guint, root++));
-        } else if (match[n->parent] >= 0) {
-            guint po = (guint)match[n->parent];
-            guint slot = ko.start[po] + kn.ord[i];
-            /* the parents run one structure, whose executes (one child
-             * node each) no edit adds or removes: as many children */
-            g_assert(slot < ko.start[po + 1]);
-            o = (gint)ko.kids[slot];
+    Kids k;
+    kids_build(nodes, &k);
+    uint64_t *tag = g_new0(uint64_t, nodes->len + 1);
+    for (guint p = 0; p < nodes->len; p++) {
+        guint sid = g_array_index(nodes, SceneMaxNode, p).sid, c = k.start[p];
+        for (guint i = 0; i < scene_db_len(db, sid) && c < k.start[p + 1];
+             i++) {
+            const SceneElem *el = scene_db_elem(db, sid, i);
+            if (el->kind == SCENE_EL_EXECUTE)
+                tag[k.kids[c++]] = el->tag;
         }
-        if (o >= 0 && g_array_index(old, SceneMaxNode, o).sid != n->sid)
+    }
+    kids_clear(&k);
+    return tag;
+}
+
+/* The child of old node po made by the execute tagged `tag`, or -1. */
+static gint old_child(const Kids *ko, const uint64_t *old_tag, guint po,
+                      uint64_t tag)
+{
+    for (guint s = ko->start[po]; s < ko->start[po + 1]; s++)
+        if (old_tag[ko->kids[s]] == tag)
+            return (gint)ko->kids[s];
+    return -1;
+}
+
+typedef struct {
+    const GArray *nodes, *serial; /* max-set tree, postings of its roots */
+    const uint64_t *tag;          /* exec_tags() */
+} Tree;
+
+/* match[n]: the old node new node n continues, or -1. */
+static gint *match_nodes(const Tree *old, const Tree *now)
+{
+    Kids ko;
+    kids_build(old->nodes, &ko);
+    gint *match = g_new(gint, now->nodes->len + 1);
+    guint root = 0;
+    for (guint i = 0; i < now->nodes->len; i++) {
+        const SceneMaxNode *n = &g_array_index(now->nodes, SceneMaxNode, i);
+        gint o = -1;
+        if (n->parent < 0)
+            o = old_root(old->nodes, old->serial,
+                         g_array_index(now->serial, guint, root++));
+        else if (match[n->parent] >= 0)
+            o = old_child(&ko, old->tag, (guint)match[n->parent],
+                          now->tag[i]);
+        if (o >= 0 && g_array_index(old->nodes, SceneMaxNode, o).sid != n->sid)
             o = -1;
         match[i] = o;
     }
     kids_clear(&ko);
-    kids_clear(&kn);
     return match;
 }
 
@@ -275,18 +311,27 @@ static guint *ranks(const GArray *nodes, guint n_structs)
     return rank;
 }
 
+/* The chunks before the frame's edits. */
+typedef struct {
+    guint *first;       /* per old chunk: its first instance */
+    guint n_structs;    /* structures then */
+    const gint *old_of; /* per new chunk: the old one it continues, or -1
+                           (NULL: the chunks were kept) */
+} OldChunks;
+
 /* Old instance number of every new instance (-1: new); counts nodes. */
 static gint64 *instance_map(const WlSfDb *sf, const GArray *old,
-                            const guint *old_first, const gint *match,
+                            const OldChunks *oc, const gint *match,
                             WlSfEditFrame *f)
 {
-    guint *rank = ranks(old, sf->n_structs);
+    guint *rank = ranks(old, oc->n_structs);
     guint8 *kept = g_new0(guint8, old->len + 1);
     gint64 *map = g_new(gint64, wl_sf_n_insts(sf) + 1);
     for (guint i = 0; i < wl_sf_n_insts(sf); i++) {
         const WlSfInst *in = wl_sf_inst(sf, i);
         gint o = match[in->node];
-        map[i] = o < 0 ? -1 : (gint64)(old_first[in->chunk] + rank[o]);
+        gint c = oc->old_of ? oc->old_of[in->chunk] : (gint)in->chunk;
+        map[i] = o < 0 || c < 0 ? -1 : (gint64)(oc->first[c] + rank[o]);
     }
     for (guint n = 0; n < sf->nodes->len; n++) {
         f->nodes_created += match[n] < 0;
@@ -300,12 +345,46 @@ static gint64 *instance_map(const WlSfDb *sf, const GArray *old,
     return map;
 }
 
+/* TRUE when a structure was made or dirtied this frame. */
+static gboolean any_dirty(const WlSfEdit *e)
+{
+    if (scene_db_struct_count(e->db) != e->sf->n_structs)
+        return TRUE;
+    for (guint s = 0; s < e->dirty->len; s++)
+        if (g_array_index(e->dirty, guint8, s))
+            return TRUE;
+    return FALSE;
+}
+
+/* Re-forms the chunks of dirty structures and carries the book's chunk
+ * state over; NULL when no structure is dirty. */
+static gint *rechunk(WlSfEdit *e, WlSfBook *b, const GArray *tags,
+                     WlSfEditFrame *f)
+{
+    if (!any_dirty(e))
+        return NULL;
+    guint n_old = wl_sf_n_chunks(e->sf);
+    g_array_set_size(e->dirty, scene_db_struct_count(e->db));
+    WlSfRechunk rc = {0};
+    gint *old_of = wl_sf_db_rechunk(e->sf, e->db, tags,
+                                    (const guint8 *)(const void *)e->dirty->data,
+                                    &rc);
+    f->chunks_created = rc.created;
+    f->chunks_dropped = rc.dropped;
+    f->chunks_changed = rc.changed;
+    wl_sf_book_remap_chunks(b, old_of, n_old);
+    memset(e->dirty->data, 0, e->dirty->len);
+    return old_of;
+}
+
 gint64 *wl_sf_edit_frame(WlSfEdit *e, WlSfBook *b, WlSfEditFrame *f,
                          WlSfRemapWork *w)
 {
     gint64 *map = NULL;
     memset(f, 0, sizeof *f);
     GArray *old_serial = g_array_copy(e->serial);
+    uint64_t *old_tag = exec_tags(e->db, e->sf->nodes);
+    GArray *tags = wl_sf_db_prim_tags(e->sf, e->db);
     for (int k = 0; k < WL_SF_ED_N; k++)
         for (uint64_t i = 0; i < e->spec.per_frame[k]; i++)
             if (edit_one(e, k)) {
@@ -315,18 +394,27 @@ gint64 *wl_sf_edit_frame(WlSfEdit *e, WlSfBook *b, WlSfEditFrame *f,
     if (f->commands) {
         GArray *old = g_array_ref(e->sf->nodes);
         guint nc = wl_sf_n_chunks(e->sf), n_old = wl_sf_n_insts(e->sf);
-        guint *first = g_new(guint, nc + 1);
+        OldChunks oc = {g_new(guint, nc + 1), e->sf->n_structs, NULL};
         for (guint c = 0; c < nc; c++)
-            first[c] = wl_sf_chunk(e->sf, c)->inst_first;
+            oc.first[c] = wl_sf_chunk(e->sf, c)->inst_first;
+        gint *old_of = rechunk(e, b, tags, f);
+        oc.old_of = old_of;
         gboolean ok = wl_sf_db_reinstance(e->sf, e->db, NULL);
-        g_assert(ok); /* edits keep each structure's elements in place */
-        gint *match = match_nodes(old, old_serial, e->sf->nodes, e->serial);
-        map = instance_map(e->sf, old, first, match, f);
+        g_assert(ok); /* edits keep one matrix per structure's primitives */
+        uint64_t *tag = exec_tags(e->db, e->sf->nodes);
+        Tree was = {old, old_serial, old_tag}, now = {e->sf->nodes, e->serial,
+                                                      tag};
+        gint *match = match_nodes(&was, &now);
+        map = instance_map(e->sf, old, &oc, match, f);
         wl_sf_book_remap(b, map, n_old, w);
         g_free(match);
-        g_free(first);
+        g_free(tag);
+        g_free(old_of);
+        g_free(oc.first);
         g_array_unref(old);
     }
+    g_array_unref(tags);
+    g_free(old_tag);
     g_array_unref(old_serial);
     return map;
 }

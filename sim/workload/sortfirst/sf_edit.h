@@ -17,15 +17,57 @@
  *            goes to garbage collection);
  *   post     the structure unposted last is posted again, else a random
  *            structure not posted (drawn at the identity): a new
- *            max-set tree.
+ *            max-set tree;
+ *
+ * and the rest of the paper's operations (§1.1, §3.3.1, §3.4.2;
+ * sf_edit_struct.c):
+ *
+ *   create   a new empty structure is created and opened (min-set
+ *            only: nothing executes it yet);
+ *   add      a primitive is appended to the open structure (a copy of a
+ *            random primitive of the database, moved; skipped when no
+ *            structure is open);
+ *   close    the open structure is closed;
+ *   prim_create  a primitive is inserted into a random structure that
+ *            holds primitives, after one of them (so it shares their
+ *            matrix): a copy of it moved by up to its own extent;
+ *   prim_change  a random primitive is scaled about its centroid by
+ *            2^u, u uniform in [-1, 1], and moved by up to half its
+ *            extent: its chunk's bounding volume grows or shrinks, and
+ *            with it the node's volume up the hierarchy (sf_trav.c
+ *            takes a node's volume as the union of its subtree's);
+ *   prim_delete  a random primitive is deleted (a chunk left empty is
+ *            dropped);
+ *   color    a random colour element gets a random colour (an attribute
+ *            change: the image changes, no chunk or volume does);
+ *   execute_add  an execute of a random structure (any height, also
+ *            one already executed: "A executed an additional time",
+ *            §3.4) is appended to a random structure, one closing no
+ *            cycle: the child's whole max-set subtree is replicated;
+ *   execute_delete  a random execute is deleted (its subtree is
+ *            collected);
+ *   delete   a random structure nothing executes is deleted (§3.4.2:
+ *            "you should only delete non-instanced structures"); a
+ *            posted one is unposted first; its chunks are dropped.
+ *
+ * Chunks are re-formed after primitive edits (sf_db_edit.c): a chunk
+ * keeps its id, master and copies as long as a primitive of it is left
+ * (its box recomputed: it grows or shrinks); a new primitive joins the
+ * chunk of its structure with room whose box centre is nearest, else a
+ * new chunk (master: its number mod P); a structure with no chunk left
+ * is chunked anew by the run's strategy.  Every processor applies the
+ * command to its copies (seed 000 §2: commands are broadcast), so a
+ * changed chunk is not sent again; a dropped chunk's copies are deleted
+ * everywhere.
  *
  * A kind with nothing to act on is skipped (not counted).  The editor
  * owns a copy of the database; after the frame's edits it rebuilds the
  * chunk instances (wl_sf_db_reinstance: chunks, and so chunk ids and
  * masters, are kept) and matches the new max-set tree to the old one:
  * a root matches the old root of the same posting (an unposted and
- * re-posted structure is a new tree), a child the old child at the same
- * execute of a matched parent when it executes the same structure.
+ * re-posted structure is a new tree), a child the old child made by the
+ * same execute element (each element of the editor's copy carries a
+ * unique tag) of a matched parent when it executes the same structure.
  * Matched instances keep their bookkeeping (wl_sf_book_remap); the rest
  * are new (master pointers only) or obsolete (collected).
  *
@@ -47,10 +89,22 @@ typedef enum {
     WL_SF_ED_EXECUTE,
     WL_SF_ED_UNPOST,
     WL_SF_ED_POST,
+    WL_SF_ED_CREATE,
+    WL_SF_ED_ADD,
+    WL_SF_ED_CLOSE,
+    WL_SF_ED_PRIM_CREATE,
+    WL_SF_ED_PRIM_CHANGE,
+    WL_SF_ED_PRIM_DELETE,
+    WL_SF_ED_COLOR,
+    WL_SF_ED_EXEC_ADD,
+    WL_SF_ED_EXEC_DELETE,
+    WL_SF_ED_DELETE,
     WL_SF_ED_N
 } WlSfEditKind;
 
-/* "matrix", "execute", "unpost", "post" */
+/* "matrix", "execute", "unpost", "post", "create", "add", "close",
+ * "prim_create", "prim_change", "prim_delete", "color", "execute_add",
+ * "execute_delete", "delete" */
 extern const char *const wl_sf_edit_names[];
 
 typedef struct {
@@ -63,6 +117,9 @@ typedef struct {
     uint64_t commands;        /* edits applied, each processor applies all */
     uint64_t nodes_created;   /* max-set nodes new this frame */
     uint64_t nodes_collected; /* max-set nodes made obsolete */
+    uint64_t chunks_created;  /* chunks formed by primitive edits */
+    uint64_t chunks_dropped;  /* chunks left empty, dropped */
+    uint64_t chunks_changed;  /* kept chunks whose primitives changed */
 } WlSfEditFrame;
 
 typedef struct WlSfEdit WlSfEdit;

@@ -17,6 +17,14 @@ double wl_sf_max_over_mean(double max, double total, guint n)
 }
 
 /* Work = each processor's busy time in the frame. */
+/* One bounding-volume test of the database's kind (sf_bv.h). */
+static SimTime bv_test_time(const WlSfRun *r)
+{
+    WlSfBvCost c = wl_sf_bv_cost(r->db);
+    return sim_time_add_sat(sim_time_mul_sat(r->c.transform_vertex, c.verts),
+                            sim_time_mul_sat(r->c.sphere_bound, c.spheres));
+}
+
 static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
 {
     double total = 0, max = 0;
@@ -31,7 +39,7 @@ static void sum_busy(const WlSfRun *r, WlSfFrameStats *st)
         st->traverse_busy = sim_time_add_sat(
             st->traverse_busy,
             sim_time_add_sat(sim_time_mul_sat(r->c.node_visit, r->tp[p].nodes),
-                sim_time_mul_sat(sim_time_mul_sat(r->c.transform_vertex, 8),
+                sim_time_mul_sat(bv_test_time(r),
                                  r->tp[p].tests)));
     if (r->adapt) {
         for (guint p = 0; p < r->s.procs; p++) {

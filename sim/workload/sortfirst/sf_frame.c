@@ -13,7 +13,8 @@
 const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "pixel_zbuffer",    "chunk_pack",
                                       "grid_cell",        "node_visit",
-                                      "pointer_update",   NULL};
+                                      "pointer_update",   "sphere_bound",
+                                      NULL};
 const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
 
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
@@ -25,7 +26,7 @@ gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
     SimTime *const dst[] = {&c->transform_vertex, &c->span_create,
                             &c->pixel_zbuffer,    &c->chunk_pack,
                             &c->grid_cell,        &c->node_visit,
-                            &c->pointer_update};
+                            &c->pointer_update,   &c->sphere_bound};
     G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_sf_cost_ops) - 1);
     mach_costs_fill(set, "node", wl_sf_cost_ops, dst);
     mach_costs_free(set);
@@ -46,9 +47,14 @@ static MachOps ops1(const char *op, uint64_t n)
     return o;
 }
 
-static void add_boxes(MachOps *o, uint64_t boxes)
+/* `boxes` bounding-volume tests of the database's kind (sf_bv.h; an
+ * axis-aligned box: 8 transformed vertices). */
+static void add_boxes(const WlSfRun *r, MachOps *o, uint64_t boxes)
 {
-    mach_ops_add(o, "transform_vertex", 8 * boxes);
+    WlSfBvCost c = wl_sf_bv_cost(r->db);
+    mach_ops_add(o, "transform_vertex", c.verts * boxes);
+    if (c.spheres)
+        mach_ops_add(o, "sphere_bound", c.spheres * boxes);
 }
 
 static void charge(WlSfRun *r, WlSfProc *pr, const MachOps *o, unsigned ph,
@@ -63,7 +69,7 @@ static void traverse(WlSfRun *r, WlSfProc *pr)
 {
     const WlSfTravProc *tp = &r->tp[pr->p];
     MachOps o = ops1("node_visit", tp->nodes);
-    add_boxes(&o, tp->tests);
+    add_boxes(r, &o, tp->tests);
     charge(r, pr, &o, r->ph_traverse, NULL, 0);
 }
 
@@ -114,7 +120,7 @@ static void render(WlSfRun *r, WlSfProc *pr)
     wl_sf_book_render_set(r->book, pr->p, pr->fresh, r->render, &pr->w);
     wl_sf_render_region(r, pr);
     MachOps unpack = ops1("chunk_pack", pr->w.recv_polys);
-    add_boxes(&unpack, pr->w.new_boxes);
+    add_boxes(r, &unpack, pr->w.new_boxes);
     MachOps draw = ops1("transform_vertex", pr->rc.verts);
     mach_ops_add(&draw, "span_create", pr->spans);
     mach_ops_add(&draw, "pixel_zbuffer", pr->pixels);
@@ -229,14 +235,14 @@ static void sort_charge(WlSfRun *r, WlSfProc *pr)
     g_assert(tp->master_culled <= pr->w.master_boxes &&
              tp->slave_culled <= pr->w.slave_boxes);
     MachOps t = {0};
-    add_boxes(&t, pr->w.master_boxes + pr->w.slave_boxes +
+    add_boxes(r, &t, pr->w.master_boxes + pr->w.slave_boxes +
                       pr->w.probe_boxes - tp->master_culled -
                       tp->slave_culled);
     if (!(r->adapt && r->s.current)) /* else the estimate traversed */
         traverse(r, pr);
     if (r->adapt && r->s.current) { /* master boxes done by the estimate */
         t.n = 0;
-        add_boxes(&t, pr->w.slave_boxes - tp->slave_culled);
+        add_boxes(r, &t, pr->w.slave_boxes - tp->slave_culled);
     } else if (r->adapt) /* an extrapolation: one more cell's work */
         mach_ops_add(&t, "grid_cell",
                      r->adapt->added[pr->p] * (r->s.predict ? 2 : 1));
@@ -310,7 +316,7 @@ static void estimate(WlSfRun *r, WlSfProc *pr)
     pr->estimated = FALSE;
     traverse(r, pr);
     MachOps o = {0};
-    add_boxes(&o, own_boxes(r, pr->p) - r->tp[pr->p].master_culled);
+    add_boxes(r, &o, own_boxes(r, pr->p) - r->tp[pr->p].master_culled);
     mach_ops_add(&o, "grid_cell", r->adapt->added[pr->p]);
     charge(r, pr, &o, r->ph_estimate, estimate_done, pr->p);
 }

@@ -83,6 +83,7 @@
 #include "sim/raster/prerender.h"
 #include "sim/scene/scene.h"
 #include "sim/workload/sortfirst/sf_book.h"
+#include "sim/workload/sortfirst/sf_bv.h"
 #include "sim/workload/sortfirst/sf_edit.h"
 #include "sim/workload/sortfirst/sf_trav.h"
 
@@ -94,6 +95,7 @@ extern const MachNeed wl_sf_needs[];
 typedef struct {
     SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;
     SimTime grid_cell, node_visit, pointer_update;
+    SimTime sphere_bound; /* a sphere's screen bounds (sf_bv.h) */
 } WlSfCosts;
 
 typedef struct {

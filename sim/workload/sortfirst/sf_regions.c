@@ -35,13 +35,6 @@ WlSfRect wl_sf_region_rect(const WlSfRegions *r, guint p)
     return r->rect[p];
 }
 
-/* Outcodes of one clip-space point: bit k for the k-th plane it is out. */
-static unsigned outcode(Vec4 c)
-{
-    return (c.x < -c.w) | (c.x > c.w) << 1 | (c.y < -c.w) << 2 |
-           (c.y > c.w) << 3 | (c.z < -c.w) << 4 | (c.z > c.w) << 5;
-}
-
 /* Corner k of b under m (axis j at its max when bit j of k is set),
  * from t: the products m[i][j] x bound, each formed once per box (24,
  * not 96), summed in mat4_apply_point()'s order, so every corner is bit
@@ -72,31 +65,20 @@ gboolean wl_sf_box_screen(const WlSfRegions *r, SceneBox b, Mat4 m,
 {
     unsigned all = 0x3f;
     gboolean behind = FALSE;
-    *x0 = *y0 = INFINITY;
-    *x1 = *y1 = -INFINITY;
+    WlSfScreen s = {INFINITY, INFINITY, -INFINITY, -INFINITY, FALSE};
     double t[4][3][2];
     products(b, &m, t);
-    for (int k = 0; k < 8; k++) {
-        Vec4 c = corner(t, &m, k);
-        all &= outcode(c);
-        if (c.w <= 0) {
-            behind = TRUE;
-            continue;
-        }
-        double sx = (c.x / c.w + 1) * 0.5 * r->width;
-        double sy = (1 - c.y / c.w) * 0.5 * r->height;
-        *x0 = MIN(*x0, sx);
-        *x1 = MAX(*x1, sx);
-        *y0 = MIN(*y0, sy);
-        *y1 = MAX(*y1, sy);
-    }
-    if (all)
-        return FALSE;
+    for (int k = 0; k < 8; k++)
+        all &= wl_sf_screen_point(r, corner(t, &m, k), &s, &behind);
     if (behind) {
-        *x0 = *y0 = -INFINITY;
-        *x1 = *y1 = INFINITY;
+        s.x0 = s.y0 = -INFINITY;
+        s.x1 = s.y1 = INFINITY;
     }
-    return TRUE;
+    *x0 = s.x0;
+    *y0 = s.y0;
+    *x1 = s.x1;
+    *y1 = s.y1;
+    return !all;
 }
 
 WlSfScreen wl_sf_screen_of(const WlSfRegions *r, SceneBox box,

@@ -80,6 +80,28 @@ void wl_sf_screen_set_clear(WlSfScreenSet *s);
 WlSfScreen *wl_sf_screen_set_get(WlSfScreenSet *s, guint key, guint n,
                                  Mat4 view_proj, gboolean *fresh);
 
+/* Adds clip-space point c to the rectangle s being made (x0, y0 from
+ * +inf, x1, y1 from -inf) by wl_sf_box_screen()'s rules: a point at or
+ * behind the eye (w <= 0) sets *behind instead.  Returns its outcode
+ * (bit k: outside the k-th clip plane), which the caller ANDs. */
+static inline unsigned wl_sf_screen_point(const WlSfRegions *r, Vec4 c,
+                                          WlSfScreen *s, gboolean *behind)
+{
+    unsigned out = (c.x < -c.w) | (c.x > c.w) << 1 | (c.y < -c.w) << 2 |
+                   (c.y > c.w) << 3 | (c.z < -c.w) << 4 | (c.z > c.w) << 5;
+    if (c.w <= 0) {
+        *behind = TRUE;
+        return out;
+    }
+    double sx = (c.x / c.w + 1) * 0.5 * r->width;
+    double sy = (1 - c.y / c.w) * 0.5 * r->height;
+    s->x0 = MIN(s->x0, sx);
+    s->x1 = MAX(s->x1, sx);
+    s->y0 = MIN(s->y0, sy);
+    s->y1 = MAX(s->y1, sy);
+    return out;
+}
+
 static inline uint64_t wl_sf_bit(guint p)
 {
     return (uint64_t)1 << p;

@@ -21,7 +21,12 @@
  *                            # (§3.5, sf_trav.h; pull: plain)
  *     edits: {matrix: 1, execute: 1, unpost: 0, post: 0}
  *                            # per frame after the first (sf_edit.h)
+ *                            # and create, add, close, prim_create,
+ *                            # prim_change, prim_delete, color,
+ *                            # execute_add, execute_delete, delete
  *     edit_angle_deg: 10     # rotation of a matrix edit
+ *     bounding_volume: aabb  # aabb | sphere | obb | slabs (sf_bv.h);
+ *                            # when given, the volume's fit is reported
  *     resolution: 256        # N x N screen
  *     check_image: true      # each frame equals the serial render
  *     cull_back: true
@@ -90,7 +95,9 @@ static gboolean parse_edits(const CfgNode *sec, WlSfParams *p, GError **err)
     const CfgNode *e = NULL;
     p->edits.angle_deg = 10;
     if (!cfg_get_map(sec, "edits", FALSE,
-                     "a map {matrix, execute, unpost, post} of counts per "
+                     "a map {matrix, execute, unpost, post, create, add, "
+                     "close, prim_create, prim_change, prim_delete, color, "
+                     "execute_add, execute_delete, delete} of counts per "
                      "frame",
                      &e, err) ||
         !cfg_get_double(sec, "edit_angle_deg", FALSE, -360, 360,
@@ -151,6 +158,7 @@ static gboolean parse_policy(const CfgNode *sec, WlSfSetup *s, GError **err)
 static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
 {
     int bk = WL_SF_MAXSET, ch = WL_SF_CHUNK_SORTED, rg = 0, est = 2, tr = 0;
+    int bv = WL_SF_BV_AABB;
     if (!cfg_get_enum(sec, "bookkeeping", FALSE, wl_sf_bookkeeping_names, &bk,
                       err) ||
         !cfg_get_enum(sec, "chunking", FALSE, wl_sf_chunking_names, &ch,
@@ -158,8 +166,12 @@ static gboolean parse_words(const CfgNode *sec, WlSfParams *p, GError **err)
         !cfg_get_enum(sec, "regions", FALSE, region_names, &rg, err) ||
         !cfg_get_enum(sec, "estimate", FALSE, estimate_names, &est, err) ||
         !cfg_get_bool(sec, "feedback", FALSE, &p->setup.feedback, err) ||
-        !cfg_get_enum(sec, "traversal", FALSE, wl_sf_trav_names, &tr, err))
+        !cfg_get_enum(sec, "traversal", FALSE, wl_sf_trav_names, &tr, err) ||
+        !cfg_get_enum(sec, "bounding_volume", FALSE, wl_sf_bv_names, &bv,
+                      err))
         return FALSE;
+    p->bv = (WlSfBvKind)bv;
+    p->bv_fit = cfg_get(sec, "bounding_volume") != NULL;
     p->setup.trav = (WlSfTravMode)tr;
     p->setup.current = est == 1;
     p->setup.predict = est == 2;
@@ -565,20 +577,28 @@ static char *scene_key(const WlContext *ctx, const WlSfParams *p)
     return key;
 }
 
+/* A new chunk database with the run's bounding volumes. */
+static WlSfDb *new_db(const WlContext *ctx, const WlSfParams *p, GError **err)
+{
+    WlSfDb *db = wl_sf_db_new(ctx->scene->db, p->setup.procs, p->granularity,
+                              p->chunking, err);
+    if (db && p->bv != WL_SF_BV_AABB)
+        wl_sf_bv_set(db, ctx->scene->db, p->bv);
+    return db;
+}
+
 /* The chunk database of this run: kept from an earlier run of the same
  * key (masters re-dealt for P), or new (and then kept when sharing). */
 static WlSfDb *run_db(const WlContext *ctx, const WlSfParams *p,
                       const char *skey, WlSfSetup *st, GError **err)
 {
     if (!skey)
-        return wl_sf_db_new(ctx->scene->db, p->setup.procs, p->granularity,
-                            p->chunking, err);
-    char *key = g_strdup_printf("%s gran %u chunking %d", skey,
-                                p->granularity, (int)p->chunking);
+        return new_db(ctx, p, err);
+    char *key = g_strdup_printf("%s gran %u chunking %d bv %d", skey,
+                                p->granularity, (int)p->chunking, (int)p->bv);
     SfKept *k = wl_share_get(ctx->share, "sortfirst db");
     if (!k || strcmp(k->key, key) != 0) {
-        WlSfDb *db = wl_sf_db_new(ctx->scene->db, p->setup.procs,
-                                  p->granularity, p->chunking, err);
+        WlSfDb *db = new_db(ctx, p, err);
         if (!db) {
             g_free(key);
             return NULL;
@@ -643,6 +663,9 @@ static gboolean run_frames(const WlContext *ctx, MachMachine *m,
     }
     if (ok && stats->len)
         wl_sf_fill_metrics(out, stats, db, &p->setup);
+    if (ok && stats->len && p->bv_fit)
+        wl_sf_bv_metrics(out, sc, db, ed ? wl_sf_edit_db(ed) : sc->db,
+                         &p->setup, &c, stats->len);
     char *log = wl_frame_log_path(ctx, p->frame_log, "sortfirst_frames.csv");
     if (ok && log)
         ok = write_log(log, stats, err);
@@ -730,6 +753,13 @@ static const WlMetric sf_metrics[] = {
      "edits only: max-set nodes the edits made obsolete"},
     {"pointers_collected_per_frame", "",
      "edits only: instance pointers garbage-collected"},
+    {"bv_area_ratio", "",
+     "bounding_volume only: screen area of the volumes over that of the "
+     "chunks' vertices, on-screen instances of every frame"},
+    {"bv_false_regions_per_polygon", "",
+     "bounding_volume only: regions a volume reaches and its vertices do "
+     "not, per polygon"},
+    {"bv_test_ns", "ns", "bounding_volume only: one volume test's price"},
     {"utilisation", "", "busy time / (P x frame time), mean over frames"},
     {"peak_memory", "B", "the largest processor store"},
     {"image_matches_serial", "",

@@ -5,6 +5,7 @@
 #include <cmocka.h>
 #include <math.h>
 
+#include "sim/scene/scene_cfg.h"
 #include "tests/support.h"
 #include "tests/workload/sortfirst/sf_testutil.h"
 
@@ -86,4 +87,43 @@ SceneDb *sf_test_hand_db(void)
     tri(db, root, 3, -1, 3.5, -0.5);         /* off */
     scene_db_post(db, root);
     return db;
+}
+
+void sf_test_edit_init(SfEditFixture *f, WlSfBookkeeping bk,
+                       const WlSfEditSpec *spec)
+{
+    GError *e = NULL;
+    f->root = cfg_load_string(SF_TEST_SMALL, "sf.yaml", &e);
+    assert_non_null(f->root);
+    f->scene = scene_from_cfg(cfg_get(f->root, "scene"), &e);
+    assert_non_null(f->scene);
+    f->eng = sim_engine_new(1);
+    f->m = mach_new_from_model(f->eng, "cluster-ib", "analytic", &e);
+    assert_non_null(f->m);
+    assert_true(wl_sf_costs_from_machine(f->m, &f->c, &e));
+    f->db = wl_sf_db_new(f->scene->db, 4, 5, WL_SF_CHUNK_SORTED, &e);
+    assert_non_null(f->db);
+    WlSfSetup s = {.procs = 4,
+                   .resolution = 64,
+                   .bk = bk,
+                   .sizes = {64, 40, 36, 8, 4, 8, 16, 96},
+                   .cull_back = TRUE,
+                   .check_image = TRUE,
+                   .edits = TRUE};
+    f->run = wl_sf_run_new(f->m, f->scene, f->db, &s, &f->c);
+    f->edit = wl_sf_edit_new(f->scene->db, f->db, spec,
+                             sim_entity_rng(f->eng,
+                                            sim_entity_add(f->eng, "editor")));
+    wl_sf_run_set_edit(f->run, f->edit);
+}
+
+void sf_test_edit_clear(SfEditFixture *f)
+{
+    wl_sf_run_free(f->run);
+    wl_sf_edit_free(f->edit);
+    wl_sf_db_free(f->db);
+    mach_free(f->m);
+    sim_engine_free(f->eng);
+    scene_free(f->scene);
+    cfg_free(f->root);
 }

@@ -6,6 +6,33 @@
 
 #include "sim/workload/sortfirst/sf_workload.h"
 
+/* A small vehicle (40 structures, 3,000 triangles, 3 instances) on 4
+ * processors, chunks of 5, 64 x 64, max-set. */
+#define SF_TEST_SMALL                                                      \
+    "machine: {model: cluster-ib}\n"                                       \
+    "workload: {type: sortfirst, processors: 4, granularity: 5,\n"         \
+    "           resolution: 64, bookkeeping: maxset}\n"                    \
+    "scene: {generator: vehicle, structures: 40, triangles: 3000,\n"       \
+    "        instances: 3, circle_radius: 6, camera_radius: 15,\n"         \
+    "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n"
+
+/* A run of SF_TEST_SMALL's scene on cluster-ib (analytic), checking
+ * every frame's image, with an editor of `spec` set. */
+typedef struct {
+    CfgNode *root;
+    Scene *scene;
+    SimEngine *eng;
+    MachMachine *m;
+    WlSfDb *db;
+    WlSfRun *run;
+    WlSfEdit *edit;
+    WlSfCosts c;
+} SfEditFixture;
+
+void sf_test_edit_init(SfEditFixture *f, WlSfBookkeeping bk,
+                       const WlSfEditSpec *spec);
+void sf_test_edit_clear(SfEditFixture *f);
+
 /* Runs `text` with the NULL-terminated overrides (may be NULL) for
  * `frames` frames, seed 1, analytic; frames to out_dir (NULL: none),
  * every frame when `all`.  A new result, or NULL with *err set.  Fails

@@ -24,64 +24,21 @@
 #include "sim/scene/scene_cfg.h"
 #include "tests/workload/sortfirst/sf_testutil.h"
 
-static const char *small =
-    "machine: {model: cluster-ib}\n"
-    "workload: {type: sortfirst, processors: 4, granularity: 5,\n"
-    "           resolution: 64, bookkeeping: maxset}\n"
-    "scene: {generator: vehicle, structures: 40, triangles: 3000,\n"
-    "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
-    "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
+static const char *const small = SF_TEST_SMALL;
 
 static const WlSfEditSpec all_kinds = {{2, 2, 1, 1}, 25};
 
-typedef struct {
-    CfgNode *root;
-    Scene *scene;
-    SimEngine *eng;
-    MachMachine *m;
-    WlSfDb *db;
-    WlSfRun *run;
-    WlSfEdit *edit;
-    WlSfCosts c;
-} Fixture;
+typedef SfEditFixture Fixture;
 
 static void fixture_init(Fixture *f, WlSfBookkeeping bk,
                          const WlSfEditSpec *spec)
 {
-    GError *e = NULL;
-    f->root = cfg_load_string(small, "sf.yaml", &e);
-    assert_non_null(f->root);
-    f->scene = scene_from_cfg(cfg_get(f->root, "scene"), &e);
-    assert_non_null(f->scene);
-    f->eng = sim_engine_new(1);
-    f->m = mach_new_from_model(f->eng, "cluster-ib", "analytic", &e);
-    assert_non_null(f->m);
-    assert_true(wl_sf_costs_from_machine(f->m, &f->c, &e));
-    f->db = wl_sf_db_new(f->scene->db, 4, 5, WL_SF_CHUNK_SORTED, &e);
-    assert_non_null(f->db);
-    WlSfSetup s = {.procs = 4,
-                   .resolution = 64,
-                   .bk = bk,
-                   .sizes = {64, 40, 36, 8, 4, 8, 16, 96},
-                   .cull_back = TRUE,
-                   .check_image = TRUE,
-                   .edits = TRUE};
-    f->run = wl_sf_run_new(f->m, f->scene, f->db, &s, &f->c);
-    f->edit = wl_sf_edit_new(f->scene->db, f->db, spec,
-                             sim_entity_rng(f->eng,
-                                            sim_entity_add(f->eng, "editor")));
-    wl_sf_run_set_edit(f->run, f->edit);
+    sf_test_edit_init(f, bk, spec);
 }
 
 static void fixture_clear(Fixture *f)
 {
-    wl_sf_run_free(f->run);
-    wl_sf_edit_free(f->edit);
-    wl_sf_db_free(f->db);
-    mach_free(f->m);
-    sim_engine_free(f->eng);
-    scene_free(f->scene);
-    cfg_free(f->root);
+    sf_test_edit_clear(f);
 }
 
 /* db flattened and drawn serially with frame f's camera. */
@@ -248,8 +205,8 @@ static void expect_error(const char *a, const char *b, const char *what)
 static void test_errors(void **state)
 {
     (void)state;
-    expect_error("workload.edits={delete: 1}", NULL, "delete");
-    expect_error("workload.edits=3", NULL, "{matrix, execute, unpost, post}");
+    expect_error("workload.edits={destroy: 1}", NULL, "destroy");
+    expect_error("workload.edits=3", NULL, "{matrix, execute, unpost, post,");
     expect_error("workload.edits={matrix: -1}", NULL, "matrix");
 }
 

@@ -77,6 +77,8 @@ static void test_defaults(void **st)
     assert_true(s->cull_back);
     assert_false(s->edits);
     assert_true(p->edits.angle_deg == 10);
+    assert_int_equal(p->bv, WL_SF_BV_AABB);
+    assert_false(p->bv_fit);
     for (int k = 0; k < WL_SF_ED_N; k++)
         assert_int_equal(p->edits.per_frame[k], 0);
     static const uint64_t z[] = {64, 40, 36, 8, 4, 8, 16, 96};
@@ -111,7 +113,8 @@ static void test_words_and_values(void **st)
         " bookkeeping: minset, mastership: dynamic, chunking: partially_sorted,"
         " traversal: flags_culled, feedback: true, check_image: false,"
         " cull_back: false, frame_log: f.csv, database: d.yaml,"
-        " dump_db: o.yaml, edits: {matrix: 0, execute: 0, unpost: 0, post: 3},"
+        " dump_db: o.yaml, bounding_volume: slabs,"
+        " edits: {matrix: 0, execute: 0, unpost: 0, post: 3, delete: 2},"
         " edit_angle_deg: -360,"
         " bytes: {message: 1 B, chunk: 2 B, triangle: 3 B, instance: 4 B,"
         " cell: 5 B, request: 6 B, mastership: 7 B, edit: 8 B}");
@@ -132,7 +135,10 @@ static void test_words_and_values(void **st)
     assert_string_equal(p->database, "d.yaml");
     assert_string_equal(p->dump_db, "o.yaml");
     assert_true(s->edits);
-    assert_int_equal(p->edits.per_frame[WL_SF_ED_N - 1], 3);
+    assert_int_equal(p->edits.per_frame[WL_SF_ED_POST], 3);
+    assert_int_equal(p->edits.per_frame[WL_SF_ED_DELETE], 2);
+    assert_int_equal(p->bv, WL_SF_BV_SLABS);
+    assert_true(p->bv_fit);
     assert_int_equal(p->edits.per_frame[0], 0);
     assert_true(p->edits.angle_deg == -360);
     static const uint64_t z[] = {1, 2, 3, 4, 5, 6, 7, 8};

@@ -12,13 +12,7 @@
 
 #include "tests/workload/sortfirst/sf_testutil.h"
 
-static const char *small =
-    "machine: {model: cluster-ib}\n"
-    "workload: {type: sortfirst, processors: 4, granularity: 5,\n"
-    "           resolution: 64, bookkeeping: maxset}\n"
-    "scene: {generator: vehicle, structures: 40, triangles: 3000,\n"
-    "        instances: 3, circle_radius: 6, camera_radius: 15,\n"
-    "        camera_height: 5, fov: 30, degrees_per_frame: 12}\n";
+static const char *const small = SF_TEST_SMALL;
 
 static void check_bounds(const char *workload)
 {
