@@ -134,7 +134,7 @@ static gboolean edit_execute(WlSfEdit *e)
     return done;
 }
 
-void wl_sf_edit_unpost_at(WlSfEdit *e, guint i)
+static void unpost_at(WlSfEdit *e, guint i)
 {
     guint sid = scene_db_posted_at(e->db, i);
     gboolean ok = scene_db_unpost(e->db, sid);
@@ -148,7 +148,7 @@ static gboolean edit_unpost(WlSfEdit *e)
     guint n = scene_db_posted_count(e->db);
     if (!n)
         return FALSE;
-    wl_sf_edit_unpost_at(e, (guint)sim_rng_below(e->rng, n));
+    unpost_at(e, (guint)sim_rng_below(e->rng, n));
     return TRUE;
 }
 

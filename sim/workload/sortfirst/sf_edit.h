@@ -46,9 +46,11 @@
  *            cycle: the child's whole max-set subtree is replicated;
  *   execute_delete  a random execute is deleted (its subtree is
  *            collected);
- *   delete   a random structure nothing executes is deleted (§3.4.2:
- *            "you should only delete non-instanced structures"); a
- *            posted one is unposted first; its chunks are dropped.
+ *   delete   a random structure neither posted nor executed is deleted
+ *            (§3.4.2: it "only affects the min-set ... you should only
+ *            delete non-instanced structures"): one an unpost or an
+ *            execute_delete left out of the scene, or one created; its
+ *            chunks are dropped.
  *
  * Chunks are re-formed after primitive edits (sf_db_edit.c): a chunk
  * keeps its id, master and copies as long as a primitive of it is left

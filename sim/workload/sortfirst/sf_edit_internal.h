@@ -27,8 +27,6 @@ struct WlSfEdit {
                           deleted or primitives changed this frame */
 };
 
-/* sf_edit.c: unposts the i-th posted root (its posting forgotten). */
-void wl_sf_edit_unpost_at(WlSfEdit *e, guint i);
 /* sf_edit.c: every (structure, position) holding an element of `kind`
  * (GArray of guint pairs; deleted structures hold none). */
 GArray *wl_sf_edit_elements_of(const SceneDb *db, SceneElemKind kind);

@@ -236,7 +236,9 @@ static void forget_unposted(WlSfEdit *e, guint sid)
             g_array_remove_index(e->unposted, k);
 }
 
-/* A random structure nothing executes (non-instanced, §3.4.2). */
+/* A random structure neither posted nor executed (§3.4.2: deletion
+ * "only affects the min-set ... you should only delete non-instanced
+ * structures"). */
 static gboolean edit_delete(WlSfEdit *e)
 {
     guint n = scene_db_struct_count(e->db);
@@ -250,17 +252,12 @@ static gboolean edit_delete(WlSfEdit *e)
     guint from = (guint)sim_rng_below(e->rng, n), sid = WL_SF_NO_STRUCT;
     for (guint k = 0; k < n && sid == WL_SF_NO_STRUCT; k++) {
         guint s = (from + k) % n;
-        if (!executed[s] && !deleted(e, s))
+        if (!executed[s] && !deleted(e, s) && !scene_db_is_posted(e->db, s))
             sid = s;
     }
     g_free(executed);
     if (sid == WL_SF_NO_STRUCT)
         return FALSE;
-    for (guint i = 0; i < scene_db_posted_count(e->db); i++)
-        if (scene_db_posted_at(e->db, i) == sid) {
-            wl_sf_edit_unpost_at(e, i);
-            break;
-        }
     forget_unposted(e, sid);
     for (guint i = scene_db_len(e->db, sid); i-- > 0;)
         scene_db_delete(e->db, sid, i);

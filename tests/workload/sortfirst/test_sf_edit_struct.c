@@ -230,20 +230,33 @@ static void test_structures(void **state)
     }
 }
 
-/* A posted root deleted (nothing executes it): its tree goes. */
+/* A posted root is never deleted; the vehicle's one posted root
+ * (the world) unposted is, being neither posted nor executed. */
 static void test_delete_root(void **state)
 {
     (void)state;
     Fixture f;
-    WlSfEditSpec s = only(WL_SF_ED_DELETE, 40);
+    WlSfEditSpec s = only(WL_SF_ED_DELETE, 3);
     fixture_init(&f, WL_SF_MAXSET, &s);
     GError *e = NULL;
+    assert_true(wl_sf_run_frames(f.run, 3, SIM_TIME_MAX, &e));
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_DELETE], 0);
+    assert_int_equal(max_polys(&f), vehicle_polys);
+    fixture_clear(&f);
+    s.per_frame[WL_SF_ED_UNPOST] = 1;
+    s.per_frame[WL_SF_ED_DELETE] = 1;
+    fixture_init(&f, WL_SF_MAXSET, &s);
+    guint world = scene_db_posted_at(f.scene->db, 0);
     assert_true(wl_sf_run_frames(f.run, 2, SIM_TIME_MAX, &e));
     const SceneDb *db = wl_sf_edit_db(f.edit);
+    /* frame 1: the world unposted, then deleted (the only structure
+     * neither posted nor executed); its tree and chunks are gone */
+    assert_int_equal(wl_sf_edit_applied(f.edit)[WL_SF_ED_DELETE], 1);
+    assert_int_equal(scene_db_len(db, world), 0);
     assert_int_equal(scene_db_posted_count(db), 0);
-    assert_int_equal(f.db->nodes->len, 0);
     assert_int_equal(max_polys(&f), 0);
-    assert_true(wl_sf_edit_applied(f.edit)[WL_SF_ED_DELETE] > 0);
+    for (guint c = 0; c < wl_sf_n_chunks(f.db); c++)
+        assert_int_not_equal(wl_sf_chunk(f.db, c)->sid, world);
     check_chunks(f.db, db);
     fixture_clear(&f);
 }
