@@ -499,7 +499,7 @@ static void test_zero_time_frame(void **st)
     SimResult *r = sf_test_run(cfg, o, 2, NULL, FALSE, &e);
     if (!r)
         fail_msg("%s", e->message);
-    assert_int_equal(n, 7);
+    assert_int_equal(n, 8);
     assert_true(sf_test_metric(r, "frame_ms") == 0);
     assert_true(sf_test_metric(r, "polygons_rendered_per_frame") > 0);
     assert_true(sf_test_metric(r, "utilisation") == 0);
