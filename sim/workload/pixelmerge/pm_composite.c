@@ -262,8 +262,7 @@ static void run_group(Comp *k, guint b0, guint nb, gboolean fold, GArray *msgs,
     g_free(own);
 }
 
-/* The messages (freed) in sender order, stably (the replay's order). */
-static WlPmMsg *by_sender(GArray *msgs, guint n)
+WlPmMsg *wl_pm_msgs_by_sender(GArray *msgs, guint n)
 {
     guint *at = g_new0(guint, n + 1);
     for (guint i = 0; i < msgs->len; i++)
@@ -297,7 +296,7 @@ static WlPmStep *run_stage(Comp *k, const WlPmStage *st)
     k->blk[k->n_blk] = k->n;
     g_free(step->msg);
     step->n_msgs = msgs->len;
-    step->msg = by_sender(msgs, k->n);
+    step->msg = wl_pm_msgs_by_sender(msgs, k->n);
     return step;
 }
 
