@@ -154,6 +154,9 @@ goal "replay: peak RSS, 4 M actions / 1 M (streaming)" \
     "$(awk -v a="$rss4" -v b="$rss" 'BEGIN { printf "%.2f", a / b }')" "<=" 1.2 x
 rm -rf "$tr"
 
+# ---- sort-last compositing: image rungs and scale (issue 35) ----
+. scripts/bench-composite.sh
+
 section "issue 17 goals: figure of this run, goal, met"
 cat "$goals"
 rm -f "$goals"

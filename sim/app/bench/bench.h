@@ -12,6 +12,7 @@
 int bench_phold_main(int argc, char **argv);
 int bench_net_main(int argc, char **argv);    /* bench_net.c */
 int bench_raster_main(int argc, char **argv); /* bench_raster.c */
+int bench_composite_main(int argc, char **argv); /* bench_composite.c */
 
 /* Parses GOption entries for a sub-benchmark (--help included). */
 gboolean bench_parse_options(const char *name, const char *summary,

@@ -16,6 +16,8 @@ static const BenchEntry benches[] = {
     {"phold", bench_phold_main, "PHOLD: events/s of the event engine"},
     {"net", bench_net_main, "network fidelities: speed against error"},
     {"raster", bench_raster_main, "rendering: triangles/s, pixels/s"},
+    {"composite", bench_composite_main,
+     "compositing image rungs: speed against error"},
     {NULL, NULL, NULL},
 };
 
