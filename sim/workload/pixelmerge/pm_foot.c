@@ -22,7 +22,7 @@ static double screen(double u, double z, double t, guint size)
     return ((u + t * z) / (1.0 + t) * 0.9 + 0.05) * size;
 }
 
-void wl_pm_foot_box(guint p, guint n, guint width, guint height, WlPmRect *r)
+void wl_pm_foot_box(guint p, guint n, guint width, guint height, WlPmCover *r)
 {
     guint bz = divisor_below(n, cbrt((double)n));
     guint by = divisor_below(n / bz, sqrt((double)(n / bz)));
@@ -39,7 +39,7 @@ void wl_pm_foot_box(guint p, guint n, guint width, guint height, WlPmRect *r)
     r->active = 0;
 }
 
-gboolean wl_pm_foot_span(const WlPmRect *r, guint y, guint *x0, guint *x1)
+gboolean wl_pm_foot_span(const WlPmCover *r, guint y, guint *x0, guint *x1)
 {
     if (y < r->y0 || y > r->y1)
         return FALSE;
@@ -59,7 +59,7 @@ gboolean wl_pm_foot_span(const WlPmRect *r, guint y, guint *x0, guint *x1)
 
 WlPmWpa *wl_pm_foot_pixels(guint p, guint n, guint width, guint height)
 {
-    WlPmRect r;
+    WlPmCover r;
     wl_pm_foot_box(p, n, width, height, &r);
     guint bxy = n / divisor_below(n, cbrt((double)n));
     WlPmWpa *w = wl_pm_wpa_new(width, height);
@@ -79,7 +79,7 @@ WlPmWpa *wl_pm_foot_pixels(guint p, guint n, guint width, guint height)
 WlPmRungImage *wl_pm_foot_image(WlPmRung rung, guint p, guint n, guint width,
                                 guint height)
 {
-    WlPmRect r;
+    WlPmCover r;
     wl_pm_foot_box(p, n, width, height, &r);
     WlPmRungImage *im = wl_pm_rung_image_new(rung, width, height);
     if (rung == WL_PM_RUNG_COUNTS) {

@@ -22,11 +22,11 @@
 
 /* Footprint of process p of n on a width x height screen: box x0..x1,
  * y0..y1 inclusive (in rect; active unset). */
-void wl_pm_foot_box(guint p, guint n, guint width, guint height, WlPmRect *r);
+void wl_pm_foot_box(guint p, guint n, guint width, guint height, WlPmCover *r);
 
 /* Row y of the ellipse inscribed in r: FALSE when it has no pixel there,
  * else its first and last columns. */
-gboolean wl_pm_foot_span(const WlPmRect *r, guint y, guint *x0, guint *x1);
+gboolean wl_pm_foot_span(const WlPmCover *r, guint y, guint *x0, guint *x1);
 
 /* Process p's image at the pixel rung (an active pixel array, free with
  * wl_pm_wpa_free) ... */

@@ -46,10 +46,10 @@ typedef struct {
 typedef struct {
     guint x0, y0, x1, y1;
     double active;
-} WlPmRect;
+} WlPmCover;
 
 /* A process's image at the runs or counts rung: WlPmRun (sorted,
- * disjoint, not adjacent) or WlPmRect elements. */
+ * disjoint, not adjacent) or WlPmCover elements. */
 typedef struct {
     WlPmRung rung;
     guint width, height;
@@ -64,7 +64,7 @@ void wl_pm_rung_image_free(WlPmRungImage *im);
  * (runs: coalesced with the previous run when adjacent). */
 void wl_pm_rung_add_span(WlPmRungImage *im, guint y, guint x0, guint x1);
 /* Appends a rectangle holding `active` pixels (counts). */
-void wl_pm_rung_add_rect(WlPmRungImage *im, const WlPmRect *r);
+void wl_pm_rung_add_rect(WlPmRungImage *im, const WlPmCover *r);
 /* The image of an active pixel array at a rung (runs or counts: one
  * rectangle, its bounding box, holding its pixels). */
 WlPmRungImage *wl_pm_rung_from_wpa(WlPmRung rung, const WlPmWpa *w);

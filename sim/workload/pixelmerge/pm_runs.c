@@ -12,7 +12,7 @@
 
 static size_t elem_size(WlPmRung rung)
 {
-    return rung == WL_PM_RUNG_RUNS ? sizeof(WlPmRun) : sizeof(WlPmRect);
+    return rung == WL_PM_RUNG_RUNS ? sizeof(WlPmRun) : sizeof(WlPmCover);
 }
 
 /* ---- runs ---------------------------------------------------------------- */
@@ -106,18 +106,18 @@ static void runs_measure(const GArray *el, guint w, gboolean box_mode,
 
 /* ---- counts -------------------------------------------------------------- */
 
-static double rect_area(const WlPmRect *r)
+static double rect_area(const WlPmCover *r)
 {
     return (double)(r->x1 - r->x0 + 1) * (double)(r->y1 - r->y0 + 1);
 }
 
 /* Appends the part of r inside rows y0..y1, columns x0..x1 (if any),
  * holding its share of r's pixels. */
-static void rect_part(GArray *o, const WlPmRect *r, guint x0, guint x1,
+static void rect_part(GArray *o, const WlPmCover *r, guint x0, guint x1,
                       uint64_t y0, uint64_t y1)
 {
-    WlPmRect p = {MAX(r->x0, x0), (guint)MAX((uint64_t)r->y0, y0),
-                  MIN(r->x1, x1), (guint)MIN((uint64_t)r->y1, y1), 0};
+    WlPmCover p = {MAX(r->x0, x0), (guint)MAX((uint64_t)r->y0, y0),
+                   MIN(r->x1, x1), (guint)MIN((uint64_t)r->y1, y1), 0};
     if (p.x0 > p.x1 || y0 > r->y1 || y1 < r->y0 || p.y0 > p.y1)
         return;
     p.active = r->active * rect_area(&p) / rect_area(r);
@@ -126,11 +126,11 @@ static void rect_part(GArray *o, const WlPmRect *r, guint x0, guint x1,
 
 static GArray *rects_slice(const GArray *el, guint w, uint64_t a, uint64_t b)
 {
-    GArray *o = g_array_new(FALSE, FALSE, sizeof(WlPmRect));
+    GArray *o = g_array_new(FALSE, FALSE, sizeof(WlPmCover));
     uint64_t ya = a / w, yb = (b - 1) / w;
     guint xa = a % w, xb = (b - 1) % w;
     for (guint i = 0; el && a < b && i < el->len; i++) {
-        const WlPmRect *r = &g_array_index(el, WlPmRect, i);
+        const WlPmCover *r = &g_array_index(el, WlPmCover, i);
         uint64_t first = (uint64_t)r->y0 * w + r->x0;
         uint64_t last = (uint64_t)r->y1 * w + r->x1;
         if (first >= a && last < b) {
@@ -149,7 +149,7 @@ static GArray *rects_slice(const GArray *el, guint w, uint64_t a, uint64_t b)
 
 /* Merges q into p when they intersect: their bounding box, the overlap
  * counted once at the product of the coverages. */
-static gboolean rect_merge(WlPmRect *p, const WlPmRect *q)
+static gboolean rect_merge(WlPmCover *p, const WlPmCover *q)
 {
     guint x0 = MAX(p->x0, q->x0), x1 = MIN(p->x1, q->x1);
     guint y0 = MAX(p->y0, q->y0), y1 = MIN(p->y1, q->y1);
@@ -172,8 +172,8 @@ static GArray *rects_over(GArray *f, GArray *b)
         changed = FALSE;
         for (guint i = 0; i < f->len; i++)
             for (guint j = i + 1; j < f->len; j++)
-                if (rect_merge(&g_array_index(f, WlPmRect, i),
-                               &g_array_index(f, WlPmRect, j))) {
+                if (rect_merge(&g_array_index(f, WlPmCover, i),
+                               &g_array_index(f, WlPmCover, j))) {
                     g_array_remove_index(f, j--);
                     changed = TRUE;
                 }
@@ -193,7 +193,7 @@ static GArray *edge_rows(const GArray *el, guint x, int shift)
 {
     GArray *o = g_array_new(FALSE, FALSE, sizeof(WlPmRun));
     for (guint i = 0; i < el->len; i++) {
-        const WlPmRect *r = &g_array_index(el, WlPmRect, i);
+        const WlPmCover *r = &g_array_index(el, WlPmCover, i);
         if (r->active > 0 && r->x0 <= x && x <= r->x1 &&
             (int64_t)r->y1 + shift >= 0) {
             WlPmRun v = {(uint64_t)MAX((int64_t)r->y0 + shift, 0),
@@ -234,7 +234,7 @@ static void rects_measure(const GArray *el, guint w, gboolean box_mode,
 {
     double active = 0;
     for (guint i = 0; i < el->len; i++) {
-        const WlPmRect *r = &g_array_index(el, WlPmRect, i);
+        const WlPmCover *r = &g_array_index(el, WlPmCover, i);
         if (r->active > 0) {
             active += r->active;
             box_add(m, r->x0, r->x1, r->y0, r->y1);
@@ -307,7 +307,7 @@ void wl_pm_rung_add_span(WlPmRungImage *im, guint y, guint x0, guint x1)
     run_put(im->el, (WlPmRun){s, s + (x1 - x0) + 1});
 }
 
-void wl_pm_rung_add_rect(WlPmRungImage *im, const WlPmRect *r)
+void wl_pm_rung_add_rect(WlPmRungImage *im, const WlPmCover *r)
 {
     g_assert(im->rung == WL_PM_RUNG_COUNTS && r->x1 < im->width &&
              r->y1 < im->height);
@@ -317,7 +317,7 @@ void wl_pm_rung_add_rect(WlPmRungImage *im, const WlPmRect *r)
 WlPmRungImage *wl_pm_rung_from_wpa(WlPmRung rung, const WlPmWpa *w)
 {
     WlPmRungImage *im = wl_pm_rung_image_new(rung, w->width, w->height);
-    WlPmRect box = {w->width, w->height, 0, 0, 0};
+    WlPmCover box = {w->width, w->height, 0, 0, 0};
     for (guint i = 0; i < w->px->len; i++) {
         const WlPmPixel *p = &g_array_index(w->px, WlPmPixel, i);
         if (rung == WL_PM_RUNG_RUNS) {
