@@ -82,6 +82,31 @@ gboolean plot_cfg_name_ok(const CfgNode *at, const char *what,
     return FALSE;
 }
 
+/* A sweep chart's optional `where: {COLUMN: VALUE, ...}`: the rows it
+ * keeps, as p->where "K=V, K=V" (the sweep filters them). */
+static gboolean read_where(const CfgNode *m, PlotSpec *p, GError **err)
+{
+    const CfgNode *w = NULL;
+    if (!cfg_get_map(m, "where", FALSE, "a map {COLUMN: VALUE, ...}", &w, err))
+        return FALSE;
+    GString *s = g_string_new("");
+    for (guint i = 0; w && i < cfg_map_len(w); i++) {
+        const char *v = cfg_scalar(cfg_map_value(w, i));
+        if (!v) {
+            cfg_error(err, cfg_map_value(w, i), "a non-scalar 'where' value",
+                      "a value of the column");
+            g_string_free(s, TRUE);
+            return FALSE;
+        }
+        g_string_append_printf(s, "%s%s=%s", i ? ", " : "",
+                               cfg_map_key(w, i), v);
+    }
+    p->where = s->len ? g_string_free(s, FALSE) : NULL;
+    if (!p->where)
+        g_string_free(s, TRUE);
+    return TRUE;
+}
+
 static PlotSpec *read_spec(const CfgNode *m, guint i, GError **err)
 {
     static const char *const styles[] = {"linespoints", "points", "lines",
@@ -105,7 +130,7 @@ static PlotSpec *read_spec(const CfgNode *m, guint i, GError **err)
         opt_str(m, "ylabel", &p->ylabel, err) &&
         cfg_get_bool(m, "logx", FALSE, &p->logx, err) &&
         cfg_get_bool(m, "logy", FALSE, &p->logy, err) &&
-        cfg_check_unused(m, err))
+        read_where(m, p, err) && cfg_check_unused(m, err))
         return p;
     plot_spec_free(p);
     return NULL;

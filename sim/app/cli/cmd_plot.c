@@ -138,9 +138,7 @@ static void header_error(GError **err, const DataTable *t, int c,
     g_free(where);
 }
 
-/* Keeps the rows of *t that satisfy one "K=V"; FALSE with *err when the
- * item or the column is bad. */
-static gboolean keep_where(DataTable **t, const char *item, GError **err)
+gboolean cli_keep_where(DataTable **t, const char *item, GError **err)
 {
     const char *eq = strchr(item, '=');
     char *key = eq ? g_strndup(item, (gsize)(eq - item)) : NULL;
@@ -180,7 +178,7 @@ static DataTable *read_rows(const PlotOpts *o, const char *csv, GError **err)
 {
     DataTable *t = dt_read_csv(csv, err);
     for (int i = 0; t && o->where && o->where[i]; i++)
-        if (!keep_where(&t, o->where[i], err))
+        if (!cli_keep_where(&t, o->where[i], err))
             return NULL;
     return t;
 }

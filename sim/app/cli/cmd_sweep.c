@@ -97,6 +97,26 @@ static char *out_dir_for(const SweepOpts *o, const SweepSpec *s)
                       : g_build_filename("out", s->name, NULL);
 }
 
+/* The rows of t a chart's where ("K=V, K=V"; NULL: t itself) keeps: a
+ * new table, or NULL with *err. */
+static DataTable *where_rows(DataTable *t, const char *where, GError **err)
+{
+    if (!where)
+        return t;
+    DataTable *k = dt_new_like(t);
+    for (guint r = 0; r < t->rows->len; r++)
+        dt_copy_row(k, t, r);
+    char **items = g_strsplit(where, ", ", -1);
+    for (guint i = 0; k && items[i]; i++)
+        if (!cli_keep_where(&k, items[i], err)) {
+            if (k)
+                dt_free(k);
+            k = NULL;
+        }
+    g_strfreev(items);
+    return k;
+}
+
 /* Writes the ordered outputs and the charts; counts failed rows. */
 static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
                        guint *charts_failed, GError **err)
@@ -113,12 +133,15 @@ static gboolean finish(const SweepSpec *s, const char *dir, guint *failed,
     for (guint p = 0; p < s->plots->len; p++) {
         const PlotSpec *ps = g_ptr_array_index(s->plots, p);
         GError *e = NULL;
-        if (!plot_render(ps, t, dir, &e)) {
+        DataTable *kept = where_rows(t, ps->where, &e);
+        if (!kept || !plot_render(ps, kept, dir, &e)) {
             fprintf(stderr, "pgsim sweep: chart %s not drawn: %s\n", ps->name,
                     e->message);
             g_error_free(e);
             *charts_failed += 1;
         }
+        if (kept != t)
+            dt_free(kept);
     }
     dt_free(t);
     return TRUE;

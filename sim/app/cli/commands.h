@@ -9,6 +9,8 @@
 #ifndef PGSIM_APP_CLI_COMMANDS_H
 #define PGSIM_APP_CLI_COMMANDS_H
 
+#include "sim/output/table.h"
+
 typedef struct {
     const char *name;
     int (*fn)(int argc, char **argv);
@@ -31,5 +33,11 @@ int cmd_sweep(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
 int cmd_models(int argc, char **argv);
+
+/* Keeps the rows of *t whose column K reads V, for one "K=V" (pgsim plot
+ * --where, a sweep chart's where:); FALSE with *err when the item or
+ * the column is bad (*t kept) or no row is left (*t freed, NULL)
+ * (cmd_plot.c). */
+gboolean cli_keep_where(DataTable **t, const char *item, GError **err);
 
 #endif

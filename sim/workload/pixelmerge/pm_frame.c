@@ -11,6 +11,7 @@
  * and ids) when check_image is set.
  */
 #include "sim/workload/pixelmerge/pm_frame.h"
+#include "sim/workload/pixelmerge/pm_rung_frame.h"
 #include <string.h>
 
 static SimTime add(SimTime a, SimTime b)
@@ -318,6 +319,8 @@ gboolean wl_pm_frame_run_procs(NetNet *net, MachProc *const *procs, guint frame,
                                const WlPmCosts *c, WlPmFrameOut *out,
                                GError **err)
 {
+    if (s->rung != WL_PM_RUNG_PIXELS)
+        return wl_pm_rung_frame_run(net, procs, frame, scene, s, c, out, err);
     guint n = s->procs;
     SimEngine *eng = net_engine(net);
     memset(out, 0, sizeof *out);

@@ -33,6 +33,7 @@
 #include "sim/workload/pixelmerge/pm_images.h"
 #include "sim/workload/pixelmerge/pm_render.h"
 #include "sim/workload/pixelmerge/pm_replay.h"
+#include "sim/workload/pixelmerge/pm_rung.h"
 
 typedef struct {
     WlPmScheme scheme;
@@ -46,6 +47,7 @@ typedef struct {
     RastSpanRule span_rule; /* exact coverage or both end points (scan.h) */
     gboolean keep_image;  /* return the merged image (WlPmFrameOut.image) */
     WlPmCompose comp;     /* the compositing schemes' options */
+    WlPmRung rung;        /* image fidelity (pm_rung_frame.h); pixels */
     WlPmImages images;    /* the local images: the scene's or blocks' */
 } WlPmSetup;
 

@@ -20,6 +20,9 @@
  *     bytes_per_rect: 8       # compositing: a bounding rectangle
  *     visibility: [2, 0, 1]   # compositing: processors nearest first
  *                             # (default 0, 1, ..., P-1)
+ *     image_fidelity: pixels  # compositing: pixels | runs | counts
+ *                             # (pm_rung_frame.h; counts: images blocks,
+ *                             # up to 65,536 processors and 16384^2)
  *     images: scene           # compositing: scene | blocks | volume
  *     volume: {...}           # blocks, volume: pm_images.h, pm_volume.h
  *     resolution: 400         # N: an N x N screen
@@ -303,6 +306,49 @@ static gboolean check_radices(const WlPmCompose *c, guint procs,
     return FALSE;
 }
 
+/* A count key above what the pixel rung takes: only at counts. */
+static gboolean rung_limit(const CfgNode *sec, const char *key, uint64_t v,
+                           uint64_t most, GError **err)
+{
+    if (v <= most)
+        return TRUE;
+    char *found = g_strdup_printf("%s %" G_GUINT64_FORMAT " at image "
+                                  "fidelity pixels or runs", key, v);
+    char *exp = g_strdup_printf("at most %" G_GUINT64_FORMAT " (more with "
+                                "image_fidelity: counts)", most);
+    cfg_error(err, cfg_get(sec, key), found, exp);
+    g_free(found);
+    g_free(exp);
+    return FALSE;
+}
+
+/* workload.image_fidelity (pm_rung_frame.h): pixels, or runs and counts
+ * with a compositing scheme; counts with block images only. */
+static gboolean parse_rung(const CfgNode *sec, WlPmSetup *s, uint64_t procs,
+                           uint64_t res, GError **err)
+{
+    int rung = WL_PM_RUNG_PIXELS;
+    if (!cfg_get_enum(sec, "image_fidelity", FALSE, wl_pm_rung_names, &rung,
+                      err))
+        return FALSE;
+    s->rung = (WlPmRung)rung;
+    const CfgNode *at = cfg_get(sec, "image_fidelity");
+    if (rung != WL_PM_RUNG_PIXELS && !wl_pm_scheme_composites(s->scheme)) {
+        cfg_error(err, at, "image fidelity runs or counts with one of Kurç's "
+                  "schemes", "a compositing scheme (binary_swap, "
+                  "direct_send, radix_k, two_three_swap)");
+        return FALSE;
+    }
+    if (rung == WL_PM_RUNG_COUNTS && s->images.kind != WL_PM_IMAGES_BLOCKS) {
+        cfg_error(err, at, "image fidelity counts without block images",
+                  "images: blocks (footprints are what counts model)");
+        return FALSE;
+    }
+    return rung == WL_PM_RUNG_COUNTS ||
+           (rung_limit(sec, "processors", procs, 1024, err) &&
+            rung_limit(sec, "resolution", res, 4096, err));
+}
+
 static void pm_free_params(void *params)
 {
     WlPmParams *p = params;
@@ -318,7 +364,7 @@ static void *pm_parse(const CfgNode *sec, GError **err)
     gboolean check = TRUE, cull = FALSE;
     gboolean ok =
         parse_words(sec, &p->setup, err) &&
-        cfg_get_count(sec, "processors", FALSE, 1, 1024, &procs, err) &&
+        cfg_get_count(sec, "processors", FALSE, 1, 65536, &procs, err) &&
         check_procs(sec, &p->setup, procs, err) &&
         parse_compose(sec, &p->setup, err) &&
         check_radices(&p->setup.comp, (guint)procs, cfg_get(sec, "radices"),
@@ -327,10 +373,11 @@ static void *pm_parse(const CfgNode *sec, GError **err)
         check_order(p, (guint)procs, cfg_get(sec, "visibility"), err) &&
         wl_pm_images_parse(sec, wl_pm_scheme_composites(p->setup.scheme),
                            p->order != NULL, &p->setup.images, err) &&
-        cfg_get_count(sec, "resolution", FALSE, 2, 4096, &res, err) &&
+        cfg_get_count(sec, "resolution", FALSE, 2, 16384, &res, err) &&
         cfg_get_bool(sec, "check_image", FALSE, &check, err) &&
         cfg_get_bool(sec, "cull_back", FALSE, &cull, err) &&
-        parse_sizes(sec, p, err) && parse_memory(sec, &p->mem, err);
+        parse_sizes(sec, p, err) && parse_memory(sec, &p->mem, err) &&
+        parse_rung(sec, &p->setup, procs, res, err);
     if (!ok) {
         pm_free_params(p);
         return NULL;
@@ -354,6 +401,16 @@ static double pm_mem_bytes(const void *params, GString *what)
 {
     const WlPmParams *p = params;
     double n = p->setup.resolution, procs = MAX(p->setup.procs, 1u);
+    if (p->setup.rung == WL_PM_RUNG_COUNTS) {
+        /* per process a few rectangles, its messages and replay state a
+         * stage (~4 KB); direct send P (P - 1) messages of ~350 B with
+         * their replay (4,096 processes: 5.7 GB peak RSS measured) */
+        g_string_append_printf(what, "%u processors at image fidelity "
+                               "counts", p->setup.procs);
+        return procs * 4096.0 +
+               (p->setup.scheme == WL_PM_DIRECT_SEND ? procs * procs * 350.0
+                                                     : 0.0);
+    }
     g_string_append_printf(what, "%u processors, %.0f x %.0f pixels",
                            p->setup.procs, n, n);
     double copies = p->setup.check_image ? 3 : 2;
@@ -518,7 +575,10 @@ static void run_metrics(const PmRun *r, SimResult *out)
 {
     WlPmMemUse mem = peak_memory(&r->fo, r->p, &r->s);
     double insert_ms = 0;
-    double serial_ms = wl_pm_serial_ms(r->ctx->scene, &r->s, &r->c, &insert_ms);
+    double serial_ms = r->s.rung != WL_PM_RUNG_PIXELS
+                           ? 0 /* not rendered: compositing only */
+                           : wl_pm_serial_ms(r->ctx->scene, &r->s, &r->c,
+                                             &insert_ms);
     fill_metrics(out, &r->fo, serial_ms, &r->s, &mem);
     set(out, "serial_insert_ms", insert_ms, "ms");
     note_speedup(out, serial_ms, insert_ms, r->fo.frame_ms, r->s.procs);
