@@ -88,10 +88,6 @@ void wl_pm_composite_free(WlPmComposite *c);
 double *wl_pm_over_serial(WlPmWpa *const *local, guint n_procs,
                           const guint *order, double opacity);
 
-/* The messages msgs (WlPmMsg, freed) of n processes in sender order,
- * stably (the replay's order): a new array of at least one slot. */
-WlPmMsg *wl_pm_msgs_by_sender(GArray *msgs, guint n);
-
 /* TRUE when order[n] is a permutation of 0 .. n - 1. */
 gboolean wl_pm_order_ok(const guint *order, guint n);
 

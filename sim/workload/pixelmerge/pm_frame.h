@@ -47,8 +47,8 @@ typedef struct {
     RastSpanRule span_rule; /* exact coverage or both end points (scan.h) */
     gboolean keep_image;  /* return the merged image (WlPmFrameOut.image) */
     WlPmCompose comp;     /* the compositing schemes' options */
-    WlPmRung rung;        /* image fidelity (pm_rung_frame.h); pixels */
     WlPmImages images;    /* the local images: the scene's or blocks' */
+    WlPmRung rung;        /* image fidelity (pm_rung_frame.h); pixels */
 } WlPmSetup;
 
 /* Node costs of the local phases, per counted operation. */

@@ -1,12 +1,17 @@
-/* pm_rung.c — running a compositing plan (pm_stages.h) on images at the
- * runs or counts rung (pm_rung.h); what an image element is and how it
- * is cut, composited and measured lives in pm_runs.c.
+/* pm_rung.c — running a compositing plan (pm_stages.h) on images of
+ * any rung (pm_rung.h, WlPmRep): who sends what to whom, the messages'
+ * sizes and the work; what an element is and how it is cut, composited
+ * and measured is the representation's (pixels: pm_composite.c; runs and
+ * counts: pm_runs.c).
  *
- * Invariants, as in pm_composite.c: every process's elements lie in its
- * piece [lo, hi); the active processes of a block have disjoint pieces
- * covering the image; act[b] lists block b's active ranks by piece, so a
- * block's slice finds its pieces by binary search (binary swap at 32,768
- * processes would otherwise walk half the block for every share).
+ * Invariants: every process's elements are sorted by linear index and
+ * lie in its piece [lo, hi); the active processes of a block have
+ * disjoint pieces covering the image, each holding the composite of the
+ * block's ranks over its piece; an inactive process holds nothing.
+ * Blocks are runs of consecutive ranks (blk[b] .. blk[b + 1]); act[b]
+ * lists block b's active ranks by piece, so a block's slice finds its
+ * pieces by binary search (binary swap at 32,768 processes would
+ * otherwise walk half the block for every share).
  */
 #include "sim/workload/pixelmerge/pm_rung.h"
 #include "sim/workload/pixelmerge/pm_runs.h"
@@ -21,9 +26,9 @@ typedef struct {
 } RProc;
 
 typedef struct {
+    const WlPmRep *rep;
     const WlPmCompose *c;
     const WlPmFormat *fmt;
-    WlPmRung rung;
     guint n, w;
     uint64_t npix;
     RProc *pr;
@@ -71,7 +76,7 @@ static void fragment_cost(const Rung *k, const GArray *el, uint64_t a,
 {
     const WlPmFormat *f = k->fmt;
     WlPmMeasure ms;
-    wl_pm_runs_measure(k->rung, el, k->w, k->c->bounding_rect, &ms);
+    k->rep->measure(k->rep->ctx, el, k->c->bounding_rect, &ms);
     uint64_t rect = k->c->bounding_rect ? f->bytes_per_rect : 0;
     if (k->c->rle) {
         m->pixels = ms.active;
@@ -129,8 +134,8 @@ static GArray *block_slice(const Rung *k, guint b, uint64_t a, uint64_t e)
         const RProc *p = &k->pr[g_array_index(k->act[b], guint, i)];
         if (p->lo >= e)
             break;
-        GArray *s = wl_pm_runs_slice(k->rung, p->el, k->w, MAX(a, p->lo),
-                                     MIN(e, p->hi));
+        GArray *s =
+            k->rep->slice(k->rep->ctx, p->el, MAX(a, p->lo), MIN(e, p->hi));
         if (o) {
             g_array_append_vals(o, s->data, s->len);
             g_array_free(s, TRUE);
@@ -138,7 +143,7 @@ static GArray *block_slice(const Rung *k, guint b, uint64_t a, uint64_t e)
             o = s;
         }
     }
-    return o ? o : wl_pm_runs_slice(k->rung, NULL, k->w, a, e);
+    return o ? o : k->rep->slice(k->rep->ctx, NULL, a, e);
 }
 
 /* Messages of process q to the owners of share[0 .. no], into msgs and
@@ -156,7 +161,7 @@ static void send_fragments(const Rung *k, guint q, const Owner *own, guint no,
         if (r == q || a >= b)
             continue;
         WlPmMsg m = {.src = proc_of(k, q), .dst = proc_of(k, r)};
-        GArray *frag = wl_pm_runs_slice(k->rung, p->el, k->w, a, b);
+        GArray *frag = k->rep->slice(k->rep->ctx, p->el, a, b);
         fragment_cost(k, frag, a, b, &m);
         g_array_free(frag, TRUE);
         g_array_append_val(msgs, m);
@@ -182,8 +187,9 @@ static void run_group(Rung *k, guint b0, guint nb, gboolean fold, GArray *msgs,
     for (guint i = 0; i < no; i++) {
         next[i] = block_slice(k, b0, share[i], share[i + 1]);
         for (guint b = b0 + 1; b < b0 + nb; b++)
-            next[i] = wl_pm_runs_over(
-                k->rung, next[i], block_slice(k, b, share[i], share[i + 1]));
+            next[i] = k->rep->over(
+                k->rep->ctx, next[i],
+                block_slice(k, b, share[i], share[i + 1]));
     }
     for (guint i = 0; i < na; i++) {
         RProc *p = &k->pr[own[i].rank];
@@ -228,11 +234,8 @@ static WlPmStep *run_stage(Rung *k, const WlPmStage *st)
     return step;
 }
 
-static void rung_init(Rung *k, WlPmRungImage *const *images)
+static void rung_init(Rung *k, GArray **el)
 {
-    k->rung = images[0]->rung;
-    k->w = images[0]->width;
-    k->npix = (uint64_t)k->w * images[0]->height;
     k->pr = g_new0(RProc, k->n);
     k->blk = g_new(guint, k->n + 1);
     k->act = g_new(GArray *, k->n);
@@ -240,33 +243,75 @@ static void rung_init(Rung *k, WlPmRungImage *const *images)
     for (guint p = 0; p <= k->n; p++)
         k->blk[p] = p;
     for (guint r = 0; r < k->n; r++) {
-        const WlPmRungImage *im = images[proc_of(k, r)];
-        g_assert(im->rung == k->rung && im->width == k->w);
-        GArray *el = wl_pm_runs_slice(k->rung, im->el, k->w, 0, k->npix);
-        k->pr[r] = (RProc){el, 0, k->npix, TRUE};
+        k->pr[r] = (RProc){el[proc_of(k, r)], 0, k->npix, TRUE};
         k->act[r] = g_array_new(FALSE, FALSE, sizeof(guint));
         g_array_append_val(k->act[r], r);
     }
+}
+
+guint wl_pm_plan_run(const WlPmRep *rep, WlPmScheme scheme,
+                     const WlPmCompose *c, GArray **el, guint n_procs,
+                     guint width, uint64_t npix, const WlPmFormat *fmt,
+                     GPtrArray *steps)
+{
+    g_assert(!c->order || wl_pm_order_ok(c->order, n_procs));
+    Rung k = {.rep = rep, .c = c, .fmt = fmt, .n = n_procs, .w = width,
+              .npix = npix};
+    rung_init(&k, el);
+    WlPmPlan *plan = wl_pm_plan_new(scheme, n_procs, c->radices, c->n_radices);
+    for (guint s = 0; s < plan->n_stages; s++)
+        g_ptr_array_add(steps, run_stage(&k, &plan->stage[s]));
+    guint stages = plan->n_stages;
+    g_assert(k.n_blk == 1);
+    for (guint r = 0; r < n_procs; r++)
+        el[proc_of(&k, r)] = k.pr[r].el;
+    g_array_free(k.act[0], TRUE);
+    wl_pm_plan_free(plan);
+    g_free(k.act);
+    g_free(k.pr);
+    g_free(k.blk);
+    return stages;
+}
+
+WlPmMsg *wl_pm_msgs_by_sender(GArray *msgs, guint n)
+{
+    guint *at = g_new0(guint, n + 1);
+    for (guint i = 0; i < msgs->len; i++)
+        at[g_array_index(msgs, WlPmMsg, i).src + 1]++;
+    for (guint p = 0; p < n; p++)
+        at[p + 1] += at[p];
+    WlPmMsg *out = g_new(WlPmMsg, MAX(msgs->len, 1u));
+    for (guint i = 0; i < msgs->len; i++) {
+        const WlPmMsg *m = &g_array_index(msgs, WlPmMsg, i);
+        out[at[m->src]++] = *m;
+    }
+    g_array_free(msgs, TRUE);
+    g_free(at);
+    return out;
 }
 
 WlPmMerge *wl_pm_rung_run(WlPmScheme scheme, const WlPmCompose *c,
                           WlPmRungImage *const *images, guint n_procs,
                           const WlPmFormat *fmt, guint *stages)
 {
-    g_assert(!c->order || wl_pm_order_ok(c->order, n_procs));
-    Rung k = {.c = c, .fmt = fmt, .n = n_procs};
-    rung_init(&k, images);
+    WlPmRunsCtx ctx = {images[0]->rung, images[0]->width};
+    WlPmRep rep = wl_pm_runs_rep(&ctx);
+    uint64_t npix = (uint64_t)ctx.width * images[0]->height;
+    GArray **el = g_new(GArray *, n_procs);
+    for (guint p = 0; p < n_procs; p++) {
+        g_assert(images[p]->rung == ctx.rung && images[p]->width == ctx.width);
+        el[p] = rep.slice(&ctx, images[p]->el, 0, npix);
+    }
     WlPmMerge *m = g_new0(WlPmMerge, 1);
     m->scheme = scheme;
     m->n_procs = n_procs;
     m->steps = g_ptr_array_new();
     m->merge_ops = g_new0(uint64_t, n_procs);
-    WlPmPlan *plan = wl_pm_plan_new(scheme, n_procs, c->radices, c->n_radices);
-    for (guint s = 0; s < plan->n_stages; s++)
-        g_ptr_array_add(m->steps, run_stage(&k, &plan->stage[s]));
+    guint ns =
+        wl_pm_plan_run(&rep, scheme, c, el, n_procs, ctx.width, npix, fmt,
+                       m->steps);
     if (stages)
-        *stages = plan->n_stages;
-    g_assert(k.n_blk == 1);
+        *stages = ns;
     for (guint s = 0; s < m->steps->len; s++) {
         const WlPmStep *st = g_ptr_array_index(m->steps, s);
         for (guint p = 0; p < n_procs; p++)
@@ -276,13 +321,9 @@ WlPmMerge *wl_pm_rung_run(WlPmScheme scheme, const WlPmCompose *c,
         m->total_msgs += st->n_msgs;
     }
     m->concurrent_volume = wl_pm_concurrent_volume(m->steps, n_procs);
-    for (guint r = 0; r < n_procs; r++)
-        g_array_free(k.pr[r].el, TRUE);
-    g_array_free(k.act[0], TRUE);
-    wl_pm_plan_free(plan);
-    g_free(k.act);
-    g_free(k.pr);
-    g_free(k.blk);
+    for (guint p = 0; p < n_procs; p++)
+        g_array_free(el[p], TRUE);
+    g_free(el);
     return m;
 }
 

@@ -81,6 +81,44 @@ WlPmMerge *wl_pm_rung_run(WlPmScheme scheme, const WlPmCompose *c,
                           const WlPmFormat *fmt, guint *stages);
 void wl_pm_rung_merge_free(WlPmMerge *m);
 
+/* What a fragment holds: active pixels, runs (linear order, or the
+ * box's rows when box_mode), and the bounding box of its active pixels
+ * x0, x1, y0, y1 (inclusive; any FALSE when it holds none). */
+typedef struct {
+    uint64_t active, runs;
+    gboolean any;
+    guint box[4];
+} WlPmMeasure;
+
+/* An image representation a plan runs on (every rung: pixels in
+ * pm_composite.c, runs and counts in pm_runs.c): a process holds an
+ * array of elements sorted by linear index; slice copies those of el
+ * (NULL: none) inside [a, b) into a new array, over composites front
+ * over back (both consumed) into a new one, measure says what a
+ * fragment holds.  ctx is theirs. */
+typedef struct {
+    GArray *(*slice)(const void *ctx, const GArray *el, uint64_t a,
+                     uint64_t b);
+    GArray *(*over)(const void *ctx, GArray *front, GArray *back);
+    void (*measure)(const void *ctx, const GArray *el, gboolean box_mode,
+                    WlPmMeasure *m);
+    const void *ctx;
+} WlPmRep;
+
+/* Runs scheme's plan (pm_stages.h) for n_procs processes on an image of
+ * npix locations `width` wide, as pm_composite.h describes (c's radices,
+ * bounding_rect, rle, order): el[p] is processor p's image (consumed),
+ * replaced by its final piece (empty when it ends inactive); the steps
+ * are appended to steps.  Returns the plan's stage count. */
+guint wl_pm_plan_run(const WlPmRep *rep, WlPmScheme scheme,
+                     const WlPmCompose *c, GArray **el, guint n_procs,
+                     guint width, uint64_t npix, const WlPmFormat *fmt,
+                     GPtrArray *steps);
+
+/* The messages msgs (WlPmMsg, freed) of n processes in sender order,
+ * stably (the replay's order): a new array of at least one slot. */
+WlPmMsg *wl_pm_msgs_by_sender(GArray *msgs, guint n);
+
 /* Locations of the linear range [a, b) inside box x0..x1, y0..y1
  * (inclusive) of a screen `width` wide: O(1). */
 uint64_t wl_pm_box_locations(guint width, uint64_t a, uint64_t b,

@@ -254,29 +254,38 @@ static void rects_measure(const GArray *el, guint w, gboolean box_mode,
 
 /* ---- dispatch ------------------------------------------------------------ */
 
-GArray *wl_pm_runs_slice(WlPmRung rung, const GArray *el, guint w, uint64_t a,
+static GArray *rep_slice(const void *ctx, const GArray *el, uint64_t a,
                          uint64_t b)
 {
-    if (rung == WL_PM_RUNG_RUNS)
+    const WlPmRunsCtx *k = ctx;
+    if (k->rung == WL_PM_RUNG_RUNS)
         return runs_slice(el, a, b);
-    return rects_slice(el, w, a, b);
+    return rects_slice(el, k->width, a, b);
 }
 
-GArray *wl_pm_runs_over(WlPmRung rung, GArray *front, GArray *back)
+static GArray *rep_over(const void *ctx, GArray *front, GArray *back)
 {
-    if (rung == WL_PM_RUNG_RUNS)
+    const WlPmRunsCtx *k = ctx;
+    if (k->rung == WL_PM_RUNG_RUNS)
         return runs_union(front, back);
     return rects_over(front, back);
 }
 
-void wl_pm_runs_measure(WlPmRung rung, const GArray *el, guint w,
-                        gboolean box_mode, WlPmMeasure *m)
+void wl_pm_runs_measure(const void *ctx, const GArray *el, gboolean box_mode,
+                        WlPmMeasure *m)
 {
+    const WlPmRunsCtx *k = ctx;
     *m = (WlPmMeasure){0};
-    if (rung == WL_PM_RUNG_RUNS)
-        runs_measure(el, w, box_mode, m);
+    if (k->rung == WL_PM_RUNG_RUNS)
+        runs_measure(el, k->width, box_mode, m);
     else
-        rects_measure(el, w, box_mode, m);
+        rects_measure(el, k->width, box_mode, m);
+}
+
+WlPmRep wl_pm_runs_rep(const WlPmRunsCtx *ctx)
+{
+    g_assert(ctx->rung != WL_PM_RUNG_PIXELS);
+    return (WlPmRep){rep_slice, rep_over, wl_pm_runs_measure, ctx};
 }
 
 /* ---- images -------------------------------------------------------------- */
@@ -335,7 +344,8 @@ WlPmRungImage *wl_pm_rung_from_wpa(WlPmRung rung, const WlPmWpa *w)
 
 uint64_t wl_pm_rung_image_active(const WlPmRungImage *im)
 {
+    WlPmRunsCtx k = {im->rung, im->width};
     WlPmMeasure m;
-    wl_pm_runs_measure(im->rung, im->el, im->width, FALSE, &m);
+    wl_pm_runs_measure(&k, im->el, FALSE, &m);
     return m.active;
 }

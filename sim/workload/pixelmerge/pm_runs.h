@@ -10,22 +10,16 @@
 
 #include "sim/workload/pixelmerge/pm_rung.h"
 
-/* What a fragment holds: active pixels, runs (linear order, or the
- * box's rows when box_mode), and the bounding box of its active pixels
- * x0, x1, y0, y1 (inclusive; any FALSE when it holds none). */
+/* Context of the runs and counts representations: the image's width. */
 typedef struct {
-    uint64_t active, runs;
-    gboolean any;
-    guint box[4];
-} WlPmMeasure;
+    WlPmRung rung;
+    guint width;
+} WlPmRunsCtx;
 
-/* The elements of `el` (NULL: none) inside linear indices [a, b) of an
- * image `w` wide: a new array. */
-GArray *wl_pm_runs_slice(WlPmRung rung, const GArray *el, guint w, uint64_t a,
-                         uint64_t b);
-/* front composited over back (both consumed): a new array. */
-GArray *wl_pm_runs_over(WlPmRung rung, GArray *front, GArray *back);
-void wl_pm_runs_measure(WlPmRung rung, const GArray *el, guint w,
-                        gboolean box_mode, WlPmMeasure *m);
+/* The representation of a rung (runs or counts) on ctx (borrowed). */
+WlPmRep wl_pm_runs_rep(const WlPmRunsCtx *ctx);
+/* Measures el at ctx's rung (pm_rung.h's measure). */
+void wl_pm_runs_measure(const void *ctx, const GArray *el, gboolean box_mode,
+                        WlPmMeasure *m);
 
 #endif

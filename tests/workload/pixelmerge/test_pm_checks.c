@@ -75,7 +75,8 @@ static void check_phases(const Scene *sc, WlPmScheme sch, guint P,
 {
     WlPmSetup s = {
         sch,   WL_PM_BAL_RS,    P,    N, WL_PM_SPLIT_CYCLIC, {8, 4, 2, 0, 0}, FALSE,
-        FALSE, RAST_SPAN_EXACT, FALSE, {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0}};
+        FALSE, RAST_SPAN_EXACT, FALSE, {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0},
+        WL_PM_RUNG_PIXELS};
     WlPmFrameOut out;
     frame(sc, &s, c, &out);
     int full = sch == WL_PM_ZBUF_EXC;
@@ -161,7 +162,8 @@ static void test_machine_busy_matches_cost_model(void **state)
         WlPmSetup s = {(WlPmScheme)sch,    WL_PM_BAL_HBP, 4,     N,
                        WL_PM_SPLIT_CYCLIC, {8, 4, 2, 0, 0},     FALSE, FALSE,
                        RAST_SPAN_EXACT,    FALSE,
-                       {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0}};
+                       {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0},
+                       WL_PM_RUNG_PIXELS};
         WlPmFrameOut on, off;
         if (!wl_pm_frame_run_procs(mach_net(m[0]), procs, 0, sc, &s, &c, &on,
                                    &err) ||

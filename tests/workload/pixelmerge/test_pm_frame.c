@@ -100,7 +100,8 @@ static void test_images_match_serial(void **state)
                                n == 4,
                                RAST_SPAN_EXACT,
                                FALSE,
-                               {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0}};
+                               {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0},
+                               WL_PM_RUNG_PIXELS};
                 WlPmFrameOut out;
                 run(sc, &s, &out);
                 assert_true(out.image_checked);
@@ -125,7 +126,8 @@ static void test_zbuf_exc_costs_more(void **state)
     WlPmSetup s = {WL_PM_PAIR,         WL_PM_BAL_RS, 8,     N,
                    WL_PM_SPLIT_CYCLIC, {8, 4, 2, 0, 0},    FALSE, TRUE,
                    RAST_SPAN_EXACT,    FALSE,
-                   {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0}};
+                   {{0}, 0, FALSE, FALSE, 0, 0, NULL}, {0},
+                   WL_PM_RUNG_PIXELS};
     WlPmFrameOut pair, full;
     run(sc, &s, &pair);
     s.scheme = WL_PM_ZBUF_EXC;
