@@ -20,7 +20,6 @@
 #include "sim/core/units.h"
 #include "sim/machine/partition.h"
 #include "sim/workload/pixelmerge/pm_foot.h"
-#include "sim/machine/costs.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 #include <stdio.h>
 #include <string.h>
@@ -101,23 +100,6 @@ static WlPmMerge *composite(const Opts *o, WlPmRung rung, Row *row,
     return m;
 }
 
-/* The costs compositing spends (pm_composite.h): packing a record and
- * compositing one, of node kind "node"; the rest of *c zero. */
-static gboolean composite_costs(const MachMachine *m, WlPmCosts *c,
-                                GError **err)
-{
-    static const char *const ops[] = {"pack", "compare", NULL};
-    static const MachNeed needs[] = {{"node", ops}, {NULL, NULL}};
-    MachCosts *set = mach_costs_new(m, needs, err);
-    if (!set)
-        return FALSE;
-    *c = (WlPmCosts){.merge = {.count_bytes = 4}};
-    SimTime *const dst[] = {&c->merge.pack, &c->merge.compare};
-    mach_costs_fill(set, "node", ops, dst);
-    mach_costs_free(set);
-    return TRUE;
-}
-
 /* The machine on eng with its network and pixel-merging costs *c, or
  * NULL with *err. */
 static MachMachine *build(const Opts *o, const CfgNode *root, SimEngine *eng,
@@ -125,8 +107,8 @@ static MachMachine *build(const Opts *o, const CfgNode *root, SimEngine *eng,
 {
     MachMachine *mach =
         mach_new_from_cfg(eng, cfg_get(root, "machine"), o->fidelity, err);
-    if (mach &&
-        (!mach_require_net(mach, err) || !composite_costs(mach, c, err))) {
+    if (mach && (!mach_require_net(mach, err) ||
+                 !wl_pm_composite_costs_from_machine(mach, 4, c, err))) {
         mach_free(mach);
         return NULL;
     }

@@ -22,7 +22,8 @@
  *                             # (default 0, 1, ..., P-1)
  *     image_fidelity: pixels  # compositing: pixels | runs | counts
  *                             # (pm_rung_frame.h; counts: images blocks,
- *                             # up to 65,536 processors and 16384^2)
+ *                             # up to 65,536 processors and 16384^2;
+ *                             # runs, counts: costs pack, compare only)
  *     images: scene           # compositing: scene | blocks | volume
  *     volume: {...}           # blocks, volume: pm_images.h, pm_volume.h
  *     resolution: 400         # N: an N x N screen
@@ -79,6 +80,22 @@ gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
     mach_costs_fill(set, "node", wl_pm_cost_ops, dst);
     mach_costs_free(set);
     c->merge.count_bytes = count_bytes;
+    return TRUE;
+}
+
+gboolean wl_pm_composite_costs_from_machine(const MachMachine *m,
+                                            uint32_t count_bytes,
+                                            WlPmCosts *c, GError **err)
+{
+    static const char *const ops[] = {"pack", "compare", NULL};
+    static const MachNeed needs[] = {{"node", ops}, {NULL, NULL}};
+    MachCosts *set = mach_costs_new(m, needs, err);
+    if (!set)
+        return FALSE;
+    *c = (WlPmCosts){.merge = {.count_bytes = count_bytes}};
+    SimTime *const dst[] = {&c->merge.pack, &c->merge.compare};
+    mach_costs_fill(set, "node", ops, dst);
+    mach_costs_free(set);
     return TRUE;
 }
 
@@ -599,7 +616,10 @@ static gboolean pm_run(const WlContext *ctx, void *params, SimResult *out,
                        cfg_path(ctx->root, "workload.radices"), err) ||
         !check_order(r.p, r.s.procs, cfg_path(ctx->root, "workload.visibility"),
                      err) ||
-        !wl_pm_costs_from_machine(m, r.p->count_bytes, &r.c, err))
+        !(r.s.rung == WL_PM_RUNG_PIXELS
+              ? wl_pm_costs_from_machine(m, r.p->count_bytes, &r.c, err)
+              : wl_pm_composite_costs_from_machine(m, r.p->count_bytes, &r.c,
+                                                   err)))
         return FALSE;
     r.procs = g_new(MachProc *, r.s.procs);
     for (guint q = 0; q < r.s.procs; q++)

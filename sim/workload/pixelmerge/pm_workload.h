@@ -53,6 +53,12 @@ extern const MachNeed wl_pm_needs[];
  * the model. */
 gboolean wl_pm_costs_from_machine(const MachMachine *m, uint32_t count_bytes,
                                   WlPmCosts *c, GError **err);
+/* Only the costs compositing spends, pack and compare of node kind
+ * "node" (the rest of *c zero): what a frame at the runs or counts rung
+ * (pm_rung_frame.h) and `pgsim bench composite` read. */
+gboolean wl_pm_composite_costs_from_machine(const MachMachine *m,
+                                            uint32_t count_bytes,
+                                            WlPmCosts *c, GError **err);
 
 /* The peak bytes of a node with these counts: base + polygons x
  * polygon + spans x span (the span lists are complete before z-buffering
