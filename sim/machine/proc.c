@@ -115,9 +115,13 @@ gboolean mach_proc_compute(MachProc *p, SimTime cost, unsigned phase,
     return submit(p, cost, NULL, 0, phase, done, ctx, arg);
 }
 
-/* count x the kind's cost of op, saturating. */
+/* count x the kind's cost of op, saturating; an op counted 0 times
+ * costs nothing, priced or not (a kind that lacks a cost the work never
+ * spends, as compositing's scatter and gather). */
 static SimTime op_cost(const MachProc *p, const MachOp *op)
 {
+    if (op->count == 0)
+        return 0;
     const MachCost *unit =
         p->info->costs ? g_hash_table_lookup(p->info->costs, op->name) : NULL;
     g_assert(unit); /* the workload checked with mach_costs_new() */

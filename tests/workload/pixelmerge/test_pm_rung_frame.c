@@ -6,7 +6,8 @@
  * refuses runs or counts with Kurç's schemes, counts without block
  * images and more than 1,024 processors or 4096^2 below counts, each
  * located; the own-memory estimate at counts grows with P (P^2 for
- * direct send). */
+ * direct send); a counts frame runs on machine processors whose model
+ * prices only pack and compare. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,6 +15,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sim/machine/partition.h"
 #include "sim/workload/pixelmerge/pm_workload.h"
 
 static const WlPmFormat fmt = {8, 4, 2, 4, 8};
@@ -77,6 +79,51 @@ static void test_rungs_in_frames(void **st)
     scene_free(sc);
 }
 
+/* A frame at the counts rung on machine processors of a model with only
+ * the two costs compositing spends (cluster-ib has no pixel-merging
+ * table): it runs, and its processors are busy merging. */
+static void test_counts_on_machine_with_two_costs(void **st)
+{
+    (void)st;
+    const char *sets[] = {"machine.nodes.node.costs.pack=5 ns",
+                          "machine.nodes.node.costs.compare=7 ns", NULL};
+    GError *err = NULL;
+    CfgNode *root =
+        mach_partition_root("test", "cluster-ib", sets, 64, NULL, &err);
+    assert_non_null(root);
+    SimEngine *eng = sim_engine_new(1);
+    MachMachine *m =
+        mach_new_from_cfg(eng, cfg_get(root, "machine"), "analytic", &err);
+    assert_non_null(m);
+    WlPmCosts c;
+    assert_false(wl_pm_costs_from_machine(m, 4, &c, &err));
+    g_clear_error(&err);
+    assert_true(wl_pm_composite_costs_from_machine(m, 4, &c, &err));
+    MachProc *procs[64];
+    for (guint q = 0; q < 64; q++)
+        procs[q] = mach_proc(m, "node", q);
+    Scene *sc = scene_new("camera only");
+    sc->camera = scene_camera_default();
+    scene_camera_fit(&sc->camera, (SceneBox){{-1, -1, -1}, {1, 1, 1}}, 1.0);
+    WlPmSetup s = {.scheme = WL_PM_RADIX_K,
+                   .procs = 64,
+                   .resolution = 512,
+                   .fmt = fmt,
+                   .comp = {.bounding_rect = TRUE, .rle = TRUE, .opacity = 1},
+                   .images = {.kind = WL_PM_IMAGES_BLOCKS, .density = 1.5},
+                   .rung = WL_PM_RUNG_COUNTS};
+    WlPmFrameOut o;
+    if (!wl_pm_frame_run_procs(mach_net(m), procs, 0, sc, &s, &c, &o, &err))
+        fail_msg("%s", err->message);
+    assert_true(o.merge_ms > 0 && o.merge_bytes > 0);
+    assert_true(o.busy[0].total > 0);
+    wl_pm_frame_out_clear(&o, 64);
+    scene_free(sc);
+    mach_free(m);
+    sim_engine_free(eng);
+    cfg_free(root);
+}
+
 static WlPmParams *parse(const char *extra, GError **err)
 {
     char *text = g_strdup_printf("workload: {type: pixelmerge%s}\n", extra);
@@ -136,6 +183,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rungs_in_frames),
         cmocka_unit_test(test_parse),
+        cmocka_unit_test(test_counts_on_machine_with_two_costs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
