@@ -9,7 +9,8 @@
  * Topologies: one small builder per word in topo_table; a mesh or torus
  * takes `extents` or one of its `shapes` (flattened, one per partition
  * size) and is a mesh below `torus_min` nodes; `node_size` endpoints per
- * node make it a two-level network (sim/net/group.c) with
+ * node (the last one possibly partly used) make it a two-level network
+ * (sim/net/group.c) with
  * `node_bandwidth` inside a node and `node_ports` shared (one outer port
  * per node) or per-endpoint.
  * Every number comes from the model; the only defaults are "absent means
@@ -378,9 +379,8 @@ gboolean mach_topo_supported(const char *topology)
  * `node_ports` shared (the outer topology joins nodes) or per-endpoint
  * (it joins endpoints).  *outer_n: the outer topology's node count. */
 static gboolean read_group(const CfgNode *net, guint endpoints,
-                           const CfgNode *count_at, uint64_t *size,
-                           gboolean *per_endpoint, guint *outer_n,
-                           GError **err)
+                           uint64_t *size, gboolean *per_endpoint,
+                           guint *outer_n, GError **err)
 {
     const char *ports = mach_param_word(net, "node_ports");
     *size = 1;
@@ -394,15 +394,14 @@ static gboolean read_group(const CfgNode *net, guint endpoints,
         g_free(found);
         return FALSE;
     }
-    if (*size != 1 && (*size == 0 || *size > endpoints || endpoints % *size)) {
-        char *found = g_strdup_printf(
-            "%u endpoints in nodes of %" G_GUINT64_FORMAT, endpoints, *size);
-        cfg_error(err, *size == 0 ? mach_param_node(net, "node_size") : count_at,
-                  found, "a whole number of nodes (node_size >= 1)");
-        g_free(found);
+    if (*size == 0 || *size > UINT32_MAX) {
+        cfg_error(err, mach_param_node(net, "node_size"),
+                  "an unusable node_size", "1 .. 2^32 - 1 endpoints a node");
         return FALSE;
     }
-    *outer_n = *per_endpoint ? endpoints : endpoints / (guint)*size;
+    /* The last node may be partly used (4 GPUs of a DGX). */
+    *outer_n = *per_endpoint ? endpoints
+                             : (guint)((endpoints + *size - 1) / *size);
     return TRUE;
 }
 
@@ -417,12 +416,12 @@ NetTopo *mach_topo_new(const CfgNode *net, guint endpoints,
     if (!count_at)
         count_at = net;
     if (fn) {
-        if (!read_group(net, endpoints, count_at, &size, &per_endpoint,
-                        &outer_n, err))
+        if (!read_group(net, endpoints, &size, &per_endpoint, &outer_n,
+                        err))
             return NULL;
         NetTopo *t = fn(net, outer_n, count_at, err);
         if (t && size > 1)
-            t = net_group_new(t, (uint32_t)size, per_endpoint);
+            t = net_group_new(t, (uint32_t)size, per_endpoint, endpoints);
         return t;
     }
     char *found = g_strdup_printf("topology '%s' (not built by the machine "

@@ -20,6 +20,9 @@
  * the outer's, and 2^63 + e for an endpoint, 2^63 + 2^62 + group for a
  * group switch; only the shared form gives endpoints their own vertex.
  *
+ * The last group may be partial (n endpoints need not fill every group:
+ * a run on 4 GPUs of an 8-GPU node).
+ *
  * Invariants: routes inside a group have 2 hops; others are the outer
  * route.  State: a few words plus the outer topology (owned); route()
  * costs what the outer route costs.
@@ -119,12 +122,12 @@ const NetTopologyOps net_group_ops = {
     .free = grp_free,
 };
 
-NetTopo *net_group_new(NetTopo *outer, uint32_t group, gboolean per_endpoint)
+NetTopo *net_group_new(NetTopo *outer, uint32_t group, gboolean per_endpoint,
+                       uint32_t n)
 {
-    g_assert(outer && group >= 1);
+    g_assert(outer && group >= 1 && n >= 1);
     uint64_t on = net_topo_nodes(outer);
-    uint64_t n = per_endpoint ? on : on * group;
-    g_assert(n <= UINT32_MAX && n % group == 0);
+    g_assert(per_endpoint ? n == on : (n - 1) / group + 1 == on);
     NetGroup *t = g_new0(NetGroup, 1);
     t->outer = outer;
     t->g = group;

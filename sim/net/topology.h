@@ -125,10 +125,11 @@ NetTopo *net_cm200_new(unsigned cube_dims, uint32_t group, uint32_t news_x,
 NetTopo *net_mesh_new(unsigned ndims, const uint32_t *extent, gboolean wrap);
 NetTopo *net_crossbar_new(uint32_t nodes);
 NetTopo *net_bus_new(uint32_t nodes);
-/* Groups of `group` endpoints over `outer` (taken): per_endpoint, outer
- * has one node per endpoint (its node count must be a multiple of
- * group); otherwise one per group (group.c). */
-NetTopo *net_group_new(NetTopo *outer, uint32_t group, gboolean per_endpoint);
+/* n endpoints in groups of `group` over `outer` (taken): per_endpoint,
+ * outer has one node per endpoint (n of them); otherwise one per group,
+ * ceil(n / group), the last possibly partial (group.c). */
+NetTopo *net_group_new(NetTopo *outer, uint32_t group, gboolean per_endpoint,
+                       uint32_t n);
 /* The outer topology of a group topology (borrowed). */
 const NetTopo *net_group_outer(const NetTopo *t);
 void net_topo_free(NetTopo *t);

@@ -136,6 +136,9 @@ static void test_mesh_below_midplane(void **state)
     bgp_close(&b);
     open_ok(&b, 40960, NULL); /* the whole machine, 40 x 32 x 32 */
     bgp_close(&b);
+    net = open_ok(&b, 4, NULL); /* 2 x 2 x 1, for small runs */
+    assert_int_equal(hops(net, 0, 3), 2);
+    bgp_close(&b);
 }
 
 /* Virtual Node mode: 4 processes per node, 2,048 processes on a 512-node
@@ -175,7 +178,7 @@ static void test_refused(void **state)
     expect_refused(1000, NULL, "found 1000 processors on a mesh, expected");
     expect_refused(48, NULL, "one of network.shapes");
     const char *vn[] = {"machine.network.node_size=4", NULL};
-    expect_refused(2050, vn, "2050 endpoints in nodes of 4");
+    expect_refused(2050, vn, "found 513 processors on a mesh"); /* 512 + 1 */
 }
 
 int main(void)

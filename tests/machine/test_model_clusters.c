@@ -112,6 +112,11 @@ static void test_dgx(void **state)
     net = open_ok(&c, "dgx-a100-hdr", 64); /* 8 nodes */
     assert_int_equal(net_nodes(net), 64);
     clu_close(&c);
+    net = open_ok(&c, "dgx-a100-hdr", 4); /* half of one node */
+    assert_int_equal(hops(net, 0, 3), 2);
+    assert_true(net_ideal_time(net, 0, 3, gb) - lat2 ==
+                sim_time_for_bytes(1e9, 300e9));
+    clu_close(&c);
 }
 
 /* Myrinet-2000: a message through one crossbar pays the 3.2 us MPI

@@ -19,7 +19,7 @@ static void test_shared_routes(void **state)
 {
     (void)state;
     /* 4 groups of 3 on a ring of 4: 12 endpoints. */
-    NetTopo *t = net_group_new(net_ring_new(4), 3, FALSE);
+    NetTopo *t = net_group_new(net_ring_new(4), 3, FALSE, 12);
     NetLinkId r[8];
     char name[32];
     assert_string_equal(t->ops->name, "group");
@@ -54,7 +54,7 @@ static void test_per_endpoint_routes(void **state)
 {
     (void)state;
     /* 16 endpoints in groups of 4, each with its own fat-tree leaf. */
-    NetTopo *t = net_group_new(net_fattree_new(16, 4), 4, TRUE);
+    NetTopo *t = net_group_new(net_fattree_new(16, 4), 4, TRUE, 16);
     NetLinkId r[8], o[8];
     assert_int_equal(net_topo_nodes(t), 16);
     assert_int_equal(t->ops->route(t->state, 0, 3, r), 2);
@@ -66,6 +66,24 @@ static void test_per_endpoint_routes(void **state)
     char name[32];
     t->ops->link_name(t->state, r[0], name, sizeof name);
     assert_string_equal(name, "up0.1");
+    net_topo_free(t);
+}
+
+/* 10 endpoints in groups of 4 over a ring of 3: the last group holds
+ * endpoints 8 and 9 only; 9 reaches 8 through its switch and 0 over the
+ * ring (groups 2 -> 0). */
+static void test_partial_group(void **state)
+{
+    (void)state;
+    NetTopo *t = net_group_new(net_ring_new(3), 4, FALSE, 10);
+    NetLinkId r[8];
+    char name[32];
+    assert_int_equal(net_topo_nodes(t), 10);
+    assert_int_equal(t->ops->route(t->state, 9, 8, r), 2);
+    t->ops->link_name(t->state, r[1], name, sizeof name);
+    assert_string_equal(name, "sw2->e8");
+    assert_int_equal(t->ops->route(t->state, 9, 0, r), 1);
+    assert_true(r[0] < INNER);
     net_topo_free(t);
 }
 
@@ -89,7 +107,7 @@ static SimTime two_sends(gboolean per_endpoint)
 {
     SimEngine *eng = sim_engine_new(1);
     NetTopo *outer = per_endpoint ? net_crossbar_new(4) : net_ring_new(2);
-    NetTopo *t = net_group_new(outer, 2, per_endpoint);
+    NetTopo *t = net_group_new(outer, 2, per_endpoint, 4);
     NetParams p = {.bandwidth = 1e6, .node_bw = 1e9, .channels = 1};
     NetNet *net = net_new(eng, t, &p, NET_FLOW);
     Done d = {0};
@@ -116,6 +134,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_shared_routes),
         cmocka_unit_test(test_per_endpoint_routes),
+        cmocka_unit_test(test_partial_group),
         cmocka_unit_test(test_shared_port_contends),
     };
     return cmocka_run_group_tests_name("group", tests, NULL, NULL);
