@@ -140,6 +140,10 @@ static void walk(Walk *w, guint node, Mat4 m, gboolean test)
     }
     gboolean xf = n->kind == WL_PF_SCS || n->kind == WL_PF_DCS;
     Mat4 cm = xf ? mat4_mul(m, n->xf) : m;
+    if ((n->callbacks & WL_PF_CB_CULL) && w->dl)
+        w->st->callbacks += 2; /* pre- and post-cull */
+    if (n->callbacks & WL_PF_CB_DRAW)
+        emit(w, WL_PF_DL_CALLBACK, 0);
     if (xf)
         emit(w, WL_PF_DL_PUSH, 0);
     if (n->flattened && w->dl)
@@ -149,6 +153,8 @@ static void walk(Walk *w, guint node, Mat4 m, gboolean test)
     walk_children(w, n, cm, wc);
     if (xf)
         emit(w, WL_PF_DL_POP, 0);
+    if (n->callbacks & WL_PF_CB_DRAW)
+        emit(w, WL_PF_DL_CALLBACK, 0);
 }
 
 void wl_pf_cull(const WlPfGraph *g, const WlPfView *v, GArray *dl,
@@ -171,6 +177,10 @@ void wl_pf_draw(const WlPfGraph *g, const GArray *dl, WlPfDrawStats *st)
     WlPfGeoState cur = {G_MAXUINT, G_MAXUINT, G_MAXUINT};
     for (guint i = 0; i < dl->len; i++) {
         const WlPfDlItem *it = &g_array_index(dl, WlPfDlItem, i);
+        if (it->op == WL_PF_DL_CALLBACK) {
+            st->callbacks++;
+            continue;
+        }
         if (it->op != WL_PF_DL_GEOSET) {
             st->matrix_ops++;
             continue;

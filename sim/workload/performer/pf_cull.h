@@ -17,6 +17,11 @@
  * attributes that differ from the current state are sent) beside the
  * count an eager push/pop of every attribute would send.
  *
+ * Traversal callbacks (slides "libpf": pre- and post-traversal callbacks
+ * per traversal type): a node CULL visits and keeps with WL_PF_CB_CULL
+ * runs two CULL callbacks; one with WL_PF_CB_DRAW gets a CALLBACK item
+ * before and after its contents in the display list, which DRAW runs.
+ *
  * ISECT intersects a vertical segment with the graph (masks and
  * bounding spheres prune, then triangles are tested): terrain following.
  * Each traversal is O(nodes visited + triangles tested).
@@ -34,7 +39,7 @@ typedef struct {
     gboolean cull;       /* view-frustum culling on */
 } WlPfView;
 
-enum { WL_PF_DL_PUSH, WL_PF_DL_POP, WL_PF_DL_GEOSET };
+enum { WL_PF_DL_PUSH, WL_PF_DL_POP, WL_PF_DL_GEOSET, WL_PF_DL_CALLBACK };
 typedef struct {
     guint op;     /* WL_PF_DL_* */
     guint geoset; /* GEOSET items */
@@ -45,12 +50,14 @@ typedef struct {
     uint64_t tris_culled;  /* below culled nodes, by the same selection */
     uint64_t lod_sum;      /* sum of chosen LOD child indices */
     uint64_t matrix_saved; /* PUSH + POP not emitted: flattened SCS */
+    uint64_t callbacks;    /* CULL callbacks run (pre + post) */
 } WlPfCullStats;
 
 typedef struct {
     uint64_t geosets, tris, matrix_ops;
     uint64_t state_changes, state_naive; /* lazy, eager */
     uint64_t vertices; /* sent (strips: pf_stages.h); 0: 3 per triangle */
+    uint64_t callbacks; /* DRAW callbacks run (CALLBACK items) */
 } WlPfDrawStats;
 
 typedef struct {

@@ -42,6 +42,8 @@ typedef enum {
 
 enum { WL_PF_MASK_CULL = 1, WL_PF_MASK_DRAW = 2, WL_PF_MASK_ISECT = 4 };
 enum { WL_PF_SWITCH_ALL = -1, WL_PF_SWITCH_NONE = -2 };
+/* Traversal callbacks a node carries (pre- and post-, each traversal) */
+enum { WL_PF_CB_CULL = 1, WL_PF_CB_DRAW = 2 };
 
 typedef struct {
     guint texture, material, modes; /* the attributes DRAW compares */
@@ -65,6 +67,7 @@ typedef struct {
     Vec3 center;        /* bounding sphere in parent coordinates */
     double radius;      /* < 0: empty */
     gboolean flattened; /* a group that was an SCS before pfFlatten */
+    guint32 callbacks;  /* WL_PF_CB_* bits (0: none) */
 } WlPfNode;
 
 typedef struct {

@@ -82,6 +82,12 @@ static SimTime sum(SimTime a, SimTime b)
     return sim_time_add_sat(a, b);
 }
 
+/* Callbacks cost a time: CULL's and DRAW's work is then a time. */
+static gboolean timed(const WlPfCosts *c)
+{
+    return c->cull_callback > 0 || c->draw_callback > 0;
+}
+
 /* Pipe i's display list for frame n. */
 static GArray *dlist(WlPfStages *s, guint i, guint n)
 {
@@ -110,6 +116,7 @@ static void add_cull(WlPfCullStats *a, const WlPfCullStats *b)
     a->nodes_culled += b->nodes_culled, a->lods += b->lods;
     a->billboards += b->billboards, a->tris_culled += b->tris_culled;
     a->lod_sum += b->lod_sum, a->matrix_saved += b->matrix_saved;
+    a->callbacks += b->callbacks;
 }
 
 static void add_draw(WlPfDrawStats *a, const WlPfDrawStats *b)
@@ -117,6 +124,7 @@ static void add_draw(WlPfDrawStats *a, const WlPfDrawStats *b)
     a->geosets += b->geosets, a->tris += b->tris;
     a->matrix_ops += b->matrix_ops, a->state_changes += b->state_changes;
     a->state_naive += b->state_naive, a->vertices += b->vertices;
+    a->callbacks += b->callbacks;
 }
 
 /* ---- the stages -------------------------------------------------------- */
@@ -175,6 +183,9 @@ static SimTime cull(void *ctx, guint n, double stress)
     SimTime t = sim_time_mul_sat(c->cull_node, cs.nodes_visited);
     t = sum(t, sim_time_mul_sat(c->cull_lod, cs.lods));
     t = sum(t, sim_time_mul_sat(c->cull_billboard, cs.billboards));
+    t = sum(t, sim_time_mul_sat(c->cull_callback, cs.callbacks));
+    if (timed(c))
+        o->n = 0;
     return sum(t, sim_time_mul_sat(c->cull_item, dl->len));
 }
 
@@ -186,8 +197,10 @@ SimTime wl_pf_draw_cpu(const WlPfCosts *c, const WlPfDrawStats *st,
     SimTime t = sim_time_mul_sat(c->draw_geoset, st->geosets);
     t = sum(t, sim_time_mul_sat(c->draw_state, states));
     t = sum(t, sim_time_mul_sat(c->draw_matrix, st->matrix_ops));
+    t = sum(t, sim_time_mul_sat(c->draw_callback, st->callbacks));
     return sum(t, sim_time_mul_sat(c->draw_vertex, v));
 }
+
 
 /* The vertices DRAW sends for the geosets of dl in strips of `strip`
  * triangles: T + 2 ceil(T / L) a geoset (3 T when L <= 1). */
@@ -261,7 +274,9 @@ static SimTime draw(void *ctx, guint n)
     add_draw(&f->draw, d);
     uint64_t states = s->lazy ? d->state_changes : d->state_naive;
     SimTime cpu = wl_pf_draw_cpu(c, d, s->lazy);
-    draw_ops(ops_reset(s), d, states);
+    MachOps *o = ops_reset(s);
+    if (!timed(c))
+        draw_ops(o, d, states);
     double bytes = (double)d->vertices * (double)c->vertex_bytes;
     s->pcpu[i] = cpu, s->pbytes[i] = (uint64_t)bytes;
     s->ppipe[i] = sum(sim_time_mul_sat(c->pipe_triangle, d->tris),
@@ -285,7 +300,8 @@ static void draw_work(void *ctx, guint n, WlPfDrawWork *w)
     uint64_t states = s->lazy ? d->state_changes : d->state_naive;
     *w = (WlPfDrawWork){
         .cpu = s->pcpu[i], .bytes = s->pbytes[i], .pipe = s->ppipe[i]};
-    draw_ops(&w->cpu_ops, d, states);
+    if (!timed(&s->c))
+        draw_ops(&w->cpu_ops, d, states);
     mach_ops_add(&w->pipe_ops, "triangle", d->tris);
     /* the display list and the geosets' vertices */
     w->arena_bytes = s->arena.item * dlist(s, i, n)->len +

@@ -35,6 +35,9 @@
  * and sends T + 2 ceil(T / L) vertices instead of 3 T; DRAW's vertex
  * work, its bytes to the pipe and its arena reads count vertices (the
  * pipe's work stays per triangle).
+ * Traversal callbacks (pf_cull.h) cost the workload's cull_callback and
+ * draw_callback each; with either cost set, CULL's and DRAW's CPU work
+ * is a time, not counts (a recording writes it so).
  * Each stage also counts its shared-arena bytes (arena_bytes(); the
  * per-operation sizes of `arena`, pf_arena.h).
  */
@@ -58,6 +61,7 @@ typedef struct {
     uint64_t vertex_bytes;
     SimTime update; /* apply one update-list entry (the workload's) */
     guint strip;    /* triangles per strip (<= 1: independent) */
+    SimTime cull_callback, draw_callback; /* one callback (the workload's) */
 } WlPfCosts;
 
 typedef struct {

@@ -88,6 +88,7 @@ static void add_house(WlPfGraph *g, guint parent, const WlPfTownParams *p,
                       Vec3 at, double yaw, SimRng *rng, guint first_gs)
 {
     guint scs = wl_pf_add_node(g, parent, WL_PF_SCS);
+    wl_pf_node(g, scs)->callbacks = p->callbacks;
     wl_pf_node(g, scs)->xf = mat4_mul(mat4_translate(at.x, at.y, at.z),
                                       mat4_rotate(vec3(0, 1, 0), yaw));
     guint lod = wl_pf_add_node(g, scs, WL_PF_LOD);

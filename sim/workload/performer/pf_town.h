@@ -34,6 +34,7 @@ typedef struct {
     double fov_deg;
     uint64_t seed;
     gboolean deep; /* blocks under a quadtree of groups (else flat) */
+    guint32 callbacks; /* WL_PF_CB_* on every house's SCS (0: none) */
 } WlPfTownParams;
 
 typedef struct {

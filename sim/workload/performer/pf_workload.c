@@ -18,6 +18,7 @@
  *     app_work: 2 ms          # overrides the model's cpu app_frame
  *     vertex_bytes: 32 B      # per vertex sent to the pipe
  *     strip_length: 1         # triangles per strip (1: independent)
+ *     callbacks: {cull: 5 us, draw: 5 us}  # per house (absent: none)
  *     fifo: {depth: 64 KB, chunk: 8 KB}  # the pipe's command FIFO
  *     town: {blocks, houses, trees, cars, block, lod_ranges, speed,
  *            eye_height, fov, seed}
@@ -45,6 +46,7 @@ typedef struct {
     uint64_t vertex_bytes, strip;
     uint64_t fifo_depth, fifo_chunk; /* pf_gpipe.h */
     gboolean has_arena;
+    SimTime cb_cull, cb_draw; /* traversal callbacks, one each */
     WlPfArenaParams arena; /* pf_arena.h */
     WlPfTownParams town;
     const char *frame_log; /* borrowed from the config */
@@ -202,6 +204,22 @@ static gboolean parse_arena(const CfgNode *sec, PfParams *p, GError **err)
     return TRUE;
 }
 
+/* callbacks: {cull, draw}: pre- and post-traversal callbacks on every
+ * house (pf_cull.h), each costing that time; absent: none. */
+static gboolean parse_callbacks(const CfgNode *sec, PfParams *p,
+                                GError **err)
+{
+    const CfgNode *n = NULL;
+    if (!cfg_get_map(sec, "callbacks", FALSE, "a map {cull, draw}", &n, err) ||
+        !cfg_get_time(n, "cull", FALSE, &p->cb_cull, err) ||
+        !cfg_get_time(n, "draw", FALSE, &p->cb_draw, err))
+        return FALSE;
+    p->town.callbacks =
+        n ? (p->cb_cull ? WL_PF_CB_CULL : 0) | (p->cb_draw ? WL_PF_CB_DRAW : 0)
+          : 0;
+    return TRUE;
+}
+
 static void pf_free(void *params)
 {
     PfParams *p = params;
@@ -251,7 +269,7 @@ static void *pf_parse(const CfgNode *sec, GError **err)
     const CfgNode *pn = cfg_get(sec, "pn");
     if ((pn && !(p->pn = wl_pf_pn_params_parse(pn, err))) ||
         !parse_flags(sec, p, err) || !parse_fifo(sec, p, err) ||
-        !parse_arena(sec, p, err) ||
+        !parse_arena(sec, p, err) || !parse_callbacks(sec, p, err) ||
         !parse_rates(sec, p, err) ||
         !parse_stress(sec, &p->pipe, err) || !parse_town(sec, &p->town, err)) {
         pf_free(p);
@@ -337,7 +355,7 @@ static gboolean write_stages(const char *log, const GArray *recs, GError **err)
 
 typedef struct {
     double app, cull, draw, tris, states, saved, mats, culled, stress, lod;
-    double verts, vsaved, nodes;
+    double verts, vsaved, nodes, cbs;
     double cpu, bus, pipe; /* DRAW's three rates */
 } Means;
 
@@ -355,6 +373,7 @@ static Means means(const GArray *recs, WlPfStages *st, guint skip)
         m.verts += f->draw.vertices;
         m.vsaved += 3 * f->draw.tris - f->draw.vertices;
         m.nodes += f->cull.nodes_visited;
+        m.cbs += f->cull.callbacks + f->draw.callbacks;
         m.states += f->draw.state_changes;
         m.saved += f->draw.state_naive - f->draw.state_changes;
         m.mats += f->draw.matrix_ops;
@@ -413,6 +432,7 @@ static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
     sim_result_set_metric(out, "vertices_saved_per_frame", m.vsaved, "");
     sim_result_set_metric(out, "tris_culled_per_frame", m.culled, "");
     sim_result_set_metric(out, "cull_nodes_per_frame", m.nodes, "");
+    sim_result_set_metric(out, "callbacks_per_frame", m.cbs, "");
     sim_result_set_metric(out, "state_changes_per_frame", m.states, "");
     sim_result_set_metric(out, "state_changes_saved_per_frame", m.saved, "");
     sim_result_set_metric(out, "matrix_ops_per_frame", m.mats, "");
@@ -580,6 +600,7 @@ static gboolean run_pipeline(const WlContext *ctx, MachMachine *m, PfParams *p,
         c.app_frame = p->app_work;
     c.update = p->update_cost;
     c.strip = (guint)p->strip;
+    c.cull_callback = p->cb_cull, c.draw_callback = p->cb_draw;
     WlPfTown *town = wl_pf_town_new(&p->town);
     guint flattened = p->flatten ? wl_pf_flatten(town->g) : 0;
     p->pipe.frames = (guint)ctx->frames;
@@ -641,6 +662,7 @@ static const WlMetric pf_metrics[] = {
      "vertices strips saved per frame (3 x triangles - vertices)"},
     {"tris_culled_per_frame", "", "triangles culled per frame"},
     {"cull_nodes_per_frame", "", "nodes CULL visited per frame"},
+    {"callbacks_per_frame", "", "traversal callbacks run per frame"},
     {"state_changes_per_frame", "", "graphics state changes per frame"},
     {"state_changes_saved_per_frame", "",
      "state changes lazy evaluation saved (eager - lazy)"},

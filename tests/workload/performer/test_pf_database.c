@@ -8,7 +8,8 @@
  *   - a deep town (the blocks under a quadtree of groups) draws the same
  *     triangles as the flat one; CULL visits fewer nodes in it when most
  *     of the town is outside the view, more when most is inside:
- *     efficiency depends on the graph's depth.
+ *     efficiency depends on the graph's depth;
+ *   - traversal callbacks cost their time per node that runs them.
  * Runs of 12 frames, means over frames 4..11.
  */
 #include <setjmp.h>
@@ -112,11 +113,41 @@ static void test_deep_town_depends_on_the_view(void **st)
     deep_against_flat("workload.town.speed=40", TRUE);
 }
 
+/* Traversal callbacks on every house (pre and post, 5 us each): CULL
+ * pays its callbacks and the display list's CALLBACK items (cull_item
+ * each), DRAW's CPU its callbacks; the triangles do not move.  A count
+ * of zero cost changes nothing but the display list. */
+static void test_callbacks_cost_per_node(void **st)
+{
+    (void)st;
+    /* no arena bytes in CULL: its time is its work */
+    const char *none[] = {"workload.arena={node: 0 B, item: 0 B, entry: 0 B}",
+                          NULL};
+    const char *cbs[] = {none[0], "workload.callbacks={cull: 5 us, draw: 5 us}",
+                         NULL};
+    SimResult *a = run(none), *b = run(cbs);
+    assert_true(metric(a, "tris_per_frame") == metric(b, "tris_per_frame"));
+    assert_true(metric(a, "callbacks_per_frame") == 0);
+    double n = metric(b, "callbacks_per_frame"); /* cull + draw, 2 each */
+    assert_true(n > 0);
+    /* every house CULL keeps runs 2 CULL and 2 DRAW callbacks */
+    double dcpu = metric(b, "draw_cpu_ms") - metric(a, "draw_cpu_ms");
+    if (fabs(dcpu - n / 2 * 5e-3) > 1e-6)
+        fail_msg("DRAW's CPU %.6f ms more for %.0f callbacks", dcpu, n);
+    double item = onyx_cost("cpu", "cull_item");
+    double dcull = metric(b, "cull_ms") - metric(a, "cull_ms");
+    if (fabs(dcull - n / 2 * (5e-3 + item)) > 1e-6)
+        fail_msg("CULL %.6f ms more for %.0f callbacks", dcull, n);
+    sim_result_free(a);
+    sim_result_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_strips_save_vertices),
         cmocka_unit_test(test_deep_town_depends_on_the_view),
+        cmocka_unit_test(test_callbacks_cost_per_node),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
