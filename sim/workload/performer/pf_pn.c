@@ -14,6 +14,33 @@
 static const char *const normals[] = {"linear", "quadratic", NULL};
 static const char *const sends[] = {"coarse", "fine", NULL};
 
+/* The optional `memory:` map: the counting rule of pn_memory.h. */
+static gboolean mem_parse(const CfgNode *pn, WlPfPnParams *p, GError **err)
+{
+    const CfgNode *mem;
+    if (!cfg_get_map(pn, "memory", FALSE,
+                     "a map {from, to, layout, index_bytes, control_bytes}",
+                     &mem, err))
+        return FALSE;
+    if (!mem)
+        return TRUE;
+    uint64_t lo = 0, hi = 4;
+    int layout = SCENE_PN_MEM_INDEXED;
+    ScenePnMemRule *r = &p->mem;
+    r->index_bytes = 4;
+    if (!cfg_get_count(mem, "from", FALSE, 0, 32, &lo, err) ||
+        !cfg_get_count(mem, "to", FALSE, lo, 32, &hi, err) ||
+        !cfg_get_enum(mem, "layout", FALSE, scene_pn_mem_layouts, &layout,
+                      err) ||
+        !cfg_get_size(mem, "index_bytes", FALSE, &r->index_bytes, err) ||
+        !cfg_get_size(mem, "control_bytes", FALSE, &r->control_bytes, err))
+        return FALSE;
+    r->lo = (guint)lo, r->hi = (guint)hi;
+    r->layout = (ScenePnMemLayout)layout;
+    p->memory = TRUE;
+    return TRUE;
+}
+
 WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
 {
     WlPfPnParams *p = g_new0(WlPfPnParams, 1);
@@ -32,7 +59,8 @@ WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
                             err)) {
         p->pn = (ScenePnParams){(guint)level, (ScenePnNormals)nk};
         p->send_fine = send == 1;
-        return p;
+        if (mem_parse(pn, p, err))
+            return p;
     }
     g_free(p);
     return NULL;
@@ -47,7 +75,18 @@ void wl_pf_pn_params_free(WlPfPnParams *p)
 
 typedef struct {
     uint64_t coarse_tris, fine_tris, fine_points; /* per frame */
+    uint64_t lod_bytes, base_bytes; /* with memory: (pn_memory.h) */
 } PnMesh;
+
+/* Adds one instance's LOD store and PN store (the scene draws every
+ * instance, so each is stored). */
+static void p_mem_add(PnMesh *out, const SceneMesh *m, const WlPfPnParams *p)
+{
+    ScenePnMemRule r = p->mem;
+    r.vertex_bytes = p->vertex_bytes;
+    out->lod_bytes += scene_pn_lod_store_bytes(m, &r);
+    out->base_bytes += scene_pn_base_store_bytes(m, &r);
+}
 
 static gboolean pn_mesh(const WlContext *ctx, const WlPfPnParams *p,
                         PnMesh *out, GError **err)
@@ -66,6 +105,8 @@ static gboolean pn_mesh(const WlContext *ctx, const WlPfPnParams *p,
         out->fine_tris += scene_mesh_n_triangles(fine);
         out->fine_points += scene_mesh_n_vertices(fine);
         scene_mesh_free(fine);
+        if (p->memory)
+            p_mem_add(out, scene_instance_mesh(s, i), p);
     }
     out->coarse_tris = scene_n_triangles(s);
     return TRUE;
@@ -303,6 +344,16 @@ static void set_metrics(PnRun *r, SimResult *out)
         if (v[i])
             sim_result_set_metric(out, names[i], sim_time_to_s(v[i]) * 1e3,
                                   "ms");
+    if (r->p->memory) {
+        const PnMesh *pm = &r->mesh;
+        sim_result_set_metric(out, "lod_memory_bytes", pm->lod_bytes, "B");
+        sim_result_set_metric(out, "pn_memory_bytes", pm->base_bytes, "B");
+        sim_result_set_metric(out, "lod_memory_ratio",
+                              pm->base_bytes ? (double)pm->lod_bytes /
+                                                   pm->base_bytes
+                                             : 0,
+                              "");
+    }
     sim_result_set_metric(out, "frame_ms", sim_result_mean_frame_s(out) * 1e3,
                           "ms");
     sim_result_set_metric(out, "fine_tris_per_s",

@@ -26,6 +26,11 @@
  *   fine triangle: renderer primitive).  A frame ends when the last
  *   renderer is done.
  *
+ * With `memory: {from, to, layout, index_bytes, control_bytes}` the run
+ * also reports what storing the pre-tessellated levels from..to would
+ * take against the base mesh (pn_memory.h; vertex_bytes per vertex):
+ * the slides' "models for LOD 0-4 would require 70 times the memory".
+ *
  * Level 0 is the flat mesh: nothing is tessellated, coarse = fine.
  * The messages go through the machine's network (mach_net), so bytes
  * and times are the transport's.  O(frames x processors) events.
@@ -34,6 +39,7 @@
 #define PGSIM_WORKLOAD_PERFORMER_PF_PN_H
 
 #include "sim/machine/machine.h"
+#include "sim/scene/pn_memory.h"
 #include "sim/scene/pn_triangles.h"
 #include "sim/workload/workload.h"
 
@@ -44,6 +50,8 @@ typedef struct {
     uint64_t command_bytes; /* Pixel-Planes 5 renderer command */
     uint64_t fifo_depth, fifo_chunk; /* the pipe's FIFO (the workload's
                                         `fifo`, pf_gpipe.h) */
+    gboolean memory;     /* `memory:` given: the LOD-memory metrics */
+    ScenePnMemRule mem;  /* its counting rule (pn_memory.h) */
 } WlPfPnParams;
 
 /* Reads the `pn:` map; NULL with a located error. */

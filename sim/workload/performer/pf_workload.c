@@ -684,6 +684,11 @@ static const WlMetric pf_metrics[] = {
     {"gp_ms", "ms", "pn, Pixel-Planes 5: GP time"},
     {"frame_ms", "ms", "pn: mean frame time"},
     {"fine_tris_per_s", "1/s", "pn: fine triangles per second"},
+    {"lod_memory_bytes", "B",
+     "pn with memory: pre-tessellated levels from..to stored"},
+    {"pn_memory_bytes", "B", "pn with memory: base mesh + PN control data"},
+    {"lod_memory_ratio", "",
+     "pn with memory: lod_memory_bytes / pn_memory_bytes (slides: 70x)"},
     {NULL, NULL, NULL},
 };
 
