@@ -47,29 +47,6 @@ gboolean rp_igehy98_rate(const RpContext *ctx, const char *path,
     return rp_igehy98_metrics(ctx, path, sets, hz_only, hz, err);
 }
 
-/* The row's overrides as a NULL-terminated vector (g_strfreev). */
-static char **row_sets(const CfgNode *row, GError **err)
-{
-    const CfgNode *set = cfg_get(row, "set");
-    if (set && cfg_kind(set) != CFG_SEQ) {
-        cfg_error(err, set, "a non-list set", "set: [key=value, ...]");
-        return NULL;
-    }
-    guint n = set ? cfg_seq_len(set) : 0;
-    char **v = g_new0(char *, n + 1);
-    for (guint i = 0; i < n; i++) {
-        const char *s = cfg_scalar(cfg_seq_at(set, i));
-        if (!s) {
-            cfg_error(err, cfg_seq_at(set, i), "a non-scalar override",
-                      "key=value");
-            g_strfreev(v);
-            return NULL;
-        }
-        v[i] = g_strdup(s);
-    }
-    return v;
-}
-
 static const char *const roles[] = {"calibration", "prediction",
                                     "leave-one-out", NULL};
 static const char *const role_notes[] = {"calibration (fitted)",
@@ -137,7 +114,7 @@ static gboolean one_row(IgRun *r, const char *name, const CfgNode *row,
     if (!cfg_get_enum(row, "role", TRUE, roles, &role, err) ||
         !cfg_get_double(row, "factor", FALSE, 0, 1e6, &factor, err))
         return FALSE;
-    char **sets = row_sets(row, err);
+    char **sets = rp_sets_of(row, err);
     if (!sets)
         return FALSE;
     gboolean ok = TRUE;

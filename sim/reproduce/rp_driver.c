@@ -162,6 +162,28 @@ static GPtrArray *copy_sets(const char *const *sets)
     return ov;
 }
 
+char **rp_sets_of(const CfgNode *m, GError **err)
+{
+    const CfgNode *set = cfg_get(m, "set");
+    if (set && cfg_kind(set) != CFG_SEQ) {
+        cfg_error(err, set, "a non-list set", "set: [key=value, ...]");
+        return NULL;
+    }
+    guint n = set ? cfg_seq_len(set) : 0;
+    char **v = g_new0(char *, n + 1);
+    for (guint i = 0; i < n; i++) {
+        const char *s = cfg_scalar(cfg_seq_at(set, i));
+        if (!s) {
+            cfg_error(err, cfg_seq_at(set, i), "a non-scalar override",
+                      "key=value");
+            g_strfreev(v);
+            return NULL;
+        }
+        v[i] = g_strdup(s);
+    }
+    return v;
+}
+
 CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
                      const char *const *sets, GError **err)
 {

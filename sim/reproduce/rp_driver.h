@@ -47,6 +47,10 @@ CfgRun *rp_run_build(const RpContext *ctx, CfgNode *tree, const char *path,
  * run.fidelity or run.seed added. */
 CfgRun *rp_run_build_as_is(const RpContext *ctx, CfgNode *tree,
                            const char *const *sets, GError **err);
+/* The `set: [key=value, ...]` list of map `m` (absent: none) as a
+ * NULL-terminated vector for rp_run_build (g_strfreev), or NULL with a
+ * located *err (a non-list, a non-scalar entry). */
+char **rp_sets_of(const CfgNode *m, GError **err);
 /* Executes r quietly with share (may be NULL) and notes the transport of
  * its machine (rp_note_fidelity: the config's machine.model, else the
  * model's name).  A new result, or NULL with *err. */

@@ -1,5 +1,6 @@
 /* rp_registry.c — the table of papers (one row each) and the rows they
  * fill.  A new paper adds one line here. */
+#include "sim/reproduce/beermann02.h"
 #include "sim/reproduce/ellsworth90.h"
 #include "sim/reproduce/igehy98.h"
 #include "sim/reproduce/kurc96.h"
@@ -15,6 +16,7 @@ const RpPaperOps *const rp_all[] = {
     &rp_kurc96,
     &rp_igehy98,
     &rp_mueller97,
+    &rp_beermann02,
     NULL,
 };
 
