@@ -35,6 +35,7 @@ typedef struct {
     gboolean chunking[3];      /* Chart 1's strategies, by RpMuChunking */
     guint pull_procs;          /* the pull cases' P (sorted, min-set) */
     guint pull_gran[MAX_LIST], n_pull_gran; /* and chunk sizes */
+    RpMuInst *inst;            /* the instancing trade-off, or NULL */
 } MuSetup;
 
 /* ---- setup ---------------------------------------------------------------
@@ -160,6 +161,7 @@ static gboolean setup_load(MuSetup *s, const char *path, GError **err)
            counts(s->root, "processors", s->procs, &s->n_procs, err) &&
            words(s->root, "bookkeeping", bk_names, s->bk, err) &&
            read_chart1(s, err) && read_pull(s, err) &&
+           rp_mu_inst_load(s->root, &s->inst, err) &&
            cfg_check_unused_except(s->root, runner_reads, err);
 }
 
@@ -317,6 +319,9 @@ static gboolean mueller97_rows(const RpContext *ctx, GPtrArray *rows,
         ok = run_case(ctx, &s, share,
                       &g_array_index(pull, RpMuellerPoint, i), err);
     wl_share_free(share);
+    GArray *ip = g_array_new(FALSE, TRUE, sizeof(RpMuInstPoint));
+    if (ok && s.inst)
+        ok = rp_mu_inst_run(ctx, s.cell, s.inst, ip, err);
     const RpMuellerPoint *p = (const RpMuellerPoint *)(void *)pts->data;
     for (guint i = 0; ok && i < pts->len; i++)
         chart_rows(&p[i], &s, rows);
@@ -326,8 +331,13 @@ static gboolean mueller97_rows(const RpContext *ctx, GPtrArray *rows,
         rp_mueller97_claims_pull(
             p, pts->len, (const RpMuellerPoint *)(void *)pull->data,
             pull->len, rows);
+    if (ok && ip->len)
+        rp_mueller97_claims_instancing(
+            (const RpMuInstPoint *)(void *)ip->data, ip->len, rows);
     if (ok && ctx->out_dir)
         rp_mueller97_charts(p, pts->len, s.c1_procs, ctx->out_dir);
+    g_array_unref(ip);
+    rp_mu_inst_free(s.inst);
     g_array_unref(pts);
     g_array_unref(pull);
     cfg_free(s.scene);

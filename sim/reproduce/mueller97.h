@@ -13,8 +13,12 @@
  *   "4"  Chart 4, min-set transformations: transforms, master_boxes,
  *        slave_boxes, new_boxes, polygons;
  *   "5"  Chart 5, the same for max-set;
- *   "claims"  one row per claim of §4.2 and §3.3.2.2 (mueller97_claims.c;
- *        the pull cases, min-set at setup.yaml's `pull`, feed only it).
+ *   "instancing"  rows "<database>/<bookkeeping>": the instancing
+ *        trade-off of §5 on databases with no, moderate and heavy
+ *        instancing (mueller97_inst.c; setup.yaml's `instancing`);
+ *   "claims"  one row per claim of §4.2, §3.3.2.2 and §5
+ *        (mueller97_claims.c, C8 mueller97_inst.c; the pull cases,
+ *        min-set at setup.yaml's `pull`, feed only C7).
  * The paper's charts carry no numbers in the seed's text, so
  * configs/papers/mueller97/published.yaml lists captions only and every
  * row is printed as a prediction.  With an output directory the hook
@@ -23,6 +27,7 @@
 #ifndef PGSIM_REPRODUCE_MUELLER97_H
 #define PGSIM_REPRODUCE_MUELLER97_H
 
+#include "sim/core/cfg.h"
 #include "sim/reproduce/reproduce.h"
 
 /* Chunking strategies (§4.1), named as the workload's `chunking` key. */
@@ -45,7 +50,30 @@ typedef struct {
     double frame_ms;
 } RpMuellerPoint;
 
+/* The instancing trade-off (mueller97_inst.c): one database and
+ * bookkeeping. */
+typedef struct {
+    char db[32];      /* the scene.instancing level, or "file" */
+    gboolean minset;
+    double per_chunk; /* chunk instances per chunk */
+    double copies, messages, bytes, transforms, memory, frame_ms;
+} RpMuInstPoint;
+typedef struct RpMuInst RpMuInst;
+
 extern const RpPaperOps rp_mueller97;
+
+/* setup.yaml's optional `instancing` map into *out (NULL when absent);
+ * FALSE with *err on a bad map.  Free with rp_mu_inst_free(). */
+gboolean rp_mu_inst_load(const CfgNode *root, RpMuInst **out, GError **err);
+void rp_mu_inst_free(RpMuInst *in);
+/* Runs every database of `in` with min-set and max-set on `cell` (a
+ * sortfirst config without scene), appending RpMuInstPoint to pts. */
+gboolean rp_mu_inst_run(const RpContext *ctx, const CfgNode *cell,
+                        const RpMuInst *in, GArray *pts, GError **err);
+/* Table "instancing" and claim C8 (min-set without instancing, max-set
+ * with it) from the points. */
+void rp_mueller97_claims_instancing(const RpMuInstPoint *p, guint n,
+                                    GPtrArray *rows);
 
 /* Appends the claim rows (table "claims") computed from the points
  * (push cases only). */

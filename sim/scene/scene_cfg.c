@@ -178,6 +178,36 @@ static Scene *gen_teapots(const CfgNode *sec, GError **err)
     return s;
 }
 
+/* `instancing`: how many copies execute one vehicle tree (vehicle.h):
+ * none (1), moderate (3, seed 000's Bronco), heavy (all copies) or a
+ * count of 1 .. instances. */
+static gboolean get_instancing(const CfgNode *sec, SceneVehicleParams *p,
+                               GError **err)
+{
+    static const char *const words[] = {"none", "moderate", "heavy", NULL};
+    static const guint of_word[] = {1, 3, 0};
+    const CfgNode *n = cfg_get(sec, "instancing");
+    const char *v = n ? cfg_scalar(n) : NULL;
+    uint64_t k = 0;
+    if (!n)
+        return TRUE;
+    for (guint i = 0; v && words[i]; i++)
+        if (!strcmp(v, words[i])) {
+            p->instancing = MIN(of_word[i], p->instances);
+            return TRUE;
+        }
+    if (v && g_ascii_string_to_unsigned(v, 10, 1, p->instances, &k, NULL)) {
+        p->instancing = (guint)k;
+        return TRUE;
+    }
+    char *want = g_strdup_printf("none | moderate | heavy or a count of copies "
+                                 "per vehicle tree, 1 .. instances (%u)",
+                                 p->instances);
+    cfg_error(err, n, v ? v : "a non-scalar", want);
+    g_free(want);
+    return FALSE;
+}
+
 static Scene *gen_vehicle(const CfgNode *sec, GError **err)
 {
     SceneVehicleParams p = scene_vehicle_defaults();
@@ -194,7 +224,8 @@ static Scene *gen_vehicle(const CfgNode *sec, GError **err)
         !cfg_get_double(sec, "fov", FALSE, 1, 170, &p.fov_deg, err) ||
         !cfg_get_double(sec, "degrees_per_frame", FALSE, -360, 360,
                         &p.degrees_per_frame, err) ||
-        !get_guint(sec, "frames", 1, 1u << 24, &p.frames, err))
+        !get_guint(sec, "frames", 1, 1u << 24, &p.frames, err) ||
+        !get_instancing(sec, &p, err))
         return NULL;
     p.triangles = tris;
     char *what = where(sec, "triangles");

@@ -55,7 +55,7 @@ static const Vec3 group_rgb[SCENE_VEHICLE_GROUPS] = {{0.75, 0.15, 0.12},
 
 SceneVehicleParams scene_vehicle_defaults(void)
 {
-    SceneVehicleParams p = {106, 20000, 3, 6.0, 14.0, 4.0, 40.0, 3.0, 120};
+    SceneVehicleParams p = {106, 20000, 3, 6.0, 14.0, 4.0, 40.0, 3.0, 120, 0};
     return p;
 }
 
@@ -357,8 +357,11 @@ static void append_exec(SceneDb *db, guint parent, guint child)
     g_assert(ok); /* a fresh tree cannot close a cycle */
 }
 
-gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
-                             const char *what, guint *root, GError **err)
+/* The vehicle's structures, their names suffixed with `suffix` (one
+ * tree of several: "" for the first). */
+static gboolean build_tree(SceneDb *db, guint structures, uint64_t triangles,
+                           const char *what, const char *suffix, guint *root,
+                           GError **err)
 {
     if (structures < 10 || triangles < 2 * (uint64_t)(structures - 6) ||
         triangles > (1u << 28)) {
@@ -371,17 +374,22 @@ gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
     }
     GArray *ps = part_list(structures - 1 - SCENE_VEHICLE_GROUPS);
     uint64_t *b = budgets(ps, triangles);
-    *root = scene_db_add_struct(db, "vehicle");
+    char *rname = g_strconcat("vehicle", suffix, NULL);
+    *root = scene_db_add_struct(db, rname);
+    g_free(rname);
     guint groups[SCENE_VEHICLE_GROUPS];
     for (guint g = 0; g < SCENE_VEHICLE_GROUPS; g++) {
-        groups[g] = scene_db_add_struct(db, group_names[g]);
+        char *gname = g_strconcat(group_names[g], suffix, NULL);
+        groups[g] = scene_db_add_struct(db, gname);
+        g_free(gname);
         SceneElem c = scene_elem_color(group_rgb[g]);
         scene_db_append(db, groups[g], &c, NULL);
         append_exec(db, *root, groups[g]);
     }
     for (guint i = 0; i < ps->len; i++) {
         const Patch *p = &g_array_index(ps, Patch, i);
-        char *name = g_strdup_printf("%s.%u", group_names[p->group], i);
+        char *name =
+            g_strdup_printf("%s.%u%s", group_names[p->group], i, suffix);
         guint sid = scene_db_add_struct(db, name);
         g_free(name);
         tessellate(db, sid, p, b[i]);
@@ -390,6 +398,12 @@ gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
     g_free(b);
     g_array_free(ps, TRUE);
     return TRUE;
+}
+
+gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
+                             const char *what, guint *root, GError **err)
+{
+    return build_tree(db, structures, triangles, what, "", root, err);
 }
 
 /* ---- the scene ------------------------------------------------------- */
@@ -415,13 +429,28 @@ static Mat4 copy_xform(const SceneVehicleParams *p, guint k)
         rot);
 }
 
+/* Copies per vehicle tree: `instancing`, 0 meaning all of them. */
+static guint per_tree(const SceneVehicleParams *p)
+{
+    return p->instancing ? MIN(p->instancing, p->instances) : p->instances;
+}
+
+/* The world: copy k executes tree k / per_tree() (tree 0 is `root`, the
+ * others are built again, named "vehicle#t", "body#t" ...). */
 static void add_world(SceneDb *db, const SceneVehicleParams *p, guint root)
 {
-    guint w = scene_db_add_struct(db, "world");
+    guint w = scene_db_add_struct(db, "world"), tree = root, per = per_tree(p);
     for (guint k = 0; k < p->instances; k++) {
+        if (k && k % per == 0) {
+            char *suffix = g_strdup_printf("#%u", k / per);
+            gboolean ok = build_tree(db, p->structures, p->triangles, "",
+                                     suffix, &tree, NULL);
+            g_assert(ok); /* the first tree was built from the same */
+            g_free(suffix);
+        }
         SceneElem m = scene_elem_matrix(copy_xform(p, k), SCENE_MAT_REPLACE);
         scene_db_append(db, w, &m, NULL);
-        append_exec(db, w, root);
+        append_exec(db, w, tree);
     }
     scene_db_post(db, w);
 }

@@ -39,11 +39,17 @@ typedef struct {
      * revolves the eye about +y by degrees_per_frame for `frames`. */
     double camera_radius, camera_height, fov_deg, degrees_per_frame;
     guint frames;
+    /* How many copies execute one vehicle tree (how many times each of
+     * its structures is executed): 1 builds a tree per copy (no
+     * instancing), 0 (or >= instances) one tree for all (the default,
+     * seed 000's database); in between, copy k executes tree
+     * k / instancing.  The picture does not change, only the sharing. */
+    guint instancing;
 } SceneVehicleParams;
 
 /* Defaults: 106 structures, 20000 triangles, 3 instances, radius 6,
- * camera radius 14, height 4, fov 40, 3 degrees per frame, 120 frames
- * (configs/scenes/bronco.yaml sets the paper's numbers). */
+ * camera radius 14, height 4, fov 40, 3 degrees per frame, 120 frames,
+ * instancing 0 (configs/scenes/bronco.yaml sets the paper's numbers). */
 SceneVehicleParams scene_vehicle_defaults(void);
 
 /* Adds the vehicle's structures to db (not posted); *root receives the
@@ -53,9 +59,10 @@ gboolean scene_vehicle_build(SceneDb *db, guint structures, uint64_t triangles,
                              const char *what, guint *root, GError **err);
 /* A new scene named "vehicle": the vehicle flattened into one mesh
  * (polygon tag = structure id), `instances` copies facing along the
- * circle, an orbit camera path, and s->db holding the vehicle plus a
- * posted "world" structure executing the root once per copy (matrix
- * element in REPLACE mode before each execute). */
+ * circle, an orbit camera path, and s->db holding the vehicle (one tree
+ * per `instancing` copies) plus a posted "world" structure executing a
+ * tree's root once per copy (matrix element in REPLACE mode before each
+ * execute). */
 Scene *scene_vehicle_new(const SceneVehicleParams *p, const char *what,
                          GError **err);
 

@@ -353,6 +353,52 @@ static void test_reduced_run(void **state)
     g_free(text);
 }
 
+
+/* ---- C8: the instancing trade-off (mueller97_inst.c) -------------------- */
+
+static double c8(const RpMuInstPoint *p, guint n, char **note)
+{
+    GPtrArray *rows = g_ptr_array_new_with_free_func(rp_row_free);
+    rp_mueller97_claims_instancing(p, n, rows);
+    double v = NAN;
+    for (guint i = 0; i < rows->len; i++) {
+        const RpRow *r = g_ptr_array_index(rows, i);
+        if (!strcmp(r->table, "claims") && !strcmp(r->column, "holds")) {
+            v = r->sim;
+            if (note)
+                *note = g_strdup(r->note);
+        }
+    }
+    g_ptr_array_unref(rows);
+    return v;
+}
+
+static void test_instancing_claim(void **state)
+{
+    (void)state;
+    /* none: max-set 1 % faster (within 5 %); heavy: 1.8 times */
+    RpMuInstPoint p[4] = {
+        {.db = "none", .minset = TRUE, .per_chunk = 1, .frame_ms = 1.01},
+        {.db = "none", .minset = FALSE, .per_chunk = 1, .frame_ms = 1.0},
+        {.db = "heavy", .minset = TRUE, .per_chunk = 12, .frame_ms = 1.8},
+        {.db = "heavy", .minset = FALSE, .per_chunk = 12, .frame_ms = 1.0}};
+    assert_true(c8(p, 4, NULL) == 1);
+    /* without instancing max-set 20 % faster: min-set is not the choice */
+    char *note = NULL;
+    p[0].frame_ms = 1.2;
+    assert_true(c8(p, 4, &note) == 0);
+    assert_non_null(strstr(note, "does not hold, because on none"));
+    g_free(note);
+    p[0].frame_ms = 1.01;
+    /* with heavy instancing max-set no faster: it is not the choice */
+    p[2].frame_ms = 1.0;
+    assert_true(c8(p, 4, &note) == 0);
+    assert_non_null(strstr(note, "on heavy (12.00 instances a chunk)"));
+    g_free(note);
+    /* one kind of database only: undecided */
+    assert_true(isnan(c8(p, 2, NULL)));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -361,6 +407,7 @@ int main(void)
         cmocka_unit_test(test_push_pull),
         cmocka_unit_test(test_spearman),
         cmocka_unit_test(test_reduced_run),
+        cmocka_unit_test(test_instancing_claim),
     };
     return cmocka_run_group_tests_name("mueller97", tests, NULL, NULL);
 }
