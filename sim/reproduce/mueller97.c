@@ -180,6 +180,7 @@ static void point_from(RpMuellerPoint *pt, const SimResult *r)
     pt->transforms = wl_metric(r, "transforms_per_frame");
     pt->messages = wl_metric(r, "messages_per_frame");
     pt->requests = pt->pull ? wl_metric(r, "requests_per_frame") : 0;
+    pt->interrupt_ms = pt->pull ? wl_metric(r, "interrupt_ms") : 0;
     pt->memory = wl_metric(r, "peak_memory");
     pt->frame_ms = wl_metric(r, "frame_ms");
     /* max-set instances of the root: chunk instances per chunk, rounded */

@@ -48,6 +48,7 @@ typedef struct {
     double requests;      /* pull: chunks requested per frame, else 0 */
     double memory;        /* peak_memory: the largest processor store */
     double frame_ms;
+    double interrupt_ms;  /* pull: masters' request interrupts a frame */
 } RpMuellerPoint;
 
 /* The instancing trade-off (mueller97_inst.c): one database and

@@ -31,17 +31,17 @@
 #include <math.h>
 #include <string.h>
 
-#define RP_MU_GAIN 1.05 /* our threshold: max-set's frame 5 % shorter */
+#define RP_MU_GAIN 1.05         /* our threshold: max-set's frame 5 % shorter */
 #define RP_MU_NO_INSTANCING 1.5 /* below: "little or no" (per chunk) */
 #define RP_MU_INSTANCED 2.0     /* from: "moderate or large" */
 
 enum { MAX_LEVELS = 8 };
 
 struct RpMuInst {
-    CfgNode *scene;    /* {scene: {...}} */
+    CfgNode *scene; /* {scene: {...}} */
     char *levels[MAX_LEVELS];
     guint n_levels;
-    char *database;    /* NULL: none */
+    char *database; /* NULL: none */
     guint procs, granularity, frames;
 };
 
@@ -70,9 +70,8 @@ static gboolean read_levels(RpMuInst *in, const CfgNode *map, GError **err)
 
 gboolean rp_mu_inst_load(const CfgNode *root, RpMuInst **out, GError **err)
 {
-    static const char *const keys[] = {"scene",       "levels",
-                                       "database",    "processors",
-                                       "granularity", "frames",
+    static const char *const keys[] = {"scene",      "levels",      "database",
+                                       "processors", "granularity", "frames",
                                        NULL};
     const CfgNode *c = NULL;
     const char *scene = NULL, *db = NULL;
@@ -81,19 +80,18 @@ gboolean rp_mu_inst_load(const CfgNode *root, RpMuInst **out, GError **err)
     if (!cfg_get(root, "instancing"))
         return TRUE;
     RpMuInst *in = g_new0(RpMuInst, 1);
-    gboolean ok =
-        cfg_get_map(root, "instancing", TRUE,
-                    "a map {scene, levels, database, processors, "
-                    "granularity, frames}",
-                    &c, err) &&
-        cfg_get_str(c, "scene", TRUE, &scene, err) &&
-        read_levels(in, c, err) &&
-        cfg_get_str(c, "database", FALSE, &db, err) &&
-        cfg_get_count(c, "processors", TRUE, 1, 64, &p, err) &&
-        cfg_get_count(c, "granularity", TRUE, 1, 65536, &g, err) &&
-        cfg_get_count(c, "frames", TRUE, 2, 1u << 20, &f, err) &&
-        cfg_check_unused_except(c, keys, err) &&
-        (in->scene = cfg_load_file(scene, err));
+    gboolean ok = cfg_get_map(root, "instancing", TRUE,
+                              "a map {scene, levels, database, processors, "
+                              "granularity, frames}",
+                              &c, err) &&
+                  cfg_get_str(c, "scene", TRUE, &scene, err) &&
+                  read_levels(in, c, err) &&
+                  cfg_get_str(c, "database", FALSE, &db, err) &&
+                  cfg_get_count(c, "processors", TRUE, 1, 64, &p, err) &&
+                  cfg_get_count(c, "granularity", TRUE, 1, 65536, &g, err) &&
+                  cfg_get_count(c, "frames", TRUE, 2, 1u << 20, &f, err) &&
+                  cfg_check_unused_except(c, keys, err) &&
+                  (in->scene = cfg_load_file(scene, err));
     in->database = g_strdup(db);
     in->procs = (guint)p;
     in->granularity = (guint)g;
@@ -125,16 +123,16 @@ static gboolean run_one(const RpContext *ctx, const CfgNode *cell,
                         const RpMuInst *in, const char *level, WlShare *share,
                         RpMuInstPoint *pt, GError **err)
 {
-    char *set[] = {
-        g_strdup_printf("workload.processors=%u", in->procs),
-        g_strdup_printf("workload.granularity=%u", in->granularity),
-        g_strdup_printf("workload.bookkeeping=%s",
-                        pt->minset ? "minset" : "maxset"),
-        g_strdup("workload.chunking=sorted"),
-        g_strdup_printf("run.frames=%u", in->frames),
-        level ? g_strdup_printf("scene.instancing=%s", level)
-              : g_strdup_printf("workload.database=%s", in->database),
-        NULL};
+    char *set[] = {g_strdup_printf("workload.processors=%u", in->procs),
+                   g_strdup_printf("workload.granularity=%u", in->granularity),
+                   g_strdup_printf("workload.bookkeeping=%s",
+                                   pt->minset ? "minset" : "maxset"),
+                   g_strdup("workload.chunking=sorted"),
+                   g_strdup_printf("run.frames=%u", in->frames),
+                   level
+                       ? g_strdup_printf("scene.instancing=%s", level)
+                       : g_strdup_printf("workload.database=%s", in->database),
+                   NULL};
     char *what = g_strdup_printf("instancing %s %s", pt->db,
                                  pt->minset ? "minset" : "maxset");
     rp_step(ctx, what);
@@ -149,8 +147,8 @@ static gboolean run_one(const RpContext *ctx, const CfgNode *cell,
     if (!res)
         return FALSE;
     double chunks = wl_metric(res, "chunks");
-    pt->per_chunk = chunks > 0 ? wl_metric(res, "chunk_instances") / chunks
-                               : NAN;
+    pt->per_chunk =
+        chunks > 0 ? wl_metric(res, "chunk_instances") / chunks : NAN;
     pt->copies = wl_metric(res, "copies");
     pt->messages = wl_metric(res, "messages_per_frame");
     pt->bytes = wl_metric(res, "migrated_bytes_per_frame");
@@ -191,8 +189,8 @@ static void add(GPtrArray *rows, const char *row, const char *col, double v)
 static void claim(GPtrArray *rows, const char *col, double v, const char *n)
 {
     gboolean holds = strcmp(col, "holds") == 0;
-    g_ptr_array_add(rows, rp_row_new("claims", "C8_instancing_tradeoff", col,
-                                     v, holds ? n : NULL));
+    g_ptr_array_add(rows, rp_row_new("claims", "C8_instancing_tradeoff", col, v,
+                                     holds ? n : NULL));
 }
 
 static const RpMuInstPoint *partner(const RpMuInstPoint *p, guint n,
@@ -233,7 +231,8 @@ void rp_mueller97_claims_instancing(const RpMuInstPoint *p, guint n,
             none++;
             none_ok += !maxset_better;
             if (maxset_better)
-                g_string_append_printf(why, " on %s (%.2f instances a "
+                g_string_append_printf(why,
+                                       " on %s (%.2f instances a "
                                        "chunk) max-set's frame is %.2f "
                                        "times shorter;",
                                        p[i].db, p[i].per_chunk, gain);
@@ -241,7 +240,8 @@ void rp_mueller97_claims_instancing(const RpMuInstPoint *p, guint n,
             inst++;
             inst_ok += maxset_better;
             if (!maxset_better)
-                g_string_append_printf(why, " on %s (%.2f instances a "
+                g_string_append_printf(why,
+                                       " on %s (%.2f instances a "
                                        "chunk) min-set / max-set frame is "
                                        "only %.2f;",
                                        p[i].db, p[i].per_chunk, gain);

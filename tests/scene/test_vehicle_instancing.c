@@ -49,7 +49,8 @@ static void test_levels(void **state)
     assert_int_equal(max->len, n.structures);
     g_array_unref(max);
     /* the same picture: equal flattened meshes */
-    SceneMesh *mh = scene_db_flatten(heavy->db), *mn = scene_db_flatten(none->db);
+    SceneMesh *mh = scene_db_flatten(heavy->db),
+              *mn = scene_db_flatten(none->db);
     assert_int_equal(mh->pos->len, mn->pos->len);
     assert_memory_equal(mh->pos->data, mn->pos->data,
                         mh->pos->len * sizeof(Vec3));
@@ -67,7 +68,8 @@ static Scene *from_text(const char *inst, GError **err)
 {
     char *text = g_strdup_printf("generator: vehicle\nstructures: 20\n"
                                  "triangles: 400\ninstances: 6\n"
-                                 "instancing: %s\n", inst);
+                                 "instancing: %s\n",
+                                 inst);
     CfgNode *root = cfg_load_string(text, "fleet.yaml", err);
     Scene *s = root ? scene_from_cfg(root, err) : NULL;
     cfg_free(root);

@@ -44,7 +44,9 @@
  * already holding a copy that needs it (else the lowest needing it),
  * and the old master deletes its copy: one copy where the chunk is
  * rendered instead of two.  A chunk that leaves the screen stays with
- * its last master: the off-screen accumulation the paper warns of.
+ * its last master: the off-screen accumulation the paper warns of,
+ * unless wl_sf_book_spread() (sf_mastership.c) makes the off-screen
+ * masters even after the frame's sorts.
  * The new master takes over on arrival (its next frame's sort).
  *
  * Slave deletion decided on the next frame (§3.3.2.1, push min-set):
@@ -119,6 +121,8 @@ typedef struct {
     uint64_t handed;      /* dynamic: masterships passed on */
     uint64_t collected;   /* slave copies deleted, chunk without instance */
     uint64_t edit_bytes;  /* pointers sent for instances edits created */
+    uint64_t spread;      /* dynamic: off-screen masterships spread */
+    uint64_t served;      /* pull: requests this master served */
     uint64_t held_chunks, held_polys; /* after the frame */
 } WlSfBookWork;
 
@@ -202,6 +206,18 @@ uint64_t wl_sf_book_peak_memory(const WlSfBook *b);
 /* TRUE when every instance overlapping a region is held by its
  * processor (the migration invariant); else names the first miss. */
 gboolean wl_sf_book_check(const WlSfBook *b, guint *inst, guint *proc);
+
+/* Off-screen master chunks under dynamic mastership (sf_mastership.c):
+ * keep (they pile up where they left the screen) | spread (made even
+ * among the masters each frame). */
+typedef enum { WL_SF_OFF_KEEP, WL_SF_OFF_SPREAD } WlSfOffscreen;
+extern const char *const wl_sf_offscreen_names[]; /* keep, spread */
+/* After every processor's sort of a frame (push, dynamic): moves
+ * off-screen master chunks from processors holding more than their
+ * share to those holding the fewest; out[p] are p's P batches of the
+ * frame, w[p] its work (sf_mastership.c). */
+void wl_sf_book_spread(WlSfBook *b, WlSfBatch *const *out,
+                       WlSfBookWork *const *w);
 
 /* An empty batch: no item, 0 polygons, 0 bytes, src = dst = 0. */
 void wl_sf_batch_init(WlSfBatch *bt);

@@ -115,6 +115,8 @@ static void sum_work(const WlSfRun *r, WlSfFrameStats *st)
         st->deleted_chunks += pr->w.deleted_chunks;
         st->requests += pr->w.requested;
         st->handovers += pr->w.handed;
+        st->spread += pr->w.spread;
+        st->interrupts += pr->w.served;
         st->pixels += pr->pixels;
         st->load_max = MAX(st->load_max, pr->polys);
         st->load_min = MIN(st->load_min, pr->polys);
@@ -200,4 +202,10 @@ void wl_sf_frame_sum(const WlSfRun *r, WlSfFrameStats *st)
     sum_work(r, st);
     overlap(r, st);
     st->utilisation = utilisation(r, st->end - st->start);
+    st->fb_bytes = r->fb_bytes;
+    st->interrupt_busy =
+        sim_time_mul_sat(r->c.request_interrupt, st->interrupts);
+    if (r->s.fb == WL_SF_FB_NODE)
+        st->fb_busy =
+            mach_proc_busy_phase(r->fb, r->ph_assemble) - r->fb_busy0;
 }

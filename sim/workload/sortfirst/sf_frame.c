@@ -14,6 +14,8 @@ const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "pixel_zbuffer",    "chunk_pack",
                                       "grid_cell",        "node_visit",
                                       "pointer_update",   "sphere_bound",
+                                      "request_interrupt", "pixel_readout",
+                                      "pixel_assemble",
                                       NULL};
 const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
 
@@ -26,7 +28,9 @@ gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
     SimTime *const dst[] = {&c->transform_vertex, &c->span_create,
                             &c->pixel_zbuffer,    &c->chunk_pack,
                             &c->grid_cell,        &c->node_visit,
-                            &c->pointer_update,   &c->sphere_bound};
+                            &c->pointer_update,   &c->sphere_bound,
+                            &c->request_interrupt, &c->pixel_readout,
+                            &c->pixel_assemble};
     G_STATIC_ASSERT(G_N_ELEMENTS(dst) == G_N_ELEMENTS(wl_sf_cost_ops) - 1);
     mach_costs_fill(set, "node", wl_sf_cost_ops, dst);
     mach_costs_free(set);
@@ -176,6 +180,9 @@ static void request_arrive(NetNet *net, const NetDelivery *d, void *ctx)
     WlSfProc *m = &r->procs[req->dst];
     WlSfBatch *reply = &m->reply[req->src];
     wl_sf_book_serve(r->book, req, reply, &m->w);
+    m->w.served++;
+    MachOps irq = ops1("request_interrupt", 1);
+    charge(r, m, &irq, r->ph_interrupt, NULL, 0);
     MachOps o = ops1("chunk_pack", reply->polys);
     mach_proc_compute_list(m->proc, &o, r->ph_pack, serve_done, r, reply);
 }
@@ -423,12 +430,31 @@ static const WlSfScreen *frame_screens(WlSfRun *r)
     return s;
 }
 
+/* Dynamic mastership with `offscreen: spread`: the off-screen masters
+ * made even once every processor has sorted (sf_mastership.c). */
+static void spread(WlSfRun *r)
+{
+    WlSfBatch *out[WL_SF_MAX_PROCS];
+    WlSfBookWork *w[WL_SF_MAX_PROCS];
+    if (r->s.ms != WL_SF_DYNAMIC || r->s.off != WL_SF_OFF_SPREAD ||
+        (r->adapt && r->s.current)) /* the sorts come one at a time */
+        return;
+    for (guint p = 0; p < r->s.procs; p++) {
+        out[p] = r->procs[p].out;
+        w[p] = &r->procs[p].w;
+    }
+    wl_sf_book_spread(r->book, out, w);
+}
+
 static void start_frame(SimEngine *eng, void *ctx, void *arg)
 {
     (void)arg;
     WlSfRun *r = ctx;
     r->start = sim_now(eng);
     r->done = 0;
+    r->fb_bytes = 0;
+    if (r->s.fb == WL_SF_FB_NODE)
+        r->fb_busy0 = mach_proc_busy_phase(r->fb, r->ph_assemble);
     r->view = wl_sf_frame_view(r->scene, &r->s, (guint)r->frame);
     rast_zbuffer_clear(r->zb);
     edit_apply(r);
@@ -444,6 +470,7 @@ static void start_frame(SimEngine *eng, void *ctx, void *arg)
         if (!(r->adapt && r->s.current))
             sort_book(r, &r->procs[p]);
     }
+    spread(r);
     edit_send(r);
     for (guint p = 0; p < r->s.procs; p++)
         if (!r->ef.commands || p == 0) /* others: when the edits arrive */
@@ -465,10 +492,13 @@ static void calibrate(WlSfRun *r)
 
 static void render_done(SimEngine *eng, void *ctx, void *arg)
 {
-    (void)arg;
+    (void)eng;
     WlSfRun *r = ctx;
-    if (++r->done < r->s.procs)
-        return;
+    wl_sf_fbuf_region(r, &r->procs[GPOINTER_TO_UINT(arg)]);
+}
+
+void wl_sf_frame_end(WlSfRun *r, SimEngine *eng)
+{
     WlSfFrameStats st = {.start = r->start, .end = sim_now(eng),
                          .trav = r->trav};
     wl_sf_frame_sum(r, &st);
@@ -548,6 +578,13 @@ WlSfRun *wl_sf_run_new(MachMachine *m, const Scene *scene, const WlSfDb *db,
         r->ph_estimate = sim_engine_phase(r->eng, "estimate");
     if (s->adaptive)
         r->ph_partition = sim_engine_phase(r->eng, "partition");
+    if (s->mig == WL_SF_PULL)
+        r->ph_interrupt = sim_engine_phase(r->eng, "interrupt");
+    if (s->fb == WL_SF_FB_NODE) {
+        r->ph_readout = sim_engine_phase(r->eng, "readout");
+        r->ph_assemble = sim_engine_phase(r->eng, "assemble");
+    }
+    r->fb = wl_sf_fbuf_proc(m, s->procs);
     return r;
 }
 

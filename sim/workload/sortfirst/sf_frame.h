@@ -44,10 +44,13 @@
  * or not); then each processor sends a request only to the masters it
  * needs chunks from (bytes.request per chunk) and renders when every
  * answer is in; a master serves a request when it arrives, behind the
- * work it has already queued (no interrupt is modelled: FIFO), packing
- * the chunks (chunk_pack per polygon, phase `pack`) before the answer
- * goes out.  Dynamic mastership (WlSfSetup.ms) rides on the push
- * exchange (bytes.mastership per chunk handed over).
+ * work it has already queued (FIFO), taking the request's interrupt
+ * (request_interrupt, phase `interrupt`) and packing the chunks
+ * (chunk_pack per polygon, phase `pack`) before the answer goes out.
+ * Dynamic mastership (WlSfSetup.ms) rides on the push exchange
+ * (bytes.mastership per chunk handed over); with WlSfSetup.off spread
+ * the off-screen masters are made even after the sorts
+ * (sf_mastership.c).
  *
  * Traversal (sf_trav.h, WlSfSetup.trav): the first pass of the frame
  * (the sort, or the estimate with `current`) starts with the
@@ -64,8 +67,10 @@
  * and (max-set) per max-set node created or collected, pointer_update
  * per pointer its book created or collected.
  *
- * The frame ends when every processor has rendered (the frame-buffer
- * read-out is not modelled); the next frame then starts.  The regions'
+ * The frame ends when every processor has rendered and, with a frame
+ * buffer (WlSfSetup.fb, sf_fbuf.c), every region's pixels are read out,
+ * sent and assembled at the frame-buffer node; the next frame then
+ * starts.  The regions'
  * pixels land in one frame z-buffer: with `check_image` it is compared
  * with the serial render of every polygon (same primitive ids), and the
  * migration invariant (sf_book.h) is checked; a failure stops the run.
@@ -96,7 +101,14 @@ typedef struct {
     SimTime transform_vertex, span_create, pixel_zbuffer, chunk_pack;
     SimTime grid_cell, node_visit, pointer_update;
     SimTime sphere_bound; /* a sphere's screen bounds (sf_bv.h) */
+    SimTime request_interrupt, pixel_readout, pixel_assemble;
 } WlSfCosts;
+
+/* The frame buffer (sf_fbuf.c): none (a frame ends when every region is
+ * rendered) | node (the regions' pixels read out, sent to the frame-
+ * buffer node and assembled there). */
+typedef enum { WL_SF_FB_NONE, WL_SF_FB_NODE } WlSfFrameBuffer;
+extern const char *const wl_sf_framebuffer_names[]; /* none, node */
 
 typedef struct {
     guint procs;
@@ -126,6 +138,9 @@ typedef struct {
                                boxes, scene and resolution (sf_regions.h);
                                not with edits */
     gboolean edits;    /* an editor will be set (phase `edit`) */
+    WlSfFrameBuffer fb; /* frame buffer: none (0) | node (sf_fbuf.c) */
+    uint64_t pixel_bytes; /* per pixel sent to it (workload bytes.pixel) */
+    WlSfOffscreen off;  /* dynamic: keep (0) | spread (sf_mastership.c) */
 } WlSfSetup;
 
 /* One frame's figures (sums over processors unless said). */
@@ -167,11 +182,24 @@ typedef struct {
     uint64_t pointers_collected; /* max-set pointers garbage-collected */
     uint64_t chunks_collected;   /* slave copies deleted, no instance */
     SimTime edit_busy;           /* Σ over processors: edit time */
+    uint64_t spread;             /* dynamic: off-screen chunks moved */
+    uint64_t interrupts;         /* pull: requests served (interrupts) */
+    SimTime interrupt_busy;      /* pull: their time, all masters */
+    uint64_t fb_bytes;           /* bytes sent to the frame buffer */
+    SimTime fb_busy;             /* the frame buffer's assembly time */
     double utilisation;          /* busy / (P x frame time) */
     gboolean image_checked, image_ok;
 } WlSfFrameStats;
 
 typedef struct WlSfRun WlSfRun;
+
+/* workload.framebuffer, workload.offscreen and bytes.pixel into *s
+ * (sf_fbuf.c; defaults node, spread, 4 B). */
+gboolean wl_sf_parse_costed(const CfgNode *sec, WlSfSetup *s, GError **err);
+/* The metrics of the frame buffer, the pull interrupt and the
+ * off-screen spread, means over frames from `from` (sf_fbuf.c). */
+void wl_sf_fill_costed_metrics(SimResult *out, const GArray *stats, guint from,
+                               const WlSfSetup *s);
 
 /* Checks the `node` kind has the cost operations and fills *c. */
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,

@@ -62,6 +62,10 @@ struct WlSfRun {
     SimTime start;
     unsigned ph_sort, ph_pack, ph_unpack, ph_render, ph_partition;
     unsigned ph_estimate, ph_traverse, ph_edit;
+    unsigned ph_interrupt, ph_readout, ph_assemble;
+    MachProc *fb;       /* the frame-buffer node (sf_fbuf.c) */
+    uint64_t fb_bytes;  /* this frame's bytes to it */
+    SimTime fb_busy0;   /* its busy time at the frame's start */
 };
 
 /* ---- sf_render.c: a processor's region ---------------------------------- */
@@ -84,6 +88,20 @@ uint64_t wl_sf_estimate_bytes(const WlSfRun *r, guint p);
 uint64_t wl_sf_edit_message(const WlSfRun *r);
 /* p's edit work as named counts of the node's costs. */
 MachOps wl_sf_edit_ops(const WlSfRun *r, guint p);
+
+/* The frame's end, when every region is done (sf_fbuf.c calls it). */
+void wl_sf_frame_end(WlSfRun *r, SimEngine *eng);
+
+/* ---- sf_fbuf.c: the frame buffer ----------------------------------------- */
+
+/* The frame-buffer node: node P when the machine has it, else node 0. */
+MachProc *wl_sf_fbuf_proc(MachMachine *m, guint procs);
+/* Pixels of p's region this frame, and the bytes of its message. */
+uint64_t wl_sf_fbuf_pixels(const WlSfRun *r, guint p);
+uint64_t wl_sf_fbuf_bytes(const WlSfRun *r, guint p);
+/* pr has rendered: its region goes to the frame buffer (or, without
+ * one, counts as done at once). */
+void wl_sf_fbuf_region(WlSfRun *r, WlSfProc *pr);
 
 /* ---- sf_figures.c: the frame's figures ---------------------------------- */
 

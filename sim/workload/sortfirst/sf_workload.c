@@ -242,7 +242,8 @@ static void *sf_parse(const CfgNode *sec, GError **err)
         cfg_get_str(sec, "frame_log", FALSE, &log, err) &&
         cfg_get_str(sec, "database", FALSE, &dbf, err) &&
         cfg_get_str(sec, "dump_db", FALSE, &dump, err) &&
-        parse_bytes(sec, &p->setup.sizes, err) && parse_edits(sec, p, err);
+        parse_bytes(sec, &p->setup.sizes, err) && parse_edits(sec, p, err) &&
+        wl_sf_parse_costed(sec, &p->setup, err);
     if (!ok) {
         sf_free_params(p);
         return NULL;
@@ -408,6 +409,7 @@ void wl_sf_fill_metrics(SimResult *out, const GArray *stats, const WlSfDb *db,
     }
     set(out, "utilisation", m.util / n, "");
     set(out, "peak_memory", (double)m.peak, "B");
+    wl_sf_fill_costed_metrics(out, stats, from, s);
     if (m.checked)
         set(out, "image_matches_serial", m.image_ok, "");
 }
@@ -762,6 +764,10 @@ static const WlMetric sf_metrics[] = {
     {"bv_test_ns", "ns", "bounding_volume only: one volume test's price"},
     {"utilisation", "", "busy time / (P x frame time), mean over frames"},
     {"peak_memory", "B", "the largest processor store"},
+    {"offscreen_spread_per_frame", "", "dynamic only: off-screen moved"},
+    {"interrupt_ms", "ms", "pull only: request interrupts, all masters"},
+    {"framebuffer_bytes_per_frame", "B", "framebuffer only: pixels sent"},
+    {"assembly_ms", "ms", "framebuffer only: its assembly a frame"},
     {"image_matches_serial", "",
      "1 when every checked frame equalled the serial render"},
     {NULL, NULL, NULL},

@@ -354,7 +354,8 @@ static void test_workload_metrics(void **state)
     assert_true(u > 0 && u <= 1);
     assert_true(metric(r, "load_imbalance") >= 1);
     assert_true(metric(r, "polygon_imbalance") >= 1);
-    assert_true(r->comm_messages == 4 * 4 * 3); /* P(P-1) a frame */
+    /* P(P-1) a frame, and P regions to the frame buffer */
+    assert_true(r->comm_messages == 4 * (4 * 3 + 4));
     /* determinism: the same config twice gives the same figures */
     SimResult *r2 = run_cfg(small, NULL, 4, &e);
     assert_non_null(r2);
@@ -683,7 +684,9 @@ static void test_frame_out(void **state)
  * migration invariant (check_image every frame); pull transforms every
  * box and asks only the masters it needs; dynamic mastership leaves
  * about one copy and, on a narrow view where chunks leave the screen,
- * piles off-screen masters on fewer processors than fixed masters do. */
+ * piles off-screen masters on fewer processors than fixed masters do
+ * when they are kept where they left (offscreen: keep; spread:
+ * test_sf_costed.c). */
 static void test_pull_and_dynamic(void **state)
 {
     (void)state;
@@ -709,7 +712,8 @@ static void test_pull_and_dynamic(void **state)
         for (int bk = 0; bk <= 1; bk++) {
             char *dyn = g_strdup_printf(
                 "workload={type: sortfirst, processors: 4, granularity: 5, "
-                "resolution: 64, bookkeeping: %s, mastership: dynamic}",
+                "resolution: 64, bookkeeping: %s, mastership: dynamic, "
+                "offscreen: keep}",
                 bk ? "maxset" : "minset");
             char *fix = g_strdup_printf(
                 "workload={type: sortfirst, processors: 4, granularity: 5, "
