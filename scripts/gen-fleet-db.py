@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes configs/scenes/fleet_heavy_db.yaml: a structure database file
+"""Writes configs/sortfirst/fleet_heavy_db.yaml: a structure database file
 with heavy instancing (issue 37 point 3) for the sortfirst workload.
 
 Twelve cars on the circle of radius 6 that configs/scenes/bronco.yaml's
@@ -7,7 +7,7 @@ camera orbits (placed as the vehicle generator places its copies), all
 executing one `car` structure; a car executes one `wheel` four times and
 each wheel one `lug` five times, so a lug's chunk has 240 instances, a
 wheel's 48 and the body's 12.  Faces are wound outward (back-face
-culling).  Run: python3 scripts/gen-fleet-db.py > configs/scenes/fleet_heavy_db.yaml
+culling).  Run: python3 scripts/gen-fleet-db.py > configs/sortfirst/fleet_heavy_db.yaml
 """
 import math
 
