@@ -55,6 +55,12 @@ static gboolean switch_takes(const WlPfNode *n, guint i)
     return n->which == WL_PF_SWITCH_ALL || n->which == (int)i;
 }
 
+/* pfSequence: the child shown at the view's frame. */
+static guint seq_child(const WlPfNode *n, const WlPfView *v)
+{
+    return v->frame / MAX(n->seq_frames, 1) % MAX(n->children->len, 1);
+}
+
 typedef struct {
     const WlPfGraph *g;
     const WlPfView *v;
@@ -104,7 +110,8 @@ static void walk_children(Walk *w, const WlPfNode *n, Mat4 m, Vec3 wc)
     } /* lod < 0 (no child in range): the loop below takes no child */
     for (guint i = 0; i < n->children->len; i++) {
         if ((n->kind == WL_PF_LOD && (int)i != lod) ||
-            (n->kind == WL_PF_SWITCH && !switch_takes(n, i)))
+            (n->kind == WL_PF_SWITCH && !switch_takes(n, i)) ||
+            (n->kind == WL_PF_SEQUENCE && i != seq_child(n, w->v)))
             continue;
         walk(w, wl_pf_child(n, i), m, TRUE);
     }

@@ -6,7 +6,8 @@
  * nodes whose mask lacks WL_PF_MASK_CULL, rejects a node whose world
  * bounding sphere is outside one of the six view-frustum planes (when
  * culling is on), picks one LOD child by eye distance times stress,
- * follows a switch's selection, and appends to a display list: PUSH and
+ * follows a switch's selection and a sequence's child of the view's
+ * frame (only that child is visited and drawn), and appends to a display list: PUSH and
  * POP around each transform and each billboard geoset (the matrix DRAW
  * loads) and GEOSET items; at a group that pfFlatten made of an SCS it
  * counts the PUSH and POP it no longer emits.  It counts its own work and, for
@@ -37,6 +38,7 @@ typedef struct {
     double planes[6][4]; /* world space, inside: n . p + d >= 0 */
     double stress;       /* >= 1: LOD distances are multiplied by it */
     gboolean cull;       /* view-frustum culling on */
+    guint frame;         /* the frame (pfSequence's clock) */
 } WlPfView;
 
 enum { WL_PF_DL_PUSH, WL_PF_DL_POP, WL_PF_DL_GEOSET, WL_PF_DL_CALLBACK };

@@ -5,7 +5,9 @@
  * group; static transform (pfSCS) and dynamic transform (pfDCS), each
  * with a matrix applied to its children; level of detail (pfLOD: child i
  * is drawn when range[i] <= distance * stress < range[i + 1]); switch
- * (one child, all or none); billboard (its geosets are turned about +y
+ * (one child, all or none); sequence (pfSequence: a precomputed
+ * animation, child (frame / seq_frames) mod n is drawn, each child shown
+ * seq_frames frames); billboard (its geosets are turned about +y
  * to face the eye); geode (geosets).  A geoset is a homogeneous set of
  * triangles (real vertices) with one geostate (texture, material and a
  * mode word: the pfGeoState attributes that lazy state management
@@ -37,6 +39,7 @@ typedef enum {
     WL_PF_SWITCH,
     WL_PF_BILLBOARD,
     WL_PF_GEODE,
+    WL_PF_SEQUENCE,
     WL_PF_NKINDS
 } WlPfKind;
 
@@ -68,6 +71,7 @@ typedef struct {
     double radius;      /* < 0: empty */
     gboolean flattened; /* a group that was an SCS before pfFlatten */
     guint32 callbacks;  /* WL_PF_CB_* bits (0: none) */
+    guint seq_frames;   /* sequence: frames each child shows (0: 1) */
 } WlPfNode;
 
 typedef struct {

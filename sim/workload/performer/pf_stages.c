@@ -167,6 +167,7 @@ static SimTime cull(void *ctx, guint n, double stress)
     SceneCamera cam = channel_camera(
         s, wl_pf_town_camera(s->town, n, f->ground), s->chan);
     WlPfView v = wl_pf_view(&cam, stress, s->cull);
+    v.frame = n;
     GArray *dl = dlist(s, s->chan, n);
     g_array_set_size(dl, 0);
     WlPfCullStats cs = {0};

@@ -9,7 +9,8 @@
  *     triangles as the flat one; CULL visits fewer nodes in it when most
  *     of the town is outside the view, more when most is inside:
  *     efficiency depends on the graph's depth;
- *   - traversal callbacks cost their time per node that runs them.
+ *   - traversal callbacks cost their time per node that runs them;
+ *   - a pfSequence draws only the child of the frame.
  * Runs of 12 frames, means over frames 4..11.
  */
 #include <setjmp.h>
@@ -20,6 +21,7 @@
 
 #include "sim/core/cfg.h"
 #include "sim/machine/machine.h"
+#include "sim/workload/performer/pf_cull.h"
 #include "tests/support.h"
 
 static double metric(const SimResult *r, const char *name)
@@ -142,12 +144,46 @@ static void test_callbacks_cost_per_node(void **st)
     sim_result_free(b);
 }
 
+/* pfSequence (slides "libpf": precomputed animations, each child shown
+ * for a period): a sequence of children of 1, 2 and 3 triangles, each
+ * shown 2 frames, draws 1, 1, 2, 2, 3, 3, 1 triangles in frames 0..6:
+ * CULL visits and DRAW pays for the active child only. */
+static void test_sequence_draws_one_child(void **st)
+{
+    (void)st;
+    WlPfGraph *g = wl_pf_graph_new();
+    guint gs = wl_pf_add_gstate(g, (WlPfGeoState){0, 0, 0});
+    guint seq = wl_pf_add_node(g, g->root, WL_PF_SEQUENCE);
+    wl_pf_node(g, seq)->seq_frames = 2;
+    Vec3 v[9];
+    for (guint i = 0; i < 9; i++)
+        v[i] = vec3(i % 3, (i + 1) % 3 == 0, i / 3);
+    for (guint c = 1; c <= 3; c++)
+        wl_pf_add_geoset(g, wl_pf_add_node(g, seq, WL_PF_GEODE), v, c, gs);
+    wl_pf_update_bounds(g, g->root);
+    WlPfView view = {.stress = 1, .cull = FALSE};
+    const guint want[7] = {1, 1, 2, 2, 3, 3, 1};
+    for (guint f = 0; f < 7; f++) {
+        GArray *dl = g_array_new(FALSE, FALSE, sizeof(WlPfDlItem));
+        WlPfCullStats cs = {0};
+        WlPfDrawStats ds = {0};
+        view.frame = f;
+        wl_pf_cull(g, &view, dl, &cs);
+        wl_pf_draw(g, dl, &ds);
+        assert_int_equal(ds.tris, want[f]);
+        assert_int_equal(cs.nodes_visited, 3); /* root, sequence, child */
+        g_array_free(dl, TRUE);
+    }
+    wl_pf_graph_free(g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_strips_save_vertices),
         cmocka_unit_test(test_deep_town_depends_on_the_view),
         cmocka_unit_test(test_callbacks_cost_per_node),
+        cmocka_unit_test(test_sequence_draws_one_child),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
