@@ -105,7 +105,7 @@ gboolean mach_cost_lookup(const MachMachine *m, const char *kind,
 gboolean mach_require_costs(const MachMachine *m, const char *kind,
                             const char *const *ops, GError **err)
 {
-    const MachNeed needs[] = {{kind, ops}, {NULL, NULL}};
+    const MachNeed needs[] = {{kind, ops, NULL}, {NULL, NULL, NULL}};
     return mach_costs_check(m, needs, err);
 }
 
@@ -115,17 +115,86 @@ struct MachCosts {
     GPtrArray *costs; /* const MachCost *, borrowed, declaration order */
 };
 
+/* The work `needs` declares for (kind, op), or NULL. */
+static const MachWork *declared_work(const MachNeed *needs, const char *kind,
+                                     const char *op)
+{
+    for (const MachNeed *k = needs; k->kind; k++)
+        if (!strcmp(k->kind, kind) && mach_work_find(k->work, op))
+            return mach_work_find(k->work, op);
+    return NULL;
+}
+
+/* A derived cost and its text in one block (g_free frees both). */
+typedef struct {
+    MachCost c;
+    char text[];
+} DerivedCost;
+
+/* Derives (kind, op) from w on the kind's processor description into
+ * the kind's table; FALSE and *missing when some class is unpriced. */
+static gboolean derive(const MachKindInfo *k, const MachWork *w,
+                       MachWorkClass *missing)
+{
+    SimTime t;
+    if (!mach_work_price(&k->desc, w, &t, missing) || !k->desc.any)
+        return FALSE; /* no description: *missing is w's first class */
+    char *work = mach_work_describe(w);
+    char *text = g_strdup_printf("%s on the processor description of "
+                                 "nodes.%s",
+                                 work, k->name);
+    DerivedCost *d = g_malloc0(sizeof *d + strlen(text) + 1);
+    strcpy(d->text, text);
+    d->c = (MachCost){.value = t,
+                      .from = MACH_COST_DERIVED,
+                      .prov = MACH_PROV_ASSUMPTION,
+                      .kind = k->name,
+                      .op = w->op,
+                      .file = cfg_file(k->desc.at),
+                      .line = cfg_line(k->desc.at),
+                      .col = cfg_col(k->desc.at),
+                      .text = d->text};
+    memcpy(d->c.work, w->n, sizeof d->c.work);
+    g_hash_table_insert(k->costs, (gpointer)w->op, d);
+    g_free(work);
+    g_free(text);
+    return TRUE;
+}
+
+/* The cost of (kind, op): explicit, derived before, or derived now from
+ * the declared work; NULL when none.  *missing: the unpriced class, or
+ * MACH_W_N when the op declares no work or the kind no description. */
+static const MachCost *resolve(const MachMachine *m, const MachNeed *needs,
+                               const char *kind, const char *op,
+                               MachWorkClass *missing)
+{
+    *missing = MACH_W_N;
+    const MachCost *c = mach_cost_info(m, kind, op);
+    const MachKindInfo *k = mach_kind(m, kind);
+    const MachWork *w = declared_work(needs, kind, op);
+    if (c || !k || !w || !derive(k, w, missing))
+        return c;
+    return mach_cost_info(m, kind, op);
+}
+
 /* One line of the list of missing costs. */
 static void list_missing(GString *s, const MachMachine *m, const char *kind,
-                         const char *op)
+                         const char *op, MachWorkClass missing)
 {
     const CfgNode *at = missing_at(m, kind);
     g_string_append_printf(s, "\n  %s:%d:%d: nodes.%s.costs.%s",
                            cfg_file(at), cfg_line(at), cfg_col(at), kind, op);
+    if (missing < MACH_W_N)
+        g_string_append_printf(s, " (or nodes.%s.cycles.%s to derive it)",
+                               kind,
+                               missing == MACH_W_MEMBYTE
+                                   ? "memory_bandwidth"
+                                   : mach_work_class_name(missing));
 }
 
 /* Every missing cost of needs in one located error (the first one's
- * place), listing each; FALSE when some is missing. */
+ * place), listing each; FALSE when some is missing.  Derives what the
+ * declared work and the kinds' descriptions allow. */
 static gboolean report_missing(const MachMachine *m, const MachNeed *needs,
                                GError **err)
 {
@@ -133,14 +202,16 @@ static gboolean report_missing(const MachMachine *m, const MachNeed *needs,
     const char *kind0 = NULL, *op0 = NULL;
     guint n = 0;
     for (const MachNeed *k = needs; k->kind; k++)
-        for (const char *const *op = k->ops; *op; op++)
-            if (!mach_cost_info(m, k->kind, *op)) {
-                if (!n++) {
-                    kind0 = k->kind;
-                    op0 = *op;
-                }
-                list_missing(list, m, k->kind, *op);
+        for (const char *const *op = k->ops; *op; op++) {
+            MachWorkClass missing;
+            if (resolve(m, needs, k->kind, *op, &missing))
+                continue;
+            if (!n++) {
+                kind0 = k->kind;
+                op0 = *op;
             }
+            list_missing(list, m, k->kind, *op, missing);
+        }
     if (n) {
         char *rest = g_strdup_printf("; %u missing in all:%s", n, list->str);
         first_missing(err, m, kind0, op0, rest);
@@ -219,6 +290,60 @@ const MachCost *mach_costs_nth(const MachCosts *c, guint i)
 {
     g_assert(i < c->costs->len);
     return g_ptr_array_index(c->costs, i);
+}
+
+/* A short time for a note: "2.667 ns", "95.56 us". */
+static void append_time(GString *s, SimTime t)
+{
+    double ns = (double)t / 1e3;
+    if (ns < 1e3)
+        g_string_append_printf(s, "%.4g ns", ns);
+    else if (ns < 1e6)
+        g_string_append_printf(s, "%.4g us", ns / 1e3);
+    else
+        g_string_append_printf(s, "%.4g ms", ns / 1e6);
+}
+
+static gint by_op(gconstpointer a, gconstpointer b)
+{
+    return strcmp((*(const MachCost *const *)a)->op,
+                  (*(const MachCost *const *)b)->op);
+}
+
+void mach_costs_note_derived(const MachKindInfo *k, SimResult *r)
+{
+    GPtrArray *d = g_ptr_array_new();
+    GHashTableIter it;
+    gpointer v;
+    g_hash_table_iter_init(&it, k->costs);
+    while (g_hash_table_iter_next(&it, NULL, &v))
+        if (((const MachCost *)v)->from == MACH_COST_DERIVED)
+            g_ptr_array_add(d, v);
+    g_ptr_array_sort(d, by_op);
+    GString *s = g_string_new(NULL);
+    for (guint i = 0; i < d->len; i++) {
+        const MachCost *c = g_ptr_array_index(d, i);
+        MachWork w = {c->op, {0}};
+        memcpy(w.n, c->work, sizeof w.n);
+        char *work = mach_work_describe(&w);
+        g_string_append_printf(s, "%s%s ", i ? "; " : "", c->op);
+        append_time(s, c->value);
+        g_string_append_printf(s, " (%s)", work);
+        g_free(work);
+    }
+    if (d->len) {
+        const MachCost *c0 = g_ptr_array_index(d, 0);
+        char *base = g_path_get_basename(c0->file);
+        char *note = g_strdup_printf(
+            "costs derived on %s from its processor description (%s:%d:%d): "
+            "%s",
+            k->name, base, c0->line, c0->col, s->str);
+        g_free(base);
+        sim_result_add_note(r, note);
+        g_free(note);
+    }
+    g_string_free(s, TRUE);
+    g_ptr_array_free(d, TRUE);
 }
 
 const char *mach_cost_from_name(MachCostFrom f)

@@ -29,15 +29,18 @@
 
 #include "sim/core/cfg.h"
 #include "sim/core/time.h"
+#include "sim/core/result.h"
 #include "sim/machine/model.h"
+#include "sim/machine/proc.h"
+#include "sim/machine/work.h"
 
 typedef struct MachMachine MachMachine;
 
 /* Where a cost's value comes from. */
 typedef enum {
     MACH_COST_MODEL,  /* explicit: a model file's value (or an override) */
-    MACH_COST_DERIVED /* computed from a processor description (issue 34;
-                         not produced yet) */
+    MACH_COST_DERIVED /* computed from the op's work (work.h) on the
+                         kind's processor description (issue 34) */
 } MachCostFrom;
 
 /* One cost and its provenance.  Strings are borrowed from the machine's
@@ -51,14 +54,20 @@ typedef struct {
                          the run config / --set of an override */
     int line, col;
     const char *text; /* the model's source / calibration / assumption
-                         text; NULL for an override or a list of cells */
+                         text; NULL for an override or a list of cells;
+                         derived: the work and what priced it */
+    double work[MACH_W_N]; /* derived: the op's work per class; else 0 */
 } MachCost;
 
 /* A workload's declared costs on one node kind: ops is NULL-terminated;
- * a table of them ends with a NULL kind.  (WlNeed in workload.h.) */
+ * a table of them ends with a NULL kind.  (WlNeed in workload.h.)
+ * work (may be NULL) states each op's work in machine-independent
+ * classes (work.h): a cost the model lacks is derived from it when the
+ * kind has a processor description that prices those classes. */
 typedef struct {
     const char *kind;
     const char *const *ops;
+    const MachWork *work;
 } MachNeed;
 
 /* ---- the machine's tables ------------------------------------------------ */
@@ -87,11 +96,14 @@ gboolean mach_require_costs(const MachMachine *m, const char *kind,
 
 typedef struct MachCosts MachCosts;
 
-/* The costs `needs` declares, from machine m.  Returns a new set
- * (mach_costs_free), or NULL with one located error listing every
- * missing kind and cost ("FILE:L:C: found no cost for 'op' on 'kind',
- * expected ...; N missing:" then one "FILE:L:C: nodes.KIND.costs.OP"
- * line each). */
+/* The costs `needs` declares, from machine m: each explicit cost, else
+ * one derived from its declared work on the kind's processor description
+ * (added to the machine's table, provenance `derived`, so the processors
+ * price named counts with it).  Returns a new set (mach_costs_free), or
+ * NULL with one located error listing every missing kind and cost
+ * ("FILE:L:C: found no cost for 'op' on 'kind', expected ...; N
+ * missing:" then one "FILE:L:C: nodes.KIND.costs.OP" line each, with the
+ * class to describe where the op has work). */
 MachCosts *mach_costs_new(const MachMachine *m, const MachNeed *needs,
                           GError **err);
 void mach_costs_free(MachCosts *c);
@@ -113,6 +125,10 @@ void mach_costs_fill(const MachCosts *c, const char *kind,
 /* The set's costs in declaration order, for reports. */
 guint mach_costs_len(const MachCosts *c);
 const MachCost *mach_costs_nth(const MachCosts *c, guint i);
+
+/* Adds to r one note listing the costs of kind k derived so far (op,
+ * time, work), in op order; nothing when none is derived. */
+void mach_costs_note_derived(const MachKindInfo *k, SimResult *r);
 
 /* "model" or "derived". */
 const char *mach_cost_from_name(MachCostFrom f);

@@ -51,7 +51,7 @@ static gboolean read_costs(MachKind *k, const CfgNode *kind, GError **err)
 {
     k->costs = mach_cost_table_new(k->name, cfg_get(kind, "costs"), err);
     k->info.costs = k->costs; /* for mach_proc_compute_ops() */
-    return k->costs != NULL;
+    return k->costs != NULL && mach_proc_desc_read(kind, &k->info.desc, err);
 }
 
 static gboolean read_kind(MachKind *k, const char *name, const CfgNode *kind,
@@ -555,6 +555,8 @@ void mach_fill_result(const MachMachine *m, SimResult *r)
     sim_result_set_phases(r, m->eng);
     for (guint k = 0; k < mach_kind_count(m); k++)
         fill_kind(m, mach_kind_at(m, k), r);
+    for (guint k = 0; k < mach_kind_count(m); k++)
+        mach_costs_note_derived(mach_kind_at(m, k), r);
     if (m->net)
         net_fill_result(m->net, r);
     g_free(r->fidelity); /* the machine's word says "(faithful)" */

@@ -14,6 +14,7 @@
  * except for a missing required key.  Cost: O(size of the tree).
  */
 #include "sim/machine/model.h"
+#include "sim/machine/work.h"
 #include "sim/core/inputs.h"
 #include "sim/core/datapath.h"
 #include "sim/core/error.h"
@@ -30,7 +31,8 @@ static const MachKeyType kind_keys[] = {
     {"clock", MACH_T_FREQ},       {"memory", MACH_T_SIZE},
     {"lanes", MACH_T_COUNT},      {"lane_memory", MACH_T_SIZE},
     {"fpa_lanes", MACH_T_COUNT},  {"cores", MACH_T_COUNT},
-    {"peak_flops", MACH_T_COUNT}, {NULL, 0},
+    {"peak_flops", MACH_T_COUNT}, {"memory_bandwidth", MACH_T_BANDWIDTH},
+    {NULL, 0},
 };
 
 /* Keys the network section may have. */
@@ -111,7 +113,7 @@ static gboolean has_unit(const char *s)
 
 static gboolean check_unit(const CfgNode *v, MachType t, GError **err)
 {
-    if (t == MACH_T_WORD || t == MACH_T_COUNT)
+    if (t == MACH_T_WORD || t == MACH_T_COUNT || t == MACH_T_NUMBER)
         return TRUE;
     const char *s = cfg_scalar(v);
     if (s && has_unit(s))
@@ -163,6 +165,8 @@ static gboolean check_typed(const CfgNode *map, const char *key, MachType t,
         return cfg_get_size(map, key, TRUE, &u, err);
     case MACH_T_COUNT:
         return cfg_get_count(map, key, TRUE, 0, UINT64_MAX, &u, err);
+    case MACH_T_NUMBER:
+        return mach_param_number(map, key, TRUE, &d, err);
     case MACH_T_BW_LIST:
     case MACH_T_COUNT_LIST:
         ok = t == MACH_T_BW_LIST
@@ -252,18 +256,49 @@ static gboolean check_param(const CfgNode *map, const char *key, MachType t,
     return check_typed(map, key, t, err);
 }
 
-static gboolean check_costs(const CfgNode *costs, const char *model_file,
-                            GError **err)
+/* A kind's `costs` (times) or `cycles` (numbers: work.h) map. */
+static gboolean check_costs(const CfgNode *costs, MachType t,
+                            const char *model_file, GError **err)
 {
     if (cfg_kind(costs) != CFG_MAP) {
-        cfg_error(err, costs, "a non-map costs section",
-                  "a map of operation: {value: <time>, source: ...}");
+        cfg_error(err, costs,
+                  t == MACH_T_TIME ? "a non-map costs section"
+                                   : "a non-map cycles section",
+                  t == MACH_T_TIME
+                      ? "a map of operation: {value: <time>, source: ...}"
+                      : "a map of work class: {value: <cycles>, source: "
+                        "...}");
         return FALSE;
     }
     for (guint i = 0; i < cfg_map_len(costs); i++) {
         const char *op = cfg_map_key(costs, i);
-        if (!check_param(costs, op, MACH_T_TIME, model_file, err))
+        if (!check_param(costs, op, t, model_file, err))
             return FALSE;
+    }
+    return TRUE;
+}
+
+/* A kind's processor description (work.h): every cycles: key a work
+ * class priced by cycles, and a clock to count them at. */
+static gboolean check_cycles(const CfgNode *kind, const CfgNode *cycles,
+                             GError **err)
+{
+    for (guint i = 0; cycles && i < cfg_map_len(cycles); i++) {
+        const char *name = cfg_map_key(cycles, i);
+        MachWorkClass c;
+        if (!mach_work_class_find(name, &c) || c == MACH_W_MEMBYTE) {
+            char *found = g_strdup_printf("work class '%s'", name);
+            cfg_error(err, cfg_map_value(cycles, i), found,
+                      "one of: vertex, setup, pixel, zcmp, flop, instr, "
+                      "miss (membyte is priced by memory_bandwidth)");
+            g_free(found);
+            return FALSE;
+        }
+    }
+    if (cycles && !cfg_get(kind, "clock")) {
+        cfg_error(err, cycles, "cycles: without the kind's clock",
+                  "clock: {value: <frequency>, source: ...} beside it");
+        return FALSE;
     }
     return TRUE;
 }
@@ -297,12 +332,16 @@ static gboolean check_kind(const CfgNode *kind, const char *model_file,
     for (guint i = 0; i < cfg_map_len(kind); i++) {
         const char *key = cfg_map_key(kind, i);
         MachType t;
-        if (strcmp(key, "costs") == 0) {
-            if (!check_costs(cfg_map_value(kind, i), model_file, err))
+        if (!strcmp(key, "costs") || !strcmp(key, "cycles")) {
+            if (!check_costs(cfg_map_value(kind, i),
+                             key[1] == 'o' ? MACH_T_TIME : MACH_T_NUMBER,
+                             model_file, err) ||
+                (key[1] == 'y' &&
+                 !check_cycles(kind, cfg_map_value(kind, i), err)))
                 return FALSE;
         } else if (!mach_kind_key_type(key, &t)) {
-            return unknown_key(cfg_map_value(kind, i), key, kind_keys, "costs",
-                               err);
+            return unknown_key(cfg_map_value(kind, i), key, kind_keys,
+                               "costs, cycles", err);
         } else if (!check_param(kind, key, t, model_file, err)) {
             return FALSE;
         }

@@ -30,6 +30,8 @@ const char *mach_type_example(MachType t)
         return "a list of counts, e.g. [8, 8]";
     case MACH_T_COUNT:
         return "a count, e.g. 16 or 64K";
+    case MACH_T_NUMBER:
+        return "a number, e.g. 0.5";
     default:
         return "a word, e.g. hypercube";
     }
@@ -93,6 +95,14 @@ gboolean mach_param_freq(const CfgNode *map, const char *key, gboolean required,
 {
     const CfgNode *h = holder(map, &key);
     return h ? cfg_get_freq(h, key, TRUE, out, err)
+             : absent(map, key, required, err);
+}
+
+gboolean mach_param_number(const CfgNode *map, const char *key,
+                           gboolean required, double *out, GError **err)
+{
+    const CfgNode *h = holder(map, &key);
+    return h ? cfg_get_double(h, key, TRUE, 0, G_MAXDOUBLE, out, err)
              : absent(map, key, required, err);
 }
 

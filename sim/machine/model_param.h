@@ -19,7 +19,8 @@ typedef enum {
     MACH_T_FREQ,      /* Hz */
     MACH_T_SIZE,      /* bytes */
     MACH_T_BW_LIST,   /* sequence of bandwidths (per fat-tree level) */
-    MACH_T_COUNT_LIST /* sequence of counts (mesh extents) */
+    MACH_T_COUNT_LIST, /* sequence of counts (mesh extents) */
+    MACH_T_NUMBER      /* a bare decimal >= 0 (cycles per unit of work) */
 } MachType;
 
 /* What an error expects of a value of type t ("a time with its unit, e.g.
@@ -63,6 +64,9 @@ gboolean mach_param_freq(const CfgNode *map, const char *key, gboolean required,
                          double *out, GError **err);
 gboolean mach_param_size(const CfgNode *map, const char *key, gboolean required,
                          uint64_t *out, GError **err);
+/* A bare decimal >= 0 (MACH_T_NUMBER). */
+gboolean mach_param_number(const CfgNode *map, const char *key,
+                           gboolean required, double *out, GError **err);
 /* A list of bandwidths (bytes/s); *out is a new GArray of double
  * (g_array_unref) or untouched when the optional key is absent. */
 gboolean mach_param_bw_list(const CfgNode *map, const char *key,

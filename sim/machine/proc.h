@@ -20,6 +20,7 @@
 #include "sim/core/engine.h"
 #include "sim/core/record.h"
 #include "sim/core/stats.h"
+#include "sim/machine/work.h"
 
 typedef struct MachMachine MachMachine;
 typedef struct MachProc MachProc;
@@ -33,7 +34,9 @@ typedef struct {
     uint64_t memory;      /* bytes per node, 0 when not given */
     uint64_t lanes;       /* SIMD lanes per processor, 1 if not SIMD */
     uint64_t lane_memory; /* bytes per lane, 0 when not given */
-    GHashTable *costs;    /* op name -> MachCost * (costs.h): its costs */
+    GHashTable *costs;    /* op name -> MachCost * (costs.h): its costs,
+                             explicit ones and those derived so far */
+    MachProcDesc desc;    /* its processor description (work.h) */
 } MachKindInfo;
 
 /* Submits `cost` of work in `phase`; done(eng, ctx, arg) runs when it

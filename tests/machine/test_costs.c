@@ -68,7 +68,7 @@ static void test_mul_sat_boundary(void **state)
 }
 
 static const char *const cpu_ops[] = {"work", "tiny_op", NULL};
-static const MachNeed tiny_needs[] = {{"cpu", cpu_ops}, {NULL, NULL}};
+static const MachNeed tiny_needs[] = {{"cpu", cpu_ops, NULL}, {NULL, NULL, NULL}};
 
 /* Prices from the set: a cost, n of them (saturating at the boundary,
  * as the machine's processors price the same counts). */
@@ -107,8 +107,8 @@ static void test_missing_listed_at_once(void **state)
     Fix *f = fix_new(NULL);
     static const char *const cpu[] = {"work", "teleport", "warp", NULL};
     static const char *const gpu[] = {"work", NULL};
-    static const MachNeed needs[] = {{"cpu", cpu}, {"gpu", gpu},
-                                     {NULL, NULL}};
+    static const MachNeed needs[] = {{"cpu", cpu, NULL}, {"gpu", gpu, NULL},
+                                     {NULL, NULL, NULL}};
     GError *err = NULL;
     assert_null(mach_costs_new(f->m, needs, &err));
     assert_non_null(err);
@@ -174,8 +174,9 @@ static void test_declared_only(void **state)
     Fix *f = fix_new(NULL);
     static const char *const a[] = {"tiny_op", NULL};
     static const char *const b[] = {"tiny_op", "work", NULL};
-    static const MachNeed needs[] = {{"cpu", a}, {"cpu", b}, {NULL, NULL}};
-    static const MachNeed one[] = {{"cpu", a}, {NULL, NULL}};
+    static const MachNeed needs[] = {
+        {"cpu", a, NULL}, {"cpu", b, NULL}, {NULL, NULL, NULL}};
+    static const MachNeed one[] = {{"cpu", a, NULL}, {NULL, NULL, NULL}};
     MachCosts *c = mach_costs_new(f->m, needs, NULL);
     assert_int_equal(mach_costs_len(c), 2);
     assert_string_equal(mach_costs_nth(c, 0)->op, "tiny_op");
@@ -190,6 +191,75 @@ static void test_declared_only(void **state)
     fix_free(f);
 }
 
+/* Portable work (work.h): a cost the model lacks is derived from the
+ * op's work on the kind's processor description (cycles / clock, bytes
+ * / memory bandwidth, a graphics class through its software definition
+ * unless priced itself); an explicit cost wins; an unpriced class is
+ * named in the list of missing costs; the run's note lists derived ones. */
+static void test_derived(void **state)
+{
+    (void)state;
+    static const char *const ops[] = {"work", "blit", "tri", NULL};
+    static const MachWork work[] = {
+        {"work", {[MACH_W_FLOP] = 1000}}, /* explicit 10 us wins */
+        {"blit", {[MACH_W_INSTR] = 4, [MACH_W_MEMBYTE] = 1000}},
+        {"tri", {[MACH_W_VERTEX] = 3, [MACH_W_PIXEL] = 10}},
+        {NULL, {0}}};
+    static const MachNeed needs[] = {{"cpu", ops, work}, {NULL, NULL, NULL}};
+    /* no description: both listed, each with a class that would do */
+    Fix *f = fix_new(NULL);
+    GError *err = NULL;
+    assert_null(mach_costs_new(f->m, needs, &err));
+    assert_non_null(strstr(err->message, "2 missing in all:"));
+    assert_non_null(strstr(err->message, "nodes.cpu.costs.blit (or "
+                                         "nodes.cpu.cycles.instr to derive"));
+    g_clear_error(&err);
+    fix_free(f);
+    /* 1 GHz: instr 2 cycles = 2 ns, flop 1 ns, 1 GB/s = 1 ns a byte */
+    static const char *const sets[] = {
+        "nodes.cpu.cycles.instr=2", "nodes.cpu.cycles.flop=1",
+        "nodes.cpu.memory_bandwidth=1 GB/s", NULL};
+    f = fix_new(sets);
+    MachCosts *c = mach_costs_new(f->m, needs, &err);
+    assert_non_null(c);
+    assert_int_equal(mach_costs_get(c, "cpu", "work"), 10 * SIM_US);
+    assert_int_equal(mach_costs_find(c, "cpu", "work")->from,
+                     MACH_COST_MODEL);
+    const MachCost *b = mach_costs_find(c, "cpu", "blit");
+    assert_int_equal(b->value, 1008 * SIM_NS);
+    assert_int_equal(b->from, MACH_COST_DERIVED);
+    assert_int_equal(b->prov, MACH_PROV_ASSUMPTION);
+    assert_non_null(strstr(b->text, "4 instr + 1000 membyte"));
+    /* vertex 80 flop + 30 instr = 140 ns, pixel 4 + 8 x 2 = 20 ns */
+    assert_int_equal(mach_costs_get(c, "cpu", "tri"),
+                     (3 * 140 + 10 * 20) * SIM_NS);
+    /* the processors price named counts with the derived cost */
+    MachOps o = {.op = {{"blit", 2}}, .n = 1};
+    assert_int_equal(mach_proc_ops_cost(mach_proc(f->m, "cpu", 0), &o),
+                     2016 * SIM_NS);
+    SimResult *r = sim_result_new("t", "tiny");
+    mach_costs_note_derived(mach_kind(f->m, "cpu"), r);
+    assert_int_equal(r->notes->len, 1);
+    const char *note = g_ptr_array_index(r->notes, 0);
+    assert_non_null(strstr(note, "blit 1.008 us (4 instr + 1000 membyte); "
+                                 "tri 620 ns (3 vertex + 10 pixel)"));
+    sim_result_free(r);
+    mach_costs_free(c);
+    fix_free(f);
+    /* a pixel rate of its own replaces the software definition; the
+     * clock moves every cycle price */
+    static const char *const gpu[] = {
+        "nodes.cpu.cycles.instr=2", "nodes.cpu.cycles.flop=1",
+        "nodes.cpu.cycles.pixel=0.5", "nodes.cpu.clock=2 GHz",
+        "nodes.cpu.memory_bandwidth=1 GB/s", NULL};
+    f = fix_new(gpu);
+    c = mach_costs_new(f->m, needs, NULL);
+    assert_int_equal(mach_costs_get(c, "cpu", "tri"),
+                     3 * 70 * SIM_NS + 10 * 250 * SIM_PS);
+    mach_costs_free(c);
+    fix_free(f);
+}
+
 int main(void)
 {
     support_warnings_fatal();
@@ -199,6 +269,7 @@ int main(void)
         cmocka_unit_test(test_missing_listed_at_once),
         cmocka_unit_test(test_provenance),
         cmocka_unit_test(test_declared_only),
+        cmocka_unit_test(test_derived),
     };
     return cmocka_run_group_tests_name("costs", tests, NULL, NULL);
 }

@@ -115,6 +115,9 @@ static void test_bad_models_rejected(void **state)
     expect_bad("workload-no-value.yaml", 11, "without a value");
     expect_bad("costs-not-a-map.yaml", 7, "a non-map costs section");
     expect_bad("kind-name-space.yaml", 6, "node kind name 'graphics processor'");
+    expect_bad("cycles-unknown-class.yaml", 9, "work class 'texel'");
+    expect_bad("cycles-no-clock.yaml", 8, "cycles: without the kind's clock");
+    expect_bad("cycles-with-unit.yaml", 9, "'2 ns'");
 }
 
 static void test_models_path_from_env(void **state)

@@ -73,15 +73,16 @@ static void param_row(GString *s, const char *prefix, const char *key,
     g_string_append(s, " |\n");
 }
 
-/* The parameters of one map (a node kind or the network); `costs` is a
- * map of parameters one level down. */
+/* The parameters of one map (a node kind or the network); `costs` and
+ * `cycles` (a processor description) are maps of parameters one level
+ * down. */
 static void params(GString *s, const char *prefix, const CfgNode *map)
 {
     for (guint i = 0; map && i < cfg_map_len(map); i++) {
         const char *key = cfg_map_key(map, i);
         const CfgNode *p = cfg_map_value(map, i);
-        if (strcmp(key, "costs") == 0) {
-            char *sub = g_strdup_printf("%s.costs", prefix);
+        if (!strcmp(key, "costs") || !strcmp(key, "cycles")) {
+            char *sub = g_strdup_printf("%s.%s", prefix, key);
             params(s, sub, p);
             g_free(sub);
         } else if (cfg_kind(p) == CFG_MAP) {

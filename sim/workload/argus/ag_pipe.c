@@ -31,7 +31,7 @@ const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
                                       NULL};
 const char *const wl_ag_scheme_names[] = {"pixel", "geometry", NULL};
 const char *const wl_ag_sync_names[] = {"glp", "finish", NULL};
-const MachNeed wl_ag_needs[] = {{"cpu", wl_ag_cost_ops}, {NULL, NULL}};
+const MachNeed wl_ag_needs[] = {{"cpu", wl_ag_cost_ops, NULL}, {NULL, NULL, NULL}};
 
 gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
                                   GError **err)

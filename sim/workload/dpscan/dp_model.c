@@ -130,8 +130,8 @@ static const char *const simd_keys[] = {"arch",       "op",         "step",
 static const char *const spmd_keys[] = {
     "arch",         "op",        "step",  "scan_slice",      "net_latency",
     "msg_overhead", "msg_bytes", "arity", "level_bandwidth", NULL};
-static const WlNeed simd_needs[] = {{"dpscan", simd_keys}, {NULL, NULL}};
-static const WlNeed spmd_needs[] = {{"dpscan", spmd_keys}, {NULL, NULL}};
+static const WlNeed simd_needs[] = {{"dpscan", simd_keys, NULL}, {NULL, NULL, NULL}};
+static const WlNeed spmd_needs[] = {{"dpscan", spmd_keys, NULL}, {NULL, NULL, NULL}};
 const WlNeedAlt wl_dp_model_needs[] = {
     {"from its machine model's dpscan: section, arch: simd (the "
      "partition is nodes.array.lanes)",

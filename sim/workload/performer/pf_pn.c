@@ -291,9 +291,9 @@ static const char *const gp_ops[] = {"polygon", "vertex", "send_primitive",
                                      "pn_vertex", NULL};
 static const char *const rd_ops[] = {"primitive", NULL};
 static const WlNeed smp_needs[] = {
-    {"cpu", smp_ops}, {"pipe", pipe_ops}, {NULL, NULL}};
+    {"cpu", smp_ops, NULL}, {"pipe", pipe_ops, NULL}, {NULL, NULL, NULL}};
 static const WlNeed pp5_needs[] = {
-    {"gp", gp_ops}, {"renderer", rd_ops}, {NULL, NULL}};
+    {"gp", gp_ops, NULL}, {"renderer", rd_ops, NULL}, {NULL, NULL, NULL}};
 const WlNeedAlt wl_pf_pn_needs[] = {
     {"with pn:, on a cpu + pipe machine", smp_needs},
     {"with pn:, on Pixel-Planes 5 (host + gp + renderer)", pp5_needs},

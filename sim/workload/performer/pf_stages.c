@@ -14,7 +14,7 @@ static const char *const cpu_ops[] = {
     NULL};
 static const char *const pipe_ops[] = {"triangle", "state", NULL};
 const WlNeed wl_pf_town_needs[] = {
-    {"cpu", cpu_ops}, {"pipe", pipe_ops}, {NULL, NULL}};
+    {"cpu", cpu_ops, NULL}, {"pipe", pipe_ops, NULL}, {NULL, NULL, NULL}};
 
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err)

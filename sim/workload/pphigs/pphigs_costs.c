@@ -17,12 +17,12 @@ static const char *const renderer_ops[] = {"expression",   "compare",
                                            "quadratic",    NULL};
 static const char *const fb_ops[] = {"store_region", NULL};
 static const char *const host_ops[] = {"send_element", "scan_element", NULL};
-const MachNeed wl_pphigs_needs[] = {{"gp", gp_ops},
-                                    {"renderer", renderer_ops},
-                                    {"frame_buffer", fb_ops},
-                                    {"host", host_ops},
-                                    {NULL, NULL}};
-static const MachNeed gp_needs[] = {{"gp", gp_ops}, {NULL, NULL}};
+const MachNeed wl_pphigs_needs[] = {{"gp", gp_ops, NULL},
+                                    {"renderer", renderer_ops, NULL},
+                                    {"frame_buffer", fb_ops, NULL},
+                                    {"host", host_ops, NULL},
+                                    {NULL, NULL, NULL}};
+static const MachNeed gp_needs[] = {{"gp", gp_ops, NULL}, {NULL, NULL, NULL}};
 
 void wl_pphigs_costs_fill(const MachCosts *set, WlPphigsCosts *c,
                           SimTime *send)

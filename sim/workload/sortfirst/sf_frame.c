@@ -17,7 +17,7 @@ const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "request_interrupt", "pixel_readout",
                                       "pixel_assemble",
                                       NULL};
-const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops}, {NULL, NULL}};
+const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops, NULL}, {NULL, NULL, NULL}};
 
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
                                   GError **err)
