@@ -83,8 +83,14 @@ static gboolean read_kind(MachKind *k, const char *name, const CfgNode *kind,
 static gboolean build_kinds(MachMachine *m, GError **err)
 {
     const CfgNode *nodes = cfg_get(m->tree, "nodes");
-    guint first = 0;
-    for (guint i = 0; i < cfg_map_len(nodes); i++) {
+    const CfgNode *roles = cfg_get(m->tree, "roles");
+    guint first = 0, n = cfg_map_len(nodes);
+    for (guint j = 0; j < 2 * n; j++) {
+        /* kinds carved for roles (roles.h) first: a workload's processor
+         * i is then machine processor i, as on the papers' machines */
+        guint i = j % n;
+        if ((j < n) != (roles && cfg_get(roles, cfg_map_key(nodes, i))))
+            continue;
         MachKind k = {0};
         gboolean ok =
             read_kind(&k, cfg_map_key(nodes, i), cfg_map_value(nodes, i), err);
@@ -555,8 +561,6 @@ void mach_fill_result(const MachMachine *m, SimResult *r)
     sim_result_set_phases(r, m->eng);
     for (guint k = 0; k < mach_kind_count(m); k++)
         fill_kind(m, mach_kind_at(m, k), r);
-    for (guint k = 0; k < mach_kind_count(m); k++)
-        mach_costs_note_derived(mach_kind_at(m, k), r);
     if (m->net)
         net_fill_result(m->net, r);
     g_free(r->fidelity); /* the machine's word says "(faithful)" */

@@ -20,11 +20,19 @@ gboolean mach_shmem_init(MachShmem *sh, const MachMachine *m, GError **err)
     if (!topo || strcmp(topo, "bus") != 0 ||
         !mach_net_bandwidth(m, "bandwidth", &bw) ||
         !mach_net_time(m, "startup", &lat)) {
-        g_set_error(err, SIM_ERROR, SIM_ERROR_INPUT,
-                    "machine '%s': found a network without a shared memory, "
-                    "expected network {topology: bus, bandwidth, startup} "
-                    "(the memory's bandwidth and access latency)",
-                    mach_name(m));
+        /* located at the network's topology: a distributed-memory
+         * machine cannot run a shared-memory program (docs/models.md,
+         * pairings) */
+        const CfgNode *net = mach_network_cfg(m);
+        const CfgNode *at = net ? mach_param_node(net, "topology") : NULL;
+        char *found = g_strdup_printf("machine '%s' with a %s network and "
+                                      "no shared memory",
+                                      mach_name(m), topo ? topo : "no");
+        cfg_error(err, at ? at : mach_model_cfg(m), found,
+                  "network {topology: bus, bandwidth, startup} (the "
+                  "memory's bandwidth and access latency): a shared-memory "
+                  "program runs on a shared-memory machine");
+        g_free(found);
         return FALSE;
     }
     mach_shmem_init_with(sh, bw, lat);

@@ -21,6 +21,7 @@
 #include "sim/output/progress.h"
 #include "sim/machine/machine.h"
 #include "sim/machine/model.h"
+#include "sim/machine/roles.h"
 #include "sim/scene/scene_cfg.h"
 #include "sim/workload/metrics.h"
 #include <string.h>
@@ -252,12 +253,27 @@ static gboolean plan_machine(const CfgRun *r, CfgNode *sec, GError **err)
     return ok;
 }
 
+/* The node kinds the workload needs and the machine lacks, carved from
+ * the kinds that play them (sim/machine/roles.h). */
+static gboolean play_roles(CfgRun *r, CfgNode *sec, GError **err)
+{
+    GPtrArray *kinds = g_ptr_array_new();
+    for (const WlNeed *n = r->wl->needs; n && n->kind; n++)
+        g_ptr_array_add(kinds, (gpointer)n->kind);
+    g_ptr_array_add(kinds, NULL);
+    gboolean ok = mach_section_roles(
+        sec, (const char *const *)r->model_dirs->pdata,
+        (const char *const *)kinds->pdata, r->notes, err);
+    g_ptr_array_free(kinds, TRUE);
+    return ok;
+}
+
 static gboolean build_machine(CfgRun *r, const WlPlan *plan, GError **err)
 {
     CfgNode *sec = machine_section(r, plan, err);
     if (!sec)
         return FALSE;
-    if (!plan_machine(r, sec, err)) {
+    if (!plan_machine(r, sec, err) || !play_roles(r, sec, err)) {
         cfg_free(sec);
         return FALSE;
     }
@@ -325,6 +341,7 @@ static CfgRun *run_new(CfgNode *root, const char *const *overrides,
                        GError **err)
 {
     CfgRun *r = g_new0(CfgRun, 1);
+    r->notes = g_ptr_array_new_with_free_func(g_free);
     r->root = root;
     r->path = g_strdup(path);
     r->model_dirs = model_dirs(path, models);
@@ -391,6 +408,7 @@ void cfg_run_free(CfgRun *r)
     sim_inputs_free(r->inputs);
     if (r->overrides)
         g_ptr_array_free(r->overrides, TRUE);
+    g_ptr_array_free(r->notes, TRUE);
     g_free(r);
 }
 
@@ -494,5 +512,11 @@ SimResult *cfg_run_exec(CfgRun *r, const CfgRunOpts *opts, GError **err)
     }
     fill_memory(res, r->machine_built);
     note_speedup(res);
+    for (guint i = 0; i < r->notes->len; i++)
+        sim_result_add_note(res, g_ptr_array_index(r->notes, i));
+    for (guint k = 0; r->machine_built &&
+                      k < mach_kind_count(r->machine_built);
+         k++)
+        mach_costs_note_derived(mach_kind_at(r->machine_built, k), res);
     return res;
 }

@@ -55,6 +55,8 @@ typedef struct {
     GPtrArray *overrides; /* char *: the overrides applied, in order */
     SimInputs *inputs;    /* owned: the files the load and the run read
                              (sim/core/inputs.h), for the provenance */
+    GPtrArray *notes;     /* char *: what the runner tells the result
+                             (node kinds played by others: roles.h) */
 } CfgRun;
 
 /* Loads and checks a run config; `overrides` is a NULL-terminated list of

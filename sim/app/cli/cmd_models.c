@@ -1,4 +1,6 @@
-/* cmd_models.c — `pgsim models [--markdown] [DIR]`: the machine models.
+/* cmd_models.c — `pgsim models [--markdown | --pairings LIST] [DIR]`:
+ * the machine models.  --pairings: every workload config of configs/ on
+ * every model of DIR, checked against LIST (pairings.h).
  *
  * Without --markdown, one line per model of DIR (default models/): its
  * name and description.  With --markdown, the "Parameters" tables of
@@ -13,6 +15,7 @@
  */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
+#include "sim/app/cli/pairings.h"
 #include "sim/core/cfg.h"
 #include <stdio.h>
 #include <string.h>
@@ -117,31 +120,10 @@ static void one_model(GString *s, const CfgNode *m)
     g_string_append_c(s, '\n');
 }
 
-static gint by_name(gconstpointer a, gconstpointer b)
-{
-    return strcmp(*(const char *const *)a, *(const char *const *)b);
-}
-
-/* The *.yaml files of dir in name order (g_ptr_array_unref), or NULL
- * with *err set. */
-static GPtrArray *model_files(const char *dir, GError **err)
-{
-    GDir *d = g_dir_open(dir, 0, err);
-    if (!d)
-        return NULL;
-    GPtrArray *files = g_ptr_array_new_with_free_func(g_free);
-    for (const char *f; (f = g_dir_read_name(d));)
-        if (g_str_has_suffix(f, ".yaml"))
-            g_ptr_array_add(files, g_build_filename(dir, f, NULL));
-    g_dir_close(d);
-    g_ptr_array_sort(files, by_name);
-    return files;
-}
-
 static int list_models(const char *dir, gboolean markdown)
 {
     GError *e = NULL;
-    GPtrArray *files = model_files(dir, &e);
+    GPtrArray *files = cli_yaml_files(dir, &e);
     if (!files)
         return cli_fail(e);
     GString *s = g_string_new(NULL);
@@ -171,7 +153,12 @@ static int list_models(const char *dir, gboolean markdown)
 int cmd_models(int argc, char **argv)
 {
     gboolean markdown = FALSE;
+    char *pairings = NULL;
     const GOptionEntry entries[] = {
+        {"pairings", 0, 0, G_OPTION_ARG_FILENAME, &pairings,
+         "run every workload config of configs/ on every model, check the "
+         "meaningless ones LIST names, print the table of docs/models.md",
+         "LIST"},
         {"markdown", 0, 0, G_OPTION_ARG_NONE, &markdown,
          "print the parameter tables of docs/models.md (made from the YAML)",
          NULL},
@@ -191,5 +178,15 @@ int cmd_models(int argc, char **argv)
                 argv[2]);
         return 2;
     }
-    return list_models(argc == 2 ? argv[1] : "models", markdown);
+    const char *dir = argc == 2 ? argv[1] : "models";
+    if (!pairings)
+        return list_models(dir, markdown);
+    GString *md = g_string_new(NULL);
+    GError *e = NULL;
+    gboolean ok = pairings_table(pairings, "configs", dir, md, &e);
+    g_free(pairings);
+    if (ok)
+        fputs(md->str, stdout);
+    g_string_free(md, TRUE);
+    return ok ? 0 : cli_fail(e);
 }

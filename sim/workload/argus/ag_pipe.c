@@ -31,7 +31,33 @@ const char *const wl_ag_cost_ops[] = {"nurbs_vertex",
                                       NULL};
 const char *const wl_ag_scheme_names[] = {"pixel", "geometry", NULL};
 const char *const wl_ag_sync_names[] = {"glp", "finish", NULL};
-const MachNeed wl_ag_needs[] = {{"cpu", wl_ag_cost_ops, NULL}, {NULL, NULL, NULL}};
+
+/* Each op's portable work (sim/machine/work.h; the instruction counts
+ * of models/origin2000.yaml's notes): a cost the model lacks is derived
+ * from it on the cpu's processor description. */
+static const MachWork ag_work[] = {
+    /* a bicubic point and normal: 16 control points x 3 coordinates,
+     * two tangents */
+    {"nurbs_vertex", {[MACH_W_FLOP] = 300, [MACH_W_INSTR] = 50}},
+    {"march_voxel", {[MACH_W_INSTR] = 8}},
+    {"march_triangle", {[MACH_W_FLOP] = 60, [MACH_W_INSTR] = 40}},
+    {"issue_vertex", {[MACH_W_INSTR] = 20, [MACH_W_MEMBYTE] = 32}},
+    {"issue_batch", {[MACH_W_INSTR] = 200}},
+    {"geom_vertex", {[MACH_W_VERTEX] = 1}},
+    {"geom_triangle", {[MACH_W_INSTR] = 60}},
+    {"geom_tile", {[MACH_W_INSTR] = 30}},
+    {"rast_triangle", {[MACH_W_SETUP] = 1}},
+    {"rast_pixel", {[MACH_W_PIXEL] = 1}},
+    {"rast_blend", {[MACH_W_PIXEL] = 1, [MACH_W_FLOP] = 6}},
+    {"rast_clear", {[MACH_W_MEMBYTE] = 8}},
+    {"lock", {[MACH_W_MISS] = 3}},
+    {"sema", {[MACH_W_MISS] = 2}},
+    /* one state command (4 to 16 floats) copied into the buffer */
+    {"issue_state", {[MACH_W_INSTR] = 30, [MACH_W_MEMBYTE] = 64}},
+    {"geom_state", {[MACH_W_INSTR] = 45, [MACH_W_MEMBYTE] = 64}},
+    {NULL, {0}}};
+const MachNeed wl_ag_needs[] = {{"cpu", wl_ag_cost_ops, ag_work},
+                                {NULL, NULL, NULL}};
 
 gboolean wl_ag_costs_from_machine(const MachMachine *m, AgCosts *c,
                                   GError **err)

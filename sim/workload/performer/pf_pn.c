@@ -290,10 +290,29 @@ static const char *const pipe_ops[] = {"triangle", "pn_vertex", NULL};
 static const char *const gp_ops[] = {"polygon", "vertex", "send_primitive",
                                      "pn_vertex", NULL};
 static const char *const rd_ops[] = {"primitive", NULL};
-static const WlNeed smp_needs[] = {
-    {"cpu", smp_ops, NULL}, {"pipe", pipe_ops, NULL}, {NULL, NULL, NULL}};
-static const WlNeed pp5_needs[] = {
-    {"gp", gp_ops, NULL}, {"renderer", rd_ops, NULL}, {NULL, NULL, NULL}};
+/* Each op's portable work (sim/machine/work.h), as the town's and
+ * pphigs' tables: a cost the model lacks is derived from it.  A grid
+ * point is a cubic position and a quadratic normal (~90 flops). */
+static const MachWork smp_work[] = {
+    {"draw_vertex", {[MACH_W_INSTR] = 20, [MACH_W_MEMBYTE] = 32}},
+    {"triangle", {[MACH_W_VERTEX] = 1, [MACH_W_SETUP] = 1,
+                  [MACH_W_PIXEL] = 50}},
+    {"pn_vertex", {[MACH_W_FLOP] = 90, [MACH_W_INSTR] = 30}},
+    {NULL, {0}}};
+static const MachWork pp5_work[] = {
+    {"polygon", {[MACH_W_SETUP] = 1, [MACH_W_FLOP] = 40, [MACH_W_INSTR] = 60}},
+    {"vertex", {[MACH_W_VERTEX] = 1}},
+    {"send_primitive", {[MACH_W_INSTR] = 20, [MACH_W_MEMBYTE] = 200}},
+    {"pn_vertex", {[MACH_W_FLOP] = 90, [MACH_W_INSTR] = 30}},
+    /* 7 linear expressions and a z compare over a 128 x 128 region */
+    {"primitive", {[MACH_W_FLOP] = 7 * 16384.0, [MACH_W_ZCMP] = 16384}},
+    {NULL, {0}}};
+static const WlNeed smp_needs[] = {{"cpu", smp_ops, smp_work},
+                                   {"pipe", pipe_ops, smp_work},
+                                   {NULL, NULL, NULL}};
+static const WlNeed pp5_needs[] = {{"gp", gp_ops, pp5_work},
+                                   {"renderer", rd_ops, pp5_work},
+                                   {NULL, NULL, NULL}};
 const WlNeedAlt wl_pf_pn_needs[] = {
     {"with pn:, on a cpu + pipe machine", smp_needs},
     {"with pn:, on Pixel-Planes 5 (host + gp + renderer)", pp5_needs},

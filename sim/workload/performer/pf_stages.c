@@ -13,8 +13,33 @@ static const char *const cpu_ops[] = {
     "draw_vertex", "isect_node",     "isect_triangle",
     NULL};
 static const char *const pipe_ops[] = {"triangle", "state", NULL};
-const WlNeed wl_pf_town_needs[] = {
-    {"cpu", cpu_ops, NULL}, {"pipe", pipe_ops, NULL}, {NULL, NULL, NULL}};
+/* Each op's portable work (sim/machine/work.h; the instruction counts
+ * of models/sgi-onyx.yaml): a cost the model lacks is derived from it on
+ * the kind's processor description. */
+static const MachWork cpu_work[] = {
+    /* the application's own work: ~2 ms of a 150 MHz R4400 */
+    {"app_frame", {[MACH_W_INSTR] = 230000}},
+    {"app_dcs", {[MACH_W_INSTR] = 400}},
+    {"cull_node", {[MACH_W_FLOP] = 60, [MACH_W_INSTR] = 90}},
+    {"cull_lod", {[MACH_W_FLOP] = 10, [MACH_W_INSTR] = 40}},
+    {"cull_billboard", {[MACH_W_FLOP] = 60, [MACH_W_INSTR] = 150}},
+    {"cull_item", {[MACH_W_INSTR] = 30}},
+    {"draw_geoset", {[MACH_W_INSTR] = 600}},
+    {"draw_state", {[MACH_W_INSTR] = 400}},
+    {"draw_matrix", {[MACH_W_FLOP] = 64, [MACH_W_INSTR] = 100}},
+    {"draw_vertex", {[MACH_W_INSTR] = 20, [MACH_W_MEMBYTE] = 32}},
+    {"isect_node", {[MACH_W_FLOP] = 30, [MACH_W_INSTR] = 60}},
+    {"isect_triangle", {[MACH_W_FLOP] = 50, [MACH_W_INSTR] = 40}},
+    {NULL, {0}}};
+/* a strip triangle: one new vertex, a set-up and ~50 pixels */
+static const MachWork pipe_work[] = {
+    {"triangle", {[MACH_W_VERTEX] = 1, [MACH_W_SETUP] = 1,
+                  [MACH_W_PIXEL] = 50}},
+    {"state", {[MACH_W_INSTR] = 300}},
+    {NULL, {0}}};
+const WlNeed wl_pf_town_needs[] = {{"cpu", cpu_ops, cpu_work},
+                                   {"pipe", pipe_ops, pipe_work},
+                                   {NULL, NULL, NULL}};
 
 gboolean wl_pf_costs_read(MachMachine *m, uint64_t vertex_bytes, WlPfCosts *c,
                           GError **err)

@@ -17,7 +17,26 @@ const char *const wl_sf_cost_ops[] = {"transform_vertex", "span_create",
                                       "request_interrupt", "pixel_readout",
                                       "pixel_assemble",
                                       NULL};
-const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops, NULL}, {NULL, NULL, NULL}};
+/* Each op's portable work (sim/machine/work.h; the estimates in
+ * models/cluster-ib.yaml's notes): a cost the model lacks is derived
+ * from it on the node's processor description. */
+static const MachWork sf_work[] = {
+    {"transform_vertex", {[MACH_W_VERTEX] = 1}},
+    {"span_create", {[MACH_W_FLOP] = 4, [MACH_W_INSTR] = 20}},
+    {"pixel_zbuffer", {[MACH_W_PIXEL] = 1}},
+    /* copy a 36-byte triangle: read and write it, and a list insert */
+    {"chunk_pack", {[MACH_W_INSTR] = 10, [MACH_W_MEMBYTE] = 72}},
+    {"grid_cell", {[MACH_W_INSTR] = 3}},
+    /* a 4x4 matrix product (64 multiply-adds) and 3 list misses */
+    {"node_visit", {[MACH_W_FLOP] = 128, [MACH_W_INSTR] = 20,
+                    [MACH_W_MISS] = 3}},
+    {"pointer_update", {[MACH_W_INSTR] = 6}},
+    /* a bounding sphere against the clip matrix's rows and planes and
+     * its two tangent quadratics: ~150 flops */
+    {"sphere_bound", {[MACH_W_FLOP] = 150, [MACH_W_INSTR] = 20}},
+    {NULL, {0}}};
+const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops, sf_work},
+                                {NULL, NULL, NULL}};
 
 gboolean wl_sf_costs_from_machine(const MachMachine *m, WlSfCosts *c,
                                   GError **err)

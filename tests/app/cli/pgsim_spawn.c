@@ -4,6 +4,7 @@
 #include <stddef.h>
 #include <cmocka.h>
 #include <glib.h>
+#include <string.h>
 #include <sys/wait.h>
 
 #include "tests/app/cli/pgsim_spawn.h"
@@ -45,4 +46,18 @@ char *test_ring_sweep(const char *dir, const char *values)
     g_free(text);
     g_free(base);
     return sweep;
+}
+
+char *test_doc_between(const char *path, const char *begin, const char *end)
+{
+    char *doc = NULL;
+    assert_true(g_file_get_contents(path, &doc, NULL, NULL));
+    const char *b = strstr(doc, begin);
+    assert_non_null(b);
+    b += strlen(begin);
+    const char *e = strstr(b, end);
+    assert_non_null(e);
+    char *t = g_strndup(b, (gsize)(e - b));
+    g_free(doc);
+    return t;
 }

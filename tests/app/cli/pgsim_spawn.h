@@ -13,4 +13,8 @@ int test_pgsim(const char *const *args, char **out, char **err);
  * "4, 8"); returns the sweep's path (g_free). */
 char *test_ring_sweep(const char *dir, const char *values);
 
+/* The text of file `path` between the lines `begin` and `end` (each
+ * with its newline); fails the test when either is missing (g_free). */
+char *test_doc_between(const char *path, const char *begin, const char *end);
+
 #endif

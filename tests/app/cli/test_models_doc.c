@@ -23,16 +23,7 @@
 /* The doc's text between the markers (g_free). */
 static char *doc_tables(void)
 {
-    char *doc = NULL;
-    assert_true(g_file_get_contents("docs/models.md", &doc, NULL, NULL));
-    const char *b = strstr(doc, BEGIN);
-    assert_non_null(b);
-    b += strlen(BEGIN);
-    const char *e = strstr(b, END);
-    assert_non_null(e);
-    char *t = g_strndup(b, (gsize)(e - b));
-    g_free(doc);
-    return t;
+    return test_doc_between("docs/models.md", BEGIN, END);
 }
 
 static char *tables_of(const char *dir)
