@@ -143,7 +143,7 @@ static void test_sections_refused(void **state)
     bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}, hue: 3}}\n" NET_OK,
         3, 50, "unknown key 'hue', expected one of: count, processor");
     bad(HEAD "nodes: {cpu: {count: {value: 4, source: s}, hue: 3}}\n" NET_OK,
-        3, 50, "peak_flops, costs");
+        3, 50, "memory_bandwidth, costs, cycles");
     bad(HEAD "nodes: {cpu: {count: {value: 4}}}\n" NET_OK, 3, 22,
         "parameter 'count' without a provenance");
     bad(HEAD "nodes: {cpu: {count: {source: s}}}\n" NET_OK, 3, 22,

@@ -154,7 +154,7 @@ static const ModelCase model_cases[] = {
     {"colour: {value: 1, source: s}", "",
      "m.yaml:6:13: found unknown key 'colour', expected one of: count, "
      "processor, clock, memory, lanes, lane_memory, fpa_lanes, cores, "
-     "peak_flops, costs"},
+     "peak_flops, memory_bandwidth, costs, cycles"},
 };
 
 static void test_model_errors_name_the_type(void **state)

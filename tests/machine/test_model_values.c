@@ -120,7 +120,7 @@ static void test_params_and_keys(void **state)
     expect("speed: {value: 1, source: s}", "",
            "m.yaml:3:53: found unknown key 'speed', expected one of: count, "
            "processor, clock, memory, lanes, lane_memory, fpa_lanes, cores, "
-           "peak_flops, costs");
+           "peak_flops, memory_bandwidth, costs, cycles");
     expect("costs: 5", "",
            "m.yaml:3:53: found a non-map costs section, expected a map of "
            "operation: {value: <time>, source: ...}");
