@@ -499,9 +499,17 @@ static void test_costs_from_machine(void **state)
                      (guint64)mach_cost(m, "cpu", wl_ag_cost_ops[n]));
     assert_int_equal(n * sizeof(SimTime), sizeof c);
     mach_free(m);
-    /* a machine without Argus's costs: FALSE, naming the first missing */
-    m = mach_new_from_model(eng, "sgi-onyx", "analytic", &err);
-    assert_non_null(m);
+    /* a machine without Argus's costs (nor a processor description to
+     * derive them from): FALSE, naming the first missing */
+    CfgNode *bare = cfg_load_string(
+        "name: bare\nprovenance: assumption\nnodes: {cpu: {count: 4}}\n"
+        "network: {topology: bus, bandwidth: 1 GB/s, startup: 1 us}\n",
+        "bare.yaml", &err);
+    assert_non_null(bare);
+    m = mach_new_from_cfg(eng, bare, "analytic", &err);
+    cfg_free(bare);
+    if (!m)
+        fail_msg("%s", err->message);
     assert_false(wl_ag_costs_from_machine(m, &c, &err));
     assert_non_null(err);
     if (!strstr(err->message, "found no cost for 'nurbs_vertex' on 'cpu'"))
