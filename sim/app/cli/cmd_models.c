@@ -6,7 +6,7 @@
  * name and description.  With --markdown, the "Parameters" tables of
  * docs/models.md, made from the YAML: per model (files in name order) a
  * heading, the description, one row per parameter of nodes.KIND (costs
- * included) and network in file order (value as written, provenance kind
+ * and cycles included), network and roles in file order (value as written, provenance kind
  * and text, the note after it), then the references.  docs/models.md
  * holds that output between two marker lines; scripts/gen-models-doc.sh
  * rewrites it and tests/app/cli/test_models_doc.c fails when they differ,
@@ -108,6 +108,7 @@ static void one_model(GString *s, const CfgNode *m)
     for (guint i = 0; nodes && i < cfg_map_len(nodes); i++)
         params(s, cfg_map_key(nodes, i), cfg_map_value(nodes, i));
     params(s, "network", cfg_get(m, "network"));
+    params(s, "roles", cfg_get(m, "roles")); /* kinds that play others */
     const CfgNode *refs = cfg_get(m, "references");
     if (refs && cfg_map_len(refs)) {
         g_string_append(s, "\nReferences:\n\n");
