@@ -14,6 +14,7 @@
 typedef struct {
     const CfgNode *configs, *models, *except;
     const char *error, *reason;
+    gboolean pending; /* `pending:`: to do, not meaningless */
 } Rule;
 
 static gint by_name(gconstpointer a, gconstpointer b)
@@ -206,17 +207,21 @@ static GPtrArray *model_names(const char *dir, GError **err)
     return n;
 }
 
+/* The `meaningless:` rules, then the `pending:` ones. */
 static GArray *read_rules(const CfgNode *list, GError **err)
 {
-    const CfgNode *seq = cfg_get(list, "meaningless");
+    static const char *const keys[] = {"meaningless", "pending"};
     GArray *rules = g_array_new(FALSE, TRUE, sizeof(Rule));
-    for (guint i = 0; seq && i < cfg_seq_len(seq); i++) {
-        Rule r;
-        if (!read_rule(cfg_seq_at(seq, i), &r, err)) {
-            g_array_free(rules, TRUE);
-            return NULL;
+    for (guint k = 0; k < G_N_ELEMENTS(keys); k++) {
+        const CfgNode *seq = cfg_get(list, keys[k]);
+        for (guint i = 0; seq && i < cfg_seq_len(seq); i++) {
+            Rule r = {.pending = k == 1};
+            if (!read_rule(cfg_seq_at(seq, i), &r, err)) {
+                g_array_free(rules, TRUE);
+                return NULL;
+            }
+            g_array_append_val(rules, r);
         }
-        g_array_append_val(rules, r);
     }
     return rules;
 }
@@ -229,9 +234,14 @@ static void legend(GString *md, const GArray *rules)
                         "B membyte; r: a node kind the workload names was "
                         "played by another (roles).  Meaningless "
                         "pairings, refused with a located error:\n\n");
-    for (guint i = 0; i < rules->len; i++)
-        g_string_append_printf(md, "%u. %s\n", i + 1,
-                               g_array_index(rules, Rule, i).reason);
+    for (guint i = 0; i < rules->len; i++) {
+        const Rule *r = &g_array_index(rules, Rule, i);
+        g_string_append_printf(md, "%u. %s%s\n", i + 1,
+                               r->pending ? "*Not yet runnable, to do (not "
+                                            "meaningless):* "
+                                          : "",
+                               r->reason);
+    }
 }
 
 gboolean pairings_table(const char *list_path, const char *configs_dir,
