@@ -11,7 +11,8 @@
  * overrides): a listed pairing must fail with a located error holding
  * its text, every other one must run.  `pending:` rules, in the same
  * shape, list pairings that fail for a reason still to fix (a model
- * without a processor description yet); the table says so.  The table (Markdown, in
+ * without a processor description yet); the table says so, and one
+ * that runs after all is a run (remove the rule when none fails).  The table (Markdown, in
  * docs/models.md between marker lines, scripts/gen-models-doc.sh) gives
  * each run's mean frame time and marks each work class of a derived cost
  * and each kind played by another (roles).
