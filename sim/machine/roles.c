@@ -16,12 +16,20 @@ typedef struct {
     uint64_t count;          /* 0: not set */
 } Role;
 
-/* A kind that is only a count (written by an override), or absent. */
+/* A kind the model does not have: absent, or a stub written by
+ * overrides (a workload's count, a config's own costs for it): nothing
+ * but `count` and `costs`, and no count with a provenance (a model's). */
 static gboolean lacking(const CfgNode *nodes, const char *name)
 {
     const CfgNode *k = cfg_get(nodes, name);
-    return !k || (cfg_kind(k) == CFG_MAP && cfg_map_len(k) == 1 &&
-                  cfg_has(k, "count"));
+    if (!k || cfg_kind(k) != CFG_MAP)
+        return TRUE;
+    for (guint i = 0; i < cfg_map_len(k); i++)
+        if (strcmp(cfg_map_key(k, i), "count") &&
+            strcmp(cfg_map_key(k, i), "costs"))
+            return FALSE;
+    const CfgNode *n = cfg_get(k, "count");
+    return !n || cfg_kind(n) != CFG_MAP;
 }
 
 /* The machine's only full kind, or NULL. */
@@ -149,10 +157,18 @@ static gboolean carve(CfgNode *sec, const CfgNode *tree, const Role *r,
     const CfgNode *from = cfg_get(cfg_get(tree, "nodes"), r->kind);
     CfgNode *to = (CfgNode *)cfg_path(sec, "nodes");
     to = (CfgNode *)cfg_get(to, r->role);
-    for (guint i = 0; i < cfg_map_len(from); i++)
-        if (strcmp(cfg_map_key(from, i), "count"))
-            cfg_map_put(to, cfg_map_key(from, i),
-                        cfg_copy(cfg_map_value(from, i)));
+    for (guint i = 0; i < cfg_map_len(from); i++) {
+        const char *key = cfg_map_key(from, i);
+        if (!strcmp(key, "count"))
+            continue;
+        /* the player's value, under what the stub says itself (a
+         * config's own costs for the role win) */
+        CfgNode *v = cfg_copy(cfg_map_value(from, i));
+        const CfgNode *own = cfg_get(to, key);
+        if (own)
+            cfg_merge(v, own);
+        cfg_map_put(to, key, v);
+    }
     return TRUE;
 }
 

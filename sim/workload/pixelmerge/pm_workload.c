@@ -108,7 +108,8 @@ gboolean wl_pm_composite_costs_from_machine(const MachMachine *m,
                                             WlPmCosts *c, GError **err)
 {
     static const char *const ops[] = {"pack", "compare", NULL};
-    static const MachNeed needs[] = {{"node", ops}, {NULL, NULL}};
+    static const MachNeed needs[] = {{"node", ops, pm_work},
+                                     {NULL, NULL, NULL}};
     MachCosts *set = mach_costs_new(m, needs, err);
     if (!set)
         return FALSE;
