@@ -80,8 +80,9 @@ static void test_rungs_in_frames(void **st)
 }
 
 /* A frame at the counts rung on machine processors of a model with only
- * the two costs compositing spends (cluster-ib has no pixel-merging
- * table): it runs, and its processors are busy merging. */
+ * the two costs compositing spends (ring-8 has no pixel-merging table
+ * and no processor description to derive one from; cluster-ib now
+ * derives it): it runs, and its processors are busy merging. */
 static void test_counts_on_machine_with_two_costs(void **st)
 {
     (void)st;
@@ -89,7 +90,7 @@ static void test_counts_on_machine_with_two_costs(void **st)
                           "machine.nodes.node.costs.compare=7 ns", NULL};
     GError *err = NULL;
     CfgNode *root =
-        mach_partition_root("test", "cluster-ib", sets, 64, NULL, &err);
+        mach_partition_root("test", "ring-8", sets, 64, NULL, &err);
     assert_non_null(root);
     SimEngine *eng = sim_engine_new(1);
     MachMachine *m =
