@@ -92,23 +92,29 @@ static char *sentence(const CfgNode *claim, GError **err)
 }
 
 static void verdict(GPtrArray *rows, const char *id, const char *s,
-                    double holds, const char *why)
+                    double holds, const char *why, const char *if_not)
 {
+    char *w = if_not ? g_strdup_printf("%s (%s)", why, if_not) : NULL;
+    why = w ? w : why;
     char *note = isnan(holds) ? g_strdup_printf("%s: no check", s)
                  : holds > 0.5
                      ? g_strdup_printf("%s: holds", s)
                      : g_strdup_printf("%s: does not hold, because %s", s, why);
     g_ptr_array_add(rows, rp_row_new("claims", id, "holds", holds, note));
     g_free(note);
+    g_free(w);
 }
 
 gboolean rp_beermann02_decide(const char *id, const CfgNode *claim,
                               GHashTable *figures, GPtrArray *rows,
                               GError **err)
 {
+    const char *if_not = NULL;
     char *s = sentence(claim, err);
-    if (!s)
+    if (!s || !cfg_get_str(claim, "if_not", FALSE, &if_not, err)) {
+        g_free(s);
         return FALSE;
+    }
     const CfgNode *tests = cfg_get(claim, "tests");
     gboolean ok = tests && cfg_kind(tests) == CFG_SEQ && cfg_seq_len(tests);
     if (!ok)
@@ -126,7 +132,7 @@ gboolean rp_beermann02_decide(const char *id, const CfgNode *claim,
         ok = FALSE;
     }
     if (ok)
-        verdict(rows, id, s, why->len ? 0.0 : 1.0, why->str);
+        verdict(rows, id, s, why->len ? 0.0 : 1.0, why->str, if_not);
     g_string_free(why, TRUE);
     g_free(s);
     return ok;

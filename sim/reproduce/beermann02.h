@@ -7,7 +7,7 @@
  * configs/papers/beermann02/setup.yaml:
  *
  *   runs:    NAME: {config: PATH (relative to setup.yaml), set: [k=v ...]}
- *   claims:  ID: {part, slide, says, reading, tests: [TEST ...]}
+ *   claims:  ID: {part, slide, says, reading, if_not, tests: [TEST ...]}
  *            or ID: {part, slide, says, reading,
  *                    from: {paper: igehy98, claim: scales_24}}
  *   TEST:    {name, of: RUN.METRIC, over: RUN.METRIC | minus: RUN.METRIC,
@@ -19,12 +19,13 @@
  * max), one with neither is a figure shown beside the checks.  Table
  * "claims", row ID: a column per test and `holds` (1 yes, 0 no) whose
  * note is "<slide>: \"<says>\": holds" or "... does not hold, because
- * <the failing checks with their values>".  A `from:` claim runs another
- * paper's claim hook on that paper's own setup (igehy98.h) and takes its
- * verdict and figures: the same computation, not a copy.  Each run is
- * made once (rp_run_build / rp_run_exec), whatever number of tests read
- * it.  Cost: one run per entry of `runs:` (about 30 short runs) plus the
- * igehy98 claim's 18.
+ * <the failing checks with their values> (<if_not>)", if_not being
+ * the claim's optional sentence on why a figure may miss.  A `from:` claim runs
+ * another paper's claim hook on that paper's own setup (igehy98.h) and takes
+ * its verdict and figures: the same computation, not a copy.  Each run is made
+ * once (rp_run_build / rp_run_exec), whatever number of tests read it.  Cost:
+ * one run per entry of `runs:` (about 30 short runs) plus the igehy98
+ * claim's 18.
  */
 #ifndef PGSIM_REPRODUCE_BEERMANN02_H
 #define PGSIM_REPRODUCE_BEERMANN02_H

@@ -1,11 +1,12 @@
 /* test_beermann02.c — seed 002's statements (beermann02.h): a claim
  * holds when every check of its tests does and says which one failed
  * when one does not; every claim of configs/papers/beermann02/setup.yaml
- * holds on the simulated figures and comes out false when any one of its
- * checked figures is moved out of its range; a real counterfactual run
- * (the pipe made to bind where the claim says it does not) makes the
- * bottleneck claim false; malformed claims are located errors.
- * Cost: one pass of the setup's runs (about 5 s) and two short claims.
+ * but the ones listed in `failing` holds on the simulated figures and
+ * comes out false when any one of its checked figures is moved out of
+ * its range (a failing one comes out true with its figures moved in); a real
+ * counterfactual run (the pipe made to bind where the claim says it does not)
+ * makes the bottleneck claim false; malformed claims are located errors. Cost:
+ * one pass of the setup's runs (about 5 s) and two short claims.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -134,14 +135,25 @@ static void test_malformed(void **state)
     refused("c: {part: P, slide: S, reading: r, tests: []}", "says");
 }
 
-/* Moves the `of` figure of test t so that its value leaves its range. */
-static void break_test(const CfgNode *t, GHashTable *f)
+/* Claims of the setup that do not hold on today's figures. */
+static const char *const failing[] = {"lod_memory_70x", NULL};
+
+/* Moves the `of` figure of test t so that its value leaves its range,
+ * or (into) to the middle of it. */
+static void move_test(const CfgNode *t, GHashTable *f, gboolean into)
 {
     const char *of = cfg_scalar(cfg_get(t, "of"));
     const CfgNode *over = cfg_get(t, "over"), *minus = cfg_get(t, "minus");
     const CfgNode *lo = cfg_get(t, "min"), *hi = cfg_get(t, "max");
     double target;
-    if (hi) {
+    if (into && lo && hi)
+        target = (g_ascii_strtod(cfg_scalar(lo), NULL) +
+                  g_ascii_strtod(cfg_scalar(hi), NULL)) /
+                 2;
+    else if (into)
+        target = lo ? g_ascii_strtod(cfg_scalar(lo), NULL) + 1
+                    : g_ascii_strtod(cfg_scalar(hi), NULL) - 1;
+    else if (hi) {
         double h = g_ascii_strtod(cfg_scalar(hi), NULL);
         target = h + MAX(fabs(h) * 0.1, 1);
     } else {
@@ -185,15 +197,32 @@ static void test_real_claims_can_fail(void **state)
         const char *id = cfg_map_key(claims, i);
         const CfgNode *c = cfg_map_value(claims, i);
         const char *note = NULL;
+        const CfgNode *tests = cfg_get(c, "tests");
+        if (g_strv_contains(failing, id)) {
+            /* false today: each check moved into its range makes it true */
+            if (holds(rows, id, &note) != 0.0 ||
+                !strstr(note, "does not hold, because"))
+                fail_msg("%s: %s", id, note);
+            GHashTable *g = copy(f);
+            for (guint k = 0; k < cfg_seq_len(tests); k++)
+                if (cfg_get(cfg_seq_at(tests, k), "min") ||
+                    cfg_get(cfg_seq_at(tests, k), "max"))
+                    move_test(cfg_seq_at(tests, k), g, TRUE);
+            GPtrArray *r = g_ptr_array_new_with_free_func(rp_row_free);
+            assert_true(rp_beermann02_decide(id, c, g, r, &e));
+            assert_true(holds(r, id, NULL) == 1.0);
+            g_ptr_array_free(r, TRUE);
+            g_hash_table_destroy(g);
+            continue;
+        }
         if (holds(rows, id, &note) != 1.0)
             fail_msg("%s: %s", id, note);
-        const CfgNode *tests = cfg_get(c, "tests");
         for (guint k = 0; tests && k < cfg_seq_len(tests); k++) {
             const CfgNode *t = cfg_seq_at(tests, k);
             if (!cfg_get(t, "min") && !cfg_get(t, "max"))
                 continue;
             GHashTable *g = copy(f);
-            break_test(t, g);
+            move_test(t, g, FALSE);
             GPtrArray *r = g_ptr_array_new_with_free_func(rp_row_free);
             assert_true(rp_beermann02_decide(id, c, g, r, &e));
             const char *name = cfg_scalar(cfg_get(t, "name"));
