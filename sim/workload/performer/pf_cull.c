@@ -7,6 +7,7 @@
  * are kept (conservative).  Cost: O(nodes visited + display list).
  */
 #include "sim/workload/performer/pf_cull.h"
+#include <string.h>
 
 WlPfView wl_pf_view(const SceneCamera *c, double stress, gboolean cull)
 {
@@ -247,6 +248,23 @@ static void isect_geosets(const WlPfGraph *g, const WlPfNode *n, Mat4 m,
 }
 
 static void isect_walk(const WlPfGraph *g, guint node, Mat4 m, double x,
+                       double z, double y0, double y1, WlPfIsectStats *st);
+
+/* pfPartition: only the children indexed in the cell (x, z) lies in (the
+ * grid is in the partition's coordinates, here the world's). */
+static void isect_cell(const WlPfGraph *g, const WlPfNode *n, double x,
+                       double z, double y0, double y1, WlPfIsectStats *st)
+{
+    double u = floor((x - n->x0) / n->cell), v = floor((z - n->z0) / n->cell);
+    if (u < 0 || v < 0 || u >= n->grid || v >= n->grid)
+        return; /* outside every child's square */
+    const GArray *c = n->cells->pdata[(guint)u * n->grid + (guint)v];
+    for (guint i = 0; i < c->len; i++)
+        isect_walk(g, wl_pf_child(n, g_array_index(c, guint, i)),
+                   mat4_identity(), x, z, y0, y1, st);
+}
+
+static void isect_walk(const WlPfGraph *g, guint node, Mat4 m, double x,
                        double z, double y0, double y1, WlPfIsectStats *st)
 {
     const WlPfNode *n = wl_pf_node(g, node);
@@ -263,6 +281,12 @@ static void isect_walk(const WlPfGraph *g, guint node, Mat4 m, double x,
         m = mat4_mul(m, n->xf);
     if (n->kind != WL_PF_BILLBOARD)
         isect_geosets(g, n, m, x, z, y0, y1, st);
+    Mat4 id = mat4_identity();
+    if (n->kind == WL_PF_PARTITION && n->cells &&
+        !memcmp(&m, &id, sizeof m)) { /* else every child, below */
+        isect_cell(g, n, x, z, y0, y1, st);
+        return;
+    }
     for (guint i = 0; i < n->children->len; i++)
         if (n->kind != WL_PF_LOD || i == 0) /* finest LOD for picking */
             isect_walk(g, wl_pf_child(n, i), m, x, z, y0, y1, st);

@@ -28,6 +28,8 @@ void wl_pf_graph_free(WlPfGraph *g)
         g_array_free(n->children, TRUE);
         g_array_free(n->geosets, TRUE);
         g_array_free(n->ranges, TRUE);
+        if (n->cells)
+            g_ptr_array_free(n->cells, TRUE);
     }
     for (guint i = 0; i < g->geosets->len; i++) {
         g_array_free(wl_pf_geoset(g, i)->verts, TRUE);
@@ -229,4 +231,43 @@ guint wl_pf_count_kind(const WlPfGraph *g, WlPfKind kind)
     for (guint i = 0; i < g->nodes->len; i++)
         c += wl_pf_node(g, i)->kind == kind;
     return c;
+}
+
+void wl_pf_partition_build(WlPfGraph *g, guint node, guint grid)
+{
+    WlPfNode *n = wl_pf_node(g, node);
+    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL};
+    for (guint i = 0; i < n->children->len; i++) {
+        const WlPfNode *c = wl_pf_node(g, wl_pf_child(n, i));
+        if (c->radius < 0)
+            continue;
+        lo[0] = fmin(lo[0], c->center.x - c->radius);
+        lo[1] = fmin(lo[1], c->center.z - c->radius);
+        hi[0] = fmax(hi[0], c->center.x + c->radius);
+        hi[1] = fmax(hi[1], c->center.z + c->radius);
+    }
+    if (n->cells)
+        g_ptr_array_free(n->cells, TRUE);
+    n->cells = g_ptr_array_new_with_free_func((GDestroyNotify)g_array_unref);
+    n->grid = MAX(grid, 1);
+    n->x0 = lo[0];
+    n->z0 = lo[1];
+    n->cell = fmax(fmax(hi[0] - lo[0], hi[1] - lo[1]) / n->grid, 1e-9);
+    for (guint k = 0; k < n->grid * n->grid; k++)
+        g_ptr_array_add(n->cells, g_array_new(FALSE, FALSE, sizeof(guint)));
+    for (guint i = 0; i < n->children->len; i++) {
+        const WlPfNode *c = wl_pf_node(g, wl_pf_child(n, i));
+        if (c->radius < 0)
+            continue;
+        guint a[2], b[2];
+        double cc[2] = {c->center.x - n->x0, c->center.z - n->z0};
+        for (int d = 0; d < 2; d++) {
+            a[d] = (guint)fmax(0, floor((cc[d] - c->radius) / n->cell));
+            b[d] = MIN((guint)fmax(0, floor((cc[d] + c->radius) / n->cell)),
+                       n->grid - 1);
+        }
+        for (guint u = a[0]; u <= b[0]; u++)
+            for (guint v = a[1]; v <= b[1]; v++)
+                g_array_append_val(n->cells->pdata[u * n->grid + v], i);
+    }
 }

@@ -7,7 +7,10 @@
  * is drawn when range[i] <= distance * stress < range[i + 1]); switch
  * (one child, all or none); sequence (pfSequence: a precomputed
  * animation, child (frame / seq_frames) mod n is drawn, each child shown
- * seq_frames frames); billboard (its geosets are turned about +y
+ * seq_frames frames); partition (pfPartition: a group whose children
+ * are indexed in a uniform grid of cells over x and z, so that ISECT's
+ * vertical segment visits only the children of the cell it crosses;
+ * CULL and DRAW treat it as a group); billboard (its geosets are turned about +y
  * to face the eye); geode (geosets).  A geoset is a homogeneous set of
  * triangles (real vertices) with one geostate (texture, material and a
  * mode word: the pfGeoState attributes that lazy state management
@@ -40,6 +43,7 @@ typedef enum {
     WL_PF_BILLBOARD,
     WL_PF_GEODE,
     WL_PF_SEQUENCE,
+    WL_PF_PARTITION,
     WL_PF_NKINDS
 } WlPfKind;
 
@@ -72,6 +76,11 @@ typedef struct {
     gboolean flattened; /* a group that was an SCS before pfFlatten */
     guint32 callbacks;  /* WL_PF_CB_* bits (0: none) */
     guint seq_frames;   /* sequence: frames each child shows (0: 1) */
+    /* partition: grid x grid cells of side `cell` from (x0, z0), each a
+     * GArray of the child positions whose sphere's square meets it */
+    GPtrArray *cells;
+    guint grid;
+    double x0, z0, cell;
 } WlPfNode;
 
 typedef struct {
@@ -121,6 +130,9 @@ void wl_pf_update_bounds_shallow(WlPfGraph *g, guint node);
 void wl_pf_sphere_xform(Mat4 m, Vec3 c, double r, Vec3 *oc, double *or_);
 /* pfFlatten: returns the number of static transforms removed. */
 guint wl_pf_flatten(WlPfGraph *g);
+/* pfPartition: indexes `node`'s children (current spheres) in a grid x
+ * grid uniform grid over their extent in x and z. */
+void wl_pf_partition_build(WlPfGraph *g, guint node, guint grid);
 /* Counts nodes of a kind (all nodes, reachable or not). */
 guint wl_pf_count_kind(const WlPfGraph *g, WlPfKind kind);
 

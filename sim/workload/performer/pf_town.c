@@ -182,10 +182,13 @@ static void add_quadtree(WlPfTown *t, guint node, guint i0, guint i1,
 static void add_blocks(WlPfTown *t, SimRng *rng, guint gs0)
 {
     guint n = t->p.blocks, *parent = g_new(guint, n * n);
+    t->blocks_node = t->p.partition
+                         ? wl_pf_add_node(t->g, t->g->root, WL_PF_PARTITION)
+                         : t->g->root;
     for (guint i = 0; i < n * n; i++)
-        parent[i] = t->g->root;
+        parent[i] = t->blocks_node;
     if (t->p.deep)
-        add_quadtree(t, t->g->root, 0, n, 0, n, parent);
+        add_quadtree(t, t->blocks_node, 0, n, 0, n, parent);
     for (guint i = 0; i < n; i++)
         for (guint j = 0; j < n; j++)
             add_block(t, parent[i * n + j], i, j, rng, gs0);
@@ -234,6 +237,8 @@ WlPfTown *wl_pf_town_new(const WlPfTownParams *p)
     add_blocks(t, &rng, gs0);
     add_cars(t, gs0 + 9);
     wl_pf_update_bounds(t->g, t->g->root);
+    if (p->partition)
+        wl_pf_partition_build(t->g, t->blocks_node, p->partition);
     return t;
 }
 

@@ -17,6 +17,10 @@
  * halves its range of blocks in both directions until one block), the
  * same blocks with the same placement, so CULL can reject a quadrant at
  * one sphere test.
+ * Partition (pfPartition, for ISECT): with `partition` > 0 the blocks
+ * (or their quadtree) hang under a partition node, not the root, whose
+ * grid of partition x partition cells lets ISECT's segment under the
+ * eye test only the blocks of its cell; the cars stay outside it.
  * Size O(blocks^2 * (houses + trees)).
  */
 #ifndef PGSIM_WORKLOAD_PERFORMER_PF_TOWN_H
@@ -35,6 +39,8 @@ typedef struct {
     uint64_t seed;
     gboolean deep; /* blocks under a quadtree of groups (else flat) */
     guint32 callbacks; /* WL_PF_CB_* on every house's SCS (0: none) */
+    guint partition;   /* > 0: the blocks under a pfPartition of
+                        * partition x partition cells (0: none) */
 } WlPfTownParams;
 
 typedef struct {
@@ -42,6 +48,7 @@ typedef struct {
     WlPfGraph *g;
     GArray *cars; /* guint DCS node indices */
     guint car_group;
+    guint blocks_node; /* the blocks' (or quadtree's) parent */
 } WlPfTown;
 
 WlPfTownParams wl_pf_town_defaults(void);

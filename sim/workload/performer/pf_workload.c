@@ -21,7 +21,7 @@
  *     callbacks: {cull: 5 us, draw: 5 us}  # per house (absent: none)
  *     fifo: {depth: 64 KB, chunk: 8 KB}  # the pipe's command FIFO
  *     town: {blocks, houses, trees, cars, block, lod_ranges, speed,
- *            eye_height, fov, seed}
+ *            eye_height, fov, seed, hierarchy, partition: {cells}}
  *     frame_log: frames.csv   # else <out>/performer_frames.csv
  *     pn: {...}               # the PN-triangle measurement (pf_pn.h)
  *
@@ -62,7 +62,7 @@ static gboolean parse_town(const CfgNode *sec, WlPfTownParams *t, GError **err)
 {
     const CfgNode *n = cfg_get(sec, "town");
     uint64_t v[4] = {t->blocks, t->houses, t->trees, t->cars};
-    uint64_t seed = t->seed;
+    uint64_t seed = t->seed, cells = t->partition;
     int deep = t->deep ? 1 : 0;
     /* no town: every getter below finds no key, so the defaults stay */
     if (!cfg_get_count(n, "blocks", FALSE, 1, 256, &v[0], err) ||
@@ -74,8 +74,11 @@ static gboolean parse_town(const CfgNode *sec, WlPfTownParams *t, GError **err)
         !cfg_get_double(n, "eye_height", FALSE, 0, 1e3, &t->eye_height, err) ||
         !cfg_get_double(n, "fov", FALSE, 1, 170, &t->fov_deg, err) ||
         !cfg_get_count(n, "seed", FALSE, 0, UINT64_MAX, &seed, err) ||
-        !cfg_get_enum(n, "hierarchy", FALSE, hierarchies, &deep, err))
+        !cfg_get_enum(n, "hierarchy", FALSE, hierarchies, &deep, err) ||
+        !cfg_get_count(cfg_get(n, "partition"), "cells", FALSE, 1, 256, &cells,
+                       err))
         return FALSE;
+    t->partition = (guint)cells;
     t->deep = deep == 1;
     const CfgNode *r = cfg_get(n, "lod_ranges");
     if (r && (cfg_kind(r) != CFG_SEQ || cfg_seq_len(r) != 3)) {
@@ -357,6 +360,7 @@ typedef struct {
     double app, cull, draw, tris, states, saved, mats, culled, stress, lod;
     double verts, vsaved, nodes, cbs;
     double cpu, bus, pipe; /* DRAW's three rates */
+    double isect, itests;  /* ISECT's time and nodes + triangles tested */
 } Means;
 
 static Means means(const GArray *recs, WlPfStages *st, guint skip)
@@ -383,6 +387,8 @@ static Means means(const GArray *recs, WlPfStages *st, guint skip)
         m.cpu += ms(f->cpu);
         m.bus += ms(f->bus);
         m.pipe += ms(f->pipe);
+        m.isect += ms(r->isect);
+        m.itests += f->isect.nodes_tested + f->isect.tris_tested;
     }
     double *v = &m.app;
     for (guint i = 0; c && i < sizeof m / sizeof *v; i++)
@@ -433,6 +439,8 @@ static void set_metrics(SimResult *out, const PfParams *p, const GArray *recs,
     sim_result_set_metric(out, "tris_culled_per_frame", m.culled, "");
     sim_result_set_metric(out, "cull_nodes_per_frame", m.nodes, "");
     sim_result_set_metric(out, "callbacks_per_frame", m.cbs, "");
+    sim_result_set_metric(out, "isect_ms", m.isect, "ms");
+    sim_result_set_metric(out, "isect_tests_per_frame", m.itests, "");
     sim_result_set_metric(out, "state_changes_per_frame", m.states, "");
     sim_result_set_metric(out, "state_changes_saved_per_frame", m.saved, "");
     sim_result_set_metric(out, "matrix_ops_per_frame", m.mats, "");
@@ -663,6 +671,9 @@ static const WlMetric pf_metrics[] = {
     {"tris_culled_per_frame", "", "triangles culled per frame"},
     {"cull_nodes_per_frame", "", "nodes CULL visited per frame"},
     {"callbacks_per_frame", "", "traversal callbacks run per frame"},
+    {"isect_ms", "ms", "mean ISECT time (0: no isect)"},
+    {"isect_tests_per_frame", "",
+     "ISECT's nodes + triangles tested per frame (partition: fewer)"},
     {"state_changes_per_frame", "", "graphics state changes per frame"},
     {"state_changes_saved_per_frame", "",
      "state changes lazy evaluation saved (eager - lazy)"},
