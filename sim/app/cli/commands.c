@@ -13,6 +13,8 @@ const CliCommand cli_commands[] = {
      "run a parameter sweep (locally or under mpirun) with charts"},
     {"replay", cmd_replay,
      "replay a recorded trace on any machine model (docs/traces.md)"},
+    {"sorts", cmd_sorts,
+     "one scene on one machine as sort-first, -middle and -last"},
     {"plot", cmd_plot, "chart two columns of a results CSV with gnuplot"},
     {"models", cmd_models,
      "list the machine models, or print docs/models.md's tables"},

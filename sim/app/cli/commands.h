@@ -33,6 +33,7 @@ int cmd_sweep(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_replay(int argc, char **argv);
 int cmd_models(int argc, char **argv);
+int cmd_sorts(int argc, char **argv);
 
 /* Keeps the rows of *t whose column K reads V, for one "K=V" (pgsim plot
  * --where, a sweep chart's where:); FALSE with *err when the item or

@@ -518,6 +518,11 @@ static void fill_metrics(SimResult *out, const WlPmFrameOut *fo,
     set(out, "composite_stages", fo->stages, "");
     set(out, "merge_messages", (double)fo->merge_msgs, "");
     set(out, "merge_records", (double)fo->merge_records, "");
+    uint64_t held = 0; /* the processes' active pixels, summed */
+    for (guint p = 0; p < s->procs; p++)
+        held += fo->active[p];
+    if (fo->tpf) /* the pixel rung's final picture */
+        set(out, "image_overlap", (double)held / (double)fo->tpf, "");
 }
 
 /* `at`: the processors key, for a located error (may be NULL). */
@@ -696,6 +701,9 @@ static const WlMetric pm_metrics[] = {
     {"merge_messages", "", "compositing schemes: messages sent in the merge"},
     {"merge_records", "",
      "compositing schemes: pixel records (or locations) the messages carry"},
+    {"image_overlap", "",
+     "compositing schemes: the processes' active pixels over the final "
+     "picture's (sort-last's overlap: images covering a covered pixel)"},
     {NULL, NULL, NULL},
 };
 

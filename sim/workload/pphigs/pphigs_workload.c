@@ -291,6 +291,7 @@ typedef struct {
     SimRng *rng;
     guint ngp;
     uint64_t edits[ED_N], moves, commands, host_elems, exprs;
+    uint64_t drawn; /* on-screen primitive instances, all frames */
     GArray *unposted; /* guint structure ids, unposted by edits */
     gboolean image_ok; /* the last frame equals the serial render */
     uint64_t sent[64]; /* WlPphigsTraffic.sent_to at the last frame */
@@ -522,6 +523,7 @@ static gboolean one_frame(Run *r, SimResult *out, GError **err)
                   sim_now(mach_engine(r->m)));
     r->commands += st.commands;
     r->exprs += st.expressions;
+    r->drawn += st.primitives - st.offscreen;
     r->imbalance = wl_pphigs_imbalance(st.gp_time_us, r->ngp);
     const WlPphigsCosts *c = wl_pphigs_frame_costs(r->frame);
     double t1 = sim_time_to_us(
@@ -631,6 +633,12 @@ static void fill(Run *r, const WlContext *ctx, SimResult *out)
     sim_result_set_metric(out, "ring_bytes_per_frame",
                           (double)net_total_bytes(net) / n, "B");
     sim_result_set_metric(out, "commands_per_frame", r->commands / n, "");
+    const WlPphigsFrameSpec *fs = &r->p->setup.frame;
+    double pixels = (double)fs->width * fs->height * fs->pixel_bytes;
+    sim_result_set_metric(out, "sort_bytes_per_frame",
+                          (double)net_total_bytes(net) / n - pixels, "B");
+    sim_result_set_metric(out, "region_overlap",
+                          r->drawn ? (double)r->commands / r->drawn : 0, "");
     sim_result_set_metric(out, "gps", r->ngp, "");
     sim_result_set_metric(out, "last_imbalance_pct", 100 * r->imbalance, "%");
     sim_result_set_metric(out, "edits", (double)r->edits[ED_MODIFY], "");
@@ -691,6 +699,12 @@ static const WlMetric pphigs_metrics[] = {
     {"renderer_util_pct", "%", "busy / simulated time, mean over renderers"},
     {"ring_bytes_per_frame", "B", "ring traffic per frame"},
     {"commands_per_frame", "", "renderer commands per frame"},
+    {"sort_bytes_per_frame", "B",
+     "ring bytes per frame less the frame buffer's pixels (width x height "
+     "x pixel_bytes): commands, markers, bins and edits"},
+    {"region_overlap", "",
+     "renderer commands per on-screen primitive instance: the screen "
+     "regions a primitive's box overlaps (Molnar's overlap factor)"},
     {"gps", "", "GPs run"},
     {"last_imbalance_pct", "%",
      "(max - mean) / max GP processor time, last frame (sec. 5)"},

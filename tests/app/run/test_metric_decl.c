@@ -84,7 +84,7 @@ static void test_variants(void **st)
     const char *pn_pp5[] = {"machine.model=pixel-planes-5", NULL};
     assert_int_equal(run_file("configs/sortfirst-vehicle.yaml", sf_pull), 45);
     assert_int_equal(run_file("configs/sortfirst-vehicle.yaml", sf_edits), 52);
-    assert_int_equal(run_file("configs/pphigs-flock.yaml", ph_edits), 37);
+    assert_int_equal(run_file("configs/pphigs-flock.yaml", ph_edits), 39);
     assert_int_equal(run_file("configs/dpscan-cm200.yaml", dp_cm5), 18);
     assert_true(run_file("configs/pn-onyx.yaml", pn_pp5) >= 8);
 }
