@@ -199,8 +199,9 @@ static void run_flock(const char *const *sets, Out *o)
     o->frames = g_array_new(FALSE, FALSE, sizeof(SimTime));
     g_array_append_vals(o->frames, r->frame_times->data, r->frame_times->len);
     /* 16 + the database's 5 + the renderers' range 2 + idle GPs and
-     * the two polygon rates + the distribution's traffic 3 */
-    assert_int_equal(r->metrics->len, 29);
+     * the two polygon rates + the distribution's traffic 3 + the sort's
+     * bytes and overlap 2 (docs/sorts.md) */
+    assert_int_equal(r->metrics->len, 31);
     assert_true(((SimMetric *)g_ptr_array_index(r->metrics, 14))->value == 1);
     for (guint i = 0; i < 15; i++)
         o->m[i] = ((SimMetric *)g_ptr_array_index(r->metrics, i))->value;
