@@ -1,10 +1,12 @@
-/* cmd_sorts.c — `pgsim sorts FILE.yaml [--out DIR] [--no-charts]`: one
+/* cmd_sorts.c — `pgsim sorts FILE.yaml [--set K=V ...] [--out DIR]
+ * [--no-charts]`: one
  * scene on one machine as sort-first, sort-middle and sort-last over a
  * range of processor counts (sim/app/sorts/sorts.h, docs/sorts.md).
  * Prints the table (sort, processors, overlap, bytes, balance,
  * frame_ms), writes it as DIR/<name>.csv and charts frame time and bytes
  * against processors (DIR/<name>-frame.png, -bytes.png); DIR defaults
- * to out/<name>. */
+ * to out/<name>.  --set overrides the file's own keys (processors,
+ * machine.*, scene.*, run.*). */
 #include "sim/app/cli/cli.h"
 #include "sim/app/cli/commands.h"
 #include "sim/app/sorts/sorts.h"
@@ -57,11 +59,15 @@ static gboolean write_csv(const DataTable *t, const char *dir,
 int cmd_sorts(int argc, char **argv)
 {
     char *out = NULL;
+    char **sets = NULL;
     gboolean no_charts = FALSE;
     int status = 0;
     GOptionEntry entries[] = {
         {"out", 0, 0, G_OPTION_ARG_FILENAME, &out,
          "output folder (default out/<name>)", "DIR"},
+        {"set", 0, 0, G_OPTION_ARG_STRING_ARRAY, &sets,
+         "override a key of FILE (processors, machine.*, scene.*, run.*)",
+         "K=V"},
         {"no-charts", 0, 0, G_OPTION_ARG_NONE, &no_charts,
          "write the table only, no gnuplot charts", NULL},
         {NULL, 0, 0, 0, NULL, NULL, NULL}};
@@ -76,9 +82,12 @@ int cmd_sorts(int argc, char **argv)
     if (!cli_want_args("sorts", "FILE.yaml", argc, argv, 1))
         return 2;
     GError *err = NULL;
-    SortsSpec *s = sorts_spec_load(argv[1], &err);
-    if (!s)
+    SortsSpec *s = sorts_spec_load(argv[1], (const char *const *)sets, &err);
+    g_strfreev(sets);
+    if (!s) {
+        g_free(out);
         return cli_fail(err);
+    }
     char *dir = out ? g_strdup(out) : g_build_filename("out", s->name, NULL);
     DataTable *t = NULL;
     if (g_mkdir_with_parents(dir, 0755) != 0)

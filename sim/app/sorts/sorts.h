@@ -58,8 +58,12 @@ typedef struct {
     GPtrArray *sorts; /* SortsSort * */
 } SortsSpec;
 
-/* Reads and checks a comparison file; NULL with a located *err. */
-SortsSpec *sorts_spec_load(const char *path, GError **err);
+/* Reads and checks a comparison file after the overrides `sets`
+ * ("key.path=value", NULL-terminated, may be NULL: `pgsim sorts --set`,
+ * on the file's own keys: processors, machine.*, scene.*, run.*); NULL
+ * with a located *err. */
+SortsSpec *sorts_spec_load(const char *path, const char *const *sets,
+                           GError **err);
 void sorts_spec_free(SortsSpec *s);
 
 /* The largest per-processor busy time of r's processors of `kind` over

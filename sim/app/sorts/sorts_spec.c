@@ -204,11 +204,17 @@ static char *default_name(const char *path)
     return base;
 }
 
-SortsSpec *sorts_spec_load(const char *path, GError **err)
+SortsSpec *sorts_spec_load(const char *path, const char *const *sets,
+                           GError **err)
 {
     CfgNode *root = cfg_load_file(path, err);
     if (!root)
         return NULL;
+    for (guint i = 0; sets && sets[i]; i++)
+        if (!cfg_set_override(root, sets[i], err)) {
+            cfg_free(root);
+            return NULL;
+        }
     SortsSpec *s = g_new0(SortsSpec, 1);
     s->root = root;
     int64_t version = 0;

@@ -58,7 +58,7 @@ static void expect_refused(const char *dir, const char *text,
 {
     char *path = write_spec(dir, text);
     GError *e = NULL;
-    SortsSpec *s = sorts_spec_load(path, &e);
+    SortsSpec *s = sorts_spec_load(path, NULL, &e);
     DataTable *t = NULL;
     if (s) { /* refused only when run (a share that is no whole count) */
         t = sorts_run(s, dir, &e);
@@ -137,7 +137,7 @@ static void test_sort_first_rows(void **st)
                                  "run: {frames: 2, fidelity: analytic}\n"
                                  SF_SORT);
     GError *e = NULL;
-    SortsSpec *s = sorts_spec_load(path, &e);
+    SortsSpec *s = sorts_spec_load(path, NULL, &e);
     if (!s)
         fail_msg("%s", e->message);
     DataTable *t = sorts_run(s, dir, &e);
