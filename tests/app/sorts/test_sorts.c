@@ -1,8 +1,12 @@
 /* test_sorts.c — one scene, three sorts (sim/app/sorts/sorts.h): the
  * load balance from per-processor busy times (idle workers counted, the
  * machine's unused processors not; a wrong count fails), the comparison
- * file's located refusals, and a comparison run whose table holds a row
- * per sort and processor count with the overlap of its definition. */
+ * file's located refusals, a comparison run whose table holds a row
+ * per sort and processor count with the overlap of its definition, the
+ * shipped comparison made small (all three sorts, each overlap within
+ * its definition's range), and the bytes' definitions as claims that
+ * could come out false: uncompressed sort-last bytes follow the image
+ * size and not the primitives, sort-first's follow the primitives. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -123,6 +127,36 @@ static void test_refusals(void **st)
     g_free(dir);
 }
 
+/* The comparison at path after sets, run: its table (dt_free). */
+static DataTable *run_spec(const char *path, const char *const *sets,
+                           const char *dir)
+{
+    GError *e = NULL;
+    SortsSpec *s = sorts_spec_load(path, sets, &e);
+    if (!s)
+        fail_msg("%s", e->message);
+    DataTable *t = sorts_run(s, dir, &e);
+    if (!t)
+        fail_msg("%s", e->message);
+    sorts_spec_free(s);
+    return t;
+}
+
+/* Column col of the row of sort at P. */
+static double cell(const DataTable *t, const char *sort, guint procs,
+                   const char *col)
+{
+    int cs = dt_col(t, "sort"), cp = dt_col(t, "processors"),
+        cc = dt_col(t, col);
+    assert_true(cs >= 0 && cp >= 0 && cc >= 0);
+    for (guint r = 0; r < t->rows->len; r++)
+        if (!strcmp(dt_cell(t, r, cs), sort) &&
+            g_ascii_strtoull(dt_cell(t, r, cp), NULL, 10) == procs)
+            return g_ascii_strtod(dt_cell(t, r, cc), NULL);
+    fail_msg("no row %s at %u", sort, procs);
+    return NAN;
+}
+
 /* Sort-first alone on the cluster: a row per processor count, overlap
  * (regions per on-screen chunk) at least 1 and growing with the regions,
  * balance at least 1, and the scene's database written for a sort that
@@ -136,13 +170,7 @@ static void test_sort_first_rows(void **st)
                                  "machine: {model: cluster-ib}\n" FLOCK
                                  "run: {frames: 2, fidelity: analytic}\n"
                                  SF_SORT);
-    GError *e = NULL;
-    SortsSpec *s = sorts_spec_load(path, NULL, &e);
-    if (!s)
-        fail_msg("%s", e->message);
-    DataTable *t = sorts_run(s, dir, &e);
-    if (!t)
-        fail_msg("%s", e->message);
+    DataTable *t = run_spec(path, NULL, dir);
     assert_int_equal(t->rows->len, 2);
     int c_sort = dt_col(t, "sort"), c_p = dt_col(t, "processors"),
         c_ov = dt_col(t, "overlap"), c_bal = dt_col(t, "balance");
@@ -155,8 +183,109 @@ static void test_sort_first_rows(void **st)
     assert_true(ov2 >= 1 && ov8 > ov2);
     assert_true(g_ascii_strtod(dt_cell(t, 1, c_bal), NULL) >= 1);
     dt_free(t);
-    sorts_spec_free(s);
     g_free(path);
+    support_rm_tree(dir);
+    g_free(dir);
+}
+
+/* configs/sorts/three-sorts.yaml at P = 2 and 8, 2 frames: a row for
+ * each sort and P; sort-first's and sort-middle's overlap at least 1
+ * (a primitive on screen meets a region), sort-middle's the same at
+ * every P (its regions are fixed), sort-last's within 1 .. P (images
+ * covering a covered pixel); every balance at least 1; on Pixel-Planes
+ * 5 a row per sort, sort-middle's overlap the cluster's. */
+static void test_shipped(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pgsim-sorts-XXXXXX", NULL);
+    const char *sets[] = {"processors=[2, 8]", "run.frames=2", NULL};
+    DataTable *t = run_spec("configs/sorts/three-sorts.yaml", sets, dir);
+    assert_int_equal(t->rows->len, 6);
+    static const char *const sorts[] = {"sort-first", "sort-middle",
+                                        "sort-last"};
+    guint ps[] = {2, 8};
+    for (guint i = 0; i < 3; i++)
+        for (guint j = 0; j < 2; j++) {
+            assert_true(cell(t, sorts[i], ps[j], "overlap") >= 1);
+            assert_true(cell(t, sorts[i], ps[j], "balance") >= 1);
+            assert_true(cell(t, sorts[i], ps[j], "bytes") > 0);
+            assert_true(cell(t, sorts[i], ps[j], "frame_ms") > 0);
+        }
+    assert_true(cell(t, "sort-last", 8, "overlap") <= 8);
+    assert_true(cell(t, "sort-last", 8, "overlap") >
+                cell(t, "sort-last", 2, "overlap"));
+    assert_true(cell(t, "sort-middle", 2, "overlap") ==
+                cell(t, "sort-middle", 8, "overlap"));
+    assert_true(cell(t, "sort-first", 8, "overlap") >
+                cell(t, "sort-first", 2, "overlap"));
+    /* the same on Pixel-Planes 5: the overlaps are the workloads' */
+    const char *one[] = {"processors=[8]", "run.frames=2", NULL};
+    DataTable *u = run_spec("configs/sorts/three-sorts-pp5.yaml", one, dir);
+    assert_int_equal(u->rows->len, 3);
+    for (guint i = 0; i < 3; i++)
+        assert_true(cell(u, sorts[i], 8, "balance") >= 1);
+    assert_true(cell(u, "sort-middle", 8, "overlap") ==
+                cell(t, "sort-middle", 8, "overlap"));
+    dt_free(u);
+    dt_free(t);
+    support_rm_tree(dir);
+    g_free(dir);
+}
+
+/* Sort-middle (2 GPs, 2 renderers) and sort-last (no bounding
+ * rectangles, no RLE; resolution R) of a flock, P = 4. */
+static char *claims_spec(const char *dir, guint res)
+{
+    char *text = g_strdup_printf(
+        "three_sorts: 1\nprocessors: [4]\nmachine: {model: cluster-ib}\n"
+        FLOCK "run: {frames: 3, fidelity: analytic}\n"
+        "sorts:\n"
+        "  - sort: middle\n"
+        "    workload: {type: pphigs, frame: configs/sorts/frame.yaml,\n"
+        "               rebalance: {enabled: false}}\n"
+        "    scene: database\n"
+        "    processors: {workload.gps: 0.5,\n"
+        "                 machine.nodes.renderer.count: 0.5}\n"
+        "    overlap: region_overlap\n"
+        "    bytes: sort_bytes_per_frame\n"
+        "    balance: {gp: 0.5, renderer: 0.5}\n"
+        "  - sort: last\n"
+        "    workload: {type: pixelmerge, scheme: radix_k, resolution: %u}\n"
+        "    processors: {workload.processors: 1}\n"
+        "    overlap: image_overlap\n"
+        "    bytes: merge_bytes\n"
+        "    balance: {node: 1}\n",
+        res);
+    char *path = write_spec(dir, text);
+    g_free(text);
+    return path;
+}
+
+/* Sort-last's uncompressed images: 4 x the bytes at twice the image
+ * side, the same bytes with half the boids; sort-middle's commands:
+ * fewer bytes with half the boids.  Each could fail (a sort-last that
+ * sent primitives, a sort-middle that sent images). */
+static void test_bytes_claims(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pgsim-sorts-XXXXXX", NULL);
+    const char *half[] = {"scene.boids=8", NULL}; /* of 16 */
+    char *p128 = claims_spec(dir, 128);
+    DataTable *a = run_spec(p128, NULL, dir);
+    DataTable *b = run_spec(p128, half, dir);
+    char *p256 = claims_spec(dir, 256);
+    DataTable *c = run_spec(p256, NULL, dir);
+    double last = cell(a, "last", 4, "bytes");
+    assert_true(last > 0);
+    assert_true(cell(c, "last", 4, "bytes") == 4 * last);
+    assert_true(cell(b, "last", 4, "bytes") == last);
+    double middle = cell(a, "middle", 4, "bytes");
+    assert_true(cell(b, "middle", 4, "bytes") < middle);
+    dt_free(a);
+    dt_free(b);
+    dt_free(c);
+    g_free(p128);
+    g_free(p256);
     support_rm_tree(dir);
     g_free(dir);
 }
@@ -167,6 +296,8 @@ int main(void)
         cmocka_unit_test(test_balance),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_sort_first_rows),
+        cmocka_unit_test(test_shipped),
+        cmocka_unit_test(test_bytes_claims),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
