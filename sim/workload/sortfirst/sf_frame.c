@@ -34,6 +34,12 @@ static const MachWork sf_work[] = {
     /* a bounding sphere against the clip matrix's rows and planes and
      * its two tangent quadratics: ~150 flops */
     {"sphere_bound", {[MACH_W_FLOP] = 150, [MACH_W_INSTR] = 20}},
+    /* an interrupt, the kernel's handler and two context switches: a few
+     * thousand instructions and the cache lines they touch */
+    {"request_interrupt", {[MACH_W_INSTR] = 3000, [MACH_W_MISS] = 20}},
+    /* copy one 4-byte pixel (read it, write it) */
+    {"pixel_readout", {[MACH_W_INSTR] = 1, [MACH_W_MEMBYTE] = 8}},
+    {"pixel_assemble", {[MACH_W_INSTR] = 1, [MACH_W_MEMBYTE] = 8}},
     {NULL, {0}}};
 const MachNeed wl_sf_needs[] = {{"node", wl_sf_cost_ops, sf_work},
                                 {NULL, NULL, NULL}};
