@@ -11,6 +11,8 @@
 
 #include <string.h>
 
+#include "sim/scene/pn_crease.h"
+
 /* ---- control net ------------------------------------------------------- */
 
 /* (2 Pi + Pj - w_ij Ni) / 3: the edge point nearest Pi, projected onto
@@ -20,6 +22,27 @@ static Vec3 tangent_point(Vec3 pi, Vec3 ni, Vec3 pj)
     double w = vec3_dot(vec3_sub(pj, pi), ni);
     Vec3 s = vec3_add(vec3_scale(pi, 2), pj);
     return vec3_scale(vec3_sub(s, vec3_scale(ni, w)), 1.0 / 3.0);
+}
+
+/* Pi + ((Pj - Pi) . ti) ti / 3: the edge point nearest Pi on a crease,
+ * from the positions and the crease direction ti alone; a zero ti (both
+ * sides share Pi's normal) falls back to Pi's tangent plane. */
+static Vec3 crease_point(Vec3 pi, Vec3 ni, Vec3 ti, Vec3 pj)
+{
+    if (ti.x == 0 && ti.y == 0 && ti.z == 0)
+        return tangent_point(pi, ni, pj);
+    Vec3 d = vec3_sub(pj, pi);
+    return vec3_add(pi, vec3_scale(ti, vec3_dot(d, ti) / 3.0));
+}
+
+/* The inner control point of edge e (corners e, e + 1) nearest corner
+ * `end` of the edge (0: corner e, 1: corner e + 1). */
+static Vec3 edge_point(const ScenePnPatch *pt, guint e, guint end)
+{
+    guint i = (e + end) % 3, j = (e + 1 - end) % 3;
+    if (pt->cr.crease[e])
+        return crease_point(pt->p[i], pt->n[i], pt->cr.t[e][end], pt->p[j]);
+    return tangent_point(pt->p[i], pt->n[i], pt->p[j]);
 }
 
 /* n_ij = h / |h|, h = Ni + Nj - v_ij (Pj - Pi). */
@@ -34,17 +57,27 @@ static Vec3 mid_normal(Vec3 pi, Vec3 ni, Vec3 pj, Vec3 nj)
 
 void scene_pn_patch(ScenePnPatch *pt, const Vec3 P[3], const Vec3 N[3])
 {
+    scene_pn_patch_creased(pt, P, N, NULL);
+}
+
+void scene_pn_patch_creased(ScenePnPatch *pt, const Vec3 P[3],
+                            const Vec3 N[3], const ScenePnCreases *c)
+{
     for (int i = 0; i < 3; i++) {
         pt->p[i] = P[i];
         pt->n[i] = vec3_norm(N[i]);
     }
+    if (c)
+        pt->cr = *c;
+    else
+        memset(&pt->cr, 0, sizeof pt->cr);
     const Vec3 *p = pt->p, *n = pt->n;
-    pt->b210 = tangent_point(p[0], n[0], p[1]);
-    pt->b120 = tangent_point(p[1], n[1], p[0]);
-    pt->b021 = tangent_point(p[1], n[1], p[2]);
-    pt->b012 = tangent_point(p[2], n[2], p[1]);
-    pt->b102 = tangent_point(p[2], n[2], p[0]);
-    pt->b201 = tangent_point(p[0], n[0], p[2]);
+    pt->b210 = edge_point(pt, 0, 0);
+    pt->b120 = edge_point(pt, 0, 1);
+    pt->b021 = edge_point(pt, 1, 0);
+    pt->b012 = edge_point(pt, 1, 1);
+    pt->b102 = edge_point(pt, 2, 0);
+    pt->b201 = edge_point(pt, 2, 1);
     Vec3 e = vec3_add(vec3_add(pt->b210, pt->b120), pt->b021);
     e = vec3_add(vec3_add(e, pt->b012), vec3_add(pt->b102, pt->b201));
     e = vec3_scale(e, 1.0 / 6.0);
@@ -95,34 +128,27 @@ Vec3 scene_pn_normal(const ScenePnPatch *pt, ScenePnNormals kind, double u,
 
 /* ---- edges in canonical order ------------------------------------------ */
 
-/* Whether a comes after b in (x, y, z) order; a != b (a patch has no
- * zero-length edge: scene_pn_patch asserts it in mid_normal). */
-static gboolean after(Vec3 a, Vec3 b)
-{
-    if (a.x != b.x)
-        return a.x > b.x;
-    if (a.y != b.y)
-        return a.y > b.y;
-    return a.z > b.z;
-}
-
-/* One end of an edge: its corner and the corner's normal. */
+/* One end of an edge: its corner, the corner's normal and, on a crease,
+ * the crease direction there. */
 typedef struct {
-    Vec3 p, n;
+    Vec3 p, n, t;
 } EdgeEnd;
 
 /* The point `sb` steps of `steps` from end a towards end b on the
  * edge's cubic, and its normal: computed from the edge alone. */
-static void edge_eval(EdgeEnd a, EdgeEnd b, guint sb, guint steps,
-                      ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
+static void edge_eval(EdgeEnd a, EdgeEnd b, gboolean crease, guint sb,
+                      guint steps, ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
 {
-    if (after(a.p, b.p)) {
-        edge_eval(b, a, steps - sb, steps, kind, pos, nrm);
+    if (scene_pn_vec_after(a.p, b.p)) {
+        edge_eval(b, a, crease, steps - sb, steps, kind, pos, nrm);
         return;
     }
     Vec3 pa = a.p, na = a.n, pb = b.p, nb = b.n;
     double t = (double)sb / steps, s = 1 - t;
-    Vec3 bab = tangent_point(pa, na, pb), bba = tangent_point(pb, nb, pa);
+    Vec3 bab = crease ? crease_point(pa, na, a.t, pb)
+                      : tangent_point(pa, na, pb);
+    Vec3 bba = crease ? crease_point(pb, nb, b.t, pa)
+                      : tangent_point(pb, nb, pa);
     Vec3 r = vec3_scale(pa, s * s * s);
     r = madd(madd(r, bab, 3 * s * s * t), bba, 3 * s * t * t);
     *pos = madd(r, pb, t * t * t);
@@ -132,6 +158,16 @@ static void edge_eval(EdgeEnd a, EdgeEnd b, guint sb, guint steps,
     }
     Vec3 m = mid_normal(pa, na, pb, nb);
     *nrm = vec3_norm(madd(madd(vec3_scale(na, s * s), nb, t * t), m, s * t));
+}
+
+/* Point `sb` of `steps` along edge e of the patch (from corner e). */
+static void edge_of(const ScenePnPatch *pt, guint e, guint sb, guint steps,
+                    ScenePnNormals kind, Vec3 *pos, Vec3 *nrm)
+{
+    guint f = (e + 1) % 3;
+    EdgeEnd a = {pt->p[e], pt->n[e], pt->cr.t[e][0]};
+    EdgeEnd b = {pt->p[f], pt->n[f], pt->cr.t[e][1]};
+    edge_eval(a, b, pt->cr.crease[e], sb, steps, kind, pos, nrm);
 }
 
 /* Grid point (i, j, k), i + j + k = steps, weights (w, u, v) = (i, j, k)
@@ -144,14 +180,11 @@ static void grid_eval(const ScenePnPatch *pt, ScenePnNormals kind, guint i,
         *pos = pt->p[c];
         *nrm = pt->n[c];
     } else if (k == 0) {
-        edge_eval((EdgeEnd){pt->p[0], pt->n[0]}, (EdgeEnd){pt->p[1], pt->n[1]},
-                  j, steps, kind, pos, nrm);
+        edge_of(pt, 0, j, steps, kind, pos, nrm);
     } else if (i == 0) {
-        edge_eval((EdgeEnd){pt->p[1], pt->n[1]}, (EdgeEnd){pt->p[2], pt->n[2]},
-                  k, steps, kind, pos, nrm);
+        edge_of(pt, 1, k, steps, kind, pos, nrm);
     } else if (j == 0) {
-        edge_eval((EdgeEnd){pt->p[2], pt->n[2]}, (EdgeEnd){pt->p[0], pt->n[0]},
-                  i, steps, kind, pos, nrm);
+        edge_of(pt, 2, i, steps, kind, pos, nrm);
     } else {
         double u = (double)j / steps, v = (double)k / steps;
         *pos = scene_pn_point(pt, u, v);
@@ -193,16 +226,17 @@ static void tessellate_tri(SceneMesh *out, const ScenePnPatch *pt,
         }
 }
 
-/* The PN patch of fan triangle (a, b, c) of a mesh with normals. */
+/* The PN patch of fan triangle (a, b, c) of a mesh with normals, with
+ * its crease edges c (NULL: none). */
 static void mesh_patch(const SceneMesh *m, const uint32_t ix[3],
-                       ScenePnPatch *pt)
+                       const ScenePnCreases *c, ScenePnPatch *pt)
 {
     Vec3 P[3], N[3];
     for (int i = 0; i < 3; i++) {
         P[i] = scene_mesh_vertex(m, ix[i]);
         N[i] = g_array_index(m->normals, Vec3, ix[i]);
     }
-    scene_pn_patch(pt, P, N);
+    scene_pn_patch_creased(pt, P, N, c);
 }
 
 SceneMesh *scene_pn_tessellate(const SceneMesh *m, const ScenePnParams *p)
@@ -213,6 +247,8 @@ SceneMesh *scene_pn_tessellate(const SceneMesh *m, const ScenePnParams *p)
         scene_mesh_compute_normals(own);
         m = own;
     }
+    GArray *cr = p->ignore_creases ? NULL : scene_pn_find_creases(m);
+    guint fan = 0;
     SceneMesh *out = scene_mesh_new();
     for (guint i = 0; i < scene_mesh_n_polys(m); i++) {
         const uint32_t *ix = scene_mesh_poly(m, i);
@@ -221,10 +257,15 @@ SceneMesh *scene_pn_tessellate(const SceneMesh *m, const ScenePnParams *p)
         for (guint t = 1; t + 1 < scene_mesh_poly_len(m, i); t++) {
             uint32_t tri[3] = {ix[0], ix[t], ix[t + 1]};
             ScenePnPatch pt;
-            mesh_patch(m, tri, &pt);
+            mesh_patch(m, tri,
+                       cr ? &g_array_index(cr, ScenePnCreases, fan) : NULL,
+                       &pt);
+            fan++;
             tessellate_tri(out, &pt, p, col, tag);
         }
     }
+    if (cr)
+        g_array_free(cr, TRUE);
     scene_mesh_free(own);
     return out;
 }

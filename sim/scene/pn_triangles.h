@@ -24,7 +24,9 @@
  * an edge depends only on that edge's two vertices (positions and
  * normals), and is evaluated with the edge's endpoints in a canonical
  * order, so two triangles that share an edge and its vertex normals
- * produce bit-identical edge points: no cracks.  O((L + 1)^2) per
+ * produce bit-identical edge points: no cracks.  Where the two sides
+ * have different normals (a crease) the edge is built from its crease
+ * directions instead (below), which both sides share.  O((L + 1)^2) per
  * triangle.
  */
 #ifndef PGSIM_SCENE_PN_TRIANGLES_H
@@ -37,18 +39,42 @@ typedef enum { SCENE_PN_LINEAR, SCENE_PN_QUADRATIC } ScenePnNormals;
 typedef struct {
     guint level; /* L >= 0; 0 leaves a triangle's shape flat */
     ScenePnNormals normals;
+    gboolean ignore_creases; /* TRUE: each side of a crease curves the
+                                edge by its own normals (cracks open);
+                                FALSE: the crease treatment below */
 } ScenePnParams;
+
+/* Curved sharp edges (the paper's "two normals per vertex" on a crease):
+ * an edge whose two triangles meet at the same positions with different
+ * normals at an end is a crease.  Its cubic is built from the positions
+ * and the crease direction t = n_A x n_B (the two sides' normals, in a
+ * canonical order) alone: the inner control point near Pi is Pi +
+ * ((Pj - Pi) . ti) ti / 3, the projection of the edge onto the crease
+ * line, so both sides build the same curve and the seam stays closed;
+ * each side keeps its own normals for shading (the edge looks sharp).
+ * At an end where both sides share the normal, t is zero and the
+ * tangent plane of that normal is used, as on a smooth edge.
+ * Edge e of a triangle joins corner e and corner (e + 1) % 3. */
+typedef struct {
+    gboolean crease[3];
+    Vec3 t[3][2]; /* edge e's unit crease direction at corner e, e + 1 */
+} ScenePnCreases;
 
 /* The control net of one PN triangle. */
 typedef struct {
     Vec3 p[3], n[3]; /* input corners (normals unit length) */
     Vec3 b210, b120, b021, b012, b102, b201, b111;
     Vec3 n110, n011, n101; /* quadratic normal mid-edge coefficients */
+    ScenePnCreases cr;     /* the crease edges (none: all FALSE) */
 } ScenePnPatch;
 
 /* Builds the patch of (P, N) by the construction above; normals are
  * normalised first.  g_assert()s non-degenerate edges. */
 void scene_pn_patch(ScenePnPatch *pt, const Vec3 P[3], const Vec3 N[3]);
+/* The same with crease edges c (NULL: none): a crease edge's two inner
+ * control points come from its crease directions. */
+void scene_pn_patch_creased(ScenePnPatch *pt, const Vec3 P[3],
+                            const Vec3 N[3], const ScenePnCreases *c);
 /* b(u, v) and the unit normal at (u, v), with w = 1 - u - v >= 0. */
 Vec3 scene_pn_point(const ScenePnPatch *pt, double u, double v);
 Vec3 scene_pn_normal(const ScenePnPatch *pt, ScenePnNormals kind, double u,

@@ -15,25 +15,7 @@
 
 #include "sim/scene/pn_memory.h"
 #include "sim/scene/pn_triangles.h"
-
-/* A closed cube of 8 shared vertices and 6 quads, each corner's normal
- * along its diagonal (smooth: the PN surface has no crease). */
-static SceneMesh *smooth_cube(void)
-{
-    SceneMesh *m = scene_mesh_new();
-    for (int i = 0; i < 8; i++) {
-        Vec3 p = {i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1};
-        scene_mesh_add_vertex(m, p);
-        Vec3 n = vec3_norm(p);
-        g_array_append_val(m->normals, n);
-    }
-    static const uint32_t q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (int f = 0; f < 6; f++)
-        scene_mesh_add_quad(m, q[f][0], q[f][1], q[f][2], q[f][3],
-                            scene_color(1, 1, 1), 0);
-    return m;
-}
+#include "tests/scene/pn_cube.h"
 
 /* Distinct vertex positions (bitwise) of m. */
 static guint distinct_positions(const SceneMesh *m)
@@ -52,9 +34,9 @@ static guint distinct_positions(const SceneMesh *m)
 static void test_counts_match_the_tessellation(void **st)
 {
     (void)st;
-    SceneMesh *cube = smooth_cube();
+    SceneMesh *cube = pn_cube_smooth();
     for (guint L = 0; L <= 4; L++) {
-        ScenePnParams p = {L, SCENE_PN_QUADRATIC};
+        ScenePnParams p = {L, SCENE_PN_QUADRATIC, FALSE};
         SceneMesh *fine = scene_pn_tessellate(cube, &p);
         assert_int_equal(scene_pn_level_vertices(cube, L, SCENE_PN_MEM_GRIDS),
                          scene_mesh_n_vertices(fine));
@@ -71,7 +53,7 @@ static void test_counts_match_the_tessellation(void **st)
 static void test_ratios(void **st)
 {
     (void)st;
-    SceneMesh *cube = smooth_cube();
+    SceneMesh *cube = pn_cube_smooth();
     ScenePnMemRule r = {SCENE_PN_MEM_LIST, 32, 4, 0, 0, 4};
     assert_float_equal(scene_pn_lod_memory_ratio(cube, &r), 55, 1e-12);
     r.hi = 3;

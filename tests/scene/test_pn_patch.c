@@ -181,7 +181,7 @@ static void test_grid(void **st)
                 g_array_append_val(m->normals, N[i]);
             }
             scene_mesh_add_tri(m, 0, 1, 2, scene_color(1, 1, 1), 0);
-            ScenePnParams p = {L, kind};
+            ScenePnParams p = {L, kind, FALSE};
             SceneMesh *t = scene_pn_tessellate(m, &p);
             guint n = L + 1, idx = 0;
             for (guint row = 0; row <= n; row++)
@@ -212,7 +212,7 @@ static void test_connectivity(void **st)
         g_array_append_val(m->normals, N[i]);
     }
     scene_mesh_add_tri(m, 0, 1, 2, scene_color(1, 1, 1), 0);
-    ScenePnParams p = {1, SCENE_PN_LINEAR};
+    ScenePnParams p = {1, SCENE_PN_LINEAR, FALSE};
     SceneMesh *t = scene_pn_tessellate(m, &p);
     /* points: row 0: 0 1 2; row 1: 3 4; row 2: 5 */
     const uint32_t want[4][3] = {{0, 1, 3}, {1, 4, 3}, {1, 2, 4}, {3, 4, 5}};

@@ -59,7 +59,7 @@ static void test_corners(void **st)
     }
     /* the tessellated mesh holds the corners among its vertices */
     for (guint L = 0; L < 4; L++) {
-        ScenePnParams p = {L, SCENE_PN_QUADRATIC};
+        ScenePnParams p = {L, SCENE_PN_QUADRATIC, FALSE};
         SceneMesh *in = tri_mesh(P, N), *out = scene_pn_tessellate(in, &p);
         guint last = scene_mesh_n_vertices(out) - 1;
         assert_true(vec_eq(scene_mesh_vertex(out, 0), P[0]));
@@ -102,7 +102,7 @@ static void shared_edge(guint L, ScenePnNormals kind, Vec3 Y, Vec3 ny_b,
     Vec3 PA[3] = {X, Y, C}, NA[3] = {nx, ny, nc};
     Vec3 PB[3] = {Y, X, D}, NB[3] = {ny_b, nx, nd};
     (void)ny;
-    ScenePnParams p = {L, kind};
+    ScenePnParams p = {L, kind, FALSE};
     SceneMesh *ma = tri_mesh(PA, NA), *mb = tri_mesh(PB, NB);
     SceneMesh *ta = scene_pn_tessellate(ma, &p);
     SceneMesh *tb = scene_pn_tessellate(mb, &p);
@@ -200,7 +200,7 @@ static void test_flat_stays_flat(void **st)
     Vec3 f = vec3_norm(vec3_cross(vec3_sub(P[1], P[0]), vec3_sub(P[2], P[0])));
     for (int k = 0; k < 2; k++) {
         Vec3 N[3] = {f, f, f}, face;
-        ScenePnParams p = {5, kinds[k]};
+        ScenePnParams p = {5, kinds[k], FALSE};
         SceneMesh *in = tri_mesh(P, N), *out = scene_pn_tessellate(in, &p);
         assert_true(off_plane(out, P, &face) < 1e-12);
         for (guint i = 0; i < out->normals->len; i++)
@@ -251,7 +251,7 @@ static void test_counts(void **st)
     scene_mesh_add_poly(m, pent, 5, scene_color(1, 0, 0), 7);
     scene_mesh_add_tri(m, 0, 2, 4, scene_color(0, 1, 0), 8);
     for (guint L = 0; L < 9; L++) {
-        ScenePnParams p = {L, SCENE_PN_LINEAR};
+        ScenePnParams p = {L, SCENE_PN_LINEAR, FALSE};
         SceneMesh *out = scene_pn_tessellate(m, &p);
         assert_int_equal(scene_mesh_n_triangles(out), 4 * (L + 1) * (L + 1));
         assert_int_equal(scene_mesh_n_polys(out), 4 * scene_pn_tris_per_tri(L));

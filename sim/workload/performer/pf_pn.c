@@ -57,7 +57,7 @@ WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
                cfg_get_size(pn, "vertex_bytes", FALSE, &p->vertex_bytes, err) &&
                cfg_get_size(pn, "command_bytes", FALSE, &p->command_bytes,
                             err)) {
-        p->pn = (ScenePnParams){(guint)level, (ScenePnNormals)nk};
+        p->pn = (ScenePnParams){(guint)level, (ScenePnNormals)nk, FALSE};
         p->send_fine = send == 1;
         if (mem_parse(pn, p, err))
             return p;

@@ -62,7 +62,7 @@ static void pn_counts(guint level, uint64_t *coarse, uint64_t *fine,
     CfgNode *root = cfg_load_string(pp5_scene, "s.yaml", &err);
     Scene *s = scene_from_cfg(cfg_get(root, "scene"), &err);
     assert_non_null(s);
-    ScenePnParams pn = {level, SCENE_PN_LINEAR};
+    ScenePnParams pn = {level, SCENE_PN_LINEAR, FALSE};
     *coarse = scene_n_triangles(s);
     *fine = *pts = 0;
     for (guint i = 0; i < scene_n_instances(s); i++) {
