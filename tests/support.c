@@ -4,6 +4,10 @@
 
 #include <glib.h>
 #include <glib/gstdio.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <cmocka.h>
 
 void support_warnings_fatal(void)
 {
@@ -101,4 +105,12 @@ SimResult *support_run_text(const char *yaml, const SupportRun *o,
 {
     CfgNode *root = cfg_load_string(yaml, "test.yaml", err);
     return root ? support_run_tree(root, o, err) : NULL;
+}
+
+double support_metric(const SimResult *r, const char *name)
+{
+    double v = -1;
+    if (!sim_result_get_metric(r, name, &v))
+        fail_msg("no metric %s", name);
+    return v;
 }

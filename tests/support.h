@@ -41,5 +41,7 @@ SimResult *support_run_tree(CfgNode *root, const SupportRun *o, GError **err);
 /* The same from YAML text (named "test.yaml" in errors). */
 SimResult *support_run_text(const char *yaml, const SupportRun *o,
                             GError **err);
+/* Metric `name` of r; fails the test when r has none. */
+double support_metric(const SimResult *r, const char *name);
 
 #endif

@@ -9,6 +9,7 @@
 #include "sim/core/trace.h"
 #include "sim/machine/shmem.h"
 #include "sim/workload/performer/pf_gpipe.h"
+#include "sim/workload/performer/pf_pnlod.h"
 #include "sim/scene/scene_cfg.h"
 
 static const char *const normals[] = {"linear", "quadratic", NULL};
@@ -59,7 +60,9 @@ WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
                             err)) {
         p->pn = (ScenePnParams){(guint)level, (ScenePnNormals)nk, FALSE};
         p->send_fine = send == 1;
-        if (mem_parse(pn, p, err))
+        const CfgNode *lod = cfg_get(pn, "lod");
+        if (mem_parse(pn, p, err) &&
+            (!lod || (p->lod = wl_pf_pnlod_parse(lod, err))))
             return p;
     }
     g_free(p);
@@ -68,6 +71,8 @@ WlPfPnParams *wl_pf_pn_params_parse(const CfgNode *pn, GError **err)
 
 void wl_pf_pn_params_free(WlPfPnParams *p)
 {
+    if (p)
+        wl_pf_pnlod_free(p->lod);
     g_free(p);
 }
 
@@ -385,6 +390,8 @@ static void set_metrics(PnRun *r, SimResult *out)
 gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
                       const WlPfPnParams *p, SimResult *out, GError **err)
 {
+    if (p->lod)
+        return wl_pf_pnlod_run(ctx, m, p, out, err);
     PnRun r = {.ctx = ctx, .m = m, .p = p, .out = out};
     if (!pick_machine(&r, err) || !pn_mesh(ctx, p, &r.mesh, err))
         return FALSE;

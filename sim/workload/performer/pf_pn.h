@@ -31,6 +31,9 @@
  * take against the base mesh (pn_memory.h; vertex_bytes per vertex):
  * the slides' "models for LOD 0-4 would require 70 times the memory".
  *
+ * With `lod:` the level is chosen each frame by Performer's LOD node and
+ * stress control instead (pf_pnlod.h).
+ *
  * Level 0 is the flat mesh: nothing is tessellated, coarse = fine.
  * The messages go through the machine's network (mach_net), so bytes
  * and times are the transport's.  O(frames x processors) events.
@@ -41,7 +44,10 @@
 #include "sim/machine/machine.h"
 #include "sim/scene/pn_memory.h"
 #include "sim/scene/pn_triangles.h"
+#include "sim/workload/performer/pf_pipeline.h"
 #include "sim/workload/workload.h"
+
+typedef struct WlPfPnLod WlPfPnLod; /* pf_pnlod.h */
 
 typedef struct {
     ScenePnParams pn;
@@ -52,6 +58,10 @@ typedef struct {
                                         `fifo`, pf_gpipe.h) */
     gboolean memory;     /* `memory:` given: the LOD-memory metrics */
     ScenePnMemRule mem;  /* its counting rule (pn_memory.h) */
+    WlPfPnLod *lod;      /* `lod:` given: PN as Performer's LOD
+                            (pf_pnlod.h); NULL: one fixed level */
+    WlPfPipeParams pipe; /* the workload's frame pipeline (mode, rates,
+                            stress), for lod */
 } WlPfPnParams;
 
 /* Reads the `pn:` map; NULL with a located error. */

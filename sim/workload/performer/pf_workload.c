@@ -278,8 +278,10 @@ static void *pf_parse(const CfgNode *sec, GError **err)
         pf_free(p);
         return NULL;
     }
-    if (p->pn) /* the PN measurement runs through the same pipe */
+    if (p->pn) { /* the PN measurement runs through the same pipe */
         p->pn->fifo_depth = p->fifo_depth, p->pn->fifo_chunk = p->fifo_chunk;
+        p->pn->pipe = p->pipe; /* and its LOD through the same frames */
+    }
     return p;
 }
 
@@ -698,6 +700,13 @@ static const WlMetric pf_metrics[] = {
     {"lod_memory_bytes", "B",
      "pn with memory: pre-tessellated levels from..to stored"},
     {"pn_memory_bytes", "B", "pn with memory: base mesh + PN control data"},
+    {"level_first", "", "pn with lod: PN level of the first frame"},
+    {"level_last", "", "pn with lod: PN level of the last frame"},
+    {"fine_tris_first", "", "pn with lod: triangles drawn, first frame"},
+    {"fine_tris_last", "", "pn with lod: triangles drawn, last frame"},
+    {"interval_ms_last", "ms",
+     "pn with lod: mean frame interval over the last quarter"},
+    {"stress_max", "", "pn with lod: largest stress CULL used"},
     {"lod_memory_ratio", "",
      "pn with memory: lod_memory_bytes / pn_memory_bytes (slides: 70x)"},
     {NULL, NULL, NULL},
