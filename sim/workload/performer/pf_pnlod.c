@@ -283,6 +283,7 @@ gboolean wl_pf_pnlod_run(const WlContext *ctx, MachMachine *m,
         for (guint i = 0; i < recs->len; i++) {
             SimTime s = g_array_index(recs, WlPfFrameRec, i).swap;
             sim_result_add_frame(out, s - prev);
+            wl_mark_frame(ctx->eng, i, s);
             prev = s;
         }
         mach_fill_result(m, out);
