@@ -215,10 +215,10 @@ static void set_metrics(const LodRun *r, const GArray *recs, SimResult *out)
     sim_result_set_metric(out, "frame_ms",
                           wl_pf_mean_interval_s(recs, 0) * 1e3, "ms");
     /* the rate held at the end: the mean interval over the last quarter */
-    sim_result_set_metric(out, "interval_ms_last",
-                          wl_pf_mean_interval_s(recs, n - MAX(n / 4, 2)) *
-                              1e3,
-                          "ms");
+    guint tail = MAX(n / 4, 2); /* intervals between the last frames */
+    sim_result_set_metric(
+        out, "interval_ms_last",
+        n > tail ? wl_pf_mean_interval_s(recs, n - tail) * 1e3 : 0, "ms");
     double smax = 0;
     for (guint i = 0; i < n; i++)
         smax = MAX(smax, g_array_index(recs, WlPfFrameRec, i).stress);
@@ -278,7 +278,7 @@ gboolean wl_pf_pnlod_run(const WlContext *ctx, MachMachine *m,
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &pp, &fns, &r, recs,
                                  ctx->until, err);
-    if (ok) {
+    if (ok) { /* as the town's run: frames end at their swaps */
         SimTime prev = 0;
         for (guint i = 0; i < recs->len; i++) {
             SimTime s = g_array_index(recs, WlPfFrameRec, i).swap;
@@ -287,7 +287,9 @@ gboolean wl_pf_pnlod_run(const WlContext *ctx, MachMachine *m,
             prev = s;
         }
         mach_fill_result(m, out);
-        out->elapsed = sim_now(ctx->eng);
+        out->elapsed = recs->len && !sim_engine_cut(ctx->eng)
+                           ? prev
+                           : sim_now(ctx->eng);
         set_metrics(&r, recs, out);
     }
     g_array_free(recs, TRUE);
