@@ -163,6 +163,17 @@ static uint64_t sent_tris(const PnRun *r)
 
 /* ---- shared-memory machine: CPU -> bus -> pipe ------------------------- */
 
+void wl_pf_pn_draw_work(const WlPfPnParams *p, guint level, uint64_t coarse,
+                        uint64_t fine, uint64_t points, WlPfDrawWork *w)
+{
+    uint64_t verts = 3 * (p->send_fine ? fine : coarse);
+    gboolean tess = !p->send_fine && level > 0;
+    *w = (WlPfDrawWork){.bytes = verts * p->vertex_bytes};
+    mach_ops_add(&w->cpu_ops, "draw_vertex", verts);
+    mach_ops_add(&w->pipe_ops, "pn_vertex", tess ? points : 0);
+    mach_ops_add(&w->pipe_ops, "triangle", fine);
+}
+
 /* The pipe swapped the frame: it is done. */
 static void smp_swapped(void *ctx, guint n)
 {
@@ -178,13 +189,11 @@ static void smp_frame(void *run)
 {
     PnRun *r = run;
     MachMachine *m = r->m;
-    uint64_t verts = 3 * sent_tris(r), bytes = verts * r->p->vertex_bytes;
-    gboolean tess = !r->p->send_fine && r->p->pn.level > 0;
     MachProc *cpu = mach_proc(m, "cpu", 0), *pipe = mach_proc(m, "pipe", 0);
-    WlPfDrawWork w = {.bytes = bytes}; /* named counts, for a recording */
-    mach_ops_add(&w.cpu_ops, "draw_vertex", verts);
-    mach_ops_add(&w.pipe_ops, "pn_vertex", tess ? r->mesh.fine_points : 0);
-    mach_ops_add(&w.pipe_ops, "triangle", r->mesh.fine_tris);
+    WlPfDrawWork w;
+    wl_pf_pn_draw_work(r->p, r->p->pn.level, r->mesh.coarse_tris,
+                       r->mesh.fine_tris, r->mesh.fine_points, &w);
+    uint64_t bytes = w.bytes;
     r->cpu = mach_proc_ops_cost(cpu, &w.cpu_ops);
     r->pipe = mach_proc_ops_cost(pipe, &w.pipe_ops);
     r->bus = mach_shmem_time(&r->bus_mem, bytes);

@@ -71,6 +71,14 @@ void wl_pf_pn_params_free(WlPfPnParams *p);
 /* The costs of the PN measurement on each machine it runs on. */
 extern const WlNeedAlt wl_pf_pn_needs[];
 
+/* One frame's DRAW work on the shared-memory machine at PN level
+ * `level`: the CPU issues 3 vertices per sent triangle (coarse, or fine
+ * with send: fine; cpu draw_vertex), the bus carries vertex_bytes each,
+ * the pipe tessellates (pn_vertex per grid point, coarse sending and
+ * level > 0) and draws (triangle per fine triangle). */
+void wl_pf_pn_draw_work(const WlPfPnParams *p, guint level, uint64_t coarse,
+                        uint64_t fine, uint64_t points, WlPfDrawWork *w);
+
 gboolean wl_pf_pn_run(const WlContext *ctx, MachMachine *m,
                       const WlPfPnParams *p, SimResult *out, GError **err);
 

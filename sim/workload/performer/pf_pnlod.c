@@ -8,6 +8,7 @@
 
 #include "sim/machine/shmem.h"
 #include "sim/workload/performer/pf_cull.h"
+#include "sim/workload/performer/pf_gpipe.h"
 
 /* ---- config ------------------------------------------------------------ */
 
@@ -161,25 +162,25 @@ static SimTime st_cull(void *ctx, guint frame, double stress)
     return 0;
 }
 
-/* DRAW of the level CULL chose: the slowest of CPU, bus and pipe. */
+/* DRAW of the level CULL chose, through the graphics pipe process
+ * (pf_gpipe.h): the CPU's time is the pipe's business. */
 static SimTime st_draw(void *ctx, guint frame)
+{
+    (void)ctx, (void)frame;
+    return 0;
+}
+
+static void st_draw_work(void *ctx, guint frame, WlPfDrawWork *w)
 {
     LodRun *r = ctx;
     int child = g_array_index(r->chosen, int, frame);
-    if (child < 0)
-        return 0;
+    if (child < 0) {
+        *w = (WlPfDrawWork){0};
+        return;
+    }
     const LevelMesh *lm = &r->levels[child];
-    guint L = g_array_index(r->p->lod->levels, guint, child);
-    gboolean fine = r->p->send_fine;
-    uint64_t verts = 3 * (fine ? lm->fine_tris : lm->coarse_tris);
-    MachOps cpu = {0}, pipe = {0};
-    mach_ops_add(&cpu, "draw_vertex", verts);
-    mach_ops_add(&pipe, "pn_vertex", !fine && L > 0 ? lm->points : 0);
-    mach_ops_add(&pipe, "triangle", lm->fine_tris);
-    SimTime c = mach_proc_ops_cost(mach_proc(r->m, "cpu", 0), &cpu);
-    SimTime b = mach_shmem_time(&r->bus, verts * r->p->vertex_bytes);
-    SimTime q = mach_proc_ops_cost(mach_proc(r->m, "pipe", 0), &pipe);
-    return MAX(c, MAX(b, q));
+    wl_pf_pn_draw_work(r->p, g_array_index(r->p->lod->levels, guint, child),
+                       lm->coarse_tris, lm->fine_tris, lm->points, w);
 }
 
 /* ---- run --------------------------------------------------------------- */
@@ -273,8 +274,12 @@ gboolean wl_pf_pnlod_run(const WlContext *ctx, MachMachine *m,
     r.chosen = g_array_new(FALSE, TRUE, sizeof(int));
     g_array_set_size(r.chosen, r.frames);
     pp.frames = r.frames;
-    pp.gpipe = NULL, pp.gpipes = NULL, pp.arena = NULL, pp.pipes = 1;
-    WlPfStageFns fns = {.app = st_app, .cull = st_cull, .draw = st_draw};
+    MachProc *draw = procs[wl_pf_mp_proc(pp.mode, 0, TRUE)];
+    pp.gpipe = wl_pf_gpipe_new(ctx->eng, draw, mach_proc(m, "pipe", 0), &r.bus,
+                               p->fifo_depth, p->fifo_chunk);
+    pp.gpipes = NULL, pp.arena = NULL, pp.pipes = 1;
+    WlPfStageFns fns = {.app = st_app, .cull = st_cull, .draw = st_draw,
+                        .draw_work = st_draw_work};
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     gboolean ok = wl_pf_pipe_run(ctx->eng, procs, &pp, &fns, &r, recs,
                                  ctx->until, err);
@@ -287,11 +292,14 @@ gboolean wl_pf_pnlod_run(const WlContext *ctx, MachMachine *m,
             prev = s;
         }
         mach_fill_result(m, out);
+        out->comm_bytes = r.bus.bytes; /* DRAW's CPU -> pipe, as pf_pn */
+        out->comm_messages = r.bus.transfers;
         out->elapsed = recs->len && !sim_engine_cut(ctx->eng)
                            ? prev
                            : sim_now(ctx->eng);
         set_metrics(&r, recs, out);
     }
+    wl_pf_gpipe_free(pp.gpipe);
     g_array_free(recs, TRUE);
     g_array_free(r.chosen, TRUE);
     g_free(r.levels);

@@ -13,10 +13,11 @@
  * Performer's traversal (pf_cull.h): it picks the child whose range
  * holds distance x stress, i.e. the PN level; DRAW sends that level to
  * the pipe as in pf_pn.h — coarse triangles the pipe tessellates (send:
- * coarse) or the stored fine mesh (send: fine) — and lasts as long as
- * the slowest of the DRAW CPU (draw_vertex per vertex), the bus
- * (vertex_bytes per vertex) and the pipe (pn_vertex per grid point,
- * triangle per fine triangle).  So the triangles drawn per frame fall
+ * coarse) or the stored fine mesh (send: fine) — through the graphics
+ * pipe process (pf_gpipe.h): the DRAW CPU issues (draw_vertex per
+ * vertex) into the bounded FIFO over the bus (vertex_bytes per vertex),
+ * the pipe tessellates (pn_vertex per grid point) and draws (triangle
+ * per fine triangle).  So the triangles drawn per frame fall
  * with distance, and under overload the stress filter raises the stress
  * until a coarser level fits the frame.  O(frames + triangles).
  */
