@@ -241,7 +241,8 @@ static gboolean get_procs(MachMachine *m, const WlPfPipeParams *pp,
     }
     for (guint i = 0; i < need; i++)
         procs[i] = mach_proc(m, "cpu", i);
-    return mach_shmem_init(&r->bus, m, err);
+    return mach_shmem_init(&r->bus, m, err) &&
+           mach_costs_check(m, wl_pf_pn_needs[0].needs, err);
 }
 
 gboolean wl_pf_pnlod_run(const WlContext *ctx, MachMachine *m,
