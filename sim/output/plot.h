@@ -6,6 +6,7 @@
  * max y over the rows that share x) and <dir>/<name>.gp (a script that
  * draws <name>.png with pngcairo and <name>.svg), then runs gnuplot on it
  * in <dir>, so a user can edit the .gp file and rerun `gnuplot NAME.gp`.
+ * (plot.c draws; plot_spec.c reads specs; plot_label.c makes labels.)
  *
  * Data never becomes gnuplot code: values reach gnuplot only through the
  * .dat file, every text put into the script (titles, labels, series
