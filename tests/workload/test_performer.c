@@ -93,7 +93,7 @@ static GArray *run_synth(const WlPfPipeParams *p, Synth *s)
     MachProc *procs[4];
     for (guint i = 0; i < 4; i++)
         procs[i] = mach_proc(m, "cpu", i);
-    WlPfStageFns f = {s_app, s_cull, s_draw, NULL, NULL};
+    WlPfStageFns f = {.app = s_app, .cull = s_cull, .draw = s_draw};
     GArray *recs = g_array_new(FALSE, TRUE, sizeof(WlPfFrameRec));
     last_stress = 1;
     assert_true(wl_pf_pipe_run(eng, procs, p, &f, s, recs, SIM_TIME_MAX, &err));

@@ -80,7 +80,8 @@ static Run run(Work w)
     mach_shmem_init_with(&bus, 1e8, 0);
     WlPfGpipe *gp = wl_pf_gpipe_new(eng, procs[2], pipe, &bus,
                                     w.depth ? w.depth : 64 * 1024, 8 * 1024);
-    WlPfStageFns f = {s_app, s_cull, s_draw, NULL, NULL, s_work};
+    WlPfStageFns f = {.app = s_app, .cull = s_cull, .draw = s_draw,
+                      .draw_work = s_work};
     WlPfPipeParams p = {.mode = WL_PF_MP_APP_CULL_DRAW,
                         .video = SIM_MS / 1000,
                         .per_frame = 1,

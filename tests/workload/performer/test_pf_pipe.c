@@ -64,7 +64,8 @@ static GArray *run(WlPfMpMode mode, gboolean locked, Times *t, guint frames)
     MachProc *procs[4];
     for (guint i = 0; i < 4; i++)
         procs[i] = mach_proc(m, "cpu", i);
-    WlPfStageFns f = {s_app, s_cull, s_draw, t->isect ? s_isect : NULL, NULL};
+    WlPfStageFns f = {.app = s_app, .cull = s_cull, .draw = s_draw,
+                      .isect = t->isect ? s_isect : NULL};
     WlPfPipeParams p = {.mode = mode,
                         .video = 10 * SIM_MS,
                         .per_frame = 2,
