@@ -18,6 +18,8 @@ if echo "$out" | grep -q 'warning:'; then echo "$out" | grep warning: | head; ec
 log=/tmp/pgsim-land-test-$br.log # one per branch: landings queue, logs do not mix
 make test > "$log" 2>&1 ||
     { tail -20 "$log"; echo "land: make test fails after the rebase" >&2; exit 1; }
+# make test builds the test binaries: they are held to -Wall -Wextra too.
+if grep -Eq '^[^ ]+\.[ch]:[0-9]+:[0-9]+: warning:' "$log"; then grep -E '^[^ ]+\.[ch]:[0-9]+:[0-9]+: warning:' "$log" | head; echo "land: warnings in the tests' build" >&2; exit 1; fi
 cd "$main_dir"
 git merge --ff-only -q "$br"
 echo "land: main is now $(git rev-parse --short HEAD)"
