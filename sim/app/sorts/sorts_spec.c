@@ -247,5 +247,12 @@ SortsSpec *sorts_spec_load(const char *path, const char *const *sets,
         return NULL;
     }
     s->name = name ? g_strdup(name) : default_name(path);
+    /* a name from the file's name stems the outputs too: refused before
+     * anything runs or is written, not at the first chart */
+    if (!name && !plot_cfg_name_ok(root, "comparison (from the file name)",
+                                   s->name, err)) {
+        sorts_spec_free(s);
+        return NULL;
+    }
     return s;
 }

@@ -128,6 +128,36 @@ static void test_refusals(void **st)
     g_free(dir);
 }
 
+/* A file whose name cannot stem the outputs (quotes, backquotes, a
+ * semicolon: they would reach gnuplot's script as a file name) is
+ * refused at load, located at the file, before anything runs or is
+ * written; the same text under a plain name loads. */
+static void test_hostile_file_name(void **st)
+{
+    (void)st;
+    char *dir = g_dir_make_tmp("pgsim-sorts-XXXXXX", NULL);
+    const char *text = "three_sorts: 1\nprocessors: [2]\n" SF_SORT;
+    char *bad = g_build_filename(dir, "a'b;`touch x`.yaml", NULL);
+    char *good = g_build_filename(dir, "plain.yaml", NULL);
+    assert_true(g_file_set_contents(bad, text, -1, NULL));
+    assert_true(g_file_set_contents(good, text, -1, NULL));
+    GError *e = NULL;
+    assert_null(sorts_spec_load(bad, NULL, &e));
+    assert_non_null(e);
+    if (!strstr(e->message, ":1:1: found the comparison (from the file "
+                            "name) name 'a'b;`touch x`'"))
+        fail_msg("%s", e->message);
+    assert_int_equal(sim_error_exit_status(e), 2);
+    g_clear_error(&e);
+    SortsSpec *s = sorts_spec_load(good, NULL, &e);
+    assert_non_null(s);
+    sorts_spec_free(s);
+    support_rm_tree(dir);
+    g_free(bad);
+    g_free(good);
+    g_free(dir);
+}
+
 /* The comparison at path after sets, run: its table (dt_free). */
 static DataTable *run_spec(const char *path, const char *const *sets,
                            const char *dir)
@@ -286,6 +316,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_balance),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_hostile_file_name),
         cmocka_unit_test(test_sort_first_rows),
         cmocka_unit_test(test_shipped),
         cmocka_unit_test(test_bytes_claims),
